@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file CandidateLocator.h
+ * @brief Where the advancing front gets its starting candidates.
+ *
+ * The front needs a search only to start (and to restart on parts of the
+ * target it cannot reach through neighbours): "which source cells may meet
+ * this box?". The VTK filter answers with vtkStaticCellLocator; the kernel
+ * ships BoxGridLocator, a uniform bin grid over the source cells' bounding
+ * boxes, for callers without VTK.
+ */
+#ifndef MeshProjection_Kernel_CandidateLocator_h
+#define MeshProjection_Kernel_CandidateLocator_h
+
+#include "MeshView.h"
+
+#include <vector>
+
+namespace mp
+{
+class CandidateLocator
+{
+public:
+  virtual ~CandidateLocator() = default;
+  /**
+   * Replaces `cells` with the source cells whose bounding boxes may overlap
+   * `box` (xmin, xmax, ymin, ymax, zmin, zmax). Extra candidates are
+   * harmless; a missing one loses intersections.
+   */
+  virtual void FindCandidates(const double box[6], std::vector<Index>& cells) = 0;
+};
+
+/// Uniform grid of bins, about one cell per bin, over a mesh's cell boxes.
+class BoxGridLocator : public CandidateLocator
+{
+public:
+  explicit BoxGridLocator(const MeshView& mesh);
+  void FindCandidates(const double box[6], std::vector<Index>& cells) override;
+
+private:
+  void BinRange(const double box[6], int lo[3], int hi[3]) const;
+
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  int Divisions[3] = { 1, 1, 1 };
+  std::vector<Index> BinStart; ///< CSR offsets into BinCells
+  std::vector<Index> BinCells;
+  std::vector<Index> Stamp;    ///< de-duplicates cells spanning several bins
+  Index Query = 0;
+};
+} // namespace mp
+
+#endif

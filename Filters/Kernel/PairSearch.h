@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PairSearch.h
+ * @brief Finding all intersecting (target, source) cell pairs: the advancing
+ *        front of Gander & Japhet and the brute-force oracle.
+ *
+ * The front (the paper's Fig. 2): every target cell is treated once. For a
+ * target cell with a starting source candidate, an inner front walks over the
+ * source cells' neighbours and keeps every source cell that meets it; while
+ * doing so it records, for each face of the target cell, a source cell
+ * meeting that face, which is a valid starting candidate for the target
+ * neighbour across that face. Those neighbours join the outer front. Work is
+ * linear in the number of intersecting pairs.
+ *
+ * Beyond the paper, nothing assumes that cell 0 meets cell 0, that the meshes
+ * are connected or cover the same domain, or that a cell's intersection with
+ * the other mesh is connected:
+ *  - target cells the front has not reached are seeded from the
+ *    CandidateLocator, one query each (so disjoint parts, holes and partial
+ *    overlaps are all found);
+ *  - when the inner front of a target cell touches the source mesh's boundary
+ *    (where its intersection may be disconnected), or its seed fails, the
+ *    locator's candidates for that cell are added to the inner front.
+ *
+ * Meeting is decided on closed cells with exact predicates, so cells that
+ * only touch (in a vertex or along an edge) keep the fronts going, and both
+ * searches find exactly the same pairs.
+ *
+ * `Intersector` is the cell-pair geometry (TriangleIntersector in 2D); the
+ * search itself does not depend on the dimension. `Visitor` is called as
+ * visit(targetCell, sourceCell, piece) for every pair that meets.
+ */
+#ifndef MeshProjection_Kernel_PairSearch_h
+#define MeshProjection_Kernel_PairSearch_h
+
+#include "CandidateLocator.h"
+#include "MeshView.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace mp
+{
+template <class Intersector, class Visitor>
+void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
+  CandidateLocator& locator, Visitor& visit, SearchStatistics& stats)
+{
+  using Cell = typename Intersector::Cell;
+  using Piece = typename Intersector::Piece;
+  constexpr int Faces = Intersector::Faces;
+
+  struct Seed
+  {
+    Index Target;
+    Index Source;
+  };
+  std::vector<char> queued(static_cast<std::size_t>(target.NumberOfCells), 0);
+  // stamp[s] == t: source cell s was already tried for target cell t. A
+  // stamp instead of the paper's per-cell flag vector keeps the work linear.
+  std::vector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
+  std::vector<Seed> outer;
+  std::vector<Index> inner;
+  std::vector<Index> candidates;
+  Cell t;
+  Cell s;
+  Piece piece;
+  double box[6];
+
+  auto treat = [&](Index tId, Index seed) {
+    if (!Intersector::Prepare(target, tId, t))
+    {
+      ++stats.DegenerateCells;
+      return;
+    }
+    Index faceSeed[Faces];
+    for (auto& f : faceSeed)
+    {
+      f = -1;
+    }
+    inner.clear();
+    bool askedLocator = seed < 0;
+    if (askedLocator)
+    {
+      Intersector::Bounds(t, box);
+      locator.FindCandidates(box, candidates);
+      ++stats.LocatorQueries;
+      for (Index c : candidates)
+      {
+        stamp[c] = tId;
+        inner.push_back(c);
+      }
+    }
+    else
+    {
+      stamp[seed] = tId;
+      inner.push_back(seed);
+    }
+    bool blocked = false; // the inner front met the source boundary
+    bool met = false;
+    for (;;)
+    {
+      while (!inner.empty())
+      {
+        const Index sId = inner.back();
+        inner.pop_back();
+        if (!Intersector::Prepare(source, sId, s))
+        {
+          blocked = true; // a zero-measure source cell interrupts the walk
+          continue;
+        }
+        ++stats.IntersectionTests;
+        if (!Intersector::Intersect(t, s, piece))
+        {
+          continue;
+        }
+        met = true;
+        ++stats.TouchingPairs;
+        visit(t, s, piece);
+        for (int k = 0; k < Faces; ++k)
+        {
+          if (piece.TouchedFaces & (1u << k))
+          {
+            faceSeed[k] = sId;
+          }
+        }
+        for (int k = 0; k < Faces; ++k)
+        {
+          const Index n = source.Neighbor(sId, k);
+          if (n < 0)
+          {
+            blocked = true;
+          }
+          else if (stamp[n] != tId)
+          {
+            stamp[n] = tId;
+            inner.push_back(n);
+          }
+        }
+      }
+      if (askedLocator || (met && !blocked))
+      {
+        break;
+      }
+      // The seed failed or the walk hit the source boundary: the cell's
+      // intersection may have parts the walk cannot reach. Ask the locator.
+      askedLocator = true;
+      Intersector::Bounds(t, box);
+      locator.FindCandidates(box, candidates);
+      ++stats.LocatorQueries;
+      for (Index c : candidates)
+      {
+        if (stamp[c] != tId)
+        {
+          stamp[c] = tId;
+          inner.push_back(c);
+        }
+      }
+    }
+    for (int k = 0; k < Faces; ++k)
+    {
+      if (faceSeed[k] < 0)
+      {
+        continue;
+      }
+      const Index n = target.Neighbor(tId, t.Face[k]);
+      if (n >= 0 && !queued[n])
+      {
+        queued[n] = 1;
+        outer.push_back({ n, faceSeed[k] });
+      }
+    }
+  };
+
+  Index scan = 0;
+  std::size_t head = 0; // outer[head..] is the front: first in, first out, as in the paper
+  for (;;)
+  {
+    if (head == outer.size())
+    {
+      while (scan < target.NumberOfCells && queued[scan])
+      {
+        ++scan;
+      }
+      if (scan == target.NumberOfCells)
+      {
+        break;
+      }
+      queued[scan] = 1;
+      treat(scan, -1);
+      continue;
+    }
+    const Seed next = outer[head++];
+    treat(next.Target, next.Source);
+  }
+}
+
+template <class Intersector, class Visitor>
+void BruteForceSearch(
+  const MeshView& target, const MeshView& source, Visitor& visit, SearchStatistics& stats)
+{
+  using Cell = typename Intersector::Cell;
+  typename Intersector::Piece piece;
+  std::vector<Cell> sources;
+  sources.reserve(static_cast<std::size_t>(source.NumberOfCells));
+  Cell c;
+  for (Index sId = 0; sId < source.NumberOfCells; ++sId)
+  {
+    if (Intersector::Prepare(source, sId, c))
+    {
+      sources.push_back(c);
+    }
+    else
+    {
+      ++stats.DegenerateCells;
+    }
+  }
+  Cell t;
+  for (Index tId = 0; tId < target.NumberOfCells; ++tId)
+  {
+    if (!Intersector::Prepare(target, tId, t))
+    {
+      ++stats.DegenerateCells;
+      continue;
+    }
+    for (const Cell& s : sources)
+    {
+      ++stats.IntersectionTests;
+      if (Intersector::Intersect(t, s, piece))
+      {
+        ++stats.TouchingPairs;
+        visit(t, s, piece);
+      }
+    }
+  }
+}
+} // namespace mp
+
+#endif

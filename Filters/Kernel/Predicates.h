@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Predicates.h
+ * @brief Robust orientation test in the plane.
+ *
+ * Every combinatorial decision of the intersector (is a corner inside a cell,
+ * do two edges cross) is the sign of an orientation determinant. Deciding
+ * these signs exactly makes the decisions of different cell pairs consistent
+ * with each other, which is what the advancing front relies on when cells
+ * touch in a vertex or along an edge.
+ *
+ * The test first evaluates the determinant in floating point with a
+ * forward error bound (Shewchuk, "Adaptive precision floating-point
+ * arithmetic and fast robust geometric predicates", 1997); only when the
+ * result is within that bound is it recomputed exactly, as a floating-point
+ * expansion of the six exact products of input coordinates.
+ */
+#ifndef MeshProjection_Kernel_Predicates_h
+#define MeshProjection_Kernel_Predicates_h
+
+namespace mp
+{
+/**
+ * Twice the signed area of triangle (a, b, c): positive when counterclockwise.
+ * The sign is exact; the magnitude is accurate to a few ulps.
+ * Inputs are (x, y) pairs.
+ */
+double Orient2D(const double* a, const double* b, const double* c);
+
+/// The exact-arithmetic path of Orient2D, exposed for tests.
+double Orient2DExact(const double* a, const double* b, const double* c);
+} // namespace mp
+
+#endif

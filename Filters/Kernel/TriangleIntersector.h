@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file TriangleIntersector.h
+ * @brief Intersection polygon of two triangles and its P1 mortar integrals.
+ *
+ * Implements Section 3 of Gander & Japhet, "An algorithm for non-matching
+ * grid projections with linear complexity" (DD18, 2009): the intersection of
+ * two triangles is the convex hull of (a) the points where an edge of one
+ * crosses an edge of the other and (b) the corners of each triangle lying in
+ * the other, borderline cases included; sorting these points
+ * counterclockwise and removing duplicates gives the polygon. Unlike the
+ * original floating-point tests, every decision here is the sign of an
+ * exactly evaluated orientation (Predicates.h), so a corner lying on an edge
+ * is "inside" for both cells that share the edge.
+ *
+ * Along with the polygon it reports which faces (edges) of the target
+ * triangle the closed source triangle touches: the target's neighbours
+ * across those faces also meet that source triangle, which is how the
+ * advancing front passes on starting candidates without any search.
+ *
+ * Everything is fixed-size; no allocation happens per pair.
+ */
+#ifndef MeshProjection_Kernel_TriangleIntersector_h
+#define MeshProjection_Kernel_TriangleIntersector_h
+
+#include "MeshView.h"
+
+namespace mp
+{
+class TriangleIntersector
+{
+public:
+  static constexpr int Dimension = 2;
+  static constexpr int Corners = 3;
+  static constexpr int Faces = 3;
+  /// At most 3 + 3 corners and 6 proper edge crossings, before duplicates go.
+  static constexpr int MaxPolygonVertices = 12;
+
+  /// A triangle prepared once for many intersection tests.
+  struct Cell
+  {
+    Index Id = -1;
+    Index Points[3];   ///< point ids, in counterclockwise order
+    int Face[3];       ///< mesh-local face index of face k (k opposite corner k)
+    double X[3][2];    ///< corner coordinates as given (exact predicates use them)
+    double Box[4];     ///< xmin, xmax, ymin, ymax
+    double Measure;    ///< area, > 0
+    double Inverse[2][2]; ///< maps x - X[0] to barycentric coordinates 1 and 2
+  };
+
+  /// The intersection of a target and a source triangle.
+  struct Piece
+  {
+    int NumberOfVertices = 0;       ///< 0: empty; 1 or 2: the cells only touch
+    double X[MaxPolygonVertices][2]; ///< counterclockwise
+    unsigned TouchedFaces = 0;      ///< bit k: face k of the target meets the source
+  };
+
+  /**
+   * Gathers cell `id` of `mesh`. Returns false for a cell of zero area (its
+   * corners collinear, decided exactly); such a cell meets nothing.
+   */
+  static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
+
+  /// Bounding box as xmin, xmax, ymin, ymax, zmin, zmax (z is 0).
+  static void Bounds(const Cell& cell, double box[6]);
+
+  /**
+   * Intersects target `t` with source `s` (both closed). Returns false when
+   * they do not meet at all. When they only touch, `piece` has fewer than 3
+   * vertices (measure 0) but `TouchedFaces` still tells which faces of the
+   * target the source meets.
+   */
+  static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
+
+  /**
+   * Adds the P1 mortar integrals of the piece: Mts[i][j] += integral of
+   * phi_i^t phi_j^s and Mtt[i][k] += integral of phi_i^t phi_k^t over the
+   * piece, indices in the order of `Cell::Points`. Uses a fan of triangles
+   * and the edge-midpoint rule, exact for the quadratic integrands.
+   * Returns the area of the piece.
+   */
+  static double Integrate(
+    const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3]);
+
+  /// Area of the piece (0 when it has fewer than 3 vertices).
+  static double Measure(const Piece& piece);
+};
+} // namespace mp
+
+#endif

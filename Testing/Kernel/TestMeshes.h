@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Small triangle meshes for the kernel tests: jittered grids with random
+// diagonals (optionally with quads cut out, for non-convex and holed
+// domains), uniform refinement, rigid motions. No VTK.
+#ifndef MeshProjection_Testing_TestMeshes_h
+#define MeshProjection_Testing_TestMeshes_h
+
+#include "CandidateLocator.h"
+#include "CellNeighbors.h"
+#include "MeshView.h"
+#include "TriangleIntersector.h"
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace mptest
+{
+using mp::Index;
+
+struct TestMesh
+{
+  std::vector<double> Points; // x, y, z
+  std::vector<Index> Cells;   // 3 per triangle
+  std::vector<Index> Neighbors;
+
+  Index NumberOfPoints() const { return Index(this->Points.size() / 3); }
+  Index NumberOfCells() const { return Index(this->Cells.size() / 3); }
+  void Finish()
+  {
+    mp::BuildFaceNeighbors(this->View(false), this->Neighbors);
+  }
+  mp::MeshView View(bool withNeighbors = true) const
+  {
+    mp::MeshView v;
+    v.Dimension = 2;
+    v.Points = this->Points.data();
+    v.NumberOfPoints = this->NumberOfPoints();
+    v.Connectivity = this->Cells.data();
+    v.NumberOfCells = this->NumberOfCells();
+    v.Neighbors = withNeighbors ? this->Neighbors.data() : nullptr;
+    return v;
+  }
+  double CellArea(Index c) const
+  {
+    const double* a = &this->Points[3 * this->Cells[3 * c]];
+    const double* b = &this->Points[3 * this->Cells[3 * c + 1]];
+    const double* d = &this->Points[3 * this->Cells[3 * c + 2]];
+    return 0.5 * std::fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+  }
+  double Area() const
+  {
+    double sum = 0;
+    for (Index c = 0; c < this->NumberOfCells(); ++c)
+    {
+      sum += this->CellArea(c);
+    }
+    return sum;
+  }
+  /// Exact integral of a P1 field (one value per point).
+  double Integral(const std::vector<double>& u) const
+  {
+    double sum = 0;
+    for (Index c = 0; c < this->NumberOfCells(); ++c)
+    {
+      const Index* ids = &this->Cells[3 * c];
+      sum += this->CellArea(c) * (u[ids[0]] + u[ids[1]] + u[ids[2]]) / 3.0;
+    }
+    return sum;
+  }
+};
+
+/**
+ * A grid of nx x ny quads over [x0,x1]x[y0,y1], each split along a random
+ * diagonal. `keep(cx, cy)` (quad centre) cuts quads out. Points strictly
+ * inside the kept region move by up to `jitter` times the spacing; boundary
+ * points stay, so the domain is exactly the union of the kept quads.
+ */
+inline TestMesh GridMesh(int nx, int ny, double jitter, unsigned seed, double x0 = 0,
+  double y0 = 0, double x1 = 1, double y1 = 1,
+  const std::function<bool(double, double)>& keep = nullptr)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double hx = (x1 - x0) / nx;
+  const double hy = (y1 - y0) / ny;
+  auto kept = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < nx && j < ny &&
+      (!keep || keep(x0 + (i + 0.5) * hx, y0 + (j + 0.5) * hy));
+  };
+  TestMesh m;
+  std::vector<Index> id((nx + 1) * (ny + 1), -1);
+  auto point = [&](int i, int j) -> Index {
+    Index& p = id[j * (nx + 1) + i];
+    if (p < 0)
+    {
+      double x = (i == nx) ? x1 : x0 + i * hx;
+      double y = (j == ny) ? y1 : y0 + j * hy;
+      if (kept(i - 1, j - 1) && kept(i, j - 1) && kept(i - 1, j) && kept(i, j))
+      {
+        x += jitter * hx * unit(rng);
+        y += jitter * hy * unit(rng);
+      }
+      p = m.NumberOfPoints();
+      m.Points.insert(m.Points.end(), { x, y, 0.0 });
+    }
+    return p;
+  };
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      if (!kept(i, j))
+      {
+        continue;
+      }
+      const Index a = point(i, j);
+      const Index b = point(i + 1, j);
+      const Index c = point(i + 1, j + 1);
+      const Index d = point(i, j + 1);
+      if (rng() & 1u)
+      {
+        m.Cells.insert(m.Cells.end(), { a, b, c, a, c, d });
+      }
+      else
+      {
+        m.Cells.insert(m.Cells.end(), { a, b, d, b, c, d });
+      }
+    }
+  }
+  for (Index c = 0; c < m.NumberOfCells(); ++c)
+  {
+    const double* a = &m.Points[3 * m.Cells[3 * c]];
+    const double* b = &m.Points[3 * m.Cells[3 * c + 1]];
+    const double* d = &m.Points[3 * m.Cells[3 * c + 2]];
+    if ((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]) <= 0)
+    {
+      throw std::runtime_error("GridMesh: jitter too large, a triangle is inverted");
+    }
+  }
+  m.Finish();
+  return m;
+}
+
+/// Splits every triangle into four through its edge midpoints.
+inline TestMesh Refine(const TestMesh& in)
+{
+  TestMesh m;
+  m.Points = in.Points;
+  std::map<std::pair<Index, Index>, Index> mid;
+  auto midpoint = [&](Index a, Index b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = mid.find(key);
+    if (it != mid.end())
+    {
+      return it->second;
+    }
+    const Index p = m.NumberOfPoints();
+    for (int d = 0; d < 3; ++d)
+    {
+      m.Points.push_back(0.5 * (in.Points[3 * a + d] + in.Points[3 * b + d]));
+    }
+    mid[key] = p;
+    return p;
+  };
+  for (Index c = 0; c < in.NumberOfCells(); ++c)
+  {
+    const Index a = in.Cells[3 * c];
+    const Index b = in.Cells[3 * c + 1];
+    const Index d = in.Cells[3 * c + 2];
+    const Index ab = midpoint(a, b);
+    const Index bd = midpoint(b, d);
+    const Index da = midpoint(d, a);
+    m.Cells.insert(m.Cells.end(), { a, ab, da, ab, b, bd, da, bd, d, ab, bd, da });
+  }
+  m.Finish();
+  return m;
+}
+
+/// Rotates by `angle` about the origin, scales, then translates.
+inline void Move(TestMesh& m, double angle, double scale, double tx, double ty)
+{
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    const double x = m.Points[3 * p];
+    const double y = m.Points[3 * p + 1];
+    m.Points[3 * p] = scale * (c * x - s * y) + tx;
+    m.Points[3 * p + 1] = scale * (s * x + c * y) + ty;
+  }
+}
+
+/// Values of f at the points of a mesh.
+inline std::vector<double> Sample(const TestMesh& m, const std::function<double(double, double)>& f)
+{
+  std::vector<double> u(static_cast<size_t>(m.NumberOfPoints()));
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    u[p] = f(m.Points[3 * p], m.Points[3 * p + 1]);
+  }
+  return u;
+}
+} // namespace mptest
+
+#endif

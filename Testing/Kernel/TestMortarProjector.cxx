@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "MortarProjector.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using mp::Index;
+using mptest::TestMesh;
+
+namespace
+{
+struct Projection
+{
+  mp::MortarProjector Projector;
+  bool Ok = false;
+  Projection(const TestMesh& target, const TestMesh& source,
+    mp::SearchMethod method = mp::SearchMethod::AdvancingFront, bool keepPieces = false)
+  {
+    mp::BoxGridLocator locator(source.View());
+    mp::ProjectionOptions options;
+    options.Method = method;
+    options.KeepPieces = keepPieces;
+    this->Ok = this->Projector.Build(target.View(), source.View(), &locator, options);
+  }
+  std::vector<double> Apply(const std::vector<double>& us, int components = 1) const
+  {
+    std::vector<double> ut(this->Projector.GetValidPoints().size() * components);
+    this->Projector.Project(us.data(), components, ut.data(), std::nan(""));
+    return ut;
+  }
+};
+
+double Smooth(double x, double y)
+{
+  return std::sin(3 * x) * std::cos(2 * y) + 0.5 * x;
+}
+double Linear(double x, double y)
+{
+  return 1.0 + 2.0 * x - 3.0 * y;
+}
+bool LShapeWithHole(double x, double y)
+{
+  return !(x > 0.5 && y > 0.5) && !(x > 0.25 && x < 0.5 && y > 0.25 && y < 0.5);
+}
+} // namespace
+
+// Target: the triangle (0,0),(1,0),(0,1). Source: the same triangle split at
+// the midpoint m of its hypotenuse into S1 = (0, (1,0), m), S2 = (0, m, (0,1)),
+// both of area 1/4. By hand, with the integral of two linear functions over a
+// triangle, A/12 (sum f_a g_a + sum f_a sum g_a), summed over S1 and S2:
+// M_ts(origin, origin) = 1/12, M_ts(origin, m) = 1/24, M_ts((1,0), m) = 1/16.
+TEST(MortarProjector, HandComputedEntries)
+{
+  TestMesh target;
+  target.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+  target.Cells = { 0, 1, 2 };
+  target.Finish();
+  TestMesh source;
+  source.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5, 0.5, 0 };
+  source.Cells = { 0, 1, 3, 0, 3, 2 };
+  source.Finish();
+  Projection p(target, source);
+  ASSERT_TRUE(p.Ok) << p.Projector.GetError();
+  const auto& m = p.Projector;
+  EXPECT_NEAR(m.MixedMassEntry(0, 0), 1.0 / 12.0, 1e-16);
+  EXPECT_NEAR(m.MixedMassEntry(0, 3), 1.0 / 24.0, 1e-16);
+  EXPECT_NEAR(m.MixedMassEntry(1, 3), 1.0 / 16.0, 1e-16);
+  // phi_(1,0) = x is zero at the origin and at (0,1): on S1 = (0,(1,0),m),
+  // values (0,1,1/2) against psi_(1,0) = (0,1,0): 1/48 (1 + 3/2) = 5/96.
+  EXPECT_NEAR(m.MixedMassEntry(1, 1), 5.0 / 96.0, 1e-16);
+  EXPECT_NEAR(m.MixedMassEntry(1, 2), 0.0 + 1.0 / 48.0 * 0.5, 1e-16);
+  // M_tt is the element mass matrix A/12 (1 + delta).
+  EXPECT_NEAR(m.TargetMassEntry(0, 0), 1.0 / 12.0, 1e-16);
+  EXPECT_NEAR(m.TargetMassEntry(0, 1), 1.0 / 24.0, 1e-16);
+  // Rows of M_ts and M_tt both sum to the integral of phi_i: A/3 = 1/6.
+  for (Index i = 0; i < 3; ++i)
+  {
+    double rts = 0;
+    double rtt = 0;
+    for (Index j = 0; j < 4; ++j)
+      rts += m.MixedMassEntry(i, j);
+    for (Index k = 0; k < 3; ++k)
+      rtt += m.TargetMassEntry(i, k);
+    EXPECT_NEAR(rts, 1.0 / 6.0, 1e-16);
+    EXPECT_NEAR(rtt, 1.0 / 6.0, 1e-16);
+  }
+}
+
+TEST(MortarProjector, LinearFieldsAreReproduced)
+{
+  std::mt19937 rng(11);
+  for (int n = 0; n < 40; ++n)
+  {
+    const auto keep = n % 2 ? std::function<bool(double, double)>(LShapeWithHole) : nullptr;
+    const TestMesh target = mptest::GridMesh(4 * (1 + n % 5), 4 * (2 + n % 3), 0.25, rng(), 0, 0, 1, 1, keep);
+    const TestMesh source = mptest::GridMesh(4 * (1 + n % 7), 4 * (1 + n % 4), 0.25, rng(), 0, 0, 1, 1, keep);
+    Projection p(target, source);
+    ASSERT_TRUE(p.Ok);
+    EXPECT_EQ(p.Projector.GetNumberOfValidPoints(), target.NumberOfPoints());
+    const auto ut = p.Apply(mptest::Sample(source, Linear));
+    const auto exact = mptest::Sample(target, Linear);
+    for (Index i = 0; i < target.NumberOfPoints(); ++i)
+      ASSERT_NEAR(ut[i], exact[i], 1e-12) << "case " << n << " point " << i;
+  }
+}
+
+TEST(MortarProjector, MultiComponentFieldsAndConstants)
+{
+  const TestMesh target = mptest::GridMesh(9, 7, 0.25, 21);
+  const TestMesh source = mptest::GridMesh(13, 11, 0.25, 22);
+  Projection p(target, source);
+  ASSERT_TRUE(p.Ok);
+  std::vector<double> us;
+  for (Index i = 0; i < source.NumberOfPoints(); ++i)
+  {
+    const double x = source.Points[3 * i];
+    const double y = source.Points[3 * i + 1];
+    us.insert(us.end(), { 4.25, Linear(x, y), Smooth(x, y) });
+  }
+  const auto ut = p.Apply(us, 3);
+  const auto smooth = p.Apply(mptest::Sample(source, Smooth));
+  for (Index i = 0; i < target.NumberOfPoints(); ++i)
+  {
+    EXPECT_NEAR(ut[3 * i], 4.25, 1e-13);
+    EXPECT_NEAR(ut[3 * i + 1], Linear(target.Points[3 * i], target.Points[3 * i + 1]), 1e-12);
+    EXPECT_EQ(ut[3 * i + 2], smooth[i]); // components are independent
+  }
+}
+
+TEST(MortarProjector, IntegralsAreConserved)
+{
+  std::mt19937 rng(12);
+  for (int n = 0; n < 20; ++n)
+  {
+    const auto keep = n % 2 ? std::function<bool(double, double)>(LShapeWithHole) : nullptr;
+    const TestMesh target = mptest::GridMesh(4 * (1 + n % 3), 4 * (1 + n % 5), 0.25, rng(), 0, 0, 1, 1, keep);
+    const TestMesh source = mptest::GridMesh(4 * (2 + n % 4), 4 * (1 + n % 6), 0.25, rng(), 0, 0, 1, 1, keep);
+    Projection p(target, source);
+    ASSERT_TRUE(p.Ok);
+    const auto us = mptest::Sample(source, Smooth);
+    const auto ut = p.Apply(us);
+    const double is = source.Integral(us);
+    EXPECT_NEAR(target.Integral(ut), is, 1e-13 * std::fabs(is)) << "case " << n;
+    EXPECT_NEAR(p.Projector.GetCoveredMeasure(), target.Area(), 1e-13);
+  }
+}
+
+TEST(MortarProjector, BruteForceGivesTheSameProjection)
+{
+  const TestMesh target = mptest::GridMesh(12, 12, 0.25, 31, 0, 0, 1, 1, LShapeWithHole);
+  const TestMesh source = mptest::GridMesh(16, 20, 0.25, 32, 0, 0, 1, 1, LShapeWithHole);
+  Projection front(target, source, mp::SearchMethod::AdvancingFront, true);
+  Projection brute(target, source, mp::SearchMethod::BruteForce, true);
+  ASSERT_TRUE(front.Ok && brute.Ok);
+  EXPECT_EQ(front.Projector.GetPieces().Size(), brute.Projector.GetPieces().Size());
+  EXPECT_EQ(front.Projector.GetStatistics().TouchingPairs,
+    brute.Projector.GetStatistics().TouchingPairs);
+  const auto us = mptest::Sample(source, Smooth);
+  const auto a = front.Apply(us);
+  const auto b = brute.Apply(us);
+  for (size_t i = 0; i < a.size(); ++i)
+    EXPECT_NEAR(a[i], b[i], 1e-13);
+}
+
+TEST(MortarProjector, ProjectionConvergesUnderRefinement)
+{
+  // The L2 projection of a smooth field is second-order accurate at the points.
+  double previous = 0;
+  for (int level = 0; level < 3; ++level)
+  {
+    const int n = 8 << level;
+    const TestMesh target = mptest::GridMesh(n, n, 0.25, 40 + level);
+    const TestMesh source = mptest::GridMesh(2 * n + 3, 2 * n + 1, 0.25, 50 + level);
+    Projection p(target, source);
+    ASSERT_TRUE(p.Ok);
+    const auto ut = p.Apply(mptest::Sample(source, Smooth));
+    const auto exact = mptest::Sample(target, Smooth);
+    double error = 0;
+    for (size_t i = 0; i < ut.size(); ++i)
+      error = std::max(error, std::fabs(ut[i] - exact[i]));
+    if (level > 0)
+    {
+      EXPECT_LT(error, previous / 3.0) << "level " << level;
+    }
+    previous = error;
+  }
+}
+
+TEST(MortarProjector, PartialOverlapMarksUncoveredPoints)
+{
+  // Source covers x < 0.5 of the target only (aligned with target lines).
+  const TestMesh target = mptest::GridMesh(8, 8, 0.0, 61);
+  const TestMesh source = mptest::GridMesh(5, 7, 0.2, 62, -0.25, -0.25, 0.5, 1.25);
+  Projection p(target, source, mp::SearchMethod::AdvancingFront, true);
+  ASSERT_TRUE(p.Ok);
+  const auto ut = p.Apply(mptest::Sample(source, Linear));
+  Index valid = 0;
+  for (Index i = 0; i < target.NumberOfPoints(); ++i)
+  {
+    const double x = target.Points[3 * i];
+    const double y = target.Points[3 * i + 1];
+    // Points with x <= 0.5 touch covered cells; points beyond do not.
+    const bool expected = x < 0.5 + 1e-12;
+    EXPECT_EQ(bool(p.Projector.GetValidPoints()[i]), expected) << x << " " << y;
+    if (expected)
+    {
+      ++valid;
+      EXPECT_NEAR(ut[i], Linear(x, y), 1e-12);
+    }
+    else
+    {
+      EXPECT_TRUE(std::isnan(ut[i]));
+    }
+  }
+  EXPECT_EQ(valid, p.Projector.GetNumberOfValidPoints());
+  EXPECT_NEAR(p.Projector.GetCoveredMeasure(), 0.5, 1e-14);
+  for (Index c = 0; c < target.NumberOfCells(); ++c)
+  {
+    const Index* ids = &target.Cells[3 * c];
+    const double cx = (target.Points[3 * ids[0]] + target.Points[3 * ids[1]] + target.Points[3 * ids[2]]) / 3;
+    EXPECT_NEAR(p.Projector.GetCoveredFraction()[c], cx < 0.5 ? 1.0 : 0.0, 1e-12);
+  }
+}
+
+TEST(MortarProjector, EmptyAndInvalidMeshes)
+{
+  const TestMesh m = mptest::GridMesh(3, 3, 0.1, 71);
+  TestMesh empty;
+  Projection a(m, empty);
+  ASSERT_TRUE(a.Ok);
+  EXPECT_EQ(a.Projector.GetNumberOfValidPoints(), 0);
+  Projection b(empty, m);
+  ASSERT_TRUE(b.Ok);
+
+  TestMesh broken = m;
+  broken.Cells[4] = 1000; // a point that does not exist
+  mp::MortarProjector projector;
+  mp::BoxGridLocator locator(m.View());
+  EXPECT_FALSE(projector.Build(broken.View(), m.View(), &locator));
+  EXPECT_NE(projector.GetError().find("point that does not exist"), std::string::npos);
+
+  mp::MeshView threeD = m.View();
+  threeD.Dimension = 3;
+  EXPECT_FALSE(projector.Build(threeD, m.View(), &locator));
+}

@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "TriangleIntersector.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+using mp::TriangleIntersector;
+
+namespace
+{
+struct Pair
+{
+  std::vector<double> Points;
+  std::vector<mp::Index> Cells{ 0, 1, 2, 3, 4, 5 };
+  TriangleIntersector::Cell T;
+  TriangleIntersector::Cell S;
+  TriangleIntersector::Piece Piece;
+  bool Met = false;
+
+  Pair(const double t[3][2], const double s[3][2])
+  {
+    for (int k = 0; k < 3; ++k)
+      Points.insert(Points.end(), { t[k][0], t[k][1], 0.0 });
+    for (int k = 0; k < 3; ++k)
+      Points.insert(Points.end(), { s[k][0], s[k][1], 0.0 });
+    mp::MeshView v;
+    v.Points = Points.data();
+    v.NumberOfPoints = 6;
+    v.Connectivity = Cells.data();
+    v.NumberOfCells = 2;
+    EXPECT_TRUE(TriangleIntersector::Prepare(v, 0, T));
+    EXPECT_TRUE(TriangleIntersector::Prepare(v, 1, S));
+    Met = TriangleIntersector::Intersect(T, S, Piece);
+  }
+  double Area() const { return TriangleIntersector::Measure(Piece); }
+};
+
+// An independent oracle: Sutherland-Hodgman clipping in long double.
+long double ClipArea(const double t[3][2], const double s[3][2])
+{
+  using P = std::pair<long double, long double>;
+  std::vector<P> poly = { { t[0][0], t[0][1] }, { t[1][0], t[1][1] }, { t[2][0], t[2][1] } };
+  auto cross = [](P a, P b, P c) {
+    return (b.first - a.first) * (c.second - a.second) - (b.second - a.second) * (c.first - a.first);
+  };
+  P sp[3] = { { s[0][0], s[0][1] }, { s[1][0], s[1][1] }, { s[2][0], s[2][1] } };
+  if (cross(sp[0], sp[1], sp[2]) < 0)
+    std::swap(sp[1], sp[2]);
+  for (int e = 0; e < 3 && !poly.empty(); ++e)
+  {
+    const P a = sp[e];
+    const P b = sp[(e + 1) % 3];
+    std::vector<P> out;
+    for (size_t i = 0; i < poly.size(); ++i)
+    {
+      const P p = poly[i];
+      const P q = poly[(i + 1) % poly.size()];
+      const long double dp = cross(a, b, p);
+      const long double dq = cross(a, b, q);
+      if (dp >= 0)
+        out.push_back(p);
+      if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0))
+      {
+        const long double u = dp / (dp - dq);
+        out.push_back({ p.first + u * (q.first - p.first), p.second + u * (q.second - p.second) });
+      }
+    }
+    poly = out;
+  }
+  long double twice = 0;
+  for (size_t i = 0; i < poly.size(); ++i)
+  {
+    const P p = poly[i];
+    const P q = poly[(i + 1) % poly.size()];
+    twice += p.first * q.second - p.second * q.first;
+  }
+  return std::fabs(twice) / 2;
+}
+
+double TriangleArea(const double t[3][2])
+{
+  return 0.5 * std::fabs((t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) -
+                   (t[1][1] - t[0][1]) * (t[2][0] - t[0][0]));
+}
+} // namespace
+
+TEST(TriangleIntersector, IdenticalTriangles)
+{
+  const double t[3][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
+  Pair p(t, t);
+  ASSERT_TRUE(p.Met);
+  EXPECT_EQ(p.Piece.NumberOfVertices, 3);
+  EXPECT_DOUBLE_EQ(p.Area(), 0.5);
+  EXPECT_EQ(p.Piece.TouchedFaces, 7u);
+}
+
+TEST(TriangleIntersector, ClockwiseInputIsReordered)
+{
+  const double t[3][2] = { { 0, 0 }, { 0, 1 }, { 1, 0 } };
+  Pair p(t, t);
+  EXPECT_EQ(p.T.Points[1], 2);
+  EXPECT_EQ(p.T.Points[2], 1);
+  EXPECT_EQ(p.T.Face[1], 2);
+  EXPECT_DOUBLE_EQ(p.Area(), 0.5);
+}
+
+TEST(TriangleIntersector, DisjointTouchingAndSharedEdge)
+{
+  const double t[3][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
+  const double far[3][2] = { { 2, 2 }, { 3, 2 }, { 2, 3 } };
+  EXPECT_FALSE(Pair(t, far).Met);
+  // Separated, although the bounding boxes overlap.
+  const double across[3][2] = { { 1, 1 }, { 0.6, 1 }, { 1, 0.6 } };
+  EXPECT_FALSE(Pair(t, across).Met);
+
+  const double vertex[3][2] = { { 1, 0 }, { 2, 0 }, { 2, 1 } };
+  Pair pv(t, vertex);
+  ASSERT_TRUE(pv.Met);
+  EXPECT_EQ(pv.Piece.NumberOfVertices, 1);
+  EXPECT_EQ(pv.Area(), 0.0);
+  // Corner 1 of the target touches: faces 0 and 2 (those containing corner 1).
+  EXPECT_EQ(pv.Piece.TouchedFaces, 5u);
+
+  // The neighbour across the hypotenuse (target face 0, opposite corner 0).
+  const double edge[3][2] = { { 1, 0 }, { 1, 1 }, { 0, 1 } };
+  Pair pe(t, edge);
+  ASSERT_TRUE(pe.Met);
+  EXPECT_EQ(pe.Piece.NumberOfVertices, 2);
+  EXPECT_EQ(pe.Area(), 0.0);
+  EXPECT_EQ(pe.Piece.TouchedFaces, 7u); // corners 1 and 2 touch: all faces meet
+  // A source corner in the middle of target edge 0 touches face 0 only.
+  const double mid[3][2] = { { 0.5, 0.5 }, { 1, 0.5 }, { 0.5, 1 } };
+  Pair pm(t, mid);
+  ASSERT_TRUE(pm.Met);
+  EXPECT_EQ(pm.Piece.NumberOfVertices, 1);
+  EXPECT_EQ(pm.Piece.TouchedFaces, 1u);
+}
+
+TEST(TriangleIntersector, HandComputedPolygons)
+{
+  const double t[3][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
+  const double shifted[3][2] = { { 0.25, 0.25 }, { 1.25, 0.25 }, { 0.25, 1.25 } };
+  Pair p(t, shifted);
+  EXPECT_EQ(p.Piece.NumberOfVertices, 3);
+  EXPECT_NEAR(p.Area(), 0.125, 1e-16);
+  // Star of David: a hexagon of area 2/3 of the triangle.
+  const double up[3][2] = { { 0, 0 }, { 3, 0 }, { 1.5, 3 } };
+  const double down[3][2] = { { 0, 2 }, { 1.5, -1 }, { 3, 2 } };
+  Pair star(up, down);
+  EXPECT_EQ(star.Piece.NumberOfVertices, 6);
+  EXPECT_NEAR(star.Area(), 4.5 * 2.0 / 3.0, 1e-14);
+  // Contained triangle: the inner one.
+  const double big[3][2] = { { -1, -1 }, { 3, -1 }, { -1, 3 } };
+  EXPECT_DOUBLE_EQ(Pair(t, big).Area(), 0.5);
+  EXPECT_DOUBLE_EQ(Pair(big, t).Area(), 0.5);
+}
+
+// The pair of triangles on which the original PANG intersection code failed
+// (McCoid & Gander, ACM TOMS 2022; ../shared/data/pang-triangle-failure).
+// They share a corner and overlap in a thin sliver.
+TEST(TriangleIntersector, PangFailurePair)
+{
+  const double p[3][2] = { { -2.1343467936640161, 0.63382959352026025 },
+    { -1.2945925149894781, 0.62248366578973591 }, { -1.7744113806857911, 1.3289335774535278 } };
+  const double s[3][2] = { { -0.4548382363149403, 0.61113773805921157 },
+    { -1.4144759677075658, 2.0240375613867956 }, { -2.1343467936640161, 0.63382959352026025 } };
+  Pair a(p, s);
+  Pair b(s, p);
+  ASSERT_TRUE(a.Met);
+  ASSERT_TRUE(b.Met);
+  const double expected = static_cast<double>(ClipArea(p, s));
+  EXPECT_GT(expected, 0.0);
+  EXPECT_NEAR(a.Area(), expected, 1e-14 * TriangleArea(p));
+  EXPECT_NEAR(b.Area(), expected, 1e-14 * TriangleArea(p));
+  EXPECT_LE(a.Area(), std::min(TriangleArea(p), TriangleArea(s)) * (1 + 1e-15));
+  // The polygon is convex and counterclockwise.
+  for (int i = 0; i < a.Piece.NumberOfVertices; ++i)
+  {
+    const double* u = a.Piece.X[i];
+    const double* v = a.Piece.X[(i + 1) % a.Piece.NumberOfVertices];
+    const double* w = a.Piece.X[(i + 2) % a.Piece.NumberOfVertices];
+    EXPECT_GE((v[0] - u[0]) * (w[1] - u[1]) - (v[1] - u[1]) * (w[0] - u[0]), -1e-15);
+  }
+}
+
+TEST(TriangleIntersector, RandomPairsMatchClipping)
+{
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int met = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    double t[3][2];
+    double s[3][2];
+    for (auto& x : t)
+      x[0] = u(rng), x[1] = u(rng);
+    for (auto& x : s)
+      x[0] = 0.5 * u(rng), x[1] = 0.5 * u(rng);
+    // Every fourth case: snap source corners onto target corners or edges.
+    if (n % 4 == 0)
+    {
+      const int k = n % 3;
+      const double w = (n % 8 == 0) ? 0.0 : 0.5;
+      s[0][0] = (1 - w) * t[k][0] + w * t[(k + 1) % 3][0];
+      s[0][1] = (1 - w) * t[k][1] + w * t[(k + 1) % 3][1];
+    }
+    if (TriangleArea(t) < 1e-6 || TriangleArea(s) < 1e-6)
+      continue;
+    Pair p(t, s);
+    const long double expected = ClipArea(t, s);
+    met += p.Met;
+    if (!p.Met)
+    {
+      EXPECT_LT(expected, 1e-15) << n;
+      continue;
+    }
+    EXPECT_NEAR(p.Area(), static_cast<double>(expected), 1e-13) << n;
+    // Symmetry: the same polygon measure when the roles are swapped.
+    EXPECT_NEAR(Pair(s, t).Area(), p.Area(), 1e-14) << n;
+  }
+  EXPECT_GT(met, 5000);
+}
+
+TEST(TriangleIntersector, MortarEntriesOfIdenticalTriangles)
+{
+  // Integral of phi_i phi_j over a triangle of area A: A/12 (1 + delta_ij).
+  const double t[3][2] = { { 0.3, 0.1 }, { 2.0, 0.4 }, { 0.7, 1.9 } };
+  Pair p(t, t);
+  double mts[3][3] = {};
+  double mtt[3][3] = {};
+  const double area = TriangleIntersector::Integrate(p.Piece, p.T, p.S, mts, mtt);
+  EXPECT_NEAR(area, TriangleArea(t), 1e-15);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+    {
+      EXPECT_NEAR(mts[i][j], area / 12.0 * (1 + (i == j)), 1e-15);
+      EXPECT_NEAR(mtt[i][j], area / 12.0 * (1 + (i == j)), 1e-15);
+    }
+}
