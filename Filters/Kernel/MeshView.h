@@ -15,11 +15,12 @@
 #ifndef MeshProjection_Kernel_MeshView_h
 #define MeshProjection_Kernel_MeshView_h
 
-#include <cstdint>
-
 namespace mp
 {
-using Index = std::int64_t;
+/// Cell and point ids: 64-bit, and the same type as VTK's vtkIdType and
+/// vtkTypeInt64 (long long), so VTK's arrays can be viewed without a copy.
+using Index = long long;
+static_assert(sizeof(Index) == 8, "mp::Index must be a 64-bit integer");
 
 struct MeshView
 {

@@ -12,8 +12,8 @@
 
 namespace mp
 {
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
-using Triplet = Eigen::Triplet<double, std::int64_t>;
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, Index>;
+using Triplet = Eigen::Triplet<double, Index>;
 
 struct MortarProjector::Internals
 {

@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Bad and unusual inputs: each gets a clear error or warning and a
+// well-defined output, never a crash or silent garbage.
+#include "MeshProjectionTestUtilities.h"
+#include "vtkMeshProjectionFilter.h"
+
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkStringArray.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkTransform.h"
+#include "vtkTransformFilter.h"
+
+#include <limits>
+
+namespace
+{
+struct Run
+{
+  vtkNew<vtkMeshProjectionFilter> Filter;
+  vtkNew<vtkTest::ErrorObserver> Observer;
+  Run(vtkUnstructuredGrid* target, vtkUnstructuredGrid* source)
+  {
+    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Observer);
+    this->Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    this->Filter->SetInputData(target);
+    this->Filter->SetSourceData(source);
+    this->Filter->Update();
+  }
+  vtkUnstructuredGrid* Output() { return this->Filter->GetOutput(); }
+  bool ErrorSays(const char* text) { return this->Observer->GetError() &&
+      this->Observer->GetErrorMessage().find(text) != std::string::npos; }
+  bool WarningSays(const char* text) { return this->Observer->GetWarning() &&
+      this->Observer->GetWarningMessage().find(text) != std::string::npos; }
+};
+
+vtkSmartPointer<vtkUnstructuredGrid> Moved(vtkUnstructuredGrid* grid, double dx)
+{
+  vtkNew<vtkTransform> shift;
+  shift->Translate(dx, 0, 0);
+  vtkNew<vtkTransformFilter> move;
+  move->SetTransform(shift);
+  move->SetInputData(grid);
+  move->Update();
+  vtkSmartPointer<vtkUnstructuredGrid> result = vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
+  return result;
+}
+} // namespace
+
+int TestMeshProjectionFilterInputs(int, char*[])
+{
+  int failures = 0;
+  auto source = mptest::ReadSample("lshape_source.vtu");
+  auto target = mptest::ReadSample("lshape_target.vtu");
+
+  {
+    // Unsupported cells are named; the output is Input unchanged.
+    vtkNew<vtkUnstructuredGrid> quads;
+    quads->DeepCopy(source);
+    vtkIdType ids[4] = { 0, 1, 2, 3 };
+    quads->InsertNextCell(VTK_QUAD, 4, ids);
+    Run run(target, quads);
+    MP_CHECK(run.ErrorSays("vtkQuad"));
+    MP_CHECK(run.Output()->GetNumberOfPoints() == target->GetNumberOfPoints());
+    MP_CHECK(run.Output()->GetPointData()->GetArray("TargetId") != nullptr);
+    MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
+  }
+  {
+    // NaN coordinates.
+    vtkNew<vtkUnstructuredGrid> broken;
+    broken->DeepCopy(source);
+    broken->GetPoints()->SetPoint(5, std::numeric_limits<double>::quiet_NaN(), 0, 0);
+    Run run(target, broken);
+    MP_CHECK(run.ErrorSays("NaN"));
+    MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
+  }
+  {
+    // Not planar.
+    vtkNew<vtkUnstructuredGrid> bent;
+    bent->DeepCopy(target);
+    bent->GetPoints()->SetPoint(7, 0.1, 0.1, 0.5);
+    Run run(bent, source);
+    MP_CHECK(run.ErrorSays("not planar"));
+  }
+  {
+    // No overlap: a warning, every point invalid and filled with NaN.
+    auto away = Moved(source, 10.0);
+    Run run(target, away);
+    MP_CHECK(run.WarningSays("do not overlap"));
+    MP_CHECK(!run.Observer->GetError());
+    vtkDataArray* smooth = run.Output()->GetPointData()->GetArray("Smooth");
+    vtkDataArray* mask = run.Output()->GetPointData()->GetArray("vtkValidPointMask");
+    MP_CHECK(smooth && mask);
+    for (vtkIdType i = 0; smooth && mask && i < smooth->GetNumberOfTuples(); ++i)
+    {
+      MP_CHECK(std::isnan(smooth->GetComponent(i, 0)) && mask->GetComponent(i, 0) == 0);
+    }
+  }
+  {
+    // Partial overlap: covered points exact on a linear field, the others
+    // flagged and set to the fill value.
+    auto half = Moved(source, 1.0);
+    Run run(target, half);
+    run.Filter->SetFillValue(-999);
+    run.Filter->Update();
+    vtkDataArray* linear = run.Output()->GetPointData()->GetArray("Linear");
+    vtkDataArray* mask = run.Output()->GetPointData()->GetArray("vtkValidPointMask");
+    vtkIdType valid = 0;
+    for (vtkIdType i = 0; linear && mask && i < linear->GetNumberOfTuples(); ++i)
+    {
+      double x[3];
+      run.Output()->GetPoint(i, x);
+      if (mask->GetComponent(i, 0))
+      {
+        ++valid;
+        MP_CHECK(std::fabs(linear->GetComponent(i, 0) - (1 + 2 * (x[0] - 1) - 3 * x[1])) < 1e-11);
+      }
+      else
+      {
+        MP_CHECK(linear->GetComponent(i, 0) == -999);
+      }
+    }
+    MP_CHECK(valid > 0 && valid < target->GetNumberOfPoints());
+  }
+  {
+    // Empty source: a warning, all invalid.
+    vtkNew<vtkUnstructuredGrid> empty;
+    Run run(target, empty);
+    MP_CHECK(run.WarningSays("no cells"));
+    MP_CHECK(run.Output()->GetNumberOfPoints() == target->GetNumberOfPoints());
+  }
+  {
+    // Non-numeric arrays are skipped with a warning; other types converted.
+    vtkNew<vtkUnstructuredGrid> typed;
+    typed->DeepCopy(source);
+    vtkNew<vtkStringArray> names;
+    names->SetName("Names");
+    names->SetNumberOfValues(typed->GetNumberOfPoints());
+    typed->GetPointData()->AddArray(names);
+    vtkNew<vtkIntArray> ones;
+    ones->SetName("Ones");
+    ones->SetNumberOfValues(typed->GetNumberOfPoints());
+    ones->Fill(1);
+    typed->GetPointData()->AddArray(ones);
+    Run run(target, typed);
+    MP_CHECK(run.WarningSays("Names"));
+    MP_CHECK(run.Output()->GetPointData()->GetAbstractArray("Names") == nullptr);
+    vtkDataArray* projected = run.Output()->GetPointData()->GetArray("Ones");
+    MP_CHECK(projected != nullptr);
+    for (vtkIdType i = 0; projected && i < projected->GetNumberOfTuples(); ++i)
+    {
+      MP_CHECK(std::fabs(projected->GetComponent(i, 0) - 1.0) < 1e-13);
+    }
+  }
+  {
+    // No source at all.
+    vtkNew<vtkMeshProjectionFilter> filter;
+    vtkNew<vtkTest::ErrorObserver> observer;
+    filter->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    filter->SetInputData(target);
+    filter->Update();
+    MP_CHECK(observer->GetError());
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

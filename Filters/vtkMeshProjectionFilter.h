@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkMeshProjectionFilter
+ * @brief   Transfers point data between two non-matching meshes by mortar L2 projection.
+ *
+ * vtkMeshProjectionFilter fills the points of a target mesh (input port 0,
+ * "Input") with the point data of a source mesh (input port 1, "Source")
+ * such that the projected field is the L2-best P1 approximation of the
+ * source field on the target: it solves M_tt u_t = M_ts u_s, where M_tt is
+ * the target mass matrix and M_ts the mixed (mortar) mass matrix, both
+ * integrated exactly over the intersection polygons of every pair of source
+ * and target cells. Unlike vtkResampleWithDataSet (pointwise probing), the
+ * transfer is conservative (the integral of every component is preserved),
+ * reproduces linear fields exactly and does not alias when the target is
+ * coarser than the source.
+ *
+ * The intersecting cell pairs are found by the advancing front of Gander &
+ * Japhet ("An algorithm for non-matching grid projections with linear
+ * complexity", Domain Decomposition Methods in Science and Engineering XVIII,
+ * 2009): neighbours come from VTK's static cell links, the starting pairs
+ * from a vtkStaticCellLocator over the source; the geometry and the
+ * numerics live in a VTK-free kernel (Filters/Kernel).
+ *
+ * Inputs: two vtkUnstructuredGrid made of linear triangles (VTK_TRIANGLE)
+ * lying in one plane z = constant (2D meshes with 3D coordinates). They need
+ * not cover the same region, be connected or convex.
+ *
+ * Output port 0: a shallow copy of Input with, for every numeric point array
+ * of Source (any type, any number of components), a vtkDoubleArray of the
+ * same name and components holding the projected field (an Input array of
+ * the same name is replaced); plus
+ *  - "vtkValidPointMask" (char point array): 1 where the point's support
+ *    meets the source, else 0; invalid points get FillValue;
+ *  - "CoveredFraction" (double cell array): the fraction of each target
+ *    cell's area covered by the source.
+ * Output port 1 (filled when OutputIntersections is on): the intersection
+ * polygons as vtkPolyData with cell arrays "SourceCellId", "TargetCellId"
+ * (vtkIdType) and "Area".
+ *
+ * Non-numeric Source point arrays (strings, variants) are skipped with a
+ * warning. Invalid input (empty meshes, cell types other than triangles,
+ * non-planar meshes, NaN/Inf coordinates) produces an error and an output
+ * that is a plain copy of Input.
+ *
+ * @warning Only 2D triangle meshes are supported in this version.
+ * @warning The search runs on one thread.
+ *
+ * @sa vtkResampleWithDataSet vtkProbeFilter
+ */
+#ifndef vtkMeshProjectionFilter_h
+#define vtkMeshProjectionFilter_h
+
+#include "MeshProjectionFiltersModule.h" // for export macro
+#include "vtkUnstructuredGridAlgorithm.h"
+
+class MESHPROJECTIONFILTERS_EXPORT vtkMeshProjectionFilter : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static vtkMeshProjectionFilter* New();
+  vtkTypeMacro(vtkMeshProjectionFilter, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum SearchMethods
+  {
+    ADVANCING_FRONT = 0, ///< Gander & Japhet's front over neighbours: linear complexity
+    BRUTE_FORCE = 1      ///< every target cell against every source cell: O(n m), for checks
+  };
+
+  ///@{
+  /**
+   * The mesh carrying the data to project (input port 1), as in
+   * vtkResampleWithDataSet.
+   */
+  void SetSourceConnection(vtkAlgorithmOutput* algOutput);
+  void SetSourceData(vtkDataObject* source);
+  vtkDataObject* GetSource();
+  ///@}
+
+  ///@{
+  /**
+   * How intersecting cell pairs are found. Both give the same pairs; the
+   * brute force exists for verification and comparison.
+   * Default: ADVANCING_FRONT.
+   */
+  vtkSetClampMacro(SearchMethod, int, ADVANCING_FRONT, BRUTE_FORCE);
+  vtkGetMacro(SearchMethod, int);
+  void SetSearchMethodToAdvancingFront() { this->SetSearchMethod(ADVANCING_FRONT); }
+  void SetSearchMethodToBruteForce() { this->SetSearchMethod(BRUTE_FORCE); }
+  ///@}
+
+  ///@{
+  /**
+   * Whether output port 1 receives the intersection polygons.
+   * Default: false (the output is an empty vtkPolyData).
+   */
+  vtkSetMacro(OutputIntersections, bool);
+  vtkGetMacro(OutputIntersections, bool);
+  vtkBooleanMacro(OutputIntersections, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Value given to target points whose support does not meet the source.
+   * Default: NaN.
+   */
+  vtkSetMacro(FillValue, double);
+  vtkGetMacro(FillValue, double);
+  ///@}
+
+  ///@{
+  /**
+   * Results of the last execution: intersection polygons of positive area,
+   * cell-pair intersection tests, locator queries, the covered area of the
+   * target, and the wall-clock seconds of the whole execution.
+   */
+  vtkGetMacro(NumberOfIntersections, vtkIdType);
+  vtkGetMacro(NumberOfIntersectionTests, vtkIdType);
+  vtkGetMacro(NumberOfLocatorQueries, vtkIdType);
+  vtkGetMacro(CoveredArea, double);
+  vtkGetMacro(ExecutionTime, double);
+  ///@}
+
+protected:
+  vtkMeshProjectionFilter();
+  ~vtkMeshProjectionFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int SearchMethod = ADVANCING_FRONT;
+  bool OutputIntersections = false;
+  double FillValue;
+
+  vtkIdType NumberOfIntersections = 0;
+  vtkIdType NumberOfIntersectionTests = 0;
+  vtkIdType NumberOfLocatorQueries = 0;
+  double CoveredArea = 0;
+  double ExecutionTime = 0;
+
+private:
+  vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;
+  void operator=(const vtkMeshProjectionFilter&) = delete;
+};
+
+#endif
