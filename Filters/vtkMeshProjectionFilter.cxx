@@ -300,7 +300,6 @@ vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(
 
 //------------------------------------------------------------------------------
 vtkMeshProjectionFilter::vtkMeshProjectionFilter()
-  : FillValue(std::numeric_limits<double>::quiet_NaN())
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
@@ -480,7 +479,9 @@ int vtkMeshProjectionFilter::RequestData(
     projected->SetNumberOfTuples(nt);
     if (nt > 0)
     {
-      projector.Project(AsDoubles(array, buffer), nc, projected->GetPointer(0), this->FillValue);
+      const double fill =
+        this->FillWithNaN ? std::numeric_limits<double>::quiet_NaN() : this->FillValue;
+      projector.Project(AsDoubles(array, buffer), nc, projected->GetPointer(0), fill);
     }
     outPD->AddArray(projected);
     if (array == sourcePD->GetScalars())
@@ -523,6 +524,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SearchMethod: "
      << (this->SearchMethod == BRUTE_FORCE ? "BruteForce" : "AdvancingFront") << "\n";
   os << indent << "OutputIntersections: " << (this->OutputIntersections ? "On" : "Off") << "\n";
+  os << indent << "FillWithNaN: " << (this->FillWithNaN ? "On" : "Off") << "\n";
   os << indent << "FillValue: " << this->FillValue << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";

@@ -100,9 +100,13 @@ public:
 
   ///@{
   /**
-   * Value given to target points whose support does not meet the source.
-   * Default: NaN.
+   * What target points whose support does not meet the source receive:
+   * NaN when FillWithNaN is on (default: true), else FillValue
+   * (default: 0). vtkValidPointMask marks them either way.
    */
+  vtkSetMacro(FillWithNaN, bool);
+  vtkGetMacro(FillWithNaN, bool);
+  vtkBooleanMacro(FillWithNaN, bool);
   vtkSetMacro(FillValue, double);
   vtkGetMacro(FillValue, double);
   ///@}
@@ -131,7 +135,8 @@ protected:
 
   int SearchMethod = ADVANCING_FRONT;
   bool OutputIntersections = false;
-  double FillValue;
+  bool FillWithNaN = true;
+  double FillValue = 0;
 
   vtkIdType NumberOfIntersections = 0;
   vtkIdType NumberOfIntersectionTests = 0;

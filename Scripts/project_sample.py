@@ -18,8 +18,8 @@ import sys
 import time
 
 from paraview import servermanager
-from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction,
-                             IntegrateVariables, LoadPlugin, OpenDataFile,
+from paraview.simple import (ColorBy, CreateView, Delete, GetColorTransferFunction, GetScalarBar,
+                             IntegrateVariables, LoadPlugin, OpenDataFile, OutputPort,
                              Render, SaveData, SaveScreenshot, Show, Text,
                              Transform)
 
@@ -59,8 +59,8 @@ def main():
 
     projected_file = os.path.join(args.out_dir, "projected.vtu")
     polygons_file = os.path.join(args.out_dir, "intersections.vtp")
-    SaveData(projected_file, proxy=projection, OutputPort=0)
-    SaveData(polygons_file, proxy=projection, OutputPort=1)
+    SaveData(projected_file, proxy=OutputPort(projection, 0))
+    SaveData(polygons_file, proxy=OutputPort(projection, 1))
 
     s_info = source.GetDataInformation()
     t_info = target.GetDataInformation()
@@ -93,30 +93,51 @@ def main():
     except AttributeError:
         pass
     bounds = s_info.GetBounds()
-    shift = 1.25 * (bounds[1] - bounds[0])
+    width = bounds[1] - bounds[0]
+    height = bounds[3] - bounds[2]
+    shift = 1.25 * width
     moved = Transform(Input=projection)
     moved.Transform.Translate = [shift, 0, 0]
     lut = GetColorTransferFunction(args.array)
-    for proxy, label, x in ((source, "Source (%d triangles)" % s_info.GetNumberOfCells(), 0.12),
-                            (moved, "Projected onto target (%d triangles)" % t_info.GetNumberOfCells(), 0.60)):
+    # Fit both meshes: x over [xmin, xmin + shift + width], titles above.
+    aspect = 1400.0 / 620.0
+    scale = max(0.62 * height, 0.55 * (shift + width) / aspect)
+    def screen_x(x):  # normalized viewport x of world x
+        return 0.5 + (x - bounds[0] - 0.5 * (shift + width)) / (2 * scale * aspect)
+
+    for proxy, label, x in ((source, "Source: %d triangles" % s_info.GetNumberOfCells(),
+                             screen_x(bounds[0])),
+                            (moved, "Projected onto target: %d triangles" % t_info.GetNumberOfCells(),
+                             screen_x(bounds[0] + shift))):
         display = Show(proxy, view)
         display.SetRepresentationType("Surface With Edges")
-        display.EdgeColor = [0.2, 0.2, 0.2]
+        display.EdgeColor = [0.25, 0.25, 0.25]
         ColorBy(display, ("POINTS", args.array))
         title = Text(Text=label)
         title_display = Show(title, view)
         title_display.WindowLocation = "Any Location"
-        title_display.Position = [x, 0.9]
-        title_display.FontSize = 22
+        title_display.Position = [max(0.01, x), 0.92]
+        title_display.FontSize = 20
         title_display.Color = [0, 0, 0]
     lut.RescaleTransferFunction(*source.PointData[args.array].GetRange())
     display.SetScalarBarVisibility(view, True)
-    view.ResetCamera()
+    bar = GetScalarBar(lut, view)
+    bar.Title = args.array
+    bar.ComponentTitle = ""
+    bar.TitleColor = [0, 0, 0]
+    bar.LabelColor = [0, 0, 0]
+    Render(view)  # the first render resets the camera: place it afterwards
     view.CameraParallelProjection = 1
+    view.CameraFocalPoint = [bounds[0] + 0.5 * (shift + width), bounds[2] + 0.55 * height, 0]
+    view.CameraPosition = [bounds[0] + 0.5 * (shift + width), bounds[2] + 0.55 * height, 10]
+    view.CameraViewUp = [0, 1, 0]
+    view.CameraParallelScale = scale
     Render(view)
     picture = os.path.join(args.out_dir, "projection.png")
     SaveScreenshot(picture, view, ImageResolution=[1400, 620])
     print("  picture       %s" % picture)
+    Delete(view)  # release the GL context before the interpreter exits
+    del view
     return 0 if conservation < 1e-12 and mask[0] == 1 else 1
 
 

@@ -27,7 +27,7 @@ int TestMeshProjectionFilter(int argc, char* argv[])
   vtkNew<vtkMeshProjectionFilter> filter;
   MP_CHECK(filter->GetSearchMethod() == vtkMeshProjectionFilter::ADVANCING_FRONT);
   MP_CHECK(!filter->GetOutputIntersections());
-  MP_CHECK(std::isnan(filter->GetFillValue()));
+  MP_CHECK(filter->GetFillWithNaN() && filter->GetFillValue() == 0);
   filter->SetInputData(target);
   filter->SetSourceData(source);
   filter->OutputIntersectionsOn();

@@ -106,6 +106,7 @@ int TestMeshProjectionFilterInputs(int, char*[])
     // flagged and set to the fill value.
     auto half = Moved(source, 1.0);
     Run run(target, half);
+    run.Filter->FillWithNaNOff();
     run.Filter->SetFillValue(-999);
     run.Filter->Update();
     vtkDataArray* linear = run.Output()->GetPointData()->GetArray("Linear");
