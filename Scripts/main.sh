@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The main job, from a fresh Debian 12 machine: install the dependencies,
+# build, and project the sample source field onto the sample target mesh.
+# Writes build/main/projected.vtu, build/main/intersections.vtp and
+# build/main/projection.png, and prints a summary.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$root/build}"
+bash "$root/Scripts/install-deps.sh"
+bash "$root/Scripts/build.sh"
+timeout 600 xvfb-run -a pvpython "$root/Scripts/project_sample.py" \
+  --plugin "$build/lib/paraview-5.11/plugins/MeshProjection/MeshProjection.so" \
+  --out-dir "$build/main" "$@"

@@ -1,0 +1,89 @@
+"""The ParaView plugin from pvpython: load it, apply Mesh Projection to the
+sample meshes, check the numbers and the properties, compare a rendered image.
+
+    pvpython TestMeshProjectionPlugin.py PLUGIN.so TEMP_DIR
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from paraview import servermanager  # noqa: E402
+from paraview.simple import (ColorBy, CreateView, Delete, LoadPlugin, OpenDataFile,  # noqa: E402
+                             Render, SaveScreenshot, Show)
+
+from mptesting import DATA, check, compare_image, finish, integral  # noqa: E402
+
+plugin, temp_dir = sys.argv[1], sys.argv[2]
+os.makedirs(temp_dir, exist_ok=True)
+LoadPlugin(plugin, ns=globals())
+check("MeshProjection" in globals(), "the plugin defines MeshProjection")
+
+source = OpenDataFile(os.path.join(DATA, "lshape_source.vtu"))
+target = OpenDataFile(os.path.join(DATA, "lshape_target.vtu"))
+projection = MeshProjection(Input=target, Source=source)  # noqa: F821
+
+# Properties mirror the C++ setters, with the same defaults.
+check(projection.SearchMethod == "Advancing Front", "SearchMethod default %r" % projection.SearchMethod)
+check(projection.OutputIntersections == 0, "OutputIntersections default")
+check(projection.FillWithNaN == 1 and projection.FillValue == 0, "fill defaults")
+check(projection.ListProperties() == ["Input", "Source", "FillValue", "FillWithNaN",
+                                      "OutputIntersections", "SearchMethod"] or
+      set(projection.ListProperties()) == {"Input", "Source", "FillValue", "FillWithNaN",
+                                           "OutputIntersections", "SearchMethod"},
+      "properties %r" % projection.ListProperties())
+
+projection.OutputIntersections = 1
+projection.UpdatePipeline()
+out = servermanager.Fetch(projection)
+check(out.GetNumberOfPoints() == 1270 and out.GetNumberOfCells() == 2346, "target geometry kept")
+for name in ("Smooth", "Linear", "Velocity", "TargetId", "vtkValidPointMask"):
+    check(out.GetPointData().GetArray(name) is not None, "point array %s" % name)
+src = servermanager.Fetch(source)
+s_int, _ = integral(src, "Smooth")
+t_int, _ = integral(out, "Smooth")
+check(abs(s_int - t_int) <= 1e-13 * abs(s_int), "conservation %r vs %r" % (s_int, t_int))
+lin = out.GetPointData().GetArray("Linear")
+worst = max(abs(lin.GetValue(i) - (1 + 2 * out.GetPoint(i)[0] - 3 * out.GetPoint(i)[1]))
+            for i in range(out.GetNumberOfPoints()))
+check(worst < 1e-12, "linear field exact (%g)" % worst)
+info = projection.GetDataInformation(1)
+check(info.GetNumberOfCells() > 10000, "intersection polygons on output 1: %d" % info.GetNumberOfCells())
+
+# Brute force through the GUI property: same result.
+projection.SearchMethod = "Brute Force"
+projection.UpdatePipeline()
+brute = servermanager.Fetch(projection)
+bs = brute.GetPointData().GetArray("Smooth")
+fs = out.GetPointData().GetArray("Smooth")
+diff = max(abs(bs.GetValue(i) - fs.GetValue(i)) for i in range(out.GetNumberOfPoints()))
+check(diff < 1e-13, "brute force == advancing front (%g)" % diff)
+projection.SearchMethod = "Advancing Front"
+
+# The image: the projected field on the target, fixed camera and size.
+view = CreateView("RenderView")
+view.ViewSize = [400, 400]
+view.OrientationAxesVisibility = 0
+view.Background = [1, 1, 1]
+try:
+    view.UseColorPaletteForBackground = 0
+except AttributeError:
+    pass
+display = Show(projection, view)
+display.SetRepresentationType("Surface With Edges")
+display.EdgeColor = [0.3, 0.3, 0.3]
+ColorBy(display, ("POINTS", "Smooth"))
+display.LookupTable.RescaleTransferFunction(-0.75, 1.3)
+Render(view)
+view.CameraParallelProjection = 1
+view.CameraPosition = [1, 1, 10]
+view.CameraFocalPoint = [1, 1, 0]
+view.CameraViewUp = [0, 1, 0]
+view.CameraParallelScale = 1.05
+Render(view)
+png = os.path.join(temp_dir, "TestMeshProjectionPlugin.png")
+SaveScreenshot(png, view, ImageResolution=[400, 400])
+check(compare_image(png, "TestMeshProjectionPlugin.png", temp_dir), "image matches the baseline")
+Delete(view)
+del view
+finish()
