@@ -2,6 +2,7 @@
 #include "MortarProjector.h"
 
 #include "PairSearch.h"
+#include "TetrahedronIntersector.h"
 #include "TriangleIntersector.h"
 
 #include <Eigen/Sparse>
@@ -69,10 +70,6 @@ struct MortarAssembler
 
   void operator()(const Cell& t, const Cell& s, const typename Intersector::Piece& piece)
   {
-    if (piece.NumberOfVertices < Intersector::Dimension + 1)
-    {
-      return; // the cells only touch
-    }
     if (t.Id != this->Current)
     {
       this->Flush();
@@ -90,7 +87,7 @@ struct MortarAssembler
     const double measure = Intersector::Integrate(piece, t, s, mts, this->CurrentMtt);
     if (!(measure > 0.0))
     {
-      return;
+      return; // the cells only touch
     }
     ++this->Count;
     this->CoveredMeasure[t.Id] += measure;
@@ -103,24 +100,16 @@ struct MortarAssembler
     }
     if (this->Pieces)
     {
-      for (int v = 0; v < piece.NumberOfVertices; ++v)
-      {
-        this->Pieces->Points.insert(
-          this->Pieces->Points.end(), { piece.X[v][0], piece.X[v][1], 0.0 });
-      }
-      this->Pieces->Offsets.push_back(this->Pieces->Offsets.back() + piece.NumberOfVertices);
-      this->Pieces->TargetCell.push_back(t.Id);
-      this->Pieces->SourceCell.push_back(s.Id);
-      this->Pieces->Measure.push_back(measure);
+      Intersector::Append(piece, t.Id, s.Id, measure, *this->Pieces);
     }
   }
 };
 
 bool CheckMesh(const MeshView& mesh, const char* name, bool needNeighbors, std::string& error)
 {
-  if (mesh.Dimension != 2)
+  if (mesh.Dimension != 2 && mesh.Dimension != 3)
   {
-    error = std::string(name) + ": only 2D triangle meshes are supported so far";
+    error = std::string(name) + ": only triangle (2D) and tetrahedron (3D) meshes are supported";
     return false;
   }
   if (mesh.NumberOfCells > 0 && (!mesh.Points || !mesh.Connectivity))
@@ -178,13 +167,30 @@ bool MortarProjector::Build(const MeshView& target, const MeshView& source,
     return false;
   }
 
-  using Intersector = TriangleIntersector;
+  if (target.Dimension != source.Dimension)
+  {
+    this->Error = "Input and Source have different dimensions (" +
+      std::to_string(target.Dimension) + "D and " + std::to_string(source.Dimension) + "D)";
+    return false;
+  }
+  this->Pieces.Dimension = target.Dimension;
+  if (target.Dimension == 2)
+  {
+    return this->Assemble<TriangleIntersector>(target, source, locator, options);
+  }
+  return this->Assemble<TetrahedronIntersector>(target, source, locator, options);
+}
+
+template <class Intersector>
+bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
+  CandidateLocator* locator, const ProjectionOptions& options)
+{
   MortarAssembler<Intersector> assembler;
   assembler.CoveredMeasure.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
   assembler.Pieces = options.KeepPieces ? &this->Pieces : nullptr;
 
   auto start = std::chrono::steady_clock::now();
-  if (front)
+  if (options.Method == SearchMethod::AdvancingFront)
   {
     AdvancingFrontSearch<Intersector>(target, source, *locator, assembler, this->Statistics);
   }
@@ -204,7 +210,7 @@ bool MortarProjector::Build(const MeshView& target, const MeshView& source,
   this->Impl->Mtt.setFromTriplets(assembler.Mtt.begin(), assembler.Mtt.end());
   std::vector<Triplet>().swap(assembler.Mts);
 
-  Intersector::Cell cell;
+  typename Intersector::Cell cell;
   for (Index c = 0; c < target.NumberOfCells; ++c)
   {
     this->CoveredMeasure += assembler.CoveredMeasure[c];

@@ -40,14 +40,19 @@ struct ProjectionOptions
   bool KeepPieces = false; ///< store the intersection polygons (see Pieces)
 };
 
-/// Intersection polygons with positive area, for display and checks.
+/**
+ * The intersection pieces of positive measure, for display and checks: in 2D
+ * one convex polygon per intersecting cell pair, in 3D the tetrahedra that
+ * decompose each intersection polyhedron (several per pair).
+ */
 struct IntersectionPieces
 {
-  std::vector<Index> Offsets{ 0 }; ///< polygon p has vertices [Offsets[p], Offsets[p+1])
+  int Dimension = 2;
+  std::vector<Index> Offsets{ 0 }; ///< cell c has vertices [Offsets[c], Offsets[c+1])
   std::vector<double> Points;      ///< x, y, z per vertex (z = 0 for 2D)
   std::vector<Index> TargetCell;
   std::vector<Index> SourceCell;
-  std::vector<double> Measure;     ///< area (2D)
+  std::vector<double> Measure;     ///< area (2D) or volume (3D) of each cell
   Index Size() const { return static_cast<Index>(this->TargetCell.size()); }
 };
 
@@ -87,9 +92,9 @@ public:
   /// Per target point: 1 if its support meets the source, else 0.
   const std::vector<char>& GetValidPoints() const { return this->ValidPoints; }
   Index GetNumberOfValidPoints() const { return this->NumberOfValidPoints; }
-  /// Per target cell: the covered fraction of its area (0 for degenerate cells).
+  /// Per target cell: the covered fraction of its measure (0 for degenerate cells).
   const std::vector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
-  /// Measure of the union of all pieces (the covered part of the target).
+  /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
   double GetCoveredMeasure() const { return this->CoveredMeasure; }
   const SearchStatistics& GetStatistics() const { return this->Statistics; }
   const ProjectionTimings& GetTimings() const { return this->Timings; }
@@ -104,6 +109,10 @@ public:
   double TargetMassEntry(Index targetPoint, Index otherTargetPoint) const;
 
 private:
+  template <class Intersector>
+  bool Assemble(const MeshView& target, const MeshView& source, CandidateLocator* locator,
+    const ProjectionOptions& options);
+
   struct Internals;
   std::unique_ptr<Internals> Impl;
   std::vector<char> ValidPoints;

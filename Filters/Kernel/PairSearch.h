@@ -120,7 +120,11 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         {
           if (piece.TouchedFaces & (1u << k))
           {
-            faceSeed[k] = sId;
+            const Index seed = Intersector::FaceSeed(piece, k, s, source);
+            if (seed >= 0)
+            {
+              faceSeed[k] = seed;
+            }
           }
         }
         for (int k = 0; k < Faces; ++k)

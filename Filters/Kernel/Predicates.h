@@ -29,6 +29,17 @@ double Orient2D(const double* a, const double* b, const double* c);
 
 /// The exact-arithmetic path of Orient2D, exposed for tests.
 double Orient2DExact(const double* a, const double* b, const double* c);
+
+/**
+ * Six times the signed volume of tetrahedron (a, b, c, d): positive when d
+ * lies on the side of plane (a, b, c) where (a, b, c) turns counterclockwise
+ * seen from d... i.e. det[b - a, c - a, d - a]. The sign is exact; the
+ * magnitude is accurate to a few ulps. Inputs are (x, y, z) triples.
+ */
+double Orient3D(const double* a, const double* b, const double* c, const double* d);
+
+/// The exact-arithmetic path of Orient3D, exposed for tests.
+double Orient3DExact(const double* a, const double* b, const double* c, const double* d);
 } // namespace mp
 
 #endif

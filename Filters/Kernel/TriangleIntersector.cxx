@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "TriangleIntersector.h"
 
+#include "MortarProjector.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -299,5 +300,18 @@ double TriangleIntersector::Integrate(
     }
   }
   return area;
+}
+
+void TriangleIntersector::Append(
+  const Piece& p, Index target, Index source, double area, IntersectionPieces& pieces)
+{
+  for (int v = 0; v < p.NumberOfVertices; ++v)
+  {
+    pieces.Points.insert(pieces.Points.end(), { p.X[v][0], p.X[v][1], 0.0 });
+  }
+  pieces.Offsets.push_back(pieces.Offsets.back() + p.NumberOfVertices);
+  pieces.TargetCell.push_back(target);
+  pieces.SourceCell.push_back(source);
+  pieces.Measure.push_back(area);
 }
 } // namespace mp

@@ -27,6 +27,11 @@
 
 namespace mp
 {
+struct IntersectionPieces;
+}
+
+namespace mp
+{
 class TriangleIntersector
 {
 public:
@@ -61,6 +66,9 @@ public:
    * corners collinear, decided exactly); such a cell meets nothing.
    */
   static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
+  /// The source cell that starts the target neighbour across a touched face:
+  /// the source cell itself (it meets the closed face, hence the neighbour).
+  static Index FaceSeed(const Piece&, int, const Cell& s, const MeshView&) { return s.Id; }
 
   /// Bounding box as xmin, xmax, ymin, ymax, zmin, zmax (z is 0).
   static void Bounds(const Cell& cell, double box[6]);
@@ -85,6 +93,10 @@ public:
 
   /// Area of the piece (0 when it has fewer than 3 vertices).
   static double Measure(const Piece& piece);
+
+  /// Appends the piece (one polygon of the given area) to `pieces`.
+  static void Append(const Piece& piece, Index target, Index source, double area,
+    IntersectionPieces& pieces);
 };
 } // namespace mp
 

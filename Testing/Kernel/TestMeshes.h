@@ -24,12 +24,13 @@ using mp::Index;
 
 struct TestMesh
 {
+  int Dimension = 2;          // 2: triangles, 3: tetrahedra
   std::vector<double> Points; // x, y, z
-  std::vector<Index> Cells;   // 3 per triangle
+  std::vector<Index> Cells;   // Dimension + 1 per cell
   std::vector<Index> Neighbors;
 
   Index NumberOfPoints() const { return Index(this->Points.size() / 3); }
-  Index NumberOfCells() const { return Index(this->Cells.size() / 3); }
+  Index NumberOfCells() const { return Index(this->Cells.size() / (this->Dimension + 1)); }
   void Finish()
   {
     mp::BuildFaceNeighbors(this->View(false), this->Neighbors);
@@ -37,7 +38,7 @@ struct TestMesh
   mp::MeshView View(bool withNeighbors = true) const
   {
     mp::MeshView v;
-    v.Dimension = 2;
+    v.Dimension = this->Dimension;
     v.Points = this->Points.data();
     v.NumberOfPoints = this->NumberOfPoints();
     v.Connectivity = this->Cells.data();
@@ -47,11 +48,29 @@ struct TestMesh
   }
   double CellArea(Index c) const
   {
+    if (this->Dimension == 3)
+    {
+      return this->CellVolume(c);
+    }
     const double* a = &this->Points[3 * this->Cells[3 * c]];
     const double* b = &this->Points[3 * this->Cells[3 * c + 1]];
     const double* d = &this->Points[3 * this->Cells[3 * c + 2]];
     return 0.5 * std::fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
   }
+  double CellVolume(Index c) const
+  {
+    const Index* ids = &this->Cells[4 * c];
+    const double* a = &this->Points[3 * ids[0]];
+    double e[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d)
+        e[k][d] = this->Points[3 * ids[k + 1] + d] - a[d];
+    return std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+             e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+             e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+      6.0;
+  }
+  /// Area (2D) or volume (3D) of the mesh.
   double Area() const
   {
     double sum = 0;
@@ -64,11 +83,14 @@ struct TestMesh
   /// Exact integral of a P1 field (one value per point).
   double Integral(const std::vector<double>& u) const
   {
+    const int n = this->Dimension + 1;
     double sum = 0;
     for (Index c = 0; c < this->NumberOfCells(); ++c)
     {
-      const Index* ids = &this->Cells[3 * c];
-      sum += this->CellArea(c) * (u[ids[0]] + u[ids[1]] + u[ids[2]]) / 3.0;
+      double mean = 0;
+      for (int k = 0; k < n; ++k)
+        mean += u[this->Cells[n * c + k]] / n;
+      sum += this->CellArea(c) * mean;
     }
     return sum;
   }
@@ -181,6 +203,83 @@ inline TestMesh Refine(const TestMesh& in)
   return m;
 }
 
+/**
+ * The box [0,1]^3 (scaled by `size`) as nx x ny x nz cubes, each cut into the
+ * six Kuhn tetrahedra around its main diagonal (a conforming mesh). Points
+ * strictly inside move by up to `jitter` times the spacing.
+ */
+inline TestMesh CubeMesh(int nx, int ny, int nz, double jitter, unsigned seed,
+  double size = 1.0)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  TestMesh m;
+  m.Dimension = 3;
+  const int n[3] = { nx, ny, nz };
+  auto id = [&](int i, int j, int k) { return Index((k * (ny + 1) + j) * (nx + 1) + i); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i)
+      {
+        const int ijk[3] = { i, j, k };
+        bool interior = true;
+        double x[3];
+        for (int d = 0; d < 3; ++d)
+        {
+          interior = interior && ijk[d] > 0 && ijk[d] < n[d];
+          x[d] = size * ijk[d] / n[d];
+        }
+        for (int d = 0; d < 3 && interior; ++d)
+          x[d] += jitter * size / n[d] * unit(rng);
+        m.Points.insert(m.Points.end(), { x[0], x[1], x[2] });
+      }
+  const int perms[6][3] = { { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 },
+    { 2, 1, 0 } };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (const auto& p : perms)
+        {
+          int c[3] = { i, j, k };
+          m.Cells.push_back(id(c[0], c[1], c[2]));
+          for (int step = 0; step < 3; ++step)
+          {
+            ++c[p[step]];
+            m.Cells.push_back(id(c[0], c[1], c[2]));
+          }
+        }
+  for (Index c = 0; c < m.NumberOfCells(); ++c)
+  {
+    if (!(m.CellVolume(c) > 1e-6 * size * size * size / (nx * ny * nz)))
+    {
+      throw std::runtime_error("CubeMesh: jitter too large, a tetrahedron collapsed");
+    }
+  }
+  m.Finish();
+  return m;
+}
+
+/// Rotates about the z axis by `angle`, then about the x axis by `tilt`,
+/// scales and translates (by tx, ty, tz).
+inline void Move3D(TestMesh& m, double angle, double tilt, double scale, double tx, double ty,
+  double tz)
+{
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  const double ct = std::cos(tilt);
+  const double st = std::sin(tilt);
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    double* x = &m.Points[3 * p];
+    const double a = c * x[0] - s * x[1];
+    const double b = s * x[0] + c * x[1];
+    const double z = x[2];
+    x[0] = scale * a + tx;
+    x[1] = scale * (ct * b - st * z) + ty;
+    x[2] = scale * (st * b + ct * z) + tz;
+  }
+}
+
 /// Rotates by `angle` about the origin, scales, then translates.
 inline void Move(TestMesh& m, double angle, double scale, double tx, double ty)
 {
@@ -202,6 +301,17 @@ inline std::vector<double> Sample(const TestMesh& m, const std::function<double(
   for (Index p = 0; p < m.NumberOfPoints(); ++p)
   {
     u[p] = f(m.Points[3 * p], m.Points[3 * p + 1]);
+  }
+  return u;
+}
+
+inline std::vector<double> Sample3D(
+  const TestMesh& m, const std::function<double(double, double, double)>& f)
+{
+  std::vector<double> u(static_cast<size_t>(m.NumberOfPoints()));
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    u[p] = f(m.Points[3 * p], m.Points[3 * p + 1], m.Points[3 * p + 2]);
   }
   return u;
 }

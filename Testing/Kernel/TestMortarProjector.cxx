@@ -244,5 +244,7 @@ TEST(MortarProjector, EmptyAndInvalidMeshes)
 
   mp::MeshView threeD = m.View();
   threeD.Dimension = 3;
+  threeD.NumberOfCells = m.NumberOfCells() * 3 / 4;
   EXPECT_FALSE(projector.Build(threeD, m.View(), &locator));
+  EXPECT_NE(projector.GetError().find("different dimensions"), std::string::npos);
 }

@@ -1,0 +1,494 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "TetrahedronIntersector.h"
+
+#include "MortarProjector.h"
+
+#include "Predicates.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mp
+{
+namespace
+{
+using Vec = double[3];
+
+inline void Sub(const double* a, const double* b, double* r)
+{
+  r[0] = a[0] - b[0];
+  r[1] = a[1] - b[1];
+  r[2] = a[2] - b[2];
+}
+inline void Cross(const double* a, const double* b, double* r)
+{
+  r[0] = a[1] * b[2] - a[2] * b[1];
+  r[1] = a[2] * b[0] - a[0] * b[2];
+  r[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double Dot(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+/// Six times the signed volume of (a, b, c, d).
+inline double SixVolume(const double* a, const double* b, const double* c, const double* d)
+{
+  Vec u, v, w, n;
+  Sub(b, a, u);
+  Sub(c, a, v);
+  Sub(d, a, w);
+  Cross(v, w, n);
+  return Dot(u, n);
+}
+
+/// A tetrahedron during clipping: each vertex knows the target planes it lies on.
+struct ClipTet
+{
+  double X[4][3];
+  unsigned OnPlane[4];
+  int Original[4]; ///< corner of the source tetrahedron this vertex is, or -1
+};
+
+/// Where the segment from p (inside, dp >= 0) to q (outside, dq < 0) crosses the plane.
+inline void Crossing(const ClipTet& t, int p, int q, const double d[4], unsigned bit, double* x,
+  unsigned& on, int& original)
+{
+  if (d[p] == 0.0)
+  {
+    std::copy(t.X[p], t.X[p] + 3, x);
+    on = t.OnPlane[p] | bit;
+    original = t.Original[p];
+    return;
+  }
+  original = -1;
+  const double u = d[p] / (d[p] - d[q]);
+  for (int c = 0; c < 3; ++c)
+  {
+    x[c] = t.X[p][c] + u * (t.X[q][c] - t.X[p][c]);
+  }
+  on = (t.OnPlane[p] & t.OnPlane[q]) | bit;
+}
+
+/// A vertex under construction: position, planes it lies on, source corner.
+struct Vertex
+{
+  double X[3];
+  unsigned On;
+  int Original;
+};
+
+inline void Emit(ClipTet* out, int& n, const Vertex& a, const Vertex& b, const Vertex& c,
+  const Vertex& e)
+{
+  if (SixVolume(a.X, b.X, c.X, e.X) == 0.0)
+  {
+    return; // collapsed by a vertex lying on the plane
+  }
+  ClipTet& t = out[n++];
+  const Vertex* vs[4] = { &a, &b, &c, &e };
+  for (int v = 0; v < 4; ++v)
+  {
+    std::copy(vs[v]->X, vs[v]->X + 3, t.X[v]);
+    t.OnPlane[v] = vs[v]->On;
+    t.Original[v] = vs[v]->Original;
+  }
+}
+
+/**
+ * Keeps the part of `t` where normal . (x - origin) >= 0, as at most three
+ * tetrahedra appended to out. Vertices on the plane get `bit`. Corners of
+ * the source tetrahedron use their exactly classified distances `exact`;
+ * vertices already known to lie on the plane use 0.
+ */
+void ClipByPlane(const ClipTet& t, const double* normal, const double* origin, unsigned bit,
+  const double exact[4], ClipTet* out, int& n)
+{
+  double d[4];
+  int in[4];
+  int outside[4];
+  int nin = 0;
+  int nout = 0;
+  for (int v = 0; v < 4; ++v)
+  {
+    if (t.Original[v] >= 0)
+    {
+      d[v] = exact[t.Original[v]];
+    }
+    else if (t.OnPlane[v] & bit)
+    {
+      d[v] = 0.0;
+    }
+    else
+    {
+      Vec r;
+      Sub(t.X[v], origin, r);
+      d[v] = Dot(normal, r);
+    }
+    if (d[v] >= 0.0)
+    {
+      in[nin++] = v;
+    }
+    else
+    {
+      outside[nout++] = v;
+    }
+  }
+  if (nout == 0)
+  {
+    ClipTet& c = out[n++];
+    c = t;
+    for (int v = 0; v < 4; ++v)
+    {
+      if (d[v] == 0.0)
+      {
+        c.OnPlane[v] |= bit;
+      }
+    }
+    return;
+  }
+  if (nin == 0)
+  {
+    return;
+  }
+  auto corner = [&](int v) {
+    Vertex x;
+    std::copy(t.X[v], t.X[v] + 3, x.X);
+    x.On = t.OnPlane[v] | (d[v] == 0.0 ? bit : 0u);
+    x.Original = t.Original[v];
+    return x;
+  };
+  auto cut = [&](int p, int q) {
+    Vertex x;
+    Crossing(t, p, q, d, bit, x.X, x.On, x.Original);
+    return x;
+  };
+  if (nin == 1)
+  {
+    const int a = in[0];
+    Emit(out, n, corner(a), cut(a, outside[0]), cut(a, outside[1]), cut(a, outside[2]));
+    return;
+  }
+  // Two or three corners inside: a prism p0 p1 p2 / q0 q1 q2 between the
+  // inside face (or edge) and the cut, split into three tetrahedra
+  // (p0,p1,p2,q0), (p1,p2,q0,q1), (p2,q0,q1,q2).
+  Vertex p[3];
+  Vertex q[3];
+  if (nin == 3)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = corner(in[k]);
+      q[k] = cut(in[k], outside[0]);
+    }
+  }
+  else // two inside (a, b): the wedge (a, ac, ad) / (b, bc, bd)
+  {
+    p[0] = corner(in[0]);
+    p[1] = cut(in[0], outside[0]);
+    p[2] = cut(in[0], outside[1]);
+    q[0] = corner(in[1]);
+    q[1] = cut(in[1], outside[0]);
+    q[2] = cut(in[1], outside[1]);
+  }
+  Emit(out, n, p[0], p[1], p[2], q[0]);
+  Emit(out, n, p[1], p[2], q[0], q[1]);
+  Emit(out, n, p[2], q[0], q[1], q[2]);
+}
+
+inline void Barycentric(const TetrahedronIntersector::Cell& c, const double* x, double lambda[4])
+{
+  Vec r;
+  Sub(x, c.X[0], r);
+  lambda[1] = Dot(c.Inverse[0], r);
+  lambda[2] = Dot(c.Inverse[1], r);
+  lambda[3] = Dot(c.Inverse[2], r);
+  lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
+}
+/// Positive when x is strictly inside the plane of face k of a prepared
+/// (positively oriented) cell; exact sign. For a positive tetrahedron
+/// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
+inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const double* x)
+{
+  const double o = Orient3D(c.X[(k + 1) % 4], c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
+  return (k % 2) ? o : -o;
+}
+} // namespace
+
+bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
+{
+  const Index* ids = mesh.Cell(id);
+  cell.Id = id;
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* x = mesh.Point(ids[k]);
+    cell.Points[k] = ids[k];
+    cell.Face[k] = k;
+    std::copy(x, x + 3, cell.X[k]);
+  }
+  double six = Orient3D(cell.X[0], cell.X[1], cell.X[2], cell.X[3]);
+  if (!(six != 0.0) || !std::isfinite(six))
+  {
+    return false;
+  }
+  if (six < 0.0) // negatively oriented: swap corners 2 and 3 (and their faces)
+  {
+    std::swap(cell.Points[2], cell.Points[3]);
+    std::swap(cell.Face[2], cell.Face[3]);
+    for (int c = 0; c < 3; ++c)
+    {
+      std::swap(cell.X[2][c], cell.X[3][c]);
+    }
+    six = -six;
+  }
+  cell.Measure = six / 6.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    cell.Box[2 * c] = std::min({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
+    cell.Box[2 * c + 1] = std::max({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* a = cell.X[(k + 1) % 4];
+    const double* b = cell.X[(k + 2) % 4];
+    const double* c = cell.X[(k + 3) % 4];
+    Vec u, v, r;
+    Sub(b, a, u);
+    Sub(c, a, v);
+    Cross(u, v, cell.Normal[k]);
+    Sub(cell.X[k], a, r);
+    if (Dot(cell.Normal[k], r) < 0.0)
+    {
+      for (double& n : cell.Normal[k])
+      {
+        n = -n;
+      }
+    }
+  }
+  // Rows of J^-1 for J = [X1 - X0, X2 - X0, X3 - X0]: (e2 x e3, e3 x e1, e1 x e2) / det.
+  Vec e[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    Sub(cell.X[k + 1], cell.X[0], e[k]);
+  }
+  Cross(e[1], e[2], cell.Inverse[0]);
+  Cross(e[2], e[0], cell.Inverse[1]);
+  Cross(e[0], e[1], cell.Inverse[2]);
+  for (auto& row : cell.Inverse)
+  {
+    for (double& x : row)
+    {
+      x /= six;
+    }
+  }
+  return std::isfinite(cell.Inverse[0][0] + cell.Inverse[1][1] + cell.Inverse[2][2]);
+}
+
+void TetrahedronIntersector::Bounds(const Cell& cell, double box[6])
+{
+  std::copy(cell.Box, cell.Box + 6, box);
+}
+
+bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
+{
+  piece.NumberOfTetrahedra = 0;
+  piece.TouchedFaces = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (t.Box[2 * c + 1] < s.Box[2 * c] || s.Box[2 * c + 1] < t.Box[2 * c])
+    {
+      return false;
+    }
+  }
+  // Separating face planes (of either cell): cheap early rejection. Also
+  // note which target planes the source reaches beyond.
+  // exact[k][v]: the side of source corner v w.r.t. target face plane k
+  // (positive inside), with an exact sign, so that corners shared by the
+  // meshes land exactly on the planes. Any target face plane with all
+  // source corners on or outside it (or the reverse) separates the cells.
+  double exact[4][4];
+  unsigned beyond = 0;
+  unsigned onPlane[4] = { 0, 0, 0, 0 }; // per target plane: source corners on it
+  for (int k = 0; k < 4; ++k)
+  {
+    int off = 0;
+    int offS = 0;
+    for (int v = 0; v < 4; ++v)
+    {
+      exact[k][v] = FaceSide(t, k, s.X[v]);
+      off += exact[k][v] <= 0.0;
+      beyond |= (exact[k][v] < 0.0 ? 1u : 0u) << k;
+      onPlane[k] |= (exact[k][v] == 0.0 ? 1u : 0u) << v;
+      offS += FaceSide(s, k, t.X[v]) <= 0.0;
+    }
+    if (off == 4 || offS == 4)
+    {
+      return false; // at most a shared face, edge or vertex: no volume
+    }
+  }
+
+  ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
+  ClipTet* current = buffers[0];
+  ClipTet* next = buffers[1];
+  int n = 1;
+  for (int v = 0; v < 4; ++v)
+  {
+    std::copy(s.X[v], s.X[v] + 3, current[0].X[v]);
+    current[0].OnPlane[v] = 0;
+    current[0].Original[v] = v;
+  }
+  for (int k = 0; k < 4 && n > 0; ++k)
+  {
+    if (!(beyond & (1u << k)))
+    {
+      // The whole source is inside this plane: only mark corners on it.
+      for (int i = 0; i < n; ++i)
+      {
+        for (int v = 0; v < 4; ++v)
+        {
+          const int o = current[i].Original[v];
+          if (o >= 0 && exact[k][o] == 0.0)
+          {
+            current[i].OnPlane[v] |= 1u << k;
+          }
+        }
+      }
+      continue;
+    }
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+    {
+      ClipByPlane(current[i], t.Normal[k], t.X[(k + 1) % 4], 1u << k, exact[k], next, m);
+    }
+    std::swap(current, next);
+    n = m;
+  }
+
+  // Faces of the piece of positive area lying on a target plane.
+  for (int i = 0; i < n; ++i)
+  {
+    const ClipTet& c = current[i];
+    std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.X[i][0][0]);
+    for (int f = 0; f < 4; ++f)
+    {
+      const int a = (f + 1) % 4;
+      const int b = (f + 2) % 4;
+      const int d = (f + 3) % 4;
+      const unsigned common = c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d];
+      if (common & ~piece.TouchedFaces)
+      {
+        Vec u, v, w;
+        Sub(c.X[b], c.X[a], u);
+        Sub(c.X[d], c.X[a], v);
+        Cross(u, v, w);
+        if (Dot(w, w) > 0.0)
+        {
+          piece.TouchedFaces |= common;
+        }
+      }
+    }
+  }
+  piece.NumberOfTetrahedra = n;
+  for (int k = 0; k < 4; ++k)
+  {
+    piece.SeedFace[k] = -1;
+    if ((piece.TouchedFaces & (1u << k)) && !(beyond & (1u << k)))
+    {
+      // The cap lies in a face of the source: the one whose three corners
+      // are on the plane (the source is on the inner side of it).
+      for (int f = 0; f < 4; ++f)
+      {
+        if (onPlane[k] == (15u & ~(1u << f)))
+        {
+          piece.SeedFace[k] = f;
+        }
+      }
+      if (piece.SeedFace[k] < 0)
+      {
+        piece.TouchedFaces &= ~(1u << k); // no face of positive area after all
+      }
+    }
+  }
+  // Rounding in the clipping can leave slivers of relative size ~1e-16
+  // where the cells only touch; below 1e-13 of the smaller cell a piece is
+  // taken as touching (its contribution would be below the tolerances of
+  // the projection anyway), the same way for every search.
+  return n > 0 && Measure(piece) > 1e-13 * std::min(t.Measure, s.Measure);
+}
+
+double TetrahedronIntersector::Measure(const Piece& piece)
+{
+  double volume = 0.0;
+  for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
+  {
+    const auto& x = piece.X[i];
+    volume += std::fabs(SixVolume(x[0], x[1], x[2], x[3])) / 6.0;
+  }
+  return volume;
+}
+
+double TetrahedronIntersector::Integrate(
+  const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4])
+{
+  double volume = 0.0;
+  for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
+  {
+    const auto& x = piece.X[i];
+    const double v = std::fabs(SixVolume(x[0], x[1], x[2], x[3])) / 6.0;
+    if (!(v > 0.0))
+    {
+      continue;
+    }
+    volume += v;
+    double lt[4][4];
+    double ls[4][4];
+    double st[4] = { 0, 0, 0, 0 };
+    double ss[4] = { 0, 0, 0, 0 };
+    for (int a = 0; a < 4; ++a)
+    {
+      Barycentric(t, x[a], lt[a]);
+      Barycentric(s, x[a], ls[a]);
+      for (int r = 0; r < 4; ++r)
+      {
+        st[r] += lt[a][r];
+        ss[r] += ls[a][r];
+      }
+    }
+    const double w = v / 20.0;
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int q = 0; q < 4; ++q)
+      {
+        double mts = st[r] * ss[q];
+        double mtt = st[r] * st[q];
+        for (int a = 0; a < 4; ++a)
+        {
+          mts += lt[a][r] * ls[a][q];
+          mtt += lt[a][r] * lt[a][q];
+        }
+        Mts[r][q] += w * mts;
+        Mtt[r][q] += w * mtt;
+      }
+    }
+  }
+  return volume;
+}
+
+void TetrahedronIntersector::Append(
+  const Piece& p, Index target, Index source, double, IntersectionPieces& pieces)
+{
+  for (int i = 0; i < p.NumberOfTetrahedra; ++i)
+  {
+    const auto& x = p.X[i];
+    const double v = std::fabs(SixVolume(x[0], x[1], x[2], x[3])) / 6.0;
+    if (!(v > 0.0))
+    {
+      continue;
+    }
+    pieces.Points.insert(pieces.Points.end(), &x[0][0], &x[0][0] + 12);
+    pieces.Offsets.push_back(pieces.Offsets.back() + 4);
+    pieces.TargetCell.push_back(target);
+    pieces.SourceCell.push_back(source);
+    pieces.Measure.push_back(v);
+  }
+}
+} // namespace mp

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file TetrahedronIntersector.h
+ * @brief Intersection polyhedron of two tetrahedra and its P1 mortar integrals.
+ *
+ * The 3D counterpart of TriangleIntersector. The paper (Gander & Japhet 2009,
+ * Sec. 3) sketches the tetrahedron case as "edge/face crossings plus corners
+ * inside, ordered face by face"; here the equivalent clipping formulation is
+ * used: the source tetrahedron is clipped by the four face planes of the
+ * target, each clip splitting every tetrahedron of the current piece into at
+ * most three, so the result comes directly as a tetrahedral decomposition of
+ * the convex intersection polyhedron. That is what the mortar integrals need
+ * (a rule exact for quadratics on each tetrahedron), it never has to order
+ * points on a face, and every vertex is classified once per plane, so the
+ * topology of a clip is consistent by construction.
+ *
+ * Two tetrahedra "meet" when the intersection has positive volume. A face of
+ * the target is "touched" when the piece has a face of positive area on it.
+ * Then either the source reaches beyond that face, and the target neighbour
+ * across it overlaps the same source cell, or a face of the source lies on
+ * it, and the neighbour overlaps the source cell across that face: either
+ * way the advancing front gets a starting candidate without any search,
+ * also for meshes whose faces coincide (identical meshes, refinements).
+ *
+ * All storage is fixed-size (at most 3^4 = 81 tetrahedra per piece).
+ */
+#ifndef MeshProjection_Kernel_TetrahedronIntersector_h
+#define MeshProjection_Kernel_TetrahedronIntersector_h
+
+#include "MeshView.h"
+
+namespace mp
+{
+struct IntersectionPieces;
+}
+
+namespace mp
+{
+class TetrahedronIntersector
+{
+public:
+  static constexpr int Dimension = 3;
+  static constexpr int Corners = 4;
+  static constexpr int Faces = 4;
+  static constexpr int MaxTetrahedra = 81;
+
+  /// A tetrahedron prepared once for many intersection tests.
+  struct Cell
+  {
+    Index Id = -1;
+    Index Points[4];   ///< point ids, positively oriented
+    int Face[4];       ///< mesh-local face index of face k (k opposite corner k)
+    double X[4][3];
+    double Box[6];     ///< xmin, xmax, ymin, ymax, zmin, zmax
+    double Measure;    ///< volume, > 0
+    double Normal[4][3]; ///< inward normal of face k (not unit), through X[(k+1)%4]
+    double Inverse[3][3]; ///< maps x - X[0] to barycentric coordinates 1..3
+  };
+
+  /// The intersection as a set of tetrahedra.
+  struct Piece
+  {
+    int NumberOfTetrahedra = 0;
+    double X[MaxTetrahedra][4][3];
+    unsigned TouchedFaces = 0; ///< bit k: the piece has a face of positive area on target face k
+    /// For a touched face k: -1 when the source reaches beyond it (the source
+    /// cell itself meets the target neighbour), else the source's own face
+    /// (in Cell order) lying on it: the source neighbour across meets it.
+    int SeedFace[4];
+  };
+
+  /// Gathers cell `id`; false for a cell of zero (or non-finite) volume.
+  static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
+  /// The source cell that starts the target neighbour across face k.
+  static Index FaceSeed(const Piece& piece, int k, const Cell& s, const MeshView& source)
+  {
+    return piece.SeedFace[k] < 0 ? s.Id : source.Neighbor(s.Id, s.Face[piece.SeedFace[k]]);
+  }
+  static void Bounds(const Cell& cell, double box[6]);
+  /// Clips source `s` by target `t`; true when the intersection has positive volume.
+  static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
+  /**
+   * Adds Mts[i][j] += integral of phi_i^t phi_j^s and Mtt[i][k] += integral of
+   * phi_i^t phi_k^t over the piece (exact: V/20 (sum f_a g_a + sum f sum g)
+   * on each tetrahedron). Returns the volume of the piece.
+   */
+  static double Integrate(
+    const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4]);
+  static double Measure(const Piece& piece);
+
+  /// Appends the piece's tetrahedra (with their own volumes) to `pieces`.
+  static void Append(const Piece& piece, Index target, Index source, double volume,
+    IntersectionPieces& pieces);
+};
+} // namespace mp
+
+#endif

@@ -1,0 +1,280 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// 3D: the tetrahedron intersector, the advancing front over tetrahedral
+// meshes (== brute force), completeness of the pieces, exactness on linear
+// fields and conservation.
+#include "MortarProjector.h"
+#include "PairSearch.h"
+#include "TestMeshes.h"
+#include "TetrahedronIntersector.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <tuple>
+
+using mp::Index;
+using mp::TetrahedronIntersector;
+using mptest::TestMesh;
+
+namespace
+{
+TestMesh TwoTetrahedra(const double t[4][3], const double s[4][3])
+{
+  TestMesh m;
+  m.Dimension = 3;
+  for (int k = 0; k < 4; ++k)
+    m.Points.insert(m.Points.end(), { t[k][0], t[k][1], t[k][2] });
+  for (int k = 0; k < 4; ++k)
+    m.Points.insert(m.Points.end(), { s[k][0], s[k][1], s[k][2] });
+  m.Cells = { 0, 1, 2, 3, 4, 5, 6, 7 };
+  return m;
+}
+
+double PairVolume(const double t[4][3], const double s[4][3], unsigned* touched = nullptr)
+{
+  const TestMesh m = TwoTetrahedra(t, s);
+  TetrahedronIntersector::Cell a;
+  TetrahedronIntersector::Cell b;
+  EXPECT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
+  EXPECT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+  TetrahedronIntersector::Piece p;
+  const bool met = TetrahedronIntersector::Intersect(a, b, p);
+  if (touched)
+    *touched = p.TouchedFaces;
+  const double v = TetrahedronIntersector::Measure(p);
+  EXPECT_EQ(met, v > 0.0);
+  return met ? v : 0.0;
+}
+
+struct Recorder
+{
+  std::vector<std::tuple<Index, Index, double>> Pairs;
+  void operator()(const TetrahedronIntersector::Cell& t, const TetrahedronIntersector::Cell& s,
+    const TetrahedronIntersector::Piece& p)
+  {
+    this->Pairs.emplace_back(t.Id, s.Id, TetrahedronIntersector::Measure(p));
+  }
+};
+
+struct Searches
+{
+  Recorder Front;
+  Recorder Brute;
+  mp::SearchStatistics FrontStats;
+  mp::SearchStatistics BruteStats;
+  Searches(const TestMesh& target, const TestMesh& source)
+  {
+    mp::BoxGridLocator locator(source.View());
+    mp::AdvancingFrontSearch<TetrahedronIntersector>(
+      target.View(), source.View(), locator, this->Front, this->FrontStats);
+    mp::BruteForceSearch<TetrahedronIntersector>(
+      target.View(), source.View(), this->Brute, this->BruteStats);
+    std::sort(this->Front.Pairs.begin(), this->Front.Pairs.end());
+    std::sort(this->Brute.Pairs.begin(), this->Brute.Pairs.end());
+  }
+  void ExpectSamePairs(const std::string& what) const
+  {
+    ASSERT_EQ(this->Front.Pairs.size(), this->Brute.Pairs.size()) << what;
+    for (size_t i = 0; i < this->Front.Pairs.size(); ++i)
+      ASSERT_EQ(this->Front.Pairs[i], this->Brute.Pairs[i]) << what << " pair " << i;
+  }
+  void ExpectCompleteCover(const TestMesh& target, const std::string& what) const
+  {
+    std::vector<double> volume(static_cast<size_t>(target.NumberOfCells()), 0.0);
+    for (const auto& p : this->Front.Pairs)
+      volume[std::get<0>(p)] += std::get<2>(p);
+    for (Index c = 0; c < target.NumberOfCells(); ++c)
+      ASSERT_NEAR(volume[c], target.CellVolume(c), 1e-12 * target.CellVolume(c)) << what << " cell " << c;
+  }
+};
+
+double Linear3(double x, double y, double z)
+{
+  return 1.0 + 2.0 * x - 3.0 * y + 0.5 * z;
+}
+double Smooth3(double x, double y, double z)
+{
+  return std::sin(3 * x) * std::cos(2 * y) * std::exp(z);
+}
+} // namespace
+
+TEST(Tetrahedra, IdenticalContainedAndDisjoint)
+{
+  const double t[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  unsigned touched = 0;
+  EXPECT_NEAR(PairVolume(t, t, &touched), 1.0 / 6.0, 1e-16);
+  EXPECT_EQ(touched, 15u); // every face shared: seeds go through the source's faces
+  const double big[4][3] = { { -1, -1, -1 }, { 4, -1, -1 }, { -1, 4, -1 }, { -1, -1, 4 } };
+  EXPECT_NEAR(PairVolume(t, big), 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(PairVolume(big, t), 1.0 / 6.0, 1e-15);
+  const double far[4][3] = { { 2, 2, 2 }, { 3, 2, 2 }, { 2, 3, 2 }, { 2, 2, 3 } };
+  EXPECT_EQ(PairVolume(t, far), 0.0);
+  // Sharing the face x + y + z = 1 only: no volume.
+  const double across[4][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 1 } };
+  EXPECT_EQ(PairVolume(t, across), 0.0);
+}
+
+TEST(Tetrahedra, HandComputedVolumes)
+{
+  // The corner tetrahedron shifted by (1/4, 1/4, 1/4) meets the original in
+  // a tetrahedron of edge 1/4: volume (1/4)^3 / 6.
+  const double t[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  const double s[4][3] = { { 0.25, 0.25, 0.25 }, { 1.25, 0.25, 0.25 }, { 0.25, 1.25, 0.25 },
+    { 0.25, 0.25, 1.25 } };
+  EXPECT_NEAR(PairVolume(t, s), 1.0 / 384.0, 1e-16);
+  // Cut by the plane x = 1/2: the part x <= 1/2 of the corner tetrahedron
+  // has volume 1/6 - (1/2)^3 / 6 = 7/48.
+  const double half[4][3] = { { 0.5, -5, -5 }, { 0.5, 10, -5 }, { 0.5, -5, 10 }, { -10, 0, 0 } };
+  EXPECT_NEAR(PairVolume(t, half), 7.0 / 48.0, 1e-15);
+  EXPECT_NEAR(PairVolume(half, t), 7.0 / 48.0, 1e-15);
+}
+
+TEST(Tetrahedra, RandomPairsAreSymmetricAndBounded)
+{
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int met = 0;
+  for (int n = 0; n < 5000; ++n)
+  {
+    double t[4][3];
+    double s[4][3];
+    for (auto& x : t)
+      for (double& c : x)
+        c = u(rng);
+    for (auto& x : s)
+      for (double& c : x)
+        c = 0.7 * u(rng);
+    if (n % 3 == 0) // share a corner
+      std::copy(t[0], t[0] + 3, s[0]);
+    const TestMesh m = TwoTetrahedra(t, s);
+    if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
+      continue;
+    const double a = PairVolume(t, s);
+    const double b = PairVolume(s, t);
+    met += a > 0;
+    EXPECT_NEAR(a, b, 1e-13) << n;
+    EXPECT_LE(a, std::min(m.CellVolume(0), m.CellVolume(1)) * (1 + 1e-12)) << n;
+  }
+  EXPECT_GT(met, 1000);
+}
+
+TEST(Tetrahedra, MortarEntriesOfIdenticalTetrahedra)
+{
+  const double t[4][3] = { { 0.1, 0, 0 }, { 1.3, 0.2, 0 }, { 0.2, 1.1, 0.1 }, { 0, 0.3, 0.9 } };
+  const TestMesh m = TwoTetrahedra(t, t);
+  TetrahedronIntersector::Cell a;
+  TetrahedronIntersector::Cell b;
+  ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
+  ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+  TetrahedronIntersector::Piece p;
+  ASSERT_TRUE(TetrahedronIntersector::Intersect(a, b, p));
+  double mts[4][4] = {};
+  double mtt[4][4] = {};
+  const double v = TetrahedronIntersector::Integrate(p, a, b, mts, mtt);
+  EXPECT_NEAR(v, m.CellVolume(0), 1e-15);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+    {
+      EXPECT_NEAR(mts[i][j], v / 20.0 * (1 + (i == j)), 1e-15);
+      EXPECT_NEAR(mtt[i][j], v / 20.0 * (1 + (i == j)), 1e-15);
+    }
+}
+
+TEST(Tetrahedra, IdenticalAndNestedMeshes)
+{
+  const TestMesh a = mptest::CubeMesh(4, 3, 3, 0.15, 1);
+  Searches same(a, a);
+  same.ExpectSamePairs("identical");
+  same.ExpectCompleteCover(a, "identical");
+
+  // A target whose cells coincide with the inner cells of a larger source:
+  // the seeds pass through the shared faces, so the whole target needs one
+  // locator query (the source boundary is never met).
+  const TestMesh inner = mptest::CubeMesh(4, 4, 4, 0.0, 1);
+  TestMesh outer = mptest::CubeMesh(8, 8, 8, 0.0, 1, 2.0);
+  mptest::Move3D(outer, 0, 0, 1, -0.5, -0.5, -0.5);
+  Searches nested(inner, outer);
+  nested.ExpectSamePairs("coinciding cells");
+  nested.ExpectCompleteCover(inner, "coinciding cells");
+  EXPECT_EQ(nested.FrontStats.LocatorQueries, 1);
+  EXPECT_EQ(nested.Front.Pairs.size(), size_t(inner.NumberOfCells()));
+
+  // Unjittered 2x refinement: vertices on faces and edges of the coarse mesh.
+  const TestMesh coarse = mptest::CubeMesh(2, 2, 2, 0.0, 2);
+  const TestMesh fine = mptest::CubeMesh(4, 4, 4, 0.0, 3);
+  Searches cf(coarse, fine);
+  cf.ExpectSamePairs("coarse <- fine");
+  cf.ExpectCompleteCover(coarse, "coarse <- fine");
+  Searches fc(fine, coarse);
+  fc.ExpectSamePairs("fine <- coarse");
+  fc.ExpectCompleteCover(fine, "fine <- coarse");
+}
+
+TEST(Tetrahedra, RandomNonMatchingMeshes)
+{
+  std::mt19937 rng(5);
+  for (int n = 0; n < 40; ++n)
+  {
+    const TestMesh a = mptest::CubeMesh(1 + n % 4, 2 + n % 3, 1 + n % 5, 0.15, rng());
+    const TestMesh b = mptest::CubeMesh(2 + n % 5, 1 + n % 4, 2 + n % 3, 0.15, rng());
+    Searches s(a, b);
+    s.ExpectSamePairs("case " + std::to_string(n));
+    s.ExpectCompleteCover(a, "case " + std::to_string(n));
+    if (HasFatalFailure())
+      return;
+  }
+}
+
+TEST(Tetrahedra, RotatedPartialOverlaps)
+{
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int n = 0; n < 40; ++n)
+  {
+    const TestMesh a = mptest::CubeMesh(2 + n % 3, 3, 2, 0.15, rng());
+    TestMesh b = mptest::CubeMesh(3, 2 + n % 4, 2, 0.15, rng());
+    mptest::Move3D(b, 6.3 * u(rng), 3.1 * u(rng), 0.5 + u(rng), u(rng) - 0.5, u(rng) - 0.5,
+      u(rng) - 0.5);
+    Searches s(a, b);
+    s.ExpectSamePairs("case " + std::to_string(n));
+    if (HasFatalFailure())
+      return;
+  }
+}
+
+TEST(Tetrahedra, ProjectionIsExactOnLinearFieldsAndConservative)
+{
+  std::mt19937 rng(7);
+  for (int n = 0; n < 8; ++n)
+  {
+    const TestMesh target = mptest::CubeMesh(3 + n % 2, 3, 4, 0.15, rng());
+    const TestMesh source = mptest::CubeMesh(5, 4 + n % 3, 3, 0.15, rng());
+    mp::BoxGridLocator locator(source.View());
+    mp::MortarProjector projector;
+    ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator)) << projector.GetError();
+    EXPECT_EQ(projector.GetNumberOfValidPoints(), target.NumberOfPoints());
+    EXPECT_NEAR(projector.GetCoveredMeasure(), 1.0, 1e-13);
+    std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
+    const auto lin = mptest::Sample3D(source, Linear3);
+    projector.Project(lin.data(), 1, ut.data(), std::nan(""));
+    const auto exact = mptest::Sample3D(target, Linear3);
+    for (Index i = 0; i < target.NumberOfPoints(); ++i)
+      ASSERT_NEAR(ut[i], exact[i], 1e-12) << "case " << n << " point " << i;
+    const auto smooth = mptest::Sample3D(source, Smooth3);
+    projector.Project(smooth.data(), 1, ut.data(), std::nan(""));
+    const double is = source.Integral(smooth);
+    EXPECT_NEAR(target.Integral(ut), is, 1e-13 * std::fabs(is));
+  }
+}
+
+TEST(Tetrahedra, MixedDimensionsAreRejected)
+{
+  const TestMesh tets = mptest::CubeMesh(2, 2, 2, 0.1, 8);
+  const TestMesh tris = mptest::GridMesh(3, 3, 0.1, 9);
+  mp::BoxGridLocator locator(tris.View());
+  mp::MortarProjector projector;
+  EXPECT_FALSE(projector.Build(tets.View(), tris.View(), &locator));
+  EXPECT_NE(projector.GetError().find("different dimensions"), std::string::npos);
+}
