@@ -199,8 +199,10 @@ def write(grid, path):
     w = vtkXMLUnstructuredGridWriter()
     w.SetFileName(path)
     w.SetInputData(grid)
-    w.SetDataModeToAppended()
-    w.EncodeAppendedDataOff()          # raw binary appended block
+    # Inline base64 ("binary" mode), not an appended block: VTK 9.2 cannot read
+    # appended data back with Debian 12's patched expat (2.5.0-1+deb12u5 defers
+    # reparsing, which breaks how vtkXMLDataParser finds the appended block).
+    w.SetDataModeToBinary()
     w.SetCompressorTypeToZLib()
     w.SetHeaderTypeToUInt64()
     if not w.Write():

@@ -29,7 +29,9 @@
 #include "MortarProjector.h"
 
 #include <atomic>
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -46,7 +48,7 @@ namespace
 static_assert(std::is_same<vtkTypeInt64, mp::Index>::value,
   "the kernel's ids must match VTK's 64-bit connectivity for zero-copy views");
 
-/// A triangle mesh as the kernel sees it: views of VTK's arrays where their
+/// A simplicial mesh as the kernel sees it: views of VTK's arrays where their
 /// types allow it, converted copies otherwise.
 struct KernelMesh
 {
@@ -55,24 +57,24 @@ struct KernelMesh
   std::vector<mp::Index> ConnectivityCopy;
   std::vector<mp::Index> Neighbors;
   double PlaneZ = 0;
-  vtkIdType NonManifoldEdges = 0;
+  vtkIdType NonManifoldFaces = 0;
 };
 
-/// Checks that `grid` is a planar triangle mesh with finite coordinates and
-/// wraps it. Returns an empty string or the reason it cannot be used.
-std::string WrapTriangleMesh(vtkUnstructuredGrid* grid, const char* role, KernelMesh& mesh)
+/// Checks that `grid` is a mesh of linear triangles in a plane z = constant
+/// (2D) or of linear tetrahedra (3D) with finite coordinates, and wraps it.
+/// Returns an empty string or the reason it cannot be used.
+std::string WrapSimplexMesh(vtkUnstructuredGrid* grid, const char* role, KernelMesh& mesh)
 {
   std::ostringstream why;
   const vtkIdType numberOfCells = grid->GetNumberOfCells();
-  std::set<int> unsupported;
+  std::set<int> types;
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
-    const int type = grid->GetCellType(c);
-    if (type != VTK_TRIANGLE)
-    {
-      unsupported.insert(type);
-    }
+    types.insert(grid->GetCellType(c));
   }
+  std::set<int> unsupported = types;
+  unsupported.erase(VTK_TRIANGLE);
+  unsupported.erase(VTK_TETRA);
   if (!unsupported.empty())
   {
     why << role << " has cells of types the filter does not support:";
@@ -81,12 +83,19 @@ std::string WrapTriangleMesh(vtkUnstructuredGrid* grid, const char* role, Kernel
       const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
       why << ' ' << (name ? name : "unknown") << " (" << type << ')';
     }
-    why << ". Only linear triangles (VTK_TRIANGLE) are supported; apply Triangulate first.";
+    why << ". Only linear triangles (2D) and tetrahedra (3D) are supported; apply Triangulate "
+           "(2D) or Tetrahedralize (3D) first.";
     return why.str();
   }
+  if (types.size() > 1)
+  {
+    why << role << " mixes triangles and tetrahedra: give 2D and 3D meshes separately.";
+    return why.str();
+  }
+  mesh.View.Dimension = types.count(VTK_TETRA) ? 3 : 2;
+  const int corners = mesh.View.Dimension + 1;
 
   vtkCellArray* cells = grid->GetCells();
-  mesh.View.Dimension = 2;
   mesh.View.NumberOfCells = numberOfCells;
   mesh.View.NumberOfPoints = grid->GetNumberOfPoints();
   if (numberOfCells > 0 && cells->IsStorage64Bit())
@@ -121,14 +130,16 @@ std::string WrapTriangleMesh(vtkUnstructuredGrid* grid, const char* role, Kernel
     mesh.View.Points = mesh.PointCopy.data();
   }
 
-  // Coordinates of the points the cells use: finite and in one plane z = c.
-  double zmin = std::numeric_limits<double>::infinity();
-  double zmax = -zmin;
-  double extent = 0;
-  double lo[2] = { zmin, zmin };
-  double hi[2] = { zmax, zmax };
+  // Coordinates of the points the cells use: finite, and in 2D in one plane.
+  double lo[3];
+  double hi[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = std::numeric_limits<double>::infinity();
+    hi[d] = -lo[d];
+  }
   const mp::Index* ids = mesh.View.Connectivity;
-  for (vtkIdType i = 0; i < 3 * numberOfCells; ++i)
+  for (vtkIdType i = 0; i < corners * numberOfCells; ++i)
   {
     const double* x = mesh.View.Point(ids[i]);
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
@@ -136,24 +147,23 @@ std::string WrapTriangleMesh(vtkUnstructuredGrid* grid, const char* role, Kernel
       why << role << " has a point with a NaN or infinite coordinate (point " << ids[i] << ").";
       return why.str();
     }
-    zmin = std::min(zmin, x[2]);
-    zmax = std::max(zmax, x[2]);
-    for (int d = 0; d < 2; ++d)
+    for (int d = 0; d < 3; ++d)
     {
       lo[d] = std::min(lo[d], x[d]);
       hi[d] = std::max(hi[d], x[d]);
     }
   }
-  if (numberOfCells > 0)
+  if (numberOfCells > 0 && mesh.View.Dimension == 2)
   {
-    extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-    if (zmax - zmin > 1e-9 * std::max(extent, std::fabs(zmax)))
+    const double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+    if (hi[2] - lo[2] > 1e-9 * std::max(extent, std::fabs(hi[2])))
     {
-      why << role << " is not planar: its z coordinates range over [" << zmin << ", " << zmax
-          << "]. Only 2D triangle meshes in a plane z = constant are supported.";
+      why << role << " is not planar: its triangles' z coordinates range over [" << lo[2] << ", "
+          << hi[2] << "]. Triangle meshes must lie in a plane z = constant (surfaces in 3D are "
+          << "not supported).";
       return why.str();
     }
-    mesh.PlaneZ = 0.5 * (zmin + zmax);
+    mesh.PlaneZ = 0.5 * (lo[2] + hi[2]);
   }
   return std::string();
 }
@@ -163,7 +173,8 @@ std::string WrapTriangleMesh(vtkUnstructuredGrid* grid, const char* role, Kernel
 void BuildNeighbors(vtkUnstructuredGrid* grid, KernelMesh& mesh)
 {
   const vtkIdType n = mesh.View.NumberOfCells;
-  mesh.Neighbors.assign(3 * static_cast<size_t>(n), -1);
+  const int corners = mesh.View.CornersPerCell();
+  mesh.Neighbors.assign(corners * static_cast<size_t>(n), -1);
   mesh.View.Neighbors = mesh.Neighbors.data();
   if (n == 0)
   {
@@ -177,19 +188,29 @@ void BuildNeighbors(vtkUnstructuredGrid* grid, KernelMesh& mesh)
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType c = begin; c < end; ++c)
     {
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < corners; ++k)
       {
-        const vtkIdType a = conn[3 * c + (k + 1) % 3];
-        const vtkIdType b = conn[3 * c + (k + 2) % 3];
-        const vtkIdType count = links->GetNcells(a);
-        const vtkIdType* around = links->GetCells(a);
+        // The cells around the face's first corner that hold its other corners.
+        const vtkIdType first = conn[corners * c + (k + 1) % corners];
+        const vtkIdType count = links->GetNcells(first);
+        const vtkIdType* around = links->GetCells(first);
         vtkIdType found = -1;
         int matches = 0;
         for (vtkIdType i = 0; i < count; ++i)
         {
           const vtkIdType other = around[i];
-          const mp::Index* o = conn + 3 * other;
-          if (other != c && (o[0] == b || o[1] == b || o[2] == b))
+          if (other == c)
+          {
+            continue;
+          }
+          const mp::Index* o = conn + corners * other;
+          bool shares = true;
+          for (int j = 2; j < corners && shares; ++j)
+          {
+            const mp::Index p = conn[corners * c + (k + j) % corners];
+            shares = std::find(o, o + corners, p) != o + corners;
+          }
+          if (shares)
           {
             found = other;
             ++matches;
@@ -197,7 +218,7 @@ void BuildNeighbors(vtkUnstructuredGrid* grid, KernelMesh& mesh)
         }
         if (matches == 1)
         {
-          mesh.Neighbors[3 * c + k] = found;
+          mesh.Neighbors[corners * c + k] = found;
         }
         else if (matches > 1)
         {
@@ -206,27 +227,34 @@ void BuildNeighbors(vtkUnstructuredGrid* grid, KernelMesh& mesh)
       }
     }
   });
-  mesh.NonManifoldEdges = nonManifold / 2;
+  mesh.NonManifoldFaces = nonManifold / 2;
 }
 
 /// The kernel's seed search, answered by vtkStaticCellLocator.
 class StaticLocator : public mp::CandidateLocator
 {
 public:
-  StaticLocator(vtkUnstructuredGrid* source, double planeZ)
-    : Z(planeZ)
+  StaticLocator(vtkUnstructuredGrid* source, int dimension, double planeZ)
+    : Dimension(dimension)
+    , Z(planeZ)
   {
     this->Locator->SetDataSet(source);
     this->Locator->BuildLocator();
   }
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override
   {
-    double bounds[6] = { box[0], box[1], box[2], box[3], this->Z, this->Z };
+    // 2D: the kernel works in x, y; the source lies in its own plane z = Z.
+    double bounds[6] = { box[0], box[1], box[2], box[3], box[4], box[5] };
+    if (this->Dimension == 2)
+    {
+      bounds[4] = bounds[5] = this->Z;
+    }
     this->Locator->FindCellsWithinBounds(bounds, this->Ids);
     cells.assign(this->Ids->begin(), this->Ids->end());
   }
 
 private:
+  int Dimension;
   double Z;
   vtkNew<vtkStaticCellLocator> Locator;
   vtkNew<vtkIdList> Ids;
@@ -254,17 +282,19 @@ const double* AsDoubles(vtkDataArray* array, std::vector<double>& copy)
   return copy.data();
 }
 
-vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(
-  const mp::IntersectionPieces& pieces, double z)
+/// The pieces' points, cells and the SourceCellId / TargetCellId / measure arrays.
+template <class DataSet>
+vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, double z,
+  const char* measureName, std::function<void(DataSet*, vtkCellArray*)> setCells)
 {
-  auto polys = vtkSmartPointer<vtkPolyData>::New();
+  auto result = vtkSmartPointer<DataSet>::New();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   const vtkIdType nv = static_cast<vtkIdType>(pieces.Points.size() / 3);
   points->SetNumberOfPoints(nv);
   for (vtkIdType v = 0; v < nv; ++v)
   {
-    points->SetPoint(v, pieces.Points[3 * v], pieces.Points[3 * v + 1], z);
+    points->SetPoint(v, pieces.Points[3 * v], pieces.Points[3 * v + 1], pieces.Points[3 * v + 2] + z);
   }
   vtkNew<vtkIdTypeArray> offsets;
   offsets->SetNumberOfValues(static_cast<vtkIdType>(pieces.Offsets.size()));
@@ -277,24 +307,38 @@ vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(
   }
   vtkNew<vtkCellArray> cells;
   cells->SetData(offsets, connectivity);
-  polys->SetPoints(points);
-  polys->SetPolys(cells);
+  result->SetPoints(points);
+  setCells(result, cells);
 
   auto idArray = [&](const char* name, const std::vector<mp::Index>& values) {
     vtkNew<vtkIdTypeArray> a;
     a->SetName(name);
     a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
     std::copy(values.begin(), values.end(), a->GetPointer(0));
-    polys->GetCellData()->AddArray(a);
+    result->GetCellData()->AddArray(a);
   };
   idArray("SourceCellId", pieces.SourceCell);
   idArray("TargetCellId", pieces.TargetCell);
-  vtkNew<vtkDoubleArray> area;
-  area->SetName("Area");
-  area->SetNumberOfValues(static_cast<vtkIdType>(pieces.Measure.size()));
-  std::copy(pieces.Measure.begin(), pieces.Measure.end(), area->GetPointer(0));
-  polys->GetCellData()->AddArray(area);
-  return polys;
+  vtkNew<vtkDoubleArray> measure;
+  measure->SetName(measureName);
+  measure->SetNumberOfValues(static_cast<vtkIdType>(pieces.Measure.size()));
+  std::copy(pieces.Measure.begin(), pieces.Measure.end(), measure->GetPointer(0));
+  result->GetCellData()->AddArray(measure);
+  return result;
+}
+
+/// 2D: one polygon per intersecting pair, in the target's plane.
+vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces, double z)
+{
+  return MakePieces<vtkPolyData>(
+    pieces, z, "Area", [](vtkPolyData* p, vtkCellArray* cells) { p->SetPolys(cells); });
+}
+
+/// 3D: the tetrahedra decomposing each intersection polyhedron.
+vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(const mp::IntersectionPieces& pieces)
+{
+  return MakePieces<vtkUnstructuredGrid>(pieces, 0.0, "Volume",
+    [](vtkUnstructuredGrid* g, vtkCellArray* cells) { g->SetCells(VTK_TETRA, cells); });
 }
 } // namespace
 
@@ -302,7 +346,7 @@ vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(
 vtkMeshProjectionFilter::vtkMeshProjectionFilter()
 {
   this->SetNumberOfInputPorts(2);
-  this->SetNumberOfOutputPorts(2);
+  this->SetNumberOfOutputPorts(3);
 }
 
 vtkMeshProjectionFilter::~vtkMeshProjectionFilter() = default;
@@ -330,7 +374,7 @@ int vtkMeshProjectionFilter::FillInputPortInformation(int vtkNotUsed(port), vtkI
 
 int vtkMeshProjectionFilter::FillOutputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkUnstructuredGrid" : "vtkPolyData");
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 1 ? "vtkPolyData" : "vtkUnstructuredGrid");
   return 1;
 }
 
@@ -358,26 +402,28 @@ int vtkMeshProjectionFilter::RequestData(
   vtkUnstructuredGrid* target = vtkUnstructuredGrid::GetData(inputVector[0], 0);
   vtkUnstructuredGrid* source = vtkUnstructuredGrid::GetData(inputVector[1], 0);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
-  vtkPolyData* intersections = vtkPolyData::GetData(outputVector, 1);
+  vtkPolyData* polygons = vtkPolyData::GetData(outputVector, 1);
+  vtkUnstructuredGrid* polyhedra = vtkUnstructuredGrid::GetData(outputVector, 2);
   this->NumberOfIntersections = this->NumberOfIntersectionTests = 0;
   this->NumberOfLocatorQueries = 0;
-  this->CoveredArea = this->ExecutionTime = 0;
+  this->CoveredMeasure = this->ExecutionTime = 0;
 
   // 1. The output is Input as it came, whatever happens next.
   output->ShallowCopy(target);
-  intersections->Initialize();
+  polygons->Initialize();
+  polyhedra->Initialize();
   if (!source)
   {
     vtkErrorMacro("No Source is connected (input port 1): nothing to project.");
     return 1;
   }
 
-  // 2. Both meshes must be planar triangle meshes with finite coordinates.
+  // 2. Both meshes: triangles in a plane (2D) or tetrahedra (3D), finite coordinates.
   KernelMesh targetMesh;
   KernelMesh sourceMesh;
   for (auto& item : { std::make_pair(target, &targetMesh), std::make_pair(source, &sourceMesh) })
   {
-    const std::string why = WrapTriangleMesh(
+    const std::string why = WrapSimplexMesh(
       item.first, item.first == target ? "Input" : "Source", *item.second);
     if (!why.empty())
     {
@@ -389,8 +435,20 @@ int vtkMeshProjectionFilter::RequestData(
   {
     vtkWarningMacro(<< (target->GetNumberOfCells() == 0 ? "Input" : "Source")
                     << " has no cells: every projected point is invalid.");
+    // An empty mesh takes the dimension of the other one.
+    targetMesh.View.Dimension = sourceMesh.View.Dimension =
+      std::max(target->GetNumberOfCells() ? targetMesh.View.Dimension : 2,
+        source->GetNumberOfCells() ? sourceMesh.View.Dimension : 2);
   }
-  else if (targetMesh.PlaneZ != sourceMesh.PlaneZ)
+  else if (targetMesh.View.Dimension != sourceMesh.View.Dimension)
+  {
+    vtkErrorMacro(<< "Input is a " << targetMesh.View.Dimension << "D mesh ("
+                  << (targetMesh.View.Dimension == 2 ? "triangles" : "tetrahedra")
+                  << ") but Source is " << sourceMesh.View.Dimension << "D: both must be of "
+                  << "the same dimension.");
+    return 1;
+  }
+  else if (targetMesh.View.Dimension == 2 && targetMesh.PlaneZ != sourceMesh.PlaneZ)
   {
     vtkWarningMacro(<< "Source lies in the plane z = " << sourceMesh.PlaneZ << ", Input in z = "
                     << targetMesh.PlaneZ << "; the meshes are compared in x and y only.");
@@ -406,15 +464,15 @@ int vtkMeshProjectionFilter::RequestData(
   {
     BuildNeighbors(target, targetMesh);
     BuildNeighbors(source, sourceMesh);
-    if (targetMesh.NonManifoldEdges || sourceMesh.NonManifoldEdges)
+    if (targetMesh.NonManifoldFaces || sourceMesh.NonManifoldFaces)
     {
-      vtkWarningMacro(<< "Edges shared by more than two triangles (Input: "
-                      << targetMesh.NonManifoldEdges << ", Source: " << sourceMesh.NonManifoldEdges
+      vtkWarningMacro(<< "Faces shared by more than two cells (Input: "
+                      << targetMesh.NonManifoldFaces << ", Source: " << sourceMesh.NonManifoldFaces
                       << ") are treated as boundaries; results stay correct but the search is slower.");
     }
     if (source->GetNumberOfCells() > 0)
     {
-      locator.reset(new StaticLocator(source, sourceMesh.PlaneZ));
+      locator.reset(new StaticLocator(source, sourceMesh.View.Dimension, sourceMesh.PlaneZ));
     }
   }
 
@@ -432,11 +490,12 @@ int vtkMeshProjectionFilter::RequestData(
   this->NumberOfIntersections = stats.Pieces;
   this->NumberOfIntersectionTests = stats.IntersectionTests;
   this->NumberOfLocatorQueries = stats.LocatorQueries;
-  this->CoveredArea = projector.GetCoveredMeasure();
+  this->CoveredMeasure = projector.GetCoveredMeasure();
   if (stats.DegenerateCells > 0)
   {
     vtkWarningMacro(<< stats.DegenerateCells
-                    << " cells of zero area were ignored (they carry no part of the integrals).");
+                    << " cells of zero " << (targetMesh.View.Dimension == 2 ? "area" : "volume")
+                    << " were ignored (they carry no part of the integrals).");
   }
   if (target->GetNumberOfCells() > 0 && source->GetNumberOfCells() > 0 &&
     projector.GetNumberOfValidPoints() == 0)
@@ -508,9 +567,13 @@ int vtkMeshProjectionFilter::RequestData(
   output->GetCellData()->AddArray(covered);
 
   // 7. Optionally, the intersection polygons.
-  if (this->OutputIntersections)
+  if (this->OutputIntersections && targetMesh.View.Dimension == 2)
   {
-    intersections->ShallowCopy(MakeIntersectionPolygons(projector.GetPieces(), targetMesh.PlaneZ));
+    polygons->ShallowCopy(MakeIntersectionPolygons(projector.GetPieces(), targetMesh.PlaneZ));
+  }
+  else if (this->OutputIntersections)
+  {
+    polyhedra->ShallowCopy(MakeIntersectionPolyhedra(projector.GetPieces()));
   }
   this->ExecutionTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -529,6 +592,6 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";
   os << indent << "NumberOfLocatorQueries: " << this->NumberOfLocatorQueries << "\n";
-  os << indent << "CoveredArea: " << this->CoveredArea << "\n";
+  os << indent << "CoveredMeasure: " << this->CoveredMeasure << "\n";
   os << indent << "ExecutionTime: " << this->ExecutionTime << "\n";
 }

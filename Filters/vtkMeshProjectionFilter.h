@@ -21,28 +21,33 @@
  * from a vtkStaticCellLocator over the source; the geometry and the
  * numerics live in a VTK-free kernel (Filters/Kernel).
  *
- * Inputs: two vtkUnstructuredGrid made of linear triangles (VTK_TRIANGLE)
- * lying in one plane z = constant (2D meshes with 3D coordinates). They need
- * not cover the same region, be connected or convex.
+ * Inputs: two vtkUnstructuredGrid of the same dimension: linear triangles
+ * (VTK_TRIANGLE) lying in one plane z = constant (2D meshes with 3D
+ * coordinates), or linear tetrahedra (VTK_TETRA). They need not cover the
+ * same region, be connected or convex.
  *
  * Output port 0: a shallow copy of Input with, for every numeric point array
  * of Source (any type, any number of components), a vtkDoubleArray of the
  * same name and components holding the projected field (an Input array of
  * the same name is replaced); plus
  *  - "vtkValidPointMask" (char point array): 1 where the point's support
- *    meets the source, else 0; invalid points get FillValue;
+ *    meets the source, else 0; invalid points get NaN (or FillValue);
  *  - "CoveredFraction" (double cell array): the fraction of each target
- *    cell's area covered by the source.
- * Output port 1 (filled when OutputIntersections is on): the intersection
- * polygons as vtkPolyData with cell arrays "SourceCellId", "TargetCellId"
- * (vtkIdType) and "Area".
+ *    cell's area (volume) covered by the source.
+ * When OutputIntersections is on:
+ *  - output port 1 (2D inputs): the intersection polygons, vtkPolyData with
+ *    cell arrays "SourceCellId", "TargetCellId" (vtkIdType) and "Area";
+ *  - output port 2 (3D inputs): the intersection polyhedra as their
+ *    tetrahedral decomposition, vtkUnstructuredGrid with cell arrays
+ *    "SourceCellId", "TargetCellId" and "Volume" (of each tetrahedron).
+ * The port not used by the inputs' dimension stays empty.
  *
  * Non-numeric Source point arrays (strings, variants) are skipped with a
- * warning. Invalid input (empty meshes, cell types other than triangles,
- * non-planar meshes, NaN/Inf coordinates) produces an error and an output
- * that is a plain copy of Input.
+ * warning. Invalid input (empty meshes, other cell types, a mix of triangles
+ * and tetrahedra, meshes of different dimensions, non-planar triangle
+ * meshes, NaN/Inf coordinates) produces an error and an output that is a
+ * plain copy of Input.
  *
- * @warning Only 2D triangle meshes are supported in this version.
  * @warning The search runs on one thread.
  *
  * @sa vtkResampleWithDataSet vtkProbeFilter
@@ -90,8 +95,8 @@ public:
 
   ///@{
   /**
-   * Whether output port 1 receives the intersection polygons.
-   * Default: false (the output is an empty vtkPolyData).
+   * Whether output port 1 (2D) or 2 (3D) receives the intersection pieces.
+   * Default: false (both stay empty).
    */
   vtkSetMacro(OutputIntersections, bool);
   vtkGetMacro(OutputIntersections, bool);
@@ -113,14 +118,15 @@ public:
 
   ///@{
   /**
-   * Results of the last execution: intersection polygons of positive area,
-   * cell-pair intersection tests, locator queries, the covered area of the
-   * target, and the wall-clock seconds of the whole execution.
+   * Results of the last execution: intersecting cell pairs with an
+   * intersection of positive measure, cell-pair intersection tests, locator
+   * queries, the covered area (2D) or volume (3D) of the target, and the
+   * wall-clock seconds of the whole execution.
    */
   vtkGetMacro(NumberOfIntersections, vtkIdType);
   vtkGetMacro(NumberOfIntersectionTests, vtkIdType);
   vtkGetMacro(NumberOfLocatorQueries, vtkIdType);
-  vtkGetMacro(CoveredArea, double);
+  vtkGetMacro(CoveredMeasure, double);
   vtkGetMacro(ExecutionTime, double);
   ///@}
 
@@ -141,7 +147,7 @@ protected:
   vtkIdType NumberOfIntersections = 0;
   vtkIdType NumberOfIntersectionTests = 0;
   vtkIdType NumberOfLocatorQueries = 0;
-  double CoveredArea = 0;
+  double CoveredMeasure = 0;
   double ExecutionTime = 0;
 
 private:

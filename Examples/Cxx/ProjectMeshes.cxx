@@ -32,6 +32,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetInputConnection(projection->GetOutputPort());
   writer->SetFileName(argv[3]);
+  writer->EncodeAppendedDataOn(); // raw appended data trips Debian 12's patched expat
   if (!writer->Write())
   {
     return 1;
@@ -40,7 +41,7 @@ int main(int argc, char* argv[])
   std::cout << "projected " << pd->GetNumberOfArrays() << " point arrays onto "
             << projection->GetOutput()->GetNumberOfPoints() << " points with "
             << projection->GetNumberOfIntersections() << " intersection polygons in "
-            << projection->GetExecutionTime() << " s; covered area "
-            << projection->GetCoveredArea() << "\n";
+            << projection->GetExecutionTime() << " s; covered measure "
+            << projection->GetCoveredMeasure() << "\n";
   return pd->GetArray("vtkValidPointMask") ? 0 : 1;
 }

@@ -38,7 +38,7 @@ for name in ("Smooth", "Linear"):
     s_int, s_area = integral(source, name)
     t_int, t_area = integral(out, name)
     check(abs(s_int - t_int) <= 1e-13 * abs(s_int), "%s conserved: %r vs %r" % (name, s_int, t_int))
-check(abs(f.GetCoveredArea() - 2.91) < 1e-12, "covered area %r" % f.GetCoveredArea())
+check(abs(f.GetCoveredMeasure() - 2.91) < 1e-12, "covered area %r" % f.GetCoveredMeasure())
 
 polygons = f.GetOutputDataObject(1)
 check(isinstance(polygons, vtkPolyData), "output 1 is vtkPolyData")

@@ -38,40 +38,61 @@ inline vtkSmartPointer<vtkUnstructuredGrid> ReadSample(const std::string& name)
   return grid;
 }
 
-inline double TriangleArea(vtkUnstructuredGrid* grid, vtkIdType c, const vtkIdType** ids)
+/// Area of a triangle or volume of a tetrahedron (cell c); its point ids in `ids`.
+inline double CellMeasure(vtkUnstructuredGrid* grid, vtkIdType c, const vtkIdType** ids, vtkIdType* n)
 {
-  vtkIdType n;
-  grid->GetCells()->GetCellAtId(c, n, *ids);
-  double a[3];
-  double b[3];
-  double d[3];
-  grid->GetPoint((*ids)[0], a);
-  grid->GetPoint((*ids)[1], b);
-  grid->GetPoint((*ids)[2], d);
-  return 0.5 * std::fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+  grid->GetCells()->GetCellAtId(c, *n, *ids);
+  double x[4][3];
+  for (vtkIdType k = 0; k < *n && k < 4; ++k)
+  {
+    grid->GetPoint((*ids)[k], x[k]);
+  }
+  double e[3][3];
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      e[k][d] = x[k + 1][d] - x[0][d];
+    }
+  }
+  if (*n == 3)
+  {
+    return 0.5 * std::fabs(e[0][0] * e[1][1] - e[0][1] * e[1][0]);
+  }
+  return std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+           e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+    6.0;
 }
 
-/// Exact integral of component `k` of a P1 point array over a triangle mesh.
+/// Exact integral of component `k` of a P1 point array over a simplicial mesh.
 inline double Integral(vtkUnstructuredGrid* grid, vtkDataArray* u, int k = 0)
 {
   double sum = 0;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     const vtkIdType* ids;
-    const double area = TriangleArea(grid, c, &ids);
-    sum += area *
-      (u->GetComponent(ids[0], k) + u->GetComponent(ids[1], k) + u->GetComponent(ids[2], k)) / 3;
+    vtkIdType n;
+    const double measure = CellMeasure(grid, c, &ids, &n);
+    double mean = 0;
+    for (vtkIdType j = 0; j < n; ++j)
+    {
+      mean += u->GetComponent(ids[j], k) / n;
+    }
+    sum += measure * mean;
   }
   return sum;
 }
 
-inline double Area(vtkUnstructuredGrid* grid)
+/// Total area (triangles) or volume (tetrahedra).
+inline double Measure(vtkUnstructuredGrid* grid)
 {
   double sum = 0;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     const vtkIdType* ids;
-    sum += TriangleArea(grid, c, &ids);
+    vtkIdType n;
+    sum += CellMeasure(grid, c, &ids, &n);
   }
   return sum;
 }

@@ -97,8 +97,8 @@ int TestMeshProjectionFilter(int argc, char* argv[])
     {
       total += area->GetComponent(c, 0);
     }
-    MP_CHECK(std::fabs(total - mptest::Area(target)) < 1e-12);
-    MP_CHECK(std::fabs(filter->GetCoveredArea() - 2.91) < 1e-12);
+    MP_CHECK(std::fabs(total - mptest::Measure(target)) < 1e-12);
+    MP_CHECK(std::fabs(filter->GetCoveredMeasure() - 2.91) < 1e-12);
   }
   // Linear work: far fewer tests than the brute force's n * m.
   std::cout << "advancing front: " << filter->GetNumberOfIntersections() << " pieces, "
