@@ -1,16 +1,18 @@
-"""The main job: project a sample field from one mesh onto another with the
-MeshProjection ParaView plugin, write the result and a picture, print a summary.
+"""The main job: project sample fields from one mesh onto another with the
+MeshProjection ParaView plugin, write the results and pictures, print a summary.
 
 Run with pvpython (under xvfb-run on a machine without a display):
 
-    pvpython Scripts/project_sample.py --plugin PATH/MeshProjection.so \
-        [--source Data/lshape_source.vtu] [--target Data/lshape_target.vtu] \
-        [--array Smooth] [--out-dir build/main]
+    pvpython Scripts/project_sample.py --plugin PATH/MeshProjection.so [--out-dir build/main]
+    pvpython Scripts/project_sample.py --plugin ... --source S.vtu --target T.vtu [--name NAME]
 
-Writes OUT_DIR/projected.vtu (the target mesh with every projected source
-array, vtkValidPointMask and CoveredFraction), OUT_DIR/intersections.vtp (the
-intersection polygons) and OUT_DIR/projection.png (the source field, left,
-beside the projected field, right, in the same colours).
+Without --source/--target it runs both samples of Data/: the 2D pair
+(lshape_*.vtu, triangles) and the 3D pair (lshape3d_*.vtu, tetrahedra). For
+each case NAME it writes OUT_DIR/NAME-projected.vtu (the target mesh with
+every projected source array, vtkValidPointMask and CoveredFraction),
+OUT_DIR/NAME-intersections.vtp or .vtu (the intersection polygons or
+polyhedra) and OUT_DIR/NAME.png: the source field (left) beside the projected
+field (right) in the same colours; in 3D, a slice through both.
 """
 import argparse
 import os
@@ -19,35 +21,85 @@ import time
 
 from paraview import servermanager
 from paraview.simple import (ColorBy, CreateView, Delete, GetColorTransferFunction, GetScalarBar,
-                             IntegrateVariables, LoadPlugin, OpenDataFile, OutputPort,
-                             Render, SaveData, SaveScreenshot, Show, Text,
-                             Transform)
+                             IntegrateVariables, LoadPlugin, OpenDataFile, OutputPort, Render,
+                             SaveData, SaveScreenshot, Show, Slice, Text, Transform)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+SIZE = [1400, 620]
 
 
 def integral(proxy, array):
-    """Exact integral of a P1 point array (and the area) via IntegrateVariables."""
+    """Exact integral of a P1 point array, and the area or volume, via IntegrateVariables."""
     integrated = servermanager.Fetch(IntegrateVariables(Input=proxy))
     value = integrated.GetPointData().GetArray(array).GetValue(0)
-    area = integrated.GetCellData().GetArray("Area").GetValue(0)
-    return value, area
+    cd = integrated.GetCellData()
+    measure = cd.GetArray("Volume") if cd.GetArray("Volume") and cd.GetArray("Volume").GetValue(0) else cd.GetArray("Area")
+    return value, measure.GetValue(0)
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--plugin", required=True, help="path of MeshProjection.so")
-    parser.add_argument("--source", default=os.path.join(ROOT, "Data", "lshape_source.vtu"))
-    parser.add_argument("--target", default=os.path.join(ROOT, "Data", "lshape_target.vtu"))
-    parser.add_argument("--array", default="Smooth", help="point array shown in the picture")
-    parser.add_argument("--out-dir", default=os.path.join(ROOT, "build", "main"))
-    args = parser.parse_args()
-    os.makedirs(args.out_dir, exist_ok=True)
+def picture(source, projection, array, title_source, title_target, path, slice_z=None):
+    """Source (left) and projection (right), same colour map; 3D: slices z = slice_z."""
+    view = CreateView("RenderView")
+    view.ViewSize = SIZE
+    view.OrientationAxesVisibility = 0
+    view.Background = [1, 1, 1]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    left, right = source, projection
+    if slice_z is not None:
+        left, right = Slice(Input=source), Slice(Input=projection)
+        for cut in (left, right):
+            cut.SliceType.Origin = [0, 0, slice_z]
+            cut.SliceType.Normal = [0, 0, 1]
+    bounds = source.GetDataInformation().GetBounds()
+    width = bounds[1] - bounds[0]
+    height = bounds[3] - bounds[2]
+    shift = 1.25 * width
+    moved = Transform(Input=right)
+    moved.Transform.Translate = [shift, 0, 0]
+    aspect = float(SIZE[0]) / SIZE[1]
+    scale = max(0.62 * height, 0.55 * (shift + width) / aspect)
 
-    LoadPlugin(args.plugin, ns=globals())
-    source = OpenDataFile(args.source)
-    target = OpenDataFile(args.target)
+    def screen_x(x):  # normalized viewport x of world x
+        return 0.5 + (x - bounds[0] - 0.5 * (shift + width)) / (2 * scale * aspect)
+
+    for proxy, label, x in ((left, title_source, screen_x(bounds[0])),
+                            (moved, title_target, screen_x(bounds[0] + shift))):
+        display = Show(proxy, view)
+        display.SetRepresentationType("Surface With Edges")
+        display.EdgeColor = [0.25, 0.25, 0.25]
+        ColorBy(display, ("POINTS", array))
+        title = Show(Text(Text=label), view)
+        title.WindowLocation = "Any Location"
+        title.Position = [max(0.01, x), 0.92]
+        title.FontSize = 20
+        title.Color = [0, 0, 0]
+    lut = GetColorTransferFunction(array)
+    lut.RescaleTransferFunction(*source.PointData[array].GetRange())
+    display.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.Title = array
+    bar.ComponentTitle = ""
+    bar.TitleColor = [0, 0, 0]
+    bar.LabelColor = [0, 0, 0]
+    Render(view)  # the first render resets the camera: place it afterwards
+    centre = [bounds[0] + 0.5 * (shift + width), bounds[2] + 0.55 * height]
+    view.CameraParallelProjection = 1
+    view.CameraFocalPoint = centre + [bounds[5] if slice_z is None else slice_z]
+    view.CameraPosition = centre + [bounds[5] + 10]
+    view.CameraViewUp = [0, 1, 0]
+    view.CameraParallelScale = scale
+    Render(view)
+    SaveScreenshot(path, view, ImageResolution=SIZE)
+    Delete(view)  # release the GL context before the interpreter exits
+
+
+def run_case(name, source_file, target_file, array, out_dir):
+    source = OpenDataFile(source_file)
+    target = OpenDataFile(target_file)
     source.UpdatePipeline()
     target.UpdatePipeline()
 
@@ -57,88 +109,70 @@ def main():
     projection.UpdatePipeline()
     seconds = time.perf_counter() - start
 
-    projected_file = os.path.join(args.out_dir, "projected.vtu")
-    polygons_file = os.path.join(args.out_dir, "intersections.vtp")
-    SaveData(projected_file, proxy=OutputPort(projection, 0))
-    SaveData(polygons_file, proxy=OutputPort(projection, 1))
-
     s_info = source.GetDataInformation()
     t_info = target.GetDataInformation()
-    p_info = projection.GetDataInformation(1)
-    s_int, s_area = integral(source, args.array)
-    t_int, t_area = integral(projection, args.array)
+    three_d = projection.GetDataInformation(2).GetNumberOfCells() > 0
+    pieces_port = 2 if three_d else 1
+    cells = "tetrahedra" if three_d else "triangles"
+    projected_file = os.path.join(out_dir, name + "-projected.vtu")
+    pieces_file = os.path.join(out_dir, name + ("-intersections.vtu" if three_d else "-intersections.vtp"))
+    # Inline binary, not appended: VTK 9.2 cannot read appended data back with
+    # Debian 12's patched expat.
+    SaveData(projected_file, proxy=OutputPort(projection, 0), DataMode="Binary")
+    SaveData(pieces_file, proxy=OutputPort(projection, pieces_port), DataMode="Binary")
+
+    s_int, s_measure = integral(source, array)
+    t_int, t_measure = integral(projection, array)
     conservation = abs(t_int - s_int) / max(abs(s_int), 1e-300)
     mask = projection.PointData["vtkValidPointMask"].GetRange()
+    pieces = projection.GetDataInformation(pieces_port).GetNumberOfCells()
 
-    print("MeshProjection: mortar L2 projection, advancing front (Gander & Japhet)")
-    print("  source        %s: %d triangles, %d points" %
-          (os.path.basename(args.source), s_info.GetNumberOfCells(), s_info.GetNumberOfPoints()))
-    print("  target        %s: %d triangles, %d points" %
-          (os.path.basename(args.target), t_info.GetNumberOfCells(), t_info.GetNumberOfPoints()))
-    print("  intersections %d polygons" % p_info.GetNumberOfCells())
-    print("  time          %.3f s (pipeline update, incl. neighbours, locator, solve)" % seconds)
-    print("  area          source %.15g, target %.15g" % (s_area, t_area))
+    print("%s: mortar L2 projection, advancing front (Gander & Japhet)" % name)
+    print("  source        %s: %d %s, %d points" %
+          (os.path.basename(source_file), s_info.GetNumberOfCells(), cells, s_info.GetNumberOfPoints()))
+    print("  target        %s: %d %s, %d points" %
+          (os.path.basename(target_file), t_info.GetNumberOfCells(), cells, t_info.GetNumberOfPoints()))
+    print("  intersections %d %s" % (pieces, "tetrahedra (polyhedra decomposed)" if three_d else "polygons"))
+    print("  time          %.3f s (pipeline update: neighbours, locator, search, assembly, solve)" % seconds)
+    print("  %s        source %.15g, target %.15g" % ("volume" if three_d else "area  ", s_measure, t_measure))
     print("  integral of %s: source %.15g, projected %.15g, relative error %.2e" %
-          (args.array, s_int, t_int, conservation))
+          (array, s_int, t_int, conservation))
     print("  valid points  mask range %s" % (list(mask),))
-    print("  wrote         %s, %s" % (projected_file, polygons_file))
+    png = os.path.join(out_dir, name + ".png")
+    z = None
+    if three_d:
+        bounds = s_info.GetBounds()
+        z = bounds[4] + 0.55 * (bounds[5] - bounds[4])
+    picture(source, projection, array,
+            "Source: %d %s%s" % (s_info.GetNumberOfCells(), cells, "" if z is None else ", slice z = %.2f" % z),
+            "Projected onto target: %d %s" % (t_info.GetNumberOfCells(), cells), png, z)
+    print("  wrote         %s, %s, %s" % (projected_file, pieces_file, png))
+    return conservation < 1e-12 and mask[0] == 1
 
-    # The picture: source (left) and projection (right), same colour map.
-    view = CreateView("RenderView")
-    view.ViewSize = [1400, 620]
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    bounds = s_info.GetBounds()
-    width = bounds[1] - bounds[0]
-    height = bounds[3] - bounds[2]
-    shift = 1.25 * width
-    moved = Transform(Input=projection)
-    moved.Transform.Translate = [shift, 0, 0]
-    lut = GetColorTransferFunction(args.array)
-    # Fit both meshes: x over [xmin, xmin + shift + width], titles above.
-    aspect = 1400.0 / 620.0
-    scale = max(0.62 * height, 0.55 * (shift + width) / aspect)
-    def screen_x(x):  # normalized viewport x of world x
-        return 0.5 + (x - bounds[0] - 0.5 * (shift + width)) / (2 * scale * aspect)
 
-    for proxy, label, x in ((source, "Source: %d triangles" % s_info.GetNumberOfCells(),
-                             screen_x(bounds[0])),
-                            (moved, "Projected onto target: %d triangles" % t_info.GetNumberOfCells(),
-                             screen_x(bounds[0] + shift))):
-        display = Show(proxy, view)
-        display.SetRepresentationType("Surface With Edges")
-        display.EdgeColor = [0.25, 0.25, 0.25]
-        ColorBy(display, ("POINTS", args.array))
-        title = Text(Text=label)
-        title_display = Show(title, view)
-        title_display.WindowLocation = "Any Location"
-        title_display.Position = [max(0.01, x), 0.92]
-        title_display.FontSize = 20
-        title_display.Color = [0, 0, 0]
-    lut.RescaleTransferFunction(*source.PointData[args.array].GetRange())
-    display.SetScalarBarVisibility(view, True)
-    bar = GetScalarBar(lut, view)
-    bar.Title = args.array
-    bar.ComponentTitle = ""
-    bar.TitleColor = [0, 0, 0]
-    bar.LabelColor = [0, 0, 0]
-    Render(view)  # the first render resets the camera: place it afterwards
-    view.CameraParallelProjection = 1
-    view.CameraFocalPoint = [bounds[0] + 0.5 * (shift + width), bounds[2] + 0.55 * height, 0]
-    view.CameraPosition = [bounds[0] + 0.5 * (shift + width), bounds[2] + 0.55 * height, 10]
-    view.CameraViewUp = [0, 1, 0]
-    view.CameraParallelScale = scale
-    Render(view)
-    picture = os.path.join(args.out_dir, "projection.png")
-    SaveScreenshot(picture, view, ImageResolution=[1400, 620])
-    print("  picture       %s" % picture)
-    Delete(view)  # release the GL context before the interpreter exits
-    del view
-    return 0 if conservation < 1e-12 and mask[0] == 1 else 1
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--plugin", required=True, help="path of MeshProjection.so")
+    parser.add_argument("--source", help="source mesh (.vtu); default: the samples in Data/")
+    parser.add_argument("--target", help="target mesh (.vtu)")
+    parser.add_argument("--name", default="custom", help="output name for --source/--target")
+    parser.add_argument("--array", default="Smooth", help="point array shown in the picture")
+    parser.add_argument("--out-dir", default=os.path.join(ROOT, "build", "main"))
+    args = parser.parse_args()
+    os.makedirs(args.out_dir, exist_ok=True)
+    LoadPlugin(args.plugin, ns=globals())
+
+    data = os.path.join(ROOT, "Data")
+    if args.source or args.target:
+        if not (args.source and args.target):
+            parser.error("--source and --target go together")
+        cases = [(args.name, args.source, args.target)]
+    else:
+        cases = [("lshape2d", os.path.join(data, "lshape_source.vtu"), os.path.join(data, "lshape_target.vtu")),
+                 ("lshape3d", os.path.join(data, "lshape3d_source.vtu"),
+                  os.path.join(data, "lshape3d_target.vtu"))]
+    ok = all([run_case(name, s, t, args.array, args.out_dir) for name, s, t in cases])
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":

@@ -9,8 +9,8 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview import servermanager  # noqa: E402
-from paraview.simple import (ColorBy, CreateView, Delete, LoadPlugin, OpenDataFile,  # noqa: E402
-                             Render, SaveScreenshot, Show)
+from paraview.simple import (ColorBy, CreateView, Delete, Hide, LoadPlugin, OpenDataFile,  # noqa: E402
+                             Render, SaveScreenshot, Show, Slice)
 
 from mptesting import DATA, check, compare_image, finish, integral  # noqa: E402
 
@@ -84,6 +84,45 @@ Render(view)
 png = os.path.join(temp_dir, "TestMeshProjectionPlugin.png")
 SaveScreenshot(png, view, ImageResolution=[400, 400])
 check(compare_image(png, "TestMeshProjectionPlugin.png", temp_dir), "image matches the baseline")
+Hide(projection, view)
+
+# 3D: tetrahedral meshes of an L-shaped prism with a hole, same filter.
+source3 = OpenDataFile(os.path.join(DATA, "lshape3d_source.vtu"))
+target3 = OpenDataFile(os.path.join(DATA, "lshape3d_target.vtu"))
+projection3 = MeshProjection(Input=target3, Source=source3)  # noqa: F821
+projection3.OutputIntersections = 1
+projection3.UpdatePipeline()
+out3 = servermanager.Fetch(projection3)
+src3 = servermanager.Fetch(source3)
+s_int, s_vol = integral(src3, "Smooth")
+t_int, t_vol = integral(out3, "Smooth")
+check(abs(s_int - t_int) <= 1e-13 * abs(s_int), "3D conservation %r vs %r" % (s_int, t_int))
+check(abs(s_vol - 6.5) < 1e-12 and abs(t_vol - 6.5) < 1e-12, "3D volumes")
+lin = out3.GetPointData().GetArray("Linear")
+worst = max(abs(lin.GetValue(i) - (1 + 2 * out3.GetPoint(i)[0] - 3 * out3.GetPoint(i)[1] + 0.5 * out3.GetPoint(i)[2]))
+            for i in range(out3.GetNumberOfPoints()))
+check(worst < 1e-12, "3D linear field exact (%g)" % worst)
+check(projection3.GetDataInformation(1).GetNumberOfCells() == 0, "no 2D polygons for 3D inputs")
+check(projection3.GetDataInformation(2).GetNumberOfCells() > 60000,
+      "intersection polyhedra on output 2: %d tetrahedra" % projection3.GetDataInformation(2).GetNumberOfCells())
+
+# The image: a slice z = 0.55 through the projected 3D field.
+cut = Slice(Input=projection3)
+cut.SliceType.Origin = [0, 0, 0.55]
+cut.SliceType.Normal = [0, 0, 1]
+display = Show(cut, view)
+display.SetRepresentationType("Surface With Edges")
+display.EdgeColor = [0.3, 0.3, 0.3]
+ColorBy(display, ("POINTS", "Smooth"))
+display.LookupTable.RescaleTransferFunction(-1.6, 1.6)
+view.CameraPosition = [1.5, 1.5, 10]
+view.CameraFocalPoint = [1.5, 1.5, 0]
+view.CameraParallelScale = 1.55
+Render(view)
+png = os.path.join(temp_dir, "TestMeshProjectionPlugin3D.png")
+SaveScreenshot(png, view, ImageResolution=[400, 400])
+check(compare_image(png, "TestMeshProjectionPlugin3D.png", temp_dir), "3D image matches the baseline")
+
 Delete(view)
 del view
 finish()

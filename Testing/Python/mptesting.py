@@ -32,17 +32,23 @@ def read(name):
 
 
 def integral(grid, name, component=0):
-    """Exact integral of a P1 point array over a triangle mesh (numpy, no VTK filter)."""
+    """Exact integral of a P1 point array over a triangle or tetrahedron mesh
+    (numpy, no VTK filter); returns (integral, area or volume)."""
     import numpy as np
     from vtkmodules.util.numpy_support import vtk_to_numpy
     x = vtk_to_numpy(grid.GetPoints().GetData())
-    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 3)
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
+    corners = int(offsets[1] - offsets[0]) if len(offsets) > 1 else 3
+    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, corners)
     u = vtk_to_numpy(grid.GetPointData().GetArray(name))
     if u.ndim > 1:
         u = u[:, component]
-    a, b, c = x[cells[:, 0]], x[cells[:, 1]], x[cells[:, 2]]
-    area = 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
-    return float(np.sum(area * u[cells].sum(axis=1) / 3.0)), float(area.sum())
+    e = x[cells[:, 1:]] - x[cells[:, :1]]
+    if corners == 3:
+        measure = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
+    else:
+        measure = np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6
+    return float(np.sum(measure * u[cells].mean(axis=1))), float(measure.sum())
 
 
 def compare_image(png, baseline_name, temp_dir, threshold=10):
