@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The advancing front must find exactly the pairs the brute force finds, and
 // the pieces of every covered target cell must add up to the cell.
-#include "PairSearch.h"
-#include "TestMeshes.h"
+#include "SearchComparison.h"
 
 #include <gtest/gtest.h>
 
@@ -15,62 +14,7 @@ using mptest::TestMesh;
 
 namespace
 {
-struct Recorder
-{
-  std::vector<std::tuple<Index, Index, double>> Pairs; // target, source, area
-  void operator()(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-    const TriangleIntersector::Piece& p)
-  {
-    this->Pairs.emplace_back(t.Id, s.Id, TriangleIntersector::Measure(p));
-  }
-  void Sort() { std::sort(this->Pairs.begin(), this->Pairs.end()); }
-};
-
-struct Searches
-{
-  Recorder Front;
-  Recorder Brute;
-  mp::SearchStatistics FrontStats;
-  mp::SearchStatistics BruteStats;
-
-  Searches(const TestMesh& target, const TestMesh& source)
-  {
-    mp::BoxGridLocator locator(source.View());
-    mp::AdvancingFrontSearch<TriangleIntersector>(
-      target.View(), source.View(), locator, this->Front, this->FrontStats);
-    mp::BruteForceSearch<TriangleIntersector>(
-      target.View(), source.View(), this->Brute, this->BruteStats);
-    this->Front.Sort();
-    this->Brute.Sort();
-  }
-
-  void ExpectSamePairs(const std::string& what) const
-  {
-    ASSERT_EQ(this->Front.Pairs.size(), this->Brute.Pairs.size()) << what;
-    for (size_t i = 0; i < this->Front.Pairs.size(); ++i)
-    {
-      // Same pair, and bit-identical geometry: both call the same intersector.
-      ASSERT_EQ(this->Front.Pairs[i], this->Brute.Pairs[i]) << what << " pair " << i;
-    }
-  }
-
-  std::vector<double> CoveredArea(const TestMesh& target) const
-  {
-    std::vector<double> area(static_cast<size_t>(target.NumberOfCells()), 0.0);
-    for (const auto& p : this->Front.Pairs)
-      area[std::get<0>(p)] += std::get<2>(p);
-    return area;
-  }
-
-  void ExpectCompleteCover(const TestMesh& target, const std::string& what) const
-  {
-    const std::vector<double> area = this->CoveredArea(target);
-    for (Index c = 0; c < target.NumberOfCells(); ++c)
-    {
-      ASSERT_NEAR(area[c], target.CellArea(c), 1e-12 * target.CellArea(c)) << what << " cell " << c;
-    }
-  }
-};
+using Searches = mptest::SearchComparison<TriangleIntersector>;
 
 bool LShape(double x, double y)
 {
@@ -176,7 +120,7 @@ TEST(PairSearch, DisconnectedSourceAndNoOverlap)
   Searches s(target, islands);
   s.ExpectSamePairs("islands");
   double covered = 0;
-  for (double a : s.CoveredArea(target))
+  for (double a : s.CoveredMeasure(target))
     covered += a;
   EXPECT_NEAR(covered, islands.Area(), 1e-13);
 

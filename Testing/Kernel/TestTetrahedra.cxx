@@ -3,8 +3,7 @@
 // meshes (== brute force), completeness of the pieces, exactness on linear
 // fields and conservation.
 #include "MortarProjector.h"
-#include "PairSearch.h"
-#include "TestMeshes.h"
+#include "SearchComparison.h"
 #include "TetrahedronIntersector.h"
 
 #include <gtest/gtest.h>
@@ -48,47 +47,7 @@ double PairVolume(const double t[4][3], const double s[4][3], unsigned* touched 
   return met ? v : 0.0;
 }
 
-struct Recorder
-{
-  std::vector<std::tuple<Index, Index, double>> Pairs;
-  void operator()(const TetrahedronIntersector::Cell& t, const TetrahedronIntersector::Cell& s,
-    const TetrahedronIntersector::Piece& p)
-  {
-    this->Pairs.emplace_back(t.Id, s.Id, TetrahedronIntersector::Measure(p));
-  }
-};
-
-struct Searches
-{
-  Recorder Front;
-  Recorder Brute;
-  mp::SearchStatistics FrontStats;
-  mp::SearchStatistics BruteStats;
-  Searches(const TestMesh& target, const TestMesh& source)
-  {
-    mp::BoxGridLocator locator(source.View());
-    mp::AdvancingFrontSearch<TetrahedronIntersector>(
-      target.View(), source.View(), locator, this->Front, this->FrontStats);
-    mp::BruteForceSearch<TetrahedronIntersector>(
-      target.View(), source.View(), this->Brute, this->BruteStats);
-    std::sort(this->Front.Pairs.begin(), this->Front.Pairs.end());
-    std::sort(this->Brute.Pairs.begin(), this->Brute.Pairs.end());
-  }
-  void ExpectSamePairs(const std::string& what) const
-  {
-    ASSERT_EQ(this->Front.Pairs.size(), this->Brute.Pairs.size()) << what;
-    for (size_t i = 0; i < this->Front.Pairs.size(); ++i)
-      ASSERT_EQ(this->Front.Pairs[i], this->Brute.Pairs[i]) << what << " pair " << i;
-  }
-  void ExpectCompleteCover(const TestMesh& target, const std::string& what) const
-  {
-    std::vector<double> volume(static_cast<size_t>(target.NumberOfCells()), 0.0);
-    for (const auto& p : this->Front.Pairs)
-      volume[std::get<0>(p)] += std::get<2>(p);
-    for (Index c = 0; c < target.NumberOfCells(); ++c)
-      ASSERT_NEAR(volume[c], target.CellVolume(c), 1e-12 * target.CellVolume(c)) << what << " cell " << c;
-  }
-};
+using Searches = mptest::SearchComparison<TetrahedronIntersector>;
 
 double Linear3(double x, double y, double z)
 {

@@ -4,7 +4,15 @@
 #ifndef MeshProjectionTestUtilities_h
 #define MeshProjectionTestUtilities_h
 
+#include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkDataSetMapper.h"
+#include "vtkProperty.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
 #include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -95,6 +103,50 @@ inline double Measure(vtkUnstructuredGrid* grid)
     sum += CellMeasure(grid, c, &ids, &n);
   }
   return sum;
+}
+/**
+ * The image half of a test: `left` and `right` side by side in a 600 x 300
+ * window, coloured by point array `array` over the range it has on `left`,
+ * with cell edges, compared with the test's baseline. Returns the
+ * vtkRegressionTester result.
+ */
+inline int SideBySideImageTest(
+  int argc, char* argv[], vtkDataSet* left, vtkDataSet* right, const char* array)
+{
+  double range[2];
+  left->GetPointData()->GetArray(array)->GetRange(range);
+  vtkNew<vtkRenderWindow> window;
+  window->SetSize(600, 300);
+  window->SetMultiSamples(0);
+  vtkDataSet* shown[2] = { left, right };
+  for (int side = 0; side < 2; ++side)
+  {
+    vtkNew<vtkDataSetMapper> mapper;
+    mapper->SetInputData(shown[side]);
+    mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectColorArray(array);
+    mapper->SetScalarRange(range);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->EdgeVisibilityOn();
+    actor->GetProperty()->SetEdgeColor(0.15, 0.15, 0.15);
+    vtkNew<vtkRenderer> renderer;
+    renderer->SetViewport(0.5 * side, 0, 0.5 * side + 0.5, 1);
+    renderer->SetBackground(1, 1, 1);
+    renderer->AddActor(actor);
+    renderer->ResetCamera();
+    renderer->GetActiveCamera()->Zoom(1.3);
+    window->AddRenderer(renderer);
+  }
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  interactor->SetRenderWindow(window);
+  window->Render();
+  const int result = vtkRegressionTestImage(window);
+  if (result == vtkRegressionTester::DO_INTERACTOR)
+  {
+    interactor->Start();
+  }
+  return result;
 }
 } // namespace mptest
 

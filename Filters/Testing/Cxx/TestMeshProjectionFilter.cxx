@@ -5,17 +5,9 @@
 #include "MeshProjectionTestUtilities.h"
 #include "vtkMeshProjectionFilter.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
 #include "vtkCellData.h"
-#include "vtkDataSetMapper.h"
 #include "vtkDoubleArray.h"
 #include "vtkPolyData.h"
-#include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderWindowInteractor.h"
-#include "vtkRenderer.h"
 
 int TestMeshProjectionFilter(int argc, char* argv[])
 {
@@ -122,39 +114,7 @@ int TestMeshProjectionFilter(int argc, char* argv[])
   }
 
   // The picture: source field (left) and projected field (right), same colours.
-  double range[2];
-  source->GetPointData()->GetArray("Smooth")->GetRange(range);
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(600, 300);
-  window->SetMultiSamples(0);
-  vtkUnstructuredGrid* shown[2] = { source, out };
-  for (int side = 0; side < 2; ++side)
-  {
-    vtkNew<vtkDataSetMapper> mapper;
-    mapper->SetInputData(shown[side]);
-    mapper->SetScalarModeToUsePointFieldData();
-    mapper->SelectColorArray("Smooth");
-    mapper->SetScalarRange(range);
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->EdgeVisibilityOn();
-    actor->GetProperty()->SetEdgeColor(0.15, 0.15, 0.15);
-    vtkNew<vtkRenderer> renderer;
-    renderer->SetViewport(0.5 * side, 0, 0.5 * side + 0.5, 1);
-    renderer->SetBackground(1, 1, 1);
-    renderer->AddActor(actor);
-    renderer->ResetCamera();
-    renderer->GetActiveCamera()->Zoom(1.3);
-    window->AddRenderer(renderer);
-  }
-  vtkNew<vtkRenderWindowInteractor> interactor;
-  interactor->SetRenderWindow(window);
-  window->Render();
-  const int image = vtkRegressionTestImage(window);
-  if (image == vtkRegressionTester::DO_INTERACTOR)
-  {
-    interactor->Start();
-  }
+  const int image = mptest::SideBySideImageTest(argc, argv, source, out, "Smooth");
   MP_CHECK(image != vtkRegressionTester::FAILED);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

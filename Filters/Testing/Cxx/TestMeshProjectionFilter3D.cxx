@@ -7,20 +7,11 @@
 #include "MeshProjectionTestUtilities.h"
 #include "vtkMeshProjectionFilter.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkCutter.h"
-#include "vtkDataSetMapper.h"
 #include "vtkDoubleArray.h"
 #include "vtkPlane.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderWindowInteractor.h"
-#include "vtkRenderer.h"
 
 #include <set>
 #include <utility>
@@ -128,45 +119,19 @@ int TestMeshProjectionFilter3D(int argc, char* argv[])
 
   // The picture: the slice z = 0.55 of the source field (left) and of the
   // projected field (right), same colours, seen from above.
-  double range[2];
-  source->GetPointData()->GetArray("Smooth")->GetRange(range);
   vtkNew<vtkPlane> plane;
   plane->SetOrigin(0, 0, 0.55);
   plane->SetNormal(0, 0, 1);
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(600, 300);
-  window->SetMultiSamples(0);
-  vtkUnstructuredGrid* shown[2] = { source, out };
-  for (int side = 0; side < 2; ++side)
-  {
-    vtkNew<vtkCutter> cut;
-    cut->SetInputData(shown[side]);
-    cut->SetCutFunction(plane);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(cut->GetOutputPort());
-    mapper->SetScalarModeToUsePointFieldData();
-    mapper->SelectColorArray("Smooth");
-    mapper->SetScalarRange(range);
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->EdgeVisibilityOn();
-    actor->GetProperty()->SetEdgeColor(0.15, 0.15, 0.15);
-    vtkNew<vtkRenderer> renderer;
-    renderer->SetViewport(0.5 * side, 0, 0.5 * side + 0.5, 1);
-    renderer->SetBackground(1, 1, 1);
-    renderer->AddActor(actor);
-    renderer->ResetCamera();
-    renderer->GetActiveCamera()->Zoom(1.3);
-    window->AddRenderer(renderer);
-  }
-  vtkNew<vtkRenderWindowInteractor> interactor;
-  interactor->SetRenderWindow(window);
-  window->Render();
-  const int image = vtkRegressionTestImage(window);
-  if (image == vtkRegressionTester::DO_INTERACTOR)
-  {
-    interactor->Start();
-  }
+  vtkNew<vtkCutter> sourceCut;
+  sourceCut->SetInputData(source);
+  sourceCut->SetCutFunction(plane);
+  sourceCut->Update();
+  vtkNew<vtkCutter> targetCut;
+  targetCut->SetInputData(out);
+  targetCut->SetCutFunction(plane);
+  targetCut->Update();
+  const int image = mptest::SideBySideImageTest(
+    argc, argv, sourceCut->GetOutput(), targetCut->GetOutput(), "Smooth");
   MP_CHECK(image != vtkRegressionTester::FAILED);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Runs the advancing front and the brute force on the same pair of meshes
+// and compares them: the kernel tests' main oracle, for any intersector.
+#ifndef MeshProjection_Testing_SearchComparison_h
+#define MeshProjection_Testing_SearchComparison_h
+
+#include "PairSearch.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace mptest
+{
+/// Every (target, source, measure) the search visits.
+template <class Intersector>
+struct PairRecorder
+{
+  std::vector<std::tuple<Index, Index, double>> Pairs;
+  void operator()(const typename Intersector::Cell& t, const typename Intersector::Cell& s,
+    const typename Intersector::Piece& p)
+  {
+    this->Pairs.emplace_back(t.Id, s.Id, Intersector::Measure(p));
+  }
+};
+
+template <class Intersector>
+struct SearchComparison
+{
+  PairRecorder<Intersector> Front;
+  PairRecorder<Intersector> Brute;
+  mp::SearchStatistics FrontStats;
+  mp::SearchStatistics BruteStats;
+
+  SearchComparison(const TestMesh& target, const TestMesh& source)
+  {
+    mp::BoxGridLocator locator(source.View());
+    mp::AdvancingFrontSearch<Intersector>(
+      target.View(), source.View(), locator, this->Front, this->FrontStats);
+    mp::BruteForceSearch<Intersector>(target.View(), source.View(), this->Brute, this->BruteStats);
+    std::sort(this->Front.Pairs.begin(), this->Front.Pairs.end());
+    std::sort(this->Brute.Pairs.begin(), this->Brute.Pairs.end());
+  }
+
+  void ExpectSamePairs(const std::string& what) const
+  {
+    ASSERT_EQ(this->Front.Pairs.size(), this->Brute.Pairs.size()) << what;
+    for (size_t i = 0; i < this->Front.Pairs.size(); ++i)
+    {
+      // Same pair, and bit-identical geometry: both call the same intersector.
+      ASSERT_EQ(this->Front.Pairs[i], this->Brute.Pairs[i]) << what << " pair " << i;
+    }
+  }
+
+  /// Per target cell, the summed measure of its pieces.
+  std::vector<double> CoveredMeasure(const TestMesh& target) const
+  {
+    std::vector<double> measure(static_cast<size_t>(target.NumberOfCells()), 0.0);
+    for (const auto& p : this->Front.Pairs)
+      measure[std::get<0>(p)] += std::get<2>(p);
+    return measure;
+  }
+
+  /// The pieces of every target cell add up to the cell (relative 1e-12).
+  void ExpectCompleteCover(const TestMesh& target, const std::string& what) const
+  {
+    const std::vector<double> measure = this->CoveredMeasure(target);
+    for (Index c = 0; c < target.NumberOfCells(); ++c)
+    {
+      ASSERT_NEAR(measure[c], target.CellArea(c), 1e-12 * target.CellArea(c))
+        << what << " cell " << c;
+    }
+  }
+};
+} // namespace mptest
+
+#endif
