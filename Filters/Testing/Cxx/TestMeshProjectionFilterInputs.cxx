@@ -71,6 +71,46 @@ int TestMeshProjectionFilterInputs(int, char*[])
     MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
   }
   {
+    // Triangles and tetrahedra in one input.
+    vtkNew<vtkUnstructuredGrid> mixed;
+    mixed->DeepCopy(source);
+    mixed->GetPoints()->InsertNextPoint(0.1, 0.1, 1.0);
+    vtkIdType tet[4] = { 0, 1, 2, mixed->GetNumberOfPoints() - 1 };
+    mixed->InsertNextCell(VTK_TETRA, 4, tet);
+    Run run(target, mixed);
+    MP_CHECK(run.ErrorSays("mixes triangles and tetrahedra"));
+    MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
+  }
+  {
+    // A 2D Input with a 3D Source.
+    auto tets = mptest::ReadSample("lshape3d_source.vtu");
+    Run run(target, tets);
+    MP_CHECK(run.ErrorSays("same dimension"));
+    MP_CHECK(run.Output()->GetNumberOfCells() == target->GetNumberOfCells());
+  }
+  {
+    // A 2D mesh in the plane z = 5 is 2D; a Source in another plane is
+    // compared in x and y, with a warning.
+    auto lifted = Moved(source, 0.0);
+    for (vtkIdType i = 0; i < lifted->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      lifted->GetPoint(i, x);
+      lifted->GetPoints()->SetPoint(i, x[0], x[1], 5.0);
+    }
+    Run run(target, lifted);
+    MP_CHECK(run.WarningSays("plane z = 5"));
+    MP_CHECK(!run.Observer->GetError());
+    vtkDataArray* linear = run.Output()->GetPointData()->GetArray("Linear");
+    MP_CHECK(linear != nullptr);
+    for (vtkIdType i = 0; linear && i < linear->GetNumberOfTuples(); ++i)
+    {
+      double x[3];
+      run.Output()->GetPoint(i, x);
+      MP_CHECK(std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1])) < 1e-12);
+    }
+  }
+  {
     // NaN coordinates.
     vtkNew<vtkUnstructuredGrid> broken;
     broken->DeepCopy(source);
