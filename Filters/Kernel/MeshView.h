@@ -54,7 +54,8 @@ struct SearchStatistics
   Index TouchingPairs = 0;     ///< pairs whose closed cells meet (possibly in a point or segment)
   Index Pieces = 0;            ///< pairs whose intersection has positive measure
   Index LocatorQueries = 0;    ///< candidate look-ups in the locator (seeds and re-seeds)
-  Index DegenerateCells = 0;   ///< cells of zero measure, skipped
+  Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
+  Index DegenerateSourceCells = 0; ///< source cells of zero measure, skipped
 };
 } // namespace mp
 

@@ -154,6 +154,7 @@ bool MortarProjector::Build(const MeshView& target, const MeshView& source,
   this->NumberOfValidPoints = 0;
   this->CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
   this->CoveredMeasure = 0;
+  this->OvercoveredCells = 0;
 
   const bool front = options.Method == SearchMethod::AdvancingFront;
   if (!CheckMesh(target, "Input (target)", front, this->Error) ||
@@ -211,12 +212,22 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   std::vector<Triplet>().swap(assembler.Mts);
 
   typename Intersector::Cell cell;
+  for (Index c = 0; c < source.NumberOfCells; ++c)
+  {
+    this->Statistics.DegenerateSourceCells += !Intersector::Prepare(source, c, cell);
+  }
   for (Index c = 0; c < target.NumberOfCells; ++c)
   {
     this->CoveredMeasure += assembler.CoveredMeasure[c];
-    if (Intersector::Prepare(target, c, cell))
+    if (!Intersector::Prepare(target, c, cell))
     {
-      this->CoveredFraction[c] = std::min(1.0, assembler.CoveredMeasure[c] / cell.Measure);
+      ++this->Statistics.DegenerateTargetCells;
+    }
+    else
+    {
+      const double fraction = assembler.CoveredMeasure[c] / cell.Measure;
+      this->OvercoveredCells += fraction > 1.0 + 1e-9;
+      this->CoveredFraction[c] = std::min(1.0, fraction);
     }
   }
   // A point is valid when its support meets the source: its diagonal entry

@@ -94,6 +94,8 @@ public:
   Index GetNumberOfValidPoints() const { return this->NumberOfValidPoints; }
   /// Per target cell: the covered fraction of its measure (0 for degenerate cells).
   const std::vector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
+  /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
+  Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
   /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
   double GetCoveredMeasure() const { return this->CoveredMeasure; }
   const SearchStatistics& GetStatistics() const { return this->Statistics; }
@@ -119,6 +121,7 @@ private:
   Index NumberOfValidPoints = 0;
   std::vector<double> CoveredFraction;
   double CoveredMeasure = 0;
+  Index OvercoveredCells = 0;
   SearchStatistics Statistics;
   ProjectionTimings Timings;
   IntersectionPieces Pieces;

@@ -69,8 +69,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   auto treat = [&](Index tId, Index seed) {
     if (!Intersector::Prepare(target, tId, t))
     {
-      ++stats.DegenerateCells;
-      return;
+      return; // zero measure: meets nothing (counted by the caller)
     }
     Index faceSeed[Faces];
     for (auto& f : faceSeed)
@@ -213,17 +212,12 @@ void BruteForceSearch(
     {
       sources.push_back(c);
     }
-    else
-    {
-      ++stats.DegenerateCells;
-    }
   }
   Cell t;
   for (Index tId = 0; tId < target.NumberOfCells; ++tId)
   {
     if (!Intersector::Prepare(target, tId, t))
     {
-      ++stats.DegenerateCells;
       continue;
     }
     for (const Cell& s : sources)

@@ -1,0 +1,280 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Hostile but meaningful inputs: ghost cells, duplicate and unused points,
+// zero-measure cells, a folded source, and the same meshes translated by
+// 10^6 or scaled by 10^-6 and 10^6 (2D and 3D). Each has an exact expected
+// outcome or is compared with the plain run.
+#include "MeshProjectionTestUtilities.h"
+#include "vtkMeshProjectionFilter.h"
+
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkCommand.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkExecutive.h"
+#include "vtkIdList.h"
+#include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <functional>
+#include <string>
+
+namespace
+{
+struct Result
+{
+  vtkSmartPointer<vtkUnstructuredGrid> Output;
+  vtkIdType Pieces = 0;
+  std::string Warnings;
+  bool Error = false;
+};
+
+Result Project(vtkUnstructuredGrid* target, vtkUnstructuredGrid* source)
+{
+  vtkNew<vtkMeshProjectionFilter> filter;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->SetInputData(target);
+  filter->SetSourceData(source);
+  filter->Update();
+  Result r;
+  r.Output = filter->GetOutput();
+  r.Pieces = filter->GetNumberOfIntersections();
+  r.Warnings = observer->GetWarning() ? observer->GetWarningMessage() : "";
+  r.Error = observer->GetError();
+  return r;
+}
+
+/// A copy of `grid` with every point mapped by f.
+vtkSmartPointer<vtkUnstructuredGrid> Mapped(
+  vtkUnstructuredGrid* grid, const std::function<void(double*)>& f)
+{
+  auto copy = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  copy->DeepCopy(grid);
+  for (vtkIdType i = 0; i < copy->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    copy->GetPoint(i, x);
+    f(x);
+    copy->GetPoints()->SetPoint(i, x);
+  }
+  return copy;
+}
+
+/// The largest difference of array `name` between two results, over the
+/// points valid in both; -1 when the masks differ.
+double Difference(const Result& a, const Result& b, const char* name, double scale = 1)
+{
+  vtkDataArray* ua = a.Output->GetPointData()->GetArray(name);
+  vtkDataArray* ub = b.Output->GetPointData()->GetArray(name);
+  vtkDataArray* ma = a.Output->GetPointData()->GetArray("vtkValidPointMask");
+  vtkDataArray* mb = b.Output->GetPointData()->GetArray("vtkValidPointMask");
+  if (!ua || !ub || !ma || !mb || ua->GetNumberOfTuples() != ub->GetNumberOfTuples())
+  {
+    return -1;
+  }
+  double worst = 0;
+  for (vtkIdType i = 0; i < ua->GetNumberOfTuples(); ++i)
+  {
+    if (ma->GetComponent(i, 0) != mb->GetComponent(i, 0))
+    {
+      return -1;
+    }
+    if (ma->GetComponent(i, 0))
+    {
+      worst = std::max(worst, std::fabs(ua->GetComponent(i, 0) - scale * ub->GetComponent(i, 0)));
+    }
+  }
+  return worst;
+}
+} // namespace
+
+int TestMeshProjectionFilterRobustness(int, char*[])
+{
+  int failures = 0;
+  auto source = mptest::ReadSample("lshape_source.vtu");
+  auto target = mptest::ReadSample("lshape_target.vtu");
+  const Result plain = Project(target, source);
+  MP_CHECK(!plain.Error && plain.Warnings.empty());
+
+  {
+    // Ghost cells are left out: marking the source cells of the right arm
+    // (x > 1) as duplicates equals removing them.
+    vtkNew<vtkUnstructuredGrid> ghosted;
+    ghosted->DeepCopy(source);
+    vtkNew<vtkUnstructuredGrid> removed;
+    removed->SetPoints(source->GetPoints());
+    removed->GetPointData()->ShallowCopy(source->GetPointData());
+    vtkNew<vtkUnsignedCharArray> ghosts;
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    ghosts->SetNumberOfValues(source->GetNumberOfCells());
+    vtkNew<vtkIdList> ids;
+    vtkIdType ghostCount = 0;
+    for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
+    {
+      source->GetCellPoints(c, ids);
+      double cx = 0;
+      for (vtkIdType k = 0; k < 3; ++k)
+      {
+        cx += source->GetPoint(ids->GetId(k))[0] / 3;
+      }
+      const bool ghost = cx > 1.0;
+      ghosts->SetValue(c, ghost ? vtkDataSetAttributes::DUPLICATECELL : 0);
+      ghostCount += ghost;
+      if (!ghost)
+      {
+        removed->InsertNextCell(VTK_TRIANGLE, ids);
+      }
+    }
+    ghosted->GetCellData()->AddArray(ghosts);
+    const Result withGhosts = Project(target, ghosted);
+    const Result without = Project(target, removed);
+    MP_CHECK(ghostCount > 500);
+    MP_CHECK(withGhosts.Warnings.find("Ghost cells") != std::string::npos);
+    MP_CHECK(withGhosts.Pieces == without.Pieces);
+    const double d = Difference(withGhosts, without, "Smooth");
+    MP_CHECK(d >= 0 && d < 1e-12);
+    // Target ghost cells: no coverage, and points only they use are invalid.
+    vtkNew<vtkUnstructuredGrid> targetGhosted;
+    targetGhosted->DeepCopy(target);
+    vtkNew<vtkUnsignedCharArray> tghosts;
+    tghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    tghosts->SetNumberOfValues(target->GetNumberOfCells());
+    tghosts->Fill(0);
+    tghosts->SetValue(0, vtkDataSetAttributes::DUPLICATECELL);
+    targetGhosted->GetCellData()->AddArray(tghosts);
+    const Result tg = Project(targetGhosted, source);
+    MP_CHECK(tg.Output->GetCellData()->GetArray("CoveredFraction")->GetComponent(0, 0) == 0);
+    MP_CHECK(tg.Output->GetCellData()->GetArray("CoveredFraction")->GetComponent(1, 0) > 0.999);
+  }
+  {
+    // Duplicate points: half of the cells use copies of their points, so the
+    // mesh falls apart topologically; the result must not change.
+    vtkNew<vtkUnstructuredGrid> split;
+    split->DeepCopy(source);
+    const vtkIdType n = source->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      split->GetPoints()->InsertNextPoint(source->GetPoint(i));
+    }
+    for (int a = 0; a < split->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* u = split->GetPointData()->GetArray(a);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        u->InsertNextTuple(u->GetTuple(i));
+      }
+    }
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < split->GetNumberOfCells(); c += 2)
+    {
+      split->GetCellPoints(c, ids);
+      vtkIdType shifted[3] = { ids->GetId(0) + n, ids->GetId(1) + n, ids->GetId(2) + n };
+      split->ReplaceCell(c, 3, shifted);
+    }
+    const Result r = Project(target, split);
+    MP_CHECK(!r.Error);
+    MP_CHECK(r.Pieces == plain.Pieces);
+    const double d = Difference(r, plain, "Smooth");
+    MP_CHECK(d >= 0 && d < 1e-12);
+  }
+  {
+    // Unused target points: invalid (NaN); the others unchanged.
+    vtkNew<vtkUnstructuredGrid> extra;
+    extra->DeepCopy(target);
+    for (int k = 0; k < 4; ++k)
+    {
+      extra->GetPoints()->InsertNextPoint(0.5 + k, 7.0, 0.0);
+    }
+    extra->GetPointData()->Initialize();
+    const Result r = Project(extra, source);
+    vtkDataArray* mask = r.Output->GetPointData()->GetArray("vtkValidPointMask");
+    vtkDataArray* smooth = r.Output->GetPointData()->GetArray("Smooth");
+    vtkDataArray* ref = plain.Output->GetPointData()->GetArray("Smooth");
+    for (vtkIdType i = 0; mask && smooth && i < extra->GetNumberOfPoints(); ++i)
+    {
+      if (i < target->GetNumberOfPoints())
+      {
+        MP_CHECK(mask->GetComponent(i, 0) == 1);
+        MP_CHECK(std::fabs(smooth->GetComponent(i, 0) - ref->GetComponent(i, 0)) < 1e-13);
+      }
+      else
+      {
+        MP_CHECK(mask->GetComponent(i, 0) == 0 && std::isnan(smooth->GetComponent(i, 0)));
+      }
+    }
+  }
+  {
+    // A zero-area source cell is ignored with a warning.
+    vtkNew<vtkUnstructuredGrid> flat;
+    flat->DeepCopy(source);
+    const vtkIdType p = flat->GetPoints()->InsertNextPoint(0.2, 0.2, 0);
+    const vtkIdType q = flat->GetPoints()->InsertNextPoint(0.3, 0.3, 0);
+    const vtkIdType r = flat->GetPoints()->InsertNextPoint(0.4, 0.4, 0);
+    for (int a = 0; a < flat->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* u = flat->GetPointData()->GetArray(a);
+      for (int k = 0; k < 3; ++k)
+      {
+        u->InsertNextTuple(u->GetTuple(0));
+      }
+    }
+    vtkIdType ids[3] = { p, q, r };
+    flat->InsertNextCell(VTK_TRIANGLE, 3, ids);
+    const Result res = Project(target, flat);
+    MP_CHECK(res.Warnings.find("zero area") != std::string::npos);
+    const double d = Difference(res, plain, "Smooth");
+    MP_CHECK(d >= 0 && d < 1e-13);
+  }
+  {
+    // A folded source (cells given twice) is flagged.
+    vtkNew<vtkUnstructuredGrid> folded;
+    folded->DeepCopy(source);
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < 10; ++c)
+    {
+      source->GetCellPoints(c, ids);
+      folded->InsertNextCell(VTK_TRIANGLE, ids);
+    }
+    const Result r = Project(target, folded);
+    MP_CHECK(r.Warnings.find("covered more than once") != std::string::npos);
+  }
+
+  // The same meshes moved: scaling changes nothing but the scale, and a
+  // translation by 10^6 only what rounding the translated input itself does
+  // (coordinates near 10^6 carry ~1e-10 absolute, cells are ~0.04 wide).
+  for (const char* pair : { "lshape", "lshape3d" })
+  {
+    auto s = mptest::ReadSample(std::string(pair) + "_source.vtu");
+    auto t = mptest::ReadSample(std::string(pair) + "_target.vtu");
+    const Result base = Project(t, s);
+    for (double factor : { 1e-6, 1e6 })
+    {
+      auto scale = [factor](double* x) {
+        for (int d = 0; d < 3; ++d)
+          x[d] *= factor;
+      };
+      const Result r = Project(Mapped(t, scale), Mapped(s, scale));
+      MP_CHECK(!r.Error && r.Pieces == base.Pieces);
+      const double d = Difference(r, base, "Smooth");
+      std::cout << pair << " scaled by " << factor << ": " << r.Pieces << " pieces, max change "
+                << d << std::endl;
+      MP_CHECK(d >= 0 && d < 1e-12);
+      MP_CHECK(std::fabs(Difference(r, base, "Linear")) < 1e-11);
+    }
+    auto shift = [](double* x) {
+      x[0] += 1e6;
+      x[1] -= 1e6;
+      x[2] += 1e6;
+    };
+    const Result r = Project(Mapped(t, shift), Mapped(s, shift));
+    const double d = Difference(r, base, "Smooth");
+    std::cout << pair << " translated by 1e6: " << r.Pieces << " pieces (" << base.Pieces
+              << " before), max change " << d << std::endl;
+    MP_CHECK(!r.Error && r.Pieces == base.Pieces);
+    MP_CHECK(d >= 0 && d < 1e-8);
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,332 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMeshProjectionMesh.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkCellTypes.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticCellLinks.h"
+#include "vtkStaticCellLocator.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <type_traits>
+
+namespace mpvtk
+{
+static_assert(std::is_same<vtkTypeInt64, mp::Index>::value,
+  "the kernel's ids must match VTK's 64-bit connectivity for zero-copy views");
+
+std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
+{
+  std::ostringstream why;
+  this->Grid = grid;
+  const vtkIdType numberOfCells = grid->GetNumberOfCells();
+  std::set<int> types;
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    types.insert(grid->GetCellType(c));
+  }
+  std::set<int> unsupported = types;
+  unsupported.erase(VTK_TRIANGLE);
+  unsupported.erase(VTK_TETRA);
+  if (!unsupported.empty())
+  {
+    why << role << " has cells of types the filter does not support:";
+    for (int type : unsupported)
+    {
+      const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
+      why << ' ' << (name ? name : "unknown") << " (" << type << ')';
+    }
+    why << ". Only linear triangles (2D) and tetrahedra (3D) are supported; apply Triangulate "
+           "(2D) or Tetrahedralize (3D) first.";
+    return why.str();
+  }
+  if (types.size() > 1)
+  {
+    why << role << " mixes triangles and tetrahedra: give 2D and 3D meshes separately.";
+    return why.str();
+  }
+  this->Kernel.Dimension = types.count(VTK_TETRA) ? 3 : 2;
+  const int corners = this->Kernel.Dimension + 1;
+
+  // Connectivity of every cell: VTK's own array when it is 64-bit.
+  vtkCellArray* cells = grid->GetCells();
+  if (numberOfCells > 0 && cells->IsStorage64Bit())
+  {
+    this->AllConnectivity = cells->GetConnectivityArray64()->GetPointer(0);
+  }
+  else if (numberOfCells > 0)
+  {
+    vtkDataArray* connectivity = cells->GetConnectivityArray();
+    this->AllConnectivityCopy.resize(static_cast<size_t>(connectivity->GetNumberOfValues()));
+    for (vtkIdType i = 0; i < connectivity->GetNumberOfValues(); ++i)
+    {
+      this->AllConnectivityCopy[i] = static_cast<mp::Index>(connectivity->GetComponent(i, 0));
+    }
+    this->AllConnectivity = this->AllConnectivityCopy.data();
+  }
+
+  // Ghost cells (duplicated from another piece, or hidden) are left out.
+  vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
+  const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
+  if (ghosts)
+  {
+    for (vtkIdType c = 0; c < numberOfCells; ++c)
+    {
+      this->Ghosts += (ghosts->GetValue(c) & skip) != 0;
+    }
+  }
+  if (this->Ghosts > 0)
+  {
+    this->VTKToKernel.assign(static_cast<size_t>(numberOfCells), -1);
+    for (vtkIdType c = 0; c < numberOfCells; ++c)
+    {
+      if (!(ghosts->GetValue(c) & skip))
+      {
+        this->VTKToKernel[c] = static_cast<mp::Index>(this->KernelToVTK.size());
+        this->KernelToVTK.push_back(c);
+        this->ConnectivityCopy.insert(this->ConnectivityCopy.end(),
+          this->AllConnectivity + corners * c, this->AllConnectivity + corners * (c + 1));
+      }
+    }
+    this->Kernel.Connectivity = this->ConnectivityCopy.data();
+    this->Kernel.NumberOfCells = static_cast<mp::Index>(this->KernelToVTK.size());
+  }
+  else
+  {
+    this->Kernel.Connectivity = this->AllConnectivity;
+    this->Kernel.NumberOfCells = numberOfCells;
+  }
+  this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
+
+  // Points: VTK's own array when it holds doubles.
+  vtkPoints* points = grid->GetPoints();
+  vtkDoubleArray* doubles = points ? vtkDoubleArray::SafeDownCast(points->GetData()) : nullptr;
+  if (doubles && doubles->GetNumberOfComponents() == 3)
+  {
+    this->Kernel.Points = doubles->GetPointer(0);
+  }
+  else if (points)
+  {
+    this->PointCopy.resize(3 * static_cast<size_t>(points->GetNumberOfPoints()));
+    for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+    {
+      points->GetPoint(p, &this->PointCopy[3 * p]);
+    }
+    this->Kernel.Points = this->PointCopy.data();
+  }
+
+  // The points the cells use: finite, and for triangles in one plane.
+  double lo[3];
+  double hi[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = std::numeric_limits<double>::infinity();
+    hi[d] = -lo[d];
+  }
+  const mp::Index* ids = this->Kernel.Connectivity;
+  for (vtkIdType i = 0; i < corners * this->Kernel.NumberOfCells; ++i)
+  {
+    const double* x = this->Kernel.Point(ids[i]);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    {
+      why << role << " has a point with a NaN or infinite coordinate (point " << ids[i] << ").";
+      return why.str();
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::min(lo[d], x[d]);
+      hi[d] = std::max(hi[d], x[d]);
+    }
+  }
+  if (this->Kernel.NumberOfCells > 0 && this->Kernel.Dimension == 2)
+  {
+    const double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+    if (hi[2] - lo[2] > 1e-9 * std::max(extent, std::fabs(hi[2])))
+    {
+      why << role << " is not planar: its triangles' z coordinates range over [" << lo[2] << ", "
+          << hi[2] << "]. Triangle meshes must lie in a plane z = constant (surfaces in 3D are "
+          << "not supported).";
+      return why.str();
+    }
+    this->Z = 0.5 * (lo[2] + hi[2]);
+  }
+  return std::string();
+}
+
+void SimplexMesh::BuildNeighbors()
+{
+  const vtkIdType n = this->Kernel.NumberOfCells;
+  const int corners = this->Kernel.CornersPerCell();
+  this->Neighbors.assign(corners * static_cast<size_t>(n), -1);
+  this->Kernel.Neighbors = this->Neighbors.data();
+  if (n == 0)
+  {
+    return;
+  }
+  vtkNew<vtkStaticCellLinks> links;
+  links->SetDataSet(this->Grid);
+  links->BuildLinks();
+  std::atomic<vtkIdType> nonManifold(0);
+  const mp::Index* conn = this->Kernel.Connectivity;
+  const mp::Index* all = this->AllConnectivity;
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      const vtkIdType self = this->ToVTK(c);
+      for (int k = 0; k < corners; ++k)
+      {
+        // The cells around the face's first corner that hold its other corners.
+        const vtkIdType first = conn[corners * c + (k + 1) % corners];
+        const vtkIdType count = links->GetNcells(first);
+        const vtkIdType* around = links->GetCells(first);
+        mp::Index found = -1;
+        int matches = 0;
+        for (vtkIdType i = 0; i < count; ++i)
+        {
+          const vtkIdType other = around[i];
+          if (other == self)
+          {
+            continue;
+          }
+          const mp::Index* o = all + corners * other;
+          bool shares = true;
+          for (int j = 2; j < corners && shares; ++j)
+          {
+            const mp::Index p = conn[corners * c + (k + j) % corners];
+            shares = std::find(o, o + corners, p) != o + corners;
+          }
+          if (shares)
+          {
+            found = this->ToKernel(other); // -1 for a ghost: a boundary here
+            ++matches;
+          }
+        }
+        if (matches == 1)
+        {
+          this->Neighbors[corners * c + k] = found;
+        }
+        else if (matches > 1)
+        {
+          ++nonManifold;
+        }
+      }
+    }
+  });
+  this->NonManifold = nonManifold / 2;
+}
+
+StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
+  : Mesh(mesh)
+{
+  this->Locator->SetDataSet(grid);
+  this->Locator->BuildLocator();
+}
+
+StaticLocator::~StaticLocator() = default;
+
+void StaticLocator::FindCandidates(const double box[6], std::vector<mp::Index>& cells)
+{
+  // 2D: the kernel works in x and y; the source lies in its own plane.
+  double bounds[6] = { box[0], box[1], box[2], box[3], box[4], box[5] };
+  if (this->Mesh.Dimension() == 2)
+  {
+    bounds[4] = bounds[5] = this->Mesh.PlaneZ();
+  }
+  this->Locator->FindCellsWithinBounds(bounds, this->Ids);
+  cells.clear();
+  for (vtkIdType id : *this->Ids)
+  {
+    const mp::Index c = this->Mesh.ToKernel(id);
+    if (c >= 0)
+    {
+      cells.push_back(c);
+    }
+  }
+}
+
+namespace
+{
+/// The pieces' points and cells, with SourceCellId / TargetCellId (VTK ids)
+/// and the measure of each cell.
+template <class DataSet>
+vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const SimplexMesh& target,
+  const SimplexMesh& source, double z, const char* measureName,
+  const std::function<void(DataSet*, vtkCellArray*)>& setCells)
+{
+  auto result = vtkSmartPointer<DataSet>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  const vtkIdType nv = static_cast<vtkIdType>(pieces.Points.size() / 3);
+  points->SetNumberOfPoints(nv);
+  for (vtkIdType v = 0; v < nv; ++v)
+  {
+    points->SetPoint(
+      v, pieces.Points[3 * v], pieces.Points[3 * v + 1], pieces.Points[3 * v + 2] + z);
+  }
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(pieces.Offsets.size()));
+  std::copy(pieces.Offsets.begin(), pieces.Offsets.end(), offsets->GetPointer(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(nv);
+  for (vtkIdType v = 0; v < nv; ++v)
+  {
+    connectivity->SetValue(v, v);
+  }
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  result->SetPoints(points);
+  setCells(result, cells);
+
+  auto idArray = [&](const char* name, const std::vector<mp::Index>& values,
+                   const SimplexMesh& mesh) {
+    vtkNew<vtkIdTypeArray> a;
+    a->SetName(name);
+    a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+    for (size_t i = 0; i < values.size(); ++i)
+    {
+      a->SetValue(static_cast<vtkIdType>(i), mesh.ToVTK(values[i]));
+    }
+    result->GetCellData()->AddArray(a);
+  };
+  idArray("SourceCellId", pieces.SourceCell, source);
+  idArray("TargetCellId", pieces.TargetCell, target);
+  vtkNew<vtkDoubleArray> measure;
+  measure->SetName(measureName);
+  measure->SetNumberOfValues(static_cast<vtkIdType>(pieces.Measure.size()));
+  std::copy(pieces.Measure.begin(), pieces.Measure.end(), measure->GetPointer(0));
+  result->GetCellData()->AddArray(measure);
+  return result;
+}
+} // namespace
+
+vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
+  const SimplexMesh& target, const SimplexMesh& source, double z)
+{
+  return MakePieces<vtkPolyData>(pieces, target, source, z, "Area",
+    [](vtkPolyData* p, vtkCellArray* cells) { p->SetPolys(cells); });
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(
+  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source)
+{
+  return MakePieces<vtkUnstructuredGrid>(pieces, target, source, 0.0, "Volume",
+    [](vtkUnstructuredGrid* g, vtkCellArray* cells) { g->SetCells(VTK_TETRA, cells); });
+}
+} // namespace mpvtk

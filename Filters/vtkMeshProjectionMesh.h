@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkMeshProjectionMesh.h
+ * @brief Private to vtkMeshProjectionFilter: a vtkUnstructuredGrid seen as
+ *        the kernel's simplicial mesh, with VTK's neighbours and locator.
+ *
+ * Wrap() checks a grid (cell types, one dimension, finite coordinates, a
+ * plane for triangles) and views its arrays without a copy when their types
+ * allow it (double points, 64-bit cell array, no ghost cells). Ghost cells
+ * (DUPLICATECELL, HIDDENCELL) are left out: the kernel then numbers only the
+ * other cells and ToVTK() maps its ids back. Neighbours come from
+ * vtkStaticCellLinks, seeds from vtkStaticCellLocator.
+ *
+ * Not a public class of the module: no export macro, not wrapped.
+ */
+#ifndef vtkMeshProjectionMesh_h
+#define vtkMeshProjectionMesh_h
+
+#include "CandidateLocator.h"
+#include "MeshView.h"
+#include "MortarProjector.h"
+
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <string>
+#include <vector>
+
+class vtkIdList;
+class vtkPolyData;
+class vtkStaticCellLocator;
+class vtkUnstructuredGrid;
+
+namespace mpvtk
+{
+class SimplexMesh
+{
+public:
+  /**
+   * Checks `grid` and builds the kernel view. Returns an empty string, or
+   * the reason the grid cannot be used (`role` names it: "Input", "Source").
+   */
+  std::string Wrap(vtkUnstructuredGrid* grid, const char* role);
+  /// Face neighbours from vtkStaticCellLinks (call after Wrap).
+  void BuildNeighbors();
+
+  const mp::MeshView& View() const { return this->Kernel; }
+  /// Sets the dimension of a mesh without cells (it takes the other mesh's).
+  void SetDimension(int d) { this->Kernel.Dimension = d; }
+  int Dimension() const { return this->Kernel.Dimension; }
+  /// For 2D meshes, the plane z = PlaneZ they lie in.
+  double PlaneZ() const { return this->Z; }
+  vtkIdType NonManifoldFaces() const { return this->NonManifold; }
+  vtkIdType GhostCells() const { return this->Ghosts; }
+  /// The VTK id of a kernel cell, and the kernel id of a VTK cell (-1 for a ghost).
+  vtkIdType ToVTK(mp::Index c) const { return this->KernelToVTK.empty() ? c : this->KernelToVTK[c]; }
+  mp::Index ToKernel(vtkIdType c) const { return this->VTKToKernel.empty() ? c : this->VTKToKernel[c]; }
+
+private:
+  vtkUnstructuredGrid* Grid = nullptr;
+  mp::MeshView Kernel;
+  std::vector<double> PointCopy;
+  std::vector<mp::Index> ConnectivityCopy;
+  const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
+  std::vector<mp::Index> AllConnectivityCopy;
+  std::vector<mp::Index> Neighbors;
+  std::vector<vtkIdType> KernelToVTK; ///< empty when the grid has no ghost cells
+  std::vector<mp::Index> VTKToKernel; ///< -1 for ghost cells; empty likewise
+  double Z = 0;
+  vtkIdType NonManifold = 0;
+  vtkIdType Ghosts = 0;
+};
+
+/// The kernel's seed search over a source mesh, answered by vtkStaticCellLocator.
+class StaticLocator : public mp::CandidateLocator
+{
+public:
+  StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh);
+  ~StaticLocator() override;
+  void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
+
+private:
+  const SimplexMesh& Mesh;
+  vtkNew<vtkStaticCellLocator> Locator;
+  vtkNew<vtkIdList> Ids;
+};
+
+/// 2D: one polygon per intersecting pair in the plane z, with SourceCellId,
+/// TargetCellId (VTK ids) and Area.
+vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
+  const SimplexMesh& target, const SimplexMesh& source, double z);
+/// 3D: the tetrahedra decomposing each intersection polyhedron, with
+/// SourceCellId, TargetCellId and Volume.
+vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(
+  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source);
+} // namespace mpvtk
+
+#endif
