@@ -151,6 +151,18 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
     }
     for (int d = 0; d < 3; ++d)
     {
+      const double a = std::fabs(x[d]);
+      if (a != 0.0 && (a < 1e-100 || a > 1e100))
+      {
+        why << role << " has a coordinate of magnitude " << a << " (point " << ids[i]
+            << "): coordinates must be 0 or between 1e-100 and 1e100 in magnitude, where "
+            << "the exact geometric predicates can neither underflow nor overflow. Rescale "
+            << "the mesh.";
+        return why.str();
+      }
+    }
+    for (int d = 0; d < 3; ++d)
+    {
       lo[d] = std::min(lo[d], x[d]);
       hi[d] = std::max(hi[d], x[d]);
     }

@@ -61,6 +61,8 @@ PACKAGES=(
 
   # --- tests ---
   libgtest-dev               # GoogleTest for the kernel unit tests
+  clang                      # the libFuzzer harness (Testing/Fuzz) is built with clang++
+  libclang-rt-14-dev         #   libFuzzer, AddressSanitizer and UBSan runtimes
   xvfb                       # X server for rendering tests (Debian's VTK/ParaView is GLX-only:
   xauth                      #   no EGL/OSMesa, pvbatch/pvpython need an X display); xvfb-run needs xauth
   libgl1-mesa-dri            # llvmpipe/swrast GL driver used under Xvfb

@@ -65,13 +65,14 @@ struct SearchComparison
     return measure;
   }
 
-  /// The pieces of every target cell add up to the cell (relative 1e-12).
-  void ExpectCompleteCover(const TestMesh& target, const std::string& what) const
+  /// The pieces of every target cell add up to the cell (relative 1e-12 by default).
+  void ExpectCompleteCover(
+    const TestMesh& target, const std::string& what, double tolerance = 1e-12) const
   {
     const std::vector<double> measure = this->CoveredMeasure(target);
     for (Index c = 0; c < target.NumberOfCells(); ++c)
     {
-      ASSERT_NEAR(measure[c], target.CellArea(c), 1e-12 * target.CellArea(c))
+      ASSERT_NEAR(measure[c], target.CellArea(c), tolerance * target.CellArea(c))
         << what << " cell " << c;
     }
   }

@@ -248,3 +248,57 @@ TEST(MortarProjector, EmptyAndInvalidMeshes)
   EXPECT_FALSE(projector.Build(threeD, m.View(), &locator));
   EXPECT_NE(projector.GetError().find("different dimensions"), std::string::npos);
 }
+
+TEST(MortarProjector, TouchingMeshesCoverNothing)
+{
+  // Side by side, sharing the edge x = 1: no point has covered support.
+  const TestMesh target = mptest::GridMesh(4, 4, 0.2, 81);
+  const TestMesh source = mptest::GridMesh(3, 5, 0.2, 82, 1, 0, 2, 1);
+  Projection p(target, source);
+  ASSERT_TRUE(p.Ok);
+  EXPECT_EQ(p.Projector.GetNumberOfValidPoints(), 0);
+  EXPECT_EQ(p.Projector.GetCoveredMeasure(), 0.0);
+  for (double f : p.Projector.GetCoveredFraction())
+    EXPECT_EQ(f, 0.0);
+  // The front still visits the touching pairs (zero area): no pieces.
+  EXPECT_GT(p.Projector.GetStatistics().TouchingPairs, 0);
+  EXPECT_EQ(p.Projector.GetStatistics().Pieces, 0);
+  const auto ut = p.Apply(mptest::Sample(source, Linear));
+  for (double v : ut)
+    EXPECT_TRUE(std::isnan(v));
+}
+
+TEST(MortarProjector, MultiComponentSourceExactCoverage)
+{
+  // Two source islands over a target grid with aligned lines: the covered
+  // fractions are exactly 1 under the islands and 0 elsewhere, and exactly
+  // the points of the covered cells are valid.
+  const TestMesh target = mptest::GridMesh(8, 8, 0.0, 83);
+  const auto island = [](double x, double y) {
+    return (x < 0.25 && y < 0.5) || (x > 0.5 && x < 0.875 && y > 0.625);
+  };
+  const TestMesh source = mptest::GridMesh(16, 16, 0.0, 84, 0, 0, 1, 1, island);
+  Projection p(target, source);
+  ASSERT_TRUE(p.Ok);
+  std::vector<char> expectedValid(static_cast<size_t>(target.NumberOfPoints()), 0);
+  for (Index c = 0; c < target.NumberOfCells(); ++c)
+  {
+    const Index* ids = &target.Cells[3 * c];
+    double cx = 0;
+    double cy = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      cx += target.Points[3 * ids[k]] / 3;
+      cy += target.Points[3 * ids[k] + 1] / 3;
+    }
+    const bool covered = island(cx, cy);
+    EXPECT_EQ(p.Projector.GetCoveredFraction()[c], covered ? 1.0 : 0.0) << c;
+    for (int k = 0; covered && k < 3; ++k)
+      expectedValid[ids[k]] = 1;
+  }
+  EXPECT_EQ(p.Projector.GetValidPoints(), expectedValid);
+  const auto ut = p.Apply(mptest::Sample(source, Linear));
+  for (Index i = 0; i < target.NumberOfPoints(); ++i)
+    if (expectedValid[i])
+      EXPECT_NEAR(ut[i], Linear(target.Points[3 * i], target.Points[3 * i + 1]), 1e-12);
+}

@@ -143,3 +143,95 @@ TEST(PairSearch, FrontTestsFarFewerPairsThanBruteForce)
   EXPECT_LT(s.FrontStats.LocatorQueries, a.NumberOfCells() / 4);
   EXPECT_EQ(s.BruteStats.IntersectionTests, a.NumberOfCells() * b.NumberOfCells());
 }
+
+namespace
+{
+/// Moves interior source points onto nearby target points or target edge
+/// midpoints (when no source triangle turns over), so that vertices of one
+/// mesh lie on vertices and edges of the other.
+void Snap(TestMesh& source, const TestMesh& target, double radius)
+{
+  std::vector<char> boundary(static_cast<size_t>(source.NumberOfPoints()), 0);
+  for (Index c = 0; c < source.NumberOfCells(); ++c)
+    for (int k = 0; k < 3; ++k)
+      if (source.Neighbors[3 * c + k] < 0)
+      {
+        boundary[source.Cells[3 * c + (k + 1) % 3]] = 1;
+        boundary[source.Cells[3 * c + (k + 2) % 3]] = 1;
+      }
+  std::vector<double> spots = target.Points;
+  for (Index c = 0; c < target.NumberOfCells(); ++c)
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* a = &target.Points[3 * target.Cells[3 * c + k]];
+      const double* b = &target.Points[3 * target.Cells[3 * c + (k + 1) % 3]];
+      spots.insert(spots.end(), { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.0 });
+    }
+  auto positive = [&]() {
+    for (Index c = 0; c < source.NumberOfCells(); ++c)
+    {
+      const double* a = &source.Points[3 * source.Cells[3 * c]];
+      const double* b = &source.Points[3 * source.Cells[3 * c + 1]];
+      const double* d = &source.Points[3 * source.Cells[3 * c + 2]];
+      if ((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]) <= 0)
+        return false;
+    }
+    return true;
+  };
+  for (Index p = 0; p < source.NumberOfPoints(); ++p)
+  {
+    if (boundary[p])
+      continue;
+    double* x = &source.Points[3 * p];
+    for (size_t q = 0; q < spots.size(); q += 3)
+    {
+      if (std::hypot(spots[q] - x[0], spots[q + 1] - x[1]) < radius)
+      {
+        const double old[2] = { x[0], x[1] };
+        x[0] = spots[q];
+        x[1] = spots[q + 1];
+        if (!positive())
+        {
+          x[0] = old[0];
+          x[1] = old[1];
+        }
+        break;
+      }
+    }
+  }
+}
+} // namespace
+
+TEST(PairSearch, SnappedVerticesTranslatedAndScaled)
+{
+  std::mt19937 rng(99);
+  int snapped = 0;
+  for (int n = 0; n < 120; ++n)
+  {
+    const TestMesh target = mptest::GridMesh(4 + n % 5, 4 + n % 4, 0.25, rng());
+    TestMesh source = mptest::GridMesh(5 + n % 6, 3 + n % 5, 0.25, rng());
+    const std::vector<double> before = source.Points;
+    Snap(source, target, 0.3 / (5 + n % 6));
+    snapped += before != source.Points;
+    const std::string what = "case " + std::to_string(n);
+    Searches plain(target, source);
+    plain.ExpectSamePairs(what);
+    plain.ExpectCompleteCover(target, what);
+    // The same pair far from the origin and at other scales.
+    for (const auto& motion : { std::make_tuple(1.0, 1e6, -1e6), std::make_tuple(1e-6, 0.0, 0.0),
+           std::make_tuple(1e6, 0.0, 0.0) })
+    {
+      TestMesh t = target;
+      TestMesh s = source;
+      mptest::Move(t, 0.0, std::get<0>(motion), std::get<1>(motion), std::get<2>(motion));
+      mptest::Move(s, 0.0, std::get<0>(motion), std::get<1>(motion), std::get<2>(motion));
+      Searches moved(t, s);
+      moved.ExpectSamePairs(what + " moved");
+      // Rounding of the moved coordinates themselves (~1e-10 at 1e6).
+      moved.ExpectCompleteCover(t, what + " moved", std::get<1>(motion) != 0.0 ? 1e-7 : 1e-12);
+    }
+    if (HasFatalFailure())
+      return;
+  }
+  EXPECT_GT(snapped, 60);
+}

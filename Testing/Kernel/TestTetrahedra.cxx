@@ -237,3 +237,30 @@ TEST(Tetrahedra, MixedDimensionsAreRejected)
   EXPECT_FALSE(projector.Build(tets.View(), tris.View(), &locator));
   EXPECT_NE(projector.GetError().find("different dimensions"), std::string::npos);
 }
+
+TEST(Tetrahedra, TranslatedAndScaledMeshes)
+{
+  std::mt19937 rng(10);
+  for (int n = 0; n < 6; ++n)
+  {
+    const TestMesh a = mptest::CubeMesh(2 + n % 2, 3, 2, 0.15, rng());
+    const TestMesh b = mptest::CubeMesh(3, 2, 2 + n % 3, 0.15, rng());
+    for (const auto& motion : { std::make_pair(1.0, 1e6), std::make_pair(1e-6, 0.0),
+           std::make_pair(1e6, 0.0) })
+    {
+      TestMesh t = a;
+      TestMesh s = b;
+      mptest::Move3D(t, 0, 0, motion.first, motion.second, -motion.second, motion.second);
+      mptest::Move3D(s, 0, 0, motion.first, motion.second, -motion.second, motion.second);
+      Searches moved(t, s);
+      const std::string what = "case " + std::to_string(n) + " scale " +
+        std::to_string(motion.first) + " shift " + std::to_string(motion.second);
+      moved.ExpectSamePairs(what);
+      moved.ExpectCompleteCover(t, what, motion.second != 0.0 ? 1e-7 : 1e-12);
+      Searches original(a, b);
+      EXPECT_EQ(moved.Front.Pairs.size(), original.Front.Pairs.size()) << what;
+      if (HasFatalFailure())
+        return;
+    }
+  }
+}

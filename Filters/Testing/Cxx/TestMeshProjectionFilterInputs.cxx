@@ -120,6 +120,15 @@ int TestMeshProjectionFilterInputs(int, char*[])
     MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
   }
   {
+    // Coordinates beyond the range of the exact predicates.
+    vtkNew<vtkUnstructuredGrid> huge;
+    huge->DeepCopy(source);
+    huge->GetPoints()->SetPoint(5, 1e120, 0, 0);
+    Run run(target, huge);
+    MP_CHECK(run.ErrorSays("between 1e-100 and 1e100"));
+    MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
+  }
+  {
     // Not planar.
     vtkNew<vtkUnstructuredGrid> bent;
     bent->DeepCopy(target);

@@ -1,0 +1,246 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Coverage-guided fuzzing (libFuzzer, with AddressSanitizer and
+// UndefinedBehaviorSanitizer) of the kernel's geometry: the triangle and
+// tetrahedron intersectors and the advancing front against the brute force.
+//
+// The first byte chooses the case; the rest are coordinates. Coordinates
+// come either as raw doubles (NaN, infinities, huge and tiny values
+// included) or as small integers on a lattice, which makes shared vertices,
+// vertices on edges and faces, collinear edges and coplanar faces common.
+// Any broken invariant aborts, which libFuzzer reports with the input.
+#include "CandidateLocator.h"
+#include "CellNeighbors.h"
+#include "PairSearch.h"
+#include "TetrahedronIntersector.h"
+#include "TriangleIntersector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <tuple>
+#include <vector>
+
+namespace
+{
+[[noreturn]] void Fail(const char* what)
+{
+  std::fprintf(stderr, "invariant broken: %s\n", what);
+  std::abort();
+}
+
+struct Reader
+{
+  const uint8_t* Data;
+  size_t Size;
+  bool Lattice;
+  double Next()
+  {
+    if (this->Lattice)
+    {
+      const int v = this->Size ? static_cast<int8_t>(*this->Data) : 0;
+      if (this->Size)
+      {
+        ++this->Data;
+        --this->Size;
+      }
+      return (v % 16) / 4.0; // quarter steps in [-3.75, 3.75]
+    }
+    double v = 0.0;
+    const size_t n = std::min(this->Size, sizeof(double));
+    std::memcpy(&v, this->Data, n);
+    this->Data += n;
+    this->Size -= n;
+    return v;
+  }
+};
+
+template <class Intersector>
+struct Pair
+{
+  std::vector<double> Points;
+  std::vector<mp::Index> Cells;
+  mp::MeshView View;
+  typename Intersector::Cell A;
+  typename Intersector::Cell B;
+  bool Ok = false;
+
+  explicit Pair(Reader& in)
+  {
+    constexpr int n = Intersector::Corners;
+    for (int k = 0; k < 2 * n; ++k)
+    {
+      const double x = in.Next();
+      const double y = in.Next();
+      const double z = Intersector::Dimension == 3 ? in.Next() : 0.0;
+      this->Points.insert(this->Points.end(), { x, y, z });
+      this->Cells.push_back(k);
+    }
+    this->View.Dimension = Intersector::Dimension;
+    this->View.Points = this->Points.data();
+    this->View.NumberOfPoints = 2 * n;
+    this->View.Connectivity = this->Cells.data();
+    this->View.NumberOfCells = 2;
+    this->Ok = Intersector::Prepare(this->View, 0, this->A) && Intersector::Prepare(this->View, 1, this->B);
+  }
+};
+
+bool Finite(const double* x, int n)
+{
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(x[i]))
+      return false;
+  return true;
+}
+
+/// Coordinates 0 or of magnitude in [1e-100, 1e100]: the range in which the
+/// exact predicates cannot underflow or overflow (the filter rejects others).
+bool InRange(const std::vector<double>& x)
+{
+  for (double v : x)
+  {
+    const double a = std::fabs(v);
+    if (a != 0.0 && (a < 1e-100 || a > 1e100))
+      return false;
+  }
+  return true;
+}
+
+/// Checks a pair in both orders: symmetric measure, bounded by both cells.
+template <class Intersector>
+void CheckPair(Reader& in)
+{
+  Pair<Intersector> p(in);
+  if (!p.Ok || !Finite(p.Points.data(), static_cast<int>(p.Points.size())) || !InRange(p.Points))
+  {
+    return;
+  }
+  typename Intersector::Piece ab;
+  typename Intersector::Piece ba;
+  const bool metAB = Intersector::Intersect(p.A, p.B, ab);
+  const bool metBA = Intersector::Intersect(p.B, p.A, ba);
+  const double mAB = metAB ? Intersector::Measure(ab) : 0.0;
+  const double mBA = metBA ? Intersector::Measure(ba) : 0.0;
+  const double smaller = std::min(p.A.Measure, p.B.Measure);
+  if (!(mAB >= 0.0) || !(mBA >= 0.0))
+  {
+    Fail("negative or NaN measure");
+  }
+  if (mAB > smaller * (1 + 1e-9) || mBA > smaller * (1 + 1e-9))
+  {
+    Fail("intersection larger than a cell");
+  }
+  // Rounding in the intersection points: relative to the cells' scale.
+  const double tolerance = 1e-9 * std::max(p.A.Measure, p.B.Measure);
+  if (std::fabs(mAB - mBA) > tolerance)
+  {
+    Fail("measure not symmetric");
+  }
+  if (metAB)
+  {
+    double mts[Intersector::Corners][Intersector::Corners] = {};
+    double mtt[Intersector::Corners][Intersector::Corners] = {};
+    const double m = Intersector::Integrate(ab, p.A, p.B, mts, mtt);
+    double sum = 0;
+    for (auto& row : mts)
+      for (double v : row)
+        sum += v;
+    // Partition of unity: the mortar entries add up to the piece's measure.
+    if (std::fabs(sum - m) > 1e-9 * std::max(m, smaller) + 1e-300)
+    {
+      Fail("mortar entries do not add up to the measure");
+    }
+  }
+}
+
+/// Small jittered grids from the input; the front must find the brute
+/// force's pairs exactly.
+void CheckSearch(Reader& in)
+{
+  const int nx = 1 + (in.Size ? in.Data[0] % 4 : 0);
+  const int ny = 1 + (in.Size > 1 ? in.Data[1] % 4 : 0);
+  std::vector<double> points[2];
+  std::vector<mp::Index> cells[2];
+  for (int m = 0; m < 2; ++m)
+  {
+    const int sx = nx + m;
+    const int sy = ny + 2 * m;
+    for (int j = 0; j <= sy; ++j)
+      for (int i = 0; i <= sx; ++i)
+      {
+        const double jx = (i > 0 && i < sx) ? 0.2 * std::tanh(in.Next()) : 0.0;
+        const double jy = (j > 0 && j < sy) ? 0.2 * std::tanh(in.Next()) : 0.0;
+        points[m].insert(points[m].end(), { (i + jx) / sx, (j + jy) / sy, 0.0 });
+      }
+    for (int j = 0; j < sy; ++j)
+      for (int i = 0; i < sx; ++i)
+      {
+        const mp::Index a = j * (sx + 1) + i;
+        const mp::Index b = a + 1;
+        const mp::Index c = a + sx + 2;
+        const mp::Index d = a + sx + 1;
+        if ((i + j + m) % 2)
+          cells[m].insert(cells[m].end(), { a, b, c, a, c, d });
+        else
+          cells[m].insert(cells[m].end(), { a, b, d, b, c, d });
+      }
+  }
+  mp::MeshView views[2];
+  std::vector<mp::Index> neighbors[2];
+  for (int m = 0; m < 2; ++m)
+  {
+    if (!Finite(points[m].data(), static_cast<int>(points[m].size())))
+      return;
+    views[m].Dimension = 2;
+    views[m].Points = points[m].data();
+    views[m].NumberOfPoints = static_cast<mp::Index>(points[m].size() / 3);
+    views[m].Connectivity = cells[m].data();
+    views[m].NumberOfCells = static_cast<mp::Index>(cells[m].size() / 3);
+    mp::BuildFaceNeighbors(views[m], neighbors[m]);
+    views[m].Neighbors = neighbors[m].data();
+  }
+  struct Recorder
+  {
+    std::vector<std::tuple<mp::Index, mp::Index, double>> Pairs;
+    void operator()(const mp::TriangleIntersector::Cell& t, const mp::TriangleIntersector::Cell& s,
+      const mp::TriangleIntersector::Piece& p)
+    {
+      this->Pairs.emplace_back(t.Id, s.Id, mp::TriangleIntersector::Measure(p));
+    }
+  } front, brute;
+  mp::SearchStatistics stats;
+  mp::BoxGridLocator locator(views[1]);
+  mp::AdvancingFrontSearch<mp::TriangleIntersector>(views[0], views[1], locator, front, stats);
+  mp::BruteForceSearch<mp::TriangleIntersector>(views[0], views[1], brute, stats);
+  std::sort(front.Pairs.begin(), front.Pairs.end());
+  std::sort(brute.Pairs.begin(), brute.Pairs.end());
+  if (front.Pairs != brute.Pairs)
+  {
+    Fail("advancing front and brute force differ");
+  }
+}
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
+{
+  if (size < 2)
+  {
+    return 0;
+  }
+  Reader in{ data + 1, size - 1, (data[0] & 1) != 0 };
+  switch ((data[0] >> 1) % 3)
+  {
+    case 0:
+      CheckPair<mp::TriangleIntersector>(in);
+      break;
+    case 1:
+      CheckPair<mp::TetrahedronIntersector>(in);
+      break;
+    default:
+      CheckSearch(in);
+      break;
+  }
+  return 0;
+}
