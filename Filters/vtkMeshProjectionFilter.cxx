@@ -27,30 +27,6 @@
 
 vtkStandardNewMacro(vtkMeshProjectionFilter);
 
-namespace
-{
-/// A source array as contiguous doubles (a view when it already is one).
-const double* AsDoubles(vtkDataArray* array, std::vector<double>& copy)
-{
-  vtkDoubleArray* doubles = vtkDoubleArray::SafeDownCast(array);
-  if (doubles)
-  {
-    return doubles->GetPointer(0);
-  }
-  const int nc = array->GetNumberOfComponents();
-  copy.resize(static_cast<size_t>(array->GetNumberOfTuples()) * nc);
-  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType t = begin; t < end; ++t)
-    {
-      for (int k = 0; k < nc; ++k)
-      {
-        copy[t * nc + k] = array->GetComponent(t, k);
-      }
-    }
-  });
-  return copy.data();
-}
-} // namespace
 
 //------------------------------------------------------------------------------
 vtkMeshProjectionFilter::vtkMeshProjectionFilter()
@@ -193,16 +169,63 @@ int vtkMeshProjectionFilter::RequestData(
     }
   }
 
-  // 4. Intersections, mortar matrices and the factorization of M_tt.
+  // 4. The fields: every numeric point array of Source, side by side.
+  vtkPointData* sourcePD = source->GetPointData();
+  std::vector<vtkDataArray*> arrays;
+  int components = 0;
+  for (int i = 0; i < sourcePD->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* abstract = sourcePD->GetAbstractArray(i);
+    const char* name = abstract->GetName();
+    vtkDataArray* array = vtkArrayDownCast<vtkDataArray>(abstract);
+    if (!array)
+    {
+      vtkWarningMacro(<< "Source point array '" << (name ? name : "(unnamed)")
+                      << "' is not numeric (" << abstract->GetClassName() << "): skipped.");
+    }
+    else if (!name || (std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
+                        std::string(name) != "vtkValidPointMask"))
+    {
+      arrays.push_back(array);
+      components += array->GetNumberOfComponents();
+    }
+  }
+  if (sourcePD->GetNumberOfArrays() == 0)
+  {
+    vtkWarningMacro("Source has no point arrays: only vtkValidPointMask and CoveredFraction "
+                    "are computed.");
+  }
+  const vtkIdType ns = source->GetNumberOfPoints();
+  std::vector<double> fields(static_cast<size_t>(ns) * components);
+  for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
+  {
+    vtkDataArray* array = arrays[a];
+    const int nc = array->GetNumberOfComponents();
+    vtkSMPTools::For(0, ns, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          fields[p * components + offset + k] = array->GetComponent(p, k);
+        }
+      }
+    });
+    offset += nc;
+  }
+
+  // 5. Intersections and mortar integrals, summed into M_tt and M_ts u_s.
   mp::MortarProjector projector;
+  options.KeepMixedMatrix = false;
   mp::BoxGridLocator emptyLocator(sourceMesh.View()); // only used when Source has no cells
   mp::CandidateLocator* seeds = locator ? static_cast<mp::CandidateLocator*>(locator.get())
                                         : static_cast<mp::CandidateLocator*>(&emptyLocator);
-  if (!projector.Build(targetMesh.View(), sourceMesh.View(), seeds, options))
+  if (!projector.Build(
+        targetMesh.View(), sourceMesh.View(), seeds, options, fields.data(), components))
   {
     vtkErrorMacro(<< "Projection failed: " << projector.GetError());
     return 1;
   }
+  std::vector<double>().swap(fields);
   const mp::SearchStatistics& stats = projector.GetStatistics();
   this->NumberOfIntersections = stats.Pieces;
   this->NumberOfIntersectionTests = stats.IntersectionTests;
@@ -228,35 +251,24 @@ int vtkMeshProjectionFilter::RequestData(
                     << "not a projection of one field there.");
   }
 
-  // 5. Project every numeric point array of Source.
-  vtkPointData* sourcePD = source->GetPointData();
-  if (sourcePD->GetNumberOfArrays() == 0)
+  // 6. Solve M_tt u_t = M_ts u_s, one output array per source array.
+  const vtkIdType nt = target->GetNumberOfPoints();
+  std::vector<double> values(static_cast<size_t>(nt) * components);
+  const double fill =
+    this->FillWithNaN ? std::numeric_limits<double>::quiet_NaN() : this->FillValue;
+  if (components > 0 && !projector.Project(values.data(), fill))
   {
-    vtkWarningMacro("Source has no point arrays: only vtkValidPointMask and CoveredFraction "
-                    "are computed.");
+    vtkErrorMacro("The mass matrix of the covered target part could not be solved.");
+    return 1;
   }
   vtkPointData* outPD = output->GetPointData();
-  const vtkIdType nt = target->GetNumberOfPoints();
-  std::vector<double> buffer;
-  for (int i = 0; i < sourcePD->GetNumberOfArrays(); ++i)
+  for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
   {
-    vtkAbstractArray* abstract = sourcePD->GetAbstractArray(i);
-    const char* name = abstract->GetName();
-    vtkDataArray* array = vtkArrayDownCast<vtkDataArray>(abstract);
-    if (!array)
-    {
-      vtkWarningMacro(<< "Source point array '" << (name ? name : "(unnamed)")
-                      << "' is not numeric (" << abstract->GetClassName() << "): skipped.");
-      continue;
-    }
-    if (name && (std::string(name) == vtkDataSetAttributes::GhostArrayName() ||
-                  std::string(name) == "vtkValidPointMask"))
-    {
-      continue;
-    }
-    vtkNew<vtkDoubleArray> projected;
-    projected->SetName(name ? name : ("ProjectedArray" + std::to_string(i)).c_str());
+    vtkDataArray* array = arrays[a];
     const int nc = array->GetNumberOfComponents();
+    vtkNew<vtkDoubleArray> projected;
+    projected->SetName(array->GetName() ? array->GetName()
+                                        : ("ProjectedArray" + std::to_string(a)).c_str());
     projected->SetNumberOfComponents(nc);
     for (int k = 0; k < nc; ++k)
     {
@@ -266,12 +278,12 @@ int vtkMeshProjectionFilter::RequestData(
       }
     }
     projected->SetNumberOfTuples(nt);
-    if (nt > 0)
+    double* out = projected->GetPointer(0);
+    for (vtkIdType p = 0; p < nt; ++p)
     {
-      const double fill =
-        this->FillWithNaN ? std::numeric_limits<double>::quiet_NaN() : this->FillValue;
-      projector.Project(AsDoubles(array, buffer), nc, projected->GetPointer(0), fill);
+      std::copy_n(&values[p * components + offset], nc, out + p * nc);
     }
+    offset += nc;
     outPD->AddArray(projected);
     if (array == sourcePD->GetScalars())
     {
@@ -283,7 +295,7 @@ int vtkMeshProjectionFilter::RequestData(
     }
   }
 
-  // 6. Where the result is defined, and how much of each cell is covered.
+  // 7. Where the result is defined, and how much of each cell is covered.
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
@@ -300,7 +312,7 @@ int vtkMeshProjectionFilter::RequestData(
   }
   output->GetCellData()->AddArray(covered);
 
-  // 7. Optionally, the intersection polygons.
+  // 8. Optionally, the intersection pieces.
   if (this->OutputIntersections && targetMesh.Dimension() == 2)
   {
     polygons->ShallowCopy(mpvtk::MakeIntersectionPolygons(

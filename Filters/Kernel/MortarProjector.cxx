@@ -8,20 +8,112 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 namespace mp
 {
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, Index>;
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
 using Triplet = Eigen::Triplet<double, Index>;
 
 struct MortarProjector::Internals
 {
-  SparseMatrix Mts; ///< target points x source points
-  SparseMatrix Mtt; ///< target points x target points (covered part)
-  Eigen::SimplicialLDLT<SparseMatrix> Solver; ///< on the valid rows of Mtt
-  std::vector<Index> Reduced;                 ///< target point -> row of the solver, or -1
+  /// M_tt over the covered part, in CSR with the target mesh's point graph
+  /// as pattern; rows of invalid points hold a 1 on the diagonal.
+  std::vector<Index> RowStart;
+  std::vector<Index> Columns;
+  std::vector<double> Values;
+  SparseMatrix Mts;                ///< target x source points, when kept
+  std::vector<double> Rhs;         ///< M_ts u_s for the fields given to Build
+  int Components = 0;
+  mutable std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> Direct; ///< fallback only
+
+  Index Size() const { return static_cast<Index>(this->RowStart.size()) - 1; }
+  /// y = M_tt x
+  void Multiply(const double* x, double* y) const
+  {
+    for (Index i = 0; i < this->Size(); ++i)
+    {
+      double sum = 0.0;
+      for (Index p = this->RowStart[i]; p < this->RowStart[i + 1]; ++p)
+      {
+        sum += this->Values[p] * x[this->Columns[p]];
+      }
+      y[i] = sum;
+    }
+  }
+  /// Preconditioned conjugate gradients (Jacobi) for M_tt x = b, from x = 0.
+  /// Returns whether the residual fell below `tolerance` times |b|.
+  bool ConjugateGradients(const double* b, double* x, double tolerance, int maxIterations) const
+  {
+    const Index n = this->Size();
+    std::vector<double> r(b, b + n);
+    std::vector<double> z(n);
+    std::vector<double> p(n);
+    std::vector<double> q(n);
+    std::vector<double> inverseDiagonal(n);
+    double bb = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      inverseDiagonal[i] = 1.0 / this->Values[this->Find(i, i)];
+      z[i] = inverseDiagonal[i] * r[i];
+      p[i] = z[i];
+      x[i] = 0.0;
+      bb += b[i] * b[i];
+    }
+    if (bb == 0.0)
+    {
+      return true;
+    }
+    double rz = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      rz += r[i] * z[i];
+    }
+    const double goal = tolerance * tolerance * bb;
+    for (int iteration = 0; iteration < maxIterations; ++iteration)
+    {
+      this->Multiply(p.data(), q.data());
+      double pq = 0.0;
+      for (Index i = 0; i < n; ++i)
+      {
+        pq += p[i] * q[i];
+      }
+      const double alpha = rz / pq;
+      double rr = 0.0;
+      for (Index i = 0; i < n; ++i)
+      {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+        rr += r[i] * r[i];
+      }
+      if (rr <= goal)
+      {
+        return true;
+      }
+      double rzNext = 0.0;
+      for (Index i = 0; i < n; ++i)
+      {
+        z[i] = inverseDiagonal[i] * r[i];
+        rzNext += r[i] * z[i];
+      }
+      const double beta = rzNext / rz;
+      rz = rzNext;
+      for (Index i = 0; i < n; ++i)
+      {
+        p[i] = z[i] + beta * p[i];
+      }
+    }
+    return false;
+  }
+  /// Position of entry (i, k) in Values (the pattern contains it).
+  Index Find(Index i, Index k) const
+  {
+    const Index* begin = this->Columns.data() + this->RowStart[i];
+    const Index* end = this->Columns.data() + this->RowStart[i + 1];
+    return static_cast<Index>(std::lower_bound(begin, end, k) - this->Columns.data());
+  }
 };
 
 namespace
@@ -31,10 +123,44 @@ double Seconds(std::chrono::steady_clock::time_point since)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
+/// The CSR pattern of the point graph of a simplicial mesh (every pair of
+/// points sharing a cell, and every point with itself).
+void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& columns)
+{
+  const int n = mesh.CornersPerCell();
+  std::vector<Index> count(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    for (int i = 0; i < n; ++i)
+      count[mesh.Cell(c)[i] + 1] += n;
+  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+    count[p + 1] += count[p] + 1; // + the diagonal, also for unused points
+  std::vector<Index> raw(static_cast<size_t>(count.back()));
+  std::vector<Index> fill(count.begin(), count.end() - 1);
+  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+    raw[fill[p]++] = p;
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < n; ++k)
+        raw[fill[mesh.Cell(c)[i]]++] = mesh.Cell(c)[k];
+  start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
+  columns.clear();
+  columns.reserve(raw.size() / 3);
+  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  {
+    auto b = raw.begin() + count[p];
+    auto e = raw.begin() + count[p + 1];
+    std::sort(b, e);
+    e = std::unique(b, e);
+    columns.insert(columns.end(), b, e);
+    start[p + 1] = static_cast<Index>(columns.size());
+  }
+}
+
 /**
- * Collects the local mortar matrices of every piece. The searches deliver
- * the pieces of one target cell one after the other, so the target-target
- * block is summed per cell and written once per cell.
+ * Receives every piece from the search: adds its local mortar integrals to
+ * M_tt (per target cell, written once per cell: the searches deliver the
+ * pieces of a cell one after the other), to the right-hand sides M_ts u_s of
+ * the given fields, and, when kept, to M_ts itself.
  */
 template <class Intersector>
 struct MortarAssembler
@@ -42,8 +168,10 @@ struct MortarAssembler
   static constexpr int N = Intersector::Corners;
   using Cell = typename Intersector::Cell;
 
-  std::vector<Triplet> Mts;
-  std::vector<Triplet> Mtt;
+  MortarProjector::Internals* Out = nullptr;
+  const double* Fields = nullptr; ///< source points x Components
+  int Components = 0;
+  std::vector<Triplet>* Mts = nullptr;
   std::vector<double> CoveredMeasure; ///< per target cell
   IntersectionPieces* Pieces = nullptr;
   Index Count = 0;
@@ -62,7 +190,8 @@ struct MortarAssembler
     {
       for (int k = 0; k < N; ++k)
       {
-        this->Mtt.emplace_back(this->CurrentPoints[i], this->CurrentPoints[k], this->CurrentMtt[i][k]);
+        this->Out->Values[this->Out->Find(this->CurrentPoints[i], this->CurrentPoints[k])] +=
+          this->CurrentMtt[i][k];
       }
     }
     this->Current = -1;
@@ -91,11 +220,21 @@ struct MortarAssembler
     }
     ++this->Count;
     this->CoveredMeasure[t.Id] += measure;
+    const int nc = this->Components;
     for (int i = 0; i < N; ++i)
     {
+      double* rhs = this->Out->Rhs.data() + t.Points[i] * nc;
       for (int j = 0; j < N; ++j)
       {
-        this->Mts.emplace_back(t.Points[i], s.Points[j], mts[i][j]);
+        const double* u = this->Fields + s.Points[j] * nc;
+        for (int c = 0; c < nc; ++c)
+        {
+          rhs[c] += mts[i][j] * u[c];
+        }
+        if (this->Mts)
+        {
+          this->Mts->emplace_back(t.Points[i], s.Points[j], mts[i][j]);
+        }
       }
     }
     if (this->Pieces)
@@ -143,7 +282,8 @@ MortarProjector::MortarProjector()
 MortarProjector::~MortarProjector() = default;
 
 bool MortarProjector::Build(const MeshView& target, const MeshView& source,
-  CandidateLocator* locator, const ProjectionOptions& options)
+  CandidateLocator* locator, const ProjectionOptions& options, const double* fields,
+  int components)
 {
   this->Impl.reset(new Internals);
   this->Statistics = SearchStatistics();
@@ -155,6 +295,7 @@ bool MortarProjector::Build(const MeshView& target, const MeshView& source,
   this->CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
   this->CoveredMeasure = 0;
   this->OvercoveredCells = 0;
+  this->KeepsMixedMatrix = options.KeepMixedMatrix;
 
   const bool front = options.Method == SearchMethod::AdvancingFront;
   if (!CheckMesh(target, "Input (target)", front, this->Error) ||
@@ -167,30 +308,47 @@ bool MortarProjector::Build(const MeshView& target, const MeshView& source,
     this->Error = "the advancing front needs a locator over the source cells";
     return false;
   }
-
   if (target.Dimension != source.Dimension)
   {
     this->Error = "Input and Source have different dimensions (" +
       std::to_string(target.Dimension) + "D and " + std::to_string(source.Dimension) + "D)";
     return false;
   }
+  if (components < 0 || (components > 0 && !fields))
+  {
+    this->Error = "fields to project: a pointer and a number of components are needed";
+    return false;
+  }
   this->Pieces.Dimension = target.Dimension;
   if (target.Dimension == 2)
   {
-    return this->Assemble<TriangleIntersector>(target, source, locator, options);
+    return this->Assemble<TriangleIntersector>(target, source, locator, options, fields, components);
   }
-  return this->Assemble<TetrahedronIntersector>(target, source, locator, options);
+  return this->Assemble<TetrahedronIntersector>(target, source, locator, options, fields, components);
 }
 
 template <class Intersector>
 bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
-  CandidateLocator* locator, const ProjectionOptions& options)
+  CandidateLocator* locator, const ProjectionOptions& options, const double* fields,
+  int components)
 {
+  auto start = std::chrono::steady_clock::now();
+  Internals& m = *this->Impl;
+  PointGraph(target, m.RowStart, m.Columns);
+  m.Values.assign(m.Columns.size(), 0.0);
+  m.Components = components;
+  m.Rhs.assign(static_cast<size_t>(target.NumberOfPoints) * components, 0.0);
+  std::vector<Triplet> mts;
   MortarAssembler<Intersector> assembler;
+  assembler.Out = &m;
+  assembler.Fields = fields;
+  assembler.Components = components;
+  assembler.Mts = options.KeepMixedMatrix ? &mts : nullptr;
   assembler.CoveredMeasure.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
   assembler.Pieces = options.KeepPieces ? &this->Pieces : nullptr;
+  this->Timings.Assembly = Seconds(start);
 
-  auto start = std::chrono::steady_clock::now();
+  start = std::chrono::steady_clock::now();
   if (options.Method == SearchMethod::AdvancingFront)
   {
     AdvancingFrontSearch<Intersector>(target, source, *locator, assembler, this->Statistics);
@@ -204,13 +362,12 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   this->Timings.Search = Seconds(start);
 
   start = std::chrono::steady_clock::now();
-  const Index nt = target.NumberOfPoints;
-  this->Impl->Mts.resize(nt, source.NumberOfPoints);
-  this->Impl->Mts.setFromTriplets(assembler.Mts.begin(), assembler.Mts.end());
-  this->Impl->Mtt.resize(nt, nt);
-  this->Impl->Mtt.setFromTriplets(assembler.Mtt.begin(), assembler.Mtt.end());
-  std::vector<Triplet>().swap(assembler.Mts);
-
+  if (options.KeepMixedMatrix)
+  {
+    m.Mts.resize(target.NumberOfPoints, source.NumberOfPoints);
+    m.Mts.setFromTriplets(mts.begin(), mts.end());
+    std::vector<Triplet>().swap(mts);
+  }
   typename Intersector::Cell cell;
   for (Index c = 0; c < source.NumberOfCells; ++c)
   {
@@ -231,89 +388,108 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
     }
   }
   // A point is valid when its support meets the source: its diagonal entry
-  // of the covered mass matrix is positive.
-  auto& reduced = this->Impl->Reduced;
-  reduced.assign(static_cast<size_t>(nt), -1);
-  for (Index i = 0; i < nt; ++i)
+  // of the covered mass matrix is positive. An invalid point's whole row is
+  // zero (no piece touches its support); a 1 on the diagonal decouples it.
+  for (Index i = 0; i < target.NumberOfPoints; ++i)
   {
-    if (this->Impl->Mtt.coeff(i, i) > 0.0)
+    double& diagonal = m.Values[m.Find(i, i)];
+    if (diagonal > 0.0)
     {
       this->ValidPoints[i] = 1;
-      reduced[i] = this->NumberOfValidPoints++;
-    }
-  }
-  std::vector<Triplet> valid;
-  valid.reserve(assembler.Mtt.size());
-  for (const Triplet& e : assembler.Mtt)
-  {
-    if (reduced[e.row()] >= 0 && reduced[e.col()] >= 0)
-    {
-      valid.emplace_back(reduced[e.row()], reduced[e.col()], e.value());
-    }
-  }
-  std::vector<Triplet>().swap(assembler.Mtt);
-  SparseMatrix mtt(this->NumberOfValidPoints, this->NumberOfValidPoints);
-  mtt.setFromTriplets(valid.begin(), valid.end());
-  this->Timings.Assembly = Seconds(start);
-
-  start = std::chrono::steady_clock::now();
-  if (this->NumberOfValidPoints > 0)
-  {
-    this->Impl->Solver.compute(mtt);
-    if (this->Impl->Solver.info() != Eigen::Success)
-    {
-      this->Error = "the mass matrix of the covered target part could not be factorized";
-      return false;
-    }
-  }
-  this->Timings.Factorization = Seconds(start);
-  return true;
-}
-
-void MortarProjector::Project(
-  const double* sourceValues, int components, double* targetValues, double fill) const
-{
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  const Index ns = this->Impl->Mts.cols();
-  const Index nt = this->Impl->Mts.rows();
-  Eigen::Map<const RowMajor> us(sourceValues, ns, components);
-  Eigen::Map<RowMajor> ut(targetValues, nt, components);
-  if (this->NumberOfValidPoints == 0)
-  {
-    ut.setConstant(fill);
-    return;
-  }
-  const Eigen::MatrixXd rhs = this->Impl->Mts * us;
-  Eigen::MatrixXd reducedRhs(this->NumberOfValidPoints, components);
-  for (Index i = 0; i < nt; ++i)
-  {
-    if (this->Impl->Reduced[i] >= 0)
-    {
-      reducedRhs.row(this->Impl->Reduced[i]) = rhs.row(i);
-    }
-  }
-  const Eigen::MatrixXd solution = this->Impl->Solver.solve(reducedRhs);
-  for (Index i = 0; i < nt; ++i)
-  {
-    const Index r = this->Impl->Reduced[i];
-    if (r >= 0)
-    {
-      ut.row(i) = solution.row(r);
+      ++this->NumberOfValidPoints;
     }
     else
     {
-      ut.row(i).setConstant(fill);
+      diagonal = 1.0;
     }
   }
+  this->Timings.Assembly += Seconds(start);
+  return true;
+}
+
+bool MortarProjector::Solve(const double* rhs, int components, double* x, double fill) const
+{
+  const Internals& m = *this->Impl;
+  const Index n = static_cast<Index>(m.RowStart.size()) - 1;
+  if (n <= 0)
+  {
+    return true;
+  }
+  // The covered mass matrix is symmetric positive definite and, scaled by its
+  // diagonal, well conditioned on reasonable meshes: conjugate gradients with
+  // a Jacobi preconditioner to rounding level. Targets covered only in slivers
+  // can make it ill conditioned: then a sparse LDL^T factorization.
+  std::vector<double> b(static_cast<size_t>(n));
+  std::vector<double> solution(static_cast<size_t>(n));
+  for (int c = 0; c < components; ++c)
+  {
+    for (Index i = 0; i < n; ++i)
+    {
+      b[i] = rhs[i * components + c];
+    }
+    if (!m.ConjugateGradients(b.data(), solution.data(), 1e-14, 500))
+    {
+      if (!m.Direct)
+      {
+        SparseMatrix matrix(n, n);
+        std::vector<Triplet> entries;
+        entries.reserve(m.Values.size());
+        for (Index i = 0; i < n; ++i)
+          for (Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
+            entries.emplace_back(i, m.Columns[p], m.Values[p]);
+        matrix.setFromTriplets(entries.begin(), entries.end());
+        m.Direct.reset(new Eigen::SimplicialLDLT<SparseMatrix>(matrix));
+      }
+      if (m.Direct->info() != Eigen::Success)
+      {
+        return false;
+      }
+      Eigen::Map<const Eigen::VectorXd> bb(b.data(), n);
+      Eigen::Map<Eigen::VectorXd>(solution.data(), n) = m.Direct->solve(bb);
+    }
+    for (Index i = 0; i < n; ++i)
+    {
+      x[i * components + c] = this->ValidPoints[i] ? solution[i] : fill;
+    }
+  }
+  return true;
+}
+
+bool MortarProjector::Project(double* targetValues, double fill) const
+{
+  const auto start = std::chrono::steady_clock::now();
+  const bool ok = this->Solve(this->Impl->Rhs.data(), this->Impl->Components, targetValues, fill);
+  this->Timings.Solve = Seconds(start);
+  return ok;
+}
+
+bool MortarProjector::Project(
+  const double* sourceValues, int components, double* targetValues, double fill) const
+{
+  if (!this->KeepsMixedMatrix)
+  {
+    return false;
+  }
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const auto& mts = this->Impl->Mts;
+  Eigen::Map<const RowMajor> us(sourceValues, mts.cols(), components);
+  const RowMajor rhs = mts * us;
+  return this->Solve(rhs.data(), components, targetValues, fill);
 }
 
 double MortarProjector::MixedMassEntry(Index targetPoint, Index sourcePoint) const
 {
-  return this->Impl->Mts.coeff(targetPoint, sourcePoint);
+  return this->KeepsMixedMatrix ? this->Impl->Mts.coeff(targetPoint, sourcePoint) : 0.0;
 }
 
 double MortarProjector::TargetMassEntry(Index targetPoint, Index otherTargetPoint) const
 {
-  return this->Impl->Mtt.coeff(targetPoint, otherTargetPoint);
+  const Internals& m = *this->Impl;
+  if (!this->ValidPoints[targetPoint])
+  {
+    return 0.0;
+  }
+  const Index p = m.Find(targetPoint, otherTargetPoint);
+  return (p < m.RowStart[targetPoint + 1] && m.Columns[p] == otherTargetPoint) ? m.Values[p] : 0.0;
 }
 } // namespace mp

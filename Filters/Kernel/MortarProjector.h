@@ -18,9 +18,11 @@
  * Target points whose support meets no source cell cannot be determined:
  * they are reported invalid and receive a fill value.
  *
- * Build() does the search, assembly and a sparse LDL^T factorization (Eigen)
- * once; Project() then costs one sparse product and two triangular solves
- * per field component.
+ * Build() does the search and sums the local integrals straight into M_tt
+ * (compressed rows over the target's point graph) and, for the fields it is
+ * given, into the right-hand sides M_ts u_s, so M_ts need not be stored.
+ * Project() then solves with conjugate gradients (Jacobi preconditioner, to
+ * rounding level; a sparse LDL^T when that does not converge).
  */
 #ifndef MeshProjection_Kernel_MortarProjector_h
 #define MeshProjection_Kernel_MortarProjector_h
@@ -37,7 +39,11 @@ namespace mp
 struct ProjectionOptions
 {
   SearchMethod Method = SearchMethod::AdvancingFront;
-  bool KeepPieces = false; ///< store the intersection polygons (see Pieces)
+  bool KeepPieces = false; ///< store the intersection pieces (see IntersectionPieces)
+  /// Store M_ts so that Project(sourceValues, ...) can project any field
+  /// later. Without it (faster, less memory) only the fields given to
+  /// Build() are projected, their right-hand sides summed during the search.
+  bool KeepMixedMatrix = true;
 };
 
 /**
@@ -59,9 +65,10 @@ struct IntersectionPieces
 /// Wall-clock seconds of the stages of Build().
 struct ProjectionTimings
 {
-  double Search = 0;   ///< pair search + intersections + local mortar integrals
-  double Assembly = 0; ///< sparse matrices from the local contributions
-  double Factorization = 0;
+  double Search = 0;   ///< pair search + intersections + local integrals + their sums
+  double Assembly = 0; ///< the sparsity pattern, coverage, M_ts when kept
+  double Factorization = 0; ///< none with conjugate gradients (kept for the direct fallback)
+  double Solve = 0;    ///< the last Project()
 };
 
 class MortarProjector
@@ -73,20 +80,28 @@ public:
   MortarProjector& operator=(const MortarProjector&) = delete;
 
   /**
-   * Computes intersections and mortar matrices and factorizes M_tt. Both
-   * meshes must have neighbours set for the advancing front (see
-   * CellNeighbors.h); `locator` must index the source cells (it is unused by
-   * the brute-force search and may then be null). Returns false, with
-   * GetError() saying why, on unusable input.
+   * Computes the intersections and the mortar matrices. Both meshes must
+   * have neighbours set for the advancing front (see CellNeighbors.h);
+   * `locator` must index the source cells (unused by the brute force, may
+   * then be null). `fields` (source points x `components`, row-major) are
+   * the source fields to project with Project(targetValues, fill). Returns
+   * false, with GetError() saying why, on unusable input.
    */
   bool Build(const MeshView& target, const MeshView& source, CandidateLocator* locator,
-    const ProjectionOptions& options = ProjectionOptions());
+    const ProjectionOptions& options = ProjectionOptions(), const double* fields = nullptr,
+    int components = 0);
 
   /**
-   * Projects a source point field (NumberOfPoints x components, row-major)
-   * to the target points (same layout). Invalid target points get `fill`.
+   * Projects the fields given to Build() onto the target points (target
+   * points x components, row-major). Invalid target points get `fill`.
    */
-  void Project(const double* sourceValues, int components, double* targetValues,
+  bool Project(double* targetValues, double fill) const;
+
+  /**
+   * Projects any source field (source points x components, row-major); needs
+   * ProjectionOptions::KeepMixedMatrix. Invalid target points get `fill`.
+   */
+  bool Project(const double* sourceValues, int components, double* targetValues,
     double fill) const;
 
   /// Per target point: 1 if its support meets the source, else 0.
@@ -104,26 +119,29 @@ public:
   const std::string& GetError() const { return this->Error; }
 
   /**
-   * Row i of M_ts as (source point, value) pairs and the entries of M_tt,
-   * for tests: returns the value of the assembled entry (0 if absent).
+   * Entries of M_ts (when kept) and of M_tt, for tests: the assembled value,
+   * 0 if absent.
    */
   double MixedMassEntry(Index targetPoint, Index sourcePoint) const;
   double TargetMassEntry(Index targetPoint, Index otherTargetPoint) const;
 
+  struct Internals; ///< implementation detail (matrices, solver)
+
 private:
   template <class Intersector>
   bool Assemble(const MeshView& target, const MeshView& source, CandidateLocator* locator,
-    const ProjectionOptions& options);
+    const ProjectionOptions& options, const double* fields, int components);
+  bool Solve(const double* rhs, int components, double* x, double fill) const;
 
-  struct Internals;
   std::unique_ptr<Internals> Impl;
+  bool KeepsMixedMatrix = true;
   std::vector<char> ValidPoints;
   Index NumberOfValidPoints = 0;
   std::vector<double> CoveredFraction;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
   SearchStatistics Statistics;
-  ProjectionTimings Timings;
+  mutable ProjectionTimings Timings;
   IntersectionPieces Pieces;
   std::string Error;
 };

@@ -1,0 +1,381 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// mesh-projection-bench: how fast is the mortar projection, stage by stage,
+// and against the alternatives, on random non-matching meshes of the unit
+// square (triangles) and the unit cube (tetrahedra).
+//
+//   mesh-projection-bench [--dim 2|3|23] [--sizes 1e3,1e4,1e5,1e6]
+//                         [--brute-max 2e4] [--csv FILE]
+//
+// For each size n (cells of the target; the source has about as many, on a
+// different, jittered grid) it prints one table: the time of every stage of
+// the kernel (neighbours, seeding, search + intersections + local
+// integrals, assembly, factorization, solve), pairs and pairs per second,
+// peak memory beyond the inputs, and in the same run the ratios of the
+// advancing front against the brute force (up to --brute-max cells), against
+// a locator search (vtkStaticCellLocator::FindCellsWithinBounds per target
+// cell, then the same intersector), and of the whole VTK filter against
+// ParaView's Resample With Dataset (vtkResampleWithDataSet) on the same
+// target, with the filter on 1 and 2 threads (vtkSMPTools, STDThread).
+// Timings are wall-clock seconds of one run each; ratios, not absolute
+// seconds, carry the comparison.
+#include "MortarProjector.h"
+#include "PairSearch.h"
+#include "TestMeshes.h"
+#include "TetrahedronIntersector.h"
+#include "TriangleIntersector.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkMeshProjectionFilter.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkResampleWithDataSet.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkStaticCellLocator.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using mp::Index;
+using mptest::TestMesh;
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point t)
+{
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// Peak resident memory (MiB) since the last ResetPeakMemory().
+double PeakMemory()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return std::atof(line.c_str() + 6) / 1024.0;
+    }
+  }
+  return 0;
+}
+double CurrentMemory()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmRSS:", 0) == 0)
+    {
+      return std::atof(line.c_str() + 6) / 1024.0;
+    }
+  }
+  return 0;
+}
+void ResetPeakMemory()
+{
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+double InputMemory(const TestMesh& m)
+{
+  return (m.Points.size() * sizeof(double) + m.Cells.size() * sizeof(Index)) / 1048576.0;
+}
+
+/// A pair of non-matching meshes with about n target cells.
+void MakePair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source)
+{
+  if (dim == 2)
+  {
+    const int k = std::max(2, int(std::lround(std::sqrt(n / 2))));
+    target = mptest::GridMesh(k, k, 0.25, seed);
+    source = mptest::GridMesh(k + 3, k - 1, 0.25, seed + 1);
+  }
+  else
+  {
+    const int k = std::max(2, int(std::lround(std::cbrt(n / 6))));
+    target = mptest::CubeMesh(k, k, k, 0.15, seed);
+    source = mptest::CubeMesh(k + 1, k, k - 1, 0.15, seed + 1);
+  }
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> ToVTK(const TestMesh& m, const std::vector<double>* field)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkDoubleArray> coords;
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(m.NumberOfPoints());
+  std::copy(m.Points.begin(), m.Points.end(), coords->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coords);
+  grid->SetPoints(points);
+  const int corners = m.Dimension + 1;
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(m.NumberOfCells() + 1);
+  for (Index c = 0; c <= m.NumberOfCells(); ++c)
+  {
+    offsets->SetValue(c, corners * c);
+  }
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(m.Cells.size()));
+  std::copy(m.Cells.begin(), m.Cells.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  grid->SetCells(m.Dimension == 2 ? VTK_TRIANGLE : VTK_TETRA, cells);
+  if (field)
+  {
+    vtkNew<vtkDoubleArray> u;
+    u->SetName("u");
+    u->SetNumberOfValues(m.NumberOfPoints());
+    std::copy(field->begin(), field->end(), u->GetPointer(0));
+    grid->GetPointData()->AddArray(u);
+  }
+  return grid;
+}
+
+struct Row
+{
+  int Dim;
+  Index TargetCells;
+  Index SourceCells;
+  double Neighbors, Seeding, Search, Assembly, Factorization, Solve, Total;
+  Index Pairs;
+  double PeakBeyondInputs, InputSize;
+  double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
+};
+
+/// Pairs found by asking vtkStaticCellLocator for the candidates of every
+/// target cell, then intersecting each candidate: the usual alternative to
+/// the advancing front.
+template <class Intersector>
+Index LocatorSearch(const TestMesh& target, const TestMesh& source, vtkUnstructuredGrid* sourceGrid)
+{
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(sourceGrid);
+  locator->BuildLocator();
+  vtkNew<vtkIdList> ids;
+  typename Intersector::Cell t;
+  typename Intersector::Cell s;
+  typename Intersector::Piece piece;
+  Index pairs = 0;
+  double box[6];
+  for (Index c = 0; c < target.NumberOfCells(); ++c)
+  {
+    if (!Intersector::Prepare(target.View(), c, t))
+      continue;
+    Intersector::Bounds(t, box);
+    locator->FindCellsWithinBounds(box, ids);
+    for (vtkIdType id : *ids)
+    {
+      if (Intersector::Prepare(source.View(), id, s) && Intersector::Intersect(t, s, piece))
+      {
+        ++pairs;
+      }
+    }
+  }
+  return pairs;
+}
+
+double Field(const double* x)
+{
+  return std::sin(3 * x[0]) * std::cos(2 * x[1]) + x[2];
+}
+
+Row Measure(int dim, double n, double bruteMax)
+{
+  Row r{};
+  r.Dim = dim;
+  TestMesh target;
+  TestMesh source;
+  MakePair(dim, n, 7, target, source);
+  r.TargetCells = target.NumberOfCells();
+  r.SourceCells = source.NumberOfCells();
+  r.InputSize = InputMemory(target) + InputMemory(source);
+  std::vector<double> u(static_cast<size_t>(source.NumberOfPoints()));
+  for (Index p = 0; p < source.NumberOfPoints(); ++p)
+  {
+    u[p] = Field(&source.Points[3 * p]);
+  }
+
+  // The kernel, stage by stage (one thread).
+  const double before = CurrentMemory();
+  ResetPeakMemory();
+  auto t0 = Clock::now();
+  mp::BuildFaceNeighbors(target.View(false), target.Neighbors);
+  mp::BuildFaceNeighbors(source.View(false), source.Neighbors);
+  r.Neighbors = Since(t0);
+  t0 = Clock::now();
+  mp::BoxGridLocator locator(source.View());
+  r.Seeding = Since(t0);
+  mp::MortarProjector projector;
+  mp::ProjectionOptions options;
+  options.KeepMixedMatrix = false;
+  t0 = Clock::now();
+  projector.Build(target.View(), source.View(), &locator, options, u.data(), 1);
+  const double build = Since(t0);
+  std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
+  t0 = Clock::now();
+  projector.Project(ut.data(), std::nan(""));
+  r.Solve = Since(t0);
+  r.Search = projector.GetTimings().Search;
+  r.Assembly = projector.GetTimings().Assembly;
+  r.Factorization = projector.GetTimings().Factorization;
+  (void)build;
+  r.Total = r.Neighbors + r.Seeding + r.Search + r.Assembly + r.Factorization + r.Solve;
+  r.Pairs = projector.GetStatistics().Pieces;
+  r.PeakBeyondInputs = PeakMemory() - before;
+
+  auto sourceGrid = ToVTK(source, &u);
+  auto targetGrid = ToVTK(target, nullptr);
+  // Brute force (quadratic: small sizes only).
+  if (n <= bruteMax)
+  {
+    mp::ProjectionOptions brute = options;
+    brute.Method = mp::SearchMethod::BruteForce;
+    mp::MortarProjector b;
+    t0 = Clock::now();
+    b.Build(target.View(), source.View(), nullptr, brute, u.data(), 1);
+    r.Brute = Since(t0);
+  }
+  // Locator-based search with the same intersector.
+  t0 = Clock::now();
+  const Index located = dim == 2
+    ? LocatorSearch<mp::TriangleIntersector>(target, source, sourceGrid)
+    : LocatorSearch<mp::TetrahedronIntersector>(target, source, sourceGrid);
+  r.Locator = Since(t0);
+  (void)located;
+  // The whole VTK filter, 1 and 2 threads, and vtkResampleWithDataSet.
+  for (int threads : { 1, 2 })
+  {
+    vtkSMPTools::SetBackend("STDThread");
+    vtkSMPTools::Initialize(threads);
+    vtkNew<vtkMeshProjectionFilter> filter;
+    filter->SetInputData(targetGrid);
+    filter->SetSourceData(sourceGrid);
+    t0 = Clock::now();
+    filter->Update();
+    (threads == 1 ? r.Filter1 : r.Filter2) = Since(t0);
+  }
+  vtkSMPTools::Initialize(1);
+  vtkNew<vtkResampleWithDataSet> resample;
+  resample->SetInputData(targetGrid);
+  resample->SetSourceData(sourceGrid);
+  t0 = Clock::now();
+  resample->Update();
+  r.Resample = Since(t0);
+  return r;
+}
+
+std::vector<double> ParseList(const char* text)
+{
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+  {
+    values.push_back(std::atof(item.c_str()));
+  }
+  return values;
+}
+
+void Print(const Row& r)
+{
+  const double cells = static_cast<double>(r.TargetCells);
+  std::printf("\n%dD  target %lld cells, source %lld cells, %lld intersecting pairs\n", r.Dim,
+    static_cast<long long>(r.TargetCells), static_cast<long long>(r.SourceCells),
+    static_cast<long long>(r.Pairs));
+  std::printf("  %-34s %10s %12s\n", "stage (kernel, 1 thread)", "seconds", "us per cell");
+  const std::pair<const char*, double> stages[] = { { "neighbours", r.Neighbors },
+    { "seeding (locator build)", r.Seeding }, { "search + intersections + integrals", r.Search },
+    { "assembly", r.Assembly }, { "factorization / preconditioner", r.Factorization },
+    { "solve", r.Solve }, { "total", r.Total } };
+  for (const auto& s : stages)
+  {
+    std::printf("  %-34s %10.4f %12.3f\n", s.first, s.second, 1e6 * s.second / cells);
+  }
+  std::printf("  pairs per second (search)          %10.3g\n", r.Pairs / r.Search);
+  std::printf("  peak memory beyond inputs          %10.1f MiB (inputs %.1f MiB, ratio %.2f)\n",
+    r.PeakBeyondInputs, r.InputSize, r.PeakBeyondInputs / r.InputSize);
+  std::printf("  %-34s %10s %12s\n", "comparison", "seconds", "ratio");
+  if (r.Brute >= 0)
+  {
+    std::printf("  %-34s %10.4f %11.1fx\n", "brute force / advancing front", r.Brute,
+      r.Brute / (r.Search + r.Assembly));
+  }
+  std::printf("  %-34s %10.4f %11.2fx\n", "locator search / front search", r.Locator,
+    r.Locator / r.Search);
+  std::printf("  %-34s %10.4f\n", "VTK filter, 1 thread", r.Filter1);
+  std::printf("  %-34s %10.4f %11.2fx\n", "VTK filter, 2 threads (speed-up)", r.Filter2,
+    r.Filter1 / r.Filter2);
+  std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
+    r.Resample / r.Filter1);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::string dims = "23";
+  std::vector<double> sizes = { 1e3, 1e4, 1e5, 1e6 };
+  double bruteMax = 2e4;
+  std::string csv;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--dim" && i + 1 < argc)
+      dims = argv[++i];
+    else if (a == "--sizes" && i + 1 < argc)
+      sizes = ParseList(argv[++i]);
+    else if (a == "--brute-max" && i + 1 < argc)
+      bruteMax = std::atof(argv[++i]);
+    else if (a == "--csv" && i + 1 < argc)
+      csv = argv[++i];
+    else
+    {
+      std::fprintf(stderr,
+        "usage: %s [--dim 2|3|23] [--sizes 1e3,1e4,...] [--brute-max N] [--csv FILE]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::vector<Row> rows;
+  for (char d : dims)
+  {
+    for (double n : sizes)
+    {
+      rows.push_back(Measure(d - '0', n, bruteMax));
+      Print(rows.back());
+      std::fflush(stdout);
+    }
+  }
+  if (!csv.empty())
+  {
+    std::ofstream out(csv);
+    out << "dim,target_cells,source_cells,pairs,neighbours,seeding,search,assembly,"
+           "factorization,solve,total,peak_beyond_inputs_mib,input_mib,brute,locator,"
+           "filter_1_thread,filter_2_threads,resample\n";
+    for (const Row& r : rows)
+    {
+      out << r.Dim << ',' << r.TargetCells << ',' << r.SourceCells << ',' << r.Pairs << ','
+          << r.Neighbors << ',' << r.Seeding << ',' << r.Search << ',' << r.Assembly << ','
+          << r.Factorization << ',' << r.Solve << ',' << r.Total << ',' << r.PeakBeyondInputs
+          << ',' << r.InputSize << ',' << r.Brute << ',' << r.Locator << ',' << r.Filter1 << ','
+          << r.Filter2 << ',' << r.Resample << '\n';
+    }
+  }
+  return 0;
+}
