@@ -28,14 +28,6 @@ inline double PseudoAngle(double dx, double dy)
   return dy < 0.0 ? 4.0 + p : p;
 }
 
-inline void Barycentric(const TriangleIntersector::Cell& c, double x, double y, double lambda[3])
-{
-  const double dx = x - c.X[0][0];
-  const double dy = y - c.X[0][1];
-  lambda[1] = c.Inverse[0][0] * dx + c.Inverse[0][1] * dy;
-  lambda[2] = c.Inverse[1][0] * dx + c.Inverse[1][1] * dy;
-  lambda[0] = 1.0 - lambda[1] - lambda[2];
-}
 
 // Orders the points counterclockwise around their mean and drops exact
 // duplicates (a corner of one triangle that is also a corner of the other).
@@ -266,40 +258,82 @@ double TriangleIntersector::Measure(const Piece& p)
 double TriangleIntersector::Integrate(
   const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3])
 {
-  double area = 0.0;
-  for (int i = 1; i + 1 < p.NumberOfVertices; ++i)
+  // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to the target's
+  // first corner, edge by edge (Green's theorem): exact for any polygon, and
+  // the local origin keeps them accurate far from the global origin.
+  const double ox = t.X[0][0];
+  const double oy = t.X[0][1];
+  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
+  for (int i = 0; i < p.NumberOfVertices; ++i)
   {
-    const double* a = p.X[0];
-    const double* b = p.X[i];
-    const double* c = p.X[i + 1];
-    const double sub =
-      0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-    if (!(sub > 0.0))
+    const int j = (i + 1) % p.NumberOfVertices;
+    const double px = p.X[i][0] - ox;
+    const double py = p.X[i][1] - oy;
+    const double qx = p.X[j][0] - ox;
+    const double qy = p.X[j][1] - oy;
+    const double cross = px * qy - py * qx;
+    m0 += cross;
+    mx += cross * (px + qx);
+    my += cross * (py + qy);
+    mxx += cross * (px * px + px * qx + qx * qx);
+    myy += cross * (py * py + py * qy + qy * qy);
+    mxy += cross * (2 * px * py + px * qy + qx * py + 2 * qx * qy);
+  }
+  m0 /= 2;
+  mx /= 6;
+  my /= 6;
+  mxx /= 12;
+  myy /= 12;
+  mxy /= 24;
+  if (!(m0 > 0.0))
+  {
+    return 0.0; // fewer than three vertices, or rounding of a sliver
+  }
+  // Barycentric coordinates as affine functions a + b x + c y of the local
+  // coordinates, for the target and the source.
+  double lt[3][3];
+  lt[1][0] = 0;
+  lt[1][1] = t.Inverse[0][0];
+  lt[1][2] = t.Inverse[0][1];
+  lt[2][0] = 0;
+  lt[2][1] = t.Inverse[1][0];
+  lt[2][2] = t.Inverse[1][1];
+  double ls[3][3];
+  const double dx = ox - s.X[0][0];
+  const double dy = oy - s.X[0][1];
+  for (int r = 0; r < 2; ++r)
+  {
+    ls[r + 1][0] = s.Inverse[r][0] * dx + s.Inverse[r][1] * dy;
+    ls[r + 1][1] = s.Inverse[r][0];
+    ls[r + 1][2] = s.Inverse[r][1];
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    lt[0][k] = (k == 0 ? 1.0 : 0.0) - lt[1][k] - lt[2][k];
+    ls[0][k] = (k == 0 ? 1.0 : 0.0) - ls[1][k] - ls[2][k];
+  }
+  // Integral of (a + b x + c y)(a' + b' x + c' y) from the moments.
+  auto product = [&](const double* f, const double* g) {
+    return f[0] * g[0] * m0 + (f[0] * g[1] + f[1] * g[0]) * mx + (f[0] * g[2] + f[2] * g[0]) * my +
+      f[1] * g[1] * mxx + (f[1] * g[2] + f[2] * g[1]) * mxy + f[2] * g[2] * myy;
+  };
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
     {
-      continue;
+      Mts[i][j] += product(lt[i], ls[j]);
     }
-    area += sub;
-    const double w = sub / 3.0;
-    const double mid[3][2] = { { 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]) },
-      { 0.5 * (b[0] + c[0]), 0.5 * (b[1] + c[1]) }, { 0.5 * (c[0] + a[0]), 0.5 * (c[1] + a[1]) } };
-    for (const auto& m : mid)
+    for (int k = i; k < 3; ++k)
     {
-      double lt[3];
-      double ls[3];
-      Barycentric(t, m[0], m[1], lt);
-      Barycentric(s, m[0], m[1], ls);
-      for (int r = 0; r < 3; ++r)
+      const double v = product(lt[i], lt[k]);
+      Mtt[i][k] += v;
+      if (k != i)
       {
-        const double wr = w * lt[r];
-        for (int q = 0; q < 3; ++q)
-        {
-          Mts[r][q] += wr * ls[q];
-          Mtt[r][q] += wr * lt[q];
-        }
+        Mtt[k][i] += v;
       }
     }
   }
-  return area;
+  return m0;
 }
 
 void TriangleIntersector::Append(

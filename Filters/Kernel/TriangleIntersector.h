@@ -84,9 +84,9 @@ public:
   /**
    * Adds the P1 mortar integrals of the piece: Mts[i][j] += integral of
    * phi_i^t phi_j^s and Mtt[i][k] += integral of phi_i^t phi_k^t over the
-   * piece, indices in the order of `Cell::Points`. Uses a fan of triangles
-   * and the edge-midpoint rule, exact for the quadratic integrands.
-   * Returns the area of the piece.
+   * piece, indices in the order of `Cell::Points`: exactly, from the
+   * polygon's moments up to order 2 (the integrands are quadratic).
+   * Returns the area of the piece (0 when the cells only touch).
    */
   static double Integrate(
     const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3]);
