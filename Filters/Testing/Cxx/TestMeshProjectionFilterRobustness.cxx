@@ -229,6 +229,42 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     MP_CHECK(d >= 0 && d < 1e-13);
   }
   {
+    // Inverted cells (every other source triangle listed clockwise) are the
+    // same geometry: nothing changes.
+    vtkNew<vtkUnstructuredGrid> flipped;
+    flipped->DeepCopy(source);
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < flipped->GetNumberOfCells(); c += 2)
+    {
+      flipped->GetCellPoints(c, ids);
+      vtkIdType reversed[3] = { ids->GetId(0), ids->GetId(2), ids->GetId(1) };
+      flipped->ReplaceCell(c, 3, reversed);
+    }
+    const Result r = Project(target, flipped);
+    MP_CHECK(!r.Error && r.Warnings.empty() && r.Pieces == plain.Pieces);
+    const double d = Difference(r, plain, "Smooth");
+    MP_CHECK(d >= 0 && d < 1e-13);
+  }
+  {
+    // An empty Input: a warning and an empty, well-formed output.
+    vtkNew<vtkUnstructuredGrid> empty;
+    const Result r = Project(empty, source);
+    MP_CHECK(!r.Error && r.Warnings.find("Input has no cells") != std::string::npos);
+    MP_CHECK(r.Output->GetNumberOfPoints() == 0);
+    MP_CHECK(r.Output->GetPointData()->GetArray("vtkValidPointMask") != nullptr);
+  }
+  {
+    // A Source without point arrays: a warning; mask and coverage still computed.
+    vtkNew<vtkUnstructuredGrid> bare;
+    bare->DeepCopy(source);
+    bare->GetPointData()->Initialize();
+    const Result r = Project(target, bare);
+    MP_CHECK(!r.Error && r.Warnings.find("no point arrays") != std::string::npos);
+    vtkDataArray* mask = r.Output->GetPointData()->GetArray("vtkValidPointMask");
+    MP_CHECK(mask && mask->GetRange()[0] == 1);
+    MP_CHECK(r.Output->GetCellData()->GetArray("CoveredFraction") != nullptr);
+  }
+  {
     // A folded source (cells given twice) is flagged.
     vtkNew<vtkUnstructuredGrid> folded;
     folded->DeepCopy(source);
