@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -216,6 +217,18 @@ int vtkMeshProjectionFilter::RequestData(
   // 5. Intersections and mortar integrals, summed into M_tt and M_ts u_s.
   mp::MortarProjector projector;
   options.KeepMixedMatrix = false;
+  // One range of target cells per thread of vtkSMPTools' backend (with
+  // Debian's VTK: VTK_SMP_BACKEND_IN_USE=STDThread; the default backend there
+  // is sequential).
+  options.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.RunTasks = [](int count, const std::function<void(int)>& task) {
+    vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        task(static_cast<int>(k));
+      }
+    });
+  };
   mp::BoxGridLocator emptyLocator(sourceMesh.View()); // only used when Source has no cells
   mp::CandidateLocator* seeds = locator ? static_cast<mp::CandidateLocator*>(locator.get())
                                         : static_cast<mp::CandidateLocator*>(&emptyLocator);

@@ -246,9 +246,21 @@ void SimplexMesh::BuildNeighbors()
 
 StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
   : Mesh(mesh)
+  , Locator(vtkSmartPointer<vtkStaticCellLocator>::New())
 {
   this->Locator->SetDataSet(grid);
   this->Locator->BuildLocator();
+}
+
+StaticLocator::StaticLocator(vtkStaticCellLocator* shared, const SimplexMesh& mesh)
+  : Mesh(mesh)
+  , Locator(shared)
+{
+}
+
+std::unique_ptr<mp::CandidateLocator> StaticLocator::NewForThread() const
+{
+  return std::unique_ptr<mp::CandidateLocator>(new StaticLocator(this->Locator, this->Mesh));
 }
 
 StaticLocator::~StaticLocator() = default;

@@ -24,6 +24,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -79,10 +80,14 @@ public:
   StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh);
   ~StaticLocator() override;
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
+  /// Shares the (thread-safe, read-only once built) VTK locator.
+  std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
 
 private:
+  StaticLocator(vtkStaticCellLocator* shared, const SimplexMesh& mesh);
+
   const SimplexMesh& Mesh;
-  vtkNew<vtkStaticCellLocator> Locator;
+  vtkSmartPointer<vtkStaticCellLocator> Locator;
   vtkNew<vtkIdList> Ids;
 };
 

@@ -33,9 +33,23 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
 }
 } // namespace
 
+BoxGridLocator::BoxGridLocator(std::shared_ptr<const Bins> bins, Index cells)
+  : Grid(std::move(bins))
+  , Stamp(static_cast<size_t>(cells), -1)
+{
+}
+
+std::unique_ptr<CandidateLocator> BoxGridLocator::NewForThread() const
+{
+  return std::unique_ptr<CandidateLocator>(
+    new BoxGridLocator(this->Grid, static_cast<Index>(this->Stamp.size())));
+}
+
 BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   : Stamp(static_cast<size_t>(mesh.NumberOfCells), -1)
 {
+  auto grid = std::make_shared<Bins>();
+  Bins& g = *grid;
   double lo[3] = { 0, 0, 0 };
   double hi[3] = { 0, 0, 0 };
   bool first = true;
@@ -69,23 +83,23 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   const double h = used > 0 ? std::pow(volume / n, 1.0 / used) : 1.0;
   for (int d = 0; d < 3; ++d)
   {
-    this->Origin[d] = lo[d];
+    g.Origin[d] = lo[d];
     const double extent = hi[d] - lo[d];
-    this->Divisions[d] =
+    g.Divisions[d] =
       (d < mesh.Dimension && extent > 0.0) ? std::max(1, std::min(1 << 12, int(extent / h))) : 1;
-    this->Spacing[d] = extent > 0.0 ? extent / this->Divisions[d] : 1.0;
+    g.Spacing[d] = extent > 0.0 ? extent / g.Divisions[d] : 1.0;
   }
-  const size_t bins = size_t(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2];
+  const size_t bins = size_t(g.Divisions[0]) * g.Divisions[1] * g.Divisions[2];
   std::vector<Index> count(bins + 1, 0);
   auto forEachBin = [&](Index c, auto&& f) {
     CellBox(mesh, c, box);
     int a[3];
     int b[3];
-    this->BinRange(box, a, b);
+    g.Range(box, a, b);
     for (int k = a[2]; k <= b[2]; ++k)
       for (int j = a[1]; j <= b[1]; ++j)
         for (int i = a[0]; i <= b[0]; ++i)
-          f((size_t(k) * this->Divisions[1] + j) * this->Divisions[0] + i);
+          f((size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i);
   };
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
@@ -95,15 +109,16 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   {
     count[b + 1] += count[b];
   }
-  this->BinStart = count;
-  this->BinCells.resize(static_cast<size_t>(count[bins]));
+  g.BinStart = count;
+  g.BinCells.resize(static_cast<size_t>(count[bins]));
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
-    forEachBin(c, [&](size_t bin) { this->BinCells[count[bin]++] = c; });
+    forEachBin(c, [&](size_t bin) { g.BinCells[count[bin]++] = c; });
   }
+  this->Grid = grid;
 }
 
-void BoxGridLocator::BinRange(const double box[6], int lo[3], int hi[3]) const
+void BoxGridLocator::Bins::Range(const double box[6], int lo[3], int hi[3]) const
 {
   for (int d = 0; d < 3; ++d)
   {
@@ -126,15 +141,16 @@ void BoxGridLocator::FindCandidates(const double box[6], std::vector<Index>& cel
   ++this->Query;
   int lo[3];
   int hi[3];
-  this->BinRange(box, lo, hi);
+  const Bins& g = *this->Grid;
+  g.Range(box, lo, hi);
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i)
       {
-        const size_t bin = (size_t(k) * this->Divisions[1] + j) * this->Divisions[0] + i;
-        for (Index p = this->BinStart[bin]; p < this->BinStart[bin + 1]; ++p)
+        const size_t bin = (size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i;
+        for (Index p = g.BinStart[bin]; p < g.BinStart[bin + 1]; ++p)
         {
-          const Index c = this->BinCells[p];
+          const Index c = g.BinCells[p];
           if (this->Stamp[c] != this->Query)
           {
             this->Stamp[c] = this->Query;

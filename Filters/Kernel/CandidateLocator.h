@@ -14,6 +14,7 @@
 
 #include "MeshView.h"
 
+#include <memory>
 #include <vector>
 
 namespace mp
@@ -28,6 +29,12 @@ public:
    * harmless; a missing one loses intersections.
    */
   virtual void FindCandidates(const double box[6], std::vector<Index>& cells) = 0;
+
+  /**
+   * A locator over the same cells for another thread: concurrent tasks each
+   * query their own. It may share the (read-only) index with this one.
+   */
+  virtual std::unique_ptr<CandidateLocator> NewForThread() const = 0;
 };
 
 /// Uniform grid of bins, about one cell per bin, over a mesh's cell boxes.
@@ -36,16 +43,22 @@ class BoxGridLocator : public CandidateLocator
 public:
   explicit BoxGridLocator(const MeshView& mesh);
   void FindCandidates(const double box[6], std::vector<Index>& cells) override;
+  std::unique_ptr<CandidateLocator> NewForThread() const override;
 
 private:
-  void BinRange(const double box[6], int lo[3], int hi[3]) const;
+  struct Bins
+  {
+    double Origin[3] = { 0, 0, 0 };
+    double Spacing[3] = { 1, 1, 1 };
+    int Divisions[3] = { 1, 1, 1 };
+    std::vector<Index> BinStart; ///< CSR offsets into BinCells
+    std::vector<Index> BinCells;
+    void Range(const double box[6], int lo[3], int hi[3]) const;
+  };
+  BoxGridLocator(std::shared_ptr<const Bins> bins, Index cells);
 
-  double Origin[3] = { 0, 0, 0 };
-  double Spacing[3] = { 1, 1, 1 };
-  int Divisions[3] = { 1, 1, 1 };
-  std::vector<Index> BinStart; ///< CSR offsets into BinCells
-  std::vector<Index> BinCells;
-  std::vector<Index> Stamp;    ///< de-duplicates cells spanning several bins
+  std::shared_ptr<const Bins> Grid; ///< shared by the locators of all threads
+  std::vector<Index> Stamp;         ///< de-duplicates cells spanning several bins
   Index Query = 0;
 };
 } // namespace mp

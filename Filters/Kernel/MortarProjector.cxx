@@ -168,11 +168,13 @@ struct MortarAssembler
   static constexpr int N = Intersector::Corners;
   using Cell = typename Intersector::Cell;
 
-  MortarProjector::Internals* Out = nullptr;
+  const MortarProjector::Internals* Pattern = nullptr; ///< CSR pattern of M_tt
+  double* Values = nullptr;       ///< M_tt values being summed
+  double* Rhs = nullptr;          ///< target points x Components being summed
   const double* Fields = nullptr; ///< source points x Components
   int Components = 0;
   std::vector<Triplet>* Mts = nullptr;
-  std::vector<double> CoveredMeasure; ///< per target cell
+  double* CoveredMeasure = nullptr; ///< per target cell
   IntersectionPieces* Pieces = nullptr;
   Index Count = 0;
 
@@ -190,7 +192,7 @@ struct MortarAssembler
     {
       for (int k = 0; k < N; ++k)
       {
-        this->Out->Values[this->Out->Find(this->CurrentPoints[i], this->CurrentPoints[k])] +=
+        this->Values[this->Pattern->Find(this->CurrentPoints[i], this->CurrentPoints[k])] +=
           this->CurrentMtt[i][k];
       }
     }
@@ -223,7 +225,7 @@ struct MortarAssembler
     const int nc = this->Components;
     for (int i = 0; i < N; ++i)
     {
-      double* rhs = this->Out->Rhs.data() + t.Points[i] * nc;
+      double* rhs = this->Rhs + t.Points[i] * nc;
       for (int j = 0; j < N; ++j)
       {
         const double* u = this->Fields + s.Points[j] * nc;
@@ -338,27 +340,105 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   m.Values.assign(m.Columns.size(), 0.0);
   m.Components = components;
   m.Rhs.assign(static_cast<size_t>(target.NumberOfPoints) * components, 0.0);
-  std::vector<Triplet> mts;
-  MortarAssembler<Intersector> assembler;
-  assembler.Out = &m;
-  assembler.Fields = fields;
-  assembler.Components = components;
-  assembler.Mts = options.KeepMixedMatrix ? &mts : nullptr;
-  assembler.CoveredMeasure.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
-  assembler.Pieces = options.KeepPieces ? &this->Pieces : nullptr;
+  // The target cells in ranges, one per task, each with its own front,
+  // locator and sums (a single task sums straight into the result).
+  const Index cells = target.NumberOfCells;
+  const int tasks = static_cast<int>(std::max<Index>(1, std::min<Index>(options.Tasks, cells / 64)));
+  std::vector<double> covered(static_cast<size_t>(cells), 0.0); // each cell in one range
+  struct Task
+  {
+    MortarAssembler<Intersector> Assembler;
+    std::vector<double> Values;
+    std::vector<double> Rhs;
+    std::vector<Triplet> Mts;
+    IntersectionPieces Pieces;
+    SearchStatistics Statistics;
+    std::unique_ptr<CandidateLocator> Locator;
+  };
+  std::vector<Task> work(static_cast<size_t>(tasks));
+  for (int k = 0; k < tasks; ++k)
+  {
+    Task& w = work[k];
+    if (tasks > 1)
+    {
+      w.Values.assign(m.Values.size(), 0.0);
+      w.Rhs.assign(m.Rhs.size(), 0.0);
+    }
+    MortarAssembler<Intersector>& a = w.Assembler;
+    a.Pattern = &m;
+    a.Values = tasks > 1 ? w.Values.data() : m.Values.data();
+    a.Rhs = tasks > 1 ? w.Rhs.data() : m.Rhs.data();
+    a.Fields = fields;
+    a.Components = components;
+    a.Mts = options.KeepMixedMatrix ? &w.Mts : nullptr;
+    a.CoveredMeasure = covered.data();
+    a.Pieces = options.KeepPieces ? (tasks > 1 ? &w.Pieces : &this->Pieces) : nullptr;
+    if (locator && tasks > 1)
+    {
+      w.Locator = locator->NewForThread();
+    }
+  }
   this->Timings.Assembly = Seconds(start);
 
   start = std::chrono::steady_clock::now();
-  if (options.Method == SearchMethod::AdvancingFront)
+  auto run = [&](int k) {
+    Task& w = work[k];
+    const Index begin = cells * k / tasks;
+    const Index end = cells * (k + 1) / tasks;
+    if (options.Method == SearchMethod::AdvancingFront)
+    {
+      CandidateLocator& seeds = tasks > 1 ? *w.Locator : *locator;
+      AdvancingFrontSearch<Intersector>(target, source, seeds, w.Assembler, w.Statistics, begin, end);
+    }
+    else
+    {
+      BruteForceSearch<Intersector>(target, source, w.Assembler, w.Statistics, begin, end);
+    }
+    w.Assembler.Flush();
+  };
+  if (options.RunTasks && tasks > 1)
   {
-    AdvancingFrontSearch<Intersector>(target, source, *locator, assembler, this->Statistics);
+    options.RunTasks(tasks, run);
   }
   else
   {
-    BruteForceSearch<Intersector>(target, source, assembler, this->Statistics);
+    for (int k = 0; k < tasks; ++k)
+    {
+      run(k);
+    }
   }
-  assembler.Flush();
-  this->Statistics.Pieces = assembler.Count;
+  // Sum the tasks' contributions, in task order (deterministic).
+  std::vector<Triplet> mts;
+  for (Task& w : work)
+  {
+    if (tasks > 1)
+    {
+      for (size_t i = 0; i < m.Values.size(); ++i)
+      {
+        m.Values[i] += w.Values[i];
+      }
+      for (size_t i = 0; i < m.Rhs.size(); ++i)
+      {
+        m.Rhs[i] += w.Rhs[i];
+      }
+      IntersectionPieces& all = this->Pieces;
+      const Index shift = all.Offsets.back();
+      for (size_t i = 1; i < w.Pieces.Offsets.size(); ++i)
+      {
+        all.Offsets.push_back(w.Pieces.Offsets[i] + shift);
+      }
+      all.Points.insert(all.Points.end(), w.Pieces.Points.begin(), w.Pieces.Points.end());
+      all.TargetCell.insert(all.TargetCell.end(), w.Pieces.TargetCell.begin(), w.Pieces.TargetCell.end());
+      all.SourceCell.insert(all.SourceCell.end(), w.Pieces.SourceCell.begin(), w.Pieces.SourceCell.end());
+      all.Measure.insert(all.Measure.end(), w.Pieces.Measure.begin(), w.Pieces.Measure.end());
+    }
+    mts.insert(mts.end(), w.Mts.begin(), w.Mts.end());
+    this->Statistics.IntersectionTests += w.Statistics.IntersectionTests;
+    this->Statistics.TouchingPairs += w.Statistics.TouchingPairs;
+    this->Statistics.LocatorQueries += w.Statistics.LocatorQueries;
+    this->Statistics.Pieces += w.Assembler.Count;
+  }
+  work.clear();
   this->Timings.Search = Seconds(start);
 
   start = std::chrono::steady_clock::now();
@@ -375,14 +455,14 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   }
   for (Index c = 0; c < target.NumberOfCells; ++c)
   {
-    this->CoveredMeasure += assembler.CoveredMeasure[c];
+    this->CoveredMeasure += covered[c];
     if (!Intersector::Prepare(target, c, cell))
     {
       ++this->Statistics.DegenerateTargetCells;
     }
     else
     {
-      const double fraction = assembler.CoveredMeasure[c] / cell.Measure;
+      const double fraction = covered[c] / cell.Measure;
       this->OvercoveredCells += fraction > 1.0 + 1e-9;
       this->CoveredFraction[c] = std::min(1.0, fraction);
     }

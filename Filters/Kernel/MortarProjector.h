@@ -30,6 +30,7 @@
 #include "CandidateLocator.h"
 #include "MeshView.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +45,14 @@ struct ProjectionOptions
   /// later. Without it (faster, less memory) only the fields given to
   /// Build() are projected, their right-hand sides summed during the search.
   bool KeepMixedMatrix = true;
+  /// Concurrent tasks for the search and the local integrals: the target
+  /// cells are split into this many ranges (default 1: serial).
+  int Tasks = 1;
+  /**
+   * Runs task(0), ..., task(count - 1), concurrently if it can (the VTK
+   * filter passes vtkSMPTools::For). Default: one after the other.
+   */
+  std::function<void(int count, const std::function<void(int)>& task)> RunTasks;
 };
 
 /**

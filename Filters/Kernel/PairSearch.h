@@ -29,6 +29,11 @@
  * `Intersector` is the cell-pair geometry (TriangleIntersector in 2D); the
  * search itself does not depend on the dimension. `Visitor` is called as
  * visit(targetCell, sourceCell, piece) for every pair that meets.
+ *
+ * Both searches can be limited to the target cells [begin, end): the front
+ * then stays inside that range (re-seeding where it leaves it), so disjoint
+ * ranges can be searched by concurrent tasks, each with its own locator and
+ * visitor, and together find exactly the pairs of the whole search.
  */
 #ifndef MeshProjection_Kernel_PairSearch_h
 #define MeshProjection_Kernel_PairSearch_h
@@ -43,8 +48,13 @@ namespace mp
 {
 template <class Intersector, class Visitor>
 void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
-  CandidateLocator& locator, Visitor& visit, SearchStatistics& stats)
+  CandidateLocator& locator, Visitor& visit, SearchStatistics& stats, Index begin = 0,
+  Index end = -1)
 {
+  if (end < 0)
+  {
+    end = target.NumberOfCells;
+  }
   using Cell = typename Intersector::Cell;
   using Piece = typename Intersector::Piece;
   constexpr int Faces = Intersector::Faces;
@@ -54,7 +64,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     Index Target;
     Index Source;
   };
-  std::vector<char> queued(static_cast<std::size_t>(target.NumberOfCells), 0);
+  std::vector<char> queued(static_cast<std::size_t>(end - begin), 0); // of cell begin + i
   // stamp[s] == t: source cell s was already tried for target cell t. A
   // stamp instead of the paper's per-cell flag vector keeps the work linear.
   std::vector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
@@ -166,29 +176,29 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         continue;
       }
       const Index n = target.Neighbor(tId, t.Face[k]);
-      if (n >= 0 && !queued[n])
+      if (n >= begin && n < end && !queued[n - begin])
       {
-        queued[n] = 1;
+        queued[n - begin] = 1;
         outer.push_back({ n, faceSeed[k] });
       }
     }
   };
 
-  Index scan = 0;
+  Index scan = begin;
   std::size_t head = 0; // outer[head..] is the front: first in, first out, as in the paper
   for (;;)
   {
     if (head == outer.size())
     {
-      while (scan < target.NumberOfCells && queued[scan])
+      while (scan < end && queued[scan - begin])
       {
         ++scan;
       }
-      if (scan == target.NumberOfCells)
+      if (scan == end)
       {
         break;
       }
-      queued[scan] = 1;
+      queued[scan - begin] = 1;
       treat(scan, -1);
       continue;
     }
@@ -198,9 +208,13 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
 }
 
 template <class Intersector, class Visitor>
-void BruteForceSearch(
-  const MeshView& target, const MeshView& source, Visitor& visit, SearchStatistics& stats)
+void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& visit,
+  SearchStatistics& stats, Index begin = 0, Index end = -1)
 {
+  if (end < 0)
+  {
+    end = target.NumberOfCells;
+  }
   using Cell = typename Intersector::Cell;
   typename Intersector::Piece piece;
   std::vector<Cell> sources;
@@ -214,7 +228,7 @@ void BruteForceSearch(
     }
   }
   Cell t;
-  for (Index tId = 0; tId < target.NumberOfCells; ++tId)
+  for (Index tId = begin; tId < end; ++tId)
   {
     if (!Intersector::Prepare(target, tId, t))
     {

@@ -234,19 +234,4 @@ double Orient2DExact(const double* a, const double* b, const double* c)
   return 0.0;
 }
 
-double Orient2D(const double* a, const double* b, const double* c)
-{
-  const double left = (a[0] - c[0]) * (b[1] - c[1]);
-  const double right = (a[1] - c[1]) * (b[0] - c[0]);
-  const double det = left - right;
-  // Shewchuk's bound for this evaluation order: (3 + 16 eps) eps |left|+|right|.
-  constexpr double eps = std::numeric_limits<double>::epsilon() / 2.0;
-  constexpr double bound = (3.0 + 16.0 * eps) * eps;
-  const double detsum = std::fabs(left) + std::fabs(right);
-  if (std::fabs(det) > bound * detsum)
-  {
-    return det;
-  }
-  return Orient2DExact(a, b, c);
-}
 } // namespace mp

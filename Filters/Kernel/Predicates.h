@@ -18,17 +18,33 @@
 #ifndef MeshProjection_Kernel_Predicates_h
 #define MeshProjection_Kernel_Predicates_h
 
+#include <cmath>
+
 namespace mp
 {
+/// The exact-arithmetic path of Orient2D, exposed for tests.
+double Orient2DExact(const double* a, const double* b, const double* c);
+
 /**
  * Twice the signed area of triangle (a, b, c): positive when counterclockwise.
  * The sign is exact; the magnitude is accurate to a few ulps.
- * Inputs are (x, y) pairs.
+ * Inputs are (x, y) pairs. Inline: the floating-point filter decides almost
+ * every call; only near-degenerate ones take the exact path.
  */
-double Orient2D(const double* a, const double* b, const double* c);
-
-/// The exact-arithmetic path of Orient2D, exposed for tests.
-double Orient2DExact(const double* a, const double* b, const double* c);
+inline double Orient2D(const double* a, const double* b, const double* c)
+{
+  const double left = (a[0] - c[0]) * (b[1] - c[1]);
+  const double right = (a[1] - c[1]) * (b[0] - c[0]);
+  const double det = left - right;
+  // Shewchuk's bound for this evaluation order: (3 + 16 eps) eps (|left| + |right|).
+  constexpr double eps = 1.1102230246251565e-16; // 2^-53
+  constexpr double bound = (3.0 + 16.0 * eps) * eps;
+  if (std::fabs(det) > bound * (std::fabs(left) + std::fabs(right)))
+  {
+    return det;
+  }
+  return Orient2DExact(a, b, c);
+}
 
 /**
  * Six times the signed volume of tetrahedron (a, b, c, d): positive when d

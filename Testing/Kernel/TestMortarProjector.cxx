@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <thread>
 
 using mp::Index;
 using mptest::TestMesh;
@@ -301,4 +303,58 @@ TEST(MortarProjector, MultiComponentSourceExactCoverage)
   for (Index i = 0; i < target.NumberOfPoints(); ++i)
     if (expectedValid[i])
       EXPECT_NEAR(ut[i], Linear(target.Points[3 * i], target.Points[3 * i + 1]), 1e-12);
+}
+
+TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
+{
+  const TestMesh target = mptest::GridMesh(30, 30, 0.25, 91, 0, 0, 1, 1, LShapeWithHole);
+  const TestMesh source = mptest::GridMesh(28, 36, 0.25, 92, 0, 0, 1, 1, LShapeWithHole);
+  const auto us = mptest::Sample(source, Smooth);
+  auto run = [&](int tasks, bool threads, std::vector<double>& ut, mp::IntersectionPieces& pieces) {
+    mp::BoxGridLocator locator(source.View());
+    mp::ProjectionOptions options;
+    options.Tasks = tasks;
+    options.KeepPieces = true;
+    if (threads)
+    {
+      options.RunTasks = [](int count, const std::function<void(int)>& task) {
+        std::vector<std::thread> pool;
+        for (int k = 0; k < count; ++k)
+          pool.emplace_back(task, k);
+        for (auto& t : pool)
+          t.join();
+      };
+    }
+    mp::MortarProjector projector;
+    EXPECT_TRUE(projector.Build(target.View(), source.View(), &locator, options));
+    ut.resize(static_cast<size_t>(target.NumberOfPoints()));
+    EXPECT_TRUE(projector.Project(us.data(), 1, ut.data(), std::nan("")));
+    pieces = projector.GetPieces();
+    return projector.GetStatistics().Pieces;
+  };
+  std::vector<double> serial;
+  mp::IntersectionPieces serialPieces;
+  const Index pieces = run(1, false, serial, serialPieces);
+  for (int tasks : { 2, 3, 7 })
+  {
+    for (bool threads : { false, true })
+    {
+      std::vector<double> ut;
+      mp::IntersectionPieces p;
+      EXPECT_EQ(run(tasks, threads, ut, p), pieces) << tasks;
+      for (size_t i = 0; i < ut.size(); ++i)
+        ASSERT_NEAR(ut[i], serial[i], 1e-13) << tasks << " tasks, point " << i;
+      // The same pieces, in another order.
+      std::vector<std::pair<Index, Index>> a;
+      std::vector<std::pair<Index, Index>> b;
+      for (Index k = 0; k < p.Size(); ++k)
+        a.emplace_back(p.TargetCell[k], p.SourceCell[k]);
+      for (Index k = 0; k < serialPieces.Size(); ++k)
+        b.emplace_back(serialPieces.TargetCell[k], serialPieces.SourceCell[k]);
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      EXPECT_EQ(a, b);
+      EXPECT_EQ(p.Offsets.back(), serialPieces.Offsets.back());
+    }
+  }
 }
