@@ -61,29 +61,18 @@ double Since(Clock::time_point t)
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-/// Peak resident memory (MiB) since the last ResetPeakMemory().
-double PeakMemory()
+/// A memory figure of /proc/self/status in MiB: VmHWM (peak resident memory
+/// since the last ResetPeakMemory()) or VmRSS (current).
+double StatusMiB(const char* key)
 {
   std::ifstream status("/proc/self/status");
   std::string line;
+  const size_t n = std::strlen(key);
   while (std::getline(status, line))
   {
-    if (line.rfind("VmHWM:", 0) == 0)
+    if (line.compare(0, n, key) == 0)
     {
-      return std::atof(line.c_str() + 6) / 1024.0;
-    }
-  }
-  return 0;
-}
-double CurrentMemory()
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-  {
-    if (line.rfind("VmRSS:", 0) == 0)
-    {
-      return std::atof(line.c_str() + 6) / 1024.0;
+      return std::atof(line.c_str() + n) / 1024.0;
     }
   }
   return 0;
@@ -214,7 +203,7 @@ Row Measure(int dim, double n, double bruteMax)
   }
 
   // The kernel, stage by stage (one thread).
-  const double before = CurrentMemory();
+  const double before = StatusMiB("VmRSS:");
   ResetPeakMemory();
   auto t0 = Clock::now();
   mp::BuildFaceNeighbors(target.View(false), target.Neighbors);
@@ -239,7 +228,7 @@ Row Measure(int dim, double n, double bruteMax)
   (void)build;
   r.Total = r.Neighbors + r.Seeding + r.Search + r.Assembly + r.Factorization + r.Solve;
   r.Pairs = projector.GetStatistics().Pieces;
-  r.PeakBeyondInputs = PeakMemory() - before;
+  r.PeakBeyondInputs = StatusMiB("VmHWM:") - before;
 
   auto sourceGrid = ToVTK(source, &u);
   auto targetGrid = ToVTK(target, nullptr);
