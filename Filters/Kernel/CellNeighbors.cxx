@@ -2,63 +2,81 @@
 #include "CellNeighbors.h"
 
 #include <algorithm>
-#include <array>
 
 namespace mp
 {
+void BuildPointCells(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& cells)
+{
+  const int corners = mesh.CornersPerCell();
+  start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      ++start[mesh.Cell(c)[k] + 1];
+    }
+  }
+  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  cells.resize(static_cast<size_t>(start.back()));
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for (Index c = 0; c < mesh.NumberOfCells; ++c) // cell ids come out sorted per point
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      cells[fill[mesh.Cell(c)[k]]++] = c;
+    }
+  }
+}
+
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
 {
   const int corners = mesh.CornersPerCell();
-  const int faceSize = corners - 1; // 2 or 3 point ids
-  struct Face
-  {
-    std::array<Index, 3> Key; // sorted point ids, unused slots -1
-    Index Cell;
-    int Local;
-  };
-  std::vector<Face> faces;
-  faces.reserve(static_cast<size_t>(mesh.NumberOfCells) * corners);
+  std::vector<Index> start;
+  std::vector<Index> around;
+  BuildPointCells(mesh, start, around);
+  neighbors.assign(static_cast<size_t>(mesh.NumberOfCells) * corners, -1);
+  Index nonManifold = 0;
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
     const Index* ids = mesh.Cell(c);
     for (int k = 0; k < corners; ++k)
     {
-      Face f{ { -1, -1, -1 }, c, k };
-      int m = 0;
-      for (int j = 0; j < corners; ++j)
+      // The other cells around the face's first corner holding all its corners.
+      const Index first = ids[(k + 1) % corners];
+      Index found = -1;
+      int matches = 0;
+      for (Index i = start[first]; i < start[first + 1]; ++i)
       {
-        if (j != k)
+        const Index other = around[i];
+        if (other == c)
         {
-          f.Key[m++] = ids[j];
+          continue;
+        }
+        const Index* o = mesh.Cell(other);
+        bool shares = true;
+        for (int j = 2; j < corners && shares; ++j)
+        {
+          shares = std::find(o, o + corners, ids[(k + j) % corners]) != o + corners;
+        }
+        if (shares)
+        {
+          found = other;
+          ++matches;
         }
       }
-      std::sort(f.Key.begin(), f.Key.begin() + faceSize);
-      faces.push_back(f);
+      if (matches == 1)
+      {
+        neighbors[c * corners + k] = found;
+      }
+      else if (matches > 1)
+      {
+        ++nonManifold;
+      }
     }
   }
-  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) {
-    return a.Key != b.Key ? a.Key < b.Key : a.Cell < b.Cell;
-  });
-  neighbors.assign(faces.size(), -1);
-  Index nonManifold = 0;
-  for (size_t i = 0; i < faces.size();)
-  {
-    size_t j = i + 1;
-    while (j < faces.size() && faces[j].Key == faces[i].Key)
-    {
-      ++j;
-    }
-    if (j - i == 2)
-    {
-      neighbors[faces[i].Cell * corners + faces[i].Local] = faces[i + 1].Cell;
-      neighbors[faces[i + 1].Cell * corners + faces[i + 1].Local] = faces[i].Cell;
-    }
-    else if (j - i > 2)
-    {
-      ++nonManifold;
-    }
-    i = j;
-  }
-  return nonManifold;
+  return nonManifold / 2;
 }
 } // namespace mp

@@ -4,9 +4,10 @@
  * @brief Face neighbours of a simplicial mesh, without VTK.
  *
  * The VTK filter builds neighbours with VTK's cell links; this builder serves
- * the kernel's own tests, the benchmark and any caller without VTK. It sorts
- * the faces (O(n log n)); a face shared by more than two cells (a
- * non-manifold mesh) gets no neighbour, and that count is returned.
+ * the kernel's own tests, the benchmark and any caller without VTK. It does
+ * the same: point-to-cell links (a counting sort), then for each face the
+ * cells around its first corner. Linear time. A face shared by more than two
+ * cells (a non-manifold mesh) gets no neighbour, and their number is returned.
  */
 #ifndef MeshProjection_Kernel_CellNeighbors_h
 #define MeshProjection_Kernel_CellNeighbors_h
@@ -23,6 +24,10 @@ namespace mp
  * of non-manifold faces found.
  */
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors);
+
+/// The cells around every point, in CSR form: point p is used by the cells
+/// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order).
+void BuildPointCells(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& cells);
 } // namespace mp
 
 #endif

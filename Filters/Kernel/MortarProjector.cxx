@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MortarProjector.h"
 
+#include "CellNeighbors.h"
 #include "PairSearch.h"
 #include "TetrahedronIntersector.h"
 #include "TriangleIntersector.h"
@@ -124,34 +125,29 @@ double Seconds(std::chrono::steady_clock::time_point since)
 }
 
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
-/// points sharing a cell, and every point with itself).
+/// points sharing a cell, and every point with itself), from the cells
+/// around each point.
 void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& columns)
 {
+  std::vector<Index> cellStart;
+  std::vector<Index> cells;
+  BuildPointCells(mesh, cellStart, cells);
   const int n = mesh.CornersPerCell();
-  std::vector<Index> count(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-    for (int i = 0; i < n; ++i)
-      count[mesh.Cell(c)[i] + 1] += n;
-  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
-    count[p + 1] += count[p] + 1; // + the diagonal, also for unused points
-  std::vector<Index> raw(static_cast<size_t>(count.back()));
-  std::vector<Index> fill(count.begin(), count.end() - 1);
-  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
-    raw[fill[p]++] = p;
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < n; ++k)
-        raw[fill[mesh.Cell(c)[i]]++] = mesh.Cell(c)[k];
   start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
   columns.clear();
-  columns.reserve(raw.size() / 3);
+  columns.reserve(static_cast<size_t>(mesh.NumberOfPoints) * (n == 3 ? 7 : 15));
+  std::vector<Index> row;
   for (Index p = 0; p < mesh.NumberOfPoints; ++p)
   {
-    auto b = raw.begin() + count[p];
-    auto e = raw.begin() + count[p + 1];
-    std::sort(b, e);
-    e = std::unique(b, e);
-    columns.insert(columns.end(), b, e);
+    row.assign(1, p);
+    for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
+    {
+      const Index* ids = mesh.Cell(cells[i]);
+      row.insert(row.end(), ids, ids + n);
+    }
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    columns.insert(columns.end(), row.begin(), row.end());
     start[p + 1] = static_cast<Index>(columns.size());
   }
 }
