@@ -48,7 +48,12 @@
  * meshes, NaN/Inf coordinates) produces an error and an output that is a
  * plain copy of Input.
  *
- * @warning The search runs on one thread.
+ * Threads: the search, the intersections and the local integrals run in one
+ * task per vtkSMPTools thread (ranges of target cells, each with its own
+ * advancing front); results equal the serial ones up to summation order.
+ * @warning Debian's VTK 9.2 uses the sequential SMP backend by default: set
+ * VTK_SMP_BACKEND_IN_USE=STDThread (or call vtkSMPTools::SetBackend) to run
+ * on several threads.
  *
  * @sa vtkResampleWithDataSet vtkProbeFilter
  */
