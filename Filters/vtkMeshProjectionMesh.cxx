@@ -247,20 +247,24 @@ void SimplexMesh::BuildNeighbors()
 StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
   : Mesh(mesh)
   , Locator(vtkSmartPointer<vtkStaticCellLocator>::New())
+  , Lock(std::make_shared<std::mutex>())
 {
   this->Locator->SetDataSet(grid);
   this->Locator->BuildLocator();
 }
 
-StaticLocator::StaticLocator(vtkStaticCellLocator* shared, const SimplexMesh& mesh)
+StaticLocator::StaticLocator(
+  vtkStaticCellLocator* shared, std::shared_ptr<std::mutex> lock, const SimplexMesh& mesh)
   : Mesh(mesh)
   , Locator(shared)
+  , Lock(std::move(lock))
 {
 }
 
 std::unique_ptr<mp::CandidateLocator> StaticLocator::NewForThread() const
 {
-  return std::unique_ptr<mp::CandidateLocator>(new StaticLocator(this->Locator, this->Mesh));
+  return std::unique_ptr<mp::CandidateLocator>(
+    new StaticLocator(this->Locator, this->Lock, this->Mesh));
 }
 
 StaticLocator::~StaticLocator() = default;
@@ -273,7 +277,10 @@ void StaticLocator::FindCandidates(const double box[6], std::vector<mp::Index>& 
   {
     bounds[4] = bounds[5] = this->Mesh.PlaneZ();
   }
-  this->Locator->FindCellsWithinBounds(bounds, this->Ids);
+  {
+    std::lock_guard<std::mutex> guard(*this->Lock);
+    this->Locator->FindCellsWithinBounds(bounds, this->Ids);
+  }
   cells.clear();
   for (vtkIdType id : *this->Ids)
   {

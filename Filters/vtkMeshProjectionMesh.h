@@ -25,6 +25,7 @@
 #include "vtkType.h"
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -80,14 +81,18 @@ public:
   StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh);
   ~StaticLocator() override;
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
-  /// Shares the (thread-safe, read-only once built) VTK locator.
+  /// Shares the VTK locator; queries are serialized by a shared mutex (they
+  /// are rare: first seeds and cells at the source boundary), since VTK 9.2
+  /// does not document FindCellsWithinBounds as thread-safe.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
 
 private:
-  StaticLocator(vtkStaticCellLocator* shared, const SimplexMesh& mesh);
+  StaticLocator(vtkStaticCellLocator* shared, std::shared_ptr<std::mutex> lock,
+    const SimplexMesh& mesh);
 
   const SimplexMesh& Mesh;
   vtkSmartPointer<vtkStaticCellLocator> Locator;
+  std::shared_ptr<std::mutex> Lock;
   vtkNew<vtkIdList> Ids;
 };
 

@@ -246,17 +246,18 @@ bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     cell.Box[2 * c] = std::min({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
     cell.Box[2 * c + 1] = std::max({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
   }
+  // Inward normals of the faces: the same orientation rule as FaceSide, so
+  // that clipping and the exact classification never disagree on a side.
   for (int k = 0; k < 4; ++k)
   {
     const double* a = cell.X[(k + 1) % 4];
     const double* b = cell.X[(k + 2) % 4];
     const double* c = cell.X[(k + 3) % 4];
-    Vec u, v, r;
+    Vec u, v;
     Sub(b, a, u);
     Sub(c, a, v);
     Cross(u, v, cell.Normal[k]);
-    Sub(cell.X[k], a, r);
-    if (Dot(cell.Normal[k], r) < 0.0)
+    if (k % 2 == 0)
     {
       for (double& n : cell.Normal[k])
       {

@@ -13,6 +13,7 @@
 #include "vtkExecutive.h"
 #include "vtkIdList.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -276,6 +277,24 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     }
     const Result r = Project(target, folded);
     MP_CHECK(r.Warnings.find("covered more than once") != std::string::npos);
+  }
+
+  // Threads (vtkSMPTools, STDThread): the same pieces and values as one thread.
+  for (const char* pair : { "lshape", "lshape3d" })
+  {
+    auto s = mptest::ReadSample(std::string(pair) + "_source.vtu");
+    auto t = mptest::ReadSample(std::string(pair) + "_target.vtu");
+    const std::string backend = vtkSMPTools::GetBackend();
+    vtkSMPTools::SetBackend("STDThread");
+    vtkSMPTools::Initialize(1);
+    const Result one = Project(t, s);
+    vtkSMPTools::Initialize(2);
+    const Result two = Project(t, s);
+    vtkSMPTools::SetBackend(backend.c_str());
+    MP_CHECK(one.Pieces == two.Pieces && !two.Error);
+    const double d = Difference(one, two, "Smooth");
+    std::cout << pair << " on 2 threads: " << two.Pieces << " pieces, max change " << d << std::endl;
+    MP_CHECK(d >= 0 && d < 1e-13);
   }
 
   // The same meshes moved: scaling changes nothing but the scale, and a
