@@ -195,21 +195,24 @@ void ClipByPlane(const ClipTet& t, const double* normal, const double* origin, u
   Emit(out, n, p[2], q[0], q[1], q[2]);
 }
 
-inline void Barycentric(const TetrahedronIntersector::Cell& c, const double* x, double lambda[4])
-{
-  Vec r;
-  Sub(x, c.X[0], r);
-  lambda[1] = Dot(c.Inverse[0], r);
-  lambda[2] = Dot(c.Inverse[1], r);
-  lambda[3] = Dot(c.Inverse[2], r);
-  lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
-}
 /// Positive when x is strictly inside the plane of face k of a prepared
 /// (positively oriented) cell; exact sign. For a positive tetrahedron
 /// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
 inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const double* x)
 {
-  const double o = Orient3D(c.X[(k + 1) % 4], c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
+  // Fast path: the precomputed normal, with a forward error bound (about
+  // 42 eps |u| |v| |x - a| for the rounded differences, cross and dot
+  // products; 64 eps to spare). Only near-coplanar points go exact.
+  const double* a = c.X[(k + 1) % 4];
+  const double w[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
+  const double d = c.Normal[k][0] * w[0] + c.Normal[k][1] * w[1] + c.Normal[k][2] * w[2];
+  const double size = std::max({ std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
+  constexpr double eps = 1.1102230246251565e-16;
+  if (std::fabs(d) > 64.0 * eps * c.NormalScale[k] * size)
+  {
+    return d;
+  }
+  const double o = Orient3D(a, c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
   return (k % 2) ? o : -o;
 }
 } // namespace
@@ -257,6 +260,8 @@ bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     Sub(b, a, u);
     Sub(c, a, v);
     Cross(u, v, cell.Normal[k]);
+    cell.NormalScale[k] = std::max({ std::fabs(u[0]), std::fabs(u[1]), std::fabs(u[2]) }) *
+      std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
     if (k % 2 == 0)
     {
       for (double& n : cell.Normal[k])
@@ -430,48 +435,102 @@ double TetrahedronIntersector::Measure(const Piece& piece)
 double TetrahedronIntersector::Integrate(
   const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4])
 {
-  double volume = 0.0;
-  for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
+  // Moments up to order 2 of the piece relative to the target's first
+  // corner: on a tetrahedron of volume V, integral of x_i = V mean(x_i) and
+  // of x_i x_j = V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj). Exact.
+  const double* o = t.X[0];
+  double m0 = 0.0;
+  double m1[3] = { 0, 0, 0 };
+  double m2[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+  for (int n = 0; n < piece.NumberOfTetrahedra; ++n)
   {
-    const auto& x = piece.X[i];
-    const double v = std::fabs(SixVolume(x[0], x[1], x[2], x[3])) / 6.0;
+    double p[4][3];
+    for (int a = 0; a < 4; ++a)
+    {
+      Sub(piece.X[n][a], o, p[a]);
+    }
+    const double v = std::fabs(SixVolume(p[0], p[1], p[2], p[3])) / 6.0;
     if (!(v > 0.0))
     {
       continue;
     }
-    volume += v;
-    double lt[4][4];
-    double ls[4][4];
-    double st[4] = { 0, 0, 0, 0 };
-    double ss[4] = { 0, 0, 0, 0 };
-    for (int a = 0; a < 4; ++a)
+    double sum[3];
+    for (int i = 0; i < 3; ++i)
     {
-      Barycentric(t, x[a], lt[a]);
-      Barycentric(s, x[a], ls[a]);
-      for (int r = 0; r < 4; ++r)
-      {
-        st[r] += lt[a][r];
-        ss[r] += ls[a][r];
-      }
+      sum[i] = p[0][i] + p[1][i] + p[2][i] + p[3][i];
     }
-    const double w = v / 20.0;
-    for (int r = 0; r < 4; ++r)
+    m0 += v;
+    for (int i = 0; i < 3; ++i)
     {
-      for (int q = 0; q < 4; ++q)
+      m1[i] += v * sum[i] / 4.0;
+      for (int j = i; j < 3; ++j)
       {
-        double mts = st[r] * ss[q];
-        double mtt = st[r] * st[q];
-        for (int a = 0; a < 4; ++a)
-        {
-          mts += lt[a][r] * ls[a][q];
-          mtt += lt[a][r] * lt[a][q];
-        }
-        Mts[r][q] += w * mts;
-        Mtt[r][q] += w * mtt;
+        const double sq = p[0][i] * p[0][j] + p[1][i] * p[1][j] + p[2][i] * p[2][j] + p[3][i] * p[3][j];
+        m2[i][j] += v / 20.0 * (sq + sum[i] * sum[j]);
       }
     }
   }
-  return volume;
+  if (!(m0 > 0.0))
+  {
+    return 0.0;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < i; ++j)
+    {
+      m2[i][j] = m2[j][i];
+    }
+  }
+  // Barycentric coordinates as affine functions c + g . x of the local
+  // coordinates, for the target and the source.
+  double lt[4][4];
+  double ls[4][4];
+  double shift[3];
+  Sub(o, s.X[0], shift); // local x = global x - o; source needs global x - S0
+  for (int r = 0; r < 3; ++r)
+  {
+    lt[r + 1][0] = 0.0;
+    ls[r + 1][0] = Dot(s.Inverse[r], shift);
+    for (int i = 0; i < 3; ++i)
+    {
+      lt[r + 1][i + 1] = t.Inverse[r][i];
+      ls[r + 1][i + 1] = s.Inverse[r][i];
+    }
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    lt[0][k] = (k == 0 ? 1.0 : 0.0) - lt[1][k] - lt[2][k] - lt[3][k];
+    ls[0][k] = (k == 0 ? 1.0 : 0.0) - ls[1][k] - ls[2][k] - ls[3][k];
+  }
+  auto product = [&](const double* f, const double* g) {
+    double r = f[0] * g[0] * m0;
+    for (int i = 0; i < 3; ++i)
+    {
+      r += (f[0] * g[i + 1] + f[i + 1] * g[0]) * m1[i];
+      for (int j = 0; j < 3; ++j)
+      {
+        r += f[i + 1] * g[j + 1] * m2[i][j];
+      }
+    }
+    return r;
+  };
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      Mts[i][j] += product(lt[i], ls[j]);
+    }
+    for (int k = i; k < 4; ++k)
+    {
+      const double v = product(lt[i], lt[k]);
+      Mtt[i][k] += v;
+      if (k != i)
+      {
+        Mtt[k][i] += v;
+      }
+    }
+  }
+  return m0;
 }
 
 void TetrahedronIntersector::Append(

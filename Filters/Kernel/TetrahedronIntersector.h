@@ -54,6 +54,7 @@ public:
     double Box[6];     ///< xmin, xmax, ymin, ymax, zmin, zmax
     double Measure;    ///< volume, > 0
     double Normal[4][3]; ///< inward normal of face k (not unit), through X[(k+1)%4]
+    double NormalScale[4]; ///< |u|max |v|max of the two edges spanning face k (error bounds)
     double Inverse[3][3]; ///< maps x - X[0] to barycentric coordinates 1..3
   };
 
@@ -81,8 +82,8 @@ public:
   static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
   /**
    * Adds Mts[i][j] += integral of phi_i^t phi_j^s and Mtt[i][k] += integral of
-   * phi_i^t phi_k^t over the piece (exact: V/20 (sum f_a g_a + sum f sum g)
-   * on each tetrahedron). Returns the volume of the piece.
+   * phi_i^t phi_k^t over the piece, exactly, from the piece's moments up to
+   * order 2 (summed over its tetrahedra). Returns the volume of the piece.
    */
   static double Integrate(
     const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4]);
