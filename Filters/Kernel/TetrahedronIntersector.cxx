@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "TetrahedronIntersector.h"
 
+#include "MortarBlocks.h"
 #include "MortarProjector.h"
 
 #include "Predicates.h"
@@ -514,22 +515,7 @@ double TetrahedronIntersector::Integrate(
     }
     return r;
   };
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      Mts[i][j] += product(lt[i], ls[j]);
-    }
-    for (int k = i; k < 4; ++k)
-    {
-      const double v = product(lt[i], lt[k]);
-      Mtt[i][k] += v;
-      if (k != i)
-      {
-        Mtt[k][i] += v;
-      }
-    }
-  }
+  AddMortarBlocks<4>(lt, ls, product, Mts, Mtt);
   return m0;
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "TriangleIntersector.h"
 
+#include "MortarBlocks.h"
 #include "MortarProjector.h"
 #include "Predicates.h"
 
@@ -317,22 +318,7 @@ double TriangleIntersector::Integrate(
     return f[0] * g[0] * m0 + (f[0] * g[1] + f[1] * g[0]) * mx + (f[0] * g[2] + f[2] * g[0]) * my +
       f[1] * g[1] * mxx + (f[1] * g[2] + f[2] * g[1]) * mxy + f[2] * g[2] * myy;
   };
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      Mts[i][j] += product(lt[i], ls[j]);
-    }
-    for (int k = i; k < 3; ++k)
-    {
-      const double v = product(lt[i], lt[k]);
-      Mtt[i][k] += v;
-      if (k != i)
-      {
-        Mtt[k][i] += v;
-      }
-    }
-  }
+  AddMortarBlocks<3>(lt, ls, product, Mts, Mtt);
   return m0;
 }
 
