@@ -46,6 +46,43 @@
 
 namespace mp
 {
+/**
+ * A small direct-mapped cache of prepared source cells. The front visits the
+ * source cells around a region many times in a row (each about as often as
+ * it meets target cells), so a few thousand slots avoid most re-preparations
+ * at a fixed, small memory cost.
+ */
+template <class Intersector>
+class PreparedCells
+{
+public:
+  static constexpr Index Slots = 4096; // a power of two
+  explicit PreparedCells(const MeshView& mesh)
+    : Mesh(mesh)
+    , Ids(Slots, -1)
+    , Valid(Slots, 0)
+    , Cells(Slots)
+  {
+  }
+  /// The prepared cell, or null for a cell of zero measure.
+  const typename Intersector::Cell* Get(Index id)
+  {
+    const Index slot = id & (Slots - 1);
+    if (this->Ids[slot] != id)
+    {
+      this->Ids[slot] = id;
+      this->Valid[slot] = Intersector::Prepare(this->Mesh, id, this->Cells[slot]);
+    }
+    return this->Valid[slot] ? &this->Cells[slot] : nullptr;
+  }
+
+private:
+  const MeshView& Mesh;
+  std::vector<Index> Ids;
+  std::vector<char> Valid;
+  std::vector<typename Intersector::Cell> Cells;
+};
+
 template <class Intersector, class Visitor>
 void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   CandidateLocator& locator, Visitor& visit, SearchStatistics& stats, Index begin = 0,
@@ -72,7 +109,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   std::vector<Index> inner;
   std::vector<Index> candidates;
   Cell t;
-  Cell s;
+  PreparedCells<Intersector> sources(source);
   Piece piece;
   double box[6];
 
@@ -112,11 +149,13 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       {
         const Index sId = inner.back();
         inner.pop_back();
-        if (!Intersector::Prepare(source, sId, s))
+        const Cell* prepared = sources.Get(sId);
+        if (!prepared)
         {
           blocked = true; // a zero-measure source cell interrupts the walk
           continue;
         }
+        const Cell& s = *prepared;
         ++stats.IntersectionTests;
         if (!Intersector::Intersect(t, s, piece))
         {
@@ -136,9 +175,15 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
             }
           }
         }
+        // Only across the faces of s that the target reaches: any other
+        // source cell meeting the target is reached through cells meeting it.
         for (int k = 0; k < Faces; ++k)
         {
-          const Index n = source.Neighbor(sId, k);
+          if (!(piece.SourceFaces & (1u << k)))
+          {
+            continue;
+          }
+          const Index n = source.Neighbor(sId, s.Face[k]);
           if (n < 0)
           {
             blocked = true;

@@ -64,6 +64,7 @@ public:
     int NumberOfTetrahedra = 0;
     double X[MaxTetrahedra][4][3];
     unsigned TouchedFaces = 0; ///< bit k: the piece has a face of positive area on target face k
+    unsigned SourceFaces = 15; ///< source faces whose neighbours the front visits: all
     /// For a touched face k: -1 when the source reaches beyond it (the source
     /// cell itself meets the target neighbour), else the source's own face
     /// (in Cell order) lying on it: the source neighbour across meets it.

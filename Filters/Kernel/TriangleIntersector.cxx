@@ -154,6 +154,7 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
 {
   piece.NumberOfVertices = 0;
   piece.TouchedFaces = 0;
+  piece.SourceFaces = 0;
   // Cheap rejection (the paper's conclusion): disjoint closed bounding boxes.
   if (t.Box[1] < s.Box[0] || s.Box[1] < t.Box[0] || t.Box[3] < s.Box[2] || s.Box[3] < t.Box[2])
   {
@@ -195,6 +196,13 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     {
       AddVertex(piece, t.X[i][0], t.X[i][1]);
       piece.TouchedFaces |= (7u & ~(1u << i));
+      for (int l = 0; l < 3; ++l)
+      {
+        if (os[l][i] == 0.0) // on source edge l
+        {
+          piece.SourceFaces |= 1u << l;
+        }
+      }
     }
   }
   // Corners of the source in the closed target; one on target edge k
@@ -204,6 +212,7 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     if (ot[0][j] >= 0.0 && ot[1][j] >= 0.0 && ot[2][j] >= 0.0)
     {
       AddVertex(piece, s.X[j][0], s.X[j][1]);
+      piece.SourceFaces |= (7u & ~(1u << j)); // the source edges at corner j
       for (int k = 0; k < 3; ++k)
       {
         if (ot[k][j] == 0.0)
@@ -231,6 +240,7 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
         const double u = oc / (oc - od);
         AddVertex(piece, c[0] + u * (d[0] - c[0]), c[1] + u * (d[1] - c[1]));
         piece.TouchedFaces |= 1u << k;
+        piece.SourceFaces |= 1u << l;
       }
     }
   }

@@ -59,6 +59,9 @@ public:
     int NumberOfVertices = 0;       ///< 0: empty; 1 or 2: the cells only touch
     double X[MaxPolygonVertices][2]; ///< counterclockwise
     unsigned TouchedFaces = 0;      ///< bit k: face k of the target meets the source
+    /// bit l: face l of the source (in Cell order) meets the target. Only
+    /// neighbours across those can meet the target too (through the target).
+    unsigned SourceFaces = 0;
   };
 
   /**
