@@ -436,10 +436,15 @@ double TetrahedronIntersector::Measure(const Piece& piece)
 double TetrahedronIntersector::Integrate(
   const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4])
 {
-  // Moments up to order 2 of the piece relative to the target's first
-  // corner: on a tetrahedron of volume V, integral of x_i = V mean(x_i) and
-  // of x_i x_j = V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj). Exact.
-  const double* o = t.X[0];
+  // Moments up to order 2 of the piece relative to one of its vertices (a
+  // local origin inside both cells keeps the barycentric functions below of
+  // size 1 over the piece): on a tetrahedron of volume V, integral of x_i =
+  // V mean(x_i) and of x_i x_j = V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj).
+  if (piece.NumberOfTetrahedra == 0)
+  {
+    return 0.0;
+  }
+  const double* o = piece.X[0][0];
   double m0 = 0.0;
   double m1[3] = { 0, 0, 0 };
   double m2[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
@@ -486,22 +491,24 @@ double TetrahedronIntersector::Integrate(
   // coordinates, for the target and the source.
   double lt[4][4];
   double ls[4][4];
-  double shift[3];
-  Sub(o, s.X[0], shift); // local x = global x - o; source needs global x - S0
-  for (int r = 0; r < 3; ++r)
+  for (int side = 0; side < 2; ++side)
   {
-    lt[r + 1][0] = 0.0;
-    ls[r + 1][0] = Dot(s.Inverse[r], shift);
-    for (int i = 0; i < 3; ++i)
+    const Cell& c = side == 0 ? t : s;
+    double(&l)[4][4] = side == 0 ? lt : ls;
+    double shift[3];
+    Sub(o, c.X[0], shift);
+    for (int r = 0; r < 3; ++r)
     {
-      lt[r + 1][i + 1] = t.Inverse[r][i];
-      ls[r + 1][i + 1] = s.Inverse[r][i];
+      l[r + 1][0] = Dot(c.Inverse[r], shift);
+      for (int i = 0; i < 3; ++i)
+      {
+        l[r + 1][i + 1] = c.Inverse[r][i];
+      }
     }
-  }
-  for (int k = 0; k < 4; ++k)
-  {
-    lt[0][k] = (k == 0 ? 1.0 : 0.0) - lt[1][k] - lt[2][k] - lt[3][k];
-    ls[0][k] = (k == 0 ? 1.0 : 0.0) - ls[1][k] - ls[2][k] - ls[3][k];
+    for (int k = 0; k < 4; ++k)
+    {
+      l[0][k] = (k == 0 ? 1.0 : 0.0) - l[1][k] - l[2][k] - l[3][k];
+    }
   }
   auto product = [&](const double* f, const double* g) {
     double r = f[0] * g[0] * m0;

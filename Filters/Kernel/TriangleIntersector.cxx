@@ -269,15 +269,20 @@ double TriangleIntersector::Measure(const Piece& p)
 double TriangleIntersector::Integrate(
   const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3])
 {
-  // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to the target's
-  // first corner, edge by edge (Green's theorem): exact for any polygon, and
-  // the local origin keeps them accurate far from the global origin.
-  const double ox = t.X[0][0];
-  const double oy = t.X[0][1];
-  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
-  for (int i = 0; i < p.NumberOfVertices; ++i)
+  // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to its first
+  // vertex, edge by edge (Green's theorem): exact for any polygon. A local
+  // origin inside both cells keeps the barycentric functions below of size
+  // 1 over the piece, so that thin cells cannot make them cancel.
+  if (p.NumberOfVertices < 3)
   {
-    const int j = (i + 1) % p.NumberOfVertices;
+    return 0.0;
+  }
+  const double ox = p.X[0][0];
+  const double oy = p.X[0][1];
+  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
+  for (int i = 1; i + 1 < p.NumberOfVertices; ++i)
+  {
+    const int j = i + 1;
     const double px = p.X[i][0] - ox;
     const double py = p.X[i][1] - oy;
     const double qx = p.X[j][0] - ox;
@@ -298,30 +303,28 @@ double TriangleIntersector::Integrate(
   mxy /= 24;
   if (!(m0 > 0.0))
   {
-    return 0.0; // fewer than three vertices, or rounding of a sliver
+    return 0.0; // rounding of a sliver
   }
   // Barycentric coordinates as affine functions a + b x + c y of the local
   // coordinates, for the target and the source.
   double lt[3][3];
-  lt[1][0] = 0;
-  lt[1][1] = t.Inverse[0][0];
-  lt[1][2] = t.Inverse[0][1];
-  lt[2][0] = 0;
-  lt[2][1] = t.Inverse[1][0];
-  lt[2][2] = t.Inverse[1][1];
   double ls[3][3];
-  const double dx = ox - s.X[0][0];
-  const double dy = oy - s.X[0][1];
-  for (int r = 0; r < 2; ++r)
+  for (int side = 0; side < 2; ++side)
   {
-    ls[r + 1][0] = s.Inverse[r][0] * dx + s.Inverse[r][1] * dy;
-    ls[r + 1][1] = s.Inverse[r][0];
-    ls[r + 1][2] = s.Inverse[r][1];
-  }
-  for (int k = 0; k < 3; ++k)
-  {
-    lt[0][k] = (k == 0 ? 1.0 : 0.0) - lt[1][k] - lt[2][k];
-    ls[0][k] = (k == 0 ? 1.0 : 0.0) - ls[1][k] - ls[2][k];
+    const Cell& c = side == 0 ? t : s;
+    double(&l)[3][3] = side == 0 ? lt : ls;
+    const double dx = ox - c.X[0][0];
+    const double dy = oy - c.X[0][1];
+    for (int r = 0; r < 2; ++r)
+    {
+      l[r + 1][0] = c.Inverse[r][0] * dx + c.Inverse[r][1] * dy;
+      l[r + 1][1] = c.Inverse[r][0];
+      l[r + 1][2] = c.Inverse[r][1];
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      l[0][k] = (k == 0 ? 1.0 : 0.0) - l[1][k] - l[2][k];
+    }
   }
   // Integral of (a + b x + c y)(a' + b' x + c' y) from the moments.
   auto product = [&](const double* f, const double* g) {
