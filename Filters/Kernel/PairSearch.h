@@ -6,11 +6,13 @@
  *
  * The front (the paper's Fig. 2): every target cell is treated once. For a
  * target cell with a starting source candidate, an inner front walks over the
- * source cells' neighbours and keeps every source cell that meets it; while
- * doing so it records, for each face of the target cell, a source cell
- * meeting that face, which is a valid starting candidate for the target
- * neighbour across that face. Those neighbours join the outer front. Work is
- * linear in the number of intersecting pairs.
+ * source cells' neighbours and keeps every source cell that meets it (only
+ * across the source faces the target reaches, `Piece::SourceFaces`: any
+ * other source cell meeting the convex target is reached through cells that
+ * meet it); while doing so it records, for each face of the target cell, a
+ * source cell meeting that face (`Intersector::FaceSeed`), a valid starting
+ * candidate for the target neighbour across that face. Those neighbours join
+ * the outer front. Work is linear in the number of intersecting pairs.
  *
  * Beyond the paper, nothing assumes that cell 0 meets cell 0, that the meshes
  * are connected or cover the same domain, or that a cell's intersection with
@@ -22,9 +24,10 @@
  *    (where its intersection may be disconnected), or its seed fails, the
  *    locator's candidates for that cell are added to the inner front.
  *
- * Meeting is decided on closed cells with exact predicates, so cells that
- * only touch (in a vertex or along an edge) keep the fronts going, and both
- * searches find exactly the same pairs.
+ * Meeting is decided with exact predicates (in 2D on closed cells, so cells
+ * that only touch in a vertex or along an edge keep the fronts going; in 3D
+ * by positive volume, with seeds through shared faces), and both searches
+ * find exactly the same pairs.
  *
  * `Intersector` is the cell-pair geometry (TriangleIntersector in 2D); the
  * search itself does not depend on the dimension. `Visitor` is called as
