@@ -68,7 +68,8 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
     }
     first = false;
   }
-  // About one cell per bin: divisions proportional to the extents.
+  // Bins about twice as wide as a cell (2^d cells per bin): a cell then lies
+  // in few bins (memory), and the rare queries scan few cells.
   const double n = std::max<double>(1.0, static_cast<double>(mesh.NumberOfCells));
   double volume = 1.0;
   int used = 0;
@@ -80,7 +81,7 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
       ++used;
     }
   }
-  const double h = used > 0 ? std::pow(volume / n, 1.0 / used) : 1.0;
+  const double h = used > 0 ? 2.0 * std::pow(volume / n, 1.0 / used) : 1.0;
   for (int d = 0; d < 3; ++d)
   {
     g.Origin[d] = lo[d];

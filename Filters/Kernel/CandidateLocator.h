@@ -37,7 +37,7 @@ public:
   virtual std::unique_ptr<CandidateLocator> NewForThread() const = 0;
 };
 
-/// Uniform grid of bins, about one cell per bin, over a mesh's cell boxes.
+/// Uniform grid of bins, about 2^d cells per bin, over a mesh's cell boxes.
 class BoxGridLocator : public CandidateLocator
 {
 public:
