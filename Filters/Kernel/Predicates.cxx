@@ -23,24 +23,6 @@ inline void TwoProduct(double a, double b, double& p, double& e)
   e = std::fma(a, b, -p);
 }
 
-// Adds b to the nonoverlapping expansion h[0..n) (increasing magnitude) in
-// place; returns the new length. The expansion's sign is that of its last
-// nonzero component.
-inline int GrowExpansion(double* h, int n, double b)
-{
-  double q = b;
-  for (int i = 0; i < n; ++i)
-  {
-    double s;
-    double e;
-    TwoSum(q, h[i], s, e);
-    h[i] = e;
-    q = s;
-  }
-  h[n] = q;
-  return n + 1;
-}
-
 inline void TwoDiff(double a, double b, double& d, double& e)
 {
   d = a - b;
@@ -205,33 +187,15 @@ double Orient2DExact(const double* a, const double* b, const double* c)
   // input coordinates (the cx*cy terms cancel), each split exactly in two.
   const double factors[6][2] = { { a[0], b[1] }, { -a[0], c[1] }, { -c[0], b[1] },
     { -a[1], b[0] }, { a[1], c[0] }, { c[1], b[0] } };
-  double h[12];
-  int n = 0;
+  Expansion det;
   for (const auto& f : factors)
   {
     double p;
     double e;
     TwoProduct(f[0], f[1], p, e);
-    n = GrowExpansion(h, n, e);
-    n = GrowExpansion(h, n, p);
+    det.Add(e);
+    det.Add(p);
   }
-  double sum = 0.0;
-  for (int i = 0; i < n; ++i)
-  {
-    sum += h[i];
-  }
-  // The rounded sum can be zero (or of the wrong sign) only when it
-  // underflows; the sign of the most significant component is exact.
-  for (int i = n - 1; i >= 0; --i)
-  {
-    if (h[i] != 0.0)
-    {
-      return (sum != 0.0 && (sum > 0.0) == (h[i] > 0.0))
-        ? sum
-        : std::copysign(std::numeric_limits<double>::denorm_min(), h[i]);
-    }
-  }
-  return 0.0;
+  return SignedEstimate(det);
 }
-
 } // namespace mp
