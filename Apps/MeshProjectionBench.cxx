@@ -9,7 +9,7 @@
 // For each size n (cells of the target; the source has about as many, on a
 // different, jittered grid) it prints one table: the time of every stage of
 // the kernel (neighbours, seeding, search + intersections + local
-// integrals, assembly, factorization, solve), pairs and pairs per second,
+// integrals, assembly, solve), pairs and pairs per second,
 // peak memory beyond the inputs, and in the same run the ratios of the
 // advancing front against the brute force (up to --brute-max cells), against
 // a locator search (vtkStaticCellLocator::FindCellsWithinBounds per target
@@ -143,7 +143,7 @@ struct Row
   int Dim;
   Index TargetCells;
   Index SourceCells;
-  double Neighbors, Seeding, Search, Assembly, Factorization, Solve, Total;
+  double Neighbors, Seeding, Search, Assembly, Solve, Total;
   Index Pairs;
   double PeakBeyondInputs, InputSize;
   double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
@@ -224,9 +224,8 @@ Row Measure(int dim, double n, double bruteMax)
   r.Solve = Since(t0);
   r.Search = projector.GetTimings().Search;
   r.Assembly = projector.GetTimings().Assembly;
-  r.Factorization = projector.GetTimings().Factorization;
   (void)build;
-  r.Total = r.Neighbors + r.Seeding + r.Search + r.Assembly + r.Factorization + r.Solve;
+  r.Total = r.Neighbors + r.Seeding + r.Search + r.Assembly + r.Solve;
   r.Pairs = projector.GetStatistics().Pieces;
   r.PeakBeyondInputs = StatusMiB("VmHWM:") - before;
 
@@ -292,7 +291,7 @@ void Print(const Row& r)
   std::printf("  %-34s %10s %12s\n", "stage (kernel, 1 thread)", "seconds", "us per cell");
   const std::pair<const char*, double> stages[] = { { "neighbours", r.Neighbors },
     { "seeding (locator build)", r.Seeding }, { "search + intersections + integrals", r.Search },
-    { "assembly", r.Assembly }, { "factorization / preconditioner", r.Factorization },
+    { "assembly", r.Assembly },
     { "solve", r.Solve }, { "total", r.Total } };
   for (const auto& s : stages)
   {
@@ -355,13 +354,13 @@ int main(int argc, char* argv[])
   {
     std::ofstream out(csv);
     out << "dim,target_cells,source_cells,pairs,neighbours,seeding,search,assembly,"
-           "factorization,solve,total,peak_beyond_inputs_mib,input_mib,brute,locator,"
+           "solve,total,peak_beyond_inputs_mib,input_mib,brute,locator,"
            "filter_1_thread,filter_2_threads,resample\n";
     for (const Row& r : rows)
     {
       out << r.Dim << ',' << r.TargetCells << ',' << r.SourceCells << ',' << r.Pairs << ','
           << r.Neighbors << ',' << r.Seeding << ',' << r.Search << ',' << r.Assembly << ','
-          << r.Factorization << ',' << r.Solve << ',' << r.Total << ',' << r.PeakBeyondInputs
+          << r.Solve << ',' << r.Total << ',' << r.PeakBeyondInputs
           << ',' << r.InputSize << ',' << r.Brute << ',' << r.Locator << ',' << r.Filter1 << ','
           << r.Filter2 << ',' << r.Resample << '\n';
     }

@@ -76,8 +76,7 @@ struct ProjectionTimings
 {
   double Search = 0;   ///< pair search + intersections + local integrals + their sums
   double Assembly = 0; ///< the sparsity pattern, coverage, M_ts when kept
-  double Factorization = 0; ///< none with conjugate gradients (kept for the direct fallback)
-  double Solve = 0;    ///< the last Project()
+  double Solve = 0;    ///< the last Project() (conjugate gradients, or the direct fallback)
 };
 
 class MortarProjector
