@@ -8,6 +8,6 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
 bash "$root/Scripts/install-deps.sh"
 bash "$root/Scripts/build.sh"
-timeout 600 xvfb-run -a pvpython "$root/Scripts/project_sample.py" \
+timeout 600 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython "$root/Scripts/project_sample.py" \
   --plugin "$build/lib/paraview-5.11/plugins/MeshProjection/MeshProjection.so" \
   --out-dir "$build/main" "$@"
