@@ -44,6 +44,7 @@
 #include "CandidateLocator.h"
 #include "MeshView.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -108,7 +109,8 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   // stamp[s] == t: source cell s was already tried for target cell t. A
   // stamp instead of the paper's per-cell flag vector keeps the work linear.
   std::vector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
-  std::vector<Seed> outer;
+  std::vector<Seed> outer; // a binary heap: the smallest target id first
+  auto later = [](const Seed& a, const Seed& b) { return a.Target > b.Target; };
   std::vector<Index> inner;
   std::vector<Index> candidates;
   Cell t;
@@ -228,15 +230,15 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       {
         queued[n - begin] = 1;
         outer.push_back({ n, faceSeed[k] });
+        std::push_heap(outer.begin(), outer.end(), later);
       }
     }
   };
 
   Index scan = begin;
-  std::size_t head = 0; // outer[head..] is the front: first in, first out, as in the paper
   for (;;)
   {
-    if (head == outer.size())
+    if (outer.empty())
     {
       while (scan < end && queued[scan - begin])
       {
@@ -250,7 +252,9 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       treat(scan, -1);
       continue;
     }
-    const Seed next = outer[head++];
+    std::pop_heap(outer.begin(), outer.end(), later);
+    const Seed next = outer.back();
+    outer.pop_back();
     treat(next.Target, next.Source);
   }
 }
