@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace mp
 {
@@ -30,15 +32,11 @@ inline double PseudoAngle(double dx, double dy)
 }
 
 
-// Orders the points counterclockwise around their mean and drops exact
-// duplicates (a corner of one triangle that is also a corner of the other).
-void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
+// Insertion sort around the mean, then removal of all exact duplicates: the
+// general path, for more points than a piece can have.
+void SortFew(TriangleIntersector::Piece& p)
 {
   const int n = p.NumberOfVertices;
-  if (n < 2)
-  {
-    return;
-  }
   double cx = 0.0;
   double cy = 0.0;
   for (int i = 0; i < n; ++i)
@@ -53,18 +51,17 @@ void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
   {
     key[i] = PseudoAngle(p.X[i][0] - cx, p.X[i][1] - cy);
   }
-  for (int i = 1; i < n; ++i) // insertion sort: n <= 12
+  for (int i = 1; i < n; ++i)
   {
     const double k = key[i];
     const double x = p.X[i][0];
     const double y = p.X[i][1];
     int j = i - 1;
-    while (j >= 0 && key[j] > k)
+    for (; j >= 0 && key[j] > k; --j)
     {
       key[j + 1] = key[j];
       p.X[j + 1][0] = p.X[j][0];
       p.X[j + 1][1] = p.X[j][1];
-      --j;
     }
     key[j + 1] = k;
     p.X[j + 1][0] = x;
@@ -86,6 +83,129 @@ void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
     }
   }
   p.NumberOfVertices = m;
+}
+
+// Orders the points counterclockwise around their mean and drops exact
+// duplicates (a crossing that rounds onto another point).
+//
+// The points are distinct vertices of the convex piece (decided exactly), so
+// there are at most 6 and, when the piece has an interior, no two of them
+// have the same angle around the mean unless they are equal. Each key is the
+// pseudo-angle with the point's index in its lowest bits (non-negative
+// doubles order like their bit patterns); a 6-input sorting network orders
+// them without data-dependent branches, and equal points end up adjacent.
+void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
+{
+  const int n = p.NumberOfVertices;
+  if (n < 2)
+  {
+    return;
+  }
+  if (n > 6) // not reachable with exact decisions; kept for safety
+  {
+    SortFew(p);
+    return;
+  }
+  double cx = 0.0;
+  double cy = 0.0;
+  for (int i = 0; i < n; ++i)
+  {
+    cx += p.X[i][0];
+    cy += p.X[i][1];
+  }
+  cx /= n;
+  cy /= n;
+  std::uint64_t key[6];
+  for (int i = 0; i < 6; ++i)
+  {
+    if (i < n)
+    {
+      const double angle = PseudoAngle(p.X[i][0] - cx, p.X[i][1] - cy); // in [0, 4]
+      std::uint64_t bits;
+      std::memcpy(&bits, &angle, sizeof bits);
+      key[i] = (bits & ~std::uint64_t(7)) | std::uint64_t(i);
+    }
+    else
+    {
+      key[i] = ~std::uint64_t(0);
+    }
+  }
+  auto exchange = [&key](int i, int j) {
+    const std::uint64_t a = key[i];
+    const std::uint64_t b = key[j];
+    key[i] = a < b ? a : b;
+    key[j] = a < b ? b : a;
+  };
+  exchange(0, 5);
+  exchange(1, 3);
+  exchange(2, 4);
+  exchange(1, 2);
+  exchange(3, 4);
+  exchange(0, 3);
+  exchange(2, 5);
+  exchange(0, 1);
+  exchange(2, 3);
+  exchange(4, 5);
+  exchange(1, 2);
+  exchange(3, 4);
+  double sorted[6][2];
+  for (int i = 0; i < n; ++i)
+  {
+    const int from = static_cast<int>(key[i] & 7u);
+    sorted[i][0] = p.X[from][0];
+    sorted[i][1] = p.X[from][1];
+  }
+  p.X[0][0] = sorted[0][0];
+  p.X[0][1] = sorted[0][1];
+  int m = 1;
+  for (int i = 1; i < n; ++i)
+  {
+    p.X[m][0] = sorted[i][0];
+    p.X[m][1] = sorted[i][1];
+    m += (sorted[i][0] != p.X[m - 1][0]) | (sorted[i][1] != p.X[m - 1][1]);
+  }
+  if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
+  {
+    --m;
+  }
+  p.NumberOfVertices = m;
+}
+
+/**
+ * o[k][j] = Orient2D(a[k], b[k], c[j]) for 3 lines and 3 points, with one
+ * floating-point filter for all nine (Predicates.h): the nine determinants
+ * and their error bounds are computed without branches, and only when one is
+ * within its bound are the undecided ones recomputed exactly.
+ */
+inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (&o)[3][3])
+{
+  constexpr double eps = 1.1102230246251565e-16; // 2^-53
+  constexpr double bound = (3.0 + 16.0 * eps) * eps;
+  bool decided = true;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* a = x[(k + 1) % 3];
+    const double* b = x[(k + 2) % 3];
+    for (int j = 0; j < 3; ++j)
+    {
+      const double left = (a[0] - c[j][0]) * (b[1] - c[j][1]);
+      const double right = (a[1] - c[j][1]) * (b[0] - c[j][0]);
+      const double det = left - right;
+      o[k][j] = det;
+      decided &= std::fabs(det) > bound * (std::fabs(left) + std::fabs(right));
+    }
+  }
+  if (decided)
+  {
+    return;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      o[k][j] = Orient2D(x[(k + 1) % 3], x[(k + 2) % 3], c[j]);
+    }
+  }
 }
 
 inline void AddVertex(TriangleIntersector::Piece& p, double x, double y)
@@ -165,83 +285,96 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   // os[l][i]: side of target corner i w.r.t. source edge l. Positive = inside.
   double ot[3][3];
   double os[3][3];
+  Orient3x3(t.X, s.X, ot);
+  Orient3x3(s.X, t.X, os);
+  // Sign masks, bit 3k + j for entry [k][j].
+  unsigned posT = 0;
+  unsigned negT = 0;
+  unsigned posS = 0;
+  unsigned negS = 0;
   for (int k = 0; k < 3; ++k)
   {
-    const double* a = t.X[(k + 1) % 3];
-    const double* b = t.X[(k + 2) % 3];
-    const double* c = s.X[(k + 1) % 3];
-    const double* d = s.X[(k + 2) % 3];
     for (int j = 0; j < 3; ++j)
     {
-      ot[k][j] = Orient2D(a, b, s.X[j]);
-      os[k][j] = Orient2D(c, d, t.X[j]);
+      posT |= unsigned(ot[k][j] > 0.0) << (3 * k + j);
+      negT |= unsigned(ot[k][j] < 0.0) << (3 * k + j);
+      posS |= unsigned(os[k][j] > 0.0) << (3 * k + j);
+      negS |= unsigned(os[k][j] < 0.0) << (3 * k + j);
     }
   }
-
   // Separating edge: all three corners of the other cell strictly outside.
-  for (int k = 0; k < 3; ++k)
+  constexpr unsigned row = 7u;
+  if (((negT & row) == row) | (((negT >> 3) & row) == row) | (((negT >> 6) & row) == row) |
+    ((negS & row) == row) | (((negS >> 3) & row) == row) | (((negS >> 6) & row) == row))
   {
-    if ((ot[k][0] < 0.0 && ot[k][1] < 0.0 && ot[k][2] < 0.0) ||
-      (os[k][0] < 0.0 && os[k][1] < 0.0 && os[k][2] < 0.0))
-    {
-      return false;
-    }
+    return false;
   }
-
+  constexpr unsigned column = 1u | 8u | 64u; // entries [0][0], [1][0], [2][0]
   // Corners of the target in the closed source: they lie on the two target
-  // faces that meet at that corner.
+  // faces that meet at that corner, and on the source faces they are on.
+  const unsigned zeroS = ~(posS | negS);
+  unsigned targetInside = 0;
   for (int i = 0; i < 3; ++i)
   {
-    if (os[0][i] >= 0.0 && os[1][i] >= 0.0 && os[2][i] >= 0.0)
+    if (!(negS & (column << i)))
     {
+      targetInside |= 1u << i;
       AddVertex(piece, t.X[i][0], t.X[i][1]);
-      piece.TouchedFaces |= (7u & ~(1u << i));
-      for (int l = 0; l < 3; ++l)
-      {
-        if (os[l][i] == 0.0) // on source edge l
-        {
-          piece.SourceFaces |= 1u << l;
-        }
-      }
+      piece.TouchedFaces |= 7u & ~(1u << i);
+      const unsigned on = (zeroS >> i) & column; // bits 0, 3, 6: on source edge 0, 1, 2
+      piece.SourceFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
     }
   }
-  // Corners of the source in the closed target; one on target edge k
-  // touches face k.
+  // Corners of the source in the closed target (skipping one equal to a
+  // target corner already added); one on target edge k touches face k.
+  const unsigned zeroT = ~(posT | negT);
   for (int j = 0; j < 3; ++j)
   {
-    if (ot[0][j] >= 0.0 && ot[1][j] >= 0.0 && ot[2][j] >= 0.0)
+    if (negT & (column << j))
+    {
+      continue;
+    }
+    piece.SourceFaces |= 7u & ~(1u << j); // the source edges at corner j
+    const unsigned on = (zeroT >> j) & column;
+    piece.TouchedFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
+    bool known = false;
+    for (int i = 0; i < 3; ++i)
+    {
+      known |= ((targetInside >> i) & 1u) && t.X[i][0] == s.X[j][0] && t.X[i][1] == s.X[j][1];
+    }
+    if (!known)
     {
       AddVertex(piece, s.X[j][0], s.X[j][1]);
-      piece.SourceFaces |= (7u & ~(1u << j)); // the source edges at corner j
-      for (int k = 0; k < 3; ++k)
-      {
-        if (ot[k][j] == 0.0)
-        {
-          piece.TouchedFaces |= 1u << k;
-        }
-      }
     }
   }
   // Proper crossings: both pairs of end points strictly on opposite sides.
   // Every touching configuration is already covered by the corner tests.
+  // straddleT bit 3k + l: source edge l's corners (l+1, l+2) are strictly on
+  // opposite sides of target edge k; straddleS bit 3l + k likewise.
+  auto straddle = [](unsigned pos, unsigned neg) {
+    // Bit 3k + l of rot1(m), rot2(m): entry (l + 1) % 3, (l + 2) % 3 of row k.
+    auto rot1 = [](unsigned m) { return ((m >> 1) & 0xDBu) | ((m << 2) & 0x124u); };
+    auto rot2 = [](unsigned m) { return ((m >> 2) & 0x49u) | ((m << 1) & 0x1B6u); };
+    return (rot1(pos) & rot2(neg)) | (rot1(neg) & rot2(pos));
+  };
+  const unsigned straddleT = straddle(posT, negT);
+  const unsigned straddleS = straddle(posS, negS);
   for (int k = 0; k < 3; ++k)
   {
     for (int l = 0; l < 3; ++l)
     {
+      if (((straddleT >> (3 * k + l)) & (straddleS >> (3 * l + k)) & 1u) == 0)
+      {
+        continue;
+      }
       const double oc = ot[k][(l + 1) % 3];
       const double od = ot[k][(l + 2) % 3];
-      const double oa = os[l][(k + 1) % 3];
-      const double ob = os[l][(k + 2) % 3];
-      if (((oc > 0.0 && od < 0.0) || (oc < 0.0 && od > 0.0)) &&
-        ((oa > 0.0 && ob < 0.0) || (oa < 0.0 && ob > 0.0)))
-      {
-        const double* c = s.X[(l + 1) % 3];
-        const double* d = s.X[(l + 2) % 3];
-        const double u = oc / (oc - od);
-        AddVertex(piece, c[0] + u * (d[0] - c[0]), c[1] + u * (d[1] - c[1]));
-        piece.TouchedFaces |= 1u << k;
-        piece.SourceFaces |= 1u << l;
-      }
+      const double* c = s.X[(l + 1) % 3];
+      const double* d = s.X[(l + 2) % 3];
+      const double u = oc / (oc - od);
+      AddVertex(piece, c[0] + u * (d[0] - c[0]), c[1] + u * (d[1] - c[1]));
+      piece.TouchedFaces |= 1u << k;
+      piece.SourceFaces |= 1u << l;
     }
   }
   if (piece.NumberOfVertices == 0)
