@@ -147,6 +147,9 @@ struct Row
   Index Pairs;
   double PeakBeyondInputs, InputSize;
   double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
+  /// The VTK filter's own stages on 1 thread (vtkMeshProjectionFilter::Get*Time).
+  double FilterInput = 0, FilterNeighbors = 0, FilterLocator = 0, FilterSearch = 0,
+         FilterAssembly = 0, FilterSolve = 0, FilterOutput = 0;
 };
 
 /// Pairs found by asking vtkStaticCellLocator for the candidates of every
@@ -259,6 +262,16 @@ Row Measure(int dim, double n, double bruteMax)
     t0 = Clock::now();
     filter->Update();
     (threads == 1 ? r.Filter1 : r.Filter2) = Since(t0);
+    if (threads == 1)
+    {
+      r.FilterInput = filter->GetInputTime();
+      r.FilterNeighbors = filter->GetNeighborsTime();
+      r.FilterLocator = filter->GetLocatorTime();
+      r.FilterSearch = filter->GetSearchTime();
+      r.FilterAssembly = filter->GetAssemblyTime();
+      r.FilterSolve = filter->GetSolveTime();
+      r.FilterOutput = filter->GetOutputTime();
+    }
   }
   vtkSMPTools::Initialize(1);
   vtkNew<vtkResampleWithDataSet> resample;
@@ -309,6 +322,15 @@ void Print(const Row& r)
   std::printf("  %-34s %10.4f %11.2fx\n", "locator search / front search", r.Locator,
     r.Locator / r.Search);
   std::printf("  %-34s %10.4f\n", "VTK filter, 1 thread", r.Filter1);
+  const std::pair<const char*, double> filterStages[] = { { "reading the inputs", r.FilterInput },
+    { "neighbours (VTK cell links)", r.FilterNeighbors },
+    { "seeding (vtkStaticCellLocator)", r.FilterLocator },
+    { "search + intersections + integrals", r.FilterSearch }, { "assembly", r.FilterAssembly },
+    { "solve", r.FilterSolve }, { "writing the outputs", r.FilterOutput } };
+  for (const auto& s : filterStages)
+  {
+    std::printf("    %-32s %10.4f\n", s.first, s.second);
+  }
   std::printf("  %-34s %10.4f %11.2fx\n", "VTK filter, 2 threads (speed-up)", r.Filter2,
     r.Filter1 / r.Filter2);
   std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
@@ -355,14 +377,17 @@ int main(int argc, char* argv[])
     std::ofstream out(csv);
     out << "dim,target_cells,source_cells,pairs,neighbours,seeding,search,assembly,"
            "solve,total,peak_beyond_inputs_mib,input_mib,brute,locator,"
-           "filter_1_thread,filter_2_threads,resample\n";
+           "filter_1_thread,filter_2_threads,resample,filter_input,filter_neighbours,"
+           "filter_locator,filter_search,filter_assembly,filter_solve,filter_output\n";
     for (const Row& r : rows)
     {
       out << r.Dim << ',' << r.TargetCells << ',' << r.SourceCells << ',' << r.Pairs << ','
           << r.Neighbors << ',' << r.Seeding << ',' << r.Search << ',' << r.Assembly << ','
           << r.Solve << ',' << r.Total << ',' << r.PeakBeyondInputs
           << ',' << r.InputSize << ',' << r.Brute << ',' << r.Locator << ',' << r.Filter1 << ','
-          << r.Filter2 << ',' << r.Resample << '\n';
+          << r.Filter2 << ',' << r.Resample << ',' << r.FilterInput << ',' << r.FilterNeighbors
+          << ',' << r.FilterLocator << ',' << r.FilterSearch << ',' << r.FilterAssembly << ','
+          << r.FilterSolve << ',' << r.FilterOutput << '\n';
     }
   }
   return 0;

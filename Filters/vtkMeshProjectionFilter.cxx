@@ -94,6 +94,15 @@ int vtkMeshProjectionFilter::RequestData(
   this->NumberOfIntersections = this->NumberOfIntersectionTests = 0;
   this->NumberOfLocatorQueries = 0;
   this->CoveredMeasure = this->ExecutionTime = 0;
+  this->InputTime = this->NeighborsTime = this->LocatorTime = this->SearchTime = 0;
+  this->AssemblyTime = this->SolveTime = this->OutputTime = 0;
+  auto lap = [](std::chrono::steady_clock::time_point& since) {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - since).count();
+    since = now;
+    return seconds;
+  };
+  auto stage = start;
 
   // 1. The output is Input as it came, whatever happens next.
   output->ShallowCopy(target);
@@ -153,10 +162,12 @@ int vtkMeshProjectionFilter::RequestData(
   options.Method = this->SearchMethod == BRUTE_FORCE ? mp::SearchMethod::BruteForce
                                                      : mp::SearchMethod::AdvancingFront;
   std::unique_ptr<mpvtk::StaticLocator> locator;
+  this->InputTime = lap(stage);
   if (options.Method == mp::SearchMethod::AdvancingFront)
   {
     targetMesh.BuildNeighbors();
     sourceMesh.BuildNeighbors();
+    this->NeighborsTime = lap(stage);
     if (targetMesh.NonManifoldFaces() || sourceMesh.NonManifoldFaces())
     {
       vtkWarningMacro(<< "Faces shared by more than two cells (Input: "
@@ -168,6 +179,7 @@ int vtkMeshProjectionFilter::RequestData(
     {
       locator.reset(new mpvtk::StaticLocator(source, sourceMesh));
     }
+    this->LocatorTime = lap(stage);
   }
 
   // 4. The fields: every numeric point array of Source, side by side.
@@ -215,6 +227,7 @@ int vtkMeshProjectionFilter::RequestData(
   }
 
   // 5. Intersections and mortar integrals, summed into M_tt and M_ts u_s.
+  this->InputTime += lap(stage);
   mp::MortarProjector projector;
   options.KeepMixedMatrix = false;
   // One range of target cells per thread of vtkSMPTools' backend (with
@@ -274,6 +287,10 @@ int vtkMeshProjectionFilter::RequestData(
     vtkErrorMacro("The mass matrix of the covered target part could not be solved.");
     return 1;
   }
+  lap(stage);
+  this->SearchTime = projector.GetTimings().Search;
+  this->AssemblyTime = projector.GetTimings().Assembly;
+  this->SolveTime = projector.GetTimings().Solve;
   vtkPointData* outPD = output->GetPointData();
   for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
   {
@@ -336,6 +353,7 @@ int vtkMeshProjectionFilter::RequestData(
     polyhedra->ShallowCopy(
       mpvtk::MakeIntersectionPolyhedra(projector.GetPieces(), targetMesh, sourceMesh));
   }
+  this->OutputTime = lap(stage);
   this->ExecutionTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return 1;
@@ -355,4 +373,11 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfLocatorQueries: " << this->NumberOfLocatorQueries << "\n";
   os << indent << "CoveredMeasure: " << this->CoveredMeasure << "\n";
   os << indent << "ExecutionTime: " << this->ExecutionTime << "\n";
+  os << indent << "InputTime: " << this->InputTime << "\n";
+  os << indent << "NeighborsTime: " << this->NeighborsTime << "\n";
+  os << indent << "LocatorTime: " << this->LocatorTime << "\n";
+  os << indent << "SearchTime: " << this->SearchTime << "\n";
+  os << indent << "AssemblyTime: " << this->AssemblyTime << "\n";
+  os << indent << "SolveTime: " << this->SolveTime << "\n";
+  os << indent << "OutputTime: " << this->OutputTime << "\n";
 }

@@ -135,6 +135,23 @@ public:
   vtkGetMacro(ExecutionTime, double);
   ///@}
 
+  ///@{
+  /**
+   * Wall-clock seconds of the stages of the last execution: reading the
+   * inputs (cell types, coordinate checks, the fields gathered), the cell
+   * neighbours (VTK cell links), the seed locator (vtkStaticCellLocator),
+   * the pair search with the intersections and local integrals, the
+   * assembly, the solve, and writing the outputs.
+   */
+  vtkGetMacro(InputTime, double);
+  vtkGetMacro(NeighborsTime, double);
+  vtkGetMacro(LocatorTime, double);
+  vtkGetMacro(SearchTime, double);
+  vtkGetMacro(AssemblyTime, double);
+  vtkGetMacro(SolveTime, double);
+  vtkGetMacro(OutputTime, double);
+  ///@}
+
 protected:
   vtkMeshProjectionFilter();
   ~vtkMeshProjectionFilter() override;
@@ -154,6 +171,13 @@ protected:
   vtkIdType NumberOfLocatorQueries = 0;
   double CoveredMeasure = 0;
   double ExecutionTime = 0;
+  double InputTime = 0;
+  double NeighborsTime = 0;
+  double LocatorTime = 0;
+  double SearchTime = 0;
+  double AssemblyTime = 0;
+  double SolveTime = 0;
+  double OutputTime = 0;
 
 private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;

@@ -199,47 +199,65 @@ void SimplexMesh::BuildNeighbors()
   const mp::Index* conn = this->Kernel.Connectivity;
   const mp::Index* all = this->AllConnectivity;
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    vtkIdType localNonManifold = 0;
     for (vtkIdType c = begin; c < end; ++c)
     {
       const vtkIdType self = this->ToVTK(c);
       for (int k = 0; k < corners; ++k)
       {
+        if (this->Neighbors[corners * c + k] >= 0)
+        {
+          continue; // found from the other side
+        }
         // The cells around the face's first corner that hold its other corners.
-        const vtkIdType first = conn[corners * c + (k + 1) % corners];
+        const mp::Index first = conn[corners * c + (k + 1) % corners];
+        const mp::Index second = conn[corners * c + (k + 2) % corners];
+        const mp::Index third = corners == 4 ? conn[corners * c + (k + 3) % corners] : second;
         const vtkIdType count = links->GetNcells(first);
         const vtkIdType* around = links->GetCells(first);
-        mp::Index found = -1;
+        vtkIdType found = -1;
         int matches = 0;
         for (vtkIdType i = 0; i < count; ++i)
         {
           const vtkIdType other = around[i];
-          if (other == self)
-          {
-            continue;
-          }
           const mp::Index* o = all + corners * other;
-          bool shares = true;
-          for (int j = 2; j < corners && shares; ++j)
+          bool shares = (o[0] == second) | (o[1] == second) | (o[2] == second);
+          bool shares3 = (o[0] == third) | (o[1] == third) | (o[2] == third);
+          if (corners == 4)
           {
-            const mp::Index p = conn[corners * c + (k + j) % corners];
-            shares = std::find(o, o + corners, p) != o + corners;
+            shares |= o[3] == second;
+            shares3 |= o[3] == third;
           }
-          if (shares)
+          if (shares & shares3 & (other != self))
           {
-            found = this->ToKernel(other); // -1 for a ghost: a boundary here
+            found = other;
             ++matches;
           }
         }
         if (matches == 1)
         {
-          this->Neighbors[corners * c + k] = found;
+          const mp::Index neighbor = this->ToKernel(found); // -1 for a ghost: a boundary here
+          this->Neighbors[corners * c + k] = neighbor;
+          // The same face seen from the neighbour, when this task owns it.
+          if (neighbor >= begin && neighbor < end)
+          {
+            const mp::Index* o = conn + corners * neighbor;
+            for (int l = 0; l < corners; ++l)
+            {
+              if (o[l] != first && o[l] != second && o[l] != third)
+              {
+                this->Neighbors[corners * neighbor + l] = c;
+              }
+            }
+          }
         }
         else if (matches > 1)
         {
-          ++nonManifold;
+          ++localNonManifold;
         }
       }
     }
+    nonManifold += localNonManifold;
   });
   this->NonManifold = nonManifold / 2;
 }

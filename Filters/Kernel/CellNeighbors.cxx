@@ -44,24 +44,28 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
     const Index* ids = mesh.Cell(c);
     for (int k = 0; k < corners; ++k)
     {
+      if (neighbors[c * corners + k] >= 0)
+      {
+        continue; // found from the other side
+      }
       // The other cells around the face's first corner holding all its corners.
       const Index first = ids[(k + 1) % corners];
+      const Index second = ids[(k + 2) % corners];
+      const Index third = corners == 4 ? ids[(k + 3) % corners] : second;
       Index found = -1;
       int matches = 0;
       for (Index i = start[first]; i < start[first + 1]; ++i)
       {
         const Index other = around[i];
-        if (other == c)
-        {
-          continue;
-        }
         const Index* o = mesh.Cell(other);
-        bool shares = true;
-        for (int j = 2; j < corners && shares; ++j)
+        bool shares = (o[0] == second) | (o[1] == second) | (o[2] == second);
+        bool shares3 = (o[0] == third) | (o[1] == third) | (o[2] == third);
+        if (corners == 4)
         {
-          shares = std::find(o, o + corners, ids[(k + j) % corners]) != o + corners;
+          shares |= o[3] == second;
+          shares3 |= o[3] == third;
         }
-        if (shares)
+        if (shares & shares3 & (other != c))
         {
           found = other;
           ++matches;
@@ -70,6 +74,16 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
       if (matches == 1)
       {
         neighbors[c * corners + k] = found;
+        // The same face seen from the neighbour: the corner of `found` that
+        // is not on it.
+        const Index* o = mesh.Cell(found);
+        for (int l = 0; l < corners; ++l)
+        {
+          if (o[l] != first && o[l] != second && o[l] != third)
+          {
+            neighbors[found * corners + l] = c;
+          }
+        }
       }
       else if (matches > 1)
       {

@@ -210,31 +210,47 @@ struct MortarAssembler
         }
       }
     }
-    double mts[N][N] = {};
-    const double measure = Intersector::Integrate(piece, t, s, mts, this->CurrentMtt);
-    if (!(measure > 0.0))
-    {
-      return; // the cells only touch
-    }
-    ++this->Count;
-    this->CoveredMeasure[t.Id] += measure;
+    double measure;
     const int nc = this->Components;
-    for (int i = 0; i < N; ++i)
+    if (this->Mts)
     {
-      double* rhs = this->Rhs + t.Points[i] * nc;
-      for (int j = 0; j < N; ++j)
+      double mts[N][N] = {};
+      measure = Intersector::Integrate(piece, t, s, mts, this->CurrentMtt);
+      if (!(measure > 0.0))
       {
-        const double* u = this->Fields + s.Points[j] * nc;
-        for (int c = 0; c < nc; ++c)
+        return; // the cells only touch
+      }
+      for (int i = 0; i < N; ++i)
+      {
+        double* rhs = this->Rhs + t.Points[i] * nc;
+        for (int j = 0; j < N; ++j)
         {
-          rhs[c] += mts[i][j] * u[c];
-        }
-        if (this->Mts)
-        {
+          const double* u = this->Fields + s.Points[j] * nc;
+          for (int c = 0; c < nc; ++c)
+          {
+            rhs[c] += mts[i][j] * u[c];
+          }
           this->Mts->emplace_back(t.Points[i], s.Points[j], mts[i][j]);
         }
       }
     }
+    else
+    {
+      const double* u[N];
+      double* rhs[N];
+      for (int i = 0; i < N; ++i)
+      {
+        u[i] = this->Fields + s.Points[i] * nc;
+        rhs[i] = this->Rhs + t.Points[i] * nc;
+      }
+      measure = Intersector::Integrate(piece, t, s, this->CurrentMtt, u, nc, rhs);
+      if (!(measure > 0.0))
+      {
+        return; // the cells only touch
+      }
+    }
+    ++this->Count;
+    this->CoveredMeasure[t.Id] += measure;
     if (this->Pieces)
     {
       Intersector::Append(piece, t.Id, s.Id, measure, *this->Pieces);

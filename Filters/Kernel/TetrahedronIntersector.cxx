@@ -433,9 +433,18 @@ double TetrahedronIntersector::Measure(const Piece& piece)
   return volume;
 }
 
-double TetrahedronIntersector::Integrate(
-  const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4])
+namespace
 {
+/**
+ * The piece's moments and both cells' barycentric functions (affine in
+ * coordinates relative to one of the piece's vertices), handed to
+ * use(lt, ls, product). Returns the volume (0 for a piece without interior).
+ */
+template <class Use>
+double IntegratePiece(const TetrahedronIntersector::Piece& piece,
+  const TetrahedronIntersector::Cell& t, const TetrahedronIntersector::Cell& s, const Use& use)
+{
+  using Cell = TetrahedronIntersector::Cell;
   // Moments up to order 2 of the piece relative to one of its vertices (a
   // local origin inside both cells keeps the barycentric functions below of
   // size 1 over the piece): on a tetrahedron of volume V, integral of x_i =
@@ -522,8 +531,26 @@ double TetrahedronIntersector::Integrate(
     }
     return r;
   };
-  AddMortarBlocks<4>(lt, ls, product, Mts, Mtt);
+  use(lt, ls, product);
   return m0;
+}
+} // namespace
+
+double TetrahedronIntersector::Integrate(
+  const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4])
+{
+  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
+    AddMortarBlocks<4>(lt, ls, product, Mts, Mtt);
+  });
+}
+
+double TetrahedronIntersector::Integrate(const Piece& piece, const Cell& t, const Cell& s,
+  double Mtt[4][4], const double* const (&u)[4], int components, double* const (&rhs)[4])
+{
+  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
+    AddTargetBlock<4>(lt, product, Mtt);
+    AddFieldBlock<4>(lt, ls, product, u, components, rhs);
+  });
 }
 
 void TetrahedronIntersector::Append(

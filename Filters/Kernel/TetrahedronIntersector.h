@@ -88,6 +88,14 @@ public:
    */
   static double Integrate(
     const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4]);
+
+  /**
+   * As above, but instead of the M_ts block adds the right-hand sides
+   * rhs[i][c] += integral of phi_i^t u_c for the source field with values
+   * u[j][c] at the corners of `s` (Cell order), c < components.
+   */
+  static double Integrate(const Piece& piece, const Cell& t, const Cell& s, double Mtt[4][4],
+    const double* const (&u)[4], int components, double* const (&rhs)[4]);
   static double Measure(const Piece& piece);
 
   /// Appends the piece's tetrahedra (with their own volumes) to `pieces`.

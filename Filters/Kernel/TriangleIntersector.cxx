@@ -399,9 +399,18 @@ double TriangleIntersector::Measure(const Piece& p)
   return 0.5 * twice;
 }
 
-double TriangleIntersector::Integrate(
-  const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3])
+namespace
 {
+/**
+ * The piece's moments and both cells' barycentric functions (affine in
+ * coordinates relative to the piece's first vertex), handed to
+ * use(lt, ls, product). Returns the area (0 for a piece without interior).
+ */
+template <class Use>
+double IntegratePiece(const TriangleIntersector::Piece& p, const TriangleIntersector::Cell& t,
+  const TriangleIntersector::Cell& s, const Use& use)
+{
+  using Cell = TriangleIntersector::Cell;
   // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to its first
   // vertex, edge by edge (Green's theorem): exact for any polygon. A local
   // origin inside both cells keeps the barycentric functions below of size
@@ -464,8 +473,26 @@ double TriangleIntersector::Integrate(
     return f[0] * g[0] * m0 + (f[0] * g[1] + f[1] * g[0]) * mx + (f[0] * g[2] + f[2] * g[0]) * my +
       f[1] * g[1] * mxx + (f[1] * g[2] + f[2] * g[1]) * mxy + f[2] * g[2] * myy;
   };
-  AddMortarBlocks<3>(lt, ls, product, Mts, Mtt);
+  use(lt, ls, product);
   return m0;
+}
+} // namespace
+
+double TriangleIntersector::Integrate(
+  const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3])
+{
+  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
+    AddMortarBlocks<3>(lt, ls, product, Mts, Mtt);
+  });
+}
+
+double TriangleIntersector::Integrate(const Piece& p, const Cell& t, const Cell& s,
+  double Mtt[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3])
+{
+  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
+    AddTargetBlock<3>(lt, product, Mtt);
+    AddFieldBlock<3>(lt, ls, product, u, components, rhs);
+  });
 }
 
 void TriangleIntersector::Append(

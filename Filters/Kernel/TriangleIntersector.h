@@ -94,6 +94,14 @@ public:
   static double Integrate(
     const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3]);
 
+  /**
+   * As above, but instead of the M_ts block adds the right-hand sides
+   * rhs[i][c] += integral of phi_i^t u_c for the source field with values
+   * u[j][c] at the corners of `s` (Cell order), c < components.
+   */
+  static double Integrate(const Piece& piece, const Cell& t, const Cell& s, double Mtt[3][3],
+    const double* const (&u)[3], int components, double* const (&rhs)[3]);
+
   /// Area of the piece (0 when it has fewer than 3 vertices).
   static double Measure(const Piece& piece);
 
