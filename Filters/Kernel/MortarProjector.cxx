@@ -10,6 +10,8 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <chrono>
 #include <cmath>
 
@@ -17,13 +19,16 @@ namespace mp
 {
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
 using Triplet = Eigen::Triplet<double, Index>;
+using Column = std::int32_t;
 
 struct MortarProjector::Internals
 {
   /// M_tt over the covered part, in CSR with the target mesh's point graph
   /// as pattern; rows of invalid points hold a 1 on the diagonal.
   std::vector<Index> RowStart;
-  std::vector<Index> Columns;
+  /// Column indices in 32 bits (Build() refuses meshes with 2^31 points or
+  /// more): the solve streams them once per iteration.
+  std::vector<Column> Columns;
   std::vector<double> Values;
   SparseMatrix Mts;                ///< target x source points, when kept
   std::vector<double> Rhs;         ///< M_ts u_s for the fields given to Build
@@ -44,12 +49,14 @@ struct MortarProjector::Internals
       y[i] = sum;
     }
   }
-  /// Preconditioned conjugate gradients (Jacobi) for M_tt x = b, from x = 0.
+  /// Preconditioned conjugate gradients (Jacobi) for M_tt x = b, started
+  /// from the lumped-mass solution x_i = b_i / sum_k (M_tt)_ik, which is
+  /// already second-order accurate for smooth fields (fewer iterations).
   /// Returns whether the residual fell below `tolerance` times |b|.
   bool ConjugateGradients(const double* b, double* x, double tolerance, int maxIterations) const
   {
     const Index n = this->Size();
-    std::vector<double> r(b, b + n);
+    std::vector<double> r(n);
     std::vector<double> z(n);
     std::vector<double> p(n);
     std::vector<double> q(n);
@@ -57,15 +64,28 @@ struct MortarProjector::Internals
     double bb = 0.0;
     for (Index i = 0; i < n; ++i)
     {
+      double rowSum = 0.0;
+      for (Index k = this->RowStart[i]; k < this->RowStart[i + 1]; ++k)
+      {
+        rowSum += this->Values[k];
+      }
       inverseDiagonal[i] = 1.0 / this->Values[this->Find(i, i)];
-      z[i] = inverseDiagonal[i] * r[i];
-      p[i] = z[i];
-      x[i] = 0.0;
+      x[i] = rowSum > 0.0 ? b[i] / rowSum : 0.0;
       bb += b[i] * b[i];
     }
     if (bb == 0.0)
     {
+      std::fill(x, x + n, 0.0);
       return true;
+    }
+    this->Multiply(x, q.data());
+    double rr0 = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      r[i] = b[i] - q[i];
+      z[i] = inverseDiagonal[i] * r[i];
+      p[i] = z[i];
+      rr0 += r[i] * r[i];
     }
     double rz = 0.0;
     for (Index i = 0; i < n; ++i)
@@ -73,6 +93,10 @@ struct MortarProjector::Internals
       rz += r[i] * z[i];
     }
     const double goal = tolerance * tolerance * bb;
+    if (rr0 <= goal)
+    {
+      return true;
+    }
     for (int iteration = 0; iteration < maxIterations; ++iteration)
     {
       this->Multiply(p.data(), q.data());
@@ -111,9 +135,10 @@ struct MortarProjector::Internals
   /// Position of entry (i, k) in Values (the pattern contains it).
   Index Find(Index i, Index k) const
   {
-    const Index* begin = this->Columns.data() + this->RowStart[i];
-    const Index* end = this->Columns.data() + this->RowStart[i + 1];
-    return static_cast<Index>(std::lower_bound(begin, end, k) - this->Columns.data());
+    const Column* begin = this->Columns.data() + this->RowStart[i];
+    const Column* end = this->Columns.data() + this->RowStart[i + 1];
+    return static_cast<Index>(
+      std::lower_bound(begin, end, static_cast<Column>(k)) - this->Columns.data());
   }
 };
 
@@ -127,7 +152,7 @@ double Seconds(std::chrono::steady_clock::time_point since)
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
 /// around each point.
-void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& columns)
+void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Column>& columns)
 {
   std::vector<Index> cellStart;
   std::vector<Index> cells;
@@ -136,14 +161,17 @@ void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Ind
   start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
   columns.clear();
   columns.reserve(static_cast<size_t>(mesh.NumberOfPoints) * (n == 3 ? 7 : 15));
-  std::vector<Index> row;
+  std::vector<Column> row;
   for (Index p = 0; p < mesh.NumberOfPoints; ++p)
   {
-    row.assign(1, p);
+    row.assign(1, static_cast<Column>(p));
     for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
     {
       const Index* ids = mesh.Cell(cells[i]);
-      row.insert(row.end(), ids, ids + n);
+      for (int k = 0; k < n; ++k)
+      {
+        row.push_back(static_cast<Column>(ids[k]));
+      }
     }
     std::sort(row.begin(), row.end());
     row.erase(std::unique(row.begin(), row.end()), row.end());
@@ -331,6 +359,12 @@ bool MortarProjector::Build(const MeshView& target, const MeshView& source,
   if (components < 0 || (components > 0 && !fields))
   {
     this->Error = "fields to project: a pointer and a number of components are needed";
+    return false;
+  }
+  if (target.NumberOfPoints > std::numeric_limits<Column>::max())
+  {
+    this->Error = "Input (target) has " + std::to_string(target.NumberOfPoints) +
+      " points; at most 2^31 - 1 are supported";
     return false;
   }
   this->Pieces.Dimension = target.Dimension;
