@@ -178,6 +178,28 @@ double Orient3D(const double* a, const double* b, const double* c, const double*
   {
     return det;
   }
+  if (permanent == 0.0)
+  {
+    // Every product of the differences is zero. When the differences are
+    // exact (the usual case: points on a common coordinate plane, such as a
+    // boundary face of a box), so is the determinant: no expansions needed.
+    bool exact = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      double diff;
+      double tail;
+      TwoDiff(b[k], a[k], diff, tail);
+      exact &= tail == 0.0;
+      TwoDiff(c[k], a[k], diff, tail);
+      exact &= tail == 0.0;
+      TwoDiff(d[k], a[k], diff, tail);
+      exact &= tail == 0.0;
+    }
+    if (exact)
+    {
+      return 0.0;
+    }
+  }
   return Orient3DExact(a, b, c, d);
 }
 

@@ -48,6 +48,7 @@ struct ClipTet
   double X[4][3];
   unsigned OnPlane[4];
   int Original[4]; ///< corner of the source tetrahedron this vertex is, or -1
+  double Volume;   ///< six times the volume, > 0 (orientation dropped)
 };
 
 /// Where the segment from p (inside, dp >= 0) to q (outside, dq < 0) crosses the plane.
@@ -81,11 +82,13 @@ struct Vertex
 inline void Emit(ClipTet* out, int& n, const Vertex& a, const Vertex& b, const Vertex& c,
   const Vertex& e)
 {
-  if (SixVolume(a.X, b.X, c.X, e.X) == 0.0)
+  const double six = SixVolume(a.X, b.X, c.X, e.X);
+  if (six == 0.0)
   {
     return; // collapsed by a vertex lying on the plane
   }
   ClipTet& t = out[n++];
+  t.Volume = std::fabs(six);
   const Vertex* vs[4] = { &a, &b, &c, &e };
   for (int v = 0; v < 4; ++v)
   {
@@ -343,6 +346,7 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
     current[0].OnPlane[v] = 0;
     current[0].Original[v] = v;
   }
+  current[0].Volume = 6.0 * s.Measure;
   for (int k = 0; k < 4 && n > 0; ++k)
   {
     if (!(beyond & (1u << k)))
@@ -375,6 +379,7 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
   {
     const ClipTet& c = current[i];
     std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.X[i][0][0]);
+    piece.Volume[i] = c.Volume / 6.0;
     for (int f = 0; f < 4; ++f)
     {
       const int a = (f + 1) % 4;
@@ -427,8 +432,7 @@ double TetrahedronIntersector::Measure(const Piece& piece)
   double volume = 0.0;
   for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
   {
-    const auto& x = piece.X[i];
-    volume += std::fabs(SixVolume(x[0], x[1], x[2], x[3])) / 6.0;
+    volume += piece.Volume[i];
   }
   return volume;
 }
@@ -464,7 +468,7 @@ double IntegratePiece(const TetrahedronIntersector::Piece& piece,
     {
       Sub(piece.X[n][a], o, p[a]);
     }
-    const double v = std::fabs(SixVolume(p[0], p[1], p[2], p[3])) / 6.0;
+    const double v = piece.Volume[n];
     if (!(v > 0.0))
     {
       continue;
@@ -559,7 +563,7 @@ void TetrahedronIntersector::Append(
   for (int i = 0; i < p.NumberOfTetrahedra; ++i)
   {
     const auto& x = p.X[i];
-    const double v = std::fabs(SixVolume(x[0], x[1], x[2], x[3])) / 6.0;
+    const double v = p.Volume[i];
     if (!(v > 0.0))
     {
       continue;

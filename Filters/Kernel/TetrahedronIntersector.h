@@ -63,6 +63,7 @@ public:
   {
     int NumberOfTetrahedra = 0;
     double X[MaxTetrahedra][4][3];
+    double Volume[MaxTetrahedra]; ///< of each tetrahedron, > 0 (from the clipping)
     unsigned TouchedFaces = 0; ///< bit k: the piece has a face of positive area on target face k
     unsigned SourceFaces = 15; ///< source faces whose neighbours the front visits: all
     /// For a touched face k: -1 when the source reaches beyond it (the source
