@@ -147,9 +147,10 @@ struct Row
   Index Pairs;
   double PeakBeyondInputs, InputSize;
   double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
-  /// The VTK filter's own stages on 1 thread (vtkMeshProjectionFilter::Get*Time).
-  double FilterInput = 0, FilterNeighbors = 0, FilterLocator = 0, FilterSearch = 0,
-         FilterAssembly = 0, FilterSolve = 0, FilterOutput = 0;
+  double KernelOnPairs = -1; ///< intersection kernel alone on the true pairs
+  /// The VTK filter's own stages (vtkMeshProjectionFilter::Get*Time) on 1
+  /// and 2 threads: input, neighbours, locator, search, assembly, solve, output.
+  double FilterStages[2][7] = {};
 };
 
 /// Pairs found by asking vtkStaticCellLocator for the candidates of every
@@ -182,6 +183,70 @@ Index LocatorSearch(const TestMesh& target, const TestMesh& source, vtkUnstructu
     }
   }
   return pairs;
+}
+
+/// Records the (target, source) pairs whose intersection has positive measure.
+template <class Intersector>
+struct TruePairs
+{
+  std::vector<std::pair<Index, Index>> Pairs;
+  void operator()(const typename Intersector::Cell& t, const typename Intersector::Cell& s,
+    const typename Intersector::Piece& piece)
+  {
+    if (Intersector::Measure(piece) > 0.0)
+    {
+      this->Pairs.emplace_back(t.Id, s.Id);
+    }
+  }
+};
+
+/**
+ * The intersection kernel alone on the true pairs, in the order the front
+ * found them: preparing both cells, the intersection and the local
+ * integrals (with the right-hand side of one field), and nothing else: no
+ * search, no neighbours, no failed tests, no sums into the global matrix.
+ * The search time beyond this is the search overhead.
+ */
+template <class Intersector>
+double KernelOnTruePairs(const TestMesh& target, const TestMesh& source, const double* u)
+{
+  constexpr int N = Intersector::Corners;
+  mp::BoxGridLocator locator(source.View());
+  TruePairs<Intersector> found;
+  mp::SearchStatistics stats;
+  mp::AdvancingFrontSearch<Intersector>(target.View(), source.View(), locator, found, stats);
+  typename Intersector::Cell t;
+  typename Intersector::Cell s;
+  typename Intersector::Piece piece;
+  double sink = 0.0;
+  const auto t0 = Clock::now();
+  Index current = -1;
+  for (const auto& pair : found.Pairs)
+  {
+    if (pair.first != current)
+    {
+      current = pair.first;
+      Intersector::Prepare(target.View(), current, t);
+    }
+    Intersector::Prepare(source.View(), pair.second, s);
+    Intersector::Intersect(t, s, piece);
+    double mtt[N][N] = {};
+    double rhs[N] = {};
+    const double* values[N];
+    double* sums[N];
+    for (int i = 0; i < N; ++i)
+    {
+      values[i] = u + s.Points[i];
+      sums[i] = rhs + i;
+    }
+    sink += Intersector::Integrate(piece, t, s, mtt, values, 1, sums) + mtt[0][1] + rhs[1];
+  }
+  const double seconds = Since(t0);
+  if (sink == 12345.678) // keeps the loop from being optimized away
+  {
+    std::printf(" ");
+  }
+  return seconds;
 }
 
 double Field(const double* x)
@@ -232,6 +297,10 @@ Row Measure(int dim, double n, double bruteMax)
   r.Pairs = projector.GetStatistics().Pieces;
   r.PeakBeyondInputs = StatusMiB("VmHWM:") - before;
 
+  r.KernelOnPairs = dim == 2
+    ? KernelOnTruePairs<mp::TriangleIntersector>(target, source, u.data())
+    : KernelOnTruePairs<mp::TetrahedronIntersector>(target, source, u.data());
+
   auto sourceGrid = ToVTK(source, &u);
   auto targetGrid = ToVTK(target, nullptr);
   // Brute force (quadratic: small sizes only).
@@ -252,25 +321,33 @@ Row Measure(int dim, double n, double bruteMax)
   r.Locator = Since(t0);
   (void)located;
   // The whole VTK filter, 1 and 2 threads, and vtkResampleWithDataSet.
+  // Best of two runs each: the first run after the kernel's can pay for
+  // fresh memory pages that the second does not.
   for (int threads : { 1, 2 })
   {
     vtkSMPTools::SetBackend("STDThread");
     vtkSMPTools::Initialize(threads);
-    vtkNew<vtkMeshProjectionFilter> filter;
-    filter->SetInputData(targetGrid);
-    filter->SetSourceData(sourceGrid);
-    t0 = Clock::now();
-    filter->Update();
-    (threads == 1 ? r.Filter1 : r.Filter2) = Since(t0);
-    if (threads == 1)
+    double& best = threads == 1 ? r.Filter1 : r.Filter2;
+    for (int run = 0; run < 2; ++run)
     {
-      r.FilterInput = filter->GetInputTime();
-      r.FilterNeighbors = filter->GetNeighborsTime();
-      r.FilterLocator = filter->GetLocatorTime();
-      r.FilterSearch = filter->GetSearchTime();
-      r.FilterAssembly = filter->GetAssemblyTime();
-      r.FilterSolve = filter->GetSolveTime();
-      r.FilterOutput = filter->GetOutputTime();
+      vtkNew<vtkMeshProjectionFilter> filter;
+      filter->SetInputData(targetGrid);
+      filter->SetSourceData(sourceGrid);
+      t0 = Clock::now();
+      filter->Update();
+      const double seconds = Since(t0);
+      if (best < 0 || seconds < best)
+      {
+        best = seconds;
+        double* stages = r.FilterStages[threads - 1];
+        stages[0] = filter->GetInputTime();
+        stages[1] = filter->GetNeighborsTime();
+        stages[2] = filter->GetLocatorTime();
+        stages[3] = filter->GetSearchTime();
+        stages[4] = filter->GetAssemblyTime();
+        stages[5] = filter->GetSolveTime();
+        stages[6] = filter->GetOutputTime();
+      }
     }
   }
   vtkSMPTools::Initialize(1);
@@ -311,6 +388,8 @@ void Print(const Row& r)
     std::printf("  %-34s %10.4f %12.3f\n", s.first, s.second, 1e6 * s.second / cells);
   }
   std::printf("  pairs per second (search)          %10.3g\n", r.Pairs / r.Search);
+  std::printf("  intersection kernel on true pairs  %10.4f  (search overhead %.0f%% of the search)\n",
+    r.KernelOnPairs, 100.0 * (r.Search - r.KernelOnPairs) / r.Search);
   std::printf("  peak memory beyond inputs          %10.1f MiB (inputs %.1f MiB, ratio %.2f)\n",
     r.PeakBeyondInputs, r.InputSize, r.PeakBeyondInputs / r.InputSize);
   std::printf("  %-34s %10s %12s\n", "comparison", "seconds", "ratio");
@@ -322,17 +401,16 @@ void Print(const Row& r)
   std::printf("  %-34s %10.4f %11.2fx\n", "locator search / front search", r.Locator,
     r.Locator / r.Search);
   std::printf("  %-34s %10.4f\n", "VTK filter, 1 thread", r.Filter1);
-  const std::pair<const char*, double> filterStages[] = { { "reading the inputs", r.FilterInput },
-    { "neighbours (VTK cell links)", r.FilterNeighbors },
-    { "seeding (vtkStaticCellLocator)", r.FilterLocator },
-    { "search + intersections + integrals", r.FilterSearch }, { "assembly", r.FilterAssembly },
-    { "solve", r.FilterSolve }, { "writing the outputs", r.FilterOutput } };
-  for (const auto& s : filterStages)
-  {
-    std::printf("    %-32s %10.4f\n", s.first, s.second);
-  }
   std::printf("  %-34s %10.4f %11.2fx\n", "VTK filter, 2 threads (speed-up)", r.Filter2,
     r.Filter1 / r.Filter2);
+  std::printf("    %-32s %10s %10s\n", "VTK filter stages", "1 thread", "2 threads");
+  const char* names[7] = { "reading the inputs", "neighbours (VTK cell links)",
+    "seeding (vtkStaticCellLocator)", "search + intersections + integrals", "assembly", "solve",
+    "writing the outputs" };
+  for (int k = 0; k < 7; ++k)
+  {
+    std::printf("    %-32s %10.4f %10.4f\n", names[k], r.FilterStages[0][k], r.FilterStages[1][k]);
+  }
   std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
     r.Resample / r.Filter1);
 }
@@ -377,7 +455,7 @@ int main(int argc, char* argv[])
     std::ofstream out(csv);
     out << "dim,target_cells,source_cells,pairs,neighbours,seeding,search,assembly,"
            "solve,total,peak_beyond_inputs_mib,input_mib,brute,locator,"
-           "filter_1_thread,filter_2_threads,resample,filter_input,filter_neighbours,"
+           "filter_1_thread,filter_2_threads,resample,kernel_on_true_pairs,filter_input,filter_neighbours,"
            "filter_locator,filter_search,filter_assembly,filter_solve,filter_output\n";
     for (const Row& r : rows)
     {
@@ -385,9 +463,12 @@ int main(int argc, char* argv[])
           << r.Neighbors << ',' << r.Seeding << ',' << r.Search << ',' << r.Assembly << ','
           << r.Solve << ',' << r.Total << ',' << r.PeakBeyondInputs
           << ',' << r.InputSize << ',' << r.Brute << ',' << r.Locator << ',' << r.Filter1 << ','
-          << r.Filter2 << ',' << r.Resample << ',' << r.FilterInput << ',' << r.FilterNeighbors
-          << ',' << r.FilterLocator << ',' << r.FilterSearch << ',' << r.FilterAssembly << ','
-          << r.FilterSolve << ',' << r.FilterOutput << '\n';
+          << r.Filter2 << ',' << r.Resample << ',' << r.KernelOnPairs;
+      for (int k = 0; k < 7; ++k)
+      {
+        out << ',' << r.FilterStages[0][k];
+      }
+      out << '\n';
     }
   }
   return 0;

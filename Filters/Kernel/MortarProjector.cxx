@@ -35,11 +35,55 @@ struct MortarProjector::Internals
   int Components = 0;
   mutable std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> Direct; ///< fallback only
 
+  /// Concurrent tasks for the solve (ProjectionOptions::Tasks, RunTasks).
+  int Tasks = 1;
+  std::function<void(int, const std::function<void(int)>&)> RunTasks;
+
   Index Size() const { return static_cast<Index>(this->RowStart.size()) - 1; }
-  /// y = M_tt x
-  void Multiply(const double* x, double* y) const
+
+  /**
+   * Runs body(begin, end) over [0, n) split into this->Tasks ranges, at
+   * once when a runner is set, and returns the sum of what the calls return,
+   * added in range order (the same result for the same number of tasks).
+   */
+  template <class Body>
+  auto ForRanges(Index n, const Body& body) const -> decltype(body(Index(0), Index(0)))
   {
-    for (Index i = 0; i < this->Size(); ++i)
+    using Sum = decltype(body(Index(0), Index(0)));
+    const int tasks = this->RunTasks ? static_cast<int>(std::max<Index>(1,
+                                         std::min<Index>(this->Tasks, n / 4096)))
+                                     : 1;
+    if (tasks == 1)
+    {
+      return body(Index(0), n);
+    }
+    std::vector<Sum> partial(static_cast<size_t>(tasks));
+    this->RunTasks(tasks, [&](int k) { partial[k] = body(n * k / tasks, n * (k + 1) / tasks); });
+    Sum sum = partial[0];
+    for (int k = 1; k < tasks; ++k)
+    {
+      sum += partial[k];
+    }
+    return sum;
+  }
+  /// Two sums computed in one pass (for ForRanges).
+  struct TwoSums
+  {
+    double First = 0.0;
+    double Second = 0.0;
+    TwoSums& operator+=(const TwoSums& o)
+    {
+      this->First += o.First;
+      this->Second += o.Second;
+      return *this;
+    }
+  };
+
+  /// y = M_tt x on rows [begin, end); returns sum of x_i y_i over them.
+  double Multiply(const double* x, double* y, Index begin, Index end) const
+  {
+    double xy = 0.0;
+    for (Index i = begin; i < end; ++i)
     {
       double sum = 0.0;
       for (Index p = this->RowStart[i]; p < this->RowStart[i + 1]; ++p)
@@ -47,12 +91,16 @@ struct MortarProjector::Internals
         sum += this->Values[p] * x[this->Columns[p]];
       }
       y[i] = sum;
+      xy += x[i] * sum;
     }
+    return xy;
   }
+
   /// Preconditioned conjugate gradients (Jacobi) for M_tt x = b, started
   /// from the lumped-mass solution x_i = b_i / sum_k (M_tt)_ik, which is
   /// already second-order accurate for smooth fields (fewer iterations).
-  /// Returns whether the residual fell below `tolerance` times |b|.
+  /// Row ranges run as concurrent tasks. Returns whether the residual fell
+  /// below `tolerance` times |b|.
   bool ConjugateGradients(const double* b, double* x, double tolerance, int maxIterations) const
   {
     const Index n = this->Size();
@@ -61,74 +109,84 @@ struct MortarProjector::Internals
     std::vector<double> p(n);
     std::vector<double> q(n);
     std::vector<double> inverseDiagonal(n);
-    double bb = 0.0;
-    for (Index i = 0; i < n; ++i)
-    {
-      double rowSum = 0.0;
-      for (Index k = this->RowStart[i]; k < this->RowStart[i + 1]; ++k)
+    const double bb = this->ForRanges(n, [&](Index begin, Index end) {
+      double sum = 0.0;
+      for (Index i = begin; i < end; ++i)
       {
-        rowSum += this->Values[k];
+        double rowSum = 0.0;
+        for (Index k = this->RowStart[i]; k < this->RowStart[i + 1]; ++k)
+        {
+          rowSum += this->Values[k];
+        }
+        inverseDiagonal[i] = 1.0 / this->Values[this->Find(i, i)];
+        x[i] = rowSum > 0.0 ? b[i] / rowSum : 0.0;
+        sum += b[i] * b[i];
       }
-      inverseDiagonal[i] = 1.0 / this->Values[this->Find(i, i)];
-      x[i] = rowSum > 0.0 ? b[i] / rowSum : 0.0;
-      bb += b[i] * b[i];
-    }
+      return sum;
+    });
     if (bb == 0.0)
     {
       std::fill(x, x + n, 0.0);
       return true;
     }
-    this->Multiply(x, q.data());
-    double rr0 = 0.0;
-    for (Index i = 0; i < n; ++i)
-    {
-      r[i] = b[i] - q[i];
-      z[i] = inverseDiagonal[i] * r[i];
-      p[i] = z[i];
-      rr0 += r[i] * r[i];
-    }
-    double rz = 0.0;
-    for (Index i = 0; i < n; ++i)
-    {
-      rz += r[i] * z[i];
-    }
     const double goal = tolerance * tolerance * bb;
+    this->ForRanges(n, [&](Index begin, Index end) { return this->Multiply(x, q.data(), begin, end); });
+    double rz = 0.0;
+    const double rr0 = this->ForRanges(n, [&](Index begin, Index end) {
+      double rr = 0.0;
+      for (Index i = begin; i < end; ++i)
+      {
+        r[i] = b[i] - q[i];
+        z[i] = inverseDiagonal[i] * r[i];
+        p[i] = z[i];
+        rr += r[i] * r[i];
+      }
+      return rr;
+    });
     if (rr0 <= goal)
     {
       return true;
     }
+    rz = this->ForRanges(n, [&](Index begin, Index end) {
+      double sum = 0.0;
+      for (Index i = begin; i < end; ++i)
+      {
+        sum += r[i] * z[i];
+      }
+      return sum;
+    });
     for (int iteration = 0; iteration < maxIterations; ++iteration)
     {
-      this->Multiply(p.data(), q.data());
-      double pq = 0.0;
-      for (Index i = 0; i < n; ++i)
-      {
-        pq += p[i] * q[i];
-      }
+      const double pq = this->ForRanges(
+        n, [&](Index begin, Index end) { return this->Multiply(p.data(), q.data(), begin, end); });
       const double alpha = rz / pq;
-      double rr = 0.0;
-      for (Index i = 0; i < n; ++i)
-      {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * q[i];
-        rr += r[i] * r[i];
-      }
-      if (rr <= goal)
+      // x, r and z in one pass, with |r|^2 and r.z.
+      const TwoSums sums = this->ForRanges(n, [&](Index begin, Index end) {
+        TwoSums part;
+        for (Index i = begin; i < end; ++i)
+        {
+          x[i] += alpha * p[i];
+          r[i] -= alpha * q[i];
+          z[i] = inverseDiagonal[i] * r[i];
+          part.First += r[i] * r[i];
+          part.Second += r[i] * z[i];
+        }
+        return part;
+      });
+      if (sums.First <= goal)
       {
         return true;
       }
-      double rzNext = 0.0;
-      for (Index i = 0; i < n; ++i)
-      {
-        z[i] = inverseDiagonal[i] * r[i];
-        rzNext += r[i] * z[i];
-      }
+      const double rzNext = sums.Second;
       const double beta = rzNext / rz;
       rz = rzNext;
-      for (Index i = 0; i < n; ++i)
-      {
-        p[i] = z[i] + beta * p[i];
-      }
+      this->ForRanges(n, [&](Index begin, Index end) {
+        for (Index i = begin; i < end; ++i)
+        {
+          p[i] = z[i] + beta * p[i];
+        }
+        return 0.0;
+      });
     }
     return false;
   }
@@ -201,6 +259,16 @@ struct MortarAssembler
   double* CoveredMeasure = nullptr; ///< per target cell
   IntersectionPieces* Pieces = nullptr;
   Index Count = 0;
+  /**
+   * With concurrent tasks: per target point, whether cells of other tasks
+   * also touch it. Rows of such points are not written directly but
+   * collected in Deferred / DeferredRhs (position, value) and added after
+   * all tasks, in task order. Null for a single task.
+   */
+  const char* Shared = nullptr;
+  std::vector<std::pair<Index, double>> Deferred;
+  std::vector<std::pair<Index, double>> DeferredRhs;
+  std::vector<double> Scratch; ///< N x Components, right-hand sides of shared points
 
   Index Current = -1;
   Index CurrentPoints[N];
@@ -214,10 +282,18 @@ struct MortarAssembler
     }
     for (int i = 0; i < N; ++i)
     {
+      const bool shared = this->Shared && this->Shared[this->CurrentPoints[i]];
       for (int k = 0; k < N; ++k)
       {
-        this->Values[this->Pattern->Find(this->CurrentPoints[i], this->CurrentPoints[k])] +=
-          this->CurrentMtt[i][k];
+        const Index position = this->Pattern->Find(this->CurrentPoints[i], this->CurrentPoints[k]);
+        if (shared)
+        {
+          this->Deferred.emplace_back(position, this->CurrentMtt[i][k]);
+        }
+        else
+        {
+          this->Values[position] += this->CurrentMtt[i][k];
+        }
       }
     }
     this->Current = -1;
@@ -250,13 +326,21 @@ struct MortarAssembler
       }
       for (int i = 0; i < N; ++i)
       {
+        const bool shared = this->Shared && this->Shared[t.Points[i]];
         double* rhs = this->Rhs + t.Points[i] * nc;
         for (int j = 0; j < N; ++j)
         {
           const double* u = this->Fields + s.Points[j] * nc;
           for (int c = 0; c < nc; ++c)
           {
-            rhs[c] += mts[i][j] * u[c];
+            if (shared)
+            {
+              this->DeferredRhs.emplace_back(t.Points[i] * nc + c, mts[i][j] * u[c]);
+            }
+            else
+            {
+              rhs[c] += mts[i][j] * u[c];
+            }
           }
           this->Mts->emplace_back(t.Points[i], s.Points[j], mts[i][j]);
         }
@@ -266,15 +350,38 @@ struct MortarAssembler
     {
       const double* u[N];
       double* rhs[N];
+      bool anyShared = false;
       for (int i = 0; i < N; ++i)
       {
         u[i] = this->Fields + s.Points[i] * nc;
-        rhs[i] = this->Rhs + t.Points[i] * nc;
+        if (this->Shared && this->Shared[t.Points[i]])
+        {
+          anyShared = true;
+          this->Scratch.assign(static_cast<size_t>(N) * nc, 0.0);
+        }
+      }
+      for (int i = 0; i < N; ++i)
+      {
+        rhs[i] = (this->Shared && this->Shared[t.Points[i]]) ? this->Scratch.data() + i * nc
+                                                             : this->Rhs + t.Points[i] * nc;
       }
       measure = Intersector::Integrate(piece, t, s, this->CurrentMtt, u, nc, rhs);
       if (!(measure > 0.0))
       {
         return; // the cells only touch
+      }
+      if (anyShared)
+      {
+        for (int i = 0; i < N; ++i)
+        {
+          if (this->Shared[t.Points[i]])
+          {
+            for (int c = 0; c < nc; ++c)
+            {
+              this->DeferredRhs.emplace_back(t.Points[i] * nc + c, rhs[i][c]);
+            }
+          }
+        }
       }
     }
     ++this->Count;
@@ -382,6 +489,8 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
 {
   auto start = std::chrono::steady_clock::now();
   Internals& m = *this->Impl;
+  m.Tasks = std::max(1, options.Tasks);
+  m.RunTasks = options.RunTasks;
   PointGraph(target, m.RowStart, m.Columns);
   m.Values.assign(m.Columns.size(), 0.0);
   m.Components = components;
@@ -394,26 +503,47 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   struct Task
   {
     MortarAssembler<Intersector> Assembler;
-    std::vector<double> Values;
-    std::vector<double> Rhs;
     std::vector<Triplet> Mts;
     IntersectionPieces Pieces;
     SearchStatistics Statistics;
     std::unique_ptr<CandidateLocator> Locator;
   };
+  // Target points touched by the cells of more than one task: their rows
+  // are summed after the tasks (see MortarAssembler::Shared).
+  std::vector<char> shared;
+  if (tasks > 1)
+  {
+    shared.assign(static_cast<size_t>(target.NumberOfPoints), 0);
+    std::vector<int> owner(static_cast<size_t>(target.NumberOfPoints), -1);
+    const int corners = target.CornersPerCell();
+    for (int k = 0; k < tasks; ++k)
+    {
+      for (Index c = cells * k / tasks; c < cells * (k + 1) / tasks; ++c)
+      {
+        for (int i = 0; i < corners; ++i)
+        {
+          const Index point = target.Cell(c)[i];
+          if (owner[point] < 0)
+          {
+            owner[point] = k;
+          }
+          else if (owner[point] != k)
+          {
+            shared[point] = 1;
+          }
+        }
+      }
+    }
+  }
   std::vector<Task> work(static_cast<size_t>(tasks));
   for (int k = 0; k < tasks; ++k)
   {
     Task& w = work[k];
-    if (tasks > 1)
-    {
-      w.Values.assign(m.Values.size(), 0.0);
-      w.Rhs.assign(m.Rhs.size(), 0.0);
-    }
     MortarAssembler<Intersector>& a = w.Assembler;
     a.Pattern = &m;
-    a.Values = tasks > 1 ? w.Values.data() : m.Values.data();
-    a.Rhs = tasks > 1 ? w.Rhs.data() : m.Rhs.data();
+    a.Values = m.Values.data();
+    a.Rhs = m.Rhs.data();
+    a.Shared = tasks > 1 ? shared.data() : nullptr;
     a.Fields = fields;
     a.Components = components;
     a.Mts = options.KeepMixedMatrix ? &w.Mts : nullptr;
@@ -457,16 +587,16 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   std::vector<Triplet> mts;
   for (Task& w : work)
   {
+    for (const auto& entry : w.Assembler.Deferred)
+    {
+      m.Values[entry.first] += entry.second;
+    }
+    for (const auto& entry : w.Assembler.DeferredRhs)
+    {
+      m.Rhs[entry.first] += entry.second;
+    }
     if (tasks > 1)
     {
-      for (size_t i = 0; i < m.Values.size(); ++i)
-      {
-        m.Values[i] += w.Values[i];
-      }
-      for (size_t i = 0; i < m.Rhs.size(); ++i)
-      {
-        m.Rhs[i] += w.Rhs[i];
-      }
       IntersectionPieces& all = this->Pieces;
       const Index shift = all.Offsets.back();
       for (size_t i = 1; i < w.Pieces.Offsets.size(); ++i)
