@@ -316,7 +316,9 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
   // meshes land exactly on the planes. Any target face plane with all
   // source corners on or outside it (or the reverse) separates the cells.
   double exact[4][4];
+  double exactS[4][4]; // the reverse: target corner v w.r.t. source face plane k
   unsigned beyond = 0;
+  unsigned beyondS = 0;
   unsigned onPlane[4] = { 0, 0, 0, 0 }; // per target plane: source corners on it
   for (int k = 0; k < 4; ++k)
   {
@@ -328,7 +330,9 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
       off += exact[k][v] <= 0.0;
       beyond |= (exact[k][v] < 0.0 ? 1u : 0u) << k;
       onPlane[k] |= (exact[k][v] == 0.0 ? 1u : 0u) << v;
-      offS += FaceSide(s, k, t.X[v]) <= 0.0;
+      exactS[k][v] = FaceSide(s, k, t.X[v]);
+      offS += exactS[k][v] <= 0.0;
+      beyondS |= (exactS[k][v] < 0.0 ? 1u : 0u) << k;
     }
     if (off == 4 || offS == 4)
     {
@@ -336,45 +340,51 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
     }
   }
 
+  // The intersection is the source clipped by the target planes it reaches
+  // beyond, or the target clipped by the source planes: clip the cell that
+  // fewer planes cut (the work grows fast with the number of planes).
+  // Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits
+  // 4-7: the clipped cell's own faces (face k opposite corner k).
+  auto count = [](unsigned bits) { return (bits & 1u) + ((bits >> 1) & 1u) + ((bits >> 2) & 1u) + ((bits >> 3) & 1u); };
+  const bool clipTarget = count(beyondS) < count(beyond);
+  const Cell& clipped = clipTarget ? t : s;
+  const Cell& clipping = clipTarget ? s : t;
+  const double(&sides)[4][4] = clipTarget ? exactS : exact;
+  const unsigned cut = clipTarget ? beyondS : beyond;
+
   ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
   ClipTet* current = buffers[0];
   ClipTet* next = buffers[1];
   int n = 1;
   for (int v = 0; v < 4; ++v)
   {
-    std::copy(s.X[v], s.X[v] + 3, current[0].X[v]);
-    current[0].OnPlane[v] = 0;
+    std::copy(clipped.X[v], clipped.X[v] + 3, current[0].X[v]);
+    current[0].OnPlane[v] = (15u & ~(1u << v)) << 4;
     current[0].Original[v] = v;
+    for (int k = 0; k < 4; ++k) // corners exactly on planes
+    {
+      current[0].OnPlane[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+    }
   }
-  current[0].Volume = 6.0 * s.Measure;
+  current[0].Volume = 6.0 * clipped.Measure;
   for (int k = 0; k < 4 && n > 0; ++k)
   {
-    if (!(beyond & (1u << k)))
+    if (!(cut & (1u << k)))
     {
-      // The whole source is inside this plane: only mark corners on it.
-      for (int i = 0; i < n; ++i)
-      {
-        for (int v = 0; v < 4; ++v)
-        {
-          const int o = current[i].Original[v];
-          if (o >= 0 && exact[k][o] == 0.0)
-          {
-            current[i].OnPlane[v] |= 1u << k;
-          }
-        }
-      }
-      continue;
+      continue; // the whole cell is inside this plane
     }
     int m = 0;
     for (int i = 0; i < n; ++i)
     {
-      ClipByPlane(current[i], t.Normal[k], t.X[(k + 1) % 4], 1u << k, exact[k], next, m);
+      ClipByPlane(
+        current[i], clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k], next, m);
     }
     std::swap(current, next);
     n = m;
   }
 
   // Faces of the piece of positive area lying on a target plane.
+  const int targetShift = clipTarget ? 4 : 0;
   for (int i = 0; i < n; ++i)
   {
     const ClipTet& c = current[i];
@@ -385,7 +395,8 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
       const int a = (f + 1) % 4;
       const int b = (f + 2) % 4;
       const int d = (f + 3) % 4;
-      const unsigned common = c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d];
+      const unsigned common =
+        ((c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d]) >> targetShift) & 15u;
       if (common & ~piece.TouchedFaces)
       {
         Vec u, v, w;
