@@ -219,6 +219,302 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
   const double o = Orient3D(a, c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
   return (k % 2) ? o : -o;
 }
+
+/**
+ * A convex polyhedron as a graph in which every vertex has three
+ * neighbours, listed so that the face to the left of the directed edge
+ * a -> b continues at b with Next[b][(slot of a in b) + 1 mod 3]; faces are
+ * then counterclockwise seen from outside. A tetrahedron is such a graph,
+ * and clipping keeps it one: each new vertex lies on an edge from a kept
+ * vertex to a clipped one (even when the kept vertex is on the plane, where
+ * the new vertex coincides with it: an edge of length zero, harmless for
+ * volumes and moments), and links to the kept vertex and to the new vertices
+ * before and after it around the cap. Every vertex is classified once per
+ * plane, so the faces stay consistent with each other whatever the
+ * rounding. This keeps a polyhedron of at most ~12 vertices instead of
+ * splitting up to 27 tetrahedra per plane.
+ *
+ * Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits 4-7:
+ * the clipped cell's own faces (face k opposite corner k).
+ */
+struct VertexGraph
+{
+  static constexpr int MaxVertices = 48;
+  int NumberOfVertices = 0;
+  double X[MaxVertices][3];
+  int Next[MaxVertices][3];
+  unsigned On[MaxVertices];
+  int Original[MaxVertices]; ///< corner of the clipped cell, or -1
+
+  void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
+  {
+    static const int next[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+    this->NumberOfVertices = 4;
+    for (int v = 0; v < 4; ++v)
+    {
+      std::copy(c.X[v], c.X[v] + 3, this->X[v]);
+      std::copy(next[v], next[v] + 3, this->Next[v]);
+      this->On[v] = (15u & ~(1u << v)) << 4;
+      for (int k = 0; k < 4; ++k)
+      {
+        this->On[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+      }
+      this->Original[v] = v;
+    }
+  }
+
+  int SlotOf(int v, int neighbor) const
+  {
+    return this->Next[v][0] == neighbor ? 0 : (this->Next[v][1] == neighbor ? 1 : 2);
+  }
+
+  /// Keeps the part on the inner side of plane `bit`; false when it cannot
+  /// (capacity, or a face walk that does not come back): then the caller
+  /// falls back to splitting tetrahedra.
+  bool Clip(const double* normal, const double* origin, unsigned bit, const double sides[4])
+  {
+    const int n = this->NumberOfVertices;
+    double d[MaxVertices];
+    bool anyInside = false;
+    bool anyOutside = false;
+    for (int v = 0; v < n; ++v)
+    {
+      if (this->Original[v] >= 0)
+      {
+        d[v] = sides[this->Original[v]];
+      }
+      else if (this->On[v] & bit)
+      {
+        d[v] = 0.0;
+      }
+      else
+      {
+        Vec r;
+        Sub(this->X[v], origin, r);
+        d[v] = Dot(normal, r);
+      }
+      anyInside |= d[v] > 0.0;
+      anyOutside |= d[v] < 0.0;
+      if (d[v] == 0.0)
+      {
+        this->On[v] |= bit;
+      }
+    }
+    if (!anyInside)
+    {
+      this->NumberOfVertices = 0; // no volume left
+      return true;
+    }
+    if (!anyOutside)
+    {
+      return true;
+    }
+    // New vertices on the edges from kept to clipped vertices.
+    int total = n;
+    for (int v = 0; v < n; ++v)
+    {
+      if (d[v] < 0.0)
+      {
+        continue;
+      }
+      for (int j = 0; j < 3; ++j)
+      {
+        const int q = this->Next[v][j];
+        if (q >= n || d[q] >= 0.0)
+        {
+          continue;
+        }
+        if (total == MaxVertices)
+        {
+          return false;
+        }
+        const int w = total++;
+        const double u = d[v] / (d[v] - d[q]);
+        for (int c = 0; c < 3; ++c)
+        {
+          this->X[w][c] = this->X[v][c] + u * (this->X[q][c] - this->X[v][c]);
+        }
+        this->On[w] = (this->On[v] & this->On[q]) | bit;
+        this->Original[w] = -1;
+        this->Next[w][0] = v;
+        this->Next[w][1] = -1;
+        this->Next[w][2] = -1;
+        this->Beyond[w - n] = q;
+        this->Next[v][j] = w;
+      }
+    }
+    // Link each new vertex w (on the edge kept v -> clipped q) to the next
+    // new vertex around the face to the left of v -> q: walk that face
+    // through the clipped vertices (whose links are still the old ones).
+    for (int w = n; w < total; ++w)
+    {
+      int previous = this->Next[w][0];
+      int current = this->Beyond[w - n];
+      for (int steps = 0;; ++steps)
+      {
+        if (steps > MaxVertices)
+        {
+          return false;
+        }
+        const int next = this->Next[current][(this->SlotOf(current, previous) + 1) % 3];
+        if (d[next] < 0.0)
+        {
+          previous = current;
+          current = next;
+          continue;
+        }
+        // next is kept: the edge next -> current carries a new vertex, in
+        // the slot of next that pointed to current.
+        int found = -1;
+        for (int j = 0; j < 3; ++j)
+        {
+          const int x = this->Next[next][j];
+          if (x >= n && this->Beyond[x - n] == current)
+          {
+            found = x;
+          }
+        }
+        if (found < 0)
+        {
+          return false;
+        }
+        this->Next[w][1] = found;
+        this->Next[found][2] = w;
+        break;
+      }
+    }
+    // Compact: drop the clipped vertices.
+    int map[MaxVertices];
+    int m = 0;
+    for (int v = 0; v < total; ++v)
+    {
+      map[v] = (v < n && d[v] < 0.0) ? -1 : m++;
+    }
+    for (int v = 0; v < total; ++v)
+    {
+      const int to = map[v];
+      if (to < 0)
+      {
+        continue;
+      }
+      for (int j = 0; j < 3; ++j)
+      {
+        const int x = this->Next[v][j];
+        if (x < 0 || map[x] < 0)
+        {
+          return false;
+        }
+        this->Next[to][j] = map[x];
+      }
+      if (to != v)
+      {
+        std::copy(this->X[v], this->X[v] + 3, this->X[to]);
+        this->On[to] = this->On[v];
+        this->Original[to] = this->Original[v];
+      }
+    }
+    this->NumberOfVertices = m;
+    return true;
+  }
+  int Beyond[MaxVertices]; ///< per new vertex (index - n): the clipped end of its edge
+
+  /**
+   * The faces, walked from the links: the faces of positive area whose
+   * vertices all lie on target face k set bit k of `touched` (target faces
+   * are the vertex bits from `targetShift`), and the tetrahedra from vertex
+   * 0 to the triangles of the faces not holding it go to the piece. False
+   * when a walk does not close or the piece has no room.
+   */
+  bool Decompose(int targetShift, double minArea2, TetrahedronIntersector::Piece& piece) const
+  {
+    piece.NumberOfTetrahedra = 0;
+    piece.TouchedFaces = 0;
+    const int n = this->NumberOfVertices;
+    if (n == 0)
+    {
+      return true;
+    }
+    bool visited[MaxVertices][3] = {};
+    int cycle[MaxVertices];
+    for (int v = 0; v < n; ++v)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        if (visited[v][j])
+        {
+          continue;
+        }
+        int size = 0;
+        int a = v;
+        int slot = j;
+        bool holdsApex = false;
+        unsigned common = 0xFFu;
+        do
+        {
+          if (size == MaxVertices || visited[a][slot])
+          {
+            return false;
+          }
+          visited[a][slot] = true;
+          cycle[size++] = a;
+          holdsApex |= a == 0;
+          common &= this->On[a];
+          const int b = this->Next[a][slot];
+          slot = (this->SlotOf(b, a) + 1) % 3;
+          a = b;
+        } while (a != v || slot != j);
+        const unsigned target = (common >> targetShift) & 15u;
+        if (size < 3 || (holdsApex && !(target & ~piece.TouchedFaces)))
+        {
+          continue;
+        }
+        // Only a face on a target face not yet known touched needs its area.
+        const bool needArea = (target & ~piece.TouchedFaces) != 0;
+        Vec area = { 0.0, 0.0, 0.0 };
+        for (int i = 1; i + 1 < size; ++i)
+        {
+          const double* corners[4] = { this->X[0], this->X[cycle[0]], this->X[cycle[i]],
+            this->X[cycle[i + 1]] };
+          if (needArea)
+          {
+            Vec e, f, g;
+            Sub(corners[2], corners[1], e);
+            Sub(corners[3], corners[1], f);
+            Cross(e, f, g);
+            for (int c = 0; c < 3; ++c)
+            {
+              area[c] += g[c];
+            }
+          }
+          if (holdsApex)
+          {
+            continue;
+          }
+          const double six = SixVolume(corners[0], corners[1], corners[2], corners[3]);
+          if (six == 0.0)
+          {
+            continue;
+          }
+          if (piece.NumberOfTetrahedra == TetrahedronIntersector::MaxTetrahedra)
+          {
+            return false;
+          }
+          const int t = piece.NumberOfTetrahedra++;
+          for (int k = 0; k < 4; ++k)
+          {
+            std::copy(corners[k], corners[k] + 3, piece.X[t][k]);
+          }
+          piece.Volume[t] = six / 6.0;
+        }
+        if (needArea && Dot(area, area) > minArea2)
+        {
+          piece.TouchedFaces |= target;
+        }
+      }
+    }
+    return true;
+  }
+};
 } // namespace
 
 bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
@@ -300,6 +596,17 @@ void TetrahedronIntersector::Bounds(const Cell& cell, double box[6])
 
 bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
 {
+  return IntersectCells(t, s, piece, true);
+}
+
+bool TetrahedronIntersector::IntersectBySplitting(const Cell& t, const Cell& s, Piece& piece)
+{
+  return IntersectCells(t, s, piece, false);
+}
+
+bool TetrahedronIntersector::IntersectCells(
+  const Cell& t, const Cell& s, Piece& piece, bool asGraph)
+{
   piece.NumberOfTetrahedra = 0;
   piece.TouchedFaces = 0;
   for (int c = 0; c < 3; ++c)
@@ -352,65 +659,88 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
   const double(&sides)[4][4] = clipTarget ? exactS : exact;
   const unsigned cut = clipTarget ? beyondS : beyond;
 
-  ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
-  ClipTet* current = buffers[0];
-  ClipTet* next = buffers[1];
-  int n = 1;
-  for (int v = 0; v < 4; ++v)
+  const int targetShift = clipTarget ? 4 : 0;
+  // A face of the piece "has positive area" above 1e-12 of the smaller
+  // cell's typical face (like the 1e-13 for volumes below): rounding leaves
+  // caps of ~1e-32 where the cells only touch, e.g. at a shared corner.
+  // (Compared as the squared norm of twice the area vector.)
+  const double typicalArea = std::cbrt(std::min(t.Measure, s.Measure));
+  const double minArea2 = std::pow(2e-12 * typicalArea * typicalArea, 2);
+  VertexGraph graph;
+  graph.SetTetrahedron(clipped, sides);
+  bool clippedAsGraph = asGraph;
+  for (int k = 0; k < 4 && graph.NumberOfVertices > 0 && clippedAsGraph; ++k)
   {
-    std::copy(clipped.X[v], clipped.X[v] + 3, current[0].X[v]);
-    current[0].OnPlane[v] = (15u & ~(1u << v)) << 4;
-    current[0].Original[v] = v;
-    for (int k = 0; k < 4; ++k) // corners exactly on planes
+    if (cut & (1u << k))
     {
-      current[0].OnPlane[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+      clippedAsGraph =
+        graph.Clip(clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k]);
     }
   }
-  current[0].Volume = 6.0 * clipped.Measure;
-  for (int k = 0; k < 4 && n > 0; ++k)
+  clippedAsGraph = clippedAsGraph && graph.Decompose(targetShift, minArea2, piece);
+  if (!clippedAsGraph)
   {
-    if (!(cut & (1u << k)))
+    // The reference clipper: every plane splits every tetrahedron of the
+    // piece into at most three. Slower, with no capacity limit.
+    ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
+    ClipTet* current = buffers[0];
+    ClipTet* next = buffers[1];
+    int n = 1;
+    for (int v = 0; v < 4; ++v)
     {
-      continue; // the whole cell is inside this plane
+      std::copy(clipped.X[v], clipped.X[v] + 3, current[0].X[v]);
+      current[0].OnPlane[v] = (15u & ~(1u << v)) << 4;
+      current[0].Original[v] = v;
+      for (int k = 0; k < 4; ++k) // corners exactly on planes
+      {
+        current[0].OnPlane[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+      }
     }
-    int m = 0;
+    current[0].Volume = 6.0 * clipped.Measure;
+    for (int k = 0; k < 4 && n > 0; ++k)
+    {
+      if (!(cut & (1u << k)))
+      {
+        continue; // the whole cell is inside this plane
+      }
+      int m = 0;
+      for (int i = 0; i < n; ++i)
+      {
+        ClipByPlane(
+          current[i], clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k], next, m);
+      }
+      std::swap(current, next);
+      n = m;
+    }
+
+    // Faces of the piece of positive area lying on a target plane.
     for (int i = 0; i < n; ++i)
     {
-      ClipByPlane(
-        current[i], clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k], next, m);
-    }
-    std::swap(current, next);
-    n = m;
-  }
-
-  // Faces of the piece of positive area lying on a target plane.
-  const int targetShift = clipTarget ? 4 : 0;
-  for (int i = 0; i < n; ++i)
-  {
-    const ClipTet& c = current[i];
-    std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.X[i][0][0]);
-    piece.Volume[i] = c.Volume / 6.0;
-    for (int f = 0; f < 4; ++f)
-    {
-      const int a = (f + 1) % 4;
-      const int b = (f + 2) % 4;
-      const int d = (f + 3) % 4;
-      const unsigned common =
-        ((c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d]) >> targetShift) & 15u;
-      if (common & ~piece.TouchedFaces)
+      const ClipTet& c = current[i];
+      std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.X[i][0][0]);
+      piece.Volume[i] = c.Volume / 6.0;
+      for (int f = 0; f < 4; ++f)
       {
-        Vec u, v, w;
-        Sub(c.X[b], c.X[a], u);
-        Sub(c.X[d], c.X[a], v);
-        Cross(u, v, w);
-        if (Dot(w, w) > 0.0)
+        const int a = (f + 1) % 4;
+        const int b = (f + 2) % 4;
+        const int d = (f + 3) % 4;
+        const unsigned common =
+          ((c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d]) >> targetShift) & 15u;
+        if (common & ~piece.TouchedFaces)
         {
-          piece.TouchedFaces |= common;
+          Vec u, v, w;
+          Sub(c.X[b], c.X[a], u);
+          Sub(c.X[d], c.X[a], v);
+          Cross(u, v, w);
+          if (Dot(w, w) > minArea2)
+          {
+            piece.TouchedFaces |= common;
+          }
         }
       }
     }
+    piece.NumberOfTetrahedra = n;
   }
-  piece.NumberOfTetrahedra = n;
   for (int k = 0; k < 4; ++k)
   {
     piece.SeedFace[k] = -1;
@@ -435,7 +765,8 @@ bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piec
   // where the cells only touch; below 1e-13 of the smaller cell a piece is
   // taken as touching (its contribution would be below the tolerances of
   // the projection anyway), the same way for every search.
-  return n > 0 && Measure(piece) > 1e-13 * std::min(t.Measure, s.Measure);
+  return piece.NumberOfTetrahedra > 0 &&
+    Measure(piece) > 1e-13 * std::min(t.Measure, s.Measure);
 }
 
 double TetrahedronIntersector::Measure(const Piece& piece)
@@ -479,8 +810,8 @@ double IntegratePiece(const TetrahedronIntersector::Piece& piece,
     {
       Sub(piece.X[n][a], o, p[a]);
     }
-    const double v = piece.Volume[n];
-    if (!(v > 0.0))
+    const double v = piece.Volume[n]; // signed: rounding may leave a sliver negative
+    if (v == 0.0)
     {
       continue;
     }

@@ -64,7 +64,9 @@ public:
     int NumberOfTetrahedra = 0;
     double X[MaxTetrahedra][4][3];
     double Volume[MaxTetrahedra]; ///< of each tetrahedron, > 0 (from the clipping)
-    unsigned TouchedFaces = 0; ///< bit k: the piece has a face of positive area on target face k
+    /// bit k: the piece has a face of positive area (above 1e-12 of the
+    /// smaller cell's typical face) on target face k
+    unsigned TouchedFaces = 0;
     unsigned SourceFaces = 15; ///< source faces whose neighbours the front visits: all
     /// For a touched face k: -1 when the source reaches beyond it (the source
     /// cell itself meets the target neighbour), else the source's own face
@@ -80,8 +82,17 @@ public:
     return piece.SeedFace[k] < 0 ? s.Id : source.Neighbor(s.Id, s.Face[piece.SeedFace[k]]);
   }
   static void Bounds(const Cell& cell, double box[6]);
-  /// Clips source `s` by target `t`; true when the intersection has positive volume.
+  /**
+   * Clips one cell by the face planes of the other (the one fewer planes
+   * cut); true when the intersection has positive volume. The clipped cell
+   * is kept as a polyhedron (a vertex graph), cut into tetrahedra at the
+   * end; should rounding ever leave that graph inconsistent, the splitting
+   * clipper below takes over.
+   */
   static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
+  /// The same with the reference clipper only: every plane splits every
+  /// tetrahedron of the piece in at most three (slower; for tests).
+  static bool IntersectBySplitting(const Cell& t, const Cell& s, Piece& piece);
   /**
    * Adds Mts[i][j] += integral of phi_i^t phi_j^s and Mtt[i][k] += integral of
    * phi_i^t phi_k^t over the piece, exactly, from the piece's moments up to
@@ -102,6 +113,9 @@ public:
   /// Appends the piece's tetrahedra (with their own volumes) to `pieces`.
   static void Append(const Piece& piece, Index target, Index source, double volume,
     IntersectionPieces& pieces);
+
+private:
+  static bool IntersectCells(const Cell& t, const Cell& s, Piece& piece, bool asGraph);
 };
 } // namespace mp
 

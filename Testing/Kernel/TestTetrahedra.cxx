@@ -119,6 +119,73 @@ TEST(Tetrahedra, RandomPairsAreSymmetricAndBounded)
   EXPECT_GT(met, 1000);
 }
 
+// The vertex-graph clipper (Intersect) against the splitting clipper
+// (IntersectBySplitting) on random pairs, a third of them sharing a corner
+// and a third sharing a face: same meeting decision, touched faces and seed
+// faces, volumes and every mortar entry to rounding.
+TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int met = 0;
+  int wellShaped = 0;
+  for (int n = 0; n < 5000; ++n)
+  {
+    double t[4][3];
+    double s[4][3];
+    for (auto& x : t)
+      for (double& c : x)
+        c = u(rng);
+    for (auto& x : s)
+      for (double& c : x)
+        c = 0.8 * u(rng);
+    if (n % 3 == 0) // share a corner
+      std::copy(t[0], t[0] + 3, s[0]);
+    if (n % 3 == 1) // share a face (the source on either side of it)
+      for (int k = 0; k < 3; ++k)
+        std::copy(t[k], t[k] + 3, s[k]);
+    const TestMesh m = TwoTetrahedra(t, s);
+    if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
+      continue;
+    TetrahedronIntersector::Cell a;
+    TetrahedronIntersector::Cell b;
+    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
+    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+    TetrahedronIntersector::Piece graph;
+    TetrahedronIntersector::Piece split;
+    const bool g = TetrahedronIntersector::Intersect(a, b, graph);
+    const bool sp = TetrahedronIntersector::IntersectBySplitting(a, b, split);
+    ASSERT_EQ(g, sp) << n;
+    if (!g)
+      continue;
+    ++met;
+    EXPECT_EQ(graph.TouchedFaces, split.TouchedFaces) << n;
+    for (int k = 0; k < 4; ++k)
+      if (graph.TouchedFaces & (1u << k))
+        EXPECT_EQ(graph.SeedFace[k], split.SeedFace[k]) << n;
+    const double scale = std::min(m.CellVolume(0), m.CellVolume(1));
+    EXPECT_NEAR(TetrahedronIntersector::Measure(graph), TetrahedronIntersector::Measure(split),
+      1e-12 * scale)
+      << n;
+    // The entries of flat cells are ill conditioned (barycentric gradients of
+    // size 1/height, squared): compare them on well-shaped pairs.
+    if (std::min(m.CellVolume(0), m.CellVolume(1)) < 1e-2)
+      continue;
+    ++wellShaped;
+    double mtsG[4][4] = {}, mttG[4][4] = {}, mtsS[4][4] = {}, mttS[4][4] = {};
+    TetrahedronIntersector::Integrate(graph, a, b, mtsG, mttG);
+    TetrahedronIntersector::Integrate(split, a, b, mtsS, mttS);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+      {
+        EXPECT_NEAR(mtsG[i][j], mtsS[i][j], 1e-12 * scale) << n;
+        EXPECT_NEAR(mttG[i][j], mttS[i][j], 1e-12 * scale) << n;
+      }
+  }
+  EXPECT_GT(met, 1500);
+  EXPECT_GT(wellShaped, 500);
+}
+
 TEST(Tetrahedra, MortarEntriesOfIdenticalTetrahedra)
 {
   const double t[4][3] = { { 0.1, 0, 0 }, { 1.3, 0.2, 0 }, { 0.2, 1.1, 0.1 }, { 0, 0.3, 0.9 } };
