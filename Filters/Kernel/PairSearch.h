@@ -14,6 +14,12 @@
  * candidate for the target neighbour across that face. Those neighbours join
  * the outer front. Work is linear in the number of intersecting pairs.
  *
+ * The outer front is treated smallest target id first (a binary heap) rather
+ * than first in, first out: on meshes stored with some locality the front
+ * then sweeps both meshes roughly in storage order, so the source cells it
+ * revisits are still in cache (the FIFO order makes diagonal waves that
+ * touch the whole mesh at once). Any order finds the same pairs.
+ *
  * Beyond the paper, nothing assumes that cell 0 meets cell 0, that the meshes
  * are connected or cover the same domain, or that a cell's intersection with
  * the other mesh is connected:

@@ -429,11 +429,18 @@ struct VertexGraph
   {
     piece.NumberOfTetrahedra = 0;
     piece.TouchedFaces = 0;
+    piece.SourceFaces = 0;
     const int n = this->NumberOfVertices;
     if (n == 0)
     {
       return true;
     }
+    unsigned any = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      any |= this->On[v];
+    }
+    piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
     bool visited[MaxVertices][3] = {};
     int cycle[MaxVertices];
     for (int v = 0; v < n; ++v)
@@ -740,6 +747,13 @@ bool TetrahedronIntersector::IntersectCells(
       }
     }
     piece.NumberOfTetrahedra = n;
+    unsigned any = 0;
+    for (int i = 0; i < n; ++i)
+    {
+      any |= current[i].OnPlane[0] | current[i].OnPlane[1] | current[i].OnPlane[2] |
+        current[i].OnPlane[3];
+    }
+    piece.SourceFaces = (any >> (4 - targetShift)) & 15u;
   }
   for (int k = 0; k < 4; ++k)
   {

@@ -67,7 +67,11 @@ public:
     /// bit k: the piece has a face of positive area (above 1e-12 of the
     /// smaller cell's typical face) on target face k
     unsigned TouchedFaces = 0;
-    unsigned SourceFaces = 15; ///< source faces whose neighbours the front visits: all
+    /// Bit l: some vertex of the piece lies on face l of the source (Cell
+    /// order). Only neighbours across those can meet the target too: the
+    /// source cells meeting the convex target are connected through faces
+    /// meeting it in positive area, and such a face holds piece vertices.
+    unsigned SourceFaces = 15;
     /// For a touched face k: -1 when the source reaches beyond it (the source
     /// cell itself meets the target neighbour), else the source's own face
     /// (in Cell order) lying on it: the source neighbour across meets it.

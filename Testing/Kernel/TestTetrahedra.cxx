@@ -160,6 +160,7 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
       continue;
     ++met;
     EXPECT_EQ(graph.TouchedFaces, split.TouchedFaces) << n;
+    EXPECT_EQ(graph.SourceFaces, split.SourceFaces) << n;
     for (int k = 0; k < 4; ++k)
       if (graph.TouchedFaces & (1u << k))
         EXPECT_EQ(graph.SeedFace[k], split.SeedFace[k]) << n;
