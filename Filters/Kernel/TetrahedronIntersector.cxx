@@ -221,6 +221,44 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
 }
 
 /**
+ * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and four
+ * points, with the filters of all sixteen evaluated first, without branches,
+ * and the exact path taken only for the undecided ones.
+ */
+inline void FaceSides(
+  const TetrahedronIntersector::Cell& c, const double (&x)[4][3], double (&sides)[4][4])
+{
+  constexpr double eps = 1.1102230246251565e-16;
+  bool decided = true;
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* a = c.X[(k + 1) % 4];
+    const double bound = 64.0 * eps * c.NormalScale[k];
+    for (int v = 0; v < 4; ++v)
+    {
+      const double w0 = x[v][0] - a[0];
+      const double w1 = x[v][1] - a[1];
+      const double w2 = x[v][2] - a[2];
+      const double d = c.Normal[k][0] * w0 + c.Normal[k][1] * w1 + c.Normal[k][2] * w2;
+      const double size = std::max(std::max(std::fabs(w0), std::fabs(w1)), std::fabs(w2));
+      sides[k][v] = d;
+      decided &= std::fabs(d) > bound * size;
+    }
+  }
+  if (decided)
+  {
+    return;
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    for (int v = 0; v < 4; ++v)
+    {
+      sides[k][v] = FaceSide(c, k, x[v]);
+    }
+  }
+}
+
+/**
  * A convex polyhedron as a graph in which every vertex has three
  * neighbours, listed so that the face to the left of the directed edge
  * a -> b continues at b with Next[b][(slot of a in b) + 1 mod 3]; faces are
@@ -551,6 +589,7 @@ bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     six = -six;
   }
   cell.Measure = six / 6.0;
+  cell.FaceScale = std::pow(cell.Measure, 2.0 / 3.0);
   for (int c = 0; c < 3; ++c)
   {
     cell.Box[2 * c] = std::min({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
@@ -634,17 +673,17 @@ bool TetrahedronIntersector::IntersectCells(
   unsigned beyond = 0;
   unsigned beyondS = 0;
   unsigned onPlane[4] = { 0, 0, 0, 0 }; // per target plane: source corners on it
+  FaceSides(t, s.X, exact);
+  FaceSides(s, t.X, exactS);
   for (int k = 0; k < 4; ++k)
   {
     int off = 0;
     int offS = 0;
     for (int v = 0; v < 4; ++v)
     {
-      exact[k][v] = FaceSide(t, k, s.X[v]);
       off += exact[k][v] <= 0.0;
       beyond |= (exact[k][v] < 0.0 ? 1u : 0u) << k;
       onPlane[k] |= (exact[k][v] == 0.0 ? 1u : 0u) << v;
-      exactS[k][v] = FaceSide(s, k, t.X[v]);
       offS += exactS[k][v] <= 0.0;
       beyondS |= (exactS[k][v] < 0.0 ? 1u : 0u) << k;
     }
@@ -671,8 +710,8 @@ bool TetrahedronIntersector::IntersectCells(
   // cell's typical face (like the 1e-13 for volumes below): rounding leaves
   // caps of ~1e-32 where the cells only touch, e.g. at a shared corner.
   // (Compared as the squared norm of twice the area vector.)
-  const double typicalArea = std::cbrt(std::min(t.Measure, s.Measure));
-  const double minArea2 = std::pow(2e-12 * typicalArea * typicalArea, 2);
+  const double minArea = 2e-12 * std::min(t.FaceScale, s.FaceScale);
+  const double minArea2 = minArea * minArea;
   VertexGraph graph;
   graph.SetTetrahedron(clipped, sides);
   bool clippedAsGraph = asGraph;

@@ -53,6 +53,7 @@ public:
     double X[4][3];
     double Box[6];     ///< xmin, xmax, ymin, ymax, zmin, zmax
     double Measure;    ///< volume, > 0
+    double FaceScale;  ///< volume^(2/3): the area of a typical face
     double Normal[4][3]; ///< inward normal of face k (not unit), through X[(k+1)%4]
     double NormalScale[4]; ///< |u|max |v|max of the two edges spanning face k (error bounds)
     double Inverse[3][3]; ///< maps x - X[0] to barycentric coordinates 1..3
