@@ -252,10 +252,11 @@ bool TriangleIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
   const double j11 = cell.X[2][1] - cell.X[0][1];
   const double det = j00 * j11 - j01 * j10;
   cell.Measure = 0.5 * std::fabs(det);
-  cell.Inverse[0][0] = j11 / det;
-  cell.Inverse[0][1] = -j01 / det;
-  cell.Inverse[1][0] = -j10 / det;
-  cell.Inverse[1][1] = j00 / det;
+  const double inverse = 1.0 / det;
+  cell.Inverse[0][0] = j11 * inverse;
+  cell.Inverse[0][1] = -j01 * inverse;
+  cell.Inverse[1][0] = -j10 * inverse;
+  cell.Inverse[1][1] = j00 * inverse;
   return cell.Measure > 0.0 && std::isfinite(cell.Inverse[0][0] + cell.Inverse[0][1] +
                                  cell.Inverse[1][0] + cell.Inverse[1][1]);
 }
