@@ -4,7 +4,7 @@
 // square (triangles) and the unit cube (tetrahedra).
 //
 //   mesh-projection-bench [--dim 2|3|23] [--sizes 1e3,1e4,1e5,1e6]
-//                         [--brute-max 2e4] [--csv FILE]
+//                         [--brute-max 2e4] [--csv FILE] [--filter-only]
 //
 // For each size n (cells of the target; the source has about as many, on a
 // different, jittered grid) it prints one table: the time of every stage of
@@ -16,6 +16,8 @@
 // cell, then the same intersector), and of the whole VTK filter against
 // ParaView's Resample With Dataset (vtkResampleWithDataSet) on the same
 // target, with the filter on 1 and 2 threads (vtkSMPTools, STDThread).
+// --filter-only runs just the VTK filter once per size, on the calling
+// thread, and prints its stages (for profiling).
 // Timings are wall-clock seconds of one run each; ratios, not absolute
 // seconds, carry the comparison.
 #include "MortarProjector.h"
@@ -254,7 +256,7 @@ double Field(const double* x)
   return std::sin(3 * x[0]) * std::cos(2 * x[1]) + x[2];
 }
 
-Row Measure(int dim, double n, double bruteMax)
+Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 {
   Row r{};
   r.Dim = dim;
@@ -270,6 +272,23 @@ Row Measure(int dim, double n, double bruteMax)
     u[p] = Field(&source.Points[3 * p]);
   }
 
+  if (filterOnly)
+  {
+    auto sourceGrid = ToVTK(source, &u);
+    auto targetGrid = ToVTK(target, nullptr);
+    vtkNew<vtkMeshProjectionFilter> filter;
+    filter->SetInputData(targetGrid);
+    filter->SetSourceData(sourceGrid);
+    const auto t0 = Clock::now();
+    filter->Update();
+    r.Filter1 = Since(t0);
+    const double stages[7] = { filter->GetInputTime(), filter->GetNeighborsTime(),
+      filter->GetLocatorTime(), filter->GetSearchTime(), filter->GetAssemblyTime(),
+      filter->GetSolveTime(), filter->GetOutputTime() };
+    std::copy(stages, stages + 7, r.FilterStages[0]);
+    r.Pairs = filter->GetNumberOfIntersections();
+    return r;
+  }
   // The kernel, stage by stage (one thread).
   const double before = StatusMiB("VmRSS:");
   ResetPeakMemory();
@@ -372,6 +391,23 @@ std::vector<double> ParseList(const char* text)
   return values;
 }
 
+const char* const FilterStageNames[7] = { "reading the inputs", "neighbours (VTK cell links)",
+  "seeding (vtkStaticCellLocator)", "search + intersections + integrals", "assembly", "solve",
+  "writing the outputs" };
+
+/// --filter-only: the VTK filter on the calling thread, stage by stage.
+void PrintFilter(const Row& r)
+{
+  std::printf("\n%dD  target %lld cells, source %lld cells, %lld intersecting pairs\n", r.Dim,
+    static_cast<long long>(r.TargetCells), static_cast<long long>(r.SourceCells),
+    static_cast<long long>(r.Pairs));
+  std::printf("  %-34s %10.4f\n", "VTK filter (one run)", r.Filter1);
+  for (int k = 0; k < 7; ++k)
+  {
+    std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[0][k]);
+  }
+}
+
 void Print(const Row& r)
 {
   const double cells = static_cast<double>(r.TargetCells);
@@ -404,12 +440,10 @@ void Print(const Row& r)
   std::printf("  %-34s %10.4f %11.2fx\n", "VTK filter, 2 threads (speed-up)", r.Filter2,
     r.Filter1 / r.Filter2);
   std::printf("    %-32s %10s %10s\n", "VTK filter stages", "1 thread", "2 threads");
-  const char* names[7] = { "reading the inputs", "neighbours (VTK cell links)",
-    "seeding (vtkStaticCellLocator)", "search + intersections + integrals", "assembly", "solve",
-    "writing the outputs" };
   for (int k = 0; k < 7; ++k)
   {
-    std::printf("    %-32s %10.4f %10.4f\n", names[k], r.FilterStages[0][k], r.FilterStages[1][k]);
+    std::printf("    %-32s %10.4f %10.4f\n", FilterStageNames[k], r.FilterStages[0][k],
+      r.FilterStages[1][k]);
   }
   std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
     r.Resample / r.Filter1);
@@ -422,10 +456,13 @@ int main(int argc, char* argv[])
   std::vector<double> sizes = { 1e3, 1e4, 1e5, 1e6 };
   double bruteMax = 2e4;
   std::string csv;
+  bool filterOnly = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if (a == "--dim" && i + 1 < argc)
+    if (a == "--filter-only")
+      filterOnly = true;
+    else if (a == "--dim" && i + 1 < argc)
       dims = argv[++i];
     else if (a == "--sizes" && i + 1 < argc)
       sizes = ParseList(argv[++i]);
@@ -436,7 +473,9 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--dim 2|3|23] [--sizes 1e3,1e4,...] [--brute-max N] [--csv FILE]\n", argv[0]);
+        "usage: %s [--dim 2|3|23] [--sizes 1e3,1e4,...] [--brute-max N] [--csv FILE] "
+        "[--filter-only]\n",
+        argv[0]);
       return 2;
     }
   }
@@ -445,8 +484,15 @@ int main(int argc, char* argv[])
   {
     for (double n : sizes)
     {
-      rows.push_back(Measure(d - '0', n, bruteMax));
-      Print(rows.back());
+      rows.push_back(Measure(d - '0', n, bruteMax, filterOnly));
+      if (filterOnly)
+      {
+        PrintFilter(rows.back());
+      }
+      else
+      {
+        Print(rows.back());
+      }
       std::fflush(stdout);
     }
   }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMeshProjectionMesh.h"
 
+#include "CellNeighbors.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
@@ -262,32 +264,80 @@ void SimplexMesh::BuildNeighbors()
   this->NonManifold = nonManifold / 2;
 }
 
+struct StaticLocator::Shared
+{
+  vtkUnstructuredGrid* Grid = nullptr;
+  vtkSmartPointer<vtkStaticCellLocator> All;      ///< over Grid, built when first asked
+  vtkSmartPointer<vtkStaticCellLocator> Boundary; ///< over BoundaryGrid
+  vtkSmartPointer<vtkUnstructuredGrid> BoundaryGrid;
+  std::vector<mp::Index> BoundaryCells; ///< kernel id of each BoundaryGrid cell
+  std::mutex Lock;
+};
+
 StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
   : Mesh(mesh)
-  , Locator(vtkSmartPointer<vtkStaticCellLocator>::New())
-  , Lock(std::make_shared<std::mutex>())
+  , Locators(std::make_shared<Shared>())
 {
-  this->Locator->SetDataSet(grid);
-  this->Locator->BuildLocator();
+  Shared& l = *this->Locators;
+  l.Grid = grid;
+  mp::BoundaryCells(mesh.View(), l.BoundaryCells);
+  // The boundary cells as a grid of their own on the source's points.
+  const int corners = mesh.View().CornersPerCell();
+  const vtkIdType n = static_cast<vtkIdType>(l.BoundaryCells.size());
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(n + 1);
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(corners * n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, corners * i);
+    const mp::Index* ids = mesh.View().Cell(l.BoundaryCells[i]);
+    for (int k = 0; k < corners; ++k)
+    {
+      connectivity->SetValue(corners * i + k, ids[k]);
+    }
+  }
+  offsets->SetValue(n, corners * n);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  l.BoundaryGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  l.BoundaryGrid->SetPoints(grid->GetPoints());
+  l.BoundaryGrid->SetCells(corners == 3 ? VTK_TRIANGLE : VTK_TETRA, cells);
+  l.Boundary = vtkSmartPointer<vtkStaticCellLocator>::New();
+  l.Boundary->SetDataSet(l.BoundaryGrid);
+  l.Boundary->BuildLocator();
 }
 
-StaticLocator::StaticLocator(
-  vtkStaticCellLocator* shared, std::shared_ptr<std::mutex> lock, const SimplexMesh& mesh)
+StaticLocator::StaticLocator(std::shared_ptr<Shared> shared, const SimplexMesh& mesh)
   : Mesh(mesh)
-  , Locator(shared)
-  , Lock(std::move(lock))
+  , Locators(std::move(shared))
 {
 }
 
 std::unique_ptr<mp::CandidateLocator> StaticLocator::NewForThread() const
 {
-  return std::unique_ptr<mp::CandidateLocator>(
-    new StaticLocator(this->Locator, this->Lock, this->Mesh));
+  return std::unique_ptr<mp::CandidateLocator>(new StaticLocator(this->Locators, this->Mesh));
 }
 
 StaticLocator::~StaticLocator() = default;
 
+bool StaticLocator::BuiltFullLocator() const
+{
+  std::lock_guard<std::mutex> guard(this->Locators->Lock);
+  return this->Locators->All != nullptr;
+}
+
 void StaticLocator::FindCandidates(const double box[6], std::vector<mp::Index>& cells)
+{
+  this->Find(true, box, cells);
+}
+
+void StaticLocator::FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells)
+{
+  this->Find(false, box, cells);
+}
+
+void StaticLocator::Find(bool all, const double box[6], std::vector<mp::Index>& cells)
 {
   // 2D: the kernel works in x and y; the source lies in its own plane.
   double bounds[6] = { box[0], box[1], box[2], box[3], box[4], box[5] };
@@ -295,14 +345,21 @@ void StaticLocator::FindCandidates(const double box[6], std::vector<mp::Index>& 
   {
     bounds[4] = bounds[5] = this->Mesh.PlaneZ();
   }
+  Shared& l = *this->Locators;
   {
-    std::lock_guard<std::mutex> guard(*this->Lock);
-    this->Locator->FindCellsWithinBounds(bounds, this->Ids);
+    std::lock_guard<std::mutex> guard(l.Lock);
+    if (all && !l.All)
+    {
+      l.All = vtkSmartPointer<vtkStaticCellLocator>::New();
+      l.All->SetDataSet(l.Grid);
+      l.All->BuildLocator();
+    }
+    (all ? l.All : l.Boundary)->FindCellsWithinBounds(bounds, this->Ids);
   }
   cells.clear();
   for (vtkIdType id : *this->Ids)
   {
-    const mp::Index c = this->Mesh.ToKernel(id);
+    const mp::Index c = all ? this->Mesh.ToKernel(id) : l.BoundaryCells[id];
     if (c >= 0)
     {
       cells.push_back(c);

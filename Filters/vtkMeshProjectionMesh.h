@@ -74,25 +74,36 @@ private:
   vtkIdType Ghosts = 0;
 };
 
-/// The kernel's seed search over a source mesh, answered by vtkStaticCellLocator.
+/**
+ * The kernel's candidate search over a source mesh, answered by
+ * vtkStaticCellLocator: one over the source's boundary cells (a grid of
+ * those cells sharing the source's points), built at once, and one over the
+ * whole source, built on the first question that needs it (see
+ * CandidateLocator.h: on meshes of the same domain, never).
+ */
 class StaticLocator : public mp::CandidateLocator
 {
 public:
+  /// `mesh` must have its neighbours (SimplexMesh::BuildNeighbors).
   StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh);
   ~StaticLocator() override;
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
-  /// Shares the VTK locator; queries are serialized by a shared mutex (they
-  /// are rare: first seeds and cells at the source boundary), since VTK 9.2
-  /// does not document FindCellsWithinBounds as thread-safe.
+  void FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells) override;
+  /// Shares the VTK locators; queries (and the lazy build) are serialized by
+  /// a shared mutex (they are rare: first seeds and cells at the source
+  /// boundary), since VTK 9.2 does not document FindCellsWithinBounds as
+  /// thread-safe.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
+  /// Whether the locator over all source cells was built.
+  bool BuiltFullLocator() const;
 
 private:
-  StaticLocator(vtkStaticCellLocator* shared, std::shared_ptr<std::mutex> lock,
-    const SimplexMesh& mesh);
+  struct Shared;
+  StaticLocator(std::shared_ptr<Shared> shared, const SimplexMesh& mesh);
+  void Find(bool all, const double box[6], std::vector<mp::Index>& cells);
 
   const SimplexMesh& Mesh;
-  vtkSmartPointer<vtkStaticCellLocator> Locator;
-  std::shared_ptr<std::mutex> Lock;
+  std::shared_ptr<Shared> Locators;
   vtkNew<vtkIdList> Ids;
 };
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "CandidateLocator.h"
 
+#include "CellNeighbors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,8 +35,8 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
 }
 } // namespace
 
-BoxGridLocator::BoxGridLocator(std::shared_ptr<const Bins> bins, Index cells)
-  : Grid(std::move(bins))
+BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared, Index cells)
+  : Grids(std::move(shared))
   , Stamp(static_cast<size_t>(cells), -1)
 {
 }
@@ -42,21 +44,33 @@ BoxGridLocator::BoxGridLocator(std::shared_ptr<const Bins> bins, Index cells)
 std::unique_ptr<CandidateLocator> BoxGridLocator::NewForThread() const
 {
   return std::unique_ptr<CandidateLocator>(
-    new BoxGridLocator(this->Grid, static_cast<Index>(this->Stamp.size())));
+    new BoxGridLocator(this->Grids, static_cast<Index>(this->Stamp.size())));
 }
 
 BoxGridLocator::BoxGridLocator(const MeshView& mesh)
-  : Stamp(static_cast<size_t>(mesh.NumberOfCells), -1)
+  : Grids(std::make_shared<Shared>())
+  , Stamp(static_cast<size_t>(mesh.NumberOfCells), -1)
 {
-  auto grid = std::make_shared<Bins>();
-  Bins& g = *grid;
+  this->Grids->Mesh = mesh;
+  if (mesh.Neighbors)
+  {
+    std::vector<Index> boundary;
+    BoundaryCells(mesh, boundary);
+    this->Grids->Boundary.reset(new Bins(mesh, &boundary));
+  }
+}
+
+BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subset)
+{
+  const Index count = subset ? static_cast<Index>(subset->size()) : mesh.NumberOfCells;
+  auto cellAt = [&](Index i) { return subset ? (*subset)[i] : i; };
   double lo[3] = { 0, 0, 0 };
   double hi[3] = { 0, 0, 0 };
   bool first = true;
   double box[6];
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  for (Index i = 0; i < count; ++i)
   {
-    CellBox(mesh, c, box);
+    CellBox(mesh, cellAt(i), box);
     for (int d = 0; d < 3; ++d)
     {
       if (!std::isfinite(box[2 * d]) || !std::isfinite(box[2 * d + 1]))
@@ -69,7 +83,9 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
     first = false;
   }
   // Bins about twice as wide as a cell (2^d cells per bin): a cell then lies
-  // in few bins (memory), and the rare queries scan few cells.
+  // in few bins (memory), and the rare queries scan few cells. The cell size
+  // is the whole mesh's; the boundary cells span the mesh's bounding box
+  // (its extreme points are boundary vertices).
   const double n = std::max<double>(1.0, static_cast<double>(mesh.NumberOfCells));
   double volume = 1.0;
   int used = 0;
@@ -84,39 +100,53 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   const double h = used > 0 ? 2.0 * std::pow(volume / n, 1.0 / used) : 1.0;
   for (int d = 0; d < 3; ++d)
   {
-    g.Origin[d] = lo[d];
+    this->Origin[d] = lo[d];
     const double extent = hi[d] - lo[d];
-    g.Divisions[d] =
+    this->Divisions[d] =
       (d < mesh.Dimension && extent > 0.0) ? std::max(1, std::min(1 << 12, int(extent / h))) : 1;
-    g.Spacing[d] = extent > 0.0 ? extent / g.Divisions[d] : 1.0;
+    this->Spacing[d] = extent > 0.0 ? extent / this->Divisions[d] : 1.0;
   }
-  const size_t bins = size_t(g.Divisions[0]) * g.Divisions[1] * g.Divisions[2];
-  std::vector<Index> count(bins + 1, 0);
+  // Few cells in a large box (the boundary of a 3D mesh): at most about
+  // 8 bins per cell, so that memory follows the cells, not the box.
+  const double cap = 8.0 * std::max<double>(1.0, static_cast<double>(count));
+  while (double(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2] > cap)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      if (this->Divisions[d] > 1)
+      {
+        this->Divisions[d] = (this->Divisions[d] + 1) / 2;
+        this->Spacing[d] = (hi[d] - lo[d]) / this->Divisions[d];
+      }
+    }
+  }
+  const size_t bins = size_t(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2];
+  std::vector<Index> counts(bins + 1, 0);
   auto forEachBin = [&](Index c, auto&& f) {
     CellBox(mesh, c, box);
     int a[3];
     int b[3];
-    g.Range(box, a, b);
+    this->Range(box, a, b);
     for (int k = a[2]; k <= b[2]; ++k)
       for (int j = a[1]; j <= b[1]; ++j)
         for (int i = a[0]; i <= b[0]; ++i)
-          f((size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i);
+          f((size_t(k) * this->Divisions[1] + j) * this->Divisions[0] + i);
   };
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  for (Index i = 0; i < count; ++i)
   {
-    forEachBin(c, [&](size_t bin) { ++count[bin + 1]; });
+    forEachBin(cellAt(i), [&](size_t bin) { ++counts[bin + 1]; });
   }
   for (size_t b = 0; b < bins; ++b)
   {
-    count[b + 1] += count[b];
+    counts[b + 1] += counts[b];
   }
-  g.BinStart = count;
-  g.BinCells.resize(static_cast<size_t>(count[bins]));
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  this->BinStart = counts;
+  this->BinCells.resize(static_cast<size_t>(counts[bins]));
+  for (Index i = 0; i < count; ++i)
   {
-    forEachBin(c, [&](size_t bin) { g.BinCells[count[bin]++] = c; });
+    const Index c = cellAt(i);
+    forEachBin(c, [&](size_t bin) { this->BinCells[counts[bin]++] = c; });
   }
-  this->Grid = grid;
 }
 
 void BoxGridLocator::Bins::Range(const double box[6], int lo[3], int hi[3]) const
@@ -138,11 +168,27 @@ void BoxGridLocator::Bins::Range(const double box[6], int lo[3], int hi[3]) cons
 
 void BoxGridLocator::FindCandidates(const double box[6], std::vector<Index>& cells)
 {
+  Shared& g = *this->Grids;
+  std::call_once(g.AllBuilt, [&g] { g.All.reset(new Bins(g.Mesh, nullptr)); });
+  this->Collect(*g.All, box, cells);
+}
+
+void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Index>& cells)
+{
+  if (!this->Grids->Boundary)
+  {
+    this->FindCandidates(box, cells); // no neighbours: every cell may be at the boundary
+    return;
+  }
+  this->Collect(*this->Grids->Boundary, box, cells);
+}
+
+void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)
+{
   cells.clear();
   ++this->Query;
   int lo[3];
   int hi[3];
-  const Bins& g = *this->Grid;
   g.Range(box, lo, hi);
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)

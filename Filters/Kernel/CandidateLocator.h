@@ -5,9 +5,16 @@
  *
  * The front needs a search only to start (and to restart on parts of the
  * target it cannot reach through neighbours): "which source cells may meet
- * this box?". The VTK filter answers with vtkStaticCellLocator; the kernel
- * ships BoxGridLocator, a uniform bin grid over the source cells' bounding
- * boxes, for callers without VTK.
+ * this box?". Two questions, in the order the front asks them (PairSearch.h):
+ * first only among the source cells at the boundary of the source mesh, a
+ * small set (about n^(1/2) of n triangles, n^(2/3) of n tetrahedra) that
+ * settles every target cell whose walk met that boundary; then, rarely,
+ * among all source cells. Implementations index the boundary cells at once
+ * and all cells only when first asked, so that the usual projection (a
+ * front started by a walk, re-seeded at the boundary) never pays for an
+ * index over the whole source. The VTK filter answers with
+ * vtkStaticCellLocator; the kernel ships BoxGridLocator, uniform bin grids
+ * over the cells' bounding boxes, for callers without VTK.
  */
 #ifndef MeshProjection_Kernel_CandidateLocator_h
 #define MeshProjection_Kernel_CandidateLocator_h
@@ -15,6 +22,7 @@
 #include "MeshView.h"
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace mp
@@ -31,18 +39,36 @@ public:
   virtual void FindCandidates(const double box[6], std::vector<Index>& cells) = 0;
 
   /**
+   * Replaces `cells` with at least the boundary cells of the source (cells
+   * with a face without neighbour, see BoundaryCells()) whose bounding boxes
+   * may overlap `box`. Other cells are harmless; the default answers with
+   * FindCandidates().
+   */
+  virtual void FindBoundaryCandidates(const double box[6], std::vector<Index>& cells)
+  {
+    this->FindCandidates(box, cells);
+  }
+
+  /**
    * A locator over the same cells for another thread: concurrent tasks each
    * query their own. It may share the (read-only) index with this one.
    */
   virtual std::unique_ptr<CandidateLocator> NewForThread() const = 0;
 };
 
-/// Uniform grid of bins, about 2^d cells per bin, over a mesh's cell boxes.
+/**
+ * Uniform grids of bins (about 2^d cells per bin) over the cells' bounding
+ * boxes: one over the boundary cells, built at once from the mesh's
+ * neighbours (over all cells when the mesh has none), and one over all
+ * cells, built on the first FindCandidates() by whichever thread asks first.
+ * The mesh's arrays must outlive the locator.
+ */
 class BoxGridLocator : public CandidateLocator
 {
 public:
   explicit BoxGridLocator(const MeshView& mesh);
   void FindCandidates(const double box[6], std::vector<Index>& cells) override;
+  void FindBoundaryCandidates(const double box[6], std::vector<Index>& cells) override;
   std::unique_ptr<CandidateLocator> NewForThread() const override;
 
 private:
@@ -53,12 +79,23 @@ private:
     int Divisions[3] = { 1, 1, 1 };
     std::vector<Index> BinStart; ///< CSR offsets into BinCells
     std::vector<Index> BinCells;
+    /// Bins over `cells` of `mesh` (every cell when `cells` is null).
+    Bins(const MeshView& mesh, const std::vector<Index>* cells);
     void Range(const double box[6], int lo[3], int hi[3]) const;
   };
-  BoxGridLocator(std::shared_ptr<const Bins> bins, Index cells);
+  /// What the locators of all threads share.
+  struct Shared
+  {
+    MeshView Mesh;
+    std::unique_ptr<const Bins> Boundary;
+    std::once_flag AllBuilt;
+    std::unique_ptr<const Bins> All; ///< set once, under AllBuilt
+  };
+  BoxGridLocator(std::shared_ptr<Shared> shared, Index cells);
+  void Collect(const Bins& bins, const double box[6], std::vector<Index>& cells);
 
-  std::shared_ptr<const Bins> Grid; ///< shared by the locators of all threads
-  std::vector<Index> Stamp;         ///< de-duplicates cells spanning several bins
+  std::shared_ptr<Shared> Grids;
+  std::vector<Index> Stamp; ///< de-duplicates cells spanning several bins
   Index Query = 0;
 };
 } // namespace mp

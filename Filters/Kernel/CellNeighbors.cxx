@@ -93,4 +93,22 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
   }
   return nonManifold / 2;
 }
+void BoundaryCells(const MeshView& mesh, std::vector<Index>& cells)
+{
+  cells.clear();
+  const int corners = mesh.CornersPerCell();
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    const Index* n = mesh.Neighbors + c * corners;
+    bool boundary = false;
+    for (int k = 0; k < corners; ++k)
+    {
+      boundary |= n[k] < 0;
+    }
+    if (boundary)
+    {
+      cells.push_back(c);
+    }
+  }
+}
 } // namespace mp

@@ -28,6 +28,10 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors);
 /// The cells around every point, in CSR form: point p is used by the cells
 /// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order).
 void BuildPointCells(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& cells);
+
+/// The cells with at least one face without neighbour (mesh.Neighbors must
+/// be set), in increasing order: the cells the front's walks can stop at.
+void BoundaryCells(const MeshView& mesh, std::vector<Index>& cells);
 } // namespace mp
 
 #endif

@@ -54,6 +54,8 @@ struct SearchStatistics
   Index TouchingPairs = 0;     ///< pairs whose closed cells meet (possibly in a point or segment)
   Index Pieces = 0;            ///< pairs whose intersection has positive measure
   Index LocatorQueries = 0;    ///< candidate look-ups in the locator (seeds and re-seeds)
+  Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
+  Index SeedWalks = 0;         ///< walks through the source toward an unseeded target cell
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
   Index DegenerateSourceCells = 0; ///< source cells of zero measure, skipped
 };

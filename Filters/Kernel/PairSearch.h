@@ -22,13 +22,28 @@
  *
  * Beyond the paper, nothing assumes that cell 0 meets cell 0, that the meshes
  * are connected or cover the same domain, or that a cell's intersection with
- * the other mesh is connected:
- *  - target cells the front has not reached are seeded from the
- *    CandidateLocator, one query each (so disjoint parts, holes and partial
- *    overlaps are all found);
- *  - when the inner front of a target cell touches the source mesh's boundary
- *    (where its intersection may be disconnected), or its seed fails, the
- *    locator's candidates for that cell are added to the inner front.
+ * the other mesh is connected. A target cell the front has not reached
+ * (the first one, and the first of every part the front cannot reach) gets
+ * its seed from a walk through the source mesh toward its center, from the
+ * last source cell met (a visibility walk: always into the neighbour across a
+ * face that has the point strictly beyond it; a bounded number of steps).
+ * Where there is no seed, where the seed does not meet the cell, or where the
+ * inner front runs into the source boundary (there the cell's intersection
+ * may be disconnected), the locator is asked, in two steps:
+ *  - first for the source cells *at the boundary* near the cell. That is
+ *    enough whenever the cell meets the source boundary: every group of
+ *    source cells meeting the cell that the inner front cannot reach from
+ *    the others leaves part of the cell uncovered, so its own walk over the
+ *    cell would run into the source boundary, i.e. it contains a boundary
+ *    cell meeting the cell (unless it covers the whole cell: a source that
+ *    overlaps itself, which no search here takes apart);
+ *  - only when that meets nothing either (the cell lies inside the source
+ *    away from its boundary, or outside it) among all source cells. After
+ *    the first such query, unseeded cells go straight to it (no more walks).
+ * So on meshes of the same domain the front needs one walk per range and a
+ * few boundary queries, and never an index over all source cells. Source
+ * cells of zero measure do not stop the inner front: it passes through
+ * them to all their neighbours.
  *
  * Meeting is decided with exact predicates (in 2D on closed cells, so cells
  * that only touch in a vertex or along an edge keep the fronts going; in 3D
@@ -51,6 +66,7 @@
 #include "MeshView.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -93,6 +109,35 @@ private:
   std::vector<typename Intersector::Cell> Cells;
 };
 
+/**
+ * Walks from source cell `start` toward point q (see the file comment): the
+ * source cell whose closure holds q, or -1 when the walk reaches the
+ * boundary, a cell of zero measure or `maxSteps`. The face tried first turns
+ * from step to step, so that a walk cannot circle for long in a mesh that is
+ * not Delaunay.
+ */
+template <class Intersector>
+Index WalkToward(
+  const MeshView& source, PreparedCells<Intersector>& cells, Index start, const double* q, Index maxSteps)
+{
+  Index current = start;
+  for (Index step = 0; step < maxSteps && current >= 0; ++step)
+  {
+    const typename Intersector::Cell* c = cells.Get(current);
+    if (!c)
+    {
+      return -1;
+    }
+    const int k = Intersector::Locate(*c, q, static_cast<int>(step % Intersector::Faces));
+    if (k < 0)
+    {
+      return current;
+    }
+    current = source.Neighbor(current, c->Face[k]);
+  }
+  return -1;
+}
+
 template <class Intersector, class Visitor>
 void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   CandidateLocator& locator, Visitor& visit, SearchStatistics& stats, Index begin = 0,
@@ -111,7 +156,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     Index Target;
     Index Source;
   };
-  std::vector<char> queued(static_cast<std::size_t>(end - begin), 0); // of cell begin + i
+  std::vector<char> queued(static_cast<size_t>(std::max<Index>(0, end - begin)), 0); // of cell begin + i
   // stamp[s] == t: source cell s was already tried for target cell t. A
   // stamp instead of the paper's per-cell flag vector keeps the work linear.
   std::vector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
@@ -123,6 +168,45 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   PreparedCells<Intersector> sources(source);
   Piece piece;
   double box[6];
+  // Where walks start: the last source cell met, at first the source cell
+  // at the same relative position as the range (meshes stored with some
+  // locality then need short walks).
+  Index lastMet = -1;
+  if (source.NumberOfCells > 0 && target.NumberOfCells > 0)
+  {
+    lastMet = static_cast<Index>(static_cast<double>(begin) / target.NumberOfCells *
+      static_cast<double>(source.NumberOfCells));
+    lastMet = std::min(std::max<Index>(lastMet, 0), source.NumberOfCells - 1);
+  }
+  // A straight walk crosses about n^(1/d) cells of a mesh of n cells.
+  const Index maxWalk = 100 +
+    4 * static_cast<Index>(std::pow(
+          static_cast<double>(source.NumberOfCells), 1.0 / Intersector::Dimension));
+  bool askedAll = false; // a query among all source cells was made: no more walks
+
+  // Adds the locator's candidates (boundary cells, or all cells) to the inner front.
+  auto ask = [&](Index tId, bool all) {
+    Intersector::Bounds(t, box);
+    if (all)
+    {
+      locator.FindCandidates(box, candidates);
+      ++stats.FullLocatorQueries;
+      askedAll = true;
+    }
+    else
+    {
+      locator.FindBoundaryCandidates(box, candidates);
+    }
+    ++stats.LocatorQueries;
+    for (Index c : candidates)
+    {
+      if (stamp[c] != tId)
+      {
+        stamp[c] = tId;
+        inner.push_back(c);
+      }
+    }
+  };
 
   auto treat = [&](Index tId, Index seed) {
     if (!Intersector::Prepare(target, tId, t))
@@ -135,22 +219,25 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       f = -1;
     }
     inner.clear();
-    bool askedLocator = seed < 0;
-    if (askedLocator)
+    if (seed < 0 && !askedAll && lastMet >= 0)
     {
-      Intersector::Bounds(t, box);
-      locator.FindCandidates(box, candidates);
-      ++stats.LocatorQueries;
-      for (Index c : candidates)
-      {
-        stamp[c] = tId;
-        inner.push_back(c);
-      }
+      double q[3] = { 0.0, 0.0, 0.0 };
+      Intersector::Center(t, q);
+      seed = WalkToward<Intersector>(source, sources, lastMet, q, maxWalk);
+      ++stats.SeedWalks;
     }
-    else
+    // What the inner front started from: 0 the seed, 1 also the boundary
+    // cells nearby, 2 all source cells nearby.
+    int level = 0;
+    if (seed >= 0)
     {
       stamp[seed] = tId;
       inner.push_back(seed);
+    }
+    else
+    {
+      level = askedAll ? 2 : 1;
+      ask(tId, level == 2);
     }
     bool blocked = false; // the inner front met the source boundary
     bool met = false;
@@ -163,7 +250,21 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         const Cell* prepared = sources.Get(sId);
         if (!prepared)
         {
-          blocked = true; // a zero-measure source cell interrupts the walk
+          // Zero measure: meets nothing, but must not cut the walk off from
+          // the cells beyond it.
+          for (int k = 0; k < Faces; ++k)
+          {
+            const Index n = source.Neighbor(sId, k);
+            if (n < 0)
+            {
+              blocked = true;
+            }
+            else if (stamp[n] != tId)
+            {
+              stamp[n] = tId;
+              inner.push_back(n);
+            }
+          }
           continue;
         }
         const Cell& s = *prepared;
@@ -173,16 +274,17 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
           continue;
         }
         met = true;
+        lastMet = sId;
         ++stats.TouchingPairs;
         visit(t, s, piece);
         for (int k = 0; k < Faces; ++k)
         {
           if (piece.TouchedFaces & (1u << k))
           {
-            const Index seed = Intersector::FaceSeed(piece, k, s, source);
-            if (seed >= 0)
+            const Index next = Intersector::FaceSeed(piece, k, s, source);
+            if (next >= 0)
             {
-              faceSeed[k] = seed;
+              faceSeed[k] = next;
             }
           }
         }
@@ -206,24 +308,16 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
           }
         }
       }
-      if (askedLocator || (met && !blocked))
+      // Done when nothing can be missing: all cells asked, or the boundary
+      // cells asked after something was met, or met without the boundary.
+      if (level == 2 || (met && (level == 1 || !blocked)))
       {
         break;
       }
-      // The seed failed or the walk hit the source boundary: the cell's
-      // intersection may have parts the walk cannot reach. Ask the locator.
-      askedLocator = true;
-      Intersector::Bounds(t, box);
-      locator.FindCandidates(box, candidates);
-      ++stats.LocatorQueries;
-      for (Index c : candidates)
-      {
-        if (stamp[c] != tId)
-        {
-          stamp[c] = tId;
-          inner.push_back(c);
-        }
-      }
+      // The seed failed, or the walk ran into the source boundary: ask for
+      // the boundary cells nearby; if still nothing meets the cell, for all.
+      level = (met || (level == 0 && !askedAll)) ? 1 : 2;
+      ask(tId, level == 2);
     }
     for (int k = 0; k < Faces; ++k)
     {

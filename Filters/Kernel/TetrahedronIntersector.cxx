@@ -562,6 +562,31 @@ struct VertexGraph
 };
 } // namespace
 
+void TetrahedronIntersector::Center(const Cell& cell, double q[3])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    q[d] = 0.25 * (cell.X[0][d] + cell.X[1][d] + cell.X[2][d] + cell.X[3][d]);
+  }
+}
+
+int TetrahedronIntersector::Locate(const Cell& cell, const double* q, int first)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    const int k = (first + i) % 4;
+    // Corners k+1, k+2, k+3 turn so that corner k is on the positive side
+    // for odd k and on the negative side for even k (the cell is positive).
+    const double side =
+      Orient3D(cell.X[(k + 1) % 4], cell.X[(k + 2) % 4], cell.X[(k + 3) % 4], q);
+    if (k % 2 == 0 ? side > 0.0 : side < 0.0)
+    {
+      return k;
+    }
+  }
+  return -1;
+}
+
 bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 {
   const Index* ids = mesh.Cell(id);

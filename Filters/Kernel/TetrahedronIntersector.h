@@ -87,6 +87,14 @@ public:
     return piece.SeedFace[k] < 0 ? s.Id : source.Neighbor(s.Id, s.Face[piece.SeedFace[k]]);
   }
   static void Bounds(const Cell& cell, double box[6]);
+  /// The mean of the corners.
+  static void Center(const Cell& cell, double q[3]);
+  /**
+   * One step of a walk toward point q: -1 when q lies in the closed cell,
+   * else a face k (Cell order) with q strictly beyond it, the first such
+   * face from `first` on (exact orientations).
+   */
+  static int Locate(const Cell& cell, const double* q, int first);
   /**
    * Clips one cell by the face planes of the other (the one fewer planes
    * cut); true when the intersection has positive volume. The clipped cell

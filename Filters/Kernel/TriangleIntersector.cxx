@@ -271,6 +271,27 @@ void TriangleIntersector::Bounds(const Cell& cell, double box[6])
   box[5] = 0.0;
 }
 
+void TriangleIntersector::Center(const Cell& cell, double q[2])
+{
+  for (int d = 0; d < 2; ++d)
+  {
+    q[d] = (cell.X[0][d] + cell.X[1][d] + cell.X[2][d]) / 3.0;
+  }
+}
+
+int TriangleIntersector::Locate(const Cell& cell, const double* q, int first)
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    const int k = (first + i) % 3;
+    if (Orient2D(cell.X[(k + 1) % 3], cell.X[(k + 2) % 3], q) < 0.0)
+    {
+      return k;
+    }
+  }
+  return -1;
+}
+
 bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
 {
   piece.NumberOfVertices = 0;

@@ -76,6 +76,16 @@ public:
   /// Bounding box as xmin, xmax, ymin, ymax, zmin, zmax (z is 0).
   static void Bounds(const Cell& cell, double box[6]);
 
+  /// The mean of the corners (x, y).
+  static void Center(const Cell& cell, double q[2]);
+
+  /**
+   * One step of a walk toward point q: -1 when q lies in the closed cell,
+   * else a face k (Cell order) with q strictly beyond it, the first such
+   * face from `first` on (exact orientations).
+   */
+  static int Locate(const Cell& cell, const double* q, int first);
+
   /**
    * Intersects target `t` with source `s` (both closed). Returns false when
    * they do not meet at all. When they only touch, `piece` has fewer than 3

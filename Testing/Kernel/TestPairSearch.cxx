@@ -142,6 +142,75 @@ TEST(PairSearch, FrontTestsFarFewerPairsThanBruteForce)
   EXPECT_LT(s.FrontStats.IntersectionTests, 3 * s.FrontStats.TouchingPairs);
   EXPECT_LT(s.FrontStats.LocatorQueries, a.NumberOfCells() / 4);
   EXPECT_EQ(s.BruteStats.IntersectionTests, a.NumberOfCells() * b.NumberOfCells());
+  // Same domain: one walk starts the front, the source boundary is asked
+  // about its own cells only, and no index over all source cells is needed.
+  EXPECT_EQ(s.FrontStats.SeedWalks, 1);
+  EXPECT_GT(s.FrontStats.LocatorQueries, 0);
+  EXPECT_EQ(s.FrontStats.FullLocatorQueries, 0);
+}
+
+TEST(PairSearch, AllSourceCellsAskedOnlyWhereTheBoundaryCannotTell)
+{
+  // A target reaching beyond the source: its outer cells meet no source
+  // boundary cell, so only a query among all source cells settles them.
+  const TestMesh source = mptest::GridMesh(10, 10, 0.25, 21, 0.3, 0.3, 0.7, 0.7);
+  const TestMesh target = mptest::GridMesh(12, 12, 0.25, 22);
+  Searches out(target, source);
+  out.ExpectSamePairs("target around the source");
+  EXPECT_GT(out.FrontStats.FullLocatorQueries, 0);
+  // A target inside a source with holes: walks toward cells past a hole
+  // stop at its boundary, the boundary cells nearby settle the rest.
+  const TestMesh holed = mptest::GridMesh(16, 16, 0.25, 23, 0, 0, 1, 1, LShapeWithHole);
+  const TestMesh inside = mptest::GridMesh(11, 13, 0.25, 24, 0.05, 0.05, 0.45, 0.95);
+  Searches in(inside, holed);
+  in.ExpectSamePairs("target over holes");
+}
+
+TEST(PairSearch, ZeroAreaSourceCellsDoNotCutTheFrontOff)
+{
+  // Two halves of a grid joined only through zero-area triangles: the
+  // points on x = 0.5 exist twice (left and right copies), and a fan of
+  // needles (p_i, p_i+1, p'_i), (p'_i, p_i+1, p'_i+1) stitches the copies.
+  TestMesh source = mptest::GridMesh(8, 8, 0.0, 25);
+  const Index n = source.NumberOfPoints();
+  std::vector<Index> copy(static_cast<size_t>(n), -1);
+  std::vector<std::pair<double, Index>> seam; // (y, left id) of the points on x = 0.5
+  for (Index p = 0; p < n; ++p)
+  {
+    if (source.Points[3 * p] == 0.5)
+    {
+      copy[p] = source.NumberOfPoints();
+      source.Points.insert(
+        source.Points.end(), { 0.5, source.Points[3 * p + 1], source.Points[3 * p + 2] });
+      seam.emplace_back(source.Points[3 * p + 1], p);
+    }
+  }
+  ASSERT_EQ(seam.size(), size_t(9));
+  for (Index c = 0; c < source.NumberOfCells(); ++c)
+  {
+    double cx = 0;
+    for (int k = 0; k < 3; ++k)
+      cx += source.Points[3 * source.Cells[3 * c + k]] / 3;
+    for (int k = 0; k < 3 && cx > 0.5; ++k)
+    {
+      Index& id = source.Cells[3 * c + k];
+      id = copy[id] >= 0 ? copy[id] : id; // the right half uses the copies
+    }
+  }
+  std::sort(seam.begin(), seam.end());
+  for (size_t i = 0; i + 1 < seam.size(); ++i)
+  {
+    const Index a = seam[i].second;
+    const Index b = seam[i + 1].second;
+    source.Cells.insert(source.Cells.end(), { a, b, copy[a], copy[a], b, copy[b] });
+  }
+  source.Finish();
+  const TestMesh target = mptest::GridMesh(7, 9, 0.25, 26);
+  Searches s(target, source);
+  s.ExpectSamePairs("zero-area seam");
+  s.ExpectCompleteCover(target, "zero-area seam");
+  // The seam is no boundary: no cell needs a query among all source cells.
+  EXPECT_EQ(s.FrontStats.FullLocatorQueries, 0);
 }
 
 namespace

@@ -218,14 +218,15 @@ TEST(Tetrahedra, IdenticalAndNestedMeshes)
 
   // A target whose cells coincide with the inner cells of a larger source:
   // the seeds pass through the shared faces, so the whole target needs one
-  // locator query (the source boundary is never met).
+  // walk to start and no locator query (the source boundary is never met).
   const TestMesh inner = mptest::CubeMesh(4, 4, 4, 0.0, 1);
   TestMesh outer = mptest::CubeMesh(8, 8, 8, 0.0, 1, 2.0);
   mptest::Move3D(outer, 0, 0, 1, -0.5, -0.5, -0.5);
   Searches nested(inner, outer);
   nested.ExpectSamePairs("coinciding cells");
   nested.ExpectCompleteCover(inner, "coinciding cells");
-  EXPECT_EQ(nested.FrontStats.LocatorQueries, 1);
+  EXPECT_EQ(nested.FrontStats.SeedWalks, 1);
+  EXPECT_EQ(nested.FrontStats.LocatorQueries, 0);
   EXPECT_EQ(nested.Front.Pairs.size(), size_t(inner.NumberOfCells()));
 
   // Unjittered 2x refinement: vertices on faces and edges of the coarse mesh.
@@ -249,6 +250,8 @@ TEST(Tetrahedra, RandomNonMatchingMeshes)
     Searches s(a, b);
     s.ExpectSamePairs("case " + std::to_string(n));
     s.ExpectCompleteCover(a, "case " + std::to_string(n));
+    // Same domain: started by a walk, re-seeded among boundary cells only.
+    EXPECT_EQ(s.FrontStats.FullLocatorQueries, 0) << "case " << n;
     if (HasFatalFailure())
       return;
   }
