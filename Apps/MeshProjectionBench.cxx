@@ -150,6 +150,8 @@ struct Row
   double PeakBeyondInputs, InputSize;
   double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
   double KernelOnPairs = -1; ///< intersection kernel alone on the true pairs
+  Index Tests = 0;   ///< --filter-only: intersection tests
+  Index Queries = 0; ///< --filter-only: locator queries
   /// The VTK filter's own stages (vtkMeshProjectionFilter::Get*Time) on 1
   /// and 2 threads: input, neighbours, locator, search, assembly, solve, output.
   double FilterStages[2][7] = {};
@@ -287,6 +289,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
       filter->GetSolveTime(), filter->GetOutputTime() };
     std::copy(stages, stages + 7, r.FilterStages[0]);
     r.Pairs = filter->GetNumberOfIntersections();
+    r.Tests = filter->GetNumberOfIntersectionTests();
+    r.Queries = filter->GetNumberOfLocatorQueries();
     return r;
   }
   // The kernel, stage by stage (one thread).
@@ -401,7 +405,9 @@ void PrintFilter(const Row& r)
   std::printf("\n%dD  target %lld cells, source %lld cells, %lld intersecting pairs\n", r.Dim,
     static_cast<long long>(r.TargetCells), static_cast<long long>(r.SourceCells),
     static_cast<long long>(r.Pairs));
-  std::printf("  %-34s %10.4f\n", "VTK filter (one run)", r.Filter1);
+  std::printf("  %-34s %10.4f  (%.2f tests per pair, %lld locator queries)\n",
+    "VTK filter (one run)", r.Filter1, double(r.Tests) / std::max<Index>(1, r.Pairs),
+    static_cast<long long>(r.Queries));
   for (int k = 0; k < 7; ++k)
   {
     std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[0][k]);

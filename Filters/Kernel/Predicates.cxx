@@ -159,6 +159,49 @@ double Orient3DExact(const double* a, const double* b, const double* c, const do
   return SignedEstimate(det);
 }
 
+namespace
+{
+/// Whether three points share two coordinates: then they lie on one line
+/// parallel to an axis, exactly.
+bool OnAxisLine(const double* a, const double* b, const double* c)
+{
+  const bool same[3] = { a[0] == b[0] && a[0] == c[0], a[1] == b[1] && a[1] == c[1],
+    a[2] == b[2] && a[2] == c[2] };
+  return (same[0] && same[1]) || (same[0] && same[2]) || (same[1] && same[2]);
+}
+
+/**
+ * Configurations whose orientation is exactly zero for a reason that shows
+ * without arithmetic, common in structured and shared boundaries: a
+ * coordinate shared by all four points (a coordinate plane, e.g. the face
+ * of a box: every term of the determinant holds one difference of each
+ * coordinate), two equal points, or three on one axis-parallel line.
+ */
+bool TriviallyCoplanar(const double* a, const double* b, const double* c, const double* d)
+{
+  const double* p[4] = { a, b, c, d };
+  for (int k = 0; k < 3; ++k)
+  {
+    if (b[k] == a[k] && c[k] == a[k] && d[k] == a[k])
+    {
+      return true;
+    }
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = i + 1; j < 4; ++j)
+    {
+      if (p[i][0] == p[j][0] && p[i][1] == p[j][1] && p[i][2] == p[j][2])
+      {
+        return true;
+      }
+    }
+  }
+  return OnAxisLine(a, b, c) || OnAxisLine(a, b, d) || OnAxisLine(a, c, d) ||
+    OnAxisLine(b, c, d);
+}
+} // namespace
+
 double Orient3D(const double* a, const double* b, const double* c, const double* d)
 {
   const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
@@ -178,11 +221,14 @@ double Orient3D(const double* a, const double* b, const double* c, const double*
   {
     return det;
   }
+  if (TriviallyCoplanar(a, b, c, d))
+  {
+    return 0.0;
+  }
   if (permanent == 0.0)
   {
     // Every product of the differences is zero. When the differences are
-    // exact (the usual case: points on a common coordinate plane, such as a
-    // boundary face of a box), so is the determinant: no expansions needed.
+    // exact, so is the determinant: no expansions needed.
     bool exact = true;
     for (int k = 0; k < 3; ++k)
     {

@@ -43,6 +43,12 @@ inline double Orient2D(const double* a, const double* b, const double* c)
   {
     return det;
   }
+  // A factor of each product exactly zero (points sharing a coordinate, as
+  // on the straight boundary of a box): the determinant is exactly zero.
+  if ((a[0] == c[0] || b[1] == c[1]) && (a[1] == c[1] || b[0] == c[0]))
+  {
+    return 0.0;
+  }
   return Orient2DExact(a, b, c);
 }
 
