@@ -199,14 +199,21 @@ int vtkMeshProjectionFilter::RequestData(
     else if (!name || (std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
                         std::string(name) != "vtkValidPointMask"))
     {
+      if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+      {
+        vtkWarningMacro(<< "Source point array '" << (name ? name : "(unnamed)") << "' holds "
+                        << "integers (" << array->GetClassName() << "): it is projected as "
+                        << "real values, and an L2 projection of labels or ids is not "
+                        << "meaningful (use Resample With Dataset for labels).");
+      }
       arrays.push_back(array);
       components += array->GetNumberOfComponents();
     }
   }
-  if (sourcePD->GetNumberOfArrays() == 0)
+  if (arrays.empty())
   {
-    vtkWarningMacro("Source has no point arrays: only vtkValidPointMask and CoveredFraction "
-                    "are computed.");
+    vtkWarningMacro("Source has no point arrays to project: only vtkValidPointMask and "
+                    "CoveredFraction are computed.");
   }
   const vtkIdType ns = source->GetNumberOfPoints();
   std::vector<double> fields(static_cast<size_t>(ns) * components);

@@ -6,15 +6,21 @@
 
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkCharArray.h"
 #include "vtkCommand.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
+#include "vtkShortArray.h"
 #include "vtkStringArray.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTransform.h"
 #include "vtkTransformFilter.h"
+#include "vtkUnsignedCharArray.h"
 
+#include <functional>
 #include <limits>
 
 namespace
@@ -49,6 +55,26 @@ vtkSmartPointer<vtkUnstructuredGrid> Moved(vtkUnstructuredGrid* grid, double dx)
   move->Update();
   vtkSmartPointer<vtkUnstructuredGrid> result = vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
   return result;
+}
+
+/// True when every component of every tuple of `array` satisfies `f`.
+bool All(vtkDataArray* array, const std::function<bool(double)>& f)
+{
+  if (!array)
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    for (int k = 0; k < array->GetNumberOfComponents(); ++k)
+    {
+      if (!f(array->GetComponent(i, k)))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 } // namespace
 
@@ -198,7 +224,9 @@ int TestMeshProjectionFilterInputs(int, char*[])
     ones->Fill(1);
     typed->GetPointData()->AddArray(ones);
     Run run(target, typed);
-    MP_CHECK(run.WarningSays("Names"));
+    MP_CHECK(
+      run.WarningSays("Source point array 'Names' is not numeric (vtkStringArray): skipped."));
+    MP_CHECK(run.WarningSays("Source point array 'Ones' holds integers (vtkIntArray)"));
     MP_CHECK(run.Output()->GetPointData()->GetAbstractArray("Names") == nullptr);
     vtkDataArray* projected = run.Output()->GetPointData()->GetArray("Ones");
     MP_CHECK(projected != nullptr);
@@ -206,6 +234,76 @@ int TestMeshProjectionFilterInputs(int, char*[])
     {
       MP_CHECK(std::fabs(projected->GetComponent(i, 0) - 1.0) < 1e-13);
     }
+  }
+  {
+    // Integer arrays (labels, ids) are projected as real values, with a
+    // warning naming each; vtkValidPointMask and vtkGhostType are not
+    // projected (nor warned about).
+    vtkNew<vtkUnstructuredGrid> labelled;
+    labelled->DeepCopy(source);
+    const vtkIdType n = labelled->GetNumberOfPoints();
+    vtkNew<vtkIntArray> labels;
+    labels->SetName("Labels");
+    vtkNew<vtkDoubleArray> real;
+    real->SetName("LabelsAsReal");
+    vtkNew<vtkShortArray> pair;
+    pair->SetName("Pair");
+    pair->SetNumberOfComponents(2);
+    vtkNew<vtkCharArray> sourceMask;
+    sourceMask->SetName("vtkValidPointMask");
+    vtkNew<vtkUnsignedCharArray> ghosts;
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const int label = labelled->GetPoint(i)[0] > 1.0 ? 7 : 3;
+      labels->InsertNextValue(label);
+      real->InsertNextValue(label);
+      pair->InsertNextTuple2(3, -7);
+      sourceMask->InsertNextValue(0);
+      ghosts->InsertNextValue(0);
+    }
+    labelled->GetPointData()->AddArray(labels);
+    labelled->GetPointData()->AddArray(real);
+    labelled->GetPointData()->AddArray(pair);
+    labelled->GetPointData()->AddArray(sourceMask);
+    labelled->GetPointData()->AddArray(ghosts);
+    Run run(target, labelled);
+    MP_CHECK(!run.Observer->GetError());
+    MP_CHECK(run.WarningSays("Source point array 'Labels' holds integers (vtkIntArray): it is "
+                             "projected as real values, and an L2 projection of labels or ids is "
+                             "not meaningful (use Resample With Dataset for labels)."));
+    MP_CHECK(run.WarningSays("Source point array 'Pair' holds integers (vtkShortArray)"));
+    const std::string warnings = run.Observer->GetWarningMessage();
+    for (const char* quiet :
+      { "'LabelsAsReal'", "'Smooth'", "'vtkValidPointMask'", "'vtkGhostType'" })
+    {
+      MP_CHECK(warnings.find(quiet) == std::string::npos);
+    }
+    vtkPointData* pd = run.Output()->GetPointData();
+    vtkDataArray* projected = pd->GetArray("Labels");
+    vtkDataArray* reference = pd->GetArray("LabelsAsReal");
+    MP_CHECK(vtkDoubleArray::SafeDownCast(projected) && reference);
+    vtkIdType between = 0;
+    for (vtkIdType i = 0; projected && reference && i < projected->GetNumberOfTuples(); ++i)
+    {
+      const double v = projected->GetComponent(i, 0);
+      MP_CHECK(std::fabs(v - reference->GetComponent(i, 0)) < 1e-13);
+      between += std::fabs(v - 3) > 1e-3 && std::fabs(v - 7) > 1e-3;
+    }
+    MP_CHECK(between > 0); // the projection mixes labels where they change
+    vtkDataArray* projectedPair = pd->GetArray("Pair");
+    MP_CHECK(vtkDoubleArray::SafeDownCast(projectedPair) &&
+      projectedPair->GetNumberOfComponents() == 2);
+    for (vtkIdType i = 0; projectedPair && i < projectedPair->GetNumberOfTuples(); ++i)
+    {
+      MP_CHECK(std::fabs(projectedPair->GetComponent(i, 0) - 3) < 1e-13);
+      MP_CHECK(std::fabs(projectedPair->GetComponent(i, 1) + 7) < 1e-13);
+    }
+    // The output's mask is the filter's own (all covered), not Source's zeros.
+    vtkDataArray* mask = pd->GetArray("vtkValidPointMask");
+    MP_CHECK(vtkCharArray::SafeDownCast(mask));
+    MP_CHECK(All(mask, [](double m) { return m == 1; }));
+    MP_CHECK(pd->GetArray(vtkDataSetAttributes::GhostArrayName()) == nullptr);
   }
   {
     // No source at all.

@@ -265,6 +265,27 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     MP_CHECK(mask && mask->GetRange()[0] == 1);
     MP_CHECK(r.Output->GetCellData()->GetArray("CoveredFraction") != nullptr);
   }
+  for (const char* only : { vtkDataSetAttributes::GhostArrayName(), "vtkValidPointMask" })
+  {
+    // A Source whose only point array is not projected (vtkGhostType, or a
+    // mask from an earlier projection): the same warning, no projected
+    // arrays, the mask computed.
+    vtkNew<vtkUnstructuredGrid> bare;
+    bare->DeepCopy(source);
+    bare->GetPointData()->Initialize();
+    vtkNew<vtkUnsignedCharArray> flags;
+    flags->SetName(only);
+    flags->SetNumberOfValues(bare->GetNumberOfPoints());
+    flags->Fill(0);
+    bare->GetPointData()->AddArray(flags);
+    const Result r = Project(target, bare);
+    MP_CHECK(!r.Error && r.Warnings.find("Source has no point arrays") != std::string::npos);
+    MP_CHECK(r.Warnings.find("holds integers") == std::string::npos);
+    vtkPointData* pd = r.Output->GetPointData();
+    MP_CHECK(pd->GetNumberOfArrays() == 2 && pd->GetArray("TargetId")); // and the mask
+    vtkDataArray* mask = pd->GetArray("vtkValidPointMask");
+    MP_CHECK(mask && mask->GetRange()[0] == 1);
+  }
   {
     // A folded source (cells given twice) is flagged.
     vtkNew<vtkUnstructuredGrid> folded;
