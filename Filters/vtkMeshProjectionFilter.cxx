@@ -216,7 +216,9 @@ int vtkMeshProjectionFilter::RequestData(
                     "CoveredFraction are computed.");
   }
   const vtkIdType ns = source->GetNumberOfPoints();
-  std::vector<double> fields(static_cast<size_t>(ns) * components);
+  // Never empty: a Source without points but with arrays still passes the
+  // kernel a pointer to its (absent) values.
+  std::vector<double> fields(std::max<size_t>(static_cast<size_t>(ns) * components, 1));
   for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
   {
     vtkDataArray* array = arrays[a];

@@ -204,11 +204,47 @@ int TestMeshProjectionFilterInputs(int, char*[])
     MP_CHECK(valid > 0 && valid < target->GetNumberOfPoints());
   }
   {
-    // Empty source: a warning, all invalid.
+    // Empty source: a warning, all invalid, nothing covered.
     vtkNew<vtkUnstructuredGrid> empty;
     Run run(target, empty);
-    MP_CHECK(run.WarningSays("no cells"));
+    MP_CHECK(!run.Observer->GetError());
+    MP_CHECK(run.WarningSays("Source has no cells: every projected point is invalid."));
+    MP_CHECK(run.WarningSays("Source has no point arrays to project"));
     MP_CHECK(run.Output()->GetNumberOfPoints() == target->GetNumberOfPoints());
+    vtkDataArray* mask = run.Output()->GetPointData()->GetArray("vtkValidPointMask");
+    MP_CHECK(mask && mask->GetNumberOfTuples() == target->GetNumberOfPoints());
+    MP_CHECK(All(mask, [](double m) { return m == 0; }));
+    MP_CHECK(All(run.Output()->GetCellData()->GetArray("CoveredFraction"),
+      [](double f) { return f == 0; }));
+    // Input's own TargetId and the mask: nothing to project.
+    MP_CHECK(run.Output()->GetPointData()->GetNumberOfArrays() == 2);
+    MP_CHECK(run.Output()->GetPointData()->GetArray("TargetId") != nullptr);
+  }
+  {
+    // An empty Source that still declares its arrays (no points, no cells):
+    // every projected array is there, NaN everywhere (FillWithNaN), or the
+    // FillValue.
+    vtkNew<vtkUnstructuredGrid> empty;
+    empty->GetPointData()->CopyAllocate(source->GetPointData(), 0);
+    MP_CHECK(empty->GetPointData()->GetArray("Velocity") != nullptr);
+    Run run(target, empty);
+    MP_CHECK(!run.Observer->GetError());
+    MP_CHECK(run.WarningSays("Source has no cells: every projected point is invalid."));
+    vtkPointData* pd = run.Output()->GetPointData();
+    MP_CHECK(All(pd->GetArray("vtkValidPointMask"), [](double m) { return m == 0; }));
+    for (const char* name : { "Smooth", "Linear", "Velocity" })
+    {
+      vtkDataArray* u = pd->GetArray(name);
+      MP_CHECK(u && u->GetNumberOfTuples() == target->GetNumberOfPoints());
+      MP_CHECK(All(u, [](double v) { return std::isnan(v); }));
+    }
+    MP_CHECK(pd->GetArray("Velocity") && pd->GetArray("Velocity")->GetNumberOfComponents() == 3);
+    run.Filter->FillWithNaNOff();
+    run.Filter->SetFillValue(-999);
+    run.Filter->Update();
+    pd = run.Output()->GetPointData();
+    MP_CHECK(All(pd->GetArray("Velocity"), [](double v) { return v == -999; }));
+    MP_CHECK(All(pd->GetArray("vtkValidPointMask"), [](double m) { return m == 0; }));
   }
   {
     // Non-numeric arrays are skipped with a warning; other types converted.
