@@ -12,6 +12,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkIntArray.h"
 #include "vtkShortArray.h"
 #include "vtkStringArray.h"
@@ -20,6 +21,7 @@
 #include "vtkTransformFilter.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 
@@ -55,6 +57,81 @@ vtkSmartPointer<vtkUnstructuredGrid> Moved(vtkUnstructuredGrid* grid, double dx)
   move->Update();
   vtkSmartPointer<vtkUnstructuredGrid> result = vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
   return result;
+}
+
+/// Equal, or both NaN.
+bool Same(double a, double b)
+{
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
+
+/// The same arrays (names, sizes, values; NaN equal to NaN) in `a` and `b`.
+bool SameArrays(vtkDataSetAttributes* a, vtkDataSetAttributes* b)
+{
+  if (a->GetNumberOfArrays() != b->GetNumberOfArrays())
+  {
+    return false;
+  }
+  for (int k = 0; k < a->GetNumberOfArrays(); ++k)
+  {
+    vtkDataArray* u = a->GetArray(k);
+    vtkDataArray* v = b->GetArray(a->GetArrayName(k));
+    if (!u || !v || u->GetNumberOfTuples() != v->GetNumberOfTuples() ||
+      u->GetNumberOfComponents() != v->GetNumberOfComponents())
+    {
+      return false;
+    }
+    for (vtkIdType i = 0; i < u->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < u->GetNumberOfComponents(); ++c)
+      {
+        if (!Same(u->GetComponent(i, c), v->GetComponent(i, c)))
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+/// `output` is `input` as it came: the same points (NaN and infinite
+/// coordinates included), cells and arrays, and nothing projected (no
+/// vtkValidPointMask, no CoveredFraction).
+bool Unchanged(vtkUnstructuredGrid* output, vtkUnstructuredGrid* input)
+{
+  if (output->GetNumberOfPoints() != input->GetNumberOfPoints() ||
+    output->GetNumberOfCells() != input->GetNumberOfCells() ||
+    output->GetPointData()->GetArray("vtkValidPointMask") ||
+    output->GetCellData()->GetArray("CoveredFraction"))
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    double a[3];
+    double b[3];
+    output->GetPoint(i, a);
+    input->GetPoint(i, b);
+    if (!Same(a[0], b[0]) || !Same(a[1], b[1]) || !Same(a[2], b[2]))
+    {
+      return false;
+    }
+  }
+  vtkNew<vtkIdList> a;
+  vtkNew<vtkIdList> b;
+  for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+  {
+    output->GetCellPoints(c, a);
+    input->GetCellPoints(c, b);
+    if (output->GetCellType(c) != input->GetCellType(c) ||
+      a->GetNumberOfIds() != b->GetNumberOfIds() || !std::equal(a->begin(), a->end(), b->begin()))
+    {
+      return false;
+    }
+  }
+  return SameArrays(output->GetPointData(), input->GetPointData()) &&
+    SameArrays(output->GetCellData(), input->GetCellData());
 }
 
 /// True when every component of every tuple of `array` satisfies `f`.
@@ -142,8 +219,43 @@ int TestMeshProjectionFilterInputs(int, char*[])
     broken->DeepCopy(source);
     broken->GetPoints()->SetPoint(5, std::numeric_limits<double>::quiet_NaN(), 0, 0);
     Run run(target, broken);
-    MP_CHECK(run.ErrorSays("NaN"));
-    MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
+    MP_CHECK(run.ErrorSays("Source has a point with a NaN or infinite coordinate (point 5)"));
+    MP_CHECK(Unchanged(run.Output(), target));
+  }
+  {
+    // Infinite coordinates, in Source and in Input, 2D and 3D: an error and
+    // Input unchanged, nothing projected.
+    const double inf = std::numeric_limits<double>::infinity();
+    vtkNew<vtkUnstructuredGrid> farSource;
+    farSource->DeepCopy(source);
+    farSource->GetPoints()->SetPoint(5, inf, 0, 0);
+    Run bad(target, farSource);
+    MP_CHECK(bad.ErrorSays("Source has a point with a NaN or infinite coordinate (point 5)"));
+    MP_CHECK(Unchanged(bad.Output(), target));
+
+    vtkNew<vtkUnstructuredGrid> farTarget;
+    farTarget->DeepCopy(target);
+    farTarget->GetPoints()->SetPoint(7, 0.1, -inf, 0);
+    Run badInput(farTarget, source);
+    MP_CHECK(badInput.ErrorSays("Input has a point with a NaN or infinite coordinate (point 7)"));
+    MP_CHECK(Unchanged(badInput.Output(), farTarget));
+    MP_CHECK(std::isinf(badInput.Output()->GetPoint(7)[1]));
+
+    auto tets = mptest::ReadSample("lshape3d_source.vtu");
+    auto tetTarget = mptest::ReadSample("lshape3d_target.vtu");
+    vtkNew<vtkUnstructuredGrid> far3D;
+    far3D->DeepCopy(tetTarget);
+    far3D->GetPoints()->SetPoint(3, 0.1, 0.1, inf);
+    Run bad3D(far3D, tets);
+    MP_CHECK(bad3D.ErrorSays("Input has a point with a NaN or infinite coordinate (point 3)"));
+    MP_CHECK(Unchanged(bad3D.Output(), far3D));
+    vtkNew<vtkUnstructuredGrid> farTets;
+    farTets->DeepCopy(tets);
+    farTets->GetPoints()->SetPoint(3, -inf, 0.1, 0.1);
+    Run badSource3D(tetTarget, farTets);
+    MP_CHECK(
+      badSource3D.ErrorSays("Source has a point with a NaN or infinite coordinate (point 3)"));
+    MP_CHECK(Unchanged(badSource3D.Output(), tetTarget));
   }
   {
     // Coordinates beyond the range of the exact predicates.
@@ -160,7 +272,9 @@ int TestMeshProjectionFilterInputs(int, char*[])
     bent->DeepCopy(target);
     bent->GetPoints()->SetPoint(7, 0.1, 0.1, 0.5);
     Run run(bent, source);
-    MP_CHECK(run.ErrorSays("not planar"));
+    MP_CHECK(
+      run.ErrorSays("Input is not planar: its triangles' z coordinates range over [0, 0.5]"));
+    MP_CHECK(Unchanged(run.Output(), bent));
   }
   {
     // No overlap: a warning, every point invalid and filled with NaN.
@@ -349,7 +463,15 @@ int TestMeshProjectionFilterInputs(int, char*[])
     filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
     filter->SetInputData(target);
     filter->Update();
+    // The executive refuses to run the filter (port 1 is required), so the
+    // output stays the empty default one.
     MP_CHECK(observer->GetError());
+    const std::string error = observer->GetErrorMessage();
+    MP_CHECK(error.find("Input port 1 of algorithm vtkMeshProjectionFilter") != std::string::npos);
+    MP_CHECK(error.find("has 0 connections but is not optional") != std::string::npos);
+    MP_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
+    MP_CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+    MP_CHECK(filter->GetOutput()->GetPointData()->GetNumberOfArrays() == 0);
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
