@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -149,6 +150,65 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     const Result tg = Project(targetGhosted, source);
     MP_CHECK(tg.Output->GetCellData()->GetArray("CoveredFraction")->GetComponent(0, 0) == 0);
     MP_CHECK(tg.Output->GetCellData()->GetArray("CoveredFraction")->GetComponent(1, 0) > 0.999);
+
+    // A whole region of target ghost cells (the right arm, x > 1): the points
+    // only ghost cells use are invalid (mask 0, NaN); those an owned cell
+    // uses are valid, with the linear field exact (its support is covered).
+    vtkNew<vtkUnstructuredGrid> targetArm;
+    targetArm->DeepCopy(target);
+    vtkNew<vtkUnsignedCharArray> armGhosts;
+    armGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    armGhosts->SetNumberOfValues(target->GetNumberOfCells());
+    std::vector<char> owned(target->GetNumberOfPoints(), 0);
+    vtkIdType armCount = 0;
+    for (vtkIdType c = 0; c < target->GetNumberOfCells(); ++c)
+    {
+      target->GetCellPoints(c, ids);
+      double cx = 0;
+      for (vtkIdType k = 0; k < 3; ++k)
+      {
+        cx += target->GetPoint(ids->GetId(k))[0] / 3;
+      }
+      armGhosts->SetValue(c, cx > 1.0 ? vtkDataSetAttributes::DUPLICATECELL : 0);
+      armCount += cx > 1.0;
+      for (vtkIdType k = 0; cx <= 1.0 && k < 3; ++k)
+      {
+        owned[ids->GetId(k)] = 1;
+      }
+    }
+    targetArm->GetCellData()->AddArray(armGhosts);
+    const Result arm = Project(targetArm, source);
+    MP_CHECK(!arm.Error);
+    const std::string expected = "Ghost cells (Input: " + std::to_string(armCount) + ", Source: 0)";
+    MP_CHECK(arm.Warnings.find(expected) != std::string::npos);
+    vtkDataArray* mask = arm.Output->GetPointData()->GetArray("vtkValidPointMask");
+    vtkDataArray* linear = arm.Output->GetPointData()->GetArray("Linear");
+    vtkDataArray* covered = arm.Output->GetCellData()->GetArray("CoveredFraction");
+    MP_CHECK(mask && linear && covered);
+    vtkIdType ghostOnly = 0;
+    for (vtkIdType i = 0; mask && linear && i < target->GetNumberOfPoints(); ++i)
+    {
+      MP_CHECK(mask->GetComponent(i, 0) == owned[i]);
+      if (owned[i])
+      {
+        double x[3];
+        target->GetPoint(i, x);
+        MP_CHECK(std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1])) < 1e-12);
+      }
+      else
+      {
+        ++ghostOnly;
+        MP_CHECK(std::isnan(linear->GetComponent(i, 0)));
+      }
+    }
+    std::cout << "target ghost cells: " << armCount << ", points only they use: " << ghostOnly
+              << std::endl;
+    MP_CHECK(armCount > 300 && ghostOnly > 100);
+    for (vtkIdType c = 0; covered && c < target->GetNumberOfCells(); ++c)
+    {
+      const double fraction = armGhosts->GetValue(c) ? 0.0 : 1.0;
+      MP_CHECK(std::fabs(covered->GetComponent(c, 0) - fraction) < 1e-12);
+    }
   }
   {
     // Duplicate points: half of the cells use copies of their points, so the
