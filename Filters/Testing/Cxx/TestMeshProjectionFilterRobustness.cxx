@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Hostile but meaningful inputs: ghost cells, duplicate and unused points,
-// zero-measure cells, a folded source, and the same meshes translated by
+// Hostile but meaningful inputs: ghost cells (in Source and Input),
+// duplicate and unused points, zero-measure and inverted cells (triangles
+// and tetrahedra), a folded source, and the same meshes translated by
 // 10^6 or scaled by 10^-6 and 10^6 (2D and 3D). Each has an exact expected
 // outcome or is compared with the plain run.
 #include "MeshProjectionTestUtilities.h"
@@ -17,6 +18,7 @@
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -90,6 +92,45 @@ double Difference(const Result& a, const Result& b, const char* name, double sca
     }
   }
   return worst;
+}
+
+/// The largest error of the projected `Linear` = 1 + 2x - 3y + z/2 (the 3D
+/// sample's) over the points valid in `r`; their number in `valid`.
+double LinearError3D(const Result& r, vtkIdType* valid)
+{
+  vtkDataArray* linear = r.Output->GetPointData()->GetArray("Linear");
+  vtkDataArray* mask = r.Output->GetPointData()->GetArray("vtkValidPointMask");
+  *valid = 0;
+  if (!linear || !mask)
+  {
+    return 1e300;
+  }
+  double worst = 0;
+  for (vtkIdType i = 0; i < linear->GetNumberOfTuples(); ++i)
+  {
+    if (mask->GetComponent(i, 0))
+    {
+      double x[3];
+      r.Output->GetPoint(i, x);
+      ++*valid;
+      worst = std::max(worst,
+        std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2])));
+    }
+  }
+  return worst;
+}
+
+/// |∫ Smooth over the target - ∫ Smooth over the source| / |∫ Smooth over the
+/// source|; `target` gives the cells (the output's point ids must match it).
+double ConservationError(vtkUnstructuredGrid* target, const Result& r, vtkUnstructuredGrid* source)
+{
+  vtkDataArray* projected = r.Output->GetPointData()->GetArray("Smooth");
+  if (!projected)
+  {
+    return 1e300;
+  }
+  const double is = mptest::Integral(source, source->GetPointData()->GetArray("Smooth"));
+  return std::fabs(mptest::Integral(target, projected) - is) / std::fabs(is);
 }
 } // namespace
 
@@ -358,6 +399,132 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     }
     const Result r = Project(target, folded);
     MP_CHECK(r.Warnings.find("covered more than once") != std::string::npos);
+  }
+
+  // 3D: zero-volume and inverted tetrahedra, duplicate points.
+  {
+    auto source3 = mptest::ReadSample("lshape3d_source.vtu");
+    auto target3 = mptest::ReadSample("lshape3d_target.vtu");
+    const Result base = Project(target3, source3);
+    MP_CHECK(!base.Error && base.Warnings.empty());
+    vtkIdType valid = 0;
+    MP_CHECK(LinearError3D(base, &valid) < 1e-12 && valid == target3->GetNumberOfPoints());
+    vtkNew<vtkIdList> ids;
+
+    // Zero-volume tetrahedra (four points in a plane z = const), one in each
+    // mesh: ignored with a warning. The source one changes nothing; the
+    // target one's own points are invalid, the others as before.
+    auto flatCell = [](vtkUnstructuredGrid* grid, double x, double y, double z) {
+      const double corners[4][3] = { { x, y, z }, { x + 0.2, y, z }, { x, y + 0.2, z },
+        { x + 0.1, y + 0.1, z } };
+      vtkIdType tet[4];
+      for (int k = 0; k < 4; ++k)
+      {
+        tet[k] = grid->GetPoints()->InsertNextPoint(corners[k]);
+      }
+      for (int a = 0; a < grid->GetPointData()->GetNumberOfArrays(); ++a)
+      {
+        vtkDataArray* u = grid->GetPointData()->GetArray(a);
+        for (int k = 0; k < 4; ++k)
+        {
+          u->InsertNextTuple(u->GetTuple(0));
+        }
+      }
+      grid->InsertNextCell(VTK_TETRA, 4, tet);
+    };
+    vtkNew<vtkUnstructuredGrid> flatSource;
+    flatSource->DeepCopy(source3);
+    flatCell(flatSource, 0.2, 0.2, 0.3);
+    vtkNew<vtkUnstructuredGrid> flatTarget;
+    flatTarget->DeepCopy(target3);
+    flatCell(flatTarget, 2.0, 0.5, 0.5);
+    const Result flat = Project(flatTarget, flatSource);
+    MP_CHECK(!flat.Error);
+    MP_CHECK(flat.Warnings.find("Cells of zero volume (Input: 1, Source: 1) were ignored") !=
+      std::string::npos);
+    MP_CHECK(flat.Pieces == base.Pieces);
+    MP_CHECK(LinearError3D(flat, &valid) < 1e-12 && valid == target3->GetNumberOfPoints());
+    vtkDataArray* mask = flat.Output->GetPointData()->GetArray("vtkValidPointMask");
+    vtkDataArray* smooth = flat.Output->GetPointData()->GetArray("Smooth");
+    vtkDataArray* ref = base.Output->GetPointData()->GetArray("Smooth");
+    for (vtkIdType i = 0; mask && smooth && ref && i < flatTarget->GetNumberOfPoints(); ++i)
+    {
+      if (i < target3->GetNumberOfPoints())
+      {
+        MP_CHECK(mask->GetComponent(i, 0) == 1);
+        MP_CHECK(std::fabs(smooth->GetComponent(i, 0) - ref->GetComponent(i, 0)) < 1e-13);
+      }
+      else
+      {
+        MP_CHECK(mask->GetComponent(i, 0) == 0 && std::isnan(smooth->GetComponent(i, 0)));
+      }
+    }
+    std::cout << "3D zero-volume cells: linear error " << LinearError3D(flat, &valid)
+              << ", conservation error " << ConservationError(target3, flat, source3) << std::endl;
+    MP_CHECK(ConservationError(target3, flat, source3) < 1e-13);
+
+    // Inverted tetrahedra (two corners swapped in every other cell), in the
+    // source and in the target: the same geometry, no warning, same result.
+    auto inverted = [&ids](vtkUnstructuredGrid* grid) {
+      auto copy = vtkSmartPointer<vtkUnstructuredGrid>::New();
+      copy->DeepCopy(grid);
+      for (vtkIdType c = 0; c < copy->GetNumberOfCells(); c += 2)
+      {
+        copy->GetCellPoints(c, ids);
+        vtkIdType swapped[4] = { ids->GetId(0), ids->GetId(2), ids->GetId(1), ids->GetId(3) };
+        copy->ReplaceCell(c, 4, swapped);
+      }
+      return copy;
+    };
+    for (int which = 0; which < 2; ++which)
+    {
+      auto t = which == 0 ? target3 : inverted(target3);
+      auto s = which == 0 ? inverted(source3) : source3;
+      const Result r = Project(t, s);
+      MP_CHECK(!r.Error && r.Warnings.empty() && r.Pieces == base.Pieces);
+      const double d = Difference(r, base, "Smooth");
+      MP_CHECK(d >= 0 && d < 1e-13);
+      std::cout << "3D inverted " << (which == 0 ? "source" : "target") << " cells: linear error "
+                << LinearError3D(r, &valid) << ", conservation error " << ConservationError(t, r, s)
+                << ", max change " << d << std::endl;
+      MP_CHECK(LinearError3D(r, &valid) < 1e-12 && valid == target3->GetNumberOfPoints());
+      MP_CHECK(ConservationError(t, r, s) < 1e-13);
+    }
+
+    // Duplicate points: every other source tetrahedron uses copies of its
+    // points, so the mesh falls apart topologically; the result must not
+    // change.
+    vtkNew<vtkUnstructuredGrid> split;
+    split->DeepCopy(source3);
+    const vtkIdType n = source3->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      split->GetPoints()->InsertNextPoint(source3->GetPoint(i));
+    }
+    for (int a = 0; a < split->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* u = split->GetPointData()->GetArray(a);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        u->InsertNextTuple(u->GetTuple(i));
+      }
+    }
+    for (vtkIdType c = 0; c < split->GetNumberOfCells(); c += 2)
+    {
+      split->GetCellPoints(c, ids);
+      vtkIdType shifted[4] = { ids->GetId(0) + n, ids->GetId(1) + n, ids->GetId(2) + n,
+        ids->GetId(3) + n };
+      split->ReplaceCell(c, 4, shifted);
+    }
+    const Result r = Project(target3, split);
+    const double d = Difference(r, base, "Smooth");
+    std::cout << "3D duplicate points: " << r.Pieces << " pieces (" << base.Pieces
+              << " before), linear error " << LinearError3D(r, &valid) << ", conservation error "
+              << ConservationError(target3, r, split) << ", max change " << d << std::endl;
+    MP_CHECK(!r.Error && r.Warnings.empty() && r.Pieces == base.Pieces);
+    MP_CHECK(d >= 0 && d < 1e-13);
+    MP_CHECK(LinearError3D(r, &valid) < 1e-12 && valid == target3->GetNumberOfPoints());
+    MP_CHECK(ConservationError(target3, r, split) < 1e-13);
   }
 
   // Threads (vtkSMPTools, STDThread): the same pieces and values as one thread.
