@@ -53,9 +53,16 @@ vtkDataObject* vtkMeshProjectionFilter::GetSource()
   return this->GetNumberOfInputConnections(1) < 1 ? nullptr : this->GetInputDataObject(1, 0);
 }
 
-int vtkMeshProjectionFilter::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
+int vtkMeshProjectionFilter::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  if (port == 1)
+  {
+    // Optional for the executive, so that a missing Source reaches
+    // RequestData: a clear error and Input passed through, rather than the
+    // executive's refusal and an empty (or stale) output.
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -69,10 +76,12 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // The whole source is needed wherever the target is, as in vtkResampleWithDataSet.
-  vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0);
-  sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  if (vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0)) // optional port
+  {
+    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   inInfo->CopyEntry(outInfo, vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());

@@ -463,15 +463,24 @@ int TestMeshProjectionFilterInputs(int, char*[])
     filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
     filter->SetInputData(target);
     filter->Update();
-    // The executive refuses to run the filter (port 1 is required), so the
-    // output stays the empty default one.
+    // The filter's own error, and Input passed through unchanged.
     MP_CHECK(observer->GetError());
     const std::string error = observer->GetErrorMessage();
-    MP_CHECK(error.find("Input port 1 of algorithm vtkMeshProjectionFilter") != std::string::npos);
-    MP_CHECK(error.find("has 0 connections but is not optional") != std::string::npos);
-    MP_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
-    MP_CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
-    MP_CHECK(filter->GetOutput()->GetPointData()->GetNumberOfArrays() == 0);
+    MP_CHECK(error.find("No Source is connected (input port 1): nothing to project.") !=
+      std::string::npos);
+    MP_CHECK(Unchanged(filter->GetOutput(), target));
+    // A Source removed after a good run: no stale projected arrays remain.
+    vtkNew<vtkMeshProjectionFilter> again;
+    again->SetInputData(target);
+    again->SetSourceData(source);
+    again->Update();
+    MP_CHECK(again->GetOutput()->GetPointData()->GetArray("vtkValidPointMask") != nullptr);
+    vtkNew<vtkTest::ErrorObserver> secondObserver;
+    again->AddObserver(vtkCommand::ErrorEvent, secondObserver);
+    again->RemoveAllInputConnections(1);
+    again->Update();
+    MP_CHECK(secondObserver->GetError());
+    MP_CHECK(Unchanged(again->GetOutput(), target));
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
