@@ -14,7 +14,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
-#include "vtkStaticCellLinks.h"
+#include "vtkStaticCellLinksTemplate.h"
 #include "vtkStaticCellLocator.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
@@ -184,30 +184,35 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
   return std::string();
 }
 
-void SimplexMesh::BuildNeighbors()
+namespace
 {
-  const vtkIdType n = this->Kernel.NumberOfCells;
-  const int corners = this->Kernel.CornersPerCell();
-  this->Neighbors.assign(corners * static_cast<size_t>(n), -1);
-  this->Kernel.Neighbors = this->Neighbors.data();
-  if (n == 0)
-  {
-    return;
-  }
-  vtkNew<vtkStaticCellLinks> links;
-  links->SetDataSet(this->Grid);
-  links->BuildLinks();
+/**
+ * Face neighbours from VTK's static cell links with point ids of type TIds
+ * (32-bit ids halve the links' memory traffic when the grid allows them).
+ */
+template <typename TIds>
+void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel, const mp::Index* all,
+  const std::function<vtkIdType(mp::Index)>& toVTK,
+  const std::function<mp::Index(vtkIdType)>& toKernel, std::vector<mp::Index>& neighbors,
+  vtkIdType& nonManifoldFaces)
+{
+  const vtkIdType n = kernel.NumberOfCells;
+  const int corners = kernel.CornersPerCell();
+  vtkStaticCellLinksTemplate<TIds> links;
+  // The threaded build counts with atomics: slower on one thread.
+  links.SetSequentialProcessing(vtkSMPTools::GetEstimatedNumberOfThreads() <= 1);
+  links.BuildLinks(grid);
+  const bool ghosts = n != grid->GetNumberOfCells();
   std::atomic<vtkIdType> nonManifold(0);
-  const mp::Index* conn = this->Kernel.Connectivity;
-  const mp::Index* all = this->AllConnectivity;
+  const mp::Index* conn = kernel.Connectivity;
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     vtkIdType localNonManifold = 0;
     for (vtkIdType c = begin; c < end; ++c)
     {
-      const vtkIdType self = this->ToVTK(c);
+      const vtkIdType self = ghosts ? toVTK(c) : c;
       for (int k = 0; k < corners; ++k)
       {
-        if (this->Neighbors[corners * c + k] >= 0)
+        if (neighbors[corners * c + k] >= 0)
         {
           continue; // found from the other side
         }
@@ -215,8 +220,8 @@ void SimplexMesh::BuildNeighbors()
         const mp::Index first = conn[corners * c + (k + 1) % corners];
         const mp::Index second = conn[corners * c + (k + 2) % corners];
         const mp::Index third = corners == 4 ? conn[corners * c + (k + 3) % corners] : second;
-        const vtkIdType count = links->GetNcells(first);
-        const vtkIdType* around = links->GetCells(first);
+        const vtkIdType count = links.GetNcells(first);
+        const TIds* around = links.GetCells(first);
         vtkIdType found = -1;
         int matches = 0;
         for (vtkIdType i = 0; i < count; ++i)
@@ -238,8 +243,8 @@ void SimplexMesh::BuildNeighbors()
         }
         if (matches == 1)
         {
-          const mp::Index neighbor = this->ToKernel(found); // -1 for a ghost: a boundary here
-          this->Neighbors[corners * c + k] = neighbor;
+          const mp::Index neighbor = ghosts ? toKernel(found) : found; // -1 for a ghost: a boundary here
+          neighbors[corners * c + k] = neighbor;
           // The same face seen from the neighbour, when this task owns it.
           if (neighbor >= begin && neighbor < end)
           {
@@ -248,7 +253,7 @@ void SimplexMesh::BuildNeighbors()
             {
               if (o[l] != first && o[l] != second && o[l] != third)
               {
-                this->Neighbors[corners * neighbor + l] = c;
+                neighbors[corners * neighbor + l] = c;
               }
             }
           }
@@ -261,7 +266,34 @@ void SimplexMesh::BuildNeighbors()
     }
     nonManifold += localNonManifold;
   });
-  this->NonManifold = nonManifold / 2;
+  nonManifoldFaces = nonManifold / 2;
+}
+} // namespace
+
+void SimplexMesh::BuildNeighbors()
+{
+  const vtkIdType n = this->Kernel.NumberOfCells;
+  const int corners = this->Kernel.CornersPerCell();
+  this->Neighbors.assign(corners * static_cast<size_t>(n), -1);
+  this->Kernel.Neighbors = this->Neighbors.data();
+  if (n == 0)
+  {
+    return;
+  }
+  auto toVTK = [this](mp::Index c) { return this->ToVTK(c); };
+  auto toKernel = [this](vtkIdType c) { return this->ToKernel(c); };
+  const vtkIdType uses = this->Grid->GetCells()->GetNumberOfConnectivityIds();
+  if (this->Grid->GetNumberOfPoints() < VTK_INT_MAX && this->Grid->GetNumberOfCells() < VTK_INT_MAX &&
+    uses < VTK_INT_MAX)
+  {
+    FaceNeighbors<int>(this->Grid, this->Kernel, this->AllConnectivity, toVTK, toKernel,
+      this->Neighbors, this->NonManifold);
+  }
+  else
+  {
+    FaceNeighbors<vtkIdType>(this->Grid, this->Kernel, this->AllConnectivity, toVTK, toKernel,
+      this->Neighbors, this->NonManifold);
+  }
 }
 
 struct StaticLocator::Shared
