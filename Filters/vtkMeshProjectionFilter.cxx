@@ -227,7 +227,7 @@ int vtkMeshProjectionFilter::RequestData(
   const vtkIdType ns = source->GetNumberOfPoints();
   // Never empty: a Source without points but with arrays still passes the
   // kernel a pointer to its (absent) values.
-  std::vector<double> fields(std::max<size_t>(static_cast<size_t>(ns) * components, 1));
+  mp::LargeVector<double> fields(std::max<size_t>(static_cast<size_t>(ns) * components, 1));
   for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
   {
     vtkDataArray* array = arrays[a];
@@ -269,7 +269,7 @@ int vtkMeshProjectionFilter::RequestData(
     vtkErrorMacro(<< "Projection failed: " << projector.GetError());
     return 1;
   }
-  std::vector<double>().swap(fields);
+  mp::LargeVector<double>().swap(fields);
   const mp::SearchStatistics& stats = projector.GetStatistics();
   this->NumberOfIntersections = stats.Pieces;
   this->NumberOfIntersectionTests = stats.IntersectionTests;
@@ -297,7 +297,7 @@ int vtkMeshProjectionFilter::RequestData(
 
   // 6. Solve M_tt u_t = M_ts u_s, one output array per source array.
   const vtkIdType nt = target->GetNumberOfPoints();
-  std::vector<double> values(static_cast<size_t>(nt) * components);
+  mp::LargeVector<double> values(static_cast<size_t>(nt) * components);
   const double fill =
     this->FillWithNaN ? std::numeric_limits<double>::quiet_NaN() : this->FillValue;
   if (components > 0 && !projector.Project(values.data(), fill))

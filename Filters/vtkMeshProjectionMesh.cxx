@@ -39,10 +39,23 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
   std::ostringstream why;
   this->Grid = grid;
   const vtkIdType numberOfCells = grid->GetNumberOfCells();
-  std::set<int> types;
-  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  // The cell types present, from the grid's type array in one pass.
+  bool present[256] = {};
+  if (vtkUnsignedCharArray* typeArray = grid->GetCellTypesArray())
   {
-    types.insert(grid->GetCellType(c));
+    const unsigned char* t = typeArray->GetPointer(0);
+    for (vtkIdType c = 0; c < numberOfCells; ++c)
+    {
+      present[t[c]] = true;
+    }
+  }
+  std::set<int> types;
+  for (int type = 0; type < 256; ++type)
+  {
+    if (present[type])
+    {
+      types.insert(type);
+    }
   }
   std::set<int> unsupported = types;
   unsupported.erase(VTK_TRIANGLE);
@@ -193,7 +206,7 @@ namespace
 template <typename TIds>
 void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel, const mp::Index* all,
   const std::function<vtkIdType(mp::Index)>& toVTK,
-  const std::function<mp::Index(vtkIdType)>& toKernel, std::vector<mp::Index>& neighbors,
+  const std::function<mp::Index(vtkIdType)>& toKernel, mp::LargeVector<mp::Index>& neighbors,
   vtkIdType& nonManifoldFaces)
 {
   const vtkIdType n = kernel.NumberOfCells;

@@ -17,6 +17,7 @@
 #define vtkMeshProjectionMesh_h
 
 #include "CandidateLocator.h"
+#include "LargeArray.h"
 #include "MeshView.h"
 #include "MortarProjector.h"
 
@@ -66,7 +67,7 @@ private:
   std::vector<mp::Index> ConnectivityCopy;
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   std::vector<mp::Index> AllConnectivityCopy;
-  std::vector<mp::Index> Neighbors;
+  mp::LargeVector<mp::Index> Neighbors;
   std::vector<vtkIdType> KernelToVTK; ///< empty when the grid has no ghost cells
   std::vector<mp::Index> VTKToKernel; ///< -1 for ghost cells; empty likewise
   double Z = 0;

@@ -57,7 +57,9 @@ struct SearchStatistics
   Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
   Index SeedWalks = 0;         ///< walks through the source toward an unseeded target cell
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
-  Index DegenerateSourceCells = 0; ///< source cells of zero measure, skipped
+  /// Source cells of zero measure, skipped: those the front met (all, for
+  /// the brute force); unmet ones could not have mattered.
+  Index DegenerateSourceCells = 0;
 };
 } // namespace mp
 

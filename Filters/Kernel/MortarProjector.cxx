@@ -2,6 +2,7 @@
 #include "MortarProjector.h"
 
 #include "CellNeighbors.h"
+#include "LargeArray.h"
 #include "PairSearch.h"
 #include "TetrahedronIntersector.h"
 #include "TriangleIntersector.h"
@@ -25,13 +26,13 @@ struct MortarProjector::Internals
 {
   /// M_tt over the covered part, in CSR with the target mesh's point graph
   /// as pattern; rows of invalid points hold a 1 on the diagonal.
-  std::vector<Index> RowStart;
+  LargeVector<Index> RowStart;
   /// Column indices in 32 bits (Build() refuses meshes with 2^31 points or
   /// more): the solve streams them once per iteration.
-  std::vector<Column> Columns;
-  std::vector<double> Values;
+  LargeVector<Column> Columns;
+  LargeVector<double> Values;
   SparseMatrix Mts;                ///< target x source points, when kept
-  std::vector<double> Rhs;         ///< M_ts u_s for the fields given to Build
+  LargeVector<double> Rhs;         ///< M_ts u_s for the fields given to Build
   int Components = 0;
   mutable std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> Direct; ///< fallback only
 
@@ -104,11 +105,11 @@ struct MortarProjector::Internals
   bool ConjugateGradients(const double* b, double* x, double tolerance, int maxIterations) const
   {
     const Index n = this->Size();
-    std::vector<double> r(n);
-    std::vector<double> z(n);
-    std::vector<double> p(n);
-    std::vector<double> q(n);
-    std::vector<double> inverseDiagonal(n);
+    LargeVector<double> r(n);
+    LargeVector<double> z(n);
+    LargeVector<double> p(n);
+    LargeVector<double> q(n);
+    LargeVector<double> inverseDiagonal(n);
     const double bb = this->ForRanges(n, [&](Index begin, Index end) {
       double sum = 0.0;
       for (Index i = begin; i < end; ++i)
@@ -210,7 +211,7 @@ double Seconds(std::chrono::steady_clock::time_point since)
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
 /// around each point.
-void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Column>& columns)
+void PointGraph(const MeshView& mesh, LargeVector<Index>& start, LargeVector<Column>& columns)
 {
   std::vector<Index> cellStart;
   std::vector<Index> cells;
@@ -231,7 +232,17 @@ void PointGraph(const MeshView& mesh, std::vector<Index>& start, std::vector<Col
         row.push_back(static_cast<Column>(ids[k]));
       }
     }
-    std::sort(row.begin(), row.end());
+    // Rows are short (7 entries in 2D, 15 in 3D on average): insertion sort.
+    for (size_t i = 1; i < row.size(); ++i)
+    {
+      const Column v = row[i];
+      size_t j = i;
+      for (; j > 0 && row[j - 1] > v; --j)
+      {
+        row[j] = row[j - 1];
+      }
+      row[j] = v;
+    }
     row.erase(std::unique(row.begin(), row.end()), row.end());
     columns.insert(columns.end(), row.begin(), row.end());
     start[p + 1] = static_cast<Index>(columns.size());
@@ -256,7 +267,11 @@ struct MortarAssembler
   const double* Fields = nullptr; ///< source points x Components
   int Components = 0;
   std::vector<Triplet>* Mts = nullptr;
-  double* CoveredMeasure = nullptr; ///< per target cell
+  /// Per target cell: the covered fraction of its measure, written when
+  /// its last piece has come (each cell belongs to one task).
+  double* CoveredFraction = nullptr;
+  double CoveredSum = 0.0; ///< measure of all pieces of this task
+  Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
   IntersectionPieces* Pieces = nullptr;
   Index Count = 0;
   /**
@@ -273,6 +288,8 @@ struct MortarAssembler
   Index Current = -1;
   Index CurrentPoints[N];
   double CurrentMtt[N][N];
+  double CurrentMeasure = 0.0; ///< of the current target cell
+  double CurrentCovered = 0.0; ///< summed measure of its pieces so far
 
   void Flush()
   {
@@ -280,6 +297,10 @@ struct MortarAssembler
     {
       return;
     }
+    const double fraction = this->CurrentCovered / this->CurrentMeasure;
+    this->Overcovered += fraction > 1.0 + 1e-9;
+    this->CoveredFraction[this->Current] = std::min(1.0, fraction);
+    this->CoveredSum += this->CurrentCovered;
     for (int i = 0; i < N; ++i)
     {
       const bool shared = this->Shared && this->Shared[this->CurrentPoints[i]];
@@ -305,6 +326,8 @@ struct MortarAssembler
     {
       this->Flush();
       this->Current = t.Id;
+      this->CurrentMeasure = t.Measure;
+      this->CurrentCovered = 0.0;
       for (int i = 0; i < N; ++i)
       {
         this->CurrentPoints[i] = t.Points[i];
@@ -385,7 +408,7 @@ struct MortarAssembler
       }
     }
     ++this->Count;
-    this->CoveredMeasure[t.Id] += measure;
+    this->CurrentCovered += measure;
     if (this->Pieces)
     {
       Intersector::Append(piece, t.Id, s.Id, measure, *this->Pieces);
@@ -499,13 +522,13 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   // locator and sums (a single task sums straight into the result).
   const Index cells = target.NumberOfCells;
   const int tasks = static_cast<int>(std::max<Index>(1, std::min<Index>(options.Tasks, cells / 64)));
-  std::vector<double> covered(static_cast<size_t>(cells), 0.0); // each cell in one range
   struct Task
   {
     MortarAssembler<Intersector> Assembler;
     std::vector<Triplet> Mts;
     IntersectionPieces Pieces;
     SearchStatistics Statistics;
+    std::vector<Index> DegenerateSources;
     std::unique_ptr<CandidateLocator> Locator;
   };
   // Target points touched by the cells of more than one task: their rows
@@ -547,7 +570,7 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
     a.Fields = fields;
     a.Components = components;
     a.Mts = options.KeepMixedMatrix ? &w.Mts : nullptr;
-    a.CoveredMeasure = covered.data();
+    a.CoveredFraction = this->CoveredFraction.data();
     a.Pieces = options.KeepPieces ? (tasks > 1 ? &w.Pieces : &this->Pieces) : nullptr;
     if (locator && tasks > 1)
     {
@@ -564,11 +587,13 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
     if (options.Method == SearchMethod::AdvancingFront)
     {
       CandidateLocator& seeds = tasks > 1 ? *w.Locator : *locator;
-      AdvancingFrontSearch<Intersector>(target, source, seeds, w.Assembler, w.Statistics, begin, end);
+      AdvancingFrontSearch<Intersector>(
+        target, source, seeds, w.Assembler, w.Statistics, begin, end, &w.DegenerateSources);
     }
     else
     {
-      BruteForceSearch<Intersector>(target, source, w.Assembler, w.Statistics, begin, end);
+      BruteForceSearch<Intersector>(
+        target, source, w.Assembler, w.Statistics, begin, end, &w.DegenerateSources);
     }
     w.Assembler.Flush();
   };
@@ -585,6 +610,7 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   }
   // Sum the tasks' contributions, in task order (deterministic).
   std::vector<Triplet> mts;
+  std::vector<Index> degenerateSources;
   for (Task& w : work)
   {
     for (const auto& entry : w.Assembler.Deferred)
@@ -612,6 +638,13 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
     this->Statistics.IntersectionTests += w.Statistics.IntersectionTests;
     this->Statistics.TouchingPairs += w.Statistics.TouchingPairs;
     this->Statistics.LocatorQueries += w.Statistics.LocatorQueries;
+    this->Statistics.FullLocatorQueries += w.Statistics.FullLocatorQueries;
+    this->Statistics.SeedWalks += w.Statistics.SeedWalks;
+    this->Statistics.DegenerateTargetCells += w.Statistics.DegenerateTargetCells;
+    degenerateSources.insert(degenerateSources.end(), w.DegenerateSources.begin(),
+      w.DegenerateSources.end());
+    this->CoveredMeasure += w.Assembler.CoveredSum;
+    this->OvercoveredCells += w.Assembler.Overcovered;
     this->Statistics.Pieces += w.Assembler.Count;
   }
   work.clear();
@@ -624,25 +657,9 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
     m.Mts.setFromTriplets(mts.begin(), mts.end());
     std::vector<Triplet>().swap(mts);
   }
-  typename Intersector::Cell cell;
-  for (Index c = 0; c < source.NumberOfCells; ++c)
-  {
-    this->Statistics.DegenerateSourceCells += !Intersector::Prepare(source, c, cell);
-  }
-  for (Index c = 0; c < target.NumberOfCells; ++c)
-  {
-    this->CoveredMeasure += covered[c];
-    if (!Intersector::Prepare(target, c, cell))
-    {
-      ++this->Statistics.DegenerateTargetCells;
-    }
-    else
-    {
-      const double fraction = covered[c] / cell.Measure;
-      this->OvercoveredCells += fraction > 1.0 + 1e-9;
-      this->CoveredFraction[c] = std::min(1.0, fraction);
-    }
-  }
+  std::sort(degenerateSources.begin(), degenerateSources.end());
+  this->Statistics.DegenerateSourceCells = static_cast<Index>(
+    std::unique(degenerateSources.begin(), degenerateSources.end()) - degenerateSources.begin());
   // A point is valid when its support meets the source: its diagonal entry
   // of the covered mass matrix is positive. An invalid point's whole row is
   // zero (no piece touches its support); a 1 on the diagonal decouples it.
@@ -675,8 +692,8 @@ bool MortarProjector::Solve(const double* rhs, int components, double* x, double
   // diagonal, well conditioned on reasonable meshes: conjugate gradients with
   // a Jacobi preconditioner to rounding level. Targets covered only in slivers
   // can make it ill conditioned: then a sparse LDL^T factorization.
-  std::vector<double> b(static_cast<size_t>(n));
-  std::vector<double> solution(static_cast<size_t>(n));
+  LargeVector<double> b(static_cast<size_t>(n));
+  LargeVector<double> solution(static_cast<size_t>(n));
   for (int c = 0; c < components; ++c)
   {
     for (Index i = 0; i < n; ++i)

@@ -63,6 +63,7 @@
 #define MeshProjection_Kernel_PairSearch_h
 
 #include "CandidateLocator.h"
+#include "LargeArray.h"
 #include "MeshView.h"
 
 #include <algorithm>
@@ -83,8 +84,11 @@ class PreparedCells
 {
 public:
   static constexpr Index Slots = 4096; // a power of two
-  explicit PreparedCells(const MeshView& mesh)
+  /// `degenerate`, when given, collects the ids of cells of zero measure
+  /// met (with repeats).
+  explicit PreparedCells(const MeshView& mesh, std::vector<Index>* degenerate = nullptr)
     : Mesh(mesh)
+    , Degenerate(degenerate)
     , Ids(Slots, -1)
     , Valid(Slots, 0)
     , Cells(Slots)
@@ -98,12 +102,17 @@ public:
     {
       this->Ids[slot] = id;
       this->Valid[slot] = Intersector::Prepare(this->Mesh, id, this->Cells[slot]);
+      if (!this->Valid[slot] && this->Degenerate)
+      {
+        this->Degenerate->push_back(id);
+      }
     }
     return this->Valid[slot] ? &this->Cells[slot] : nullptr;
   }
 
 private:
   const MeshView& Mesh;
+  std::vector<Index>* Degenerate;
   std::vector<Index> Ids;
   std::vector<char> Valid;
   std::vector<typename Intersector::Cell> Cells;
@@ -138,10 +147,16 @@ Index WalkToward(
   return -1;
 }
 
+/**
+ * The advancing front over target cells [begin, end) (all by default).
+ * Target cells of zero measure are counted in `stats`; source cells of zero
+ * measure that the front meets go to `degenerateSources` when given (ids,
+ * possibly repeated).
+ */
 template <class Intersector, class Visitor>
 void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   CandidateLocator& locator, Visitor& visit, SearchStatistics& stats, Index begin = 0,
-  Index end = -1)
+  Index end = -1, std::vector<Index>* degenerateSources = nullptr)
 {
   if (end < 0)
   {
@@ -156,16 +171,16 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     Index Target;
     Index Source;
   };
-  std::vector<char> queued(static_cast<size_t>(std::max<Index>(0, end - begin)), 0); // of cell begin + i
+  LargeVector<char> queued(static_cast<size_t>(std::max<Index>(0, end - begin)), 0); // of cell begin + i
   // stamp[s] == t: source cell s was already tried for target cell t. A
   // stamp instead of the paper's per-cell flag vector keeps the work linear.
-  std::vector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
+  LargeVector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
   std::vector<Seed> outer; // a binary heap: the smallest target id first
   auto later = [](const Seed& a, const Seed& b) { return a.Target > b.Target; };
   std::vector<Index> inner;
   std::vector<Index> candidates;
   Cell t;
-  PreparedCells<Intersector> sources(source);
+  PreparedCells<Intersector> sources(source, degenerateSources);
   Piece piece;
   double box[6];
   // Where walks start: the last source cell met, at first the source cell
@@ -211,7 +226,8 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   auto treat = [&](Index tId, Index seed) {
     if (!Intersector::Prepare(target, tId, t))
     {
-      return; // zero measure: meets nothing (counted by the caller)
+      ++stats.DegenerateTargetCells; // zero measure: meets nothing
+      return;
     }
     Index faceSeed[Faces];
     for (auto& f : faceSeed)
@@ -359,9 +375,12 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   }
 }
 
+/// Every target cell of [begin, end) against every source cell; counts as
+/// AdvancingFrontSearch (every source cell of zero measure).
 template <class Intersector, class Visitor>
 void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& visit,
-  SearchStatistics& stats, Index begin = 0, Index end = -1)
+  SearchStatistics& stats, Index begin = 0, Index end = -1,
+  std::vector<Index>* degenerateSources = nullptr)
 {
   if (end < 0)
   {
@@ -378,12 +397,17 @@ void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& v
     {
       sources.push_back(c);
     }
+    else if (degenerateSources)
+    {
+      degenerateSources->push_back(sId);
+    }
   }
   Cell t;
   for (Index tId = begin; tId < end; ++tId)
   {
     if (!Intersector::Prepare(target, tId, t))
     {
+      ++stats.DegenerateTargetCells;
       continue;
     }
     for (const Cell& s : sources)
