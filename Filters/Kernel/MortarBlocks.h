@@ -5,52 +5,62 @@
  *
  * Both intersectors write the target's and the source's barycentric
  * coordinates as affine functions of local coordinates (coefficient rows
- * lt[i], ls[j]) and integrate products of two affine functions from the
- * piece's moments (`product`). This adds the N x N blocks
- * Mts[i][j] += int lt_i ls_j and Mtt[i][k] += int lt_i lt_k (symmetric).
+ * lt[i], ls[j]: constant first, then the gradient) and hand over the piece's
+ * moments up to order 2 as the symmetric matrix M (M[0][0] = measure,
+ * M[0][a] = first moments, M[a][b] = second moments), so that the integral
+ * of the product of two affine functions f, g over the piece is f^T M g.
+ * With M g computed once per function g, a block of such products costs
+ * N^2 multiplications per function instead of N^2 per product.
  *
- * When M_ts itself is not needed, AddFieldBlock adds the right-hand sides
- * rhs_i += int lt_i u directly, with u = sum_j u_j ls_j the source field on
- * the piece as one affine function: N products per component instead of the
- * N x N of the block.
+ * This adds the N x N blocks Mts[i][j] += int lt_i ls_j and
+ * Mtt[i][k] += int lt_i lt_k (symmetric). When M_ts itself is not needed,
+ * AddFieldBlock adds the right-hand sides rhs_i += int lt_i u directly, with
+ * u = sum_j u_j ls_j the source field on the piece as one affine function.
  */
 #ifndef MeshProjection_Kernel_MortarBlocks_h
 #define MeshProjection_Kernel_MortarBlocks_h
 
 namespace mp
 {
-template <int N, class Product>
-void AddMortarBlocks(const double (&lt)[N][N], const double (&ls)[N][N], const Product& product,
-  double Mts[N][N], double Mtt[N][N])
+/// Mg = M g for the moment matrix M (symmetric) and the affine function g.
+template <int N>
+inline void MomentTimes(const double (&M)[N][N], const double* g, double (&Mg)[N])
 {
-  for (int i = 0; i < N; ++i)
+  for (int a = 0; a < N; ++a)
   {
-    for (int j = 0; j < N; ++j)
+    double sum = 0.0;
+    for (int b = 0; b < N; ++b)
     {
-      Mts[i][j] += product(lt[i], ls[j]);
+      sum += M[a][b] * g[b];
     }
-    for (int k = i; k < N; ++k)
-    {
-      const double v = product(lt[i], lt[k]);
-      Mtt[i][k] += v;
-      if (k != i)
-      {
-        Mtt[k][i] += v;
-      }
-    }
+    Mg[a] = sum;
   }
 }
-/// Mtt[i][k] += int lt_i lt_k (symmetric) only.
-template <int N, class Product>
-void AddTargetBlock(const double (&lt)[N][N], const Product& product, double Mtt[N][N])
+
+template <int N>
+inline double DotN(const double* f, const double (&g)[N])
 {
-  for (int i = 0; i < N; ++i)
+  double sum = 0.0;
+  for (int a = 0; a < N; ++a)
   {
-    for (int k = i; k < N; ++k)
+    sum += f[a] * g[a];
+  }
+  return sum;
+}
+
+/// Mtt[i][k] += int lt_i lt_k (symmetric).
+template <int N>
+void AddTargetBlock(const double (&lt)[N][N], const double (&M)[N][N], double Mtt[N][N])
+{
+  for (int k = 0; k < N; ++k)
+  {
+    double Mg[N];
+    MomentTimes<N>(M, lt[k], Mg);
+    for (int i = 0; i <= k; ++i)
     {
-      const double v = product(lt[i], lt[k]);
+      const double v = DotN<N>(lt[i], Mg);
       Mtt[i][k] += v;
-      if (k != i)
+      if (i != k)
       {
         Mtt[k][i] += v;
       }
@@ -58,12 +68,29 @@ void AddTargetBlock(const double (&lt)[N][N], const Product& product, double Mtt
   }
 }
 
+/// Mts[i][j] += int lt_i ls_j and Mtt[i][k] += int lt_i lt_k.
+template <int N>
+void AddMortarBlocks(const double (&lt)[N][N], const double (&ls)[N][N], const double (&M)[N][N],
+  double Mts[N][N], double Mtt[N][N])
+{
+  for (int j = 0; j < N; ++j)
+  {
+    double Mg[N];
+    MomentTimes<N>(M, ls[j], Mg);
+    for (int i = 0; i < N; ++i)
+    {
+      Mts[i][j] += DotN<N>(lt[i], Mg);
+    }
+  }
+  AddTargetBlock<N>(lt, M, Mtt);
+}
+
 /**
  * rhs[i][c] += int lt_i u_c for the source field with values u[j][c] at the
  * source corners (c < components).
  */
-template <int N, class Product>
-void AddFieldBlock(const double (&lt)[N][N], const double (&ls)[N][N], const Product& product,
+template <int N>
+void AddFieldBlock(const double (&lt)[N][N], const double (&ls)[N][N], const double (&M)[N][N],
   const double* const (&u)[N], int components, double* const (&rhs)[N])
 {
   for (int c = 0; c < components; ++c)
@@ -77,9 +104,11 @@ void AddFieldBlock(const double (&lt)[N][N], const double (&ls)[N][N], const Pro
         field[k] += u[j][c] * ls[j][k];
       }
     }
+    double Mf[N];
+    MomentTimes<N>(M, field, Mf);
     for (int i = 0; i < N; ++i)
     {
-      rhs[i][c] += product(lt[i], field);
+      rhs[i][c] += DotN<N>(lt[i], Mf);
     }
   }
 }

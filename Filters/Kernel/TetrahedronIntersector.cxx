@@ -862,7 +862,7 @@ namespace
 /**
  * The piece's moments and both cells' barycentric functions (affine in
  * coordinates relative to one of the piece's vertices), handed to
- * use(lt, ls, product). Returns the volume (0 for a piece without interior).
+ * use(lt, ls, M), M the moment matrix of MortarBlocks.h. Returns the volume (0 for a piece without interior).
  */
 template <class Use>
 double IntegratePiece(const TetrahedronIntersector::Piece& piece,
@@ -943,19 +943,18 @@ double IntegratePiece(const TetrahedronIntersector::Piece& piece,
       l[0][k] = (k == 0 ? 1.0 : 0.0) - l[1][k] - l[2][k] - l[3][k];
     }
   }
-  auto product = [&](const double* f, const double* g) {
-    double r = f[0] * g[0] * m0;
-    for (int i = 0; i < 3; ++i)
+  // The moment matrix (see MortarBlocks.h).
+  double M[4][4];
+  M[0][0] = m0;
+  for (int i = 0; i < 3; ++i)
+  {
+    M[0][i + 1] = M[i + 1][0] = m1[i];
+    for (int j = 0; j < 3; ++j)
     {
-      r += (f[0] * g[i + 1] + f[i + 1] * g[0]) * m1[i];
-      for (int j = 0; j < 3; ++j)
-      {
-        r += f[i + 1] * g[j + 1] * m2[i][j];
-      }
+      M[i + 1][j + 1] = m2[i][j];
     }
-    return r;
-  };
-  use(lt, ls, product);
+  }
+  use(lt, ls, M);
   return m0;
 }
 } // namespace
@@ -963,17 +962,17 @@ double IntegratePiece(const TetrahedronIntersector::Piece& piece,
 double TetrahedronIntersector::Integrate(
   const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4])
 {
-  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
-    AddMortarBlocks<4>(lt, ls, product, Mts, Mtt);
+  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
+    AddMortarBlocks<4>(lt, ls, M, Mts, Mtt);
   });
 }
 
 double TetrahedronIntersector::Integrate(const Piece& piece, const Cell& t, const Cell& s,
   double Mtt[4][4], const double* const (&u)[4], int components, double* const (&rhs)[4])
 {
-  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
-    AddTargetBlock<4>(lt, product, Mtt);
-    AddFieldBlock<4>(lt, ls, product, u, components, rhs);
+  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
+    AddTargetBlock<4>(lt, M, Mtt);
+    AddFieldBlock<4>(lt, ls, M, u, components, rhs);
   });
 }
 

@@ -426,7 +426,8 @@ namespace
 /**
  * The piece's moments and both cells' barycentric functions (affine in
  * coordinates relative to the piece's first vertex), handed to
- * use(lt, ls, product). Returns the area (0 for a piece without interior).
+ * use(lt, ls, M), M the moment matrix of MortarBlocks.h. Returns the area (0 for a piece
+ * without interior).
  */
 template <class Use>
 double IntegratePiece(const TriangleIntersector::Piece& p, const TriangleIntersector::Cell& t,
@@ -490,12 +491,10 @@ double IntegratePiece(const TriangleIntersector::Piece& p, const TriangleInterse
       l[0][k] = (k == 0 ? 1.0 : 0.0) - l[1][k] - l[2][k];
     }
   }
-  // Integral of (a + b x + c y)(a' + b' x + c' y) from the moments.
-  auto product = [&](const double* f, const double* g) {
-    return f[0] * g[0] * m0 + (f[0] * g[1] + f[1] * g[0]) * mx + (f[0] * g[2] + f[2] * g[0]) * my +
-      f[1] * g[1] * mxx + (f[1] * g[2] + f[2] * g[1]) * mxy + f[2] * g[2] * myy;
-  };
-  use(lt, ls, product);
+  // The moment matrix (see MortarBlocks.h): the integral of
+  // (a + b x + c y)(a' + b' x + c' y) is (a, b, c) M (a', b', c')^T.
+  const double M[3][3] = { { m0, mx, my }, { mx, mxx, mxy }, { my, mxy, myy } };
+  use(lt, ls, M);
   return m0;
 }
 } // namespace
@@ -503,17 +502,17 @@ double IntegratePiece(const TriangleIntersector::Piece& p, const TriangleInterse
 double TriangleIntersector::Integrate(
   const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3])
 {
-  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
-    AddMortarBlocks<3>(lt, ls, product, Mts, Mtt);
+  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
+    AddMortarBlocks<3>(lt, ls, M, Mts, Mtt);
   });
 }
 
 double TriangleIntersector::Integrate(const Piece& p, const Cell& t, const Cell& s,
   double Mtt[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3])
 {
-  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& product) {
-    AddTargetBlock<3>(lt, product, Mtt);
-    AddFieldBlock<3>(lt, ls, product, u, components, rhs);
+  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
+    AddTargetBlock<3>(lt, M, Mtt);
+    AddFieldBlock<3>(lt, ls, M, u, components, rhs);
   });
 }
 
