@@ -4,7 +4,7 @@
 // square (triangles) and the unit cube (tetrahedra).
 //
 //   mesh-projection-bench [--dim 2|3|23] [--sizes 1e3,1e4,1e5,1e6]
-//                         [--brute-max 2e4] [--csv FILE] [--filter-only]
+//                         [--brute-max 2e4] [--csv FILE] [--filter-only [--threads N]]
 //
 // For each size n (cells of the target; the source has about as many, on a
 // different, jittered grid) it prints one table: the time of every stage of
@@ -17,7 +17,8 @@
 // ParaView's Resample With Dataset (vtkResampleWithDataSet) on the same
 // target, with the filter on 1 and 2 threads (vtkSMPTools, STDThread).
 // --filter-only runs just the VTK filter once per size, on the calling
-// thread, and prints its stages (for profiling).
+// thread (or on N threads with --threads N), and prints its stages (for
+// profiling).
 // Timings are wall-clock seconds of one run each; ratios, not absolute
 // seconds, carry the comparison.
 #include "MortarProjector.h"
@@ -258,6 +259,9 @@ double Field(const double* x)
   return std::sin(3 * x[0]) * std::cos(2 * x[1]) + x[2];
 }
 
+/// --threads: the threads of the filter in --filter-only runs.
+int FilterThreads = 1;
+
 Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 {
   Row r{};
@@ -276,6 +280,11 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 
   if (filterOnly)
   {
+    if (FilterThreads > 1)
+    {
+      vtkSMPTools::SetBackend("STDThread");
+      vtkSMPTools::Initialize(FilterThreads);
+    }
     auto sourceGrid = ToVTK(source, &u);
     auto targetGrid = ToVTK(target, nullptr);
     vtkNew<vtkMeshProjectionFilter> filter;
@@ -468,6 +477,8 @@ int main(int argc, char* argv[])
     const std::string a = argv[i];
     if (a == "--filter-only")
       filterOnly = true;
+    else if (a == "--threads" && i + 1 < argc)
+      FilterThreads = std::max(1, std::atoi(argv[++i]));
     else if (a == "--dim" && i + 1 < argc)
       dims = argv[++i];
     else if (a == "--sizes" && i + 1 < argc)
@@ -480,7 +491,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--dim 2|3|23] [--sizes 1e3,1e4,...] [--brute-max N] [--csv FILE] "
-        "[--filter-only]\n",
+        "[--filter-only [--threads N]]\n",
         argv[0]);
       return 2;
     }
