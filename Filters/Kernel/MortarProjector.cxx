@@ -210,42 +210,80 @@ double Seconds(std::chrono::steady_clock::time_point since)
 
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
-/// around each point.
-void PointGraph(const MeshView& mesh, LargeVector<Index>& start, LargeVector<Column>& columns)
+/// around each point; rows in concurrent tasks over point ranges when a
+/// runner is given, each into a block of its own, then moved into place.
+void PointGraph(const MeshView& mesh, int tasks,
+  const std::function<void(int, const std::function<void(int)>&)>& runTasks,
+  LargeVector<Index>& start, LargeVector<Column>& columns)
 {
   std::vector<Index> cellStart;
   std::vector<Index> cells;
   BuildPointCells(mesh, cellStart, cells);
   const int n = mesh.CornersPerCell();
-  start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
-  columns.clear();
-  columns.reserve(static_cast<size_t>(mesh.NumberOfPoints) * (n == 3 ? 7 : 15));
-  std::vector<Column> row;
-  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  const Index points = mesh.NumberOfPoints;
+  tasks = runTasks ? static_cast<int>(std::max<Index>(1, std::min<Index>(tasks, points / 4096))) : 1;
+  start.assign(static_cast<size_t>(points) + 1, 0);
+  std::vector<std::vector<Column>> blocks(static_cast<size_t>(tasks));
+  auto rows = [&](int k) {
+    std::vector<Column>& block = blocks[k];
+    block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
+    std::vector<Column> row;
+    for (Index p = points * k / tasks; p < points * (k + 1) / tasks; ++p)
+    {
+      row.assign(1, static_cast<Column>(p));
+      for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
+      {
+        const Index* ids = mesh.Cell(cells[i]);
+        for (int c = 0; c < n; ++c)
+        {
+          row.push_back(static_cast<Column>(ids[c]));
+        }
+      }
+      // Rows are short (7 entries in 2D, 15 in 3D on average): insertion
+      // sort, unless a point has very many cells around it.
+      if (row.size() > 64)
+      {
+        std::sort(row.begin(), row.end());
+      }
+      for (size_t i = 1; i < row.size(); ++i)
+      {
+        const Column v = row[i];
+        size_t j = i;
+        for (; j > 0 && row[j - 1] > v; --j)
+        {
+          row[j] = row[j - 1];
+        }
+        row[j] = v;
+      }
+      const Index size = std::unique(row.begin(), row.end()) - row.begin();
+      block.insert(block.end(), row.begin(), row.begin() + size);
+      start[p + 1] = size;
+    }
+  };
+  if (tasks > 1)
   {
-    row.assign(1, static_cast<Column>(p));
-    for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
-    {
-      const Index* ids = mesh.Cell(cells[i]);
-      for (int k = 0; k < n; ++k)
-      {
-        row.push_back(static_cast<Column>(ids[k]));
-      }
-    }
-    // Rows are short (7 entries in 2D, 15 in 3D on average): insertion sort.
-    for (size_t i = 1; i < row.size(); ++i)
-    {
-      const Column v = row[i];
-      size_t j = i;
-      for (; j > 0 && row[j - 1] > v; --j)
-      {
-        row[j] = row[j - 1];
-      }
-      row[j] = v;
-    }
-    row.erase(std::unique(row.begin(), row.end()), row.end());
-    columns.insert(columns.end(), row.begin(), row.end());
-    start[p + 1] = static_cast<Index>(columns.size());
+    runTasks(tasks, rows);
+  }
+  else
+  {
+    rows(0);
+  }
+  for (Index p = 0; p < points; ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  columns.resize(static_cast<size_t>(start[points]));
+  auto place = [&](int k) {
+    std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[points * k / tasks]);
+    std::vector<Column>().swap(blocks[k]);
+  };
+  if (tasks > 1)
+  {
+    runTasks(tasks, place);
+  }
+  else
+  {
+    place(0);
   }
 }
 
@@ -514,7 +552,7 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   Internals& m = *this->Impl;
   m.Tasks = std::max(1, options.Tasks);
   m.RunTasks = options.RunTasks;
-  PointGraph(target, m.RowStart, m.Columns);
+  PointGraph(target, m.Tasks, m.RunTasks, m.RowStart, m.Columns);
   m.Values.assign(m.Columns.size(), 0.0);
   m.Components = components;
   m.Rhs.assign(static_cast<size_t>(target.NumberOfPoints) * components, 0.0);
