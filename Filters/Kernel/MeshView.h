@@ -56,6 +56,7 @@ struct SearchStatistics
   Index LocatorQueries = 0;    ///< candidate look-ups in the locator (seeds and re-seeds)
   Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
   Index SeedWalks = 0;         ///< walks through the source toward an unseeded target cell
+  Index WalkSteps = 0;         ///< source cells those walks went through
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
   /// Source cells of zero measure, skipped: those the front met (all, for
   /// the brute force); unmet ones could not have mattered.

@@ -678,6 +678,7 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
     this->Statistics.LocatorQueries += w.Statistics.LocatorQueries;
     this->Statistics.FullLocatorQueries += w.Statistics.FullLocatorQueries;
     this->Statistics.SeedWalks += w.Statistics.SeedWalks;
+    this->Statistics.WalkSteps += w.Statistics.WalkSteps;
     this->Statistics.DegenerateTargetCells += w.Statistics.DegenerateTargetCells;
     degenerateSources.insert(degenerateSources.end(), w.DegenerateSources.begin(),
       w.DegenerateSources.end());

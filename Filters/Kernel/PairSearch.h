@@ -126,12 +126,13 @@ private:
  * not Delaunay.
  */
 template <class Intersector>
-Index WalkToward(
-  const MeshView& source, PreparedCells<Intersector>& cells, Index start, const double* q, Index maxSteps)
+Index WalkToward(const MeshView& source, PreparedCells<Intersector>& cells, Index start,
+  const double* q, Index maxSteps, Index& steps)
 {
   Index current = start;
   for (Index step = 0; step < maxSteps && current >= 0; ++step)
   {
+    ++steps;
     const typename Intersector::Cell* c = cells.Get(current);
     if (!c)
     {
@@ -198,6 +199,12 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     4 * static_cast<Index>(std::pow(
           static_cast<double>(source.NumberOfCells), 1.0 / Intersector::Dimension));
   bool askedAll = false; // a query among all source cells was made: no more walks
+  // Walks are for the few cells that start a front. Where there are many
+  // (a target of many disconnected pieces, e.g. cells that share no
+  // points), their steps stay within this budget, then the locator takes
+  // over: the search stays linear.
+  Index treated = 0;
+  auto walkBudget = [&] { return 16 * treated + 64 * maxWalk; };
 
   // Adds the locator's candidates (boundary cells, or all cells) to the inner front.
   auto ask = [&](Index tId, bool all) {
@@ -235,11 +242,12 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       f = -1;
     }
     inner.clear();
-    if (seed < 0 && !askedAll && lastMet >= 0)
+    ++treated;
+    if (seed < 0 && !askedAll && lastMet >= 0 && stats.WalkSteps < walkBudget())
     {
       double q[3] = { 0.0, 0.0, 0.0 };
       Intersector::Center(t, q);
-      seed = WalkToward<Intersector>(source, sources, lastMet, q, maxWalk);
+      seed = WalkToward<Intersector>(source, sources, lastMet, q, maxWalk, stats.WalkSteps);
       ++stats.SeedWalks;
     }
     // What the inner front started from: 0 the seed, 1 also the boundary

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 #include <tuple>
 
 using mp::Index;
@@ -164,6 +166,37 @@ TEST(PairSearch, AllSourceCellsAskedOnlyWhereTheBoundaryCannotTell)
   const TestMesh inside = mptest::GridMesh(11, 13, 0.25, 24, 0.05, 0.05, 0.45, 0.95);
   Searches in(inside, holed);
   in.ExpectSamePairs("target over holes");
+}
+
+TEST(PairSearch, TargetOfDisconnectedCellsInRandomOrder)
+{
+  // Every target cell its own piece (no shared points), in random order:
+  // each cell starts a front of its own. Walks toward them stay within
+  // their budget (linear in the cells), then the locator seeds the rest.
+  const TestMesh grid = mptest::GridMesh(30, 30, 0.25, 27);
+  TestMesh soup;
+  std::vector<Index> order(static_cast<size_t>(grid.NumberOfCells()));
+  for (size_t i = 0; i < order.size(); ++i)
+    order[i] = static_cast<Index>(i);
+  std::shuffle(order.begin(), order.end(), std::mt19937(28));
+  for (Index c : order)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const Index p = grid.Cells[3 * c + k];
+      soup.Cells.push_back(soup.NumberOfPoints());
+      soup.Points.insert(soup.Points.end(), grid.Points.begin() + 3 * p, grid.Points.begin() + 3 * p + 3);
+    }
+  }
+  soup.Finish();
+  const TestMesh source = mptest::GridMesh(41, 37, 0.25, 29);
+  Searches s(soup, source);
+  s.ExpectSamePairs("target soup");
+  s.ExpectCompleteCover(soup, "target soup");
+  const Index cells = soup.NumberOfCells();
+  const Index maxWalk = 100 + 4 * static_cast<Index>(std::sqrt(double(source.NumberOfCells())));
+  EXPECT_LE(s.FrontStats.WalkSteps, 16 * cells + 64 * maxWalk + maxWalk);
+  EXPECT_GT(s.FrontStats.FullLocatorQueries, 0); // the budget ran out: the locator took over
 }
 
 TEST(PairSearch, ZeroAreaSourceCellsDoNotCutTheFrontOff)
