@@ -67,51 +67,92 @@ struct MortarProjector::Internals
     }
     return sum;
   }
-  /// Two sums computed in one pass (for ForRanges).
-  struct TwoSums
+  /// Per right-hand side sums, added component-wise (for ForRanges).
+  struct Sums
   {
-    double First = 0.0;
-    double Second = 0.0;
-    TwoSums& operator+=(const TwoSums& o)
+    std::vector<double> Values;
+    Sums() = default;
+    explicit Sums(size_t n)
+      : Values(n, 0.0)
     {
-      this->First += o.First;
-      this->Second += o.Second;
+    }
+    Sums& operator+=(const Sums& o)
+    {
+      for (size_t k = 0; k < this->Values.size(); ++k)
+      {
+        this->Values[k] += o.Values[k];
+      }
       return *this;
     }
   };
 
-  /// y = M_tt x on rows [begin, end); returns sum of x_i y_i over them.
-  double Multiply(const double* x, double* y, Index begin, Index end) const
+  /**
+   * Y = M_tt X on rows [begin, end) for `c` vectors stored side by side
+   * (row i holds entries i*c .. i*c + c-1): the matrix is read once for all.
+   */
+  template <int FixedC>
+  void Multiply(const double* X, double* Y, int dynamicC, Index begin, Index end) const
   {
-    double xy = 0.0;
+    const int c = FixedC > 0 ? FixedC : dynamicC;
     for (Index i = begin; i < end; ++i)
     {
-      double sum = 0.0;
+      double* y = Y + i * c;
+      std::fill(y, y + c, 0.0);
       for (Index p = this->RowStart[i]; p < this->RowStart[i + 1]; ++p)
       {
-        sum += this->Values[p] * x[this->Columns[p]];
+        const double v = this->Values[p];
+        const double* x = X + static_cast<Index>(this->Columns[p]) * c;
+        for (int k = 0; k < c; ++k)
+        {
+          y[k] += v * x[k];
+        }
       }
-      y[i] = sum;
-      xy += x[i] * sum;
     }
-    return xy;
   }
 
-  /// Preconditioned conjugate gradients (Jacobi) for M_tt x = b, started
-  /// from the lumped-mass solution x_i = b_i / sum_k (M_tt)_ik, which is
-  /// already second-order accurate for smooth fields (fewer iterations).
-  /// Row ranges run as concurrent tasks. Returns whether the residual fell
-  /// below `tolerance` times |b|.
-  bool ConjugateGradients(const double* b, double* x, double tolerance, int maxIterations) const
+  /**
+   * Preconditioned conjugate gradients (Jacobi) for M_tt X = B, `c`
+   * right-hand sides stored side by side and iterated in lockstep (each with
+   * its own step lengths; one that has converged stops changing), so that
+   * every iteration reads the matrix once for all of them. Started from the
+   * lumped-mass solution x_i = b_i / sum_k (M_tt)_ik, already second-order
+   * accurate for smooth fields (fewer iterations). Row ranges run as
+   * concurrent tasks. converged[k] tells whether the residual of column k
+   * fell below `tolerance` times its |b|.
+   */
+  void ConjugateGradients(const double* B, double* X, int c, double tolerance, int maxIterations,
+    std::vector<char>& converged) const
   {
+    // Compile-time widths for the usual few fields (scalars, vectors).
+    switch (c)
+    {
+      case 1:
+        return this->ConjugateGradients<1>(B, X, c, tolerance, maxIterations, converged);
+      case 2:
+        return this->ConjugateGradients<2>(B, X, c, tolerance, maxIterations, converged);
+      case 3:
+        return this->ConjugateGradients<3>(B, X, c, tolerance, maxIterations, converged);
+      case 4:
+        return this->ConjugateGradients<4>(B, X, c, tolerance, maxIterations, converged);
+      default:
+        return this->ConjugateGradients<0>(B, X, c, tolerance, maxIterations, converged);
+    }
+  }
+  template <int FixedC>
+  void ConjugateGradients(const double* B, double* X, int dynamicC, double tolerance,
+    int maxIterations, std::vector<char>& converged) const
+  {
+    const int c = FixedC > 0 ? FixedC : dynamicC;
     const Index n = this->Size();
-    LargeVector<double> r(n);
-    LargeVector<double> z(n);
-    LargeVector<double> p(n);
-    LargeVector<double> q(n);
-    LargeVector<double> inverseDiagonal(n);
-    const double bb = this->ForRanges(n, [&](Index begin, Index end) {
-      double sum = 0.0;
+    const size_t size = static_cast<size_t>(n) * c;
+    LargeVector<double> r(size);
+    LargeVector<double> z(size);
+    LargeVector<double> p(size);
+    LargeVector<double> q(size);
+    LargeVector<double> inverseDiagonal(static_cast<size_t>(n));
+    converged.assign(static_cast<size_t>(c), 0);
+    const Sums bb = this->ForRanges(n, [&](Index begin, Index end) {
+      Sums sum(c);
       for (Index i = begin; i < end; ++i)
       {
         double rowSum = 0.0;
@@ -120,76 +161,126 @@ struct MortarProjector::Internals
           rowSum += this->Values[k];
         }
         inverseDiagonal[i] = 1.0 / this->Values[this->Find(i, i)];
-        x[i] = rowSum > 0.0 ? b[i] / rowSum : 0.0;
-        sum += b[i] * b[i];
+        for (int k = 0; k < c; ++k)
+        {
+          const double b = B[i * c + k];
+          X[i * c + k] = rowSum > 0.0 ? b / rowSum : 0.0;
+          sum.Values[k] += b * b;
+        }
       }
       return sum;
     });
-    if (bb == 0.0)
+    std::vector<double> goal(static_cast<size_t>(c));
+    for (int k = 0; k < c; ++k)
     {
-      std::fill(x, x + n, 0.0);
-      return true;
+      goal[k] = tolerance * tolerance * bb.Values[k];
     }
-    const double goal = tolerance * tolerance * bb;
-    this->ForRanges(n, [&](Index begin, Index end) { return this->Multiply(x, q.data(), begin, end); });
-    double rz = 0.0;
-    const double rr0 = this->ForRanges(n, [&](Index begin, Index end) {
-      double rr = 0.0;
+    this->ForRanges(n, [&](Index begin, Index end) {
+      this->Multiply<FixedC>(X, q.data(), c, begin, end);
+      return 0.0;
+    });
+    // Residuals, and the first direction; per column |r|^2 and r.z.
+    Sums sums = this->ForRanges(n, [&](Index begin, Index end) {
+      Sums part(2 * c);
       for (Index i = begin; i < end; ++i)
       {
-        r[i] = b[i] - q[i];
-        z[i] = inverseDiagonal[i] * r[i];
-        p[i] = z[i];
-        rr += r[i] * r[i];
+        for (int k = 0; k < c; ++k)
+        {
+          const Index e = i * c + k;
+          r[e] = B[e] - q[e];
+          z[e] = inverseDiagonal[i] * r[e];
+          p[e] = z[e];
+          part.Values[k] += r[e] * r[e];
+          part.Values[c + k] += r[e] * z[e];
+        }
       }
-      return rr;
+      return part;
     });
-    if (rr0 <= goal)
+    std::vector<double> rz(static_cast<size_t>(c));
+    std::vector<double> alpha(static_cast<size_t>(c));
+    std::vector<double> beta(static_cast<size_t>(c));
+    int open = 0;
+    for (int k = 0; k < c; ++k)
     {
-      return true;
-    }
-    rz = this->ForRanges(n, [&](Index begin, Index end) {
-      double sum = 0.0;
-      for (Index i = begin; i < end; ++i)
+      converged[k] = bb.Values[k] == 0.0 || sums.Values[k] <= goal[k];
+      open += !converged[k];
+      rz[k] = sums.Values[c + k];
+      if (bb.Values[k] == 0.0)
       {
-        sum += r[i] * z[i];
+        for (Index i = 0; i < n; ++i)
+        {
+          X[i * c + k] = 0.0;
+        }
       }
-      return sum;
-    });
-    for (int iteration = 0; iteration < maxIterations; ++iteration)
+    }
+    for (int iteration = 0; iteration < maxIterations && open > 0; ++iteration)
     {
-      const double pq = this->ForRanges(
-        n, [&](Index begin, Index end) { return this->Multiply(p.data(), q.data(), begin, end); });
-      const double alpha = rz / pq;
-      // x, r and z in one pass, with |r|^2 and r.z.
-      const TwoSums sums = this->ForRanges(n, [&](Index begin, Index end) {
-        TwoSums part;
+      const Sums pq = this->ForRanges(n, [&](Index begin, Index end) {
+        this->Multiply<FixedC>(p.data(), q.data(), c, begin, end);
+        Sums part(c);
         for (Index i = begin; i < end; ++i)
         {
-          x[i] += alpha * p[i];
-          r[i] -= alpha * q[i];
-          z[i] = inverseDiagonal[i] * r[i];
-          part.First += r[i] * r[i];
-          part.Second += r[i] * z[i];
+          for (int k = 0; k < c; ++k)
+          {
+            part.Values[k] += p[i * c + k] * q[i * c + k];
+          }
         }
         return part;
       });
-      if (sums.First <= goal)
+      for (int k = 0; k < c; ++k)
       {
-        return true;
+        alpha[k] = converged[k] ? 0.0 : rz[k] / pq.Values[k];
       }
-      const double rzNext = sums.Second;
-      const double beta = rzNext / rz;
-      rz = rzNext;
+      // x, r and z in one pass, with |r|^2 and r.z.
+      sums = this->ForRanges(n, [&](Index begin, Index end) {
+        Sums part(2 * c);
+        for (Index i = begin; i < end; ++i)
+        {
+          for (int k = 0; k < c; ++k)
+          {
+            const Index e = i * c + k;
+            X[e] += alpha[k] * p[e];
+            r[e] -= alpha[k] * q[e];
+            z[e] = inverseDiagonal[i] * r[e];
+            part.Values[k] += r[e] * r[e];
+            part.Values[c + k] += r[e] * z[e];
+          }
+        }
+        return part;
+      });
+      for (int k = 0; k < c; ++k)
+      {
+        if (converged[k])
+        {
+          beta[k] = 0.0;
+          continue;
+        }
+        if (sums.Values[k] <= goal[k])
+        {
+          converged[k] = 1;
+          --open;
+          alpha[k] = beta[k] = 0.0;
+          continue;
+        }
+        beta[k] = sums.Values[c + k] / rz[k];
+        rz[k] = sums.Values[c + k];
+      }
+      if (open == 0)
+      {
+        break;
+      }
       this->ForRanges(n, [&](Index begin, Index end) {
         for (Index i = begin; i < end; ++i)
         {
-          p[i] = z[i] + beta * p[i];
+          for (int k = 0; k < c; ++k)
+          {
+            const Index e = i * c + k;
+            p[e] = converged[k] ? 0.0 : z[e] + beta[k] * p[e];
+          }
         }
         return 0.0;
       });
     }
-    return false;
   }
   /// Position of entry (i, k) in Values (the pattern contains it).
   Index Find(Index i, Index k) const
@@ -723,45 +814,55 @@ bool MortarProjector::Solve(const double* rhs, int components, double* x, double
 {
   const Internals& m = *this->Impl;
   const Index n = static_cast<Index>(m.RowStart.size()) - 1;
-  if (n <= 0)
+  if (n <= 0 || components <= 0)
   {
     return true;
   }
   // The covered mass matrix is symmetric positive definite and, scaled by its
   // diagonal, well conditioned on reasonable meshes: conjugate gradients with
-  // a Jacobi preconditioner to rounding level. Targets covered only in slivers
-  // can make it ill conditioned: then a sparse LDL^T factorization.
-  LargeVector<double> b(static_cast<size_t>(n));
-  LargeVector<double> solution(static_cast<size_t>(n));
+  // a Jacobi preconditioner to rounding level, all fields at once. Targets
+  // covered only in slivers can make it ill conditioned: then a sparse
+  // LDL^T factorization for the fields that did not converge.
+  std::vector<char> converged;
+  m.ConjugateGradients(rhs, x, components, 1e-14, 500, converged);
+  LargeVector<double> b;
   for (int c = 0; c < components; ++c)
   {
+    if (converged[c])
+    {
+      continue;
+    }
+    if (!m.Direct)
+    {
+      SparseMatrix matrix(n, n);
+      std::vector<Triplet> entries;
+      entries.reserve(m.Values.size());
+      for (Index i = 0; i < n; ++i)
+        for (Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
+          entries.emplace_back(i, m.Columns[p], m.Values[p]);
+      matrix.setFromTriplets(entries.begin(), entries.end());
+      m.Direct.reset(new Eigen::SimplicialLDLT<SparseMatrix>(matrix));
+    }
+    if (m.Direct->info() != Eigen::Success)
+    {
+      return false;
+    }
+    b.resize(static_cast<size_t>(n));
     for (Index i = 0; i < n; ++i)
     {
       b[i] = rhs[i * components + c];
     }
-    if (!m.ConjugateGradients(b.data(), solution.data(), 1e-14, 500))
-    {
-      if (!m.Direct)
-      {
-        SparseMatrix matrix(n, n);
-        std::vector<Triplet> entries;
-        entries.reserve(m.Values.size());
-        for (Index i = 0; i < n; ++i)
-          for (Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
-            entries.emplace_back(i, m.Columns[p], m.Values[p]);
-        matrix.setFromTriplets(entries.begin(), entries.end());
-        m.Direct.reset(new Eigen::SimplicialLDLT<SparseMatrix>(matrix));
-      }
-      if (m.Direct->info() != Eigen::Success)
-      {
-        return false;
-      }
-      Eigen::Map<const Eigen::VectorXd> bb(b.data(), n);
-      Eigen::Map<Eigen::VectorXd>(solution.data(), n) = m.Direct->solve(bb);
-    }
+    const Eigen::VectorXd solution = m.Direct->solve(Eigen::Map<const Eigen::VectorXd>(b.data(), n));
     for (Index i = 0; i < n; ++i)
     {
-      x[i * components + c] = this->ValidPoints[i] ? solution[i] : fill;
+      x[i * components + c] = solution[i];
+    }
+  }
+  for (Index i = 0; i < n; ++i)
+  {
+    if (!this->ValidPoints[i])
+    {
+      std::fill(x + i * components, x + (i + 1) * components, fill);
     }
   }
   return true;
