@@ -38,6 +38,7 @@ struct MortarProjector::Internals
 
   /// Concurrent tasks for the solve (ProjectionOptions::Tasks, RunTasks).
   int Tasks = 1;
+  int MaxIterations = 500; ///< ProjectionOptions::MaxIterations
   std::function<void(int, const std::function<void(int)>&)> RunTasks;
 
   Index Size() const { return static_cast<Index>(this->RowStart.size()) - 1; }
@@ -642,6 +643,7 @@ bool MortarProjector::Assemble(const MeshView& target, const MeshView& source,
   auto start = std::chrono::steady_clock::now();
   Internals& m = *this->Impl;
   m.Tasks = std::max(1, options.Tasks);
+  m.MaxIterations = std::max(0, options.MaxIterations);
   m.RunTasks = options.RunTasks;
   PointGraph(target, m.Tasks, m.RunTasks, m.RowStart, m.Columns);
   m.Values.assign(m.Columns.size(), 0.0);
@@ -824,7 +826,7 @@ bool MortarProjector::Solve(const double* rhs, int components, double* x, double
   // covered only in slivers can make it ill conditioned: then a sparse
   // LDL^T factorization for the fields that did not converge.
   std::vector<char> converged;
-  m.ConjugateGradients(rhs, x, components, 1e-14, 500, converged);
+  m.ConjugateGradients(rhs, x, components, 1e-14, m.MaxIterations, converged);
   LargeVector<double> b;
   for (int c = 0; c < components; ++c)
   {

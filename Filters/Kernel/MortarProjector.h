@@ -48,6 +48,10 @@ struct ProjectionOptions
   /// Concurrent tasks for the search and the local integrals: the target
   /// cells are split into this many ranges (default 1: serial).
   int Tasks = 1;
+  /// Conjugate-gradient iterations before the sparse direct solver takes
+  /// over for the fields that have not converged (mass matrices of
+  /// reasonable meshes need a few dozen).
+  int MaxIterations = 500;
   /**
    * Runs task(0), ..., task(count - 1), concurrently if it can (the VTK
    * filter passes vtkSMPTools::For). Default: one after the other.

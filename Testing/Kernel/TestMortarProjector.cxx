@@ -358,3 +358,43 @@ TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
     }
   }
 }
+
+TEST(MortarProjector, DirectSolverForFieldsConjugateGradientsLeaveUnconverged)
+{
+  // Several fields at once; with no or one iteration allowed, the direct
+  // solver takes over every field that has not converged (all but the zero
+  // field): the answers agree with the iterations' to rounding.
+  const TestMesh target = mptest::GridMesh(9, 11, 0.25, 61, 0, 0, 1, 1, LShapeWithHole);
+  const TestMesh source = mptest::GridMesh(13, 8, 0.25, 62, 0, 0, 1, 1, LShapeWithHole);
+  const std::vector<double> smooth = mptest::Sample(source, Smooth);
+  const std::vector<double> linear = mptest::Sample(source, Linear);
+  std::vector<double> fields;
+  for (size_t p = 0; p < smooth.size(); ++p)
+  {
+    fields.insert(fields.end(), { smooth[p], linear[p], 0.0, -smooth[p] });
+  }
+  std::vector<std::vector<double>> results;
+  for (int iterations : { 500, 0, 1 })
+  {
+    mp::BoxGridLocator locator(source.View());
+    mp::ProjectionOptions options;
+    options.KeepMixedMatrix = false;
+    options.MaxIterations = iterations;
+    mp::MortarProjector projector;
+    ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator, options, fields.data(), 4));
+    std::vector<double> values(static_cast<size_t>(target.NumberOfPoints()) * 4);
+    ASSERT_TRUE(projector.Project(values.data(), std::nan("")));
+    results.push_back(values);
+  }
+  const std::vector<double> exact = mptest::Sample(target, Linear);
+  for (const auto& values : results)
+  {
+    for (Index p = 0; p < target.NumberOfPoints(); ++p)
+    {
+      EXPECT_NEAR(values[4 * p], results[0][4 * p], 1e-12);
+      EXPECT_NEAR(values[4 * p + 1], exact[p], 1e-12); // linear fields stay exact
+      EXPECT_EQ(values[4 * p + 2], 0.0);               // a zero field stays zero
+      EXPECT_NEAR(values[4 * p + 3], -values[4 * p], 1e-12);
+    }
+  }
+}
