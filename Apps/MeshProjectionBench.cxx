@@ -229,16 +229,23 @@ double KernelOnTruePairs(const TestMesh& target, const TestMesh& source, const d
   double sink = 0.0;
   const auto t0 = Clock::now();
   Index current = -1;
+  double moments[N][N] = {};
+  double mtt[N][N] = {};
   for (const auto& pair : found.Pairs)
   {
     if (pair.first != current)
     {
+      if (current >= 0)
+      {
+        Intersector::TargetMass(t, moments, mtt); // the target cell's M_tt block
+        sink += mtt[0][1];
+      }
       current = pair.first;
       Intersector::Prepare(target.View(), current, t);
+      std::fill(&moments[0][0], &moments[0][0] + N * N, 0.0);
     }
     Intersector::Prepare(source.View(), pair.second, s);
     Intersector::Intersect(t, s, piece);
-    double mtt[N][N] = {};
     double rhs[N] = {};
     const double* values[N];
     double* sums[N];
@@ -247,7 +254,7 @@ double KernelOnTruePairs(const TestMesh& target, const TestMesh& source, const d
       values[i] = u + s.Points[i];
       sums[i] = rhs + i;
     }
-    sink += Intersector::Integrate(piece, t, s, mtt, values, 1, sums) + mtt[0][1] + rhs[1];
+    sink += Intersector::IntegrateField(piece, t, s, moments, values, 1, sums) + rhs[1];
   }
   const double seconds = Since(t0);
   if (sink == 12345.678) // keeps the loop from being optimized away

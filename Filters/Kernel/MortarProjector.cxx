@@ -416,10 +416,8 @@ struct MortarAssembler
   std::vector<double> Scratch; ///< N x Components, right-hand sides of shared points
 
   Index Current = -1;
-  Index CurrentPoints[N];
-  double CurrentMtt[N][N];
-  double CurrentMeasure = 0.0; ///< of the current target cell
-  double CurrentCovered = 0.0; ///< summed measure of its pieces so far
+  Cell CurrentCell;            ///< the target cell whose pieces are coming
+  double CurrentMoments[N][N]; ///< of its pieces so far, about its corner 0
 
   void Flush()
   {
@@ -427,23 +425,32 @@ struct MortarAssembler
     {
       return;
     }
-    const double fraction = this->CurrentCovered / this->CurrentMeasure;
+    const double covered = this->CurrentMoments[0][0];
+    const double fraction = covered / this->CurrentCell.Measure;
     this->Overcovered += fraction > 1.0 + 1e-9;
     this->CoveredFraction[this->Current] = std::min(1.0, fraction);
-    this->CoveredSum += this->CurrentCovered;
+    this->CoveredSum += covered;
+    if (!(covered > 0.0))
+    {
+      this->Current = -1;
+      return; // only touching pieces
+    }
+    double mtt[N][N];
+    Intersector::TargetMass(this->CurrentCell, this->CurrentMoments, mtt);
+    const Index* points = this->CurrentCell.Points;
     for (int i = 0; i < N; ++i)
     {
-      const bool shared = this->Shared && this->Shared[this->CurrentPoints[i]];
+      const bool shared = this->Shared && this->Shared[points[i]];
       for (int k = 0; k < N; ++k)
       {
-        const Index position = this->Pattern->Find(this->CurrentPoints[i], this->CurrentPoints[k]);
+        const Index position = this->Pattern->Find(points[i], points[k]);
         if (shared)
         {
-          this->Deferred.emplace_back(position, this->CurrentMtt[i][k]);
+          this->Deferred.emplace_back(position, mtt[i][k]);
         }
         else
         {
-          this->Values[position] += this->CurrentMtt[i][k];
+          this->Values[position] += mtt[i][k];
         }
       }
     }
@@ -456,14 +463,12 @@ struct MortarAssembler
     {
       this->Flush();
       this->Current = t.Id;
-      this->CurrentMeasure = t.Measure;
-      this->CurrentCovered = 0.0;
+      this->CurrentCell = t;
       for (int i = 0; i < N; ++i)
       {
-        this->CurrentPoints[i] = t.Points[i];
         for (int k = 0; k < N; ++k)
         {
-          this->CurrentMtt[i][k] = 0.0;
+          this->CurrentMoments[i][k] = 0.0;
         }
       }
     }
@@ -472,7 +477,7 @@ struct MortarAssembler
     if (this->Mts)
     {
       double mts[N][N] = {};
-      measure = Intersector::Integrate(piece, t, s, mts, this->CurrentMtt);
+      measure = Intersector::IntegrateMixed(piece, t, s, mts, this->CurrentMoments);
       if (!(measure > 0.0))
       {
         return; // the cells only touch
@@ -518,7 +523,7 @@ struct MortarAssembler
         rhs[i] = (this->Shared && this->Shared[t.Points[i]]) ? this->Scratch.data() + i * nc
                                                              : this->Rhs + t.Points[i] * nc;
       }
-      measure = Intersector::Integrate(piece, t, s, this->CurrentMtt, u, nc, rhs);
+      measure = Intersector::IntegrateField(piece, t, s, this->CurrentMoments, u, nc, rhs);
       if (!(measure > 0.0))
       {
         return; // the cells only touch
@@ -538,7 +543,6 @@ struct MortarAssembler
       }
     }
     ++this->Count;
-    this->CurrentCovered += measure;
     if (this->Pieces)
     {
       Intersector::Append(piece, t.Id, s.Id, measure, *this->Pieces);

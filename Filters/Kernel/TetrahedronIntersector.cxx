@@ -967,13 +967,32 @@ double TetrahedronIntersector::Integrate(
   });
 }
 
-double TetrahedronIntersector::Integrate(const Piece& piece, const Cell& t, const Cell& s,
-  double Mtt[4][4], const double* const (&u)[4], int components, double* const (&rhs)[4])
+double TetrahedronIntersector::IntegrateField(const Piece& piece, const Cell& t, const Cell& s,
+  double (&moments)[4][4], const double* const (&u)[4], int components, double* const (&rhs)[4])
 {
   return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
-    AddTargetBlock<4>(lt, M, Mtt);
+    double d[3];
+    Sub(piece.X[0][0], t.X[0], d);
+    AddShiftedMoments<4>(M, d, moments);
     AddFieldBlock<4>(lt, ls, M, u, components, rhs);
   });
+}
+
+double TetrahedronIntersector::IntegrateMixed(
+  const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double (&moments)[4][4])
+{
+  return IntegratePiece(piece, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
+    double d[3];
+    Sub(piece.X[0][0], t.X[0], d);
+    AddShiftedMoments<4>(M, d, moments);
+    AddMixedBlock<4>(lt, ls, M, Mts);
+  });
+}
+
+void TetrahedronIntersector::TargetMass(
+  const Cell& t, const double (&moments)[4][4], double (&Mtt)[4][4])
+{
+  TargetMassFromMoments<4>(t.Inverse, moments, t.Measure, Mtt);
 }
 
 void TetrahedronIntersector::Append(

@@ -115,12 +115,22 @@ public:
     const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4]);
 
   /**
-   * As above, but instead of the M_ts block adds the right-hand sides
+   * What the projection sums per piece: the right-hand sides
    * rhs[i][c] += integral of phi_i^t u_c for the source field with values
-   * u[j][c] at the corners of `s` (Cell order), c < components.
+   * u[j][c] at the corners of `s` (Cell order), c < components, and the
+   * piece's moment matrix about the target's corner 0 added to `moments`
+   * (MortarBlocks.h), from which TargetMass() gives the target cell's M_tt
+   * block once all its pieces are in. Returns the volume of the piece.
    */
-  static double Integrate(const Piece& piece, const Cell& t, const Cell& s, double Mtt[4][4],
-    const double* const (&u)[4], int components, double* const (&rhs)[4]);
+  static double IntegrateField(const Piece& piece, const Cell& t, const Cell& s,
+    double (&moments)[4][4], const double* const (&u)[4], int components, double* const (&rhs)[4]);
+  /// As IntegrateField, with the M_ts block (Mts[i][j] += integral of
+  /// phi_i^t phi_j^s) instead of the right-hand sides.
+  static double IntegrateMixed(
+    const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double (&moments)[4][4]);
+  /// The M_tt block of `t` (set, not added) from the summed moments of its
+  /// pieces (IntegrateField, IntegrateMixed).
+  static void TargetMass(const Cell& t, const double (&moments)[4][4], double (&Mtt)[4][4]);
   static double Measure(const Piece& piece);
 
   /// Appends the piece's tetrahedra (with their own volumes) to `pieces`.

@@ -507,13 +507,29 @@ double TriangleIntersector::Integrate(
   });
 }
 
-double TriangleIntersector::Integrate(const Piece& p, const Cell& t, const Cell& s,
-  double Mtt[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3])
+double TriangleIntersector::IntegrateField(const Piece& p, const Cell& t, const Cell& s,
+  double (&moments)[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3])
 {
   return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
-    AddTargetBlock<3>(lt, M, Mtt);
+    const double d[2] = { p.X[0][0] - t.X[0][0], p.X[0][1] - t.X[0][1] };
+    AddShiftedMoments<3>(M, d, moments);
     AddFieldBlock<3>(lt, ls, M, u, components, rhs);
   });
+}
+
+double TriangleIntersector::IntegrateMixed(
+  const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double (&moments)[3][3])
+{
+  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
+    const double d[2] = { p.X[0][0] - t.X[0][0], p.X[0][1] - t.X[0][1] };
+    AddShiftedMoments<3>(M, d, moments);
+    AddMixedBlock<3>(lt, ls, M, Mts);
+  });
+}
+
+void TriangleIntersector::TargetMass(const Cell& t, const double (&moments)[3][3], double (&Mtt)[3][3])
+{
+  TargetMassFromMoments<3>(t.Inverse, moments, t.Measure, Mtt);
 }
 
 void TriangleIntersector::Append(

@@ -105,12 +105,24 @@ public:
     const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3]);
 
   /**
-   * As above, but instead of the M_ts block adds the right-hand sides
+   * What the projection sums per piece: the right-hand sides
    * rhs[i][c] += integral of phi_i^t u_c for the source field with values
-   * u[j][c] at the corners of `s` (Cell order), c < components.
+   * u[j][c] at the corners of `s` (Cell order), c < components, and the
+   * piece's moment matrix about the target's corner 0 added to `moments`
+   * (MortarBlocks.h), from which TargetMass() gives the target cell's M_tt
+   * block once all its pieces are in. Returns the area of the piece.
    */
-  static double Integrate(const Piece& piece, const Cell& t, const Cell& s, double Mtt[3][3],
-    const double* const (&u)[3], int components, double* const (&rhs)[3]);
+  static double IntegrateField(const Piece& piece, const Cell& t, const Cell& s,
+    double (&moments)[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3]);
+
+  /// As IntegrateField, with the M_ts block (Mts[i][j] += integral of
+  /// phi_i^t phi_j^s) instead of the right-hand sides.
+  static double IntegrateMixed(
+    const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double (&moments)[3][3]);
+
+  /// The M_tt block of `t` (set, not added) from the summed moments of its
+  /// pieces (IntegrateField, IntegrateMixed).
+  static void TargetMass(const Cell& t, const double (&moments)[3][3], double (&Mtt)[3][3]);
 
   /// Area of the piece (0 when it has fewer than 3 vertices).
   static double Measure(const Piece& piece);

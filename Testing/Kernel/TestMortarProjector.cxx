@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MortarProjector.h"
+#include "PairSearch.h"
 #include "TestMeshes.h"
+#include "TetrahedronIntersector.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <thread>
 
 using mp::Index;
@@ -396,5 +399,75 @@ TEST(MortarProjector, DirectSolverForFieldsConjugateGradientsLeaveUnconverged)
       EXPECT_EQ(values[4 * p + 2], 0.0);               // a zero field stays zero
       EXPECT_NEAR(values[4 * p + 3], -values[4 * p], 1e-12);
     }
+  }
+}
+
+namespace
+{
+/**
+ * M_tt as the projector assembles it (the moments of a target cell's pieces
+ * summed about its corner, or the element mass matrix when it is covered
+ * whole) against the sum of the per-piece reference blocks
+ * (Intersector::Integrate), entry by entry, relative to the largest entry.
+ */
+template <class Intersector>
+void ExpectTargetMassMatchesPieces(const TestMesh& target, const TestMesh& source, const std::string& what)
+{
+  constexpr int N = Intersector::Corners;
+  std::map<std::pair<Index, Index>, double> reference;
+  auto visit = [&](const typename Intersector::Cell& t, const typename Intersector::Cell& s,
+                 const typename Intersector::Piece& piece) {
+    double mts[N][N] = {};
+    double mtt[N][N] = {};
+    Intersector::Integrate(piece, t, s, mts, mtt);
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < N; ++k)
+        reference[{ t.Points[i], t.Points[k] }] += mtt[i][k];
+  };
+  mp::BoxGridLocator locator(source.View());
+  mp::SearchStatistics stats;
+  mp::AdvancingFrontSearch<Intersector>(target.View(), source.View(), locator, visit, stats);
+  for (bool keepMixed : { false, true })
+  {
+    mp::BoxGridLocator seeds(source.View());
+    mp::ProjectionOptions options;
+    options.KeepMixedMatrix = keepMixed;
+    mp::MortarProjector projector;
+    ASSERT_TRUE(projector.Build(target.View(), source.View(), &seeds, options)) << what;
+    double largest = 0.0;
+    for (const auto& entry : reference)
+      largest = std::max(largest, std::fabs(entry.second));
+    ASSERT_GT(largest, 0.0) << what;
+    for (const auto& entry : reference)
+    {
+      const Index i = entry.first.first;
+      const Index k = entry.first.second;
+      if (projector.GetValidPoints()[i])
+      {
+        ASSERT_NEAR(projector.TargetMassEntry(i, k), entry.second, 1e-12 * largest)
+          << what << " entry " << i << ", " << k << (keepMixed ? " (M_ts kept)" : "");
+      }
+    }
+  }
+}
+} // namespace
+
+TEST(MortarProjector, TargetMassFromMomentsMatchesThePieces)
+{
+  // Covered whole, covered in part (source boundaries, holes, a shifted and
+  // rotated source), in 2D and 3D.
+  for (int n = 0; n < 6; ++n)
+  {
+    const TestMesh target = mptest::GridMesh(8 + n, 7, 0.25, 70 + n, 0, 0, 1, 1, LShapeWithHole);
+    TestMesh source = mptest::GridMesh(6, 9 + n, 0.25, 80 + n);
+    mptest::Move(source, 0.3 * n, 0.9, 0.05 * n, -0.03 * n);
+    ExpectTargetMassMatchesPieces<mp::TriangleIntersector>(target, source, "2D case " + std::to_string(n));
+  }
+  for (int n = 0; n < 4; ++n)
+  {
+    const TestMesh target = mptest::CubeMesh(3, 2 + n, 3, 0.15, 90 + n);
+    TestMesh source = mptest::CubeMesh(2 + n, 3, 2, 0.15, 95 + n);
+    mptest::Move3D(source, 0.2 * n, 0.1 * n, 0.9, 0.1 * n, 0.05, -0.05 * n);
+    ExpectTargetMassMatchesPieces<mp::TetrahedronIntersector>(target, source, "3D case " + std::to_string(n));
   }
 }
