@@ -17,9 +17,11 @@
  * The intersecting cell pairs are found by the advancing front of Gander &
  * Japhet ("An algorithm for non-matching grid projections with linear
  * complexity", Domain Decomposition Methods in Science and Engineering XVIII,
- * 2009): neighbours come from VTK's static cell links, the starting pairs
- * from a vtkStaticCellLocator over the source; the geometry and the
- * numerics live in a VTK-free kernel (Filters/Kernel).
+ * 2009): neighbours come from VTK's static cell links; a front starts with
+ * a walk through the source, and re-seeds from a vtkStaticCellLocator over
+ * the source's boundary cells (one over all source cells is built only when
+ * that cannot settle a cell, e.g. targets reaching beyond the source); the
+ * geometry and the numerics live in a VTK-free kernel (Filters/Kernel).
  *
  * Inputs: two vtkUnstructuredGrid of the same dimension: linear triangles
  * (VTK_TRIANGLE) lying in one plane z = constant (2D meshes with 3D
@@ -43,10 +45,12 @@
  * The port not used by the inputs' dimension stays empty.
  *
  * Non-numeric Source point arrays (strings, variants) are skipped with a
- * warning. Invalid input (empty meshes, other cell types, a mix of triangles
- * and tetrahedra, meshes of different dimensions, non-planar triangle
- * meshes, NaN/Inf coordinates) produces an error and an output that is a
- * plain copy of Input.
+ * warning; integer arrays are projected as real values, with a warning (an
+ * L2 projection of labels or ids is not meaningful). Invalid input (no
+ * Source, other cell types, a mix of triangles and tetrahedra, meshes of
+ * different dimensions, non-planar triangle meshes, NaN/Inf coordinates)
+ * produces an error and an output that is a plain copy of Input; empty
+ * meshes and meshes that do not overlap give a warning and invalid points.
  *
  * Threads: the search, the intersections and the local integrals run in one
  * task per vtkSMPTools thread (ranges of target cells, each with its own
@@ -125,8 +129,9 @@ public:
   /**
    * Results of the last execution: intersecting cell pairs with an
    * intersection of positive measure, cell-pair intersection tests, locator
-   * queries, the covered area (2D) or volume (3D) of the target, and the
-   * wall-clock seconds of the whole execution.
+   * queries (among the source's boundary cells or all its cells), the
+   * covered area (2D) or volume (3D) of the target, and the wall-clock
+   * seconds of the whole execution.
    */
   vtkGetMacro(NumberOfIntersections, vtkIdType);
   vtkGetMacro(NumberOfIntersectionTests, vtkIdType);
@@ -139,9 +144,10 @@ public:
   /**
    * Wall-clock seconds of the stages of the last execution: reading the
    * inputs (cell types, coordinate checks, the fields gathered), the cell
-   * neighbours (VTK cell links), the seed locator (vtkStaticCellLocator),
-   * the pair search with the intersections and local integrals, the
-   * assembly, the solve, and writing the outputs.
+   * neighbours (VTK cell links), the locator over the source's boundary
+   * cells (vtkStaticCellLocator), the pair search with the intersections and
+   * local integrals (and a locator over all source cells, when one is
+   * needed), the assembly, the solve, and writing the outputs.
    */
   vtkGetMacro(InputTime, double);
   vtkGetMacro(NeighborsTime, double);

@@ -5,32 +5,6 @@
 
 namespace mp
 {
-void BuildPointCells(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& cells)
-{
-  const int corners = mesh.CornersPerCell();
-  start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-  {
-    for (int k = 0; k < corners; ++k)
-    {
-      ++start[mesh.Cell(c)[k] + 1];
-    }
-  }
-  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
-  {
-    start[p + 1] += start[p];
-  }
-  cells.resize(static_cast<size_t>(start.back()));
-  std::vector<Index> fill(start.begin(), start.end() - 1);
-  for (Index c = 0; c < mesh.NumberOfCells; ++c) // cell ids come out sorted per point
-  {
-    for (int k = 0; k < corners; ++k)
-    {
-      cells[fill[mesh.Cell(c)[k]]++] = c;
-    }
-  }
-}
-
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
 {
   const int corners = mesh.CornersPerCell();

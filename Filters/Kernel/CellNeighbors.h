@@ -14,6 +14,7 @@
 
 #include "MeshView.h"
 
+#include <cstddef>
 #include <vector>
 
 namespace mp
@@ -26,8 +27,34 @@ namespace mp
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors);
 
 /// The cells around every point, in CSR form: point p is used by the cells
-/// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order).
-void BuildPointCells(const MeshView& mesh, std::vector<Index>& start, std::vector<Index>& cells);
+/// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). Id
+/// (Index, or 32-bit to halve the memory) must hold corners x cells.
+template <class Id>
+void BuildPointCells(const MeshView& mesh, std::vector<Id>& start, std::vector<Id>& cells)
+{
+  const int corners = mesh.CornersPerCell();
+  start.assign(static_cast<std::size_t>(mesh.NumberOfPoints) + 1, 0);
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      ++start[mesh.Cell(c)[k] + 1];
+    }
+  }
+  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  cells.resize(static_cast<std::size_t>(start.back()));
+  std::vector<Id> fill(start.begin(), start.end() - 1);
+  for (Index c = 0; c < mesh.NumberOfCells; ++c) // cell ids come out sorted per point
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      cells[fill[mesh.Cell(c)[k]]++] = static_cast<Id>(c);
+    }
+  }
+}
 
 /// The cells with at least one face without neighbour (mesh.Neighbors must
 /// be set), in increasing order: the cells the front's walks can stop at.

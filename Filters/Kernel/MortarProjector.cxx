@@ -302,14 +302,16 @@ double Seconds(std::chrono::steady_clock::time_point since)
 
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
-/// around each point; rows in concurrent tasks over point ranges when a
-/// runner is given, each into a block of its own, then moved into place.
+/// around each point (with ids of type Id: 32 bits when they fit, half the
+/// memory); rows in concurrent tasks over point ranges when a runner is
+/// given, each into a block of its own, then moved into place.
+template <class Id>
 void PointGraph(const MeshView& mesh, int tasks,
   const std::function<void(int, const std::function<void(int)>&)>& runTasks,
   LargeVector<Index>& start, LargeVector<Column>& columns)
 {
-  std::vector<Index> cellStart;
-  std::vector<Index> cells;
+  std::vector<Id> cellStart;
+  std::vector<Id> cells;
   BuildPointCells(mesh, cellStart, cells);
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
@@ -376,6 +378,20 @@ void PointGraph(const MeshView& mesh, int tasks,
   else
   {
     place(0);
+  }
+}
+
+void PointGraph(const MeshView& mesh, int tasks,
+  const std::function<void(int, const std::function<void(int)>&)>& runTasks,
+  LargeVector<Index>& start, LargeVector<Column>& columns)
+{
+  if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
+  {
+    PointGraph<std::int32_t>(mesh, tasks, runTasks, start, columns);
+  }
+  else
+  {
+    PointGraph<Index>(mesh, tasks, runTasks, start, columns);
   }
 }
 
