@@ -206,7 +206,7 @@ namespace
 template <typename TIds>
 void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel, const mp::Index* all,
   const std::function<vtkIdType(mp::Index)>& toVTK,
-  const std::function<mp::Index(vtkIdType)>& toKernel, mp::LargeVector<mp::Index>& neighbors,
+  const std::function<mp::Index(vtkIdType)>& toKernel, mp::LargeVector<mp::NeighborId>& neighbors,
   vtkIdType& nonManifoldFaces)
 {
   const vtkIdType n = kernel.NumberOfCells;
@@ -257,7 +257,7 @@ void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel, const 
         if (matches == 1)
         {
           const mp::Index neighbor = ghosts ? toKernel(found) : found; // -1 for a ghost: a boundary here
-          neighbors[corners * c + k] = neighbor;
+          neighbors[corners * c + k] = static_cast<mp::NeighborId>(neighbor);
           // The same face seen from the neighbour, when this task owns it.
           if (neighbor >= begin && neighbor < end)
           {
@@ -266,7 +266,7 @@ void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel, const 
             {
               if (o[l] != first && o[l] != second && o[l] != third)
               {
-                neighbors[corners * neighbor + l] = c;
+                neighbors[corners * neighbor + l] = static_cast<mp::NeighborId>(c);
               }
             }
           }
@@ -287,6 +287,10 @@ void SimplexMesh::BuildNeighbors()
 {
   const vtkIdType n = this->Kernel.NumberOfCells;
   const int corners = this->Kernel.CornersPerCell();
+  if (n > std::numeric_limits<mp::NeighborId>::max())
+  {
+    return; // no neighbours: the kernel refuses the front for so many cells, and says so
+  }
   this->Neighbors.assign(corners * static_cast<size_t>(n), -1);
   this->Kernel.Neighbors = this->Neighbors.data();
   if (n == 0)

@@ -67,7 +67,7 @@ private:
   std::vector<mp::Index> ConnectivityCopy;
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   std::vector<mp::Index> AllConnectivityCopy;
-  mp::LargeVector<mp::Index> Neighbors;
+  mp::LargeVector<mp::NeighborId> Neighbors;
   std::vector<vtkIdType> KernelToVTK; ///< empty when the grid has no ghost cells
   std::vector<mp::Index> VTKToKernel; ///< -1 for ghost cells; empty likewise
   double Z = 0;

@@ -5,7 +5,7 @@
 
 namespace mp
 {
-Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
+Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
 {
   const int corners = mesh.CornersPerCell();
   std::vector<Index> start;
@@ -47,7 +47,7 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
       }
       if (matches == 1)
       {
-        neighbors[c * corners + k] = found;
+        neighbors[c * corners + k] = static_cast<NeighborId>(found);
         // The same face seen from the neighbour: the corner of `found` that
         // is not on it.
         const Index* o = mesh.Cell(found);
@@ -55,7 +55,7 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors)
         {
           if (o[l] != first && o[l] != second && o[l] != third)
           {
-            neighbors[found * corners + l] = c;
+            neighbors[found * corners + l] = static_cast<NeighborId>(c);
           }
         }
       }
@@ -73,7 +73,7 @@ void BoundaryCells(const MeshView& mesh, std::vector<Index>& cells)
   const int corners = mesh.CornersPerCell();
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
-    const Index* n = mesh.Neighbors + c * corners;
+    const NeighborId* n = mesh.Neighbors + c * corners;
     bool boundary = false;
     for (int k = 0; k < corners; ++k)
     {

@@ -22,9 +22,9 @@ namespace mp
 /**
  * Fills `neighbors` with (Dimension + 1) * NumberOfCells entries: for cell c
  * and face k (opposite corner k) the cell across, or -1. Returns the number
- * of non-manifold faces found.
+ * of non-manifold faces found. The mesh must have fewer than 2^31 cells.
  */
-Index BuildFaceNeighbors(const MeshView& mesh, std::vector<Index>& neighbors);
+Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors);
 
 /// The cells around every point, in CSR form: point p is used by the cells
 /// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). Id

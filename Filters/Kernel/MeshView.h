@@ -22,6 +22,12 @@ namespace mp
 using Index = long long;
 static_assert(sizeof(Index) == 8, "mp::Index must be a 64-bit integer");
 
+/// Cell ids in the neighbour table: 32 bits (half the memory of the table,
+/// which is as large as the connectivity), so meshes searched by the
+/// advancing front have fewer than 2^31 cells.
+using NeighborId = int;
+static_assert(sizeof(NeighborId) == 4, "mp::NeighborId must be a 32-bit integer");
+
 struct MeshView
 {
   int Dimension = 2;                   ///< 2: triangles, 3: tetrahedra
@@ -29,7 +35,7 @@ struct MeshView
   Index NumberOfPoints = 0;
   const Index* Connectivity = nullptr; ///< (Dimension + 1) * NumberOfCells point ids
   Index NumberOfCells = 0;
-  const Index* Neighbors = nullptr;    ///< (Dimension + 1) * NumberOfCells cell ids or -1
+  const NeighborId* Neighbors = nullptr; ///< (Dimension + 1) * NumberOfCells cell ids or -1
 
   int CornersPerCell() const { return this->Dimension + 1; }
   const Index* Cell(Index c) const { return this->Connectivity + c * this->CornersPerCell(); }

@@ -578,6 +578,12 @@ bool CheckMesh(const MeshView& mesh, const char* name, bool needNeighbors, std::
     error = std::string(name) + ": missing points or connectivity";
     return false;
   }
+  if (needNeighbors && mesh.NumberOfCells > std::numeric_limits<NeighborId>::max())
+  {
+    error = std::string(name) + " has " + std::to_string(mesh.NumberOfCells) +
+      " cells; the advancing front supports at most 2^31 - 1";
+    return false;
+  }
   if (needNeighbors && mesh.NumberOfCells > 0 && !mesh.Neighbors)
   {
     error = std::string(name) + ": the advancing front needs cell neighbours";

@@ -207,7 +207,7 @@ void CheckSearch(Reader& in)
       }
   }
   mp::MeshView views[2];
-  std::vector<mp::Index> neighbors[2];
+  std::vector<mp::NeighborId> neighbors[2];
   for (int m = 0; m < 2; ++m)
   {
     if (!Finite(points[m].data(), static_cast<int>(points[m].size())))

@@ -27,7 +27,7 @@ struct TestMesh
   int Dimension = 2;          // 2: triangles, 3: tetrahedra
   std::vector<double> Points; // x, y, z
   std::vector<Index> Cells;   // Dimension + 1 per cell
-  std::vector<Index> Neighbors;
+  std::vector<mp::NeighborId> Neighbors;
 
   Index NumberOfPoints() const { return Index(this->Points.size() / 3); }
   Index NumberOfCells() const { return Index(this->Cells.size() / (this->Dimension + 1)); }

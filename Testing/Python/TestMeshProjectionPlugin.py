@@ -60,6 +60,16 @@ diff = max(abs(bs.GetValue(i) - fs.GetValue(i)) for i in range(out.GetNumberOfPo
 check(diff < 1e-13, "brute force == advancing front (%g)" % diff)
 projection.SearchMethod = "Advancing Front"
 
+# The wrapped VTK module works in pvpython too: the same numbers as the plugin.
+from meshprojection import vtkMeshProjectionFilter  # noqa: E402
+direct = vtkMeshProjectionFilter()
+direct.SetInputData(servermanager.Fetch(target))
+direct.SetSourceData(src)
+direct.Update()
+ds = direct.GetOutput().GetPointData().GetArray("Smooth")
+diff = max(abs(ds.GetValue(i) - fs.GetValue(i)) for i in range(out.GetNumberOfPoints()))
+check(diff < 1e-13, "the wrapped filter in pvpython == the plugin (%g)" % diff)
+
 # The image: the projected field on the target, fixed camera and size.
 view = CreateView("RenderView")
 view.ViewSize = [400, 400]
