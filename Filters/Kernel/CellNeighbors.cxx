@@ -2,14 +2,19 @@
 #include "CellNeighbors.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 
 namespace mp
 {
-Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
+namespace
+{
+template <class Id>
+Index FaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
 {
   const int corners = mesh.CornersPerCell();
-  std::vector<Index> start;
-  std::vector<Index> around;
+  std::vector<Id> start;
+  std::vector<Id> around;
   BuildPointCells(mesh, start, around);
   neighbors.assign(static_cast<size_t>(mesh.NumberOfCells) * corners, -1);
   Index nonManifold = 0;
@@ -66,6 +71,17 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbor
     }
   }
   return nonManifold / 2;
+}
+} // namespace
+
+Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
+{
+  // The point-to-cell lists with 32-bit ids when they fit: half the memory.
+  if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
+  {
+    return FaceNeighbors<std::int32_t>(mesh, neighbors);
+  }
+  return FaceNeighbors<Index>(mesh, neighbors);
 }
 void BoundaryCells(const MeshView& mesh, std::vector<Index>& cells)
 {
