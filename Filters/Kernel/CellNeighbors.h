@@ -27,11 +27,13 @@ namespace mp
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors);
 
 /// The cells around every point, in CSR form: point p is used by the cells
-/// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). Id
-/// (Index, or 32-bit to halve the memory) must hold corners x cells.
-template <class Id>
-void BuildPointCells(const MeshView& mesh, std::vector<Id>& start, std::vector<Id>& cells)
+/// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). The
+/// vectors' element type (Index, or 32-bit to halve the memory) must hold
+/// corners x cells.
+template <class Vector>
+void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells)
 {
+  using Id = typename Vector::value_type;
   const int corners = mesh.CornersPerCell();
   start.assign(static_cast<std::size_t>(mesh.NumberOfPoints) + 1, 0);
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
@@ -46,7 +48,7 @@ void BuildPointCells(const MeshView& mesh, std::vector<Id>& start, std::vector<I
     start[p + 1] += start[p];
   }
   cells.resize(static_cast<std::size_t>(start.back()));
-  std::vector<Id> fill(start.begin(), start.end() - 1);
+  Vector fill(start.begin(), start.end() - 1);
   for (Index c = 0; c < mesh.NumberOfCells; ++c) // cell ids come out sorted per point
   {
     for (int k = 0; k < corners; ++k)

@@ -8,15 +8,18 @@
  * 4 KiB page, they cost the process a page fault each: about a tenth of
  * the whole run was spent in the operating system's fault handler on the
  * project's benchmark machine. LargeAllocator gives blocks of 2 MiB and more
- * 2 MiB-aligned and, on Linux, advises them as transparent huge pages
+ * 2 MiB-aligned and, on Linux, maps them straight from the system (so that
+ * they go back to it when freed, not into the C library's heap, where a
+ * freed block keeps its pages) and advises them as transparent huge pages
  * (MADV_HUGEPAGE: honoured when the system's setting is "madvise" or
  * "always", ignored under "never"), so that one fault maps 2 MiB. Smaller
- * blocks, and other systems, get plain operator new.
+ * blocks get plain operator new; other systems aligned_alloc.
  */
 #ifndef MeshProjection_Kernel_LargeArray_h
 #define MeshProjection_Kernel_LargeArray_h
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <vector>
@@ -33,6 +36,11 @@ struct LargeAllocator
   using value_type = T;
   static constexpr std::size_t HugePage = std::size_t(1) << 21; // 2 MiB
 
+  static std::size_t Rounded(std::size_t bytes)
+  {
+    return (bytes + HugePage - 1) / HugePage * HugePage;
+  }
+
   LargeAllocator() = default;
   template <class U>
   LargeAllocator(const LargeAllocator<U>&) noexcept
@@ -46,28 +54,55 @@ struct LargeAllocator
     {
       return static_cast<T*>(::operator new(bytes));
     }
-    const std::size_t rounded = (bytes + HugePage - 1) / HugePage * HugePage;
+    const std::size_t rounded = Rounded(bytes);
+#if defined(__linux__)
+    // Straight from the system, 2 MiB-aligned: given back on deallocate
+    // (the C library could keep a freed block of the heap for later, and
+    // the process would keep its pages).
+    void* raw = mmap(nullptr, rounded + HugePage, PROT_READ | PROT_WRITE,
+      MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED)
+    {
+      throw std::bad_alloc();
+    }
+    char* begin = static_cast<char*>(raw);
+    char* aligned = begin + (HugePage - reinterpret_cast<std::uintptr_t>(begin) % HugePage) % HugePage;
+    if (aligned > begin)
+    {
+      munmap(begin, static_cast<std::size_t>(aligned - begin));
+    }
+    const std::size_t tail = static_cast<std::size_t>(begin + rounded + HugePage - (aligned + rounded));
+    if (tail > 0)
+    {
+      munmap(aligned + rounded, tail);
+    }
+#if defined(MADV_HUGEPAGE)
+    madvise(aligned, rounded, MADV_HUGEPAGE); // advice only: failure changes nothing
+#endif
+    return reinterpret_cast<T*>(aligned);
+#else
     void* p = std::aligned_alloc(HugePage, rounded);
     if (!p)
     {
       throw std::bad_alloc();
     }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    madvise(p, rounded, MADV_HUGEPAGE); // advice only: failure changes nothing
-#endif
     return static_cast<T*>(p);
+#endif
   }
 
   void deallocate(T* p, std::size_t n) noexcept
   {
-    if (n * sizeof(T) < HugePage)
+    const std::size_t bytes = n * sizeof(T);
+    if (bytes < HugePage)
     {
       ::operator delete(p);
+      return;
     }
-    else
-    {
-      std::free(p);
-    }
+#if defined(__linux__)
+    munmap(p, Rounded(bytes));
+#else
+    std::free(p);
+#endif
   }
 
   template <class U>

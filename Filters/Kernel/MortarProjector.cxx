@@ -310,16 +310,18 @@ void PointGraph(const MeshView& mesh, int tasks,
   const std::function<void(int, const std::function<void(int)>&)>& runTasks,
   LargeVector<Index>& start, LargeVector<Column>& columns)
 {
-  std::vector<Id> cellStart;
-  std::vector<Id> cells;
+  LargeVector<Id> cellStart;
+  LargeVector<Id> cells;
   BuildPointCells(mesh, cellStart, cells);
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
   tasks = runTasks ? static_cast<int>(std::max<Index>(1, std::min<Index>(tasks, points / 4096))) : 1;
   start.assign(static_cast<size_t>(points) + 1, 0);
-  std::vector<std::vector<Column>> blocks(static_cast<size_t>(tasks));
+  // One task writes its rows straight into `columns`.
+  std::vector<LargeVector<Column>> blocks(static_cast<size_t>(tasks > 1 ? tasks : 0));
   auto rows = [&](int k) {
-    std::vector<Column>& block = blocks[k];
+    LargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
+    block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
     std::vector<Column> row;
     for (Index p = points * k / tasks; p < points * (k + 1) / tasks; ++p)
@@ -366,18 +368,13 @@ void PointGraph(const MeshView& mesh, int tasks,
   {
     start[p + 1] += start[p];
   }
-  columns.resize(static_cast<size_t>(start[points]));
-  auto place = [&](int k) {
-    std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[points * k / tasks]);
-    std::vector<Column>().swap(blocks[k]);
-  };
   if (tasks > 1)
   {
-    runTasks(tasks, place);
-  }
-  else
-  {
-    place(0);
+    columns.resize(static_cast<size_t>(start[points]));
+    runTasks(tasks, [&](int k) {
+      std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[points * k / tasks]);
+      LargeVector<Column>().swap(blocks[k]);
+    });
   }
 }
 

@@ -243,12 +243,24 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     }
     inner.clear();
     ++treated;
-    if (seed < 0 && !askedAll && lastMet >= 0 && stats.WalkSteps < walkBudget())
-    {
+    // A walk toward the cell's center, from `from`: a source cell holding
+    // it, or -1 (also when walks are off: after a query among all cells, or
+    // beyond their budget).
+    bool walked = false;
+    auto walk = [&](Index from) -> Index {
+      walked = true;
+      if (askedAll || from < 0 || stats.WalkSteps >= walkBudget())
+      {
+        return -1;
+      }
       double q[3] = { 0.0, 0.0, 0.0 };
       Intersector::Center(t, q);
-      seed = WalkToward<Intersector>(source, sources, lastMet, q, maxWalk, stats.WalkSteps);
       ++stats.SeedWalks;
+      return WalkToward<Intersector>(source, sources, from, q, maxWalk, stats.WalkSteps);
+    };
+    if (seed < 0)
+    {
+      seed = walk(lastMet);
     }
     // What the inner front started from: 0 the seed, 1 also the boundary
     // cells nearby, 2 all source cells nearby.
@@ -337,6 +349,19 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       if (level == 2 || (met && (level == 1 || !blocked)))
       {
         break;
+      }
+      // A seed from the front that does not meet the cell (3D seeds rest on
+      // face contacts above a rounding threshold) is near it: a short walk
+      // from it finds a cell that does, without a query.
+      if (!met && level == 0 && !walked)
+      {
+        const Index found = walk(seed);
+        if (found >= 0 && stamp[found] != tId)
+        {
+          stamp[found] = tId;
+          inner.push_back(found);
+          continue;
+        }
       }
       // The seed failed, or the walk ran into the source boundary: ask for
       // the boundary cells nearby; if still nothing meets the cell, for all.

@@ -257,6 +257,30 @@ TEST(Tetrahedra, RandomNonMatchingMeshes)
   }
 }
 
+TEST(Tetrahedra, FailedSeedsAreRepairedByAWalk)
+{
+  // The benchmark's pair at 10^5 cells: a few seeds passed on through faces
+  // do not meet their cell (3D seeds rest on face contacts above a rounding
+  // threshold); a short walk from them finds one that does, so the whole
+  // search asks no query among all source cells, and misses nothing.
+  const TestMesh target = mptest::CubeMesh(26, 26, 26, 0.15, 7);
+  const TestMesh source = mptest::CubeMesh(27, 26, 25, 0.15, 8);
+  mptest::PairRecorder<TetrahedronIntersector> front;
+  mp::SearchStatistics stats;
+  mp::BoxGridLocator locator(source.View());
+  mp::AdvancingFrontSearch<TetrahedronIntersector>(
+    target.View(), source.View(), locator, front, stats);
+  EXPECT_EQ(stats.FullLocatorQueries, 0);
+  EXPECT_GT(stats.SeedWalks, 1); // the first seed, and at least one repair
+  std::vector<double> covered(static_cast<size_t>(target.NumberOfCells()), 0.0);
+  for (const auto& p : front.Pairs)
+    covered[std::get<0>(p)] += std::get<2>(p);
+  for (Index c = 0; c < target.NumberOfCells(); ++c)
+  {
+    ASSERT_NEAR(covered[c], target.CellVolume(c), 1e-12 * target.CellVolume(c)) << "cell " << c;
+  }
+}
+
 TEST(Tetrahedra, RotatedPartialOverlaps)
 {
   std::mt19937 rng(6);

@@ -132,6 +132,42 @@ double ConservationError(vtkUnstructuredGrid* target, const Result& r, vtkUnstru
   const double is = mptest::Integral(source, source->GetPointData()->GetArray("Smooth"));
   return std::fabs(mptest::Integral(target, projected) - is) / std::fabs(is);
 }
+/**
+ * A copy of `grid` in which every other cell uses copies of its points (the
+ * points and their data appended once more): the same geometry and fields,
+ * but the mesh falls apart topologically.
+ */
+vtkSmartPointer<vtkUnstructuredGrid> SplitEveryOtherCell(vtkUnstructuredGrid* grid)
+{
+  auto split = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  split->DeepCopy(grid);
+  const vtkIdType n = grid->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    split->GetPoints()->InsertNextPoint(grid->GetPoint(i));
+  }
+  for (int a = 0; a < split->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* u = split->GetPointData()->GetArray(a);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      u->InsertNextTuple(u->GetTuple(i));
+    }
+  }
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < split->GetNumberOfCells(); c += 2)
+  {
+    split->GetCellPoints(c, ids);
+    std::vector<vtkIdType> shifted(static_cast<size_t>(ids->GetNumberOfIds()));
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      shifted[k] = ids->GetId(k) + n;
+    }
+    split->ReplaceCell(c, ids->GetNumberOfIds(), shifted.data());
+  }
+  return split;
+}
+
 } // namespace
 
 int TestMeshProjectionFilterRobustness(int, char*[])
@@ -254,28 +290,7 @@ int TestMeshProjectionFilterRobustness(int, char*[])
   {
     // Duplicate points: half of the cells use copies of their points, so the
     // mesh falls apart topologically; the result must not change.
-    vtkNew<vtkUnstructuredGrid> split;
-    split->DeepCopy(source);
-    const vtkIdType n = source->GetNumberOfPoints();
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      split->GetPoints()->InsertNextPoint(source->GetPoint(i));
-    }
-    for (int a = 0; a < split->GetPointData()->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* u = split->GetPointData()->GetArray(a);
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        u->InsertNextTuple(u->GetTuple(i));
-      }
-    }
-    vtkNew<vtkIdList> ids;
-    for (vtkIdType c = 0; c < split->GetNumberOfCells(); c += 2)
-    {
-      split->GetCellPoints(c, ids);
-      vtkIdType shifted[3] = { ids->GetId(0) + n, ids->GetId(1) + n, ids->GetId(2) + n };
-      split->ReplaceCell(c, 3, shifted);
-    }
+    auto split = SplitEveryOtherCell(source);
     const Result r = Project(target, split);
     MP_CHECK(!r.Error);
     MP_CHECK(r.Pieces == plain.Pieces);
@@ -494,28 +509,7 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     // Duplicate points: every other source tetrahedron uses copies of its
     // points, so the mesh falls apart topologically; the result must not
     // change.
-    vtkNew<vtkUnstructuredGrid> split;
-    split->DeepCopy(source3);
-    const vtkIdType n = source3->GetNumberOfPoints();
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      split->GetPoints()->InsertNextPoint(source3->GetPoint(i));
-    }
-    for (int a = 0; a < split->GetPointData()->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* u = split->GetPointData()->GetArray(a);
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        u->InsertNextTuple(u->GetTuple(i));
-      }
-    }
-    for (vtkIdType c = 0; c < split->GetNumberOfCells(); c += 2)
-    {
-      split->GetCellPoints(c, ids);
-      vtkIdType shifted[4] = { ids->GetId(0) + n, ids->GetId(1) + n, ids->GetId(2) + n,
-        ids->GetId(3) + n };
-      split->ReplaceCell(c, 4, shifted);
-    }
+    auto split = SplitEveryOtherCell(source3);
     const Result r = Project(target3, split);
     const double d = Difference(r, base, "Smooth");
     std::cout << "3D duplicate points: " << r.Pieces << " pieces (" << base.Pieces
