@@ -19,8 +19,9 @@
 // --filter-only runs just the VTK filter once per size, on the calling
 // thread (or on N threads with --threads N), and prints its stages (for
 // profiling).
-// Timings are wall-clock seconds of one run each (the filter: best of
-// three); ratios, not absolute seconds, carry the comparison.
+// Timings are wall-clock seconds, the best of three runs for the kernel's
+// stages and the filter's, one run for the others; ratios, not absolute
+// seconds, carry the comparison.
 #include "MortarProjector.h"
 #include "PairSearch.h"
 #include "TestMeshes.h"
@@ -312,7 +313,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     r.Queries = filter->GetNumberOfLocatorQueries();
     return r;
   }
-  // The kernel, stage by stage (one thread).
+  // The kernel, stage by stage (one thread), best of three runs; the peak
+  // memory of the first.
   // Freed heap memory of earlier sizes would count as "before" and hide
   // the peak: give it back to the system first.
 #if defined(__GLIBC__)
@@ -320,30 +322,40 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 #endif
   const double before = StatusMiB("VmRSS:");
   ResetPeakMemory();
-  auto t0 = Clock::now();
-  mp::BuildFaceNeighbors(target.View(false), target.Neighbors);
-  mp::BuildFaceNeighbors(source.View(false), source.Neighbors);
-  r.Neighbors = Since(t0);
-  t0 = Clock::now();
-  mp::BoxGridLocator locator(source.View());
-  r.Seeding = Since(t0);
-  mp::MortarProjector projector;
-  mp::ProjectionOptions options;
-  options.KeepMixedMatrix = false;
-  t0 = Clock::now();
-  projector.Build(target.View(), source.View(), &locator, options, u.data(), 1);
-  const double build = Since(t0);
-  std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
-  t0 = Clock::now();
-  projector.Project(ut.data(), std::nan(""));
-  r.Solve = Since(t0);
-  r.Search = projector.GetTimings().Search;
-  r.Assembly = projector.GetTimings().Assembly;
-  (void)build;
-  r.Total = r.Neighbors + r.Seeding + r.Search + r.Assembly + r.Solve;
-  r.Pairs = projector.GetStatistics().Pieces;
-  r.PeakBeyondInputs = StatusMiB("VmHWM:") - before;
+  for (int run = 0; run < 3; ++run)
+  {
+    Row k = r;
+    auto t0 = Clock::now();
+    mp::BuildFaceNeighbors(target.View(false), target.Neighbors);
+    mp::BuildFaceNeighbors(source.View(false), source.Neighbors);
+    k.Neighbors = Since(t0);
+    t0 = Clock::now();
+    mp::BoxGridLocator locator(source.View());
+    k.Seeding = Since(t0);
+    mp::MortarProjector projector;
+    mp::ProjectionOptions options;
+    options.KeepMixedMatrix = false;
+    projector.Build(target.View(), source.View(), &locator, options, u.data(), 1);
+    std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
+    t0 = Clock::now();
+    projector.Project(ut.data(), std::nan(""));
+    k.Solve = Since(t0);
+    k.Search = projector.GetTimings().Search;
+    k.Assembly = projector.GetTimings().Assembly;
+    k.Total = k.Neighbors + k.Seeding + k.Search + k.Assembly + k.Solve;
+    k.Pairs = projector.GetStatistics().Pieces;
+    if (run == 0)
+    {
+      r.PeakBeyondInputs = StatusMiB("VmHWM:") - before;
+    }
+    if (run == 0 || k.Total < r.Total)
+    {
+      k.PeakBeyondInputs = r.PeakBeyondInputs;
+      r = k;
+    }
+  }
 
+  Clock::time_point t0;
   r.KernelOnPairs = dim == 2
     ? KernelOnTruePairs<mp::TriangleIntersector>(target, source, u.data())
     : KernelOnTruePairs<mp::TetrahedronIntersector>(target, source, u.data());
@@ -353,7 +365,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   // Brute force (quadratic: small sizes only).
   if (n <= bruteMax)
   {
-    mp::ProjectionOptions brute = options;
+    mp::ProjectionOptions brute;
+    brute.KeepMixedMatrix = false;
     brute.Method = mp::SearchMethod::BruteForce;
     mp::MortarProjector b;
     t0 = Clock::now();
