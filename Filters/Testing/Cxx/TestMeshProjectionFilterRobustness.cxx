@@ -132,6 +132,18 @@ double ConservationError(vtkUnstructuredGrid* target, const Result& r, vtkUnstru
   const double is = mptest::Integral(source, source->GetPointData()->GetArray("Smooth"));
   return std::fabs(mptest::Integral(target, projected) - is) / std::fabs(is);
 }
+/// The mean x of the corners of triangle c (its points left in `ids`).
+double CenterX(vtkUnstructuredGrid* grid, vtkIdType c, vtkIdList* ids)
+{
+  grid->GetCellPoints(c, ids);
+  double cx = 0;
+  for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+  {
+    cx += grid->GetPoint(ids->GetId(k))[0] / ids->GetNumberOfIds();
+  }
+  return cx;
+}
+
 /**
  * A copy of `grid` in which every other cell uses copies of its points (the
  * points and their data appended once more): the same geometry and fields,
@@ -193,13 +205,7 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     vtkIdType ghostCount = 0;
     for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
     {
-      source->GetCellPoints(c, ids);
-      double cx = 0;
-      for (vtkIdType k = 0; k < 3; ++k)
-      {
-        cx += source->GetPoint(ids->GetId(k))[0] / 3;
-      }
-      const bool ghost = cx > 1.0;
+      const bool ghost = CenterX(source, c, ids) > 1.0;
       ghosts->SetValue(c, ghost ? vtkDataSetAttributes::DUPLICATECELL : 0);
       ghostCount += ghost;
       if (!ghost)
@@ -240,12 +246,7 @@ int TestMeshProjectionFilterRobustness(int, char*[])
     vtkIdType armCount = 0;
     for (vtkIdType c = 0; c < target->GetNumberOfCells(); ++c)
     {
-      target->GetCellPoints(c, ids);
-      double cx = 0;
-      for (vtkIdType k = 0; k < 3; ++k)
-      {
-        cx += target->GetPoint(ids->GetId(k))[0] / 3;
-      }
+      const double cx = CenterX(target, c, ids);
       armGhosts->SetValue(c, cx > 1.0 ? vtkDataSetAttributes::DUPLICATECELL : 0);
       armCount += cx > 1.0;
       for (vtkIdType k = 0; cx <= 1.0 && k < 3; ++k)
