@@ -281,6 +281,45 @@ TEST(Tetrahedra, FailedSeedsAreRepairedByAWalk)
   }
 }
 
+TEST(Tetrahedra, SnappedVerticesRotatedAndScaled)
+{
+  // Two jittered meshes of the same lattice with about half of the source's
+  // interior points moved exactly onto the target's (so vertices, edges and
+  // faces coincide here and there, and the boundaries match), then both
+  // rotated, scaled and translated alike (coinciding points stay so).
+  std::mt19937 rng(31);
+  for (int n = 0; n < 30; ++n)
+  {
+    TestMesh target = mptest::CubeMesh(3, 2 + n % 2, 3, 0.15, rng());
+    TestMesh source = mptest::CubeMesh(3, 2 + n % 2, 3, 0.15, rng());
+    for (size_t i = 0; i < source.Points.size(); i += 3)
+    {
+      if (rng() % 2)
+      {
+        std::copy(target.Points.begin() + i, target.Points.begin() + i + 3, source.Points.begin() + i);
+      }
+    }
+    for (Index c = 0; c < source.NumberOfCells(); ++c)
+    {
+      ASSERT_GT(source.CellVolume(c), 0.0);
+    }
+    const double angle = 0.7 * n;
+    const double tilt = 0.3 * n;
+    const double scale = std::pow(10.0, (n % 7) - 3);
+    for (TestMesh* m : { &target, &source })
+    {
+      mptest::Move3D(*m, angle, tilt, scale, 10.0 * scale * (n % 3), -2.0 * scale, 0.5 * scale);
+    }
+    target.Finish();
+    source.Finish();
+    Searches s(target, source);
+    s.ExpectSamePairs("case " + std::to_string(n));
+    s.ExpectCompleteCover(target, "case " + std::to_string(n));
+    if (HasFatalFailure())
+      return;
+  }
+}
+
 TEST(Tetrahedra, RotatedPartialOverlaps)
 {
   std::mt19937 rng(6);
