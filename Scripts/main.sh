@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job, from a fresh Debian 12 machine: install the dependencies,
 # build, and project the sample source field onto the sample target mesh.
-# Writes build/main/projected.vtu, build/main/intersections.vtp and
-# build/main/projection.png, and prints a summary.
+# For each sample pair NAME (lshape2d, lshape3d) writes build/main/NAME-projected.vtu,
+# build/main/NAME-intersections.vtp (2D) or .vtu (3D) and build/main/NAME.png,
+# and prints a summary.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"

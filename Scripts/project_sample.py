@@ -23,6 +23,7 @@ from paraview import servermanager
 from paraview.simple import (ColorBy, CreateView, Delete, GetColorTransferFunction, GetScalarBar,
                              IntegrateVariables, LoadPlugin, OpenDataFile, OutputPort, Render,
                              SaveData, SaveScreenshot, Show, Slice, Text, Transform)
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -132,7 +133,14 @@ def run_case(name, source_file, target_file, array, out_dir):
           (os.path.basename(source_file), s_info.GetNumberOfCells(), cells, s_info.GetNumberOfPoints()))
     print("  target        %s: %d %s, %d points" %
           (os.path.basename(target_file), t_info.GetNumberOfCells(), cells, t_info.GetNumberOfPoints()))
-    print("  intersections %d %s" % (pieces, "tetrahedra (polyhedra decomposed)" if three_d else "polygons"))
+    if three_d:
+        # Port 2 holds the polyhedra as tetrahedra: one polyhedron per (source, target) pair.
+        tets = servermanager.Fetch(projection, idx=2).GetCellData()
+        pairs = set(zip(vtk_to_numpy(tets.GetArray("SourceCellId")).tolist(),
+                        vtk_to_numpy(tets.GetArray("TargetCellId")).tolist()))
+        print("  intersections %d polyhedra (as %d tetrahedra)" % (len(pairs), pieces))
+    else:
+        print("  intersections %d polygons" % pieces)
     print("  time          %.3f s (pipeline update: neighbours, locator, search, assembly, solve)" % seconds)
     print("  %s        source %.15g, target %.15g" % ("volume" if three_d else "area  ", s_measure, t_measure))
     print("  integral of %s: source %.15g, projected %.15g, relative error %.2e" %
