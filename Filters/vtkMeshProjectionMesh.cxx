@@ -358,28 +358,10 @@ StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
   // automatic choice would size them for the boundary cells filling the
   // bounding box, and each query would return (and de-duplicate) many cells.
   const double* bounds = l.BoundaryGrid->GetBounds();
-  const int d = mesh.Dimension();
-  double volume = 1.0;
-  for (int k = 0; k < d; ++k)
-  {
-    volume *= std::max(bounds[2 * k + 1] - bounds[2 * k], 0.0);
-  }
-  const double sourceCells = std::max<double>(1.0, static_cast<double>(mesh.View().NumberOfCells));
-  const double h = volume > 0.0 ? 2.0 * std::pow(volume / sourceCells, 1.0 / d) : 0.0;
-  int divisions[3] = { 1, 1, 1 };
-  for (int k = 0; k < d && h > 0.0; ++k)
-  {
-    divisions[k] = static_cast<int>(
-      std::max(1.0, std::min(4096.0, (bounds[2 * k + 1] - bounds[2 * k]) / h)));
-  }
-  // At most about 8 bins per boundary cell.
-  while (double(divisions[0]) * divisions[1] * divisions[2] > 8.0 * n + 64.0)
-  {
-    for (int& k : divisions)
-    {
-      k = (k + 1) / 2;
-    }
-  }
+  const double lo[3] = { bounds[0], bounds[2], bounds[4] };
+  const double hi[3] = { bounds[1], bounds[3], bounds[5] };
+  int divisions[3];
+  mp::BinDivisions(lo, hi, mesh.Dimension(), mesh.View().NumberOfCells, n, divisions);
   l.Boundary->AutomaticOff();
   l.Boundary->SetDivisions(divisions);
   l.Boundary->BuildLocator();

@@ -35,6 +35,41 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
 }
 } // namespace
 
+void BinDivisions(const double lo[3], const double hi[3], int dimension, Index meshCells,
+  Index binnedCells, int divisions[3])
+{
+  // Bins about twice as wide as a cell of the mesh (2^d cells per bin): a
+  // cell then lies in few bins (memory), and the rare queries scan few cells.
+  const double n = std::max<double>(1.0, static_cast<double>(meshCells));
+  double volume = 1.0;
+  int used = 0;
+  for (int d = 0; d < dimension; ++d)
+  {
+    if (hi[d] > lo[d])
+    {
+      volume *= hi[d] - lo[d];
+      ++used;
+    }
+  }
+  const double h = used > 0 ? 2.0 * std::pow(volume / n, 1.0 / used) : 1.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    const double extent = hi[d] - lo[d];
+    divisions[d] =
+      (d < dimension && extent > 0.0) ? std::max(1, std::min(1 << 12, int(extent / h))) : 1;
+  }
+  // Few cells in a large box (the boundary of a 3D mesh): at most about
+  // 8 bins per binned cell, so that memory follows the cells, not the box.
+  const double cap = 8.0 * static_cast<double>(binnedCells) + 64.0;
+  while (double(divisions[0]) * divisions[1] * divisions[2] > cap)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      divisions[d] = (divisions[d] + 1) / 2;
+    }
+  }
+}
+
 BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared, Index cells)
   : Grids(std::move(shared))
   , Stamp(static_cast<size_t>(cells), -1)
@@ -82,43 +117,14 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
     }
     first = false;
   }
-  // Bins about twice as wide as a cell (2^d cells per bin): a cell then lies
-  // in few bins (memory), and the rare queries scan few cells. The cell size
-  // is the whole mesh's; the boundary cells span the mesh's bounding box
-  // (its extreme points are boundary vertices).
-  const double n = std::max<double>(1.0, static_cast<double>(mesh.NumberOfCells));
-  double volume = 1.0;
-  int used = 0;
-  for (int d = 0; d < mesh.Dimension; ++d)
-  {
-    if (hi[d] > lo[d])
-    {
-      volume *= hi[d] - lo[d];
-      ++used;
-    }
-  }
-  const double h = used > 0 ? 2.0 * std::pow(volume / n, 1.0 / used) : 1.0;
+  // The boundary cells span the mesh's bounding box (its extreme points are
+  // boundary vertices), so lo/hi are the mesh's in either case.
+  BinDivisions(lo, hi, mesh.Dimension, mesh.NumberOfCells, count, this->Divisions);
   for (int d = 0; d < 3; ++d)
   {
     this->Origin[d] = lo[d];
     const double extent = hi[d] - lo[d];
-    this->Divisions[d] =
-      (d < mesh.Dimension && extent > 0.0) ? std::max(1, std::min(1 << 12, int(extent / h))) : 1;
     this->Spacing[d] = extent > 0.0 ? extent / this->Divisions[d] : 1.0;
-  }
-  // Few cells in a large box (the boundary of a 3D mesh): at most about
-  // 8 bins per cell, so that memory follows the cells, not the box.
-  const double cap = 8.0 * std::max<double>(1.0, static_cast<double>(count));
-  while (double(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2] > cap)
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      if (this->Divisions[d] > 1)
-      {
-        this->Divisions[d] = (this->Divisions[d] + 1) / 2;
-        this->Spacing[d] = (hi[d] - lo[d]) / this->Divisions[d];
-      }
-    }
   }
   const size_t bins = size_t(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2];
   std::vector<Index> counts(bins + 1, 0);

@@ -203,16 +203,10 @@ struct MortarProjector::Internals
     int open = 0;
     for (int k = 0; k < c; ++k)
     {
+      // A zero field is converged at its start (the lumped solution is 0).
       converged[k] = bb.Values[k] == 0.0 || sums.Values[k] <= goal[k];
       open += !converged[k];
       rz[k] = sums.Values[c + k];
-      if (bb.Values[k] == 0.0)
-      {
-        for (Index i = 0; i < n; ++i)
-        {
-          X[i * c + k] = 0.0;
-        }
-      }
     }
     for (int iteration = 0; iteration < maxIterations && open > 0; ++iteration)
     {
@@ -253,14 +247,12 @@ struct MortarProjector::Internals
       {
         if (converged[k])
         {
-          beta[k] = 0.0;
-          continue;
+          continue; // its direction is zeroed below
         }
         if (sums.Values[k] <= goal[k])
         {
           converged[k] = 1;
           --open;
-          alpha[k] = beta[k] = 0.0;
           continue;
         }
         beta[k] = sums.Values[c + k] / rz[k];
@@ -341,15 +333,18 @@ void PointGraph(const MeshView& mesh, int tasks,
       {
         std::sort(row.begin(), row.end());
       }
-      for (size_t i = 1; i < row.size(); ++i)
+      else
       {
-        const Column v = row[i];
-        size_t j = i;
-        for (; j > 0 && row[j - 1] > v; --j)
+        for (size_t i = 1; i < row.size(); ++i)
         {
-          row[j] = row[j - 1];
+          const Column v = row[i];
+          size_t j = i;
+          for (; j > 0 && row[j - 1] > v; --j)
+          {
+            row[j] = row[j - 1];
+          }
+          row[j] = v;
         }
-        row[j] = v;
       }
       const Index size = std::unique(row.begin(), row.end()) - row.begin();
       block.insert(block.end(), row.begin(), row.begin() + size);
