@@ -22,11 +22,12 @@
 // Timings are wall-clock seconds, the best of three runs for the kernel's
 // stages and the filter's, one run for the others; ratios, not absolute
 // seconds, carry the comparison.
-#include "MortarProjector.h"
-#include "PairSearch.h"
+#include "Search/PairSearch.h"
+#include "Transfer/MortarAssembler.h"
+#include "Transfer/MortarOperator.h"
 #include "TestMeshes.h"
-#include "TetrahedronIntersector.h"
-#include "TriangleIntersector.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TriangleIntersector.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellType.h"
@@ -212,14 +213,17 @@ struct TruePairs
 /**
  * The intersection kernel alone on the true pairs, in the order the front
  * found them: preparing both cells, the intersection and the local
- * integrals (with the right-hand side of one field), and nothing else: no
- * search, no neighbours, no failed tests, no sums into the global matrix.
+ * integrals (the piece's moments, the mixed block, the target cell's mass
+ * block once per cell), and nothing else: no search, no neighbours, no
+ * failed tests, no sums into the global matrices.
  * The search time beyond this is the search overhead.
  */
 template <class Intersector>
 double KernelOnTruePairs(const TestMesh& target, const TestMesh& source, const double* u)
 {
-  constexpr int N = Intersector::Corners;
+  constexpr int D = Intersector::Dimension;
+  constexpr int N = D + 1;
+  using P1 = mp::P1Space<D>;
   mp::BoxGridLocator locator(source.View());
   TruePairs<Intersector> found;
   mp::SearchStatistics stats;
@@ -238,7 +242,7 @@ double KernelOnTruePairs(const TestMesh& target, const TestMesh& source, const d
     {
       if (current >= 0)
       {
-        Intersector::TargetMass(t, moments, mtt); // the target cell's M_tt block
+        P1::MassFromMoments(t, moments, mtt); // the target cell's M_tt block
         sink += mtt[0][1];
       }
       current = pair.first;
@@ -247,15 +251,22 @@ double KernelOnTruePairs(const TestMesh& target, const TestMesh& source, const d
     }
     Intersector::Prepare(source.View(), pair.second, s);
     Intersector::Intersect(t, s, piece);
-    double rhs[N] = {};
-    const double* values[N];
-    double* sums[N];
-    for (int i = 0; i < N; ++i)
+    double o[D];
+    double M[N][N];
+    sink += Intersector::Moments(piece, o, M);
+    double d[D];
+    for (int a = 0; a < D; ++a)
     {
-      values[i] = u + s.Points[i];
-      sums[i] = rhs + i;
+      d[a] = o[a] - t.X[0][a];
     }
-    sink += Intersector::IntegrateField(piece, t, s, moments, values, 1, sums) + rhs[1];
+    mp::AddShiftedMoments<N>(M, d, moments);
+    double lt[N][N];
+    double ls[N][N];
+    P1::Basis(t, o, lt);
+    P1::Basis(s, o, ls);
+    double mts[N][N] = {};
+    mp::AddMixedBlock<N, N, N>(lt, ls, M, mts);
+    sink += mts[0][1] * u[s.Points[1]];
   }
   const double seconds = Since(t0);
   if (sink == 12345.678) // keeps the loop from being optimized away
@@ -332,13 +343,11 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     t0 = Clock::now();
     mp::BoxGridLocator locator(source.View());
     k.Seeding = Since(t0);
-    mp::MortarProjector projector;
-    mp::ProjectionOptions options;
-    options.KeepMixedMatrix = false;
-    projector.Build(target.View(), source.View(), &locator, options, u.data(), 1);
+    mp::MortarOperator projector;
+    projector.Build(target.View(), source.View(), &locator);
     std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
     t0 = Clock::now();
-    projector.Project(ut.data(), std::nan(""));
+    projector.Apply(u.data(), 1, ut.data(), std::nan(""));
     k.Solve = Since(t0);
     k.Search = projector.GetTimings().Search;
     k.Assembly = projector.GetTimings().Assembly;
@@ -365,12 +374,11 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   // Brute force (quadratic: small sizes only).
   if (n <= bruteMax)
   {
-    mp::ProjectionOptions brute;
-    brute.KeepMixedMatrix = false;
+    mp::OperatorOptions brute;
     brute.Method = mp::SearchMethod::BruteForce;
-    mp::MortarProjector b;
+    mp::MortarOperator b;
     t0 = Clock::now();
-    b.Build(target.View(), source.View(), nullptr, brute, u.data(), 1);
+    b.Build(target.View(), source.View(), nullptr, brute);
     r.Brute = Since(t0);
   }
   // Locator-based search with the same intersector.

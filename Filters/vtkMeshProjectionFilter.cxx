@@ -17,16 +17,66 @@
 
 #include "vtkMeshProjectionMesh.h"
 
+#include "Search/ParallelSearch.h"
+#include "Transfer/MortarOperator.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMeshProjectionFilter);
+
+namespace
+{
+/**
+ * 2D: sees both meshes in the frame of Input's plane (of Source's when
+ * Input has no cells); a Source in a parallel plane is projected onto it,
+ * with a `warning`. Returns an error when the planes are not parallel.
+ */
+std::string UseOnePlane(mpvtk::SimplexMesh& target, mpvtk::SimplexMesh& source, std::string& warning)
+{
+  const bool sourceOnly = target.View().NumberOfCells == 0;
+  const mp::PlaneFrame& frame = sourceOnly ? source.OwnPlane() : target.OwnPlane();
+  const mp::PlaneFrame& other = sourceOnly ? target.OwnPlane() : source.OwnPlane();
+  std::ostringstream text;
+  if (target.View().NumberOfCells > 0 && source.View().NumberOfCells > 0)
+  {
+    if (!frame.IsParallel(other))
+    {
+      const double* n = frame.GetNormal();
+      const double* m = other.GetNormal();
+      text << "Input and Source lie in planes that are not parallel (normals (" << n[0] << ", "
+           << n[1] << ", " << n[2] << ") and (" << m[0] << ", " << m[1] << ", " << m[2]
+           << ")): 2D meshes must lie in one plane.";
+      return text.str();
+    }
+    if (frame.Offset() != other.Offset())
+    {
+      if (frame.IsIdentity())
+      {
+        text << "Source lies in the plane z = " << source.OwnPlane().Offset() << ", Input in z = "
+             << target.OwnPlane().Offset() << "; the meshes are compared in x and y only.";
+      }
+      else
+      {
+        text << "Source lies in a plane parallel to Input's, "
+             << std::fabs(frame.Offset() - other.Offset())
+             << " away; it is projected onto Input's plane.";
+      }
+      warning = text.str();
+    }
+  }
+  target.UseFrame(frame);
+  source.UseFrame(frame);
+  return std::string();
+}
+} // namespace
 
 
 //------------------------------------------------------------------------------
@@ -154,10 +204,19 @@ int vtkMeshProjectionFilter::RequestData(
                   << "the same dimension.");
     return 1;
   }
-  else if (targetMesh.Dimension() == 2 && targetMesh.PlaneZ() != sourceMesh.PlaneZ())
+  if (targetMesh.Dimension() == 2)
   {
-    vtkWarningMacro(<< "Source lies in the plane z = " << sourceMesh.PlaneZ() << ", Input in z = "
-                    << targetMesh.PlaneZ() << "; the meshes are compared in x and y only.");
+    std::string warning;
+    const std::string error = UseOnePlane(targetMesh, sourceMesh, warning);
+    if (!error.empty())
+    {
+      vtkErrorMacro(<< error);
+      return 1;
+    }
+    if (!warning.empty())
+    {
+      vtkWarningMacro(<< warning);
+    }
   }
   if (targetMesh.GhostCells() || sourceMesh.GhostCells())
   {
@@ -166,13 +225,13 @@ int vtkMeshProjectionFilter::RequestData(
   }
 
   // 3. Neighbours (VTK cell links) and the seed locator (vtkStaticCellLocator).
-  mp::ProjectionOptions options;
+  mp::OperatorOptions options;
   options.KeepPieces = this->OutputIntersections;
   options.Method = this->SearchMethod == BRUTE_FORCE ? mp::SearchMethod::BruteForce
                                                      : mp::SearchMethod::AdvancingFront;
-  std::unique_ptr<mpvtk::StaticLocator> locator;
+  std::unique_ptr<mp::CandidateLocator> locator;
   this->InputTime = lap(stage);
-  if (options.Method == mp::SearchMethod::AdvancingFront)
+  if (mp::SearchNeedsNeighbors(options.Method))
   {
     targetMesh.BuildNeighbors();
     sourceMesh.BuildNeighbors();
@@ -184,10 +243,11 @@ int vtkMeshProjectionFilter::RequestData(
                       << sourceMesh.NonManifoldFaces()
                       << ") are treated as boundaries; results stay correct but the search is slower.");
     }
-    if (source->GetNumberOfCells() > 0)
-    {
-      locator.reset(new mpvtk::StaticLocator(source, sourceMesh));
-    }
+    // A Source without cells has nothing to locate: the kernel's own
+    // (empty) locator answers the front's questions then.
+    locator.reset(source->GetNumberOfCells() > 0
+        ? static_cast<mp::CandidateLocator*>(new mpvtk::StaticLocator(source, sourceMesh))
+        : new mp::BoxGridLocator(sourceMesh.View()));
     this->LocatorTime = lap(stage);
   }
 
@@ -244,15 +304,14 @@ int vtkMeshProjectionFilter::RequestData(
     offset += nc;
   }
 
-  // 5. Intersections and mortar integrals, summed into M_tt and M_ts u_s.
+  // 5. The operator from the two geometries: intersections, M_tt and M_ts.
   this->InputTime += lap(stage);
-  mp::MortarProjector projector;
-  options.KeepMixedMatrix = false;
+  mp::MortarOperator projection;
   // One range of target cells per thread of vtkSMPTools' backend (with
   // Debian's VTK: VTK_SMP_BACKEND_IN_USE=STDThread; the default backend there
   // is sequential).
-  options.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
-  options.RunTasks = [](int count, const std::function<void(int)>& task) {
+  options.Runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.Runner.Run = [](int count, const std::function<void(int)>& task) {
     vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType k = begin; k < end; ++k)
       {
@@ -260,21 +319,16 @@ int vtkMeshProjectionFilter::RequestData(
       }
     });
   };
-  mp::BoxGridLocator emptyLocator(sourceMesh.View()); // only used when Source has no cells
-  mp::CandidateLocator* seeds = locator ? static_cast<mp::CandidateLocator*>(locator.get())
-                                        : static_cast<mp::CandidateLocator*>(&emptyLocator);
-  if (!projector.Build(
-        targetMesh.View(), sourceMesh.View(), seeds, options, fields.data(), components))
+  if (!projection.Build(targetMesh.View(), sourceMesh.View(), locator.get(), options))
   {
-    vtkErrorMacro(<< "Projection failed: " << projector.GetError());
+    vtkErrorMacro(<< "Projection failed: " << projection.GetError());
     return 1;
   }
-  mp::LargeVector<double>().swap(fields);
-  const mp::SearchStatistics& stats = projector.GetStatistics();
+  const mp::SearchStatistics& stats = projection.GetStatistics();
   this->NumberOfIntersections = stats.Pieces;
   this->NumberOfIntersectionTests = stats.IntersectionTests;
   this->NumberOfLocatorQueries = stats.LocatorQueries;
-  this->CoveredMeasure = projector.GetCoveredMeasure();
+  this->CoveredMeasure = projection.GetCoveredMeasure();
   if (stats.DegenerateTargetCells > 0 || stats.DegenerateSourceCells > 0)
   {
     vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
@@ -283,13 +337,13 @@ int vtkMeshProjectionFilter::RequestData(
                     << ") were ignored: they carry no part of the integrals.");
   }
   if (target->GetNumberOfCells() > 0 && source->GetNumberOfCells() > 0 &&
-    projector.GetNumberOfValidPoints() == 0)
+    projection.GetNumberOfValid() == 0)
   {
     vtkWarningMacro("Source and Input do not overlap: every projected point is invalid.");
   }
-  if (projector.GetNumberOfOvercoveredCells() > 0)
+  if (projection.GetNumberOfOvercoveredCells() > 0)
   {
-    vtkWarningMacro(<< projector.GetNumberOfOvercoveredCells()
+    vtkWarningMacro(<< projection.GetNumberOfOvercoveredCells()
                     << " Input cells are covered more than once: Source cells overlap each other "
                     << "(folded, inverted among their neighbours, or duplicated). The result is "
                     << "not a projection of one field there.");
@@ -300,15 +354,16 @@ int vtkMeshProjectionFilter::RequestData(
   mp::LargeVector<double> values(static_cast<size_t>(nt) * components);
   const double fill =
     this->FillWithNaN ? std::numeric_limits<double>::quiet_NaN() : this->FillValue;
-  if (components > 0 && !projector.Project(values.data(), fill))
+  if (components > 0 && !projection.Apply(fields.data(), components, values.data(), fill))
   {
     vtkErrorMacro("The mass matrix of the covered target part could not be solved.");
     return 1;
   }
+  mp::LargeVector<double>().swap(fields);
   lap(stage);
-  this->SearchTime = projector.GetTimings().Search;
-  this->AssemblyTime = projector.GetTimings().Assembly;
-  this->SolveTime = projector.GetTimings().Solve;
+  this->SearchTime = projection.GetTimings().Search;
+  this->AssemblyTime = projection.GetTimings().Assembly;
+  this->SolveTime = projection.GetTimings().Solve;
   vtkPointData* outPD = output->GetPointData();
   for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
   {
@@ -347,13 +402,13 @@ int vtkMeshProjectionFilter::RequestData(
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
-  std::copy(projector.GetValidPoints().begin(), projector.GetValidPoints().end(), mask->GetPointer(0));
+  std::copy(projection.GetValid().begin(), projection.GetValid().end(), mask->GetPointer(0));
   outPD->AddArray(mask);
   vtkNew<vtkDoubleArray> covered;
   covered->SetName("CoveredFraction");
   covered->SetNumberOfValues(target->GetNumberOfCells());
   covered->Fill(0.0); // ghost cells
-  const std::vector<double>& fraction = projector.GetCoveredFraction();
+  const std::vector<double>& fraction = projection.GetCoveredFraction();
   for (size_t c = 0; c < fraction.size(); ++c)
   {
     covered->SetValue(targetMesh.ToVTK(static_cast<mp::Index>(c)), fraction[c]);
@@ -363,13 +418,13 @@ int vtkMeshProjectionFilter::RequestData(
   // 8. Optionally, the intersection pieces.
   if (this->OutputIntersections && targetMesh.Dimension() == 2)
   {
-    polygons->ShallowCopy(mpvtk::MakeIntersectionPolygons(
-      projector.GetPieces(), targetMesh, sourceMesh, targetMesh.PlaneZ()));
+    polygons->ShallowCopy(
+      mpvtk::MakeIntersectionPolygons(projection.GetPieces(), targetMesh, sourceMesh));
   }
   else if (this->OutputIntersections)
   {
     polyhedra->ShallowCopy(
-      mpvtk::MakeIntersectionPolyhedra(projector.GetPieces(), targetMesh, sourceMesh));
+      mpvtk::MakeIntersectionPolyhedra(projection.GetPieces(), targetMesh, sourceMesh));
   }
   this->OutputTime = lap(stage);
   this->ExecutionTime =

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMeshProjectionMesh.h"
 
-#include "CellNeighbors.h"
+#include "Mesh/CellNeighbors.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -77,8 +77,8 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
     why << role << " mixes triangles and tetrahedra: give 2D and 3D meshes separately.";
     return why.str();
   }
-  this->Kernel.Dimension = types.count(VTK_TETRA) ? 3 : 2;
-  const int corners = this->Kernel.Dimension + 1;
+  this->SetDimension(types.count(VTK_TETRA) ? 3 : 2);
+  const int corners = this->Kernel.CornersPerCell();
 
   // Connectivity of every cell: VTK's own array when it is 64-bit.
   vtkCellArray* cells = grid->GetCells();
@@ -182,19 +182,39 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
       hi[d] = std::max(hi[d], x[d]);
     }
   }
-  if (this->Kernel.NumberOfCells > 0 && this->Kernel.Dimension == 2)
+  double deviation = 0.0;
+  double size = 0.0;
+  if (this->Kernel.NumberOfCells > 0 && this->Dimension() == 2 &&
+    !this->Own.Fit(this->Kernel, deviation, size))
   {
-    const double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-    if (hi[2] - lo[2] > 1e-9 * std::max(extent, std::fabs(hi[2])))
+    // Name the coordinate closest to the normal: "z" for a mesh meant to
+    // lie in a plane z = constant.
+    const double* n = this->Own.GetNormal();
+    int axis = 2;
+    for (int d = 0; d < 3; ++d)
     {
-      why << role << " is not planar: its triangles' z coordinates range over [" << lo[2] << ", "
-          << hi[2] << "]. Triangle meshes must lie in a plane z = constant (surfaces in 3D are "
-          << "not supported).";
-      return why.str();
+      axis = std::fabs(n[d]) > std::fabs(n[axis]) ? d : axis;
     }
-    this->Z = 0.5 * (lo[2] + hi[2]);
+    why << role << " is not planar: its triangles' " << "xyz"[axis] << " coordinates range over ["
+        << lo[axis] << ", " << hi[axis] << "], and its points lie up to " << deviation
+        << " from their best-fitting plane. Triangle meshes must lie in one plane (surfaces in "
+        << "3D are not supported).";
+    return why.str();
   }
+  this->Seen = this->Own;
   return std::string();
+}
+
+void SimplexMesh::UseFrame(const mp::PlaneFrame& frame)
+{
+  this->Seen = frame.Shifted(this->Own.Offset());
+  if (!frame.IsIdentity())
+  {
+    std::vector<double> mapped;
+    frame.ToPlane(this->Kernel, mapped);
+    this->PointCopy.swap(mapped);
+    this->Kernel.Points = this->PointCopy.data();
+  }
 }
 
 namespace
@@ -204,80 +224,32 @@ namespace
  * (32-bit ids halve the links' memory traffic when the grid allows them).
  */
 template <typename TIds>
-void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel, const mp::Index* all,
-  const std::function<vtkIdType(mp::Index)>& toVTK,
+void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel,
   const std::function<mp::Index(vtkIdType)>& toKernel, mp::LargeVector<mp::NeighborId>& neighbors,
   vtkIdType& nonManifoldFaces)
 {
-  const vtkIdType n = kernel.NumberOfCells;
-  const int corners = kernel.CornersPerCell();
   vtkStaticCellLinksTemplate<TIds> links;
   // The threaded build counts with atomics: slower on one thread.
   links.SetSequentialProcessing(vtkSMPTools::GetEstimatedNumberOfThreads() <= 1);
   links.BuildLinks(grid);
-  const bool ghosts = n != grid->GetNumberOfCells();
+  const bool ghosts = kernel.NumberOfCells != grid->GetNumberOfCells();
   std::atomic<vtkIdType> nonManifold(0);
-  const mp::Index* conn = kernel.Connectivity;
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    vtkIdType localNonManifold = 0;
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      const vtkIdType self = ghosts ? toVTK(c) : c;
-      for (int k = 0; k < corners; ++k)
+  vtkSMPTools::For(0, kernel.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+    // The cells around a point, from VTK's links, in kernel ids (ghost cells
+    // are not the kernel's: they never match).
+    auto around = [&](mp::Index point, const auto& visit) {
+      const vtkIdType count = links.GetNcells(point);
+      const TIds* cells = links.GetCells(point);
+      for (vtkIdType i = 0; i < count; ++i)
       {
-        if (neighbors[corners * c + k] >= 0)
+        const mp::Index c = ghosts ? toKernel(cells[i]) : static_cast<mp::Index>(cells[i]);
+        if (c >= 0)
         {
-          continue; // found from the other side
-        }
-        // The cells around the face's first corner that hold its other corners.
-        const mp::Index first = conn[corners * c + (k + 1) % corners];
-        const mp::Index second = conn[corners * c + (k + 2) % corners];
-        const mp::Index third = corners == 4 ? conn[corners * c + (k + 3) % corners] : second;
-        const vtkIdType count = links.GetNcells(first);
-        const TIds* around = links.GetCells(first);
-        vtkIdType found = -1;
-        int matches = 0;
-        for (vtkIdType i = 0; i < count; ++i)
-        {
-          const vtkIdType other = around[i];
-          const mp::Index* o = all + corners * other;
-          bool shares = (o[0] == second) | (o[1] == second) | (o[2] == second);
-          bool shares3 = (o[0] == third) | (o[1] == third) | (o[2] == third);
-          if (corners == 4)
-          {
-            shares |= o[3] == second;
-            shares3 |= o[3] == third;
-          }
-          if (shares & shares3 & (other != self))
-          {
-            found = other;
-            ++matches;
-          }
-        }
-        if (matches == 1)
-        {
-          const mp::Index neighbor = ghosts ? toKernel(found) : found; // -1 for a ghost: a boundary here
-          neighbors[corners * c + k] = static_cast<mp::NeighborId>(neighbor);
-          // The same face seen from the neighbour, when this task owns it.
-          if (neighbor >= begin && neighbor < end)
-          {
-            const mp::Index* o = conn + corners * neighbor;
-            for (int l = 0; l < corners; ++l)
-            {
-              if (o[l] != first && o[l] != second && o[l] != third)
-              {
-                neighbors[corners * neighbor + l] = static_cast<mp::NeighborId>(c);
-              }
-            }
-          }
-        }
-        else if (matches > 1)
-        {
-          ++localNonManifold;
+          visit(c);
         }
       }
-    }
-    nonManifold += localNonManifold;
+    };
+    nonManifold += mp::MatchFaces(kernel, around, neighbors.data(), begin, end);
   });
   nonManifoldFaces = nonManifold / 2;
 }
@@ -297,19 +269,16 @@ void SimplexMesh::BuildNeighbors()
   {
     return;
   }
-  auto toVTK = [this](mp::Index c) { return this->ToVTK(c); };
   auto toKernel = [this](vtkIdType c) { return this->ToKernel(c); };
   const vtkIdType uses = this->Grid->GetCells()->GetNumberOfConnectivityIds();
   if (this->Grid->GetNumberOfPoints() < VTK_INT_MAX && this->Grid->GetNumberOfCells() < VTK_INT_MAX &&
     uses < VTK_INT_MAX)
   {
-    FaceNeighbors<int>(this->Grid, this->Kernel, this->AllConnectivity, toVTK, toKernel,
-      this->Neighbors, this->NonManifold);
+    FaceNeighbors<int>(this->Grid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
   }
   else
   {
-    FaceNeighbors<vtkIdType>(this->Grid, this->Kernel, this->AllConnectivity, toVTK, toKernel,
-      this->Neighbors, this->NonManifold);
+    FaceNeighbors<vtkIdType>(this->Grid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
   }
 }
 
@@ -380,12 +349,6 @@ std::unique_ptr<mp::CandidateLocator> StaticLocator::NewForThread() const
 
 StaticLocator::~StaticLocator() = default;
 
-bool StaticLocator::BuiltFullLocator() const
-{
-  std::lock_guard<std::mutex> guard(this->Locators->Lock);
-  return this->Locators->All != nullptr;
-}
-
 void StaticLocator::FindCandidates(const double box[6], std::vector<mp::Index>& cells)
 {
   this->Find(true, box, cells);
@@ -398,11 +361,11 @@ void StaticLocator::FindBoundaryCandidates(const double box[6], std::vector<mp::
 
 void StaticLocator::Find(bool all, const double box[6], std::vector<mp::Index>& cells)
 {
-  // 2D: the kernel works in x and y; the source lies in its own plane.
+  // 2D: the kernel works in the frame's (x, y); the source lies in its own plane.
   double bounds[6] = { box[0], box[1], box[2], box[3], box[4], box[5] };
   if (this->Mesh.Dimension() == 2)
   {
-    bounds[4] = bounds[5] = this->Mesh.PlaneZ();
+    this->Mesh.Frame().BoxToSpace(box, bounds);
   }
   Shared& l = *this->Locators;
   {
@@ -432,7 +395,7 @@ namespace
 /// and the measure of each cell.
 template <class DataSet>
 vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const SimplexMesh& target,
-  const SimplexMesh& source, double z, const char* measureName,
+  const SimplexMesh& source, const char* measureName,
   const std::function<void(DataSet*, vtkCellArray*)>& setCells)
 {
   auto result = vtkSmartPointer<DataSet>::New();
@@ -442,8 +405,16 @@ vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const 
   points->SetNumberOfPoints(nv);
   for (vtkIdType v = 0; v < nv; ++v)
   {
-    points->SetPoint(
-      v, pieces.Points[3 * v], pieces.Points[3 * v + 1], pieces.Points[3 * v + 2] + z);
+    double x[3];
+    if (pieces.Dimension == 2)
+    {
+      target.Frame().ToSpace(&pieces.Points[3 * v], x); // back into the target's plane
+    }
+    else
+    {
+      std::copy_n(&pieces.Points[3 * v], 3, x);
+    }
+    points->SetPoint(v, x);
   }
   vtkNew<vtkIdTypeArray> offsets;
   offsets->SetNumberOfValues(static_cast<vtkIdType>(pieces.Offsets.size()));
@@ -482,16 +453,16 @@ vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const 
 } // namespace
 
 vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source, double z)
+  const SimplexMesh& target, const SimplexMesh& source)
 {
-  return MakePieces<vtkPolyData>(pieces, target, source, z, "Area",
+  return MakePieces<vtkPolyData>(pieces, target, source, "Area",
     [](vtkPolyData* p, vtkCellArray* cells) { p->SetPolys(cells); });
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(
   const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source)
 {
-  return MakePieces<vtkUnstructuredGrid>(pieces, target, source, 0.0, "Volume",
+  return MakePieces<vtkUnstructuredGrid>(pieces, target, source, "Volume",
     [](vtkUnstructuredGrid* g, vtkCellArray* cells) { g->SetCells(VTK_TETRA, cells); });
 }
 } // namespace mpvtk

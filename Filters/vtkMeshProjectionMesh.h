@@ -5,21 +5,25 @@
  *        the kernel's simplicial mesh, with VTK's neighbours and locator.
  *
  * Wrap() checks a grid (cell types, one dimension, finite coordinates, a
- * plane for triangles) and views its arrays without a copy when their types
- * allow it (double points, 64-bit cell array, no ghost cells). Ghost cells
- * (DUPLICATECELL, HIDDENCELL) are left out: the kernel then numbers only the
- * other cells and ToVTK() maps its ids back. Neighbours come from
- * vtkStaticCellLinks, seeds from vtkStaticCellLocator.
+ * plane for triangles, fitted by mp::PlaneFrame) and views its arrays
+ * without a copy when their types allow it (double points, 64-bit cell
+ * array, no ghost cells). A 2D mesh is then seen in a plane frame
+ * (UseFrame): the points are used in place for planes z = constant and
+ * mapped into the frame otherwise. Ghost cells (DUPLICATECELL, HIDDENCELL)
+ * are left out: the kernel then numbers only the other cells and ToVTK()
+ * maps its ids back. Neighbours come from vtkStaticCellLinks through the
+ * kernel's face matcher (mp::MatchFaces), seeds from vtkStaticCellLocator.
  *
  * Not a public class of the module: no export macro, not wrapped.
  */
 #ifndef vtkMeshProjectionMesh_h
 #define vtkMeshProjectionMesh_h
 
-#include "CandidateLocator.h"
-#include "LargeArray.h"
-#include "MeshView.h"
-#include "MortarProjector.h"
+#include "Geometry/IntersectionPieces.h"
+#include "Mesh/LargeArray.h"
+#include "Mesh/MeshView.h"
+#include "Mesh/PlaneFrame.h"
+#include "Search/CandidateLocator.h"
 
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
@@ -50,10 +54,18 @@ public:
 
   const mp::MeshView& View() const { return this->Kernel; }
   /// Sets the dimension of a mesh without cells (it takes the other mesh's).
-  void SetDimension(int d) { this->Kernel.Dimension = d; }
-  int Dimension() const { return this->Kernel.Dimension; }
-  /// For 2D meshes, the plane z = PlaneZ they lie in.
-  double PlaneZ() const { return this->Z; }
+  void SetDimension(int d) { this->Kernel.CellDimension = this->Kernel.SpaceDimension = d; }
+  int Dimension() const { return this->Kernel.CellDimension; }
+  /// For 2D meshes, the plane fitted to the mesh's own points by Wrap().
+  const mp::PlaneFrame& OwnPlane() const { return this->Own; }
+  /**
+   * For 2D meshes: sees the points in `frame`'s 2D coordinates (in place
+   * for planes z = constant, else mapped into a copy). Both meshes use the
+   * same frame; this mesh's own plane may be parallel to it.
+   */
+  void UseFrame(const mp::PlaneFrame& frame);
+  /// The frame the kernel sees the mesh in, moved onto the mesh's own plane.
+  const mp::PlaneFrame& Frame() const { return this->Seen; }
   vtkIdType NonManifoldFaces() const { return this->NonManifold; }
   vtkIdType GhostCells() const { return this->Ghosts; }
   /// The VTK id of a kernel cell, and the kernel id of a VTK cell (-1 for a ghost).
@@ -70,7 +82,8 @@ private:
   mp::LargeVector<mp::NeighborId> Neighbors;
   std::vector<vtkIdType> KernelToVTK; ///< empty when the grid has no ghost cells
   std::vector<mp::Index> VTKToKernel; ///< -1 for ghost cells; empty likewise
-  double Z = 0;
+  mp::PlaneFrame Own;
+  mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;
   vtkIdType Ghosts = 0;
 };
@@ -95,8 +108,6 @@ public:
   /// boundary), since VTK 9.2 does not document FindCellsWithinBounds as
   /// thread-safe.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
-  /// Whether the locator over all source cells was built.
-  bool BuiltFullLocator() const;
 
 private:
   struct Shared;
@@ -108,10 +119,10 @@ private:
   vtkNew<vtkIdList> Ids;
 };
 
-/// 2D: one polygon per intersecting pair in the plane z, with SourceCellId,
-/// TargetCellId (VTK ids) and Area.
+/// 2D: one polygon per intersecting pair in the target's plane, with
+/// SourceCellId, TargetCellId (VTK ids) and Area.
 vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source, double z);
+  const SimplexMesh& target, const SimplexMesh& source);
 /// 3D: the tetrahedra decomposing each intersection polyhedron, with
 /// SourceCellId, TargetCellId and Volume.
 vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(

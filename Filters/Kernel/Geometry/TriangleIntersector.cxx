@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "TriangleIntersector.h"
+#include "Geometry/TriangleIntersector.h"
 
-#include "MortarBlocks.h"
-#include "MortarProjector.h"
-#include "Predicates.h"
+#include "Geometry/IntersectionPieces.h"
+#include "Geometry/Predicates.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,64 +31,16 @@ inline double PseudoAngle(double dx, double dy)
 }
 
 
-// Insertion sort around the mean, then removal of all exact duplicates: the
-// general path, for more points than a piece can have.
-void SortFew(TriangleIntersector::Piece& p)
-{
-  const int n = p.NumberOfVertices;
-  double cx = 0.0;
-  double cy = 0.0;
-  for (int i = 0; i < n; ++i)
-  {
-    cx += p.X[i][0];
-    cy += p.X[i][1];
-  }
-  cx /= n;
-  cy /= n;
-  double key[TriangleIntersector::MaxPolygonVertices];
-  for (int i = 0; i < n; ++i)
-  {
-    key[i] = PseudoAngle(p.X[i][0] - cx, p.X[i][1] - cy);
-  }
-  for (int i = 1; i < n; ++i)
-  {
-    const double k = key[i];
-    const double x = p.X[i][0];
-    const double y = p.X[i][1];
-    int j = i - 1;
-    for (; j >= 0 && key[j] > k; --j)
-    {
-      key[j + 1] = key[j];
-      p.X[j + 1][0] = p.X[j][0];
-      p.X[j + 1][1] = p.X[j][1];
-    }
-    key[j + 1] = k;
-    p.X[j + 1][0] = x;
-    p.X[j + 1][1] = y;
-  }
-  int m = 0;
-  for (int i = 0; i < n; ++i)
-  {
-    bool duplicate = false;
-    for (int j = 0; j < m && !duplicate; ++j)
-    {
-      duplicate = p.X[j][0] == p.X[i][0] && p.X[j][1] == p.X[i][1];
-    }
-    if (!duplicate)
-    {
-      p.X[m][0] = p.X[i][0];
-      p.X[m][1] = p.X[i][1];
-      ++m;
-    }
-  }
-  p.NumberOfVertices = m;
-}
-
 // Orders the points counterclockwise around their mean and drops exact
 // duplicates (a crossing that rounds onto another point).
 //
-// The points are distinct vertices of the convex piece (decided exactly), so
-// there are at most 6 and, when the piece has an interior, no two of them
+// There are at most 6 points: each is a vertex of the convex piece (corners
+// of one cell in the other, proper edge crossings, all decided exactly), and
+// only a corner shared by both cells comes twice. With k shared corners the
+// piece has at most 6 - k vertices (k = 1: two edges through the shared
+// corner and the two opposite edges; k = 2: the shared edge and at most
+// three more; k = 3: the same triangle), so the count never exceeds 6. The
+// points are distinct vertices of the piece apart from those pairs, and, when the piece has an interior, no two of them
 // have the same angle around the mean unless they are equal. Each key is the
 // pseudo-angle with the point's index in its lowest bits (non-negative
 // doubles order like their bit patterns); a 6-input sorting network orders
@@ -99,11 +50,6 @@ void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
   const int n = p.NumberOfVertices;
   if (n < 2)
   {
-    return;
-  }
-  if (n > 6) // not reachable with exact decisions; kept for safety
-  {
-    SortFew(p);
     return;
   }
   double cx = 0.0;
@@ -421,23 +367,12 @@ double TriangleIntersector::Measure(const Piece& p)
   return 0.5 * twice;
 }
 
-namespace
+double TriangleIntersector::Moments(const Piece& p, double (&origin)[2], double (&M)[3][3])
 {
-/**
- * The piece's moments and both cells' barycentric functions (affine in
- * coordinates relative to the piece's first vertex), handed to
- * use(lt, ls, M), M the moment matrix of MortarBlocks.h. Returns the area (0 for a piece
- * without interior).
- */
-template <class Use>
-double IntegratePiece(const TriangleIntersector::Piece& p, const TriangleIntersector::Cell& t,
-  const TriangleIntersector::Cell& s, const Use& use)
-{
-  using Cell = TriangleIntersector::Cell;
   // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to its first
   // vertex, edge by edge (Green's theorem): exact for any polygon. A local
-  // origin inside both cells keeps the barycentric functions below of size
-  // 1 over the piece, so that thin cells cannot make them cancel.
+  // origin inside both cells keeps affine functions of size 1 over the
+  // piece, so that thin cells cannot make them cancel.
   if (p.NumberOfVertices < 3)
   {
     return 0.0;
@@ -470,70 +405,20 @@ double IntegratePiece(const TriangleIntersector::Piece& p, const TriangleInterse
   {
     return 0.0; // rounding of a sliver
   }
-  // Barycentric coordinates as affine functions a + b x + c y of the local
-  // coordinates, for the target and the source.
-  double lt[3][3];
-  double ls[3][3];
-  for (int side = 0; side < 2; ++side)
-  {
-    const Cell& c = side == 0 ? t : s;
-    double(&l)[3][3] = side == 0 ? lt : ls;
-    const double dx = ox - c.X[0][0];
-    const double dy = oy - c.X[0][1];
-    for (int r = 0; r < 2; ++r)
-    {
-      l[r + 1][0] = c.Inverse[r][0] * dx + c.Inverse[r][1] * dy;
-      l[r + 1][1] = c.Inverse[r][0];
-      l[r + 1][2] = c.Inverse[r][1];
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      l[0][k] = (k == 0 ? 1.0 : 0.0) - l[1][k] - l[2][k];
-    }
-  }
-  // The moment matrix (see MortarBlocks.h): the integral of
-  // (a + b x + c y)(a' + b' x + c' y) is (a, b, c) M (a', b', c')^T.
-  const double M[3][3] = { { m0, mx, my }, { mx, mxx, mxy }, { my, mxy, myy } };
-  use(lt, ls, M);
+  origin[0] = ox;
+  origin[1] = oy;
+  // The integral of (a + b x + c y)(a' + b' x + c' y) is (a, b, c) M (a', b', c')^T.
+  M[0][0] = m0;
+  M[0][1] = M[1][0] = mx;
+  M[0][2] = M[2][0] = my;
+  M[1][1] = mxx;
+  M[1][2] = M[2][1] = mxy;
+  M[2][2] = myy;
   return m0;
 }
-} // namespace
 
-double TriangleIntersector::Integrate(
-  const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3])
-{
-  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
-    AddMortarBlocks<3>(lt, ls, M, Mts, Mtt);
-  });
-}
-
-double TriangleIntersector::IntegrateField(const Piece& p, const Cell& t, const Cell& s,
-  double (&moments)[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3])
-{
-  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
-    const double d[2] = { p.X[0][0] - t.X[0][0], p.X[0][1] - t.X[0][1] };
-    AddShiftedMoments<3>(M, d, moments);
-    AddFieldBlock<3>(lt, ls, M, u, components, rhs);
-  });
-}
-
-double TriangleIntersector::IntegrateMixed(
-  const Piece& p, const Cell& t, const Cell& s, double Mts[3][3], double (&moments)[3][3])
-{
-  return IntegratePiece(p, t, s, [&](const auto& lt, const auto& ls, const auto& M) {
-    const double d[2] = { p.X[0][0] - t.X[0][0], p.X[0][1] - t.X[0][1] };
-    AddShiftedMoments<3>(M, d, moments);
-    AddMixedBlock<3>(lt, ls, M, Mts);
-  });
-}
-
-void TriangleIntersector::TargetMass(const Cell& t, const double (&moments)[3][3], double (&Mtt)[3][3])
-{
-  TargetMassFromMoments<3>(t.Inverse, moments, t.Measure, Mtt);
-}
-
-void TriangleIntersector::Append(
-  const Piece& p, Index target, Index source, double area, IntersectionPieces& pieces)
+void TriangleIntersector::AppendPiece(
+  const Piece& p, Index target, Index source, IntersectionPieces& pieces)
 {
   for (int v = 0; v < p.NumberOfVertices; ++v)
   {
@@ -542,6 +427,6 @@ void TriangleIntersector::Append(
   pieces.Offsets.push_back(pieces.Offsets.back() + p.NumberOfVertices);
   pieces.TargetCell.push_back(target);
   pieces.SourceCell.push_back(source);
-  pieces.Measure.push_back(area);
+  pieces.Measure.push_back(Measure(p));
 }
 } // namespace mp

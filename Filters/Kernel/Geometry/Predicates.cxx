@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "Predicates.h"
+#include "Geometry/Predicates.h"
 
 #include <cmath>
 #include <limits>
@@ -216,8 +216,7 @@ double Orient3D(const double* a, const double* b, const double* c, const double*
     std::fabs(uz) * (std::fabs(vx * wy) + std::fabs(vy * wx));
   // The differences are rounded too, hence a bound a little wider than
   // Shewchuk's for exact differences: 8 eps covers both.
-  constexpr double eps = std::numeric_limits<double>::epsilon() / 2.0;
-  if (std::fabs(det) > 8.0 * eps * permanent)
+  if (std::fabs(det) > 8.0 * RoundingUnit * permanent)
   {
     return det;
   }

@@ -62,9 +62,10 @@
 #ifndef MeshProjection_Kernel_PairSearch_h
 #define MeshProjection_Kernel_PairSearch_h
 
-#include "CandidateLocator.h"
-#include "LargeArray.h"
-#include "MeshView.h"
+#include "Search/CandidateLocator.h"
+#include "Mesh/LargeArray.h"
+#include "Mesh/MeshView.h"
+#include "Search/SearchStatistics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file TriangleIntersector.h
- * @brief Intersection polygon of two triangles and its P1 mortar integrals.
+ * @brief Intersection polygon of two triangles: geometry only.
  *
  * Implements Section 3 of Gander & Japhet, "An algorithm for non-matching
  * grid projections with linear complexity" (DD18, 2009): the intersection of
@@ -23,15 +23,12 @@
 #ifndef MeshProjection_Kernel_TriangleIntersector_h
 #define MeshProjection_Kernel_TriangleIntersector_h
 
-#include "MeshView.h"
+#include "Mesh/MeshView.h"
 
 namespace mp
 {
 struct IntersectionPieces;
-}
 
-namespace mp
-{
 class TriangleIntersector
 {
 public:
@@ -50,7 +47,9 @@ public:
     double X[3][2];    ///< corner coordinates as given (exact predicates use them)
     double Box[4];     ///< xmin, xmax, ymin, ymax
     double Measure;    ///< area, > 0
-    double Inverse[2][2]; ///< maps x - X[0] to barycentric coordinates 1 and 2
+    /// The cell's affine map: x - X[0] to barycentric coordinates 1 and 2
+    /// (geometry; the P1 space of Transfer/Space.h builds its basis from it).
+    double Inverse[2][2];
   };
 
   /// The intersection of a target and a source triangle.
@@ -95,41 +94,19 @@ public:
   static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
 
   /**
-   * Adds the P1 mortar integrals of the piece: Mts[i][j] += integral of
-   * phi_i^t phi_j^s and Mtt[i][k] += integral of phi_i^t phi_k^t over the
-   * piece, indices in the order of `Cell::Points`: exactly, from the
-   * polygon's moments up to order 2 (the integrands are quadratic).
-   * Returns the area of the piece (0 when the cells only touch).
+   * The piece's moments up to order 2 about `origin` (set to its first
+   * vertex): M[0][0] the area, M[0][1+a] the first moments, M[1+a][1+b] the
+   * second moments of x - origin, so that the integral of the product of two
+   * affine functions f, g of x - origin is f^T M g. Returns the area, 0 (M
+   * unset) for a piece without interior.
    */
-  static double Integrate(
-    const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double Mtt[3][3]);
-
-  /**
-   * What the projection sums per piece: the right-hand sides
-   * rhs[i][c] += integral of phi_i^t u_c for the source field with values
-   * u[j][c] at the corners of `s` (Cell order), c < components, and the
-   * piece's moment matrix about the target's corner 0 added to `moments`
-   * (MortarBlocks.h), from which TargetMass() gives the target cell's M_tt
-   * block once all its pieces are in. Returns the area of the piece.
-   */
-  static double IntegrateField(const Piece& piece, const Cell& t, const Cell& s,
-    double (&moments)[3][3], const double* const (&u)[3], int components, double* const (&rhs)[3]);
-
-  /// As IntegrateField, with the M_ts block (Mts[i][j] += integral of
-  /// phi_i^t phi_j^s) instead of the right-hand sides.
-  static double IntegrateMixed(
-    const Piece& piece, const Cell& t, const Cell& s, double Mts[3][3], double (&moments)[3][3]);
-
-  /// The M_tt block of `t` (set, not added) from the summed moments of its
-  /// pieces (IntegrateField, IntegrateMixed).
-  static void TargetMass(const Cell& t, const double (&moments)[3][3], double (&Mtt)[3][3]);
+  static double Moments(const Piece& piece, double (&origin)[2], double (&M)[3][3]);
 
   /// Area of the piece (0 when it has fewer than 3 vertices).
   static double Measure(const Piece& piece);
 
-  /// Appends the piece (one polygon of the given area) to `pieces`.
-  static void Append(const Piece& piece, Index target, Index source, double area,
-    IntersectionPieces& pieces);
+  /// Appends the piece (one polygon, with its area) to `pieces`.
+  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 };
 } // namespace mp
 

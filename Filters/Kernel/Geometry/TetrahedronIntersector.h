@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file TetrahedronIntersector.h
- * @brief Intersection polyhedron of two tetrahedra and its P1 mortar integrals.
+ * @brief Intersection polyhedron of two tetrahedra: geometry only.
  *
  * The 3D counterpart of TriangleIntersector. The paper (Gander & Japhet 2009,
  * Sec. 3) sketches the tetrahedron case as "edge/face crossings plus corners
@@ -27,15 +27,12 @@
 #ifndef MeshProjection_Kernel_TetrahedronIntersector_h
 #define MeshProjection_Kernel_TetrahedronIntersector_h
 
-#include "MeshView.h"
+#include "Mesh/MeshView.h"
 
 namespace mp
 {
 struct IntersectionPieces;
-}
 
-namespace mp
-{
 class TetrahedronIntersector
 {
 public:
@@ -56,7 +53,9 @@ public:
     double FaceScale;  ///< volume^(2/3): the area of a typical face
     double Normal[4][3]; ///< inward normal of face k (not unit), through X[(k+1)%4]
     double NormalScale[4]; ///< |u|max |v|max of the two edges spanning face k (error bounds)
-    double Inverse[3][3]; ///< maps x - X[0] to barycentric coordinates 1..3
+    /// The cell's affine map: x - X[0] to barycentric coordinates 1..3
+    /// (geometry; the P1 space of Transfer/Space.h builds its basis from it).
+    double Inverse[3][3];
   };
 
   /// The intersection as a set of tetrahedra.
@@ -107,35 +106,16 @@ public:
   /// tetrahedron of the piece in at most three (slower; for tests).
   static bool IntersectBySplitting(const Cell& t, const Cell& s, Piece& piece);
   /**
-   * Adds Mts[i][j] += integral of phi_i^t phi_j^s and Mtt[i][k] += integral of
-   * phi_i^t phi_k^t over the piece, exactly, from the piece's moments up to
-   * order 2 (summed over its tetrahedra). Returns the volume of the piece.
+   * The piece's moments up to order 2 about `origin` (set to one of its
+   * vertices): M[0][0] the volume, M[0][1+a] the first moments, M[1+a][1+b]
+   * the second moments of x - origin. Returns the volume, 0 (M unset) for a
+   * piece without interior.
    */
-  static double Integrate(
-    const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double Mtt[4][4]);
-
-  /**
-   * What the projection sums per piece: the right-hand sides
-   * rhs[i][c] += integral of phi_i^t u_c for the source field with values
-   * u[j][c] at the corners of `s` (Cell order), c < components, and the
-   * piece's moment matrix about the target's corner 0 added to `moments`
-   * (MortarBlocks.h), from which TargetMass() gives the target cell's M_tt
-   * block once all its pieces are in. Returns the volume of the piece.
-   */
-  static double IntegrateField(const Piece& piece, const Cell& t, const Cell& s,
-    double (&moments)[4][4], const double* const (&u)[4], int components, double* const (&rhs)[4]);
-  /// As IntegrateField, with the M_ts block (Mts[i][j] += integral of
-  /// phi_i^t phi_j^s) instead of the right-hand sides.
-  static double IntegrateMixed(
-    const Piece& piece, const Cell& t, const Cell& s, double Mts[4][4], double (&moments)[4][4]);
-  /// The M_tt block of `t` (set, not added) from the summed moments of its
-  /// pieces (IntegrateField, IntegrateMixed).
-  static void TargetMass(const Cell& t, const double (&moments)[4][4], double (&Mtt)[4][4]);
+  static double Moments(const Piece& piece, double (&origin)[3], double (&M)[4][4]);
   static double Measure(const Piece& piece);
 
   /// Appends the piece's tetrahedra (with their own volumes) to `pieces`.
-  static void Append(const Piece& piece, Index target, Index source, double volume,
-    IntersectionPieces& pieces);
+  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 
 private:
   static bool IntersectCells(const Cell& t, const Cell& s, Piece& piece, bool asGraph);

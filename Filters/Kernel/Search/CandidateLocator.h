@@ -19,7 +19,7 @@
 #ifndef MeshProjection_Kernel_CandidateLocator_h
 #define MeshProjection_Kernel_CandidateLocator_h
 
-#include "MeshView.h"
+#include "Mesh/MeshView.h"
 
 #include <memory>
 #include <mutex>

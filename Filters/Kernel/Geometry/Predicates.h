@@ -22,6 +22,10 @@
 
 namespace mp
 {
+/// The unit roundoff of double arithmetic, 2^-53: every error bound of the
+/// floating-point filters here and in the intersectors is a multiple of it.
+constexpr double RoundingUnit = 1.1102230246251565e-16;
+
 /// The exact-arithmetic path of Orient2D, exposed for tests.
 double Orient2DExact(const double* a, const double* b, const double* c);
 
@@ -36,9 +40,8 @@ inline double Orient2D(const double* a, const double* b, const double* c)
   const double left = (a[0] - c[0]) * (b[1] - c[1]);
   const double right = (a[1] - c[1]) * (b[0] - c[0]);
   const double det = left - right;
-  // Shewchuk's bound for this evaluation order: (3 + 16 eps) eps (|left| + |right|).
-  constexpr double eps = 1.1102230246251565e-16; // 2^-53
-  constexpr double bound = (3.0 + 16.0 * eps) * eps;
+  // Shewchuk's bound for this evaluation order: (3 + 16 u) u, u = RoundingUnit, (|left| + |right|).
+  constexpr double bound = (3.0 + 16.0 * RoundingUnit) * RoundingUnit;
   if (std::fabs(det) > bound * (std::fabs(left) + std::fabs(right)))
   {
     return det;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "CandidateLocator.h"
+#include "Search/CandidateLocator.h"
 
-#include "CellNeighbors.h"
+#include "Mesh/CellNeighbors.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,13 +22,13 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
   for (int k = 0; k < mesh.CornersPerCell(); ++k)
   {
     const double* x = mesh.Point(ids[k]);
-    for (int d = 0; d < mesh.Dimension; ++d)
+    for (int d = 0; d < mesh.SpaceDimension; ++d)
     {
       box[2 * d] = std::min(box[2 * d], x[d]);
       box[2 * d + 1] = std::max(box[2 * d + 1], x[d]);
     }
   }
-  for (int d = mesh.Dimension; d < 3; ++d)
+  for (int d = mesh.SpaceDimension; d < 3; ++d)
   {
     box[2 * d] = box[2 * d + 1] = 0.0;
   }
@@ -119,7 +119,7 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
   }
   // The boundary cells span the mesh's bounding box (its extreme points are
   // boundary vertices), so lo/hi are the mesh's in either case.
-  BinDivisions(lo, hi, mesh.Dimension, mesh.NumberOfCells, count, this->Divisions);
+  BinDivisions(lo, hi, mesh.SpaceDimension, mesh.NumberOfCells, count, this->Divisions);
   for (int d = 0; d < 3; ++d)
   {
     this->Origin[d] = lo[d];

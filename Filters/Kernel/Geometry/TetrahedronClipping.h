@@ -1,0 +1,556 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file TetrahedronClipping.h
+ * @brief The two clippers behind TetrahedronIntersector (private to it and
+ *        to its tests).
+ *
+ * ClipByPlane splits a tetrahedron by a plane into at most three (the
+ * reference clipper); VertexGraph keeps the clipped cell as a convex
+ * polyhedron whose vertices each have three neighbours (the fast one). Both
+ * classify the corners of the clipped cell with FaceSides, exactly signed.
+ */
+#ifndef MeshProjection_Kernel_TetrahedronClipping_h
+#define MeshProjection_Kernel_TetrahedronClipping_h
+
+#include "Geometry/Predicates.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/Vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mp
+{
+namespace clipping
+{
+/// Six times the signed volume of (a, b, c, d).
+inline double SixVolume(const double* a, const double* b, const double* c, const double* d)
+{
+  Vec u, v, w, n;
+  Sub(b, a, u);
+  Sub(c, a, v);
+  Sub(d, a, w);
+  Cross(v, w, n);
+  return Dot(u, n);
+}
+
+/// A tetrahedron during clipping: each vertex knows the target planes it lies on.
+struct ClipTet
+{
+  double X[4][3];
+  unsigned OnPlane[4];
+  int Original[4]; ///< corner of the source tetrahedron this vertex is, or -1
+  double Volume;   ///< six times the volume, > 0 (orientation dropped)
+};
+
+/// Where the segment from p (inside, dp >= 0) to q (outside, dq < 0) crosses the plane.
+inline void Crossing(const ClipTet& t, int p, int q, const double d[4], unsigned bit, double* x,
+  unsigned& on, int& original)
+{
+  if (d[p] == 0.0)
+  {
+    std::copy(t.X[p], t.X[p] + 3, x);
+    on = t.OnPlane[p] | bit;
+    original = t.Original[p];
+    return;
+  }
+  original = -1;
+  const double u = d[p] / (d[p] - d[q]);
+  for (int c = 0; c < 3; ++c)
+  {
+    x[c] = t.X[p][c] + u * (t.X[q][c] - t.X[p][c]);
+  }
+  on = (t.OnPlane[p] & t.OnPlane[q]) | bit;
+}
+
+/// A vertex under construction: position, planes it lies on, source corner.
+struct Vertex
+{
+  double X[3];
+  unsigned On;
+  int Original;
+};
+
+inline void Emit(ClipTet* out, int& n, const Vertex& a, const Vertex& b, const Vertex& c,
+  const Vertex& e)
+{
+  const double six = SixVolume(a.X, b.X, c.X, e.X);
+  if (six == 0.0)
+  {
+    return; // collapsed by a vertex lying on the plane
+  }
+  ClipTet& t = out[n++];
+  t.Volume = std::fabs(six);
+  const Vertex* vs[4] = { &a, &b, &c, &e };
+  for (int v = 0; v < 4; ++v)
+  {
+    std::copy(vs[v]->X, vs[v]->X + 3, t.X[v]);
+    t.OnPlane[v] = vs[v]->On;
+    t.Original[v] = vs[v]->Original;
+  }
+}
+
+/**
+ * Keeps the part of `t` where normal . (x - origin) >= 0, as at most three
+ * tetrahedra appended to out. Vertices on the plane get `bit`. Corners of
+ * the source tetrahedron use their exactly classified distances `exact`;
+ * vertices already known to lie on the plane use 0.
+ */
+inline void ClipByPlane(const ClipTet& t, const double* normal, const double* origin, unsigned bit,
+  const double exact[4], ClipTet* out, int& n)
+{
+  double d[4];
+  int in[4];
+  int outside[4];
+  int nin = 0;
+  int nout = 0;
+  for (int v = 0; v < 4; ++v)
+  {
+    if (t.Original[v] >= 0)
+    {
+      d[v] = exact[t.Original[v]];
+    }
+    else if (t.OnPlane[v] & bit)
+    {
+      d[v] = 0.0;
+    }
+    else
+    {
+      Vec r;
+      Sub(t.X[v], origin, r);
+      d[v] = Dot(normal, r);
+    }
+    if (d[v] >= 0.0)
+    {
+      in[nin++] = v;
+    }
+    else
+    {
+      outside[nout++] = v;
+    }
+  }
+  if (nout == 0)
+  {
+    ClipTet& c = out[n++];
+    c = t;
+    for (int v = 0; v < 4; ++v)
+    {
+      if (d[v] == 0.0)
+      {
+        c.OnPlane[v] |= bit;
+      }
+    }
+    return;
+  }
+  if (nin == 0)
+  {
+    return;
+  }
+  auto corner = [&](int v) {
+    Vertex x;
+    std::copy(t.X[v], t.X[v] + 3, x.X);
+    x.On = t.OnPlane[v] | (d[v] == 0.0 ? bit : 0u);
+    x.Original = t.Original[v];
+    return x;
+  };
+  auto cut = [&](int p, int q) {
+    Vertex x;
+    Crossing(t, p, q, d, bit, x.X, x.On, x.Original);
+    return x;
+  };
+  if (nin == 1)
+  {
+    const int a = in[0];
+    Emit(out, n, corner(a), cut(a, outside[0]), cut(a, outside[1]), cut(a, outside[2]));
+    return;
+  }
+  // Two or three corners inside: a prism p0 p1 p2 / q0 q1 q2 between the
+  // inside face (or edge) and the cut, split into three tetrahedra
+  // (p0,p1,p2,q0), (p1,p2,q0,q1), (p2,q0,q1,q2).
+  Vertex p[3];
+  Vertex q[3];
+  if (nin == 3)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = corner(in[k]);
+      q[k] = cut(in[k], outside[0]);
+    }
+  }
+  else // two inside (a, b): the wedge (a, ac, ad) / (b, bc, bd)
+  {
+    p[0] = corner(in[0]);
+    p[1] = cut(in[0], outside[0]);
+    p[2] = cut(in[0], outside[1]);
+    q[0] = corner(in[1]);
+    q[1] = cut(in[1], outside[0]);
+    q[2] = cut(in[1], outside[1]);
+  }
+  Emit(out, n, p[0], p[1], p[2], q[0]);
+  Emit(out, n, p[1], p[2], q[0], q[1]);
+  Emit(out, n, p[2], q[0], q[1], q[2]);
+}
+
+/// Positive when x is strictly inside the plane of face k of a prepared
+/// (positively oriented) cell; exact sign. For a positive tetrahedron
+/// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
+inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const double* x)
+{
+  // Fast path: the precomputed normal, with a forward error bound (about
+  // 42 eps |u| |v| |x - a| for the rounded differences, cross and dot
+  // products; 64 eps to spare). Only near-coplanar points go exact.
+  const double* a = c.X[(k + 1) % 4];
+  const double w[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
+  const double d = c.Normal[k][0] * w[0] + c.Normal[k][1] * w[1] + c.Normal[k][2] * w[2];
+  const double size = std::max({ std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
+    if (std::fabs(d) > 64.0 * RoundingUnit * c.NormalScale[k] * size)
+  {
+    return d;
+  }
+  const double o = Orient3D(a, c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
+  return (k % 2) ? o : -o;
+}
+
+/**
+ * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and four
+ * points, with the filters of all sixteen evaluated first, without branches,
+ * and the exact path taken only for the undecided ones.
+ */
+inline void FaceSides(
+  const TetrahedronIntersector::Cell& c, const double (&x)[4][3], double (&sides)[4][4])
+{
+    bool decided = true;
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* a = c.X[(k + 1) % 4];
+    const double bound = 64.0 * RoundingUnit * c.NormalScale[k];
+    for (int v = 0; v < 4; ++v)
+    {
+      const double w0 = x[v][0] - a[0];
+      const double w1 = x[v][1] - a[1];
+      const double w2 = x[v][2] - a[2];
+      const double d = c.Normal[k][0] * w0 + c.Normal[k][1] * w1 + c.Normal[k][2] * w2;
+      const double size = std::max(std::max(std::fabs(w0), std::fabs(w1)), std::fabs(w2));
+      sides[k][v] = d;
+      decided &= std::fabs(d) > bound * size;
+    }
+  }
+  if (decided)
+  {
+    return;
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    for (int v = 0; v < 4; ++v)
+    {
+      sides[k][v] = FaceSide(c, k, x[v]);
+    }
+  }
+}
+
+/**
+ * A convex polyhedron as a graph in which every vertex has three
+ * neighbours, listed so that the face to the left of the directed edge
+ * a -> b continues at b with Next[b][(slot of a in b) + 1 mod 3]; faces are
+ * then counterclockwise seen from outside. A tetrahedron is such a graph,
+ * and clipping keeps it one: each new vertex lies on an edge from a kept
+ * vertex to a clipped one (even when the kept vertex is on the plane, where
+ * the new vertex coincides with it: an edge of length zero, harmless for
+ * volumes and moments), and links to the kept vertex and to the new vertices
+ * before and after it around the cap. Every vertex is classified once per
+ * plane, so the faces stay consistent with each other whatever the
+ * rounding. This keeps a polyhedron of at most ~12 vertices instead of
+ * splitting up to 27 tetrahedra per plane.
+ *
+ * Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits 4-7:
+ * the clipped cell's own faces (face k opposite corner k).
+ */
+struct VertexGraph
+{
+  static constexpr int MaxVertices = 48;
+  int NumberOfVertices = 0;
+  double X[MaxVertices][3];
+  int Next[MaxVertices][3];
+  unsigned On[MaxVertices];
+  int Original[MaxVertices]; ///< corner of the clipped cell, or -1
+
+  void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
+  {
+    static const int next[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+    this->NumberOfVertices = 4;
+    for (int v = 0; v < 4; ++v)
+    {
+      std::copy(c.X[v], c.X[v] + 3, this->X[v]);
+      std::copy(next[v], next[v] + 3, this->Next[v]);
+      this->On[v] = (15u & ~(1u << v)) << 4;
+      for (int k = 0; k < 4; ++k)
+      {
+        this->On[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+      }
+      this->Original[v] = v;
+    }
+  }
+
+  int SlotOf(int v, int neighbor) const
+  {
+    return this->Next[v][0] == neighbor ? 0 : (this->Next[v][1] == neighbor ? 1 : 2);
+  }
+
+  /// Keeps the part on the inner side of plane `bit`; false when it cannot
+  /// (capacity, or a face walk that does not come back): then the caller
+  /// falls back to splitting tetrahedra.
+  bool Clip(const double* normal, const double* origin, unsigned bit, const double sides[4])
+  {
+    const int n = this->NumberOfVertices;
+    double d[MaxVertices];
+    bool anyInside = false;
+    bool anyOutside = false;
+    for (int v = 0; v < n; ++v)
+    {
+      if (this->Original[v] >= 0)
+      {
+        d[v] = sides[this->Original[v]];
+      }
+      else if (this->On[v] & bit)
+      {
+        d[v] = 0.0;
+      }
+      else
+      {
+        Vec r;
+        Sub(this->X[v], origin, r);
+        d[v] = Dot(normal, r);
+      }
+      anyInside |= d[v] > 0.0;
+      anyOutside |= d[v] < 0.0;
+      if (d[v] == 0.0)
+      {
+        this->On[v] |= bit;
+      }
+    }
+    if (!anyInside)
+    {
+      this->NumberOfVertices = 0; // no volume left
+      return true;
+    }
+    if (!anyOutside)
+    {
+      return true;
+    }
+    // New vertices on the edges from kept to clipped vertices.
+    int total = n;
+    for (int v = 0; v < n; ++v)
+    {
+      if (d[v] < 0.0)
+      {
+        continue;
+      }
+      for (int j = 0; j < 3; ++j)
+      {
+        const int q = this->Next[v][j];
+        if (q >= n || d[q] >= 0.0)
+        {
+          continue;
+        }
+        if (total == MaxVertices)
+        {
+          return false;
+        }
+        const int w = total++;
+        const double u = d[v] / (d[v] - d[q]);
+        for (int c = 0; c < 3; ++c)
+        {
+          this->X[w][c] = this->X[v][c] + u * (this->X[q][c] - this->X[v][c]);
+        }
+        this->On[w] = (this->On[v] & this->On[q]) | bit;
+        this->Original[w] = -1;
+        this->Next[w][0] = v;
+        this->Next[w][1] = -1;
+        this->Next[w][2] = -1;
+        this->Beyond[w - n] = q;
+        this->Next[v][j] = w;
+      }
+    }
+    // Link each new vertex w (on the edge kept v -> clipped q) to the next
+    // new vertex around the face to the left of v -> q: walk that face
+    // through the clipped vertices (whose links are still the old ones).
+    for (int w = n; w < total; ++w)
+    {
+      int previous = this->Next[w][0];
+      int current = this->Beyond[w - n];
+      for (int steps = 0;; ++steps)
+      {
+        if (steps > MaxVertices)
+        {
+          return false;
+        }
+        const int next = this->Next[current][(this->SlotOf(current, previous) + 1) % 3];
+        if (d[next] < 0.0)
+        {
+          previous = current;
+          current = next;
+          continue;
+        }
+        // next is kept: the edge next -> current carries a new vertex, in
+        // the slot of next that pointed to current.
+        int found = -1;
+        for (int j = 0; j < 3; ++j)
+        {
+          const int x = this->Next[next][j];
+          if (x >= n && this->Beyond[x - n] == current)
+          {
+            found = x;
+          }
+        }
+        if (found < 0)
+        {
+          return false;
+        }
+        this->Next[w][1] = found;
+        this->Next[found][2] = w;
+        break;
+      }
+    }
+    // Compact: drop the clipped vertices.
+    int map[MaxVertices];
+    int m = 0;
+    for (int v = 0; v < total; ++v)
+    {
+      map[v] = (v < n && d[v] < 0.0) ? -1 : m++;
+    }
+    for (int v = 0; v < total; ++v)
+    {
+      const int to = map[v];
+      if (to < 0)
+      {
+        continue;
+      }
+      for (int j = 0; j < 3; ++j)
+      {
+        const int x = this->Next[v][j];
+        if (x < 0 || map[x] < 0)
+        {
+          return false;
+        }
+        this->Next[to][j] = map[x];
+      }
+      if (to != v)
+      {
+        std::copy(this->X[v], this->X[v] + 3, this->X[to]);
+        this->On[to] = this->On[v];
+        this->Original[to] = this->Original[v];
+      }
+    }
+    this->NumberOfVertices = m;
+    return true;
+  }
+  int Beyond[MaxVertices]; ///< per new vertex (index - n): the clipped end of its edge
+
+  /**
+   * The faces, walked from the links: the faces of positive area whose
+   * vertices all lie on target face k set bit k of `touched` (target faces
+   * are the vertex bits from `targetShift`), and the tetrahedra from vertex
+   * 0 to the triangles of the faces not holding it go to the piece. False
+   * when a walk does not close or the piece has no room.
+   */
+  bool Decompose(int targetShift, double minArea2, TetrahedronIntersector::Piece& piece) const
+  {
+    piece.NumberOfTetrahedra = 0;
+    piece.TouchedFaces = 0;
+    piece.SourceFaces = 0;
+    const int n = this->NumberOfVertices;
+    if (n == 0)
+    {
+      return true;
+    }
+    unsigned any = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      any |= this->On[v];
+    }
+    piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
+    bool visited[MaxVertices][3] = {};
+    int cycle[MaxVertices];
+    for (int v = 0; v < n; ++v)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        if (visited[v][j])
+        {
+          continue;
+        }
+        int size = 0;
+        int a = v;
+        int slot = j;
+        bool holdsApex = false;
+        unsigned common = 0xFFu;
+        do
+        {
+          if (size == MaxVertices || visited[a][slot])
+          {
+            return false;
+          }
+          visited[a][slot] = true;
+          cycle[size++] = a;
+          holdsApex |= a == 0;
+          common &= this->On[a];
+          const int b = this->Next[a][slot];
+          slot = (this->SlotOf(b, a) + 1) % 3;
+          a = b;
+        } while (a != v || slot != j);
+        const unsigned target = (common >> targetShift) & 15u;
+        if (size < 3 || (holdsApex && !(target & ~piece.TouchedFaces)))
+        {
+          continue;
+        }
+        // Only a face on a target face not yet known touched needs its area.
+        const bool needArea = (target & ~piece.TouchedFaces) != 0;
+        Vec area = { 0.0, 0.0, 0.0 };
+        for (int i = 1; i + 1 < size; ++i)
+        {
+          const double* corners[4] = { this->X[0], this->X[cycle[0]], this->X[cycle[i]],
+            this->X[cycle[i + 1]] };
+          if (needArea)
+          {
+            Vec e, f, g;
+            Sub(corners[2], corners[1], e);
+            Sub(corners[3], corners[1], f);
+            Cross(e, f, g);
+            for (int c = 0; c < 3; ++c)
+            {
+              area[c] += g[c];
+            }
+          }
+          if (holdsApex)
+          {
+            continue;
+          }
+          const double six = SixVolume(corners[0], corners[1], corners[2], corners[3]);
+          if (six == 0.0)
+          {
+            continue;
+          }
+          if (piece.NumberOfTetrahedra == TetrahedronIntersector::MaxTetrahedra)
+          {
+            return false;
+          }
+          const int t = piece.NumberOfTetrahedra++;
+          for (int k = 0; k < 4; ++k)
+          {
+            std::copy(corners[k], corners[k] + 3, piece.X[t][k]);
+          }
+          piece.Volume[t] = six / 6.0;
+        }
+        if (needArea && Dot(area, area) > minArea2)
+        {
+          piece.TouchedFaces |= target;
+        }
+      }
+    }
+    return true;
+  }
+};
+} // namespace clipping
+} // namespace mp
+
+#endif

@@ -1,0 +1,390 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Geometry/TetrahedronIntersector.h"
+
+#include "Geometry/IntersectionPieces.h"
+#include "Geometry/Predicates.h"
+#include "Geometry/TetrahedronClipping.h"
+#include "Geometry/Vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mp
+{
+using namespace clipping;
+
+void TetrahedronIntersector::Center(const Cell& cell, double q[3])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    q[d] = 0.25 * (cell.X[0][d] + cell.X[1][d] + cell.X[2][d] + cell.X[3][d]);
+  }
+}
+
+int TetrahedronIntersector::Locate(const Cell& cell, const double* q, int first)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    const int k = (first + i) % 4;
+    // Corners k+1, k+2, k+3 turn so that corner k is on the positive side
+    // for odd k and on the negative side for even k (the cell is positive).
+    const double side =
+      Orient3D(cell.X[(k + 1) % 4], cell.X[(k + 2) % 4], cell.X[(k + 3) % 4], q);
+    if (k % 2 == 0 ? side > 0.0 : side < 0.0)
+    {
+      return k;
+    }
+  }
+  return -1;
+}
+
+bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
+{
+  const Index* ids = mesh.Cell(id);
+  cell.Id = id;
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* x = mesh.Point(ids[k]);
+    cell.Points[k] = ids[k];
+    cell.Face[k] = k;
+    std::copy(x, x + 3, cell.X[k]);
+  }
+  double six = Orient3D(cell.X[0], cell.X[1], cell.X[2], cell.X[3]);
+  if (!(six != 0.0) || !std::isfinite(six))
+  {
+    return false;
+  }
+  if (six < 0.0) // negatively oriented: swap corners 2 and 3 (and their faces)
+  {
+    std::swap(cell.Points[2], cell.Points[3]);
+    std::swap(cell.Face[2], cell.Face[3]);
+    for (int c = 0; c < 3; ++c)
+    {
+      std::swap(cell.X[2][c], cell.X[3][c]);
+    }
+    six = -six;
+  }
+  cell.Measure = six / 6.0;
+  cell.FaceScale = std::pow(cell.Measure, 2.0 / 3.0);
+  for (int c = 0; c < 3; ++c)
+  {
+    cell.Box[2 * c] = std::min({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
+    cell.Box[2 * c + 1] = std::max({ cell.X[0][c], cell.X[1][c], cell.X[2][c], cell.X[3][c] });
+  }
+  // Inward normals of the faces: the same orientation rule as FaceSide, so
+  // that clipping and the exact classification never disagree on a side.
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* a = cell.X[(k + 1) % 4];
+    const double* b = cell.X[(k + 2) % 4];
+    const double* c = cell.X[(k + 3) % 4];
+    Vec u, v;
+    Sub(b, a, u);
+    Sub(c, a, v);
+    Cross(u, v, cell.Normal[k]);
+    cell.NormalScale[k] = std::max({ std::fabs(u[0]), std::fabs(u[1]), std::fabs(u[2]) }) *
+      std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
+    if (k % 2 == 0)
+    {
+      for (double& n : cell.Normal[k])
+      {
+        n = -n;
+      }
+    }
+  }
+  // Rows of J^-1 for J = [X1 - X0, X2 - X0, X3 - X0]: (e2 x e3, e3 x e1, e1 x e2) / det.
+  Vec e[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    Sub(cell.X[k + 1], cell.X[0], e[k]);
+  }
+  Cross(e[1], e[2], cell.Inverse[0]);
+  Cross(e[2], e[0], cell.Inverse[1]);
+  Cross(e[0], e[1], cell.Inverse[2]);
+  for (auto& row : cell.Inverse)
+  {
+    for (double& x : row)
+    {
+      x /= six;
+    }
+  }
+  return std::isfinite(cell.Inverse[0][0] + cell.Inverse[1][1] + cell.Inverse[2][2]);
+}
+
+void TetrahedronIntersector::Bounds(const Cell& cell, double box[6])
+{
+  std::copy(cell.Box, cell.Box + 6, box);
+}
+
+bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
+{
+  return IntersectCells(t, s, piece, true);
+}
+
+bool TetrahedronIntersector::IntersectBySplitting(const Cell& t, const Cell& s, Piece& piece)
+{
+  return IntersectCells(t, s, piece, false);
+}
+
+bool TetrahedronIntersector::IntersectCells(
+  const Cell& t, const Cell& s, Piece& piece, bool asGraph)
+{
+  piece.NumberOfTetrahedra = 0;
+  piece.TouchedFaces = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (t.Box[2 * c + 1] < s.Box[2 * c] || s.Box[2 * c + 1] < t.Box[2 * c])
+    {
+      return false;
+    }
+  }
+  // Separating face planes (of either cell): cheap early rejection. Also
+  // note which target planes the source reaches beyond.
+  // exact[k][v]: the side of source corner v w.r.t. target face plane k
+  // (positive inside), with an exact sign, so that corners shared by the
+  // meshes land exactly on the planes. Any target face plane with all
+  // source corners on or outside it (or the reverse) separates the cells.
+  double exact[4][4];
+  double exactS[4][4]; // the reverse: target corner v w.r.t. source face plane k
+  unsigned beyond = 0;
+  unsigned beyondS = 0;
+  unsigned onPlane[4] = { 0, 0, 0, 0 }; // per target plane: source corners on it
+  FaceSides(t, s.X, exact);
+  FaceSides(s, t.X, exactS);
+  for (int k = 0; k < 4; ++k)
+  {
+    int off = 0;
+    int offS = 0;
+    for (int v = 0; v < 4; ++v)
+    {
+      off += exact[k][v] <= 0.0;
+      beyond |= (exact[k][v] < 0.0 ? 1u : 0u) << k;
+      onPlane[k] |= (exact[k][v] == 0.0 ? 1u : 0u) << v;
+      offS += exactS[k][v] <= 0.0;
+      beyondS |= (exactS[k][v] < 0.0 ? 1u : 0u) << k;
+    }
+    if (off == 4 || offS == 4)
+    {
+      return false; // at most a shared face, edge or vertex: no volume
+    }
+  }
+
+  // The intersection is the source clipped by the target planes it reaches
+  // beyond, or the target clipped by the source planes: clip the cell that
+  // fewer planes cut (the work grows fast with the number of planes).
+  // Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits
+  // 4-7: the clipped cell's own faces (face k opposite corner k).
+  auto count = [](unsigned bits) { return (bits & 1u) + ((bits >> 1) & 1u) + ((bits >> 2) & 1u) + ((bits >> 3) & 1u); };
+  const bool clipTarget = count(beyondS) < count(beyond);
+  const Cell& clipped = clipTarget ? t : s;
+  const Cell& clipping = clipTarget ? s : t;
+  const double(&sides)[4][4] = clipTarget ? exactS : exact;
+  const unsigned cut = clipTarget ? beyondS : beyond;
+
+  const int targetShift = clipTarget ? 4 : 0;
+  // A face of the piece "has positive area" above 1e-12 of the smaller
+  // cell's typical face (like the 1e-13 for volumes below): rounding leaves
+  // caps of ~1e-32 where the cells only touch, e.g. at a shared corner.
+  // (Compared as the squared norm of twice the area vector.)
+  const double minArea = 2e-12 * std::min(t.FaceScale, s.FaceScale);
+  const double minArea2 = minArea * minArea;
+  VertexGraph graph;
+  graph.SetTetrahedron(clipped, sides);
+  bool clippedAsGraph = asGraph;
+  for (int k = 0; k < 4 && graph.NumberOfVertices > 0 && clippedAsGraph; ++k)
+  {
+    if (cut & (1u << k))
+    {
+      clippedAsGraph =
+        graph.Clip(clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k]);
+    }
+  }
+  clippedAsGraph = clippedAsGraph && graph.Decompose(targetShift, minArea2, piece);
+  if (!clippedAsGraph)
+  {
+    // The reference clipper: every plane splits every tetrahedron of the
+    // piece into at most three. Slower, with no capacity limit.
+    ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
+    ClipTet* current = buffers[0];
+    ClipTet* next = buffers[1];
+    int n = 1;
+    for (int v = 0; v < 4; ++v)
+    {
+      std::copy(clipped.X[v], clipped.X[v] + 3, current[0].X[v]);
+      current[0].OnPlane[v] = (15u & ~(1u << v)) << 4;
+      current[0].Original[v] = v;
+      for (int k = 0; k < 4; ++k) // corners exactly on planes
+      {
+        current[0].OnPlane[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+      }
+    }
+    current[0].Volume = 6.0 * clipped.Measure;
+    for (int k = 0; k < 4 && n > 0; ++k)
+    {
+      if (!(cut & (1u << k)))
+      {
+        continue; // the whole cell is inside this plane
+      }
+      int m = 0;
+      for (int i = 0; i < n; ++i)
+      {
+        ClipByPlane(
+          current[i], clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k], next, m);
+      }
+      std::swap(current, next);
+      n = m;
+    }
+
+    // Faces of the piece of positive area lying on a target plane.
+    for (int i = 0; i < n; ++i)
+    {
+      const ClipTet& c = current[i];
+      std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.X[i][0][0]);
+      piece.Volume[i] = c.Volume / 6.0;
+      for (int f = 0; f < 4; ++f)
+      {
+        const int a = (f + 1) % 4;
+        const int b = (f + 2) % 4;
+        const int d = (f + 3) % 4;
+        const unsigned common =
+          ((c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d]) >> targetShift) & 15u;
+        if (common & ~piece.TouchedFaces)
+        {
+          Vec u, v, w;
+          Sub(c.X[b], c.X[a], u);
+          Sub(c.X[d], c.X[a], v);
+          Cross(u, v, w);
+          if (Dot(w, w) > minArea2)
+          {
+            piece.TouchedFaces |= common;
+          }
+        }
+      }
+    }
+    piece.NumberOfTetrahedra = n;
+    unsigned any = 0;
+    for (int i = 0; i < n; ++i)
+    {
+      any |= current[i].OnPlane[0] | current[i].OnPlane[1] | current[i].OnPlane[2] |
+        current[i].OnPlane[3];
+    }
+    piece.SourceFaces = (any >> (4 - targetShift)) & 15u;
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    piece.SeedFace[k] = -1;
+    if ((piece.TouchedFaces & (1u << k)) && !(beyond & (1u << k)))
+    {
+      // The cap lies in a face of the source: the one whose three corners
+      // are on the plane (the source is on the inner side of it).
+      for (int f = 0; f < 4; ++f)
+      {
+        if (onPlane[k] == (15u & ~(1u << f)))
+        {
+          piece.SeedFace[k] = f;
+        }
+      }
+      if (piece.SeedFace[k] < 0)
+      {
+        piece.TouchedFaces &= ~(1u << k); // no face of positive area after all
+      }
+    }
+  }
+  // Rounding in the clipping can leave slivers of relative size ~1e-16
+  // where the cells only touch; below 1e-13 of the smaller cell a piece is
+  // taken as touching (its contribution would be below the tolerances of
+  // the projection anyway), the same way for every search.
+  return piece.NumberOfTetrahedra > 0 &&
+    Measure(piece) > 1e-13 * std::min(t.Measure, s.Measure);
+}
+
+double TetrahedronIntersector::Measure(const Piece& piece)
+{
+  double volume = 0.0;
+  for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
+  {
+    volume += piece.Volume[i];
+  }
+  return volume;
+}
+
+double TetrahedronIntersector::Moments(
+  const Piece& piece, double (&origin)[3], double (&M)[4][4])
+{
+  // Moments up to order 2 of the piece relative to one of its vertices (a
+  // local origin inside both cells keeps affine functions of size 1 over
+  // the piece, so that thin cells cannot make them cancel): on a
+  // tetrahedron of volume V, integral of x_i = V mean(x_i) and of
+  // x_i x_j = V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj).
+  if (piece.NumberOfTetrahedra == 0)
+  {
+    return 0.0;
+  }
+  const double* o = piece.X[0][0];
+  std::copy(o, o + 3, origin);
+  double m0 = 0.0;
+  double m1[3] = { 0, 0, 0 };
+  double m2[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+  for (int n = 0; n < piece.NumberOfTetrahedra; ++n)
+  {
+    double p[4][3];
+    for (int a = 0; a < 4; ++a)
+    {
+      Sub(piece.X[n][a], o, p[a]);
+    }
+    const double v = piece.Volume[n]; // signed: rounding may leave a sliver negative
+    if (v == 0.0)
+    {
+      continue;
+    }
+    double sum[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      sum[i] = p[0][i] + p[1][i] + p[2][i] + p[3][i];
+    }
+    m0 += v;
+    for (int i = 0; i < 3; ++i)
+    {
+      m1[i] += v * sum[i] / 4.0;
+      for (int j = i; j < 3; ++j)
+      {
+        const double sq = p[0][i] * p[0][j] + p[1][i] * p[1][j] + p[2][i] * p[2][j] + p[3][i] * p[3][j];
+        m2[i][j] += v / 20.0 * (sq + sum[i] * sum[j]);
+      }
+    }
+  }
+  if (!(m0 > 0.0))
+  {
+    return 0.0;
+  }
+  M[0][0] = m0;
+  for (int i = 0; i < 3; ++i)
+  {
+    M[0][i + 1] = M[i + 1][0] = m1[i];
+    for (int j = 0; j < 3; ++j)
+    {
+      M[i + 1][j + 1] = j >= i ? m2[i][j] : m2[j][i];
+    }
+  }
+  return m0;
+}
+
+void TetrahedronIntersector::AppendPiece(
+  const Piece& p, Index target, Index source, IntersectionPieces& pieces)
+{
+  for (int i = 0; i < p.NumberOfTetrahedra; ++i)
+  {
+    const auto& x = p.X[i];
+    const double v = p.Volume[i];
+    if (!(v > 0.0))
+    {
+      continue;
+    }
+    pieces.Points.insert(pieces.Points.end(), &x[0][0], &x[0][0] + 12);
+    pieces.Offsets.push_back(pieces.Offsets.back() + 4);
+    pieces.TargetCell.push_back(target);
+    pieces.SourceCell.push_back(source);
+    pieces.Measure.push_back(v);
+  }
+}
+} // namespace mp

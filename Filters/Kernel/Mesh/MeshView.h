@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MeshView.h
+ * @brief Non-owning view of a simplicial mesh given as flat arrays.
+ *
+ * The kernel never owns mesh data: callers (the VTK filter, tests, a future
+ * numpy binding) hand it pointers to their own arrays. The view keeps two
+ * dimensions apart:
+ *  - CellDimension, the dimension of the simplices: 1 (segments), 2
+ *    (triangles) or 3 (tetrahedra), stored cell after cell in
+ *    `Connectivity` with CellDimension + 1 corners each;
+ *  - SpaceDimension, how many coordinates of a point the geometry uses:
+ *    2 (x, y) or 3 (x, y, z). Points are always stored with three
+ *    coordinates, as VTK does; a planar mesh in any plane is seen in 2D
+ *    through a PlaneFrame (PlaneFrame.h), its points mapped into (x, y, 0).
+ * Today the geometry exists for CellDimension == SpaceDimension (triangles
+ * in the plane, tetrahedra in space); surfaces and curves in 3D are meshes
+ * whose cell dimension is below their space dimension.
+ *
+ * Cells that are not simplices (quads, hexahedra, polyhedra) are given as
+ * the simplices they are split into, with `Parent` naming the original cell
+ * of each simplex: the P0 space and the covered fractions then belong to the
+ * original cells (NumberOfParents of them). Without Parent, every simplex is
+ * its own parent.
+ *
+ * Face k of a cell is the face opposite its corner k. `Neighbors`, when set,
+ * holds for every cell and every face the cell across that face, or -1.
+ */
+#ifndef MeshProjection_Kernel_MeshView_h
+#define MeshProjection_Kernel_MeshView_h
+
+namespace mp
+{
+/// Cell and point ids: 64-bit, and the same type as VTK's vtkIdType and
+/// vtkTypeInt64 (long long), so VTK's arrays can be viewed without a copy.
+using Index = long long;
+static_assert(sizeof(Index) == 8, "mp::Index must be a 64-bit integer");
+
+/// Cell ids in the neighbour table: 32 bits (half the memory of the table,
+/// which is as large as the connectivity), so meshes searched by the
+/// advancing front have fewer than 2^31 cells.
+using NeighborId = int;
+static_assert(sizeof(NeighborId) == 4, "mp::NeighborId must be a 32-bit integer");
+
+struct MeshView
+{
+  int CellDimension = 2;               ///< 1: segments, 2: triangles, 3: tetrahedra
+  int SpaceDimension = 2;              ///< coordinates used: 2 (x, y) or 3 (x, y, z)
+  const double* Points = nullptr;      ///< 3 * NumberOfPoints coordinates
+  Index NumberOfPoints = 0;
+  const Index* Connectivity = nullptr; ///< (CellDimension + 1) * NumberOfCells point ids
+  Index NumberOfCells = 0;
+  /// The original cell of each simplex (null: each simplex is its own).
+  const Index* Parent = nullptr;
+  Index NumberOfParents = 0;           ///< with Parent: how many original cells
+  const NeighborId* Neighbors = nullptr; ///< (CellDimension + 1) * NumberOfCells cell ids or -1
+
+  int CornersPerCell() const { return this->CellDimension + 1; }
+  const Index* Cell(Index c) const { return this->Connectivity + c * this->CornersPerCell(); }
+  const double* Point(Index p) const { return this->Points + 3 * p; }
+  Index Neighbor(Index c, int face) const
+  {
+    return this->Neighbors[c * this->CornersPerCell() + face];
+  }
+  /// The original cell of simplex c.
+  Index ParentOf(Index c) const { return this->Parent ? this->Parent[c] : c; }
+  /// How many original cells there are.
+  Index Parents() const { return this->Parent ? this->NumberOfParents : this->NumberOfCells; }
+  /// Simplices filling their space: the cases the intersectors handle.
+  bool IsVolumeMesh() const { return this->CellDimension == this->SpaceDimension; }
+};
+} // namespace mp
+
+#endif

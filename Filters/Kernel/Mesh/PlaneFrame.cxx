@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Mesh/PlaneFrame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mp
+{
+namespace
+{
+double Dot3(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+} // namespace
+
+bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
+{
+  *this = PlaneFrame();
+  deviation = 0.0;
+  size = 0.0;
+  const int corners = mesh.CornersPerCell();
+  const Index uses = mesh.NumberOfCells * corners;
+  if (uses == 0)
+  {
+    return true;
+  }
+  double lo[3];
+  double hi[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = std::numeric_limits<double>::infinity();
+    hi[d] = -lo[d];
+  }
+  for (Index i = 0; i < uses; ++i)
+  {
+    const double* x = mesh.Point(mesh.Connectivity[i]);
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::min(lo[d], x[d]);
+      hi[d] = std::max(hi[d], x[d]);
+    }
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    size = std::max(size, hi[d] - lo[d]);
+  }
+  // The normal: the cells' normals summed, each turned to agree with the
+  // largest one (a mesh's triangles may come in either orientation).
+  double reference[3] = { 0, 0, 0 };
+  double largest = 0.0;
+  std::vector<double> normals(static_cast<size_t>(3 * mesh.NumberOfCells));
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    const Index* ids = mesh.Cell(c);
+    const double* a = mesh.Point(ids[0]);
+    const double* b = mesh.Point(ids[1]);
+    const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { p[0] - a[0], p[1] - a[1], p[2] - a[2] };
+    double* n = &normals[3 * c];
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    const double length = Dot3(n, n);
+    if (length > largest)
+    {
+      largest = length;
+      std::copy(n, n + 3, reference);
+    }
+  }
+  double sum[3] = { 0, 0, 0 };
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    const double* n = &normals[3 * c];
+    const double sign = Dot3(n, reference) < 0.0 ? -1.0 : 1.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      sum[d] += sign * n[d];
+    }
+  }
+  const double length = std::sqrt(Dot3(sum, sum));
+  if (length > 0.0)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Normal[d] = sum[d] / length;
+    }
+  }
+  // The plane through the middle of the box; an axis plane when the normal
+  // is one of the axes (to rounding).
+  for (int d = 0; d < 3; ++d)
+  {
+    this->Origin[d] = 0.5 * (lo[d] + hi[d]);
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (std::fabs(this->Normal[axis]) >= 1.0 - 1e-12)
+    {
+      std::fill(this->Normal, this->Normal + 3, 0.0);
+      this->Normal[axis] = 1.0;
+    }
+  }
+  this->SetAxes();
+  this->PlaneOffset = Dot3(this->Origin, this->Normal);
+  for (Index i = 0; i < uses; ++i)
+  {
+    deviation = std::max(deviation, std::fabs(this->Distance(mesh.Point(mesh.Connectivity[i]))));
+  }
+  return deviation <= 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
+}
+
+void PlaneFrame::SetAxes()
+{
+  const double* n = this->Normal;
+  this->Axes[0] = this->Axes[1] = -1;
+  // Axis planes pick coordinates, keeping a right-handed (u, v, n).
+  if (n[2] == 1.0 || n[2] == -1.0)
+  {
+    this->Axes[0] = 0, this->Axes[1] = 1;
+  }
+  else if (n[0] == 1.0 || n[0] == -1.0)
+  {
+    this->Axes[0] = 1, this->Axes[1] = 2;
+  }
+  else if (n[1] == 1.0 || n[1] == -1.0)
+  {
+    this->Axes[0] = 2, this->Axes[1] = 0;
+  }
+  if (this->Axes[0] >= 0)
+  {
+    std::fill(this->U, this->U + 3, 0.0);
+    std::fill(this->V, this->V + 3, 0.0);
+    this->U[this->Axes[0]] = 1.0;
+    this->V[this->Axes[1]] = 1.0;
+    return;
+  }
+  // U along the axis least aligned with the normal, made orthogonal to it.
+  int least = 0;
+  for (int d = 1; d < 3; ++d)
+  {
+    if (std::fabs(n[d]) < std::fabs(n[least]))
+    {
+      least = d;
+    }
+  }
+  double e[3] = { 0, 0, 0 };
+  e[least] = 1.0;
+  const double along = Dot3(e, n);
+  for (int d = 0; d < 3; ++d)
+  {
+    this->U[d] = e[d] - along * n[d];
+  }
+  const double length = std::sqrt(Dot3(this->U, this->U));
+  for (double& u : this->U)
+  {
+    u /= length;
+  }
+  this->V[0] = n[1] * this->U[2] - n[2] * this->U[1];
+  this->V[1] = n[2] * this->U[0] - n[0] * this->U[2];
+  this->V[2] = n[0] * this->U[1] - n[1] * this->U[0];
+}
+
+double PlaneFrame::Distance(const double* x) const
+{
+  return Dot3(x, this->Normal) - this->PlaneOffset;
+}
+
+bool PlaneFrame::IsParallel(const PlaneFrame& other) const
+{
+  const double* a = this->Normal;
+  const double* b = other.Normal;
+  const double c[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+    a[0] * b[1] - a[1] * b[0] };
+  return Dot3(c, c) <= 1e-18;
+}
+
+void PlaneFrame::ToPlane(const double* x, double* uv) const
+{
+  if (this->Axes[0] >= 0)
+  {
+    uv[0] = x[this->Axes[0]];
+    uv[1] = x[this->Axes[1]];
+  }
+  else
+  {
+    const double d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
+    uv[0] = Dot3(d, this->U);
+    uv[1] = Dot3(d, this->V);
+  }
+  uv[2] = 0.0;
+}
+
+void PlaneFrame::ToSpace(const double* uv, double* x) const
+{
+  if (this->Axes[0] >= 0)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      x[d] = this->Normal[d] * this->PlaneOffset;
+    }
+    x[this->Axes[0]] = uv[0];
+    x[this->Axes[1]] = uv[1];
+    return;
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    x[d] = this->Origin[d] + uv[0] * this->U[d] + uv[1] * this->V[d];
+  }
+}
+
+PlaneFrame PlaneFrame::Shifted(double offset) const
+{
+  PlaneFrame shifted = *this;
+  for (int d = 0; d < 3; ++d)
+  {
+    shifted.Origin[d] += (offset - this->PlaneOffset) * this->Normal[d];
+  }
+  shifted.PlaneOffset = offset;
+  return shifted;
+}
+
+void PlaneFrame::ToPlane(const MeshView& mesh, std::vector<double>& uv) const
+{
+  uv.resize(static_cast<size_t>(3 * mesh.NumberOfPoints));
+  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  {
+    this->ToPlane(mesh.Point(p), &uv[3 * p]);
+  }
+}
+
+void PlaneFrame::BoxToSpace(const double box[6], double spaceBox[6]) const
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    spaceBox[2 * d] = std::numeric_limits<double>::infinity();
+    spaceBox[2 * d + 1] = -std::numeric_limits<double>::infinity();
+  }
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    const double uv[3] = { box[corner & 1], box[2 + (corner >> 1)], 0.0 };
+    double x[3];
+    this->ToSpace(uv, x);
+    for (int d = 0; d < 3; ++d)
+    {
+      spaceBox[2 * d] = std::min(spaceBox[2 * d], x[d]);
+      spaceBox[2 * d + 1] = std::max(spaceBox[2 * d + 1], x[d]);
+    }
+  }
+}
+} // namespace mp

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Tasks.h
+ * @brief How the kernel runs concurrent tasks: a runner the caller injects.
+ *
+ * The kernel owns no threads. Its callers hand it a runner (the VTK filter
+ * passes vtkSMPTools::For; the tests std::thread) and a number of tasks;
+ * the kernel splits its loops into that many ranges. Sums over ranges are
+ * added in range order, so a given number of tasks always gives the same
+ * result.
+ */
+#ifndef MeshProjection_Kernel_Tasks_h
+#define MeshProjection_Kernel_Tasks_h
+
+#include "Mesh/MeshView.h"
+
+#include <algorithm>
+#include <functional>
+#include <vector>
+
+namespace mp
+{
+struct TaskRunner
+{
+  /// How many concurrent tasks to split work into (1: serial).
+  int Tasks = 1;
+  /// Runs task(0), ..., task(count - 1), concurrently if it can. Empty:
+  /// one after the other.
+  std::function<void(int count, const std::function<void(int)>& task)> Run;
+
+  /// Tasks for `n` items of work, at least `grain` items per task.
+  int TasksFor(Index n, Index grain) const
+  {
+    return this->Run ? static_cast<int>(std::max<Index>(1, std::min<Index>(this->Tasks, n / grain)))
+                     : 1;
+  }
+  /// Runs task(0..count-1), through Run when count > 1.
+  void RunAll(int count, const std::function<void(int)>& task) const
+  {
+    if (count > 1 && this->Run)
+    {
+      this->Run(count, task);
+      return;
+    }
+    for (int k = 0; k < count; ++k)
+    {
+      task(k);
+    }
+  }
+  /**
+   * Runs body(begin, end) over [0, n) split into ranges of at least `grain`
+   * items, and returns the sum of what the calls return, added in range
+   * order.
+   */
+  template <class Body>
+  auto ForRanges(Index n, const Body& body, Index grain = 4096) const
+    -> decltype(body(Index(0), Index(0)))
+  {
+    using Sum = decltype(body(Index(0), Index(0)));
+    const int tasks = this->TasksFor(n, grain);
+    if (tasks == 1)
+    {
+      return body(Index(0), n);
+    }
+    std::vector<Sum> partial(static_cast<size_t>(tasks));
+    this->Run(tasks, [&](int k) { partial[k] = body(n * k / tasks, n * (k + 1) / tasks); });
+    Sum sum = partial[0];
+    for (int k = 1; k < tasks; ++k)
+    {
+      sum += partial[k];
+    }
+    return sum;
+  }
+};
+} // namespace mp
+
+#endif

@@ -1,0 +1,324 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Transfer/BlockCG.h"
+
+#include "Mesh/LargeArray.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+
+namespace mp
+{
+namespace
+{
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
+using Triplet = Eigen::Triplet<double, Index>;
+
+/// Per column sums, added component-wise (for TaskRunner::ForRanges).
+struct Sums
+{
+  std::vector<double> Values;
+  Sums() = default;
+  explicit Sums(size_t n)
+    : Values(n, 0.0)
+  {
+  }
+  Sums& operator+=(const Sums& o)
+  {
+    for (size_t k = 0; k < this->Values.size(); ++k)
+    {
+      this->Values[k] += o.Values[k];
+    }
+    return *this;
+  }
+};
+} // namespace
+
+struct BlockCG::Direct
+{
+  std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> Solver;
+};
+
+BlockCG::BlockCG(const CsrMatrix& matrix, const TaskRunner& runner)
+  : A(matrix)
+  , Runner(runner)
+{
+}
+
+BlockCG::~BlockCG() = default;
+
+int BlockCG::Iterate(const double* B, double* X, int c, const SolveOptions& options,
+  std::vector<char>& converged, const SolverHooks& hooks) const
+{
+  // Compile-time widths for the usual few fields (scalars, vectors).
+  switch (c)
+  {
+    case 1:
+      return this->IterateFixed<1>(B, X, c, options, converged, hooks);
+    case 2:
+      return this->IterateFixed<2>(B, X, c, options, converged, hooks);
+    case 3:
+      return this->IterateFixed<3>(B, X, c, options, converged, hooks);
+    case 4:
+      return this->IterateFixed<4>(B, X, c, options, converged, hooks);
+    default:
+      return this->IterateFixed<0>(B, X, c, options, converged, hooks);
+  }
+}
+
+template <int FixedC>
+int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveOptions& options,
+  std::vector<char>& converged, const SolverHooks& hooks) const
+{
+  const int c = FixedC > 0 ? FixedC : dynamicC;
+  const Index n = this->A.Rows;
+  const size_t size = static_cast<size_t>(n) * c;
+  const char* counted = hooks.Counted;
+  auto reduce = [&hooks](Sums& s) {
+    if (hooks.Reduce)
+    {
+      hooks.Reduce(s.Values.data(), static_cast<int>(s.Values.size()));
+    }
+  };
+  auto exchange = [&hooks](double* v, int width) {
+    if (hooks.Exchange)
+    {
+      hooks.Exchange(v, width);
+    }
+  };
+  LargeVector<double> r(size);
+  LargeVector<double> z(size);
+  LargeVector<double> p(size);
+  LargeVector<double> q(size);
+  LargeVector<double> inverseDiagonal(static_cast<size_t>(n));
+  LargeVector<double> rowSums(options.StartFromX ? 0 : static_cast<size_t>(n));
+  converged.assign(static_cast<size_t>(c), 0);
+  this->Runner.ForRanges(n, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i)
+    {
+      inverseDiagonal[i] = this->A.Values[this->A.Find(i, i)];
+      if (!options.StartFromX)
+      {
+        double rowSum = 0.0;
+        for (Index k = this->A.RowStart[i]; k < this->A.RowStart[i + 1]; ++k)
+        {
+          rowSum += this->A.Values[k];
+        }
+        rowSums[i] = rowSum;
+      }
+    }
+    return 0.0;
+  });
+  exchange(inverseDiagonal.data(), 1);
+  if (!options.StartFromX)
+  {
+    exchange(rowSums.data(), 1);
+  }
+  // Started from the lumped-mass solution x_i = b_i / sum_k A_ik (already
+  // second-order accurate for smooth fields: fewer iterations), or from X.
+  Sums bb = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+    Sums sum(c);
+    for (Index i = begin; i < end; ++i)
+    {
+      inverseDiagonal[i] = 1.0 / inverseDiagonal[i];
+      for (int k = 0; k < c; ++k)
+      {
+        const double b = B[i * c + k];
+        if (!options.StartFromX)
+        {
+          X[i * c + k] = rowSums[i] > 0.0 ? b / rowSums[i] : 0.0;
+        }
+        if (!counted || counted[i])
+        {
+          sum.Values[k] += b * b;
+        }
+      }
+    }
+    return sum;
+  });
+  reduce(bb);
+  std::vector<double> goal(static_cast<size_t>(c));
+  for (int k = 0; k < c; ++k)
+  {
+    goal[k] = options.Tolerance * options.Tolerance * bb.Values[k];
+  }
+  this->Runner.ForRanges(n, [&](Index begin, Index end) {
+    this->A.Multiply<FixedC>(X, q.data(), c, begin, end);
+    return 0.0;
+  });
+  exchange(q.data(), c);
+  // Residuals, and the first direction; per column |r|^2 and r.z.
+  Sums sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+    Sums part(2 * c);
+    for (Index i = begin; i < end; ++i)
+    {
+      const bool count = !counted || counted[i];
+      for (int k = 0; k < c; ++k)
+      {
+        const Index e = i * c + k;
+        r[e] = B[e] - q[e];
+        z[e] = inverseDiagonal[i] * r[e];
+        p[e] = z[e];
+        if (count)
+        {
+          part.Values[k] += r[e] * r[e];
+          part.Values[c + k] += r[e] * z[e];
+        }
+      }
+    }
+    return part;
+  });
+  reduce(sums);
+  std::vector<double> rz(static_cast<size_t>(c));
+  std::vector<double> alpha(static_cast<size_t>(c));
+  std::vector<double> beta(static_cast<size_t>(c));
+  int open = 0;
+  for (int k = 0; k < c; ++k)
+  {
+    // A zero field is converged at its start.
+    converged[k] = bb.Values[k] == 0.0 || sums.Values[k] <= goal[k];
+    open += !converged[k];
+    rz[k] = sums.Values[c + k];
+  }
+  int iteration = 0;
+  for (; iteration < options.MaxIterations && open > 0; ++iteration)
+  {
+    this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      this->A.Multiply<FixedC>(p.data(), q.data(), c, begin, end);
+      return 0.0;
+    });
+    exchange(q.data(), c);
+    Sums pq = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      Sums part(c);
+      for (Index i = begin; i < end; ++i)
+      {
+        if (counted && !counted[i])
+        {
+          continue;
+        }
+        for (int k = 0; k < c; ++k)
+        {
+          part.Values[k] += p[i * c + k] * q[i * c + k];
+        }
+      }
+      return part;
+    });
+    reduce(pq);
+    for (int k = 0; k < c; ++k)
+    {
+      alpha[k] = converged[k] ? 0.0 : rz[k] / pq.Values[k];
+    }
+    // x, r and z in one pass, with |r|^2 and r.z.
+    sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      Sums part(2 * c);
+      for (Index i = begin; i < end; ++i)
+      {
+        const bool count = !counted || counted[i];
+        for (int k = 0; k < c; ++k)
+        {
+          const Index e = i * c + k;
+          X[e] += alpha[k] * p[e];
+          r[e] -= alpha[k] * q[e];
+          z[e] = inverseDiagonal[i] * r[e];
+          if (count)
+          {
+            part.Values[k] += r[e] * r[e];
+            part.Values[c + k] += r[e] * z[e];
+          }
+        }
+      }
+      return part;
+    });
+    reduce(sums);
+    for (int k = 0; k < c; ++k)
+    {
+      if (converged[k])
+      {
+        continue; // its direction is zeroed below
+      }
+      if (sums.Values[k] <= goal[k])
+      {
+        converged[k] = 1;
+        --open;
+        continue;
+      }
+      beta[k] = sums.Values[c + k] / rz[k];
+      rz[k] = sums.Values[c + k];
+    }
+    if (open == 0)
+    {
+      ++iteration;
+      break;
+    }
+    this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      for (Index i = begin; i < end; ++i)
+      {
+        for (int k = 0; k < c; ++k)
+        {
+          const Index e = i * c + k;
+          p[e] = converged[k] ? 0.0 : z[e] + beta[k] * p[e];
+        }
+      }
+      return 0.0;
+    });
+  }
+  return iteration;
+}
+
+bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& options,
+  const SolverHooks& hooks) const
+{
+  const Index n = this->A.Rows;
+  if (n <= 0 || c <= 0)
+  {
+    return true;
+  }
+  std::vector<char> converged;
+  this->Iterate(B, X, c, options, converged, hooks);
+  LargeVector<double> b;
+  for (int k = 0; k < c; ++k)
+  {
+    if (converged[k])
+    {
+      continue;
+    }
+    if (hooks.Reduce || hooks.Exchange)
+    {
+      return false; // a distributed matrix cannot be factored here
+    }
+    if (!this->Factor)
+    {
+      SparseMatrix matrix(n, n);
+      std::vector<Triplet> entries;
+      entries.reserve(this->A.Values.size());
+      for (Index i = 0; i < n; ++i)
+      {
+        for (Index p = this->A.RowStart[i]; p < this->A.RowStart[i + 1]; ++p)
+        {
+          entries.emplace_back(i, this->A.ColumnIndex[p], this->A.Values[p]);
+        }
+      }
+      matrix.setFromTriplets(entries.begin(), entries.end());
+      this->Factor.reset(new Direct);
+      this->Factor->Solver.reset(new Eigen::SimplicialLDLT<SparseMatrix>(matrix));
+    }
+    if (this->Factor->Solver->info() != Eigen::Success)
+    {
+      return false;
+    }
+    b.resize(static_cast<size_t>(n));
+    for (Index i = 0; i < n; ++i)
+    {
+      b[i] = B[i * c + k];
+    }
+    const Eigen::VectorXd solution =
+      this->Factor->Solver->solve(Eigen::Map<const Eigen::VectorXd>(b.data(), n));
+    for (Index i = 0; i < n; ++i)
+    {
+      X[i * c + k] = solution[i];
+    }
+  }
+  return true;
+}
+} // namespace mp

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BlockCG.h
+ * @brief Conjugate gradients for several right-hand sides at once, with hooks.
+ *
+ * Solves A X = B for the symmetric positive definite A (the target mass
+ * matrix) and `c` right-hand sides stored side by side (row i of B holds
+ * entries i*c .. i*c + c-1), iterated in lockstep with a Jacobi
+ * preconditioner: each column has its own step lengths, a converged column
+ * stops changing, and every iteration reads the matrix once for all.
+ * Row ranges run as concurrent tasks (TaskRunner).
+ *
+ * Every global quantity goes through SolverHooks, so that a distributed
+ * solve (rows split over MPI ranks, rows at partition interfaces held
+ * partially by several ranks) adds its communication without touching the
+ * algorithm: Reduce sums the local dot products over all ranks, Exchange
+ * completes the shared rows after each matrix-vector product (and of the
+ * diagonal and row sums), and Counted tells which rows a rank counts in its
+ * dot products. With the default hooks the solve is serial.
+ *
+ * Where the iterations do not converge (targets covered only in slivers
+ * make the matrix ill conditioned) DirectSolve factors the matrix (a sparse
+ * LDL^T, Eigen) for the columns concerned.
+ */
+#ifndef MeshProjection_Kernel_BlockCG_h
+#define MeshProjection_Kernel_BlockCG_h
+
+#include "Mesh/Tasks.h"
+#include "Transfer/CsrMatrix.h"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace mp
+{
+struct SolverHooks
+{
+  /// Sums `count` local partial sums over all parts of the system, in place.
+  std::function<void(double* values, int count)> Reduce;
+  /// Completes the rows shared with other parts in `vectors` (rows x width).
+  std::function<void(double* vectors, int width)> Exchange;
+  /// Per row: 1 when this part counts it in dot products (null: every row).
+  const char* Counted = nullptr;
+};
+
+struct SolveOptions
+{
+  double Tolerance = 1e-14;   ///< relative residual per column, |r| <= tolerance |b|
+  int MaxIterations = 500;    ///< before the direct solver takes over
+  /// Start from the X given (e.g. the previous time step's solution)
+  /// rather than from the lumped solution x_i = b_i / sum_k A_ik.
+  bool StartFromX = false;
+};
+
+class BlockCG
+{
+public:
+  BlockCG(const CsrMatrix& matrix, const TaskRunner& runner);
+  ~BlockCG();
+
+  /**
+   * Iterates on A X = B (`c` columns); converged[k] tells whether column k
+   * reached the tolerance. Returns the number of iterations.
+   */
+  int Iterate(const double* B, double* X, int c, const SolveOptions& options,
+    std::vector<char>& converged, const SolverHooks& hooks = SolverHooks()) const;
+
+  /**
+   * Solves A X = B: the iterations, then the sparse direct solver for the
+   * columns that did not converge (serial systems only: with hooks set it
+   * returns false for them). False when that fails too.
+   */
+  bool Solve(const double* B, double* X, int c, const SolveOptions& options,
+    const SolverHooks& hooks = SolverHooks()) const;
+
+private:
+  template <int FixedC>
+  int IterateFixed(const double* B, double* X, int c, const SolveOptions& options,
+    std::vector<char>& converged, const SolverHooks& hooks) const;
+  struct Direct;
+  const CsrMatrix& A;
+  TaskRunner Runner;
+  mutable std::unique_ptr<Direct> Factor; ///< built on the first need
+};
+} // namespace mp
+
+#endif

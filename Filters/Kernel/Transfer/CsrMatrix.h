@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file CsrMatrix.h
+ * @brief The operator's sparse matrices: compressed rows, readable as arrays.
+ *
+ * Rows start at RowStart[i], end at RowStart[i + 1]; their column indices
+ * (32 bits: the operator refuses spaces of 2^31 or more functions, and the
+ * solve streams the columns once per iteration) are sorted and unique.
+ * These are the arrays a caller reads out (e.g. into scipy.sparse.csr_matrix).
+ */
+#ifndef MeshProjection_Kernel_CsrMatrix_h
+#define MeshProjection_Kernel_CsrMatrix_h
+
+#include "Mesh/LargeArray.h"
+#include "Mesh/MeshView.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace mp
+{
+using Column = std::int32_t;
+
+struct CsrMatrix
+{
+  Index Rows = 0;
+  Index Columns = 0;
+  LargeVector<Index> RowStart{ 0 };
+  LargeVector<Column> ColumnIndex;
+  LargeVector<double> Values;
+
+  Index NonZeros() const { return this->RowStart.empty() ? 0 : this->RowStart.back(); }
+  /// Position of entry (i, k) in Values, or the row's end when absent.
+  Index Find(Index i, Index k) const
+  {
+    const Column* begin = this->ColumnIndex.data() + this->RowStart[i];
+    const Column* end = this->ColumnIndex.data() + this->RowStart[i + 1];
+    return static_cast<Index>(
+      std::lower_bound(begin, end, static_cast<Column>(k)) - this->ColumnIndex.data());
+  }
+  /// The entry (i, k), 0 when the pattern does not hold it.
+  double Entry(Index i, Index k) const
+  {
+    const Index p = this->Find(i, k);
+    return p < this->RowStart[i + 1] && this->ColumnIndex[p] == k ? this->Values[p] : 0.0;
+  }
+  /// Bytes held.
+  std::size_t MemoryBytes() const
+  {
+    return this->RowStart.capacity() * sizeof(Index) + this->ColumnIndex.capacity() * sizeof(Column) +
+      this->Values.capacity() * sizeof(double);
+  }
+  /**
+   * Y = A X on rows [begin, end) for `c` vectors stored side by side (row i
+   * of X holds entries i*c .. i*c + c-1): the matrix is read once for all.
+   */
+  template <int FixedC>
+  void Multiply(const double* X, double* Y, int dynamicC, Index begin, Index end) const
+  {
+    const int c = FixedC > 0 ? FixedC : dynamicC;
+    for (Index i = begin; i < end; ++i)
+    {
+      double* y = Y + i * c;
+      std::fill(y, y + c, 0.0);
+      for (Index p = this->RowStart[i]; p < this->RowStart[i + 1]; ++p)
+      {
+        const double v = this->Values[p];
+        const double* x = X + static_cast<Index>(this->ColumnIndex[p]) * c;
+        for (int k = 0; k < c; ++k)
+        {
+          y[k] += v * x[k];
+        }
+      }
+    }
+  }
+  /// Multiply with compile-time widths for the usual few fields.
+  void MultiplyRows(const double* X, double* Y, int c, Index begin, Index end) const
+  {
+    switch (c)
+    {
+      case 1:
+        return this->Multiply<1>(X, Y, c, begin, end);
+      case 2:
+        return this->Multiply<2>(X, Y, c, begin, end);
+      case 3:
+        return this->Multiply<3>(X, Y, c, begin, end);
+      default:
+        return this->Multiply<0>(X, Y, c, begin, end);
+    }
+  }
+};
+} // namespace mp
+
+#endif

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MortarAssembler.h
+ * @brief From pieces to matrices: the paper's MortarInt, for any pair of spaces.
+ *
+ * The search hands every (target cell, source cell, piece) to a
+ * MortarAssembler. From the piece's moments (Geometry) and the two spaces'
+ * basis functions on the two cells (Space.h) it adds the local mixed block
+ * int phi_i psi_j to the block of the current target cell, and sums the
+ * piece's moments about the target cell's first corner. When the cell's
+ * last piece has come (the searches deliver the pieces of a target cell one
+ * after the other), the covered part's moments give the cell's target mass
+ * block at once (the exact element mass matrix when the cell is covered
+ * whole), added into M_tt, and the cell's mixed block is appended to the
+ * task's MixedBlocks (MixedMatrix.h).
+ *
+ * With concurrent tasks, target functions whose cells belong to several
+ * tasks (Shared) are not written into M_tt directly but collected in
+ * Deferred and added after all tasks, in task order.
+ */
+#ifndef MeshProjection_Kernel_MortarAssembler_h
+#define MeshProjection_Kernel_MortarAssembler_h
+
+#include "Geometry/IntersectionPieces.h"
+#include "Mesh/MeshView.h"
+#include "Transfer/CsrMatrix.h"
+#include "Transfer/MixedMatrix.h"
+#include "Transfer/MortarBlocks.h"
+#include "Transfer/Space.h"
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+namespace mp
+{
+/**
+ * The local blocks of one piece, Mts[i][j] = int phi_i psi_j and
+ * Mtt[i][k] = int phi_i phi_k over it (added), in the order of the spaces'
+ * CellDofs on t and s. Returns the piece's measure (0 when the cells only
+ * touch). The reference the assembled matrices are checked against.
+ */
+template <class Intersector, class TargetSpace, class SourceSpace>
+double AddPieceBlocks(const typename Intersector::Piece& piece, const typename Intersector::Cell& t,
+  const typename Intersector::Cell& s, double (&Mts)[TargetSpace::Dofs][SourceSpace::Dofs],
+  double (&Mtt)[TargetSpace::Dofs][TargetSpace::Dofs])
+{
+  constexpr int K = Intersector::Dimension + 1;
+  double o[K - 1];
+  double M[K][K];
+  const double measure = Intersector::Moments(piece, o, M);
+  if (!(measure > 0.0))
+  {
+    return 0.0;
+  }
+  double lt[TargetSpace::Dofs][K];
+  double ls[SourceSpace::Dofs][K];
+  TargetSpace::Basis(t, o, lt);
+  SourceSpace::Basis(s, o, ls);
+  AddMixedBlock<TargetSpace::Dofs, SourceSpace::Dofs, K>(lt, ls, M, Mts);
+  AddTargetBlock<TargetSpace::Dofs, K>(lt, M, Mtt);
+  return measure;
+}
+
+template <class Intersector, class TargetSpace, class SourceSpace>
+struct MortarAssembler
+{
+  static constexpr int D = Intersector::Dimension;
+  static constexpr int K = D + 1;
+  static constexpr int Nt = TargetSpace::Dofs;
+  static constexpr int Ns = SourceSpace::Dofs;
+  using Cell = typename Intersector::Cell;
+
+  const MeshView* Target = nullptr;
+  const MeshView* Source = nullptr;
+  CsrMatrix* Mass = nullptr;    ///< M_tt: its pattern, values being summed
+  MixedBlocks* Blocks = nullptr; ///< this task's mixed blocks
+  /// Per target kernel cell: the covered fraction of its measure, written
+  /// when its last piece has come (each cell belongs to one task).
+  double* CoveredFraction = nullptr;
+  double CoveredSum = 0.0; ///< measure of all pieces of this task
+  Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
+  IntersectionPieces* Pieces = nullptr;
+  Index Count = 0;         ///< pieces of positive measure
+  const char* Shared = nullptr; ///< per target function; null for a single task
+  std::vector<std::pair<Index, double>> Deferred; ///< (position in M_tt, value)
+
+  Index Current = -1;  ///< the target cell whose pieces are coming
+  Cell CurrentCell;
+  double Moments[K][K]; ///< of its pieces so far, about its corner 0
+  std::vector<Column> BlockColumns; ///< source functions its pieces met
+  std::vector<double> BlockValues;  ///< Nt per column
+
+  void Flush()
+  {
+    if (this->Current < 0)
+    {
+      return;
+    }
+    const double covered = this->Moments[0][0];
+    const double fraction = covered / this->CurrentCell.Measure;
+    this->Overcovered += fraction > 1.0 + 1e-9;
+    this->CoveredFraction[this->Current] = std::min(1.0, fraction);
+    this->CoveredSum += covered;
+    this->Current = -1;
+    if (!(covered > 0.0))
+    {
+      return; // only touching pieces
+    }
+    double mtt[Nt][Nt];
+    TargetSpace::MassFromMoments(this->CurrentCell, this->Moments, mtt);
+    Index dofs[Nt];
+    TargetSpace::CellDofs(*this->Target, this->CurrentCell, dofs);
+    for (int i = 0; i < Nt; ++i)
+    {
+      const bool shared = this->Shared && this->Shared[dofs[i]];
+      for (int k = 0; k < Nt; ++k)
+      {
+        const Index position = this->Mass->Find(dofs[i], dofs[k]);
+        if (shared)
+        {
+          this->Deferred.emplace_back(position, mtt[i][k]);
+        }
+        else
+        {
+          this->Mass->Values[position] += mtt[i][k];
+        }
+      }
+    }
+    MixedBlocks& b = *this->Blocks;
+    b.Rows.insert(b.Rows.end(), dofs, dofs + Nt);
+    b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
+    b.Values.insert(b.Values.end(), this->BlockValues.begin(), this->BlockValues.end());
+    b.Start.push_back(static_cast<Index>(b.Columns.size()));
+  }
+
+  void operator()(const Cell& t, const Cell& s, const typename Intersector::Piece& piece)
+  {
+    if (t.Id != this->Current)
+    {
+      this->Flush();
+      this->Current = t.Id;
+      this->CurrentCell = t;
+      for (auto& row : this->Moments)
+      {
+        std::fill(row, row + K, 0.0);
+      }
+      this->BlockColumns.clear();
+      this->BlockValues.clear();
+    }
+    double o[D];
+    double M[K][K];
+    if (!(Intersector::Moments(piece, o, M) > 0.0))
+    {
+      return; // the cells only touch
+    }
+    double d[D];
+    for (int a = 0; a < D; ++a)
+    {
+      d[a] = o[a] - t.X[0][a];
+    }
+    AddShiftedMoments<K>(M, d, this->Moments);
+    double lt[Nt][K];
+    double ls[Ns][K];
+    TargetSpace::Basis(t, o, lt);
+    SourceSpace::Basis(s, o, ls);
+    double mts[Nt][Ns] = {};
+    AddMixedBlock<Nt, Ns, K>(lt, ls, M, mts);
+    Index dofs[Ns];
+    SourceSpace::CellDofs(*this->Source, s, dofs);
+    for (int j = 0; j < Ns; ++j)
+    {
+      // The block's column of source function dofs[j] (a few per cell).
+      const Column c = static_cast<Column>(dofs[j]);
+      size_t slot = 0;
+      while (slot < this->BlockColumns.size() && this->BlockColumns[slot] != c)
+      {
+        ++slot;
+      }
+      if (slot == this->BlockColumns.size())
+      {
+        this->BlockColumns.push_back(c);
+        this->BlockValues.insert(this->BlockValues.end(), Nt, 0.0);
+      }
+      double* values = &this->BlockValues[slot * Nt];
+      for (int i = 0; i < Nt; ++i)
+      {
+        values[i] += mts[i][j];
+      }
+    }
+    ++this->Count;
+    if (this->Pieces)
+    {
+      Intersector::AppendPiece(piece, t.Id, s.Id, *this->Pieces);
+    }
+  }
+};
+} // namespace mp
+
+#endif

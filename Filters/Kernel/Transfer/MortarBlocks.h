@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MortarBlocks.h
+ * @brief The local mortar blocks of a piece from its moments.
+ *
+ * A piece (Geometry) gives its moments up to order 2 about a point o as the
+ * symmetric K x K matrix M (K = d + 1: M[0][0] the measure, M[0][a] the
+ * first moments, M[a][b] the second moments of x - o). A space (Space.h)
+ * gives its basis functions on a cell as affine functions of x - o,
+ * coefficient rows l[i] (constant first, then the gradient). The integral
+ * of the product of two affine functions f, g over the piece is f^T M g;
+ * with M g formed once per function g, a block of such products costs K^2
+ * multiplications per function instead of per product.
+ */
+#ifndef MeshProjection_Kernel_MortarBlocks_h
+#define MeshProjection_Kernel_MortarBlocks_h
+
+#include <cmath>
+
+namespace mp
+{
+/// Mg = M g for the moment matrix M (symmetric) and the affine function g.
+template <int K>
+inline void MomentTimes(const double (&M)[K][K], const double* g, double (&Mg)[K])
+{
+  for (int a = 0; a < K; ++a)
+  {
+    double sum = 0.0;
+    for (int b = 0; b < K; ++b)
+    {
+      sum += M[a][b] * g[b];
+    }
+    Mg[a] = sum;
+  }
+}
+
+template <int K>
+inline double DotK(const double* f, const double (&g)[K])
+{
+  double sum = 0.0;
+  for (int a = 0; a < K; ++a)
+  {
+    sum += f[a] * g[a];
+  }
+  return sum;
+}
+
+/// Mtt[i][k] += int lt_i lt_k (symmetric), for N functions.
+template <int N, int K>
+void AddTargetBlock(const double (&lt)[N][K], const double (&M)[K][K], double (&Mtt)[N][N])
+{
+  for (int k = 0; k < N; ++k)
+  {
+    double Mg[K];
+    MomentTimes<K>(M, lt[k], Mg);
+    for (int i = 0; i <= k; ++i)
+    {
+      const double v = DotK<K>(lt[i], Mg);
+      Mtt[i][k] += v;
+      if (i != k)
+      {
+        Mtt[k][i] += v;
+      }
+    }
+  }
+}
+
+/// Mts[i][j] += int lt_i ls_j, for Nt target and Ns source functions.
+template <int Nt, int Ns, int K>
+void AddMixedBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const double (&M)[K][K],
+  double (&Mts)[Nt][Ns])
+{
+  for (int j = 0; j < Ns; ++j)
+  {
+    double Mg[K];
+    MomentTimes<K>(M, ls[j], Mg);
+    for (int i = 0; i < Nt; ++i)
+    {
+      Mts[i][j] += DotK<K>(lt[i], Mg);
+    }
+  }
+}
+
+/**
+ * Adds the moment matrix M of a piece, taken about the point o, to
+ * `moments`, taken about the point o - d (d = o minus the new origin):
+ * first moments gain d m0, second moments d m1^T + m1 d^T + d d^T m0.
+ * Summing the pieces of a target cell about one of its corners gives the
+ * moments of the covered part of the cell, from which its target mass
+ * block follows once per cell instead of once per piece.
+ */
+template <int K>
+void AddShiftedMoments(const double (&M)[K][K], const double* d, double (&moments)[K][K])
+{
+  constexpr int D = K - 1;
+  moments[0][0] += M[0][0];
+  double first[D];
+  for (int a = 0; a < D; ++a)
+  {
+    first[a] = M[0][a + 1] + d[a] * M[0][0];
+    moments[0][a + 1] += first[a];
+    moments[a + 1][0] += first[a];
+  }
+  for (int a = 0; a < D; ++a)
+  {
+    for (int b = a; b < D; ++b)
+    {
+      // With the shifted first moments: m2 + d m1^T + m1' d^T, m1' = m1 + d m0.
+      const double v = M[a + 1][b + 1] + d[a] * M[0][b + 1] + first[a] * d[b];
+      moments[a + 1][b + 1] += v;
+      if (b != a)
+      {
+        moments[b + 1][a + 1] += v;
+      }
+    }
+  }
+}
+} // namespace mp
+
+#endif

@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Transfer/MortarOperator.h"
+
+#include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TriangleIntersector.h"
+#include "Search/ParallelSearch.h"
+#include "Transfer/MassMatrix.h"
+#include "Transfer/MixedMatrix.h"
+#include "Transfer/MortarAssembler.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace mp
+{
+namespace
+{
+double Seconds(std::chrono::steady_clock::time_point since)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+std::string CheckIds(const MeshView& mesh, const char* name)
+{
+  const Index n = mesh.NumberOfCells * mesh.CornersPerCell();
+  for (Index i = 0; i < n; ++i)
+  {
+    if (mesh.Connectivity[i] < 0 || mesh.Connectivity[i] >= mesh.NumberOfPoints)
+    {
+      return std::string(name) + ": a cell refers to a point that does not exist";
+    }
+  }
+  for (Index c = 0; mesh.Parent && c < mesh.NumberOfCells; ++c)
+  {
+    if (mesh.Parent[c] < 0 || mesh.Parent[c] >= mesh.NumberOfParents)
+    {
+      return std::string(name) + ": a cell's parent does not exist";
+    }
+  }
+  return std::string();
+}
+} // namespace
+
+MortarOperator::MortarOperator() = default;
+MortarOperator::~MortarOperator() = default;
+
+bool MortarOperator::Build(const MeshView& target, const MeshView& source,
+  CandidateLocator* locator, const OperatorOptions& options)
+{
+  this->Options = options;
+  this->Options.Runner.Tasks = std::max(1, options.Runner.Tasks);
+  this->TargetMass = CsrMatrix();
+  this->MixedMass = CsrMatrix();
+  this->Solver.reset();
+  this->Statistics = SearchStatistics();
+  this->Timings = OperatorTimings();
+  this->Pieces = IntersectionPieces();
+  this->Error.clear();
+  this->Valid.clear();
+  this->NumberOfValid = 0;
+  this->CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
+  this->CoveredMeasure = 0;
+  this->OvercoveredCells = 0;
+
+  for (const auto& mesh : { std::make_pair(&target, "Input (target)"), std::make_pair(&source, "Source") })
+  {
+    const MeshView& m = *mesh.first;
+    if (!((m.CellDimension == 2 || m.CellDimension == 3) && m.IsVolumeMesh()))
+    {
+      this->Error = std::string(mesh.second) +
+        ": only triangles in the plane (2D) and tetrahedra in space (3D) have a geometry yet";
+      return false;
+    }
+    this->Error = CheckSearchMesh(m, mesh.second, options.Method);
+    if (this->Error.empty())
+    {
+      this->Error = CheckIds(m, mesh.second);
+    }
+    if (!this->Error.empty())
+    {
+      return false;
+    }
+  }
+  if (SearchNeedsNeighbors(options.Method) && !locator)
+  {
+    this->Error = "the advancing front needs a locator over the source cells";
+    return false;
+  }
+  if (target.CellDimension != source.CellDimension)
+  {
+    this->Error = "Input and Source have different dimensions (" +
+      std::to_string(target.CellDimension) + "D and " + std::to_string(source.CellDimension) + "D)";
+    return false;
+  }
+  const Index rows = SpaceSize(options.TargetSpace, target);
+  const Index columns = SpaceSize(options.SourceSpace, source);
+  if (std::max(rows, columns) > std::numeric_limits<Column>::max())
+  {
+    this->Error = "a space of " + std::to_string(std::max(rows, columns)) +
+      " functions; at most 2^31 - 1 are supported";
+    return false;
+  }
+  this->Pieces.Dimension = target.CellDimension;
+  if (target.CellDimension == 2)
+  {
+    this->Dispatch<2>(target, source, locator);
+  }
+  else
+  {
+    this->Dispatch<3>(target, source, locator);
+  }
+  this->Solver.reset(new BlockCG(this->TargetMass, this->Options.Runner));
+  return true;
+}
+
+template <int D>
+void MortarOperator::Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator)
+{
+  using Intersector = typename std::conditional<D == 2, TriangleIntersector, TetrahedronIntersector>::type;
+  const bool p1t = this->Options.TargetSpace == SpaceType::P1;
+  const bool p1s = this->Options.SourceSpace == SpaceType::P1;
+  if (p1t && p1s)
+  {
+    this->Assemble<Intersector, P1Space<D>, P1Space<D>>(target, source, locator);
+  }
+  else if (p1t)
+  {
+    this->Assemble<Intersector, P1Space<D>, P0Space<D>>(target, source, locator);
+  }
+  else if (p1s)
+  {
+    this->Assemble<Intersector, P0Space<D>, P1Space<D>>(target, source, locator);
+  }
+  else
+  {
+    this->Assemble<Intersector, P0Space<D>, P0Space<D>>(target, source, locator);
+  }
+}
+
+template <class Intersector, class TargetSpace, class SourceSpace>
+void MortarOperator::Assemble(
+  const MeshView& target, const MeshView& source, CandidateLocator* locator)
+{
+  auto start = std::chrono::steady_clock::now();
+  const TaskRunner& runner = this->Options.Runner;
+  MassPattern(TargetSpace::Type, target, runner, this->TargetMass);
+  const Index rows = this->TargetMass.Rows;
+  // The target cells in ranges, one per task, each with its own front,
+  // locator and sums.
+  const Index cells = target.NumberOfCells;
+  const int tasks = runner.TasksFor(cells, 64);
+  // Target functions on cells of more than one task: their M_tt rows are
+  // summed after the tasks (MortarAssembler::Shared).
+  std::vector<char> shared;
+  if (tasks > 1)
+  {
+    shared.assign(static_cast<size_t>(rows), 0);
+    std::vector<int> owner(static_cast<size_t>(rows), -1);
+    for (int k = 0; k < tasks; ++k)
+    {
+      for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
+      {
+        Index dofs[TargetSpace::Dofs];
+        TargetSpace::MeshCellDofs(target, c, dofs);
+        for (Index f : dofs)
+        {
+          if (owner[f] < 0)
+          {
+            owner[f] = k;
+          }
+          else if (owner[f] != k)
+          {
+            shared[f] = 1;
+          }
+        }
+      }
+    }
+  }
+  using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
+  std::vector<Assembler> assemblers(static_cast<size_t>(tasks));
+  std::vector<MixedBlocks> blocks(static_cast<size_t>(tasks));
+  std::vector<IntersectionPieces> pieces(static_cast<size_t>(tasks > 1 ? tasks : 0));
+  for (int k = 0; k < tasks; ++k)
+  {
+    Assembler& a = assemblers[k];
+    a.Target = &target;
+    a.Source = &source;
+    a.Mass = &this->TargetMass;
+    blocks[k].RowsPerBlock = TargetSpace::Dofs;
+    a.Blocks = &blocks[k];
+    a.Shared = tasks > 1 ? shared.data() : nullptr;
+    a.CoveredFraction = this->CoveredFraction.data();
+    if (this->Options.KeepPieces)
+    {
+      a.Pieces = tasks > 1 ? &pieces[k] : &this->Pieces;
+    }
+  }
+  this->Timings.Assembly = Seconds(start);
+
+  start = std::chrono::steady_clock::now();
+  SearchInRanges<Intersector>(
+    this->Options.Method, target, source, locator, runner, assemblers, this->Statistics);
+  for (Assembler& a : assemblers)
+  {
+    a.Flush();
+  }
+  // The tasks' contributions, in task order (deterministic).
+  for (int k = 0; k < tasks; ++k)
+  {
+    Assembler& a = assemblers[k];
+    for (const auto& entry : a.Deferred)
+    {
+      this->TargetMass.Values[entry.first] += entry.second;
+    }
+    if (tasks > 1)
+    {
+      this->Pieces.Append(pieces[k]);
+    }
+    this->CoveredMeasure += a.CoveredSum;
+    this->OvercoveredCells += a.Overcovered;
+    this->Statistics.Pieces += a.Count;
+  }
+  assemblers.clear();
+  pieces.clear();
+  this->Timings.Search = Seconds(start);
+
+  start = std::chrono::steady_clock::now();
+  AssembleMixedMatrix(blocks, rows, SpaceSize(SourceSpace::Type, source), runner, this->MixedMass);
+  // A function is valid when its support meets the source: its diagonal
+  // entry of the covered mass matrix is positive. An invalid function's
+  // whole row is zero (no piece touches its support); a 1 on the diagonal
+  // decouples it.
+  this->Valid.assign(static_cast<size_t>(rows), 0);
+  for (Index i = 0; i < rows; ++i)
+  {
+    double& diagonal = this->TargetMass.Values[this->TargetMass.Find(i, i)];
+    if (diagonal > 0.0)
+    {
+      this->Valid[i] = 1;
+      ++this->NumberOfValid;
+    }
+    else
+    {
+      diagonal = 1.0;
+    }
+  }
+  this->Timings.Assembly += Seconds(start);
+}
+
+bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const SolveOptions& solve, const SolverHooks& hooks) const
+{
+  const auto start = std::chrono::steady_clock::now();
+  const Index n = this->TargetMass.Rows;
+  if (!this->Solver || components <= 0 || n == 0)
+  {
+    this->Timings.Solve = Seconds(start);
+    return this->Solver != nullptr || components <= 0;
+  }
+  LargeVector<double> rhs(static_cast<size_t>(n) * components);
+  this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
+    this->MixedMass.MultiplyRows(sourceValues, rhs.data(), components, begin, end);
+    return 0.0;
+  });
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(rhs.data(), components);
+  }
+  const bool ok = this->Solver->Solve(rhs.data(), targetValues, components, solve, hooks);
+  for (Index i = 0; i < n; ++i)
+  {
+    if (!this->Valid[i])
+    {
+      std::fill(targetValues + i * components, targetValues + (i + 1) * components, fill);
+    }
+  }
+  this->Timings.Solve = Seconds(start);
+  return ok;
+}
+
+std::size_t MortarOperator::MemoryBytes() const
+{
+  return this->TargetMass.MemoryBytes() + this->MixedMass.MemoryBytes() + this->Valid.capacity() +
+    this->CoveredFraction.capacity() * sizeof(double) +
+    this->Pieces.Points.capacity() * sizeof(double) +
+    (this->Pieces.Offsets.capacity() + this->Pieces.TargetCell.capacity() +
+      this->Pieces.SourceCell.capacity()) * sizeof(Index) +
+    this->Pieces.Measure.capacity() * sizeof(double);
+}
+} // namespace mp

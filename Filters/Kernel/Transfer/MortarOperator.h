@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MortarOperator.h
+ * @brief The mortar L2 projection between two meshes: built once from their
+ *        geometry, applied to any number of fields.
+ *
+ * For a target space (basis phi_i) and a source space (basis psi_j), see
+ * Space.h, the projection u_t of a source field u_s solves
+ *
+ *     M_tt u_t = M_ts u_s,  (M_tt)_ik = int phi_i phi_k,  (M_ts)_ij = int phi_i psi_j,
+ *
+ * both integrals taken over T intersected with S, i.e. summed over the
+ * intersection pieces of all (target, source) cell pairs that the pair
+ * search finds. Integrating M_tt over the covered part (rather than over
+ * all of T) keeps the two properties users rely on even when the meshes do
+ * not cover the same domain: a source field in the target space is
+ * reproduced exactly (linear fields by P1, constants by P0), and the
+ * integral of u_t over the covered part equals that of u_s.
+ *
+ * Target functions whose support meets no source cell cannot be determined:
+ * they are reported invalid and receive a fill value (their rows of M_tt
+ * hold a 1 on the diagonal).
+ *
+ * Build() takes the two geometries alone: it runs the search, sums M_tt
+ * (compressed rows over the target space's pattern) and M_ts (compressed
+ * rows, target functions x source functions). Apply() then projects any
+ * field, as often as wanted: M_ts u_s, then the block conjugate gradients
+ * (BlockCG.h). Both matrices can be read out.
+ */
+#ifndef MeshProjection_Kernel_MortarOperator_h
+#define MeshProjection_Kernel_MortarOperator_h
+
+#include "Geometry/IntersectionPieces.h"
+#include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
+#include "Search/CandidateLocator.h"
+#include "Search/SearchStatistics.h"
+#include "Transfer/BlockCG.h"
+#include "Transfer/CsrMatrix.h"
+#include "Transfer/Space.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mp
+{
+struct OperatorOptions
+{
+  SearchMethod Method = SearchMethod::AdvancingFront;
+  SpaceType TargetSpace = SpaceType::P1;
+  SpaceType SourceSpace = SpaceType::P1;
+  bool KeepPieces = false; ///< store the intersection pieces (GetPieces)
+  /// Concurrent tasks for the search, the assembly and the solve, and how
+  /// they run (default: one, serial).
+  TaskRunner Runner;
+};
+
+/// Wall-clock seconds of the stages of Build() and of the last Apply().
+struct OperatorTimings
+{
+  double Search = 0;   ///< pair search + intersections + local blocks + M_tt sums
+  double Assembly = 0; ///< the M_tt pattern, M_ts from the blocks, valid functions
+  double Solve = 0;    ///< the last Apply() (M_ts u_s and the solve)
+};
+
+class MortarOperator
+{
+public:
+  MortarOperator();
+  ~MortarOperator();
+  MortarOperator(const MortarOperator&) = delete;
+  MortarOperator& operator=(const MortarOperator&) = delete;
+
+  /**
+   * Searches the intersections and assembles M_tt and M_ts. For the
+   * advancing front both meshes must have neighbours (CellNeighbors.h) and
+   * `locator` must index the source cells (the brute force needs neither;
+   * it may then be null). Returns false, with GetError() saying why, on
+   * unusable input.
+   */
+  bool Build(const MeshView& target, const MeshView& source, CandidateLocator* locator,
+    const OperatorOptions& options = OperatorOptions());
+
+  /**
+   * Projects a source field (source functions x `components`, row-major)
+   * onto the target functions (target functions x components, row-major).
+   * Invalid target functions get `fill`. With solve.StartFromX the solve
+   * starts from the values in targetValues (e.g. the previous step's).
+   * False when the system could not be solved.
+   */
+  bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
+    const SolveOptions& solve = SolveOptions(), const SolverHooks& hooks = SolverHooks()) const;
+
+  /// M_tt over the covered part (rows of invalid functions: 1 on the diagonal).
+  const CsrMatrix& GetTargetMass() const { return this->TargetMass; }
+  /// M_ts: target functions x source functions.
+  const CsrMatrix& GetMixedMass() const { return this->MixedMass; }
+  SpaceType GetTargetSpace() const { return this->Options.TargetSpace; }
+  SpaceType GetSourceSpace() const { return this->Options.SourceSpace; }
+  Index GetNumberOfTargetFunctions() const { return this->TargetMass.Rows; }
+  Index GetNumberOfSourceFunctions() const { return this->MixedMass.Columns; }
+
+  /// Per target function: 1 if its support meets the source, else 0.
+  const std::vector<char>& GetValid() const { return this->Valid; }
+  Index GetNumberOfValid() const { return this->NumberOfValid; }
+  /// Per target cell (kernel id): the covered fraction of its measure.
+  const std::vector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
+  /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
+  Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
+  /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
+  double GetCoveredMeasure() const { return this->CoveredMeasure; }
+  const SearchStatistics& GetStatistics() const { return this->Statistics; }
+  const OperatorTimings& GetTimings() const { return this->Timings; }
+  const IntersectionPieces& GetPieces() const { return this->Pieces; }
+  const std::string& GetError() const { return this->Error; }
+  /// Bytes held by the operator (matrices, masks, pieces).
+  std::size_t MemoryBytes() const;
+
+private:
+  template <class Intersector, class TargetSpace, class SourceSpace>
+  void Assemble(const MeshView& target, const MeshView& source, CandidateLocator* locator);
+  template <int D>
+  void Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator);
+
+  OperatorOptions Options;
+  CsrMatrix TargetMass;
+  CsrMatrix MixedMass;
+  std::unique_ptr<BlockCG> Solver;
+  std::vector<char> Valid;
+  Index NumberOfValid = 0;
+  std::vector<double> CoveredFraction;
+  double CoveredMeasure = 0;
+  Index OvercoveredCells = 0;
+  SearchStatistics Statistics;
+  mutable OperatorTimings Timings;
+  IntersectionPieces Pieces;
+  std::string Error;
+};
+} // namespace mp
+
+#endif

@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Space.h
+ * @brief The function spaces a field lives in: P1 on points, P0 on cells.
+ *
+ * A space says, for a cell (as the intersectors prepare it), which global
+ * functions live on it (`CellDofs`), what they are on the cell as affine
+ * functions of x - o (`Basis`, rows: constant, then gradient), and the
+ * block of its mass matrix over a covered part with the given moments
+ * (`MassFromMoments`). The assembler (MortarAssembler.h) needs nothing else,
+ * so any pair of spaces gives the mixed and target mass matrices: P1 -> P1
+ * (point data), P0 -> P0 (cell data), P0 -> P1 and P1 -> P0.
+ *
+ *  - P1: the continuous piecewise linear functions, one per point (the
+ *    barycentric coordinates on each simplex).
+ *  - P0: the piecewise constant functions, one per cell: per original cell
+ *    when the mesh's simplices have parents (MeshView::Parent), so that a
+ *    split quad or hexahedron keeps one value.
+ *
+ * Adding a space (e.g. P1 on split cells with a tied centre point) means a
+ * struct of this shape here and a case in MortarOperator's dispatch.
+ */
+#ifndef MeshProjection_Kernel_Space_h
+#define MeshProjection_Kernel_Space_h
+
+#include "Mesh/MeshView.h"
+#include "Transfer/MortarBlocks.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mp
+{
+enum class SpaceType
+{
+  P1 = 0, ///< on points (point data)
+  P0 = 1  ///< on cells (cell data)
+};
+
+/// How many functions the space has on `mesh`.
+inline Index SpaceSize(SpaceType type, const MeshView& mesh)
+{
+  return type == SpaceType::P1 ? mesh.NumberOfPoints : mesh.Parents();
+}
+
+inline const char* SpaceName(SpaceType type)
+{
+  return type == SpaceType::P1 ? "P1 (points)" : "P0 (cells)";
+}
+
+template <int D>
+struct P1Space
+{
+  static constexpr SpaceType Type = SpaceType::P1;
+  static constexpr int Dofs = D + 1;
+  static constexpr int K = D + 1;
+
+  /// The functions on mesh cell c, from the mesh alone (any order).
+  static void MeshCellDofs(const MeshView& mesh, Index c, Index (&dofs)[Dofs])
+  {
+    std::copy(mesh.Cell(c), mesh.Cell(c) + Dofs, dofs);
+  }
+  /// The functions on a prepared cell, in the order of Basis().
+  template <class Cell>
+  static void CellDofs(const MeshView&, const Cell& c, Index (&dofs)[Dofs])
+  {
+    std::copy(c.Points, c.Points + Dofs, dofs);
+  }
+  /// The barycentric coordinates of `c` as affine functions of x - o.
+  template <class Cell>
+  static void Basis(const Cell& c, const double* o, double (&l)[Dofs][K])
+  {
+    double shift[D];
+    for (int a = 0; a < D; ++a)
+    {
+      shift[a] = o[a] - c.X[0][a];
+    }
+    for (int r = 0; r < D; ++r)
+    {
+      double constant = 0.0;
+      for (int a = 0; a < D; ++a)
+      {
+        constant += c.Inverse[r][a] * shift[a];
+        l[r + 1][a + 1] = c.Inverse[r][a];
+      }
+      l[r + 1][0] = constant;
+    }
+    for (int k = 0; k < K; ++k)
+    {
+      double sum = 0.0;
+      for (int r = 1; r < Dofs; ++r)
+      {
+        sum += l[r][k];
+      }
+      l[0][k] = (k == 0 ? 1.0 : 0.0) - sum;
+    }
+  }
+  /**
+   * The mass block of `c` over its covered part, from that part's moments
+   * about the corner c.X[0]. A cell covered whole (moments[0][0] equals its
+   * measure within 1e-12) gets the exact element mass matrix,
+   * measure (1 + delta_ik) d! / (d + 2)!, free of any cancellation.
+   */
+  template <class Cell>
+  static void MassFromMoments(const Cell& c, const double (&moments)[K][K], double (&m)[Dofs][Dofs])
+  {
+    const double covered = moments[0][0];
+    if (std::fabs(covered - c.Measure) <= 1e-12 * c.Measure)
+    {
+      const double unit = covered / ((D + 1) * (D + 2)); // d! / (d + 2)! = 1 / ((d + 1)(d + 2))
+      for (int i = 0; i < Dofs; ++i)
+      {
+        for (int k = 0; k < Dofs; ++k)
+        {
+          m[i][k] = unit * (i == k ? 2.0 : 1.0);
+        }
+      }
+      return;
+    }
+    double l[Dofs][K];
+    Basis(c, c.X[0], l);
+    for (auto& row : m)
+    {
+      std::fill(row, row + Dofs, 0.0);
+    }
+    AddTargetBlock<Dofs, K>(l, moments, m);
+  }
+};
+
+template <int D>
+struct P0Space
+{
+  static constexpr SpaceType Type = SpaceType::P0;
+  static constexpr int Dofs = 1;
+  static constexpr int K = D + 1;
+
+  static void MeshCellDofs(const MeshView& mesh, Index c, Index (&dofs)[Dofs])
+  {
+    dofs[0] = mesh.ParentOf(c);
+  }
+  template <class Cell>
+  static void CellDofs(const MeshView& mesh, const Cell& c, Index (&dofs)[Dofs])
+  {
+    dofs[0] = mesh.ParentOf(c.Id);
+  }
+  /// The constant 1.
+  template <class Cell>
+  static void Basis(const Cell&, const double*, double (&l)[Dofs][K])
+  {
+    std::fill(l[0], l[0] + K, 0.0);
+    l[0][0] = 1.0;
+  }
+  /// The covered measure.
+  template <class Cell>
+  static void MassFromMoments(const Cell&, const double (&moments)[K][K], double (&m)[Dofs][Dofs])
+  {
+    m[0][0] = moments[0][0];
+  }
+};
+} // namespace mp
+
+#endif
