@@ -56,7 +56,7 @@ std::string UseOnePlane(mpvtk::SimplexMesh& target, mpvtk::SimplexMesh& source, 
            << ")): 2D meshes must lie in one plane.";
       return text.str();
     }
-    if (frame.Offset() != other.Offset())
+    if (std::fabs(frame.Offset() - other.Offset()) > std::max(frame.Tolerance(), other.Tolerance()))
     {
       if (frame.IsIdentity())
       {

@@ -24,7 +24,7 @@
  * geometry and the numerics live in a VTK-free kernel (Filters/Kernel).
  *
  * Inputs: two vtkUnstructuredGrid of the same dimension: linear triangles
- * (VTK_TRIANGLE) lying in one plane z = constant (2D meshes with 3D
+ * (VTK_TRIANGLE) lying in one plane, any plane (2D meshes with 3D
  * coordinates), or linear tetrahedra (VTK_TETRA). They need not cover the
  * same region, be connected or convex.
  *

@@ -88,11 +88,21 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
       this->Normal[d] = sum[d] / length;
     }
   }
-  // The plane through the middle of the box; an axis plane when the normal
-  // is one of the axes (to rounding).
+  // The plane through the mean of the corners (the middle of the box for an
+  // axis plane, where it is exact); an axis plane when the normal is one of
+  // the axes (to rounding).
+  double mean[3] = { 0, 0, 0 };
+  for (Index i = 0; i < uses; ++i)
+  {
+    const double* x = mesh.Point(mesh.Connectivity[i]);
+    for (int d = 0; d < 3; ++d)
+    {
+      mean[d] += x[d];
+    }
+  }
   for (int d = 0; d < 3; ++d)
   {
-    this->Origin[d] = 0.5 * (lo[d] + hi[d]);
+    this->Origin[d] = mean[d] / static_cast<double>(uses);
   }
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -103,12 +113,18 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     }
   }
   this->SetAxes();
+  if (this->IsAxisAligned())
+  {
+    const int axis = 3 - this->Axes[0] - this->Axes[1];
+    this->Origin[axis] = 0.5 * (lo[axis] + hi[axis]);
+  }
   this->PlaneOffset = Dot3(this->Origin, this->Normal);
   for (Index i = 0; i < uses; ++i)
   {
     deviation = std::max(deviation, std::fabs(this->Distance(mesh.Point(mesh.Connectivity[i]))));
   }
-  return deviation <= 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
+  this->PlaneTolerance = 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
+  return deviation <= this->PlaneTolerance;
 }
 
 void PlaneFrame::SetAxes()

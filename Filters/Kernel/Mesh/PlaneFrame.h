@@ -40,6 +40,8 @@ public:
   double Distance(const double* x) const;
   /// Whether `other`'s plane is parallel to this one (normals within 1e-9 rad).
   bool IsParallel(const PlaneFrame& other) const;
+  /// How far from the plane a point may lie and still count as in it (set by Fit).
+  double Tolerance() const { return this->PlaneTolerance; }
   /// The plane is z = constant: the points' (x, y) are their 2D coordinates.
   bool IsIdentity() const { return this->Axes[0] == 0 && this->Axes[1] == 1; }
   /// x, y or z = constant: 2D coordinates are two of the point's own.
@@ -66,6 +68,7 @@ private:
   double V[3] = { 0, 1, 0 };
   double Normal[3] = { 0, 0, 1 };
   double PlaneOffset = 0;
+  double PlaneTolerance = 0;
   int Axes[2] = { 0, 1 }; ///< coordinates picked, or -1 for a general plane
 };
 } // namespace mp

@@ -55,6 +55,15 @@ void AssembleMixedMatrix(std::vector<MixedBlocks>& blocks, Index rows, Index col
   matrix.RowStart.assign(static_cast<size_t>(rows) + 1, 0);
   runner.RunAll(tasks, [&](int k) {
     Range& out = ranges[k];
+    // At most every part's columns; untouched reserved pages cost nothing.
+    Index bound = 0;
+    for (const MixedBlocks& b : blocks)
+    {
+      bound += static_cast<Index>(b.Columns.size()) * b.RowsPerBlock;
+    }
+    bound = bound / tasks + 1;
+    out.Columns.reserve(static_cast<size_t>(bound));
+    out.Values.reserve(static_cast<size_t>(bound));
     std::vector<double> sum(static_cast<size_t>(columns), 0.0);
     std::vector<Index> seen(static_cast<size_t>(columns), -1);
     std::vector<Column> row;

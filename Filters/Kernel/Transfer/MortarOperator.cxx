@@ -188,8 +188,19 @@ void MortarOperator::Assemble(
     a.Target = &target;
     a.Source = &source;
     a.Mass = &this->TargetMass;
-    blocks[k].RowsPerBlock = TargetSpace::Dofs;
-    a.Blocks = &blocks[k];
+    // Room for the blocks of the range's cells at a generous estimate of
+    // columns per cell (the corners of the source cells meeting it): pages
+    // of an untouched reservation cost nothing, and the buffers never grow
+    // by copying on ordinary meshes.
+    MixedBlocks& b = blocks[k];
+    const Index rangeCells = RangeBegin(cells, k + 1, tasks) - RangeBegin(cells, k, tasks);
+    const Index columnsPerCell = SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
+    b.RowsPerBlock = TargetSpace::Dofs;
+    b.Rows.reserve(static_cast<size_t>(rangeCells * TargetSpace::Dofs));
+    b.Start.reserve(static_cast<size_t>(rangeCells + 1));
+    b.Columns.reserve(static_cast<size_t>(rangeCells * columnsPerCell));
+    b.Values.reserve(static_cast<size_t>(rangeCells * columnsPerCell * TargetSpace::Dofs));
+    a.Blocks = &b;
     a.Shared = tasks > 1 ? shared.data() : nullptr;
     a.CoveredFraction = this->CoveredFraction.data();
     if (this->Options.KeepPieces)
@@ -267,6 +278,19 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   if (hooks.Exchange)
   {
     hooks.Exchange(rhs.data(), components);
+  }
+  if (solve.StartFromX)
+  {
+    // Invalid functions hold the fill value of a previous Apply (NaN, say):
+    // their rows and columns of M_tt are zero but for the diagonal, yet
+    // 0 * NaN would spread it through the products. Their solution is 0.
+    for (Index i = 0; i < n; ++i)
+    {
+      if (!this->Valid[i])
+      {
+        std::fill(targetValues + i * components, targetValues + (i + 1) * components, 0.0);
+      }
+    }
   }
   const bool ok = this->Solver->Solve(rhs.data(), targetValues, components, solve, hooks);
   for (Index i = 0; i < n; ++i)
