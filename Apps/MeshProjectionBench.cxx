@@ -25,7 +25,7 @@
 #include "Search/PairSearch.h"
 #include "Transfer/MortarAssembler.h"
 #include "Transfer/MortarOperator.h"
-#include "TestMeshes.h"
+#include "GeneratedMeshes.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 
@@ -344,7 +344,10 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     mp::BoxGridLocator locator(source.View());
     k.Seeding = Since(t0);
     mp::MortarOperator projector;
-    projector.Build(target.View(), source.View(), &locator);
+    mp::OperatorOptions single; // the field's right-hand side summed in the search, as the filter does
+    single.Fields = u.data();
+    single.FieldComponents = 1;
+    projector.Build(target.View(), source.View(), &locator, single);
     std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
     t0 = Clock::now();
     projector.Apply(u.data(), 1, ut.data(), std::nan(""));

@@ -304,9 +304,14 @@ int vtkMeshProjectionFilter::RequestData(
     offset += nc;
   }
 
-  // 5. The operator from the two geometries: intersections, M_tt and M_ts.
+  // 5. The operator from the two geometries: intersections and M_tt. The
+  // filter projects its fields once, so their right-hand sides M_ts u_s are
+  // summed during the search and M_ts itself is not assembled (a third
+  // less time in 2D; an operator kept across time steps will assemble it).
   this->InputTime += lap(stage);
   mp::MortarOperator projection;
+  options.Fields = fields.data();
+  options.FieldComponents = components;
   // One range of target cells per thread of vtkSMPTools' backend (with
   // Debian's VTK: VTK_SMP_BACKEND_IN_USE=STDThread; the default backend there
   // is sequential).

@@ -8,11 +8,13 @@
 // included) or as small integers on a lattice, which makes shared vertices,
 // vertices on edges and faces, collinear edges and coplanar faces common.
 // Any broken invariant aborts, which libFuzzer reports with the input.
-#include "CandidateLocator.h"
-#include "CellNeighbors.h"
-#include "PairSearch.h"
-#include "TetrahedronIntersector.h"
-#include "TriangleIntersector.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TriangleIntersector.h"
+#include "Mesh/CellNeighbors.h"
+#include "Search/CandidateLocator.h"
+#include "Search/PairSearch.h"
+#include "Search/SearchStatistics.h"
+#include "Transfer/MortarAssembler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,7 +80,8 @@ struct Pair
       this->Points.insert(this->Points.end(), { x, y, z });
       this->Cells.push_back(k);
     }
-    this->View.Dimension = Intersector::Dimension;
+    this->View.CellDimension = Intersector::Dimension;
+    this->View.SpaceDimension = Intersector::Dimension;
     this->View.Points = this->Points.data();
     this->View.NumberOfPoints = 2 * n;
     this->View.Connectivity = this->Cells.data();
@@ -161,7 +164,8 @@ void CheckPair(Reader& in)
   {
     double mts[Intersector::Corners][Intersector::Corners] = {};
     double mtt[Intersector::Corners][Intersector::Corners] = {};
-    const double m = Intersector::Integrate(ab, p.A, p.B, mts, mtt);
+    using P1 = mp::P1Space<Intersector::Dimension>;
+    const double m = mp::AddPieceBlocks<Intersector, P1, P1>(ab, p.A, p.B, mts, mtt);
     double sum = 0;
     for (auto& row : mts)
       for (double v : row)
@@ -197,7 +201,8 @@ void CompareSearches(std::vector<double> (&points)[2], std::vector<mp::Index> (&
   {
     if (!Finite(points[m].data(), static_cast<int>(points[m].size())))
       return;
-    views[m].Dimension = d;
+    views[m].CellDimension = d;
+    views[m].SpaceDimension = d;
     views[m].Points = points[m].data();
     views[m].NumberOfPoints = static_cast<mp::Index>(points[m].size() / 3);
     views[m].Connectivity = cells[m].data();

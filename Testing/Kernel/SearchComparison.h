@@ -4,8 +4,9 @@
 #ifndef MeshProjection_Testing_SearchComparison_h
 #define MeshProjection_Testing_SearchComparison_h
 
-#include "PairSearch.h"
-#include "TestMeshes.h"
+#include "Search/PairSearch.h"
+#include "Search/SearchStatistics.h"
+#include "GeneratedMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "MortarProjector.h"
-#include "PairSearch.h"
-#include "TestMeshes.h"
-#include "TetrahedronIntersector.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Search/PairSearch.h"
+#include "GeneratedMeshes.h"
+#include "Transfer/MortarAssembler.h"
+#include "Transfer/MortarOperator.h"
 
 #include <gtest/gtest.h>
 
@@ -19,24 +20,37 @@ namespace
 {
 struct Projection
 {
-  mp::MortarProjector Projector;
+  mp::MortarOperator Projector;
   bool Ok = false;
   Projection(const TestMesh& target, const TestMesh& source,
     mp::SearchMethod method = mp::SearchMethod::AdvancingFront, bool keepPieces = false)
   {
     mp::BoxGridLocator locator(source.View());
-    mp::ProjectionOptions options;
+    mp::OperatorOptions options;
     options.Method = method;
     options.KeepPieces = keepPieces;
     this->Ok = this->Projector.Build(target.View(), source.View(), &locator, options);
   }
   std::vector<double> Apply(const std::vector<double>& us, int components = 1) const
   {
-    std::vector<double> ut(this->Projector.GetValidPoints().size() * components);
-    this->Projector.Project(us.data(), components, ut.data(), std::nan(""));
+    std::vector<double> ut(this->Projector.GetValid().size() * components);
+    this->Projector.Apply(us.data(), components, ut.data(), std::nan(""));
     return ut;
   }
 };
+
+/// M_ts entry (i, j), as the projector's former MixedMassEntry.
+double MixedMassEntry(const mp::MortarOperator& op, Index i, Index j)
+{
+  return op.GetMixedMass().Entry(i, j);
+}
+
+/// M_tt entry (i, k), as the projector's former TargetMassEntry: 0 on the
+/// rows of invalid target points (GetTargetMass() holds 1 on their diagonal).
+double TargetMassEntry(const mp::MortarOperator& op, Index i, Index k)
+{
+  return op.GetValid()[i] ? op.GetTargetMass().Entry(i, k) : 0.0;
+}
 
 double Smooth(double x, double y)
 {
@@ -70,25 +84,25 @@ TEST(MortarProjector, HandComputedEntries)
   Projection p(target, source);
   ASSERT_TRUE(p.Ok) << p.Projector.GetError();
   const auto& m = p.Projector;
-  EXPECT_NEAR(m.MixedMassEntry(0, 0), 1.0 / 12.0, 1e-16);
-  EXPECT_NEAR(m.MixedMassEntry(0, 3), 1.0 / 24.0, 1e-16);
-  EXPECT_NEAR(m.MixedMassEntry(1, 3), 1.0 / 16.0, 1e-16);
+  EXPECT_NEAR(MixedMassEntry(m, 0, 0), 1.0 / 12.0, 1e-16);
+  EXPECT_NEAR(MixedMassEntry(m, 0, 3), 1.0 / 24.0, 1e-16);
+  EXPECT_NEAR(MixedMassEntry(m, 1, 3), 1.0 / 16.0, 1e-16);
   // phi_(1,0) = x is zero at the origin and at (0,1): on S1 = (0,(1,0),m),
   // values (0,1,1/2) against psi_(1,0) = (0,1,0): 1/48 (1 + 3/2) = 5/96.
-  EXPECT_NEAR(m.MixedMassEntry(1, 1), 5.0 / 96.0, 1e-16);
-  EXPECT_NEAR(m.MixedMassEntry(1, 2), 0.0 + 1.0 / 48.0 * 0.5, 1e-16);
+  EXPECT_NEAR(MixedMassEntry(m, 1, 1), 5.0 / 96.0, 1e-16);
+  EXPECT_NEAR(MixedMassEntry(m, 1, 2), 0.0 + 1.0 / 48.0 * 0.5, 1e-16);
   // M_tt is the element mass matrix A/12 (1 + delta).
-  EXPECT_NEAR(m.TargetMassEntry(0, 0), 1.0 / 12.0, 1e-16);
-  EXPECT_NEAR(m.TargetMassEntry(0, 1), 1.0 / 24.0, 1e-16);
+  EXPECT_NEAR(TargetMassEntry(m, 0, 0), 1.0 / 12.0, 1e-16);
+  EXPECT_NEAR(TargetMassEntry(m, 0, 1), 1.0 / 24.0, 1e-16);
   // Rows of M_ts and M_tt both sum to the integral of phi_i: A/3 = 1/6.
   for (Index i = 0; i < 3; ++i)
   {
     double rts = 0;
     double rtt = 0;
     for (Index j = 0; j < 4; ++j)
-      rts += m.MixedMassEntry(i, j);
+      rts += MixedMassEntry(m, i, j);
     for (Index k = 0; k < 3; ++k)
-      rtt += m.TargetMassEntry(i, k);
+      rtt += TargetMassEntry(m, i, k);
     EXPECT_NEAR(rts, 1.0 / 6.0, 1e-16);
     EXPECT_NEAR(rtt, 1.0 / 6.0, 1e-16);
   }
@@ -104,7 +118,7 @@ TEST(MortarProjector, LinearFieldsAreReproduced)
     const TestMesh source = mptest::GridMesh(4 * (1 + n % 7), 4 * (1 + n % 4), 0.25, rng(), 0, 0, 1, 1, keep);
     Projection p(target, source);
     ASSERT_TRUE(p.Ok);
-    EXPECT_EQ(p.Projector.GetNumberOfValidPoints(), target.NumberOfPoints());
+    EXPECT_EQ(p.Projector.GetNumberOfValid(), target.NumberOfPoints());
     const auto ut = p.Apply(mptest::Sample(source, Linear));
     const auto exact = mptest::Sample(target, Linear);
     for (Index i = 0; i < target.NumberOfPoints(); ++i)
@@ -209,7 +223,7 @@ TEST(MortarProjector, PartialOverlapMarksUncoveredPoints)
     const double y = target.Points[3 * i + 1];
     // Points with x <= 0.5 touch covered cells; points beyond do not.
     const bool expected = x < 0.5 + 1e-12;
-    EXPECT_EQ(bool(p.Projector.GetValidPoints()[i]), expected) << x << " " << y;
+    EXPECT_EQ(bool(p.Projector.GetValid()[i]), expected) << x << " " << y;
     if (expected)
     {
       ++valid;
@@ -220,7 +234,7 @@ TEST(MortarProjector, PartialOverlapMarksUncoveredPoints)
       EXPECT_TRUE(std::isnan(ut[i]));
     }
   }
-  EXPECT_EQ(valid, p.Projector.GetNumberOfValidPoints());
+  EXPECT_EQ(valid, p.Projector.GetNumberOfValid());
   EXPECT_NEAR(p.Projector.GetCoveredMeasure(), 0.5, 1e-14);
   for (Index c = 0; c < target.NumberOfCells(); ++c)
   {
@@ -236,19 +250,20 @@ TEST(MortarProjector, EmptyAndInvalidMeshes)
   TestMesh empty;
   Projection a(m, empty);
   ASSERT_TRUE(a.Ok);
-  EXPECT_EQ(a.Projector.GetNumberOfValidPoints(), 0);
+  EXPECT_EQ(a.Projector.GetNumberOfValid(), 0);
   Projection b(empty, m);
   ASSERT_TRUE(b.Ok);
 
   TestMesh broken = m;
   broken.Cells[4] = 1000; // a point that does not exist
-  mp::MortarProjector projector;
+  mp::MortarOperator projector;
   mp::BoxGridLocator locator(m.View());
   EXPECT_FALSE(projector.Build(broken.View(), m.View(), &locator));
   EXPECT_NE(projector.GetError().find("point that does not exist"), std::string::npos);
 
   mp::MeshView threeD = m.View();
-  threeD.Dimension = 3;
+  threeD.CellDimension = 3;
+  threeD.SpaceDimension = 3;
   threeD.NumberOfCells = m.NumberOfCells() * 3 / 4;
   EXPECT_FALSE(projector.Build(threeD, m.View(), &locator));
   EXPECT_NE(projector.GetError().find("different dimensions"), std::string::npos);
@@ -261,7 +276,7 @@ TEST(MortarProjector, TouchingMeshesCoverNothing)
   const TestMesh source = mptest::GridMesh(3, 5, 0.2, 82, 1, 0, 2, 1);
   Projection p(target, source);
   ASSERT_TRUE(p.Ok);
-  EXPECT_EQ(p.Projector.GetNumberOfValidPoints(), 0);
+  EXPECT_EQ(p.Projector.GetNumberOfValid(), 0);
   EXPECT_EQ(p.Projector.GetCoveredMeasure(), 0.0);
   for (double f : p.Projector.GetCoveredFraction())
     EXPECT_EQ(f, 0.0);
@@ -301,7 +316,7 @@ TEST(MortarProjector, MultiComponentSourceExactCoverage)
     for (int k = 0; covered && k < 3; ++k)
       expectedValid[ids[k]] = 1;
   }
-  EXPECT_EQ(p.Projector.GetValidPoints(), expectedValid);
+  EXPECT_EQ(p.Projector.GetValid(), expectedValid);
   const auto ut = p.Apply(mptest::Sample(source, Linear));
   for (Index i = 0; i < target.NumberOfPoints(); ++i)
     if (expectedValid[i])
@@ -315,12 +330,12 @@ TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
   const auto us = mptest::Sample(source, Smooth);
   auto run = [&](int tasks, bool threads, std::vector<double>& ut, mp::IntersectionPieces& pieces) {
     mp::BoxGridLocator locator(source.View());
-    mp::ProjectionOptions options;
-    options.Tasks = tasks;
+    mp::OperatorOptions options;
+    options.Runner.Tasks = tasks;
     options.KeepPieces = true;
     if (threads)
     {
-      options.RunTasks = [](int count, const std::function<void(int)>& task) {
+      options.Runner.Run = [](int count, const std::function<void(int)>& task) {
         std::vector<std::thread> pool;
         for (int k = 0; k < count; ++k)
           pool.emplace_back(task, k);
@@ -328,10 +343,18 @@ TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
           t.join();
       };
     }
-    mp::MortarProjector projector;
+    else
+    {
+      // The ranges one after the other (a runner without Run is one task).
+      options.Runner.Run = [](int count, const std::function<void(int)>& task) {
+        for (int k = 0; k < count; ++k)
+          task(k);
+      };
+    }
+    mp::MortarOperator projector;
     EXPECT_TRUE(projector.Build(target.View(), source.View(), &locator, options));
     ut.resize(static_cast<size_t>(target.NumberOfPoints()));
-    EXPECT_TRUE(projector.Project(us.data(), 1, ut.data(), std::nan("")));
+    EXPECT_TRUE(projector.Apply(us.data(), 1, ut.data(), std::nan("")));
     pieces = projector.GetPieces();
     return projector.GetStatistics().Pieces;
   };
@@ -380,13 +403,12 @@ TEST(MortarProjector, DirectSolverForFieldsConjugateGradientsLeaveUnconverged)
   for (int iterations : { 500, 0, 1 })
   {
     mp::BoxGridLocator locator(source.View());
-    mp::ProjectionOptions options;
-    options.KeepMixedMatrix = false;
-    options.MaxIterations = iterations;
-    mp::MortarProjector projector;
-    ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator, options, fields.data(), 4));
+    mp::MortarOperator projector;
+    ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator));
+    mp::SolveOptions solve;
+    solve.MaxIterations = iterations;
     std::vector<double> values(static_cast<size_t>(target.NumberOfPoints()) * 4);
-    ASSERT_TRUE(projector.Project(values.data(), std::nan("")));
+    ASSERT_TRUE(projector.Apply(fields.data(), 4, values.data(), std::nan(""), solve));
     results.push_back(values);
   }
   const std::vector<double> exact = mptest::Sample(target, Linear);
@@ -408,7 +430,10 @@ namespace
  * M_tt as the projector assembles it (the moments of a target cell's pieces
  * summed about its corner, or the element mass matrix when it is covered
  * whole) against the sum of the per-piece reference blocks
- * (Intersector::Integrate), entry by entry, relative to the largest entry.
+ * (mp::AddPieceBlocks), entry by entry, relative to the largest entry; with
+ * one task, and with up to three (where the target has 64 cells per task:
+ * the M_tt entries of points on cells of several tasks are summed after the
+ * tasks).
  */
 template <class Intersector>
 void ExpectTargetMassMatchesPieces(const TestMesh& target, const TestMesh& source, const std::string& what)
@@ -419,7 +444,8 @@ void ExpectTargetMassMatchesPieces(const TestMesh& target, const TestMesh& sourc
                  const typename Intersector::Piece& piece) {
     double mts[N][N] = {};
     double mtt[N][N] = {};
-    Intersector::Integrate(piece, t, s, mts, mtt);
+    mp::AddPieceBlocks<Intersector, mp::P1Space<Intersector::Dimension>,
+      mp::P1Space<Intersector::Dimension>>(piece, t, s, mts, mtt);
     for (int i = 0; i < N; ++i)
       for (int k = 0; k < N; ++k)
         reference[{ t.Points[i], t.Points[k] }] += mtt[i][k];
@@ -427,12 +453,16 @@ void ExpectTargetMassMatchesPieces(const TestMesh& target, const TestMesh& sourc
   mp::BoxGridLocator locator(source.View());
   mp::SearchStatistics stats;
   mp::AdvancingFrontSearch<Intersector>(target.View(), source.View(), locator, visit, stats);
-  for (bool keepMixed : { false, true })
+  for (int tasks : { 1, 3 })
   {
     mp::BoxGridLocator seeds(source.View());
-    mp::ProjectionOptions options;
-    options.KeepMixedMatrix = keepMixed;
-    mp::MortarProjector projector;
+    mp::OperatorOptions options;
+    options.Runner.Tasks = tasks;
+    options.Runner.Run = [](int count, const std::function<void(int)>& task) {
+      for (int k = 0; k < count; ++k)
+        task(k);
+    };
+    mp::MortarOperator projector;
     ASSERT_TRUE(projector.Build(target.View(), source.View(), &seeds, options)) << what;
     double largest = 0.0;
     for (const auto& entry : reference)
@@ -442,10 +472,10 @@ void ExpectTargetMassMatchesPieces(const TestMesh& target, const TestMesh& sourc
     {
       const Index i = entry.first.first;
       const Index k = entry.first.second;
-      if (projector.GetValidPoints()[i])
+      if (projector.GetValid()[i])
       {
-        ASSERT_NEAR(projector.TargetMassEntry(i, k), entry.second, 1e-12 * largest)
-          << what << " entry " << i << ", " << k << (keepMixed ? " (M_ts kept)" : "");
+        ASSERT_NEAR(TargetMassEntry(projector, i, k), entry.second, 1e-12 * largest)
+          << what << " entry " << i << ", " << k << " (" << tasks << " tasks)";
       }
     }
   }

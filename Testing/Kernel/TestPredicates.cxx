@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "Predicates.h"
+#include "Geometry/Predicates.h"
 
 #include <gtest/gtest.h>
 

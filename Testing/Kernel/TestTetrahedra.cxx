@@ -2,9 +2,10 @@
 // 3D: the tetrahedron intersector, the advancing front over tetrahedral
 // meshes (== brute force), completeness of the pieces, exactness on linear
 // fields and conservation.
-#include "MortarProjector.h"
+#include "Geometry/TetrahedronIntersector.h"
 #include "SearchComparison.h"
-#include "TetrahedronIntersector.h"
+#include "Transfer/MortarAssembler.h"
+#include "Transfer/MortarOperator.h"
 
 #include <gtest/gtest.h>
 
@@ -174,8 +175,10 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
       continue;
     ++wellShaped;
     double mtsG[4][4] = {}, mttG[4][4] = {}, mtsS[4][4] = {}, mttS[4][4] = {};
-    TetrahedronIntersector::Integrate(graph, a, b, mtsG, mttG);
-    TetrahedronIntersector::Integrate(split, a, b, mtsS, mttS);
+    mp::AddPieceBlocks<TetrahedronIntersector, mp::P1Space<3>, mp::P1Space<3>>(
+      graph, a, b, mtsG, mttG);
+    mp::AddPieceBlocks<TetrahedronIntersector, mp::P1Space<3>, mp::P1Space<3>>(
+      split, a, b, mtsS, mttS);
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j)
       {
@@ -199,7 +202,8 @@ TEST(Tetrahedra, MortarEntriesOfIdenticalTetrahedra)
   ASSERT_TRUE(TetrahedronIntersector::Intersect(a, b, p));
   double mts[4][4] = {};
   double mtt[4][4] = {};
-  const double v = TetrahedronIntersector::Integrate(p, a, b, mts, mtt);
+  const double v =
+    mp::AddPieceBlocks<TetrahedronIntersector, mp::P1Space<3>, mp::P1Space<3>>(p, a, b, mts, mtt);
   EXPECT_NEAR(v, m.CellVolume(0), 1e-15);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
@@ -345,18 +349,18 @@ TEST(Tetrahedra, ProjectionIsExactOnLinearFieldsAndConservative)
     const TestMesh target = mptest::CubeMesh(3 + n % 2, 3, 4, 0.15, rng());
     const TestMesh source = mptest::CubeMesh(5, 4 + n % 3, 3, 0.15, rng());
     mp::BoxGridLocator locator(source.View());
-    mp::MortarProjector projector;
+    mp::MortarOperator projector;
     ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator)) << projector.GetError();
-    EXPECT_EQ(projector.GetNumberOfValidPoints(), target.NumberOfPoints());
+    EXPECT_EQ(projector.GetNumberOfValid(), target.NumberOfPoints());
     EXPECT_NEAR(projector.GetCoveredMeasure(), 1.0, 1e-13);
     std::vector<double> ut(static_cast<size_t>(target.NumberOfPoints()));
     const auto lin = mptest::Sample3D(source, Linear3);
-    projector.Project(lin.data(), 1, ut.data(), std::nan(""));
+    projector.Apply(lin.data(), 1, ut.data(), std::nan(""));
     const auto exact = mptest::Sample3D(target, Linear3);
     for (Index i = 0; i < target.NumberOfPoints(); ++i)
       ASSERT_NEAR(ut[i], exact[i], 1e-12) << "case " << n << " point " << i;
     const auto smooth = mptest::Sample3D(source, Smooth3);
-    projector.Project(smooth.data(), 1, ut.data(), std::nan(""));
+    projector.Apply(smooth.data(), 1, ut.data(), std::nan(""));
     const double is = source.Integral(smooth);
     EXPECT_NEAR(target.Integral(ut), is, 1e-13 * std::fabs(is));
   }
@@ -367,7 +371,7 @@ TEST(Tetrahedra, MixedDimensionsAreRejected)
   const TestMesh tets = mptest::CubeMesh(2, 2, 2, 0.1, 8);
   const TestMesh tris = mptest::GridMesh(3, 3, 0.1, 9);
   mp::BoxGridLocator locator(tris.View());
-  mp::MortarProjector projector;
+  mp::MortarOperator projector;
   EXPECT_FALSE(projector.Build(tets.View(), tris.View(), &locator));
   EXPECT_NE(projector.GetError().find("different dimensions"), std::string::npos);
 }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "TriangleIntersector.h"
+#include "Geometry/TriangleIntersector.h"
+#include "Transfer/MortarAssembler.h"
 
 #include <gtest/gtest.h>
 
@@ -231,7 +232,8 @@ TEST(TriangleIntersector, MortarEntriesOfIdenticalTriangles)
   Pair p(t, t);
   double mts[3][3] = {};
   double mtt[3][3] = {};
-  const double area = TriangleIntersector::Integrate(p.Piece, p.T, p.S, mts, mtt);
+  const double area = mp::AddPieceBlocks<TriangleIntersector, mp::P1Space<2>, mp::P1Space<2>>(
+    p.Piece, p.T, p.S, mts, mtt);
   EXPECT_NEAR(area, TriangleArea(t), 1e-15);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

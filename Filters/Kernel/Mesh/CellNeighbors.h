@@ -111,7 +111,7 @@ Index MatchFaces(
 }
 
 /**
- * Fills `neighbors` with (Dimension + 1) * NumberOfCells entries: for cell c
+ * Fills `neighbors` with (CellDimension + 1) * NumberOfCells entries: for cell c
  * and face k (opposite corner k) the cell across, or -1. Returns the number
  * of non-manifold faces found. The mesh must have fewer than 2^31 cells.
  */

@@ -28,11 +28,11 @@ struct TaskRunner
   /// one after the other.
   std::function<void(int count, const std::function<void(int)>& task)> Run;
 
-  /// Tasks for `n` items of work, at least `grain` items per task.
+  /// Tasks for `n` items of work, at least `grain` items per task (run one
+  /// after the other when there is no Run).
   int TasksFor(Index n, Index grain) const
   {
-    return this->Run ? static_cast<int>(std::max<Index>(1, std::min<Index>(this->Tasks, n / grain)))
-                     : 1;
+    return static_cast<int>(std::max<Index>(1, std::min<Index>(this->Tasks, n / grain)));
   }
   /// Runs task(0..count-1), through Run when count > 1.
   void RunAll(int count, const std::function<void(int)>& task) const
@@ -63,7 +63,7 @@ struct TaskRunner
       return body(Index(0), n);
     }
     std::vector<Sum> partial(static_cast<size_t>(tasks));
-    this->Run(tasks, [&](int k) { partial[k] = body(n * k / tasks, n * (k + 1) / tasks); });
+    this->RunAll(tasks, [&](int k) { partial[k] = body(n * k / tasks, n * (k + 1) / tasks); });
     Sum sum = partial[0];
     for (int k = 1; k < tasks; ++k)
     {

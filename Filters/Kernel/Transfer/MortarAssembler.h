@@ -12,7 +12,10 @@
  * after the other), the covered part's moments give the cell's target mass
  * block at once (the exact element mass matrix when the cell is covered
  * whole), added into M_tt, and the cell's mixed block is appended to the
- * task's MixedBlocks (MixedMatrix.h).
+ * task's MixedBlocks (MixedMatrix.h). For a single use the assembler can
+ * instead sum the right-hand sides M_ts u_s of given fields (Fields): the
+ * source field is one affine function on each piece, integrated against
+ * the target functions, and M_ts is never formed.
  *
  * With concurrent tasks, target functions whose cells belong to several
  * tasks (Shared) are not written into M_tt directly but collected in
@@ -84,6 +87,13 @@ struct MortarAssembler
   Index Count = 0;         ///< pieces of positive measure
   const char* Shared = nullptr; ///< per target function; null for a single task
   std::vector<std::pair<Index, double>> Deferred; ///< (position in M_tt, value)
+  /// Right-hand sides instead of blocks: the source fields (source
+  /// functions x Components) and their sums (target functions x Components).
+  const double* Fields = nullptr;
+  int Components = 0;
+  double* Rhs = nullptr;
+  std::vector<std::pair<Index, double>> DeferredRhs; ///< (position in Rhs, value)
+  std::vector<double> CellRhs; ///< the current cell's, Nt x Components
 
   Index Current = -1;  ///< the target cell whose pieces are coming
   Cell CurrentCell;
@@ -127,6 +137,27 @@ struct MortarAssembler
         }
       }
     }
+    if (this->Fields)
+    {
+      const int nc = this->Components;
+      for (int i = 0; i < Nt; ++i)
+      {
+        const bool shared = this->Shared && this->Shared[dofs[i]];
+        for (int c = 0; c < nc; ++c)
+        {
+          const Index position = dofs[i] * nc + c;
+          if (shared)
+          {
+            this->DeferredRhs.emplace_back(position, this->CellRhs[i * nc + c]);
+          }
+          else
+          {
+            this->Rhs[position] += this->CellRhs[i * nc + c];
+          }
+        }
+      }
+      return;
+    }
     MixedBlocks& b = *this->Blocks;
     b.Rows.insert(b.Rows.end(), dofs, dofs + Nt);
     b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
@@ -147,6 +178,7 @@ struct MortarAssembler
       }
       this->BlockColumns.clear();
       this->BlockValues.clear();
+      this->CellRhs.assign(static_cast<size_t>(Nt) * this->Components, 0.0);
     }
     double o[D];
     double M[K][K];
@@ -164,10 +196,21 @@ struct MortarAssembler
     double ls[Ns][K];
     TargetSpace::Basis(t, o, lt);
     SourceSpace::Basis(s, o, ls);
-    double mts[Nt][Ns] = {};
-    AddMixedBlock<Nt, Ns, K>(lt, ls, M, mts);
     Index dofs[Ns];
     SourceSpace::CellDofs(*this->Source, s, dofs);
+    if (this->Fields)
+    {
+      const double* u[Ns];
+      for (int j = 0; j < Ns; ++j)
+      {
+        u[j] = this->Fields + dofs[j] * this->Components;
+      }
+      AddFieldBlock<Nt, Ns, K>(lt, ls, M, u, this->Components, this->CellRhs.data());
+      this->Finish(t, s, piece);
+      return;
+    }
+    double mts[Nt][Ns] = {};
+    AddMixedBlock<Nt, Ns, K>(lt, ls, M, mts);
     for (int j = 0; j < Ns; ++j)
     {
       // The block's column of source function dofs[j] (a few per cell).
@@ -188,6 +231,12 @@ struct MortarAssembler
         values[i] += mts[i][j];
       }
     }
+    this->Finish(t, s, piece);
+  }
+
+  /// Counts a piece of positive measure, and keeps it when asked.
+  void Finish(const Cell& t, const Cell& s, const typename Intersector::Piece& piece)
+  {
     ++this->Count;
     if (this->Pieces)
     {

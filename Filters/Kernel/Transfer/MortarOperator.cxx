@@ -53,6 +53,7 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   this->Options.Runner.Tasks = std::max(1, options.Runner.Tasks);
   this->TargetMass = CsrMatrix();
   this->MixedMass = CsrMatrix();
+  LargeVector<double>().swap(this->Rhs);
   this->Solver.reset();
   this->Statistics = SearchStatistics();
   this->Timings = OperatorTimings();
@@ -96,6 +97,12 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   }
   const Index rows = SpaceSize(options.TargetSpace, target);
   const Index columns = SpaceSize(options.SourceSpace, source);
+  this->SourceFunctions = columns;
+  if (options.FieldComponents < 0 || (options.FieldComponents > 0 && !options.Fields))
+  {
+    this->Error = "fields to project: a pointer and a number of components are needed";
+    return false;
+  }
   if (std::max(rows, columns) > std::numeric_limits<Column>::max())
   {
     this->Error = "a space of " + std::to_string(std::max(rows, columns)) +
@@ -179,6 +186,11 @@ void MortarOperator::Assemble(
     }
   }
   using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
+  const bool single = this->Options.Fields != nullptr;
+  if (single)
+  {
+    this->Rhs.assign(static_cast<size_t>(rows) * this->Options.FieldComponents, 0.0);
+  }
   std::vector<Assembler> assemblers(static_cast<size_t>(tasks));
   std::vector<MixedBlocks> blocks(static_cast<size_t>(tasks));
   std::vector<IntersectionPieces> pieces(static_cast<size_t>(tasks > 1 ? tasks : 0));
@@ -188,25 +200,33 @@ void MortarOperator::Assemble(
     a.Target = &target;
     a.Source = &source;
     a.Mass = &this->TargetMass;
-    // Room for the blocks of the range's cells at a generous estimate of
-    // columns per cell (the corners of the source cells meeting it): pages
-    // of an untouched reservation cost nothing, and the buffers never grow
-    // by copying on ordinary meshes.
-    MixedBlocks& b = blocks[k];
-    const Index rangeCells = RangeBegin(cells, k + 1, tasks) - RangeBegin(cells, k, tasks);
-    const Index columnsPerCell = SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
-    b.RowsPerBlock = TargetSpace::Dofs;
-    b.Rows.reserve(static_cast<size_t>(rangeCells * TargetSpace::Dofs));
-    b.Start.reserve(static_cast<size_t>(rangeCells + 1));
-    b.Columns.reserve(static_cast<size_t>(rangeCells * columnsPerCell));
-    b.Values.reserve(static_cast<size_t>(rangeCells * columnsPerCell * TargetSpace::Dofs));
-    a.Blocks = &b;
     a.Shared = tasks > 1 ? shared.data() : nullptr;
     a.CoveredFraction = this->CoveredFraction.data();
     if (this->Options.KeepPieces)
     {
       a.Pieces = tasks > 1 ? &pieces[k] : &this->Pieces;
     }
+    MixedBlocks& b = blocks[k];
+    b.RowsPerBlock = TargetSpace::Dofs;
+    a.Blocks = &b;
+    if (single)
+    {
+      // Right-hand sides only: no blocks.
+      a.Fields = this->Options.Fields;
+      a.Components = this->Options.FieldComponents;
+      a.Rhs = this->Rhs.data();
+      continue;
+    }
+    // Room for the blocks of the range's cells at a generous estimate of
+    // columns per cell (the corners of the source cells meeting it): pages
+    // of an untouched reservation cost nothing, and the buffers never grow
+    // by copying on ordinary meshes.
+    const Index rangeCells = RangeBegin(cells, k + 1, tasks) - RangeBegin(cells, k, tasks);
+    const Index columnsPerCell = SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
+    b.Rows.reserve(static_cast<size_t>(rangeCells * TargetSpace::Dofs));
+    b.Start.reserve(static_cast<size_t>(rangeCells + 1));
+    b.Columns.reserve(static_cast<size_t>(rangeCells * columnsPerCell));
+    b.Values.reserve(static_cast<size_t>(rangeCells * columnsPerCell * TargetSpace::Dofs));
   }
   this->Timings.Assembly = Seconds(start);
 
@@ -225,6 +245,10 @@ void MortarOperator::Assemble(
     {
       this->TargetMass.Values[entry.first] += entry.second;
     }
+    for (const auto& entry : a.DeferredRhs)
+    {
+      this->Rhs[entry.first] += entry.second;
+    }
     if (tasks > 1)
     {
       this->Pieces.Append(pieces[k]);
@@ -238,7 +262,10 @@ void MortarOperator::Assemble(
   this->Timings.Search = Seconds(start);
 
   start = std::chrono::steady_clock::now();
-  AssembleMixedMatrix(blocks, rows, SpaceSize(SourceSpace::Type, source), runner, this->MixedMass);
+  if (!single)
+  {
+    AssembleMixedMatrix(blocks, rows, SpaceSize(SourceSpace::Type, source), runner, this->MixedMass);
+  }
   // A function is valid when its support meets the source: its diagonal
   // entry of the covered mass matrix is positive. An invalid function's
   // whole row is zero (no piece touches its support); a 1 on the diagonal
@@ -270,11 +297,23 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     this->Timings.Solve = Seconds(start);
     return this->Solver != nullptr || components <= 0;
   }
-  LargeVector<double> rhs(static_cast<size_t>(n) * components);
-  this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
-    this->MixedMass.MultiplyRows(sourceValues, rhs.data(), components, begin, end);
-    return 0.0;
-  });
+  LargeVector<double> rhs;
+  if (this->Options.Fields)
+  {
+    if (sourceValues != this->Options.Fields || components != this->Options.FieldComponents)
+    {
+      return false; // built for other fields: M_ts was not stored
+    }
+    rhs = this->Rhs;
+  }
+  else
+  {
+    rhs.resize(static_cast<size_t>(n) * components);
+    this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
+      this->MixedMass.MultiplyRows(sourceValues, rhs.data(), components, begin, end);
+      return 0.0;
+    });
+  }
   if (hooks.Exchange)
   {
     hooks.Exchange(rhs.data(), components);
@@ -306,7 +345,8 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
 
 std::size_t MortarOperator::MemoryBytes() const
 {
-  return this->TargetMass.MemoryBytes() + this->MixedMass.MemoryBytes() + this->Valid.capacity() +
+  return this->TargetMass.MemoryBytes() + this->MixedMass.MemoryBytes() +
+    this->Rhs.capacity() * sizeof(double) + this->Valid.capacity() +
     this->CoveredFraction.capacity() * sizeof(double) +
     this->Pieces.Points.capacity() * sizeof(double) +
     (this->Pieces.Offsets.capacity() + this->Pieces.TargetCell.capacity() +

@@ -26,6 +26,12 @@
  * rows, target functions x source functions). Apply() then projects any
  * field, as often as wanted: M_ts u_s, then the block conjugate gradients
  * (BlockCG.h). Both matrices can be read out.
+ *
+ * For a single use, the fields can be named at Build() instead
+ * (OperatorOptions::Fields): their right-hand sides M_ts u_s are summed
+ * during the search and M_ts is not stored, which saves the time and the
+ * memory of assembling it (about a third of a 2D run); Apply() then
+ * projects those fields only.
  */
 #ifndef MeshProjection_Kernel_MortarOperator_h
 #define MeshProjection_Kernel_MortarOperator_h
@@ -51,6 +57,15 @@ struct OperatorOptions
   SpaceType TargetSpace = SpaceType::P1;
   SpaceType SourceSpace = SpaceType::P1;
   bool KeepPieces = false; ///< store the intersection pieces (GetPieces)
+  /**
+   * Single use: the source fields to project (source functions x
+   * FieldComponents, row-major; they must outlive Build). Their right-hand
+   * sides are summed during the search and M_ts is not stored: Apply()
+   * then takes these fields only. Null (default): M_ts is assembled and
+   * Apply() takes any field.
+   */
+  const double* Fields = nullptr;
+  int FieldComponents = 0;
   /// Concurrent tasks for the search, the assembly and the solve, and how
   /// they run (default: one, serial).
   TaskRunner Runner;
@@ -87,19 +102,22 @@ public:
    * onto the target functions (target functions x components, row-major).
    * Invalid target functions get `fill`. With solve.StartFromX the solve
    * starts from the values in targetValues (e.g. the previous step's).
-   * False when the system could not be solved.
+   * False when the system could not be solved, or when the operator was
+   * built for other fields (OperatorOptions::Fields).
    */
   bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
     const SolveOptions& solve = SolveOptions(), const SolverHooks& hooks = SolverHooks()) const;
 
   /// M_tt over the covered part (rows of invalid functions: 1 on the diagonal).
   const CsrMatrix& GetTargetMass() const { return this->TargetMass; }
-  /// M_ts: target functions x source functions.
+  /// M_ts: target functions x source functions (empty when built for given Fields).
   const CsrMatrix& GetMixedMass() const { return this->MixedMass; }
+  /// Whether M_ts was assembled (Apply takes any field).
+  bool HasMixedMass() const { return this->Options.Fields == nullptr; }
   SpaceType GetTargetSpace() const { return this->Options.TargetSpace; }
   SpaceType GetSourceSpace() const { return this->Options.SourceSpace; }
   Index GetNumberOfTargetFunctions() const { return this->TargetMass.Rows; }
-  Index GetNumberOfSourceFunctions() const { return this->MixedMass.Columns; }
+  Index GetNumberOfSourceFunctions() const { return this->SourceFunctions; }
 
   /// Per target function: 1 if its support meets the source, else 0.
   const std::vector<char>& GetValid() const { return this->Valid; }
@@ -126,6 +144,8 @@ private:
   OperatorOptions Options;
   CsrMatrix TargetMass;
   CsrMatrix MixedMass;
+  LargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
+  Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
   std::vector<char> Valid;
   Index NumberOfValid = 0;

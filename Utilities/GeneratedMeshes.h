@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Small triangle meshes for the kernel tests: jittered grids with random
+// Generated meshes for the kernel tests and the benchmark (no VTK): jittered grids with random
 // diagonals (optionally with quads cut out, for non-convex and holed
 // domains), uniform refinement, rigid motions. No VTK.
-#ifndef MeshProjection_Testing_TestMeshes_h
-#define MeshProjection_Testing_TestMeshes_h
+#ifndef MeshProjection_Utilities_GeneratedMeshes_h
+#define MeshProjection_Utilities_GeneratedMeshes_h
 
-#include "CandidateLocator.h"
-#include "CellNeighbors.h"
-#include "MeshView.h"
-#include "TriangleIntersector.h"
+#include "Geometry/TriangleIntersector.h"
+#include "Mesh/CellNeighbors.h"
+#include "Mesh/MeshView.h"
+#include "Search/CandidateLocator.h"
 
 #include <cmath>
 #include <functional>
@@ -38,7 +38,8 @@ struct TestMesh
   mp::MeshView View(bool withNeighbors = true) const
   {
     mp::MeshView v;
-    v.Dimension = this->Dimension;
+    v.CellDimension = this->Dimension;
+    v.SpaceDimension = this->Dimension;
     v.Points = this->Points.data();
     v.NumberOfPoints = this->NumberOfPoints();
     v.Connectivity = this->Cells.data();
