@@ -689,6 +689,64 @@ TEST(Spaces, ConcurrentTasksGiveTheSerialMatrices)
   }
 }
 
+// Single use (OperatorOptions::Fields): the right-hand sides summed during
+// the search, serially and in 3 concurrent tasks (rows shared by tasks
+// deferred), give the assembled operator's projection; such an operator
+// refuses other fields and holds no M_ts.
+TEST(Spaces, SingleUseFieldsGiveTheAssembledProjection)
+{
+  for (int d : { 2, 3 })
+  {
+    const auto meshes = d == 2
+      ? std::make_pair(mptest::GridMesh(20, 16, 0.25, 151), mptest::GridMesh(17, 19, 0.25, 152))
+      : std::make_pair(mptest::CubeMesh(4, 4, 4, 0.15, 153), mptest::CubeMesh(5, 3, 4, 0.15, 154));
+    for (const SpacePair& pair : Pairs)
+    {
+      const std::string what = std::to_string(d) + "D " + pair.Name;
+      const TestMesh& target = meshes.first;
+      const TestMesh& source = meshes.second;
+      // Two fields side by side.
+      const std::vector<double> a = Field(source, pair.Source, 0);
+      const std::vector<double> b = Field(source, pair.Source, 1);
+      const Index ns = Size(source, pair.Source);
+      const Index nt = Size(target, pair.Target);
+      std::vector<double> fields(static_cast<size_t>(2 * ns));
+      for (Index j = 0; j < ns; ++j)
+      {
+        fields[2 * j] = a[j];
+        fields[2 * j + 1] = b[j];
+      }
+      Operator assembled(target, source, pair.Target, pair.Source);
+      ASSERT_TRUE(assembled.Ok) << what;
+      std::vector<double> expected(static_cast<size_t>(2 * nt));
+      ASSERT_TRUE(assembled.Op.Apply(fields.data(), 2, expected.data(), -7.0)) << what;
+      for (int tasks : { 1, 3 })
+      {
+        mp::BoxGridLocator locator(source.View());
+        mp::OperatorOptions options;
+        options.TargetSpace = pair.Target;
+        options.SourceSpace = pair.Source;
+        options.Fields = fields.data();
+        options.FieldComponents = 2;
+        options.Runner.Tasks = tasks;
+        options.Runner.Run = RunInThreads;
+        mp::MortarOperator single;
+        ASSERT_TRUE(single.Build(target.View(), source.View(), &locator, options)) << what;
+        EXPECT_FALSE(single.HasMixedMass()) << what;
+        EXPECT_EQ(single.GetMixedMass().NonZeros(), 0) << what;
+        std::vector<double> values(static_cast<size_t>(2 * nt));
+        ASSERT_TRUE(single.Apply(fields.data(), 2, values.data(), -7.0)) << what;
+        for (size_t k = 0; k < values.size(); ++k)
+        {
+          ASSERT_NEAR(values[k], expected[k], 1e-12) << what << " tasks " << tasks << " entry " << k;
+        }
+        // Other fields cannot be projected without M_ts.
+        EXPECT_FALSE(single.Apply(a.data(), 1, values.data(), -7.0)) << what;
+      }
+    }
+  }
+}
+
 namespace
 {
 /// The points of `m` moved by a fixed rotation (about z by 0.7, then about
