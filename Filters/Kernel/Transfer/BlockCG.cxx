@@ -184,12 +184,9 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   int iteration = 0;
   for (; iteration < options.MaxIterations && open > 0; ++iteration)
   {
-    this->Runner.ForRanges(n, [&](Index begin, Index end) {
-      this->A.Multiply<FixedC>(p.data(), q.data(), c, begin, end);
-      return 0.0;
-    });
-    exchange(q.data(), c);
-    Sums pq = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+    // q = A p and p.q: in one pass over each range (q still in cache)
+    // unless shared rows must be completed in between.
+    auto dot = [&](Index begin, Index end) {
       Sums part(c);
       for (Index i = begin; i < end; ++i)
       {
@@ -203,7 +200,24 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         }
       }
       return part;
-    });
+    };
+    Sums pq;
+    if (hooks.Exchange)
+    {
+      this->Runner.ForRanges(n, [&](Index begin, Index end) {
+        this->A.Multiply<FixedC>(p.data(), q.data(), c, begin, end);
+        return 0.0;
+      });
+      exchange(q.data(), c);
+      pq = this->Runner.ForRanges(n, dot);
+    }
+    else
+    {
+      pq = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+        this->A.Multiply<FixedC>(p.data(), q.data(), c, begin, end);
+        return dot(begin, end);
+      });
+    }
     reduce(pq);
     for (int k = 0; k < c; ++k)
     {

@@ -297,26 +297,36 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     this->Timings.Solve = Seconds(start);
     return this->Solver != nullptr || components <= 0;
   }
-  LargeVector<double> rhs;
+  // The right-hand sides: summed during the search for the build's fields,
+  // else M_ts u_s (completed across parts by the Exchange hook).
+  LargeVector<double> product;
+  const double* rhs = this->Rhs.data();
   if (this->Options.Fields)
   {
     if (sourceValues != this->Options.Fields || components != this->Options.FieldComponents)
     {
       return false; // built for other fields: M_ts was not stored
     }
-    rhs = this->Rhs;
+    if (hooks.Exchange)
+    {
+      product.assign(this->Rhs.begin(), this->Rhs.end());
+    }
   }
   else
   {
-    rhs.resize(static_cast<size_t>(n) * components);
+    product.resize(static_cast<size_t>(n) * components);
     this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
-      this->MixedMass.MultiplyRows(sourceValues, rhs.data(), components, begin, end);
+      this->MixedMass.MultiplyRows(sourceValues, product.data(), components, begin, end);
       return 0.0;
     });
   }
   if (hooks.Exchange)
   {
-    hooks.Exchange(rhs.data(), components);
+    hooks.Exchange(product.data(), components);
+  }
+  if (!product.empty())
+  {
+    rhs = product.data();
   }
   if (solve.StartFromX)
   {
@@ -331,7 +341,7 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
       }
     }
   }
-  const bool ok = this->Solver->Solve(rhs.data(), targetValues, components, solve, hooks);
+  const bool ok = this->Solver->Solve(rhs, targetValues, components, solve, hooks);
   for (Index i = 0; i < n; ++i)
   {
     if (!this->Valid[i])
