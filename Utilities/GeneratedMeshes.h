@@ -316,6 +316,22 @@ inline std::vector<double> Sample3D(
   }
   return u;
 }
+/// The triangle (0,0),(1,0),(0,1) alone; its source split at the midpoint
+/// m = (1/2,1/2) of its hypotenuse: S0 = (0,(1,0),m), S1 = (0,m,(0,1)).
+/// Source points: 0 (0,0), 1 (1,0), 2 (0,1), 3 m.
+inline std::pair<TestMesh, TestMesh> SplitTriangle()
+{
+  TestMesh target;
+  target.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+  target.Cells = { 0, 1, 2 };
+  target.Finish();
+  TestMesh source;
+  source.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5, 0.5, 0 };
+  source.Cells = { 0, 1, 3, 0, 3, 2 };
+  source.Finish();
+  return { target, source };
+}
+
 } // namespace mptest
 
 #endif

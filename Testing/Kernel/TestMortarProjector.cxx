@@ -73,14 +73,9 @@ bool LShapeWithHole(double x, double y)
 // M_ts(origin, origin) = 1/12, M_ts(origin, m) = 1/24, M_ts((1,0), m) = 1/16.
 TEST(MortarProjector, HandComputedEntries)
 {
-  TestMesh target;
-  target.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
-  target.Cells = { 0, 1, 2 };
-  target.Finish();
-  TestMesh source;
-  source.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5, 0.5, 0 };
-  source.Cells = { 0, 1, 3, 0, 3, 2 };
-  source.Finish();
+  const auto split = mptest::SplitTriangle();
+  const TestMesh& target = split.first;
+  const TestMesh& source = split.second;
   Projection p(target, source);
   ASSERT_TRUE(p.Ok) << p.Projector.GetError();
   const auto& m = p.Projector;

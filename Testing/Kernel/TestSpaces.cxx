@@ -116,20 +116,22 @@ std::pair<TestMesh, TestMesh> SameDomain(int d)
   return { mptest::CubeMesh(3, 4, 3, 0.15, 103), mptest::CubeMesh(4, 3, 5, 0.15, 104) };
 }
 
-/// The triangle (0,0),(1,0),(0,1) alone; its source split at the midpoint
-/// m = (1/2,1/2) of its hypotenuse: S0 = (0,(1,0),m), S1 = (0,m,(0,1)).
-/// Source points: 0 (0,0), 1 (1,0), 2 (0,1), 3 m.
-std::pair<TestMesh, TestMesh> SplitTriangle()
+/// Builds the operator of every space pair on SameDomain(2) and
+/// SameDomain(3), and hands it to check(meshes, pair, operator, what).
+template <class Check>
+void ForEveryPairOnSameDomains(const Check& check)
 {
-  TestMesh target;
-  target.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
-  target.Cells = { 0, 1, 2 };
-  target.Finish();
-  TestMesh source;
-  source.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5, 0.5, 0 };
-  source.Cells = { 0, 1, 3, 0, 3, 2 };
-  source.Finish();
-  return { target, source };
+  for (int d : { 2, 3 })
+  {
+    const auto meshes = SameDomain(d);
+    for (const SpacePair& pair : Pairs)
+    {
+      const std::string what = std::to_string(d) + "D " + pair.Name;
+      Operator p(meshes.first, meshes.second, pair.Target, pair.Source);
+      ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
+      check(meshes, pair, p, what);
+    }
+  }
 }
 
 /// The tetrahedron 0,e1,e2,e3 alone; its source split by the plane x = y
@@ -223,7 +225,7 @@ void RunInThreads(int count, const std::function<void(int)>& task)
 //    MortarProjector.HandComputedEntries, e.g. int x * 2min(x, y) = 1/16.
 TEST(Spaces, HandComputedEntries2D)
 {
-  const auto meshes = SplitTriangle();
+  const auto meshes = mptest::SplitTriangle();
   const double tol = 1e-15;
   const std::vector<std::vector<double>> p1Mass = { { 1.0 / 12, 1.0 / 24, 1.0 / 24 },
     { 1.0 / 24, 1.0 / 12, 1.0 / 24 }, { 1.0 / 24, 1.0 / 24, 1.0 / 12 } };
@@ -352,45 +354,31 @@ TEST(Spaces, HandComputedEntries3D)
 // (b) Constants are reproduced by every pair (P0 and P1 hold them).
 TEST(Spaces, ConstantsAreReproduced)
 {
-  for (int d : { 2, 3 })
-  {
-    const auto meshes = SameDomain(d);
-    for (const SpacePair& pair : Pairs)
+  ForEveryPairOnSameDomains([](const std::pair<TestMesh, TestMesh>& meshes, const SpacePair& pair,
+                              Operator& p, const std::string& what) {
+    ASSERT_EQ(p.Op.GetNumberOfSourceFunctions(), Size(meshes.second, pair.Source)) << what;
+    ASSERT_EQ(p.Op.GetNumberOfTargetFunctions(), Size(meshes.first, pair.Target)) << what;
+    EXPECT_EQ(p.Op.GetNumberOfValid(), Size(meshes.first, pair.Target)) << what;
+    const std::vector<double> us(static_cast<size_t>(Size(meshes.second, pair.Source)), 2.5);
+    const auto ut = p.Apply(us);
+    for (size_t i = 0; i < ut.size(); ++i)
     {
-      const std::string what = std::to_string(d) + "D " + pair.Name;
-      Operator p(meshes.first, meshes.second, pair.Target, pair.Source);
-      ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
-      ASSERT_EQ(p.Op.GetNumberOfSourceFunctions(), Size(meshes.second, pair.Source)) << what;
-      ASSERT_EQ(p.Op.GetNumberOfTargetFunctions(), Size(meshes.first, pair.Target)) << what;
-      EXPECT_EQ(p.Op.GetNumberOfValid(), Size(meshes.first, pair.Target)) << what;
-      const std::vector<double> us(static_cast<size_t>(Size(meshes.second, pair.Source)), 2.5);
-      const auto ut = p.Apply(us);
-      for (size_t i = 0; i < ut.size(); ++i)
-      {
-        ASSERT_NEAR(ut[i], 2.5, 1e-13) << what << " function " << i;
-      }
+      ASSERT_NEAR(ut[i], 2.5, 1e-13) << what << " function " << i;
     }
-  }
+  });
 }
 
 // (c) The integral of the projection equals the source's, for every pair.
 TEST(Spaces, IntegralsAreConserved)
 {
-  for (int d : { 2, 3 })
-  {
-    const auto meshes = SameDomain(d);
-    for (const SpacePair& pair : Pairs)
-    {
-      const std::string what = std::to_string(d) + "D " + pair.Name;
-      Operator p(meshes.first, meshes.second, pair.Target, pair.Source);
-      ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
-      const auto us = Field(meshes.second, pair.Source, 0);
-      const auto ut = p.Apply(us);
-      const double is = Integral(meshes.second, pair.Source, us);
-      ASSERT_GT(std::fabs(is), 0.1) << what;
-      EXPECT_NEAR(Integral(meshes.first, pair.Target, ut), is, 1e-13 * std::fabs(is)) << what;
-    }
-  }
+  ForEveryPairOnSameDomains([](const std::pair<TestMesh, TestMesh>& meshes, const SpacePair& pair,
+                              Operator& p, const std::string& what) {
+    const auto us = Field(meshes.second, pair.Source, 0);
+    const auto ut = p.Apply(us);
+    const double is = Integral(meshes.second, pair.Source, us);
+    ASSERT_GT(std::fabs(is), 0.1) << what;
+    EXPECT_NEAR(Integral(meshes.first, pair.Target, ut), is, 1e-13 * std::fabs(is)) << what;
+  });
 }
 
 // (d) Built once, applied many times: two fields one by one and side by
@@ -398,64 +386,57 @@ TEST(Spaces, IntegralsAreConserved)
 // costs no more iterations.
 TEST(Spaces, BuiltOnceAppliedManyTimes)
 {
-  for (int d : { 2, 3 })
-  {
-    const auto meshes = SameDomain(d);
-    for (const SpacePair& pair : Pairs)
+  ForEveryPairOnSameDomains([](const std::pair<TestMesh, TestMesh>& meshes, const SpacePair& pair,
+                              Operator& p, const std::string& what) {
+    const auto f = Field(meshes.second, pair.Source, 0);
+    const auto g = Field(meshes.second, pair.Source, 1);
+    std::vector<double> fg;
+    for (size_t j = 0; j < f.size(); ++j)
     {
-      const std::string what = std::to_string(d) + "D " + pair.Name;
-      Operator p(meshes.first, meshes.second, pair.Target, pair.Source);
-      ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
-      const auto f = Field(meshes.second, pair.Source, 0);
-      const auto g = Field(meshes.second, pair.Source, 1);
-      std::vector<double> fg;
-      for (size_t j = 0; j < f.size(); ++j)
-      {
-        fg.insert(fg.end(), { f[j], g[j] });
-      }
-      const auto a = p.Apply(f);
-      const auto b = p.Apply(g);
-      const auto ab = p.Apply(fg, 2);
-      const Index n = p.Op.GetNumberOfTargetFunctions();
-      ASSERT_EQ(ab.size(), size_t(2 * n)) << what;
-      for (Index i = 0; i < n; ++i)
-      {
-        ASSERT_NEAR(ab[2 * i], a[i], 1e-14) << what << " function " << i;
-        ASSERT_NEAR(ab[2 * i + 1], b[i], 1e-14) << what << " function " << i;
-      }
-      // Again from the previous result.
-      mp::SolveOptions warm;
-      warm.StartFromX = true;
-      std::vector<double> again = a;
-      ASSERT_TRUE(p.Op.Apply(f.data(), 1, again.data(), std::nan(""), warm)) << what;
-      for (Index i = 0; i < n; ++i)
-      {
-        ASSERT_NEAR(again[i], a[i], 1e-13) << what << " function " << i;
-      }
-      // The iterations, counted on the operator's own M_tt.
-      const mp::CsrMatrix& mass = p.Op.GetTargetMass();
-      const mp::BlockCG cg(mass, mp::TaskRunner());
-      std::vector<double> rhs(static_cast<size_t>(n));
-      p.Op.GetMixedMass().MultiplyRows(f.data(), rhs.data(), 1, 0, n);
-      std::vector<char> converged;
-      std::vector<double> cold(static_cast<size_t>(n), 0.0);
-      const int coldIterations = cg.Iterate(rhs.data(), cold.data(), 1, mp::SolveOptions(), converged);
-      ASSERT_TRUE(converged[0]) << what;
-      std::vector<double> restarted = a;
-      const int warmIterations = cg.Iterate(rhs.data(), restarted.data(), 1, warm, converged);
-      ASSERT_TRUE(converged[0]) << what;
-      EXPECT_LE(warmIterations, coldIterations) << what;
-      if (pair.Target == SpaceType::P1)
-      {
-        EXPECT_GT(coldIterations, 0) << what; // M_tt is not diagonal
-      }
-      for (Index i = 0; i < n; ++i)
-      {
-        ASSERT_NEAR(cold[i], a[i], 1e-13) << what << " function " << i;
-        ASSERT_NEAR(restarted[i], a[i], 1e-13) << what << " function " << i;
-      }
+      fg.insert(fg.end(), { f[j], g[j] });
     }
-  }
+    const auto a = p.Apply(f);
+    const auto b = p.Apply(g);
+    const auto ab = p.Apply(fg, 2);
+    const Index n = p.Op.GetNumberOfTargetFunctions();
+    ASSERT_EQ(ab.size(), size_t(2 * n)) << what;
+    for (Index i = 0; i < n; ++i)
+    {
+      ASSERT_NEAR(ab[2 * i], a[i], 1e-14) << what << " function " << i;
+      ASSERT_NEAR(ab[2 * i + 1], b[i], 1e-14) << what << " function " << i;
+    }
+    // Again from the previous result.
+    mp::SolveOptions warm;
+    warm.StartFromX = true;
+    std::vector<double> again = a;
+    ASSERT_TRUE(p.Op.Apply(f.data(), 1, again.data(), std::nan(""), warm)) << what;
+    for (Index i = 0; i < n; ++i)
+    {
+      ASSERT_NEAR(again[i], a[i], 1e-13) << what << " function " << i;
+    }
+    // The iterations, counted on the operator's own M_tt.
+    const mp::CsrMatrix& mass = p.Op.GetTargetMass();
+    const mp::BlockCG cg(mass, mp::TaskRunner());
+    std::vector<double> rhs(static_cast<size_t>(n));
+    p.Op.GetMixedMass().MultiplyRows(f.data(), rhs.data(), 1, 0, n);
+    std::vector<char> converged;
+    std::vector<double> cold(static_cast<size_t>(n), 0.0);
+    const int coldIterations = cg.Iterate(rhs.data(), cold.data(), 1, mp::SolveOptions(), converged);
+    ASSERT_TRUE(converged[0]) << what;
+    std::vector<double> restarted = a;
+    const int warmIterations = cg.Iterate(rhs.data(), restarted.data(), 1, warm, converged);
+    ASSERT_TRUE(converged[0]) << what;
+    EXPECT_LE(warmIterations, coldIterations) << what;
+    if (pair.Target == SpaceType::P1)
+    {
+      EXPECT_GT(coldIterations, 0) << what; // M_tt is not diagonal
+    }
+    for (Index i = 0; i < n; ++i)
+    {
+      ASSERT_NEAR(cold[i], a[i], 1e-13) << what << " function " << i;
+      ASSERT_NEAR(restarted[i], a[i], 1e-13) << what << " function " << i;
+    }
+  });
 }
 
 // Restarting from a result that holds the fill value (NaN) at uncovered
@@ -500,62 +481,55 @@ TEST(Spaces, RestartFromAResultWithUncoveredFunctions)
 // change nothing and are called in every iteration.
 TEST(Spaces, SolverHooksAreCalledAndChangeNothing)
 {
-  for (int d : { 2, 3 })
-  {
-    const auto meshes = SameDomain(d);
-    for (const SpacePair& pair : Pairs)
+  ForEveryPairOnSameDomains([](const std::pair<TestMesh, TestMesh>& meshes, const SpacePair& pair,
+                              Operator& p, const std::string& what) {
+    int reduces = 0;
+    int exchanges = 0;
+    mp::SolverHooks hooks;
+    hooks.Reduce = [&reduces](double*, int count) {
+      EXPECT_GT(count, 0);
+      ++reduces;
+    };
+    hooks.Exchange = [&exchanges](double*, int width) {
+      EXPECT_GT(width, 0);
+      ++exchanges;
+    };
+    const Index n = p.Op.GetNumberOfTargetFunctions();
+    std::vector<char> counted(static_cast<size_t>(n), 1);
+    hooks.Counted = counted.data();
+    const auto f = Field(meshes.second, pair.Source, 0);
+    const auto plain = p.Apply(f);
+    std::vector<double> hooked(static_cast<size_t>(n));
+    ASSERT_TRUE(
+      p.Op.Apply(f.data(), 1, hooked.data(), std::nan(""), mp::SolveOptions(), hooks))
+      << what;
+    EXPECT_GT(reduces, 0) << what;
+    EXPECT_GT(exchanges, 0) << what;
+    for (Index i = 0; i < n; ++i)
     {
-      const std::string what = std::to_string(d) + "D " + pair.Name;
-      Operator p(meshes.first, meshes.second, pair.Target, pair.Source);
-      ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
-      int reduces = 0;
-      int exchanges = 0;
-      mp::SolverHooks hooks;
-      hooks.Reduce = [&reduces](double*, int count) {
-        EXPECT_GT(count, 0);
-        ++reduces;
-      };
-      hooks.Exchange = [&exchanges](double*, int width) {
-        EXPECT_GT(width, 0);
-        ++exchanges;
-      };
-      const Index n = p.Op.GetNumberOfTargetFunctions();
-      std::vector<char> counted(static_cast<size_t>(n), 1);
-      hooks.Counted = counted.data();
-      const auto f = Field(meshes.second, pair.Source, 0);
-      const auto plain = p.Apply(f);
-      std::vector<double> hooked(static_cast<size_t>(n));
-      ASSERT_TRUE(
-        p.Op.Apply(f.data(), 1, hooked.data(), std::nan(""), mp::SolveOptions(), hooks))
-        << what;
-      EXPECT_GT(reduces, 0) << what;
-      EXPECT_GT(exchanges, 0) << what;
-      for (Index i = 0; i < n; ++i)
-      {
-        ASSERT_EQ(hooked[i], plain[i]) << what << " function " << i;
-      }
-      // Per iteration, on the operator's M_tt.
-      const mp::BlockCG cg(p.Op.GetTargetMass(), mp::TaskRunner());
-      std::vector<double> rhs(static_cast<size_t>(n));
-      p.Op.GetMixedMass().MultiplyRows(f.data(), rhs.data(), 1, 0, n);
-      std::vector<char> converged;
-      std::vector<double> x(static_cast<size_t>(n), 0.0);
-      std::vector<double> y(static_cast<size_t>(n), 0.0);
-      const int iterations = cg.Iterate(rhs.data(), x.data(), 1, mp::SolveOptions(), converged);
-      reduces = 0;
-      exchanges = 0;
-      EXPECT_EQ(cg.Iterate(rhs.data(), y.data(), 1, mp::SolveOptions(), converged, hooks), iterations)
-        << what;
-      EXPECT_GE(reduces, iterations) << what;
-      EXPECT_GE(exchanges, iterations) << what;
-      EXPECT_GT(reduces, 0) << what;
-      EXPECT_GT(exchanges, 0) << what;
-      for (Index i = 0; i < n; ++i)
-      {
-        ASSERT_EQ(y[i], x[i]) << what << " function " << i;
-      }
+      ASSERT_EQ(hooked[i], plain[i]) << what << " function " << i;
     }
-  }
+    // Per iteration, on the operator's M_tt.
+    const mp::BlockCG cg(p.Op.GetTargetMass(), mp::TaskRunner());
+    std::vector<double> rhs(static_cast<size_t>(n));
+    p.Op.GetMixedMass().MultiplyRows(f.data(), rhs.data(), 1, 0, n);
+    std::vector<char> converged;
+    std::vector<double> x(static_cast<size_t>(n), 0.0);
+    std::vector<double> y(static_cast<size_t>(n), 0.0);
+    const int iterations = cg.Iterate(rhs.data(), x.data(), 1, mp::SolveOptions(), converged);
+    reduces = 0;
+    exchanges = 0;
+    EXPECT_EQ(cg.Iterate(rhs.data(), y.data(), 1, mp::SolveOptions(), converged, hooks), iterations)
+      << what;
+    EXPECT_GE(reduces, iterations) << what;
+    EXPECT_GE(exchanges, iterations) << what;
+    EXPECT_GT(reduces, 0) << what;
+    EXPECT_GT(exchanges, 0) << what;
+    for (Index i = 0; i < n; ++i)
+    {
+      ASSERT_EQ(y[i], x[i]) << what << " function " << i;
+    }
+  });
 }
 
 // (f) The matrices as read out: compressed rows, and with P1 or P0 on both
