@@ -377,8 +377,10 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   // Brute force (quadratic: small sizes only).
   if (n <= bruteMax)
   {
-    mp::OperatorOptions brute;
+    mp::OperatorOptions brute; // as the front's run: the field summed in the search
     brute.Method = mp::SearchMethod::BruteForce;
+    brute.Fields = u.data();
+    brute.FieldComponents = 1;
     mp::MortarOperator b;
     t0 = Clock::now();
     b.Build(target.View(), source.View(), nullptr, brute);

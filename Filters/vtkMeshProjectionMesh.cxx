@@ -330,7 +330,9 @@ StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
   const double lo[3] = { bounds[0], bounds[2], bounds[4] };
   const double hi[3] = { bounds[1], bounds[3], bounds[5] };
   int divisions[3];
-  mp::BinDivisions(lo, hi, mesh.Dimension(), mesh.View().NumberOfCells, n, divisions);
+  // A 2D mesh outside the planes z = constant spreads over 3D boxes.
+  const int binDimension = mesh.Dimension() == 2 && !mesh.Frame().IsIdentity() ? 3 : mesh.Dimension();
+  mp::BinDivisions(lo, hi, binDimension, mesh.View().NumberOfCells, n, divisions);
   l.Boundary->AutomaticOff();
   l.Boundary->SetDivisions(divisions);
   l.Boundary->BuildLocator();

@@ -663,6 +663,23 @@ TEST(Spaces, ConcurrentTasksGiveTheSerialMatrices)
   }
 }
 
+// A restart whose new field is zero returns zero, not the previous solution.
+TEST(Spaces, RestartOnAZeroFieldGivesZero)
+{
+  ForEveryPairOnSameDomains([](const std::pair<TestMesh, TestMesh>& meshes, const SpacePair& pair,
+                              Operator& p, const std::string& what) {
+    std::vector<double> ut = p.Apply(Field(meshes.second, pair.Source, 0));
+    const std::vector<double> zero(static_cast<size_t>(Size(meshes.second, pair.Source)), 0.0);
+    mp::SolveOptions restart;
+    restart.StartFromX = true;
+    ASSERT_TRUE(p.Op.Apply(zero.data(), 1, ut.data(), -7.0, restart)) << what;
+    for (size_t i = 0; i < ut.size(); ++i)
+    {
+      ASSERT_EQ(ut[i], p.Op.GetValid()[i] ? 0.0 : -7.0) << what << " function " << i;
+    }
+  });
+}
+
 // Single use (OperatorOptions::Fields): the right-hand sides summed during
 // the search, serially and in 3 concurrent tasks (rows shared by tasks
 // deferred), give the assembled operator's projection; such an operator

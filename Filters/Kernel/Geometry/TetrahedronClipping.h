@@ -14,7 +14,7 @@
 
 #include "Geometry/Predicates.h"
 #include "Geometry/TetrahedronIntersector.h"
-#include "Geometry/Vec3.h"
+#include "Mesh/Vec3.h"
 
 #include <algorithm>
 #include <cmath>

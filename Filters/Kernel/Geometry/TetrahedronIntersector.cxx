@@ -4,7 +4,7 @@
 #include "Geometry/IntersectionPieces.h"
 #include "Geometry/Predicates.h"
 #include "Geometry/TetrahedronClipping.h"
-#include "Geometry/Vec3.h"
+#include "Mesh/Vec3.h"
 
 #include <algorithm>
 #include <cmath>

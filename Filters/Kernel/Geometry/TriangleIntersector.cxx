@@ -35,13 +35,10 @@ inline double PseudoAngle(double dx, double dy)
 // duplicates (a crossing that rounds onto another point).
 //
 // There are at most 6 points: each is a vertex of the convex piece (corners
-// of one cell in the other, proper edge crossings, all decided exactly), and
-// only a corner shared by both cells comes twice. With k shared corners the
-// piece has at most 6 - k vertices (k = 1: two edges through the shared
-// corner and the two opposite edges; k = 2: the shared edge and at most
-// three more; k = 3: the same triangle), so the count never exceeds 6. The
-// points are distinct vertices of the piece apart from those pairs, and, when the piece has an interior, no two of them
-// have the same angle around the mean unless they are equal. Each key is the
+// of one cell in the other, proper edge crossings, all decided exactly; a
+// corner shared by both cells is taken once), and a convex polygon cut from
+// two triangles has at most 6 vertices. When the piece has an interior, no
+// two of them have the same angle around the mean unless they are equal. Each key is the
 // pseudo-angle with the point's index in its lowest bits (non-negative
 // doubles order like their bit patterns); a 6-input sorting network orders
 // them without data-dependent branches, and equal points end up adjacent.
@@ -125,8 +122,7 @@ void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
  */
 inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (&o)[3][3])
 {
-  constexpr double eps = 1.1102230246251565e-16; // 2^-53
-  constexpr double bound = (3.0 + 16.0 * eps) * eps;
+  constexpr double bound = (3.0 + 16.0 * RoundingUnit) * RoundingUnit;
   bool decided = true;
   for (int k = 0; k < 3; ++k)
   {

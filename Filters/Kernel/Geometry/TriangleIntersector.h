@@ -35,7 +35,8 @@ public:
   static constexpr int Dimension = 2;
   static constexpr int Corners = 3;
   static constexpr int Faces = 3;
-  /// At most 3 + 3 corners and 6 proper edge crossings, before duplicates go.
+  /// Room for the candidate points: at most 6 arise (exact decisions, see
+  /// SortAndRemoveDoubles); the margin costs nothing.
   static constexpr int MaxPolygonVertices = 12;
 
   /// A triangle prepared once for many intersection tests.

@@ -58,9 +58,11 @@ struct LargeAllocator
 #if defined(__linux__)
     // Straight from the system, 2 MiB-aligned: given back on deallocate
     // (the C library could keep a freed block of the heap for later, and
-    // the process would keep its pages).
+    // the process would keep its pages). No swap reserved up front: a
+    // generous reservation (the assembler's block buffers) costs only the
+    // pages it touches, also under strict overcommit accounting.
     void* raw = mmap(nullptr, rounded + HugePage, PROT_READ | PROT_WRITE,
-      MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
     if (raw == MAP_FAILED)
     {
       throw std::bad_alloc();

@@ -12,7 +12,8 @@
  *  - SpaceDimension, how many coordinates of a point the geometry uses:
  *    2 (x, y) or 3 (x, y, z). Points are always stored with three
  *    coordinates, as VTK does; a planar mesh in any plane is seen in 2D
- *    through a PlaneFrame (PlaneFrame.h), its points mapped into (x, y, 0).
+ *    through a PlaneFrame (PlaneFrame.h): its points' (x, y) in place for
+ *    planes z = constant, else mapped into (u, v, 0).
  * Today the geometry exists for CellDimension == SpaceDimension (triangles
  * in the plane, tetrahedra in space); surfaces and curves in 3D are meshes
  * whose cell dimension is below their space dimension.

@@ -1,20 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Mesh/PlaneFrame.h"
 
+#include "Mesh/Vec3.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace mp
 {
-namespace
-{
-double Dot3(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-} // namespace
-
 bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
 {
   *this = PlaneFrame();
@@ -57,13 +51,13 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     const double* a = mesh.Point(ids[0]);
     const double* b = mesh.Point(ids[1]);
     const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
-    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    const double v[3] = { p[0] - a[0], p[1] - a[1], p[2] - a[2] };
+    Vec u;
+    Vec v;
+    Sub(b, a, u);
+    Sub(p, a, v);
     double* n = &normals[3 * c];
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-    const double length = Dot3(n, n);
+    Cross(u, v, n);
+    const double length = Dot(n, n);
     if (length > largest)
     {
       largest = length;
@@ -74,13 +68,13 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
     const double* n = &normals[3 * c];
-    const double sign = Dot3(n, reference) < 0.0 ? -1.0 : 1.0;
+    const double sign = Dot(n, reference) < 0.0 ? -1.0 : 1.0;
     for (int d = 0; d < 3; ++d)
     {
       sum[d] += sign * n[d];
     }
   }
-  const double length = std::sqrt(Dot3(sum, sum));
+  const double length = std::sqrt(Dot(sum, sum));
   if (length > 0.0)
   {
     for (int d = 0; d < 3; ++d)
@@ -88,9 +82,21 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
       this->Normal[d] = sum[d] / length;
     }
   }
-  // The plane through the mean of the corners (the middle of the box for an
-  // axis plane, where it is exact); an axis plane when the normal is one of
-  // the axes (to rounding).
+  // One sign for every mesh of the plane: its largest component positive
+  // (else two meshes wound the other way would get mirrored offsets).
+  int axis = 0;
+  for (int d = 1; d < 3; ++d)
+  {
+    axis = std::fabs(this->Normal[d]) > std::fabs(this->Normal[axis]) ? d : axis;
+  }
+  if (this->Normal[axis] < 0.0)
+  {
+    for (double& n : this->Normal)
+    {
+      n = -n;
+    }
+  }
+  // The plane through the mean of the corners.
   double mean[3] = { 0, 0, 0 };
   for (Index i = 0; i < uses; ++i)
   {
@@ -104,25 +110,34 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
   {
     this->Origin[d] = mean[d] / static_cast<double>(uses);
   }
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    if (std::fabs(this->Normal[axis]) >= 1.0 - 1e-12)
+  auto largestDistance = [&](const PlaneFrame& frame) {
+    double largest = 0.0;
+    for (Index i = 0; i < uses; ++i)
     {
-      std::fill(this->Normal, this->Normal + 3, 0.0);
-      this->Normal[axis] = 1.0;
+      largest = std::max(largest, std::fabs(frame.Distance(mesh.Point(mesh.Connectivity[i]))));
     }
+    return largest;
+  };
+  // The axis plane through the middle of the box along the dominant axis,
+  // when the points lie in it within the tolerance (exact 2D coordinates);
+  // else the fitted plane.
+  PlaneFrame aligned = *this;
+  std::fill(aligned.Normal, aligned.Normal + 3, 0.0);
+  aligned.Normal[axis] = 1.0;
+  aligned.Origin[axis] = 0.5 * (lo[axis] + hi[axis]);
+  aligned.SetAxes();
+  aligned.PlaneOffset = aligned.Origin[axis];
+  const double alignedDeviation = largestDistance(aligned);
+  aligned.PlaneTolerance = 1e-9 * std::max(size, std::fabs(aligned.PlaneOffset));
+  if (alignedDeviation <= aligned.PlaneTolerance)
+  {
+    *this = aligned;
+    deviation = alignedDeviation;
+    return true;
   }
   this->SetAxes();
-  if (this->IsAxisAligned())
-  {
-    const int axis = 3 - this->Axes[0] - this->Axes[1];
-    this->Origin[axis] = 0.5 * (lo[axis] + hi[axis]);
-  }
-  this->PlaneOffset = Dot3(this->Origin, this->Normal);
-  for (Index i = 0; i < uses; ++i)
-  {
-    deviation = std::max(deviation, std::fabs(this->Distance(mesh.Point(mesh.Connectivity[i]))));
-  }
+  this->PlaneOffset = Dot(this->Origin, this->Normal);
+  deviation = largestDistance(*this);
   this->PlaneTolerance = 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
   return deviation <= this->PlaneTolerance;
 }
@@ -163,12 +178,12 @@ void PlaneFrame::SetAxes()
   }
   double e[3] = { 0, 0, 0 };
   e[least] = 1.0;
-  const double along = Dot3(e, n);
+  const double along = Dot(e, n);
   for (int d = 0; d < 3; ++d)
   {
     this->U[d] = e[d] - along * n[d];
   }
-  const double length = std::sqrt(Dot3(this->U, this->U));
+  const double length = std::sqrt(Dot(this->U, this->U));
   for (double& u : this->U)
   {
     u /= length;
@@ -180,7 +195,7 @@ void PlaneFrame::SetAxes()
 
 double PlaneFrame::Distance(const double* x) const
 {
-  return Dot3(x, this->Normal) - this->PlaneOffset;
+  return Dot(x, this->Normal) - this->PlaneOffset;
 }
 
 bool PlaneFrame::IsParallel(const PlaneFrame& other) const
@@ -189,7 +204,7 @@ bool PlaneFrame::IsParallel(const PlaneFrame& other) const
   const double* b = other.Normal;
   const double c[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
     a[0] * b[1] - a[1] * b[0] };
-  return Dot3(c, c) <= 1e-18;
+  return Dot(c, c) <= 1e-18;
 }
 
 void PlaneFrame::ToPlane(const double* x, double* uv) const
@@ -202,8 +217,8 @@ void PlaneFrame::ToPlane(const double* x, double* uv) const
   else
   {
     const double d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
-    uv[0] = Dot3(d, this->U);
-    uv[1] = Dot3(d, this->V);
+    uv[0] = Dot(d, this->U);
+    uv[1] = Dot(d, this->V);
   }
   uv[2] = 0.0;
 }

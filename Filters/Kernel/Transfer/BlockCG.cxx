@@ -176,7 +176,15 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   int open = 0;
   for (int k = 0; k < c; ++k)
   {
-    // A zero field is converged at its start.
+    // A zero field is converged at its start, at zero (a restart may have
+    // started it elsewhere).
+    if (bb.Values[k] == 0.0)
+    {
+      for (Index i = 0; i < n; ++i)
+      {
+        X[i * c + k] = 0.0;
+      }
+    }
     converged[k] = bb.Values[k] == 0.0 || sums.Values[k] <= goal[k];
     open += !converged[k];
     rz[k] = sums.Values[c + k];

@@ -44,12 +44,6 @@ struct CsrMatrix
     const Index p = this->Find(i, k);
     return p < this->RowStart[i + 1] && this->ColumnIndex[p] == k ? this->Values[p] : 0.0;
   }
-  /// Bytes held.
-  std::size_t MemoryBytes() const
-  {
-    return this->RowStart.capacity() * sizeof(Index) + this->ColumnIndex.capacity() * sizeof(Column) +
-      this->Values.capacity() * sizeof(double);
-  }
   /**
    * Y = A X on rows [begin, end) for `c` vectors stored side by side (row i
    * of X holds entries i*c .. i*c + c-1): the matrix is read once for all.

@@ -110,7 +110,7 @@ void AssembleMixedMatrix(std::vector<MixedBlocks>& blocks, Index rows, Index col
     const Index at = matrix.RowStart[rows * k / tasks];
     std::copy(ranges[k].Columns.begin(), ranges[k].Columns.end(), matrix.ColumnIndex.begin() + at);
     std::copy(ranges[k].Values.begin(), ranges[k].Values.end(), matrix.Values.begin() + at);
-    Range().Columns.swap(ranges[k].Columns);
+    LargeVector<Column>().swap(ranges[k].Columns);
     LargeVector<double>().swap(ranges[k].Values);
   });
 }

@@ -353,14 +353,4 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   return ok;
 }
 
-std::size_t MortarOperator::MemoryBytes() const
-{
-  return this->TargetMass.MemoryBytes() + this->MixedMass.MemoryBytes() +
-    this->Rhs.capacity() * sizeof(double) + this->Valid.capacity() +
-    this->CoveredFraction.capacity() * sizeof(double) +
-    this->Pieces.Points.capacity() * sizeof(double) +
-    (this->Pieces.Offsets.capacity() + this->Pieces.TargetCell.capacity() +
-      this->Pieces.SourceCell.capacity()) * sizeof(Index) +
-    this->Pieces.Measure.capacity() * sizeof(double);
-}
 } // namespace mp

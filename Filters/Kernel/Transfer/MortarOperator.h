@@ -132,8 +132,6 @@ public:
   const OperatorTimings& GetTimings() const { return this->Timings; }
   const IntersectionPieces& GetPieces() const { return this->Pieces; }
   const std::string& GetError() const { return this->Error; }
-  /// Bytes held by the operator (matrices, masks, pieces).
-  std::size_t MemoryBytes() const;
 
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>

@@ -43,11 +43,6 @@ inline Index SpaceSize(SpaceType type, const MeshView& mesh)
   return type == SpaceType::P1 ? mesh.NumberOfPoints : mesh.Parents();
 }
 
-inline const char* SpaceName(SpaceType type)
-{
-  return type == SpaceType::P1 ? "P1 (points)" : "P0 (cells)";
-}
-
 template <int D>
 struct P1Space
 {

@@ -4,6 +4,7 @@
 #include "MeshProjectionTestUtilities.h"
 #include "vtkMeshProjectionFilter.h"
 
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkCharArray.h"
@@ -262,6 +263,23 @@ int TestMeshProjectionFilterInputs(int, char*[])
       }
       MP_CHECK(worst < (k == 0 ? 1e-12 : 1e-10));
     }
+    // The Source's triangles wound the other way: the same plane, the same result.
+    auto turned = Turned(source, 37.0, general, shift);
+    vtkNew<vtkUnstructuredGrid> rewound;
+    rewound->DeepCopy(turned);
+    vtkNew<vtkCellArray> reversed;
+    for (vtkIdType c = 0; c < turned->GetNumberOfCells(); ++c)
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      turned->GetCells()->GetCellAtId(c, npts, pts);
+      const vtkIdType flipped[3] = { pts[0], pts[2], pts[1] };
+      reversed->InsertNextCell(3, flipped);
+    }
+    rewound->SetCells(VTK_TRIANGLE, reversed);
+    Run rewoundRun(Turned(target, 37.0, general, shift), rewound);
+    MP_CHECK(!rewoundRun.Observer->GetError() && !rewoundRun.Observer->GetWarning());
+    MP_CHECK(std::fabs(rewoundRun.Filter->GetCoveredMeasure() - flat->GetCoveredMeasure()) < 1e-12);
     Run tilted(target, Turned(source, 10.0, yAxis, shiftX));
     MP_CHECK(tilted.ErrorSays("not parallel"));
     MP_CHECK(Unchanged(tilted.Output(), target));
