@@ -116,6 +116,17 @@ std::pair<TestMesh, TestMesh> SameDomain(int d)
   return { mptest::CubeMesh(3, 4, 3, 0.15, 103), mptest::CubeMesh(4, 3, 5, 0.15, 104) };
 }
 
+/// Random non-matching meshes of the unit square or cube with enough target
+/// cells for 3 concurrent tasks (64 or more each); seeds from `seed` on.
+std::pair<TestMesh, TestMesh> TaskSizedDomain(int d, unsigned seed)
+{
+  if (d == 2)
+  {
+    return { mptest::GridMesh(20, 16, 0.25, seed), mptest::GridMesh(17, 19, 0.25, seed + 1) };
+  }
+  return { mptest::CubeMesh(4, 4, 4, 0.15, seed + 2), mptest::CubeMesh(5, 3, 4, 0.15, seed + 3) };
+}
+
 /// Builds the operator of every space pair on SameDomain(2) and
 /// SameDomain(3), and hands it to check(meshes, pair, operator, what).
 template <class Check>
@@ -627,9 +638,7 @@ TEST(Spaces, ConcurrentTasksGiveTheSerialMatrices)
 {
   for (int d : { 2, 3 })
   {
-    const auto meshes = d == 2
-      ? std::make_pair(mptest::GridMesh(20, 16, 0.25, 141), mptest::GridMesh(17, 19, 0.25, 142))
-      : std::make_pair(mptest::CubeMesh(4, 4, 4, 0.15, 143), mptest::CubeMesh(5, 3, 4, 0.15, 144));
+    const auto meshes = TaskSizedDomain(d, 141);
     for (const SpacePair& pair : Pairs)
     {
       const std::string what = std::to_string(d) + "D " + pair.Name;
@@ -688,9 +697,7 @@ TEST(Spaces, SingleUseFieldsGiveTheAssembledProjection)
 {
   for (int d : { 2, 3 })
   {
-    const auto meshes = d == 2
-      ? std::make_pair(mptest::GridMesh(20, 16, 0.25, 151), mptest::GridMesh(17, 19, 0.25, 152))
-      : std::make_pair(mptest::CubeMesh(4, 4, 4, 0.15, 153), mptest::CubeMesh(5, 3, 4, 0.15, 154));
+    const auto meshes = TaskSizedDomain(d, 151);
     for (const SpacePair& pair : Pairs)
     {
       const std::string what = std::to_string(d) + "D " + pair.Name;

@@ -20,6 +20,14 @@
 
 namespace mp
 {
+/// First item of range k when n items are split into `tasks` ranges: the
+/// one rule every split of the kernel follows (the search's ranges of
+/// target cells and the assembly's shared rows must agree on it).
+inline Index RangeBegin(Index n, int k, int tasks)
+{
+  return n * k / tasks;
+}
+
 struct TaskRunner
 {
   /// How many concurrent tasks to split work into (1: serial).
@@ -63,7 +71,7 @@ struct TaskRunner
       return body(Index(0), n);
     }
     std::vector<Sum> partial(static_cast<size_t>(tasks));
-    this->RunAll(tasks, [&](int k) { partial[k] = body(n * k / tasks, n * (k + 1) / tasks); });
+    this->RunAll(tasks, [&](int k) { partial[k] = body(RangeBegin(n, k, tasks), RangeBegin(n, k + 1, tasks)); });
     Sum sum = partial[0];
     for (int k = 1; k < tasks; ++k)
     {

@@ -56,12 +56,6 @@ inline std::string CheckSearchMesh(const MeshView& mesh, const char* name, Searc
   return std::string();
 }
 
-/// First target cell of range k of `tasks`.
-inline Index RangeBegin(Index cells, int k, int tasks)
-{
-  return cells * k / tasks;
-}
-
 /**
  * Searches target cells in visitors.size() ranges, range k visited by
  * visitors[k] (concurrently through `runner`). `locator` (the front's

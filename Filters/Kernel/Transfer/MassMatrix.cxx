@@ -35,7 +35,7 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
     std::vector<Column> row;
-    for (Index p = points * k / tasks; p < points * (k + 1) / tasks; ++p)
+    for (Index p = RangeBegin(points, k, tasks); p < RangeBegin(points, k + 1, tasks); ++p)
     {
       row.assign(1, static_cast<Column>(p));
       for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
@@ -79,7 +79,7 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   {
     columns.resize(static_cast<size_t>(start[points]));
     runner.RunAll(tasks, [&](int k) {
-      std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[points * k / tasks]);
+      std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[RangeBegin(points, k, tasks)]);
       LargeVector<Column>().swap(blocks[k]);
     });
   }

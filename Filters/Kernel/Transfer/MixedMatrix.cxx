@@ -67,7 +67,7 @@ void AssembleMixedMatrix(std::vector<MixedBlocks>& blocks, Index rows, Index col
     std::vector<double> sum(static_cast<size_t>(columns), 0.0);
     std::vector<Index> seen(static_cast<size_t>(columns), -1);
     std::vector<Column> row;
-    for (Index r = rows * k / tasks; r < rows * (k + 1) / tasks; ++r)
+    for (Index r = RangeBegin(rows, k, tasks); r < RangeBegin(rows, k + 1, tasks); ++r)
     {
       row.clear();
       for (Index q = refStart[r]; q < refStart[r + 1]; ++q)
@@ -107,7 +107,7 @@ void AssembleMixedMatrix(std::vector<MixedBlocks>& blocks, Index rows, Index col
   matrix.ColumnIndex.resize(static_cast<size_t>(matrix.RowStart[rows]));
   matrix.Values.resize(static_cast<size_t>(matrix.RowStart[rows]));
   runner.RunAll(tasks, [&](int k) {
-    const Index at = matrix.RowStart[rows * k / tasks];
+    const Index at = matrix.RowStart[RangeBegin(rows, k, tasks)];
     std::copy(ranges[k].Columns.begin(), ranges[k].Columns.end(), matrix.ColumnIndex.begin() + at);
     std::copy(ranges[k].Values.begin(), ranges[k].Values.end(), matrix.Values.begin() + at);
     LargeVector<Column>().swap(ranges[k].Columns);
