@@ -3,6 +3,9 @@
 
 #include "vtkCellData.h"
 #include "vtkCharArray.h"
+#include "vtkCommand.h"
+#include "vtkDataArraySelection.h"
+#include "vtkIdTypeArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
@@ -17,17 +20,22 @@
 
 #include "vtkMeshProjectionMesh.h"
 
+#include "Geometry/Measures.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MortarOperator.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 vtkStandardNewMacro(vtkMeshProjectionFilter);
@@ -76,17 +84,169 @@ std::string UseOnePlane(mpvtk::SimplexMesh& target, mpvtk::SimplexMesh& source, 
   source.UseFrame(frame);
   return std::string();
 }
+
+/// A 64-bit fingerprint of an array's values (not of its address: readers
+/// build new arrays at every time step).
+struct Fingerprint
+{
+  std::uint64_t Hash = 0x243F6A8885A308D3ull;
+
+  void Add(std::uint64_t word)
+  {
+    this->Hash ^= word + 0x9E3779B97F4A7C15ull + (this->Hash << 6) + (this->Hash >> 2);
+    this->Hash *= 0xBF58476D1CE4E5B9ull;
+    this->Hash ^= this->Hash >> 31;
+  }
+  void Add(const void* data, size_t bytes)
+  {
+    const unsigned char* b = static_cast<const unsigned char*>(data);
+    std::uint64_t h = this->Hash ^ bytes;
+    size_t i = 0;
+    for (; i + 8 <= bytes; i += 8)
+    {
+      std::uint64_t w;
+      std::memcpy(&w, b + i, 8);
+      h = (h ^ w) * 0x100000001B3ull;
+      h ^= h >> 29;
+    }
+    std::uint64_t last = 0;
+    std::memcpy(&last, b + i, bytes - i);
+    this->Add(h ^ last);
+  }
+  void Add(vtkDataArray* array)
+  {
+    if (!array)
+    {
+      this->Add(std::uint64_t(0));
+      return;
+    }
+    this->Add(static_cast<std::uint64_t>(array->GetDataType()));
+    this->Add(static_cast<std::uint64_t>(array->GetNumberOfValues()));
+    if (array->HasStandardMemoryLayout())
+    {
+      this->Add(array->GetVoidPointer(0),
+        static_cast<size_t>(array->GetNumberOfValues()) * array->GetDataTypeSize());
+      return;
+    }
+    const int nc = array->GetNumberOfComponents();
+    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+    {
+      for (int k = 0; k < nc; ++k)
+      {
+        const double v = array->GetComponent(t, k);
+        this->Add(&v, sizeof v);
+      }
+    }
+  }
+  /// Points, cells, cell types and ghost cells: all the operator depends on.
+  void Add(vtkUnstructuredGrid* grid)
+  {
+    this->Add(grid->GetPoints() ? grid->GetPoints()->GetData() : nullptr);
+    vtkCellArray* cells = grid->GetCells();
+    this->Add(cells ? cells->GetOffsetsArray() : nullptr);
+    this->Add(cells ? cells->GetConnectivityArray() : nullptr);
+    this->Add(grid->GetCellTypesArray());
+    this->Add(grid->GetCellGhostArray());
+  }
+};
+
+/// The spaces of the four transfers (vtkMeshProjectionFilter::Transfers).
+mp::SpaceType TargetSpaceOf(int transfer)
+{
+  return transfer == 0 || transfer == 3 ? mp::SpaceType::P1 : mp::SpaceType::P0;
+}
+mp::SpaceType SourceSpaceOf(int transfer)
+{
+  return transfer <= 1 ? mp::SpaceType::P1 : mp::SpaceType::P0;
+}
+const char* TransferName(int transfer)
+{
+  static const char* names[] = { "points to points", "points to cells", "cells to cells",
+    "cells to points" };
+  return names[transfer];
+}
+
+/// The Source arrays of one association, gathered side by side.
+struct Gathered
+{
+  std::vector<vtkDataArray*> Arrays;
+  int Components = 0;
+  mp::LargeVector<double> Values; ///< functions x Components
+  std::string Key;                ///< names and components: which solution a warm start may reuse
+};
 } // namespace
 
+/// What the filter keeps between executions.
+struct vtkMeshProjectionFilter::Internals
+{
+  vtkNew<vtkDataArraySelection> PointArrays;
+  vtkNew<vtkDataArraySelection> CellArrays;
+  bool HasFingerprint = false;
+  std::uint64_t GeometryFingerprint = 0;
+  struct Kept
+  {
+    std::unique_ptr<mp::MortarOperator> Operator;
+    std::string SolutionKey;
+    mp::LargeVector<double> Solution; ///< the last projection (warm start)
+  };
+  Kept Operators[4];
+  /// For GetMatrix: VTK ids of the kernel cells (empty: the same).
+  std::vector<vtkIdType> TargetCells, SourceCells;
+  vtkIdType TargetCellCount = 0, SourceCellCount = 0;
+
+  void Clear()
+  {
+    for (Kept& k : this->Operators)
+    {
+      k = Kept();
+    }
+    this->HasFingerprint = false;
+  }
+};
 
 //------------------------------------------------------------------------------
 vtkMeshProjectionFilter::vtkMeshProjectionFilter()
+  : Internal(new Internals)
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
+  // All arrays, including those that appear later (new time steps, new
+  // inputs), unless disabled by name.
+  this->Internal->PointArrays->SetUnknownArraySetting(1);
+  this->Internal->CellArrays->SetUnknownArraySetting(1);
+  this->Internal->PointArrays->AddObserver(
+    vtkCommand::ModifiedEvent, this, &vtkMeshProjectionFilter::Modified);
+  this->Internal->CellArrays->AddObserver(
+    vtkCommand::ModifiedEvent, this, &vtkMeshProjectionFilter::Modified);
 }
 
-vtkMeshProjectionFilter::~vtkMeshProjectionFilter() = default;
+vtkMeshProjectionFilter::~vtkMeshProjectionFilter()
+{
+  delete this->Internal;
+}
+
+vtkDataArraySelection* vtkMeshProjectionFilter::GetPointDataArraySelection()
+{
+  return this->Internal->PointArrays;
+}
+
+vtkDataArraySelection* vtkMeshProjectionFilter::GetCellDataArraySelection()
+{
+  return this->Internal->CellArrays;
+}
+
+vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
+{
+  size_t bytes = 0;
+  for (const Internals::Kept& k : this->Internal->Operators)
+  {
+    if (k.Operator)
+    {
+      bytes += k.Operator->MemoryBytes() + k.Solution.capacity() * sizeof(double);
+    }
+  }
+  return static_cast<vtkIdType>(bytes);
+}
 
 void vtkMeshProjectionFilter::SetSourceConnection(vtkAlgorithmOutput* algOutput)
 {
@@ -122,21 +282,87 @@ int vtkMeshProjectionFilter::FillOutputPortInformation(int port, vtkInformation*
   return 1;
 }
 
+int vtkMeshProjectionFilter::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // The output varies in time when either input does: it advertises the
+  // union of their time steps and the hull of their ranges (by default only
+  // Input's would be copied, and a time-varying Source was never asked for
+  // another time).
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  std::vector<double> steps;
+  double range[2] = { 0, 0 };
+  bool hasRange = false;
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkInformation* info = inputVector[port]->GetInformationObject(0);
+    if (!info)
+    {
+      continue;
+    }
+    if (info->Has(SDDP::TIME_STEPS()))
+    {
+      const double* t = info->Get(SDDP::TIME_STEPS());
+      steps.insert(steps.end(), t, t + info->Length(SDDP::TIME_STEPS()));
+    }
+    if (info->Has(SDDP::TIME_RANGE()))
+    {
+      const double* r = info->Get(SDDP::TIME_RANGE());
+      range[0] = hasRange ? std::min(range[0], r[0]) : r[0];
+      range[1] = hasRange ? std::max(range[1], r[1]) : r[1];
+      hasRange = true;
+    }
+  }
+  std::sort(steps.begin(), steps.end());
+  steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
+  for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
+  {
+    vtkInformation* out = outputVector->GetInformationObject(port);
+    if (steps.empty())
+    {
+      out->Remove(SDDP::TIME_STEPS());
+    }
+    else
+    {
+      out->Set(SDDP::TIME_STEPS(), steps.data(), static_cast<int>(steps.size()));
+    }
+    if (hasRange)
+    {
+      out->Set(SDDP::TIME_RANGE(), range, 2);
+    }
+    else
+    {
+      out->Remove(SDDP::TIME_RANGE());
+    }
+  }
+  return 1;
+}
+
 int vtkMeshProjectionFilter::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   // The whole source is needed wherever the target is, as in vtkResampleWithDataSet.
   if (vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0)) // optional port
   {
-    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    sourceInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+    sourceInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+    sourceInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    // Both inputs at the time asked of the output.
+    if (outInfo->Has(SDDP::UPDATE_TIME_STEP()))
+    {
+      sourceInfo->Set(SDDP::UPDATE_TIME_STEP(), outInfo->Get(SDDP::UPDATE_TIME_STEP()));
+    }
   }
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  inInfo->CopyEntry(outInfo, vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
-  inInfo->CopyEntry(outInfo, vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
-  inInfo->CopyEntry(outInfo, vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
+  inInfo->CopyEntry(outInfo, SDDP::UPDATE_PIECE_NUMBER());
+  inInfo->CopyEntry(outInfo, SDDP::UPDATE_NUMBER_OF_PIECES());
+  inInfo->CopyEntry(outInfo, SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS());
+  if (outInfo->Has(SDDP::UPDATE_TIME_STEP()))
+  {
+    inInfo->Set(SDDP::UPDATE_TIME_STEP(), outInfo->Get(SDDP::UPDATE_TIME_STEP()));
+  }
   return 1;
 }
 
@@ -155,6 +381,9 @@ int vtkMeshProjectionFilter::RequestData(
   this->CoveredMeasure = this->ExecutionTime = 0;
   this->InputTime = this->NeighborsTime = this->LocatorTime = this->SearchTime = 0;
   this->AssemblyTime = this->SolveTime = this->OutputTime = 0;
+  this->OperatorReused = false;
+  this->NumberOfOperatorsBuilt = 0;
+  Internals& kept = *this->Internal;
   auto lap = [](std::chrono::steady_clock::time_point& since) {
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - since).count();
@@ -162,6 +391,23 @@ int vtkMeshProjectionFilter::RequestData(
     return seconds;
   };
   auto stage = start;
+  // Progress events only from the thread that runs the pipeline (the GUI
+  // handles them there); the abort flag is read from any thread.
+  const std::thread::id pipelineThread = std::this_thread::get_id();
+  auto progress = [this, pipelineThread](double amount) {
+    if (std::this_thread::get_id() == pipelineThread)
+    {
+      this->UpdateProgress(amount);
+    }
+    return this->GetAbortExecute() == 0;
+  };
+  auto aborted = [&]() {
+    output->ShallowCopy(target);
+    polygons->Initialize();
+    polyhedra->Initialize();
+    vtkWarningMacro("Aborted: the output is Input as it came.");
+    return 1;
+  };
 
   // 1. The output is Input as it came, whatever happens next.
   output->ShallowCopy(target);
@@ -224,94 +470,129 @@ int vtkMeshProjectionFilter::RequestData(
                     << sourceMesh.GhostCells() << ") are left out of the projection.");
   }
 
-  // 3. Neighbours (VTK cell links) and the seed locator (vtkStaticCellLocator).
+  // 3. The fields: the selected numeric arrays of Source, side by side, in
+  // the kernel's numbering (points: the same; cells: without ghosts).
+  Gathered fields[2]; // 0: point arrays (P1), 1: cell arrays (P0)
+  for (int association = 0; association < 2; ++association)
+  {
+    vtkDataSetAttributes* data = association == 0
+      ? static_cast<vtkDataSetAttributes*>(source->GetPointData())
+      : static_cast<vtkDataSetAttributes*>(source->GetCellData());
+    vtkDataArraySelection* selection = association == 0 ? kept.PointArrays : kept.CellArrays;
+    const char* kind = association == 0 ? "point" : "cell";
+    Gathered& g = fields[association];
+    for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+    {
+      vtkAbstractArray* abstract = data->GetAbstractArray(i);
+      const char* name = abstract->GetName();
+      const std::string label = name ? name : "(unnamed)";
+      if (label == vtkDataSetAttributes::GhostArrayName() || label == "vtkValidPointMask" ||
+        label == "vtkValidCellMask" || (name && !selection->ArrayIsEnabled(name)))
+      {
+        continue;
+      }
+      // Ids of the Source's own points and cells are not fields.
+      if (abstract == data->GetGlobalIds() || abstract == data->GetPedigreeIds() ||
+        label == "vtkOriginalPointIds" || label == "vtkOriginalCellIds")
+      {
+        continue;
+      }
+      vtkDataArray* array = vtkArrayDownCast<vtkDataArray>(abstract);
+      if (!array)
+      {
+        vtkWarningMacro(<< "Source " << kind << " array '" << label << "' is not numeric ("
+                        << abstract->GetClassName() << "): skipped.");
+        continue;
+      }
+      if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+      {
+        vtkWarningMacro(<< "Source " << kind << " array '" << label << "' holds integers ("
+                        << array->GetClassName() << "): it is projected as real values (a 0/1 "
+                        << "indicator becomes a covered fraction, but labels and ids do not "
+                        << "carry over: use Resample With Dataset for those, or deselect it).");
+      }
+      g.Arrays.push_back(array);
+      g.Components += array->GetNumberOfComponents();
+      g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
+    }
+  }
+  const bool extensive = this->CellDataQuantity == EXTENSIVE;
+  fields[1].Key += extensive ? "extensive" : "intensive";
+  // Which transfers run: pts->pts, pts->cells, cells->cells, cells->pts.
+  bool used[4] = { fields[0].Components > 0 && (this->PointDataTarget & TO_POINTS),
+    fields[0].Components > 0 && (this->PointDataTarget & TO_CELLS),
+    fields[1].Components > 0 && (this->CellDataTarget & TO_CELLS),
+    fields[1].Components > 0 && (this->CellDataTarget & TO_POINTS) };
+  const bool any = used[0] || used[1] || used[2] || used[3];
+  if (!any)
+  {
+    vtkWarningMacro("Source has no arrays to project (or none selected): only "
+                    "vtkValidPointMask and CoveredFraction are computed.");
+  }
+  for (int association = 0; association < 2; ++association)
+  {
+    Gathered& g = fields[association];
+    if (g.Components == 0)
+    {
+      continue;
+    }
+    const mp::Index n = association == 0 ? source->GetNumberOfPoints()
+                                         : mp::SpaceSize(mp::SpaceType::P0, sourceMesh.View());
+    g.Values.resize(std::max<size_t>(static_cast<size_t>(n) * g.Components, 1));
+    std::vector<double> measure;
+    if (association == 1 && extensive)
+    {
+      measure = mp::ParentMeasures(sourceMesh.View());
+    }
+    for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)
+    {
+      vtkDataArray* array = g.Arrays[a];
+      const int nc = array->GetNumberOfComponents();
+      const int width = g.Components;
+      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType f = begin; f < end; ++f)
+        {
+          const vtkIdType tuple = association == 0 ? f : sourceMesh.ToVTK(f);
+          // Extensive values become densities (total / measure).
+          const double scale = measure.empty() ? 1.0 : (measure[f] > 0 ? 1.0 / measure[f] : 0.0);
+          for (int k = 0; k < nc; ++k)
+          {
+            g.Values[f * width + offset + k] = scale * array->GetComponent(tuple, k);
+          }
+        }
+      });
+      offset += nc;
+    }
+  }
+  this->InputTime = lap(stage);
+  if (!progress(0.05))
+  {
+    return aborted();
+  }
+
+  // 4. The operators: kept ones while neither mesh changed, else built.
+  Fingerprint print;
+  print.Add(target);
+  print.Add(source);
+  print.Add(static_cast<std::uint64_t>(this->SearchMethod));
+  print.Add(static_cast<std::uint64_t>(this->OutputIntersections));
+  if (!this->CacheOperator || !kept.HasFingerprint || kept.GeometryFingerprint != print.Hash)
+  {
+    kept.Clear();
+  }
+  kept.HasFingerprint = this->CacheOperator;
+  kept.GeometryFingerprint = print.Hash;
+  // The operator that gives the mask and coverage when nothing is projected.
+  if (!any)
+  {
+    used[0] = true;
+  }
+  // Assembled (M_ts kept, any field): when kept, or for local bounds.
+  const bool assembled = this->CacheOperator || this->PreserveBounds;
   mp::OperatorOptions options;
   options.KeepPieces = this->OutputIntersections;
   options.Method = this->SearchMethod == BRUTE_FORCE ? mp::SearchMethod::BruteForce
                                                      : mp::SearchMethod::AdvancingFront;
-  std::unique_ptr<mp::CandidateLocator> locator;
-  this->InputTime = lap(stage);
-  if (mp::SearchNeedsNeighbors(options.Method))
-  {
-    targetMesh.BuildNeighbors();
-    sourceMesh.BuildNeighbors();
-    this->NeighborsTime = lap(stage);
-    if (targetMesh.NonManifoldFaces() || sourceMesh.NonManifoldFaces())
-    {
-      vtkWarningMacro(<< "Faces shared by more than two cells (Input: "
-                      << targetMesh.NonManifoldFaces() << ", Source: "
-                      << sourceMesh.NonManifoldFaces()
-                      << ") are treated as boundaries; results stay correct but the search is slower.");
-    }
-    // A Source without cells has nothing to locate: the kernel's own
-    // (empty) locator answers the front's questions then.
-    locator.reset(source->GetNumberOfCells() > 0
-        ? static_cast<mp::CandidateLocator*>(new mpvtk::StaticLocator(source, sourceMesh))
-        : new mp::BoxGridLocator(sourceMesh.View()));
-    this->LocatorTime = lap(stage);
-  }
-
-  // 4. The fields: every numeric point array of Source, side by side.
-  vtkPointData* sourcePD = source->GetPointData();
-  std::vector<vtkDataArray*> arrays;
-  int components = 0;
-  for (int i = 0; i < sourcePD->GetNumberOfArrays(); ++i)
-  {
-    vtkAbstractArray* abstract = sourcePD->GetAbstractArray(i);
-    const char* name = abstract->GetName();
-    vtkDataArray* array = vtkArrayDownCast<vtkDataArray>(abstract);
-    if (!array)
-    {
-      vtkWarningMacro(<< "Source point array '" << (name ? name : "(unnamed)")
-                      << "' is not numeric (" << abstract->GetClassName() << "): skipped.");
-    }
-    else if (!name || (std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
-                        std::string(name) != "vtkValidPointMask"))
-    {
-      if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
-      {
-        vtkWarningMacro(<< "Source point array '" << (name ? name : "(unnamed)") << "' holds "
-                        << "integers (" << array->GetClassName() << "): it is projected as "
-                        << "real values, and an L2 projection of labels or ids is not "
-                        << "meaningful (use Resample With Dataset for labels).");
-      }
-      arrays.push_back(array);
-      components += array->GetNumberOfComponents();
-    }
-  }
-  if (arrays.empty())
-  {
-    vtkWarningMacro("Source has no point arrays to project: only vtkValidPointMask and "
-                    "CoveredFraction are computed.");
-  }
-  const vtkIdType ns = source->GetNumberOfPoints();
-  // Never empty: a Source without points but with arrays still passes the
-  // kernel a pointer to its (absent) values.
-  mp::LargeVector<double> fields(std::max<size_t>(static_cast<size_t>(ns) * components, 1));
-  for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
-  {
-    vtkDataArray* array = arrays[a];
-    const int nc = array->GetNumberOfComponents();
-    vtkSMPTools::For(0, ns, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType p = begin; p < end; ++p)
-      {
-        for (int k = 0; k < nc; ++k)
-        {
-          fields[p * components + offset + k] = array->GetComponent(p, k);
-        }
-      }
-    });
-    offset += nc;
-  }
-
-  // 5. The operator from the two geometries: intersections and M_tt. The
-  // filter projects its fields once, so their right-hand sides M_ts u_s are
-  // summed during the search and M_ts itself is not assembled (a third
-  // less time in 2D; an operator kept across time steps will assemble it).
-  this->InputTime += lap(stage);
-  mp::MortarOperator projection;
-  options.Fields = fields.data();
-  options.FieldComponents = components;
   // One range of target cells per thread of vtkSMPTools' backend (with
   // Debian's VTK: VTK_SMP_BACKEND_IN_USE=STDThread; the default backend there
   // is sequential).
@@ -324,117 +605,435 @@ int vtkMeshProjectionFilter::RequestData(
       }
     });
   };
-  if (!projection.Build(targetMesh.View(), sourceMesh.View(), locator.get(), options))
+  std::unique_ptr<mp::CandidateLocator> locator;
+  bool searchReady = false;
+  int toBuild = 0;
+  for (int t = 0; t < 4; ++t)
   {
-    vtkErrorMacro(<< "Projection failed: " << projection.GetError());
-    return 1;
+    toBuild += used[t] && !kept.Operators[t].Operator;
   }
-  const mp::SearchStatistics& stats = projection.GetStatistics();
+  std::unique_ptr<mp::MortarOperator> fresh[4];
+  const mp::MortarOperator* operators[4] = {};
+  double built = 0;
+  for (int t = 0; t < 4; ++t)
+  {
+    if (!used[t])
+    {
+      continue;
+    }
+    if (kept.Operators[t].Operator)
+    {
+      operators[t] = kept.Operators[t].Operator.get();
+      continue;
+    }
+    if (!searchReady && mp::SearchNeedsNeighbors(options.Method))
+    {
+      // Neighbours (VTK cell links) and the seed locator (vtkStaticCellLocator).
+      targetMesh.BuildNeighbors();
+      sourceMesh.BuildNeighbors();
+      this->NeighborsTime = lap(stage);
+      if (targetMesh.NonManifoldFaces() || sourceMesh.NonManifoldFaces())
+      {
+        vtkWarningMacro(<< "Faces shared by more than two cells (Input: "
+                        << targetMesh.NonManifoldFaces() << ", Source: "
+                        << sourceMesh.NonManifoldFaces()
+                        << ") are treated as boundaries; results stay correct but the search is slower.");
+      }
+      // A Source without cells has nothing to locate: the kernel's own
+      // (empty) locator answers the front's questions then.
+      locator.reset(source->GetNumberOfCells() > 0
+          ? static_cast<mp::CandidateLocator*>(new mpvtk::StaticLocator(source, sourceMesh))
+          : new mp::BoxGridLocator(sourceMesh.View()));
+      this->LocatorTime = lap(stage);
+      if (!progress(0.15))
+      {
+        return aborted();
+      }
+    }
+    searchReady = true;
+    const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    options.TargetSpace = TargetSpaceOf(t);
+    options.SourceSpace = SourceSpaceOf(t);
+    options.Fields = assembled || g.Components == 0 ? nullptr : g.Values.data();
+    options.FieldComponents = assembled ? 0 : g.Components;
+    const double from = 0.15 + 0.7 * built / toBuild;
+    options.Progress = [&progress, from, toBuild](double f) {
+      return progress(from + 0.7 * f / toBuild);
+    };
+    fresh[t].reset(new mp::MortarOperator);
+    const bool ok = fresh[t]->Build(targetMesh.View(), sourceMesh.View(), locator.get(), options);
+    if (!ok && fresh[t]->GetError() == "stopped")
+    {
+      return aborted();
+    }
+    if (!ok)
+    {
+      vtkErrorMacro(<< "Projection failed: " << fresh[t]->GetError());
+      output->ShallowCopy(target);
+      return 1;
+    }
+    operators[t] = fresh[t].get();
+    this->SearchTime += fresh[t]->GetTimings().Search;
+    this->AssemblyTime += fresh[t]->GetTimings().Assembly;
+    ++this->NumberOfOperatorsBuilt;
+    built += 1;
+    lap(stage);
+  }
+  this->OperatorReused = this->NumberOfOperatorsBuilt == 0;
+  const mp::MortarOperator* first = nullptr; // coverage, statistics, pieces
+  for (const mp::MortarOperator* op : operators)
+  {
+    first = first ? first : op;
+  }
+  const mp::SearchStatistics& stats = first->GetStatistics();
   this->NumberOfIntersections = stats.Pieces;
   this->NumberOfIntersectionTests = stats.IntersectionTests;
   this->NumberOfLocatorQueries = stats.LocatorQueries;
-  this->CoveredMeasure = projection.GetCoveredMeasure();
-  if (stats.DegenerateTargetCells > 0 || stats.DegenerateSourceCells > 0)
+  this->CoveredMeasure = first->GetCoveredMeasure();
+  if (!this->OperatorReused)
   {
-    vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
-                    << " (Input: " << stats.DegenerateTargetCells << ", Source: "
-                    << stats.DegenerateSourceCells
-                    << ") were ignored: they carry no part of the integrals.");
+    if (stats.DegenerateTargetCells > 0 || stats.DegenerateSourceCells > 0)
+    {
+      vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
+                      << " (Input: " << stats.DegenerateTargetCells << ", Source: "
+                      << stats.DegenerateSourceCells
+                      << ") were ignored: they carry no part of the integrals.");
+    }
+    if (target->GetNumberOfCells() > 0 && source->GetNumberOfCells() > 0 &&
+      first->GetCoveredMeasure() == 0)
+    {
+      vtkWarningMacro("Source and Input do not overlap: every projected value is invalid.");
+    }
+    if (first->GetNumberOfOvercoveredCells() > 0)
+    {
+      vtkWarningMacro(<< first->GetNumberOfOvercoveredCells()
+                      << " Input cells are covered more than once: Source cells overlap each other "
+                      << "(folded, inverted among their neighbours, or duplicated). The result is "
+                      << "not a projection of one field there.");
+    }
   }
-  if (target->GetNumberOfCells() > 0 && source->GetNumberOfCells() > 0 &&
-    projection.GetNumberOfValid() == 0)
+  if (!progress(0.85))
   {
-    vtkWarningMacro("Source and Input do not overlap: every projected point is invalid.");
-  }
-  if (projection.GetNumberOfOvercoveredCells() > 0)
-  {
-    vtkWarningMacro(<< projection.GetNumberOfOvercoveredCells()
-                    << " Input cells are covered more than once: Source cells overlap each other "
-                    << "(folded, inverted among their neighbours, or duplicated). The result is "
-                    << "not a projection of one field there.");
+    return aborted();
   }
 
-  // 6. Solve M_tt u_t = M_ts u_s, one output array per source array.
-  const vtkIdType nt = target->GetNumberOfPoints();
-  mp::LargeVector<double> values(static_cast<size_t>(nt) * components);
+  // 5. Apply: M_ts u_s, then M_tt (consistent, from the previous step's
+  // solution when the same arrays were projected with the same operator)
+  // or its row sums (lumped); bounds when asked.
   const double fill =
     this->FillWithNaN ? std::numeric_limits<double>::quiet_NaN() : this->FillValue;
-  if (components > 0 && !projection.Apply(fields.data(), components, values.data(), fill))
+  mp::LargeVector<double> results[4];
+  for (int t = 0; t < 4; ++t)
   {
-    vtkErrorMacro("The mass matrix of the covered target part could not be solved.");
-    return 1;
+    const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    if (!operators[t] || g.Components == 0)
+    {
+      continue;
+    }
+    const mp::MortarOperator& op = *operators[t];
+    Internals::Kept& k = kept.Operators[t];
+    mp::LargeVector<double>& values = results[t];
+    const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
+    mp::ApplyOptions apply;
+    apply.Mass = this->MassMatrix == LUMPED_MASS ? mp::MassType::Lumped : mp::MassType::Consistent;
+    apply.Bounded = this->PreserveBounds;
+    if (!fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size)
+    {
+      values.assign(k.Solution.begin(), k.Solution.end());
+      apply.Solve.StartFromX = true;
+    }
+    else
+    {
+      values.resize(size);
+    }
+    if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply))
+    {
+      vtkErrorMacro(<< "The projection of " << TransferName(t) << " failed: the mass matrix of "
+                    << "the covered target part could not be solved.");
+      output->ShallowCopy(target);
+      kept.Clear();
+      return 1;
+    }
+    this->SolveTime += op.GetTimings().Solve;
+    if (this->CacheOperator)
+    {
+      k.SolutionKey = g.Key;
+      k.Solution.assign(values.begin(), values.end());
+    }
   }
-  mp::LargeVector<double>().swap(fields);
-  lap(stage);
-  this->SearchTime = projection.GetTimings().Search;
-  this->AssemblyTime = projection.GetTimings().Assembly;
-  this->SolveTime = projection.GetTimings().Solve;
-  vtkPointData* outPD = output->GetPointData();
-  for (int a = 0, offset = 0; a < static_cast<int>(arrays.size()); ++a)
+  // Kept for the next execution (and GetMatrix), or dropped.
+  for (int t = 0; t < 4; ++t)
   {
-    vtkDataArray* array = arrays[a];
-    const int nc = array->GetNumberOfComponents();
-    vtkNew<vtkDoubleArray> projected;
-    projected->SetName(array->GetName() ? array->GetName()
-                                        : ("ProjectedArray" + std::to_string(a)).c_str());
-    projected->SetNumberOfComponents(nc);
-    for (int k = 0; k < nc; ++k)
+    if (fresh[t] && this->CacheOperator && fresh[t]->HasMixedMass())
     {
-      if (array->GetComponentName(k))
+      kept.Operators[t].Operator = std::move(fresh[t]);
+    }
+  }
+  kept.TargetCells.clear();
+  kept.SourceCells.clear();
+  for (mp::Index c = 0; targetMesh.GhostCells() && c < targetMesh.View().NumberOfCells; ++c)
+  {
+    kept.TargetCells.push_back(targetMesh.ToVTK(c));
+  }
+  for (mp::Index c = 0; sourceMesh.GhostCells() && c < sourceMesh.View().NumberOfCells; ++c)
+  {
+    kept.SourceCells.push_back(sourceMesh.ToVTK(c));
+  }
+  kept.TargetCellCount = target->GetNumberOfCells();
+  kept.SourceCellCount = source->GetNumberOfCells();
+  if (!progress(0.95))
+  {
+    return aborted();
+  }
+  lap(stage);
+
+  // 6. One output array per projected array.
+  const vtkIdType nt = target->GetNumberOfPoints();
+  const vtkIdType ntc = target->GetNumberOfCells();
+  const mp::Index kernelCells = targetMesh.View().NumberOfCells;
+  vtkPointData* outPD = output->GetPointData();
+  vtkCellData* outCD = output->GetCellData();
+  std::vector<std::string> pointNames, cellNames; // written by the main transfers
+  for (int t : { 0, 2, 1, 3 })
+  {
+    const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    if (results[t].empty())
+    {
+      continue;
+    }
+    const bool toPoints = TargetSpaceOf(t) == mp::SpaceType::P1;
+    const bool fromCells = SourceSpaceOf(t) == mp::SpaceType::P0;
+    const bool totals = t == 2 && extensive; // densities back to totals
+    const std::vector<double>& covered = operators[t]->GetCoveredIntegrals();
+    vtkDataSetAttributes* sourceData = fromCells
+      ? static_cast<vtkDataSetAttributes*>(source->GetCellData())
+      : static_cast<vtkDataSetAttributes*>(source->GetPointData());
+    vtkDataSetAttributes* outData = toPoints ? static_cast<vtkDataSetAttributes*>(outPD)
+                                             : static_cast<vtkDataSetAttributes*>(outCD);
+    std::vector<std::string>& written = toPoints ? pointNames : cellNames;
+    const bool main = t == 0 || t == 2;
+    for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)
+    {
+      vtkDataArray* array = g.Arrays[a];
+      const int nc = array->GetNumberOfComponents();
+      std::string name = array->GetName() ? array->GetName()
+                                          : (fromCells ? "ProjectedCellArray" : "ProjectedArray") +
+          std::to_string(a);
+      if (!main && std::find(written.begin(), written.end(), name) != written.end())
       {
-        projected->SetComponentName(k, array->GetComponentName(k));
+        name += fromCells ? " (from cells)" : " (from points)";
       }
-    }
-    projected->SetNumberOfTuples(nt);
-    double* out = projected->GetPointer(0);
-    for (vtkIdType p = 0; p < nt; ++p)
-    {
-      std::copy_n(&values[p * components + offset], nc, out + p * nc);
-    }
-    offset += nc;
-    outPD->AddArray(projected);
-    if (array == sourcePD->GetScalars())
-    {
-      outPD->SetActiveScalars(projected->GetName());
-    }
-    else if (array == sourcePD->GetVectors())
-    {
-      outPD->SetActiveVectors(projected->GetName());
+      written.push_back(name);
+      vtkNew<vtkDoubleArray> projected;
+      projected->SetName(name.c_str());
+      projected->SetNumberOfComponents(nc);
+      for (int k = 0; k < nc; ++k)
+      {
+        if (array->GetComponentName(k))
+        {
+          projected->SetComponentName(k, array->GetComponentName(k));
+        }
+      }
+      const mp::LargeVector<double>& values = results[t];
+      const int width = g.Components;
+      if (toPoints)
+      {
+        projected->SetNumberOfTuples(nt);
+        double* out = projected->GetPointer(0);
+        for (vtkIdType p = 0; p < nt; ++p)
+        {
+          std::copy_n(&values[p * width + offset], nc, out + p * nc);
+        }
+      }
+      else
+      {
+        projected->SetNumberOfTuples(ntc);
+        projected->Fill(fill); // ghost cells
+        double* out = projected->GetPointer(0);
+        for (mp::Index c = 0; c < kernelCells; ++c)
+        {
+          const double scale = totals && operators[t]->GetValid()[c] ? covered[c] : 1.0;
+          double* o = out + targetMesh.ToVTK(c) * nc;
+          for (int k = 0; k < nc; ++k)
+          {
+            o[k] = scale * values[c * width + offset + k];
+          }
+        }
+      }
+      offset += nc;
+      outData->AddArray(projected);
+      if (main && array == sourceData->GetScalars())
+      {
+        outData->SetActiveScalars(projected->GetName());
+      }
+      else if (main && array == sourceData->GetVectors())
+      {
+        outData->SetActiveVectors(projected->GetName());
+      }
     }
   }
 
   // 7. Where the result is defined, and how much of each cell is covered.
+  const std::vector<double>& fraction = first->GetCoveredFraction();
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
-  std::copy(projection.GetValid().begin(), projection.GetValid().end(), mask->GetPointer(0));
+  const mp::MortarOperator* onPoints = operators[0] ? operators[0] : operators[3];
+  if (onPoints)
+  {
+    std::copy(onPoints->GetValid().begin(), onPoints->GetValid().end(), mask->GetPointer(0));
+  }
+  else
+  {
+    // A point is valid when a cell around it meets the source.
+    mask->Fill(0);
+    for (mp::Index c = 0; c < kernelCells; ++c)
+    {
+      if (fraction[c] > 0)
+      {
+        const mp::Index* p = targetMesh.View().Cell(c);
+        for (int k = 0; k < targetMesh.View().CornersPerCell(); ++k)
+        {
+          mask->SetValue(p[k], 1);
+        }
+      }
+    }
+  }
   outPD->AddArray(mask);
+  if (const mp::MortarOperator* onCells = operators[1] ? operators[1] : operators[2])
+  {
+    vtkNew<vtkCharArray> cellMask;
+    cellMask->SetName("vtkValidCellMask");
+    cellMask->SetNumberOfValues(ntc);
+    cellMask->Fill(0); // ghost cells
+    for (mp::Index c = 0; c < kernelCells; ++c)
+    {
+      cellMask->SetValue(targetMesh.ToVTK(c), onCells->GetValid()[c]);
+    }
+    outCD->AddArray(cellMask);
+  }
   vtkNew<vtkDoubleArray> covered;
   covered->SetName("CoveredFraction");
-  covered->SetNumberOfValues(target->GetNumberOfCells());
+  covered->SetNumberOfValues(ntc);
   covered->Fill(0.0); // ghost cells
-  const std::vector<double>& fraction = projection.GetCoveredFraction();
   for (size_t c = 0; c < fraction.size(); ++c)
   {
     covered->SetValue(targetMesh.ToVTK(static_cast<mp::Index>(c)), fraction[c]);
   }
-  output->GetCellData()->AddArray(covered);
+  outCD->AddArray(covered);
 
   // 8. Optionally, the intersection pieces.
   if (this->OutputIntersections && targetMesh.Dimension() == 2)
   {
     polygons->ShallowCopy(
-      mpvtk::MakeIntersectionPolygons(projection.GetPieces(), targetMesh, sourceMesh));
+      mpvtk::MakeIntersectionPolygons(first->GetPieces(), targetMesh, sourceMesh));
   }
   else if (this->OutputIntersections)
   {
     polyhedra->ShallowCopy(
-      mpvtk::MakeIntersectionPolyhedra(projection.GetPieces(), targetMesh, sourceMesh));
+      mpvtk::MakeIntersectionPolyhedra(first->GetPieces(), targetMesh, sourceMesh));
   }
   this->OutputTime = lap(stage);
   this->ExecutionTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
+  vtkIdTypeArray* columns, vtkDoubleArray* values)
+{
+  if (transfer < 0 || transfer > 3 || !rowStart || !columns || !values ||
+    !this->Internal->Operators[transfer].Operator)
+  {
+    vtkErrorMacro(<< "No operator of "
+                  << (transfer >= 0 && transfer <= 3 ? TransferName(transfer) : "that number")
+                  << " is kept: run the filter with CacheOperator on and that transfer in use.");
+    return -1;
+  }
+  const mp::MortarOperator& op = *this->Internal->Operators[transfer].Operator;
+  const mp::CsrMatrix& m = matrix == MIXED_MASS ? op.GetMixedMass() : op.GetTargetMass();
+  // Kernel cells are the non-ghost cells in order: map P0 rows and columns
+  // to VTK cell ids (empty rows for ghost cells).
+  const bool cellRows = TargetSpaceOf(transfer) == mp::SpaceType::P0;
+  const bool cellColumns =
+    matrix == MIXED_MASS ? SourceSpaceOf(transfer) == mp::SpaceType::P0 : cellRows;
+  const std::vector<vtkIdType>& rowMap = this->Internal->TargetCells;
+  const std::vector<vtkIdType>& columnMap =
+    matrix == MIXED_MASS ? this->Internal->SourceCells : this->Internal->TargetCells;
+  const vtkIdType rows = cellRows && !rowMap.empty() ? this->Internal->TargetCellCount : m.Rows;
+  vtkIdType ncolumns = m.Columns;
+  if (cellColumns && !columnMap.empty())
+  {
+    ncolumns = matrix == MIXED_MASS ? this->Internal->SourceCellCount : this->Internal->TargetCellCount;
+  }
+  rowStart->SetNumberOfComponents(1);
+  rowStart->SetNumberOfTuples(rows + 1);
+  columns->SetNumberOfComponents(1);
+  columns->SetNumberOfTuples(m.NonZeros());
+  values->SetNumberOfComponents(1);
+  values->SetNumberOfTuples(m.NonZeros());
+  vtkIdType row = 0;
+  rowStart->SetValue(0, 0);
+  for (mp::Index i = 0; i < m.Rows; ++i)
+  {
+    const vtkIdType vtkRow = cellRows && !rowMap.empty() ? rowMap[i] : i;
+    while (row < vtkRow)
+    {
+      rowStart->SetValue(++row, m.RowStart[i]);
+    }
+    for (mp::Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
+    {
+      const vtkIdType c = m.ColumnIndex[p];
+      columns->SetValue(p, cellColumns && !columnMap.empty() ? columnMap[c] : c);
+      values->SetValue(p, m.Values[p]);
+    }
+    rowStart->SetValue(++row, m.RowStart[i + 1]);
+  }
+  while (row < rows)
+  {
+    rowStart->SetValue(++row, m.NonZeros());
+  }
+  return ncolumns;
+}
+
+bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transfer, int matrix)
+{
+  vtkNew<vtkIdTypeArray> rowStart;
+  vtkNew<vtkIdTypeArray> columns;
+  vtkNew<vtkDoubleArray> values;
+  const vtkIdType ncolumns = this->GetMatrix(transfer, matrix, rowStart, columns, values);
+  if (ncolumns < 0)
+  {
+    return false;
+  }
+  std::ofstream file(fileName ? fileName : "");
+  if (!file)
+  {
+    vtkErrorMacro(<< "Cannot write '" << (fileName ? fileName : "") << "'.");
+    return false;
+  }
+  const vtkIdType rows = rowStart->GetNumberOfTuples() - 1;
+  file << "%%MatrixMarket matrix coordinate real general\n"
+       << "% MeshProjection: " << (matrix == MIXED_MASS ? "M_ts" : "M_tt") << ", "
+       << TransferName(transfer) << "\n"
+       << rows << " " << ncolumns << " " << values->GetNumberOfTuples() << "\n";
+  file.precision(17);
+  for (vtkIdType i = 0; i < rows; ++i)
+  {
+    for (vtkIdType p = rowStart->GetValue(i); p < rowStart->GetValue(i + 1); ++p)
+    {
+      file << i + 1 << " " << columns->GetValue(p) + 1 << " " << values->GetValue(p) << "\n";
+    }
+  }
+  file.close();
+  if (!file)
+  {
+    vtkErrorMacro(<< "Writing '" << fileName << "' failed.");
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -446,6 +1045,13 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputIntersections: " << (this->OutputIntersections ? "On" : "Off") << "\n";
   os << indent << "FillWithNaN: " << (this->FillWithNaN ? "On" : "Off") << "\n";
   os << indent << "FillValue: " << this->FillValue << "\n";
+  os << indent << "PointDataTarget: " << this->PointDataTarget << "\n";
+  os << indent << "CellDataTarget: " << this->CellDataTarget << "\n";
+  os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";
+  os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent") << "\n";
+  os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
+  os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
+  os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";
   os << indent << "NumberOfLocatorQueries: " << this->NumberOfLocatorQueries << "\n";

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkMeshProjectionFilter
- * @brief   Transfers point data between two non-matching meshes by mortar L2 projection.
+ * @brief   Transfers point and cell data between two non-matching meshes by mortar L2 projection.
  *
- * vtkMeshProjectionFilter fills the points of a target mesh (input port 0,
- * "Input") with the point data of a source mesh (input port 1, "Source")
- * such that the projected field is the L2-best P1 approximation of the
- * source field on the target: it solves M_tt u_t = M_ts u_s, where M_tt is
+ * vtkMeshProjectionFilter fills a target mesh (input port 0, "Input") with
+ * the point and cell data of a source mesh (input port 1, "Source") such
+ * that each projected field is the L2-best approximation of the source
+ * field on the target (P1 on points, P0 on cells): it solves M_tt u_t = M_ts u_s, where M_tt is
  * the target mass matrix and M_ts the mixed (mortar) mass matrix, both
  * integrated exactly over the intersection polygons of every pair of source
  * and target cells. Unlike vtkResampleWithDataSet (pointwise probing), the
@@ -28,12 +28,37 @@
  * coordinates), or linear tetrahedra (VTK_TETRA). They need not cover the
  * same region, be connected or convex.
  *
- * Output port 0: a shallow copy of Input with, for every numeric point array
- * of Source (any type, any number of components), a vtkDoubleArray of the
- * same name and components holding the projected field (an Input array of
- * the same name is replaced); plus
+ * What is projected, and onto what (all Source arrays by default):
+ *  - point arrays (PointDataArraySelection) are P1 fields: continuous,
+ *    piecewise linear on the cells. They go to Input's points (default),
+ *    cells (the L2 projection onto piecewise constants: each cell's mean of
+ *    the source field over its covered part), or both (PointDataTarget).
+ *  - cell arrays (CellDataArraySelection) are P0 fields: one value per
+ *    cell. They go to Input's cells (default), points, or both
+ *    (CellDataTarget). Cell to cell is the measure-weighted mean over the
+ *    covered part (exact on constants, conservative). CellDataQuantity
+ *    says what the values are: INTENSIVE (default: densities, temperatures,
+ *    velocities; a value per unit area or volume) or EXTENSIVE (totals:
+ *    mass, counts, sums), whose projection keeps totals: each target cell
+ *    gets the sum of the source totals times the covered fraction of each
+ *    source cell it meets (to points: the projected density, the total per
+ *    unit area or volume).
+ * MassMatrix CONSISTENT (default) is the L2 projection; LUMPED divides by
+ * the row sums instead (never leaves the range of the source values on a
+ * target function's support, no solve, but only first order). With
+ * PreserveBounds the consistent projection is clipped to those local
+ * ranges and the clipped integral given back (clip and assured sum): no
+ * overshoot, integral conserved, linear fields still exact.
+ *
+ * Output port 0: a shallow copy of Input with, for each projected array, a
+ * vtkDoubleArray of the same name and components (an Input array of the
+ * same name is replaced; a point array projected to cells next to a cell
+ * array of the same name gets the suffix " (from points)", and likewise
+ * " (from cells)"), plus
  *  - "vtkValidPointMask" (char point array): 1 where the point's support
  *    meets the source, else 0; invalid points get NaN (or FillValue);
+ *  - "vtkValidCellMask" (char cell array, when arrays go to cells): 1 where
+ *    the cell meets the source; invalid cells get NaN (or FillValue);
  *  - "CoveredFraction" (double cell array): the fraction of each target
  *    cell's area (volume) covered by the source.
  * When OutputIntersections is on:
@@ -44,7 +69,23 @@
  *    "SourceCellId", "TargetCellId" and "Volume" (of each tetrahedron).
  * The port not used by the inputs' dimension stays empty.
  *
- * Non-numeric Source point arrays (strings, variants) are skipped with a
+ * Time: the output advertises the time steps of both inputs (their union)
+ * and asks both for the requested time, so a time-varying Source (or
+ * Input) is followed. With CacheOperator on (default) the operators (the
+ * matrices M_tt and M_ts of each transfer used) are kept between
+ * executions and reused while neither mesh changed (same points, cells and
+ * cell types, compared by a 64-bit fingerprint of their arrays' contents,
+ * since readers build new arrays at every step): a step then costs the
+ * right-hand sides and a solve started from the previous step's solution.
+ * OperatorReused tells whether the last execution reused them;
+ * OperatorMemory their size. GetMatrix() gives the kept matrices as
+ * compressed rows and WriteMatrixMarket() writes them.
+ *
+ * Progress is reported through the stages, and AbortExecute stops a run
+ * (within the search at chunks of cells): the output is then Input as it
+ * came, with a warning.
+ *
+ * Non-numeric Source arrays (strings, variants) are skipped with a
  * warning; integer arrays are projected as real values, with a warning (an
  * L2 projection of labels or ids is not meaningful). Invalid input (no
  * Source, other cell types, a mix of triangles and tetrahedra, meshes of
@@ -67,6 +108,10 @@
 #include "MeshProjectionFiltersModule.h" // for export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
+class vtkDataArraySelection;
+class vtkDoubleArray;
+class vtkIdTypeArray;
+
 class MESHPROJECTIONFILTERS_EXPORT vtkMeshProjectionFilter : public vtkUnstructuredGridAlgorithm
 {
 public:
@@ -78,6 +123,38 @@ public:
   {
     ADVANCING_FRONT = 0, ///< Gander & Japhet's front over neighbours: linear complexity
     BRUTE_FORCE = 1      ///< every target cell against every source cell: O(n m), for checks
+  };
+
+  /// Where projected arrays go (PointDataTarget, CellDataTarget).
+  enum Targets
+  {
+    TO_POINTS = 1,
+    TO_CELLS = 2,
+    TO_POINTS_AND_CELLS = 3
+  };
+  /// What the values of cell arrays are (CellDataQuantity).
+  enum Quantities
+  {
+    INTENSIVE = 0, ///< per unit area or volume: means are projected
+    EXTENSIVE = 1  ///< totals per cell: totals are kept
+  };
+  enum MassMatrices
+  {
+    CONSISTENT_MASS = 0, ///< the L2 projection
+    LUMPED_MASS = 1      ///< row sums: bounded, first order
+  };
+  /// The four operators (GetMatrix, WriteMatrixMarket): source -> target spaces.
+  enum Transfers
+  {
+    POINTS_TO_POINTS = 0,
+    POINTS_TO_CELLS = 1,
+    CELLS_TO_CELLS = 2,
+    CELLS_TO_POINTS = 3
+  };
+  enum Matrices
+  {
+    TARGET_MASS = 0, ///< M_tt (target functions x target functions)
+    MIXED_MASS = 1   ///< M_ts (target functions x source functions)
   };
 
   ///@{
@@ -127,6 +204,94 @@ public:
 
   ///@{
   /**
+   * Which Source point and cell arrays are projected. Arrays not listed
+   * are enabled (all arrays by default); disable them by name, e.g.
+   * GetPointDataArraySelection()->DisableArray("p").
+   */
+  vtkDataArraySelection* GetPointDataArraySelection();
+  vtkDataArraySelection* GetCellDataArraySelection();
+  ///@}
+
+  ///@{
+  /**
+   * Where Source point arrays go (TO_POINTS: default) and where Source cell
+   * arrays go (TO_CELLS: default); TO_POINTS_AND_CELLS gives both.
+   */
+  vtkSetClampMacro(PointDataTarget, int, TO_POINTS, TO_POINTS_AND_CELLS);
+  vtkGetMacro(PointDataTarget, int);
+  vtkSetClampMacro(CellDataTarget, int, TO_POINTS, TO_POINTS_AND_CELLS);
+  vtkGetMacro(CellDataTarget, int);
+  ///@}
+
+  ///@{
+  /**
+   * INTENSIVE (default) or EXTENSIVE cell arrays (see the class
+   * description). Point arrays are always fields (intensive).
+   */
+  vtkSetClampMacro(CellDataQuantity, int, INTENSIVE, EXTENSIVE);
+  vtkGetMacro(CellDataQuantity, int);
+  ///@}
+
+  ///@{
+  /**
+   * CONSISTENT_MASS (default): the L2 projection; LUMPED_MASS: bounded and
+   * cheap, first order.
+   */
+  vtkSetClampMacro(MassMatrix, int, CONSISTENT_MASS, LUMPED_MASS);
+  vtkGetMacro(MassMatrix, int);
+  ///@}
+
+  ///@{
+  /**
+   * Keeps each projected value within the range of the source values on its
+   * support, conserving the integral (clip and assured sum after the
+   * consistent projection). Default: false.
+   */
+  vtkSetMacro(PreserveBounds, bool);
+  vtkGetMacro(PreserveBounds, bool);
+  vtkBooleanMacro(PreserveBounds, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Keeps the operators between executions and reuses them while neither
+   * mesh changes (time series on fixed meshes). Default: true. Off, each
+   * execution builds what it needs and keeps nothing (for one-off runs on
+   * very large meshes: M_ts is then not even assembled).
+   */
+  vtkSetMacro(CacheOperator, bool);
+  vtkGetMacro(CacheOperator, bool);
+  vtkBooleanMacro(CacheOperator, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Whether the last execution reused the kept operators (no search, no
+   * assembly), how many operators it built, and the bytes the kept
+   * operators hold.
+   */
+  vtkGetMacro(OperatorReused, bool);
+  vtkGetMacro(NumberOfOperatorsBuilt, int);
+  vtkIdType GetOperatorMemory();
+  ///@}
+
+  /**
+   * The kept operator of a transfer (POINTS_TO_POINTS, ...) as compressed
+   * sparse rows: row i holds columns[rowStart[i]..rowStart[i+1]) and their
+   * values. Rows are Input's points or cells, columns Input's (TARGET_MASS)
+   * or Source's (MIXED_MASS) points or cells, in VTK ids. M_tt is
+   * integrated over the covered part; rows of invalid target functions hold
+   * a 1 on the diagonal. Returns the number of columns, or -1 (with an
+   * error) when no such operator is kept: run the filter with CacheOperator
+   * on and the transfer in use.
+   */
+  vtkIdType GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
+    vtkIdTypeArray* columns, vtkDoubleArray* values);
+  /// Writes GetMatrix()'s matrix as a Matrix Market coordinate file (1-based); false on failure.
+  bool WriteMatrixMarket(const char* fileName, int transfer, int matrix);
+
+  ///@{
+  /**
    * Results of the last execution: intersecting cell pairs with an
    * intersection of positive measure, cell-pair intersection tests, locator
    * queries (among the source's boundary cells or all its cells), the
@@ -163,6 +328,7 @@ protected:
   ~vtkMeshProjectionFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -171,6 +337,14 @@ protected:
   bool OutputIntersections = false;
   bool FillWithNaN = true;
   double FillValue = 0;
+  int PointDataTarget = TO_POINTS;
+  int CellDataTarget = TO_CELLS;
+  int CellDataQuantity = INTENSIVE;
+  int MassMatrix = CONSISTENT_MASS;
+  bool PreserveBounds = false;
+  bool CacheOperator = true;
+  bool OperatorReused = false;
+  int NumberOfOperatorsBuilt = 0;
 
   vtkIdType NumberOfIntersections = 0;
   vtkIdType NumberOfIntersectionTests = 0;
@@ -187,6 +361,8 @@ protected:
 
 private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;
+  struct Internals;
+  Internals* Internal;
   void operator=(const vtkMeshProjectionFilter&) = delete;
 };
 

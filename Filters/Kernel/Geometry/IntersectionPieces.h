@@ -27,6 +27,12 @@ struct IntersectionPieces
   std::vector<Index> SourceCell;
   std::vector<double> Measure;     ///< area (2D) or volume (3D) of each cell
   Index Size() const { return static_cast<Index>(this->TargetCell.size()); }
+  std::size_t MemoryBytes() const
+  {
+    return (this->Offsets.capacity() + this->TargetCell.capacity() + this->SourceCell.capacity()) *
+      sizeof(Index) +
+      (this->Points.capacity() + this->Measure.capacity()) * sizeof(double);
+  }
 
   /// Appends `other`'s cells after this one's.
   void Append(const IntersectionPieces& other)

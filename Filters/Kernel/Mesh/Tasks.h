@@ -28,6 +28,16 @@ inline Index RangeBegin(Index n, int k, int tasks)
   return n * k / tasks;
 }
 
+/**
+ * Reports progress of a long loop and asks whether to go on: called with
+ * the fraction done (0..1] of the first task's share, from the thread that
+ * runs task 0, between chunks of at least ProgressChunk items. Returning
+ * false stops the loop at the next chunk boundary of every task (the
+ * caller then discards the partial result). Empty: no chunks, no reports.
+ */
+using ProgressHook = std::function<bool(double fraction)>;
+constexpr Index ProgressChunk = 8192;
+
 struct TaskRunner
 {
   /// How many concurrent tasks to split work into (1: serial).

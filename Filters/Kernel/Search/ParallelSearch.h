@@ -18,6 +18,7 @@
 #include "Search/SearchStatistics.h"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <memory>
 #include <string>
@@ -63,9 +64,9 @@ inline std::string CheckSearchMesh(const MeshView& mesh, const char* name, Searc
  * order; source cells of zero measure are counted once.
  */
 template <class Intersector, class Visitor>
-void SearchInRanges(SearchMethod method, const MeshView& target, const MeshView& source,
+bool SearchInRanges(SearchMethod method, const MeshView& target, const MeshView& source,
   CandidateLocator* locator, const TaskRunner& runner, std::vector<Visitor>& visitors,
-  SearchStatistics& statistics)
+  SearchStatistics& statistics, const ProgressHook& progress = ProgressHook())
 {
   const int tasks = static_cast<int>(visitors.size());
   const Index cells = target.NumberOfCells;
@@ -76,19 +77,33 @@ void SearchInRanges(SearchMethod method, const MeshView& target, const MeshView&
   {
     locators[k] = locator->NewForThread();
   }
+  // With a progress hook, each range is searched in chunks (a front each,
+  // seeded anew: a few locator queries per chunk); task 0 reports its share
+  // done between chunks, and every task stops at a chunk boundary once the
+  // hook has asked to stop.
+  std::atomic<bool> stop{ false };
   runner.RunAll(tasks, [&](int k) {
     const Index begin = RangeBegin(cells, k, tasks);
     const Index end = RangeBegin(cells, k + 1, tasks);
-    if (method == SearchMethod::AdvancingFront)
+    const Index chunk = progress ? std::max<Index>(ProgressChunk, (end - begin) / 50 + 1) : end - begin;
+    for (Index first = begin; first < end && !stop.load(std::memory_order_relaxed); first += chunk)
     {
-      CandidateLocator& seeds = tasks > 1 ? *locators[k] : *locator;
-      AdvancingFrontSearch<Intersector>(
-        target, source, seeds, visitors[k], stats[k], begin, end, &degenerate[k]);
-    }
-    else
-    {
-      BruteForceSearch<Intersector>(
-        target, source, visitors[k], stats[k], begin, end, &degenerate[k]);
+      const Index last = std::min(end, first + chunk);
+      if (method == SearchMethod::AdvancingFront)
+      {
+        CandidateLocator& seeds = tasks > 1 ? *locators[k] : *locator;
+        AdvancingFrontSearch<Intersector>(
+          target, source, seeds, visitors[k], stats[k], first, last, &degenerate[k]);
+      }
+      else
+      {
+        BruteForceSearch<Intersector>(
+          target, source, visitors[k], stats[k], first, last, &degenerate[k]);
+      }
+      if (k == 0 && progress && !progress(static_cast<double>(last - begin) / (end - begin)))
+      {
+        stop = true;
+      }
     }
   });
   std::vector<Index> all;
@@ -100,6 +115,7 @@ void SearchInRanges(SearchMethod method, const MeshView& target, const MeshView&
   std::sort(all.begin(), all.end());
   statistics.DegenerateSourceCells =
     static_cast<Index>(std::unique(all.begin(), all.end()) - all.begin());
+  return !stop;
 }
 } // namespace mp
 

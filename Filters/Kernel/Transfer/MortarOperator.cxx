@@ -118,6 +118,13 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   {
     this->Dispatch<3>(target, source, locator);
   }
+  if (!this->Error.empty())
+  {
+    this->TargetMass = CsrMatrix();
+    this->MixedMass = CsrMatrix();
+    this->Valid.clear();
+    return false;
+  }
   this->Solver.reset(new BlockCG(this->TargetMass, this->Options.Runner));
   return true;
 }
@@ -231,8 +238,12 @@ void MortarOperator::Assemble(
   this->Timings.Assembly = Seconds(start);
 
   start = std::chrono::steady_clock::now();
-  SearchInRanges<Intersector>(
-    this->Options.Method, target, source, locator, runner, assemblers, this->Statistics);
+  if (!SearchInRanges<Intersector>(this->Options.Method, target, source, locator, runner,
+        assemblers, this->Statistics, this->Options.Progress))
+  {
+    this->Error = "stopped";
+    return;
+  }
   for (Assembler& a : assemblers)
   {
     a.Flush();
@@ -271,6 +282,7 @@ void MortarOperator::Assemble(
   // whole row is zero (no piece touches its support); a 1 on the diagonal
   // decouples it.
   this->Valid.assign(static_cast<size_t>(rows), 0);
+  this->RowSums.assign(static_cast<size_t>(rows), 0.0);
   for (Index i = 0; i < rows; ++i)
   {
     double& diagonal = this->TargetMass.Values[this->TargetMass.Find(i, i)];
@@ -278,6 +290,12 @@ void MortarOperator::Assemble(
     {
       this->Valid[i] = 1;
       ++this->NumberOfValid;
+      double sum = 0.0;
+      for (Index p = this->TargetMass.RowStart[i]; p < this->TargetMass.RowStart[i + 1]; ++p)
+      {
+        sum += this->TargetMass.Values[p];
+      }
+      this->RowSums[i] = sum;
     }
     else
     {
@@ -290,6 +308,73 @@ void MortarOperator::Assemble(
 bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
   double fill, const SolveOptions& solve, const SolverHooks& hooks) const
 {
+  ApplyOptions options;
+  options.Solve = solve;
+  return this->Apply(sourceValues, components, targetValues, fill, options, hooks);
+}
+
+size_t MortarOperator::MemoryBytes() const
+{
+  auto csr = [](const CsrMatrix& m) {
+    return m.RowStart.capacity() * sizeof(Index) + m.ColumnIndex.capacity() * sizeof(Column) +
+      m.Values.capacity() * sizeof(double);
+  };
+  return csr(this->TargetMass) + csr(this->MixedMass) + this->Rhs.capacity() * sizeof(double) +
+    this->Valid.capacity() + this->RowSums.capacity() * sizeof(double) +
+    this->CoveredFraction.capacity() * sizeof(double) + this->Pieces.MemoryBytes();
+}
+
+namespace
+{
+/**
+ * Clip and assured sum on column `k` of x (rows x c): each valid value into
+ * [low_i, high_i], then the difference to `total` (sum of w_i x_i wanted)
+ * spread in proportion to w_i times the room left.
+ */
+void ClipAndAssuredSum(double* x, int c, int k, const std::vector<double>& w,
+  const std::vector<char>& valid, const std::vector<double>& low, const std::vector<double>& high,
+  double total)
+{
+  const Index n = static_cast<Index>(w.size());
+  double clipped = 0.0;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i])
+    {
+      double& v = x[i * c + k];
+      v = std::min(high[i], std::max(low[i], v));
+      clipped += w[i] * v;
+    }
+  }
+  const double missing = total - clipped;
+  double room = 0.0;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i])
+    {
+      room += w[i] * (missing > 0 ? high[i] - x[i * c + k] : x[i * c + k] - low[i]);
+    }
+  }
+  if (!(room > 0.0) || missing == 0.0)
+  {
+    return; // nothing to give back, or no room (then the sum was already at a bound)
+  }
+  const double scale = missing / room;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i])
+    {
+      double& v = x[i * c + k];
+      v += scale * (missing > 0 ? high[i] - v : v - low[i]);
+    }
+  }
+}
+} // namespace
+
+bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const ApplyOptions& options, const SolverHooks& hooks) const
+{
+  const SolveOptions& solve = options.Solve;
   const auto start = std::chrono::steady_clock::now();
   const Index n = this->TargetMass.Rows;
   if (!this->Solver || components <= 0 || n == 0)
@@ -341,7 +426,57 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
       }
     }
   }
-  const bool ok = this->Solver->Solve(rhs, targetValues, components, solve, hooks);
+  bool ok = true;
+  if (options.Mass == MassType::Lumped)
+  {
+    // Row sums of M_tt completed across parts like the right-hand sides.
+    std::vector<double> sums(this->RowSums);
+    if (hooks.Exchange)
+    {
+      hooks.Exchange(sums.data(), 1);
+    }
+    for (Index i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < components; ++k)
+      {
+        targetValues[i * components + k] = sums[i] > 0.0 ? rhs[i * components + k] / sums[i] : 0.0;
+      }
+    }
+  }
+  else
+  {
+    ok = this->Solver->Solve(rhs, targetValues, components, solve, hooks);
+  }
+  if (ok && options.Bounded && options.Mass == MassType::Consistent)
+  {
+    if (!this->HasMixedMass() || hooks.Exchange || hooks.Reduce)
+    {
+      return false; // local bounds need M_ts's rows (serial systems)
+    }
+    std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
+    for (int k = 0; k < components; ++k)
+    {
+      double total = 0.0;
+      for (Index i = 0; i < n; ++i)
+      {
+        double lo = std::numeric_limits<double>::infinity();
+        double hi = -lo;
+        for (Index p = this->MixedMass.RowStart[i]; p < this->MixedMass.RowStart[i + 1]; ++p)
+        {
+          const double u = sourceValues[static_cast<Index>(this->MixedMass.ColumnIndex[p]) * components + k];
+          lo = std::min(lo, u);
+          hi = std::max(hi, u);
+        }
+        low[i] = lo;
+        high[i] = hi;
+        if (this->Valid[i])
+        {
+          total += rhs[i * components + k]; // sum_i (M_ts u_s)_i = int u_s over the covered part
+        }
+      }
+      ClipAndAssuredSum(targetValues, components, k, this->RowSums, this->Valid, low, high, total);
+    }
+  }
   for (Index i = 0; i < n; ++i)
   {
     if (!this->Valid[i])

@@ -69,6 +69,45 @@ struct OperatorOptions
   /// Concurrent tasks for the search, the assembly and the solve, and how
   /// they run (default: one, serial).
   TaskRunner Runner;
+  /// Progress of the search, and a way to stop it (Tasks.h); Build() then
+  /// returns false with GetError() "stopped".
+  ProgressHook Progress;
+};
+
+/// How Apply() turns the right-hand sides into the projected field.
+enum class MassType
+{
+  /**
+   * M_tt as integrated: the L2 projection (exact for fields of the target
+   * space, second order), which may overshoot the source's range near
+   * discontinuities.
+   */
+  Consistent = 0,
+  /**
+   * M_tt lumped to its row sums d_i = int phi_i over the covered part:
+   * u_i = (M_ts u_s)_i / d_i. M_ts's entries are non-negative and its row
+   * sums are d_i too, so each value is a weighted mean of the source values
+   * on its support (never outside their range), the integral is conserved,
+   * and no system is solved; but only constants stay exact (first order).
+   */
+  Lumped = 1
+};
+
+struct ApplyOptions
+{
+  MassType Mass = MassType::Consistent;
+  /**
+   * Bound preservation: after a consistent projection, clip every target
+   * value to the range of the source values on its support (the columns of
+   * its row of M_ts), then give back the clipped integral in proportion to
+   * the room each value has left within its bounds (clip and assured sum,
+   * Bradley, Bosler and Guba 2019). The integral stays that of the source
+   * field over the covered part, values stay within their local bounds, and
+   * a field that needs no clipping (e.g. a linear one) is unchanged. Needs
+   * the assembled M_ts.
+   */
+  bool Bounded = false;
+  SolveOptions Solve;
 };
 
 /// Wall-clock seconds of the stages of Build() and of the last Apply().
@@ -107,6 +146,14 @@ public:
    */
   bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
     const SolveOptions& solve = SolveOptions(), const SolverHooks& hooks = SolverHooks()) const;
+  /// The same with a choice of mass matrix and bounds (ApplyOptions).
+  bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
+    const ApplyOptions& options, const SolverHooks& hooks = SolverHooks()) const;
+
+  /// Bytes held by the operator's matrices, right-hand sides and pieces.
+  size_t MemoryBytes() const;
+  /// Per target function: int phi_i over the covered part (the row sums of M_tt).
+  const std::vector<double>& GetCoveredIntegrals() const { return this->RowSums; }
 
   /// M_tt over the covered part (rows of invalid functions: 1 on the diagonal).
   const CsrMatrix& GetTargetMass() const { return this->TargetMass; }
@@ -146,6 +193,7 @@ private:
   Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
   std::vector<char> Valid;
+  std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;
   std::vector<double> CoveredFraction;
   double CoveredMeasure = 0;
