@@ -181,6 +181,7 @@ struct vtkMeshProjectionFilter::Internals
 {
   vtkNew<vtkDataArraySelection> PointArrays;
   vtkNew<vtkDataArraySelection> CellArrays;
+  bool Listing = false; ///< the filter is adding Source's arrays to the selections
   bool HasFingerprint = false;
   std::uint64_t GeometryFingerprint = 0;
   struct Kept
@@ -214,10 +215,50 @@ vtkMeshProjectionFilter::vtkMeshProjectionFilter()
   // inputs), unless disabled by name.
   this->Internal->PointArrays->SetUnknownArraySetting(1);
   this->Internal->CellArrays->SetUnknownArraySetting(1);
-  this->Internal->PointArrays->AddObserver(
-    vtkCommand::ModifiedEvent, this, &vtkMeshProjectionFilter::Modified);
-  this->Internal->CellArrays->AddObserver(
-    vtkCommand::ModifiedEvent, this, &vtkMeshProjectionFilter::Modified);
+  // A change of selection re-executes the filter; the arrays the filter
+  // lists itself (ListSourceArrays) do not.
+  for (vtkDataArraySelection* selection :
+    { this->Internal->PointArrays.GetPointer(), this->Internal->CellArrays.GetPointer() })
+  {
+    selection->AddObserver(vtkCommand::ModifiedEvent, this, &vtkMeshProjectionFilter::SelectionModified);
+  }
+}
+
+void vtkMeshProjectionFilter::SelectionModified()
+{
+  if (!this->Internal->Listing)
+  {
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
+{
+  vtkDataSet* source = vtkDataSet::SafeDownCast(data);
+  if (!source)
+  {
+    return;
+  }
+  this->Internal->Listing = true;
+  for (int association = 0; association < 2; ++association)
+  {
+    vtkDataSetAttributes* attributes = association == 0
+      ? static_cast<vtkDataSetAttributes*>(source->GetPointData())
+      : static_cast<vtkDataSetAttributes*>(source->GetCellData());
+    vtkDataArraySelection* selection =
+      association == 0 ? this->Internal->PointArrays : this->Internal->CellArrays;
+    for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
+    {
+      const char* name = attributes->GetArrayName(i);
+      if (name && attributes->GetArray(i) && !selection->ArrayExists(name) &&
+        std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
+        std::string(name) != "vtkValidPointMask" && std::string(name) != "vtkValidCellMask")
+      {
+        selection->AddArray(name, selection->GetUnknownArraySetting() != 0);
+      }
+    }
+  }
+  this->Internal->Listing = false;
 }
 
 vtkMeshProjectionFilter::~vtkMeshProjectionFilter()
@@ -312,6 +353,12 @@ int vtkMeshProjectionFilter::RequestInformation(
       range[1] = hasRange ? std::max(range[1], r[1]) : r[1];
       hasRange = true;
     }
+  }
+  // Source's arrays as far as known (its last output), for ParaView's
+  // array selection lists; RequestData completes them.
+  if (vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0))
+  {
+    this->ListSourceArrays(sourceInfo->Get(vtkDataObject::DATA_OBJECT()));
   }
   std::sort(steps.begin(), steps.end());
   steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
@@ -470,6 +517,7 @@ int vtkMeshProjectionFilter::RequestData(
                     << sourceMesh.GhostCells() << ") are left out of the projection.");
   }
 
+  this->ListSourceArrays(source);
   // 3. The fields: the selected numeric arrays of Source, side by side, in
   // the kernel's numbering (points: the same; cells: without ghosts).
   Gathered fields[2]; // 0: point arrays (P1), 1: cell arrays (P0)
@@ -761,12 +809,17 @@ int vtkMeshProjectionFilter::RequestData(
       k.Solution.assign(values.begin(), values.end());
     }
   }
-  // Kept for the next execution (and GetMatrix), or dropped.
+  // Kept for the next execution (and GetMatrix), or dropped; so are those
+  // this execution did not use.
   for (int t = 0; t < 4; ++t)
   {
     if (fresh[t] && this->CacheOperator && fresh[t]->HasMixedMass())
     {
       kept.Operators[t].Operator = std::move(fresh[t]);
+    }
+    else if (!used[t] || !this->CacheOperator)
+    {
+      kept.Operators[t] = Internals::Kept();
     }
   }
   kept.TargetCells.clear();

@@ -206,7 +206,8 @@ public:
   /**
    * Which Source point and cell arrays are projected. Arrays not listed
    * are enabled (all arrays by default); disable them by name, e.g.
-   * GetPointDataArraySelection()->DisableArray("p").
+   * GetPointDataArraySelection()->DisableArray("p"). The filter lists
+   * Source's arrays in them as it sees them (for ParaView's panel).
    */
   vtkDataArraySelection* GetPointDataArraySelection();
   vtkDataArraySelection* GetCellDataArraySelection();
@@ -361,6 +362,8 @@ protected:
 
 private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;
+  void SelectionModified();
+  void ListSourceArrays(vtkDataObject* source);
   struct Internals;
   Internals* Internal;
   void operator=(const vtkMeshProjectionFilter&) = delete;

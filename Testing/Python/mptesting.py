@@ -58,3 +58,61 @@ def compare_image(png, baseline_name, temp_dir, threshold=10):
     for argument in ("-V", os.path.join(BASELINES, baseline_name), "-T", temp_dir):
         testing.AddArgument(argument)
     return testing.RegressionTest(png, threshold) == vtkTesting.PASSED
+
+
+def write_series(directory, name, grid, steps, wave=True, move=None):
+    """Writes `grid` at each time of `steps` as <name>_<k>.vtu (inline binary:
+    Debian's expat cannot read VTK's appended data) and <name>.pvd, with a
+    point array Wave and a cell array Heat that change with time; `move`
+    (t -> (dx, dy, dz)) moves the points. Returns the PVD's path."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+    os.makedirs(directory, exist_ok=True)
+    entries = []
+    for k, t in enumerate(steps):
+        step = vtkUnstructuredGrid()
+        step.DeepCopy(grid)
+        x = vtk_to_numpy(step.GetPoints().GetData()).copy()
+        if move is not None:
+            x += np.asarray(move(t))
+            step.GetPoints().SetData(numpy_to_vtk(x, deep=True))
+        if wave:
+            u = np.sin(2 * x[:, 0] + t) * np.cos(x[:, 1]) + t
+            a = numpy_to_vtk(u, deep=True)
+            a.SetName("Wave")
+            step.GetPointData().AddArray(a)
+            offsets = vtk_to_numpy(step.GetCells().GetOffsetsArray())
+            corners = int(offsets[1] - offsets[0])
+            cells = vtk_to_numpy(step.GetCells().GetConnectivityArray()).reshape(-1, corners)
+            c = x[cells].mean(axis=1)
+            h = numpy_to_vtk(1 + (c[:, 0] > 0.5 + 0.1 * t) * (1 + t), deep=True)
+            h.SetName("Heat")
+            step.GetCellData().AddArray(h)
+        path = os.path.join(directory, "%s_%d.vtu" % (name, k))
+        writer = vtkXMLUnstructuredGridWriter()
+        writer.SetFileName(path)
+        writer.SetInputData(step)
+        writer.SetDataModeToBinary()
+        writer.Write()
+        entries.append('    <DataSet timestep="%r" file="%s"/>' % (t, os.path.basename(path)))
+    pvd = os.path.join(directory, name + ".pvd")
+    with open(pvd, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n')
+        f.write("\n".join(entries) + "\n  </Collection>\n</VTKFile>\n")
+    return pvd
+
+
+def cell_measures(grid):
+    """Areas (triangles) or volumes (tetrahedra) of the cells (numpy)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    x = vtk_to_numpy(grid.GetPoints().GetData())
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
+    corners = int(offsets[1] - offsets[0])
+    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, corners)
+    e = x[cells[:, 1:]] - x[cells[:, :1]]
+    if corners == 3:
+        return 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
+    return np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6

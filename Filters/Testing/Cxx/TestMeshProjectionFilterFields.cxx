@@ -1,0 +1,350 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cell data and the transfers a user chooses, in 2D and 3D on the sample
+// meshes: P0 -> P0 intensive (exact on constants, conservative) and
+// extensive (totals kept), P1 -> P0 and P0 -> P1, lumped and bounded
+// transfers, array selection, operators kept and reused (hits and misses),
+// the matrices read out and written, and an aborted run.
+#include "MeshProjectionTestUtilities.h"
+#include "vtkMeshProjectionFilter.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellData.h"
+#include "vtkCharArray.h"
+#include "vtkCommand.h"
+#include "vtkDataArraySelection.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkTestErrorObserver.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+namespace
+{
+using mptest::CellMeasure;
+
+double Centroid(vtkUnstructuredGrid* grid, vtkIdType c, int axis)
+{
+  const vtkIdType* ids;
+  vtkIdType n;
+  grid->GetCells()->GetCellAtId(c, n, ids);
+  double sum = 0;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    sum += grid->GetPoint(ids[k])[axis] / n;
+  }
+  return sum;
+}
+
+vtkSmartPointer<vtkDoubleArray> CellArray(
+  vtkUnstructuredGrid* grid, const char* name, const std::function<double(vtkIdType)>& f)
+{
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfValues(grid->GetNumberOfCells());
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    a->SetValue(c, f(c));
+  }
+  return a;
+}
+
+/// Sum over cells of measure x value (an intensive cell array's integral).
+double CellIntegral(vtkUnstructuredGrid* grid, vtkDataArray* u)
+{
+  double sum = 0;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    const vtkIdType* ids;
+    vtkIdType n;
+    sum += CellMeasure(grid, c, &ids, &n) * u->GetComponent(c, 0);
+  }
+  return sum;
+}
+
+double Sum(vtkDataArray* u)
+{
+  double sum = 0;
+  for (vtkIdType i = 0; i < u->GetNumberOfTuples(); ++i)
+  {
+    sum += u->GetComponent(i, 0);
+  }
+  return sum;
+}
+
+int Fields(const char* targetFile, const char* sourceFile)
+{
+  int failures = 0;
+  const bool is3D = std::string(targetFile).find("3d") != std::string::npos;
+  auto target = mptest::ReadSample(targetFile);
+  auto source = mptest::ReadSample(sourceFile);
+  source->GetCellData()->Initialize();
+  // Cell fields: a constant, a step (a density) and totals (mass = density x measure).
+  source->GetCellData()->AddArray(CellArray(source, "One", [](vtkIdType) { return 1.0; }));
+  auto density = [&](vtkIdType c) { return Centroid(source, c, 0) > 0.8 ? 3.0 : 1.0; };
+  source->GetCellData()->AddArray(CellArray(source, "Density", density));
+  source->GetCellData()->AddArray(CellArray(source, "Mass", [&](vtkIdType c) {
+    const vtkIdType* ids;
+    vtkIdType n;
+    return density(c) * CellMeasure(source, c, &ids, &n);
+  }));
+  // A point step for the bounds.
+  vtkNew<vtkDoubleArray> step;
+  step->SetName("Step");
+  step->SetNumberOfValues(source->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < source->GetNumberOfPoints(); ++p)
+  {
+    step->SetValue(p, source->GetPoint(p)[0] > 0.8 ? 2.0 : -1.0);
+  }
+  source->GetPointData()->AddArray(step);
+  const double sourceMeasure = mptest::Measure(source);
+  const double targetMeasure = mptest::Measure(target);
+  // The sample pairs cover the same domain.
+  MP_CHECK(std::fabs(sourceMeasure - targetMeasure) < 1e-12 * sourceMeasure);
+
+  vtkNew<vtkMeshProjectionFilter> filter;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(target);
+  filter->SetSourceData(source);
+  filter->SetPointDataTarget(vtkMeshProjectionFilter::TO_POINTS_AND_CELLS);
+  filter->SetCellDataTarget(vtkMeshProjectionFilter::TO_POINTS_AND_CELLS);
+  filter->Update();
+  MP_CHECK(!observer->GetError() && !observer->GetWarning());
+  MP_CHECK(filter->GetNumberOfOperatorsBuilt() == 4 && !filter->GetOperatorReused());
+  vtkUnstructuredGrid* out = filter->GetOutput();
+  vtkCellData* cd = out->GetCellData();
+  vtkPointData* pd = out->GetPointData();
+
+  // Cell -> cell, intensive: constants exact, the integral kept.
+  vtkDataArray* one = cd->GetArray("One");
+  MP_CHECK(one && std::fabs(one->GetRange()[0] - 1) < 1e-13 && std::fabs(one->GetRange()[1] - 1) < 1e-13);
+  vtkDataArray* dens = cd->GetArray("Density");
+  const double sourceDensity = CellIntegral(source, source->GetCellData()->GetArray("Density"));
+  MP_CHECK(dens && std::fabs(CellIntegral(out, dens) - sourceDensity) < 1e-13 * sourceDensity);
+  MP_CHECK(dens && dens->GetRange()[0] >= 1 - 1e-13 && dens->GetRange()[1] <= 3 + 1e-13);
+  MP_CHECK(cd->GetArray("vtkValidCellMask") && cd->GetArray("vtkValidCellMask")->GetRange()[0] == 1);
+  // Point -> cell: a linear field's cell means are the values at the centroids.
+  vtkDataArray* linearCells = cd->GetArray("Linear (from points)") ? cd->GetArray("Linear (from points)")
+                                                                    : cd->GetArray("Linear");
+  double worst = 0;
+  for (vtkIdType c = 0; linearCells && c < out->GetNumberOfCells(); ++c)
+  {
+    const double x = Centroid(out, c, 0), y = Centroid(out, c, 1), z = Centroid(out, c, 2);
+    const double exact = is3D ? 1 + 2 * x - 3 * y + 0.5 * z : 1 + 2 * x - 3 * y;
+    worst = std::max(worst, std::fabs(linearCells->GetComponent(c, 0) - exact));
+  }
+  std::cout << targetFile << ": point -> cell linear error " << worst << "\n";
+  MP_CHECK(linearCells && worst < 1e-12);
+  // Cell -> point: constants exact, the integral kept.
+  vtkDataArray* onePoints = pd->GetArray("One");
+  MP_CHECK(onePoints && std::fabs(onePoints->GetRange()[0] - 1) < 1e-12 &&
+    std::fabs(onePoints->GetRange()[1] - 1) < 1e-12);
+  vtkDataArray* densPoints = pd->GetArray("Density");
+  MP_CHECK(densPoints && std::fabs(mptest::Integral(out, densPoints) - sourceDensity) < 1e-12 * sourceDensity);
+
+  // Extensive: totals kept (the meshes cover the same domain).
+  filter->SetCellDataQuantity(vtkMeshProjectionFilter::EXTENSIVE);
+  filter->Update();
+  MP_CHECK(filter->GetOperatorReused()); // only how values are read changed
+  vtkDataArray* mass = filter->GetOutput()->GetCellData()->GetArray("Mass");
+  const double totalMass = Sum(source->GetCellData()->GetArray("Mass"));
+  std::cout << targetFile << ": extensive total " << (mass ? Sum(mass) : -1) << " vs " << totalMass << "\n";
+  MP_CHECK(mass && std::fabs(Sum(mass) - totalMass) < 1e-12 * totalMass);
+  // Its cell -> point transfer is the density.
+  vtkDataArray* massDensity = filter->GetOutput()->GetPointData()->GetArray("Mass");
+  MP_CHECK(massDensity && std::fabs(mptest::Integral(filter->GetOutput(), massDensity) - totalMass) < 1e-12 * totalMass);
+  filter->SetCellDataQuantity(vtkMeshProjectionFilter::INTENSIVE);
+
+  // The matrices: M_tt u_t = M_ts u_s for the projected point field.
+  filter->SetPointDataTarget(vtkMeshProjectionFilter::TO_POINTS);
+  filter->SetCellDataTarget(vtkMeshProjectionFilter::TO_CELLS);
+  filter->Update();
+  MP_CHECK(filter->GetOperatorReused());
+  vtkNew<vtkIdTypeArray> rowStart, columns, rowStartS, columnsS;
+  vtkNew<vtkDoubleArray> values, valuesS;
+  const vtkIdType nt = filter->GetMatrix(
+    vtkMeshProjectionFilter::POINTS_TO_POINTS, vtkMeshProjectionFilter::TARGET_MASS, rowStart, columns, values);
+  const vtkIdType ns = filter->GetMatrix(
+    vtkMeshProjectionFilter::POINTS_TO_POINTS, vtkMeshProjectionFilter::MIXED_MASS, rowStartS, columnsS, valuesS);
+  MP_CHECK(nt == target->GetNumberOfPoints() && ns == source->GetNumberOfPoints());
+  vtkDataArray* smooth = filter->GetOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* smoothS = source->GetPointData()->GetArray("Smooth");
+  double residual = 0, scale = 0;
+  for (vtkIdType i = 0; nt > 0 && ns > 0 && i < nt; ++i)
+  {
+    double a = 0, b = 0;
+    for (vtkIdType p = rowStart->GetValue(i); p < rowStart->GetValue(i + 1); ++p)
+    {
+      a += values->GetValue(p) * smooth->GetComponent(columns->GetValue(p), 0);
+    }
+    for (vtkIdType p = rowStartS->GetValue(i); p < rowStartS->GetValue(i + 1); ++p)
+    {
+      b += valuesS->GetValue(p) * smoothS->GetComponent(columnsS->GetValue(p), 0);
+    }
+    residual = std::max(residual, std::fabs(a - b));
+    scale = std::max(scale, std::fabs(b));
+  }
+  MP_CHECK(residual < 1e-12 * scale);
+  // Matrix Market: the header and the entry count.
+  const std::string mtx = std::string(targetFile) + ".mtx";
+  MP_CHECK(filter->WriteMatrixMarket(mtx.c_str(), vtkMeshProjectionFilter::POINTS_TO_POINTS,
+    vtkMeshProjectionFilter::MIXED_MASS));
+  {
+    std::ifstream in(mtx);
+    std::string header, comment;
+    std::getline(in, header);
+    std::getline(in, comment);
+    vtkIdType r = 0, c = 0, nnz = 0;
+    in >> r >> c >> nnz;
+    MP_CHECK(header == "%%MatrixMarket matrix coordinate real general");
+    MP_CHECK(r == nt && c == ns && nnz == valuesS->GetNumberOfTuples());
+  }
+  std::remove(mtx.c_str());
+  // An operator not in use is not kept: an error and -1.
+  MP_CHECK(filter->GetMatrix(vtkMeshProjectionFilter::CELLS_TO_POINTS, 0, rowStart, columns, values) == -1);
+  MP_CHECK(observer->GetError());
+  observer->Clear();
+
+  // Array selection: disabled arrays are not projected, the others are.
+  filter->GetPointDataArraySelection()->DisableArray("Smooth");
+  filter->GetCellDataArraySelection()->DisableArray("Mass");
+  filter->Update();
+  MP_CHECK(!filter->GetOutput()->GetPointData()->GetArray("Smooth"));
+  MP_CHECK(filter->GetOutput()->GetPointData()->GetArray("Linear"));
+  MP_CHECK(!filter->GetOutput()->GetCellData()->GetArray("Mass"));
+  MP_CHECK(filter->GetOutput()->GetCellData()->GetArray("Density"));
+  MP_CHECK(filter->GetOperatorReused());
+  filter->GetPointDataArraySelection()->EnableArray("Smooth");
+  filter->GetCellDataArraySelection()->EnableArray("Mass");
+
+  // Lumped: within the source's range, conservative, constants exact.
+  filter->SetMassMatrix(vtkMeshProjectionFilter::LUMPED_MASS);
+  filter->Update();
+  MP_CHECK(filter->GetOperatorReused());
+  vtkDataArray* lumpedStep = filter->GetOutput()->GetPointData()->GetArray("Step");
+  MP_CHECK(lumpedStep && lumpedStep->GetRange()[0] >= -1 - 1e-14 && lumpedStep->GetRange()[1] <= 2 + 1e-14);
+  const double stepIntegral = mptest::Integral(source, step);
+  MP_CHECK(lumpedStep &&
+    std::fabs(mptest::Integral(filter->GetOutput(), lumpedStep) - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
+  filter->SetMassMatrix(vtkMeshProjectionFilter::CONSISTENT_MASS);
+
+  // Bounds: the consistent projection of a step overshoots; with bounds it
+  // does not, the integral stays, and linear fields stay exact.
+  filter->Update();
+  vtkDataArray* consistent = filter->GetOutput()->GetPointData()->GetArray("Step");
+  const double overshoot = std::max(consistent->GetRange()[1] - 2, -1 - consistent->GetRange()[0]);
+  filter->SetPreserveBounds(true);
+  filter->Update();
+  vtkDataArray* bounded = filter->GetOutput()->GetPointData()->GetArray("Step");
+  const double boundedIntegral = mptest::Integral(filter->GetOutput(), bounded);
+  std::cout << targetFile << ": step overshoot " << overshoot << " consistent, range ["
+            << bounded->GetRange()[0] << ", " << bounded->GetRange()[1] << "] bounded, integral error "
+            << std::fabs(boundedIntegral - stepIntegral) << "\n";
+  MP_CHECK(overshoot > 0.01);
+  MP_CHECK(bounded->GetRange()[0] >= -1 - 1e-13 && bounded->GetRange()[1] <= 2 + 1e-13);
+  MP_CHECK(std::fabs(boundedIntegral - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
+  vtkDataArray* linear = filter->GetOutput()->GetPointData()->GetArray("Linear");
+  worst = 0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    const double* x = filter->GetOutput()->GetPoint(i);
+    const double exact = is3D ? 1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2] : 1 + 2 * x[0] - 3 * x[1];
+    worst = std::max(worst, std::fabs(linear->GetComponent(i, 0) - exact));
+  }
+  MP_CHECK(worst < 1e-12);
+  filter->SetPreserveBounds(false);
+
+  // Reuse: a Source with the same geometry in new arrays is a hit (and a
+  // new field), moved points a miss; with the cache off nothing is kept.
+  vtkNew<vtkUnstructuredGrid> copy;
+  copy->DeepCopy(source);
+  filter->SetSourceData(copy);
+  filter->Update();
+  MP_CHECK(filter->GetOperatorReused() && filter->GetNumberOfOperatorsBuilt() == 0);
+  MP_CHECK(filter->GetOperatorMemory() > 0);
+  vtkNew<vtkDoubleArray> reused; // the next run replaces the output's arrays
+  reused->DeepCopy(filter->GetOutput()->GetPointData()->GetArray("Smooth"));
+  vtkNew<vtkUnstructuredGrid> moved;
+  moved->DeepCopy(source);
+  double x[3];
+  moved->GetPoint(5, x);
+  x[0] += 1e-9;
+  moved->GetPoints()->SetPoint(5, x);
+  filter->SetSourceData(moved);
+  filter->Update();
+  MP_CHECK(!filter->GetOperatorReused() && filter->GetNumberOfOperatorsBuilt() == 2);
+  vtkNew<vtkMeshProjectionFilter> fresh;
+  fresh->SetCacheOperator(false);
+  fresh->SetInputData(target);
+  fresh->SetSourceData(source);
+  fresh->Update();
+  MP_CHECK(fresh->GetOperatorMemory() == 0 && !fresh->GetOperatorReused());
+  vtkDataArray* single = fresh->GetOutput()->GetPointData()->GetArray("Smooth");
+  worst = 0;
+  for (vtkIdType i = 0; single && i < single->GetNumberOfTuples(); ++i)
+  {
+    worst = std::max(worst, std::fabs(reused->GetComponent(i, 0) - single->GetComponent(i, 0)));
+  }
+  std::cout << targetFile << ": reused (warm start) vs single-use " << worst << "\n";
+  MP_CHECK(single && reused->GetNumberOfTuples() == single->GetNumberOfTuples() && worst < 1e-12);
+
+  // Abort from a progress observer: Input as it came, a warning.
+  vtkNew<vtkMeshProjectionFilter> aborted;
+  vtkNew<vtkTest::ErrorObserver> abortObserver;
+  aborted->AddObserver(vtkCommand::WarningEvent, abortObserver);
+  aborted->SetInputData(target);
+  aborted->SetSourceData(source);
+  std::vector<double> seen;
+  vtkNew<vtkCallbackCommand> onProgress;
+  struct State
+  {
+    vtkMeshProjectionFilter* Filter;
+    std::vector<double>* Seen;
+  } state{ aborted, &seen };
+  onProgress->SetClientData(&state);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
+    State* s = static_cast<State*>(data);
+    s->Seen->push_back(*static_cast<double*>(amount));
+    if (*static_cast<double*>(amount) > 0.1)
+    {
+      s->Filter->SetAbortExecute(1);
+    }
+  });
+  aborted->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  aborted->Update();
+  MP_CHECK(abortObserver->GetWarning() &&
+    abortObserver->GetWarningMessage().find("Aborted") != std::string::npos);
+  MP_CHECK(!aborted->GetOutput()->GetPointData()->GetArray("Smooth") ||
+    aborted->GetOutput()->GetPointData()->GetArray("Smooth") == target->GetPointData()->GetArray("Smooth"));
+  MP_CHECK(aborted->GetOutput()->GetNumberOfPoints() == target->GetNumberOfPoints());
+  MP_CHECK(!aborted->GetOutput()->GetPointData()->GetArray("vtkValidPointMask"));
+  MP_CHECK(seen.size() >= 2 && std::is_sorted(seen.begin(), seen.end()));
+  // Progress of a whole run goes up to 1 through the stages.
+  vtkNew<vtkMeshProjectionFilter> full;
+  std::vector<double> all;
+  State fullState{ nullptr, &all };
+  vtkNew<vtkCallbackCommand> record;
+  record->SetClientData(&fullState);
+  record->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
+    static_cast<State*>(data)->Seen->push_back(*static_cast<double*>(amount));
+  });
+  full->AddObserver(vtkCommand::ProgressEvent, record);
+  full->SetInputData(target);
+  full->SetSourceData(source);
+  full->Update();
+  MP_CHECK(all.size() >= 5 && all.back() == 1.0 && std::is_sorted(all.begin(), all.end()));
+  return failures;
+}
+} // namespace
+
+int TestMeshProjectionFilterFields(int, char*[])
+{
+  int failures = Fields("lshape_target.vtu", "lshape_source.vtu");
+  failures += Fields("lshape3d_target.vtu", "lshape3d_source.vtu");
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
