@@ -1,0 +1,53 @@
+"""The projection operator in the user's hands: the matrices a
+vtkMeshProjectionFilter keeps (CacheOperator on, after an execution), as
+scipy.sparse CSR matrices, and Matrix Market files.
+
+    from meshprojection import operator_matrices
+    M_tt, M_ts, valid = operator_matrices(f)            # point data -> points
+    u_t = scipy.sparse.linalg.spsolve(M_tt, M_ts @ u_s)  # = the filter's result on valid rows
+"""
+import numpy as np
+
+TRANSFERS = {"points_to_points": 0, "points_to_cells": 1, "cells_to_cells": 2, "cells_to_points": 3}
+
+
+def _csr(filter_, transfer, matrix):
+    import scipy.sparse
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray
+    starts, columns, values = vtkIdTypeArray(), vtkIdTypeArray(), vtkDoubleArray()
+    ncolumns = filter_.GetMatrix(transfer, matrix, starts, columns, values)
+    if ncolumns < 0:
+        raise RuntimeError("no operator of this transfer is kept: execute the filter with "
+                           "CacheOperator on and the transfer in use")
+    rows = starts.GetNumberOfTuples() - 1
+    return scipy.sparse.csr_matrix(
+        (vtk_to_numpy(values).copy(), vtk_to_numpy(columns).copy(), vtk_to_numpy(starts).copy()),
+        shape=(rows, ncolumns))
+
+
+def operator_matrices(filter_, transfer="points_to_points"):
+    """(M_tt, M_ts, valid) of a transfer ("points_to_points", "points_to_cells",
+    "cells_to_cells", "cells_to_points"): the target mass matrix over the
+    covered part (rows of invalid target functions hold 1 on the diagonal),
+    the mixed matrix, and the boolean mask of valid target functions (their
+    diagonal of the covered mass is positive). Rows and columns are VTK
+    point or cell ids. `filter_` is a vtkMeshProjectionFilter, or a ParaView
+    proxy of one (its client-side object is used: builtin sessions)."""
+    if hasattr(filter_, "GetClientSideObject"):
+        filter_ = filter_.GetClientSideObject()
+    t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
+    m_tt = _csr(filter_, t, 0)
+    m_ts = _csr(filter_, t, 1)
+    # Invalid functions have empty M_ts rows (no piece touches their support).
+    valid = np.diff(m_ts.indptr) > 0
+    return m_tt, m_ts, valid
+
+
+def write_matrix_market(filter_, path, transfer="points_to_points", matrix="mixed"):
+    """Writes M_ts (matrix="mixed") or M_tt ("target") as a Matrix Market file."""
+    if hasattr(filter_, "GetClientSideObject"):
+        filter_ = filter_.GetClientSideObject()
+    t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
+    if not filter_.WriteMatrixMarket(path, t, 1 if matrix == "mixed" else 0):
+        raise RuntimeError("could not write " + path)
