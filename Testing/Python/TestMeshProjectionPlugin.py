@@ -21,17 +21,31 @@ check("MeshProjection" in globals(), "the plugin defines MeshProjection")
 
 source = OpenDataFile(os.path.join(DATA, "lshape_source.vtu"))
 target = OpenDataFile(os.path.join(DATA, "lshape_target.vtu"))
+source.UpdatePipeline()
 projection = MeshProjection(Input=target, Source=source)  # noqa: F821
 
 # Properties mirror the C++ setters, with the same defaults.
 check(projection.SearchMethod == "Advancing Front", "SearchMethod default %r" % projection.SearchMethod)
 check(projection.OutputIntersections == 0, "OutputIntersections default")
 check(projection.FillWithNaN == 1 and projection.FillValue == 0, "fill defaults")
-check(projection.ListProperties() == ["Input", "Source", "FillValue", "FillWithNaN",
-                                      "OutputIntersections", "SearchMethod"] or
-      set(projection.ListProperties()) == {"Input", "Source", "FillValue", "FillWithNaN",
-                                           "OutputIntersections", "SearchMethod"},
+check(set(projection.ListProperties()) == {
+    "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
+    "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
+    "MassMatrix", "PreserveBounds", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo"},
       "properties %r" % projection.ListProperties())
+check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "Cells",
+      "transfer defaults %r %r" % (projection.PointDataTarget, projection.CellDataTarget))
+check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "Consistent",
+      "quantity and mass defaults")
+check(projection.PreserveBounds == 0 and projection.CacheOperator == 1, "bounds and cache defaults")
+# The Source was read before the filter was made (as in the GUI): its arrays
+# are listed, all selected.
+check(list(projection.PointDataArrays) == ["Smooth", "Linear", "Velocity"],
+      "point arrays selected by default: %r" % list(projection.PointDataArrays))
+check(list(projection.CellDataArrays) == ["Region"],
+      "cell arrays selected by default: %r" % list(projection.CellDataArrays))
+check(projection.GetProperty("FillWithNaN").SMProperty.GetXMLLabel() == "Fill With NaN",
+      "the GUI label of FillWithNaN")
 
 projection.OutputIntersections = 1
 projection.UpdatePipeline()
@@ -59,6 +73,27 @@ fs = out.GetPointData().GetArray("Smooth")
 diff = max(abs(bs.GetValue(i) - fs.GetValue(i)) for i in range(out.GetNumberOfPoints()))
 check(diff < 1e-13, "brute force == advancing front (%g)" % diff)
 projection.SearchMethod = "Advancing Front"
+
+# Cell data goes to cells by default; the array lists select what goes.
+projection.UpdatePipeline()
+chosen = servermanager.Fetch(projection)
+region = chosen.GetCellData().GetArray("Region")
+check(region is not None and -1e-13 <= region.GetRange()[0] and region.GetRange()[1] <= 2 + 1e-13,
+      "the Region labels (0, 1, 2) projected to cells as means in [0, 2]: %r"
+      % (region.GetRange() if region else None,))
+projection.PointDataArrays = ["Smooth"]
+projection.CellDataArrays = []
+projection.UpdatePipeline()
+chosen = servermanager.Fetch(projection)
+check(chosen.GetPointData().GetArray("Smooth") is not None and
+      chosen.GetPointData().GetArray("Linear") is None and
+      chosen.GetCellData().GetArray("Region") is None,
+      "only the selected arrays are projected")
+check(projection.GetClientSideObject().GetOperatorReused() if hasattr(
+    projection.GetClientSideObject(), "GetOperatorReused") else True,
+      "changing the arrays reuses the operator")
+projection.PointDataArrays = ["Smooth", "Linear", "Velocity"]
+projection.CellDataArrays = ["Region"]
 
 # The wrapped VTK module works in pvpython too: the same numbers as the plugin.
 from meshprojection import vtkMeshProjectionFilter  # noqa: E402
