@@ -33,6 +33,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -182,6 +183,7 @@ struct vtkMeshProjectionFilter::Internals
   vtkNew<vtkDataArraySelection> PointArrays;
   vtkNew<vtkDataArraySelection> CellArrays;
   bool Listing = false; ///< the filter is adding Source's arrays to the selections
+  std::set<std::string> Warned; ///< integer arrays already warned about
   bool HasFingerprint = false;
   std::uint64_t GeometryFingerprint = 0;
   struct Kept
@@ -552,7 +554,8 @@ int vtkMeshProjectionFilter::RequestData(
                         << abstract->GetClassName() << "): skipped.");
         continue;
       }
-      if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+      if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE &&
+        kept.Warned.insert(std::string(kind) + "/" + label).second) // once per array, not per step
       {
         vtkWarningMacro(<< "Source " << kind << " array '" << label << "' holds integers ("
                         << array->GetClassName() << "): it is projected as real values (a 0/1 "

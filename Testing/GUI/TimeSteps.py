@@ -1,0 +1,81 @@
+"""GUI test: the animation steps through a time series of the Source and Mesh
+Projection follows. Run by the paraview client with the plugin loaded:
+
+    paraview --plugin-search-paths=DIR --plugins=MeshProjection --script=TimeSteps.py
+
+with MP_SOURCE_DIR (the project's root: --script runs without __file__),
+MP_TEMP_DIR (scratch) and MP_RESULT (a file that receives "passed" or the
+failures) in the environment. The script steps the animation scene as the VCR
+buttons do, compares each step's projected Wave with a fresh projection of
+that step, then ends ParaView with its status.
+"""
+import os
+import sys
+import traceback
+
+sys.path.insert(0, os.path.join(os.environ.get("MP_SOURCE_DIR", "."), "Testing", "Python"))
+result = os.environ.get("MP_RESULT", "TimeSteps.result")
+failures = []
+try:
+    import numpy as np
+    import meshprojection
+    from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, OpenDataFile,
+                                 PVDReader, Render, SaveScreenshot, Show, Hide)
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from mptesting import DATA, read, write_series
+
+    temp = os.environ.get("MP_TEMP_DIR", ".")
+    steps = [0.0, 0.5, 1.0, 1.5, 2.0, 2.5]
+    pvd = write_series(os.path.join(temp, "gui-series"), "src", read("lshape_source.vtu"), steps)
+    source = PVDReader(FileName=pvd)
+    target = OpenDataFile(os.path.join(DATA, "lshape_target.vtu"))
+    view = GetActiveViewOrCreate("RenderView")
+    Show(source, view)
+    Show(target, view)
+    import paraview.simple as simple
+    projection = simple.MeshProjection(Input=target, Source=source)
+    display = Show(projection, view)
+    Hide(source, view)
+    Hide(target, view)
+    ColorBy(display, ("POINTS", "Wave"))
+    scene = GetAnimationScene()
+    scene.UpdateAnimationUsingDataTimeSteps()
+    scene.GoToFirst()
+    algorithm = projection.GetClientSideObject()
+    seen = []
+    for k, t in enumerate(steps):
+        if k > 0:
+            scene.GoToNext()  # the "Next Frame" button
+        Render(view)
+        if abs(scene.AnimationTime - t) > 1e-12:
+            failures.append("animation time %r, expected %r" % (scene.AnimationTime, t))
+        out = algorithm.GetOutputDataObject(0)
+        wave = vtk_to_numpy(out.GetPointData().GetArray("Wave")).copy()
+        fresh = meshprojection.vtkMeshProjectionFilter()
+        fresh.SetInputData(read("lshape_target.vtu"))
+        step = read("lshape_source.vtu")
+        from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+        r = vtkXMLUnstructuredGridReader()
+        r.SetFileName(os.path.join(temp, "gui-series", "src_%d.vtu" % k))
+        r.Update()
+        fresh.SetSourceData(r.GetOutput())
+        fresh.Update()
+        expected = vtk_to_numpy(fresh.GetOutput().GetPointData().GetArray("Wave"))
+        error = float(np.max(np.abs(wave - expected)))
+        if not error < 1e-12:
+            failures.append("t = %g: the shown Wave differs from that step's projection by %g"
+                            % (t, error))
+        if k > 0 and not algorithm.GetOperatorReused():
+            failures.append("t = %g: the operator was rebuilt on fixed meshes" % t)
+        seen.append(float(wave.mean()))
+    if len(set(round(v, 9) for v in seen)) != len(steps):
+        failures.append("the steps did not all give different fields: %r" % seen)
+    display.RescaleTransferFunctionToDataRange(False, True)
+    view.ResetCamera()
+    SaveScreenshot(os.path.join(temp, "TimeSteps.png"), view, ImageResolution=[400, 400])
+except Exception:  # a failure of the script itself
+    failures.append(traceback.format_exc())
+with open(result, "w") as f:
+    f.write("passed\n" if not failures else "\n".join(failures) + "\n")
+if os.environ.get("MP_KEEP_OPEN") != "1":
+    os._exit(0 if not failures else 1)
