@@ -184,6 +184,7 @@ struct vtkMeshProjectionFilter::Internals
   vtkNew<vtkDataArraySelection> CellArrays;
   bool Listing = false; ///< the filter is adding Source's arrays to the selections
   std::set<std::string> Warned; ///< integer arrays already warned about
+  bool AssembleNext = false;    ///< GetMatrix asked for M_ts
   bool HasFingerprint = false;
   std::uint64_t GeometryFingerprint = 0;
   struct Kept
@@ -627,7 +628,9 @@ int vtkMeshProjectionFilter::RequestData(
   print.Add(source);
   print.Add(static_cast<std::uint64_t>(this->SearchMethod));
   print.Add(static_cast<std::uint64_t>(this->OutputIntersections));
-  if (!this->CacheOperator || !kept.HasFingerprint || kept.GeometryFingerprint != print.Hash)
+  const bool sameGeometry =
+    this->CacheOperator && kept.HasFingerprint && kept.GeometryFingerprint == print.Hash;
+  if (!sameGeometry)
   {
     kept.Clear();
   }
@@ -638,8 +641,22 @@ int vtkMeshProjectionFilter::RequestData(
   {
     used[0] = true;
   }
-  // Assembled (M_ts kept, any field): when kept, or for local bounds.
-  const bool assembled = this->CacheOperator || this->PreserveBounds;
+  // Assembled (M_ts stored: any field, local bounds, matrices to read out)
+  // when it will pay: bounds need it; with CacheOperator, when an input
+  // varies in time or the meshes are those of the last execution (or
+  // GetMatrix asks). Else the fields' right-hand sides are summed during the
+  // search and M_ts is never formed (a one-off run in about half the time).
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  bool timeVarying = false;
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkInformation* info = inputVector[port]->GetInformationObject(0);
+    timeVarying = timeVarying ||
+      (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
+  }
+  const bool assembled = this->PreserveBounds ||
+    (this->CacheOperator && (timeVarying || sameGeometry || kept.AssembleNext));
+  kept.AssembleNext = false;
   mp::OperatorOptions options;
   options.KeepPieces = this->OutputIntersections;
   options.Method = this->SearchMethod == BRUTE_FORCE ? mp::SearchMethod::BruteForce
@@ -1000,6 +1017,15 @@ int vtkMeshProjectionFilter::RequestData(
 vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
   vtkIdTypeArray* columns, vtkDoubleArray* values)
 {
+  if (transfer >= 0 && transfer <= 3 && !this->Internal->Operators[transfer].Operator &&
+    this->CacheOperator && this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
+  {
+    // The last execution summed its right-hand sides without forming M_ts
+    // (a one-off run): execute again, assembling it.
+    this->Internal->AssembleNext = true;
+    this->Modified();
+    this->Update();
+  }
   if (transfer < 0 || transfer > 3 || !rowStart || !columns || !values ||
     !this->Internal->Operators[transfer].Operator)
   {

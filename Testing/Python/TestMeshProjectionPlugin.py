@@ -92,10 +92,19 @@ check(chosen.GetPointData().GetArray("Smooth") is not None and
       chosen.GetPointData().GetArray("Linear") is None and
       chosen.GetCellData().GetArray("Region") is None,
       "only the selected arrays are projected")
-check(projection.GetClientSideObject().GetOperatorReused(),
-      "changing the arrays reuses the operator")
 projection.PointDataArrays = ["Smooth", "Linear", "Velocity"]
 projection.CellDataArrays = ["Region"]
+projection.UpdatePipeline()
+# The operators are kept: another transfer (lumped) only applies them.
+projection.MassMatrix = "Lumped"
+projection.UpdatePipeline()
+check(projection.GetClientSideObject().GetOperatorReused(),
+      "a lumped transfer after a consistent one reuses the operators")
+lumped = servermanager.Fetch(projection).GetPointData().GetArray("Smooth")
+check(min(lumped.GetRange()) >= min(src.GetPointData().GetArray("Smooth").GetRange()) - 1e-14 and
+      max(lumped.GetRange()) <= max(src.GetPointData().GetArray("Smooth").GetRange()) + 1e-14,
+      "the lumped transfer stays within the source's range")
+projection.MassMatrix = "Consistent"
 
 # The wrapped VTK module works in pvpython too: the same numbers as the plugin.
 direct = vtkMeshProjectionFilter()

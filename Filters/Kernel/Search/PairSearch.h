@@ -65,9 +65,11 @@
 #include "Search/CandidateLocator.h"
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
 #include "Search/SearchStatistics.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -158,7 +160,8 @@ Index WalkToward(const MeshView& source, PreparedCells<Intersector>& cells, Inde
 template <class Intersector, class Visitor>
 void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   CandidateLocator& locator, Visitor& visit, SearchStatistics& stats, Index begin = 0,
-  Index end = -1, std::vector<Index>* degenerateSources = nullptr)
+  Index end = -1, std::vector<Index>* degenerateSources = nullptr,
+  const std::function<bool(Index done)>& poll = nullptr)
 {
   if (end < 0)
   {
@@ -386,8 +389,13 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   };
 
   Index scan = begin;
-  for (;;)
+  for (Index done = 0;; ++done)
   {
+    // Progress, and a way out, every ProgressChunk target cells.
+    if (poll && done > 0 && done % ProgressChunk == 0 && !poll(done))
+    {
+      return;
+    }
     if (outer.empty())
     {
       while (scan < end && queued[scan - begin])
@@ -414,7 +422,8 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
 template <class Intersector, class Visitor>
 void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& visit,
   SearchStatistics& stats, Index begin = 0, Index end = -1,
-  std::vector<Index>* degenerateSources = nullptr)
+  std::vector<Index>* degenerateSources = nullptr,
+  const std::function<bool(Index done)>& poll = nullptr)
 {
   if (end < 0)
   {
@@ -439,6 +448,10 @@ void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& v
   Cell t;
   for (Index tId = begin; tId < end; ++tId)
   {
+    if (poll && tId > begin && (tId - begin) % 64 == 0 && !poll(tId - begin))
+    {
+      return;
+    }
     if (!Intersector::Prepare(target, tId, t))
     {
       ++stats.DegenerateTargetCells;

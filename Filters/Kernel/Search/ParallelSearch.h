@@ -77,33 +77,34 @@ bool SearchInRanges(SearchMethod method, const MeshView& target, const MeshView&
   {
     locators[k] = locator->NewForThread();
   }
-  // With a progress hook, each range is searched in chunks (a front each,
-  // seeded anew: a few locator queries per chunk); task 0 reports its share
-  // done between chunks, and every task stops at a chunk boundary once the
+  // With a progress hook, the searches poll every ProgressChunk target
+  // cells: task 0 reports its share done, and every task stops once the
   // hook has asked to stop.
   std::atomic<bool> stop{ false };
   runner.RunAll(tasks, [&](int k) {
     const Index begin = RangeBegin(cells, k, tasks);
     const Index end = RangeBegin(cells, k + 1, tasks);
-    const Index chunk = progress ? std::max<Index>(ProgressChunk, (end - begin) / 50 + 1) : end - begin;
-    for (Index first = begin; first < end && !stop.load(std::memory_order_relaxed); first += chunk)
+    std::function<bool(Index)> poll;
+    if (progress)
     {
-      const Index last = std::min(end, first + chunk);
-      if (method == SearchMethod::AdvancingFront)
-      {
-        CandidateLocator& seeds = tasks > 1 ? *locators[k] : *locator;
-        AdvancingFrontSearch<Intersector>(
-          target, source, seeds, visitors[k], stats[k], first, last, &degenerate[k]);
-      }
-      else
-      {
-        BruteForceSearch<Intersector>(
-          target, source, visitors[k], stats[k], first, last, &degenerate[k]);
-      }
-      if (k == 0 && progress && !progress(static_cast<double>(last - begin) / (end - begin)))
-      {
-        stop = true;
-      }
+      poll = [&, k, begin, end](Index done) {
+        if (k == 0 && !progress(static_cast<double>(done) / std::max<Index>(1, end - begin)))
+        {
+          stop = true;
+        }
+        return !stop.load(std::memory_order_relaxed);
+      };
+    }
+    if (method == SearchMethod::AdvancingFront)
+    {
+      CandidateLocator& seeds = tasks > 1 ? *locators[k] : *locator;
+      AdvancingFrontSearch<Intersector>(
+        target, source, seeds, visitors[k], stats[k], begin, end, &degenerate[k], poll);
+    }
+    else
+    {
+      BruteForceSearch<Intersector>(
+        target, source, visitors[k], stats[k], begin, end, &degenerate[k], poll);
     }
   });
   std::vector<Index> all;
