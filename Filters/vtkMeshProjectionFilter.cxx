@@ -151,6 +151,12 @@ struct Fingerprint
   }
 };
 
+/// vtkDataObject's attribute type of the filter's associations: 0 points, 1 cells.
+int AttributeType(int association)
+{
+  return association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL;
+}
+
 /// The spaces of the four transfers (vtkMeshProjectionFilter::Transfers).
 mp::SpaceType TargetSpaceOf(int transfer)
 {
@@ -183,6 +189,12 @@ struct vtkMeshProjectionFilter::Internals
   vtkNew<vtkDataArraySelection> PointArrays;
   vtkNew<vtkDataArraySelection> CellArrays;
   bool Listing = false; ///< the filter is adding Source's arrays to the selections
+
+  /// The selection of point (association 0) or cell (1) arrays.
+  vtkDataArraySelection* Selection(int association)
+  {
+    return association == 0 ? this->PointArrays.GetPointer() : this->CellArrays.GetPointer();
+  }
   std::set<std::string> Warned; ///< integer arrays already warned about
   bool AssembleNext = false;    ///< GetMatrix asked for M_ts
   bool HasFingerprint = false;
@@ -245,11 +257,8 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
   this->Internal->Listing = true;
   for (int association = 0; association < 2; ++association)
   {
-    vtkDataSetAttributes* attributes = association == 0
-      ? static_cast<vtkDataSetAttributes*>(source->GetPointData())
-      : static_cast<vtkDataSetAttributes*>(source->GetCellData());
-    vtkDataArraySelection* selection =
-      association == 0 ? this->Internal->PointArrays : this->Internal->CellArrays;
+    vtkDataSetAttributes* attributes = source->GetAttributes(AttributeType(association));
+    vtkDataArraySelection* selection = this->Internal->Selection(association);
     for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
     {
       const char* name = attributes->GetArrayName(i);
@@ -526,10 +535,8 @@ int vtkMeshProjectionFilter::RequestData(
   Gathered fields[2]; // 0: point arrays (P1), 1: cell arrays (P0)
   for (int association = 0; association < 2; ++association)
   {
-    vtkDataSetAttributes* data = association == 0
-      ? static_cast<vtkDataSetAttributes*>(source->GetPointData())
-      : static_cast<vtkDataSetAttributes*>(source->GetCellData());
-    vtkDataArraySelection* selection = association == 0 ? kept.PointArrays : kept.CellArrays;
+    vtkDataSetAttributes* data = source->GetAttributes(AttributeType(association));
+    vtkDataArraySelection* selection = kept.Selection(association);
     const char* kind = association == 0 ? "point" : "cell";
     Gathered& g = fields[association];
     for (int i = 0; i < data->GetNumberOfArrays(); ++i)
@@ -878,11 +885,8 @@ int vtkMeshProjectionFilter::RequestData(
     const bool fromCells = SourceSpaceOf(t) == mp::SpaceType::P0;
     const bool totals = t == 2 && extensive; // densities back to totals
     const std::vector<double>& covered = operators[t]->GetCoveredIntegrals();
-    vtkDataSetAttributes* sourceData = fromCells
-      ? static_cast<vtkDataSetAttributes*>(source->GetCellData())
-      : static_cast<vtkDataSetAttributes*>(source->GetPointData());
-    vtkDataSetAttributes* outData = toPoints ? static_cast<vtkDataSetAttributes*>(outPD)
-                                             : static_cast<vtkDataSetAttributes*>(outCD);
+    vtkDataSetAttributes* sourceData = source->GetAttributes(AttributeType(fromCells ? 1 : 0));
+    vtkDataSetAttributes* outData = output->GetAttributes(AttributeType(toPoints ? 0 : 1));
     std::vector<std::string>& written = toPoints ? pointNames : cellNames;
     const bool main = t == 0 || t == 2;
     for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)

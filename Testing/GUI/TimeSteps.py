@@ -18,11 +18,11 @@ result = os.environ.get("MP_RESULT", "TimeSteps.result")
 failures = []
 try:
     import numpy as np
-    import meshprojection
+    import meshprojection  # noqa: F401 (the filter's wrapping, before any client-side object)
     from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, OpenDataFile,
                                  PVDReader, Render, SaveScreenshot, Show, Hide)
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from mptesting import DATA, read, write_series
+    from mptesting import DATA, fresh_projection, read, read_step, write_series
 
     temp = os.environ.get("MP_TEMP_DIR", ".")
     steps = [0.0, 0.5, 1.0, 1.5, 2.0, 2.5]
@@ -32,7 +32,7 @@ try:
     view = GetActiveViewOrCreate("RenderView")
     Show(source, view)
     Show(target, view)
-    import paraview.simple as simple
+    import paraview.simple as simple  # MeshProjection, defined by the plugin loaded at start-up
     projection = simple.MeshProjection(Input=target, Source=source)
     display = Show(projection, view)
     Hide(source, view)
@@ -51,16 +51,8 @@ try:
             failures.append("animation time %r, expected %r" % (scene.AnimationTime, t))
         out = algorithm.GetOutputDataObject(0)
         wave = vtk_to_numpy(out.GetPointData().GetArray("Wave")).copy()
-        fresh = meshprojection.vtkMeshProjectionFilter()
-        fresh.SetInputData(read("lshape_target.vtu"))
-        step = read("lshape_source.vtu")
-        from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
-        r = vtkXMLUnstructuredGridReader()
-        r.SetFileName(os.path.join(temp, "gui-series", "src_%d.vtu" % k))
-        r.Update()
-        fresh.SetSourceData(r.GetOutput())
-        fresh.Update()
-        expected = vtk_to_numpy(fresh.GetOutput().GetPointData().GetArray("Wave"))
+        fresh = fresh_projection(read("lshape_target.vtu"), read_step(pvd, k))
+        expected = vtk_to_numpy(fresh.GetPointData().GetArray("Wave"))
         error = float(np.max(np.abs(wave - expected)))
         if not error < 1e-12:
             failures.append("t = %g: the shown Wave differs from that step's projection by %g"

@@ -14,31 +14,14 @@ import numpy as np  # noqa: E402
 from paraview.simple import LoadPlugin, OpenDataFile, PVDReader  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader  # noqa: E402
 
-import meshprojection  # noqa: E402
-from mptesting import DATA, cell_measures, check, finish, integral, read, write_series  # noqa: E402
+import meshprojection  # noqa: E402,F401  (before any client-side object is wrapped)
+from mptesting import (DATA, cell_measures, check, finish, fresh_projection, integral, read,  # noqa: E402
+                       read_step, write_series)
 
 plugin, temp_dir = sys.argv[1], sys.argv[2]
 LoadPlugin(plugin, ns=globals())
 STEPS = [0.0, 0.5, 1.0, 1.5, 2.0, 2.5]
-
-
-def reference(target_grid, source_grid):
-    """A fresh projection of one step's meshes (nothing kept)."""
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetCacheOperator(False)
-    f.SetInputData(target_grid)
-    f.SetSourceData(source_grid)
-    f.Update()
-    return f.GetOutput()
-
-
-def step_file(pvd, k):
-    r = vtkXMLUnstructuredGridReader()
-    r.SetFileName(os.path.join(os.path.dirname(pvd), "%s_%d.vtu" % (os.path.basename(pvd)[:-4], k)))
-    r.Update()
-    return r.GetOutput()
 
 
 def advertised(proxy):
@@ -58,9 +41,9 @@ def follow(name, target_proxy, source_proxy, target_pvd, source_pvd, expect_reus
         out = algorithm.GetOutputDataObject(0)
         wave = vtk_to_numpy(out.GetPointData().GetArray("Wave")).copy()
         heat = vtk_to_numpy(out.GetCellData().GetArray("Heat")).copy()
-        target_grid = step_file(target_pvd, k) if target_pvd else read("lshape_target.vtu")
-        source_grid = step_file(source_pvd, k)
-        ref = reference(target_grid, source_grid)
+        target_grid = read_step(target_pvd, k) if target_pvd else read("lshape_target.vtu")
+        source_grid = read_step(source_pvd, k)
+        ref = fresh_projection(target_grid, source_grid)
         expected = vtk_to_numpy(ref.GetPointData().GetArray("Wave"))
         same_mask = np.array_equal(np.isnan(wave), np.isnan(expected))
         error = np.nanmax(np.abs(wave - expected)) if same_mask else np.inf
@@ -94,8 +77,8 @@ def follow(name, target_proxy, source_proxy, target_pvd, source_pvd, expect_reus
     # Back to an earlier step: that step's numbers again.
     projection.UpdatePipeline(STEPS[1])
     again = vtk_to_numpy(algorithm.GetOutputDataObject(0).GetPointData().GetArray("Wave"))
-    ref = reference(step_file(target_pvd, 1) if target_pvd else read("lshape_target.vtu"),
-                    step_file(source_pvd, 1))
+    ref = fresh_projection(read_step(target_pvd, 1) if target_pvd else read("lshape_target.vtu"),
+                    read_step(source_pvd, 1))
     check(np.nanmax(np.abs(again - vtk_to_numpy(ref.GetPointData().GetArray("Wave")))) < 1e-12,
           "%s: back at t = %g, that step's values" % (name, STEPS[1]))
 

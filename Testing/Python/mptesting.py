@@ -24,6 +24,7 @@ def finish():
 
 
 def read(name):
+    """A .vtu file of Data/, or any path."""
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
     reader = vtkXMLUnstructuredGridReader()
     reader.SetFileName(os.path.join(DATA, name))
@@ -31,23 +32,32 @@ def read(name):
     return reader.GetOutput()
 
 
+def read_step(pvd, k):
+    """Step k of a series written by write_series, read directly."""
+    return read(os.path.join(os.path.dirname(pvd), "%s_%d.vtu" % (os.path.basename(pvd)[:-4], k)))
+
+
+def fresh_projection(target_grid, source_grid):
+    """The wrapped filter's output on two grids, nothing kept."""
+    import meshprojection
+    f = meshprojection.vtkMeshProjectionFilter()
+    f.SetCacheOperator(False)
+    f.SetInputData(target_grid)
+    f.SetSourceData(source_grid)
+    f.Update()
+    return f.GetOutput()
+
+
 def integral(grid, name, component=0):
     """Exact integral of a P1 point array over a triangle or tetrahedron mesh
     (numpy, no VTK filter); returns (integral, area or volume)."""
     import numpy as np
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    x = vtk_to_numpy(grid.GetPoints().GetData())
-    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
-    corners = int(offsets[1] - offsets[0]) if len(offsets) > 1 else 3
-    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, corners)
+    cells = _cells(grid)
     u = vtk_to_numpy(grid.GetPointData().GetArray(name))
     if u.ndim > 1:
         u = u[:, component]
-    e = x[cells[:, 1:]] - x[cells[:, :1]]
-    if corners == 3:
-        measure = 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
-    else:
-        measure = np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6
+    measure = cell_measures(grid)
     return float(np.sum(measure * u[cells].mean(axis=1))), float(measure.sum())
 
 
@@ -83,9 +93,7 @@ def write_series(directory, name, grid, steps, wave=True, move=None):
             a = numpy_to_vtk(u, deep=True)
             a.SetName("Wave")
             step.GetPointData().AddArray(a)
-            offsets = vtk_to_numpy(step.GetCells().GetOffsetsArray())
-            corners = int(offsets[1] - offsets[0])
-            cells = vtk_to_numpy(step.GetCells().GetConnectivityArray()).reshape(-1, corners)
+            cells = _cells(step)
             c = x[cells].mean(axis=1)
             h = numpy_to_vtk(1 + (c[:, 0] > 0.5 + 0.1 * t) * (1 + t), deep=True)
             h.SetName("Heat")
@@ -104,15 +112,21 @@ def write_series(directory, name, grid, steps, wave=True, move=None):
     return pvd
 
 
+def _cells(grid):
+    """The point ids of a mesh of triangles or of tetrahedra, one row per cell."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
+    corners = int(offsets[1] - offsets[0]) if len(offsets) > 1 else 3
+    return vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, corners)
+
+
 def cell_measures(grid):
     """Areas (triangles) or volumes (tetrahedra) of the cells (numpy)."""
     import numpy as np
     from vtkmodules.util.numpy_support import vtk_to_numpy
     x = vtk_to_numpy(grid.GetPoints().GetData())
-    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
-    corners = int(offsets[1] - offsets[0])
-    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, corners)
+    cells = _cells(grid)
     e = x[cells[:, 1:]] - x[cells[:, :1]]
-    if corners == 3:
+    if cells.shape[1] == 3:
         return 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
     return np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6
