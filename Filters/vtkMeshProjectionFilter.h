@@ -77,13 +77,17 @@
  * cell types, compared by a 64-bit fingerprint of their arrays' contents,
  * since readers build new arrays at every step): a step then costs the
  * right-hand sides and a solve started from the previous step's solution.
+ * A one-off run does not form M_ts (the right-hand sides are summed during
+ * the search): the operators are assembled when an input advertises time
+ * steps, when the meshes of the last execution come again, when
+ * PreserveBounds needs M_ts, or when GetMatrix() asks for it.
  * OperatorReused tells whether the last execution reused them;
  * OperatorMemory their size. GetMatrix() gives the kept matrices as
  * compressed rows and WriteMatrixMarket() writes them.
  *
  * Progress is reported through the stages, and AbortExecute stops a run
- * (within the search at chunks of cells): the output is then Input as it
- * came, with a warning.
+ * (polled in the search every 8192 target cells): the output is then Input
+ * as it came, with a warning.
  *
  * Non-numeric Source arrays (strings, variants) are skipped with a
  * warning; integer arrays are projected as real values, with a warning (an
@@ -257,8 +261,8 @@ public:
   /**
    * Keeps the operators between executions and reuses them while neither
    * mesh changes (time series on fixed meshes). Default: true. Off, each
-   * execution builds what it needs and keeps nothing (for one-off runs on
-   * very large meshes: M_ts is then not even assembled).
+   * execution builds what it needs (M_ts only for PreserveBounds) and keeps
+   * nothing: no memory held between executions, no matrices to read out.
    */
   vtkSetMacro(CacheOperator, bool);
   vtkGetMacro(CacheOperator, bool);
@@ -282,9 +286,10 @@ public:
    * values. Rows are Input's points or cells, columns Input's (TARGET_MASS)
    * or Source's (MIXED_MASS) points or cells, in VTK ids. M_tt is
    * integrated over the covered part; rows of invalid target functions hold
-   * a 1 on the diagonal. Returns the number of columns, or -1 (with an
-   * error) when no such operator is kept: run the filter with CacheOperator
-   * on and the transfer in use.
+   * a 1 on the diagonal. When the last execution was a one-off run (M_ts
+   * not formed), the filter executes once more, assembling it. Returns the
+   * number of columns, or -1 (with an error) when no such operator can be
+   * had: CacheOperator off, no inputs, or the transfer not in use.
    */
   vtkIdType GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
     vtkIdTypeArray* columns, vtkDoubleArray* values);
