@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMeshProjectionFilter.h"
 
+#include "vtkAppendFilter.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCellData.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkCharArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArraySelection.h"
@@ -16,6 +20,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedIntArray.h"
 #include "vtkUnstructuredGrid.h"
 
 #include "vtkMeshProjectionMesh.h"
@@ -32,6 +37,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -183,6 +189,32 @@ struct Gathered
 };
 } // namespace
 
+/// An operator kept between executions, with its last solution.
+struct vtkMeshProjectionFilter::Kept
+{
+  std::unique_ptr<mp::MortarOperator> Operator;
+  std::string SolutionKey;
+  mp::LargeVector<double> Solution; ///< the last projection (warm start)
+};
+
+/// What the filter keeps for one dataset of Input (a leaf of a composite
+/// Input): the operators of the four transfers, while the meshes are the same.
+struct vtkMeshProjectionFilter::Leaf
+{
+  bool HasFingerprint = false;
+  std::uint64_t GeometryFingerprint = 0;
+  Kept Operators[4];
+
+  void Clear()
+  {
+    for (Kept& k : this->Operators)
+    {
+      k = Kept();
+    }
+    this->HasFingerprint = false;
+  }
+};
+
 /// What the filter keeps between executions.
 struct vtkMeshProjectionFilter::Internals
 {
@@ -195,28 +227,21 @@ struct vtkMeshProjectionFilter::Internals
   {
     return association == 0 ? this->PointArrays.GetPointer() : this->CellArrays.GetPointer();
   }
-  std::set<std::string> Warned; ///< integer arrays already warned about
+  std::set<std::string> Warned; ///< integer arrays and left-out cells already warned about
   bool AssembleNext = false;    ///< GetMatrix asked for M_ts
-  bool HasFingerprint = false;
-  std::uint64_t GeometryFingerprint = 0;
-  struct Kept
+  /// By flat index of Input's leaf (0 for a dataset).
+  std::map<unsigned int, Leaf> Leaves;
+  /// The kept operator of a transfer in the first leaf that has one.
+  const mp::MortarOperator* FirstOperator(int transfer) const
   {
-    std::unique_ptr<mp::MortarOperator> Operator;
-    std::string SolutionKey;
-    mp::LargeVector<double> Solution; ///< the last projection (warm start)
-  };
-  Kept Operators[4];
-  /// For GetMatrix: VTK ids of the kernel cells (empty: the same).
-  std::vector<vtkIdType> TargetCells, SourceCells;
-  vtkIdType TargetCellCount = 0, SourceCellCount = 0;
-
-  void Clear()
-  {
-    for (Kept& k : this->Operators)
+    for (const auto& leaf : this->Leaves)
     {
-      k = Kept();
+      if (leaf.second.Operators[transfer].Operator)
+      {
+        return leaf.second.Operators[transfer].Operator.get();
+      }
     }
-    this->HasFingerprint = false;
+    return nullptr;
   }
 };
 
@@ -291,11 +316,14 @@ vtkDataArraySelection* vtkMeshProjectionFilter::GetCellDataArraySelection()
 vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
 {
   size_t bytes = 0;
-  for (const Internals::Kept& k : this->Internal->Operators)
+  for (const auto& leaf : this->Internal->Leaves)
   {
-    if (k.Operator)
+    for (const Kept& k : leaf.second.Operators)
     {
-      bytes += k.Operator->MemoryBytes() + k.Solution.capacity() * sizeof(double);
+      if (k.Operator)
+      {
+        bytes += k.Operator->MemoryBytes() + k.Solution.capacity() * sizeof(double);
+      }
     }
   }
   return static_cast<vtkIdType>(bytes);
@@ -318,7 +346,10 @@ vtkDataObject* vtkMeshProjectionFilter::GetSource()
 
 int vtkMeshProjectionFilter::FillInputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  // Any dataset, or a composite of datasets (multiblock, partitioned).
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   if (port == 1)
   {
     // Optional for the executive, so that a missing Source reaches
@@ -331,7 +362,42 @@ int vtkMeshProjectionFilter::FillInputPortInformation(int port, vtkInformation* 
 
 int vtkMeshProjectionFilter::FillOutputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 1 ? "vtkPolyData" : "vtkUnstructuredGrid");
+  // Port 0 has Input's type (RequestDataObject); the pieces have their own.
+  info->Set(vtkDataObject::DATA_TYPE_NAME(),
+    port == 0 ? "vtkDataObject" : (port == 1 ? "vtkPolyData" : "vtkUnstructuredGrid"));
+  return 1;
+}
+
+int vtkMeshProjectionFilter::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Output 0 is of Input's type, as in vtkResampleWithDataSet.
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  vtkDataObject* output = info->Get(vtkDataObject::DATA_OBJECT());
+  if (input && (!output || !output->IsA(input->GetClassName())))
+  {
+    vtkSmartPointer<vtkDataObject> fresh;
+    fresh.TakeReference(input->NewInstance());
+    info->Set(vtkDataObject::DATA_OBJECT(), fresh);
+  }
+  for (int port = 1; port < 3; ++port)
+  {
+    vtkInformation* piecesInfo = outputVector->GetInformationObject(port);
+    if (!piecesInfo->Get(vtkDataObject::DATA_OBJECT()))
+    {
+      vtkSmartPointer<vtkDataObject> pieces;
+      if (port == 1)
+      {
+        pieces = vtkSmartPointer<vtkPolyData>::New();
+      }
+      else
+      {
+        pieces = vtkSmartPointer<vtkUnstructuredGrid>::New();
+      }
+      piecesInfo->Set(vtkDataObject::DATA_OBJECT(), pieces);
+    }
+  }
   return 1;
 }
 
@@ -426,13 +492,104 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+/// One execution: the Source side (wrapped, its fields gathered, its
+/// neighbours and locator built once) shared by every leaf of Input.
+struct vtkMeshProjectionFilter::Execution
+{
+  vtkDataSet* Source = nullptr;
+  mpvtk::SimplexMesh SourceMesh;
+  std::uint64_t SourcePrint = 0;
+  Gathered Fields[2]; // 0: point arrays (P1), 1: cell arrays (P0)
+  bool Any = false;
+  bool Extensive = false;
+  bool TimeVarying = false;
+  bool SourceNeighbors = false;
+  std::unique_ptr<mp::CandidateLocator> Locator;
+  std::function<bool(double)> Progress;
+  double From = 0.05; ///< this leaf's share of the progress bar
+  double Span = 0.9;
+  std::chrono::steady_clock::time_point Stage;
+  bool FirstLeaf = true;
+};
+
+namespace
+{
+double Lap(std::chrono::steady_clock::time_point& since)
+{
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - since).count();
+  since = now;
+  return seconds;
+}
+
+/// The fingerprint of a wrapped mesh: its simplices and their parents.
+void AddMesh(Fingerprint& print, const mpvtk::SimplexMesh& mesh)
+{
+  print.Add(mesh.Grid());
+  const mp::MeshView& view = mesh.View();
+  print.Add(static_cast<std::uint64_t>(view.Parents()));
+  if (view.Parent)
+  {
+    print.Add(view.Parent, static_cast<size_t>(view.NumberOfCells) * sizeof(mp::Index));
+  }
+}
+
+/// Source as one dataset: itself, or all the dataset leaves of a composite
+/// Source appended (points not merged: cells of different blocks meeting at
+/// an interface see each other through the locator, and a field continuous
+/// across it gives the merged mesh's result).
+vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note)
+{
+  if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))
+  {
+    return one;
+  }
+  vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(data);
+  if (!composite)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkAppendFilter> append;
+  append->MergePointsOff();
+  int leaves = 0;
+  int skipped = 0;
+  vtkSmartPointer<vtkCompositeDataIterator> iter;
+  iter.TakeReference(composite->NewIterator());
+  for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
+  {
+    vtkDataSet* leaf = vtkDataSet::SafeDownCast(iter->GetCurrentDataObject());
+    if (!leaf)
+    {
+      ++skipped;
+      continue;
+    }
+    if (leaf->GetNumberOfCells() == 0)
+    {
+      continue;
+    }
+    append->AddInputData(leaf);
+    ++leaves;
+  }
+  if (skipped)
+  {
+    note = std::to_string(skipped) + " Source blocks that are not datasets were skipped.";
+  }
+  if (leaves == 0)
+  {
+    return vtkSmartPointer<vtkUnstructuredGrid>::New();
+  }
+  append->Update();
+  return vtkSmartPointer<vtkDataSet>(append->GetOutput());
+}
+} // namespace
+
 int vtkMeshProjectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const auto start = std::chrono::steady_clock::now();
-  vtkUnstructuredGrid* target = vtkUnstructuredGrid::GetData(inputVector[0], 0);
-  vtkUnstructuredGrid* source = vtkUnstructuredGrid::GetData(inputVector[1], 0);
-  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkDataObject* sourceObject = vtkDataObject::GetData(inputVector[1], 0);
+  vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   vtkPolyData* polygons = vtkPolyData::GetData(outputVector, 1);
   vtkUnstructuredGrid* polyhedra = vtkUnstructuredGrid::GetData(outputVector, 2);
   this->NumberOfIntersections = this->NumberOfIntersectionTests = 0;
@@ -443,102 +600,101 @@ int vtkMeshProjectionFilter::RequestData(
   this->OperatorReused = false;
   this->NumberOfOperatorsBuilt = 0;
   Internals& kept = *this->Internal;
-  auto lap = [](std::chrono::steady_clock::time_point& since) {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - since).count();
-    since = now;
-    return seconds;
-  };
-  auto stage = start;
+  Execution run;
+  run.Stage = start;
   // Progress events only from the thread that runs the pipeline (the GUI
   // handles them there); the abort flag is read from any thread.
   const std::thread::id pipelineThread = std::this_thread::get_id();
-  auto progress = [this, pipelineThread](double amount) {
+  run.Progress = [this, pipelineThread](double amount) {
     if (std::this_thread::get_id() == pipelineThread)
     {
       this->UpdateProgress(amount);
     }
     return this->GetAbortExecute() == 0;
   };
-  auto aborted = [&]() {
-    output->ShallowCopy(target);
+  vtkCompositeDataSet* compositeInput = vtkCompositeDataSet::SafeDownCast(input);
+  // The output is Input as it came, whatever happens next (each leaf its
+  // own shallow copy: the arrays are added to the copies, not to Input).
+  auto passInput = [&]() {
+    if (compositeInput)
+    {
+      vtkCompositeDataSet* out = vtkCompositeDataSet::SafeDownCast(output);
+      out->CopyStructure(compositeInput);
+      vtkSmartPointer<vtkCompositeDataIterator> iter;
+      iter.TakeReference(compositeInput->NewIterator());
+      iter->SkipEmptyNodesOn();
+      for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
+      {
+        vtkDataObject* leaf = iter->GetCurrentDataObject();
+        vtkSmartPointer<vtkDataObject> copy;
+        copy.TakeReference(leaf->NewInstance());
+        copy->ShallowCopy(leaf);
+        out->SetDataSet(iter, copy);
+      }
+    }
+    else
+    {
+      output->ShallowCopy(input);
+    }
     polygons->Initialize();
     polyhedra->Initialize();
+  };
+  auto aborted = [&]() {
+    passInput();
     vtkWarningMacro("Aborted: the output is Input as it came.");
     return 1;
   };
-
-  // 1. The output is Input as it came, whatever happens next.
-  output->ShallowCopy(target);
-  polygons->Initialize();
-  polyhedra->Initialize();
-  if (!source)
+  passInput();
+  if (!input)
+  {
+    return 1;
+  }
+  if (!sourceObject)
   {
     vtkErrorMacro("No Source is connected (input port 1): nothing to project.");
     return 1;
   }
 
-  // 2. Both meshes: triangles in a plane (2D) or tetrahedra (3D), finite coordinates.
-  mpvtk::SimplexMesh targetMesh;
-  mpvtk::SimplexMesh sourceMesh;
-  for (auto& item : { std::make_pair(target, &targetMesh), std::make_pair(source, &sourceMesh) })
+  // 1. Source as one mesh: triangles in a plane (2D) or tetrahedra (3D),
+  // split from its cells, with finite coordinates.
+  std::string note;
+  vtkSmartPointer<vtkDataSet> source = SourceAsOne(sourceObject, note);
+  if (!note.empty())
   {
-    const std::string why =
-      item.second->Wrap(item.first, item.first == target ? "Input" : "Source");
+    vtkWarningMacro(<< note);
+  }
+  if (!source)
+  {
+    vtkErrorMacro(<< "Source is a " << sourceObject->GetClassName()
+                  << ": a dataset or a composite dataset is needed.");
+    return 1;
+  }
+  run.Source = source;
+  {
+    const std::string why = run.SourceMesh.Wrap(source, "Source");
     if (!why.empty())
     {
       vtkErrorMacro(<< why);
       return 1;
     }
   }
-  if (target->GetNumberOfCells() == 0 || source->GetNumberOfCells() == 0)
+  this->WarnLeftOut(run.SourceMesh, "Source");
   {
-    vtkWarningMacro(<< (target->GetNumberOfCells() == 0 ? "Input" : "Source")
-                    << " has no cells: every projected point is invalid.");
-    // An empty mesh takes the dimension of the other one.
-    const int d = std::max(target->GetNumberOfCells() ? targetMesh.Dimension() : 2,
-      source->GetNumberOfCells() ? sourceMesh.Dimension() : 2);
-    targetMesh.SetDimension(d);
-    sourceMesh.SetDimension(d);
-  }
-  else if (targetMesh.Dimension() != sourceMesh.Dimension())
-  {
-    vtkErrorMacro(<< "Input is a " << targetMesh.Dimension() << "D mesh ("
-                  << (targetMesh.Dimension() == 2 ? "triangles" : "tetrahedra")
-                  << ") but Source is " << sourceMesh.Dimension() << "D: both must be of "
-                  << "the same dimension.");
-    return 1;
-  }
-  if (targetMesh.Dimension() == 2)
-  {
-    std::string warning;
-    const std::string error = UseOnePlane(targetMesh, sourceMesh, warning);
-    if (!error.empty())
-    {
-      vtkErrorMacro(<< error);
-      return 1;
-    }
-    if (!warning.empty())
-    {
-      vtkWarningMacro(<< warning);
-    }
-  }
-  if (targetMesh.GhostCells() || sourceMesh.GhostCells())
-  {
-    vtkWarningMacro(<< "Ghost cells (Input: " << targetMesh.GhostCells() << ", Source: "
-                    << sourceMesh.GhostCells() << ") are left out of the projection.");
+    Fingerprint sourcePrint;
+    AddMesh(sourcePrint, run.SourceMesh);
+    run.SourcePrint = sourcePrint.Hash;
   }
 
   this->ListSourceArrays(source);
-  // 3. The fields: the selected numeric arrays of Source, side by side, in
-  // the kernel's numbering (points: the same; cells: without ghosts).
-  Gathered fields[2]; // 0: point arrays (P1), 1: cell arrays (P0)
+  // 2. The fields: the selected numeric arrays of Source, side by side (P0:
+  // one value per Source cell; ghost and lower-dimensional cells' values
+  // are never used).
   for (int association = 0; association < 2; ++association)
   {
     vtkDataSetAttributes* data = source->GetAttributes(AttributeType(association));
     vtkDataArraySelection* selection = kept.Selection(association);
     const char* kind = association == 0 ? "point" : "cell";
-    Gathered& g = fields[association];
+    Gathered& g = run.Fields[association];
     for (int i = 0; i < data->GetNumberOfArrays(); ++i)
     {
       vtkAbstractArray* abstract = data->GetAbstractArray(i);
@@ -575,33 +731,30 @@ int vtkMeshProjectionFilter::RequestData(
       g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
     }
   }
-  const bool extensive = this->CellDataQuantity == EXTENSIVE;
-  fields[1].Key += extensive ? "extensive" : "intensive";
-  // Which transfers run: pts->pts, pts->cells, cells->cells, cells->pts.
-  bool used[4] = { fields[0].Components > 0 && (this->PointDataTarget & TO_POINTS),
-    fields[0].Components > 0 && (this->PointDataTarget & TO_CELLS),
-    fields[1].Components > 0 && (this->CellDataTarget & TO_CELLS),
-    fields[1].Components > 0 && (this->CellDataTarget & TO_POINTS) };
-  const bool any = used[0] || used[1] || used[2] || used[3];
-  if (!any)
+  run.Extensive = this->CellDataQuantity == EXTENSIVE;
+  run.Fields[1].Key += run.Extensive ? "extensive" : "intensive";
+  run.Any = (run.Fields[0].Components > 0 && this->PointDataTarget != 0) ||
+    (run.Fields[1].Components > 0 && this->CellDataTarget != 0);
+  if (!run.Any)
   {
     vtkWarningMacro("Source has no arrays to project (or none selected): only "
                     "vtkValidPointMask and CoveredFraction are computed.");
   }
   for (int association = 0; association < 2; ++association)
   {
-    Gathered& g = fields[association];
+    Gathered& g = run.Fields[association];
     if (g.Components == 0)
     {
       continue;
     }
-    const mp::Index n = association == 0 ? source->GetNumberOfPoints()
-                                         : mp::SpaceSize(mp::SpaceType::P0, sourceMesh.View());
+    const mp::Index n = association == 0
+      ? source->GetNumberOfPoints()
+      : mp::SpaceSize(mp::SpaceType::P0, run.SourceMesh.View());
     g.Values.resize(std::max<size_t>(static_cast<size_t>(n) * g.Components, 1));
     std::vector<double> measure;
-    if (association == 1 && extensive)
+    if (association == 1 && run.Extensive)
     {
-      measure = mp::ParentMeasures(sourceMesh.View());
+      measure = mp::ParentMeasures(run.SourceMesh.View());
     }
     for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)
     {
@@ -611,28 +764,267 @@ int vtkMeshProjectionFilter::RequestData(
       vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType f = begin; f < end; ++f)
         {
-          const vtkIdType tuple = association == 0 ? f : sourceMesh.ToVTK(f);
           // Extensive values become densities (total / measure).
           const double scale = measure.empty() ? 1.0 : (measure[f] > 0 ? 1.0 / measure[f] : 0.0);
           for (int k = 0; k < nc; ++k)
           {
-            g.Values[f * width + offset + k] = scale * array->GetComponent(tuple, k);
+            g.Values[f * width + offset + k] = scale * array->GetComponent(f, k);
           }
         }
       });
       offset += nc;
     }
   }
-  this->InputTime = lap(stage);
-  if (!progress(0.05))
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkInformation* info = inputVector[port]->GetInformationObject(0);
+    run.TimeVarying = run.TimeVarying ||
+      (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
+  }
+  this->InputTime = Lap(run.Stage);
+  if (!run.Progress(0.05))
   {
     return aborted();
   }
 
-  // 4. The operators: kept ones while neither mesh changed, else built.
+  // 3. Each dataset of Input: its own projection (one system per leaf).
+  std::vector<std::pair<unsigned int, vtkDataSet*>> leaves; // (flat index, output leaf)
+  std::vector<vtkDataSet*> targets;
+  std::vector<std::string> names;
+  int notDataSets = 0;
+  if (compositeInput)
+  {
+    vtkCompositeDataSet* out = vtkCompositeDataSet::SafeDownCast(output);
+    vtkSmartPointer<vtkCompositeDataIterator> iter;
+    iter.TakeReference(compositeInput->NewIterator());
+    iter->SkipEmptyNodesOn();
+    for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
+    {
+      vtkDataSet* leaf = vtkDataSet::SafeDownCast(iter->GetCurrentDataObject());
+      if (!leaf)
+      {
+        ++notDataSets;
+        continue;
+      }
+      leaves.emplace_back(iter->GetCurrentFlatIndex(), vtkDataSet::SafeDownCast(out->GetDataSet(iter)));
+      targets.push_back(leaf);
+      const char* name = iter->HasCurrentMetaData()
+        ? iter->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME())
+        : nullptr;
+      names.push_back("block " + std::to_string(iter->GetCurrentFlatIndex()) +
+        (name ? std::string(" '") + name + "'" : std::string()));
+    }
+    if (notDataSets)
+    {
+      vtkWarningMacro(<< notDataSets << " Input blocks that are not datasets were skipped.");
+    }
+  }
+  else if (vtkDataSet* one = vtkDataSet::SafeDownCast(input))
+  {
+    leaves.emplace_back(0u, vtkDataSet::SafeDownCast(output));
+    targets.push_back(one);
+    names.emplace_back("Input");
+  }
+  // Operators of leaves no longer there are dropped.
+  for (auto it = kept.Leaves.begin(); it != kept.Leaves.end();)
+  {
+    const bool present = std::any_of(leaves.begin(), leaves.end(),
+      [&](const std::pair<unsigned int, vtkDataSet*>& l) { return l.first == it->first; });
+    it = present && this->CacheOperator ? std::next(it) : kept.Leaves.erase(it);
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> pieces;
+  std::vector<std::string> skipped;
+  int projected = 0;
+  for (size_t i = 0; i < leaves.size(); ++i)
+  {
+    vtkDataSet* target = targets[i];
+    vtkDataSet* out = leaves[i].second;
+    if (compositeInput && target->GetNumberOfCells() == 0)
+    {
+      vtkDebugMacro(<< names[i] << " is empty: skipped.");
+      continue;
+    }
+    run.From = 0.05 + 0.9 * static_cast<double>(i) / leaves.size();
+    run.Span = 0.9 / leaves.size();
+    vtkSmartPointer<vtkDataObject> leafPieces;
+    const std::string why = this->ProjectLeaf(target, out, run, kept.Leaves[leaves[i].first],
+      compositeInput ? names[i] : std::string(), leafPieces);
+    if (why == "stopped")
+    {
+      return aborted();
+    }
+    if (!why.empty())
+    {
+      out->ShallowCopy(target);
+      kept.Leaves.erase(leaves[i].first);
+      if (!compositeInput)
+      {
+        vtkErrorMacro(<< why);
+        return 1;
+      }
+      skipped.push_back(names[i] + ": " + why);
+      continue;
+    }
+    ++projected;
+    if (leafPieces)
+    {
+      if (compositeInput)
+      {
+        vtkNew<vtkUnsignedIntArray> block;
+        block->SetName("TargetBlock");
+        block->SetNumberOfValues(vtkDataSet::SafeDownCast(leafPieces)->GetNumberOfCells());
+        block->Fill(leaves[i].first);
+        vtkDataSet::SafeDownCast(leafPieces)->GetCellData()->AddArray(block);
+      }
+      pieces.push_back(leafPieces);
+    }
+  }
+  if (!skipped.empty())
+  {
+    std::ostringstream text;
+    text << skipped.size() << " of " << leaves.size()
+         << " Input blocks could not be projected and are passed through:";
+    for (const std::string& s : skipped)
+    {
+      text << "\n  " << s;
+    }
+    if (projected == 0)
+    {
+      vtkErrorMacro(<< text.str());
+    }
+    else
+    {
+      vtkWarningMacro(<< text.str());
+    }
+  }
+  // 4. Optionally, the intersection pieces of every leaf.
+  if (pieces.size() == 1)
+  {
+    (vtkPolyData::SafeDownCast(pieces[0]) ? static_cast<vtkDataObject*>(polygons) : polyhedra)
+      ->ShallowCopy(pieces[0]);
+  }
+  else if (pieces.size() > 1)
+  {
+    vtkNew<vtkAppendPolyData> appendPolygons;
+    vtkNew<vtkAppendFilter> appendPolyhedra;
+    for (const auto& p : pieces)
+    {
+      if (vtkPolyData* poly = vtkPolyData::SafeDownCast(p))
+      {
+        appendPolygons->AddInputData(poly);
+      }
+      else
+      {
+        appendPolyhedra->AddInputData(vtkDataSet::SafeDownCast(p));
+      }
+    }
+    if (appendPolygons->GetNumberOfInputConnections(0) > 0)
+    {
+      appendPolygons->Update();
+      polygons->ShallowCopy(appendPolygons->GetOutput());
+    }
+    if (appendPolyhedra->GetNumberOfInputConnections(0) > 0)
+    {
+      appendPolyhedra->Update();
+      polyhedra->ShallowCopy(appendPolyhedra->GetOutput());
+    }
+  }
+  this->OperatorReused = projected > 0 && this->NumberOfOperatorsBuilt == 0;
+  this->OutputTime += Lap(run.Stage);
+  this->ExecutionTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkMeshProjectionFilter::WarnLeftOut(const mpvtk::SimplexMesh& mesh, const std::string& role)
+{
+  if (mesh.LowerDimensionalCells() > 0 &&
+    this->Internal->Warned.insert("lower/" + role).second) // once per filter, not per step
+  {
+    vtkWarningMacro(<< role << ": " << mesh.LowerDimensionalCells() << " cells of lower "
+                    << "dimension than its " << mesh.Dimension() << "D cells (vertices, lines"
+                    << (mesh.Dimension() == 3 ? ", faces" : "") << ") are left out of the "
+                    << "projection (their cell values are invalid).");
+  }
+}
+
+std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet* output,
+  Execution& run, Leaf& kept, const std::string& name,
+  vtkSmartPointer<vtkDataObject>& pieces)
+{
+  vtkDataSet* source = run.Source;
+  mpvtk::SimplexMesh& sourceMesh = run.SourceMesh;
+  const std::string role = name.empty() ? std::string("Input") : "Input " + name;
+  auto progress = [&run](double f) { return run.Progress(run.From + run.Span * f); };
+
+  // 1. The target: triangles in Source's plane (2D) or tetrahedra (3D).
+  mpvtk::SimplexMesh targetMesh;
+  {
+    const std::string why = targetMesh.Wrap(target, role.c_str());
+    if (!why.empty())
+    {
+      return why;
+    }
+  }
+  this->WarnLeftOut(targetMesh, role);
+  const vtkIdType targetCells = targetMesh.View().NumberOfCells;
+  const vtkIdType sourceCells = sourceMesh.View().NumberOfCells;
+  if (targetCells == 0 || sourceCells == 0)
+  {
+    vtkWarningMacro(<< (targetCells == 0 ? role : std::string("Source"))
+                    << " has no cells: every projected point is invalid.");
+    // An empty mesh takes the dimension of the other one.
+    const int d = std::max(targetCells ? targetMesh.Dimension() : 2,
+      sourceCells ? sourceMesh.Dimension() : 2);
+    targetMesh.SetDimension(d);
+    if (sourceCells == 0)
+    {
+      sourceMesh.SetDimension(d);
+    }
+  }
+  else if (targetMesh.Dimension() != sourceMesh.Dimension())
+  {
+    std::ostringstream why;
+    why << role << " is a " << targetMesh.Dimension() << "D mesh but Source is "
+        << sourceMesh.Dimension() << "D: both must be of the same dimension.";
+    return why.str();
+  }
+  if (targetMesh.Dimension() == 2)
+  {
+    std::string warning;
+    const std::string error = UseOnePlane(targetMesh, sourceMesh, warning);
+    if (!error.empty())
+    {
+      return error;
+    }
+    if (!warning.empty() && run.FirstLeaf)
+    {
+      vtkWarningMacro(<< warning);
+    }
+  }
+  if (targetMesh.GhostCells() || (run.FirstLeaf && sourceMesh.GhostCells()))
+  {
+    vtkWarningMacro(<< "Ghost cells (" << role << ": " << targetMesh.GhostCells()
+                    << ", Source: " << sourceMesh.GhostCells()
+                    << ") are left out of the projection.");
+  }
+  if (targetMesh.FlatCells() || (run.FirstLeaf && sourceMesh.FlatCells()))
+  {
+    vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
+                    << " (" << role << ": " << targetMesh.FlatCells() << ", Source: "
+                    << sourceMesh.FlatCells() << ") were ignored: they carry no part of the "
+                    << "integrals.");
+  }
+  run.FirstLeaf = false;
+  const Gathered* fields = run.Fields;
+  const bool extensive = run.Extensive;
+
+  // 2. The operators: kept ones while neither mesh changed, else built.
   Fingerprint print;
-  print.Add(target);
-  print.Add(source);
+  AddMesh(print, targetMesh);
+  print.Add(run.SourcePrint);
   print.Add(static_cast<std::uint64_t>(this->SearchMethod));
   print.Add(static_cast<std::uint64_t>(this->OutputIntersections));
   const bool sameGeometry =
@@ -643,8 +1035,13 @@ int vtkMeshProjectionFilter::RequestData(
   }
   kept.HasFingerprint = this->CacheOperator;
   kept.GeometryFingerprint = print.Hash;
+  // Which transfers run: pts->pts, pts->cells, cells->cells, cells->pts.
+  bool used[4] = { fields[0].Components > 0 && (this->PointDataTarget & TO_POINTS),
+    fields[0].Components > 0 && (this->PointDataTarget & TO_CELLS),
+    fields[1].Components > 0 && (this->CellDataTarget & TO_CELLS),
+    fields[1].Components > 0 && (this->CellDataTarget & TO_POINTS) };
   // The operator that gives the mask and coverage when nothing is projected.
-  if (!any)
+  if (!(used[0] || used[1] || used[2] || used[3]))
   {
     used[0] = true;
   }
@@ -653,17 +1050,8 @@ int vtkMeshProjectionFilter::RequestData(
   // varies in time or the meshes are those of the last execution (or
   // GetMatrix asks). Else the fields' right-hand sides are summed during the
   // search and M_ts is never formed (a one-off run in about half the time).
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  bool timeVarying = false;
-  for (int port = 0; port < 2; ++port)
-  {
-    vtkInformation* info = inputVector[port]->GetInformationObject(0);
-    timeVarying = timeVarying ||
-      (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
-  }
   const bool assembled = this->PreserveBounds ||
-    (this->CacheOperator && (timeVarying || sameGeometry || kept.AssembleNext));
-  kept.AssembleNext = false;
+    (this->CacheOperator && (run.TimeVarying || sameGeometry || this->Internal->AssembleNext));
   mp::OperatorOptions options;
   options.KeepPieces = this->OutputIntersections;
   options.Method = this->SearchMethod == BRUTE_FORCE ? mp::SearchMethod::BruteForce
@@ -680,7 +1068,6 @@ int vtkMeshProjectionFilter::RequestData(
       }
     });
   };
-  std::unique_ptr<mp::CandidateLocator> locator;
   bool searchReady = false;
   int toBuild = 0;
   for (int t = 0; t < 4; ++t)
@@ -705,24 +1092,31 @@ int vtkMeshProjectionFilter::RequestData(
     {
       // Neighbours (VTK cell links) and the seed locator (vtkStaticCellLocator).
       targetMesh.BuildNeighbors();
-      sourceMesh.BuildNeighbors();
-      this->NeighborsTime = lap(stage);
-      if (targetMesh.NonManifoldFaces() || sourceMesh.NonManifoldFaces())
+      if (!run.SourceNeighbors)
       {
-        vtkWarningMacro(<< "Faces shared by more than two cells (Input: "
+        sourceMesh.BuildNeighbors();
+      }
+      this->NeighborsTime += Lap(run.Stage);
+      if (targetMesh.NonManifoldFaces() || (!run.SourceNeighbors && sourceMesh.NonManifoldFaces()))
+      {
+        vtkWarningMacro(<< "Faces shared by more than two cells (" << role << ": "
                         << targetMesh.NonManifoldFaces() << ", Source: "
                         << sourceMesh.NonManifoldFaces()
                         << ") are treated as boundaries; results stay correct but the search is slower.");
       }
-      // A Source without cells has nothing to locate: the kernel's own
-      // (empty) locator answers the front's questions then.
-      locator.reset(source->GetNumberOfCells() > 0
-          ? static_cast<mp::CandidateLocator*>(new mpvtk::StaticLocator(source, sourceMesh))
-          : new mp::BoxGridLocator(sourceMesh.View()));
-      this->LocatorTime = lap(stage);
-      if (!progress(0.15))
+      if (!run.SourceNeighbors)
       {
-        return aborted();
+        // A Source without cells has nothing to locate: the kernel's own
+        // (empty) locator answers the front's questions then.
+        run.Locator.reset(sourceCells > 0
+            ? static_cast<mp::CandidateLocator*>(new mpvtk::StaticLocator(sourceMesh))
+            : new mp::BoxGridLocator(sourceMesh.View()));
+        run.SourceNeighbors = true;
+        this->LocatorTime += Lap(run.Stage);
+      }
+      if (!progress(0.1))
+      {
+        return "stopped";
       }
     }
     searchReady = true;
@@ -731,68 +1125,65 @@ int vtkMeshProjectionFilter::RequestData(
     options.SourceSpace = SourceSpaceOf(t);
     options.Fields = assembled || g.Components == 0 ? nullptr : g.Values.data();
     options.FieldComponents = assembled ? 0 : g.Components;
-    const double from = 0.15 + 0.7 * built / toBuild;
+    const double from = 0.1 + 0.8 * built / toBuild;
     options.Progress = [&progress, from, toBuild](double f) {
-      return progress(from + 0.7 * f / toBuild);
+      return progress(from + 0.8 * f / toBuild);
     };
     fresh[t].reset(new mp::MortarOperator);
-    const bool ok = fresh[t]->Build(targetMesh.View(), sourceMesh.View(), locator.get(), options);
+    const bool ok = fresh[t]->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), options);
     if (!ok && fresh[t]->GetError() == "stopped")
     {
-      return aborted();
+      return "stopped";
     }
     if (!ok)
     {
-      vtkErrorMacro(<< "Projection failed: " << fresh[t]->GetError());
-      output->ShallowCopy(target);
-      return 1;
+      return "Projection failed: " + fresh[t]->GetError();
     }
     operators[t] = fresh[t].get();
     this->SearchTime += fresh[t]->GetTimings().Search;
     this->AssemblyTime += fresh[t]->GetTimings().Assembly;
     ++this->NumberOfOperatorsBuilt;
     built += 1;
-    lap(stage);
+    Lap(run.Stage);
   }
-  this->OperatorReused = this->NumberOfOperatorsBuilt == 0;
   const mp::MortarOperator* first = nullptr; // coverage, statistics, pieces
   for (const mp::MortarOperator* op : operators)
   {
     first = first ? first : op;
   }
   const mp::SearchStatistics& stats = first->GetStatistics();
-  this->NumberOfIntersections = stats.Pieces;
-  this->NumberOfIntersectionTests = stats.IntersectionTests;
-  this->NumberOfLocatorQueries = stats.LocatorQueries;
-  this->CoveredMeasure = first->GetCoveredMeasure();
-  if (!this->OperatorReused)
+  this->NumberOfIntersections += stats.Pieces;
+  this->NumberOfIntersectionTests += stats.IntersectionTests;
+  this->NumberOfLocatorQueries += stats.LocatorQueries;
+  this->CoveredMeasure += first->GetCoveredMeasure();
+  if (built > 0)
   {
     if (stats.DegenerateTargetCells > 0 || stats.DegenerateSourceCells > 0)
     {
       vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
-                      << " (Input: " << stats.DegenerateTargetCells << ", Source: "
+                      << " (" << role << ": " << stats.DegenerateTargetCells << ", Source: "
                       << stats.DegenerateSourceCells
                       << ") were ignored: they carry no part of the integrals.");
     }
-    if (target->GetNumberOfCells() > 0 && source->GetNumberOfCells() > 0 &&
-      first->GetCoveredMeasure() == 0)
+    if (targetCells > 0 && sourceCells > 0 && first->GetCoveredMeasure() == 0)
     {
-      vtkWarningMacro("Source and Input do not overlap: every projected value is invalid.");
+      vtkWarningMacro(<< "Source and " << role
+                      << " do not overlap: every projected value is invalid.");
     }
     if (first->GetNumberOfOvercoveredCells() > 0)
     {
-      vtkWarningMacro(<< first->GetNumberOfOvercoveredCells()
-                      << " Input cells are covered more than once: Source cells overlap each other "
+      vtkWarningMacro(<< first->GetNumberOfOvercoveredCells() << " " << role
+                      << " cells are covered more than once: Source cells overlap each other "
                       << "(folded, inverted among their neighbours, or duplicated). The result is "
                       << "not a projection of one field there.");
     }
   }
-  if (!progress(0.85))
+  if (!progress(0.9))
   {
-    return aborted();
+    return "stopped";
   }
 
-  // 5. Apply: M_ts u_s, then M_tt (consistent, from the previous step's
+  // 3. Apply: M_ts u_s, then M_tt (consistent, from the previous step's
   // solution when the same arrays were projected with the same operator)
   // or its row sums (lumped); bounds when asked.
   const double fill =
@@ -806,7 +1197,7 @@ int vtkMeshProjectionFilter::RequestData(
       continue;
     }
     const mp::MortarOperator& op = *operators[t];
-    Internals::Kept& k = kept.Operators[t];
+    Kept& k = kept.Operators[t];
     mp::LargeVector<double>& values = results[t];
     const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
     mp::ApplyOptions apply;
@@ -823,11 +1214,9 @@ int vtkMeshProjectionFilter::RequestData(
     }
     if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply))
     {
-      vtkErrorMacro(<< "The projection of " << TransferName(t) << " failed: the mass matrix of "
-                    << "the covered target part could not be solved.");
-      output->ShallowCopy(target);
       kept.Clear();
-      return 1;
+      return std::string("The projection of ") + TransferName(t) +
+        " failed: the mass matrix of the covered target part could not be solved.";
     }
     this->SolveTime += op.GetTimings().Solve;
     if (this->CacheOperator)
@@ -846,31 +1235,19 @@ int vtkMeshProjectionFilter::RequestData(
     }
     else if (!used[t] || !this->CacheOperator)
     {
-      kept.Operators[t] = Internals::Kept();
+      kept.Operators[t] = Kept();
     }
   }
-  kept.TargetCells.clear();
-  kept.SourceCells.clear();
-  for (mp::Index c = 0; targetMesh.GhostCells() && c < targetMesh.View().NumberOfCells; ++c)
-  {
-    kept.TargetCells.push_back(targetMesh.ToVTK(c));
-  }
-  for (mp::Index c = 0; sourceMesh.GhostCells() && c < sourceMesh.View().NumberOfCells; ++c)
-  {
-    kept.SourceCells.push_back(sourceMesh.ToVTK(c));
-  }
-  kept.TargetCellCount = target->GetNumberOfCells();
-  kept.SourceCellCount = source->GetNumberOfCells();
   if (!progress(0.95))
   {
-    return aborted();
+    return "stopped";
   }
-  lap(stage);
+  Lap(run.Stage);
 
-  // 6. One output array per projected array.
+  // 4. One output array per projected array. P0 functions are numbered as
+  // the dataset's cells (ghost and lower-dimensional cells are never valid).
   const vtkIdType nt = target->GetNumberOfPoints();
   const vtkIdType ntc = target->GetNumberOfCells();
-  const mp::Index kernelCells = targetMesh.View().NumberOfCells;
   vtkPointData* outPD = output->GetPointData();
   vtkCellData* outCD = output->GetCellData();
   std::vector<std::string> pointNames, cellNames; // written by the main transfers
@@ -893,16 +1270,16 @@ int vtkMeshProjectionFilter::RequestData(
     {
       vtkDataArray* array = g.Arrays[a];
       const int nc = array->GetNumberOfComponents();
-      std::string name = array->GetName() ? array->GetName()
-                                          : (fromCells ? "ProjectedCellArray" : "ProjectedArray") +
-          std::to_string(a);
-      if (!main && std::find(written.begin(), written.end(), name) != written.end())
+      std::string arrayName = array->GetName()
+        ? array->GetName()
+        : (fromCells ? "ProjectedCellArray" : "ProjectedArray") + std::to_string(a);
+      if (!main && std::find(written.begin(), written.end(), arrayName) != written.end())
       {
-        name += fromCells ? " (from cells)" : " (from points)";
+        arrayName += fromCells ? " (from cells)" : " (from points)";
       }
-      written.push_back(name);
+      written.push_back(arrayName);
       vtkNew<vtkDoubleArray> projected;
-      projected->SetName(name.c_str());
+      projected->SetName(arrayName.c_str());
       projected->SetNumberOfComponents(nc);
       for (int k = 0; k < nc; ++k)
       {
@@ -913,28 +1290,15 @@ int vtkMeshProjectionFilter::RequestData(
       }
       const mp::LargeVector<double>& values = results[t];
       const int width = g.Components;
-      if (toPoints)
+      const vtkIdType n = toPoints ? nt : ntc;
+      projected->SetNumberOfTuples(n);
+      double* out = projected->GetPointer(0);
+      for (vtkIdType f = 0; f < n; ++f)
       {
-        projected->SetNumberOfTuples(nt);
-        double* out = projected->GetPointer(0);
-        for (vtkIdType p = 0; p < nt; ++p)
+        const double scale = totals && operators[t]->GetValid()[f] ? covered[f] : 1.0;
+        for (int k = 0; k < nc; ++k)
         {
-          std::copy_n(&values[p * width + offset], nc, out + p * nc);
-        }
-      }
-      else
-      {
-        projected->SetNumberOfTuples(ntc);
-        projected->Fill(fill); // ghost cells
-        double* out = projected->GetPointer(0);
-        for (mp::Index c = 0; c < kernelCells; ++c)
-        {
-          const double scale = totals && operators[t]->GetValid()[c] ? covered[c] : 1.0;
-          double* o = out + targetMesh.ToVTK(c) * nc;
-          for (int k = 0; k < nc; ++k)
-          {
-            o[k] = scale * values[c * width + offset + k];
-          }
+          out[f * nc + k] = scale * values[f * width + offset + k];
         }
       }
       offset += nc;
@@ -950,7 +1314,7 @@ int vtkMeshProjectionFilter::RequestData(
     }
   }
 
-  // 7. Where the result is defined, and how much of each cell is covered.
+  // 5. Where the result is defined, and how much of each cell is covered.
   const std::vector<double>& fraction = first->GetCoveredFraction();
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
@@ -964,12 +1328,13 @@ int vtkMeshProjectionFilter::RequestData(
   {
     // A point is valid when a cell around it meets the source.
     mask->Fill(0);
-    for (mp::Index c = 0; c < kernelCells; ++c)
+    const mp::MeshView& view = targetMesh.View();
+    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
     {
-      if (fraction[c] > 0)
+      if (fraction[static_cast<size_t>(view.ParentOf(c))] > 0)
       {
-        const mp::Index* p = targetMesh.View().Cell(c);
-        for (int k = 0; k < targetMesh.View().CornersPerCell(); ++k)
+        const mp::Index* p = view.Cell(c);
+        for (int k = 0; k < view.CornersPerCell(); ++k)
         {
           mask->SetValue(p[k], 1);
         }
@@ -982,106 +1347,68 @@ int vtkMeshProjectionFilter::RequestData(
     vtkNew<vtkCharArray> cellMask;
     cellMask->SetName("vtkValidCellMask");
     cellMask->SetNumberOfValues(ntc);
-    cellMask->Fill(0); // ghost cells
-    for (mp::Index c = 0; c < kernelCells; ++c)
-    {
-      cellMask->SetValue(targetMesh.ToVTK(c), onCells->GetValid()[c]);
-    }
+    std::copy(onCells->GetValid().begin(), onCells->GetValid().end(), cellMask->GetPointer(0));
     outCD->AddArray(cellMask);
   }
   vtkNew<vtkDoubleArray> covered;
   covered->SetName("CoveredFraction");
   covered->SetNumberOfValues(ntc);
-  covered->Fill(0.0); // ghost cells
-  for (size_t c = 0; c < fraction.size(); ++c)
-  {
-    covered->SetValue(targetMesh.ToVTK(static_cast<mp::Index>(c)), fraction[c]);
-  }
+  std::copy(fraction.begin(), fraction.end(), covered->GetPointer(0));
   outCD->AddArray(covered);
 
-  // 8. Optionally, the intersection pieces.
+  // 6. Optionally, the intersection pieces.
   if (this->OutputIntersections && targetMesh.Dimension() == 2)
   {
-    polygons->ShallowCopy(
-      mpvtk::MakeIntersectionPolygons(first->GetPieces(), targetMesh, sourceMesh));
+    pieces = mpvtk::MakeIntersectionPolygons(first->GetPieces(), targetMesh, sourceMesh);
   }
   else if (this->OutputIntersections)
   {
-    polyhedra->ShallowCopy(
-      mpvtk::MakeIntersectionPolyhedra(first->GetPieces(), targetMesh, sourceMesh));
+    pieces = mpvtk::MakeIntersectionPolyhedra(first->GetPieces(), targetMesh, sourceMesh);
   }
-  this->OutputTime = lap(stage);
-  this->ExecutionTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  this->UpdateProgress(1.0);
-  return 1;
+  this->OutputTime += Lap(run.Stage);
+  return std::string();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
   vtkIdTypeArray* columns, vtkDoubleArray* values)
 {
-  if (transfer >= 0 && transfer <= 3 && !this->Internal->Operators[transfer].Operator &&
-    this->CacheOperator && this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
+  const bool known = transfer >= 0 && transfer <= 3;
+  if (known && !this->Internal->FirstOperator(transfer) && this->CacheOperator &&
+    this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
   {
     // The last execution summed its right-hand sides without forming M_ts
     // (a one-off run): execute again, assembling it.
     this->Internal->AssembleNext = true;
     this->Modified();
     this->Update();
+    this->Internal->AssembleNext = false;
   }
-  if (transfer < 0 || transfer > 3 || !rowStart || !columns || !values ||
-    !this->Internal->Operators[transfer].Operator)
+  const mp::MortarOperator* op = known ? this->Internal->FirstOperator(transfer) : nullptr;
+  if (!rowStart || !columns || !values || !op)
   {
-    vtkErrorMacro(<< "No operator of "
-                  << (transfer >= 0 && transfer <= 3 ? TransferName(transfer) : "that number")
+    vtkErrorMacro(<< "No operator of " << (known ? TransferName(transfer) : "that number")
                   << " is kept: run the filter with CacheOperator on and that transfer in use.");
     return -1;
   }
-  const mp::MortarOperator& op = *this->Internal->Operators[transfer].Operator;
-  const mp::CsrMatrix& m = matrix == MIXED_MASS ? op.GetMixedMass() : op.GetTargetMass();
-  // Kernel cells are the non-ghost cells in order: map P0 rows and columns
-  // to VTK cell ids (empty rows for ghost cells).
-  const bool cellRows = TargetSpaceOf(transfer) == mp::SpaceType::P0;
-  const bool cellColumns =
-    matrix == MIXED_MASS ? SourceSpaceOf(transfer) == mp::SpaceType::P0 : cellRows;
-  const std::vector<vtkIdType>& rowMap = this->Internal->TargetCells;
-  const std::vector<vtkIdType>& columnMap =
-    matrix == MIXED_MASS ? this->Internal->SourceCells : this->Internal->TargetCells;
-  const vtkIdType rows = cellRows && !rowMap.empty() ? this->Internal->TargetCellCount : m.Rows;
-  vtkIdType ncolumns = m.Columns;
-  if (cellColumns && !columnMap.empty())
-  {
-    ncolumns = matrix == MIXED_MASS ? this->Internal->SourceCellCount : this->Internal->TargetCellCount;
-  }
+  // P0 rows and columns are numbered as the datasets' cells, P1 ones as their points.
+  const mp::CsrMatrix& m = matrix == MIXED_MASS ? op->GetMixedMass() : op->GetTargetMass();
   rowStart->SetNumberOfComponents(1);
-  rowStart->SetNumberOfTuples(rows + 1);
+  rowStart->SetNumberOfTuples(m.Rows + 1);
   columns->SetNumberOfComponents(1);
   columns->SetNumberOfTuples(m.NonZeros());
   values->SetNumberOfComponents(1);
   values->SetNumberOfTuples(m.NonZeros());
-  vtkIdType row = 0;
-  rowStart->SetValue(0, 0);
-  for (mp::Index i = 0; i < m.Rows; ++i)
+  for (mp::Index i = 0; i <= m.Rows; ++i)
   {
-    const vtkIdType vtkRow = cellRows && !rowMap.empty() ? rowMap[i] : i;
-    while (row < vtkRow)
-    {
-      rowStart->SetValue(++row, m.RowStart[i]);
-    }
-    for (mp::Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
-    {
-      const vtkIdType c = m.ColumnIndex[p];
-      columns->SetValue(p, cellColumns && !columnMap.empty() ? columnMap[c] : c);
-      values->SetValue(p, m.Values[p]);
-    }
-    rowStart->SetValue(++row, m.RowStart[i + 1]);
+    rowStart->SetValue(i, m.RowStart[i]);
   }
-  while (row < rows)
+  for (mp::Index p = 0; p < m.NonZeros(); ++p)
   {
-    rowStart->SetValue(++row, m.NonZeros());
+    columns->SetValue(p, m.ColumnIndex[p]);
+    values->SetValue(p, m.Values[p]);
   }
-  return ncolumns;
+  return m.Columns;
 }
 
 bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transfer, int matrix)

@@ -110,17 +110,25 @@
 #define vtkMeshProjectionFilter_h
 
 #include "MeshProjectionFiltersModule.h" // for export macro
-#include "vtkUnstructuredGridAlgorithm.h"
+#include "vtkPassInputTypeAlgorithm.h"
+#include "vtkSmartPointer.h" // for ProjectLeaf
+
+#include <string> // for ProjectLeaf
 
 class vtkDataArraySelection;
+class vtkDataSet;
+namespace mpvtk
+{
+class SimplexMesh;
+}
 class vtkDoubleArray;
 class vtkIdTypeArray;
 
-class MESHPROJECTIONFILTERS_EXPORT vtkMeshProjectionFilter : public vtkUnstructuredGridAlgorithm
+class MESHPROJECTIONFILTERS_EXPORT vtkMeshProjectionFilter : public vtkPassInputTypeAlgorithm
 {
 public:
   static vtkMeshProjectionFilter* New();
-  vtkTypeMacro(vtkMeshProjectionFilter, vtkUnstructuredGridAlgorithm);
+  vtkTypeMacro(vtkMeshProjectionFilter, vtkPassInputTypeAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum SearchMethods
@@ -336,6 +344,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -370,7 +379,15 @@ private:
   void SelectionModified();
   void ListSourceArrays(vtkDataObject* source);
   struct Internals;
+  struct Kept;
+  struct Leaf;
+  struct Execution;
   Internals* Internal;
+  /// Projects Source onto one dataset of Input (a leaf of a composite
+  /// Input, then `name` names it); an empty string, "stopped", or the error.
+  std::string ProjectLeaf(vtkDataSet* target, vtkDataSet* output, Execution& run, Leaf& kept,
+    const std::string& name, vtkSmartPointer<vtkDataObject>& pieces);
+  void WarnLeftOut(const mpvtk::SimplexMesh& mesh, const std::string& role);
   void operator=(const vtkMeshProjectionFilter&) = delete;
 };
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMeshProjectionMesh.h"
 
+#include "Geometry/CellSplit.h"
 #include "Mesh/CellNeighbors.h"
 
 #include "vtkCellArray.h"
@@ -11,6 +12,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -34,14 +36,40 @@ namespace mpvtk
 static_assert(std::is_same<vtkTypeInt64, mp::Index>::value,
   "the kernel's ids must match VTK's 64-bit connectivity for zero-copy views");
 
-std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
+namespace
+{
+const char* CellTypeName(int type)
+{
+  const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
+  return name ? name : "unknown cell type";
+}
+
+/// The shape of a standard 3D cell for the kernel's face tables.
+bool StandardShape(int type, mp::CellShape& shape)
+{
+  switch (type)
+  {
+    case VTK_HEXAHEDRON: shape = mp::CellShape::Hexahedron; return true;
+    case VTK_VOXEL: shape = mp::CellShape::Voxel; return true;
+    case VTK_WEDGE: shape = mp::CellShape::Wedge; return true;
+    case VTK_PYRAMID: shape = mp::CellShape::Pyramid; return true;
+    case VTK_PENTAGONAL_PRISM: shape = mp::CellShape::PentagonalPrism; return true;
+    case VTK_HEXAGONAL_PRISM: shape = mp::CellShape::HexagonalPrism; return true;
+    default: return false;
+  }
+}
+} // namespace
+
+std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
 {
   std::ostringstream why;
-  this->Grid = grid;
-  const vtkIdType numberOfCells = grid->GetNumberOfCells();
-  // The cell types present, from the grid's type array in one pass.
+  const vtkIdType numberOfCells = data->GetNumberOfCells();
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(data);
+  // The cell types present: from an unstructured grid's type array in one
+  // pass, else cell by cell (constant time for structured data).
   bool present[256] = {};
-  if (vtkUnsignedCharArray* typeArray = grid->GetCellTypesArray())
+  vtkUnsignedCharArray* typeArray = grid ? grid->GetCellTypesArray() : nullptr;
+  if (typeArray)
   {
     const unsigned char* t = typeArray->GetPointer(0);
     for (vtkIdType c = 0; c < numberOfCells; ++c)
@@ -49,35 +77,275 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
       present[t[c]] = true;
     }
   }
-  std::set<int> types;
-  for (int type = 0; type < 256; ++type)
+  else
   {
-    if (present[type])
+    for (vtkIdType c = 0; c < numberOfCells; ++c)
     {
-      types.insert(type);
+      present[data->GetCellType(c) & 255] = true;
     }
   }
-  std::set<int> unsupported = types;
-  unsupported.erase(VTK_TRIANGLE);
-  unsupported.erase(VTK_TETRA);
+  std::set<int> nonlinear;
+  std::set<int> unsupported;
+  int dimension = 0;
+  for (int type = 1; type < 256; ++type)
+  {
+    if (!present[type])
+    {
+      continue;
+    }
+    if (!vtkCellTypes::IsLinear(static_cast<unsigned char>(type)))
+    {
+      nonlinear.insert(type);
+    }
+    else if (type == VTK_CONVEX_POINT_SET)
+    {
+      unsupported.insert(type);
+    }
+    else
+    {
+      dimension = std::max(dimension, vtkCellTypes::GetDimension(static_cast<unsigned char>(type)));
+    }
+  }
+  if (!nonlinear.empty())
+  {
+    why << role << " has nonlinear cells:";
+    for (int type : nonlinear)
+    {
+      why << ' ' << CellTypeName(type) << " (" << type << ')';
+    }
+    why << ". The projection uses linear cells: apply Tessellate first (it splits curved and "
+           "higher-order cells into linear ones to a chosen accuracy).";
+    return why.str();
+  }
   if (!unsupported.empty())
   {
-    why << role << " has cells of types the filter does not support:";
-    for (int type : unsupported)
-    {
-      const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
-      why << ' ' << (name ? name : "unknown") << " (" << type << ')';
-    }
-    why << ". Only linear triangles (2D) and tetrahedra (3D) are supported; apply Triangulate "
-           "(2D) or Tetrahedralize (3D) first.";
+    why << role << " has convex point sets (" << VTK_CONVEX_POINT_SET << "): cells without "
+        << "faces cannot be split conformingly; apply Tetrahedralize first.";
     return why.str();
   }
-  if (types.size() > 1)
+  if (numberOfCells > 0 && dimension < 2)
   {
-    why << role << " mixes triangles and tetrahedra: give 2D and 3D meshes separately.";
+    why << role << " has only " << (dimension == 0 ? "vertices" : "lines and vertices")
+        << ": curves and point clouds are not supported yet (the projection needs 2D cells in "
+        << "a plane, or 3D cells).";
     return why.str();
   }
-  this->SetDimension(types.count(VTK_TETRA) ? 3 : 2);
+  int others = 0; // types other than the mesh's simplex
+  for (int type = 1; type < 256; ++type)
+  {
+    others += present[type] && type != (dimension == 3 ? VTK_TETRA : VTK_TRIANGLE);
+  }
+  this->SetDimension(dimension == 3 ? 3 : 2);
+  if (grid && others == 0)
+  {
+    // Triangles only, or tetrahedra only: the grid as it is.
+    const std::string error = this->WrapSimplices(grid, role);
+    if (error.empty() && this->Ghosts > 0)
+    {
+      // P0 functions numbered as the grid's cells: ghost cells get none of the mesh.
+      this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
+      this->Kernel.Parent = this->ParentIds.data();
+      this->Kernel.NumberOfParents = numberOfCells;
+    }
+    return error;
+  }
+  const std::string error = this->Split(data, role);
+  if (!error.empty())
+  {
+    return error;
+  }
+  std::string wrapped = this->WrapSimplices(this->SplitGrid, role);
+  this->Kernel.Parent = this->ParentIds.data();
+  this->Kernel.NumberOfParents = numberOfCells;
+  return wrapped;
+}
+
+std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
+{
+  const vtkIdType numberOfCells = data->GetNumberOfCells();
+  const int dimension = this->Kernel.CellDimension;
+  // The points, as doubles: the dataset's own array when it holds doubles.
+  vtkSmartPointer<vtkPoints> points;
+  vtkPointSet* pointSet = vtkPointSet::SafeDownCast(data);
+  if (pointSet && pointSet->GetPoints() && pointSet->GetPoints()->GetDataType() == VTK_DOUBLE)
+  {
+    points = pointSet->GetPoints();
+  }
+  else
+  {
+    points = vtkSmartPointer<vtkPoints>::New();
+    points->SetDataTypeToDouble();
+    const vtkIdType np = data->GetNumberOfPoints();
+    points->SetNumberOfPoints(np);
+    double* x = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
+    if (pointSet && pointSet->GetPoints())
+    {
+      vtkPoints* from = pointSet->GetPoints();
+      for (vtkIdType p = 0; p < np; ++p)
+      {
+        from->GetPoint(p, x + 3 * p);
+      }
+    }
+    else
+    {
+      data->GetPoint(0, x); // structured data: computes its points, thread-safe after the first
+      vtkSMPTools::For(0, np, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          data->GetPoint(p, x + 3 * p);
+        }
+      });
+    }
+  }
+  const double* x = points->GetNumberOfPoints() > 0
+    ? vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0)
+    : nullptr;
+
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(data);
+  vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
+  const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
+  std::vector<mp::Index> simplices;
+  simplices.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 24 : 6));
+  this->ParentIds.clear();
+  this->ParentIds.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 6 : 2));
+  vtkNew<vtkIdList> scratch;
+  std::vector<mp::Index> ids;
+  std::vector<mp::Index> stream;
+  vtkIdType refused = 0;
+  vtkIdType firstRefused = -1;
+  mp::SplitStatus firstStatus = mp::SplitStatus::Split;
+  const int corners = dimension + 1;
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    const int type = data->GetCellType(c);
+    if (type == VTK_EMPTY_CELL || vtkCellTypes::GetDimension(static_cast<unsigned char>(type)) < dimension)
+    {
+      this->LowerDimensional += type != VTK_EMPTY_CELL;
+      continue;
+    }
+    if (ghosts && (ghosts->GetValue(c) & skip))
+    {
+      ++this->Ghosts;
+      continue;
+    }
+    const size_t before = simplices.size();
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    data->GetCellPoints(c, npts, pts, scratch);
+    ids.assign(pts, pts + npts);
+    for (mp::Index id : ids)
+    {
+      if (id < 0 || id >= points->GetNumberOfPoints())
+      {
+        std::ostringstream why;
+        why << role << " cell " << c << " refers to point " << id << ", which does not exist ("
+            << points->GetNumberOfPoints() << " points).";
+        return why.str();
+      }
+    }
+    mp::SplitStatus status = mp::SplitStatus::Split;
+    mp::CellShape shape;
+    switch (type)
+    {
+      case VTK_TRIANGLE:
+      case VTK_TETRA:
+        simplices.insert(simplices.end(), ids.begin(), ids.end());
+        break;
+      case VTK_PIXEL:
+        std::swap(ids[2], ids[3]); // x, y order -> around the square
+        VTK_FALLTHROUGH;
+      case VTK_QUAD:
+      case VTK_POLYGON:
+        if (!mp::SplitPolygon(x, ids.data(), static_cast<int>(ids.size()), simplices))
+        {
+          status = mp::SplitStatus::NotStarShaped;
+        }
+        break;
+      case VTK_TRIANGLE_STRIP:
+        for (size_t k = 0; k + 2 < ids.size(); ++k)
+        {
+          if (ids[k] != ids[k + 1] && ids[k + 1] != ids[k + 2] && ids[k] != ids[k + 2])
+          {
+            simplices.insert(simplices.end(), { ids[k], ids[k + 1], ids[k + 2] });
+          }
+        }
+        break;
+      case VTK_POLYHEDRON:
+      {
+        vtkIdType nfaces = 0;
+        const vtkIdType* faces = nullptr;
+        grid->GetFaceStream(c, nfaces, faces);
+        status = mp::SplitPolyhedron(x, faces, static_cast<int>(nfaces), false, simplices);
+        break;
+      }
+      default:
+        if (StandardShape(type, shape))
+        {
+          const int nfaces = mp::StandardCellFaces(shape, ids.data(), stream);
+          status = mp::SplitPolyhedron(x, stream.data(), nfaces, true, simplices);
+        }
+        break;
+    }
+    if (status != mp::SplitStatus::Split)
+    {
+      firstRefused = refused++ == 0 ? c : firstRefused;
+      firstStatus = refused == 1 ? status : firstStatus;
+      continue;
+    }
+    const size_t added = (simplices.size() - before) / corners;
+    this->Flat += added == 0;
+    this->SplitCount += type != (dimension == 3 ? VTK_TETRA : VTK_TRIANGLE);
+    this->ParentIds.insert(this->ParentIds.end(), added, c);
+  }
+  if (refused > 0)
+  {
+    std::ostringstream why;
+    why << role << " cell " << firstRefused << " (" << CellTypeName(data->GetCellType(firstRefused))
+        << ") cannot be split into " << (dimension == 3 ? "tetrahedra" : "triangles")
+        << " on its own corners: ";
+    if (firstStatus == mp::SplitStatus::OpenFaces)
+    {
+      why << "its faces do not close a volume (an edge is not shared by exactly two faces)";
+    }
+    else if (dimension == 3)
+    {
+      why << "it is inverted, twisted or not convex enough (the cone from its lowest-numbered "
+             "corner folds over itself)";
+    }
+    else
+    {
+      why << "its outline crosses itself";
+    }
+    why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise" : std::string())
+        << ". Check the mesh, or apply " << (dimension == 3 ? "Tetrahedralize" : "Triangulate")
+        << " first.";
+    return why.str();
+  }
+  // The simplices as a grid of their own on the same points.
+  const vtkIdType n = static_cast<vtkIdType>(simplices.size() / corners);
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(n + 1);
+  vtkIdType* o = offsets->GetPointer(0);
+  for (vtkIdType i = 0; i <= n; ++i)
+  {
+    o[i] = corners * i;
+  }
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(simplices.size()));
+  std::copy(simplices.begin(), simplices.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  this->SplitGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  this->SplitGrid->SetPoints(points);
+  this->SplitGrid->SetCells(dimension == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
+  return std::string();
+}
+
+std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* role)
+{
+  std::ostringstream why;
+  this->SimplexGrid = grid;
+  const vtkIdType numberOfCells = grid->GetNumberOfCells();
   const int corners = this->Kernel.CornersPerCell();
 
   // Connectivity of every cell: VTK's own array when it is 64-bit.
@@ -129,6 +397,8 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
     this->Kernel.NumberOfCells = numberOfCells;
   }
   this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
+  this->Kernel.Parent = nullptr;
+  this->Kernel.NumberOfParents = 0;
 
   // Points: VTK's own array when it holds doubles.
   vtkPoints* points = grid->GetPoints();
@@ -146,6 +416,7 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
     }
     this->Kernel.Points = this->PointCopy.data();
   }
+  this->OriginalPoints = this->Kernel.Points;
 
   // The points the cells use: finite, and for triangles in one plane.
   double lo[3];
@@ -208,12 +479,18 @@ std::string SimplexMesh::Wrap(vtkUnstructuredGrid* grid, const char* role)
 void SimplexMesh::UseFrame(const mp::PlaneFrame& frame)
 {
   this->Seen = frame.Shifted(this->Own.Offset());
-  if (!frame.IsIdentity())
+  if (frame.IsIdentity())
+  {
+    this->Kernel.Points = this->OriginalPoints;
+  }
+  else
   {
     std::vector<double> mapped;
-    frame.ToPlane(this->Kernel, mapped);
-    this->PointCopy.swap(mapped);
-    this->Kernel.Points = this->PointCopy.data();
+    mp::MeshView original = this->Kernel;
+    original.Points = this->OriginalPoints; // a mesh may be seen in several frames in turn
+    frame.ToPlane(original, mapped);
+    this->FramePoints.swap(mapped);
+    this->Kernel.Points = this->FramePoints.data();
   }
 }
 
@@ -270,15 +547,15 @@ void SimplexMesh::BuildNeighbors()
     return;
   }
   auto toKernel = [this](vtkIdType c) { return this->ToKernel(c); };
-  const vtkIdType uses = this->Grid->GetCells()->GetNumberOfConnectivityIds();
-  if (this->Grid->GetNumberOfPoints() < VTK_INT_MAX && this->Grid->GetNumberOfCells() < VTK_INT_MAX &&
+  const vtkIdType uses = this->SimplexGrid->GetCells()->GetNumberOfConnectivityIds();
+  if (this->SimplexGrid->GetNumberOfPoints() < VTK_INT_MAX && this->SimplexGrid->GetNumberOfCells() < VTK_INT_MAX &&
     uses < VTK_INT_MAX)
   {
-    FaceNeighbors<int>(this->Grid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
+    FaceNeighbors<int>(this->SimplexGrid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
   }
   else
   {
-    FaceNeighbors<vtkIdType>(this->Grid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
+    FaceNeighbors<vtkIdType>(this->SimplexGrid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
   }
 }
 
@@ -292,11 +569,12 @@ struct StaticLocator::Shared
   std::mutex Lock;
 };
 
-StaticLocator::StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh)
+StaticLocator::StaticLocator(const SimplexMesh& mesh)
   : Mesh(mesh)
   , Locators(std::make_shared<Shared>())
 {
   Shared& l = *this->Locators;
+  vtkUnstructuredGrid* grid = mesh.Grid();
   l.Grid = grid;
   mp::BoundaryCells(mesh.View(), l.BoundaryCells);
   // The boundary cells as a grid of their own on the source's points.
@@ -439,7 +717,7 @@ vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const 
     a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
     for (size_t i = 0; i < values.size(); ++i)
     {
-      a->SetValue(static_cast<vtkIdType>(i), mesh.ToVTK(values[i]));
+      a->SetValue(static_cast<vtkIdType>(i), mesh.View().ParentOf(values[i]));
     }
     result->GetCellData()->AddArray(a);
   };

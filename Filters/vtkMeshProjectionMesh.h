@@ -1,18 +1,30 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file vtkMeshProjectionMesh.h
- * @brief Private to vtkMeshProjectionFilter: a vtkUnstructuredGrid seen as
- *        the kernel's simplicial mesh, with VTK's neighbours and locator.
+ * @brief Private to vtkMeshProjectionFilter: any vtkDataSet seen as the
+ *        kernel's simplicial mesh, with VTK's neighbours and locator.
  *
- * Wrap() checks a grid (cell types, one dimension, finite coordinates, a
- * plane for triangles, fitted by mp::PlaneFrame) and views its arrays
- * without a copy when their types allow it (double points, 64-bit cell
- * array, no ghost cells). A 2D mesh is then seen in a plane frame
- * (UseFrame): the points are used in place for planes z = constant and
- * mapped into the frame otherwise. Ghost cells (DUPLICATECELL, HIDDENCELL)
- * are left out: the kernel then numbers only the other cells and ToVTK()
- * maps its ids back. Neighbours come from vtkStaticCellLinks through the
- * kernel's face matcher (mp::MatchFaces), seeds from vtkStaticCellLocator.
+ * Wrap() takes a dataset of any type (unstructured grid, polydata, image
+ * data, rectilinear or structured grid). An unstructured grid of only
+ * linear triangles or only tetrahedra is viewed as it is, without a copy
+ * when its arrays' types allow it (double points, 64-bit cell array). Any
+ * other dataset is split into simplices on its own points by the kernel's
+ * vertex-id rule (Geometry/CellSplit.h) into a grid of triangles or
+ * tetrahedra that shares the dataset's vtkPoints (image and rectilinear
+ * data get explicit points); each simplex names its original cell
+ * (MeshView::Parent), so cell data and covered fractions belong to the
+ * original cells. The mesh's dimension is that of its highest-dimensional
+ * cells; cells of lower dimension (vertices, lines, boundary faces) are
+ * left out and counted. Nonlinear cells are refused, naming Tessellate.
+ *
+ * A 2D mesh is then seen in a plane frame (UseFrame): the points are used
+ * in place for planes z = constant and mapped into the frame otherwise.
+ * Ghost cells (DUPLICATECELL, HIDDENCELL) are left out. The kernel's P0
+ * functions are numbered as the dataset's cells (ghost and lower-dimensional
+ * cells have none of the mesh in them, so they are never covered), and
+ * ToVTK() maps a kernel simplex to its cell of Grid(). Neighbours come from
+ * vtkStaticCellLinks through the kernel's face matcher (mp::MatchFaces),
+ * seeds from vtkStaticCellLocator.
  *
  * Not a public class of the module: no export macro, not wrapped.
  */
@@ -34,6 +46,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataSet;
 class vtkIdList;
 class vtkPolyData;
 class vtkStaticCellLocator;
@@ -45,10 +58,20 @@ class SimplexMesh
 {
 public:
   /**
-   * Checks `grid` and builds the kernel view. Returns an empty string, or
-   * the reason the grid cannot be used (`role` names it: "Input", "Source").
+   * Checks `data` and builds the kernel view (splitting cells that are not
+   * simplices). Returns an empty string, or the reason the dataset cannot
+   * be used (`role` names it: "Input", "Source").
    */
-  std::string Wrap(vtkUnstructuredGrid* grid, const char* role);
+  std::string Wrap(vtkDataSet* data, const char* role);
+  /// The simplices the kernel sees: the dataset itself, or its split.
+  vtkUnstructuredGrid* Grid() const { return this->SimplexGrid; }
+  /// Cells left out for being of lower dimension than the mesh (vertices,
+  /// lines, faces of a volume mesh).
+  vtkIdType LowerDimensionalCells() const { return this->LowerDimensional; }
+  /// Cells whose split has no area or volume (flat cells).
+  vtkIdType FlatCells() const { return this->Flat; }
+  /// Cells that were split (not simplices already).
+  vtkIdType SplitCells() const { return this->SplitCount; }
   /// Face neighbours from vtkStaticCellLinks (call after Wrap).
   void BuildNeighbors();
 
@@ -68,14 +91,26 @@ public:
   const mp::PlaneFrame& Frame() const { return this->Seen; }
   vtkIdType NonManifoldFaces() const { return this->NonManifold; }
   vtkIdType GhostCells() const { return this->Ghosts; }
-  /// The VTK id of a kernel cell, and the kernel id of a VTK cell (-1 for a ghost).
+  /// The Grid() id of a kernel simplex, and the kernel id of a Grid() cell
+  /// (-1 for a ghost). The dataset's cell of a kernel simplex is
+  /// View().ParentOf(c).
   vtkIdType ToVTK(mp::Index c) const { return this->KernelToVTK.empty() ? c : this->KernelToVTK[c]; }
   mp::Index ToKernel(vtkIdType c) const { return this->VTKToKernel.empty() ? c : this->VTKToKernel[c]; }
 
 private:
-  vtkUnstructuredGrid* Grid = nullptr;
+  std::string WrapSimplices(vtkUnstructuredGrid* grid, const char* role);
+  std::string Split(vtkDataSet* data, const char* role);
+
+  vtkUnstructuredGrid* SimplexGrid = nullptr;
+  vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
+  std::vector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
+  const double* OriginalPoints = nullptr;        ///< the points before any plane frame
+  vtkIdType LowerDimensional = 0;
+  vtkIdType Flat = 0;
+  vtkIdType SplitCount = 0;
   mp::MeshView Kernel;
   std::vector<double> PointCopy;
+  std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant
   std::vector<mp::Index> ConnectivityCopy;
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   std::vector<mp::Index> AllConnectivityCopy;
@@ -99,7 +134,7 @@ class StaticLocator : public mp::CandidateLocator
 {
 public:
   /// `mesh` must have its neighbours (SimplexMesh::BuildNeighbors).
-  StaticLocator(vtkUnstructuredGrid* grid, const SimplexMesh& mesh);
+  explicit StaticLocator(const SimplexMesh& mesh);
   ~StaticLocator() override;
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
   void FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells) override;

@@ -37,9 +37,9 @@ int main(int argc, char* argv[])
   {
     return 1;
   }
-  vtkPointData* pd = projection->GetOutput()->GetPointData();
+  vtkPointData* pd = projection->GetUnstructuredGridOutput()->GetPointData();
   std::cout << "projected " << pd->GetNumberOfArrays() << " point arrays onto "
-            << projection->GetOutput()->GetNumberOfPoints() << " points with "
+            << projection->GetUnstructuredGridOutput()->GetNumberOfPoints() << " points with "
             << projection->GetNumberOfIntersections() << " intersection polygons in "
             << projection->GetExecutionTime() << " s; covered measure "
             << projection->GetCoveredMeasure() << "\n";

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Transfer/MortarOperator.h"
 
+#include "Geometry/Measures.h"
+
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Search/ParallelSearch.h"
@@ -124,6 +126,11 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
     this->MixedMass = CsrMatrix();
     this->Valid.clear();
     return false;
+  }
+  if (target.Parent)
+  {
+    // Split cells: the covered fraction of each original cell.
+    this->CoveredFraction = ParentFractions(target, this->CoveredFraction);
   }
   this->Solver.reset(new BlockCG(this->TargetMass, this->Options.Runner));
   return true;

@@ -169,7 +169,8 @@ public:
   /// Per target function: 1 if its support meets the source, else 0.
   const std::vector<char>& GetValid() const { return this->Valid; }
   Index GetNumberOfValid() const { return this->NumberOfValid; }
-  /// Per target cell (kernel id): the covered fraction of its measure.
+  /// Per target cell: the covered fraction of its measure (per original
+  /// cell when the target's simplices have parents; 0 for a parent without any).
   const std::vector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
   /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
   Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }

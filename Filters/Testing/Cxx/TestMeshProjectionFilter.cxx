@@ -24,7 +24,7 @@ int TestMeshProjectionFilter(int argc, char* argv[])
   filter->SetSourceData(source);
   filter->OutputIntersectionsOn();
   filter->Update();
-  vtkUnstructuredGrid* out = filter->GetOutput();
+  vtkUnstructuredGrid* out = filter->GetUnstructuredGridOutput();
   vtkPointData* pd = out->GetPointData();
 
   // Every source array arrives as double with its components; Input's own array stays.
@@ -107,7 +107,7 @@ int TestMeshProjectionFilter(int argc, char* argv[])
   MP_CHECK(brute->GetNumberOfIntersections() == filter->GetNumberOfIntersections());
   MP_CHECK(brute->GetNumberOfIntersectionTests() ==
     source->GetNumberOfCells() * target->GetNumberOfCells());
-  vtkDataArray* bruteSmooth = brute->GetOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* bruteSmooth = brute->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   for (vtkIdType i = 0; bruteSmooth && i < out->GetNumberOfPoints(); ++i)
   {
     MP_CHECK(std::fabs(bruteSmooth->GetComponent(i, 0) - smooth->GetComponent(i, 0)) < 1e-13);

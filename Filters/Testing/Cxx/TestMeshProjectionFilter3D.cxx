@@ -28,7 +28,7 @@ int TestMeshProjectionFilter3D(int argc, char* argv[])
   filter->SetSourceData(source);
   filter->OutputIntersectionsOn();
   filter->Update();
-  vtkUnstructuredGrid* out = filter->GetOutput();
+  vtkUnstructuredGrid* out = filter->GetUnstructuredGridOutput();
   vtkPointData* pd = out->GetPointData();
   vtkDataArray* linear = pd->GetArray("Linear");
   vtkDataArray* velocity = pd->GetArray("Velocity");
@@ -111,7 +111,7 @@ int TestMeshProjectionFilter3D(int argc, char* argv[])
       brutePolyhedra->GetCellData()->GetArray("SourceCellId")->GetComponent(c, 0));
   }
   MP_CHECK(brutePairs == frontPairs);
-  vtkDataArray* bruteSmooth = brute->GetOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* bruteSmooth = brute->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   for (vtkIdType i = 0; bruteSmooth && i < out->GetNumberOfPoints(); ++i)
   {
     MP_CHECK(std::fabs(bruteSmooth->GetComponent(i, 0) - smooth->GetComponent(i, 0)) < 1e-13);

@@ -116,7 +116,7 @@ int Fields(const char* targetFile, const char* sourceFile)
   filter->Update();
   MP_CHECK(!observer->GetError() && !observer->GetWarning());
   MP_CHECK(filter->GetNumberOfOperatorsBuilt() == 4 && !filter->GetOperatorReused());
-  vtkUnstructuredGrid* out = filter->GetOutput();
+  vtkUnstructuredGrid* out = filter->GetUnstructuredGridOutput();
   vtkCellData* cd = out->GetCellData();
   vtkPointData* pd = out->GetPointData();
 
@@ -154,13 +154,13 @@ int Fields(const char* targetFile, const char* sourceFile)
   // search, M_ts not formed); the second on the same meshes assembles the
   // operators, and later ones reuse them.
   MP_CHECK(!filter->GetOperatorReused() && filter->GetNumberOfOperatorsBuilt() == 4);
-  vtkDataArray* mass = filter->GetOutput()->GetCellData()->GetArray("Mass");
+  vtkDataArray* mass = filter->GetUnstructuredGridOutput()->GetCellData()->GetArray("Mass");
   const double totalMass = Sum(source->GetCellData()->GetArray("Mass"));
   std::cout << targetFile << ": extensive total " << (mass ? Sum(mass) : -1) << " vs " << totalMass << "\n";
   MP_CHECK(mass && std::fabs(Sum(mass) - totalMass) < 1e-12 * totalMass);
   // Its cell -> point transfer is the density.
-  vtkDataArray* massDensity = filter->GetOutput()->GetPointData()->GetArray("Mass");
-  MP_CHECK(massDensity && std::fabs(mptest::Integral(filter->GetOutput(), massDensity) - totalMass) < 1e-12 * totalMass);
+  vtkDataArray* massDensity = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Mass");
+  MP_CHECK(massDensity && std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), massDensity) - totalMass) < 1e-12 * totalMass);
   filter->SetCellDataQuantity(vtkMeshProjectionFilter::INTENSIVE);
 
   // The matrices: M_tt u_t = M_ts u_s for the projected point field.
@@ -175,7 +175,7 @@ int Fields(const char* targetFile, const char* sourceFile)
   const vtkIdType ns = filter->GetMatrix(
     vtkMeshProjectionFilter::POINTS_TO_POINTS, vtkMeshProjectionFilter::MIXED_MASS, rowStartS, columnsS, valuesS);
   MP_CHECK(nt == target->GetNumberOfPoints() && ns == source->GetNumberOfPoints());
-  vtkDataArray* smooth = filter->GetOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* smooth = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   vtkDataArray* smoothS = source->GetPointData()->GetArray("Smooth");
   double residual = 0, scale = 0;
   for (vtkIdType i = 0; nt > 0 && ns > 0 && i < nt; ++i)
@@ -217,10 +217,10 @@ int Fields(const char* targetFile, const char* sourceFile)
   filter->GetPointDataArraySelection()->DisableArray("Smooth");
   filter->GetCellDataArraySelection()->DisableArray("Mass");
   filter->Update();
-  MP_CHECK(!filter->GetOutput()->GetPointData()->GetArray("Smooth"));
-  MP_CHECK(filter->GetOutput()->GetPointData()->GetArray("Linear"));
-  MP_CHECK(!filter->GetOutput()->GetCellData()->GetArray("Mass"));
-  MP_CHECK(filter->GetOutput()->GetCellData()->GetArray("Density"));
+  MP_CHECK(!filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth"));
+  MP_CHECK(filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Linear"));
+  MP_CHECK(!filter->GetUnstructuredGridOutput()->GetCellData()->GetArray("Mass"));
+  MP_CHECK(filter->GetUnstructuredGridOutput()->GetCellData()->GetArray("Density"));
   MP_CHECK(filter->GetOperatorReused());
   filter->GetPointDataArraySelection()->EnableArray("Smooth");
   filter->GetCellDataArraySelection()->EnableArray("Mass");
@@ -229,33 +229,33 @@ int Fields(const char* targetFile, const char* sourceFile)
   filter->SetMassMatrix(vtkMeshProjectionFilter::LUMPED_MASS);
   filter->Update();
   MP_CHECK(filter->GetOperatorReused());
-  vtkDataArray* lumpedStep = filter->GetOutput()->GetPointData()->GetArray("Step");
+  vtkDataArray* lumpedStep = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Step");
   MP_CHECK(lumpedStep && lumpedStep->GetRange()[0] >= -1 - 1e-14 && lumpedStep->GetRange()[1] <= 2 + 1e-14);
   const double stepIntegral = mptest::Integral(source, step);
   MP_CHECK(lumpedStep &&
-    std::fabs(mptest::Integral(filter->GetOutput(), lumpedStep) - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
+    std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), lumpedStep) - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
   filter->SetMassMatrix(vtkMeshProjectionFilter::CONSISTENT_MASS);
 
   // Bounds: the consistent projection of a step overshoots; with bounds it
   // does not, the integral stays, and linear fields stay exact.
   filter->Update();
-  vtkDataArray* consistent = filter->GetOutput()->GetPointData()->GetArray("Step");
+  vtkDataArray* consistent = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Step");
   const double overshoot = std::max(consistent->GetRange()[1] - 2, -1 - consistent->GetRange()[0]);
   filter->SetPreserveBounds(true);
   filter->Update();
-  vtkDataArray* bounded = filter->GetOutput()->GetPointData()->GetArray("Step");
-  const double boundedIntegral = mptest::Integral(filter->GetOutput(), bounded);
+  vtkDataArray* bounded = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Step");
+  const double boundedIntegral = mptest::Integral(filter->GetUnstructuredGridOutput(), bounded);
   std::cout << targetFile << ": step overshoot " << overshoot << " consistent, range ["
             << bounded->GetRange()[0] << ", " << bounded->GetRange()[1] << "] bounded, integral error "
             << std::fabs(boundedIntegral - stepIntegral) << "\n";
   MP_CHECK(overshoot > 0.01);
   MP_CHECK(bounded->GetRange()[0] >= -1 - 1e-13 && bounded->GetRange()[1] <= 2 + 1e-13);
   MP_CHECK(std::fabs(boundedIntegral - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
-  vtkDataArray* linear = filter->GetOutput()->GetPointData()->GetArray("Linear");
+  vtkDataArray* linear = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Linear");
   worst = 0;
   for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
   {
-    const double* x = filter->GetOutput()->GetPoint(i);
+    const double* x = filter->GetUnstructuredGridOutput()->GetPoint(i);
     const double exact = is3D ? 1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2] : 1 + 2 * x[0] - 3 * x[1];
     worst = std::max(worst, std::fabs(linear->GetComponent(i, 0) - exact));
   }
@@ -271,7 +271,7 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(filter->GetOperatorReused() && filter->GetNumberOfOperatorsBuilt() == 0);
   MP_CHECK(filter->GetOperatorMemory() > 0);
   vtkNew<vtkDoubleArray> reused; // the next run replaces the output's arrays
-  reused->DeepCopy(filter->GetOutput()->GetPointData()->GetArray("Smooth"));
+  reused->DeepCopy(filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth"));
   vtkNew<vtkUnstructuredGrid> moved;
   moved->DeepCopy(source);
   double x[3];
@@ -287,7 +287,7 @@ int Fields(const char* targetFile, const char* sourceFile)
   fresh->SetSourceData(source);
   fresh->Update();
   MP_CHECK(fresh->GetOperatorMemory() == 0 && !fresh->GetOperatorReused());
-  vtkDataArray* single = fresh->GetOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* single = fresh->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   worst = 0;
   for (vtkIdType i = 0; single && i < single->GetNumberOfTuples(); ++i)
   {
@@ -322,10 +322,10 @@ int Fields(const char* targetFile, const char* sourceFile)
   aborted->Update();
   MP_CHECK(abortObserver->GetWarning() &&
     abortObserver->GetWarningMessage().find("Aborted") != std::string::npos);
-  MP_CHECK(!aborted->GetOutput()->GetPointData()->GetArray("Smooth") ||
-    aborted->GetOutput()->GetPointData()->GetArray("Smooth") == target->GetPointData()->GetArray("Smooth"));
-  MP_CHECK(aborted->GetOutput()->GetNumberOfPoints() == target->GetNumberOfPoints());
-  MP_CHECK(!aborted->GetOutput()->GetPointData()->GetArray("vtkValidPointMask"));
+  MP_CHECK(!aborted->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth") ||
+    aborted->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth") == target->GetPointData()->GetArray("Smooth"));
+  MP_CHECK(aborted->GetUnstructuredGridOutput()->GetNumberOfPoints() == target->GetNumberOfPoints());
+  MP_CHECK(!aborted->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
   MP_CHECK(seen.size() >= 2 && std::is_sorted(seen.begin(), seen.end()));
   // Progress of a whole run goes up to 1 through the stages.
   vtkNew<vtkMeshProjectionFilter> full;

@@ -44,7 +44,7 @@ struct Run
     this->Filter->SetSourceData(source);
     this->Filter->Update();
   }
-  vtkUnstructuredGrid* Output() { return this->Filter->GetOutput(); }
+  vtkUnstructuredGrid* Output() { return this->Filter->GetUnstructuredGridOutput(); }
   bool ErrorSays(const char* text) { return this->Observer->GetError() &&
       this->Observer->GetErrorMessage().find(text) != std::string::npos; }
   bool WarningSays(const char* text) { return this->Observer->GetWarning() &&
@@ -182,26 +182,30 @@ int TestMeshProjectionFilterInputs(int, char*[])
   auto target = mptest::ReadSample("lshape_target.vtu");
 
   {
-    // Unsupported cells are named; the output is Input unchanged.
+    // Nonlinear cells are named, with the way out (Tessellate); the output
+    // is Input unchanged.
     vtkNew<vtkUnstructuredGrid> quads;
     quads->DeepCopy(source);
-    vtkIdType ids[4] = { 0, 1, 2, 3 };
-    quads->InsertNextCell(VTK_QUAD, 4, ids);
+    vtkIdType ids[6] = { 0, 1, 2, 3, 4, 5 };
+    quads->InsertNextCell(VTK_QUADRATIC_TRIANGLE, 6, ids);
     Run run(target, quads);
-    MP_CHECK(run.ErrorSays("vtkQuad"));
+    MP_CHECK(run.ErrorSays("vtkQuadraticTriangle"));
+    MP_CHECK(run.ErrorSays("Tessellate"));
     MP_CHECK(run.Output()->GetNumberOfPoints() == target->GetNumberOfPoints());
     MP_CHECK(run.Output()->GetPointData()->GetArray("TargetId") != nullptr);
     MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
   }
   {
-    // Triangles and tetrahedra in one input.
+    // Triangles and tetrahedra in one input: a 3D mesh, its triangles left
+    // out (with a warning); then it does not match the 2D Input.
     vtkNew<vtkUnstructuredGrid> mixed;
     mixed->DeepCopy(source);
     mixed->GetPoints()->InsertNextPoint(0.1, 0.1, 1.0);
     vtkIdType tet[4] = { 0, 1, 2, mixed->GetNumberOfPoints() - 1 };
     mixed->InsertNextCell(VTK_TETRA, 4, tet);
     Run run(target, mixed);
-    MP_CHECK(run.ErrorSays("mixes triangles and tetrahedra"));
+    MP_CHECK(run.WarningSays("cells of lower dimension"));
+    MP_CHECK(run.ErrorSays("same dimension"));
     MP_CHECK(run.Output()->GetPointData()->GetArray("Smooth") == nullptr);
   }
   {
@@ -242,7 +246,7 @@ int TestMeshProjectionFilterInputs(int, char*[])
     flat->SetInputData(target);
     flat->SetSourceData(source);
     flat->Update();
-    vtkDataArray* expected = flat->GetOutput()->GetPointData()->GetArray("Smooth");
+    vtkDataArray* expected = flat->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
     const double yAxis[3] = { 0, 1, 0 };
     const double general[3] = { 0.3, -0.5, 0.8 };
     const double shiftX[3] = { 2, 0, 0 };
@@ -543,19 +547,19 @@ int TestMeshProjectionFilterInputs(int, char*[])
     const std::string error = observer->GetErrorMessage();
     MP_CHECK(error.find("No Source is connected (input port 1): nothing to project.") !=
       std::string::npos);
-    MP_CHECK(Unchanged(filter->GetOutput(), target));
+    MP_CHECK(Unchanged(filter->GetUnstructuredGridOutput(), target));
     // A Source removed after a good run: no stale projected arrays remain.
     vtkNew<vtkMeshProjectionFilter> again;
     again->SetInputData(target);
     again->SetSourceData(source);
     again->Update();
-    MP_CHECK(again->GetOutput()->GetPointData()->GetArray("vtkValidPointMask") != nullptr);
+    MP_CHECK(again->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask") != nullptr);
     vtkNew<vtkTest::ErrorObserver> secondObserver;
     again->AddObserver(vtkCommand::ErrorEvent, secondObserver);
     again->RemoveAllInputConnections(1);
     again->Update();
     MP_CHECK(secondObserver->GetError());
-    MP_CHECK(Unchanged(again->GetOutput(), target));
+    MP_CHECK(Unchanged(again->GetUnstructuredGridOutput(), target));
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -46,7 +46,7 @@ Result Project(vtkUnstructuredGrid* target, vtkUnstructuredGrid* source)
   filter->SetSourceData(source);
   filter->Update();
   Result r;
-  r.Output = filter->GetOutput();
+  r.Output = filter->GetUnstructuredGridOutput();
   r.Pieces = filter->GetNumberOfIntersections();
   r.Warnings = observer->GetWarning() ? observer->GetWarningMessage() : "";
   r.Error = observer->GetError();
