@@ -782,7 +782,7 @@ int vtkMeshProjectionFilter::RequestData(
     run.TimeVarying = run.TimeVarying ||
       (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
   }
-  this->InputTime = Lap(run.Stage);
+  this->InputTime += Lap(run.Stage);
   if (!run.Progress(0.05))
   {
     return aborted();
@@ -969,6 +969,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
   }
   this->WarnLeftOut(targetMesh, role);
+  this->InputTime += Lap(run.Stage);
   const vtkIdType targetCells = targetMesh.View().NumberOfCells;
   const vtkIdType sourceCells = sourceMesh.View().NumberOfCells;
   if (targetCells == 0 || sourceCells == 0)

@@ -23,10 +23,41 @@
  * that cannot settle a cell, e.g. targets reaching beyond the source); the
  * geometry and the numerics live in a VTK-free kernel (Filters/Kernel).
  *
- * Inputs: two vtkUnstructuredGrid of the same dimension: linear triangles
- * (VTK_TRIANGLE) lying in one plane, any plane (2D meshes with 3D
- * coordinates), or linear tetrahedra (VTK_TETRA). They need not cover the
- * same region, be connected or convex.
+ * Inputs: any two datasets of the same dimension (vtkUnstructuredGrid,
+ * vtkPolyData, vtkImageData, vtkRectilinearGrid, vtkStructuredGrid), or
+ * composite datasets of them (vtkMultiBlockDataSet, vtkPartitionedDataSet,
+ * vtkPartitionedDataSetCollection). 2D: triangles, quads, pixels, polygons
+ * and triangle strips lying in one plane, any plane (2D meshes with 3D
+ * coordinates; planarity is judged relative to the mesh's size). 3D:
+ * tetrahedra, hexahedra, voxels, wedges, pyramids, pentagonal and hexagonal
+ * prisms and polyhedra. Cell types may be mixed. The meshes need not cover
+ * the same region, be connected or convex.
+ *
+ * Cells that are not simplices are split into triangles or tetrahedra on
+ * their own points, by a rule on the point ids that splits a face shared by
+ * two cells the same way on both sides (each polygonal face is fanned from
+ * its lowest-numbered point, each 3D cell is the cone from its
+ * lowest-numbered point over the faces away from it; see
+ * Kernel/Geometry/CellSplit.h). Point data is therefore projected onto the
+ * continuous piecewise linear functions on that split, with one value per
+ * original point (linear fields stay exact, integrals are conserved), and
+ * cell data onto one constant per original cell. A 3D cell whose cone folds
+ * over itself (inverted, twisted or strongly non-convex cells) is an error.
+ * Cells of lower dimension than the mesh (vertices, lines, the faces of a
+ * volume mesh) are left out with a warning (no cell values there);
+ * nonlinear cells (quadratic, Lagrange, ...) are an error that names
+ * Tessellate.
+ *
+ * Composite inputs. A composite Source is one mesh made of all its dataset
+ * blocks (their arrays in common; blocks meeting at an interface give the
+ * result of the merged mesh). A composite Input is projected block by
+ * block: each block is a mesh of its own with its own points and its own
+ * system M_tt u_t = M_ts u_s (a point on an interface of two blocks exists
+ * in both and gets each block's value; for a continuous field the two
+ * agree up to the projection's error, not exactly). Output 0 has Input's
+ * block structure; blocks that are empty or not datasets are skipped, a
+ * block that cannot be projected (another dimension, another plane) is
+ * passed through with a warning. Operators are kept per block.
  *
  * What is projected, and onto what (all Source arrays by default):
  *  - point arrays (PointDataArraySelection) are P1 fields: continuous,
@@ -50,7 +81,7 @@
  * ranges and the clipped integral given back (clip and assured sum): no
  * overshoot, integral conserved, linear fields still exact.
  *
- * Output port 0: a shallow copy of Input with, for each projected array, a
+ * Output port 0: a shallow copy of Input (of its type) with, for each projected array, a
  * vtkDoubleArray of the same name and components (an Input array of the
  * same name is replaced; a point array projected to cells next to a cell
  * array of the same name gets the suffix " (from points)", and likewise
@@ -67,7 +98,10 @@
  *  - output port 2 (3D inputs): the intersection polyhedra as their
  *    tetrahedral decomposition, vtkUnstructuredGrid with cell arrays
  *    "SourceCellId", "TargetCellId" and "Volume" (of each tetrahedron).
- * The port not used by the inputs' dimension stays empty.
+ * The port not used by the inputs' dimension stays empty. SourceCellId
+ * and TargetCellId are the ids of the original cells (a split cell's
+ * pieces all name it); for a composite Input the pieces of all blocks are
+ * appended, with a "TargetBlock" cell array (the block's flat index).
  *
  * Time: the output advertises the time steps of both inputs (their union)
  * and asks both for the requested time, so a time-varying Source (or
@@ -92,8 +126,8 @@
  * Non-numeric Source arrays (strings, variants) are skipped with a
  * warning; integer arrays are projected as real values, with a warning (an
  * L2 projection of labels or ids is not meaningful). Invalid input (no
- * Source, other cell types, a mix of triangles and tetrahedra, meshes of
- * different dimensions, non-planar triangle meshes, NaN/Inf coordinates)
+ * Source, nonlinear cells, cells that cannot be split, meshes of
+ * different dimensions, non-planar 2D meshes, NaN/Inf coordinates)
  * produces an error and an output that is a plain copy of Input; empty
  * meshes and meshes that do not overlap give a warning and invalid points.
  *
@@ -292,7 +326,9 @@ public:
    * The kept operator of a transfer (POINTS_TO_POINTS, ...) as compressed
    * sparse rows: row i holds columns[rowStart[i]..rowStart[i+1]) and their
    * values. Rows are Input's points or cells, columns Input's (TARGET_MASS)
-   * or Source's (MIXED_MASS) points or cells, in VTK ids. M_tt is
+   * or Source's (MIXED_MASS) points or cells, in VTK ids (for a composite
+   * Input: the first block's; a composite Source's columns number the
+   * points or cells of its blocks one block after the other). M_tt is
    * integrated over the covered part; rows of invalid target functions hold
    * a 1 on the diagonal. When the last execution was a one-off run (M_ts
    * not formed), the filter executes once more, assembling it. Returns the
@@ -306,11 +342,12 @@ public:
 
   ///@{
   /**
-   * Results of the last execution: intersecting cell pairs with an
-   * intersection of positive measure, cell-pair intersection tests, locator
-   * queries (among the source's boundary cells or all its cells), the
-   * covered area (2D) or volume (3D) of the target, and the wall-clock
-   * seconds of the whole execution.
+   * Results of the last execution (summed over the blocks of a composite
+   * Input): intersecting simplex pairs with an intersection of positive
+   * measure, simplex-pair intersection tests, locator queries (among the
+   * source's boundary cells or all its cells), the covered area (2D) or
+   * volume (3D) of the target, and the wall-clock seconds of the whole
+   * execution.
    */
   vtkGetMacro(NumberOfIntersections, vtkIdType);
   vtkGetMacro(NumberOfIntersectionTests, vtkIdType);
@@ -322,7 +359,8 @@ public:
   ///@{
   /**
    * Wall-clock seconds of the stages of the last execution: reading the
-   * inputs (cell types, coordinate checks, the fields gathered), the cell
+   * inputs (cell types, the split of cells that are not simplices,
+   * coordinate checks, the fields gathered), the cell
    * neighbours (VTK cell links), the locator over the source's boundary
    * cells (vtkStaticCellLocator), the pair search with the intersections and
    * local integrals (and a locator over all source cells, when one is
