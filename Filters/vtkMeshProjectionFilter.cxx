@@ -274,6 +274,21 @@ void vtkMeshProjectionFilter::SelectionModified()
 
 void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
 {
+  if (vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    // Every block's arrays (those not in all blocks are not projected, but
+    // listing them keeps the selection stable when blocks change).
+    vtkSmartPointer<vtkCompositeDataIterator> iter;
+    iter.TakeReference(composite->NewIterator());
+    for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
+    {
+      if (vtkDataSet::SafeDownCast(iter->GetCurrentDataObject()))
+      {
+        this->ListSourceArrays(iter->GetCurrentDataObject());
+      }
+    }
+    return;
+  }
   vtkDataSet* source = vtkDataSet::SafeDownCast(data);
   if (!source)
   {
@@ -579,7 +594,41 @@ vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note)
     return vtkSmartPointer<vtkUnstructuredGrid>::New();
   }
   append->Update();
-  return vtkSmartPointer<vtkDataSet>(append->GetOutput());
+  vtkDataSet* merged = append->GetOutput();
+  // Arrays some blocks lack are not projected: say which.
+  std::set<std::string> missing[2];
+  for (int i = 0; i < append->GetNumberOfInputConnections(0); ++i)
+  {
+    vtkDataSet* leaf = vtkDataSet::SafeDownCast(append->GetInputDataObject(0, i));
+    for (int association = 0; association < 2; ++association)
+    {
+      vtkDataSetAttributes* attributes = leaf->GetAttributes(AttributeType(association));
+      for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
+      {
+        const char* name = attributes->GetArrayName(a);
+        if (name && !merged->GetAttributes(AttributeType(association))->GetAbstractArray(name) &&
+          std::string(name) != vtkDataSetAttributes::GhostArrayName())
+        {
+          missing[association].insert(name);
+        }
+      }
+    }
+  }
+  for (int association = 0; association < 2; ++association)
+  {
+    if (!missing[association].empty())
+    {
+      note += std::string(note.empty() ? "" : " ") + "Source " +
+        (association == 0 ? "point" : "cell") + " arrays not in every block of Source (or " +
+        "not alike in all) are not projected:";
+      for (const std::string& name : missing[association])
+      {
+        note += " '" + name + "'";
+      }
+      note += ".";
+    }
+  }
+  return vtkSmartPointer<vtkDataSet>(merged);
 }
 } // namespace
 
@@ -659,7 +708,7 @@ int vtkMeshProjectionFilter::RequestData(
   // split from its cells, with finite coordinates.
   std::string note;
   vtkSmartPointer<vtkDataSet> source = SourceAsOne(sourceObject, note);
-  if (!note.empty())
+  if (!note.empty() && kept.Warned.insert("note/" + note).second) // once, not at every step
   {
     vtkWarningMacro(<< note);
   }
@@ -685,7 +734,7 @@ int vtkMeshProjectionFilter::RequestData(
     run.SourcePrint = sourcePrint.Hash;
   }
 
-  this->ListSourceArrays(source);
+  this->ListSourceArrays(sourceObject);
   // 2. The fields: the selected numeric arrays of Source, side by side (P0:
   // one value per Source cell; ghost and lower-dimensional cells' values
   // are never used).
