@@ -1023,8 +1023,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   const vtkIdType sourceCells = sourceMesh.View().NumberOfCells;
   if (targetCells == 0 || sourceCells == 0)
   {
+    vtkDataSet* empty = targetCells == 0 ? target : source;
     vtkWarningMacro(<< (targetCells == 0 ? role : std::string("Source"))
-                    << " has no cells: every projected point is invalid.");
+                    << (empty->GetNumberOfCells() == 0
+                           ? " has no cells"
+                           : " has no cells to project with (all are ghost cells, or of a lower "
+                             "dimension)")
+                    << ": every projected point is invalid.");
     // An empty mesh takes the dimension of the other one.
     const int d = std::max(targetCells ? targetMesh.Dimension() : 2,
       sourceCells ? sourceMesh.Dimension() : 2);

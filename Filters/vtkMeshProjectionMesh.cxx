@@ -144,7 +144,8 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
     {
       // P0 functions numbered as the grid's cells: ghost cells get none of the mesh.
       this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
-      this->Kernel.Parent = this->ParentIds.data();
+      static const mp::Index noParent = 0;
+      this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
       this->Kernel.NumberOfParents = numberOfCells;
     }
     return error;
@@ -155,7 +156,10 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
     return error;
   }
   std::string wrapped = this->WrapSimplices(this->SplitGrid, role);
-  this->Kernel.Parent = this->ParentIds.data();
+  // Never null, so that the P0 space has one function per cell of the
+  // dataset even when no cell gave a simplex (all ghosts, all flat).
+  static const mp::Index noParent = 0;
+  this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
   this->Kernel.NumberOfParents = numberOfCells;
   return wrapped;
 }
