@@ -405,3 +405,35 @@ TEST(CellSplit, PolygonsFanOrFallBackToEars)
   EXPECT_FALSE(mp::SplitPolygon(e.data(), quad, 4, triangles));
   EXPECT_TRUE(triangles.empty());
 }
+
+TEST(CellSplit, CoplanarSubfacesOfARefinementInterfaceAreTolerated)
+{
+  // A unit cube whose bottom face is split into four quadrilaterals (the
+  // coarse side of a refinement interface, as OpenFOAM writes it), the
+  // face's centre lifted or lowered by rounding-size amounts; the lowest
+  // point is a corner of that face, so the cone's tetrahedra over the other
+  // sub-faces are slivers signed by rounding.
+  for (double lift : { 0.0, 1e-15, -1e-15, 3e-16 })
+  {
+    std::vector<double> x = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, // 0-3 bottom corners
+      0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1,                          // 4-7 top corners
+      0.5, 0, 0, 1, 0.5, 0, 0.5, 1, 0, 0, 0.5, 0,                  // 8-11 bottom edge midpoints
+      0.5, 0.5, lift };                                            // 12 bottom centre
+    const std::vector<Index> stream = { 4, 0, 11, 12, 8, 4, 8, 12, 9, 1, 4, 12, 10, 2, 9, 4, 11, 3,
+      10, 12,                        // the bottom, four quadrilaterals
+      4, 4, 5, 6, 7,                 // the top
+      5, 0, 8, 1, 5, 4,              // y = 0, with the hanging midpoint 8
+      5, 1, 9, 2, 6, 5,              // x = 1
+      5, 2, 10, 3, 7, 6,             // y = 1
+      5, 3, 11, 0, 4, 7 };           // x = 0
+    std::vector<Index> tets;
+    ASSERT_EQ(mp::SplitPolyhedron(x.data(), stream.data(), 9, false, tets), SplitStatus::Split)
+      << "lift " << lift;
+    double volume = 0.0;
+    for (size_t t = 0; t < tets.size(); t += 4)
+    {
+      volume += TetVolume(x, &tets[t]);
+    }
+    EXPECT_NEAR(volume, 1.0, 1e-14);
+  }
+}

@@ -284,6 +284,26 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
   }
   const double* x = points + 3 * apex;
   const size_t first = tetrahedra.size();
+  // Tetrahedra flatter than this (six times the volume, against the cube of
+  // the cell's size) are left out whatever their sign: the pieces of a face
+  // split into coplanar faces (a refinement interface of an OpenFOAM mesh),
+  // or of faces nearly in the apex's plane, whose orientation is rounding.
+  double lo[3] = { x[0], x[1], x[2] };
+  double hi[3] = { x[0], x[1], x[2] };
+  for (int k = 0; k < nfaces; ++k)
+  {
+    for (Index i = 1; i <= stream[start[k]]; ++i)
+    {
+      const double* p = points + 3 * stream[start[k] + i];
+      for (int d = 0; d < 3; ++d)
+      {
+        lo[d] = std::min(lo[d], p[d]);
+        hi[d] = std::max(hi[d], p[d]);
+      }
+    }
+  }
+  const double size = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] });
+  const double flat = 1e-12 * size * size * size;
   int sign = 0;
   for (int k = 0; k < nfaces; ++k)
   {
@@ -303,11 +323,12 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
       const Index a = v[m];
       const Index b = v[(m + i) % n];
       const Index c = v[(m + i + 1) % n];
-      const int o = Sign(Orient3D(x, points + 3 * a, points + 3 * b, points + 3 * c));
-      if (o == 0)
+      const double six = Orient3D(x, points + 3 * a, points + 3 * b, points + 3 * c);
+      if (std::fabs(six) <= flat)
       {
         continue;
       }
+      const int o = Sign(six);
       if (sign != 0 && o != sign)
       {
         tetrahedra.resize(first);

@@ -20,7 +20,10 @@
  * its tetrahedra have one orientation once the faces are oriented alike
  * (then the winding number is 1 inside and 0 outside, so nothing overlaps).
  * That holds for every convex cell and for cells star-shaped from the apex;
- * otherwise SplitPolyhedron says so and splits nothing.
+ * otherwise SplitPolyhedron says so and splits nothing. Tetrahedra whose
+ * volume is below 1e-12 of the cube of the cell's size are left out
+ * whatever their sign (faces split into coplanar pieces, as on the coarse
+ * side of a refinement interface, give such slivers, signed by rounding).
  *
  * In 2D the edges are the faces and stay whole whatever the split, so a
  * polygon is fanned from its lowest corner when that fan is one-signed, and
@@ -59,7 +62,7 @@ bool SplitPolygon(const double* points, const Index* ids, int n, std::vector<Ind
  * `oriented`: the faces are known to be oriented alike (each edge runs once
  * each way, as in the standard cells' tables); if not (polyhedra from
  * files), they are oriented here first. Tetrahedra (4 ids each) are
- * appended; tetrahedra of zero volume are left out.
+ * appended; flat tetrahedra (see above) are left out.
  */
 SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces, bool oriented,
   std::vector<Index>& tetrahedra);
