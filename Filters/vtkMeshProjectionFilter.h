@@ -41,8 +41,11 @@
  * Kernel/Geometry/CellSplit.h). Point data is therefore projected onto the
  * continuous piecewise linear functions on that split, with one value per
  * original point (linear fields stay exact, integrals are conserved), and
- * cell data onto one constant per original cell. A 3D cell whose cone folds
- * over itself (inverted, twisted or strongly non-convex cells) is an error.
+ * cell data onto one constant per original cell. A non-convex 3D cell is
+ * coned from another corner it is star-shaped from (across its faces
+ * through that corner the field may then be discontinuous); a cell
+ * star-shaped from none of its corners (inverted, twisted or strongly
+ * non-convex) is an error.
  * Cells of lower dimension than the mesh (vertices, lines, the faces of a
  * volume mesh) are left out with a warning (no cell values there);
  * nonlinear cells (quadratic, Lagrange, ...) are an error that names

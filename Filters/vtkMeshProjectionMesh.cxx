@@ -313,8 +313,8 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     }
     else if (dimension == 3)
     {
-      why << "it is inverted, twisted or not convex enough (the cone from its lowest-numbered "
-             "corner folds over itself)";
+      why << "it is inverted, twisted or not convex enough (the cone from each of its corners "
+             "over its faces folds over itself)";
     }
     else
     {

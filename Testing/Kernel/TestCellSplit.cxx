@@ -289,12 +289,12 @@ TEST(CellSplit, PolyhedraFromFilesAreOrientedFirst)
   EXPECT_TRUE(tets.empty());
 }
 
-TEST(CellSplit, ACellTheConeCannotTileIsRefused)
+TEST(CellSplit, NonConvexCellsAreConedFromACornerThatSeesThemOrRefused)
 {
-  // An L-shaped prism (non-convex): from the reflex corner the cone tiles
-  // it; from the far corner of a leg it does not.
+  // An L-shaped prism: from its reflex corner the cone tiles it; from the
+  // far corner of a leg it would fold, so another corner is taken.
   const double l[6][2] = { { 0, 0 }, { 2, 0 }, { 2, 1 }, { 1, 1 }, { 1, 2 }, { 0, 2 } };
-  for (int lowest : { 3, 1 })
+  for (int lowest : { 3, 1, 4 })
   {
     // Number the points so that bottom corner `lowest` is point 0.
     std::vector<Index> id(12);
@@ -312,23 +312,61 @@ TEST(CellSplit, ACellTheConeCannotTileIsRefused)
     std::vector<Index> stream;
     const int nfaces = mp::StandardCellFaces(CellShape::HexagonalPrism, id.data(), stream);
     std::vector<Index> tets;
-    const SplitStatus status = mp::SplitPolyhedron(x.data(), stream.data(), nfaces, true, tets);
-    if (lowest == 3)
+    ASSERT_EQ(mp::SplitPolyhedron(x.data(), stream.data(), nfaces, true, tets), SplitStatus::Split);
+    double volume = 0.0;
+    for (size_t t = 0; t < tets.size(); t += 4)
     {
-      ASSERT_EQ(status, SplitStatus::Split);
-      double volume = 0.0;
-      for (size_t t = 0; t < tets.size(); t += 4)
-      {
-        volume += TetVolume(x, &tets[t]);
-      }
-      EXPECT_NEAR(volume, 3.0, 1e-14);
+      volume += TetVolume(x, &tets[t]);
     }
-    else
+    EXPECT_NEAR(volume, 3.0, 1e-14) << "lowest corner " << lowest;
+    if (lowest != 3)
     {
-      EXPECT_EQ(status, SplitStatus::NotStarShaped);
-      EXPECT_TRUE(tets.empty());
+      continue; // coned from another corner: its faces are split from it
+    }
+    // From the lowest corner, the faces' triangles are those of the face
+    // rule: every tetrahedron face on the cell's boundary is one of the
+    // fans of the cell's faces.
+    std::map<std::array<Index, 3>, int> fans;
+    for (size_t at = 0; at < stream.size(); at += stream[at] + 1)
+    {
+      const Index* v = &stream[at + 1];
+      const int n = static_cast<int>(stream[at]);
+      const int m = static_cast<int>(std::min_element(v, v + n) - v);
+      for (int i = 1; i + 1 < n; ++i)
+      {
+        std::array<Index, 3> f = { v[m], v[(m + i) % n], v[(m + i + 1) % n] };
+        std::sort(f.begin(), f.end());
+        fans[f] = 1;
+      }
+    }
+    for (const auto& f : FaceCounts(tets))
+    {
+      if (f.second == 1)
+      {
+        EXPECT_EQ(fans.count(f.first), 1u);
+      }
     }
   }
+  // A U-shaped prism: no corner sees both arms' far sides.
+  const double u[8][2] = { { 0, 0 }, { 3, 0 }, { 3, 3 }, { 2, 3 }, { 2, 1 }, { 1, 1 }, { 1, 3 },
+    { 0, 3 } };
+  std::vector<double> x;
+  for (double z : { 0.0, 1.0 })
+  {
+    for (const auto& p : u)
+    {
+      x.insert(x.end(), { p[0], p[1], z });
+    }
+  }
+  std::vector<Index> stream = { 8, 7, 6, 5, 4, 3, 2, 1, 0, 8, 8, 9, 10, 11, 12, 13, 14, 15 };
+  for (int k = 0; k < 8; ++k)
+  {
+    const int l2 = (k + 1) % 8;
+    stream.insert(stream.end(), { 4, k, l2, 8 + l2, 8 + k });
+  }
+  std::vector<Index> tets;
+  EXPECT_EQ(mp::SplitPolyhedron(x.data(), stream.data(), 10, true, tets), SplitStatus::NotStarShaped);
+  EXPECT_TRUE(tets.empty());
 }
 
 TEST(CellSplit, PolygonsFanOrFallBackToEars)

@@ -259,10 +259,11 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
 {
   thread_local std::vector<Index> stream;
   thread_local std::vector<size_t> start;
+  thread_local std::vector<Index> corners;
   stream.clear();
   start.clear();
+  corners.clear();
   const Index* f = faces;
-  Index apex = -1;
   for (int k = 0; k < nfaces; ++k)
   {
     const Index n = *f;
@@ -272,73 +273,91 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
     }
     start.push_back(stream.size());
     stream.insert(stream.end(), f, f + n + 1);
-    for (Index i = 1; i <= n; ++i)
-    {
-      apex = apex < 0 || f[i] < apex ? f[i] : apex;
-    }
+    corners.insert(corners.end(), f + 1, f + n + 1);
     f += n + 1;
   }
   if (!oriented && !OrientFaces(stream, start, nfaces))
   {
     return SplitStatus::OpenFaces;
   }
-  const double* x = points + 3 * apex;
-  const size_t first = tetrahedra.size();
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  if (corners.empty())
+  {
+    return SplitStatus::OpenFaces;
+  }
   // Tetrahedra flatter than this (six times the volume, against the cube of
   // the cell's size) are left out whatever their sign: the pieces of a face
   // split into coplanar faces (a refinement interface of an OpenFOAM mesh),
   // or of faces nearly in the apex's plane, whose orientation is rounding.
-  double lo[3] = { x[0], x[1], x[2] };
-  double hi[3] = { x[0], x[1], x[2] };
-  for (int k = 0; k < nfaces; ++k)
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d)
   {
-    for (Index i = 1; i <= stream[start[k]]; ++i)
+    lo[d] = hi[d] = points[3 * corners[0] + d];
+  }
+  for (Index c : corners)
+  {
+    for (int d = 0; d < 3; ++d)
     {
-      const double* p = points + 3 * stream[start[k] + i];
-      for (int d = 0; d < 3; ++d)
-      {
-        lo[d] = std::min(lo[d], p[d]);
-        hi[d] = std::max(hi[d], p[d]);
-      }
+      lo[d] = std::min(lo[d], points[3 * c + d]);
+      hi[d] = std::max(hi[d], points[3 * c + d]);
     }
   }
   const double size = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] });
   const double flat = 1e-12 * size * size * size;
-  int sign = 0;
-  for (int k = 0; k < nfaces; ++k)
+  const size_t first = tetrahedra.size();
+  // The cone from a corner over every face's fan (a face's fan is fixed by
+  // the face's own lowest corner, so neighbours agree whatever the apex).
+  // Faces through the apex give flat tetrahedra when they are planar, and
+  // the thin wedge between their two possible fans when they are warped.
+  auto cone = [&](Index apex) {
+    const double* x = points + 3 * apex;
+    int sign = 0;
+    for (int k = 0; k < nfaces; ++k)
+    {
+      const Index* v = &stream[start[k] + 1];
+      const int n = static_cast<int>(stream[start[k]]);
+      int m = 0;
+      for (int i = 1; i < n; ++i)
+      {
+        m = v[i] < v[m] ? i : m;
+      }
+      for (int i = 1; i + 1 < n; ++i)
+      {
+        const Index a = v[m];
+        const Index b = v[(m + i) % n];
+        const Index c = v[(m + i + 1) % n];
+        if (a == apex || b == apex || c == apex)
+        {
+          continue;
+        }
+        const double six = Orient3D(x, points + 3 * a, points + 3 * b, points + 3 * c);
+        if (std::fabs(six) <= flat)
+        {
+          continue;
+        }
+        const int o = Sign(six);
+        if (sign != 0 && o != sign)
+        {
+          tetrahedra.resize(first);
+          return false;
+        }
+        sign = o;
+        tetrahedra.insert(tetrahedra.end(), { apex, a, b, c });
+      }
+    }
+    return true;
+  };
+  // The lowest corner first; a cell that folds from it (non-convex) may be
+  // star-shaped from another corner.
+  for (Index apex : corners)
   {
-    const Index* v = &stream[start[k] + 1];
-    const int n = static_cast<int>(stream[start[k]]);
-    if (std::find(v, v + n, apex) != v + n)
+    if (cone(apex))
     {
-      continue; // a side of the cone: fanned from the apex, it bounds no tetrahedron
-    }
-    int m = 0;
-    for (int i = 1; i < n; ++i)
-    {
-      m = v[i] < v[m] ? i : m;
-    }
-    for (int i = 1; i + 1 < n; ++i)
-    {
-      const Index a = v[m];
-      const Index b = v[(m + i) % n];
-      const Index c = v[(m + i + 1) % n];
-      const double six = Orient3D(x, points + 3 * a, points + 3 * b, points + 3 * c);
-      if (std::fabs(six) <= flat)
-      {
-        continue;
-      }
-      const int o = Sign(six);
-      if (sign != 0 && o != sign)
-      {
-        tetrahedra.resize(first);
-        return SplitStatus::NotStarShaped;
-      }
-      sign = o;
-      tetrahedra.insert(tetrahedra.end(), { apex, a, b, c });
+      return SplitStatus::Split;
     }
   }
-  return SplitStatus::Split;
+  return SplitStatus::NotStarShaped;
 }
 
 int StandardCellFaces(CellShape shape, const Index* corners, std::vector<Index>& stream)

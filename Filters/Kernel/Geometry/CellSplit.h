@@ -11,19 +11,26 @@
  *  - a polygonal face (quadrilateral or more) is fanned from its
  *    lowest-numbered corner (for a quadrilateral: the diagonal through it);
  *  - a 3D cell is the cone from its lowest-numbered corner (the apex) over
- *    the fanned triangles of the faces that do not contain the apex (the
- *    faces that do contain it are fanned from it too, so the cone's sides
- *    are exactly their triangles). A hexahedron gives 6 tetrahedra, a wedge
- *    3, a pyramid 2, any convex polyhedron one per triangle of the faces
- *    away from its apex.
+ *    the fanned triangles of its faces. The faces through the apex are
+ *    fanned from it too, so they add nothing; the cone's sides are exactly
+ *    their triangles. A hexahedron gives 6 tetrahedra, a wedge 3, a pyramid
+ *    2, any convex polyhedron one per triangle of the faces away from its
+ *    apex.
  * The cone tiles the cell when the apex sees every face from inside: all
  * its tetrahedra have one orientation once the faces are oriented alike
  * (then the winding number is 1 inside and 0 outside, so nothing overlaps).
- * That holds for every convex cell and for cells star-shaped from the apex;
- * otherwise SplitPolyhedron says so and splits nothing. Tetrahedra whose
- * volume is below 1e-12 of the cube of the cell's size are left out
- * whatever their sign (faces split into coplanar pieces, as on the coarse
- * side of a refinement interface, give such slivers, signed by rounding).
+ * That holds for every convex cell. A non-convex cell that folds from its
+ * lowest corner is coned from the next corner it does not fold from. The
+ * faces away from that apex keep their fans; the faces through it are then
+ * split from the apex (a planar one adds only flat tetrahedra from its own
+ * fan), so across those faces the neighbour's split may differ: the piecewise
+ * linear space is then not continuous there (it still holds every linear
+ * function, so exactness and conservation stay). A cell star-shaped from
+ * none of its corners is refused (NotStarShaped); a centre point tied to the
+ * corners would take it (not done). Tetrahedra whose volume is below 1e-12 of the cube of
+ * the cell's size are left out whatever their sign (faces split into
+ * coplanar pieces, as on the coarse side of a refinement interface, give
+ * such slivers, signed by rounding).
  *
  * In 2D the edges are the faces and stay whole whatever the split, so a
  * polygon is fanned from its lowest corner when that fan is one-signed, and
