@@ -512,6 +512,7 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
 struct vtkMeshProjectionFilter::Execution
 {
   vtkDataSet* Source = nullptr;
+  bool CompositeSource = false;
   mpvtk::SimplexMesh SourceMesh;
   std::uint64_t SourcePrint = 0;
   Gathered Fields[2]; // 0: point arrays (P1), 1: cell arrays (P0)
@@ -719,6 +720,7 @@ int vtkMeshProjectionFilter::RequestData(
     return 1;
   }
   run.Source = source;
+  run.CompositeSource = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   {
     const std::string why = run.SourceMesh.Wrap(source, "Source");
     if (!why.empty())
@@ -861,8 +863,9 @@ int vtkMeshProjectionFilter::RequestData(
       const char* name = iter->HasCurrentMetaData()
         ? iter->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME())
         : nullptr;
-      names.push_back("block " + std::to_string(iter->GetCurrentFlatIndex()) +
-        (name ? std::string(" '") + name + "'" : std::string()));
+      names.push_back(name ? std::string("block '") + name + "' (flat index " +
+            std::to_string(iter->GetCurrentFlatIndex()) + ")"
+                           : "block of flat index " + std::to_string(iter->GetCurrentFlatIndex()));
     }
     if (notDataSets)
     {
@@ -912,7 +915,7 @@ int vtkMeshProjectionFilter::RequestData(
         vtkErrorMacro(<< why);
         return 1;
       }
-      skipped.push_back(names[i] + ": " + why);
+      skipped.push_back(why); // names the block
       continue;
     }
     ++projected;
@@ -942,7 +945,7 @@ int vtkMeshProjectionFilter::RequestData(
     {
       vtkErrorMacro(<< text.str());
     }
-    else
+    else if (kept.Warned.insert("blocks/" + text.str()).second) // once, not at every step
     {
       vtkWarningMacro(<< text.str());
     }
@@ -1229,8 +1232,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     {
       vtkWarningMacro(<< first->GetNumberOfOvercoveredCells() << " " << role
                       << " cells are covered more than once: Source cells overlap each other "
-                      << "(folded, inverted among their neighbours, or duplicated). The result is "
-                      << "not a projection of one field there.");
+                      << (run.CompositeSource
+                             ? "(a composite Source is one mesh of all its blocks: do its blocks "
+                               "overlap?)"
+                             : "(folded, inverted among their neighbours, or duplicated)")
+                      << ". The result is not a projection of one field there.");
     }
   }
   if (!progress(0.9))
