@@ -567,6 +567,9 @@ vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note)
   }
   vtkNew<vtkAppendFilter> append;
   append->MergePointsOff();
+  // Image and rectilinear blocks have no points of their own: computed in
+  // double, not in vtkAppendFilter's default (float for such inputs).
+  append->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   int leaves = 0;
   int skipped = 0;
   vtkSmartPointer<vtkCompositeDataIterator> iter;
