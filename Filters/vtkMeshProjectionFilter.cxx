@@ -843,9 +843,14 @@ int vtkMeshProjectionFilter::RequestData(
   }
 
   // 3. Each dataset of Input: its own projection (one system per leaf).
-  std::vector<std::pair<unsigned int, vtkDataSet*>> leaves; // (flat index, output leaf)
-  std::vector<vtkDataSet*> targets;
-  std::vector<std::string> names;
+  struct Block
+  {
+    unsigned int FlatIndex;
+    vtkDataSet* Target;
+    vtkDataSet* Output;
+    std::string Name; ///< empty when Input is a dataset
+  };
+  std::vector<Block> leaves;
   int notDataSets = 0;
   if (compositeInput)
   {
@@ -861,14 +866,13 @@ int vtkMeshProjectionFilter::RequestData(
         ++notDataSets;
         continue;
       }
-      leaves.emplace_back(iter->GetCurrentFlatIndex(), vtkDataSet::SafeDownCast(out->GetDataSet(iter)));
-      targets.push_back(leaf);
+      const unsigned int flat = iter->GetCurrentFlatIndex();
       const char* name = iter->HasCurrentMetaData()
         ? iter->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME())
         : nullptr;
-      names.push_back(name ? std::string("block '") + name + "' (flat index " +
-            std::to_string(iter->GetCurrentFlatIndex()) + ")"
-                           : "block of flat index " + std::to_string(iter->GetCurrentFlatIndex()));
+      leaves.push_back({ flat, leaf, vtkDataSet::SafeDownCast(out->GetDataSet(iter)),
+        name ? std::string("block '") + name + "' (flat index " + std::to_string(flat) + ")"
+             : "block of flat index " + std::to_string(flat) });
     }
     if (notDataSets)
     {
@@ -877,15 +881,13 @@ int vtkMeshProjectionFilter::RequestData(
   }
   else if (vtkDataSet* one = vtkDataSet::SafeDownCast(input))
   {
-    leaves.emplace_back(0u, vtkDataSet::SafeDownCast(output));
-    targets.push_back(one);
-    names.emplace_back("Input");
+    leaves.push_back({ 0u, one, vtkDataSet::SafeDownCast(output), std::string() });
   }
   // Operators of leaves no longer there are dropped.
   for (auto it = kept.Leaves.begin(); it != kept.Leaves.end();)
   {
     const bool present = std::any_of(leaves.begin(), leaves.end(),
-      [&](const std::pair<unsigned int, vtkDataSet*>& l) { return l.first == it->first; });
+      [&](const Block& b) { return b.FlatIndex == it->first; });
     it = present && this->CacheOperator ? std::next(it) : kept.Leaves.erase(it);
   }
   std::vector<vtkSmartPointer<vtkDataObject>> pieces;
@@ -893,18 +895,18 @@ int vtkMeshProjectionFilter::RequestData(
   int projected = 0;
   for (size_t i = 0; i < leaves.size(); ++i)
   {
-    vtkDataSet* target = targets[i];
-    vtkDataSet* out = leaves[i].second;
+    vtkDataSet* target = leaves[i].Target;
+    vtkDataSet* out = leaves[i].Output;
     if (compositeInput && target->GetNumberOfCells() == 0)
     {
-      vtkDebugMacro(<< names[i] << " is empty: skipped.");
+      vtkDebugMacro(<< leaves[i].Name << " is empty: skipped.");
       continue;
     }
     run.From = 0.05 + 0.9 * static_cast<double>(i) / leaves.size();
     run.Span = 0.9 / leaves.size();
     vtkSmartPointer<vtkDataObject> leafPieces;
-    const std::string why = this->ProjectLeaf(target, out, run, kept.Leaves[leaves[i].first],
-      compositeInput ? names[i] : std::string(), leafPieces);
+    const std::string why =
+      this->ProjectLeaf(target, out, run, kept.Leaves[leaves[i].FlatIndex], leaves[i].Name, leafPieces);
     if (why == "stopped")
     {
       return aborted();
@@ -912,7 +914,7 @@ int vtkMeshProjectionFilter::RequestData(
     if (!why.empty())
     {
       out->ShallowCopy(target);
-      kept.Leaves.erase(leaves[i].first);
+      kept.Leaves.erase(leaves[i].FlatIndex);
       if (!compositeInput)
       {
         vtkErrorMacro(<< why);
@@ -929,7 +931,7 @@ int vtkMeshProjectionFilter::RequestData(
         vtkNew<vtkUnsignedIntArray> block;
         block->SetName("TargetBlock");
         block->SetNumberOfValues(vtkDataSet::SafeDownCast(leafPieces)->GetNumberOfCells());
-        block->Fill(leaves[i].first);
+        block->Fill(leaves[i].FlatIndex);
         vtkDataSet::SafeDownCast(leafPieces)->GetCellData()->AddArray(block);
       }
       pieces.push_back(leafPieces);
@@ -1070,13 +1072,6 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     vtkWarningMacro(<< "Ghost cells (" << role << ": " << targetMesh.GhostCells()
                     << ", Source: " << sourceMesh.GhostCells()
                     << ") are left out of the projection.");
-  }
-  if (targetMesh.FlatCells() || (run.FirstLeaf && sourceMesh.FlatCells()))
-  {
-    vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
-                    << " (" << role << ": " << targetMesh.FlatCells() << ", Source: "
-                    << sourceMesh.FlatCells() << ") were ignored: they carry no part of the "
-                    << "integrals.");
   }
   run.FirstLeaf = false;
   const Gathered* fields = run.Fields;
@@ -1219,11 +1214,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   this->CoveredMeasure += first->GetCoveredMeasure();
   if (built > 0)
   {
-    if (stats.DegenerateTargetCells > 0 || stats.DegenerateSourceCells > 0)
+    // Degenerate simplices (the kernel's) and split cells that gave none.
+    const vtkIdType flatTarget = stats.DegenerateTargetCells + targetMesh.FlatCells();
+    const vtkIdType flatSource = stats.DegenerateSourceCells + sourceMesh.FlatCells();
+    if (flatTarget > 0 || flatSource > 0)
     {
       vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
-                      << " (" << role << ": " << stats.DegenerateTargetCells << ", Source: "
-                      << stats.DegenerateSourceCells
+                      << " (" << role << ": " << flatTarget << ", Source: " << flatSource
                       << ") were ignored: they carry no part of the integrals.");
     }
     if (targetCells > 0 && sourceCells > 0 && first->GetCoveredMeasure() == 0)

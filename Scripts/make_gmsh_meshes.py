@@ -68,6 +68,14 @@ DISK_HOLE = (0.2, 0.1, 0.3)  # centre x, y and radius of the hole in the unit di
 DISK_AREA = math.pi * (1.0 - DISK_HOLE[2] ** 2)
 
 
+def generate(dim, transform=None):
+    """Meshes the model up to `dim`, converts it and closes Gmsh."""
+    gmsh.model.mesh.generate(dim)
+    grid = to_ugrid(transform)
+    gmsh.finalize()
+    return grid
+
+
 def start(name):
     gmsh.initialize(interruptible=False)
     gmsh.option.setNumber("General.Terminal", 0)
@@ -152,10 +160,7 @@ def quads_disk(transform=None):
     gmsh.option.setNumber("Mesh.Algorithm", 8)  # Frontal-Delaunay for quads
     gmsh.option.setNumber("Mesh.RecombineAll", 1)
     gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 3)  # blossom full-quad: no triangles left
-    gmsh.model.mesh.generate(2)
-    grid = to_ugrid(transform)
-    gmsh.finalize()
-    return grid
+    return generate(2, transform)
 
 
 def mixed_disk():
@@ -174,10 +179,7 @@ def mixed_disk():
     for _, s in gmsh.model.getEntities(2):
         if occ.getCenterOfMass(2, s)[0] > 0.0:
             gmsh.model.mesh.setRecombine(2, s)
-    gmsh.model.mesh.generate(2)
-    grid = to_ugrid()
-    gmsh.finalize()
-    return grid
+    return generate(2)
 
 
 def tris_disk():
@@ -186,10 +188,7 @@ def tris_disk():
     gmsh.model.occ.synchronize()
     uniform_size(0.08)
     gmsh.option.setNumber("Mesh.Algorithm", 5)  # Delaunay
-    gmsh.model.mesh.generate(2)
-    grid = to_ugrid()
-    gmsh.finalize()
-    return grid
+    return generate(2)
 
 
 def box_curves_by_axis(volume):
@@ -223,10 +222,7 @@ def hexes_box():
         gmsh.model.mesh.setTransfiniteSurface(s)
         gmsh.model.mesh.setRecombine(2, s)
     gmsh.model.mesh.setTransfiniteVolume(box)
-    gmsh.model.mesh.generate(3)
-    grid = to_ugrid()
-    gmsh.finalize()
-    return grid
+    return generate(3)
 
 
 def wedges_cylinder():
@@ -237,10 +233,7 @@ def wedges_cylinder():
     occ.synchronize()
     uniform_size(0.085)
     gmsh.option.setNumber("Mesh.Algorithm", 5)
-    gmsh.model.mesh.generate(3)
-    grid = to_ugrid()
-    gmsh.finalize()
-    return grid
+    return generate(3)
 
 
 def tets_box():
@@ -250,10 +243,7 @@ def tets_box():
     uniform_size(0.15)
     gmsh.option.setNumber("Mesh.Algorithm", 5)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
-    gmsh.model.mesh.generate(3)
-    grid = to_ugrid()
-    gmsh.finalize()
-    return grid
+    return generate(3)
 
 
 def mixed_box():
@@ -283,10 +273,7 @@ def mixed_box():
             if v == hexes or 0.01 < z < 0.99:
                 gmsh.model.mesh.setRecombine(2, s)
         gmsh.model.mesh.setTransfiniteVolume(v)
-    gmsh.model.mesh.generate(3)
-    grid = to_ugrid()
-    gmsh.finalize()
-    return grid
+    return generate(3)
 
 
 # ---------------------------------------------------------------------------

@@ -28,11 +28,8 @@ try:
     from paraview.simple import (ColorBy, GetActiveViewOrCreate, Hide, OpenDataFile, Render,
                                  SaveScreenshot, Show)
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkCommonCore import vtkIdList
     from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkMultiBlockDataSet
-    from vtkmodules.vtkFiltersCore import vtkExtractCells
-    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter
-    from mptesting import read
+    from mptesting import cut, read, write_multiblock
 
     gmsh = os.path.join(os.environ.get("MP_SOURCE_DIR", "."), "Testing", "Data", "Gmsh")
     temp = os.environ.get("MP_TEMP_DIR", ".")
@@ -43,38 +40,15 @@ try:
         grid.GetPointData().RemoveArray("Linear")
         return grid
 
-    def cut(grid, right):
-        """The cells of `grid` whose centre has x < 0.5 (or >= 0.5 when `right`)."""
-        x = vtk_to_numpy(grid.GetPoints().GetData())
-        offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray())
-        connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
-        centres = np.array([x[connectivity[offsets[c]:offsets[c + 1]]].mean(axis=0)[0]
-                            for c in range(grid.GetNumberOfCells())])
-        ids = np.nonzero(centres >= 0.5 if right else centres < 0.5)[0]
-        cells = vtkIdList()
-        for c in ids:
-            cells.InsertNextId(int(c))
-        extract = vtkExtractCells()
-        extract.SetInputData(grid)
-        extract.SetCellList(cells)
-        extract.Update()
-        return without_linear(extract.GetOutput())
-
     hexes = read(os.path.join(gmsh, "hexes_box.vtu"))
-    blocks = [("hexes x < 0.5", cut(hexes, False)), ("hexes x >= 0.5", cut(hexes, True)),
+    blocks = [("hexes x < 0.5", without_linear(cut(hexes, lambda c: c[:, 0] < 0.5))),
+              ("hexes x >= 0.5", without_linear(cut(hexes, lambda c: c[:, 0] >= 0.5))),
               ("mixed box", without_linear(read(os.path.join(gmsh, "mixed_box.vtu"))))]
-    mb = vtkMultiBlockDataSet()
-    for i, (name, grid) in enumerate(blocks):
+    for name, grid in blocks:
         if grid.GetNumberOfCells() == 0:
             failures.append("block %r of the written Input is empty" % name)
-        mb.SetBlock(i, grid)
-        mb.GetMetaData(i).Set(vtkCompositeDataSet.NAME(), name)
     vtm = os.path.join(temp, "composite-input.vtm")
-    writer = vtkXMLMultiBlockDataWriter()
-    writer.SetFileName(vtm)
-    writer.SetInputData(mb)
-    writer.SetDataModeToBinary()  # inline: Debian's expat cannot read appended data
-    if writer.Write() != 1:
+    if not write_multiblock(vtm, blocks):
         failures.append("could not write %s" % vtm)
 
     target = OpenDataFile(vtm)

@@ -16,17 +16,14 @@ import numpy as np  # noqa: E402
 from paraview import servermanager  # noqa: E402
 from paraview.simple import Delete, LoadPlugin, OpenDataFile  # noqa: E402
 
-from mptesting import check, finish, read  # noqa: E402
+from mptesting import check, cut, finish, read, write_multiblock  # noqa: E402
 # Before any client-side object is wrapped: VTK's Python wrapping would
 # otherwise remember the filter as its nearest wrapped base class.
 from meshprojection import vtkMeshProjectionFilter  # noqa: E402
 
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkCommonCore import vtkIdList  # noqa: E402
-from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkMultiBlockDataSet,  # noqa: E402
-                                           vtkUnstructuredGrid)
-from vtkmodules.vtkFiltersCore import vtkCellCenters, vtkExtractCells  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter, vtkXMLUnstructuredGridWriter  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkMultiBlockDataSet  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter  # noqa: E402
 
 plugin, temp_dir = sys.argv[1], sys.argv[2]
 os.makedirs(temp_dir, exist_ok=True)
@@ -35,37 +32,8 @@ check("MeshProjection" in globals(), "the plugin defines MeshProjection")
 GMSH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "Data", "Gmsh")
 
 
-def cut(grid, keep):
-    """The cells whose centre satisfies keep(centres), as a grid of their own."""
-    centres = vtkCellCenters()
-    centres.SetInputData(grid)
-    centres.Update()
-    c = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())
-    ids = vtkIdList()
-    for i in np.nonzero(keep(c))[0]:
-        ids.InsertNextId(int(i))
-    extract = vtkExtractCells()
-    extract.SetInputData(grid)
-    extract.SetCellList(ids)
-    extract.Update()
-    block = vtkUnstructuredGrid()
-    block.ShallowCopy(extract.GetOutput())
-    for attributes in (block.GetPointData(), block.GetCellData()):
-        for name in ("vtkOriginalCellIds", "vtkOriginalPointIds"):
-            attributes.RemoveArray(name)
-    return block
-
-
 def write_vtm(path, blocks):
-    mb = vtkMultiBlockDataSet()
-    for i, (name, grid) in enumerate(blocks):
-        mb.SetBlock(i, grid)
-        mb.GetMetaData(i).Set(vtkCompositeDataSet.NAME(), name)
-    writer = vtkXMLMultiBlockDataWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(mb)
-    writer.SetDataModeToBinary()  # inline: Debian's expat cannot read appended data
-    check(writer.Write() == 1, "wrote %s" % path)
+    check(write_multiblock(path, blocks), "wrote %s" % path)
     return path
 
 

@@ -33,11 +33,11 @@ from vtkmodules.vtkCommonDataModel import (VTK_HEXAGONAL_PRISM, VTK_PENTAGONAL_P
                                            vtkPartitionedDataSetCollection, vtkPointSet, vtkPolyData,
                                            vtkRectilinearGrid, vtkStructuredGrid, vtkTable,
                                            vtkUnstructuredGrid)
-from vtkmodules.vtkFiltersCore import vtkCellCenters, vtkExtractCells, vtkStripper
+from vtkmodules.vtkFiltersCore import vtkStripper
 from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
 
 from meshprojection import vtkMeshProjectionFilter
-from mptesting import check, finish, integral, read
+from mptesting import check, cut, finish, integral, read
 
 GMSH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "Data", "Gmsh")
 START = time.time()
@@ -86,6 +86,15 @@ def with_fields(ds):
     set_point_array(ds, "Linear", lin(x))
     set_point_array(ds, "U", smooth(x))
     return ds
+
+
+def without_u(grid):
+    """A deep copy of an unstructured grid without its own U (a target whose
+    U can only come from Source)."""
+    copy = vtkUnstructuredGrid()
+    copy.DeepCopy(grid)
+    copy.GetPointData().RemoveArray("U")
+    return copy
 
 
 def point_array(ds, name):
@@ -232,28 +241,6 @@ def cell_sizes(ds):
     out = f.GetOutput()
     a = cell_array(out, "Volume")
     return a if np.any(a) else cell_array(out, "Area")
-
-
-def cut(grid, keep):
-    """The cells of `grid` whose centre satisfies keep(centre) (vtkExtractCells:
-    the block has its own copies of the interface points)."""
-    centres = vtkCellCenters()
-    centres.SetInputData(grid)
-    centres.Update()
-    c = xyz(centres.GetOutput())
-    ids = vtkIdList()
-    for i in np.nonzero(keep(c))[0]:
-        ids.InsertNextId(int(i))
-    extract = vtkExtractCells()
-    extract.SetInputData(grid)
-    extract.SetCellList(ids)
-    extract.Update()
-    block = vtkUnstructuredGrid()
-    block.ShallowCopy(extract.GetOutput())
-    for attributes in (block.GetPointData(), block.GetCellData()):
-        for name in ("vtkOriginalCellIds", "vtkOriginalPointIds"):
-            attributes.RemoveArray(name)  # ids, not fields: not for projecting
-    return block
 
 
 def unstructured(points, types, cells):
@@ -622,9 +609,7 @@ def check_passed_through(p, what):
 # A quadratic triangle in Source.
 qt = with_fields(unstructured([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0.5, 0, 0), (0.5, 0.5, 0),
                                (0, 0.5, 0)], [VTK_QUADRATIC_TRIANGLE], [range(6)]))
-target = vtkUnstructuredGrid()
-target.DeepCopy(MESHES["tris_disk"])
-target.GetPointData().RemoveArray("U")
+target = without_u(MESHES["tris_disk"])
 p = Projection(target, qt)
 check(p.error("Tessellate"), "quadratic triangle Source: error naming Tessellate (%r)" % p.errors)
 check_passed_through(p, "quadratic triangle")
@@ -632,9 +617,7 @@ check_passed_through(p, "quadratic triangle")
 qtet_points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0, 0), (0.5, 0.5, 0),
                (0, 0.5, 0), (0, 0, 0.5), (0.5, 0, 0.5), (0, 0.5, 0.5)]
 qtet = with_fields(unstructured(qtet_points, [VTK_QUADRATIC_TETRA], [range(10)]))
-target = vtkUnstructuredGrid()
-target.DeepCopy(MESHES["tets_box"])
-target.GetPointData().RemoveArray("U")
+target = without_u(MESHES["tets_box"])
 p = Projection(target, qtet)
 check(p.error("Tessellate"), "quadratic tetrahedron Source: error naming Tessellate (%r)" % p.errors)
 check_passed_through(p, "quadratic tetrahedron")
@@ -651,17 +634,13 @@ p = Projection(twisted, MESHES["tets_box"])
 check(p.error("cannot be split"), "twisted hexahedron Input: error 'cannot be split' (%r)" % p.errors)
 check_passed_through(p, "twisted hexahedron Input")
 twisted_source = with_fields(twisted)
-target = vtkUnstructuredGrid()
-target.DeepCopy(MESHES["tets_box"])
-target.GetPointData().RemoveArray("U")
+target = without_u(MESHES["tets_box"])
 p = Projection(target, twisted_source)
 check(p.error("cannot be split"), "twisted hexahedron Source: error 'cannot be split' (%r)" % p.errors)
 check_passed_through(p, "twisted hexahedron Source")
 
 # A 3D Input, a 2D Source.
-target = vtkUnstructuredGrid()
-target.DeepCopy(MESHES["tets_box"])
-target.GetPointData().RemoveArray("U")
+target = without_u(MESHES["tets_box"])
 p = Projection(target, MESHES["quads_disk"])
 check(p.error("same dimension"), "3D Input, 2D Source: error 'same dimension' (%r)" % p.errors)
 check_passed_through(p, "3D Input, 2D Source")
@@ -698,9 +677,7 @@ check(left.GetNumberOfCells() > 0 and right.GetNumberOfCells() > 0 and
       "hexes_box cut into %d + %d cells" % (left.GetNumberOfCells(), right.GetNumberOfCells()))
 for block in (left, right):
     block.GetPointData().RemoveArray("U")  # the output's U must come from Source
-tets_target = vtkUnstructuredGrid()
-tets_target.DeepCopy(tets)
-tets_target.GetPointData().RemoveArray("U")
+tets_target = without_u(tets)
 empty = vtkUnstructuredGrid()
 
 mb = vtkMultiBlockDataSet()
@@ -745,9 +722,7 @@ check(abs(p.covered - 2.0) <= 1e-12 * 2, "multiblock: covered measure summed ove
 
 # A vtkTable leaf is skipped with a warning; a 2D leaf (quads_disk) in a 3D
 # Input fails and is passed through with a warning; the others are projected.
-quads_target = vtkUnstructuredGrid()
-quads_target.DeepCopy(MESHES["quads_disk"])
-quads_target.GetPointData().RemoveArray("U")
+quads_target = without_u(MESHES["quads_disk"])
 mixed = vtkMultiBlockDataSet()
 mixed.SetBlock(0, left)
 mixed.SetBlock(1, vtkTable())

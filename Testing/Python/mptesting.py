@@ -1,4 +1,5 @@
-"""Helpers shared by the Python tests: sample data, exact P1 integrals, image comparison."""
+"""Helpers shared by the Python tests: sample data, exact P1 integrals, image comparison,
+meshes cut into blocks and multiblock files."""
 import os
 import sys
 
@@ -130,3 +131,47 @@ def cell_measures(grid):
     if cells.shape[1] == 3:
         return 0.5 * np.abs(e[:, 0, 0] * e[:, 1, 1] - e[:, 0, 1] * e[:, 1, 0])
     return np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6
+
+
+def cut(grid, keep):
+    """The cells of `grid` whose centre satisfies keep(centres) (an (n, 3)
+    array -> booleans), as a grid of their own (vtkExtractCells: the block has
+    its own copies of the interface points)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkIdList
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+    from vtkmodules.vtkFiltersCore import vtkCellCenters, vtkExtractCells
+    centres = vtkCellCenters()
+    centres.SetInputData(grid)
+    centres.Update()
+    c = vtk_to_numpy(centres.GetOutput().GetPoints().GetData()).astype(float)
+    ids = vtkIdList()
+    for i in np.nonzero(keep(c))[0]:
+        ids.InsertNextId(int(i))
+    extract = vtkExtractCells()
+    extract.SetInputData(grid)
+    extract.SetCellList(ids)
+    extract.Update()
+    block = vtkUnstructuredGrid()
+    block.ShallowCopy(extract.GetOutput())
+    for attributes in (block.GetPointData(), block.GetCellData()):
+        for name in ("vtkOriginalCellIds", "vtkOriginalPointIds"):
+            attributes.RemoveArray(name)  # ids, not fields: not for projecting
+    return block
+
+
+def write_multiblock(path, blocks):
+    """Writes [(name, dataset), ...] as a .vtm of named blocks, inline binary
+    (Debian's expat cannot read appended data); True on success."""
+    from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkMultiBlockDataSet
+    from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataWriter
+    mb = vtkMultiBlockDataSet()
+    for i, (name, grid) in enumerate(blocks):
+        mb.SetBlock(i, grid)
+        mb.GetMetaData(i).Set(vtkCompositeDataSet.NAME(), name)
+    writer = vtkXMLMultiBlockDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(mb)
+    writer.SetDataModeToBinary()
+    return writer.Write() == 1

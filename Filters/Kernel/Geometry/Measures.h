@@ -7,7 +7,8 @@
  * the intersectors' Prepare computes it (so the same measure the covered
  * fractions are taken of; 0 for a degenerate cell), added up per original
  * cell (MeshView::ParentOf). Extensive cell data (totals) become densities
- * by these measures before a P0 projection.
+ * by these measures before a P0 projection; the covered fractions of split
+ * cells are summed per original cell the same way.
  */
 #ifndef MeshProjection_Kernel_Measures_h
 #define MeshProjection_Kernel_Measures_h
@@ -17,50 +18,42 @@
 #include "Mesh/MeshView.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 namespace mp
 {
-template <class Intersector>
-void AddParentMeasures(const MeshView& mesh, std::vector<double>& measure)
+/// Calls visit(c, measure) for every cell of the mesh that is not degenerate.
+template <class Visit>
+void ForEachCellMeasure(const MeshView& mesh, Visit visit)
 {
-  typename Intersector::Cell cell;
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-  {
-    if (Intersector::Prepare(mesh, c, cell))
+  auto each = [&](auto* tag) { // the intersector's type only
+    using Intersector = std::remove_pointer_t<decltype(tag)>;
+    typename Intersector::Cell cell;
+    for (Index c = 0; c < mesh.NumberOfCells; ++c)
     {
-      measure[static_cast<size_t>(mesh.ParentOf(c))] += cell.Measure;
+      if (Intersector::Prepare(mesh, c, cell))
+      {
+        visit(c, cell.Measure);
+      }
     }
+  };
+  if (mesh.CellDimension == 2)
+  {
+    each(static_cast<TriangleIntersector*>(nullptr));
+  }
+  else
+  {
+    each(static_cast<TetrahedronIntersector*>(nullptr));
   }
 }
 
 inline std::vector<double> ParentMeasures(const MeshView& mesh)
 {
   std::vector<double> measure(static_cast<size_t>(mesh.Parents()), 0.0);
-  if (mesh.CellDimension == 2)
-  {
-    AddParentMeasures<TriangleIntersector>(mesh, measure);
-  }
-  else
-  {
-    AddParentMeasures<TetrahedronIntersector>(mesh, measure);
-  }
+  ForEachCellMeasure(
+    mesh, [&](Index c, double m) { measure[static_cast<size_t>(mesh.ParentOf(c))] += m; });
   return measure;
-}
-template <class Intersector>
-void AddParentCover(const MeshView& mesh, const std::vector<double>& fraction,
-  std::vector<double>& measure, std::vector<double>& covered)
-{
-  typename Intersector::Cell cell;
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-  {
-    if (Intersector::Prepare(mesh, c, cell))
-    {
-      const size_t p = static_cast<size_t>(mesh.ParentOf(c));
-      measure[p] += cell.Measure;
-      covered[p] += fraction[static_cast<size_t>(c)] * cell.Measure;
-    }
-  }
 }
 
 /// Per original cell, the covered fraction of its measure, from the
@@ -69,14 +62,11 @@ inline std::vector<double> ParentFractions(const MeshView& mesh, const std::vect
 {
   std::vector<double> measure(static_cast<size_t>(mesh.Parents()), 0.0);
   std::vector<double> covered(measure.size(), 0.0);
-  if (mesh.CellDimension == 2)
-  {
-    AddParentCover<TriangleIntersector>(mesh, fraction, measure, covered);
-  }
-  else
-  {
-    AddParentCover<TetrahedronIntersector>(mesh, fraction, measure, covered);
-  }
+  ForEachCellMeasure(mesh, [&](Index c, double m) {
+    const size_t p = static_cast<size_t>(mesh.ParentOf(c));
+    measure[p] += m;
+    covered[p] += fraction[static_cast<size_t>(c)] * m;
+  });
   for (size_t p = 0; p < measure.size(); ++p)
   {
     covered[p] = measure[p] > 0.0 ? std::min(1.0, covered[p] / measure[p]) : 0.0;
