@@ -554,7 +554,7 @@ void AddMesh(Fingerprint& print, const mpvtk::SimplexMesh& mesh)
 /// Source appended (points not merged: cells of different blocks meeting at
 /// an interface see each other through the locator, and a field continuous
 /// across it gives the merged mesh's result).
-vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note)
+vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note, std::string& error)
 {
   if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))
   {
@@ -585,6 +585,13 @@ vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note)
     if (leaf->GetNumberOfCells() == 0)
     {
       continue;
+    }
+    // vtkAppendFilter trusts the blocks' ids and arrays: checked first.
+    error = mpvtk::CheckDataSet(
+      leaf, "Source block of flat index " + std::to_string(iter->GetCurrentFlatIndex()));
+    if (!error.empty())
+    {
+      return nullptr;
     }
     append->AddInputData(leaf);
     ++leaves;
@@ -711,10 +718,16 @@ int vtkMeshProjectionFilter::RequestData(
   // 1. Source as one mesh: triangles in a plane (2D) or tetrahedra (3D),
   // split from its cells, with finite coordinates.
   std::string note;
-  vtkSmartPointer<vtkDataSet> source = SourceAsOne(sourceObject, note);
+  std::string corrupt;
+  vtkSmartPointer<vtkDataSet> source = SourceAsOne(sourceObject, note, corrupt);
   if (!note.empty() && kept.Warned.insert("note/" + note).second) // once, not at every step
   {
     vtkWarningMacro(<< note);
+  }
+  if (!corrupt.empty())
+  {
+    vtkErrorMacro(<< corrupt);
+    return 1;
   }
   if (!source)
   {

@@ -54,6 +54,18 @@ class vtkUnstructuredGrid;
 
 namespace mpvtk
 {
+/**
+ * Checks what VTK itself trusts: every point id of every cell (and of every
+ * polyhedron face) is within [0, number of points), offsets start at 0,
+ * never decrease and stay within the connectivity, cell types are known and
+ * cells have as many points as their type needs, structured grids hold as
+ * many points (coordinates) as their dimensions say, and a ghost array has
+ * one value per cell. Returns an error naming `role`, the first offending
+ * cell and the value, or an empty string. Wrap() calls it first; a
+ * composite's blocks are checked before they are appended.
+ */
+std::string CheckDataSet(vtkDataSet* data, const std::string& role);
+
 class SimplexMesh
 {
 public:
