@@ -496,3 +496,98 @@ TEST(MortarProjector, TargetMassFromMomentsMatchesThePieces)
     ExpectTargetMassMatchesPieces<mp::TetrahedronIntersector>(target, source, "3D case " + std::to_string(n));
   }
 }
+
+// Excluded source cells (no data there) act as a hole in the source: the
+// operator equals the one built on the source without those cells, for
+// every pair of spaces, in 2D and 3D, with the advancing front walking
+// through the excluded cells.
+TEST(MortarProjector, ExcludedSourceCellsAreAHole)
+{
+  for (int dimension : { 2, 3 })
+  {
+    const TestMesh target = dimension == 2 ? mptest::GridMesh(9, 8, 0.2, 91)
+                                           : mptest::CubeMesh(6, 6, 3, 0.2, 92);
+    const TestMesh source = dimension == 2 ? mptest::GridMesh(11, 10, 0.25, 93)
+                                           : mptest::CubeMesh(8, 7, 3, 0.2, 94);
+    const int corners = dimension + 1;
+    // Excluded: a disc of cells in the middle, and a band along x = 0.
+    std::vector<char> excluded(static_cast<size_t>(source.NumberOfCells()), 0);
+    TestMesh holed = source;
+    holed.Cells.clear();
+    std::vector<Index> kept; // holed cell -> source cell
+    for (Index c = 0; c < source.NumberOfCells(); ++c)
+    {
+      double center[3] = { 0, 0, 0 };
+      for (int k = 0; k < corners; ++k)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          center[d] += source.Points[3 * source.Cells[corners * c + k] + d] / corners;
+        }
+      }
+      const double r = std::hypot(center[0] - 0.5, center[1] - 0.5);
+      excluded[c] = r < 0.35 || center[0] < 0.15;
+      if (!excluded[c])
+      {
+        holed.Cells.insert(holed.Cells.end(), &source.Cells[corners * c], &source.Cells[corners * (c + 1)]);
+        kept.push_back(c);
+      }
+    }
+    holed.Finish();
+    ASSERT_GT(std::count(excluded.begin(), excluded.end(), 1), 5);
+    for (auto spaces : { std::make_pair(mp::SpaceType::P1, mp::SpaceType::P1),
+           std::make_pair(mp::SpaceType::P0, mp::SpaceType::P1),
+           std::make_pair(mp::SpaceType::P1, mp::SpaceType::P0),
+           std::make_pair(mp::SpaceType::P0, mp::SpaceType::P0) })
+    {
+      mp::OperatorOptions options;
+      options.TargetSpace = spaces.first;
+      options.SourceSpace = spaces.second;
+      mp::BoxGridLocator locator(source.View());
+      mp::MortarOperator withHole;
+      options.ExcludedSourceCells = excluded.data();
+      ASSERT_TRUE(withHole.Build(target.View(), source.View(), &locator, options));
+      mp::MortarOperator reference;
+      options.ExcludedSourceCells = nullptr;
+      options.Method = mp::SearchMethod::BruteForce;
+      ASSERT_TRUE(reference.Build(target.View(), holed.View(), nullptr, options));
+      EXPECT_NEAR(withHole.GetCoveredMeasure(), reference.GetCoveredMeasure(), 1e-14);
+      ASSERT_EQ(withHole.GetValid(), reference.GetValid());
+      EXPECT_LT(withHole.GetNumberOfValid(), withHole.GetNumberOfTargetFunctions()) << dimension << "D";
+      EXPECT_GT(withHole.GetNumberOfValid(), 0);
+      for (size_t c = 0; c < withHole.GetCoveredFraction().size(); ++c)
+      {
+        EXPECT_NEAR(withHole.GetCoveredFraction()[c], reference.GetCoveredFraction()[c], 1e-13);
+      }
+      const Index rows = withHole.GetNumberOfTargetFunctions();
+      for (Index i = 0; i < rows; ++i)
+      {
+        for (Index k = 0; k < rows; ++k)
+        {
+          ASSERT_NEAR(TargetMassEntry(withHole, i, k), TargetMassEntry(reference, i, k), 1e-15);
+        }
+      }
+      // M_ts: P1 columns are the same points; P0 columns of the holed mesh
+      // are its kept cells.
+      const bool p0 = spaces.second == mp::SpaceType::P0;
+      const Index columns = p0 ? holed.NumberOfCells() : source.NumberOfPoints();
+      for (Index i = 0; i < rows; ++i)
+      {
+        for (Index j = 0; j < columns; ++j)
+        {
+          ASSERT_NEAR(MixedMassEntry(withHole, i, p0 ? kept[j] : j), MixedMassEntry(reference, i, j), 1e-15);
+        }
+        if (p0)
+        {
+          for (Index c = 0; c < source.NumberOfCells(); ++c)
+          {
+            if (excluded[c])
+            {
+              ASSERT_EQ(MixedMassEntry(withHole, i, c), 0.0);
+            }
+          }
+        }
+      }
+    }
+  }
+}

@@ -85,6 +85,7 @@ struct MortarAssembler
   Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
   IntersectionPieces* Pieces = nullptr;
   Index Count = 0;         ///< pieces of positive measure
+  const char* Excluded = nullptr; ///< per source cell: nonzero to leave its pieces out
   const char* Shared = nullptr; ///< per target function; null for a single task
   std::vector<std::pair<Index, double>> Deferred; ///< (position in M_tt, value)
   /// Right-hand sides instead of blocks: the source fields (source
@@ -179,6 +180,10 @@ struct MortarAssembler
       this->BlockColumns.clear();
       this->BlockValues.clear();
       this->CellRhs.assign(static_cast<size_t>(Nt) * this->Components, 0.0);
+    }
+    if (this->Excluded && this->Excluded[s.Id])
+    {
+      return; // a hole in the source (no data there)
     }
     double o[D];
     double M[K][K];

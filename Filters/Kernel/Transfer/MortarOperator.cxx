@@ -216,6 +216,7 @@ void MortarOperator::Assemble(
     a.Mass = &this->TargetMass;
     a.Shared = tasks > 1 ? shared.data() : nullptr;
     a.CoveredFraction = this->CoveredFraction.data();
+    a.Excluded = this->Options.ExcludedSourceCells;
     if (this->Options.KeepPieces)
     {
       a.Pieces = tasks > 1 ? &pieces[k] : &this->Pieces;

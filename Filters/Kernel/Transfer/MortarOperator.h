@@ -66,6 +66,14 @@ struct OperatorOptions
    */
   const double* Fields = nullptr;
   int FieldComponents = 0;
+  /**
+   * Per source cell (kernel numbering): nonzero to leave the cell out, as if
+   * the source had a hole there (e.g. cells without data for a field: NaN
+   * values). The search still walks through it, but its pieces add nothing:
+   * the covered part, M_tt, M_ts, the valid functions and the covered
+   * fractions are those of the other cells. Null (default): every cell counts.
+   */
+  const char* ExcludedSourceCells = nullptr;
   /// Concurrent tasks for the search, the assembly and the solve, and how
   /// they run (default: one, serial).
   TaskRunner Runner;
