@@ -157,6 +157,12 @@ struct Fingerprint
   }
 };
 
+/// The filter's own masks (of an earlier projection): not fields.
+bool IsMask(const std::string& name)
+{
+  return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0;
+}
+
 /// vtkDataObject's attribute type of the filter's associations: 0 points, 1 cells.
 int AttributeType(int association)
 {
@@ -179,13 +185,26 @@ const char* TransferName(int transfer)
   return names[transfer];
 }
 
+/// Source arrays with NaN or infinite values that leave out the same Source
+/// cells: projected by an operator of their own, with those cells as a hole.
+struct Holed
+{
+  std::vector<int> Arrays;     ///< indices into Gathered::Arrays
+  std::vector<char> Excluded;  ///< per kernel Source cell
+  std::uint64_t Print = 0;     ///< of Excluded
+  int Components = 0;
+  mp::LargeVector<double> Values; ///< functions x Components, non-finite values as 0
+};
+
 /// The Source arrays of one association, gathered side by side.
 struct Gathered
 {
   std::vector<vtkDataArray*> Arrays;
+  std::vector<int> Offsets; ///< each array's first column
   int Components = 0;
-  mp::LargeVector<double> Values; ///< functions x Components
+  mp::LargeVector<double> Values; ///< functions x Components (non-finite columns as 0)
   std::string Key;                ///< names and components: which solution a warm start may reuse
+  std::vector<Holed> Holes;       ///< the arrays with non-finite values
 };
 } // namespace
 
@@ -204,6 +223,9 @@ struct vtkMeshProjectionFilter::Leaf
   bool HasFingerprint = false;
   std::uint64_t GeometryFingerprint = 0;
   Kept Operators[4];
+  /// Operators with Source cells left out (arrays with non-finite values),
+  /// by transfer and fingerprint of the cells left out.
+  std::map<std::pair<int, std::uint64_t>, std::unique_ptr<mp::MortarOperator>> Holes;
 
   void Clear()
   {
@@ -211,6 +233,7 @@ struct vtkMeshProjectionFilter::Leaf
     {
       k = Kept();
     }
+    this->Holes.clear();
     this->HasFingerprint = false;
   }
 };
@@ -304,7 +327,7 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
       const char* name = attributes->GetArrayName(i);
       if (name && attributes->GetArray(i) && !selection->ArrayExists(name) &&
         std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
-        std::string(name) != "vtkValidPointMask" && std::string(name) != "vtkValidCellMask")
+        !IsMask(name))
       {
         selection->AddArray(name, selection->GetUnknownArraySetting() != 0);
       }
@@ -767,8 +790,8 @@ int vtkMeshProjectionFilter::RequestData(
       vtkAbstractArray* abstract = data->GetAbstractArray(i);
       const char* name = abstract->GetName();
       const std::string label = name ? name : "(unnamed)";
-      if (label == vtkDataSetAttributes::GhostArrayName() || label == "vtkValidPointMask" ||
-        label == "vtkValidCellMask" || (name && !selection->ArrayIsEnabled(name)))
+      if (label == vtkDataSetAttributes::GhostArrayName() || IsMask(label) ||
+        (name && !selection->ArrayIsEnabled(name)))
       {
         continue;
       }
@@ -794,6 +817,7 @@ int vtkMeshProjectionFilter::RequestData(
                         << "carry over: use Resample With Dataset for those, or deselect it).");
       }
       g.Arrays.push_back(array);
+      g.Offsets.push_back(g.Components);
       g.Components += array->GetNumberOfComponents();
       g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
     }
@@ -841,6 +865,7 @@ int vtkMeshProjectionFilter::RequestData(
       });
       offset += nc;
     }
+    this->FindNonFinite(run, association);
   }
   using SDDP = vtkStreamingDemandDrivenPipeline;
   for (int port = 0; port < 2; ++port)
@@ -1008,6 +1033,113 @@ int vtkMeshProjectionFilter::RequestData(
   return 1;
 }
 
+void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
+{
+  Gathered& g = run.Fields[association];
+  const mp::MeshView& view = run.SourceMesh.View();
+  const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
+  const int width = g.Components;
+  for (int a = 0; a < static_cast<int>(g.Arrays.size()); ++a)
+  {
+    const int nc = g.Arrays[a]->GetNumberOfComponents();
+    const int offset = g.Offsets[a];
+    // The functions (points or cells) where a component is NaN or infinite.
+    std::vector<char> bad(static_cast<size_t>(functions), 0);
+    std::atomic<vtkIdType> values(0);
+    vtkSMPTools::For(0, functions, [&](vtkIdType begin, vtkIdType end) {
+      vtkIdType count = 0;
+      for (vtkIdType f = begin; f < end; ++f)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          const bool finite = std::isfinite(g.Values[f * width + offset + k]);
+          count += !finite;
+          bad[f] = bad[f] || !finite;
+        }
+      }
+      values += count;
+    });
+    if (values == 0)
+    {
+      continue;
+    }
+    // The Source cells (kernel simplices) that use such a value.
+    std::vector<char> excluded(static_cast<size_t>(view.NumberOfCells), 0);
+    const int corners = view.CornersPerCell();
+    vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        if (association == 1)
+        {
+          excluded[c] = bad[view.ParentOf(c)];
+          continue;
+        }
+        const mp::Index* p = view.Cell(c);
+        for (int k = 0; k < corners; ++k)
+        {
+          excluded[c] = excluded[c] || bad[p[k]];
+        }
+      }
+    });
+    Fingerprint print;
+    print.Add(excluded.data(), excluded.size());
+    auto hole = std::find_if(g.Holes.begin(), g.Holes.end(),
+      [&](const Holed& h) { return h.Print == print.Hash && h.Excluded == excluded; });
+    if (hole == g.Holes.end())
+    {
+      g.Holes.emplace_back();
+      hole = std::prev(g.Holes.end());
+      hole->Excluded.swap(excluded);
+      hole->Print = print.Hash;
+    }
+    hole->Arrays.push_back(a);
+    hole->Components += nc;
+    // The dataset's cells left out (a split cell counts once).
+    std::vector<char> parents(static_cast<size_t>(view.Parents()), 0);
+    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      parents[view.ParentOf(c)] |= hole->Excluded[c];
+    }
+    const vtkIdType cells = std::count(parents.begin(), parents.end(), 1);
+    const std::string label = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
+    const char* kind = association == 0 ? "point" : "cell";
+    if (this->Internal->Warned.insert(std::string("nonfinite/") + kind + "/" + label).second)
+    {
+      // Once per array, not at every time step.
+      vtkWarningMacro(<< "Source " << kind << " array '" << label << "' has " << values
+                      << " NaN or infinite values: the " << cells << " Source cells that "
+                      << "use them are left out of its projection, as a hole in Source (the "
+                      << "integral over the rest of the covered part is conserved). Input "
+                      << "points and cells left without data for it get the fill value and "
+                      << "are marked invalid (in vtkValidPointMask and vtkValidCellMask, or in "
+                      << "masks of its own when the arrays' masks differ).");
+    }
+  }
+  // Each hole's arrays side by side, non-finite values as 0 (never used:
+  // their cells are out); their columns in Values likewise, for the
+  // operator of the other arrays.
+  for (Holed& hole : g.Holes)
+  {
+    hole.Values.assign(static_cast<size_t>(functions) * hole.Components, 0.0);
+    int column = 0;
+    for (int a : hole.Arrays)
+    {
+      const int nc = g.Arrays[a]->GetNumberOfComponents();
+      const int offset = g.Offsets[a];
+      for (mp::Index f = 0; f < functions; ++f)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          double& v = g.Values[f * width + offset + k];
+          hole.Values[f * hole.Components + column + k] = std::isfinite(v) ? v : 0.0;
+          v = 0.0;
+        }
+      }
+      column += nc;
+    }
+  }
+}
+
 void vtkMeshProjectionFilter::WarnLeftOut(const mpvtk::SimplexMesh& mesh, const std::string& role)
 {
   if (mesh.LowerDimensionalCells() > 0 &&
@@ -1019,6 +1151,48 @@ void vtkMeshProjectionFilter::WarnLeftOut(const mpvtk::SimplexMesh& mesh, const 
                     << "projection (their cell values are invalid).");
   }
 }
+
+namespace
+{
+/**
+ * Adds `mask` (where the meshes overlap) to `data`. When arrays with
+ * non-finite values are valid elsewhere: if every array written has the
+ * same validity, `mask` becomes it; else each array valid elsewhere gets a
+ * mask of its own, "<mask>_<array>".
+ */
+void AddValidMasks(vtkCharArray* mask,
+  const std::vector<std::pair<std::string, const std::vector<char>*>>& arrays,
+  vtkDataSetAttributes* data)
+{
+  const char* m = mask->GetPointer(0);
+  const vtkIdType n = mask->GetNumberOfValues();
+  auto same = [n](const char* a, const char* b) { return std::equal(a, a + n, b); };
+  bool agree = !arrays.empty();
+  for (const auto& a : arrays)
+  {
+    agree = agree && *a.second == *arrays[0].second;
+  }
+  if (agree && !same(arrays[0].second->data(), m))
+  {
+    std::copy(arrays[0].second->begin(), arrays[0].second->end(), mask->GetPointer(0));
+  }
+  else if (!agree)
+  {
+    for (const auto& a : arrays)
+    {
+      if (!same(a.second->data(), m))
+      {
+        vtkNew<vtkCharArray> own;
+        own->SetName((std::string(mask->GetName()) + "_" + a.first).c_str());
+        own->SetNumberOfValues(n);
+        std::copy(a.second->begin(), a.second->end(), own->GetPointer(0));
+        data->AddArray(own);
+      }
+    }
+  }
+  data->AddArray(mask);
+}
+} // namespace
 
 std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet* output,
   Execution& run, Leaf& kept, const std::string& name,
@@ -1138,25 +1312,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     });
   };
   bool searchReady = false;
-  int toBuild = 0;
-  for (int t = 0; t < 4; ++t)
-  {
-    toBuild += used[t] && !kept.Operators[t].Operator;
-  }
-  std::unique_ptr<mp::MortarOperator> fresh[4];
-  const mp::MortarOperator* operators[4] = {};
-  double built = 0;
-  for (int t = 0; t < 4; ++t)
-  {
-    if (!used[t])
-    {
-      continue;
-    }
-    if (kept.Operators[t].Operator)
-    {
-      operators[t] = kept.Operators[t].Operator.get();
-      continue;
-    }
+  // Neighbours and the Source locator, once, before the first operator is built.
+  auto prepareSearch = [&]() {
     if (!searchReady && mp::SearchNeedsNeighbors(options.Method))
     {
       // Neighbours (VTK cell links) and the seed locator (vtkStaticCellLocator).
@@ -1183,12 +1340,33 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         run.SourceNeighbors = true;
         this->LocatorTime += Lap(run.Stage);
       }
-      if (!progress(0.1))
-      {
-        return "stopped";
-      }
     }
     searchReady = true;
+  };
+  int toBuild = 0;
+  for (int t = 0; t < 4; ++t)
+  {
+    toBuild += used[t] && !kept.Operators[t].Operator;
+  }
+  std::unique_ptr<mp::MortarOperator> fresh[4];
+  const mp::MortarOperator* operators[4] = {};
+  double built = 0;
+  for (int t = 0; t < 4; ++t)
+  {
+    if (!used[t])
+    {
+      continue;
+    }
+    if (kept.Operators[t].Operator)
+    {
+      operators[t] = kept.Operators[t].Operator.get();
+      continue;
+    }
+    prepareSearch();
+    if (!progress(0.1))
+    {
+      return "stopped";
+    }
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
     options.TargetSpace = TargetSpaceOf(t);
     options.SourceSpace = SourceSpaceOf(t);
@@ -1252,6 +1430,73 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
                       << ". The result is not a projection of one field there.");
     }
   }
+  // Arrays with non-finite values: an operator per transfer and set of
+  // Source cells left out (kept like the others while the meshes and the
+  // cells left out are the same). byArray[t][a]: the operator of array a.
+  std::vector<const mp::MortarOperator*> byArray[4];
+  std::vector<std::unique_ptr<mp::MortarOperator>> holeFresh;
+  std::set<std::pair<int, std::uint64_t>> holesUsed;
+  for (int t = 0; t < 4; ++t)
+  {
+    const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    if (!operators[t] || g.Components == 0)
+    {
+      continue;
+    }
+    byArray[t].assign(g.Arrays.size(), operators[t]);
+    for (const Holed& hole : g.Holes)
+    {
+      const auto key = std::make_pair(t, hole.Print);
+      holesUsed.insert(key);
+      const mp::MortarOperator* op = nullptr;
+      auto found = kept.Holes.find(key);
+      if (found != kept.Holes.end())
+      {
+        op = found->second.get();
+      }
+      else
+      {
+        prepareSearch();
+        mp::OperatorOptions holeOptions = options;
+        holeOptions.TargetSpace = TargetSpaceOf(t);
+        holeOptions.SourceSpace = SourceSpaceOf(t);
+        holeOptions.KeepPieces = false;
+        holeOptions.ExcludedSourceCells = hole.Excluded.data();
+        holeOptions.Fields = assembled ? nullptr : hole.Values.data();
+        holeOptions.FieldComponents = assembled ? 0 : hole.Components;
+        holeOptions.Progress = [&progress](double) { return progress(0.9); };
+        std::unique_ptr<mp::MortarOperator> made(new mp::MortarOperator);
+        const bool ok =
+          made->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), holeOptions);
+        if (!ok)
+        {
+          return made->GetError() == "stopped" ? made->GetError()
+                                                : "Projection failed: " + made->GetError();
+        }
+        this->SearchTime += made->GetTimings().Search;
+        this->AssemblyTime += made->GetTimings().Assembly;
+        ++this->NumberOfOperatorsBuilt;
+        op = made.get();
+        if (this->CacheOperator && made->HasMixedMass())
+        {
+          kept.Holes[key] = std::move(made);
+        }
+        else
+        {
+          holeFresh.push_back(std::move(made));
+        }
+      }
+      for (int a : hole.Arrays)
+      {
+        byArray[t][a] = op;
+      }
+    }
+  }
+  for (auto it = kept.Holes.begin(); it != kept.Holes.end();)
+  {
+    it = holesUsed.count(it->first) ? std::next(it) : kept.Holes.erase(it);
+  }
+  Lap(run.Stage);
   if (!progress(0.9))
   {
     return "stopped";
@@ -1298,6 +1543,36 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       k.SolutionKey = g.Key;
       k.Solution.assign(values.begin(), values.end());
     }
+    // The arrays with non-finite values: their own operators, their columns.
+    for (const Holed& hole : g.Holes)
+    {
+      const mp::MortarOperator& holeOp = *byArray[t][hole.Arrays[0]];
+      mp::LargeVector<double> own(static_cast<size_t>(holeOp.GetNumberOfTargetFunctions()) *
+        hole.Components);
+      mp::ApplyOptions holeApply = apply;
+      holeApply.Solve.StartFromX = false;
+      if (!holeOp.Apply(hole.Values.data(), hole.Components, own.data(), fill, holeApply))
+      {
+        kept.Clear();
+        return std::string("The projection of ") + TransferName(t) +
+          " failed: the mass matrix of the covered target part could not be solved.";
+      }
+      this->SolveTime += holeOp.GetTimings().Solve;
+      const size_t rows = static_cast<size_t>(holeOp.GetNumberOfTargetFunctions());
+      int column = 0;
+      for (int a : hole.Arrays)
+      {
+        const int nc = g.Arrays[a]->GetNumberOfComponents();
+        for (size_t f = 0; f < rows; ++f)
+        {
+          for (int c = 0; c < nc; ++c)
+          {
+            values[f * g.Components + g.Offsets[a] + c] = own[f * hole.Components + column + c];
+          }
+        }
+        column += nc;
+      }
+    }
   }
   // Kept for the next execution (and GetMatrix), or dropped; so are those
   // this execution did not use.
@@ -1325,6 +1600,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   vtkPointData* outPD = output->GetPointData();
   vtkCellData* outCD = output->GetCellData();
   std::vector<std::string> pointNames, cellNames; // written by the main transfers
+  // Per array written: where it is valid (its operator's valid functions).
+  std::vector<std::pair<std::string, const std::vector<char>*>> pointValid, cellValid;
   for (int t : { 0, 2, 1, 3 })
   {
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
@@ -1335,7 +1612,6 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const bool toPoints = TargetSpaceOf(t) == mp::SpaceType::P1;
     const bool fromCells = SourceSpaceOf(t) == mp::SpaceType::P0;
     const bool totals = t == 2 && extensive; // densities back to totals
-    const std::vector<double>& covered = operators[t]->GetCoveredIntegrals();
     vtkDataSetAttributes* sourceData = source->GetAttributes(AttributeType(fromCells ? 1 : 0));
     vtkDataSetAttributes* outData = output->GetAttributes(AttributeType(toPoints ? 0 : 1));
     std::vector<std::string>& written = toPoints ? pointNames : cellNames;
@@ -1352,6 +1628,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         arrayName += fromCells ? " (from cells)" : " (from points)";
       }
       written.push_back(arrayName);
+      const mp::MortarOperator& op = *byArray[t][a];
+      (toPoints ? pointValid : cellValid).emplace_back(arrayName, &op.GetValid());
+      const std::vector<double>& covered = op.GetCoveredIntegrals();
       vtkNew<vtkDoubleArray> projected;
       projected->SetName(arrayName.c_str());
       projected->SetNumberOfComponents(nc);
@@ -1369,7 +1648,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       double* out = projected->GetPointer(0);
       for (vtkIdType f = 0; f < n; ++f)
       {
-        const double scale = totals && operators[t]->GetValid()[f] ? covered[f] : 1.0;
+        const double scale = totals && op.GetValid()[f] ? covered[f] : 1.0;
         for (int k = 0; k < nc; ++k)
         {
           out[f * nc + k] = scale * values[f * width + offset + k];
@@ -1415,14 +1694,14 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       }
     }
   }
-  outPD->AddArray(mask);
+  AddValidMasks(mask, pointValid, outPD);
   if (const mp::MortarOperator* onCells = operators[1] ? operators[1] : operators[2])
   {
     vtkNew<vtkCharArray> cellMask;
     cellMask->SetName("vtkValidCellMask");
     cellMask->SetNumberOfValues(ntc);
     std::copy(onCells->GetValid().begin(), onCells->GetValid().end(), cellMask->GetPointer(0));
-    outCD->AddArray(cellMask);
+    AddValidMasks(cellMask, cellValid, outCD);
   }
   vtkNew<vtkDoubleArray> covered;
   covered->SetName("CoveredFraction");

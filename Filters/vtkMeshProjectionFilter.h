@@ -429,6 +429,9 @@ private:
   std::string ProjectLeaf(vtkDataSet* target, vtkDataSet* output, Execution& run, Leaf& kept,
     const std::string& name, vtkSmartPointer<vtkDataObject>& pieces);
   void WarnLeftOut(const mpvtk::SimplexMesh& mesh, const std::string& role);
+  /// Groups the arrays of an association with NaN or infinite values by the
+  /// Source cells they leave out (Execution's Holes), and warns.
+  void FindNonFinite(Execution& run, int association);
   void operator=(const vtkMeshProjectionFilter&) = delete;
 };
 
