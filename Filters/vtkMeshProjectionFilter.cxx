@@ -117,7 +117,10 @@ struct Fingerprint
       h ^= h >> 29;
     }
     std::uint64_t last = 0;
-    std::memcpy(&last, b + i, bytes - i);
+    if (bytes > i)
+    {
+      std::memcpy(&last, b + i, bytes - i);
+    }
     this->Add(h ^ last);
   }
   void Add(vtkDataArray* array)
@@ -610,13 +613,40 @@ vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note, 
       continue;
     }
     // vtkAppendFilter trusts the blocks' ids and arrays: checked first.
-    error = mpvtk::CheckDataSet(
-      leaf, "Source block of flat index " + std::to_string(iter->GetCurrentFlatIndex()));
+    const std::string block = "Source block of flat index " + std::to_string(iter->GetCurrentFlatIndex());
+    error = mpvtk::CheckDataSet(leaf, block);
     if (!error.empty())
     {
       return nullptr;
     }
-    append->AddInputData(leaf);
+    // Arrays with fewer tuples than points (cells) are left out of a copy.
+    vtkSmartPointer<vtkDataSet> whole = leaf;
+    for (int association = 0; association < 2; ++association)
+    {
+      const vtkIdType needed = association == 0 ? leaf->GetNumberOfPoints() : leaf->GetNumberOfCells();
+      vtkDataSetAttributes* attributes = whole->GetAttributes(AttributeType(association));
+      for (int a = attributes->GetNumberOfArrays() - 1; a >= 0; --a)
+      {
+        vtkAbstractArray* array = attributes->GetAbstractArray(a);
+        if (array->GetNumberOfTuples() >= needed)
+        {
+          continue;
+        }
+        note += std::string(note.empty() ? "" : " ") + block + ": " +
+          (association == 0 ? "point" : "cell") + " array '" +
+          (array->GetName() ? array->GetName() : "(unnamed)") + "' has " +
+          std::to_string(array->GetNumberOfTuples()) + " tuples for " + std::to_string(needed) +
+          ": left out.";
+        if (whole == leaf)
+        {
+          whole.TakeReference(leaf->NewInstance());
+          whole->ShallowCopy(leaf);
+          attributes = whole->GetAttributes(AttributeType(association));
+        }
+        attributes->RemoveArray(a);
+      }
+    }
+    append->AddInputData(whole);
     ++leaves;
   }
   if (skipped)
@@ -802,6 +832,18 @@ int vtkMeshProjectionFilter::RequestData(
         continue;
       }
       vtkDataArray* array = vtkArrayDownCast<vtkDataArray>(abstract);
+      const vtkIdType needed =
+        association == 0 ? source->GetNumberOfPoints() : source->GetNumberOfCells();
+      if (array && array->GetNumberOfTuples() < needed)
+      {
+        if (kept.Warned.insert(std::string("short/") + kind + "/" + label).second)
+        {
+          vtkWarningMacro(<< "Source " << kind << " array '" << label << "' has "
+                          << array->GetNumberOfTuples() << " tuples for " << needed << " "
+                          << kind << "s: it is not projected (the dataset is inconsistent).");
+        }
+        continue;
+      }
       if (!array)
       {
         vtkWarningMacro(<< "Source " << kind << " array '" << label << "' is not numeric ("

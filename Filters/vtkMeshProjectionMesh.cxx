@@ -342,30 +342,15 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
   {
     return why + advice;
   }
-  // Every point and cell array (the ghost array too) has a tuple per point
-  // or cell.
-  for (int association = 0; association < 2; ++association)
-  {
-    vtkDataSetAttributes* attributes =
-      association == 0 ? static_cast<vtkDataSetAttributes*>(data->GetPointData()) : data->GetCellData();
-    const vtkIdType needed = association == 0 ? np : data->GetNumberOfCells();
-    for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
-    {
-      vtkAbstractArray* array = attributes->GetAbstractArray(a);
-      if (array && array->GetNumberOfTuples() < needed)
-      {
-        return role + (association == 0 ? " point" : " cell") + " array '" +
-          (array->GetName() ? array->GetName() : "(unnamed)") + "' has " +
-          std::to_string(array->GetNumberOfTuples()) + " tuples for " + std::to_string(needed) +
-          (association == 0 ? " points." : " cells.") + advice;
-      }
-    }
-  }
+  // The ghost array (read here) has a value per cell; other arrays are
+  // checked where they are read (Source's fields, a composite's blocks).
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
-  if (ghosts && ghosts->GetNumberOfComponents() != 1)
+  if (ghosts && (ghosts->GetNumberOfComponents() != 1 ||
+                  ghosts->GetNumberOfTuples() < data->GetNumberOfCells()))
   {
-    return role + "'s cell ghost array has " + std::to_string(ghosts->GetNumberOfComponents()) +
-      " components (1 is needed)." + advice;
+    return role + "'s cell ghost array has " + std::to_string(ghosts->GetNumberOfTuples()) +
+      " tuples of " + std::to_string(ghosts->GetNumberOfComponents()) + " components for " +
+      std::to_string(data->GetNumberOfCells()) + " cells (one value per cell is needed)." + advice;
   }
   return std::string();
 }
@@ -448,8 +433,10 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
         << "a plane, or 3D cells).";
     return why.str();
   }
-  int others = 0; // types other than the mesh's simplex
-  for (int type = 1; type < 256; ++type)
+  // Types other than the mesh's simplex, empty cells included: the grid is
+  // viewed in place only when every cell is one simplex (regular offsets).
+  int others = 0;
+  for (int type = 0; type < 256; ++type)
   {
     others += present[type] && type != (dimension == 3 ? VTK_TETRA : VTK_TRIANGLE);
   }
@@ -765,6 +752,40 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       hi[d] = std::max(hi[d], x[d]);
     }
   }
+  // Points no cell uses may hold anything (NaN, 1e300): VTK's locators
+  // bound all points, so they see a copy where such points sit on a used one.
+  this->CleanGrid = nullptr;
+  const vtkIdType np = this->Kernel.NumberOfPoints;
+  auto wild = [this](vtkIdType p) {
+    const double* x = this->OriginalPoints + 3 * p;
+    for (int d = 0; d < 3; ++d)
+    {
+      if (!(std::fabs(x[d]) <= 1e100))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  vtkIdType firstWild = -1;
+  for (vtkIdType p = 0; p < np && firstWild < 0 && this->Kernel.NumberOfCells > 0; ++p)
+  {
+    firstWild = wild(p) ? p : -1;
+  }
+  if (firstWild >= 0)
+  {
+    vtkNew<vtkPoints> clean;
+    clean->SetDataTypeToDouble();
+    clean->SetNumberOfPoints(np);
+    const double* anchor = this->Kernel.Point(ids[0]);
+    for (vtkIdType p = 0; p < np; ++p)
+    {
+      clean->SetPoint(p, wild(p) ? anchor : this->OriginalPoints + 3 * p);
+    }
+    this->CleanGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    this->CleanGrid->ShallowCopy(grid);
+    this->CleanGrid->SetPoints(clean);
+  }
   double deviation = 0.0;
   double size = 0.0;
   if (this->Kernel.NumberOfCells > 0 && this->Dimension() == 2 &&
@@ -886,7 +907,7 @@ StaticLocator::StaticLocator(const SimplexMesh& mesh)
   , Locators(std::make_shared<Shared>())
 {
   Shared& l = *this->Locators;
-  vtkUnstructuredGrid* grid = mesh.Grid();
+  vtkUnstructuredGrid* grid = mesh.LocatorGrid();
   l.Grid = grid;
   mp::BoundaryCells(mesh.View(), l.BoundaryCells);
   // The boundary cells as a grid of their own on the source's points.

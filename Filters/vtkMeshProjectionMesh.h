@@ -60,9 +60,10 @@ namespace mpvtk
  * never decrease and stay within the connectivity, cell types are known and
  * cells have as many points as their type needs, structured grids hold as
  * many points (coordinates) as their dimensions say, and a ghost array has
- * one value per cell. Returns an error naming `role`, the first offending
- * cell and the value, or an empty string. Wrap() calls it first; a
- * composite's blocks are checked before they are appended.
+ * one value per cell (other arrays are checked where they are read).
+ * Returns an error naming `role`, the first offending cell and the value,
+ * or an empty string. Wrap() calls it first; a composite's blocks are
+ * checked before they are appended.
  */
 std::string CheckDataSet(vtkDataSet* data, const std::string& role);
 
@@ -77,6 +78,12 @@ public:
   std::string Wrap(vtkDataSet* data, const char* role);
   /// The simplices the kernel sees: the dataset itself, or its split.
   vtkUnstructuredGrid* Grid() const { return this->SimplexGrid; }
+  /// Grid() for VTK's locators: its points that no cell uses and that are
+  /// not finite (or beyond 1e100) moved onto a used point.
+  vtkUnstructuredGrid* LocatorGrid() const
+  {
+    return this->CleanGrid ? this->CleanGrid.GetPointer() : this->SimplexGrid;
+  }
   /// Cells left out for being of lower dimension than the mesh (vertices,
   /// lines, faces of a volume mesh).
   vtkIdType LowerDimensionalCells() const { return this->LowerDimensional; }
@@ -115,6 +122,7 @@ private:
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
   vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
+  vtkSmartPointer<vtkUnstructuredGrid> CleanGrid; ///< see LocatorGrid()
   std::vector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
   const double* OriginalPoints = nullptr;        ///< the points before any plane frame
   vtkIdType LowerDimensional = 0;

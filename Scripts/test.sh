@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Install the dependencies, build, and run every test (kernel, VTK C++ with
-# images, VTK Python, pvpython, ParaView GUI, installed C++ example).
+# images, VTK Python, pvpython, ParaView GUI, installed C++ example); then
+# build the C++ code again with clang's AddressSanitizer and UBSan
+# (Scripts/build-sanitized.sh) and run the kernel and VTK C++ tests and the
+# whole-filter fuzzer there.
 # Rendering tests run under one virtual X server, started with -noreset: by
 # default an X server resets when its last client disconnects, and a client
 # connecting during that reset is refused ("bad X server connection"), which
@@ -12,3 +15,8 @@ bash "$root/Scripts/install-deps.sh"
 bash "$root/Scripts/build.sh"
 cd "$build"
 timeout 3000 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --parallel 2
+
+bash "$root/Scripts/build-sanitized.sh"
+cd "${SANITIZE_DIR:-$root/build-sanitized}"
+ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  timeout 2400 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --parallel 2

@@ -54,9 +54,9 @@ void BinDivisions(const double lo[3], const double hi[3], int dimension, Index m
   const double h = used > 0 ? 2.0 * std::pow(volume / n, 1.0 / used) : 1.0;
   for (int d = 0; d < 3; ++d)
   {
-    const double extent = hi[d] - lo[d];
-    divisions[d] =
-      (d < dimension && extent > 0.0) ? std::max(1, std::min(1 << 12, int(extent / h))) : 1;
+    // (written so that NaN and infinite extents give 1 bin or the cap)
+    const double ratio = (hi[d] - lo[d]) / h;
+    divisions[d] = d < dimension && ratio >= 1.0 ? int(std::min(4096.0, ratio)) : 1;
   }
   // Few cells in a large box (the boundary of a 3D mesh): at most about
   // 8 bins per binned cell, so that memory follows the cells, not the box.

@@ -288,13 +288,6 @@ int TestMeshProjectionFilterHostile(int, char*[])
         return vtkSmartPointer<vtkDataObject>(p);
       },
       "cell 0 has 2 points where its type needs at least 3" },
-    { "a point array shorter than the points",
-      [&]() {
-        auto g = Copy(source.GetPointer());
-        g->GetPointData()->GetArray("Linear")->SetNumberOfTuples(10);
-        return vtkSmartPointer<vtkDataObject>(g);
-      },
-      "point array 'Linear' has 10 tuples for 575 points" },
     { "a ghost array shorter than the cells",
       [&]() {
         auto g = Copy(source.GetPointer());
@@ -305,7 +298,7 @@ int TestMeshProjectionFilterHostile(int, char*[])
         g->GetCellData()->AddArray(ghosts);
         return vtkSmartPointer<vtkDataObject>(g);
       },
-      "cell array 'vtkGhostType' has 3 tuples for 1056 cells" },
+      "cell ghost array has 3 tuples of 1 components for 1056 cells" },
   };
   for (const Corruption& c : corruptions)
   {
@@ -332,6 +325,28 @@ int TestMeshProjectionFilterHostile(int, char*[])
     blocks->SetBlock(1, corruptions[0].Make());
     const Result r = Project(target, blocks);
     MP_CHECK(Contains(r.Errors, "Source block of flat index 2: cell 5 refers to point 1000000000000"));
+  }
+
+  {
+    // Source arrays shorter than the points: not projected, with a warning;
+    // the others are (in a composite Source too). Input's are its own.
+    auto s = Copy(source.GetPointer());
+    s->GetPointData()->GetArray("Other")->SetNumberOfTuples(10);
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetBlock(0, s);
+    for (vtkDataObject* from : { static_cast<vtkDataObject*>(s), static_cast<vtkDataObject*>(blocks) })
+    {
+      const Result r = Project(target, from);
+      MP_CHECK(r.Errors.empty());
+      MP_CHECK(Contains(r.Warnings, "'Other' has 10 tuples for 575"));
+      MP_CHECK(r.Output->GetPointData()->GetArray("Linear"));
+      // (Input's own array, passed through)
+      MP_CHECK(r.Output->GetPointData()->GetArray("Other") == target->GetPointData()->GetArray("Other"));
+    }
+    auto t = Copy(target.GetPointer());
+    t->GetPointData()->GetArray("Other")->SetNumberOfTuples(10);
+    const Result r = Project(t, source);
+    MP_CHECK(r.Errors.empty() && r.Output->GetPointData()->GetArray("Linear"));
   }
 
   // 2. NaN and infinite Source values.
