@@ -161,6 +161,7 @@ struct Row
   /// The VTK filter's own stages (vtkMeshProjectionFilter::Get*Time) on 1
   /// and 2 threads: input, neighbours, locator, search, assembly, solve, output.
   double FilterStages[2][7] = {};
+  double CheckTime[2] = {}; ///< of the filter's input stage: the id and offset checks
 };
 
 /// Pairs found by asking vtkStaticCellLocator for the candidates of every
@@ -319,6 +320,7 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
       filter->GetLocatorTime(), filter->GetSearchTime(), filter->GetAssemblyTime(),
       filter->GetSolveTime(), filter->GetOutputTime() };
     std::copy(stages, stages + 7, r.FilterStages[0]);
+    r.CheckTime[0] = filter->GetCheckTime();
     r.Pairs = filter->GetNumberOfIntersections();
     r.Tests = filter->GetNumberOfIntersectionTests();
     r.Queries = filter->GetNumberOfLocatorQueries();
@@ -414,6 +416,7 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
         best = seconds;
         double* stages = r.FilterStages[threads - 1];
         stages[0] = filter->GetInputTime();
+        r.CheckTime[threads - 1] = filter->GetCheckTime();
         stages[1] = filter->GetNeighborsTime();
         stages[2] = filter->GetLocatorTime();
         stages[3] = filter->GetSearchTime();
@@ -461,6 +464,10 @@ void PrintFilter(const Row& r)
   for (int k = 0; k < 7; ++k)
   {
     std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[0][k]);
+    if (k == 0)
+    {
+      std::printf("      %-30s %10.4f\n", "of which id/offset checks", r.CheckTime[0]);
+    }
   }
 }
 
@@ -500,6 +507,11 @@ void Print(const Row& r)
   {
     std::printf("    %-32s %10.4f %10.4f\n", FilterStageNames[k], r.FilterStages[0][k],
       r.FilterStages[1][k]);
+    if (k == 0)
+    {
+      std::printf("      %-30s %10.4f %10.4f\n", "of which id/offset checks", r.CheckTime[0],
+        r.CheckTime[1]);
+    }
   }
   std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
     r.Resample / r.Filter1);

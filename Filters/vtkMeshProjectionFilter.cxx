@@ -708,7 +708,7 @@ int vtkMeshProjectionFilter::RequestData(
   this->NumberOfIntersections = this->NumberOfIntersectionTests = 0;
   this->NumberOfLocatorQueries = 0;
   this->CoveredMeasure = this->ExecutionTime = 0;
-  this->InputTime = this->NeighborsTime = this->LocatorTime = this->SearchTime = 0;
+  this->InputTime = this->CheckTime = this->NeighborsTime = this->LocatorTime = this->SearchTime = 0;
   this->AssemblyTime = this->SolveTime = this->OutputTime = 0;
   this->OperatorReused = false;
   this->NumberOfOperatorsBuilt = 0;
@@ -792,6 +792,7 @@ int vtkMeshProjectionFilter::RequestData(
   run.CompositeSource = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   {
     const std::string why = run.SourceMesh.Wrap(source, "Source");
+    this->CheckTime += run.SourceMesh.CheckSeconds();
     if (!why.empty())
     {
       vtkErrorMacro(<< why);
@@ -1249,6 +1250,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   mpvtk::SimplexMesh targetMesh;
   {
     const std::string why = targetMesh.Wrap(target, role.c_str());
+    this->CheckTime += targetMesh.CheckSeconds();
     if (!why.empty())
     {
       return why;

@@ -95,6 +95,16 @@
  *    the cell meets the source; invalid cells get NaN (or FillValue);
  *  - "CoveredFraction" (double cell array): the fraction of each target
  *    cell's area (volume) covered by the source.
+ * Missing values: a NaN or infinite value in a Source array leaves the
+ * Source cells that use it out of that array's projection (a hole in
+ * Source for that array only, with an operator of its own; conservation
+ * holds on the rest of the common part). Targets left without data get the
+ * fill value and are marked in the masks above when every projected array
+ * agrees, else in "vtkValidPointMask_<array>" / "vtkValidCellMask_<array>".
+ * Corrupt input (ids outside the points, bad offsets, face streams or cell
+ * types, a short ghost array) is an error naming the first bad cell, before
+ * any cell is read; the output is then Input passed through. Source arrays
+ * shorter than the points (cells) are skipped with a warning.
  * When OutputIntersections is on:
  *  - output port 1 (2D inputs): the intersection polygons, vtkPolyData with
  *    cell arrays "SourceCellId", "TargetCellId" (vtkIdType) and "Area";
@@ -370,6 +380,9 @@ public:
    * needed), the assembly, the solve, and writing the outputs.
    */
   vtkGetMacro(InputTime, double);
+  /// Of InputTime: checking both meshes' ids, offsets, types and face
+  /// streams before any cell is read (CheckDataSet).
+  vtkGetMacro(CheckTime, double);
   vtkGetMacro(NeighborsTime, double);
   vtkGetMacro(LocatorTime, double);
   vtkGetMacro(SearchTime, double);
@@ -408,6 +421,7 @@ protected:
   double CoveredMeasure = 0;
   double ExecutionTime = 0;
   double InputTime = 0;
+  double CheckTime = 0;
   double NeighborsTime = 0;
   double LocatorTime = 0;
   double SearchTime = 0;

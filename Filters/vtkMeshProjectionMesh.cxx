@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -359,7 +360,10 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
 {
   {
     // Every id and offset within its array before any cell is read.
+    const auto start = std::chrono::steady_clock::now();
     const std::string corrupt = CheckDataSet(data, role);
+    this->CheckTime =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!corrupt.empty())
     {
       return corrupt;

@@ -91,6 +91,8 @@ public:
   vtkIdType FlatCells() const { return this->Flat; }
   /// Cells that were split (not simplices already).
   vtkIdType SplitCells() const { return this->SplitCount; }
+  /// Seconds Wrap() spent in CheckDataSet.
+  double CheckSeconds() const { return this->CheckTime; }
   /// Face neighbours from vtkStaticCellLinks (call after Wrap).
   void BuildNeighbors();
 
@@ -128,6 +130,7 @@ private:
   vtkIdType LowerDimensional = 0;
   vtkIdType Flat = 0;
   vtkIdType SplitCount = 0;
+  double CheckTime = 0;
   mp::MeshView Kernel;
   std::vector<double> PointCopy;
   std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant
