@@ -22,6 +22,7 @@ sys.path.insert(0, os.path.join(os.environ.get("MP_SOURCE_DIR", "."), "Testing",
 result = os.environ.get("MP_RESULT", "Composite.result")
 failures = []
 try:
+    from mptesting import end_client_script
     import numpy as np
     import meshprojection  # noqa: F401 (the filter's wrapping, before any client-side object)
     from paraview import servermanager
@@ -108,7 +109,4 @@ try:
     SaveScreenshot(os.path.join(temp, "Composite.png"), view, ImageResolution=[400, 400])
 except Exception:  # a failure of the script itself
     failures.append(traceback.format_exc())
-with open(result, "w") as f:
-    f.write("PASS\n" if not failures else "FAIL\n" + "\n".join(failures) + "\n")
-if os.environ.get("MP_KEEP_OPEN") != "1":
-    os._exit(0 if not failures else 1)
+end_client_script(result, failures)  # (a NameError if mptesting did not import: the test times out)

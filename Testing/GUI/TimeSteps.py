@@ -17,6 +17,7 @@ sys.path.insert(0, os.path.join(os.environ.get("MP_SOURCE_DIR", "."), "Testing",
 result = os.environ.get("MP_RESULT", "TimeSteps.result")
 failures = []
 try:
+    from mptesting import end_client_script
     import numpy as np
     import meshprojection  # noqa: F401 (the filter's wrapping, before any client-side object)
     from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, OpenDataFile,
@@ -67,7 +68,4 @@ try:
     SaveScreenshot(os.path.join(temp, "TimeSteps.png"), view, ImageResolution=[400, 400])
 except Exception:  # a failure of the script itself
     failures.append(traceback.format_exc())
-with open(result, "w") as f:
-    f.write("passed\n" if not failures else "\n".join(failures) + "\n")
-if os.environ.get("MP_KEEP_OPEN") != "1":
-    os._exit(0 if not failures else 1)
+end_client_script(result, failures)  # (a NameError if mptesting did not import: the test times out)

@@ -175,3 +175,13 @@ def write_multiblock(path, blocks):
     writer.SetInputData(mb)
     writer.SetDataModeToBinary()
     return writer.Write() == 1
+
+
+def end_client_script(result, failures):
+    """The end of a paraview --script test: PASS or the failures into the file
+    `result`, then ParaView ended with the status (unless MP_KEEP_OPEN=1, to
+    look at the window)."""
+    with open(result, "w") as f:
+        f.write("PASS\n" if not failures else "FAIL\n" + "\n".join(failures) + "\n")
+    if os.environ.get("MP_KEEP_OPEN") != "1":
+        os._exit(0 if not failures else 1)
