@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Renumbering along space (Mesh/SpatialOrder.h): the Morton key interleaves
+// the coordinates' bits, the orders are permutations, the renumbered mesh
+// has the same cells, its numbering follows space whatever the input's, and
+// the projection between renumbered meshes is the same projection.
+#include "Mesh/SpatialOrder.h"
+#include "Search/CandidateLocator.h"
+#include "Transfer/MortarOperator.h"
+#include "GeneratedMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using mp::Index;
+using mptest::TestMesh;
+
+namespace
+{
+/// `m` with its cells and points in a random order.
+TestMesh Shuffled(const TestMesh& m, unsigned seed)
+{
+  const int corners = m.Dimension + 1;
+  std::vector<Index> cells(static_cast<size_t>(m.NumberOfCells()));
+  std::vector<Index> points(static_cast<size_t>(m.NumberOfPoints()));
+  std::iota(cells.begin(), cells.end(), Index(0));
+  std::iota(points.begin(), points.end(), Index(0));
+  std::mt19937 random(seed);
+  std::shuffle(cells.begin(), cells.end(), random);
+  std::shuffle(points.begin(), points.end(), random); // new -> old
+  std::vector<Index> newId(points.size());
+  TestMesh s;
+  s.Dimension = m.Dimension;
+  s.Points.resize(m.Points.size());
+  for (size_t p = 0; p < points.size(); ++p)
+  {
+    newId[points[p]] = static_cast<Index>(p);
+    std::copy_n(&m.Points[3 * points[p]], 3, &s.Points[3 * p]);
+  }
+  for (Index c : cells)
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      s.Cells.push_back(newId[m.Cells[corners * c + k]]);
+    }
+  }
+  s.Finish();
+  return s;
+}
+
+bool IsPermutation(std::vector<Index> v)
+{
+  std::sort(v.begin(), v.end());
+  for (size_t i = 0; i < v.size(); ++i)
+  {
+    if (v[i] != static_cast<Index>(i))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The renumbered copy of a mesh, as a TestMesh with neighbours.
+struct Renumbered
+{
+  mp::SpatialOrder Order;
+  TestMesh Mesh;
+  std::vector<Index> Parent;
+  explicit Renumbered(const TestMesh& m)
+  {
+    mp::OrderAlongCurve(m.View(false), this->Order);
+    this->Mesh.Dimension = m.Dimension;
+    this->Mesh.Points.resize(m.Points.size());
+    this->Mesh.Cells.resize(m.Cells.size());
+    this->Parent.resize(static_cast<size_t>(m.NumberOfCells()));
+    mp::RenumberMesh(m.View(false), this->Order, this->Mesh.Points.data(), this->Mesh.Cells.data(),
+      this->Parent.data());
+    this->Mesh.Finish();
+  }
+};
+
+double Smooth(double x, double y, double z)
+{
+  return std::sin(3 * x) * std::cos(2 * y) + z * x;
+}
+} // namespace
+
+TEST(SpatialOrder, MortonKeysInterleaveTheCoordinatesBits)
+{
+  const std::uint32_t x10[3] = { 1, 0, 0 };
+  const std::uint32_t x01[3] = { 0, 1, 0 };
+  const std::uint32_t x001[3] = { 0, 0, 1 };
+  const std::uint32_t x33[3] = { 3, 3, 0 };
+  const std::uint32_t x52[3] = { 5, 2, 0 };
+  EXPECT_EQ(mp::MortonIndex(x10, 2), 1u);
+  EXPECT_EQ(mp::MortonIndex(x01, 2), 2u);
+  EXPECT_EQ(mp::MortonIndex(x33, 2), 15u);
+  EXPECT_EQ(mp::MortonIndex(x52, 2), 0b011001u); // x = 101, y = 010 -> y2x2 y1x1 y0x0
+  EXPECT_EQ(mp::MortonIndex(x10, 3), 1u);
+  EXPECT_EQ(mp::MortonIndex(x01, 3), 2u);
+  EXPECT_EQ(mp::MortonIndex(x001, 3), 4u);
+  const std::uint32_t top2[2] = { 0xffffffffu, 0xffffffffu };
+  EXPECT_EQ(mp::MortonIndex(top2, 2), ~std::uint64_t(0));
+  const std::uint32_t top3[3] = { 0x1fffff, 0x1fffff, 0x1fffff };
+  EXPECT_EQ(mp::MortonIndex(top3, 3), (std::uint64_t(1) << 63) - 1);
+}
+
+TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
+{
+  for (int dimension : { 2, 3 })
+  {
+    const TestMesh grid = dimension == 2 ? mptest::GridMesh(60, 50, 0.25, 3)
+                                         : mptest::CubeMesh(12, 11, 10, 0.15, 3);
+    const TestMesh shuffled = Shuffled(grid, 11);
+    const double d = dimension;
+    const double tidy = 4.0 * std::pow(static_cast<double>(grid.NumberOfPoints()), -1.0 / d);
+    EXPECT_LT(mp::NumberingSpread(grid.View(false)), tidy) << dimension << "D grid";
+    EXPECT_GT(mp::NumberingSpread(shuffled.View(false)), 0.1) << dimension << "D shuffled";
+
+    const Renumbered r(shuffled);
+    ASSERT_TRUE(IsPermutation(r.Order.Cells));
+    ASSERT_TRUE(IsPermutation(r.Order.Points));
+    EXPECT_LT(mp::NumberingSpread(r.Mesh.View(false)), tidy) << dimension << "D renumbered";
+    const int corners = dimension + 1;
+    Index next = 0;
+    for (Index c = 0; c < r.Mesh.NumberOfCells(); ++c)
+    {
+      const Index old = r.Order.Cells[c];
+      EXPECT_EQ(r.Parent[c], old);
+      for (int k = 0; k < corners; ++k)
+      {
+        const Index p = r.Mesh.Cells[corners * c + k];
+        const Index q = shuffled.Cells[corners * old + k];
+        ASSERT_EQ(r.Order.Points[p], q);
+        ASSERT_EQ(r.Order.NewPoint[q], p);
+        for (int a = 0; a < 3; ++a)
+        {
+          ASSERT_EQ(r.Mesh.Points[3 * p + a], shuffled.Points[3 * q + a]);
+        }
+        // Points are numbered in the order the cells first use them.
+        ASSERT_LE(p, next);
+        next = std::max(next, p + 1);
+      }
+    }
+  }
+}
+
+TEST(SpatialOrder, UnusedAndNonFinitePointsComeLastAndDoNotSpoilTheOrder)
+{
+  TestMesh m = Shuffled(mptest::GridMesh(30, 30, 0.2, 5), 2);
+  const Index used = m.NumberOfPoints();
+  m.Points.insert(m.Points.begin(), { std::nan(""), 1e300, 0.0 }); // unused point 0
+  for (Index& id : m.Cells)
+  {
+    ++id;
+  }
+  m.Points.insert(m.Points.end(), { 0.5, 0.5, 0.0 }); // unused, last
+  const Renumbered r(m);
+  ASSERT_TRUE(IsPermutation(r.Order.Points));
+  EXPECT_EQ(r.Order.Points[used], 0);
+  EXPECT_EQ(r.Order.Points[used + 1], used + 1);
+  EXPECT_LT(mp::NumberingSpread(r.Mesh.View(false)),
+    4.0 * std::pow(static_cast<double>(used), -0.5));
+}
+
+TEST(SpatialOrder, TheProjectionBetweenRenumberedMeshesIsTheSame)
+{
+  for (int dimension : { 2, 3 })
+  {
+    const TestMesh target = Shuffled(dimension == 2 ? mptest::GridMesh(40, 40, 0.25, 1)
+                                                    : mptest::CubeMesh(8, 8, 8, 0.15, 1), 4);
+    const TestMesh source = Shuffled(dimension == 2 ? mptest::GridMesh(43, 37, 0.25, 2)
+                                                    : mptest::CubeMesh(9, 8, 7, 0.15, 2), 5);
+    const Renumbered t(target);
+    const Renumbered s(source);
+    auto project = [](const TestMesh& a, const TestMesh& b, const std::vector<double>& u) {
+      mp::BoxGridLocator locator(b.View());
+      mp::MortarOperator op;
+      EXPECT_TRUE(op.Build(a.View(), b.View(), &locator, mp::OperatorOptions()));
+      std::vector<double> v(static_cast<size_t>(a.NumberOfPoints()));
+      op.Apply(u.data(), 1, v.data(), std::nan(""));
+      return v;
+    };
+    const std::vector<double> u = mptest::Sample3D(source, Smooth);
+    std::vector<double> ur(u.size());
+    for (size_t p = 0; p < u.size(); ++p)
+    {
+      ur[p] = u[static_cast<size_t>(s.Order.Points[p])];
+    }
+    const std::vector<double> plain = project(target, source, u);
+    const std::vector<double> renumbered = project(t.Mesh, s.Mesh, ur);
+    double largest = 0;
+    for (size_t p = 0; p < plain.size(); ++p)
+    {
+      largest = std::max(largest,
+        std::fabs(plain[static_cast<size_t>(t.Order.Points[p])] - renumbered[p]));
+    }
+    EXPECT_LT(largest, 1e-12) << dimension << "D";
+  }
+}
