@@ -43,6 +43,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkStaticCellLocator.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkXMLUnstructuredGridReader.h"
+
+#include <array>
+#include <numeric>
+#include <random>
 
 #include <chrono>
 #if defined(__GLIBC__)
@@ -95,8 +100,176 @@ double InputMemory(const TestMesh& m)
   return (m.Points.size() * sizeof(double) + m.Cells.size() * sizeof(Index)) / 1048576.0;
 }
 
+/// --order: how the cells and points of both meshes are numbered.
+std::string Order = "asis";
+
+/**
+ * Renumbers `m`'s cells and points. "asis": unchanged (the generator's or
+ * the file's numbering); "shuffled": cells and points in a random order;
+ * "sorted": cells sorted into bands of about four cells' width along y,
+ * by x inside a band, and points in the order the cells first use them
+ * (the locality of a sweeping mesher).
+ */
+void MakeGeneratedPair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source);
+
+void Renumber(TestMesh& m, const std::string& order, unsigned seed)
+{
+  const int corners = m.Dimension + 1;
+  const Index cells = m.NumberOfCells();
+  const Index points = m.NumberOfPoints();
+  if (order == "asis" || cells == 0)
+  {
+    return;
+  }
+  std::vector<Index> cellOrder(static_cast<size_t>(cells)); // new -> old
+  std::iota(cellOrder.begin(), cellOrder.end(), Index(0));
+  std::vector<Index> pointOrder(static_cast<size_t>(points)); // new -> old
+  std::iota(pointOrder.begin(), pointOrder.end(), Index(0));
+  if (order == "shuffled")
+  {
+    std::mt19937_64 random(seed);
+    std::shuffle(cellOrder.begin(), cellOrder.end(), random);
+    std::shuffle(pointOrder.begin(), pointOrder.end(), random);
+  }
+  else
+  {
+    double lo[3] = { 1e300, 1e300, 1e300 };
+    double hi[3] = { -1e300, -1e300, -1e300 };
+    for (Index p = 0; p < points; ++p)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], m.Points[3 * p + a]);
+        hi[a] = std::max(hi[a], m.Points[3 * p + a]);
+      }
+    }
+    double volume = 1;
+    for (int a = 0; a < m.Dimension; ++a)
+    {
+      volume *= std::max(1e-300, hi[a] - lo[a]);
+    }
+    const double band = 4 * std::pow(volume / double(cells), 1.0 / m.Dimension);
+    std::vector<std::array<double, 3>> key(static_cast<size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      double x[3] = {};
+      for (int k = 0; k < corners; ++k)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          x[a] += m.Points[3 * m.Cells[corners * c + k] + a] / corners;
+        }
+      }
+      // 2D: bands along y, x inside; 3D: slabs along z, bands along y, x inside.
+      key[c] = m.Dimension == 2
+        ? std::array<double, 3>{ std::floor((x[1] - lo[1]) / band), x[0], 0.0 }
+        : std::array<double, 3>{ std::floor((x[2] - lo[2]) / band),
+            std::floor((x[1] - lo[1]) / band), x[0] };
+    }
+    std::sort(cellOrder.begin(), cellOrder.end(),
+      [&](Index a, Index b) { return key[a] < key[b]; });
+    std::vector<Index> seen(static_cast<size_t>(points), -1);
+    Index next = 0;
+    for (Index c : cellOrder)
+    {
+      for (int k = 0; k < corners; ++k)
+      {
+        Index& s = seen[m.Cells[corners * c + k]];
+        if (s < 0)
+        {
+          s = next;
+          pointOrder[next++] = m.Cells[corners * c + k];
+        }
+      }
+    }
+    for (Index p = 0; p < points; ++p)
+    {
+      if (seen[p] < 0)
+      {
+        pointOrder[next++] = p;
+      }
+    }
+  }
+  std::vector<Index> newId(static_cast<size_t>(points));
+  std::vector<double> x(m.Points.size());
+  for (Index p = 0; p < points; ++p)
+  {
+    newId[pointOrder[p]] = p;
+    std::copy_n(&m.Points[3 * pointOrder[p]], 3, &x[3 * p]);
+  }
+  std::vector<Index> ids(m.Cells.size());
+  for (Index c = 0; c < cells; ++c)
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      ids[corners * c + k] = newId[m.Cells[corners * cellOrder[c] + k]];
+    }
+  }
+  m.Points.swap(x);
+  m.Cells.swap(ids);
+  m.Neighbors.clear();
+}
+
+/// --target/--source: meshes read from files instead of generated.
+std::string TargetFile;
+std::string SourceFile;
+
+/// The tetrahedra of a .vtu file, or its triangles when it has no tetrahedra.
+bool ReadMesh(const std::string& name, TestMesh& m)
+{
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(name.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  const vtkIdType n = grid->GetNumberOfPoints();
+  m.Points.resize(static_cast<size_t>(3 * n));
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    grid->GetPoint(p, &m.Points[3 * p]);
+  }
+  for (int type : { VTK_TETRA, VTK_TRIANGLE })
+  {
+    m.Dimension = type == VTK_TETRA ? 3 : 2;
+    m.Cells.clear();
+    for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+    {
+      if (grid->GetCellType(c) == type)
+      {
+        vtkIdType count;
+        const vtkIdType* ids;
+        grid->GetCellPoints(c, count, ids);
+        m.Cells.insert(m.Cells.end(), ids, ids + count);
+      }
+    }
+    if (!m.Cells.empty())
+    {
+      return true;
+    }
+  }
+  std::fprintf(stderr, "no triangles or tetrahedra in %s\n", name.c_str());
+  return false;
+}
+
 /// A pair of non-matching meshes with about n target cells.
 void MakePair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source)
+{
+  if (!TargetFile.empty())
+  {
+    if (!ReadMesh(TargetFile, target) || !ReadMesh(SourceFile, source))
+    {
+      std::exit(1);
+    }
+  }
+  else
+  {
+    MakeGeneratedPair(dim, n, seed, target, source);
+  }
+  Renumber(target, Order, seed);
+  Renumber(source, Order, seed + 17);
+}
+
+/// A pair of non-matching jittered grids with about n target cells.
+void MakeGeneratedPair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source)
 {
   if (dim == 2)
   {
@@ -162,6 +335,8 @@ struct Row
   /// and 2 threads: input, neighbours, locator, search, assembly, solve, output.
   double FilterStages[2][7] = {};
   double CheckTime[2] = {}; ///< of the filter's input stage: the id and offset checks
+  double RenumberTime[2] = {}; ///< of the filter's input stage: renumbering along space
+  int Renumbered = 0;          ///< meshes the filter renumbered
 };
 
 /// Pairs found by asking vtkStaticCellLocator for the candidates of every
@@ -284,6 +459,8 @@ double Field(const double* x)
 
 /// --threads: the threads of the filter in --filter-only runs.
 int FilterThreads = 1;
+/// --renumber auto|always|never: the filter's Renumbering.
+int Renumbering = vtkMeshProjectionFilter::AUTOMATIC_RENUMBERING;
 
 Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 {
@@ -292,6 +469,7 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   TestMesh target;
   TestMesh source;
   MakePair(dim, n, 7, target, source);
+  dim = r.Dim = target.Dimension; // a file's mesh says its dimension
   r.TargetCells = target.NumberOfCells();
   r.SourceCells = source.NumberOfCells();
   r.InputSize = InputMemory(target) + InputMemory(source);
@@ -303,14 +481,11 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 
   if (filterOnly)
   {
-    if (FilterThreads > 1)
-    {
-      vtkSMPTools::SetBackend("STDThread");
-      vtkSMPTools::Initialize(FilterThreads);
-    }
     auto sourceGrid = ToVTK(source, &u);
     auto targetGrid = ToVTK(target, nullptr);
     vtkNew<vtkMeshProjectionFilter> filter;
+    filter->SetNumberOfThreads(FilterThreads);
+    filter->SetRenumbering(Renumbering);
     filter->SetInputData(targetGrid);
     filter->SetSourceData(sourceGrid);
     const auto t0 = Clock::now();
@@ -321,6 +496,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
       filter->GetSolveTime(), filter->GetOutputTime() };
     std::copy(stages, stages + 7, r.FilterStages[0]);
     r.CheckTime[0] = filter->GetCheckTime();
+    r.RenumberTime[0] = filter->GetRenumberTime();
+    r.Renumbered = filter->GetNumberOfRenumberedMeshes();
     r.Pairs = filter->GetNumberOfIntersections();
     r.Tests = filter->GetNumberOfIntersectionTests();
     r.Queries = filter->GetNumberOfLocatorQueries();
@@ -400,12 +577,12 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   // for fresh memory pages or a busy neighbour that the others do not.
   for (int threads : { 1, 2 })
   {
-    vtkSMPTools::SetBackend("STDThread");
-    vtkSMPTools::Initialize(threads);
     double& best = threads == 1 ? r.Filter1 : r.Filter2;
     for (int run = 0; run < 3; ++run)
     {
       vtkNew<vtkMeshProjectionFilter> filter;
+      filter->SetNumberOfThreads(threads);
+      filter->SetRenumbering(Renumbering);
       filter->SetInputData(targetGrid);
       filter->SetSourceData(sourceGrid);
       t0 = Clock::now();
@@ -417,6 +594,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
         double* stages = r.FilterStages[threads - 1];
         stages[0] = filter->GetInputTime();
         r.CheckTime[threads - 1] = filter->GetCheckTime();
+        r.RenumberTime[threads - 1] = filter->GetRenumberTime();
+        r.Renumbered = filter->GetNumberOfRenumberedMeshes();
         stages[1] = filter->GetNeighborsTime();
         stages[2] = filter->GetLocatorTime();
         stages[3] = filter->GetSearchTime();
@@ -426,7 +605,6 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
       }
     }
   }
-  vtkSMPTools::Initialize(1);
   vtkNew<vtkResampleWithDataSet> resample;
   resample->SetInputData(targetGrid);
   resample->SetSourceData(sourceGrid);
@@ -467,6 +645,8 @@ void PrintFilter(const Row& r)
     if (k == 0)
     {
       std::printf("      %-30s %10.4f\n", "of which id/offset checks", r.CheckTime[0]);
+      std::printf("      %-30s %10.4f  (%d of 2 meshes)\n", "of which renumbering", r.RenumberTime[0],
+        r.Renumbered);
     }
   }
 }
@@ -511,6 +691,8 @@ void Print(const Row& r)
     {
       std::printf("      %-30s %10.4f %10.4f\n", "of which id/offset checks", r.CheckTime[0],
         r.CheckTime[1]);
+      std::printf("      %-30s %10.4f %10.4f  (%d of 2 meshes)\n", "of which renumbering",
+        r.RenumberTime[0], r.RenumberTime[1], r.Renumbered);
     }
   }
   std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
@@ -540,6 +722,19 @@ int main(int argc, char* argv[])
       bruteMax = std::atof(argv[++i]);
     else if (a == "--csv" && i + 1 < argc)
       csv = argv[++i];
+    else if (a == "--renumber" && i + 1 < argc)
+    {
+      const std::string m = argv[++i];
+      Renumbering = m == "always" ? vtkMeshProjectionFilter::ALWAYS_RENUMBER
+        : m == "never"            ? vtkMeshProjectionFilter::NEVER_RENUMBER
+                                  : vtkMeshProjectionFilter::AUTOMATIC_RENUMBERING;
+    }
+    else if (a == "--order" && i + 1 < argc)
+      Order = argv[++i];
+    else if (a == "--target" && i + 1 < argc)
+      TargetFile = argv[++i];
+    else if (a == "--source" && i + 1 < argc)
+      SourceFile = argv[++i];
     else
     {
       std::fprintf(stderr,

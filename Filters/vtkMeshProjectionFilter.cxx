@@ -33,7 +33,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -226,6 +228,10 @@ struct vtkMeshProjectionFilter::Leaf
   bool HasFingerprint = false;
   std::uint64_t GeometryFingerprint = 0;
   Kept Operators[4];
+  /// Kernel point -> dataset point of the kept operators' target and
+  /// source, when renumbered (GetMatrix numbers rows and columns as the
+  /// datasets' points).
+  std::vector<mp::Index> TargetPoints, SourcePoints;
   /// Operators with Source cells left out (arrays with non-finite values),
   /// by transfer and fingerprint of the cells left out.
   std::map<std::pair<int, std::uint64_t>, std::unique_ptr<mp::MortarOperator>> Holes;
@@ -257,17 +263,22 @@ struct vtkMeshProjectionFilter::Internals
   bool AssembleNext = false;    ///< GetMatrix asked for M_ts
   /// By flat index of Input's leaf (0 for a dataset).
   std::map<unsigned int, Leaf> Leaves;
-  /// The kept operator of a transfer in the first leaf that has one.
-  const mp::MortarOperator* FirstOperator(int transfer) const
+  /// The first leaf that keeps an operator of a transfer, and that operator.
+  const Leaf* FirstLeaf(int transfer) const
   {
     for (const auto& leaf : this->Leaves)
     {
       if (leaf.second.Operators[transfer].Operator)
       {
-        return leaf.second.Operators[transfer].Operator.get();
+        return &leaf.second;
       }
     }
     return nullptr;
+  }
+  const mp::MortarOperator* FirstOperator(int transfer) const
+  {
+    const Leaf* leaf = this->FirstLeaf(transfer);
+    return leaf ? leaf->Operators[transfer].Operator.get() : nullptr;
   }
 };
 
@@ -277,6 +288,15 @@ vtkMeshProjectionFilter::vtkMeshProjectionFilter()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
+  // The test suite runs once more with every mesh renumbered (and once
+  // with none): MESHPROJECTION_RENUMBERING=always|never sets the default.
+  if (const char* forced = std::getenv("MESHPROJECTION_RENUMBERING"))
+  {
+    const std::string mode = forced;
+    this->Renumbering = mode == "always" ? ALWAYS_RENUMBER
+      : mode == "never"                  ? NEVER_RENUMBER
+                                         : AUTOMATIC_RENUMBERING;
+  }
   // All arrays, including those that appear later (new time steps, new
   // inputs), unless disabled by name.
   this->Internal->PointArrays->SetUnknownArraySetting(1);
@@ -699,6 +719,25 @@ vtkSmartPointer<vtkDataSet> SourceAsOne(vtkDataObject* data, std::string& note, 
 int vtkMeshProjectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Every core by default: VTK's sequential backend (Debian's default)
+  // gives way to STDThread inside this scope; another backend chosen by the
+  // application (TBB, OpenMP) is kept, with the filter's number of threads.
+  vtkSMPTools::Config config;
+  config.MaxNumberOfThreads = this->NumberOfThreads > 0
+    ? this->NumberOfThreads
+    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (config.Backend == "Sequential" && config.MaxNumberOfThreads > 1)
+  {
+    config.Backend = "STDThread";
+  }
+  int result = 0;
+  vtkSMPTools::LocalScope(config, [&]() { result = this->Execute(inputVector, outputVector); });
+  return result;
+}
+
+int vtkMeshProjectionFilter::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   const auto start = std::chrono::steady_clock::now();
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* sourceObject = vtkDataObject::GetData(inputVector[1], 0);
@@ -709,6 +748,8 @@ int vtkMeshProjectionFilter::RequestData(
   this->NumberOfLocatorQueries = 0;
   this->CoveredMeasure = this->ExecutionTime = 0;
   this->InputTime = this->CheckTime = this->NeighborsTime = this->LocatorTime = this->SearchTime = 0;
+  this->RenumberTime = 0;
+  this->NumberOfRenumberedMeshes = 0;
   this->AssemblyTime = this->SolveTime = this->OutputTime = 0;
   this->OperatorReused = false;
   this->NumberOfOperatorsBuilt = 0;
@@ -791,8 +832,10 @@ int vtkMeshProjectionFilter::RequestData(
   run.Source = source;
   run.CompositeSource = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   {
+    run.SourceMesh.SetOrdering(this->Renumbering);
     const std::string why = run.SourceMesh.Wrap(source, "Source");
     this->CheckTime += run.SourceMesh.CheckSeconds();
+    this->RenumberTime += run.SourceMesh.OrderSeconds();
     if (!why.empty())
     {
       vtkErrorMacro(<< why);
@@ -890,6 +933,9 @@ int vtkMeshProjectionFilter::RequestData(
     {
       measure = mp::ParentMeasures(run.SourceMesh.View());
     }
+    // P1 functions are the kernel's points (renumbered, maybe), P0 ones the dataset's cells.
+    const mpvtk::SimplexMesh& mesh = run.SourceMesh;
+    const bool points = association == 0;
     for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)
     {
       vtkDataArray* array = g.Arrays[a];
@@ -900,9 +946,10 @@ int vtkMeshProjectionFilter::RequestData(
         {
           // Extensive values become densities (total / measure).
           const double scale = measure.empty() ? 1.0 : (measure[f] > 0 ? 1.0 / measure[f] : 0.0);
+          const vtkIdType from = points ? mesh.DataSetPoint(f) : f;
           for (int k = 0; k < nc; ++k)
           {
-            g.Values[f * width + offset + k] = scale * array->GetComponent(f, k);
+            g.Values[f * width + offset + k] = scale * array->GetComponent(from, k);
           }
         }
       });
@@ -1249,8 +1296,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // 1. The target: triangles in Source's plane (2D) or tetrahedra (3D).
   mpvtk::SimplexMesh targetMesh;
   {
+    targetMesh.SetOrdering(this->Renumbering);
     const std::string why = targetMesh.Wrap(target, role.c_str());
     this->CheckTime += targetMesh.CheckSeconds();
+    this->RenumberTime += targetMesh.OrderSeconds();
+    this->NumberOfRenumberedMeshes = targetMesh.Ordered() + sourceMesh.Ordered();
     if (!why.empty())
     {
       return why;
@@ -1631,6 +1681,18 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       kept.Operators[t] = Kept();
     }
   }
+  if (fresh[0] || fresh[1] || fresh[2] || fresh[3])
+  {
+    auto keep = [](const mpvtk::SimplexMesh& mesh, std::vector<mp::Index>& order) {
+      order.clear();
+      if (mesh.Ordered())
+      {
+        order.assign(mesh.PointOrderData(), mesh.PointOrderData() + mesh.View().NumberOfPoints);
+      }
+    };
+    keep(targetMesh, kept.TargetPoints);
+    keep(sourceMesh, kept.SourcePoints);
+  }
   if (!progress(0.95))
   {
     return "stopped";
@@ -1646,6 +1708,22 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   std::vector<std::string> pointNames, cellNames; // written by the main transfers
   // Per array written: where it is valid (its operator's valid functions).
   std::vector<std::pair<std::string, const std::vector<char>*>> pointValid, cellValid;
+  // P1 functions are the kernel's points: in the dataset's numbering when
+  // the target was renumbered.
+  std::deque<std::vector<char>> validCopies;
+  auto toDataSet = [&](const std::vector<char>& valid) -> const std::vector<char>* {
+    if (!targetMesh.Ordered())
+    {
+      return &valid;
+    }
+    validCopies.emplace_back(valid.size());
+    std::vector<char>& copy = validCopies.back();
+    for (size_t f = 0; f < valid.size(); ++f)
+    {
+      copy[static_cast<size_t>(targetMesh.DataSetPoint(static_cast<mp::Index>(f)))] = valid[f];
+    }
+    return &copy;
+  };
   for (int t : { 0, 2, 1, 3 })
   {
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
@@ -1673,7 +1751,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       }
       written.push_back(arrayName);
       const mp::MortarOperator& op = *byArray[t][a];
-      (toPoints ? pointValid : cellValid).emplace_back(arrayName, &op.GetValid());
+      (toPoints ? pointValid : cellValid)
+        .emplace_back(arrayName, toPoints ? toDataSet(op.GetValid()) : &op.GetValid());
       const std::vector<double>& covered = op.GetCoveredIntegrals();
       vtkNew<vtkDoubleArray> projected;
       projected->SetName(arrayName.c_str());
@@ -1693,9 +1772,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       for (vtkIdType f = 0; f < n; ++f)
       {
         const double scale = totals && op.GetValid()[f] ? covered[f] : 1.0;
+        const vtkIdType to = toPoints ? targetMesh.DataSetPoint(f) : f;
         for (int k = 0; k < nc; ++k)
         {
-          out[f * nc + k] = scale * values[f * width + offset + k];
+          out[to * nc + k] = scale * values[f * width + offset + k];
         }
       }
       offset += nc;
@@ -1719,7 +1799,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   const mp::MortarOperator* onPoints = operators[0] ? operators[0] : operators[3];
   if (onPoints)
   {
-    std::copy(onPoints->GetValid().begin(), onPoints->GetValid().end(), mask->GetPointer(0));
+    const std::vector<char>& valid = *toDataSet(onPoints->GetValid());
+    std::copy(valid.begin(), valid.end(), mask->GetPointer(0));
   }
   else
   {
@@ -1733,7 +1814,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         const mp::Index* p = view.Cell(c);
         for (int k = 0; k < view.CornersPerCell(); ++k)
         {
-          mask->SetValue(p[k], 1);
+          mask->SetValue(targetMesh.DataSetPoint(p[k]), 1);
         }
       }
     }
@@ -1788,23 +1869,53 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                   << " is kept: run the filter with CacheOperator on and that transfer in use.");
     return -1;
   }
-  // P0 rows and columns are numbered as the datasets' cells, P1 ones as their points.
+  // P0 rows and columns are numbered as the datasets' cells, P1 ones as
+  // their points (the kernel's points of a renumbered mesh mapped back).
+  const Leaf& leaf = *this->Internal->FirstLeaf(transfer);
   const mp::CsrMatrix& m = matrix == MIXED_MASS ? op->GetMixedMass() : op->GetTargetMass();
+  const bool mixed = matrix == MIXED_MASS;
+  const std::vector<mp::Index>* rowOrder =
+    TargetSpaceOf(transfer) == mp::SpaceType::P1 && !leaf.TargetPoints.empty() ? &leaf.TargetPoints
+                                                                            : nullptr;
+  const mp::SpaceType columnSpace = mixed ? SourceSpaceOf(transfer) : TargetSpaceOf(transfer);
+  const std::vector<mp::Index>& columnPoints = mixed ? leaf.SourcePoints : leaf.TargetPoints;
+  const std::vector<mp::Index>* columnOrder =
+    columnSpace == mp::SpaceType::P1 && !columnPoints.empty() ? &columnPoints : nullptr;
   rowStart->SetNumberOfComponents(1);
   rowStart->SetNumberOfTuples(m.Rows + 1);
   columns->SetNumberOfComponents(1);
   columns->SetNumberOfTuples(m.NonZeros());
   values->SetNumberOfComponents(1);
   values->SetNumberOfTuples(m.NonZeros());
-  for (mp::Index i = 0; i <= m.Rows; ++i)
+  // Kernel row of each output row.
+  std::vector<mp::Index> kernelRow(static_cast<size_t>(m.Rows));
+  for (mp::Index i = 0; i < m.Rows; ++i)
   {
-    rowStart->SetValue(i, m.RowStart[i]);
+    kernelRow[static_cast<size_t>(rowOrder ? (*rowOrder)[i] : i)] = i;
   }
-  for (mp::Index p = 0; p < m.NonZeros(); ++p)
+  vtkIdType next = 0;
+  std::vector<std::pair<mp::Index, double>> row;
+  for (mp::Index r = 0; r < m.Rows; ++r)
   {
-    columns->SetValue(p, m.ColumnIndex[p]);
-    values->SetValue(p, m.Values[p]);
+    rowStart->SetValue(r, next);
+    const mp::Index i = kernelRow[r];
+    row.clear();
+    for (mp::Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
+    {
+      const mp::Index j = m.ColumnIndex[p];
+      row.emplace_back(columnOrder ? (*columnOrder)[j] : j, m.Values[p]);
+    }
+    if (columnOrder)
+    {
+      std::sort(row.begin(), row.end());
+    }
+    for (const auto& entry : row)
+    {
+      columns->SetValue(next, entry.first);
+      values->SetValue(next++, entry.second);
+    }
   }
+  rowStart->SetValue(m.Rows, next);
   return m.Columns;
 }
 

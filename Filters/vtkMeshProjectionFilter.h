@@ -314,6 +314,42 @@ public:
 
   ///@{
   /**
+   * Threads for the filter's parallel loops (the search, the intersections
+   * and local integrals, the assembly, the solve, the neighbours): 0
+   * (default) uses every core. The filter runs them in a local vtkSMPTools
+   * scope, on the STDThread backend when VTK's own is the sequential one
+   * (Debian's default), so ParaView, pvpython and VTK programs get every core
+   * without setting VTK_SMP_BACKEND_IN_USE. 1: the calling thread only.
+   * Results depend on the number of threads only through summation order.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  enum
+  {
+    AUTOMATIC_RENUMBERING = 0,
+    ALWAYS_RENUMBER = 1,
+    NEVER_RENUMBER = 2
+  };
+  ///@{
+  /**
+   * How the meshes are numbered inside the filter. AUTOMATIC_RENUMBERING
+   * (default): a mesh whose numbering does not follow space (shuffled
+   * cells or points, a partitioner's order, a Delaunay mesher's points in
+   * insertion order) is renumbered along a space-filling (Morton) curve, in a copy, so that
+   * the time does not depend on how the input is numbered; a mesh numbered
+   * with locality (a sweep, a mesh generator's renumbering) is used as it
+   * is. ALWAYS_RENUMBER and NEVER_RENUMBER force either. The outputs are in
+   * the datasets' own numbering in every case, and equal up to summation
+   * order.
+   */
+  vtkSetClampMacro(Renumbering, int, AUTOMATIC_RENUMBERING, NEVER_RENUMBER);
+  vtkGetMacro(Renumbering, int);
+  ///@}
+
+  ///@{
+  /**
    * Keeps the operators between executions and reuses them while neither
    * mesh changes (time series on fixed meshes). Default: true. Off, each
    * execution builds what it needs (M_ts only for PreserveBounds) and keeps
@@ -383,6 +419,12 @@ public:
   /// Of InputTime: checking both meshes' ids, offsets, types and face
   /// streams before any cell is read (CheckDataSet).
   vtkGetMacro(CheckTime, double);
+  /// Of InputTime: renumbering the meshes along space (see Renumbering;
+  /// 0 when neither was renumbered).
+  vtkGetMacro(RenumberTime, double);
+  /// How many of the two meshes (of the last leaf of a composite Input:
+  /// Source and that leaf) the last execution renumbered.
+  vtkGetMacro(NumberOfRenumberedMeshes, int);
   vtkGetMacro(NeighborsTime, double);
   vtkGetMacro(LocatorTime, double);
   vtkGetMacro(SearchTime, double);
@@ -401,6 +443,8 @@ protected:
   int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData inside the filter's own vtkSMPTools scope (NumberOfThreads).
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   int SearchMethod = ADVANCING_FRONT;
   bool OutputIntersections = false;
@@ -412,6 +456,8 @@ protected:
   int MassMatrix = CONSISTENT_MASS;
   bool PreserveBounds = false;
   bool CacheOperator = true;
+  int NumberOfThreads = 0;
+  int Renumbering = AUTOMATIC_RENUMBERING;
   bool OperatorReused = false;
   int NumberOfOperatorsBuilt = 0;
 
@@ -422,6 +468,8 @@ protected:
   double ExecutionTime = 0;
   double InputTime = 0;
   double CheckTime = 0;
+  double RenumberTime = 0;
+  int NumberOfRenumberedMeshes = 0;
   double NeighborsTime = 0;
   double LocatorTime = 0;
   double SearchTime = 0;

@@ -3,6 +3,7 @@
 
 #include "Geometry/CellSplit.h"
 #include "Mesh/CellNeighbors.h"
+#include "Mesh/SpatialOrder.h"
 
 #include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
@@ -448,29 +449,84 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
   if (grid && others == 0)
   {
     // Triangles only, or tetrahedra only: the grid as it is.
-    const std::string error = this->WrapSimplices(grid, role);
-    if (error.empty() && this->Ghosts > 0)
-    {
-      // P0 functions numbered as the grid's cells: ghost cells get none of the mesh.
-      this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
-      static const mp::Index noParent = 0;
-      this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
-      this->Kernel.NumberOfParents = numberOfCells;
-    }
-    return error;
+    return this->WrapSimplices(grid, role);
   }
   const std::string error = this->Split(data, role);
   if (!error.empty())
   {
     return error;
   }
-  std::string wrapped = this->WrapSimplices(this->SplitGrid, role);
-  // Never null, so that the P0 space has one function per cell of the
-  // dataset even when no cell gave a simplex (all ghosts, all flat).
-  static const mp::Index noParent = 0;
-  this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
-  this->Kernel.NumberOfParents = numberOfCells;
-  return wrapped;
+  return this->WrapSimplices(this->SplitGrid, role, numberOfCells);
+}
+
+void SimplexMesh::OrderInSpace()
+{
+  const mp::Index n = this->Kernel.NumberOfCells;
+  const mp::Index np = this->Kernel.NumberOfPoints;
+  if (this->OrderingMode == NEVER || n == 0 ||
+    (this->OrderingMode == AUTOMATIC &&
+      (n < MinimumOrderedCells ||
+        mp::NumberingSpread(this->Kernel) <=
+          4.0 * std::pow(static_cast<double>(np), -1.0 / this->Dimension()))))
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  mp::TaskRunner runner;
+  runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
+  runner.Run = [](int count, const std::function<void(int)>& task) {
+    vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        task(static_cast<int>(k));
+      }
+    });
+  };
+  mp::SpatialOrder order;
+  mp::OrderAlongCurve(this->Kernel, order, runner);
+  const int corners = this->Kernel.CornersPerCell();
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(np);
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(corners * n);
+  std::vector<mp::Index> parent(static_cast<size_t>(n));
+  mp::RenumberMesh(this->Kernel, order, coordinates->GetPointer(0), connectivity->GetPointer(0),
+    parent.data(), runner);
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(n + 1);
+  vtkIdType* o = offsets->GetPointer(0);
+  vtkSMPTools::For(0, n + 1, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      o[c] = corners * c;
+    }
+  });
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  this->OrderedGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  this->OrderedGrid->SetPoints(points);
+  this->OrderedGrid->SetCells(corners == 4 ? VTK_TETRA : VTK_TRIANGLE, cells);
+  // The kernel sees the copy; P0 functions and the pieces' ids still name
+  // the dataset's cells (through Parent), P1 ones name kernel points
+  // (DataSetPoint maps them back).
+  this->SimplexGrid = this->OrderedGrid;
+  if (!this->Kernel.Parent)
+  {
+    this->Kernel.NumberOfParents = n;
+  }
+  this->ParentIds.swap(parent);
+  this->Kernel.Parent = this->ParentIds.data();
+  this->Kernel.Connectivity = connectivity->GetPointer(0);
+  this->Kernel.Points = coordinates->GetPointer(0);
+  this->OriginalPoints = this->Kernel.Points;
+  this->PointOrder.swap(order.Points);
+  this->KernelToVTK.clear();
+  this->VTKToKernel.clear();
+  this->OrderTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
@@ -644,7 +700,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   return std::string();
 }
 
-std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* role)
+std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents)
 {
   std::ostringstream why;
   this->SimplexGrid = grid;
@@ -700,8 +756,23 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     this->Kernel.NumberOfCells = numberOfCells;
   }
   this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
+  // P0 functions are numbered as the dataset's cells: the split's cells
+  // name theirs (Split), a grid's simplices are its cells but ghost cells
+  // get none. Never null then, so that the P0 space has one function per
+  // cell of the dataset even when no cell gave a simplex (all ghosts, all flat).
+  static const mp::Index noParent = 0;
   this->Kernel.Parent = nullptr;
   this->Kernel.NumberOfParents = 0;
+  if (parents < 0 && this->Ghosts > 0)
+  {
+    this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
+    parents = numberOfCells;
+  }
+  if (parents >= 0)
+  {
+    this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
+    this->Kernel.NumberOfParents = parents;
+  }
 
   // Points: VTK's own array when it holds doubles.
   vtkPoints* points = grid->GetPoints();
@@ -720,6 +791,8 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     this->Kernel.Points = this->PointCopy.data();
   }
   this->OriginalPoints = this->Kernel.Points;
+  // Everything below and after reads the mesh along space when it is renumbered.
+  this->OrderInSpace();
 
   // The points the cells use: finite, and for triangles in one plane.
   double lo[3];
@@ -735,7 +808,8 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     const double* x = this->Kernel.Point(ids[i]);
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
-      why << role << " has a point with a NaN or infinite coordinate (point " << ids[i] << ").";
+      why << role << " has a point with a NaN or infinite coordinate (point "
+          << this->DataSetPoint(ids[i]) << ").";
       return why.str();
     }
     for (int d = 0; d < 3; ++d)
@@ -743,7 +817,8 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       const double a = std::fabs(x[d]);
       if (a != 0.0 && (a < 1e-100 || a > 1e100))
       {
-        why << role << " has a coordinate of magnitude " << a << " (point " << ids[i]
+        why << role << " has a coordinate of magnitude " << a << " (point "
+            << this->DataSetPoint(ids[i])
             << "): coordinates must be 0 or between 1e-100 and 1e100 in magnitude, where "
             << "the exact geometric predicates can neither underflow nor overflow. Rescale "
             << "the mesh.";
@@ -787,7 +862,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       clean->SetPoint(p, wild(p) ? anchor : this->OriginalPoints + 3 * p);
     }
     this->CleanGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-    this->CleanGrid->ShallowCopy(grid);
+    this->CleanGrid->ShallowCopy(this->SimplexGrid);
     this->CleanGrid->SetPoints(clean);
   }
   double deviation = 0.0;

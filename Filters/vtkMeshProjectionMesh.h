@@ -76,6 +76,28 @@ public:
    * be used (`role` names it: "Input", "Source").
    */
   std::string Wrap(vtkDataSet* data, const char* role);
+  /**
+   * Whether Wrap() renumbers the kernel's simplices and points along space
+   * (SpatialOrder.h), in a copy: AUTOMATIC when the dataset's numbering is
+   * far from following space (mp::NumberingSpread above 4 n^(-1/d), n points, for
+   * at least MinimumOrderedCells simplices), ALWAYS or NEVER.
+   */
+  enum Ordering
+  {
+    AUTOMATIC = 0,
+    ALWAYS = 1,
+    NEVER = 2
+  };
+  void SetOrdering(int ordering) { this->OrderingMode = ordering; }
+  static constexpr vtkIdType MinimumOrderedCells = 4096;
+  /// Whether the kernel's numbering is a renumbered copy (see SetOrdering).
+  bool Ordered() const { return !this->PointOrder.empty(); }
+  /// The dataset's point of kernel point p.
+  vtkIdType DataSetPoint(mp::Index p) const { return this->PointOrder.empty() ? p : this->PointOrder[p]; }
+  /// Kernel point -> dataset point, or null when they are the same.
+  const mp::Index* PointOrderData() const { return this->PointOrder.empty() ? nullptr : this->PointOrder.data(); }
+  /// Seconds Wrap() spent renumbering (0 when it did not).
+  double OrderSeconds() const { return this->OrderTime; }
   /// The simplices the kernel sees: the dataset itself, or its split.
   vtkUnstructuredGrid* Grid() const { return this->SimplexGrid; }
   /// Grid() for VTK's locators: its points that no cell uses and that are
@@ -119,8 +141,10 @@ public:
   mp::Index ToKernel(vtkIdType c) const { return this->VTKToKernel.empty() ? c : this->VTKToKernel[c]; }
 
 private:
-  std::string WrapSimplices(vtkUnstructuredGrid* grid, const char* role);
+  /// `parents`: the dataset's cells when `grid` is its split (ParentIds set), else -1.
+  std::string WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents = -1);
   std::string Split(vtkDataSet* data, const char* role);
+  void OrderInSpace();
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
   vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
@@ -131,6 +155,10 @@ private:
   vtkIdType Flat = 0;
   vtkIdType SplitCount = 0;
   double CheckTime = 0;
+  double OrderTime = 0;
+  int OrderingMode = AUTOMATIC;
+  std::vector<mp::Index> PointOrder;                ///< kernel point -> dataset point (empty: same)
+  vtkSmartPointer<vtkUnstructuredGrid> OrderedGrid; ///< the renumbered simplices, when Ordered()
   mp::MeshView Kernel;
   std::vector<double> PointCopy;
   std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant

@@ -34,13 +34,16 @@ check(projection.FillWithNaN == 1 and projection.FillValue == 0, "fill defaults"
 check(set(projection.ListProperties()) == {
     "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
-    "MassMatrix", "PreserveBounds", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo"},
+    "MassMatrix", "PreserveBounds", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
+    "NumberOfThreads", "Renumbering"},
       "properties %r" % projection.ListProperties())
 check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "Cells",
       "transfer defaults %r %r" % (projection.PointDataTarget, projection.CellDataTarget))
 check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "Consistent",
       "quantity and mass defaults")
 check(projection.PreserveBounds == 0 and projection.CacheOperator == 1, "bounds and cache defaults")
+check(projection.NumberOfThreads == 0 and projection.Renumbering == "Automatic",
+      "threads and renumbering defaults %r %r" % (projection.NumberOfThreads, projection.Renumbering))
 # The Source was read before the filter was made (as in the GUI): its arrays
 # are listed, all selected.
 check(list(projection.PointDataArrays) == ["Smooth", "Linear", "Velocity"],

@@ -1,0 +1,250 @@
+"""Numbering-independent results (VTK Python: /usr/bin/python3 with the
+build's python directory on PYTHONPATH).
+
+The filter renumbers meshes whose numbering does not follow space
+(Renumbering: Automatic, Always, Never). Whatever it does inside, what a
+user sees must be the same:
+
+    a. shuffled meshes (cells and points in random order) give, mapped back
+       through the shuffle, the result of the meshes as generated: every
+       point and cell array, the masks, CoveredFraction, the intersection
+       pieces (with their cell ids) and the exported matrices, for each of
+       Never, Always and Automatic;
+    b. Automatic renumbers the shuffled meshes (NumberOfRenumberedMeshes) and
+       leaves the generated ones (numbered along a sweep) alone;
+    c. the same with cell data (intensive and extensive), a NaN hole in one
+       array, and 3D; with split cells (Gmsh quads and triangles), whose
+       split follows the file's point ids, the three modes on one shuffled
+       file;
+    d. NumberOfThreads: 1 and 2 threads give the same result, and the
+       application's SMP backend is left as it was.
+"""
+import math
+
+import numpy as np
+from scipy.sparse import csr_matrix
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIdTypeArray, vtkPoints, vtkSMPTools
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkUnstructuredGrid
+from vtkmodules.vtkFiltersCore import vtkAppendFilter
+from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter, vtkTransformFilter
+from vtkmodules.vtkCommonTransforms import vtkTransform
+
+from meshprojection import vtkMeshProjectionFilter
+from mptesting import check, finish, read
+
+NEVER, ALWAYS, AUTOMATIC = (vtkMeshProjectionFilter.NEVER_RENUMBER,
+                            vtkMeshProjectionFilter.ALWAYS_RENUMBER,
+                            vtkMeshProjectionFilter.AUTOMATIC_RENUMBERING)
+MODES = {"Never": NEVER, "Always": ALWAYS, "Automatic": AUTOMATIC}
+
+
+def simplices(dims, angle, dim):
+    """A triangle (dim 2) or tetrahedron grid of the unit square or cube,
+    turned by `angle` degrees about z, numbered along a sweep."""
+    image = vtkImageData()
+    image.SetDimensions(dims[0], dims[1], dims[2] if dim == 3 else 1)
+    image.SetSpacing(1.0 / (dims[0] - 1), 1.0 / (dims[1] - 1),
+                     1.0 / (dims[2] - 1) if dim == 3 else 1.0)
+    split = vtkDataSetTriangleFilter()
+    split.SetInputData(image)
+    turn = vtkTransform()
+    turn.Translate(0.5, 0.5, 0)
+    turn.RotateZ(angle)
+    turn.Translate(-0.5, -0.5, 0)
+    moved = vtkTransformFilter()
+    moved.SetTransform(turn)
+    moved.SetInputConnection(split.GetOutputPort())
+    append = vtkAppendFilter()  # an unstructured grid with double points
+    append.SetOutputPointsPrecision(1)
+    append.SetInputConnection(moved.GetOutputPort())
+    append.Update()
+    return append.GetOutput()
+
+
+def with_fields(grid, nan=False):
+    """Point arrays Linear (1 + 2x - 3y + 0.5z), Smooth, Hole (Smooth with a
+    NaN when asked) and cell arrays Mean and Mass."""
+    x = vtk_to_numpy(grid.GetPoints().GetData())
+    out = vtkUnstructuredGrid()
+    out.DeepCopy(grid)
+    smooth = np.sin(3 * x[:, 0]) * np.cos(2 * x[:, 1]) + x[:, 2]
+    hole = smooth.copy()
+    if nan:
+        hole[len(hole) // 3] = np.nan
+    for name, values in (("Linear", 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]),
+                         ("Smooth", smooth), ("Hole", hole)):
+        a = numpy_to_vtk(values, deep=1)
+        a.SetName(name)
+        out.GetPointData().AddArray(a)
+    n = grid.GetNumberOfCells()
+    for name, values in (("Mean", np.cos(np.arange(n) * 0.37)), ("Mass", 1 + np.arange(n) % 7)):
+        a = numpy_to_vtk(values.astype(float), deep=1)
+        a.SetName(name)
+        out.GetCellData().AddArray(a)
+    return out
+
+
+def shuffled(grid, seed):
+    """`grid` with cells and points in random order, and the permutations
+    (new -> old) of its cells and points. Arrays follow their points and cells."""
+    rng = np.random.default_rng(seed)
+    n, np_ = grid.GetNumberOfCells(), grid.GetNumberOfPoints()
+    cells = rng.permutation(n)
+    points = rng.permutation(np_)
+    new_id = np.empty(np_, dtype=np.int64)
+    new_id[points] = np.arange(np_)
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray()).astype(np.int64)
+    conn = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).astype(np.int64)
+    types = vtk_to_numpy(grid.GetCellTypesArray())
+    sizes = np.diff(offsets)[cells]
+    new_offsets = np.concatenate(([0], np.cumsum(sizes)))
+    new_conn = np.concatenate([new_id[conn[offsets[c]:offsets[c + 1]]] for c in cells])
+    out = vtkUnstructuredGrid()
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(vtk_to_numpy(grid.GetPoints().GetData())[points].copy(), deep=1))
+    out.SetPoints(pts)
+    ca = vtkCellArray()
+    o = vtkIdTypeArray()
+    o.DeepCopy(numpy_to_vtk(new_offsets, deep=1, array_type=vtkIdTypeArray().GetDataType()))
+    c = vtkIdTypeArray()
+    c.DeepCopy(numpy_to_vtk(new_conn, deep=1, array_type=vtkIdTypeArray().GetDataType()))
+    ca.SetData(o, c)
+    out.SetCells(numpy_to_vtk(types[cells].copy(), deep=1), ca)
+    for data, order in ((grid.GetPointData(), points), (grid.GetCellData(), cells)):
+        target = out.GetPointData() if data is grid.GetPointData() else out.GetCellData()
+        for i in range(data.GetNumberOfArrays()):
+            a = numpy_to_vtk(vtk_to_numpy(data.GetArray(i))[order].copy(), deep=1)
+            a.SetName(data.GetArrayName(i))
+            target.AddArray(a)
+    return out, cells, points
+
+
+def project(target, source, mode, extensive=False, threads=0):
+    f = vtkMeshProjectionFilter()
+    f.SetRenumbering(mode)
+    f.SetNumberOfThreads(threads)
+    f.SetOutputIntersections(True)
+    f.SetCellDataQuantity(f.EXTENSIVE if extensive else f.INTENSIVE)
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.Update()
+    return f
+
+
+def arrays(data):
+    return {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)).astype(float)
+            for i in range(data.GetNumberOfArrays())}
+
+
+def pieces(f, dim):
+    """Sorted rows (target cell, source cell, measure) of the intersection pieces."""
+    out = f.GetOutput(1) if dim == 2 else f.GetOutput(2)
+    cd = out.GetCellData()
+    t = vtk_to_numpy(cd.GetArray("TargetCellId"))
+    s = vtk_to_numpy(cd.GetArray("SourceCellId"))
+    m = vtk_to_numpy(cd.GetArray("Area" if dim == 2 else "Volume"))
+    rows = {}
+    for a, b, v in zip(t, s, m):
+        rows[(int(a), int(b))] = rows.get((int(a), int(b)), 0.0) + float(v)
+    return rows
+
+
+def matrix(f, transfer, which):
+    rows, cols, vals = vtkIdTypeArray(), vtkIdTypeArray(), vtkDoubleArray()
+    ncols = f.GetMatrix(transfer, which, rows, cols, vals)
+    start = vtk_to_numpy(rows)
+    return csr_matrix((vtk_to_numpy(vals), vtk_to_numpy(cols), start),
+                      shape=(len(start) - 1, ncols))
+
+
+def compare(label, plain, f, dim, cells_t, points_t, cells_s, points_s, tol=1e-11):
+    """f ran on shuffled meshes; plain on the meshes as generated."""
+    po, so = plain.GetOutput(), f.GetOutput()
+    for kind, get, order in (("point", lambda o: o.GetPointData(), points_t),
+                             ("cell", lambda o: o.GetCellData(), cells_t)):
+        a, b = arrays(get(po)), arrays(get(so))
+        check(sorted(a) == sorted(b), "%s: %s arrays %s vs %s" % (label, kind, sorted(a), sorted(b)))
+        for name in a:
+            if name not in b:
+                continue
+            x, y = a[name][order], b[name]
+            same_nan = np.array_equal(np.isnan(x), np.isnan(y))
+            ok = np.isfinite(x) & np.isfinite(y)
+            scale = max(1.0, np.max(np.abs(x[ok])) if ok.any() else 1.0)
+            d = np.max(np.abs(x[ok] - y[ok])) / scale if ok.any() else 0.0
+            check(same_nan and d < tol, "%s: %s array %s differs by %.3g (NaN pattern %s)"
+                  % (label, kind, name, d, same_nan))
+    # Pieces: the same pairs (shuffled ids mapped back) and measures.
+    new_t = np.empty(len(cells_t), dtype=np.int64)
+    new_t[cells_t] = np.arange(len(cells_t))
+    new_s = np.empty(len(cells_s), dtype=np.int64)
+    new_s[cells_s] = np.arange(len(cells_s))
+    a = pieces(plain, dim)
+    b = pieces(f, dim)
+    mapped = {(int(cells_t[t]), int(cells_s[s])): v for (t, s), v in b.items()}
+    check(set(a) == set(mapped), "%s: %d vs %d intersecting pairs" % (label, len(a), len(mapped)))
+    worst = max((abs(a[k] - mapped[k]) for k in a if k in mapped), default=0.0)
+    check(worst < 1e-14, "%s: piece measures differ by %.3g" % (label, worst))
+    # Matrices of the point transfer (P1 -> P1): rows and columns as the datasets' points.
+    for which in (f.TARGET_MASS, f.MIXED_MASS):
+        m0 = matrix(plain, 0, which)
+        m1 = matrix(f, 0, which)
+        cols = points_t if which == f.TARGET_MASS else points_s
+        back = m1.tocoo()
+        remapped = csr_matrix((back.data, (points_t[back.row], cols[back.col])), shape=m0.shape)
+        d = abs(remapped - m0).max() / abs(m0).max()
+        check(d < 1e-13, "%s: matrix %d differs by %.3g" % (label, which, d))
+    print("%-32s renumbered %d of 2, %d pieces" % (label, f.GetNumberOfRenumberedMeshes(), len(b)))
+
+
+def case(label, target, source, dim, extensive=False, tidy_renumbered=0, split=False):
+    st, ct, pt = shuffled(target, 1)
+    ss, cs, ps = shuffled(source, 2)
+    if split:
+        # Cells that are not simplices are split by their point ids (the
+        # lowest corner rule), so a shuffled file is split otherwise and its
+        # P1 space differs: compare the renumbering modes on the same file.
+        plain = project(st, ss, NEVER, extensive)
+        ct, cs = np.arange(len(ct)), np.arange(len(cs))
+        pt, ps = np.arange(len(pt)), np.arange(len(ps))
+    else:
+        plain = project(target, source, NEVER, extensive)
+    for name, mode in MODES.items():
+        f = project(st, ss, mode, extensive)
+        compare("%s, shuffled, %s" % (label, name), plain, f, dim, ct, pt, cs, ps)
+        if mode == AUTOMATIC:
+            big = min(target.GetNumberOfCells(), source.GetNumberOfCells()) >= 4096
+            check(f.GetNumberOfRenumberedMeshes() == (2 if big else 0),
+                  "%s: Automatic renumbered %d shuffled meshes" % (label, f.GetNumberOfRenumberedMeshes()))
+    auto = project(target, source, AUTOMATIC, extensive)
+    check(auto.GetNumberOfRenumberedMeshes() == tidy_renumbered,
+          "%s: Automatic renumbered %d meshes numbered along a sweep"
+          % (label, auto.GetNumberOfRenumberedMeshes()))
+
+
+# a, b. Triangles and tetrahedra, numbered along a sweep, then shuffled.
+t2 = with_fields(simplices((61, 67, 1), 0.0, 2))
+s2 = with_fields(simplices((57, 59, 1), 7.0, 2), nan=True)
+case("2D triangles", t2, s2, 2)
+case("2D triangles, extensive", t2, s2, 2, extensive=True)
+t3 = with_fields(simplices((11, 12, 13), 0.0, 3))
+s3 = with_fields(simplices((12, 11, 10), 5.0, 3), nan=True)
+case("3D tetrahedra", t3, s3, 3)
+
+# c. Split cells: Gmsh's quads and triangles (small: Automatic leaves them).
+disk_t = with_fields(read("../Testing/Data/Gmsh/mixed_disk.vtu"))
+disk_s = with_fields(read("../Testing/Data/Gmsh/tris_disk.vtu"), nan=True)
+case("Gmsh mixed disk", disk_t, disk_s, 2, split=True)
+
+# d. Threads: the filter's own scope, the application's backend untouched.
+backend = vtkSMPTools.GetBackend()
+one = project(t2, s2, AUTOMATIC, threads=1)
+two = project(t2, s2, AUTOMATIC, threads=2)
+a, b = arrays(one.GetOutput().GetPointData()), arrays(two.GetOutput().GetPointData())
+d = max(np.nanmax(np.abs(a[k] - b[k])) for k in a)
+check(d < 1e-12, "1 and 2 threads differ by %.3g" % d)
+check(vtkSMPTools.GetBackend() == backend, "the SMP backend changed to " + vtkSMPTools.GetBackend())
+print("threads: 1 vs 2 differ by %.3g, backend %s" % (d, backend))
+
+finish()
