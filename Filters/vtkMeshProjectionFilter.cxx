@@ -1393,18 +1393,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   options.KeepPieces = this->OutputIntersections;
   options.Method = this->SearchMethod == BRUTE_FORCE ? mp::SearchMethod::BruteForce
                                                      : mp::SearchMethod::AdvancingFront;
-  // One range of target cells per thread of vtkSMPTools' backend (with
-  // Debian's VTK: VTK_SMP_BACKEND_IN_USE=STDThread; the default backend there
-  // is sequential).
-  options.Runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
-  options.Runner.Run = [](int count, const std::function<void(int)>& task) {
-    vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType k = begin; k < end; ++k)
-      {
-        task(static_cast<int>(k));
-      }
-    });
-  };
+  // One range of target cells per thread of the filter's vtkSMPTools scope
+  // (NumberOfThreads, see RequestData).
+  options.Runner = mpvtk::SMPTaskRunner();
   bool searchReady = false;
   // Neighbours and the Source locator, once, before the first operator is built.
   auto prepareSearch = [&]() {

@@ -357,6 +357,21 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
   return std::string();
 }
 
+mp::TaskRunner SMPTaskRunner()
+{
+  mp::TaskRunner runner;
+  runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
+  runner.Run = [](int count, const std::function<void(int)>& task) {
+    vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        task(static_cast<int>(k));
+      }
+    });
+  };
+  return runner;
+}
+
 std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
 {
   {
@@ -472,16 +487,7 @@ void SimplexMesh::OrderInSpace()
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  mp::TaskRunner runner;
-  runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
-  runner.Run = [](int count, const std::function<void(int)>& task) {
-    vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType k = begin; k < end; ++k)
-      {
-        task(static_cast<int>(k));
-      }
-    });
-  };
+  const mp::TaskRunner runner = SMPTaskRunner();
   mp::SpatialOrder order;
   mp::OrderAlongCurve(this->Kernel, order, runner);
   const int corners = this->Kernel.CornersPerCell();

@@ -35,6 +35,7 @@
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/PlaneFrame.h"
+#include "Mesh/Tasks.h"
 #include "Search/CandidateLocator.h"
 
 #include "vtkNew.h"
@@ -66,6 +67,10 @@ namespace mpvtk
  * checked before they are appended.
  */
 std::string CheckDataSet(vtkDataSet* data, const std::string& role);
+
+/// The kernel's task runner on vtkSMPTools: one task per thread of the
+/// backend in use (the filter's own scope, see NumberOfThreads).
+mp::TaskRunner SMPTaskRunner();
 
 class SimplexMesh
 {
