@@ -147,9 +147,10 @@
  * Threads: the search, the intersections and the local integrals run in one
  * task per vtkSMPTools thread (ranges of target cells, each with its own
  * advancing front); results equal the serial ones up to summation order.
- * @warning Debian's VTK 9.2 uses the sequential SMP backend by default: set
- * VTK_SMP_BACKEND_IN_USE=STDThread (or call vtkSMPTools::SetBackend) to run
- * on several threads.
+ * The filter runs them in its own vtkSMPTools scope with NumberOfThreads
+ * threads (0, the default: every core), on STDThread when VTK's backend is
+ * the sequential one (Debian's default); the application's backend is left
+ * as it was.
  *
  * @sa vtkResampleWithDataSet vtkProbeFilter
  */

@@ -108,6 +108,7 @@ def time_filter(target, source):
     for _ in range(3):
         f = vtkMeshProjectionFilter()
         f.SetCacheOperator(False)
+        f.SetNumberOfThreads(1)  # the table is for one thread
         f.SetInputData(target)
         f.SetSourceData(source)
         start = time.perf_counter()

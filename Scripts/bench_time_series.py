@@ -45,6 +45,7 @@ def run(case, target, source, steps, cache):
     from meshprojection import vtkMeshProjectionFilter
     f = vtkMeshProjectionFilter()
     f.SetCacheOperator(cache)
+    f.SetNumberOfThreads(1)  # one thread, as the README states
     f.SetInputData(to_grid(*target))
     times, inside = [], []
     for k in range(steps):
