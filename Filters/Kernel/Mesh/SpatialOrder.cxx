@@ -67,6 +67,19 @@ struct Box
   }
 };
 
+/// Asks for a cache line ahead of its use: the renumbering's reads follow
+/// the old numbering, so in a shuffled mesh nearly every one misses.
+inline void Prefetch(const void* address)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+/// How many cells ahead the prefetches run.
+constexpr Index Ahead = 16;
+
 void Centre(const MeshView& mesh, Index c, double x[3])
 {
   const int corners = mesh.CornersPerCell();
@@ -137,8 +150,17 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   // Key in the high 32 bits, cell id in the low ones.
   std::vector<std::uint64_t> keys(static_cast<size_t>(n));
   runner.ForRanges(n, [&](Index begin, Index end) {
+    const int corners = mesh.CornersPerCell();
     for (Index c = begin; c < end; ++c)
     {
+      if (c + Ahead < end)
+      {
+        const Index* ahead = mesh.Cell(c + Ahead);
+        for (int k = 0; k < corners; ++k)
+        {
+          Prefetch(mesh.Point(ahead[k]));
+        }
+      }
       double x[3];
       Centre(mesh, c, x);
       std::uint32_t q[3] = {};
@@ -221,6 +243,24 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   Index next = 0;
   for (Index c = 0; c < n; ++c)
   {
+    // Two stages of prefetching: the connectivity of the cell 2 * Ahead
+    // on, the point slots of the one Ahead on (its ids asked for before).
+    if (c + 2 * Ahead < n)
+    {
+      Prefetch(mesh.Cell(order.Cells[c + 2 * Ahead]));
+    }
+    if (c + Ahead < n)
+    {
+      const Index* ahead = mesh.Cell(order.Cells[c + Ahead]);
+      for (int k = 0; k < corners; ++k)
+      {
+        Prefetch(&order.NewPoint[ahead[k]]);
+      }
+      if (mesh.Parent)
+      {
+        Prefetch(mesh.Parent + order.Cells[c + Ahead]);
+      }
+    }
     const Index old = order.Cells[c];
     const Index* ids = mesh.Cell(old);
     for (int k = 0; k < corners; ++k)
@@ -246,6 +286,10 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   runner.ForRanges(np, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
     {
+      if (p + Ahead < end)
+      {
+        Prefetch(mesh.Point(order.Points[p + Ahead]));
+      }
       std::copy_n(mesh.Point(order.Points[p]), 3, points + 3 * p);
     }
     return 0;
