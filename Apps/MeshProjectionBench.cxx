@@ -50,6 +50,7 @@
 #include <random>
 
 #include <chrono>
+#include <dlfcn.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -328,6 +329,11 @@ struct Row
   Index Pairs;
   double PeakBeyondInputs, InputSize;
   double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
+  double Peer = -1;        ///< --peer: libsupermesh's intersections, seconds
+  double PeerMeasure = 0;  ///< --peer: the summed measure of its pieces
+  Index PeerCandidates = 0, PeerPieces = 0;
+  double FilterPeak = -1;  ///< --filter-only: the filter's peak memory beyond its inputs, MiB
+  double VTKInputs = 0;    ///< --filter-only: the two vtkUnstructuredGrids, MiB
   double KernelOnPairs = -1; ///< intersection kernel alone on the true pairs
   Index Tests = 0;   ///< --filter-only: intersection tests
   Index Queries = 0; ///< --filter-only: locator queries
@@ -457,6 +463,150 @@ double Field(const double* x)
   return std::sin(3 * x[0]) * std::cos(2 * x[1]) + x[2];
 }
 
+
+/**
+ * --peer LIB: libsupermesh (https://github.com/firedrakeproject/libsupermesh),
+ * loaded at run time from its shared library through its C API, on the same
+ * meshes: its tree intersection finder (candidate source cells of every
+ * target cell from a quadtree/octree of bounding boxes), then its
+ * triangle/tetrahedron clipper on every candidate, summing the measure of
+ * the pieces (the check that both found the same overlap). That is the
+ * intersection part of a supermesh projection only: no neighbours of ours,
+ * no integrals, no assembly, no solve.
+ */
+struct Peer
+{
+  using SetInput = void (*)(long*, int*, long*, int*, long*, int*, long*, int*, double*, long*,
+    double*, long*);
+  using QueryOutput = void (*)(long*);
+  using GetOutput = void (*)(long*, long*, long*, long*);
+  using Intersect = void (*)(double*, double*, double*, int*);
+  SetInput TreeSetInput = nullptr;
+  QueryOutput TreeQuery = nullptr;
+  GetOutput TreeGet = nullptr;
+  Intersect Tris = nullptr;
+  Intersect Tets = nullptr;
+
+  bool Load(const std::string& library)
+  {
+    void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle)
+    {
+      std::fprintf(stderr, "--peer: cannot load %s: %s\n", library.c_str(), dlerror());
+      return false;
+    }
+    this->TreeSetInput =
+      reinterpret_cast<SetInput>(dlsym(handle, "libsupermesh_tree_intersection_finder_set_input"));
+    this->TreeQuery = reinterpret_cast<QueryOutput>(
+      dlsym(handle, "libsupermesh_tree_intersection_finder_query_output"));
+    this->TreeGet =
+      reinterpret_cast<GetOutput>(dlsym(handle, "libsupermesh_tree_intersection_finder_get_output"));
+    this->Tris = reinterpret_cast<Intersect>(dlsym(handle, "libsupermesh_intersect_tris_real"));
+    this->Tets = reinterpret_cast<Intersect>(dlsym(handle, "libsupermesh_intersect_tets_real"));
+    if (!this->TreeSetInput || !this->TreeQuery || !this->TreeGet || !this->Tris || !this->Tets)
+    {
+      std::fprintf(stderr, "--peer: %s lacks libsupermesh's C API\n", library.c_str());
+      return false;
+    }
+    return true;
+  }
+
+  /// Seconds for all intersections of target x source; `measure` gets the
+  /// summed measure of the pieces, `candidates` the finder's pairs.
+  double Run(const TestMesh& target, const TestMesh& source, double& measure, Index& candidates,
+    Index& pieces) const
+  {
+    const int dim = target.Dimension;
+    const int corners = dim + 1;
+    auto positions = [dim](const TestMesh& m) {
+      std::vector<double> x(static_cast<size_t>(dim * m.NumberOfPoints()));
+      for (Index p = 0; p < m.NumberOfPoints(); ++p)
+      {
+        std::copy_n(&m.Points[3 * p], dim, &x[dim * p]);
+      }
+      return x;
+    };
+    auto elements = [](const TestMesh& m) { return std::vector<long>(m.Cells.begin(), m.Cells.end()); };
+    // Its input layout (coordinates without the z of 2D meshes, element
+    // lists as C longs; its C API numbers from 0) is prepared outside the clock.
+    std::vector<double> xa = positions(target);
+    std::vector<double> xb = positions(source);
+    std::vector<long> ea = elements(target);
+    std::vector<long> eb = elements(source);
+    long na = target.NumberOfPoints();
+    long nb = source.NumberOfPoints();
+    long ca = target.NumberOfCells();
+    long cb = source.NumberOfCells();
+    int da = dim;
+    int db = dim;
+    int la = corners;
+    int lb = corners;
+    const auto t0 = Clock::now();
+    this->TreeSetInput(&na, &da, &ca, &la, &nb, &db, &cb, &lb, xa.data(), ea.data(), xb.data(),
+      eb.data());
+    long total = 0;
+    this->TreeQuery(&total);
+    std::vector<long> indices(static_cast<size_t>(std::max(1L, total)));
+    std::vector<long> start(static_cast<size_t>(ca + 1));
+    this->TreeGet(&ca, &total, indices.data(), start.data());
+    // Its clipper's output buffers: at most 22 triangles or 81 tetrahedra.
+    std::vector<double> out(static_cast<size_t>(dim == 2 ? 22 * 6 : 81 * 12));
+    double a[12];
+    double b[12];
+    double sum = 0;
+    pieces = 0;
+    for (long c = 0; c < ca; ++c)
+    {
+      for (int k = 0; k < corners; ++k)
+      {
+        std::copy_n(&xa[dim * target.Cells[corners * c + k]], dim, &a[dim * k]);
+      }
+      for (long i = start[c]; i < start[c + 1]; ++i)
+      {
+        const long s = indices[i];
+        for (int k = 0; k < corners; ++k)
+        {
+          std::copy_n(&xb[dim * source.Cells[corners * s + k]], dim, &b[dim * k]);
+        }
+        int n = 0;
+        (dim == 2 ? this->Tris : this->Tets)(a, b, out.data(), &n);
+        pieces += n > 0 ? 1 : 0;
+        for (int j = 0; j < n; ++j)
+        {
+          const double* x = &out[static_cast<size_t>(j) * corners * dim];
+          if (dim == 2)
+          {
+            sum += 0.5 * std::abs((x[2] - x[0]) * (x[5] - x[1]) - (x[4] - x[0]) * (x[3] - x[1]));
+          }
+          else
+          {
+            double e[3][3];
+            for (int r = 0; r < 3; ++r)
+            {
+              for (int q = 0; q < 3; ++q)
+              {
+                e[r][q] = x[3 * (r + 1) + q] - x[q];
+              }
+            }
+            sum += std::abs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+              6.0;
+          }
+        }
+      }
+    }
+    const double seconds = Since(t0);
+    measure = sum;
+    candidates = total;
+    return seconds;
+  }
+};
+
+/// --peer: the loaded peer, if any.
+Peer ThePeer;
+bool HavePeer = false;
+
 /// --threads: the threads of the filter in --filter-only runs.
 int FilterThreads = 1;
 /// --renumber auto|always|never: the filter's Renumbering.
@@ -488,9 +638,20 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     filter->SetRenumbering(Renumbering);
     filter->SetInputData(targetGrid);
     filter->SetSourceData(sourceGrid);
+    r.VTKInputs = (targetGrid->GetActualMemorySize() + sourceGrid->GetActualMemorySize()) / 1024.0;
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
+    const double before = StatusMiB("VmRSS:");
+    ResetPeakMemory();
     const auto t0 = Clock::now();
     filter->Update();
     r.Filter1 = Since(t0);
+    r.FilterPeak = StatusMiB("VmHWM:") - before;
+    if (HavePeer)
+    {
+      r.Peer = ThePeer.Run(target, source, r.PeerMeasure, r.PeerCandidates, r.PeerPieces);
+    }
     const double stages[7] = { filter->GetInputTime(), filter->GetNeighborsTime(),
       filter->GetLocatorTime(), filter->GetSearchTime(), filter->GetAssemblyTime(),
       filter->GetSolveTime(), filter->GetOutputTime() };
@@ -554,7 +715,7 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   auto sourceGrid = ToVTK(source, &u);
   auto targetGrid = ToVTK(target, nullptr);
   // Brute force (quadratic: small sizes only).
-  if (n <= bruteMax)
+  if (static_cast<double>(r.TargetCells) <= bruteMax)
   {
     mp::OperatorOptions brute; // as the front's run: the field summed in the search
     brute.Method = mp::SearchMethod::BruteForce;
@@ -611,6 +772,10 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   t0 = Clock::now();
   resample->Update();
   r.Resample = Since(t0);
+  if (HavePeer)
+  {
+    r.Peer = ThePeer.Run(target, source, r.PeerMeasure, r.PeerCandidates, r.PeerPieces);
+  }
   return r;
 }
 
@@ -629,6 +794,19 @@ std::vector<double> ParseList(const char* text)
 const char* const FilterStageNames[7] = { "reading the inputs", "neighbours (VTK cell links)",
   "seeding (vtkStaticCellLocator)", "search + intersections + integrals", "assembly", "solve",
   "writing the outputs" };
+
+/// --peer: libsupermesh's time on the same meshes, against the filter's.
+void PrintPeer(const Row& r, double filter)
+{
+  if (r.Peer < 0)
+  {
+    return;
+  }
+  std::printf("  %-34s %10.4f  (%lld candidates, %lld pieces, measure %.12g)\n",
+    "libsupermesh intersections only", r.Peer, static_cast<long long>(r.PeerCandidates),
+    static_cast<long long>(r.PeerPieces), r.PeerMeasure);
+  std::printf("  %-34s %10.2fx\n", "VTK filter / libsupermesh", filter / r.Peer);
+}
 
 /// --filter-only: the VTK filter on the calling thread, stage by stage.
 void PrintFilter(const Row& r)
@@ -649,6 +827,9 @@ void PrintFilter(const Row& r)
         r.Renumbered);
     }
   }
+  std::printf("  %-34s %10.1f MiB (inputs %.1f MiB, ratio %.2f)\n", "filter's peak memory beyond inputs",
+    r.FilterPeak, r.VTKInputs, r.FilterPeak / r.VTKInputs);
+  PrintPeer(r, r.Filter1);
 }
 
 void Print(const Row& r)
@@ -697,6 +878,7 @@ void Print(const Row& r)
   }
   std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
     r.Resample / r.Filter1);
+  PrintPeer(r, r.Filter1);
 }
 } // namespace
 
@@ -729,6 +911,14 @@ int main(int argc, char* argv[])
         : m == "never"            ? vtkMeshProjectionFilter::NEVER_RENUMBER
                                   : vtkMeshProjectionFilter::AUTOMATIC_RENUMBERING;
     }
+    else if (a == "--peer" && i + 1 < argc)
+    {
+      HavePeer = ThePeer.Load(argv[++i]);
+      if (!HavePeer)
+      {
+        return 1;
+      }
+    }
     else if (a == "--order" && i + 1 < argc)
       Order = argv[++i];
     else if (a == "--target" && i + 1 < argc)
@@ -739,10 +929,21 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--dim 2|3|23] [--sizes 1e3,1e4,...] [--brute-max N] [--csv FILE] "
-        "[--filter-only [--threads N]]\n",
+        "[--filter-only [--threads N]] [--order asis|sorted|shuffled] "
+        "[--renumber auto|always|never] [--target FILE.vtu --source FILE.vtu] [--peer LIBSUPERMESH.so]\n",
         argv[0]);
       return 2;
     }
+  }
+  if (!TargetFile.empty() || !SourceFile.empty())
+  {
+    if (TargetFile.empty() || SourceFile.empty())
+    {
+      std::fprintf(stderr, "--target and --source go together\n");
+      return 2;
+    }
+    dims = "2"; // one run on the files' pair (its dimension is the files')
+    sizes = { 0 };
   }
   std::vector<Row> rows;
   for (char d : dims)
