@@ -4,7 +4,8 @@
 # filter's tests again with every mesh renumbered inside the filter; then
 # build the C++ code again with clang's AddressSanitizer and UBSan
 # (Scripts/build-sanitized.sh) and run the kernel and VTK C++ tests and the
-# whole-filter fuzzer there.
+# whole-filter fuzzer there, and the VTK C++ tests and the fuzzer's corpus
+# once more with every mesh renumbered.
 # Rendering tests run under one virtual X server, started with -noreset: by
 # default an X server resets when its last client disconnects, and a client
 # connecting during that reset is refused ("bad X server connection"), which
@@ -25,3 +26,8 @@ bash "$root/Scripts/build-sanitized.sh"
 cd "${SANITIZE_DIR:-$root/build-sanitized}"
 ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   timeout 2400 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --parallel 2
+# The renumbering's copies and maps under the sanitizers too (the corpus's
+# meshes are below the size Automatic renumbers).
+MESHPROJECTION_RENUMBERING=always ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  timeout 1200 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
+  ctest --output-on-failure --parallel 2 -R "FiltersCxx|Sanitize\.FilterCorpus"
