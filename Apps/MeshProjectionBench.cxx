@@ -19,6 +19,10 @@
 // --filter-only runs just the VTK filter once per size, on the calling
 // thread (or on N threads with --threads N), and prints its stages (for
 // profiling).
+// --order asis|sorted|shuffled renumbers both meshes first, --renumber sets
+// the filter's Renumbering, --target/--source read a pair of .vtu files
+// instead (one run), and --peer LIB times libsupermesh's intersections on
+// the same meshes (see Peer below).
 // Timings are wall-clock seconds, the best of three runs for the kernel's
 // stages and the filter's, one run for the others; ratios, not absolute
 // seconds, carry the comparison.
@@ -264,6 +268,12 @@ void MakePair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& sour
   else
   {
     MakeGeneratedPair(dim, n, seed, target, source);
+  }
+  if (target.Dimension != source.Dimension)
+  {
+    std::fprintf(stderr, "the target has %d-dimensional cells, the source %d-dimensional ones\n",
+      target.Dimension, source.Dimension);
+    std::exit(1);
   }
   Renumber(target, Order, seed);
   Renumber(source, Order, seed + 17);
@@ -511,8 +521,10 @@ struct Peer
     return true;
   }
 
-  /// Seconds for all intersections of target x source; `measure` gets the
-  /// summed measure of the pieces, `candidates` the finder's pairs.
+  /// Seconds for all intersections of target x source (one run); `measure`
+  /// gets the summed measure of the pieces (inside the clock: a few flops
+  /// per piece), `candidates` the finder's pairs, `pieces` the pairs whose
+  /// intersection is not empty.
   double Run(const TestMesh& target, const TestMesh& source, double& measure, Index& candidates,
     Index& pieces) const
   {
@@ -802,7 +814,7 @@ void PrintPeer(const Row& r, double filter)
   {
     return;
   }
-  std::printf("  %-34s %10.4f  (%lld candidates, %lld pieces, measure %.12g)\n",
+  std::printf("  %-34s %10.4f  (%lld candidates, %lld pairs with a piece, measure %.12g)\n",
     "libsupermesh intersections only", r.Peer, static_cast<long long>(r.PeerCandidates),
     static_cast<long long>(r.PeerPieces), r.PeerMeasure);
   std::printf("  %-34s %10.2fx\n", "VTK filter / libsupermesh", filter / r.Peer);

@@ -143,8 +143,9 @@ def run(bench, target, source, order, threads, peer):
         "filter": float(re.search(r"VTK filter \(one run\)" + number, out).group(1)),
         "renumber": float(re.search(r"of which renumbering" + number, out).group(1)),
         "renumbered": int(re.search(r"\((\d) of 2 meshes\)", out).group(1)),
-        "memory": float(re.search(r"ratio ([0-9.]+)\)", out).group(1)),
     }
+    m = re.search(r"inputs [0-9.]+ MiB, ratio ([^)]+)\)", out)
+    result["memory"] = float(m.group(1)) if m else float("nan")
     m = re.search(r"libsupermesh intersections only" + number, out)
     result["peer"] = float(m.group(1)) if m else None
     return result
