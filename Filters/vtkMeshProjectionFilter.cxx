@@ -44,6 +44,9 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -553,6 +556,18 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// Progress reported by a task off the pipeline's thread, for Watched() to
+/// pass on from it.
+struct ProgressMailbox
+{
+  std::mutex Lock;
+  std::condition_variable Changed;
+  double Reported = -1; ///< negative: nothing new
+};
+} // namespace
+
 /// One execution: the Source side (wrapped, its fields gathered, its
 /// neighbours and locator built once) shared by every leaf of Input.
 struct vtkMeshProjectionFilter::Execution
@@ -568,6 +583,7 @@ struct vtkMeshProjectionFilter::Execution
   bool SourceNeighbors = false;
   std::unique_ptr<mp::CandidateLocator> Locator;
   std::function<bool(double)> Progress;
+  ProgressMailbox Mailbox;
   double From = 0.05; ///< this leaf's share of the progress bar
   double Span = 0.9;
   std::chrono::steady_clock::time_point Stage;
@@ -576,6 +592,69 @@ struct vtkMeshProjectionFilter::Execution
 
 namespace
 {
+/**
+ * Runs `work` (whose parallel loops report progress through run.Progress)
+ * so that its progress reaches the pipeline's thread: with several SMP
+ * threads no task need run on the calling thread (VTK's STDThread backend
+ * runs them all on its pool), and the GUI takes progress events only from
+ * the thread that runs the pipeline. So `work` runs on a thread of its own
+ * while this one waits and passes on what the tasks report. An exception
+ * in `work` is thrown again here.
+ */
+void Watched(vtkAlgorithm* filter, ProgressMailbox& box, const std::function<void()>& work)
+{
+  if (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1)
+  {
+    work(); // tasks run on this thread: progress goes straight to the GUI
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(box.Lock);
+    box.Reported = -1; // what an unwatched run left
+  }
+  bool done = false;
+  std::exception_ptr failure;
+  std::thread worker([&]() {
+    try
+    {
+      work();
+    }
+    catch (...)
+    {
+      failure = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(box.Lock);
+      done = true;
+    }
+    box.Changed.notify_one();
+  });
+  std::unique_lock<std::mutex> lock(box.Lock);
+  for (;;)
+  {
+    box.Changed.wait(lock, [&]() { return done || box.Reported >= 0; });
+    const double amount = box.Reported;
+    box.Reported = -1;
+    const bool finished = done;
+    if (amount >= 0)
+    {
+      lock.unlock();
+      filter->UpdateProgress(amount); // may run the GUI's event loop: not under the lock
+      lock.lock();
+    }
+    if (finished)
+    {
+      break;
+    }
+  }
+  lock.unlock();
+  worker.join();
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+}
+
 double Lap(std::chrono::steady_clock::time_point& since)
 {
   const auto now = std::chrono::steady_clock::now();
@@ -759,10 +838,19 @@ int vtkMeshProjectionFilter::Execute(
   // Progress events only from the thread that runs the pipeline (the GUI
   // handles them there); the abort flag is read from any thread.
   const std::thread::id pipelineThread = std::this_thread::get_id();
-  run.Progress = [this, pipelineThread](double amount) {
+  run.Progress = [this, pipelineThread, &run](double amount) {
     if (std::this_thread::get_id() == pipelineThread)
     {
       this->UpdateProgress(amount);
+    }
+    else
+    {
+      // A task on another thread: Watched() passes it on from the pipeline's.
+      {
+        std::lock_guard<std::mutex> lock(run.Mailbox.Lock);
+        run.Mailbox.Reported = amount;
+      }
+      run.Mailbox.Changed.notify_one();
     }
     return this->GetAbortExecute() == 0;
   };
@@ -1462,7 +1550,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       return progress(from + 0.8 * f / toBuild);
     };
     fresh[t].reset(new mp::MortarOperator);
-    const bool ok = fresh[t]->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), options);
+    bool ok = false;
+    Watched(this, run.Mailbox, [&]() {
+      ok = fresh[t]->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), options);
+    });
     if (!ok && fresh[t]->GetError() == "stopped")
     {
       return "stopped";

@@ -14,12 +14,17 @@
 #include "vtkDataArraySelection.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkTestErrorObserver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 namespace
@@ -343,11 +348,92 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(all.size() >= 5 && all.back() == 1.0 && std::is_sorted(all.begin(), all.end()));
   return failures;
 }
+/// An n x n grid of squares over [x0, x0 + 1]^2, each cut into two
+/// triangles, with the point field "Smooth".
+vtkSmartPointer<vtkUnstructuredGrid> Squares(int n, double x0)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> smooth;
+  smooth->SetName("Smooth");
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      const double x = x0 + double(i) / n;
+      const double y = x0 + double(j) / n;
+      points->InsertNextPoint(x, y, 0.0);
+      smooth->InsertNextValue(std::sin(3 * x) * std::cos(2 * y));
+    }
+  }
+  grid->SetPoints(points);
+  grid->GetPointData()->AddArray(smooth);
+  grid->Allocate(2 * n * n);
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const vtkIdType a = j * (n + 1) + i;
+      const vtkIdType lower[3] = { a, a + 1, a + n + 2 };
+      const vtkIdType upper[3] = { a, a + n + 2, a + n + 1 };
+      grid->InsertNextCell(VTK_TRIANGLE, 3, lower);
+      grid->InsertNextCell(VTK_TRIANGLE, 3, upper);
+    }
+  }
+  return grid;
+}
+
+/**
+ * With two threads the search's tasks run on VTK's thread pool, none on the
+ * thread that runs the pipeline, where the GUI takes progress events: the
+ * progress the first task reports in the search (every 8192 target cells)
+ * must still reach the observers, from the pipeline's thread, between the
+ * stages' own values around it (0.14 before the search, 0.86 after it: the
+ * search's share of the bar, 0.1 to 0.9, within the leaf's, 0.05 to 0.95).
+ */
+int ThreadedProgress()
+{
+  int failures = 0;
+  vtkNew<vtkMeshProjectionFilter> filter;
+  filter->SetNumberOfThreads(2);
+  filter->SetInputData(Squares(100, 0.0));  // 20,000 triangles: 10,000 per task
+  filter->SetSourceData(Squares(90, 0.003));
+  struct Seen
+  {
+    std::thread::id Pipeline = std::this_thread::get_id();
+    std::vector<double> Amounts;
+    bool ElsewhereToo = false;
+  } seen;
+  vtkNew<vtkCallbackCommand> record;
+  record->SetClientData(&seen);
+  record->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
+    Seen* s = static_cast<Seen*>(data);
+    s->ElsewhereToo = s->ElsewhereToo || std::this_thread::get_id() != s->Pipeline;
+    s->Amounts.push_back(*static_cast<double*>(amount));
+  });
+  filter->AddObserver(vtkCommand::ProgressEvent, record);
+  filter->Update();
+  const bool inSearch = std::any_of(seen.Amounts.begin(), seen.Amounts.end(),
+    [](double a) { return a > 0.15 && a < 0.85; });
+  std::cout << "threaded progress:";
+  for (double a : seen.Amounts)
+  {
+    std::cout << ' ' << a;
+  }
+  std::cout << "\n";
+  MP_CHECK(inSearch);
+  MP_CHECK(!seen.ElsewhereToo);
+  MP_CHECK(std::is_sorted(seen.Amounts.begin(), seen.Amounts.end()) && !seen.Amounts.empty() &&
+    seen.Amounts.back() == 1.0);
+  MP_CHECK(filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth") != nullptr);
+  return failures;
+}
 } // namespace
 
 int TestMeshProjectionFilterFields(int, char*[])
 {
   int failures = Fields("lshape_target.vtu", "lshape_source.vtu");
   failures += Fields("lshape3d_target.vtu", "lshape3d_source.vtu");
+  failures += ThreadedProgress();
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
