@@ -522,6 +522,7 @@ void SimplexMesh::OrderInSpace()
   if (!this->Kernel.Parent)
   {
     this->Kernel.NumberOfParents = n;
+    this->Kernel.OneCellPerParent = true; // the renumbering is the only parent map
   }
   this->ParentIds.swap(parent);
   this->Kernel.Parent = this->ParentIds.data();
@@ -769,6 +770,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   static const mp::Index noParent = 0;
   this->Kernel.Parent = nullptr;
   this->Kernel.NumberOfParents = 0;
+  this->Kernel.OneCellPerParent = false;
   if (parents < 0 && this->Ghosts > 0)
   {
     this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());

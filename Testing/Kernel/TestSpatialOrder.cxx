@@ -203,3 +203,49 @@ TEST(SpatialOrder, TheProjectionBetweenRenumberedMeshesIsTheSame)
     EXPECT_LT(largest, 1e-12) << dimension << "D";
   }
 }
+
+TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
+{
+  // A target partly outside the source (fractions strictly between 0 and
+  // 1 along the edge), renumbered; the covered fraction per original cell
+  // through Parent, with OneCellPerParent (the values moved) and without
+  // it (the measure-weighted sums), equals the plain mesh's.
+  for (int dimension : { 2, 3 })
+  {
+    TestMesh target = Shuffled(dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1)
+                                              : mptest::CubeMesh(7, 7, 7, 0.15, 1), 4);
+    const TestMesh source = dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2)
+                                           : mptest::CubeMesh(6, 8, 7, 0.15, 2);
+    for (size_t p = 0; p < target.Points.size(); p += 3)
+    {
+      target.Points[p] = 0.3 + 0.9 * target.Points[p]; // [0.3, 1.2]: a third outside
+    }
+    target.Finish();
+    const Renumbered t(target);
+    auto fractions = [&source](const mp::MeshView& view) {
+      mp::BoxGridLocator locator(source.View());
+      mp::MortarOperator op;
+      EXPECT_TRUE(op.Build(view, source.View(), &locator, mp::OperatorOptions()));
+      return op.GetCoveredFraction();
+    };
+    const std::vector<double> plain = fractions(target.View());
+    mp::MeshView view = t.Mesh.View();
+    view.Parent = t.Parent.data();
+    view.NumberOfParents = target.NumberOfCells();
+    for (bool moved : { true, false })
+    {
+      view.OneCellPerParent = moved;
+      const std::vector<double> through = fractions(view);
+      ASSERT_EQ(through.size(), plain.size());
+      double largest = 0;
+      int partial = 0;
+      for (size_t c = 0; c < plain.size(); ++c)
+      {
+        largest = std::max(largest, std::fabs(plain[c] - through[c]));
+        partial += plain[c] > 0.01 && plain[c] < 0.99;
+      }
+      EXPECT_LT(largest, 1e-12) << dimension << "D, OneCellPerParent " << moved;
+      EXPECT_GT(partial, 10) << dimension << "D";
+    }
+  }
+}

@@ -60,6 +60,17 @@ inline std::vector<double> ParentMeasures(const MeshView& mesh)
 /// covered fraction of each of its simplices.
 inline std::vector<double> ParentFractions(const MeshView& mesh, const std::vector<double>& fraction)
 {
+  if (mesh.Parent && mesh.OneCellPerParent)
+  {
+    // Only renumbered: each parent's fraction is its one simplex's (already
+    // at most 1; 0 for a simplex of no measure, which the search skips).
+    std::vector<double> moved(static_cast<size_t>(mesh.Parents()), 0.0);
+    for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    {
+      moved[static_cast<size_t>(mesh.Parent[c])] = std::min(1.0, fraction[static_cast<size_t>(c)]);
+    }
+    return moved;
+  }
   std::vector<double> measure(static_cast<size_t>(mesh.Parents()), 0.0);
   std::vector<double> covered(measure.size(), 0.0);
   ForEachCellMeasure(mesh, [&](Index c, double m) {

@@ -54,6 +54,10 @@ struct MeshView
   /// The original cell of each simplex (null: each simplex is its own).
   const Index* Parent = nullptr;
   Index NumberOfParents = 0;           ///< with Parent: how many original cells
+  /// With Parent: every original cell is exactly one simplex (Parent is a
+  /// permutation: the cells were only renumbered), so per-parent sums are
+  /// per-cell values moved.
+  bool OneCellPerParent = false;
   const NeighborId* Neighbors = nullptr; ///< (CellDimension + 1) * NumberOfCells cell ids or -1
 
   int CornersPerCell() const { return this->CellDimension + 1; }

@@ -35,8 +35,43 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
     std::vector<Column> row;
+    // Most rows fit a small buffer on the stack: the point itself and the
+    // other corners of its cells (in 2D about 13 entries before duplicates
+    // go, in 3D about 60).
+    constexpr Index Small = 96;
+    Column small[Small];
     for (Index p = RangeBegin(points, k, tasks); p < RangeBegin(points, k + 1, tasks); ++p)
     {
+      if (1 + (n - 1) * (cellStart[p + 1] - cellStart[p]) <= Small)
+      {
+        Index size = 0;
+        small[size++] = static_cast<Column>(p);
+        for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
+        {
+          const Index* ids = mesh.Cell(cells[i]);
+          for (int c = 0; c < n; ++c)
+          {
+            if (ids[c] != p)
+            {
+              small[size++] = static_cast<Column>(ids[c]);
+            }
+          }
+        }
+        for (Index i = 1; i < size; ++i)
+        {
+          const Column v = small[i];
+          Index j = i;
+          for (; j > 0 && small[j - 1] > v; --j)
+          {
+            small[j] = small[j - 1];
+          }
+          small[j] = v;
+        }
+        const Index unique = std::unique(small, small + size) - small;
+        block.insert(block.end(), small, small + unique);
+        start[p + 1] = unique;
+        continue;
+      }
       row.assign(1, static_cast<Column>(p));
       for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
       {
