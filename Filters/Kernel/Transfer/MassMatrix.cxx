@@ -35,10 +35,11 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
     std::vector<Column> row;
-    // Most rows fit a small buffer on the stack: the point itself and the
-    // other corners of its cells (in 2D about 13 entries before duplicates
-    // go, in 3D about 60).
-    constexpr Index Small = 96;
+    // Short rows are gathered in a buffer on the stack and insertion-sorted:
+    // the point itself and the other corners of its cells (in 2D about 13
+    // entries before duplicates go). Longer ones (most points in 3D: about
+    // 70) take the vector and std::sort below.
+    constexpr Index Small = 64;
     Column small[Small];
     for (Index p = RangeBegin(points, k, tasks); p < RangeBegin(points, k + 1, tasks); ++p)
     {
