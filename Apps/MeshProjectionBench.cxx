@@ -26,6 +26,7 @@
 // Timings are wall-clock seconds, the best of three runs for the kernel's
 // stages and the filter's, one run for the others; ratios, not absolute
 // seconds, carry the comparison.
+#include "Mesh/SpatialOrder.h"
 #include "Search/PairSearch.h"
 #include "Transfer/MortarAssembler.h"
 #include "Transfer/MortarOperator.h"
@@ -128,13 +129,28 @@ void Renumber(TestMesh& m, const std::string& order, unsigned seed)
   }
   std::vector<Index> cellOrder(static_cast<size_t>(cells)); // new -> old
   std::iota(cellOrder.begin(), cellOrder.end(), Index(0));
-  std::vector<Index> pointOrder(static_cast<size_t>(points)); // new -> old
-  std::iota(pointOrder.begin(), pointOrder.end(), Index(0));
+  std::vector<double> x(m.Points.size());
+  std::vector<Index> ids(m.Cells.size());
   if (order == "shuffled")
   {
+    std::vector<Index> pointOrder(static_cast<size_t>(points)); // new -> old
+    std::iota(pointOrder.begin(), pointOrder.end(), Index(0));
     std::mt19937_64 random(seed);
     std::shuffle(cellOrder.begin(), cellOrder.end(), random);
     std::shuffle(pointOrder.begin(), pointOrder.end(), random);
+    std::vector<Index> newId(static_cast<size_t>(points));
+    for (Index p = 0; p < points; ++p)
+    {
+      newId[pointOrder[p]] = p;
+      std::copy_n(&m.Points[3 * pointOrder[p]], 3, &x[3 * p]);
+    }
+    for (Index c = 0; c < cells; ++c)
+    {
+      for (int k = 0; k < corners; ++k)
+      {
+        ids[corners * c + k] = newId[m.Cells[corners * cellOrder[c] + k]];
+      }
+    }
   }
   else
   {
@@ -157,58 +173,28 @@ void Renumber(TestMesh& m, const std::string& order, unsigned seed)
     std::vector<std::array<double, 3>> key(static_cast<size_t>(cells));
     for (Index c = 0; c < cells; ++c)
     {
-      double x[3] = {};
+      double centre[3] = {};
       for (int k = 0; k < corners; ++k)
       {
         for (int a = 0; a < 3; ++a)
         {
-          x[a] += m.Points[3 * m.Cells[corners * c + k] + a] / corners;
+          centre[a] += m.Points[3 * m.Cells[corners * c + k] + a] / corners;
         }
       }
       // 2D: bands along y, x inside; 3D: slabs along z, bands along y, x inside.
       key[c] = m.Dimension == 2
-        ? std::array<double, 3>{ std::floor((x[1] - lo[1]) / band), x[0], 0.0 }
-        : std::array<double, 3>{ std::floor((x[2] - lo[2]) / band),
-            std::floor((x[1] - lo[1]) / band), x[0] };
+        ? std::array<double, 3>{ std::floor((centre[1] - lo[1]) / band), centre[0], 0.0 }
+        : std::array<double, 3>{ std::floor((centre[2] - lo[2]) / band),
+            std::floor((centre[1] - lo[1]) / band), centre[0] };
     }
     std::sort(cellOrder.begin(), cellOrder.end(),
       [&](Index a, Index b) { return key[a] < key[b]; });
-    std::vector<Index> seen(static_cast<size_t>(points), -1);
-    Index next = 0;
-    for (Index c : cellOrder)
-    {
-      for (int k = 0; k < corners; ++k)
-      {
-        Index& s = seen[m.Cells[corners * c + k]];
-        if (s < 0)
-        {
-          s = next;
-          pointOrder[next++] = m.Cells[corners * c + k];
-        }
-      }
-    }
-    for (Index p = 0; p < points; ++p)
-    {
-      if (seen[p] < 0)
-      {
-        pointOrder[next++] = p;
-      }
-    }
-  }
-  std::vector<Index> newId(static_cast<size_t>(points));
-  std::vector<double> x(m.Points.size());
-  for (Index p = 0; p < points; ++p)
-  {
-    newId[pointOrder[p]] = p;
-    std::copy_n(&m.Points[3 * pointOrder[p]], 3, &x[3 * p]);
-  }
-  std::vector<Index> ids(m.Cells.size());
-  for (Index c = 0; c < cells; ++c)
-  {
-    for (int k = 0; k < corners; ++k)
-    {
-      ids[corners * c + k] = newId[m.Cells[corners * cellOrder[c] + k]];
-    }
+    // Points in the order the sorted cells first use them: the kernel's
+    // renumbering, given this cell order.
+    mp::SpatialOrder sorted;
+    sorted.Cells.swap(cellOrder);
+    std::vector<Index> parent(static_cast<size_t>(cells));
+    mp::RenumberMesh(m.View(false), sorted, x.data(), ids.data(), parent.data());
   }
   m.Points.swap(x);
   m.Cells.swap(ids);
