@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Shared helpers of the VTK-level tests: reading the sample meshes, exact
-// integrals of P1 fields, and a check macro that reports and counts failures.
+// Shared helpers of the VTK-level tests: reading the sample meshes, a
+// triangulated unit square, exact integrals of P1 fields, and a check macro that reports and counts failures.
 #ifndef MeshProjectionTestUtilities_h
 #define MeshProjectionTestUtilities_h
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
 #include "vtkDataSetMapper.h"
 #include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
@@ -45,6 +48,62 @@ inline vtkSmartPointer<vtkUnstructuredGrid> ReadSample(const std::string& name)
   vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
   return grid;
 }
+
+/// [0, 1]^2 in nx x ny squares, two triangles each (or one quad each), with
+/// point arrays Linear = 1 + 2x - 3y and Other = 1 + x, cell array Density
+/// = 2 + cell index % 3.
+inline vtkSmartPointer<vtkUnstructuredGrid> Square(int nx, int ny, bool quads = false)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> linear;
+  linear->SetName("Linear");
+  vtkNew<vtkDoubleArray> other;
+  other->SetName("Other");
+  for (int j = 0; j <= ny; ++j)
+  {
+    for (int i = 0; i <= nx; ++i)
+    {
+      const double x = double(i) / nx;
+      const double y = double(j) / ny;
+      points->InsertNextPoint(x, y, 0.0);
+      linear->InsertNextValue(1 + 2 * x - 3 * y);
+      other->InsertNextValue(1 + x);
+    }
+  }
+  grid->SetPoints(points);
+  grid->Allocate(2 * nx * ny);
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      const vtkIdType a = j * (nx + 1) + i;
+      const vtkIdType q[4] = { a, a + 1, a + nx + 2, a + nx + 1 };
+      if (quads)
+      {
+        grid->InsertNextCell(VTK_QUAD, 4, q);
+        continue;
+      }
+      const vtkIdType t1[3] = { q[0], q[1], q[2] };
+      const vtkIdType t2[3] = { q[0], q[2], q[3] };
+      grid->InsertNextCell(VTK_TRIANGLE, 3, t1);
+      grid->InsertNextCell(VTK_TRIANGLE, 3, t2);
+    }
+  }
+  grid->GetPointData()->AddArray(linear);
+  grid->GetPointData()->AddArray(other);
+  vtkNew<vtkDoubleArray> density;
+  density->SetName("Density");
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    density->InsertNextValue(2 + c % 3);
+  }
+  grid->GetCellData()->AddArray(density);
+  return grid;
+}
+
+/// One hexahedron and one polyhedron (the unit cube twice, side by side).
 
 /// Area of a triangle or volume of a tetrahedron (cell c); its point ids in `ids`.
 inline double CellMeasure(vtkUnstructuredGrid* grid, vtkIdType c, const vtkIdType** ids, vtkIdType* n)

@@ -348,41 +348,6 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(all.size() >= 5 && all.back() == 1.0 && std::is_sorted(all.begin(), all.end()));
   return failures;
 }
-/// An n x n grid of squares over [x0, x0 + 1]^2, each cut into two
-/// triangles, with the point field "Smooth".
-vtkSmartPointer<vtkUnstructuredGrid> Squares(int n, double x0)
-{
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkDoubleArray> smooth;
-  smooth->SetName("Smooth");
-  for (int j = 0; j <= n; ++j)
-  {
-    for (int i = 0; i <= n; ++i)
-    {
-      const double x = x0 + double(i) / n;
-      const double y = x0 + double(j) / n;
-      points->InsertNextPoint(x, y, 0.0);
-      smooth->InsertNextValue(std::sin(3 * x) * std::cos(2 * y));
-    }
-  }
-  grid->SetPoints(points);
-  grid->GetPointData()->AddArray(smooth);
-  grid->Allocate(2 * n * n);
-  for (int j = 0; j < n; ++j)
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      const vtkIdType a = j * (n + 1) + i;
-      const vtkIdType lower[3] = { a, a + 1, a + n + 2 };
-      const vtkIdType upper[3] = { a, a + n + 2, a + n + 1 };
-      grid->InsertNextCell(VTK_TRIANGLE, 3, lower);
-      grid->InsertNextCell(VTK_TRIANGLE, 3, upper);
-    }
-  }
-  return grid;
-}
-
 /**
  * With two threads the search's tasks run on VTK's thread pool, none on the
  * thread that runs the pipeline, where the GUI takes progress events: the
@@ -396,8 +361,16 @@ int ThreadedProgress()
   int failures = 0;
   vtkNew<vtkMeshProjectionFilter> filter;
   filter->SetNumberOfThreads(2);
-  filter->SetInputData(Squares(100, 0.0));  // 20,000 triangles: 10,000 per task
-  filter->SetSourceData(Squares(90, 0.003));
+  filter->SetInputData(mptest::Square(100, 100)); // 20,000 triangles: 10,000 per task
+  auto source = mptest::Square(90, 90);
+  for (vtkIdType p = 0; p < source->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    source->GetPoint(p, x);
+    source->GetPoints()->SetPoint(p, x[0] + 0.003, x[1] + 0.003, x[2]); // nothing lines up
+  }
+  source->GetCellData()->RemoveArray("Density"); // point data only: one operator, one search
+  filter->SetSourceData(source);
   struct Seen
   {
     std::thread::id Pipeline = std::this_thread::get_id();
@@ -425,7 +398,7 @@ int ThreadedProgress()
   MP_CHECK(!seen.ElsewhereToo);
   MP_CHECK(std::is_sorted(seen.Amounts.begin(), seen.Amounts.end()) && !seen.Amounts.empty() &&
     seen.Amounts.back() == 1.0);
-  MP_CHECK(filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth") != nullptr);
+  MP_CHECK(filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Linear") != nullptr);
   return failures;
 }
 } // namespace

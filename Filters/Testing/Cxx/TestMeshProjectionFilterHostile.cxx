@@ -36,61 +36,6 @@
 
 namespace
 {
-/// [0, 1]^2 in nx x ny squares, two triangles each (or one quad each), with
-/// point arrays Linear = 1 + 2x - 3y and Other = 1 + x, cell array Density
-/// = 2 + cell index % 3.
-vtkSmartPointer<vtkUnstructuredGrid> Square(int nx, int ny, bool quads = false)
-{
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> linear;
-  linear->SetName("Linear");
-  vtkNew<vtkDoubleArray> other;
-  other->SetName("Other");
-  for (int j = 0; j <= ny; ++j)
-  {
-    for (int i = 0; i <= nx; ++i)
-    {
-      const double x = double(i) / nx;
-      const double y = double(j) / ny;
-      points->InsertNextPoint(x, y, 0.0);
-      linear->InsertNextValue(1 + 2 * x - 3 * y);
-      other->InsertNextValue(1 + x);
-    }
-  }
-  grid->SetPoints(points);
-  grid->Allocate(2 * nx * ny);
-  for (int j = 0; j < ny; ++j)
-  {
-    for (int i = 0; i < nx; ++i)
-    {
-      const vtkIdType a = j * (nx + 1) + i;
-      const vtkIdType q[4] = { a, a + 1, a + nx + 2, a + nx + 1 };
-      if (quads)
-      {
-        grid->InsertNextCell(VTK_QUAD, 4, q);
-        continue;
-      }
-      const vtkIdType t1[3] = { q[0], q[1], q[2] };
-      const vtkIdType t2[3] = { q[0], q[2], q[3] };
-      grid->InsertNextCell(VTK_TRIANGLE, 3, t1);
-      grid->InsertNextCell(VTK_TRIANGLE, 3, t2);
-    }
-  }
-  grid->GetPointData()->AddArray(linear);
-  grid->GetPointData()->AddArray(other);
-  vtkNew<vtkDoubleArray> density;
-  density->SetName("Density");
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
-  {
-    density->InsertNextValue(2 + c % 3);
-  }
-  grid->GetCellData()->AddArray(density);
-  return grid;
-}
-
-/// One hexahedron and one polyhedron (the unit cube twice, side by side).
 vtkSmartPointer<vtkUnstructuredGrid> HexAndPolyhedron()
 {
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
@@ -177,8 +122,8 @@ bool Contains(const std::string& text, const std::string& part)
 int TestMeshProjectionFilterHostile(int, char*[])
 {
   int failures = 0;
-  auto source = Square(24, 22);
-  auto target = Square(13, 11);
+  auto source = mptest::Square(24, 22);
+  auto target = mptest::Square(13, 11);
 
   // 1. Corrupt cells, on either port: an error naming the cell and the
   // value; the output is Input as it came.
@@ -483,8 +428,8 @@ int TestMeshProjectionFilterHostile(int, char*[])
     // Cells to cells on aligned grids: NaN densities on the Source cells of
     // [0, 0.5]^2 leave exactly the Input cells there invalid; the integral
     // over the rest is conserved, intensive and extensive.
-    auto s = Square(20, 20, true);
-    auto t = Square(10, 10, true);
+    auto s = mptest::Square(20, 20, true);
+    auto t = mptest::Square(10, 10, true);
     vtkDataArray* density = s->GetCellData()->GetArray("Density");
     for (vtkIdType c = 0; c < s->GetNumberOfCells(); ++c)
     {
