@@ -1536,7 +1536,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       continue;
     }
     prepareSearch();
-    if (!progress(0.1))
+    // This operator's share of the bar, after those built before it.
+    const double from = 0.1 + 0.8 * built / toBuild;
+    if (!progress(from))
     {
       return "stopped";
     }
@@ -1545,7 +1547,6 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     options.SourceSpace = SourceSpaceOf(t);
     options.Fields = assembled || g.Components == 0 ? nullptr : g.Values.data();
     options.FieldComponents = assembled ? 0 : g.Components;
-    const double from = 0.1 + 0.8 * built / toBuild;
     options.Progress = [&progress, from, toBuild](double f) {
       return progress(from + 0.8 * f / toBuild);
     };

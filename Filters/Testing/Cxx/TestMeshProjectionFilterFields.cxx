@@ -399,6 +399,21 @@ int ThreadedProgress()
   MP_CHECK(std::is_sorted(seen.Amounts.begin(), seen.Amounts.end()) && !seen.Amounts.empty() &&
     seen.Amounts.back() == 1.0);
   MP_CHECK(filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Linear") != nullptr);
+
+  // Point and cell data: two operators, two searches, one after the other
+  // on the bar; it never goes back (each search starts where the one
+  // before it ended).
+  vtkNew<vtkMeshProjectionFilter> both;
+  both->SetNumberOfThreads(1);
+  both->SetInputData(mptest::Square(70, 70)); // 9,800 triangles: the search reports at 8,192
+  both->SetSourceData(mptest::Square(63, 77));
+  Seen twice;
+  record->SetClientData(&twice);
+  both->AddObserver(vtkCommand::ProgressEvent, record);
+  both->Update();
+  MP_CHECK(both->GetNumberOfOperatorsBuilt() == 2);
+  MP_CHECK(std::is_sorted(twice.Amounts.begin(), twice.Amounts.end()) && !twice.Amounts.empty() &&
+    twice.Amounts.back() == 1.0);
   return failures;
 }
 } // namespace
