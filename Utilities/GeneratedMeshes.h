@@ -10,6 +10,7 @@
 #include "Mesh/MeshView.h"
 #include "Search/CandidateLocator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -25,6 +26,7 @@ using mp::Index;
 struct TestMesh
 {
   int Dimension = 2;          // 2: triangles, 3: tetrahedra
+  bool Surface = false;       // triangles of a surface in 3D (SpaceDimension 3)
   std::vector<double> Points; // x, y, z
   std::vector<Index> Cells;   // Dimension + 1 per cell
   std::vector<mp::NeighborId> Neighbors;
@@ -39,7 +41,7 @@ struct TestMesh
   {
     mp::MeshView v;
     v.CellDimension = this->Dimension;
-    v.SpaceDimension = this->Dimension;
+    v.SpaceDimension = this->Surface ? 3 : this->Dimension;
     v.Points = this->Points.data();
     v.NumberOfPoints = this->NumberOfPoints();
     v.Connectivity = this->Cells.data();
@@ -319,6 +321,223 @@ inline std::vector<double> Sample3D(
 /// The triangle (0,0),(1,0),(0,1) alone; its source split at the midpoint
 /// m = (1/2,1/2) of its hypotenuse: S0 = (0,(1,0),m), S1 = (0,m,(0,1)).
 /// Source points: 0 (0,0), 1 (1,0), 2 (0,1), 3 m.
+/// Appends `other`'s points and cells to `m` (a mesh of several pieces).
+inline void AppendMesh(TestMesh& m, const TestMesh& other)
+{
+  const Index shift = m.NumberOfPoints();
+  m.Points.insert(m.Points.end(), other.Points.begin(), other.Points.end());
+  for (Index id : other.Cells)
+  {
+    m.Cells.push_back(id + shift);
+  }
+}
+
+/**
+ * The sphere of `radius` about the origin, facetized from an icosahedron
+ * whose faces are split into `n` x `n` triangles, projected radially:
+ * 20 n^2 triangles, counterclockwise seen from outside (from inside when
+ * `inward`). Points shared by faces are merged.
+ */
+inline TestMesh Icosphere(int n, double radius = 1.0, bool inward = false)
+{
+  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+  const double v[12][3] = { { -1, g, 0 }, { 1, g, 0 }, { -1, -g, 0 }, { 1, -g, 0 }, { 0, -1, g },
+    { 0, 1, g }, { 0, -1, -g }, { 0, 1, -g }, { g, 0, -1 }, { g, 0, 1 }, { -g, 0, -1 },
+    { -g, 0, 1 } };
+  const int f[20][3] = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 }, { 0, 10, 11 },
+    { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 }, { 3, 4, 2 },
+    { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 },
+    { 9, 8, 1 } };
+  TestMesh m;
+  m.Dimension = 2;
+  m.Surface = true;
+  // Points keyed by their lattice position on an edge or face, so that
+  // faces sharing an edge share its points.
+  std::map<std::vector<long>, Index> ids;
+  auto point = [&](int face, int i, int j) -> Index {
+    // Barycentric lattice coordinates (n - i - j, i, j) over the face's corners.
+    const int c[3] = { f[face][0], f[face][1], f[face][2] };
+    const int w[3] = { n - i - j, i, j };
+    std::vector<long> key;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (w[k] > 0)
+      {
+        key.push_back(c[k]);
+        key.push_back(w[k]);
+      }
+    }
+    // Order (corner, weight) pairs by corner: the same key from any face.
+    std::vector<std::pair<long, long>> pairs;
+    for (size_t k = 0; k < key.size(); k += 2)
+    {
+      pairs.emplace_back(key[k], key[k + 1]);
+    }
+    std::sort(pairs.begin(), pairs.end());
+    key.clear();
+    for (const auto& p : pairs)
+    {
+      key.push_back(p.first);
+      key.push_back(p.second);
+    }
+    auto found = ids.find(key);
+    if (found != ids.end())
+    {
+      return found->second;
+    }
+    double x[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        x[d] += v[c[k]][d] * w[k] / double(n);
+      }
+    }
+    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    const Index id = m.NumberOfPoints();
+    for (int d = 0; d < 3; ++d)
+    {
+      m.Points.push_back(radius * x[d] / r);
+    }
+    ids.emplace(key, id);
+    return id;
+  };
+  auto add = [&](Index a, Index b, Index c) {
+    m.Cells.insert(m.Cells.end(), { a, inward ? c : b, inward ? b : c });
+  };
+  for (int face = 0; face < 20; ++face)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i + j < n; ++i)
+      {
+        add(point(face, i, j), point(face, i + 1, j), point(face, i, j + 1));
+        if (i + j + 1 < n)
+        {
+          add(point(face, i + 1, j), point(face, i + 1, j + 1), point(face, i, j + 1));
+        }
+      }
+    }
+  }
+  return m;
+}
+
+/**
+ * The sphere of `radius` about the origin as latitude-longitude facets:
+ * `rings` bands, `sectors` around, the polar bands as fans, the others as
+ * quads split along alternating diagonals; counterclockwise seen from outside.
+ */
+inline TestMesh UvSphere(int rings, int sectors, double radius = 1.0)
+{
+  const double pi = 3.14159265358979323846;
+  TestMesh m;
+  m.Dimension = 2;
+  m.Surface = true;
+  m.Points.insert(m.Points.end(), { 0.0, 0.0, radius });
+  for (int r = 1; r < rings; ++r)
+  {
+    const double theta = pi * r / rings;
+    for (int k = 0; k < sectors; ++k)
+    {
+      const double phi = 2.0 * pi * (k + 0.37 * r) / sectors; // each ring turned by 0.37 sector
+      m.Points.insert(m.Points.end(), { radius * std::sin(theta) * std::cos(phi),
+                                        radius * std::sin(theta) * std::sin(phi),
+                                        radius * std::cos(theta) });
+    }
+  }
+  m.Points.insert(m.Points.end(), { 0.0, 0.0, -radius });
+  const Index south = m.NumberOfPoints() - 1;
+  auto ring = [&](int r, int k) -> Index { return 1 + (r - 1) * sectors + (k % sectors); };
+  for (int k = 0; k < sectors; ++k)
+  {
+    m.Cells.insert(m.Cells.end(), { 0, ring(1, k), ring(1, k + 1) });
+    m.Cells.insert(m.Cells.end(), { south, ring(rings - 1, k + 1), ring(rings - 1, k) });
+  }
+  for (int r = 1; r + 1 < rings; ++r)
+  {
+    for (int k = 0; k < sectors; ++k)
+    {
+      const Index a = ring(r, k), b = ring(r + 1, k), c = ring(r + 1, k + 1), d = ring(r, k + 1);
+      if ((r + k) % 2)
+      {
+        m.Cells.insert(m.Cells.end(), { a, b, c, a, c, d });
+      }
+      else
+      {
+        m.Cells.insert(m.Cells.end(), { a, b, d, b, c, d });
+      }
+    }
+  }
+  return m;
+}
+
+/**
+ * The surface of the cube [0, 1]^3: each face an n x n grid of squares,
+ * split along one diagonal (`diagonal` 0) or the other (1), outward normals.
+ * Points on the edges and corners are shared between faces.
+ */
+inline TestMesh CubeSurface(int n, int diagonal)
+{
+  TestMesh m;
+  m.Dimension = 2;
+  m.Surface = true;
+  std::map<std::vector<long>, Index> ids;
+  auto point = [&](const long (&q)[3]) -> Index {
+    const std::vector<long> key(q, q + 3);
+    auto found = ids.find(key);
+    if (found != ids.end())
+    {
+      return found->second;
+    }
+    const Index id = m.NumberOfPoints();
+    for (int d = 0; d < 3; ++d)
+    {
+      m.Points.push_back(double(q[d]) / n);
+    }
+    ids.emplace(key, id);
+    return id;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      // (u, v, normal) axes with u x v = +axis; swap for the side at 0.
+      int u = (axis + 1) % 3;
+      int v = (axis + 2) % 3;
+      if (side == 0)
+      {
+        std::swap(u, v);
+      }
+      for (int i = 0; i < n; ++i)
+      {
+        for (int j = 0; j < n; ++j)
+        {
+          Index c[4];
+          const int di[4] = { 0, 1, 1, 0 };
+          const int dj[4] = { 0, 0, 1, 1 };
+          for (int k = 0; k < 4; ++k)
+          {
+            long q[3];
+            q[axis] = side * n;
+            q[u] = i + di[k];
+            q[v] = j + dj[k];
+            c[k] = point(q);
+          }
+          if (diagonal == 0)
+          {
+            m.Cells.insert(m.Cells.end(), { c[0], c[1], c[2], c[0], c[2], c[3] });
+          }
+          else
+          {
+            m.Cells.insert(m.Cells.end(), { c[0], c[1], c[3], c[1], c[2], c[3] });
+          }
+        }
+      }
+    }
+  }
+  return m;
+}
+
 inline std::pair<TestMesh, TestMesh> SplitTriangle()
 {
   TestMesh target;

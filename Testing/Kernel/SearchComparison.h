@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -49,6 +50,18 @@ struct SearchComparison
 
   void ExpectSamePairs(const std::string& what) const
   {
+    if (this->Front.Pairs.size() != this->Brute.Pairs.size())
+    {
+      std::vector<std::tuple<Index, Index, double>> missing;
+      std::set_symmetric_difference(this->Front.Pairs.begin(), this->Front.Pairs.end(),
+        this->Brute.Pairs.begin(), this->Brute.Pairs.end(), std::back_inserter(missing));
+      for (size_t i = 0; i < missing.size() && i < 5; ++i)
+      {
+        ADD_FAILURE() << what << ": pair (" << std::get<0>(missing[i]) << ", "
+                      << std::get<1>(missing[i]) << ") of measure " << std::get<2>(missing[i])
+                      << " found by one search only";
+      }
+    }
     ASSERT_EQ(this->Front.Pairs.size(), this->Brute.Pairs.size()) << what;
     for (size_t i = 0; i < this->Front.Pairs.size(); ++i)
     {

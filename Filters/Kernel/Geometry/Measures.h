@@ -13,6 +13,7 @@
 #ifndef MeshProjection_Kernel_Measures_h
 #define MeshProjection_Kernel_Measures_h
 
+#include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Mesh/MeshView.h"
@@ -38,7 +39,11 @@ void ForEachCellMeasure(const MeshView& mesh, Visit visit)
       }
     }
   };
-  if (mesh.CellDimension == 2)
+  if (mesh.IsSurfaceMesh())
+  {
+    each(static_cast<SurfaceIntersector*>(nullptr));
+  }
+  else if (mesh.CellDimension == 2)
   {
     each(static_cast<TriangleIntersector*>(nullptr));
   }

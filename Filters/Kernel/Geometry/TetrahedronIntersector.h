@@ -80,6 +80,10 @@ public:
 
   /// Gathers cell `id`; false for a cell of zero (or non-finite) volume.
   static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
+  /// The source cell as the spaces see it on a piece: itself.
+  static const Cell& SourceCell(const Cell& s, const Piece&) { return s; }
+  /// Never: a false Intersect means the cells do not meet (see SurfaceIntersector).
+  static bool Screened(const Piece&) { return false; }
   /// The source cell that starts the target neighbour across face k.
   static Index FaceSeed(const Piece& piece, int k, const Cell& s, const MeshView& source)
   {

@@ -170,6 +170,11 @@ bool TriangleIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     cell.X[k][0] = x[0];
     cell.X[k][1] = x[1];
   }
+  return PrepareCorners(cell);
+}
+
+bool TriangleIntersector::PrepareCorners(Cell& cell)
+{
   double twiceArea = Orient2D(cell.X[0], cell.X[1], cell.X[2]);
   if (!(twiceArea != 0.0) || !std::isfinite(twiceArea))
   {

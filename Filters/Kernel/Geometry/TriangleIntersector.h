@@ -69,6 +69,16 @@ public:
    * corners collinear, decided exactly); such a cell meets nothing.
    */
   static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
+  /**
+   * The rest of Prepare for a cell whose Id, Points, Face and X are set:
+   * orders the corners counterclockwise (with their points and faces) and
+   * sets Box, Measure and Inverse. False for zero area.
+   */
+  static bool PrepareCorners(Cell& cell);
+  /// The source cell as the spaces see it on a piece: itself.
+  static const Cell& SourceCell(const Cell& s, const Piece&) { return s; }
+  /// Never: a false Intersect means the cells do not meet (see SurfaceIntersector).
+  static bool Screened(const Piece&) { return false; }
   /// The source cell that starts the target neighbour across a touched face:
   /// the source cell itself (it meets the closed face, hence the neighbour).
   static Index FaceSeed(const Piece&, int, const Cell& s, const MeshView&) { return s.Id; }

@@ -14,9 +14,9 @@
  *    coordinates, as VTK does; a planar mesh in any plane is seen in 2D
  *    through a PlaneFrame (PlaneFrame.h): its points' (x, y) in place for
  *    planes z = constant, else mapped into (u, v, 0).
- * Today the geometry exists for CellDimension == SpaceDimension (triangles
- * in the plane, tetrahedra in space); surfaces and curves in 3D are meshes
- * whose cell dimension is below their space dimension.
+ * The geometry exists for triangles in the plane and tetrahedra in space
+ * (CellDimension == SpaceDimension) and for triangles of surfaces in 3D
+ * (CellDimension 2, SpaceDimension 3); curves (CellDimension 1) have none yet.
  *
  * Cells that are not simplices (quads, hexahedra, polyhedra) are given as
  * the simplices they are split into, with `Parent` naming the original cell
@@ -59,6 +59,15 @@ struct MeshView
   /// per-cell values moved.
   bool OneCellPerParent = false;
   const NeighborId* Neighbors = nullptr; ///< (CellDimension + 1) * NumberOfCells cell ids or -1
+  /**
+   * Surfaces in 3D (CellDimension 2, SpaceDimension 3), read from the
+   * target's view: a source facet meets a target facet only within this
+   * distance of the target facet's plane, relative to the target facet's
+   * longest edge (Geometry/SurfaceIntersector.h) ...
+   */
+  double SurfaceReach = 0.5;
+  /// ... and only when the cosine of their normals' angle is at least this (45 degrees).
+  double SurfaceMinCosine = 0.70710678118654752;
 
   int CornersPerCell() const { return this->CellDimension + 1; }
   const Index* Cell(Index c) const { return this->Connectivity + c * this->CornersPerCell(); }
@@ -71,8 +80,10 @@ struct MeshView
   Index ParentOf(Index c) const { return this->Parent ? this->Parent[c] : c; }
   /// How many original cells there are.
   Index Parents() const { return this->Parent ? this->NumberOfParents : this->NumberOfCells; }
-  /// Simplices filling their space: the cases the intersectors handle.
+  /// Simplices filling their space (triangles in the plane, tetrahedra).
   bool IsVolumeMesh() const { return this->CellDimension == this->SpaceDimension; }
+  /// Triangles of a surface in 3D.
+  bool IsSurfaceMesh() const { return this->CellDimension == 2 && this->SpaceDimension == 3; }
 };
 } // namespace mp
 

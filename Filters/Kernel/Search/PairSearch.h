@@ -280,6 +280,10 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       ask(tId, level == 2);
     }
     bool blocked = false; // the inner front met the source boundary
+    // A surface's source facet near the cell was screened out (normals,
+    // reach): the facets meeting the cell may not be connected through
+    // each other, so only a query among all source cells nearby is sure.
+    bool screened = false;
     bool met = false;
     for (;;)
     {
@@ -311,6 +315,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         ++stats.IntersectionTests;
         if (!Intersector::Intersect(t, s, piece))
         {
+          screened = screened || Intersector::Screened(piece);
           continue;
         }
         met = true;
@@ -350,7 +355,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       }
       // Done when nothing can be missing: all cells asked, or the boundary
       // cells asked after something was met, or met without the boundary.
-      if (level == 2 || (met && (level == 1 || !blocked)))
+      if (level == 2 || (met && !screened && (level == 1 || !blocked)))
       {
         break;
       }
@@ -369,7 +374,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       }
       // The seed failed, or the walk ran into the source boundary: ask for
       // the boundary cells nearby; if still nothing meets the cell, for all.
-      level = (met || (level == 0 && !askedAll)) ? 1 : 2;
+      level = (met || (level == 0 && !askedAll)) && !screened ? 1 : 2;
       ask(tId, level == 2);
     }
     for (int k = 0; k < Faces; ++k)

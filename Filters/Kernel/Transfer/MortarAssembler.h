@@ -59,7 +59,7 @@ double AddPieceBlocks(const typename Intersector::Piece& piece, const typename I
   double lt[TargetSpace::Dofs][K];
   double ls[SourceSpace::Dofs][K];
   TargetSpace::Basis(t, o, lt);
-  SourceSpace::Basis(s, o, ls);
+  SourceSpace::Basis(Intersector::SourceCell(s, piece), o, ls);
   AddMixedBlock<TargetSpace::Dofs, SourceSpace::Dofs, K>(lt, ls, M, Mts);
   AddTargetBlock<TargetSpace::Dofs, K>(lt, M, Mtt);
   return measure;
@@ -199,10 +199,13 @@ struct MortarAssembler
     AddShiftedMoments<K>(M, d, this->Moments);
     double lt[Nt][K];
     double ls[Ns][K];
+    // The source cell as the spaces see it on the piece (a surface's source
+    // facet: its image in the target's plane).
+    const auto& sourceCell = Intersector::SourceCell(s, piece);
     TargetSpace::Basis(t, o, lt);
-    SourceSpace::Basis(s, o, ls);
+    SourceSpace::Basis(sourceCell, o, ls);
     Index dofs[Ns];
-    SourceSpace::CellDofs(*this->Source, s, dofs);
+    SourceSpace::CellDofs(*this->Source, sourceCell, dofs);
     if (this->Fields)
     {
       const double* u[Ns];

@@ -3,6 +3,7 @@
 
 #include "Geometry/Measures.h"
 
+#include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Search/ParallelSearch.h"
@@ -70,10 +71,11 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   for (const auto& mesh : { std::make_pair(&target, "Input (target)"), std::make_pair(&source, "Source") })
   {
     const MeshView& m = *mesh.first;
-    if (!((m.CellDimension == 2 || m.CellDimension == 3) && m.IsVolumeMesh()))
+    if (!(((m.CellDimension == 2 || m.CellDimension == 3) && m.IsVolumeMesh()) || m.IsSurfaceMesh()))
     {
       this->Error = std::string(mesh.second) +
-        ": only triangles in the plane (2D) and tetrahedra in space (3D) have a geometry yet";
+        ": only triangles in the plane (2D), triangles of surfaces in 3D and tetrahedra in space "
+        "(3D) have a geometry yet";
       return false;
     }
     this->Error = CheckSearchMesh(m, mesh.second, options.Method);
@@ -89,6 +91,14 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   if (SearchNeedsNeighbors(options.Method) && !locator)
   {
     this->Error = "the advancing front needs a locator over the source cells";
+    return false;
+  }
+  if (target.CellDimension == 2 && source.CellDimension == 2 &&
+    target.SpaceDimension != source.SpaceDimension)
+  {
+    this->Error = "Input and Source are triangles seen in different spaces (" +
+      std::to_string(target.SpaceDimension) + "D and " + std::to_string(source.SpaceDimension) +
+      "D): a surface in 3D is matched with a surface in 3D";
     return false;
   }
   if (target.CellDimension != source.CellDimension)
@@ -112,13 +122,17 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
     return false;
   }
   this->Pieces.Dimension = target.CellDimension;
-  if (target.CellDimension == 2)
+  if (target.IsSurfaceMesh())
   {
-    this->Dispatch<2>(target, source, locator);
+    this->Dispatch<SurfaceIntersector>(target, source, locator);
+  }
+  else if (target.CellDimension == 2)
+  {
+    this->Dispatch<TriangleIntersector>(target, source, locator);
   }
   else
   {
-    this->Dispatch<3>(target, source, locator);
+    this->Dispatch<TetrahedronIntersector>(target, source, locator);
   }
   if (!this->Error.empty())
   {
@@ -136,10 +150,10 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   return true;
 }
 
-template <int D>
+template <class Intersector>
 void MortarOperator::Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator)
 {
-  using Intersector = typename std::conditional<D == 2, TriangleIntersector, TetrahedronIntersector>::type;
+  constexpr int D = Intersector::Dimension;
   const bool p1t = this->Options.TargetSpace == SpaceType::P1;
   const bool p1s = this->Options.SourceSpace == SpaceType::P1;
   if (p1t && p1s)

@@ -192,7 +192,7 @@ public:
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
   void Assemble(const MeshView& target, const MeshView& source, CandidateLocator* locator);
-  template <int D>
+  template <class Intersector>
   void Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator);
 
   OperatorOptions Options;
