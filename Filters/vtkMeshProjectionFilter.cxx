@@ -12,6 +12,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -1423,7 +1424,15 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         << sourceMesh.Dimension() << "D: both must be of the same dimension.";
     return why.str();
   }
-  if (targetMesh.Dimension() == 2)
+  if (targetMesh.Dimension() == 2 && (targetMesh.Surface() || sourceMesh.Surface()))
+  {
+    // A surface in 3D: both meshes are seen as they are (a planar one too).
+    targetMesh.UseAsSurface();
+    sourceMesh.UseAsSurface();
+    const double pi = 3.14159265358979323846;
+    targetMesh.SetSurfaceContact(this->SurfaceReach, std::cos(this->MaximumNormalAngle * pi / 180.0));
+  }
+  else if (targetMesh.Dimension() == 2)
   {
     std::string warning;
     const std::string error = UseOnePlane(targetMesh, sourceMesh, warning);
@@ -1452,6 +1461,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   print.Add(run.SourcePrint);
   print.Add(static_cast<std::uint64_t>(this->SearchMethod));
   print.Add(static_cast<std::uint64_t>(this->OutputIntersections));
+  if (targetMesh.View().IsSurfaceMesh())
+  {
+    const double contact[2] = { this->SurfaceReach, this->MaximumNormalAngle };
+    print.Add(contact, sizeof contact);
+  }
   const bool sameGeometry =
     this->CacheOperator && kept.HasFingerprint && kept.GeometryFingerprint == print.Hash;
   if (!sameGeometry)
@@ -1807,6 +1821,31 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     return &copy;
   };
+  // Per source function, its integral over the whole Source (P1: a third of
+  // the area of each triangle around the point; P0: the cell's measure).
+  std::vector<double> sourceWeights[2];
+  auto weightsOf = [&](bool fromCells) -> const std::vector<double>& {
+    std::vector<double>& w = sourceWeights[fromCells];
+    const mp::MeshView& view = sourceMesh.View();
+    if (w.empty())
+    {
+      w.assign(static_cast<size_t>(fromCells ? view.Parents() : view.NumberOfPoints), 0.0);
+      const int corners = view.CornersPerCell();
+      mp::ForEachCellMeasure(view, [&](mp::Index c, double m) {
+        if (fromCells)
+        {
+          w[static_cast<size_t>(view.ParentOf(c))] += m;
+          return;
+        }
+        for (int k = 0; k < corners; ++k)
+        {
+          w[static_cast<size_t>(view.Cell(c)[k])] += m / corners;
+        }
+      });
+    }
+    return w;
+  };
+  vtkFieldData* outFD = output->GetFieldData();
   for (int t : { 0, 2, 1, 3 })
   {
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
@@ -1852,14 +1891,73 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       const vtkIdType n = toPoints ? nt : ntc;
       projected->SetNumberOfTuples(n);
       double* out = projected->GetPointer(0);
+      // The integrals: of the Source field over the whole Source, and of the
+      // projection over the covered target (which equals that of the
+      // projected Source field there).
+      std::vector<double> sourceIntegral(static_cast<size_t>(nc), 0.0);
+      std::vector<double> targetIntegral(static_cast<size_t>(nc), 0.0);
+      {
+        const std::vector<double>& w = weightsOf(fromCells);
+        for (size_t j = 0; j < w.size(); ++j)
+        {
+          for (int k = 0; k < nc; ++k)
+          {
+            sourceIntegral[k] += w[j] * g.Values[j * width + offset + k];
+          }
+        }
+        for (vtkIdType f = 0; f < n; ++f)
+        {
+          if (op.GetValid()[f])
+          {
+            for (int k = 0; k < nc; ++k)
+            {
+              targetIntegral[k] += covered[f] * values[f * width + offset + k];
+            }
+          }
+        }
+      }
+      // Optionally, the projection scaled to the Source's own integral (the
+      // facetizations of a curved surface differ in area).
+      std::vector<double> factor(static_cast<size_t>(nc), 1.0);
+      if (this->ConserveSourceIntegral)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          const double ratio = sourceIntegral[k] / targetIntegral[k];
+          if (std::isfinite(ratio) && ratio >= 0.5 && ratio <= 2.0)
+          {
+            factor[k] = ratio;
+            targetIntegral[k] = sourceIntegral[k];
+          }
+          else
+          {
+            vtkWarningMacro(<< "ConserveSourceIntegral: " << arrayName << " (component " << k
+                            << ") is not scaled: its integral over Source is " << sourceIntegral[k]
+                            << " and over " << role << " " << targetIntegral[k]
+                            << " (the ratio must lie within [0.5, 2]).");
+          }
+        }
+      }
       for (vtkIdType f = 0; f < n; ++f)
       {
         const double scale = totals && op.GetValid()[f] ? covered[f] : 1.0;
         const vtkIdType to = toPoints ? targetMesh.DataSetPoint(f) : f;
         for (int k = 0; k < nc; ++k)
         {
-          out[to * nc + k] = scale * values[f * width + offset + k];
+          out[to * nc + k] = scale * factor[k] * values[f * width + offset + k];
         }
+      }
+      for (int which = 0; which < 2; ++which)
+      {
+        vtkNew<vtkDoubleArray> integral;
+        integral->SetName(((which ? "TargetIntegral_" : "SourceIntegral_") + arrayName).c_str());
+        integral->SetNumberOfComponents(nc);
+        integral->SetNumberOfTuples(1);
+        for (int k = 0; k < nc; ++k)
+        {
+          integral->SetComponent(0, k, which ? targetIntegral[k] : sourceIntegral[k]);
+        }
+        outFD->AddArray(integral);
       }
       offset += nc;
       outData->AddArray(projected);
@@ -2054,6 +2152,9 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";
   os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent") << "\n";
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
+  os << indent << "SurfaceReach: " << this->SurfaceReach << "\n";
+  os << indent << "ConserveSourceIntegral: " << (this->ConserveSourceIntegral ? "On" : "Off") << "\n";
+  os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";

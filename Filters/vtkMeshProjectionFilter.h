@@ -315,6 +315,42 @@ public:
 
   ///@{
   /**
+   * Surfaces in 3D (triangles, quads or polygons not in one plane; see the
+   * class description). SurfaceReach: the largest distance between a source
+   * facet and a target facet's plane at which they still meet, relative to
+   * the target facet's longest edge (default 0.5: two facetizations of one
+   * curved surface are much closer, O(h^2 / R); a small gap between two
+   * solvers' interfaces is bridged). MaximumNormalAngle: the largest angle
+   * in degrees between the two facets' normals (default 45, at most 89),
+   * oriented: the two sides of a thin plate or shell, and the faces meeting
+   * at a sharp edge, are never matched. Both meshes must be consistently
+   * oriented (as mesh generators write them; vtkPolyDataNormals can fix
+   * others).
+   */
+  vtkSetClampMacro(SurfaceReach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SurfaceReach, double);
+  vtkSetClampMacro(MaximumNormalAngle, double, 0.0, 89.0);
+  vtkGetMacro(MaximumNormalAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Scales each projected array (each component) so that its integral over
+   * the covered target equals the Source field's integral over the whole
+   * Source ("SourceIntegral_<name>", field data), instead of the integral
+   * of the projected Source field (conservation on the target). Meant for
+   * surfaces, whose two facetizations differ in area: loads and fluxes then
+   * keep their totals exactly. A component whose two integrals differ by
+   * more than a factor of 2 (or with a zero integral) is left unscaled, with
+   * a warning. Linear fields are then no longer exact. Default: false.
+   */
+  vtkSetMacro(ConserveSourceIntegral, bool);
+  vtkGetMacro(ConserveSourceIntegral, bool);
+  vtkBooleanMacro(ConserveSourceIntegral, bool);
+  ///@}
+
+  ///@{
+  /**
    * Threads for the filter's parallel loops (the search, the intersections
    * and local integrals, the assembly, the solve, the neighbours): 0
    * (default) uses every core. The filter runs them in a local vtkSMPTools
@@ -456,6 +492,9 @@ protected:
   int CellDataQuantity = INTENSIVE;
   int MassMatrix = CONSISTENT_MASS;
   bool PreserveBounds = false;
+  double SurfaceReach = 0.5;
+  double MaximumNormalAngle = 45.0;
+  bool ConserveSourceIntegral = false;
   bool CacheOperator = true;
   int NumberOfThreads = 0;
   int Renumbering = AUTOMATIC_RENUMBERING;

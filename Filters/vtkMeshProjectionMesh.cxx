@@ -875,29 +875,30 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   }
   double deviation = 0.0;
   double size = 0.0;
+  this->Kernel.SpaceDimension = this->Kernel.CellDimension;
+  this->NotPlanar = false;
   if (this->Kernel.NumberOfCells > 0 && this->Dimension() == 2 &&
     !this->Own.Fit(this->Kernel, deviation, size))
   {
-    // Name the coordinate closest to the normal: "z" for a mesh meant to
-    // lie in a plane z = constant.
-    const double* n = this->Own.GetNormal();
-    int axis = 2;
-    for (int d = 0; d < 3; ++d)
-    {
-      axis = std::fabs(n[d]) > std::fabs(n[axis]) ? d : axis;
-    }
-    why << role << " is not planar: its triangles' " << "xyz"[axis] << " coordinates range over ["
-        << lo[axis] << ", " << hi[axis] << "], and its points lie up to " << deviation
-        << " from their best-fitting plane. Triangle meshes must lie in one plane (surfaces in "
-        << "3D are not supported).";
-    return why.str();
+    // Not in one plane: a surface in 3D (SurfaceIntersector.h).
+    this->NotPlanar = true;
+    this->UseAsSurface();
+    return std::string();
   }
   this->Seen = this->Own;
   return std::string();
 }
 
+void SimplexMesh::UseAsSurface()
+{
+  this->Kernel.SpaceDimension = 3;
+  this->Kernel.Points = this->OriginalPoints;
+  this->Seen = mp::PlaneFrame();
+}
+
 void SimplexMesh::UseFrame(const mp::PlaneFrame& frame)
 {
+  this->Kernel.SpaceDimension = 2;
   this->Seen = frame.Shifted(this->Own.Offset());
   if (frame.IsIdentity())
   {
@@ -1029,11 +1030,15 @@ StaticLocator::StaticLocator(const SimplexMesh& mesh)
   const double hi[3] = { bounds[1], bounds[3], bounds[5] };
   int divisions[3];
   // A 2D mesh outside the planes z = constant spreads over 3D boxes.
-  const int binDimension = mesh.Dimension() == 2 && !mesh.Frame().IsIdentity() ? 3 : mesh.Dimension();
+  const int binDimension =
+    mesh.Dimension() == 2 && (!mesh.Frame().IsIdentity() || mesh.View().IsSurfaceMesh()) ? 3 : mesh.Dimension();
   mp::BinDivisions(lo, hi, binDimension, mesh.View().NumberOfCells, n, divisions);
   l.Boundary->AutomaticOff();
   l.Boundary->SetDivisions(divisions);
-  l.Boundary->BuildLocator();
+  if (n > 0) // a closed surface has no boundary (VTK would report an error)
+  {
+    l.Boundary->BuildLocator();
+  }
 }
 
 StaticLocator::StaticLocator(std::shared_ptr<Shared> shared, const SimplexMesh& mesh)
@@ -1063,7 +1068,7 @@ void StaticLocator::Find(bool all, const double box[6], std::vector<mp::Index>& 
 {
   // 2D: the kernel works in the frame's (x, y); the source lies in its own plane.
   double bounds[6] = { box[0], box[1], box[2], box[3], box[4], box[5] };
-  if (this->Mesh.Dimension() == 2)
+  if (this->Mesh.Dimension() == 2 && !this->Mesh.View().IsSurfaceMesh())
   {
     this->Mesh.Frame().BoxToSpace(box, bounds);
   }
@@ -1076,7 +1081,14 @@ void StaticLocator::Find(bool all, const double box[6], std::vector<mp::Index>& 
       l.All->SetDataSet(l.Grid);
       l.All->BuildLocator();
     }
-    (all ? l.All : l.Boundary)->FindCellsWithinBounds(bounds, this->Ids);
+    if (all || !l.BoundaryCells.empty())
+    {
+      (all ? l.All : l.Boundary)->FindCellsWithinBounds(bounds, this->Ids);
+    }
+    else
+    {
+      this->Ids->Reset();
+    }
   }
   cells.clear();
   for (vtkIdType id : *this->Ids)
@@ -1106,7 +1118,7 @@ vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const 
   for (vtkIdType v = 0; v < nv; ++v)
   {
     double x[3];
-    if (pieces.Dimension == 2)
+    if (pieces.Dimension == 2 && !target.View().IsSurfaceMesh())
     {
       target.Frame().ToSpace(&pieces.Points[3 * v], x); // back into the target's plane
     }

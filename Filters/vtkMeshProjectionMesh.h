@@ -127,7 +127,7 @@ public:
   /// Sets the dimension of a mesh without cells (it takes the other mesh's).
   void SetDimension(int d) { this->Kernel.CellDimension = this->Kernel.SpaceDimension = d; }
   int Dimension() const { return this->Kernel.CellDimension; }
-  /// For 2D meshes, the plane fitted to the mesh's own points by Wrap().
+  /// For 2D meshes in one plane, the plane fitted to the mesh's own points by Wrap().
   const mp::PlaneFrame& OwnPlane() const { return this->Own; }
   /**
    * For 2D meshes: sees the points in `frame`'s 2D coordinates (in place
@@ -135,6 +135,20 @@ public:
    * same frame; this mesh's own plane may be parallel to it.
    */
   void UseFrame(const mp::PlaneFrame& frame);
+  /**
+   * For 2D meshes: sees the points as they are, in 3D, as a surface
+   * (mp::SurfaceIntersector). Wrap() does so for a mesh that is not in one
+   * plane; a planar mesh matched with such a surface is seen so too.
+   */
+  void UseAsSurface();
+  /// Whether Wrap() found a 2D mesh that is not in one plane (a surface in 3D).
+  bool Surface() const { return this->NotPlanar; }
+  /// Surfaces: the reach and the cosine of the largest normals' angle (MeshView).
+  void SetSurfaceContact(double reach, double minCosine)
+  {
+    this->Kernel.SurfaceReach = reach;
+    this->Kernel.SurfaceMinCosine = minCosine;
+  }
   /// The frame the kernel sees the mesh in, moved onto the mesh's own plane.
   const mp::PlaneFrame& Frame() const { return this->Seen; }
   vtkIdType NonManifoldFaces() const { return this->NonManifold; }
@@ -177,6 +191,7 @@ private:
   mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;
   vtkIdType Ghosts = 0;
+  bool NotPlanar = false;
 };
 
 /**

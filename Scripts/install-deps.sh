@@ -28,6 +28,7 @@ PACKAGES=(
   # --- needed by paraview-dev's CMake config, not pulled in by it ---
   python3-matplotlib         # Scripts/plot_benchmark.py (the README's performance plot)
   python3-scipy              # meshprojection.operator_matrices (scipy.sparse) and its tests
+  python3-gmsh               # the surface tests' meshes (Gmsh's Python API)
   python3-dev                # FindPython3 Development.Module (VTK::Python); also builds the wrapping
   libopenmpi-dev             # FindMPI C (VTK::mpi); needed even with COMPONENTS
   qtbase5-dev                # Qt5 Core/Gui/Widgets/Network (ParaView pq* modules)

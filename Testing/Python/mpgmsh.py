@@ -1,0 +1,121 @@
+"""Surface meshes made by Gmsh (python3-gmsh), as VTK data: the tests' and
+the examples' real-generator pairs (curved, with sharp edges, quads, open
+boundaries, several pieces). Every mesh is cached per process."""
+import numpy as np
+
+_cache = {}
+
+
+def _occ(shape):
+    """Adds `shape` to Gmsh's OpenCASCADE kernel; returns the surfaces to
+    reverse (a shell's inner side faces inward) and those to leave out (the
+    flat face closing a cap)."""
+    import gmsh
+    occ = gmsh.model.occ
+    reverse = []
+    skip = []
+    if shape == "sphere":
+        occ.addSphere(0, 0, 0, 1.0)
+    elif shape == "cylinder":
+        occ.addCylinder(0, 0, -1, 0, 0, 2, 0.8)
+    elif shape == "torus":
+        occ.addTorus(0, 0, 0, 1.0, 0.4)
+    elif shape == "box":
+        occ.addBox(0, 0, 0, 1, 1, 1)
+    elif shape == "cap":
+        # An open surface with a boundary: the sphere's part above z = 0.3.
+        occ.addSphere(0, 0, 0, 1.0, 1, np.arcsin(0.3), np.pi / 2)
+    elif shape == "shell":
+        occ.addSphere(0, 0, 0, 1.0, 1)
+        occ.addSphere(0, 0, 0, 0.97, 2)
+        occ.cut([(3, 1)], [(3, 2)])
+    elif shape.startswith("arc"):
+        # A quarter of the side of a cylinder of radius r (arc<r>): two of
+        # them make a curved gap.
+        occ.addCylinder(0, 0, 0, 0, 0, 1, float(shape[3:]), 1, np.pi / 2)
+    elif shape.startswith("patch"):
+        # A flat square at height z (patch<z>): two patches make a gap.
+        z = float(shape[5:])
+        occ.addRectangle(0, 0, z, 1, 1)
+    else:
+        raise ValueError(shape)
+    occ.synchronize()
+    for dim, tag in gmsh.model.getEntities(2):
+        box = gmsh.model.getBoundingBox(2, tag)
+        if shape == "shell" and box[3] - box[0] < 1.99:  # the inner sphere (diameter 1.94)
+            reverse.append(tag)
+        if shape == "cap" and box[5] - box[2] < 1e-6:  # the flat disk under the cap
+            skip.append(tag)
+        if shape.startswith("arc") and min(box[3] - box[0], box[4] - box[1], box[5] - box[2]) < 1e-6:
+            skip.append(tag)  # the flat faces of the cylinder's wedge
+    return reverse, skip
+
+
+def surface(shape, h, algorithm=6, quads=False):
+    """vtkPolyData of the triangles (or quads) Gmsh makes on `shape` with
+    size `h` and 2D algorithm `algorithm` (5 Delaunay, 6 Frontal-Delaunay,
+    1 MeshAdapt), in Gmsh's own node and element order, shared points merged."""
+    key = (shape, h, algorithm, quads)
+    if key in _cache:
+        return _cache[key]
+    import gmsh
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add(shape)
+        reverse, skip = _occ(shape)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        gmsh.option.setNumber("Mesh.Algorithm", algorithm)
+        if quads:
+            gmsh.option.setNumber("Mesh.RecombineAll", 1)
+        gmsh.model.mesh.generate(2)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        index = {int(t): i for i, t in enumerate(tags)}
+        x = np.asarray(coords).reshape(-1, 3)
+        polys = []
+        for dim, tag in gmsh.model.getEntities(2):
+            if tag in skip:
+                continue
+            types, _, nodes = gmsh.model.mesh.getElements(2, tag)
+            for etype, enodes in zip(types, nodes):
+                corners = {2: 3, 3: 4}[int(etype)]
+                cells = np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, corners)
+                if tag in reverse:
+                    cells = cells[:, ::-1]
+                polys.extend(list(c) for c in cells)
+    finally:
+        gmsh.finalize()
+    # Only the nodes the facets use (a skipped surface leaves its own), in Gmsh's order.
+    connectivity = np.concatenate([np.asarray(c, dtype=np.int64) for c in polys])
+    used = np.unique(connectivity)
+    renumber = np.full(len(x), -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    connectivity = renumber[connectivity]
+    x = x[used]
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(x), deep=True))
+    offsets = np.cumsum([0] + [len(c) for c in polys]).astype(np.int64)
+    cells = vtkCellArray()
+    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
+    mesh = vtkPolyData()
+    mesh.SetPoints(points)
+    mesh.SetPolys(cells)
+    _cache[key] = mesh
+    return mesh
+
+
+def with_point_field(mesh, name, f):
+    """A shallow copy of `mesh` with the point array f(x, y, z)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    copy = mesh.NewInstance()
+    copy.ShallowCopy(mesh)
+    x = vtk_to_numpy(mesh.GetPoints().GetData())
+    values = numpy_to_vtk(np.ascontiguousarray(f(x[:, 0], x[:, 1], x[:, 2]), dtype=np.float64), deep=True)
+    values.SetName(name)
+    copy.GetPointData().AddArray(values)
+    return copy
