@@ -328,3 +328,36 @@ TEST(Surfaces, VolumeAndSurfaceMeshesAreNotMatched)
   EXPECT_FALSE(op.Build(a.View(), b.View(), &locator));
   EXPECT_NE(op.GetError().find("different spaces"), std::string::npos) << op.GetError();
 }
+
+TEST(Surfaces, ASteepStepDoesNotStopTheFront)
+{
+  // The source: z = 0 left of x = 0.5, z = 0.2 right of x = 0.55, the
+  // facets in between at 76 degrees (screened out by the 45 degree limit).
+  // Coarse target facets at z = 0.1 straddle the step: the source facets
+  // meeting them on both sides are connected only through the step, so
+  // the front must ask the locator there.
+  TestMesh source = mptest::GridMesh(20, 20, 0.0, 3);
+  source.Surface = true;
+  for (Index q = 0; q < source.NumberOfPoints(); ++q)
+  {
+    source.Points[3 * q + 2] = source.Points[3 * q] > 0.5 + 1e-9 ? 0.2 : 0.0;
+  }
+  source.Finish();
+  TestMesh target = mptest::GridMesh(3, 3, 0.1, 4);
+  target.Surface = true;
+  for (Index q = 0; q < target.NumberOfPoints(); ++q)
+  {
+    target.Points[3 * q + 2] = 0.1;
+  }
+  target.Finish();
+  mptest::SearchComparison<SurfaceIntersector> search(target, source);
+  search.ExpectSamePairs("step");
+  EXPECT_GT(search.FrontStats.FullLocatorQueries, 0);
+  // Both sides are found: the pieces cover all but the step's images.
+  double covered = 0.0;
+  for (const auto& p : search.Front.Pairs)
+  {
+    covered += std::get<2>(p);
+  }
+  EXPECT_NEAR(covered, 0.95, 1e-12);
+}
