@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job, from a fresh Debian 12 machine: install the dependencies,
 # build, and project the sample source field onto the sample target mesh.
-# For each sample pair NAME (lshape2d, lshape3d) writes build/main/NAME-projected.vtu,
-# build/main/NAME-intersections.vtp (2D) or .vtu (3D) and build/main/NAME.png,
+# For each sample pair NAME (lshape2d, lshape3d, sphere) writes build/main/NAME-projected.vtu,
+# build/main/NAME-intersections.vtp (2D, surfaces) or .vtu (3D) and build/main/NAME.png,
 # and prints a summary.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -6,13 +6,15 @@ Run with pvpython (under xvfb-run on a machine without a display):
     pvpython Scripts/project_sample.py --plugin PATH/MeshProjection.so [--out-dir build/main]
     pvpython Scripts/project_sample.py --plugin ... --source S.vtu --target T.vtu [--name NAME]
 
-Without --source/--target it runs both samples of Data/: the 2D pair
-(lshape_*.vtu, triangles) and the 3D pair (lshape3d_*.vtu, tetrahedra). For
-each case NAME it writes OUT_DIR/NAME-projected.vtu (the target mesh with
-every projected source array, vtkValidPointMask and CoveredFraction),
-OUT_DIR/NAME-intersections.vtp or .vtu (the intersection polygons or
-polyhedra) and OUT_DIR/NAME.png: the source field (left) beside the projected
-field (right) in the same colours; in 3D, a slice through both.
+Without --source/--target it runs the three samples of Data/: the 2D pair
+(lshape_*.vtu, triangles), the 3D pair (lshape3d_*.vtu, tetrahedra) and the
+surface pair (sphere_*.vtu: two Gmsh facetizations of a sphere, triangles
+onto curved quadrilaterals). For each case NAME it writes
+OUT_DIR/NAME-projected.vtu (the target mesh with every projected source
+array, vtkValidPointMask and CoveredFraction), OUT_DIR/NAME-intersections.vtp
+or .vtu (the intersection polygons or polyhedra) and OUT_DIR/NAME.png: the
+source field (left) beside the projected field (right) in the same colours;
+in 3D, a slice through both; for a surface, seen from above at an angle.
 """
 import argparse
 import os
@@ -39,8 +41,22 @@ def integral(proxy, array):
     return value, measure.GetValue(0)
 
 
-def picture(source, projection, array, title_source, title_target, path, slice_z=None):
-    """Source (left) and projection (right), same colour map; 3D: slices z = slice_z."""
+def describe(proxy):
+    """'N triangles' or 'N triangles and M quadrilaterals' ... from the cell types."""
+    from vtkmodules.vtkCommonDataModel import vtkCellTypes
+    data = servermanager.Fetch(proxy)
+    counts = {}
+    for c in range(data.GetNumberOfCells()):
+        name = vtkCellTypes.GetClassNameFromTypeId(data.GetCellType(c))
+        counts[name] = counts.get(name, 0) + 1
+    words = {"vtkTriangle": "triangles", "vtkQuad": "quadrilaterals", "vtkTetra": "tetrahedra",
+             "vtkPolygon": "polygons", "vtkHexahedron": "hexahedra", "vtkWedge": "wedges"}
+    return " and ".join("%d %s" % (n, words.get(k, k)) for k, n in sorted(counts.items()))
+
+
+def picture(source, projection, array, title_source, title_target, path, slice_z=None, tilt=None):
+    """Source (left) and projection (right), same colour map; 3D: slices z = slice_z;
+    a surface: seen from above, tilted by `tilt` degrees towards -y."""
     view = CreateView("RenderView")
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
@@ -93,6 +109,15 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
     view.CameraPosition = centre + [bounds[5] + 10]
     view.CameraViewUp = [0, 1, 0]
     view.CameraParallelScale = scale
+    if tilt is not None:
+        # Rotated about the x axis: x stays horizontal on the screen.
+        import math
+        a = math.radians(tilt)
+        focal = [centre[0], 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])]
+        view.CameraFocalPoint = focal
+        view.CameraPosition = [focal[0], focal[1] - 10 * math.sin(a), focal[2] + 10 * math.cos(a)]
+        view.CameraViewUp = [0, math.cos(a), math.sin(a)]
+        view.CameraParallelScale = scale
     Render(view)
     SaveScreenshot(path, view, ImageResolution=SIZE)
     Delete(view)  # release the GL context before the interpreter exits
@@ -114,7 +139,10 @@ def run_case(name, source_file, target_file, array, out_dir):
     t_info = target.GetDataInformation()
     three_d = projection.GetDataInformation(2).GetNumberOfCells() > 0
     pieces_port = 2 if three_d else 1
-    cells = "tetrahedra" if three_d else "triangles"
+    # A surface in 3D: 2D cells whose points span three dimensions.
+    extent = [b - a for a, b in zip(t_info.GetBounds()[::2], t_info.GetBounds()[1::2])]
+    surface = not three_d and min(extent) > 1e-6 * max(extent)
+    s_cells, t_cells = describe(source), describe(target)
     projected_file = os.path.join(out_dir, name + "-projected.vtu")
     pieces_file = os.path.join(out_dir, name + ("-intersections.vtu" if three_d else "-intersections.vtp"))
     # Inline binary, not appended: VTK 9.2 cannot read appended data back with
@@ -125,14 +153,22 @@ def run_case(name, source_file, target_file, array, out_dir):
     s_int, s_measure = integral(source, array)
     t_int, t_measure = integral(projection, array)
     conservation = abs(t_int - s_int) / max(abs(s_int), 1e-300)
+    if surface:
+        # The filter's own integrals (field data): over the target's covered
+        # part, the projection's (that of the projected source field), and
+        # over the whole source, the source field's. They differ as the two
+        # facetizations' areas do (ConserveSourceIntegral would equalize them).
+        field = servermanager.Fetch(projection).GetFieldData()
+        t_own = field.GetArray("TargetIntegral_" + array).GetValue(0)
+        s_own = field.GetArray("SourceIntegral_" + array).GetValue(0)
     mask = projection.PointData["vtkValidPointMask"].GetRange()
     pieces = projection.GetDataInformation(pieces_port).GetNumberOfCells()
 
     print("%s: mortar L2 projection, advancing front (Gander & Japhet)" % name)
-    print("  source        %s: %d %s, %d points" %
-          (os.path.basename(source_file), s_info.GetNumberOfCells(), cells, s_info.GetNumberOfPoints()))
-    print("  target        %s: %d %s, %d points" %
-          (os.path.basename(target_file), t_info.GetNumberOfCells(), cells, t_info.GetNumberOfPoints()))
+    print("  source        %s: %s, %d points" %
+          (os.path.basename(source_file), s_cells, s_info.GetNumberOfPoints()))
+    print("  target        %s: %s, %d points" %
+          (os.path.basename(target_file), t_cells, t_info.GetNumberOfPoints()))
     if three_d:
         # Port 2 holds the polyhedra as tetrahedra: one polyhedron per (source, target) pair.
         tets = servermanager.Fetch(projection, idx=2).GetCellData()
@@ -143,8 +179,13 @@ def run_case(name, source_file, target_file, array, out_dir):
         print("  intersections %d polygons" % pieces)
     print("  time          %.3f s (pipeline update: neighbours, locator, search, assembly, solve)" % seconds)
     print("  %s        source %.15g, target %.15g" % ("volume" if three_d else "area  ", s_measure, t_measure))
-    print("  integral of %s: source %.15g, projected %.15g, relative error %.2e" %
-          (array, s_int, t_int, conservation))
+    if surface:
+        print("  integral of %s: over the source %.15g, over the target %.15g (the projected" % (array, s_own, t_own))
+        print("                source field's, conserved); they differ by %.2e as the facetizations' areas do" %
+              (abs(t_own - s_own) / max(abs(s_own), 1e-300)))
+    else:
+        print("  integral of %s: source %.15g, projected %.15g, relative error %.2e" %
+              (array, s_int, t_int, conservation))
     print("  valid points  mask range %s" % (list(mask),))
     png = os.path.join(out_dir, name + ".png")
     z = None
@@ -152,9 +193,11 @@ def run_case(name, source_file, target_file, array, out_dir):
         bounds = s_info.GetBounds()
         z = bounds[4] + 0.55 * (bounds[5] - bounds[4])
     picture(source, projection, array,
-            "Source: %d %s%s" % (s_info.GetNumberOfCells(), cells, "" if z is None else ", slice z = %.2f" % z),
-            "Projected onto target: %d %s" % (t_info.GetNumberOfCells(), cells), png, z)
+            "Source: %s%s" % (s_cells, "" if z is None else ", slice z = %.2f" % z),
+            "Projected onto target: %s" % t_cells, png, z, tilt=35 if surface else None)
     print("  wrote         %s, %s, %s" % (projected_file, pieces_file, png))
+    if surface:
+        return abs(t_own - s_own) < 1e-2 * abs(s_own) and mask[0] == 1
     return conservation < 1e-12 and mask[0] == 1
 
 
@@ -178,7 +221,8 @@ def main():
     else:
         cases = [("lshape2d", os.path.join(data, "lshape_source.vtu"), os.path.join(data, "lshape_target.vtu")),
                  ("lshape3d", os.path.join(data, "lshape3d_source.vtu"),
-                  os.path.join(data, "lshape3d_target.vtu"))]
+                  os.path.join(data, "lshape3d_target.vtu")),
+                 ("sphere", os.path.join(data, "sphere_source.vtu"), os.path.join(data, "sphere_target.vtu"))]
     ok = all([run_case(name, s, t, args.array, args.out_dir) for name, s, t in cases])
     return 0 if ok else 1
 

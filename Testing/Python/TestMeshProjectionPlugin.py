@@ -183,6 +183,42 @@ png = os.path.join(temp_dir, "TestMeshProjectionPlugin3D.png")
 SaveScreenshot(png, view, ImageResolution=[400, 400])
 check(compare_image(png, "TestMeshProjectionPlugin3D.png", temp_dir), "3D image matches the baseline")
 
+# A surface in 3D: two Gmsh facetizations of the sphere, triangles onto
+# curved quadrilaterals (Data/make_sample_data_surface.py).
+Hide(cut, view)
+sphere_source = OpenDataFile(os.path.join(DATA, "sphere_source.vtu"))
+sphere_target = OpenDataFile(os.path.join(DATA, "sphere_target.vtu"))
+sphere = MeshProjection(Input=sphere_target, Source=sphere_source)  # noqa: F821
+sphere.OutputIntersections = 1
+sphere.UpdatePipeline()
+out_s = servermanager.Fetch(sphere)
+mask = out_s.GetPointData().GetArray("vtkValidPointMask")
+check(mask.GetRange() == (1.0, 1.0), "sphere: every point valid")
+check(sphere.GetDataInformation(1).GetNumberOfCells() > 20000,
+      "sphere: intersection polygons on output 1 (%d)" % sphere.GetDataInformation(1).GetNumberOfCells())
+field = out_s.GetFieldData()
+t_own = field.GetArray("TargetIntegral_Smooth").GetValue(0)
+s_own = field.GetArray("SourceIntegral_Smooth").GetValue(0)
+check(0 < abs(t_own - s_own) < 2e-3 * s_own, "sphere: integrals over the facetizations %r, %r" % (s_own, t_own))
+lin = out_s.GetPointData().GetArray("Linear")
+worst = max(abs(lin.GetValue(i) - (1 + 2 * out_s.GetPoint(i)[0] - 3 * out_s.GetPoint(i)[1] + 0.5 * out_s.GetPoint(i)[2]))
+            for i in range(out_s.GetNumberOfPoints()))
+check(worst < 0.02, "sphere: a linear field within O(h^2) (%g)" % worst)
+display = Show(sphere, view)
+display.SetRepresentationType("Surface With Edges")
+display.EdgeColor = [0.3, 0.3, 0.3]
+ColorBy(display, ("POINTS", "Smooth"))
+display.LookupTable.RescaleTransferFunction(0.5, 3.5)
+view.CameraParallelProjection = 1
+view.CameraFocalPoint = [0, 0, 0]
+view.CameraPosition = [0, -5.7, 8.2]
+view.CameraViewUp = [0, 0.82, 0.57]
+view.CameraParallelScale = 1.05
+Render(view)
+png = os.path.join(temp_dir, "TestMeshProjectionPluginSurface.png")
+SaveScreenshot(png, view, ImageResolution=[400, 400])
+check(compare_image(png, "TestMeshProjectionPluginSurface.png", temp_dir), "sphere image matches the baseline")
+
 Delete(view)
 del view
 finish()
