@@ -28,7 +28,14 @@
  * composite datasets of them (vtkMultiBlockDataSet, vtkPartitionedDataSet,
  * vtkPartitionedDataSetCollection). 2D: triangles, quads, pixels, polygons
  * and triangle strips lying in one plane, any plane (2D meshes with 3D
- * coordinates; planarity is judged relative to the mesh's size). 3D:
+ * coordinates; planarity is judged relative to the mesh's size). Surfaces
+ * in 3D: the same cells not in one plane (two facetizations of a curved
+ * surface, an interface, a contact pair): each Source facet is projected
+ * onto the Input facet's plane along its normal and intersected there, the
+ * integrals taken on the Input facets; facets meet within SurfaceReach and
+ * with oriented normals within MaximumNormalAngle (both meshes must be
+ * consistently oriented); a planar mesh matched with a surface is one too,
+ * two planar meshes stay the 2D case. 3D:
  * tetrahedra, hexahedra, voxels, wedges, pyramids, pentagonal and hexagonal
  * prisms and polyhedra. Cell types may be mixed. The meshes need not cover
  * the same region, be connected or convex.
@@ -94,7 +101,12 @@
  *  - "vtkValidCellMask" (char cell array, when arrays go to cells): 1 where
  *    the cell meets the source; invalid cells get NaN (or FillValue);
  *  - "CoveredFraction" (double cell array): the fraction of each target
- *    cell's area (volume) covered by the source.
+ *    cell's area (volume) covered by the source;
+ *  - field data "SourceIntegral_<array>" (the Source field's integral over
+ *    the whole Source) and "TargetIntegral_<array>" (the projection's over
+ *    the covered target, equal to the projected Source field's; for
+ *    surfaces they differ as the facetizations' areas do, see
+ *    ConserveSourceIntegral).
  * Missing values: a NaN or infinite value in a Source array leaves the
  * Source cells that use it out of that array's projection (a hole in
  * Source for that array only, with an operator of its own; conservation
@@ -106,7 +118,8 @@
  * any cell is read; the output is then Input passed through. Source arrays
  * shorter than the points (cells) are skipped with a warning.
  * When OutputIntersections is on:
- *  - output port 1 (2D inputs): the intersection polygons, vtkPolyData with
+ *  - output port 1 (2D inputs and surfaces): the intersection polygons
+ *    (for surfaces on the target facets, in 3D), vtkPolyData with
  *    cell arrays "SourceCellId", "TargetCellId" (vtkIdType) and "Area";
  *  - output port 2 (3D inputs): the intersection polyhedra as their
  *    tetrahedral decomposition, vtkUnstructuredGrid with cell arrays
