@@ -26,7 +26,7 @@ using mp::Index;
 struct TestMesh
 {
   int Dimension = 2;          // 2: triangles, 3: tetrahedra
-  bool Surface = false;       // triangles of a surface in 3D (SpaceDimension 3)
+  bool Surface = false;       // triangles of a surface, or a curve, in 3D (SpaceDimension 3)
   std::vector<double> Points; // x, y, z
   std::vector<Index> Cells;   // Dimension + 1 per cell
   std::vector<mp::NeighborId> Neighbors;
@@ -41,7 +41,7 @@ struct TestMesh
   {
     mp::MeshView v;
     v.CellDimension = this->Dimension;
-    v.SpaceDimension = this->Surface ? 3 : this->Dimension;
+    v.SpaceDimension = this->Surface ? 3 : std::max(2, this->Dimension); // curves: in the plane
     v.Points = this->Points.data();
     v.NumberOfPoints = this->NumberOfPoints();
     v.Connectivity = this->Cells.data();

@@ -13,6 +13,7 @@
 #ifndef MeshProjection_Kernel_Measures_h
 #define MeshProjection_Kernel_Measures_h
 
+#include "Geometry/SegmentIntersector.h"
 #include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
@@ -39,7 +40,11 @@ void ForEachCellMeasure(const MeshView& mesh, Visit visit)
       }
     }
   };
-  if (mesh.IsSurfaceMesh())
+  if (mesh.IsCurveMesh())
+  {
+    each(static_cast<SegmentIntersector*>(nullptr));
+  }
+  else if (mesh.IsSurfaceMesh())
   {
     each(static_cast<SurfaceIntersector*>(nullptr));
   }

@@ -16,7 +16,8 @@
  *    planes z = constant, else mapped into (u, v, 0).
  * The geometry exists for triangles in the plane and tetrahedra in space
  * (CellDimension == SpaceDimension) and for triangles of surfaces in 3D
- * (CellDimension 2, SpaceDimension 3); curves (CellDimension 1) have none yet.
+ * (CellDimension 2, SpaceDimension 3) and for segments of curves
+ * (CellDimension 1, SpaceDimension 2 or 3).
  *
  * Cells that are not simplices (quads, hexahedra, polyhedra) are given as
  * the simplices they are split into, with `Parent` naming the original cell
@@ -60,13 +61,15 @@ struct MeshView
   bool OneCellPerParent = false;
   const NeighborId* Neighbors = nullptr; ///< (CellDimension + 1) * NumberOfCells cell ids or -1
   /**
-   * Surfaces in 3D (CellDimension 2, SpaceDimension 3), read from the
-   * target's view: a source facet meets a target facet only within this
-   * distance of the target facet's plane, relative to the target facet's
-   * longest edge (Geometry/SurfaceIntersector.h) ...
+   * Surfaces in 3D (CellDimension 2, SpaceDimension 3) and curves
+   * (CellDimension 1), read from the target's view: a source facet meets a
+   * target facet only within this distance of the target facet's plane
+   * (line), relative to the target facet's longest edge
+   * (Geometry/SurfaceIntersector.h, SegmentIntersector.h) ...
    */
   double SurfaceReach = 0.5;
-  /// ... and only when the cosine of their normals' angle is at least this (45 degrees).
+  /// ... and only when the cosine of their normals' angle (for curves: of
+  /// their directions', without sign) is at least this (45 degrees).
   double SurfaceMinCosine = 0.70710678118654752;
 
   int CornersPerCell() const { return this->CellDimension + 1; }
@@ -82,6 +85,8 @@ struct MeshView
   Index Parents() const { return this->Parent ? this->NumberOfParents : this->NumberOfCells; }
   /// Simplices filling their space (triangles in the plane, tetrahedra).
   bool IsVolumeMesh() const { return this->CellDimension == this->SpaceDimension; }
+  /// Segments of a curve, in the plane or in space.
+  bool IsCurveMesh() const { return this->CellDimension == 1 && this->SpaceDimension >= 2; }
   /// Triangles of a surface in 3D.
   bool IsSurfaceMesh() const { return this->CellDimension == 2 && this->SpaceDimension == 3; }
 };

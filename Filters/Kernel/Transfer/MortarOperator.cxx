@@ -3,6 +3,7 @@
 
 #include "Geometry/Measures.h"
 
+#include "Geometry/SegmentIntersector.h"
 #include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
@@ -71,11 +72,12 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   for (const auto& mesh : { std::make_pair(&target, "Input (target)"), std::make_pair(&source, "Source") })
   {
     const MeshView& m = *mesh.first;
-    if (!(((m.CellDimension == 2 || m.CellDimension == 3) && m.IsVolumeMesh()) || m.IsSurfaceMesh()))
+    if (!(((m.CellDimension == 2 || m.CellDimension == 3) && m.IsVolumeMesh()) ||
+          m.IsSurfaceMesh() || m.IsCurveMesh()))
     {
       this->Error = std::string(mesh.second) +
-        ": only triangles in the plane (2D), triangles of surfaces in 3D and tetrahedra in space "
-        "(3D) have a geometry yet";
+        ": only segments of curves (in the plane or in space), triangles in the plane (2D), "
+        "triangles of surfaces in 3D and tetrahedra in space (3D) have a geometry";
       return false;
     }
     this->Error = CheckSearchMesh(m, mesh.second, options.Method);
@@ -122,7 +124,11 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
     return false;
   }
   this->Pieces.Dimension = target.CellDimension;
-  if (target.IsSurfaceMesh())
+  if (target.IsCurveMesh())
+  {
+    this->Dispatch<SegmentIntersector>(target, source, locator);
+  }
+  else if (target.IsSurfaceMesh())
   {
     this->Dispatch<SurfaceIntersector>(target, source, locator);
   }

@@ -1,0 +1,317 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Curves: two discretizations of one curve, in the plane or in space (SegmentIntersector.h).
+#include "Geometry/SegmentIntersector.h"
+#include "GeneratedMeshes.h"
+#include "SearchComparison.h"
+#include "Transfer/MortarOperator.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+
+using mp::Index;
+using mp::SegmentIntersector;
+using mptest::TestMesh;
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+/// A polyline through the points x(s) for s in `params` (closed: back to the first).
+TestMesh Polyline(const std::vector<double>& params, const std::function<void(double, double*)>& x,
+  bool closed, int space = 2)
+{
+  TestMesh m;
+  m.Dimension = 1;
+  m.Surface = space == 3; // the view's SpaceDimension: 3 for curves in space
+  for (double s : params)
+  {
+    double p[3] = { 0, 0, 0 };
+    x(s, p);
+    m.Points.insert(m.Points.end(), p, p + 3);
+  }
+  const Index n = static_cast<Index>(params.size());
+  for (Index i = 0; i + 1 < n + (closed ? 1 : 0); ++i)
+  {
+    m.Cells.insert(m.Cells.end(), { i, (i + 1) % n });
+  }
+  m.Finish();
+  return m;
+}
+
+std::vector<double> Uniform(int n, double from, double to, double jitter, unsigned seed, bool closed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> d(-jitter, jitter);
+  std::vector<double> s;
+  const int count = closed ? n : n + 1;
+  const double h = (to - from) / n;
+  for (int i = 0; i < count; ++i)
+  {
+    const bool end = !closed && (i == 0 || i == n);
+    s.push_back(from + h * (i + (end ? 0.0 : d(random))));
+  }
+  return s;
+}
+
+void Circle(double s, double* p)
+{
+  p[0] = std::cos(s);
+  p[1] = std::sin(s);
+}
+
+void Helix(double s, double* p)
+{
+  p[0] = std::cos(s);
+  p[1] = std::sin(s);
+  p[2] = 0.3 * s;
+}
+
+double Smooth(const double* x)
+{
+  return std::sin(2.0 * x[0]) + x[1] * x[1] + 0.5 * x[2];
+}
+
+double Linear(const double* x)
+{
+  return 1.0 + 2.0 * x[0] - 3.0 * x[1] + 0.5 * x[2];
+}
+
+std::vector<double> Sample(const TestMesh& m, double (*f)(const double*))
+{
+  std::vector<double> u(static_cast<size_t>(m.NumberOfPoints()));
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    u[p] = f(&m.Points[3 * p]);
+  }
+  return u;
+}
+
+struct CurveProjection
+{
+  mp::MortarOperator Op;
+  bool Ok = false;
+  CurveProjection(const TestMesh& target, const TestMesh& source, double reach = 0.5,
+    double minCosine = 0.7071, mp::SearchMethod method = mp::SearchMethod::AdvancingFront)
+  {
+    mp::MeshView t = target.View();
+    t.SurfaceReach = reach;
+    t.SurfaceMinCosine = minCosine;
+    mp::BoxGridLocator locator(source.View());
+    mp::OperatorOptions options;
+    options.Method = method;
+    options.KeepPieces = true;
+    this->Ok = this->Op.Build(t, source.View(), &locator, options);
+  }
+  std::vector<double> Apply(const std::vector<double>& us) const
+  {
+    std::vector<double> ut(this->Op.GetValid().size());
+    this->Op.Apply(us.data(), 1, ut.data(), std::nan(""));
+    return ut;
+  }
+  std::map<Index, double> Covered() const
+  {
+    std::map<Index, double> length;
+    const auto& pieces = this->Op.GetPieces();
+    for (Index i = 0; i < pieces.Size(); ++i)
+    {
+      length[pieces.TargetCell[i]] += pieces.Measure[i];
+    }
+    return length;
+  }
+};
+
+double Length(const TestMesh& m, Index c)
+{
+  SegmentIntersector::Cell cell;
+  return SegmentIntersector::Prepare(m.View(false), c, cell) ? cell.Measure : 0.0;
+}
+
+double MaxError(const TestMesh& m, const std::vector<double>& u, double (*f)(const double*))
+{
+  double e = 0.0;
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    const double d = std::fabs(u[p] - f(&m.Points[3 * p]));
+    e = std::isfinite(d) ? std::max(e, d) : HUGE_VAL;
+  }
+  return e;
+}
+} // namespace
+
+TEST(Curves, CircleFrontEqualsBruteForceAndPiecesTileTheTarget)
+{
+  const TestMesh target = Polyline(Uniform(50, 0, 2 * Pi, 0.3, 1, true), Circle, true);
+  const TestMesh source = Polyline(Uniform(37, 0.1, 2 * Pi + 0.1, 0.3, 2, true), Circle, true);
+  mptest::SearchComparison<SegmentIntersector> search(target, source);
+  search.ExpectSamePairs("circle");
+  EXPECT_EQ(search.FrontStats.FullLocatorQueries, 0);
+  CurveProjection p(target, source);
+  ASSERT_TRUE(p.Ok) << p.Op.GetError();
+  const auto covered = p.Covered();
+  ASSERT_EQ(static_cast<Index>(covered.size()), target.NumberOfCells());
+  for (const auto& c : covered)
+  {
+    EXPECT_NEAR(c.second, Length(target, c.first), 1e-12 * Length(target, c.first)) << c.first;
+  }
+  EXPECT_EQ(p.Op.GetNumberOfValid(), target.NumberOfPoints());
+  EXPECT_EQ(p.Op.GetNumberOfOvercoveredCells(), 0);
+}
+
+TEST(Curves, LinearFieldsExactOnStraightAndCorneredLines)
+{
+  // A straight segment [0, 1] against a longer one; then an L (its corner a
+  // point of both), the legs at 90 degrees are never matched.
+  auto line = [](double s, double* p) { p[0] = s; p[1] = 0.5 * s; };
+  auto ell = [](double s, double* p) {
+    p[0] = std::min(s, 1.0);
+    p[1] = std::max(s - 1.0, 0.0);
+    p[2] = 0.2;
+  };
+  for (int shape = 0; shape < 2; ++shape)
+  {
+    const auto& x = shape == 0 ? std::function<void(double, double*)>(line) : ell;
+    std::vector<double> ts = Uniform(13, 0, 2, 0.3, 3, false);
+    std::vector<double> ss = Uniform(17, shape == 0 ? -0.1 : 0, shape == 0 ? 2.1 : 2, 0.3, 4, false);
+    if (shape == 1)
+    {
+      ts.push_back(1.0); // the corner in both
+      ss.push_back(1.0);
+      std::sort(ts.begin(), ts.end());
+      std::sort(ss.begin(), ss.end());
+    }
+    const TestMesh target = Polyline(ts, x, false, 3);
+    const TestMesh source = Polyline(ss, x, false, 3);
+    mptest::SearchComparison<SegmentIntersector> search(target, source);
+    search.ExpectSamePairs(shape == 0 ? "line" : "L");
+    CurveProjection p(target, source);
+    ASSERT_TRUE(p.Ok) << p.Op.GetError();
+    EXPECT_LT(MaxError(target, p.Apply(Sample(source, Linear)), Linear), 1e-12) << shape;
+    for (const auto& c : p.Covered())
+    {
+      EXPECT_NEAR(c.second, Length(target, c.first), 1e-13) << shape << " " << c.first;
+    }
+  }
+}
+
+TEST(Curves, CircleAndHelixConvergeAtSecondOrder)
+{
+  for (int curve = 0; curve < 2; ++curve)
+  {
+    double previous = 0.0;
+    for (int level = 0; level < 4; ++level)
+    {
+      const int k = 1 << level;
+      const bool closed = curve == 0;
+      const auto x = curve == 0 ? Circle : Helix;
+      const double end = curve == 0 ? 2 * Pi : 4 * Pi;
+      const TestMesh target = Polyline(Uniform(20 * k, 0, end, 0.3, 5, closed), x, closed, 2 + curve);
+      const TestMesh source =
+        Polyline(Uniform(27 * k, curve == 0 ? 0.05 : -0.2, end + (curve == 0 ? 0.05 : 0.2), 0.3, 6, closed), x,
+          closed, 2 + curve);
+      CurveProjection p(target, source);
+      ASSERT_TRUE(p.Ok) << p.Op.GetError();
+      ASSERT_EQ(p.Op.GetNumberOfValid(), target.NumberOfPoints());
+      const auto ut = p.Apply(Sample(source, Smooth));
+      double sum = 0.0;
+      for (Index q = 0; q < target.NumberOfPoints(); ++q)
+      {
+        const double e = ut[q] - Smooth(&target.Points[3 * q]);
+        sum += e * e;
+      }
+      const double rms = std::sqrt(sum / target.NumberOfPoints());
+      if (level > 0)
+      {
+        EXPECT_GT(std::log2(previous / rms), 1.8) << "curve " << curve << " level " << level;
+      }
+      previous = rms;
+    }
+  }
+}
+
+TEST(Curves, HelixFrontEqualsBruteForceAndConserves)
+{
+  const TestMesh target = Polyline(Uniform(80, 0, 4 * Pi, 0.3, 7, false), Helix, false, 3);
+  const TestMesh source = Polyline(Uniform(61, -0.3, 4 * Pi + 0.3, 0.3, 8, false), Helix, false, 3);
+  mptest::SearchComparison<SegmentIntersector> search(target, source);
+  search.ExpectSamePairs("helix");
+  CurveProjection p(target, source);
+  ASSERT_TRUE(p.Ok);
+  const auto us = Sample(source, Smooth);
+  const auto ut = p.Apply(us);
+  double lhs = 0.0;
+  for (size_t i = 0; i < ut.size(); ++i)
+  {
+    lhs += p.Op.GetCoveredIntegrals()[i] * ut[i];
+  }
+  std::vector<double> rhs(ut.size(), 0.0);
+  const mp::CsrMatrix& mts = p.Op.GetMixedMass();
+  mts.MultiplyRows(us.data(), rhs.data(), 1, 0, mts.Rows);
+  double sum = 0.0;
+  for (double r : rhs)
+  {
+    sum += r;
+  }
+  EXPECT_NEAR(lhs, sum, 1e-12 * std::fabs(sum));
+}
+
+TEST(Curves, ParallelLinesWithinAndBeyondReach)
+{
+  auto low = [](double s, double* p) { p[0] = s; };
+  auto high = [](double s, double* p) { p[0] = s; p[1] = 0.01; };
+  const TestMesh target = Polyline(Uniform(10, 0, 1, 0.3, 9, false), low, false);
+  const TestMesh source = Polyline(Uniform(13, 0, 1, 0.3, 10, false), high, false);
+  CurveProjection near(target, source, 0.5);
+  ASSERT_TRUE(near.Ok);
+  auto ut = near.Apply(Sample(source, Linear));
+  for (Index q = 0; q < target.NumberOfPoints(); ++q)
+  {
+    const double x[3] = { target.Points[3 * q], 0.01, 0.0 };
+    ASSERT_NEAR(ut[q], Linear(x), 1e-12) << q;
+  }
+  CurveProjection far(target, source, 0.05); // 0.05 x about 0.1 < 0.01
+  ASSERT_TRUE(far.Ok);
+  EXPECT_EQ(far.Op.GetNumberOfValid(), 0);
+  mptest::SearchComparison<SegmentIntersector> search(target, source);
+  search.ExpectSamePairs("parallel");
+}
+
+TEST(Curves, AZigzagOfScreenedSegmentsDoesNotStopTheFront)
+{
+  // The source runs along y = 0 but crosses x in [0.5, 0.52] as a steep
+  // zigzag (segments at 80 degrees, screened out): coarse target segments
+  // along y = 0.005 meet source segments on both sides of it.
+  TestMesh source;
+  source.Dimension = 1;
+  std::vector<std::array<double, 2>> xy;
+  for (int i = 0; i <= 25; ++i)
+  {
+    xy.push_back({ 0.02 * i, 0.0 });
+  }
+  xy.push_back({ 0.5025, 0.01 });
+  xy.push_back({ 0.505, 0.0 });
+  xy.push_back({ 0.5075, 0.01 });
+  xy.push_back({ 0.51, 0.0 });
+  for (int i = 0; i <= 24; ++i)
+  {
+    xy.push_back({ 0.52 + 0.02 * i, 0.0 });
+  }
+  for (size_t i = 0; i < xy.size(); ++i)
+  {
+    source.Points.insert(source.Points.end(), { xy[i][0], xy[i][1], 0.0 });
+    if (i > 0)
+    {
+      source.Cells.insert(source.Cells.end(), { Index(i - 1), Index(i) });
+    }
+  }
+  source.Finish();
+  auto line = [](double s, double* p) { p[0] = s; p[1] = 0.005; };
+  const TestMesh target = Polyline({ 0.0, 0.3, 0.7, 1.0 }, line, false);
+  mptest::SearchComparison<SegmentIntersector> search(target, source);
+  search.ExpectSamePairs("zigzag");
+  EXPECT_GT(search.FrontStats.FullLocatorQueries, 0);
+}
