@@ -1325,8 +1325,9 @@ void vtkMeshProjectionFilter::WarnLeftOut(const mpvtk::SimplexMesh& mesh, const 
     this->Internal->Warned.insert("lower/" + role).second) // once per filter, not per step
   {
     vtkWarningMacro(<< role << ": " << mesh.LowerDimensionalCells() << " cells of lower "
-                    << "dimension than its " << mesh.Dimension() << "D cells (vertices, lines"
-                    << (mesh.Dimension() == 3 ? ", faces" : "") << ") are left out of the "
+                    << "dimension than its " << mesh.Dimension() << "D cells (vertices"
+                    << (mesh.Dimension() >= 2 ? ", lines" : "") << (mesh.Dimension() == 3 ? ", faces" : "")
+                    << ") are left out of the "
                     << "projection (their cell values are invalid).");
   }
 }
@@ -1409,8 +1410,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
                              "dimension)")
                     << ": every projected point is invalid.");
     // An empty mesh takes the dimension of the other one.
-    const int d = std::max(targetCells ? targetMesh.Dimension() : 2,
-      sourceCells ? sourceMesh.Dimension() : 2);
+    int d = std::max(targetCells ? targetMesh.Dimension() : 0, sourceCells ? sourceMesh.Dimension() : 0);
+    d = d > 0 ? d : 2;
     targetMesh.SetDimension(d);
     if (sourceCells == 0)
     {
@@ -1424,9 +1425,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         << sourceMesh.Dimension() << "D: both must be of the same dimension.";
     return why.str();
   }
-  if (targetMesh.Dimension() == 2 && (targetMesh.Surface() || sourceMesh.Surface()))
+  if (targetMesh.Dimension() == 1 ||
+    (targetMesh.Dimension() == 2 && (targetMesh.Surface() || sourceMesh.Surface())))
   {
-    // A surface in 3D: both meshes are seen as they are (a planar one too).
+    // A curve, or a surface in 3D: both meshes are seen as they are (a
+    // planar surface too).
     targetMesh.UseAsSurface();
     sourceMesh.UseAsSurface();
     const double pi = 3.14159265358979323846;
@@ -1601,7 +1604,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const vtkIdType flatSource = stats.DegenerateSourceCells + sourceMesh.FlatCells();
     if (flatTarget > 0 || flatSource > 0)
     {
-      vtkWarningMacro(<< "Cells of zero " << (targetMesh.Dimension() == 2 ? "area" : "volume")
+      vtkWarningMacro(<< "Cells of zero "
+                      << (targetMesh.Dimension() == 1 ? "length" : (targetMesh.Dimension() == 2 ? "area" : "volume"))
                       << " (" << role << ": " << flatTarget << ", Source: " << flatSource
                       << ") were ignored: they carry no part of the integrals.");
     }
@@ -2016,7 +2020,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   outCD->AddArray(covered);
 
   // 6. Optionally, the intersection pieces.
-  if (this->OutputIntersections && targetMesh.Dimension() == 2)
+  if (this->OutputIntersections && targetMesh.Dimension() == 1)
+  {
+    pieces = mpvtk::MakeIntersectionSegments(first->GetPieces(), targetMesh, sourceMesh);
+  }
+  else if (this->OutputIntersections && targetMesh.Dimension() == 2)
   {
     pieces = mpvtk::MakeIntersectionPolygons(first->GetPieces(), targetMesh, sourceMesh);
   }

@@ -72,6 +72,12 @@ namespace
 {
 /// The number of points a cell of a linear type has (-n: at least n), or 0
 /// for a type with no fixed count worth checking (empty, nonlinear cells).
+/// The simplex of a mesh of dimension d: line, triangle or tetrahedron.
+int SimplexType(int d)
+{
+  return d == 1 ? VTK_LINE : (d == 2 ? VTK_TRIANGLE : VTK_TETRA);
+}
+
 int PointsOfType(int type)
 {
   switch (type)
@@ -446,11 +452,10 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
         << "faces cannot be split conformingly; apply Tetrahedralize first.";
     return why.str();
   }
-  if (numberOfCells > 0 && dimension < 2)
+  if (numberOfCells > 0 && dimension < 1)
   {
-    why << role << " has only " << (dimension == 0 ? "vertices" : "lines and vertices")
-        << ": curves and point clouds are not supported yet (the projection needs 2D cells in "
-        << "a plane, or 3D cells).";
+    why << role << " has only vertices: point clouds cannot be projected (the projection "
+        << "needs lines, 2D or 3D cells).";
     return why.str();
   }
   // Types other than the mesh's simplex, empty cells included: the grid is
@@ -458,9 +463,9 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
   int others = 0;
   for (int type = 0; type < 256; ++type)
   {
-    others += present[type] && type != (dimension == 3 ? VTK_TETRA : VTK_TRIANGLE);
+    others += present[type] && type != SimplexType(std::max(dimension, 1));
   }
-  this->SetDimension(dimension == 3 ? 3 : 2);
+  this->SetDimension(std::max(dimension, 1));
   if (grid && others == 0)
   {
     // Triangles only, or tetrahedra only: the grid as it is.
@@ -514,7 +519,7 @@ void SimplexMesh::OrderInSpace()
   points->SetData(coordinates);
   this->OrderedGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   this->OrderedGrid->SetPoints(points);
-  this->OrderedGrid->SetCells(corners == 4 ? VTK_TETRA : VTK_TRIANGLE, cells);
+  this->OrderedGrid->SetCells(SimplexType(corners - 1), cells);
   // The kernel sees the copy; P0 functions and the pieces' ids still name
   // the dataset's cells (through Parent), P1 ones name kernel points
   // (DataSetPoint maps them back).
@@ -613,9 +618,19 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     mp::CellShape shape;
     switch (type)
     {
+      case VTK_LINE:
       case VTK_TRIANGLE:
       case VTK_TETRA:
         simplices.insert(simplices.end(), ids.begin(), ids.end());
+        break;
+      case VTK_POLY_LINE:
+        for (size_t k = 0; k + 1 < ids.size(); ++k)
+        {
+          if (ids[k] != ids[k + 1])
+          {
+            simplices.insert(simplices.end(), { ids[k], ids[k + 1] });
+          }
+        }
         break;
       case VTK_PIXEL:
         std::swap(ids[2], ids[3]); // x, y order -> around the square
@@ -660,7 +675,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     }
     const size_t added = (simplices.size() - before) / corners;
     this->Flat += added == 0;
-    this->SplitCount += type != (dimension == 3 ? VTK_TETRA : VTK_TRIANGLE);
+    this->SplitCount += type != SimplexType(dimension);
     this->ParentIds.insert(this->ParentIds.end(), added, c);
   }
   if (refused > 0)
@@ -703,7 +718,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   cells->SetData(offsets, connectivity);
   this->SplitGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   this->SplitGrid->SetPoints(points);
-  this->SplitGrid->SetCells(dimension == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
+  this->SplitGrid->SetCells(SimplexType(dimension), cells);
   return std::string();
 }
 
@@ -877,6 +892,12 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   double size = 0.0;
   this->Kernel.SpaceDimension = this->Kernel.CellDimension;
   this->NotPlanar = false;
+  if (this->Dimension() == 1)
+  {
+    // Curves are seen in space as they are, planar or not (SegmentIntersector.h).
+    this->UseAsSurface();
+    return std::string();
+  }
   if (this->Kernel.NumberOfCells > 0 && this->Dimension() == 2 &&
     !this->Own.Fit(this->Kernel, deviation, size))
   {
@@ -1019,7 +1040,7 @@ StaticLocator::StaticLocator(const SimplexMesh& mesh)
   cells->SetData(offsets, connectivity);
   l.BoundaryGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   l.BoundaryGrid->SetPoints(grid->GetPoints());
-  l.BoundaryGrid->SetCells(corners == 3 ? VTK_TRIANGLE : VTK_TETRA, cells);
+  l.BoundaryGrid->SetCells(SimplexType(corners - 1), cells);
   l.Boundary = vtkSmartPointer<vtkStaticCellLocator>::New();
   l.Boundary->SetDataSet(l.BoundaryGrid);
   // Bins about two source cells wide, as for the whole source: the
@@ -1030,8 +1051,11 @@ StaticLocator::StaticLocator(const SimplexMesh& mesh)
   const double hi[3] = { bounds[1], bounds[3], bounds[5] };
   int divisions[3];
   // A 2D mesh outside the planes z = constant spreads over 3D boxes.
-  const int binDimension =
-    mesh.Dimension() == 2 && (!mesh.Frame().IsIdentity() || mesh.View().IsSurfaceMesh()) ? 3 : mesh.Dimension();
+  // (Curves and surfaces in space too.)
+  const int binDimension = mesh.Dimension() == 1 ||
+      (mesh.Dimension() == 2 && (!mesh.Frame().IsIdentity() || mesh.View().IsSurfaceMesh()))
+    ? 3
+    : mesh.Dimension();
   mp::BinDivisions(lo, hi, binDimension, mesh.View().NumberOfCells, n, divisions);
   l.Boundary->AutomaticOff();
   l.Boundary->SetDivisions(divisions);
@@ -1169,6 +1193,13 @@ vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPiec
 {
   return MakePieces<vtkPolyData>(pieces, target, source, "Area",
     [](vtkPolyData* p, vtkCellArray* cells) { p->SetPolys(cells); });
+}
+
+vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(const mp::IntersectionPieces& pieces,
+  const SimplexMesh& target, const SimplexMesh& source)
+{
+  return MakePieces<vtkPolyData>(pieces, target, source, "Length",
+    [](vtkPolyData* p, vtkCellArray* cells) { p->SetLines(cells); });
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(

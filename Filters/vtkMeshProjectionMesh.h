@@ -138,7 +138,8 @@ public:
   /**
    * For 2D meshes: sees the points as they are, in 3D, as a surface
    * (mp::SurfaceIntersector). Wrap() does so for a mesh that is not in one
-   * plane; a planar mesh matched with such a surface is seen so too.
+   * plane, and for every curve (1D); a planar mesh matched with such a
+   * surface is seen so too.
    */
   void UseAsSurface();
   /// Whether Wrap() found a 2D mesh that is not in one plane (a surface in 3D).
@@ -228,6 +229,10 @@ private:
 /// 2D: one polygon per intersecting pair in the target's plane, with
 /// SourceCellId, TargetCellId (VTK ids) and Area.
 vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
+  const SimplexMesh& target, const SimplexMesh& source);
+/// Curves: one segment per intersecting pair on the target's segment, with
+/// SourceCellId, TargetCellId and Length.
+vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(const mp::IntersectionPieces& pieces,
   const SimplexMesh& target, const SimplexMesh& source);
 /// 3D: the tetrahedra decomposing each intersection polyhedron, with
 /// SourceCellId, TargetCellId and Volume.

@@ -119,3 +119,65 @@ def with_point_field(mesh, name, f):
     values.SetName(name)
     copy.GetPointData().AddArray(values)
     return copy
+
+
+def curve(shape, h):
+    """vtkPolyData of the segments (VTK_LINE cells) Gmsh makes on the curve
+    `shape` with size `h`, in Gmsh's order: "circle" (radius 1), "square"
+    (the boundary of the unit square: corners), "spline" (an open B-spline
+    through points in 3D), "wave" (an open interface y = 0.2 sin(2 pi x)
+    between two 2D subdomains)."""
+    key = ("curve", shape, h)
+    if key in _cache:
+        return _cache[key]
+    import gmsh
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add(shape)
+        occ = gmsh.model.occ
+        if shape == "circle":
+            occ.addCircle(0, 0, 0, 1.0)
+        elif shape == "square":
+            occ.addRectangle(0, 0, 0, 1, 1)
+        elif shape == "spline":
+            ids = [occ.addPoint(np.cos(t), np.sin(t), 0.3 * t) for t in np.linspace(0, 4, 9)]
+            occ.addBSpline(ids)
+        elif shape == "wave":
+            ids = [occ.addPoint(x, 0.2 * np.sin(2 * np.pi * x), 0) for x in np.linspace(0, 1, 17)]
+            occ.addSpline(ids)
+        else:
+            raise ValueError(shape)
+        occ.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        gmsh.model.mesh.generate(1)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        index = {int(t): i for i, t in enumerate(tags)}
+        x = np.asarray(coords).reshape(-1, 3)
+        segments = []
+        for dim, tag in gmsh.model.getEntities(1):
+            types, _, nodes = gmsh.model.mesh.getElements(1, tag)
+            for etype, enodes in zip(types, nodes):
+                segments.append(np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, 2))
+    finally:
+        gmsh.finalize()
+    connectivity = np.concatenate(segments).ravel()
+    used = np.unique(connectivity)
+    renumber = np.full(len(x), -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    connectivity = renumber[connectivity]
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(x[used]), deep=True))
+    cells = vtkCellArray()
+    offsets = np.arange(0, len(connectivity) + 1, 2, dtype=np.int64)
+    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
+    mesh = vtkPolyData()
+    mesh.SetPoints(points)
+    mesh.SetLines(cells)
+    _cache[key] = mesh
+    return mesh
