@@ -1433,7 +1433,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     targetMesh.UseAsSurface();
     sourceMesh.UseAsSurface();
     const double pi = 3.14159265358979323846;
-    targetMesh.SetSurfaceContact(this->SurfaceReach, std::cos(this->MaximumNormalAngle * pi / 180.0));
+    targetMesh.SetSurfaceContact(
+      this->SurfaceReach, std::cos(this->MaximumNormalAngle * pi / 180.0), this->NormalOrientation);
   }
   else if (targetMesh.Dimension() == 2)
   {
@@ -1466,7 +1467,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   print.Add(static_cast<std::uint64_t>(this->OutputIntersections));
   if (targetMesh.View().IsSurfaceMesh())
   {
-    const double contact[2] = { this->SurfaceReach, this->MaximumNormalAngle };
+    const double contact[3] = { this->SurfaceReach, this->MaximumNormalAngle,
+      static_cast<double>(this->NormalOrientation) };
     print.Add(contact, sizeof contact);
   }
   const bool sameGeometry =
@@ -1611,8 +1613,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     if (targetCells > 0 && sourceCells > 0 && first->GetCoveredMeasure() == 0)
     {
-      vtkWarningMacro(<< "Source and " << role
-                      << " do not overlap: every projected value is invalid.");
+      vtkWarningMacro(<< "Source and " << role << " do not overlap: every projected value is invalid."
+                      << (targetMesh.View().IsSurfaceMesh()
+                             ? " Surfaces meet only within SurfaceReach and with normals within "
+                               "MaximumNormalAngle, compared as NormalOrientation says: two "
+                               "surfaces facing each other (contact, fluid-structure) need Opposite, "
+                               "meshes of unknown orientation Any."
+                             : ""));
     }
     if (first->GetNumberOfOvercoveredCells() > 0)
     {
@@ -2163,6 +2170,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceReach: " << this->SurfaceReach << "\n";
   os << indent << "ConserveSourceIntegral: " << (this->ConserveSourceIntegral ? "On" : "Off") << "\n";
   os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";
+  os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";

@@ -346,6 +346,27 @@ public:
   vtkGetMacro(MaximumNormalAngle, double);
   ///@}
 
+  enum
+  {
+    SAME_ORIENTATION = 0,
+    OPPOSITE_ORIENTATION = 1,
+    ANY_ORIENTATION = 2
+  };
+  ///@{
+  /**
+   * Surfaces: how the two meshes' normals are compared with
+   * MaximumNormalAngle. SAME_ORIENTATION (default): as they are, for two
+   * facetizations of one surface oriented alike. OPPOSITE_ORIENTATION: one
+   * reversed, for two bodies' boundaries facing each other (contact,
+   * fluid-structure interaction: each side's outward normals point into the
+   * other). ANY_ORIENTATION: either way, for meshes whose orientation is
+   * unknown or inconsistent; then only SurfaceReach keeps the two sides of a
+   * thin plate or shell apart.
+   */
+  vtkSetClampMacro(NormalOrientation, int, SAME_ORIENTATION, ANY_ORIENTATION);
+  vtkGetMacro(NormalOrientation, int);
+  ///@}
+
   ///@{
   /**
    * Scales each projected array (each component) so that its integral over
@@ -507,6 +528,7 @@ protected:
   bool PreserveBounds = false;
   double SurfaceReach = 0.5;
   double MaximumNormalAngle = 45.0;
+  int NormalOrientation = SAME_ORIENTATION;
   bool ConserveSourceIntegral = false;
   bool CacheOperator = true;
   int NumberOfThreads = 0;

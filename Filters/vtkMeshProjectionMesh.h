@@ -145,10 +145,11 @@ public:
   /// Whether Wrap() found a 2D mesh that is not in one plane (a surface in 3D).
   bool Surface() const { return this->NotPlanar; }
   /// Surfaces: the reach and the cosine of the largest normals' angle (MeshView).
-  void SetSurfaceContact(double reach, double minCosine)
+  void SetSurfaceContact(double reach, double minCosine, int orientation)
   {
     this->Kernel.SurfaceReach = reach;
     this->Kernel.SurfaceMinCosine = minCosine;
+    this->Kernel.SurfaceOrientation = orientation;
   }
   /// The frame the kernel sees the mesh in, moved onto the mesh's own plane.
   const mp::PlaneFrame& Frame() const { return this->Seen; }

@@ -361,3 +361,49 @@ TEST(Surfaces, ASteepStepDoesNotStopTheFront)
   }
   EXPECT_NEAR(covered, 0.95, 1e-12);
 }
+
+TEST(Surfaces, FacingSurfacesMeetWithTheOppositeOrientation)
+{
+  // Two bodies' boundaries facing each other (contact, fluid-structure
+  // coupling): the source sphere's facets face inward.
+  const TestMesh target = Finished(mptest::Icosphere(6));
+  TestMesh inward = mptest::UvSphere(14, 22);
+  for (size_t c = 0; c < inward.Cells.size(); c += 3)
+  {
+    std::swap(inward.Cells[c + 1], inward.Cells[c + 2]);
+  }
+  inward.Finish();
+  const auto us = SampleSurface(inward, SmoothOnSphere);
+  std::vector<double> reference;
+  {
+    // The same facets facing out, with the default orientation.
+    const TestMesh outward = Finished(mptest::UvSphere(14, 22));
+    SurfaceProjection p(target, outward);
+    reference = p.Apply(us);
+  }
+  for (int orientation = 0; orientation < 3; ++orientation)
+  {
+    mp::MeshView t = target.View();
+    t.SurfaceOrientation = orientation;
+    for (const auto method : { mp::SearchMethod::AdvancingFront, mp::SearchMethod::BruteForce })
+    {
+      mp::BoxGridLocator locator(inward.View());
+      mp::OperatorOptions options;
+      options.Method = method;
+      mp::MortarOperator op;
+      ASSERT_TRUE(op.Build(t, inward.View(), &locator, options)) << op.GetError();
+      if (orientation == 0)
+      {
+        EXPECT_EQ(op.GetNumberOfValid(), 0); // facing away: nothing meets
+        continue;
+      }
+      ASSERT_EQ(op.GetNumberOfValid(), target.NumberOfPoints());
+      std::vector<double> ut(us.size() > 0 ? target.NumberOfPoints() : 0);
+      op.Apply(us.data(), 1, ut.data(), std::nan(""));
+      for (Index q = 0; q < target.NumberOfPoints(); ++q)
+      {
+        ASSERT_NEAR(ut[q], reference[q], 1e-12) << orientation << " " << q;
+      }
+    }
+  }
+}

@@ -35,10 +35,11 @@ check(set(projection.ListProperties()) == {
     "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
     "MassMatrix", "PreserveBounds", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
-    "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral"},
+    "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
+    "NormalOrientation"},
       "properties %r" % projection.ListProperties())
 check(projection.SurfaceReach == 0.5 and projection.MaximumNormalAngle == 45 and
-      projection.ConserveSourceIntegral == 0, "surface defaults")
+      projection.ConserveSourceIntegral == 0 and projection.NormalOrientation == "Same", "surface defaults")
 check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "Cells",
       "transfer defaults %r %r" % (projection.PointDataTarget, projection.CellDataTarget))
 check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "Consistent",

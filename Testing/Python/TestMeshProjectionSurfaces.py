@@ -199,6 +199,29 @@ out = project(target, source, reach=0.05).GetOutput()  # 0.05 x about 0.1 < 0.01
 mask = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask"))
 check(mask.sum() == 0, "curved patches beyond reach: nothing meets (%d valid)" % mask.sum())
 
+# --- Facing surfaces: NormalOrientation --------------------------------------
+from vtkmodules.vtkFiltersCore import vtkReverseSense  # noqa: E402
+target = mpgmsh.surface("sphere", 0.15, 6)
+source = mpgmsh.with_point_field(mpgmsh.surface("sphere", 0.2, 5), "f", smooth)
+flip = vtkReverseSense()  # the source's cells reversed: its facets face inward
+flip.SetInputData(source)
+flip.ReverseCellsOn()
+flip.Update()
+inward = flip.GetOutput()
+reference = values(project(target, source).GetOutput(), "f")
+for orientation, expected in ((0, 0), (1, target.GetNumberOfPoints()), (2, target.GetNumberOfPoints())):
+    f = meshprojection.vtkMeshProjectionFilter()
+    f.SetInputData(target)
+    f.SetSourceData(inward)
+    f.SetNormalOrientation(orientation)
+    f.Update()
+    out = f.GetOutput()
+    mask = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask"))
+    check(mask.sum() == expected, "inward source, NormalOrientation %d: %d valid points" % (orientation, mask.sum()))
+    if expected:
+        difference = np.max(np.abs(values(out, "f") - reference))
+        check(difference < 1e-12, "inward source, NormalOrientation %d: the outward result (%g)" % (orientation, difference))
+
 # --- Nothing crosses a thin shell --------------------------------------------
 target = mpgmsh.surface("shell", 0.12, 6)
 source = mpgmsh.with_point_field(mpgmsh.surface("shell", 0.15, 5), "f",

@@ -76,6 +76,7 @@ bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
   }
   cell.Reach = mesh.SurfaceReach * longest;
   cell.MinCosine = mesh.SurfaceMinCosine;
+  cell.Orientation = mesh.SurfaceOrientation;
   // Counterclockwise in its own frame by construction, unless rounding
   // flattened it: PrepareCorners then rejects or reorders, and the normal
   // must follow the order it keeps.
@@ -130,10 +131,16 @@ bool SurfaceIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   }
   // From here on a rejection screens out a facet near the target.
   piece.Screened = true;
-  if (Dot(t.Normal, s.Normal) < t.MinCosine)
+  const double dot = Dot(t.Normal, s.Normal);
+  const double cosine = t.Orientation == 0 ? dot : (t.Orientation == 1 ? -dot : std::fabs(dot));
+  if (cosine < t.MinCosine)
   {
     return false; // facing away, or across a sharp edge
   }
+  // A source facing the other way has a clockwise image: its corners 1 and
+  // 2 are taken in turn (and its faces with them).
+  const bool reversed = t.Orientation == 1 || (t.Orientation == 2 && dot < 0.0);
+  const int order[3] = { 0, reversed ? 2 : 1, reversed ? 1 : 2 };
   // The source corners in the target's frame, from the mesh's own points:
   // a point shared by two source facets has one image.
   TriangleIntersector::Cell& p = piece.Projected;
@@ -141,9 +148,10 @@ bool SurfaceIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   double height[3];
   for (int k = 0; k < 3; ++k)
   {
-    p.Points[k] = s.Points[k];
-    p.Face[k] = s.Face[k];
-    ToFrame(t, s.Corner[k], p.X[k], height[k]);
+    const int from = order[k];
+    p.Points[k] = s.Points[from];
+    p.Face[k] = s.Face[from];
+    ToFrame(t, s.Corner[from], p.X[k], height[k]);
   }
   const double reach = t.Reach;
   if (std::min({ height[0], height[1], height[2] }) > reach ||
@@ -179,6 +187,16 @@ bool SurfaceIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
       piece.SourceFaces = 0;
       return false;
     }
+  }
+  if (reversed)
+  {
+    // The source faces were found in the image's order: back to the cell's.
+    unsigned faces = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      faces |= ((piece.SourceFaces >> k) & 1u) << p.Face[k];
+    }
+    piece.SourceFaces = faces;
   }
   piece.Screened = false;
   return true;

@@ -27,7 +27,9 @@
  *  - Two facets meet only when their normals are within the angle whose
  *    cosine is the target view's SurfaceMinCosine (so the two sides of a
  *    thin plate or shell, or the faces at a sharp edge, are never matched:
- *    the normals' orientation counts), and when, over their whole piece,
+ *    the normals' orientation counts; with SurfaceOrientation 1 the source's
+ *    normal is reversed first, as for two bodies' boundaries facing each
+ *    other, with 2 either way), and when, over their whole piece,
  *    the source facet lies within the reach of the target facet's plane
  *    (SurfaceReach times the target facet's longest edge), above or below.
  *    A projection that folds (non-positive orientation) meets nothing.
@@ -67,6 +69,7 @@ public:
     double Box3[6];    ///< xmin, xmax, ymin, ymax, zmin, zmax of the corners
     double Reach;      ///< as a target: the largest distance to a source facet that meets it
     double MinCosine;  ///< as a target: the smallest cosine of the normals' angle
+    int Orientation;   ///< as a target: MeshView::SurfaceOrientation
   };
 
   struct Piece : TriangleIntersector::Piece

@@ -69,8 +69,12 @@ struct MeshView
    */
   double SurfaceReach = 0.5;
   /// ... and only when the cosine of their normals' angle (for curves: of
-  /// their directions', without sign) is at least this (45 degrees).
+  /// their directions', without sign) is at least this (45 degrees) ...
   double SurfaceMinCosine = 0.70710678118654752;
+  /// ... the normals compared as they are (0: two facetizations of one
+  /// surface), one of them reversed (1: two bodies' boundaries facing each
+  /// other, as in contact or fluid-structure coupling), or either way (2).
+  int SurfaceOrientation = 0;
 
   int CornersPerCell() const { return this->CellDimension + 1; }
   const Index* Cell(Index c) const { return this->Connectivity + c * this->CornersPerCell(); }
