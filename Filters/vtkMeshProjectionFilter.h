@@ -103,10 +103,10 @@
  *  - "CoveredFraction" (double cell array): the fraction of each target
  *    cell's area (volume) covered by the source;
  *  - field data "SourceIntegral_<array>" (the Source field's integral over
- *    the whole Source) and "TargetIntegral_<array>" (the projection's over
- *    the covered target, equal to the projected Source field's; for
- *    surfaces they differ as the facetizations' areas do, see
- *    ConserveSourceIntegral).
+ *    the part of Source the pieces cover) and "TargetIntegral_<array>" (the
+ *    projection's over the covered target, equal to the projected Source
+ *    field's; for surfaces they differ as the facetizations' areas do, see
+ *    ConserveSourceIntegral); cell arrays' names end in " (cell data)".
  * Missing values: a NaN or infinite value in a Source array leaves the
  * Source cells that use it out of that array's projection (a hole in
  * Source for that array only, with an operator of its own; conservation
@@ -333,14 +333,14 @@ public:
    * facet and a target facet's plane at which they still meet, relative to
    * the target facet's longest edge (default 0.5: two facetizations of one
    * curved surface are much closer, O(h^2 / R); a small gap between two
-   * solvers' interfaces is bridged). MaximumNormalAngle: the largest angle
+   * solvers' interfaces is bridged; at most 100). MaximumNormalAngle: the largest angle
    * in degrees between the two facets' normals (default 45, at most 89),
    * oriented: the two sides of a thin plate or shell, and the faces meeting
    * at a sharp edge, are never matched. Both meshes must be consistently
    * oriented (as mesh generators write them; vtkPolyDataNormals can fix
    * others).
    */
-  vtkSetClampMacro(SurfaceReach, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(SurfaceReach, double, 0.0, 100.0);
   vtkGetMacro(SurfaceReach, double);
   vtkSetClampMacro(MaximumNormalAngle, double, 0.0, 89.0);
   vtkGetMacro(MaximumNormalAngle, double);
@@ -369,10 +369,11 @@ public:
 
   ///@{
   /**
-   * Scales each projected array (each component) so that its integral over
-   * the covered target equals the Source field's integral over the whole
-   * Source ("SourceIntegral_<name>", field data), instead of the integral
-   * of the projected Source field (conservation on the target). Meant for
+   * Scales each projected array (each component, its valid values) so that
+   * its integral over the covered target equals the Source field's integral
+   * over the covered part of Source ("SourceIntegral_<name>", field data),
+   * instead of the integral of the projected Source field (conservation on
+   * the target). Meant for
    * surfaces, whose two facetizations differ in area: loads and fluxes then
    * keep their totals exactly. A component whose two integrals differ by
    * more than a factor of 2 (or with a zero integral) is left unscaled, with

@@ -129,4 +129,27 @@ pieces = project(polyline, source).GetOutput(1)
 check(set(vtk_to_numpy(pieces.GetCellData().GetArray("TargetCellId")).tolist()) == {0},
       "a polyline's pieces all name its one cell")
 
+# --- The kept operator follows SurfaceReach ----------------------------------
+# A line 0.01 beside the target: within the default reach, not within 0.05.
+target = mpgmsh.curve("wave", 0.05)
+moved = mpgmsh.with_point_field(mpgmsh.curve("wave", 0.07), "f", smooth)
+from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
+from vtkmodules.vtkFiltersGeneral import vtkTransformFilter  # noqa: E402
+shift = vtkTransform()
+shift.Translate(0, 0, 0.01)
+lifted = vtkTransformFilter()
+lifted.SetTransform(shift)
+lifted.SetInputData(moved)
+lifted.Update()
+f = meshprojection.vtkMeshProjectionFilter()  # CacheOperator on (default)
+f.SetInputData(target)
+f.SetSourceData(lifted.GetOutput())
+valid = []
+for reach in (0.5, 0.05, 0.5):
+    f.SetSurfaceReach(reach)
+    f.Update()
+    valid.append(int(vtk_to_numpy(f.GetOutput().GetPointData().GetArray("vtkValidPointMask")).sum()))
+check(valid == [target.GetNumberOfPoints(), 0, target.GetNumberOfPoints()],
+      "the kept operator follows SurfaceReach: %s valid points" % valid)
+
 finish()

@@ -176,6 +176,32 @@ if projected is not None and own is not None:
     reported = g.GetOutput().GetFieldData().GetArray("TargetIntegral_f").GetValue(0)
     check(abs(reported - source_integral) < 1e-10 * (1 + abs(source_integral)), "torus, ConserveSourceIntegral: reported")
 
+# --- Partial coverage: the integrals over the covered parts -----------------
+# Input the whole sphere, Source only the cap above z = 0.3: SourceIntegral
+# is the source field's over the part of the Source the pieces cover.
+target = mpgmsh.surface("sphere", 0.15, 6)
+source = mpgmsh.with_point_field(mpgmsh.surface("cap", 0.2, 5), "f", lambda x, y, z: 2.0 + smooth(x, y, z))
+for conserve in (False, True):
+    g = meshprojection.vtkMeshProjectionFilter()
+    g.SetInputData(target)
+    g.SetSourceData(source)
+    g.SetFillWithNaN(False)
+    g.SetFillValue(-999.0)
+    g.SetConserveSourceIntegral(conserve)
+    g.Update()
+    out = g.GetOutput()
+    own = out.GetFieldData().GetArray("SourceIntegral_f").GetValue(0)
+    projected = out.GetFieldData().GetArray("TargetIntegral_f").GetValue(0)
+    ratio = projected / own
+    if conserve:
+        check(abs(ratio - 1) < 1e-12, "cap onto sphere, ConserveSourceIntegral: the integrals agree (%.15g)" % ratio)
+    else:
+        check(0 < abs(ratio - 1) < 0.01, "cap onto sphere: the covered parts' integrals within 1%% (%.6f)" % ratio)
+    mask = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask"))
+    u = values(out, "f")
+    check(0 < mask.sum() < len(mask) and np.all(u[mask == 0] == -999.0),
+          "cap onto sphere (conserve %s): uncovered points keep the fill value" % conserve)
+
 # --- Two planar patches in parallel planes: the 2D case (compared in the
 # Input's plane at any distance, with a warning), so the values are exact ---
 target = mpgmsh.surface("patch0", 0.1, 6)

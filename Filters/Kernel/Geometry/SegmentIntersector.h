@@ -77,11 +77,16 @@ public:
   static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
   static const Cell& SourceCell(const Cell&, const Piece& piece) { return piece.Projected; }
   static bool Screened(const Piece& piece) { return piece.Screened; }
+  /// A piece's length on the source segment per unit of its length on the target's line.
+  static double SourceScale(const Cell& s, const Piece& piece)
+  {
+    return s.Measure / piece.Projected.Measure;
+  }
   /// Length M[0][0], first and second moments of x - origin (origin: the piece's start).
   static double Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2]);
   static double Measure(const Piece& piece);
   static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
-  /// The position of x on `frame`'s axis and its squared distance from the axis.
+  /// The position of x on `frame`'s axis; `offset` is x minus its foot on the axis.
   static double ToFrame(const Cell& frame, const double* x, double offset[3]);
 };
 } // namespace mp

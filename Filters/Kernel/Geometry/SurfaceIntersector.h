@@ -95,6 +95,12 @@ public:
   static int Locate(const Cell& cell, const double* q, int first);
   static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
   static bool Screened(const Piece& piece) { return piece.Screened; }
+  /// A piece's area on the source facet per unit of its area on the target's
+  /// plane (the projection's Jacobian on that facet).
+  static double SourceScale(const Cell& s, const Piece& piece)
+  {
+    return s.Measure / piece.Projected.Measure;
+  }
   /// The source cell as the spaces see it on this piece: its projection.
   static const TriangleIntersector::Cell& SourceCell(const Cell&, const Piece& piece)
   {

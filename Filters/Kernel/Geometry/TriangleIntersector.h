@@ -79,6 +79,8 @@ public:
   static const Cell& SourceCell(const Cell& s, const Piece&) { return s; }
   /// Never: a false Intersect means the cells do not meet (see SurfaceIntersector).
   static bool Screened(const Piece&) { return false; }
+  /// A piece's measure on the source cell per unit of its own: 1 (the same space).
+  static double SourceScale(const Cell&, const Piece&) { return 1.0; }
   /// The source cell that starts the target neighbour across a touched face:
   /// the source cell itself (it meets the closed face, hence the neighbour).
   static Index FaceSeed(const Piece&, int, const Cell& s, const MeshView&) { return s.Id; }

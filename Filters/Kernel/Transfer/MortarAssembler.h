@@ -86,6 +86,9 @@ struct MortarAssembler
   IntersectionPieces* Pieces = nullptr;
   Index Count = 0;         ///< pieces of positive measure
   const char* Excluded = nullptr; ///< per source cell: nonzero to leave its pieces out
+  /// Per source cell: the measure of its part covered by pieces, on the
+  /// source cell (this task's own array, or null).
+  double* SourceCovered = nullptr;
   const char* Shared = nullptr; ///< per target function; null for a single task
   std::vector<std::pair<Index, double>> Deferred; ///< (position in M_tt, value)
   /// Right-hand sides instead of blocks: the source fields (source
@@ -246,6 +249,10 @@ struct MortarAssembler
   void Finish(const Cell& t, const Cell& s, const typename Intersector::Piece& piece)
   {
     ++this->Count;
+    if (this->SourceCovered)
+    {
+      this->SourceCovered[s.Id] += Intersector::Measure(piece) * Intersector::SourceScale(s, piece);
+    }
     if (this->Pieces)
     {
       Intersector::AppendPiece(piece, t.Id, s.Id, *this->Pieces);

@@ -66,6 +66,7 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   this->Valid.clear();
   this->NumberOfValid = 0;
   this->CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
+  this->SourceCovered.clear();
   this->CoveredMeasure = 0;
   this->OvercoveredCells = 0;
 
@@ -228,9 +229,13 @@ void MortarOperator::Assemble(
   std::vector<Assembler> assemblers(static_cast<size_t>(tasks));
   std::vector<MixedBlocks> blocks(static_cast<size_t>(tasks));
   std::vector<IntersectionPieces> pieces(static_cast<size_t>(tasks > 1 ? tasks : 0));
+  // How much of each source cell the pieces cover: per task, summed after.
+  std::vector<std::vector<double>> met(static_cast<size_t>(tasks));
   for (int k = 0; k < tasks; ++k)
   {
     Assembler& a = assemblers[k];
+    met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0);
+    a.SourceCovered = met[k].data();
     a.Target = &target;
     a.Source = &source;
     a.Mass = &this->TargetMass;
@@ -294,6 +299,17 @@ void MortarOperator::Assemble(
     }
     this->CoveredMeasure += a.CoveredSum;
     this->OvercoveredCells += a.Overcovered;
+    if (k == 0)
+    {
+      this->SourceCovered.swap(met[0]);
+    }
+    else
+    {
+      for (size_t c = 0; c < this->SourceCovered.size(); ++c)
+      {
+        this->SourceCovered[c] += met[k][c];
+      }
+    }
     this->Statistics.Pieces += a.Count;
   }
   assemblers.clear();

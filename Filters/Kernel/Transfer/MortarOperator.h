@@ -180,6 +180,10 @@ public:
   /// Per target cell: the covered fraction of its measure (per original
   /// cell when the target's simplices have parents; 0 for a parent without any).
   const std::vector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
+  /// Per source cell (kernel numbering): the measure of its part the pieces
+  /// cover, measured on the source cell (for surfaces and curves through
+  /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
+  const std::vector<double>& GetSourceCovered() const { return this->SourceCovered; }
   /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
   Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
   /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
@@ -205,6 +209,7 @@ private:
   std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;
   std::vector<double> CoveredFraction;
+  std::vector<double> SourceCovered;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
   SearchStatistics Statistics;
