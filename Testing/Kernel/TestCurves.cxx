@@ -2,6 +2,7 @@
 // Curves: two discretizations of one curve, in the plane or in space (SegmentIntersector.h).
 #include "Geometry/SegmentIntersector.h"
 #include "GeneratedMeshes.h"
+#include "ReachProjection.h"
 #include "SearchComparison.h"
 #include "Transfer/MortarOperator.h"
 
@@ -81,65 +82,10 @@ double Linear(const double* x)
   return 1.0 + 2.0 * x[0] - 3.0 * x[1] + 0.5 * x[2];
 }
 
-std::vector<double> Sample(const TestMesh& m, double (*f)(const double*))
-{
-  std::vector<double> u(static_cast<size_t>(m.NumberOfPoints()));
-  for (Index p = 0; p < m.NumberOfPoints(); ++p)
-  {
-    u[p] = f(&m.Points[3 * p]);
-  }
-  return u;
-}
-
-struct CurveProjection
-{
-  mp::MortarOperator Op;
-  bool Ok = false;
-  CurveProjection(const TestMesh& target, const TestMesh& source, double reach = 0.5,
-    double minCosine = 0.7071, mp::SearchMethod method = mp::SearchMethod::AdvancingFront)
-  {
-    mp::MeshView t = target.View();
-    t.SurfaceReach = reach;
-    t.SurfaceMinCosine = minCosine;
-    mp::BoxGridLocator locator(source.View());
-    mp::OperatorOptions options;
-    options.Method = method;
-    options.KeepPieces = true;
-    this->Ok = this->Op.Build(t, source.View(), &locator, options);
-  }
-  std::vector<double> Apply(const std::vector<double>& us) const
-  {
-    std::vector<double> ut(this->Op.GetValid().size());
-    this->Op.Apply(us.data(), 1, ut.data(), std::nan(""));
-    return ut;
-  }
-  std::map<Index, double> Covered() const
-  {
-    std::map<Index, double> length;
-    const auto& pieces = this->Op.GetPieces();
-    for (Index i = 0; i < pieces.Size(); ++i)
-    {
-      length[pieces.TargetCell[i]] += pieces.Measure[i];
-    }
-    return length;
-  }
-};
-
 double Length(const TestMesh& m, Index c)
 {
   SegmentIntersector::Cell cell;
   return SegmentIntersector::Prepare(m.View(false), c, cell) ? cell.Measure : 0.0;
-}
-
-double MaxError(const TestMesh& m, const std::vector<double>& u, double (*f)(const double*))
-{
-  double e = 0.0;
-  for (Index p = 0; p < m.NumberOfPoints(); ++p)
-  {
-    const double d = std::fabs(u[p] - f(&m.Points[3 * p]));
-    e = std::isfinite(d) ? std::max(e, d) : HUGE_VAL;
-  }
-  return e;
 }
 } // namespace
 
@@ -150,7 +96,7 @@ TEST(Curves, CircleFrontEqualsBruteForceAndPiecesTileTheTarget)
   mptest::SearchComparison<SegmentIntersector> search(target, source);
   search.ExpectSamePairs("circle");
   EXPECT_EQ(search.FrontStats.FullLocatorQueries, 0);
-  CurveProjection p(target, source);
+  mptest::ReachProjection p(target, source);
   ASSERT_TRUE(p.Ok) << p.Op.GetError();
   const auto covered = p.Covered();
   ASSERT_EQ(static_cast<Index>(covered.size()), target.NumberOfCells());
@@ -188,9 +134,9 @@ TEST(Curves, LinearFieldsExactOnStraightAndCorneredLines)
     const TestMesh source = Polyline(ss, x, false, 3);
     mptest::SearchComparison<SegmentIntersector> search(target, source);
     search.ExpectSamePairs(shape == 0 ? "line" : "L");
-    CurveProjection p(target, source);
+    mptest::ReachProjection p(target, source);
     ASSERT_TRUE(p.Ok) << p.Op.GetError();
-    EXPECT_LT(MaxError(target, p.Apply(Sample(source, Linear)), Linear), 1e-12) << shape;
+    EXPECT_LT(mptest::MaxPointError(target, p.Apply(mptest::SampleAtPoints(source, Linear)), Linear), 1e-12) << shape;
     for (const auto& c : p.Covered())
     {
       EXPECT_NEAR(c.second, Length(target, c.first), 1e-13) << shape << " " << c.first;
@@ -213,10 +159,10 @@ TEST(Curves, CircleAndHelixConvergeAtSecondOrder)
       const TestMesh source =
         Polyline(Uniform(27 * k, curve == 0 ? 0.05 : -0.2, end + (curve == 0 ? 0.05 : 0.2), 0.3, 6, closed), x,
           closed, 2 + curve);
-      CurveProjection p(target, source);
+      mptest::ReachProjection p(target, source);
       ASSERT_TRUE(p.Ok) << p.Op.GetError();
       ASSERT_EQ(p.Op.GetNumberOfValid(), target.NumberOfPoints());
-      const auto ut = p.Apply(Sample(source, Smooth));
+      const auto ut = p.Apply(mptest::SampleAtPoints(source, Smooth));
       double sum = 0.0;
       for (Index q = 0; q < target.NumberOfPoints(); ++q)
       {
@@ -239,24 +185,12 @@ TEST(Curves, HelixFrontEqualsBruteForceAndConserves)
   const TestMesh source = Polyline(Uniform(61, -0.3, 4 * Pi + 0.3, 0.3, 8, false), Helix, false, 3);
   mptest::SearchComparison<SegmentIntersector> search(target, source);
   search.ExpectSamePairs("helix");
-  CurveProjection p(target, source);
+  mptest::ReachProjection p(target, source);
   ASSERT_TRUE(p.Ok);
-  const auto us = Sample(source, Smooth);
+  const auto us = mptest::SampleAtPoints(source, Smooth);
   const auto ut = p.Apply(us);
-  double lhs = 0.0;
-  for (size_t i = 0; i < ut.size(); ++i)
-  {
-    lhs += p.Op.GetCoveredIntegrals()[i] * ut[i];
-  }
-  std::vector<double> rhs(ut.size(), 0.0);
-  const mp::CsrMatrix& mts = p.Op.GetMixedMass();
-  mts.MultiplyRows(us.data(), rhs.data(), 1, 0, mts.Rows);
-  double sum = 0.0;
-  for (double r : rhs)
-  {
-    sum += r;
-  }
-  EXPECT_NEAR(lhs, sum, 1e-12 * std::fabs(sum));
+  const auto integrals = p.Integrals(us, ut);
+  EXPECT_NEAR(integrals.first, integrals.second, 1e-12 * std::fabs(integrals.second));
 }
 
 TEST(Curves, ParallelLinesWithinAndBeyondReach)
@@ -265,15 +199,15 @@ TEST(Curves, ParallelLinesWithinAndBeyondReach)
   auto high = [](double s, double* p) { p[0] = s; p[1] = 0.01; };
   const TestMesh target = Polyline(Uniform(10, 0, 1, 0.3, 9, false), low, false);
   const TestMesh source = Polyline(Uniform(13, 0, 1, 0.3, 10, false), high, false);
-  CurveProjection near(target, source, 0.5);
+  mptest::ReachProjection near(target, source, 0.5);
   ASSERT_TRUE(near.Ok);
-  auto ut = near.Apply(Sample(source, Linear));
+  auto ut = near.Apply(mptest::SampleAtPoints(source, Linear));
   for (Index q = 0; q < target.NumberOfPoints(); ++q)
   {
     const double x[3] = { target.Points[3 * q], 0.01, 0.0 };
     ASSERT_NEAR(ut[q], Linear(x), 1e-12) << q;
   }
-  CurveProjection far(target, source, 0.05); // 0.05 x about 0.1 < 0.01
+  mptest::ReachProjection far(target, source, 0.05); // 0.05 x about 0.1 < 0.01
   ASSERT_TRUE(far.Ok);
   EXPECT_EQ(far.Op.GetNumberOfValid(), 0);
   mptest::SearchComparison<SegmentIntersector> search(target, source);

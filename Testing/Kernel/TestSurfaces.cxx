@@ -2,6 +2,7 @@
 // Surfaces in 3D: two facetizations of one surface (SurfaceIntersector.h).
 #include "Geometry/SurfaceIntersector.h"
 #include "GeneratedMeshes.h"
+#include "ReachProjection.h"
 #include "SearchComparison.h"
 #include "Transfer/MortarOperator.h"
 
@@ -27,68 +28,11 @@ double Linear3(const double* x)
   return 1.0 + 2.0 * x[0] - 3.0 * x[1] + 0.5 * x[2];
 }
 
-std::vector<double> SampleSurface(const TestMesh& m, double (*f)(const double*))
-{
-  std::vector<double> u(static_cast<size_t>(m.NumberOfPoints()));
-  for (Index p = 0; p < m.NumberOfPoints(); ++p)
-  {
-    u[p] = f(&m.Points[3 * p]);
-  }
-  return u;
-}
-
-struct SurfaceProjection
-{
-  mp::MortarOperator Op;
-  bool Ok = false;
-  SurfaceProjection(const TestMesh& target, const TestMesh& source, double reach = 0.5,
-    double minCosine = 0.7071, mp::SearchMethod method = mp::SearchMethod::AdvancingFront)
-  {
-    mp::MeshView t = target.View();
-    t.SurfaceReach = reach;
-    t.SurfaceMinCosine = minCosine;
-    mp::BoxGridLocator locator(source.View());
-    mp::OperatorOptions options;
-    options.Method = method;
-    options.KeepPieces = true;
-    this->Ok = this->Op.Build(t, source.View(), &locator, options);
-  }
-  std::vector<double> Apply(const std::vector<double>& us) const
-  {
-    std::vector<double> ut(this->Op.GetValid().size());
-    this->Op.Apply(us.data(), 1, ut.data(), std::nan(""));
-    return ut;
-  }
-  /// Per target cell, the summed area of its pieces.
-  std::map<Index, double> CoveredAreas() const
-  {
-    std::map<Index, double> area;
-    const auto& pieces = this->Op.GetPieces();
-    for (Index i = 0; i < pieces.Size(); ++i)
-    {
-      area[pieces.TargetCell[i]] += pieces.Measure[i];
-    }
-    return area;
-  }
-};
-
 double Area(const TestMesh& m, Index c)
 {
   SurfaceIntersector::Cell cell;
   mp::MeshView v = m.View(false);
   return SurfaceIntersector::Prepare(v, c, cell) ? cell.Measure : 0.0;
-}
-
-/// Largest |u_t - f| over the target points, and whether all are valid.
-double MaxError(const TestMesh& target, const std::vector<double>& ut, double (*f)(const double*))
-{
-  double error = 0.0;
-  for (Index p = 0; p < target.NumberOfPoints(); ++p)
-  {
-    const double e = std::fabs(ut[p] - f(&target.Points[3 * p]));
-    error = std::isfinite(e) ? std::max(error, e) : HUGE_VAL;
-  }
-  return error;
 }
 
 double SmoothOnSphere(const double* x)
@@ -130,9 +74,9 @@ TEST(Surfaces, SphereFrontEqualsBruteForceAndPiecesTileTheTarget)
   EXPECT_GT(search.Front.Pairs.size(), target.NumberOfCells());
   EXPECT_EQ(search.FrontStats.FullLocatorQueries, 0); // one closed surface: a walk and the front
 
-  SurfaceProjection p(target, source);
+  mptest::ReachProjection p(target, source);
   ASSERT_TRUE(p.Ok) << p.Op.GetError();
-  const auto covered = p.CoveredAreas();
+  const auto covered = p.Covered();
   ASSERT_EQ(static_cast<Index>(covered.size()), target.NumberOfCells());
   for (const auto& c : covered)
   {
@@ -151,14 +95,14 @@ TEST(Surfaces, CubeSurfaceLinearFieldsAreExactAcrossItsSharpEdges)
   const TestMesh source = Finished(mptest::CubeSurface(7, 1));
   mptest::SearchComparison<SurfaceIntersector> search(target, source);
   search.ExpectSamePairs("cube");
-  SurfaceProjection p(target, source);
+  mptest::ReachProjection p(target, source);
   ASSERT_TRUE(p.Ok) << p.Op.GetError();
-  for (const auto& c : p.CoveredAreas())
+  for (const auto& c : p.Covered())
   {
     EXPECT_NEAR(c.second, Area(target, c.first), 1e-13) << c.first;
   }
-  const auto ut = p.Apply(SampleSurface(source, Linear3));
-  EXPECT_LT(MaxError(target, ut, Linear3), 1e-12);
+  const auto ut = p.Apply(mptest::SampleAtPoints(source, Linear3));
+  EXPECT_LT(mptest::MaxPointError(target, ut, Linear3), 1e-12);
   // Pieces only between facets of the same face: the normals' angle at the
   // edges is 90 degrees.
   const auto& pieces = p.Op.GetPieces();
@@ -183,10 +127,10 @@ TEST(Surfaces, SphereConvergesAtSecondOrder)
     const int k = 1 << level;
     const TestMesh target = Finished(mptest::Icosphere(3 * k));
     const TestMesh source = Finished(mptest::UvSphere(10 * k, 16 * k));
-    SurfaceProjection p(target, source);
+    mptest::ReachProjection p(target, source);
     ASSERT_TRUE(p.Ok) << p.Op.GetError();
     ASSERT_EQ(p.Op.GetNumberOfValid(), target.NumberOfPoints());
-    const auto ut = p.Apply(SampleSurface(source, SmoothOnSphere));
+    const auto ut = p.Apply(mptest::SampleAtPoints(source, SmoothOnSphere));
     double sum = 0.0;
     for (Index q = 0; q < target.NumberOfPoints(); ++q)
     {
@@ -194,7 +138,7 @@ TEST(Surfaces, SphereConvergesAtSecondOrder)
       sum += e * e;
     }
     const double rms = std::sqrt(sum / target.NumberOfPoints());
-    const double max = MaxError(target, ut, SmoothOnSphere);
+    const double max = mptest::MaxPointError(target, ut, SmoothOnSphere);
     if (level > 0)
     {
       EXPECT_GT(std::log2(previousRms / rms), 1.8) << "level " << level << ": rms " << previousRms << " -> " << rms;
@@ -213,25 +157,13 @@ TEST(Surfaces, ConservationOnTheCoveredTarget)
 {
   const TestMesh target = Finished(mptest::Icosphere(5));
   const TestMesh source = Finished(mptest::UvSphere(12, 20));
-  SurfaceProjection p(target, source);
+  mptest::ReachProjection p(target, source);
   ASSERT_TRUE(p.Ok);
-  const auto us = SampleSurface(source, SmoothOnSphere);
+  const auto us = mptest::SampleAtPoints(source, SmoothOnSphere);
   const auto ut = p.Apply(us);
   // int u_t over the covered target = int of the projected source field.
-  double lhs = 0.0;
-  for (size_t i = 0; i < ut.size(); ++i)
-  {
-    lhs += p.Op.GetCoveredIntegrals()[i] * ut[i];
-  }
-  std::vector<double> rhs(ut.size(), 0.0);
-  const mp::CsrMatrix& mts = p.Op.GetMixedMass();
-  mts.MultiplyRows(us.data(), rhs.data(), 1, 0, mts.Rows);
-  double sum = 0.0;
-  for (double r : rhs)
-  {
-    sum += r;
-  }
-  EXPECT_NEAR(lhs, sum, 1e-12 * std::fabs(sum) + 1e-14);
+  const auto integrals = p.Integrals(us, ut);
+  EXPECT_NEAR(integrals.first, integrals.second, 1e-12 * std::fabs(integrals.second) + 1e-14);
 }
 
 TEST(Surfaces, NothingCrossesAThinShell)
@@ -260,7 +192,7 @@ TEST(Surfaces, NothingCrossesAThinShell)
   // normals keep the sides apart.
   mptest::SearchComparison<SurfaceIntersector> search(target, source);
   search.ExpectSamePairs("shell");
-  SurfaceProjection p(target, source);
+  mptest::ReachProjection p(target, source);
   ASSERT_TRUE(p.Ok) << p.Op.GetError();
   const auto ut = p.Apply(us);
   for (Index q = 0; q < target.NumberOfPoints(); ++q)
@@ -274,7 +206,7 @@ TEST(Surfaces, NothingCrossesAThinShell)
   TestMesh wrong = mptest::UvSphere(16, 24, 1.0);
   mptest::AppendMesh(wrong, mptest::Icosphere(5, 0.98, false));
   wrong.Finish();
-  SurfaceProjection mixed(target, wrong, 0.5, 0.7071, mp::SearchMethod::BruteForce);
+  mptest::ReachProjection mixed(target, wrong, 0.5, 0.7071, mp::SearchMethod::BruteForce);
   EXPECT_GT(mixed.Op.GetNumberOfOvercoveredCells(), 0);
   ASSERT_TRUE(mixed.Ok);
   const auto um = mixed.Apply(us);
@@ -300,16 +232,16 @@ TEST(Surfaces, GapBetweenTwoPatchesWithinAndBeyondReach)
   target.Finish();
   source.Finish();
   // Within reach: a linear field's values at the source heights are exact.
-  SurfaceProjection near(target, source, 0.5);
+  mptest::ReachProjection near(target, source, 0.5);
   ASSERT_TRUE(near.Ok);
-  auto ut = near.Apply(SampleSurface(source, Linear3));
+  auto ut = near.Apply(mptest::SampleAtPoints(source, Linear3));
   for (Index q = 0; q < target.NumberOfPoints(); ++q)
   {
     double x[3] = { target.Points[3 * q], target.Points[3 * q + 1], 0.01 };
     ASSERT_NEAR(ut[q], Linear3(x), 1e-12) << q;
   }
   // Beyond reach (0.05 of about 0.1 = 0.005 < 0.01): nothing meets.
-  SurfaceProjection far(target, source, 0.05);
+  mptest::ReachProjection far(target, source, 0.05);
   ASSERT_TRUE(far.Ok);
   EXPECT_EQ(far.Op.GetNumberOfValid(), 0);
   EXPECT_EQ(far.Op.GetPieces().Size(), 0);
@@ -373,12 +305,12 @@ TEST(Surfaces, FacingSurfacesMeetWithTheOppositeOrientation)
     std::swap(inward.Cells[c + 1], inward.Cells[c + 2]);
   }
   inward.Finish();
-  const auto us = SampleSurface(inward, SmoothOnSphere);
+  const auto us = mptest::SampleAtPoints(inward, SmoothOnSphere);
   std::vector<double> reference;
   {
     // The same facets facing out, with the default orientation.
     const TestMesh outward = Finished(mptest::UvSphere(14, 22));
-    SurfaceProjection p(target, outward);
+    mptest::ReachProjection p(target, outward);
     reference = p.Apply(us);
   }
   for (int orientation = 0; orientation < 3; ++orientation)

@@ -11,7 +11,7 @@ import numpy as np
 
 import meshprojection
 import mpgmsh
-from mptesting import check, finish
+from mptesting import check, finish, mortar
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 
@@ -24,16 +24,7 @@ def linear(x, y, z):
     return 1.0 + 2.0 * x - 3.0 * y + 0.5 * z
 
 
-def project(target, source, brute=False):
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetOutputIntersections(True)
-    f.SetCacheOperator(False)
-    if brute:
-        f.SetSearchMethodToBruteForce()
-    f.Update()
-    return f
+project = mortar  # the filter on two datasets (mptesting)
 
 
 def points(mesh):

@@ -11,7 +11,7 @@ import numpy as np
 
 import meshprojection
 import mpgmsh
-from mptesting import check, finish
+from mptesting import check, finish, mortar
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 
@@ -23,20 +23,7 @@ def linear(x, y, z):
     return 1.0 + 2.0 * x - 3.0 * y + 0.5 * z
 
 
-def project(target, source, brute=False, reach=None, angle=None, pieces=True):
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetOutputIntersections(pieces)
-    f.SetCacheOperator(False)
-    if brute:
-        f.SetSearchMethodToBruteForce()
-    if reach is not None:
-        f.SetSurfaceReach(reach)
-    if angle is not None:
-        f.SetMaximumNormalAngle(angle)
-    f.Update()
-    return f
+project = mortar  # the filter on two datasets (mptesting)
 
 
 def points(mesh):
@@ -221,7 +208,7 @@ x = points(out)
 # The source's values at the radius 1.01 above each target point.
 error = np.max(np.abs(values(out, "f") - linear(1.01 * x[:, 0], 1.01 * x[:, 1], x[:, 2])))
 check(error < 1e-2, "curved patches: the source's field across the gap (%g; O(h^2) from the curvature)" % error)
-out = project(target, source, reach=0.05).GetOutput()  # 0.05 x about 0.1 < 0.01
+out = project(target, source, SurfaceReach=0.05).GetOutput()  # 0.05 x about 0.1 < 0.01
 mask = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask"))
 check(mask.sum() == 0, "curved patches beyond reach: nothing meets (%d valid)" % mask.sum())
 

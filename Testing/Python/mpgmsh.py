@@ -51,62 +51,77 @@ def _occ(shape):
     return reverse, skip
 
 
+def _generate(name, dim, build, h, options=()):
+    """Meshes what `build()` adds to Gmsh (it returns the entities of
+    dimension `dim` to reverse and to leave out) with size `h`; returns the
+    node coordinates and the cells (lists of indices into them), in Gmsh's
+    own node and element order."""
+    import gmsh
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add(name)
+        reverse, skip = build()
+        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        for option, value in options:
+            gmsh.option.setNumber(option, value)
+        gmsh.model.mesh.generate(dim)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        index = {int(t): i for i, t in enumerate(tags)}
+        x = np.asarray(coords).reshape(-1, 3)
+        cells = []
+        for _, tag in gmsh.model.getEntities(dim):
+            if tag in skip:
+                continue
+            types, _, nodes = gmsh.model.mesh.getElements(dim, tag)
+            for etype, enodes in zip(types, nodes):
+                corners = {1: 2, 2: 3, 3: 4}[int(etype)]
+                block = np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, corners)
+                if tag in reverse:
+                    block = block[:, ::-1]
+                cells.extend(list(c) for c in block)
+    finally:
+        gmsh.finalize()
+    return x, cells
+
+
+def _polydata(x, cells, lines):
+    """vtkPolyData of `cells` (polygons, or lines) on the nodes they use, in Gmsh's order."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    # Only the nodes the cells use (a skipped entity leaves its own).
+    connectivity = np.concatenate([np.asarray(c, dtype=np.int64) for c in cells])
+    used = np.unique(connectivity)
+    renumber = np.full(len(x), -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    connectivity = renumber[connectivity]
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(x[used]), deep=True))
+    offsets = np.cumsum([0] + [len(c) for c in cells]).astype(np.int64)
+    array = vtkCellArray()
+    array.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
+    mesh = vtkPolyData()
+    mesh.SetPoints(points)
+    if lines:
+        mesh.SetLines(array)
+    else:
+        mesh.SetPolys(array)
+    return mesh
+
+
 def surface(shape, h, algorithm=6, quads=False):
     """vtkPolyData of the triangles (or quads) Gmsh makes on `shape` with
     size `h` and 2D algorithm `algorithm` (5 Delaunay, 6 Frontal-Delaunay,
     1 MeshAdapt), in Gmsh's own node and element order, shared points merged."""
     key = (shape, h, algorithm, quads)
-    if key in _cache:
-        return _cache[key]
-    import gmsh
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
-    gmsh.initialize()
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add(shape)
-        reverse, skip = _occ(shape)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-        gmsh.option.setNumber("Mesh.Algorithm", algorithm)
-        if quads:
-            gmsh.option.setNumber("Mesh.RecombineAll", 1)
-        gmsh.model.mesh.generate(2)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        index = {int(t): i for i, t in enumerate(tags)}
-        x = np.asarray(coords).reshape(-1, 3)
-        polys = []
-        for dim, tag in gmsh.model.getEntities(2):
-            if tag in skip:
-                continue
-            types, _, nodes = gmsh.model.mesh.getElements(2, tag)
-            for etype, enodes in zip(types, nodes):
-                corners = {2: 3, 3: 4}[int(etype)]
-                cells = np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, corners)
-                if tag in reverse:
-                    cells = cells[:, ::-1]
-                polys.extend(list(c) for c in cells)
-    finally:
-        gmsh.finalize()
-    # Only the nodes the facets use (a skipped surface leaves its own), in Gmsh's order.
-    connectivity = np.concatenate([np.asarray(c, dtype=np.int64) for c in polys])
-    used = np.unique(connectivity)
-    renumber = np.full(len(x), -1, dtype=np.int64)
-    renumber[used] = np.arange(len(used))
-    connectivity = renumber[connectivity]
-    x = x[used]
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.ascontiguousarray(x), deep=True))
-    offsets = np.cumsum([0] + [len(c) for c in polys]).astype(np.int64)
-    cells = vtkCellArray()
-    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
-    mesh = vtkPolyData()
-    mesh.SetPoints(points)
-    mesh.SetPolys(cells)
-    _cache[key] = mesh
-    return mesh
+    if key not in _cache:
+        options = [("Mesh.Algorithm", algorithm)] + ([("Mesh.RecombineAll", 1)] if quads else [])
+        x, cells = _generate(shape, 2, lambda: _occ(shape), h, options)
+        _cache[key] = _polydata(x, cells, lines=False)
+    return _cache[key]
 
 
 def with_point_field(mesh, name, f):
@@ -130,54 +145,23 @@ def curve(shape, h):
     key = ("curve", shape, h)
     if key in _cache:
         return _cache[key]
-    import gmsh
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
-    gmsh.initialize()
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add(shape)
+
+    def build():
+        import gmsh
         occ = gmsh.model.occ
         if shape == "circle":
             occ.addCircle(0, 0, 0, 1.0)
         elif shape == "square":
             occ.addRectangle(0, 0, 0, 1, 1)
         elif shape == "spline":
-            ids = [occ.addPoint(np.cos(t), np.sin(t), 0.3 * t) for t in np.linspace(0, 4, 9)]
-            occ.addBSpline(ids)
+            occ.addBSpline([occ.addPoint(np.cos(t), np.sin(t), 0.3 * t) for t in np.linspace(0, 4, 9)])
         elif shape == "wave":
-            ids = [occ.addPoint(x, 0.2 * np.sin(2 * np.pi * x), 0) for x in np.linspace(0, 1, 17)]
-            occ.addSpline(ids)
+            occ.addSpline([occ.addPoint(x, 0.2 * np.sin(2 * np.pi * x), 0) for x in np.linspace(0, 1, 17)])
         else:
             raise ValueError(shape)
         occ.synchronize()
-        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-        gmsh.model.mesh.generate(1)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        index = {int(t): i for i, t in enumerate(tags)}
-        x = np.asarray(coords).reshape(-1, 3)
-        segments = []
-        for dim, tag in gmsh.model.getEntities(1):
-            types, _, nodes = gmsh.model.mesh.getElements(1, tag)
-            for etype, enodes in zip(types, nodes):
-                segments.append(np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, 2))
-    finally:
-        gmsh.finalize()
-    connectivity = np.concatenate(segments).ravel()
-    used = np.unique(connectivity)
-    renumber = np.full(len(x), -1, dtype=np.int64)
-    renumber[used] = np.arange(len(used))
-    connectivity = renumber[connectivity]
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.ascontiguousarray(x[used]), deep=True))
-    cells = vtkCellArray()
-    offsets = np.arange(0, len(connectivity) + 1, 2, dtype=np.int64)
-    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
-    mesh = vtkPolyData()
-    mesh.SetPoints(points)
-    mesh.SetLines(cells)
-    _cache[key] = mesh
-    return mesh
+        return [], []
+
+    x, cells = _generate(shape, 1, build, h)
+    _cache[key] = _polydata(x, cells, lines=True)
+    return _cache[key]

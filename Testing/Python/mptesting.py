@@ -49,6 +49,24 @@ def fresh_projection(target_grid, source_grid):
     return f.GetOutput()
 
 
+def mortar(target, source, brute=False, pieces=True, **properties):
+    """The wrapped filter, updated on two datasets (nothing kept), with the
+    intersection pieces unless told otherwise and any property by name
+    (SurfaceReach=0.05 calls SetSurfaceReach(0.05))."""
+    import meshprojection
+    f = meshprojection.vtkMeshProjectionFilter()
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetOutputIntersections(pieces)
+    f.SetCacheOperator(False)
+    if brute:
+        f.SetSearchMethodToBruteForce()
+    for name, value in properties.items():
+        getattr(f, "Set" + name)(value)
+    f.Update()
+    return f
+
+
 def integral(grid, name, component=0):
     """Exact integral of a P1 point array over a triangle or tetrahedron mesh
     (numpy, no VTK filter); returns (integral, area or volume)."""

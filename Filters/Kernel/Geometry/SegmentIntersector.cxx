@@ -2,6 +2,7 @@
 #include "Geometry/SegmentIntersector.h"
 
 #include "Geometry/IntersectionPieces.h"
+#include "Geometry/Reach.h"
 
 #include <algorithm>
 #include <cmath>
@@ -63,11 +64,7 @@ bool SegmentIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 
 void SegmentIntersector::Bounds(const Cell& cell, double box[6])
 {
-  for (int d = 0; d < 3; ++d)
-  {
-    box[2 * d] = cell.Box3[2 * d] - cell.Reach;
-    box[2 * d + 1] = cell.Box3[2 * d + 1] + cell.Reach;
-  }
+  WidenBox(cell.Box3, cell.Reach, box);
 }
 
 void SegmentIntersector::Center(const Cell& cell, double q[3])
@@ -93,12 +90,9 @@ bool SegmentIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   piece.SourceFaces = 0;
   piece.Target = &t;
   piece.Screened = false;
-  for (int d = 0; d < 3; ++d)
+  if (!BoxesWithinReach(t.Box3, s.Box3, t.Reach))
   {
-    if (s.Box3[2 * d] > t.Box3[2 * d + 1] + t.Reach || s.Box3[2 * d + 1] < t.Box3[2 * d] - t.Reach)
-    {
-      return false;
-    }
+    return false;
   }
   piece.Screened = true; // from here on, a rejection screens out a segment near the target
   const double cosine = t.Axis[0] * s.Axis[0] + t.Axis[1] * s.Axis[1] + t.Axis[2] * s.Axis[2];

@@ -2,6 +2,7 @@
 #include "Geometry/SurfaceIntersector.h"
 
 #include "Geometry/IntersectionPieces.h"
+#include "Geometry/Reach.h"
 #include "Geometry/Predicates.h"
 
 #include <algorithm>
@@ -89,11 +90,7 @@ bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 
 void SurfaceIntersector::Bounds(const Cell& cell, double box[6])
 {
-  for (int d = 0; d < 3; ++d)
-  {
-    box[2 * d] = cell.Box3[2 * d] - cell.Reach;
-    box[2 * d + 1] = cell.Box3[2 * d + 1] + cell.Reach;
-  }
+  WidenBox(cell.Box3, cell.Reach, box);
 }
 
 void SurfaceIntersector::Center(const Cell& cell, double q[3])
@@ -122,12 +119,9 @@ bool SurfaceIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   piece.SourceFaces = 0;
   piece.Target = &t;
   piece.Screened = false;
-  for (int d = 0; d < 3; ++d)
+  if (!BoxesWithinReach(t.Box3, s.Box3, t.Reach))
   {
-    if (s.Box3[2 * d] > t.Box3[2 * d + 1] + t.Reach || s.Box3[2 * d + 1] < t.Box3[2 * d] - t.Reach)
-    {
-      return false;
-    }
+    return false;
   }
   // From here on a rejection screens out a facet near the target.
   piece.Screened = true;
