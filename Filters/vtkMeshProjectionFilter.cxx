@@ -932,6 +932,13 @@ int vtkMeshProjectionFilter::Execute(
     }
   }
   this->WarnLeftOut(run.SourceMesh, "Source");
+  if (run.SourceMesh.Dimension() == 2 && !run.SourceMesh.View().IsSurfaceMesh())
+  {
+    // A planar Source in its own plane's coordinates until a leaf picks the
+    // frame both meshes share: its cells' areas (extensive densities) are
+    // then true areas in any plane, not those of its shadow on z = 0.
+    run.SourceMesh.UseFrame(run.SourceMesh.OwnPlane());
+  }
   {
     Fingerprint sourcePrint;
     AddMesh(sourcePrint, run.SourceMesh);

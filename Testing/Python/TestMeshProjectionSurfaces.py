@@ -198,6 +198,31 @@ x = points(out)
 error = np.max(np.abs(values(out, "f") - linear(x[:, 0], x[:, 1], 0.01)))
 check(error < 1e-11, "planar patches 0.01 apart: the source's linear field exact (%g)" % error)
 
+# --- Extensive cell data from a planar mesh in a vertical plane: the totals
+# (their densities use the cells' true areas, not those of their shadow on z = 0)
+from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
+from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
+from vtkmodules.vtkFiltersGeneral import vtkTransformFilter  # noqa: E402
+
+
+def upright(mesh):
+    turn = vtkTransform()
+    turn.RotateX(90)
+    moved = vtkTransformFilter()
+    moved.SetTransform(turn)
+    moved.SetInputData(mesh)
+    moved.Update()
+    return moved.GetOutput()
+
+
+source = upright(mpgmsh.surface("patch0", 0.1, 6))
+mass = numpy_to_vtk(np.ones(source.GetNumberOfCells()), deep=True)
+mass.SetName("mass")
+source.GetCellData().AddArray(mass)
+out = project(upright(mpgmsh.surface("patch0", 0.13, 5)), source, CellDataQuantity=1).GetOutput()
+total = vtk_to_numpy(out.GetCellData().GetArray("mass")).sum()
+check(abs(total - source.GetNumberOfCells()) < 1e-9, "vertical plane, extensive cell data: total kept (%.12g)" % total)
+
 # --- Two curved patches with a gap of 0.01 -----------------------------------
 target = mpgmsh.surface("arc1.0", 0.1, 6)
 source = mpgmsh.with_point_field(mpgmsh.surface("arc1.01", 0.13, 5), "f", linear)
