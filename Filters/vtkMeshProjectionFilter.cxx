@@ -27,6 +27,7 @@
 #include "vtkMeshProjectionMesh.h"
 
 #include "Geometry/Measures.h"
+#include "Mesh/CellNeighbors.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MortarOperator.h"
 
@@ -1533,6 +1534,22 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
                         << targetMesh.NonManifoldFaces() << ", Source: "
                         << sourceMesh.NonManifoldFaces()
                         << ") are treated as boundaries; results stay correct but the search is slower.");
+      }
+      if (targetMesh.View().IsSurfaceMesh() && this->NormalOrientation != ANY_ORIENTATION)
+      {
+        // Facets meet by oriented normals: say so when a mesh's are not consistent.
+        const mp::Index target = mp::MisorientedEdges(targetMesh.View());
+        const mp::Index source = run.SourceNeighbors ? 0 : mp::MisorientedEdges(sourceMesh.View());
+        if ((target > 0 || source > 0) && this->Internal->Warned.insert("orientation/" + role).second)
+        {
+          vtkWarningMacro(<< "Surfaces not consistently oriented (" << role << ": " << target
+                          << ", Source: " << source
+                          << " edges whose two facets are oriented against each other): facets "
+                             "meet only with normals within MaximumNormalAngle as "
+                             "NormalOrientation says, so facets facing the other way may meet "
+                             "nothing. Orient the meshes consistently (Generate Surface Normals "
+                             "with Consistency on), or set NormalOrientation to Any.");
+        }
       }
       if (!run.SourceNeighbors)
       {

@@ -647,7 +647,10 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
         {
           if (ids[k] != ids[k + 1] && ids[k + 1] != ids[k + 2] && ids[k] != ids[k + 2])
           {
-            simplices.insert(simplices.end(), { ids[k], ids[k + 1], ids[k + 2] });
+            // Every other triangle of a strip runs the other way round: as
+            // VTK orients them, all alike (it matters on surfaces).
+            const bool odd = k % 2 == 1;
+            simplices.insert(simplices.end(), { ids[odd ? k + 1 : k], ids[odd ? k : k + 1], ids[k + 2] });
           }
         }
         break;

@@ -339,3 +339,14 @@ TEST(Surfaces, FacingSurfacesMeetWithTheOppositeOrientation)
     }
   }
 }
+
+TEST(Surfaces, MisorientedEdgesAreCounted)
+{
+  TestMesh m = Finished(mptest::Icosphere(4));
+  EXPECT_EQ(mp::MisorientedEdges(m.View()), 0);
+  std::swap(m.Cells[1], m.Cells[2]); // one triangle turned over: its three edges
+  m.Finish();
+  EXPECT_EQ(mp::MisorientedEdges(m.View()), 3);
+  TestMesh flat = Finished(mptest::CubeSurface(3, 1));
+  EXPECT_EQ(mp::MisorientedEdges(flat.View()), 0);
+}

@@ -260,6 +260,49 @@ for orientation, expected in ((0, 0), (1, target.GetNumberOfPoints()), (2, targe
         difference = np.max(np.abs(values(out, "f") - reference))
         check(difference < 1e-12, "inward source, NormalOrientation %d: the outward result (%g)" % (orientation, difference))
 
+# --- Triangle strips (every other one runs the other way) and meshes that
+# are not consistently oriented -------------------------------------------------
+from vtkmodules.vtkFiltersCore import vtkStripper  # noqa: E402
+from vtkmodules.util.misc import calldata_type  # noqa: E402
+from vtkmodules.vtkCommonCore import VTK_STRING  # noqa: E402
+strips = vtkStripper()
+strips.SetInputData(source)
+strips.Update()
+stripped = strips.GetOutput()
+check(stripped.GetNumberOfStrips() > 0, "the source as triangle strips (%d)" % stripped.GetNumberOfStrips())
+out = project(target, stripped).GetOutput()
+difference = np.max(np.abs(values(out, "f") - reference))
+check(difference < 1e-12, "the source as triangle strips: the same values (%g)" % difference)
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData  # noqa: E402
+cells = facets(source)
+polys = vtkCellArray()
+for i, ids in enumerate(cells):
+    polys.InsertNextCell(len(ids))
+    for p in (ids if i % 2 else ids[::-1]):
+        polys.InsertCellPoint(int(p))
+mixed = vtkPolyData()
+mixed.SetPoints(source.GetPoints())
+mixed.SetPolys(polys)
+mixed.GetPointData().ShallowCopy(source.GetPointData())
+warnings = []
+
+
+@calldata_type(VTK_STRING)
+def on_warning(obj, event, text):
+    warnings.append(str(text))
+
+
+f = meshprojection.vtkMeshProjectionFilter()
+f.AddObserver("WarningEvent", on_warning)
+f.SetInputData(target)
+f.SetSourceData(mixed)
+f.Update()
+check(any("not consistently oriented" in w for w in warnings), "a source of mixed orientation is reported: %r" % warnings)
+f.SetNormalOrientation(2)
+f.Update()
+difference = np.max(np.abs(values(f.GetOutput(), "f") - reference))
+check(difference < 1e-12, "a source of mixed orientation with NormalOrientation Any: the same values (%g)" % difference)
+
 # --- Nothing crosses a thin shell --------------------------------------------
 target = mpgmsh.surface("shell", 0.12, 6)
 source = mpgmsh.with_point_field(mpgmsh.surface("shell", 0.15, 5), "f",

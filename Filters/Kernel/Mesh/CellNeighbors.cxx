@@ -38,6 +38,37 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbor
   }
   return FaceNeighbors<Index>(mesh, neighbors);
 }
+Index MisorientedEdges(const MeshView& mesh)
+{
+  if (mesh.CellDimension != 2 || !mesh.Neighbors)
+  {
+    return 0;
+  }
+  Index count = 0;
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    const Index* ids = mesh.Cell(c);
+    for (int k = 0; k < 3; ++k)
+    {
+      const Index n = mesh.Neighbor(c, k);
+      if (n <= c)
+      {
+        continue; // each edge once (and boundary edges not at all)
+      }
+      // Face k runs from corner k + 1 to corner k + 2; the neighbour should
+      // run through it the other way.
+      const Index from = ids[(k + 1) % 3];
+      const Index to = ids[(k + 2) % 3];
+      const Index* other = mesh.Cell(n);
+      for (int j = 0; j < 3; ++j)
+      {
+        count += other[j] == from && other[(j + 1) % 3] == to;
+      }
+    }
+  }
+  return count;
+}
+
 void BoundaryCells(const MeshView& mesh, std::vector<Index>& cells)
 {
   cells.clear();

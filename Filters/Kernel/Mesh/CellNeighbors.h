@@ -152,6 +152,14 @@ void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells)
 /// The cells with at least one face without neighbour (mesh.Neighbors must
 /// be set), in increasing order: the cells the front's walks can stop at.
 void BoundaryCells(const MeshView& mesh, std::vector<Index>& cells);
+
+/**
+ * For a mesh of triangles (mesh.Neighbors set): how many edges its two
+ * triangles run through in the same direction, i.e. the triangles on either
+ * side are oriented against each other (0 for a consistently oriented
+ * surface; a Moebius strip cannot have 0).
+ */
+Index MisorientedEdges(const MeshView& mesh);
 } // namespace mp
 
 #endif
