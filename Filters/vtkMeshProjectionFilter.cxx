@@ -1946,9 +1946,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       const vtkIdType n = toPoints ? nt : ntc;
       projected->SetNumberOfTuples(n);
       double* out = projected->GetPointer(0);
-      // The integrals: of the Source field over the whole Source, and of the
-      // projection over the covered target (which equals that of the
-      // projected Source field there).
+      // The integrals: of the Source field over the part of Source the
+      // pieces cover, and of the projection over the covered target (which
+      // equals that of the projected Source field there).
       std::vector<double> sourceIntegral(static_cast<size_t>(nc), 0.0);
       std::vector<double> targetIntegral(static_cast<size_t>(nc), 0.0);
       {

@@ -70,14 +70,14 @@ bool StandardShape(int type, mp::CellShape& shape)
 
 namespace
 {
-/// The number of points a cell of a linear type has (-n: at least n), or 0
-/// for a type with no fixed count worth checking (empty, nonlinear cells).
 /// The simplex of a mesh of dimension d: line, triangle or tetrahedron.
 int SimplexType(int d)
 {
   return d == 1 ? VTK_LINE : (d == 2 ? VTK_TRIANGLE : VTK_TETRA);
 }
 
+/// The number of points a cell of a linear type has (-n: at least n), or 0
+/// for a type with no fixed count worth checking (empty, nonlinear cells).
 int PointsOfType(int type)
 {
   switch (type)
@@ -820,14 +820,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   // Everything below and after reads the mesh along space when it is renumbered.
   this->OrderInSpace();
 
-  // The points the cells use: finite, and for triangles in one plane.
-  double lo[3];
-  double hi[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    lo[d] = std::numeric_limits<double>::infinity();
-    hi[d] = -lo[d];
-  }
+  // The points the cells use: finite, and within the predicates' range.
   const mp::Index* ids = this->Kernel.Connectivity;
   for (vtkIdType i = 0; i < corners * this->Kernel.NumberOfCells; ++i)
   {
@@ -850,11 +843,6 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
             << "the mesh.";
         return why.str();
       }
-    }
-    for (int d = 0; d < 3; ++d)
-    {
-      lo[d] = std::min(lo[d], x[d]);
-      hi[d] = std::max(hi[d], x[d]);
     }
   }
   // Points no cell uses may hold anything (NaN, 1e300): VTK's locators

@@ -190,7 +190,8 @@ struct MortarAssembler
     }
     double o[D];
     double M[K][K];
-    if (!(Intersector::Moments(piece, o, M) > 0.0))
+    const double measure = Intersector::Moments(piece, o, M);
+    if (!(measure > 0.0))
     {
       return; // the cells only touch
     }
@@ -217,7 +218,7 @@ struct MortarAssembler
         u[j] = this->Fields + dofs[j] * this->Components;
       }
       AddFieldBlock<Nt, Ns, K>(lt, ls, M, u, this->Components, this->CellRhs.data());
-      this->Finish(t, s, piece);
+      this->Finish(t, s, piece, measure);
       return;
     }
     double mts[Nt][Ns] = {};
@@ -242,16 +243,16 @@ struct MortarAssembler
         values[i] += mts[i][j];
       }
     }
-    this->Finish(t, s, piece);
+    this->Finish(t, s, piece, measure);
   }
 
-  /// Counts a piece of positive measure, and keeps it when asked.
-  void Finish(const Cell& t, const Cell& s, const typename Intersector::Piece& piece)
+  /// Counts a piece of positive `measure`, and keeps it when asked.
+  void Finish(const Cell& t, const Cell& s, const typename Intersector::Piece& piece, double measure)
   {
     ++this->Count;
     if (this->SourceCovered)
     {
-      this->SourceCovered[s.Id] += Intersector::Measure(piece) * Intersector::SourceScale(s, piece);
+      this->SourceCovered[s.Id] += measure * Intersector::SourceScale(s, piece);
     }
     if (this->Pieces)
     {
