@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Measures.h
- * @brief The measure of every cell of a volume mesh, summed per parent cell.
+ * @brief The measure of every cell of a mesh, summed per parent cell.
  *
  * The area of each triangle (2D) or the volume of each tetrahedron (3D), as
  * the intersectors' Prepare computes it (so the same measure the covered
@@ -13,10 +13,7 @@
 #ifndef MeshProjection_Kernel_Measures_h
 #define MeshProjection_Kernel_Measures_h
 
-#include "Geometry/SegmentIntersector.h"
-#include "Geometry/SurfaceIntersector.h"
-#include "Geometry/TetrahedronIntersector.h"
-#include "Geometry/TriangleIntersector.h"
+#include "Geometry/Intersectors.h"
 #include "Mesh/MeshView.h"
 
 #include <algorithm>
@@ -29,7 +26,7 @@ namespace mp
 template <class Visit>
 void ForEachCellMeasure(const MeshView& mesh, Visit visit)
 {
-  auto each = [&](auto* tag) { // the intersector's type only
+  WithIntersectorOf(mesh, [&](auto* tag) { // the intersector's type only
     using Intersector = std::remove_pointer_t<decltype(tag)>;
     typename Intersector::Cell cell;
     for (Index c = 0; c < mesh.NumberOfCells; ++c)
@@ -39,23 +36,7 @@ void ForEachCellMeasure(const MeshView& mesh, Visit visit)
         visit(c, cell.Measure);
       }
     }
-  };
-  if (mesh.IsCurveMesh())
-  {
-    each(static_cast<SegmentIntersector*>(nullptr));
-  }
-  else if (mesh.IsSurfaceMesh())
-  {
-    each(static_cast<SurfaceIntersector*>(nullptr));
-  }
-  else if (mesh.CellDimension == 2)
-  {
-    each(static_cast<TriangleIntersector*>(nullptr));
-  }
-  else
-  {
-    each(static_cast<TetrahedronIntersector*>(nullptr));
-  }
+  });
 }
 
 inline std::vector<double> ParentMeasures(const MeshView& mesh)

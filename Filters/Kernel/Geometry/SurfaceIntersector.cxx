@@ -46,9 +46,9 @@ bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     const double e[3] = { y[0] - x[0], y[1] - x[1], y[2] - x[2] };
     longest = std::max(longest, std::sqrt(Dot(e, e)));
   }
-  const double* x0 = mesh.Point(ids[0]);
-  const double* x1 = mesh.Point(ids[1]);
-  const double* x2 = mesh.Point(ids[2]);
+  const double* x0 = cell.Corner[0];
+  const double* x1 = cell.Corner[1];
+  const double* x2 = cell.Corner[2];
   const double a[3] = { x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2] };
   const double b[3] = { x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2] };
   double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
@@ -73,7 +73,7 @@ bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
   for (int k = 0; k < 3; ++k)
   {
     double h;
-    ToFrame(cell, mesh.Point(ids[k]), cell.X[k], h);
+    ToFrame(cell, cell.Corner[k], cell.X[k], h);
   }
   cell.Reach = mesh.SurfaceReach * longest;
   cell.MinCosine = mesh.SurfaceMinCosine;

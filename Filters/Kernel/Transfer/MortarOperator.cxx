@@ -3,10 +3,7 @@
 
 #include "Geometry/Measures.h"
 
-#include "Geometry/SegmentIntersector.h"
-#include "Geometry/SurfaceIntersector.h"
-#include "Geometry/TetrahedronIntersector.h"
-#include "Geometry/TriangleIntersector.h"
+#include "Geometry/Intersectors.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MassMatrix.h"
 #include "Transfer/MixedMatrix.h"
@@ -15,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 #include <limits>
 
 namespace mp
@@ -125,22 +123,9 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
     return false;
   }
   this->Pieces.Dimension = target.CellDimension;
-  if (target.IsCurveMesh())
-  {
-    this->Dispatch<SegmentIntersector>(target, source, locator);
-  }
-  else if (target.IsSurfaceMesh())
-  {
-    this->Dispatch<SurfaceIntersector>(target, source, locator);
-  }
-  else if (target.CellDimension == 2)
-  {
-    this->Dispatch<TriangleIntersector>(target, source, locator);
-  }
-  else
-  {
-    this->Dispatch<TetrahedronIntersector>(target, source, locator);
-  }
+  WithIntersectorOf(target, [&](auto* tag) {
+    this->Dispatch<std::remove_pointer_t<decltype(tag)>>(target, source, locator);
+  });
   if (!this->Error.empty())
   {
     this->TargetMass = CsrMatrix();
