@@ -17,6 +17,7 @@ source field (left) beside the projected field (right) in the same colours;
 in 3D, a slice through both; for a surface, seen from above at an angle.
 """
 import argparse
+import math
 import os
 import sys
 import time
@@ -111,13 +112,11 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
     view.CameraParallelScale = scale
     if tilt is not None:
         # Rotated about the x axis: x stays horizontal on the screen.
-        import math
         a = math.radians(tilt)
         focal = [centre[0], 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])]
         view.CameraFocalPoint = focal
         view.CameraPosition = [focal[0], focal[1] - 10 * math.sin(a), focal[2] + 10 * math.cos(a)]
         view.CameraViewUp = [0, math.cos(a), math.sin(a)]
-        view.CameraParallelScale = scale
     Render(view)
     SaveScreenshot(path, view, ImageResolution=SIZE)
     Delete(view)  # release the GL context before the interpreter exits

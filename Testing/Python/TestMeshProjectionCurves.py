@@ -123,18 +123,11 @@ check(set(vtk_to_numpy(pieces.GetCellData().GetArray("TargetCellId")).tolist()) 
 # --- The kept operator follows SurfaceReach ----------------------------------
 # A line 0.01 beside the target: within the default reach, not within 0.05.
 target = mpgmsh.curve("wave", 0.05)
-moved = mpgmsh.with_point_field(mpgmsh.curve("wave", 0.07), "f", smooth)
-from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
-from vtkmodules.vtkFiltersGeneral import vtkTransformFilter  # noqa: E402
-shift = vtkTransform()
-shift.Translate(0, 0, 0.01)
-lifted = vtkTransformFilter()
-lifted.SetTransform(shift)
-lifted.SetInputData(moved)
-lifted.Update()
+source_wave = mpgmsh.with_point_field(mpgmsh.curve("wave", 0.07), "f", smooth)
+lifted = mpgmsh.moved(source_wave, translate=(0, 0, 0.01))
 f = meshprojection.vtkMeshProjectionFilter()  # CacheOperator on (default)
 f.SetInputData(target)
-f.SetSourceData(lifted.GetOutput())
+f.SetSourceData(lifted)
 valid = []
 for reach in (0.5, 0.05, 0.5):
     f.SetSurfaceReach(reach)

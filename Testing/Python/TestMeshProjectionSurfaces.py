@@ -5,14 +5,17 @@ force, the pieces tile every target facet, linear fields exact on flat
 parts (the box across its sharp edges), second-order rates on curved
 surfaces, conservation on the target, nothing crossing the shell."""
 import math
-import sys
 
 import numpy as np
 
 import meshprojection
 import mpgmsh
 from mptesting import check, finish, mortar
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import VTK_STRING
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkReverseSense, vtkStripper
 
 
 def smooth(x, y, z):
@@ -200,26 +203,11 @@ check(error < 1e-11, "planar patches 0.01 apart: the source's linear field exact
 
 # --- Extensive cell data from a planar mesh in a vertical plane: the totals
 # (their densities use the cells' true areas, not those of their shadow on z = 0)
-from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
-from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
-from vtkmodules.vtkFiltersGeneral import vtkTransformFilter  # noqa: E402
-
-
-def upright(mesh):
-    turn = vtkTransform()
-    turn.RotateX(90)
-    moved = vtkTransformFilter()
-    moved.SetTransform(turn)
-    moved.SetInputData(mesh)
-    moved.Update()
-    return moved.GetOutput()
-
-
-source = upright(mpgmsh.surface("patch0", 0.1, 6))
+source = mpgmsh.moved(mpgmsh.surface("patch0", 0.1, 6), rotate_x=90)
 mass = numpy_to_vtk(np.ones(source.GetNumberOfCells()), deep=True)
 mass.SetName("mass")
 source.GetCellData().AddArray(mass)
-out = project(upright(mpgmsh.surface("patch0", 0.13, 5)), source, CellDataQuantity=1).GetOutput()
+out = project(mpgmsh.moved(mpgmsh.surface("patch0", 0.13, 5), rotate_x=90), source, CellDataQuantity=1).GetOutput()
 total = vtk_to_numpy(out.GetCellData().GetArray("mass")).sum()
 check(abs(total - source.GetNumberOfCells()) < 1e-9, "vertical plane, extensive cell data: total kept (%.12g)" % total)
 
@@ -238,7 +226,6 @@ mask = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask"))
 check(mask.sum() == 0, "curved patches beyond reach: nothing meets (%d valid)" % mask.sum())
 
 # --- Facing surfaces: NormalOrientation --------------------------------------
-from vtkmodules.vtkFiltersCore import vtkReverseSense  # noqa: E402
 target = mpgmsh.surface("sphere", 0.15, 6)
 source = mpgmsh.with_point_field(mpgmsh.surface("sphere", 0.2, 5), "f", smooth)
 flip = vtkReverseSense()  # the source's cells reversed: its facets face inward
@@ -262,9 +249,6 @@ for orientation, expected in ((0, 0), (1, target.GetNumberOfPoints()), (2, targe
 
 # --- Triangle strips (every other one runs the other way) and meshes that
 # are not consistently oriented -------------------------------------------------
-from vtkmodules.vtkFiltersCore import vtkStripper  # noqa: E402
-from vtkmodules.util.misc import calldata_type  # noqa: E402
-from vtkmodules.vtkCommonCore import VTK_STRING  # noqa: E402
 strips = vtkStripper()
 strips.SetInputData(source)
 strips.Update()
@@ -273,7 +257,6 @@ check(stripped.GetNumberOfStrips() > 0, "the source as triangle strips (%d)" % s
 out = project(target, stripped).GetOutput()
 difference = np.max(np.abs(values(out, "f") - reference))
 check(difference < 1e-12, "the source as triangle strips: the same values (%g)" % difference)
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData  # noqa: E402
 cells = facets(source)
 polys = vtkCellArray()
 for i, ids in enumerate(cells):

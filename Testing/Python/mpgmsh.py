@@ -124,6 +124,20 @@ def surface(shape, h, algorithm=6, quads=False):
     return _cache[key]
 
 
+def moved(mesh, rotate_x=0.0, translate=(0.0, 0.0, 0.0)):
+    """`mesh` turned by `rotate_x` degrees about the x axis, then translated."""
+    from vtkmodules.vtkCommonTransforms import vtkTransform
+    from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
+    transform = vtkTransform()
+    transform.Translate(*translate)
+    transform.RotateX(rotate_x)
+    result = vtkTransformFilter()
+    result.SetTransform(transform)
+    result.SetInputData(mesh)
+    result.Update()
+    return result.GetOutput()
+
+
 def with_point_field(mesh, name, f):
     """A shallow copy of `mesh` with the point array f(x, y, z)."""
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
