@@ -1867,7 +1867,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // P0: the cell's covered measure); cells without data for the array (NaN
   // holes) are not covered. For surfaces and curves the pieces, projected
   // along each target facet's own normal, cover a source cell only up to
-  // O(h^2) (0.3% here and there on a sphere at h/R = 0.2): a cell covered
+  // O(h^2) (0.25% short to 3.7% over on a sphere at h/R = 0.2): a cell covered
   // to 90% or more counts whole, so that a Source covered whole gives its
   // own integral exactly.
   std::map<std::pair<const mp::MortarOperator*, bool>, std::vector<double>> sourceWeights;
