@@ -262,6 +262,44 @@ inline TestMesh CubeMesh(int nx, int ny, int nz, double jitter, unsigned seed,
   return m;
 }
 
+/// A polyline through the points x(s) for s in `params` (closed: back to the first).
+inline TestMesh Polyline(const std::vector<double>& params, const std::function<void(double, double*)>& x,
+  bool closed, int space = 2)
+{
+  TestMesh m;
+  m.Dimension = 1;
+  m.Surface = space == 3; // the view's SpaceDimension: 3 for curves in space
+  for (double s : params)
+  {
+    double p[3] = { 0, 0, 0 };
+    x(s, p);
+    m.Points.insert(m.Points.end(), p, p + 3);
+  }
+  const Index n = static_cast<Index>(params.size());
+  for (Index i = 0; i + 1 < n + (closed ? 1 : 0); ++i)
+  {
+    m.Cells.insert(m.Cells.end(), { i, (i + 1) % n });
+  }
+  m.Finish();
+  return m;
+}
+
+/// n + 1 (closed: n) parameters from `from` to `to`, inner ones jittered by up to `jitter` steps.
+inline std::vector<double> Uniform(int n, double from, double to, double jitter, unsigned seed, bool closed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> d(-jitter, jitter);
+  std::vector<double> s;
+  const int count = closed ? n : n + 1;
+  const double h = (to - from) / n;
+  for (int i = 0; i < count; ++i)
+  {
+    const bool end = !closed && (i == 0 || i == n);
+    s.push_back(from + h * (i + (end ? 0.0 : d(random))));
+  }
+  return s;
+}
+
 /// Rotates about the z axis by `angle`, then about the x axis by `tilt`,
 /// scales and translates (by tx, ty, tz).
 inline void Move3D(TestMesh& m, double angle, double tilt, double scale, double tx, double ty,

@@ -16,48 +16,13 @@
 
 using mp::Index;
 using mp::SegmentIntersector;
+using mptest::Polyline;
 using mptest::TestMesh;
+using mptest::Uniform;
 
 namespace
 {
 const double Pi = 3.14159265358979323846;
-
-/// A polyline through the points x(s) for s in `params` (closed: back to the first).
-TestMesh Polyline(const std::vector<double>& params, const std::function<void(double, double*)>& x,
-  bool closed, int space = 2)
-{
-  TestMesh m;
-  m.Dimension = 1;
-  m.Surface = space == 3; // the view's SpaceDimension: 3 for curves in space
-  for (double s : params)
-  {
-    double p[3] = { 0, 0, 0 };
-    x(s, p);
-    m.Points.insert(m.Points.end(), p, p + 3);
-  }
-  const Index n = static_cast<Index>(params.size());
-  for (Index i = 0; i + 1 < n + (closed ? 1 : 0); ++i)
-  {
-    m.Cells.insert(m.Cells.end(), { i, (i + 1) % n });
-  }
-  m.Finish();
-  return m;
-}
-
-std::vector<double> Uniform(int n, double from, double to, double jitter, unsigned seed, bool closed)
-{
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> d(-jitter, jitter);
-  std::vector<double> s;
-  const int count = closed ? n : n + 1;
-  const double h = (to - from) / n;
-  for (int i = 0; i < count; ++i)
-  {
-    const bool end = !closed && (i == 0 || i == n);
-    s.push_back(from + h * (i + (end ? 0.0 : d(random))));
-  }
-  return s;
-}
 
 void Circle(double s, double* p)
 {

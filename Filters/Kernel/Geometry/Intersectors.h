@@ -9,6 +9,7 @@
 #include "Geometry/SegmentIntersector.h"
 #include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TraceIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Mesh/MeshView.h"
 
@@ -37,6 +38,40 @@ void WithIntersectorOf(const MeshView& mesh, F f)
   else
   {
     f(static_cast<TetrahedronIntersector*>(nullptr));
+  }
+}
+
+/// Whether a target of `target`'s kind lies in a volume mesh like `source`
+/// (a surface in tetrahedra, a curve in triangles or tetrahedra): a trace.
+inline bool IsTracePair(const MeshView& target, const MeshView& source)
+{
+  return source.IsVolumeMesh() && target.CellDimension < source.CellDimension &&
+    ((target.IsSurfaceMesh() && source.CellDimension == 3) ||
+      (target.IsCurveMesh() && target.SpaceDimension == source.SpaceDimension));
+}
+
+/**
+ * The same for a pair: the traces' intersectors when `target` lies in the
+ * volume mesh `source` (IsTracePair), else `target`'s own.
+ */
+template <class F>
+void WithIntersectorOf(const MeshView& target, const MeshView& source, F f)
+{
+  if (!IsTracePair(target, source))
+  {
+    WithIntersectorOf(target, f);
+  }
+  else if (target.IsSurfaceMesh())
+  {
+    f(static_cast<SurfaceTraceIntersector*>(nullptr));
+  }
+  else if (source.CellDimension == 2)
+  {
+    f(static_cast<CurveTraceIntersector<TriangleIntersector>*>(nullptr));
+  }
+  else
+  {
+    f(static_cast<CurveTraceIntersector<TetrahedronIntersector>*>(nullptr));
   }
 }
 } // namespace mp

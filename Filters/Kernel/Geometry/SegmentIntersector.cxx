@@ -181,12 +181,18 @@ double SegmentIntersector::Measure(const Piece& piece)
 
 double SegmentIntersector::Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2])
 {
-  const double length = Measure(piece);
+  return IntervalMoments(piece.NumberOfVertices, piece.X, origin, M);
+}
+
+double SegmentIntersector::IntervalMoments(
+  int n, const double (&X)[2][1], double (&origin)[1], double (&M)[2][2])
+{
+  const double length = n == 2 ? X[1][0] - X[0][0] : 0.0;
   if (!(length > 0.0))
   {
     return 0.0;
   }
-  origin[0] = piece.X[0][0];
+  origin[0] = X[0][0];
   M[0][0] = length;
   M[0][1] = M[1][0] = 0.5 * length * length;
   M[1][1] = length * length * length / 3.0;
@@ -196,17 +202,22 @@ double SegmentIntersector::Moments(const Piece& piece, double (&origin)[1], doub
 void SegmentIntersector::AppendPiece(
   const Piece& piece, Index target, Index source, IntersectionPieces& pieces)
 {
-  const Cell& t = *piece.Target;
-  for (int v = 0; v < piece.NumberOfVertices; ++v)
+  AppendInterval(*piece.Target, piece.NumberOfVertices, piece.X, target, source, pieces);
+}
+
+void SegmentIntersector::AppendInterval(const Cell& t, int n, const double (&X)[2][1],
+  Index target, Index source, IntersectionPieces& pieces)
+{
+  for (int v = 0; v < n; ++v)
   {
     for (int d = 0; d < 3; ++d)
     {
-      pieces.Points.push_back(t.Origin[d] + piece.X[v][0] * t.Axis[d]);
+      pieces.Points.push_back(t.Origin[d] + X[v][0] * t.Axis[d]);
     }
   }
-  pieces.Offsets.push_back(pieces.Offsets.back() + piece.NumberOfVertices);
+  pieces.Offsets.push_back(pieces.Offsets.back() + n);
   pieces.TargetCell.push_back(target);
   pieces.SourceCell.push_back(source);
-  pieces.Measure.push_back(Measure(piece));
+  pieces.Measure.push_back(n == 2 ? X[1][0] - X[0][0] : 0.0);
 }
 } // namespace mp

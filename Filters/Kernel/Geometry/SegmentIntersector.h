@@ -86,6 +86,11 @@ public:
   static double Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2]);
   static double Measure(const Piece& piece);
   static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  /// The moments of the interval X[0]..X[1] (when n == 2; else 0) about its start.
+  static double IntervalMoments(int n, const double (&X)[2][1], double (&origin)[1], double (&M)[2][2]);
+  /// Appends the interval of `frame`'s axis (n points) as a segment in space.
+  static void AppendInterval(const Cell& frame, int n, const double (&X)[2][1], Index target,
+    Index source, IntersectionPieces& pieces);
   /// The position of x on `frame`'s axis; `offset` is x minus its foot on the axis.
   static double ToFrame(const Cell& frame, const double* x, double offset[3]);
 };

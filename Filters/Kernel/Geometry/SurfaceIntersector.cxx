@@ -199,18 +199,23 @@ bool SurfaceIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
 void SurfaceIntersector::AppendPiece(
   const Piece& piece, Index target, Index source, IntersectionPieces& pieces)
 {
-  const Cell& t = *piece.Target;
-  for (int v = 0; v < piece.NumberOfVertices; ++v)
+  AppendPolygon(*piece.Target, piece, target, source, pieces);
+}
+
+void SurfaceIntersector::AppendPolygon(const Cell& t, const TriangleIntersector::Piece& polygon,
+  Index target, Index source, IntersectionPieces& pieces)
+{
+  for (int v = 0; v < polygon.NumberOfVertices; ++v)
   {
     for (int d = 0; d < 3; ++d)
     {
       pieces.Points.push_back(
-        t.Origin[d] + piece.X[v][0] * t.Axis[0][d] + piece.X[v][1] * t.Axis[1][d]);
+        t.Origin[d] + polygon.X[v][0] * t.Axis[0][d] + polygon.X[v][1] * t.Axis[1][d]);
     }
   }
-  pieces.Offsets.push_back(pieces.Offsets.back() + piece.NumberOfVertices);
+  pieces.Offsets.push_back(pieces.Offsets.back() + polygon.NumberOfVertices);
   pieces.TargetCell.push_back(target);
   pieces.SourceCell.push_back(source);
-  pieces.Measure.push_back(Measure(piece));
+  pieces.Measure.push_back(TriangleIntersector::Measure(polygon));
 }
 } // namespace mp

@@ -114,6 +114,9 @@ public:
   /// Appends the piece as a polygon in 3D, on the target facet.
   static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 
+  /// Appends `polygon` (in `frame`'s plane) as a polygon in 3D.
+  static void AppendPolygon(const Cell& frame, const TriangleIntersector::Piece& polygon,
+    Index target, Index source, IntersectionPieces& pieces);
   /// Point x (3D) in `frame`'s plane coordinates; the same formula for all.
   static void ToFrame(const Cell& frame, const double* x, double uv[2], double& height);
 };

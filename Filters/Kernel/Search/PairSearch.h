@@ -62,6 +62,7 @@
 #ifndef MeshProjection_Kernel_PairSearch_h
 #define MeshProjection_Kernel_PairSearch_h
 
+#include "Geometry/SourceSide.h"
 #include "Search/CandidateLocator.h"
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
@@ -170,6 +171,10 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   using Cell = typename Intersector::Cell;
   using Piece = typename Intersector::Piece;
   constexpr int Faces = Intersector::Faces;
+  // The source cells' own geometry (a volume's, for traces: SourceSide.h).
+  using Sources = typename SourceSideOf<Intersector>::type;
+  using SourceCell = typename Sources::Cell;
+  constexpr int SourceFaces = Sources::Faces;
 
   struct Seed
   {
@@ -185,7 +190,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   std::vector<Index> inner;
   std::vector<Index> candidates;
   Cell t;
-  PreparedCells<Intersector> sources(source, degenerateSources);
+  PreparedCells<Sources> sources(source, degenerateSources);
   Piece piece;
   double box[6];
   // Where walks start: the last source cell met, at first the source cell
@@ -201,7 +206,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   // A straight walk crosses about n^(1/d) cells of a mesh of n cells.
   const Index maxWalk = 100 +
     4 * static_cast<Index>(std::pow(
-          static_cast<double>(source.NumberOfCells), 1.0 / Intersector::Dimension));
+          static_cast<double>(source.NumberOfCells), 1.0 / Sources::Dimension));
   bool askedAll = false; // a query among all source cells was made: no more walks
   // Walks are for the few cells that start a front. Where there are many
   // (a target of many disconnected pieces, e.g. cells that share no
@@ -260,7 +265,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       double q[3] = { 0.0, 0.0, 0.0 };
       Intersector::Center(t, q);
       ++stats.SeedWalks;
-      return WalkToward<Intersector>(source, sources, from, q, maxWalk, stats.WalkSteps);
+      return WalkToward<Sources>(source, sources, from, q, maxWalk, stats.WalkSteps);
     };
     if (seed < 0)
     {
@@ -291,12 +296,12 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       {
         const Index sId = inner.back();
         inner.pop_back();
-        const Cell* prepared = sources.Get(sId);
+        const SourceCell* prepared = sources.Get(sId);
         if (!prepared)
         {
           // Zero measure: meets nothing, but must not cut the walk off from
           // the cells beyond it.
-          for (int k = 0; k < Faces; ++k)
+          for (int k = 0; k < SourceFaces; ++k)
           {
             const Index n = source.Neighbor(sId, k);
             if (n < 0)
@@ -311,7 +316,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
           }
           continue;
         }
-        const Cell& s = *prepared;
+        const SourceCell& s = *prepared;
         ++stats.IntersectionTests;
         if (!Intersector::Intersect(t, s, piece))
         {
@@ -335,7 +340,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         }
         // Only across the faces of s that the target reaches: any other
         // source cell meeting the target is reached through cells meeting it.
-        for (int k = 0; k < Faces; ++k)
+        for (int k = 0; k < SourceFaces; ++k)
         {
           if (!(piece.SourceFaces & (1u << k)))
           {
@@ -435,13 +440,15 @@ void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& v
     end = target.NumberOfCells;
   }
   using Cell = typename Intersector::Cell;
+  using Sources = typename SourceSideOf<Intersector>::type;
+  using SourceCell = typename Sources::Cell;
   typename Intersector::Piece piece;
-  std::vector<Cell> sources;
+  std::vector<SourceCell> sources;
   sources.reserve(static_cast<std::size_t>(source.NumberOfCells));
-  Cell c;
+  SourceCell c;
   for (Index sId = 0; sId < source.NumberOfCells; ++sId)
   {
-    if (Intersector::Prepare(source, sId, c))
+    if (Sources::Prepare(source, sId, c))
     {
       sources.push_back(c);
     }
@@ -462,7 +469,7 @@ void BruteForceSearch(const MeshView& target, const MeshView& source, Visitor& v
       ++stats.DegenerateTargetCells;
       continue;
     }
-    for (const Cell& s : sources)
+    for (const SourceCell& s : sources)
     {
       ++stats.IntersectionTests;
       if (Intersector::Intersect(t, s, piece))

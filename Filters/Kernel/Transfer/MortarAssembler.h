@@ -25,6 +25,7 @@
 #define MeshProjection_Kernel_MortarAssembler_h
 
 #include "Geometry/IntersectionPieces.h"
+#include "Geometry/SourceSide.h"
 #include "Mesh/MeshView.h"
 #include "Transfer/CsrMatrix.h"
 #include "Transfer/MixedMatrix.h"
@@ -45,7 +46,7 @@ namespace mp
  */
 template <class Intersector, class TargetSpace, class SourceSpace>
 double AddPieceBlocks(const typename Intersector::Piece& piece, const typename Intersector::Cell& t,
-  const typename Intersector::Cell& s, double (&Mts)[TargetSpace::Dofs][SourceSpace::Dofs],
+  const typename SourceSideOf<Intersector>::type::Cell& s, double (&Mts)[TargetSpace::Dofs][SourceSpace::Dofs],
   double (&Mtt)[TargetSpace::Dofs][TargetSpace::Dofs])
 {
   constexpr int K = Intersector::Dimension + 1;
@@ -169,7 +170,9 @@ struct MortarAssembler
     b.Start.push_back(static_cast<Index>(b.Columns.size()));
   }
 
-  void operator()(const Cell& t, const Cell& s, const typename Intersector::Piece& piece)
+  /// SourceCell: the cell type of the source side (Cell, or a volume's for traces).
+  template <class SourceCell>
+  void operator()(const Cell& t, const SourceCell& s, const typename Intersector::Piece& piece)
   {
     if (t.Id != this->Current)
     {
@@ -247,7 +250,8 @@ struct MortarAssembler
   }
 
   /// Counts a piece of positive `measure`, and keeps it when asked.
-  void Finish(const Cell& t, const Cell& s, const typename Intersector::Piece& piece, double measure)
+  template <class SourceCell>
+  void Finish(const Cell& t, const SourceCell& s, const typename Intersector::Piece& piece, double measure)
   {
     ++this->Count;
     if (this->SourceCovered)

@@ -94,6 +94,7 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
     this->Error = "the advancing front needs a locator over the source cells";
     return false;
   }
+  const bool trace = IsTracePair(target, source);
   if (target.CellDimension == 2 && source.CellDimension == 2 &&
     target.SpaceDimension != source.SpaceDimension)
   {
@@ -102,10 +103,12 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
       "D): a surface in 3D is matched with a surface in 3D";
     return false;
   }
-  if (target.CellDimension != source.CellDimension)
+  if (target.CellDimension != source.CellDimension && !trace)
   {
     this->Error = "Input and Source have different dimensions (" +
-      std::to_string(target.CellDimension) + "D and " + std::to_string(source.CellDimension) + "D)";
+      std::to_string(target.CellDimension) + "D and " + std::to_string(source.CellDimension) +
+      "D); of different dimensions, only a surface in tetrahedra or a curve in triangles (in "
+      "their plane) or tetrahedra (a trace) can be projected";
     return false;
   }
   const Index rows = SpaceSize(options.TargetSpace, target);
@@ -123,7 +126,7 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
     return false;
   }
   this->Pieces.Dimension = target.CellDimension;
-  WithIntersectorOf(target, [&](auto* tag) {
+  WithIntersectorOf(target, source, [&](auto* tag) {
     this->Dispatch<std::remove_pointer_t<decltype(tag)>>(target, source, locator);
   });
   if (!this->Error.empty())
@@ -146,11 +149,12 @@ template <class Intersector>
 void MortarOperator::Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator)
 {
   constexpr int D = Intersector::Dimension;
+  using SourceP1 = typename SourceP1Of<Intersector>::type;
   const bool p1t = this->Options.TargetSpace == SpaceType::P1;
   const bool p1s = this->Options.SourceSpace == SpaceType::P1;
   if (p1t && p1s)
   {
-    this->Assemble<Intersector, P1Space<D>, P1Space<D>>(target, source, locator);
+    this->Assemble<Intersector, P1Space<D>, SourceP1>(target, source, locator);
   }
   else if (p1t)
   {
@@ -158,7 +162,7 @@ void MortarOperator::Dispatch(const MeshView& target, const MeshView& source, Ca
   }
   else if (p1s)
   {
-    this->Assemble<Intersector, P0Space<D>, P1Space<D>>(target, source, locator);
+    this->Assemble<Intersector, P0Space<D>, SourceP1>(target, source, locator);
   }
   else
   {

@@ -23,6 +23,7 @@
 #ifndef MeshProjection_Kernel_Space_h
 #define MeshProjection_Kernel_Space_h
 
+#include "Geometry/SourceSide.h"
 #include "Mesh/MeshView.h"
 #include "Transfer/MortarBlocks.h"
 
@@ -151,6 +152,53 @@ struct P0Space
   {
     m[0][0] = moments[0][0];
   }
+};
+/**
+ * P1 of a source cell seen on a lower-dimensional target (traces,
+ * Geometry/TraceIntersector.h): its N functions are given on the piece
+ * (AffineCell) as affine functions of the target frame's D coordinates.
+ * Only a source space: it has no mass matrix of its own.
+ */
+template <int N, int D>
+struct RestrictedP1Space
+{
+  static constexpr SpaceType Type = SpaceType::P1;
+  static constexpr int Dofs = N;
+  static constexpr int K = D + 1;
+
+  template <class Cell>
+  static void CellDofs(const MeshView&, const Cell& c, Index (&dofs)[Dofs])
+  {
+    std::copy(c.Points, c.Points + Dofs, dofs);
+  }
+  template <class Cell>
+  static void Basis(const Cell& c, const double* o, double (&l)[Dofs][K])
+  {
+    for (int j = 0; j < Dofs; ++j)
+    {
+      double value = c.Affine[j][0];
+      for (int a = 0; a < D; ++a)
+      {
+        value += c.Affine[j][a + 1] * o[a];
+        l[j][a + 1] = c.Affine[j][a + 1];
+      }
+      l[j][0] = value;
+    }
+  }
+};
+
+/// The P1 space of the source as intersector I's pieces see it: P1Space,
+/// or RestrictedP1Space for a trace (a volume source).
+template <class I, bool Trace = IsTrace<I>>
+struct SourceP1Of
+{
+  using type = P1Space<I::Dimension>;
+};
+
+template <class I>
+struct SourceP1Of<I, true>
+{
+  using type = RestrictedP1Space<SourceSideOf<I>::type::Corners, I::Dimension>;
 };
 } // namespace mp
 

@@ -1,0 +1,501 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Geometry/TraceIntersector.h"
+
+#include "Geometry/IntersectionPieces.h"
+#include "Geometry/Predicates.h"
+#include "Geometry/Reach.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace mp
+{
+namespace
+{
+/// Heights (distances) this small relative to the target cell count as zero.
+constexpr double HeightTolerance = 1e-10;
+
+inline double Dot3(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// The largest extent of a box (xmin, xmax, ymin, ymax, zmin, zmax).
+inline double Extent(const double box[6])
+{
+  return std::max({ box[1] - box[0], box[3] - box[2], box[5] - box[4] });
+}
+
+/// Moments M (about o) added to `sum` (about `origin`): the shift o - origin.
+template <int K>
+void AddMomentsAbout(const double (&M)[K][K], const double* o, const double* origin, double (&sum)[K][K])
+{
+  constexpr int D = K - 1;
+  double d[D];
+  for (int a = 0; a < D; ++a)
+  {
+    d[a] = o[a] - origin[a];
+  }
+  sum[0][0] += M[0][0];
+  double first[D];
+  for (int a = 0; a < D; ++a)
+  {
+    first[a] = M[0][a + 1] + d[a] * M[0][0];
+    sum[0][a + 1] += first[a];
+    sum[a + 1][0] += first[a];
+  }
+  for (int a = 0; a < D; ++a)
+  {
+    for (int b = 0; b < D; ++b)
+    {
+      sum[a + 1][b + 1] += M[a + 1][b + 1] + d[a] * M[0][b + 1] + first[a] * d[b];
+    }
+  }
+}
+
+// A generic direction: a segment lying in a face's plane belongs to the cell
+// this direction points into from it.
+constexpr double Generic[3] = { 0.5772156649015329, 0.3183098861837907, 0.7071067811865476 };
+} // namespace
+
+void SurfaceTraceIntersector::Bounds(const Cell& cell, double box[6])
+{
+  WidenBox(cell.Box3, HeightTolerance * Extent(cell.Box3), box);
+}
+
+bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, Piece& piece)
+{
+  piece.NumberOfParts = 0;
+  piece.TouchedFaces = 0;
+  piece.SourceFaces = 0;
+  piece.Target = &t;
+  const double tolerance = HeightTolerance * Extent(t.Box3);
+  if (!BoxesWithinReach(t.Box3, s.Box, tolerance))
+  {
+    return false;
+  }
+  // Every corner's image and height, from the mesh's own point: one value
+  // per point and target facet, whichever tetrahedron asks.
+  double uv[4][2];
+  double h[4];
+  int zeros = 0;
+  int apex = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    SurfaceIntersector::ToFrame(t, s.X[k], uv[k], h[k]);
+    if (std::fabs(h[k]) <= tolerance)
+    {
+      h[k] = 0.0;
+      ++zeros;
+    }
+    else
+    {
+      apex = k;
+    }
+  }
+  // Zero counts as below the plane; but a face on the plane that is on the
+  // source's boundary, with its tetrahedron below, is taken from below.
+  const bool zeroAbove = zeros == 3 && h[apex] < 0.0 && ((s.Boundary >> apex) & 1u);
+  bool above[4];
+  int n = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    above[k] = h[k] > 0.0 || (zeroAbove && h[k] == 0.0);
+    n += above[k];
+  }
+  // A tetrahedron that only touches the plane (in a vertex, an edge or a
+  // face on the other side) meets the target when those points' box meets
+  // the target's: the front must pass through it, to all its neighbours,
+  // for the cells around an edge lying on the plane to be reached.
+  auto touching = [&]() {
+    double box[4] = { 0.0, -1.0, 0.0, -1.0 };
+    for (int k = 0; k < 4; ++k)
+    {
+      if (h[k] != 0.0)
+      {
+        continue;
+      }
+      const bool first = box[1] < box[0];
+      box[0] = first ? uv[k][0] : std::min(box[0], uv[k][0]);
+      box[1] = first ? uv[k][0] : std::max(box[1], uv[k][0]);
+      box[2] = first ? uv[k][1] : std::min(box[2], uv[k][1]);
+      box[3] = first ? uv[k][1] : std::max(box[3], uv[k][1]);
+    }
+    if (box[1] < box[0] || box[1] < t.Box[0] || t.Box[1] < box[0] || box[3] < t.Box[2] ||
+      t.Box[3] < box[2])
+    {
+      return false;
+    }
+    piece.SourceFaces = 15u;
+    return true;
+  };
+  if (n == 0 || n == 4)
+  {
+    return zeros > 0 && touching();
+  }
+  // The crossed edges (above, below) in cyclic order around the cross-section.
+  int edge[4][2];
+  int m = 0;
+  int up[3];
+  int down[3];
+  int nu = 0;
+  int nd = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    (above[k] ? up[nu++] : down[nd++]) = k;
+  }
+  if (n == 1 || n == 3)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      edge[m][0] = n == 1 ? up[0] : up[k];
+      edge[m][1] = n == 1 ? down[k] : down[0];
+      ++m;
+    }
+  }
+  else
+  {
+    const int cycle[4][2] = { { up[0], down[0] }, { up[0], down[1] }, { up[1], down[1] },
+      { up[1], down[0] } };
+    for (m = 0; m < 4; ++m)
+    {
+      edge[m][0] = cycle[m][0];
+      edge[m][1] = cycle[m][1];
+    }
+  }
+  double c[4][2];
+  int cycleFace[4];
+  for (int e = 0; e < m; ++e)
+  {
+    const int i = edge[e][0];
+    const int j = edge[e][1];
+    if (h[j] == 0.0 && !above[j])
+    {
+      c[e][0] = uv[j][0];
+      c[e][1] = uv[j][1];
+    }
+    else if (h[i] == 0.0)
+    {
+      c[e][0] = uv[i][0];
+      c[e][1] = uv[i][1];
+    }
+    else
+    {
+      // From the ends in the order of their ids: the same bits in every cell.
+      const int a = s.Points[i] < s.Points[j] ? i : j;
+      const int b = a == i ? j : i;
+      const double r = h[a] / (h[a] - h[b]);
+      c[e][0] = uv[a][0] + r * (uv[b][0] - uv[a][0]);
+      c[e][1] = uv[a][1] + r * (uv[b][1] - uv[a][1]);
+    }
+    // The side from this crossing to the next lies in the face opposite the
+    // corner that neither edge has.
+    const int next = (e + 1) % m;
+    const unsigned used = (1u << edge[e][0]) | (1u << edge[e][1]) | (1u << edge[next][0]) |
+      (1u << edge[next][1]);
+    int missing = 0;
+    while ((used >> missing) & 1u)
+    {
+      ++missing;
+    }
+    cycleFace[e] = missing;
+  }
+  // The cross-section as one or two triangles, each cut out of the target.
+  const int parts[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
+  for (int p = 0; p < (m == 4 ? 2 : 1); ++p)
+  {
+    TriangleIntersector::Cell sub;
+    sub.Id = s.Id;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int v = parts[p][k];
+      sub.X[k][0] = c[v][0];
+      sub.X[k][1] = c[v][1];
+      sub.Points[k] = s.Points[k];
+      // The side opposite corner k: a side of the cross-section, or the diagonal.
+      const int from = parts[p][(k + 1) % 3];
+      const int to = parts[p][(k + 2) % 3];
+      sub.Face[k] = (to == (from + 1) % m) ? cycleFace[from] : -1;
+    }
+    if (!TriangleIntersector::PrepareCorners(sub))
+    {
+      continue; // no area (a tetrahedron touching the plane)
+    }
+    TriangleIntersector::Piece& part = piece.Parts[piece.NumberOfParts];
+    if (!TriangleIntersector::Intersect(t, sub, part))
+    {
+      continue;
+    }
+    ++piece.NumberOfParts;
+    piece.TouchedFaces |= part.TouchedFaces;
+    for (int l = 0; l < 3; ++l)
+    {
+      if (((part.SourceFaces >> l) & 1u) && sub.Face[l] >= 0)
+      {
+        piece.SourceFaces |= 1u << sub.Face[l];
+      }
+    }
+  }
+  if (piece.NumberOfParts == 0)
+  {
+    // A cross-section without area: the tetrahedron touches the plane.
+    return piece.SourceFaces == 0 && zeros > 0 && touching();
+  }
+  // The tetrahedron's barycentric coordinates on the target's plane.
+  AffineCell<4, 2>& f = piece.Source;
+  f.Id = s.Id;
+  const double d0[3] = { t.Origin[0] - s.X[0][0], t.Origin[1] - s.X[0][1], t.Origin[2] - s.X[0][2] };
+  for (int k = 0; k < 3; ++k)
+  {
+    f.Affine[0][k] = k == 0 ? 1.0 : 0.0;
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    const double* inverse = s.Inverse[r];
+    f.Affine[r + 1][0] = Dot3(inverse, d0);
+    f.Affine[r + 1][1] = Dot3(inverse, t.Axis[0]);
+    f.Affine[r + 1][2] = Dot3(inverse, t.Axis[1]);
+    for (int k = 0; k < 3; ++k)
+    {
+      f.Affine[0][k] -= f.Affine[r + 1][k];
+    }
+  }
+  std::copy(s.Points, s.Points + 4, f.Points);
+  return true;
+}
+
+double SurfaceTraceIntersector::Moments(const Piece& piece, double (&origin)[2], double (&M)[3][3])
+{
+  double total = 0.0;
+  for (int p = 0; p < piece.NumberOfParts; ++p)
+  {
+    double o[2];
+    double m[3][3];
+    const double area = TriangleIntersector::Moments(piece.Parts[p], o, m);
+    if (!(area > 0.0))
+    {
+      continue;
+    }
+    if (total == 0.0)
+    {
+      origin[0] = o[0];
+      origin[1] = o[1];
+      for (auto& row : M)
+      {
+        std::fill(row, row + 3, 0.0);
+      }
+    }
+    AddMomentsAbout<3>(m, o, origin, M);
+    total += area;
+  }
+  return total;
+}
+
+double SurfaceTraceIntersector::Measure(const Piece& piece)
+{
+  double total = 0.0;
+  for (int p = 0; p < piece.NumberOfParts; ++p)
+  {
+    total += TriangleIntersector::Measure(piece.Parts[p]);
+  }
+  return total;
+}
+
+void SurfaceTraceIntersector::AppendPiece(
+  const Piece& piece, Index target, Index source, IntersectionPieces& pieces)
+{
+  for (int p = 0; p < piece.NumberOfParts; ++p)
+  {
+    if (piece.Parts[p].NumberOfVertices >= 3)
+    {
+      SurfaceIntersector::AppendPolygon(*piece.Target, piece.Parts[p], target, source, pieces);
+    }
+  }
+}
+
+template <class Base>
+bool CurveTraceIntersector<Base>::Prepare(const MeshView& mesh, Index id, Cell& cell)
+{
+  return SegmentIntersector::Prepare(mesh, id, cell);
+}
+
+template <class Base>
+void CurveTraceIntersector<Base>::Bounds(const Cell& cell, double box[6])
+{
+  WidenBox(cell.Box3, HeightTolerance * cell.Measure, box);
+}
+
+template <class Base>
+bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType& s, Piece& piece)
+{
+  constexpr int D = SpaceDimension;
+  constexpr int N = Base::Corners;
+  piece.NumberOfVertices = 0;
+  piece.TouchedFaces = 0;
+  piece.SourceFaces = 0;
+  piece.Target = &t;
+  const double tolerance = HeightTolerance * t.Measure;
+  for (int d = 0; d < D; ++d)
+  {
+    if (s.Box[2 * d] > t.Box3[2 * d + 1] + tolerance || s.Box[2 * d + 1] < t.Box3[2 * d] - tolerance)
+    {
+      return false;
+    }
+  }
+  const double length = t.X[1][0];
+  double lo = 0.0;
+  double hi = length;
+  double cut[N];
+  bool cuts[N];
+  unsigned on = 0; // faces whose plane holds the segment
+  for (int k = 0; k < N; ++k)
+  {
+    cuts[k] = false;
+    // Face k (opposite corner k), its corners in the order of their ids.
+    int f[D];
+    int nf = 0;
+    for (int j = 0; j < N; ++j)
+    {
+      if (j != k)
+      {
+        f[nf++] = j;
+      }
+    }
+    std::sort(f, f + D, [&s](int a, int b) { return s.Points[a] < s.Points[b]; });
+    const double* v0 = s.X[f[0]];
+    double normal[3] = { 0.0, 0.0, 0.0 };
+    double side;
+    if constexpr (D == 3)
+    {
+      const double* v1 = s.X[f[1]];
+      const double* v2 = s.X[f[2]];
+      const double e1[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
+      const double e2[3] = { v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2] };
+      normal[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      side = Orient3D(v0, v1, v2, s.X[k]);
+    }
+    else
+    {
+      const double* v1 = s.X[f[1]];
+      normal[0] = -(v1[1] - v0[1]);
+      normal[1] = v1[0] - v0[0];
+      side = Orient2D(v0, v1, s.X[k]);
+    }
+    if (!(side != 0.0))
+    {
+      return false;
+    }
+    double ga = 0.0;
+    double gb = 0.0;
+    double generic = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      ga += normal[d] * (t.Corner[0][d] - v0[d]);
+      gb += normal[d] * (t.Corner[1][d] - v0[d]);
+      generic += normal[d] * Generic[d];
+    }
+    const double sign = side > 0.0 ? 1.0 : -1.0;
+    const double ia = sign * ga; // >= 0: end a on the cell's side
+    const double ib = sign * gb;
+    if (ia >= 0.0 && ib >= 0.0)
+    {
+      if (ia == 0.0 && ib == 0.0)
+      {
+        // In the face's plane: this cell's if the face is on the boundary,
+        // else the cell's on the generic direction's side.
+        if (!((s.Boundary >> k) & 1u) && !(sign * generic > 0.0))
+        {
+          return false;
+        }
+        on |= 1u << k;
+      }
+      continue;
+    }
+    if (ia < 0.0 && ib < 0.0)
+    {
+      return false;
+    }
+    // Where the segment crosses the face's plane: from the face's own
+    // values, the same in both cells that share it.
+    const double u = length * (ga / (ga - gb));
+    cuts[k] = true;
+    cut[k] = u;
+    if (ia >= 0.0)
+    {
+      hi = std::min(hi, u);
+    }
+    else
+    {
+      lo = std::max(lo, u);
+    }
+  }
+  // Cuts through one vertex or edge of the cell come from different faces,
+  // so they differ by rounding: within `tolerance` the cell touches the
+  // segment there (a piece without length), and the front passes on to the
+  // neighbours across all faces through that point.
+  if (!(lo <= hi + tolerance))
+  {
+    return false;
+  }
+  piece.NumberOfVertices = lo < hi ? 2 : 1;
+  piece.X[0][0] = lo;
+  piece.X[1][0] = std::max(lo, hi);
+  // Face k of the target is its corner 1 - k.
+  piece.TouchedFaces = (hi >= length - tolerance ? 1u : 0u) | (lo <= tolerance ? 2u : 0u);
+  piece.SourceFaces = on;
+  for (int k = 0; k < N; ++k)
+  {
+    if (cuts[k] && (std::fabs(cut[k] - lo) <= tolerance || std::fabs(cut[k] - hi) <= tolerance))
+    {
+      piece.SourceFaces |= 1u << k;
+    }
+  }
+  // The cell's barycentric coordinates along the target's axis.
+  AffineCell<N, 1>& a = piece.Source;
+  a.Id = s.Id;
+  std::copy(s.Points, s.Points + N, a.Points);
+  a.Affine[0][0] = 1.0;
+  a.Affine[0][1] = 0.0;
+  for (int r = 0; r < D; ++r)
+  {
+    double constant = 0.0;
+    double slope = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      constant += s.Inverse[r][d] * (t.Origin[d] - s.X[0][d]);
+      slope += s.Inverse[r][d] * t.Axis[d];
+    }
+    a.Affine[r + 1][0] = constant;
+    a.Affine[r + 1][1] = slope;
+    a.Affine[0][0] -= constant;
+    a.Affine[0][1] -= slope;
+  }
+  return true;
+}
+
+template <class Base>
+double CurveTraceIntersector<Base>::Measure(const Piece& piece)
+{
+  return piece.NumberOfVertices == 2 ? piece.X[1][0] - piece.X[0][0] : 0.0;
+}
+
+template <class Base>
+double CurveTraceIntersector<Base>::Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2])
+{
+  return SegmentIntersector::IntervalMoments(piece.NumberOfVertices, piece.X, origin, M);
+}
+
+template <class Base>
+void CurveTraceIntersector<Base>::AppendPiece(
+  const Piece& piece, Index target, Index source, IntersectionPieces& pieces)
+{
+  SegmentIntersector::AppendInterval(
+    *piece.Target, piece.NumberOfVertices, piece.X, target, source, pieces);
+}
+
+template class CurveTraceIntersector<TriangleIntersector>;
+template class CurveTraceIntersector<TetrahedronIntersector>;
+} // namespace mp
