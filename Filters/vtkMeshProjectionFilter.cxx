@@ -1408,6 +1408,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   this->InputTime += Lap(run.Stage);
   const vtkIdType targetCells = targetMesh.View().NumberOfCells;
   const vtkIdType sourceCells = sourceMesh.View().NumberOfCells;
+  bool trace = false; // a surface or curve inside a volume Source
   if (targetCells == 0 || sourceCells == 0)
   {
     vtkDataSet* empty = targetCells == 0 ? target : source;
@@ -1428,12 +1429,52 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   }
   else if (targetMesh.Dimension() != sourceMesh.Dimension())
   {
+    // Of different dimensions: a surface or a curve inside a volume mesh (a trace).
     std::ostringstream why;
-    why << role << " is a " << targetMesh.Dimension() << "D mesh but Source is "
-        << sourceMesh.Dimension() << "D: both must be of the same dimension.";
-    return why.str();
+    if (targetMesh.Dimension() > sourceMesh.Dimension())
+    {
+      why << role << " is a " << targetMesh.Dimension() << "D mesh but Source is "
+          << sourceMesh.Dimension() << "D: values go to a mesh of the same dimension, or from "
+          << "a volume mesh (2D or 3D) to a surface or curve inside it (a trace), not to a "
+          << "mesh of a higher dimension.";
+      return why.str();
+    }
+    if (sourceMesh.Surface())
+    {
+      why << role << " is a curve but Source a surface in 3D: a curve takes values from "
+          << "curves, from a 2D mesh in its plane or from a 3D mesh, not from a curved surface.";
+      return why.str();
+    }
+    trace = true;
   }
-  if (targetMesh.Dimension() == 1 ||
+  if (trace)
+  {
+    if (targetMesh.Dimension() == 2)
+    {
+      targetMesh.UseAsSurface(); // its facets in space, planar or not
+    }
+    else if (sourceMesh.Dimension() == 2)
+    {
+      // A curve in a planar Source: in the Source's plane.
+      const mp::PlaneFrame& plane = sourceMesh.OwnPlane();
+      const mp::MeshView& curve = targetMesh.View();
+      double off = 0.0;
+      for (mp::Index p = 0; p < curve.NumberOfPoints; ++p)
+      {
+        off = std::max(off, std::fabs(plane.Distance(curve.Point(p))));
+      }
+      if (!(off <= std::max(plane.Tolerance(), 1e-12)))
+      {
+        std::ostringstream why;
+        why << role << " is a curve that leaves the plane of the 2D Source (by up to " << off
+            << "): a curve takes values from a 2D mesh only in its plane.";
+        return why.str();
+      }
+      targetMesh.UseFrameAsOwn(plane);
+      sourceMesh.UseFrame(plane);
+    }
+  }
+  else if (targetMesh.Dimension() == 1 ||
     (targetMesh.Dimension() == 2 && (targetMesh.Surface() || sourceMesh.Surface())))
   {
     // A curve, or a surface in 3D: both meshes are seen as they are (a
@@ -1471,6 +1512,18 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   run.FirstLeaf = false;
   const Gathered* fields = run.Fields;
   const bool extensive = run.Extensive;
+  if (trace && (extensive || this->ConserveSourceIntegral) &&
+    this->Internal->Warned.insert("trace/" + role).second)
+  {
+    vtkWarningMacro(<< role << " lies inside the " << sourceMesh.Dimension()
+                    << "D Source (a trace): "
+                    << (extensive ? "extensive cell arrays are given as the Source's densities "
+                                    "(per unit of its "
+                                  : "")
+                    << (extensive ? (sourceMesh.Dimension() == 3 ? "volume), " : "area), ") : "")
+                    << (this->ConserveSourceIntegral ? "ConserveSourceIntegral does nothing, " : "")
+                    << "since a surface or curve holds no part of the Source's integrals.");
+  }
 
   // 2. The operators: kept ones while neither mesh changed, else built.
   Fingerprint print;
@@ -1478,7 +1531,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   print.Add(run.SourcePrint);
   print.Add(static_cast<std::uint64_t>(this->SearchMethod));
   print.Add(static_cast<std::uint64_t>(this->OutputIntersections));
-  if (targetMesh.View().IsSurfaceMesh() || targetMesh.View().IsCurveMesh())
+  if (!trace && (targetMesh.View().IsSurfaceMesh() || targetMesh.View().IsCurveMesh()))
   {
     const double contact[3] = { this->SurfaceReach, this->MaximumNormalAngle,
       static_cast<double>(this->NormalOrientation) };
@@ -1535,7 +1588,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
                         << sourceMesh.NonManifoldFaces()
                         << ") are treated as boundaries; results stay correct but the search is slower.");
       }
-      if (targetMesh.View().IsSurfaceMesh() && this->NormalOrientation != ANY_ORIENTATION)
+      if (!trace && targetMesh.View().IsSurfaceMesh() && this->NormalOrientation != ANY_ORIENTATION)
       {
         // Facets meet by oriented normals: say so when a mesh's are not consistent.
         const mp::Index target = mp::MisorientedEdges(targetMesh.View());
@@ -1561,6 +1614,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         run.SourceNeighbors = true;
         this->LocatorTime += Lap(run.Stage);
       }
+    }
+    if (!searchReady && trace && !sourceMesh.View().Neighbors)
+    {
+      // Traces tell the Source's boundary faces by their neighbours, in the
+      // brute force too (a surface on the boundary is covered from inside).
+      sourceMesh.BuildNeighbors();
+      this->NeighborsTime += Lap(run.Stage);
     }
     searchReady = true;
   };
@@ -1643,7 +1703,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     if (targetCells > 0 && sourceCells > 0 && first->GetCoveredMeasure() == 0)
     {
       vtkWarningMacro(<< "Source and " << role << " do not overlap: every projected value is invalid."
-                      << (targetMesh.View().IsSurfaceMesh()
+                      << (trace ? " A surface or curve takes values only where it lies inside the Source."
+                          : targetMesh.View().IsSurfaceMesh()
                              ? " Surfaces meet only within SurfaceReach and with normals within "
                                "MaximumNormalAngle, compared as NormalOrientation says: two "
                                "surfaces facing each other (contact, fluid-structure) need Opposite, "
@@ -1910,7 +1971,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     const bool toPoints = TargetSpaceOf(t) == mp::SpaceType::P1;
     const bool fromCells = SourceSpaceOf(t) == mp::SpaceType::P0;
-    const bool totals = t == 2 && extensive; // densities back to totals
+    // Densities back to totals; on a trace they stay the Source's densities
+    // (per unit of its volume or area: a surface holds no part of a total).
+    const bool totals = t == 2 && extensive && !trace;
     vtkDataSetAttributes* sourceData = source->GetAttributes(AttributeType(fromCells ? 1 : 0));
     vtkDataSetAttributes* outData = output->GetAttributes(AttributeType(toPoints ? 0 : 1));
     std::vector<std::string>& written = toPoints ? pointNames : cellNames;
@@ -1974,7 +2037,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       // Optionally, the projection scaled to the Source's own integral (the
       // facetizations of a curved surface differ in area).
       std::vector<double> factor(static_cast<size_t>(nc), 1.0);
-      if (this->ConserveSourceIntegral)
+      if (this->ConserveSourceIntegral && !trace)
       {
         for (int k = 0; k < nc; ++k)
         {
@@ -2002,7 +2065,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           out[to * nc + k] = scale * (op.GetValid()[f] ? factor[k] : 1.0) * values[f * width + offset + k];
         }
       }
-      for (int which = 0; which < 2 && main; ++which)
+      // (A trace has no Source integral: the Source is a volume around it.)
+      for (int which = trace ? 1 : 0; which < 2 && main; ++which)
       {
         // (The transfers to the other association have the same integrals.)
         vtkNew<vtkDoubleArray> integral;

@@ -1133,9 +1133,10 @@ vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const 
   for (vtkIdType v = 0; v < nv; ++v)
   {
     double x[3];
-    if (pieces.Dimension == 2 && !target.View().IsSurfaceMesh())
+    if (target.View().SpaceDimension == 2 && pieces.Dimension < 3)
     {
-      target.Frame().ToSpace(&pieces.Points[3 * v], x); // back into the target's plane
+      // Back into the target's plane (a planar mesh, or a curve in a planar Source).
+      target.Frame().ToSpace(&pieces.Points[3 * v], x);
     }
     else
     {

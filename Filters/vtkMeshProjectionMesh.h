@@ -142,6 +142,15 @@ public:
    * surface is seen so too.
    */
   void UseAsSurface();
+  /**
+   * For curves in the plane of a 2D Source (a trace): sees the points in
+   * `frame`'s 2D coordinates, as UseFrame, the frame being this curve's own plane.
+   */
+  void UseFrameAsOwn(const mp::PlaneFrame& frame)
+  {
+    this->Own = frame;
+    this->UseFrame(frame);
+  }
   /// Whether Wrap() found a 2D mesh that is not in one plane (a surface in 3D).
   bool Surface() const { return this->NotPlanar; }
   /// Surfaces: the reach and the cosine of the largest normals' angle (MeshView).

@@ -642,7 +642,7 @@ check_passed_through(p, "twisted hexahedron Source")
 # A 3D Input, a 2D Source.
 target = without_u(MESHES["tets_box"])
 p = Projection(target, MESHES["quads_disk"])
-check(p.error("same dimension"), "3D Input, 2D Source: error 'same dimension' (%r)" % p.errors)
+check(p.error("not to a mesh of a higher dimension"), "3D Input, 2D Source: error 'higher dimension' (%r)" % p.errors)
 check_passed_through(p, "3D Input, 2D Source")
 
 # Lower-dimensional cells (triangles among tetrahedra) are left out with a
@@ -720,9 +720,10 @@ if isinstance(out, vtkMultiBlockDataSet) and out.GetNumberOfBlocks() == 4:
         check_leaf(b3.GetBlock(0), tets_target, "multiblock nested tets")
 check(abs(p.covered - 2.0) <= 1e-12 * 2, "multiblock: covered measure summed over leaves %r" % p.covered)
 
-# A vtkTable leaf is skipped with a warning; a 2D leaf (quads_disk) in a 3D
-# Input fails and is passed through with a warning; the others are projected.
-quads_target = without_u(MESHES["quads_disk"])
+# A vtkTable leaf is skipped with a warning; a leaf that cannot be split (a
+# twisted hexahedron) fails and is passed through with a warning; the others
+# are projected.
+quads_target = without_u(twisted)
 mixed = vtkMultiBlockDataSet()
 mixed.SetBlock(0, left)
 mixed.SetBlock(1, vtkTable())
@@ -730,17 +731,17 @@ mixed.SetBlock(2, quads_target)
 mixed.SetBlock(3, right)
 p = Projection(mixed, tets)
 out = p.out
-check(not p.errors, "multiblock with a table and a 2D leaf: no error (%r)" % p.errors)
+check(not p.errors, "multiblock with a table and a twisted leaf: no error (%r)" % p.errors)
 check(p.warning("not datasets"), "a table leaf: warning (%r)" % p.warnings)
-check(p.warning("passed through"), "a 2D leaf in a 3D Input: warning (%r)" % p.warnings)
-check(out.GetNumberOfBlocks() == 4, "table and 2D leaf: 4 blocks")
+check(p.warning("passed through"), "a twisted leaf in a 3D Input: warning (%r)" % p.warnings)
+check(out.GetNumberOfBlocks() == 4, "table and twisted leaf: 4 blocks")
 if out.GetNumberOfBlocks() == 4:
     check_leaf(out.GetBlock(0), left, "with table: block 0")
     check_leaf(out.GetBlock(3), right, "with table: block 3")
     b2 = out.GetBlock(2)
     check(b2 is not None and b2.GetNumberOfPoints() == quads_target.GetNumberOfPoints() and
           b2.GetPointData().GetArray("vtkValidPointMask") is None and
-          b2.GetPointData().GetArray("U") is None, "the 2D leaf passed through")
+          b2.GetPointData().GetArray("U") is None, "the twisted leaf passed through")
 
 # vtkPartitionedDataSet and vtkPartitionedDataSetCollection as Input.
 pds = vtkPartitionedDataSet()

@@ -77,7 +77,7 @@ def _generate(name, dim, build, h, options=()):
                 continue
             types, _, nodes = gmsh.model.mesh.getElements(dim, tag)
             for etype, enodes in zip(types, nodes):
-                corners = {1: 2, 2: 3, 3: 4}[int(etype)]
+                corners = {1: 2, 2: 3, 3: 4, 4: 4}[int(etype)]
                 block = np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, corners)
                 if tag in reverse:
                     block = block[:, ::-1]
@@ -178,4 +178,26 @@ def curve(shape, h):
 
     x, cells = _generate(shape, 1, build, h)
     _cache[key] = _polydata(x, cells, lines=True)
+    return _cache[key]
+
+
+def volume(shape, h):
+    """vtkUnstructuredGrid of the tetrahedra Gmsh makes in `shape` ("sphere":
+    the unit ball, "box": the unit cube) with size `h`, in Gmsh's order."""
+    key = ("volume", shape, h)
+    if key not in _cache:
+        from vtkmodules.vtkCommonCore import vtkPoints
+        from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkCellArray, vtkUnstructuredGrid
+        from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+        x, cells = _generate(shape, 3, lambda: _occ(shape), h)
+        points = vtkPoints()
+        points.SetData(numpy_to_vtk(np.ascontiguousarray(x), deep=True))
+        connectivity = np.asarray(cells, dtype=np.int64).ravel()
+        offsets = np.arange(0, len(connectivity) + 1, 4, dtype=np.int64)
+        array = vtkCellArray()
+        array.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
+        grid = vtkUnstructuredGrid()
+        grid.SetPoints(points)
+        grid.SetCells(VTK_TETRA, array)
+        _cache[key] = grid
     return _cache[key]

@@ -1,0 +1,224 @@
+"""Traces through the VTK filter: a surface or a curve inside a volume mesh
+(Gmsh's tetrahedra of a ball and a box, an image), and a curve inside a 2D
+mesh. Checks: front == brute force, the pieces tile every target cell,
+linear fields exact on surfaces and curves inside the volume and on its
+boundary (its own faces, and another mesh of the box's faces), cell data,
+second-order rates for a smooth field, the errors for pairs that are not
+traces."""
+import math
+
+import numpy as np
+
+import meshprojection
+import mpgmsh
+from mptesting import check, finish, mortar
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import VTK_STRING
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonTransforms import vtkTransform
+from vtkmodules.vtkFiltersCore import vtkReverseSense
+from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
+from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+
+
+def linear(x, y, z):
+    return 1.0 + 2.0 * x - 3.0 * y + 0.5 * z
+
+
+def smooth(x, y, z):
+    return np.sin(2.0 * x) * np.cos(y) + z * z
+
+
+def points(mesh):
+    return vtk_to_numpy(mesh.GetPoints().GetData())
+
+
+def values(output, name="f", cells=False):
+    data = output.GetCellData() if cells else output.GetPointData()
+    return vtk_to_numpy(data.GetArray(name))
+
+
+def scaled(mesh, factor, shift=(0.0, 0.0, 0.0)):
+    transform = vtkTransform()
+    transform.Translate(*shift)
+    transform.Scale(factor, factor, factor)
+    f = vtkTransformFilter()
+    f.SetTransform(transform)
+    f.SetInputData(mesh)
+    f.Update()
+    return f.GetOutput()
+
+
+def boundary(volume, reverse=False):
+    """The volume mesh's own boundary faces (its points, its triangles)."""
+    g = vtkGeometryFilter()
+    g.SetInputData(volume)
+    g.Update()
+    if not reverse:
+        return g.GetOutput()
+    r = vtkReverseSense()
+    r.SetInputData(g.GetOutput())
+    r.Update()
+    return r.GetOutput()
+
+
+def cell_measures(mesh):
+    """Area of each polygon (fanned) or length of each line."""
+    x = points(mesh)
+    cells = mesh.GetPolys() if mesh.GetNumberOfPolys() else mesh.GetLines()
+    offsets = vtk_to_numpy(cells.GetOffsetsArray())
+    connectivity = vtk_to_numpy(cells.GetConnectivityArray())
+    result = []
+    for i in range(len(offsets) - 1):
+        ids = connectivity[offsets[i]:offsets[i + 1]]
+        p = x[ids]
+        if len(ids) == 2:
+            result.append(np.linalg.norm(p[1] - p[0]))
+            continue
+        s = np.zeros(3)
+        for k in range(1, len(ids) - 1):
+            s += np.cross(p[k] - p[0], p[k + 1] - p[0])
+        result.append(0.5 * np.linalg.norm(s))
+    return np.array(result)
+
+
+def covered_by_pieces(f, target):
+    pieces = f.GetOutput(1)
+    name = "Length" if target.GetNumberOfLines() else "Area"
+    measure = vtk_to_numpy(pieces.GetCellData().GetArray(name))
+    cell = vtk_to_numpy(pieces.GetCellData().GetArray("TargetCellId"))
+    covered = np.zeros(target.GetNumberOfCells())
+    np.add.at(covered, cell, measure)
+    return covered
+
+
+def check_trace(what, target, source, whole=True, field=linear):
+    """Front == brute force, the pieces tile the target cells, the linear
+    field exact at every point, the integral on the target reported."""
+    if isinstance(source, vtkImageData):
+        x = np.array([source.GetPoint(i) for i in range(source.GetNumberOfPoints())])
+        copy = vtkImageData()
+        copy.ShallowCopy(source)
+        array = numpy_to_vtk(np.ascontiguousarray(field(x[:, 0], x[:, 1], x[:, 2])), deep=True)
+        array.SetName("f")
+        copy.GetPointData().AddArray(array)
+        source = copy
+    else:
+        source = mpgmsh.with_point_field(source, "f", field)
+    front = mortar(target, source)
+    brute = mortar(target, source, brute=True)
+    uf, ub = values(front.GetOutput()), values(brute.GetOutput())
+    check(np.allclose(uf, ub, rtol=0, atol=1e-12, equal_nan=True),
+          "%s: front == brute force (%g)" % (what, np.nanmax(np.abs(uf - ub))))
+    measures = cell_measures(target)
+    covered = covered_by_pieces(front, target)
+    over = np.max((covered - measures) / measures)
+    check(over < 1e-12, "%s: pieces overlap (%g)" % (what, over))
+    if whole:
+        under = np.max((measures - covered) / measures)
+        check(under < 1e-12, "%s: pieces tile every cell (%g)" % (what, under))
+        fraction = values(front.GetOutput(), "CoveredFraction", cells=True)
+        check(np.all(np.abs(fraction - 1) < 1e-12), "%s: every cell covered (%g)" % (what, np.max(np.abs(fraction - 1))))
+    mask = values(front.GetOutput(), "vtkValidPointMask").astype(bool)
+    if whole:
+        check(mask.all(), "%s: every point valid (%d of %d)" % (what, mask.sum(), len(mask)))
+    x = points(front.GetOutput())
+    if field is linear:
+        error = np.max(np.abs(uf - linear(x[:, 0], x[:, 1], x[:, 2]))[mask])
+        # A function barely covered (a target leaving the volume) has an
+        # ill-conditioned row: there the solver's tolerance shows.
+        check(error < (1e-11 if whole else 1e-9), "%s: a linear field is exact (%g)" % (what, error))
+    fd = front.GetOutput().GetFieldData()
+    check(fd.GetArray("TargetIntegral_f") is not None and fd.GetArray("SourceIntegral_f") is None,
+          "%s: the target integral only (the source is a volume)" % what)
+    print("%-34s %6d cells, %7d pieces, covered %.6f" % (
+        what, target.GetNumberOfCells(), front.GetOutput(1).GetNumberOfCells(), front.GetCoveredMeasure()))
+    return front
+
+
+ball = mpgmsh.volume("sphere", 0.2)
+box = mpgmsh.volume("box", 0.15)
+
+# --- Surfaces inside the volume, and on its boundary -------------------------
+check_trace("sphere r = 0.6 in the ball", scaled(mpgmsh.surface("sphere", 0.1), 0.6), ball)
+check_trace("torus in the ball", scaled(mpgmsh.surface("torus", 0.1), 0.6), ball)
+check_trace("the ball's own boundary", boundary(ball), ball)
+check_trace("the ball's boundary, reversed", boundary(ball, reverse=True), ball)
+check_trace("plane z = 0.37 in the box", mpgmsh.surface("patch0.37", 0.08), box)
+check_trace("plane z = 0 (the box's bottom)", mpgmsh.surface("patch0", 0.08), box)
+check_trace("the box's own faces", boundary(box), box)
+check_trace("another mesh of the box's faces", mpgmsh.surface("box", 0.1), box)
+check_trace("its quads", mpgmsh.surface("box", 0.1, quads=True), box)
+# Half of the sphere leaves the box: the part inside is covered.
+outside = check_trace("a sphere half out of the box", scaled(mpgmsh.surface("sphere", 0.1), 0.4, (0.5, 0.5, 1.0)), box, whole=False)
+fraction = values(outside.GetOutput(), "CoveredFraction", cells=True)
+check(0.3 < np.mean(fraction) < 0.7 and fraction.max() == 1.0 and fraction.min() == 0.0,
+      "a sphere half out of the box: cells in, out and across (mean fraction %g)" % np.mean(fraction))
+
+# --- An image as the volume (split into tetrahedra) ---------------------------
+image = vtkImageData()
+image.SetDimensions(9, 8, 10)
+image.SetOrigin(-0.05, -0.05, -0.05)
+image.SetSpacing(1.1 / 8, 1.1 / 7, 1.1 / 9)
+check_trace("sphere in an image", scaled(mpgmsh.surface("sphere", 0.1), 0.4, (0.5, 0.5, 0.5)), image)
+
+# --- Curves in a volume, and in a 2D mesh (in its plane) -----------------------
+check_trace("B-spline in the ball", scaled(mpgmsh.curve("spline", 0.05), 0.25, (0.0, 0.0, -0.3)), ball)
+square = mpgmsh.surface("patch0", 0.07)
+check_trace("wave in a square", mpgmsh.moved(mpgmsh.curve("wave", 0.03), 0.0, (0.0, 0.5, 0.0)), square)
+check_trace("the square's boundary in it", mpgmsh.curve("square", 0.04), square)
+check_trace("the same, 2D mesh lifted to z = 3", mpgmsh.moved(mpgmsh.curve("square", 0.04), 0.0, (0.0, 0.0, 3.0)),
+            mpgmsh.moved(square, 0.0, (0.0, 0.0, 3.0)))
+check_trace("a circle in a tilted plane", mpgmsh.moved(scaled(mpgmsh.curve("circle", 0.05), 0.3, (0.5, 0.5, 0)), 30.0),
+            mpgmsh.moved(square, 30.0))
+
+# --- Cell data: a constant per tetrahedron ----------------------------------
+source = mpgmsh.with_point_field(box, "f", linear)
+constant = numpy_to_vtk(np.full(box.GetNumberOfCells(), 2.5), deep=True)
+constant.SetName("c")
+source.GetCellData().AddArray(constant)
+out = mortar(mpgmsh.surface("patch0.37", 0.08), source, CellDataTarget=1).GetOutput()  # to points
+c = values(out, "c")
+check(np.max(np.abs(c - 2.5)) < 1e-12, "cell data to points: a constant stays exact (%g)" % np.max(np.abs(c - 2.5)))
+f = mortar(mpgmsh.surface("patch0.37", 0.08), source, CellDataTarget=2)  # to cells
+c = values(f.GetOutput(), "c", cells=True)
+check(np.max(np.abs(c - 2.5)) < 1e-12, "cell data to cells: a constant stays exact (%g)" % np.max(np.abs(c - 2.5)))
+total = f.GetOutput().GetFieldData().GetArray("TargetIntegral_c (cell data)").GetValue(0)
+check(abs(total - 2.5) < 1e-11, "cell data: its integral over the unit square is 2.5 (%g)" % total)
+
+# --- Second order for a smooth field ----------------------------------------
+errors = []
+for h in (0.3, 0.15):
+    target = scaled(mpgmsh.surface("sphere", h / 2), 0.6)
+    out = mortar(target, mpgmsh.with_point_field(mpgmsh.volume("sphere", h), "f", smooth), pieces=False).GetOutput()
+    x = points(out)
+    e = values(out) - smooth(x[:, 0], x[:, 1], x[:, 2])
+    errors.append(math.sqrt(np.mean(e * e)))
+rate = math.log(errors[0] / errors[1], 2)
+print("smooth field on a sphere in the ball: rms errors %s, rate %.2f" % (errors, rate))
+check(rate > 1.7, "smooth field: second order (rate %.2f)" % rate)
+
+# --- Pairs that are not traces ------------------------------------------------
+messages = []
+
+
+@calldata_type(VTK_STRING)
+def on_error(obj, event, text):
+    messages.append(str(text))
+
+
+for target, source, expected in ((ball, mpgmsh.surface("sphere", 0.2), "not to a mesh of a higher dimension"),
+                                 (mpgmsh.curve("spline", 0.1), square, "leaves the plane of the 2D Source"),
+                                 (mpgmsh.curve("circle", 0.1), mpgmsh.surface("sphere", 0.2), "not from a curved surface")):
+    del messages[:]
+    f = meshprojection.vtkMeshProjectionFilter()
+    f.AddObserver("ErrorEvent", on_error)
+    f.GetExecutive().AddObserver("ErrorEvent", on_error)
+    f.SetInputData(target)
+    f.SetSourceData(mpgmsh.with_point_field(source, "f", linear))
+    f.Update()
+    check(any(expected in m for m in messages), "error '%s': %r" % (expected, messages))
+    check(f.GetOutput().GetPointData().GetArray("f") is None, "no values after the error '%s'" % expected)
+
+finish()
