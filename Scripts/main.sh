@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job, from a fresh Debian 12 machine: install the dependencies,
 # build, and project the sample source field onto the sample target mesh.
-# For each sample pair NAME (lshape2d, lshape3d, sphere) writes build/main/NAME-projected.vtu,
+# For each sample pair NAME (lshape2d, lshape3d, sphere, trace) writes build/main/NAME-projected.vtu,
 # build/main/NAME-intersections.vtp (2D, surfaces) or .vtu (3D) and build/main/NAME.png,
 # and prints a summary.
 set -euo pipefail

@@ -6,15 +6,17 @@ Run with pvpython (under xvfb-run on a machine without a display):
     pvpython Scripts/project_sample.py --plugin PATH/MeshProjection.so [--out-dir build/main]
     pvpython Scripts/project_sample.py --plugin ... --source S.vtu --target T.vtu [--name NAME]
 
-Without --source/--target it runs the three samples of Data/: the 2D pair
-(lshape_*.vtu, triangles), the 3D pair (lshape3d_*.vtu, tetrahedra) and the
+Without --source/--target it runs the four samples of Data/: the 2D pair
+(lshape_*.vtu, triangles), the 3D pair (lshape3d_*.vtu, tetrahedra), the
 surface pair (sphere_*.vtu: two Gmsh facetizations of a sphere, triangles
-onto curved quadrilaterals). For each case NAME it writes
+onto curved quadrilaterals) and a trace (the 3D source onto
+lshape3d_sheet.vtu, a curved sheet inside its solid). For each case NAME it writes
 OUT_DIR/NAME-projected.vtu (the target mesh with every projected source
 array, vtkValidPointMask and CoveredFraction), OUT_DIR/NAME-intersections.vtp
 or .vtu (the intersection polygons or polyhedra) and OUT_DIR/NAME.png: the
 source field (left) beside the projected field (right) in the same colours;
-in 3D, a slice through both; for a surface, seen from above at an angle.
+in 3D, a slice through both; for a surface, seen from above at an angle;
+for a trace, a slice of the source beside the sheet.
 """
 import argparse
 import math
@@ -55,9 +57,11 @@ def describe(proxy):
     return " and ".join("%d %s" % (n, words.get(k, k)) for k, n in sorted(counts.items()))
 
 
-def picture(source, projection, array, title_source, title_target, path, slice_z=None, tilt=None):
-    """Source (left) and projection (right), same colour map; 3D: slices z = slice_z;
-    a surface: seen from above, tilted by `tilt` degrees towards -y."""
+def picture(source, projection, array, title_source, title_target, path, slice_z=None, tilt=None,
+            slice_projection=True):
+    """Source (left) and projection (right), same colour map; 3D: slices z = slice_z
+    (of the source only unless `slice_projection`); a surface: seen from above,
+    tilted by `tilt` degrees towards -y."""
     view = CreateView("RenderView")
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
@@ -68,8 +72,9 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
         pass
     left, right = source, projection
     if slice_z is not None:
-        left, right = Slice(Input=source), Slice(Input=projection)
-        for cut in (left, right):
+        left = Slice(Input=source)
+        right = Slice(Input=projection) if slice_projection else projection
+        for cut in (left, right) if slice_projection else (left,):
             cut.SliceType.Origin = [0, 0, slice_z]
             cut.SliceType.Normal = [0, 0, 1]
     bounds = source.GetDataInformation().GetBounds()
@@ -138,9 +143,11 @@ def run_case(name, source_file, target_file, array, out_dir):
     t_info = target.GetDataInformation()
     three_d = projection.GetDataInformation(2).GetNumberOfCells() > 0
     pieces_port = 2 if three_d else 1
+    # A trace: a 3D source, a target of lower dimension inside it.
+    trace = not three_d and servermanager.Fetch(source).GetCell(0).GetCellDimension() == 3
     # A surface in 3D: 2D cells whose points span three dimensions.
     extent = [b - a for a, b in zip(t_info.GetBounds()[::2], t_info.GetBounds()[1::2])]
-    surface = not three_d and min(extent) > 1e-6 * max(extent)
+    surface = not three_d and not trace and min(extent) > 1e-6 * max(extent)
     s_cells, t_cells = describe(source), describe(target)
     projected_file = os.path.join(out_dir, name + "-projected.vtu")
     pieces_file = os.path.join(out_dir, name + ("-intersections.vtu" if three_d else "-intersections.vtp"))
@@ -160,6 +167,15 @@ def run_case(name, source_file, target_file, array, out_dir):
         field = servermanager.Fetch(projection).GetFieldData()
         t_own = field.GetArray("TargetIntegral_" + array).GetValue(0)
         s_own = field.GetArray("SourceIntegral_" + array).GetValue(0)
+    if trace:
+        # The projection's integral over the sheet (the filter's field data:
+        # a surface holds no part of the volume's), and the linear field,
+        # which a trace reproduces exactly.
+        output = servermanager.Fetch(projection)
+        t_own = output.GetFieldData().GetArray("TargetIntegral_" + array).GetValue(0)
+        x = vtk_to_numpy(output.GetPoints().GetData())
+        linear_error = float(abs(vtk_to_numpy(output.GetPointData().GetArray("Linear")) -
+                                 (1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2])).max())
     mask = projection.PointData["vtkValidPointMask"].GetRange()
     pieces = projection.GetDataInformation(pieces_port).GetNumberOfCells()
 
@@ -177,8 +193,14 @@ def run_case(name, source_file, target_file, array, out_dir):
     else:
         print("  intersections %d polygons" % pieces)
     print("  time          %.3f s (pipeline update: neighbours, locator, search, assembly, solve)" % seconds)
-    print("  %s        source %.15g, target %.15g" % ("volume" if three_d else "area  ", s_measure, t_measure))
-    if surface:
+    if trace:
+        print("  volume, area  source %.15g, target %.15g" % (s_measure, t_measure))
+    else:
+        print("  %s        source %.15g, target %.15g" % ("volume" if three_d else "area  ", s_measure, t_measure))
+    if trace:
+        print("  integral of %s over the sheet %.15g (the projected volume field's)" % (array, t_own))
+        print("  Linear        exact on the sheet to %.1e (a trace of a linear field is exact)" % linear_error)
+    elif surface:
         print("  integral of %s: over the source %.15g, over the target %.15g (the projected" % (array, s_own, t_own))
         print("                source field's, conserved); they differ by %.2e as the facetizations' areas do" %
               (abs(t_own - s_own) / max(abs(s_own), 1e-300)))
@@ -188,13 +210,17 @@ def run_case(name, source_file, target_file, array, out_dir):
     print("  valid points  mask range %s" % (list(mask),))
     png = os.path.join(out_dir, name + ".png")
     z = None
-    if three_d:
+    if three_d or trace:
         bounds = s_info.GetBounds()
-        z = bounds[4] + 0.55 * (bounds[5] - bounds[4])
+        z = bounds[4] + (0.5 if trace else 0.55) * (bounds[5] - bounds[4])
     picture(source, projection, array,
             "Source: %s%s" % (s_cells, "" if z is None else ", slice z = %.2f" % z),
-            "Projected onto target: %s" % t_cells, png, z, tilt=35 if surface else None)
+            ("Projected onto a sheet inside it: %s" if trace else "Projected onto target: %s") % t_cells, png, z,
+            tilt=35 if surface or trace else None,
+            slice_projection=not trace)
     print("  wrote         %s, %s, %s" % (projected_file, pieces_file, png))
+    if trace:
+        return linear_error < 1e-10 and mask[0] == 1
     if surface:
         return abs(t_own - s_own) < 1e-2 * abs(s_own) and mask[0] == 1
     return conservation < 1e-12 and mask[0] == 1
@@ -221,7 +247,8 @@ def main():
         cases = [("lshape2d", os.path.join(data, "lshape_source.vtu"), os.path.join(data, "lshape_target.vtu")),
                  ("lshape3d", os.path.join(data, "lshape3d_source.vtu"),
                   os.path.join(data, "lshape3d_target.vtu")),
-                 ("sphere", os.path.join(data, "sphere_source.vtu"), os.path.join(data, "sphere_target.vtu"))]
+                 ("sphere", os.path.join(data, "sphere_source.vtu"), os.path.join(data, "sphere_target.vtu")),
+                 ("trace", os.path.join(data, "lshape3d_source.vtu"), os.path.join(data, "lshape3d_sheet.vtu"))]
     ok = all([run_case(name, s, t, args.array, args.out_dir) for name, s, t in cases])
     return 0 if ok else 1
 

@@ -1,0 +1,50 @@
+"""Time the filter on a trace: a Gmsh sphere (radius 0.6) inside Gmsh's
+tetrahedra of the unit ball.
+
+    PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 Scripts/bench_traces.py [H]
+
+H is the ball's mesh size (default 0.04: about 295,000 tetrahedra); the
+sphere's is H / 4 (about 300,000 triangles). Needs python3-gmsh (meshing
+takes Gmsh about 20 s at the default size). Prints the best of two runs on
+1 and on 2 threads, with the stages, as in the README.
+"""
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "Testing", "Python"))
+import meshprojection  # noqa: E402
+import mpgmsh  # noqa: E402
+from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
+from vtkmodules.vtkFiltersGeneral import vtkTransformFilter  # noqa: E402
+
+h = float(sys.argv[1]) if len(sys.argv) > 1 else 0.04
+start = time.time()
+source = mpgmsh.with_point_field(mpgmsh.volume("sphere", h), "f", lambda x, y, z: x * y + np.sin(2 * z))
+shrink = vtkTransform()
+shrink.Scale(0.6, 0.6, 0.6)
+moved = vtkTransformFilter()
+moved.SetTransform(shrink)
+moved.SetInputData(mpgmsh.surface("sphere", h / 4, 6))
+moved.Update()
+target = moved.GetOutput()
+print("meshing %.1f s: target %d triangles, source %d tetrahedra" % (
+    time.time() - start, target.GetNumberOfCells(), source.GetNumberOfCells()))
+for threads in (1, 2):
+    best = None
+    for repeat in range(2):
+        f = meshprojection.vtkMeshProjectionFilter()
+        f.SetInputData(target)
+        f.SetSourceData(source)
+        f.SetNumberOfThreads(threads)
+        f.SetCacheOperator(False)
+        start = time.time()
+        f.Update()
+        seconds = time.time() - start
+        if best is None or seconds < best[0]:
+            best = (seconds, f.GetInputTime(), f.GetNeighborsTime(), f.GetSearchTime(), f.GetSolveTime(),
+                    f.GetNumberOfIntersections())
+    print("%d thread(s): %.3f s (input %.3f, neighbours %.3f, search %.3f, solve %.3f), %d pieces" %
+          ((threads,) + best))
