@@ -23,7 +23,7 @@
  * that cannot settle a cell, e.g. targets reaching beyond the source); the
  * geometry and the numerics live in a VTK-free kernel (Filters/Kernel).
  *
- * Inputs: any two datasets of the same dimension (vtkUnstructuredGrid,
+ * Inputs: any two datasets of the same dimension, or a trace (below) (vtkUnstructuredGrid,
  * vtkPolyData, vtkImageData, vtkRectilinearGrid, vtkStructuredGrid), or
  * composite datasets of them (vtkMultiBlockDataSet, vtkPartitionedDataSet,
  * vtkPartitionedDataSetCollection). 2D: triangles, quads, pixels, polygons
@@ -38,7 +38,12 @@
  * two planar meshes stay the 2D case. 3D:
  * tetrahedra, hexahedra, voxels, wedges, pyramids, pentagonal and hexagonal
  * prisms and polyhedra. Cell types may be mixed. The meshes need not cover
- * the same region, be connected or convex.
+ * the same region, be connected or convex. Traces: a surface (planar or
+ * not) or a curve inside a 3D Source, or a curve inside a 2D Source in its
+ * plane: each Input facet or segment is cut by the Source's cells, and the
+ * volume field is projected onto the surface or curve (where it lies
+ * inside; only TargetIntegral_ is reported, and extensive cell data stay
+ * densities).
  *
  * Cells that are not simplices are split into triangles or tetrahedra on
  * their own points, by a rule on the point ids that splits a face shared by
@@ -118,9 +123,10 @@
  * any cell is read; the output is then Input passed through. Source arrays
  * shorter than the points (cells) are skipped with a warning.
  * When OutputIntersections is on:
- *  - output port 1 (2D inputs and surfaces): the intersection polygons
- *    (for surfaces on the target facets, in 3D), vtkPolyData with
- *    cell arrays "SourceCellId", "TargetCellId" (vtkIdType) and "Area";
+ *  - output port 1 (2D inputs, surfaces, curves, traces): the intersection
+ *    polygons (for surfaces on the target facets, in 3D), vtkPolyData with
+ *    cell arrays "SourceCellId", "TargetCellId" (vtkIdType) and "Area"; for
+ *    curves segments, with "Length";
  *  - output port 2 (3D inputs): the intersection polyhedra as their
  *    tetrahedral decomposition, vtkUnstructuredGrid with cell arrays
  *    "SourceCellId", "TargetCellId" and "Volume" (of each tetrahedron).
@@ -152,8 +158,9 @@
  * Non-numeric Source arrays (strings, variants) are skipped with a
  * warning; integer arrays are projected as real values, with a warning (an
  * L2 projection of labels or ids is not meaningful). Invalid input (no
- * Source, nonlinear cells, cells that cannot be split, meshes of
- * different dimensions, non-planar 2D meshes, NaN/Inf coordinates)
+ * Source, nonlinear cells, cells that cannot be split, an Input of a
+ * higher dimension than Source, a curve off a 2D Source's plane, NaN/Inf
+ * coordinates)
  * produces an error and an output that is a plain copy of Input; empty
  * meshes and meshes that do not overlap give a warning and invalid points.
  *
