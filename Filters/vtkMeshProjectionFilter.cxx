@@ -1696,7 +1696,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     if (flatTarget > 0 || flatSource > 0)
     {
       vtkWarningMacro(<< "Cells of zero "
-                      << (targetMesh.Dimension() == 1 ? "length" : (targetMesh.Dimension() == 2 ? "area" : "volume"))
+                      << (trace ? "measure (length, area or volume)"
+                                : targetMesh.Dimension() == 1 ? "length" : (targetMesh.Dimension() == 2 ? "area" : "volume"))
                       << " (" << role << ": " << flatTarget << ", Source: " << flatSource
                       << ") were ignored: they carry no part of the integrals.");
     }

@@ -11,6 +11,8 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <set>
 #include <string>
 
 using mp::Index;
@@ -82,24 +84,29 @@ void CheckTrace(const TestMesh& target, const TestMesh& source, const std::strin
   mptest::SearchComparison<Intersector> search(target, source);
   search.ExpectSamePairs(what, 1e-14); // the targets' cells are 0.01 to 0.3 long or wide
   const std::vector<double> measure = Measures<Intersector>(target);
-  const std::vector<double> covered = search.CoveredMeasure(target);
   double total = 0.0;
-  for (Index c = 0; c < target.NumberOfCells(); ++c)
+  for (double m : measure)
   {
-    total += measure[c];
-    if (whole)
-    {
-      ASSERT_NEAR(covered[c], measure[c], 1e-12 * measure[c]) << what << ", target cell " << c;
-    }
-    else
-    {
-      ASSERT_LE(covered[c], measure[c] * (1 + 1e-12)) << what << ", target cell " << c;
-    }
+    total += m;
   }
   for (const auto method : { mp::SearchMethod::AdvancingFront, mp::SearchMethod::BruteForce })
   {
     mptest::ReachProjection p(target, source, 0.5, 0.7071, method);
     ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
+    // The pieces the operator keeps (a piece claimed by the cells around an
+    // edge once) add up to every target cell once.
+    std::map<Index, double> covered = p.Covered();
+    for (Index c = 0; c < target.NumberOfCells(); ++c)
+    {
+      if (whole)
+      {
+        ASSERT_NEAR(covered[c], measure[c], 1e-12 * measure[c]) << what << ", target cell " << c;
+      }
+      else
+      {
+        ASSERT_LE(covered[c], measure[c] * (1 + 1e-12)) << what << ", target cell " << c;
+      }
+    }
     if (whole)
     {
       EXPECT_NEAR(p.Op.GetCoveredMeasure(), total, 1e-12 * total) << what;
@@ -145,6 +152,35 @@ std::vector<double> CellTrace(const TestMesh& target, const TestMesh& source,
   op.Apply(values.data(), 1, out.data(), std::nan(""));
   valid = op.GetValid();
   return out;
+}
+
+/// Every edge of `m` as a segment of a curve on m's own points.
+TestMesh EdgesOf(const TestMesh& m)
+{
+  TestMesh curve;
+  curve.Dimension = 1;
+  curve.Surface = m.Dimension == 3; // a curve in space; else in the plane
+  curve.Points = m.Points;
+  std::set<std::pair<Index, Index>> edges;
+  const int n = m.Dimension + 1;
+  for (Index c = 0; c < m.NumberOfCells(); ++c)
+  {
+    for (int a = 0; a < n; ++a)
+    {
+      for (int b = a + 1; b < n; ++b)
+      {
+        const Index p = m.Cells[n * c + a];
+        const Index q = m.Cells[n * c + b];
+        edges.insert({ std::min(p, q), std::max(p, q) });
+      }
+    }
+  }
+  for (const auto& e : edges)
+  {
+    curve.Cells.insert(curve.Cells.end(), { e.first, e.second });
+  }
+  curve.Finish();
+  return curve;
 }
 
 /// The centroid's z of every tetrahedron: a value telling which side a facet took.
@@ -288,5 +324,41 @@ TEST(Traces, CurvesInTetrahedra)
       what += " " + std::to_string(v);
     }
     CheckTrace<CurveTrace3>(target, grid, what);
+  }
+}
+
+TEST(Traces, PlanesThroughVerticesOfTheSource)
+{
+  // Planes through many vertices and edges of an unjittered mesh: cross-
+  // sections with repeated corners (a vertex on the plane).
+  const TestMesh source = mptest::CubeMesh(4, 4, 4, 0.0, 26);
+  const std::function<void(double, double, double*)> planes[] = {
+    [](double u, double v, double* p) { p[0] = u; p[1] = 0.5 * (1.0 - u); p[2] = v; },   // x + 2y = 1
+    [](double u, double v, double* p) { p[0] = u; p[1] = 1.0 - u; p[2] = v; },           // x + y = 1
+    [](double u, double v, double* p) {                                                  // x + y + z = 1.5
+      p[0] = 0.25 + 0.5 * u;
+      p[1] = 0.25 + 0.5 * v;
+      p[2] = 1.5 - p[0] - p[1];
+    } };
+  int k = 0;
+  for (const auto& plane : planes)
+  {
+    CheckTrace<SurfaceTrace>(Sheet(6, 5, 0.2, 27 + k, plane), source, "plane " + std::to_string(k));
+    CheckTrace<SurfaceTrace>(Sheet(4, 4, 0.0, 30 + k, plane), source, "unjittered plane " + std::to_string(k));
+    ++k;
+  }
+}
+
+TEST(Traces, CurvesAlongEveryEdgeOfTheSource)
+{
+  // Each edge of the source, inside and on the boundary, as a segment of
+  // the target: it lies in the planes of two (2D: one) faces of every cell
+  // around it.
+  for (const double jitter : { 0.0, 0.25 })
+  {
+    const TestMesh grid = mptest::GridMesh(5, 4, jitter, 32);
+    CheckTrace<CurveTrace2>(EdgesOf(grid), grid, "edges of a 2D grid, jitter " + std::to_string(jitter));
+    const TestMesh cube = mptest::CubeMesh(3, 3, 3, jitter, 33);
+    CheckTrace<CurveTrace3>(EdgesOf(cube), cube, "edges of a 3D grid, jitter " + std::to_string(jitter));
   }
 }

@@ -202,28 +202,48 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
     cycleFace[e] = missing;
   }
   // The cross-section as one or two triangles, each cut out of the target.
+  // Each side of a triangle carries the tetrahedron's faces it lies on: a
+  // side of the cross-section its face, the diagonal none; but where one
+  // triangle has no area (a crossing repeated where a corner lies on the
+  // plane, or rounding), the other's diagonal stands for its two sides.
   const int parts[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
-  for (int p = 0; p < (m == 4 ? 2 : 1); ++p)
+  const int count = m == 4 ? 2 : 1;
+  TriangleIntersector::Cell sub[2];
+  bool area[2] = { false, false };
+  unsigned sides[2][3]; // per part, per corner k as set here: the faces of the side opposite it
+  for (int p = 0; p < count; ++p)
   {
-    TriangleIntersector::Cell sub;
-    sub.Id = s.Id;
+    sub[p].Id = s.Id;
     for (int k = 0; k < 3; ++k)
     {
       const int v = parts[p][k];
-      sub.X[k][0] = c[v][0];
-      sub.X[k][1] = c[v][1];
-      sub.Points[k] = s.Points[k];
-      // The side opposite corner k: a side of the cross-section, or the diagonal.
+      sub[p].X[k][0] = c[v][0];
+      sub[p].X[k][1] = c[v][1];
+      sub[p].Points[k] = s.Points[k];
+      sub[p].Face[k] = k; // PrepareCorners reorders: Face then names the corner as set here
       const int from = parts[p][(k + 1) % 3];
       const int to = parts[p][(k + 2) % 3];
-      sub.Face[k] = (to == (from + 1) % m) ? cycleFace[from] : -1;
+      sides[p][k] = to == (from + 1) % m ? 1u << cycleFace[from] : 0u;
     }
-    if (!TriangleIntersector::PrepareCorners(sub))
+    area[p] = TriangleIntersector::PrepareCorners(sub[p]);
+  }
+  if (count == 2 && area[0] != area[1])
+  {
+    const int flat = area[0] ? 1 : 0;
+    const unsigned outer = sides[flat][0] | sides[flat][1] | sides[flat][2];
+    for (unsigned& side : sides[1 - flat])
+    {
+      side = side ? side : outer;
+    }
+  }
+  for (int p = 0; p < count; ++p)
+  {
+    if (!area[p])
     {
       continue; // no area (a tetrahedron touching the plane)
     }
     TriangleIntersector::Piece& part = piece.Parts[piece.NumberOfParts];
-    if (!TriangleIntersector::Intersect(t, sub, part))
+    if (!TriangleIntersector::Intersect(t, sub[p], part))
     {
       continue;
     }
@@ -231,9 +251,9 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
     piece.TouchedFaces |= part.TouchedFaces;
     for (int l = 0; l < 3; ++l)
     {
-      if (((part.SourceFaces >> l) & 1u) && sub.Face[l] >= 0)
+      if ((part.SourceFaces >> l) & 1u)
       {
-        piece.SourceFaces |= 1u << sub.Face[l];
+        piece.SourceFaces |= sides[p][sub[p].Face[l]];
       }
     }
   }
@@ -348,7 +368,8 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   double hi = length;
   double cut[N];
   bool cuts[N];
-  unsigned on = 0; // faces whose plane holds the segment
+  unsigned on = 0;       // faces whose plane holds the segment
+  unsigned generic = 0;  // of those, the ones the generic direction points into the cell from
   for (int k = 0; k < N; ++k)
   {
     cuts[k] = false;
@@ -390,13 +411,22 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
     }
     double ga = 0.0;
     double gb = 0.0;
-    double generic = 0.0;
+    double toward = 0.0;
+    double nn = 0.0;
     for (int d = 0; d < D; ++d)
     {
       ga += normal[d] * (t.Corner[0][d] - v0[d]);
       gb += normal[d] * (t.Corner[1][d] - v0[d]);
-      generic += normal[d] * Generic[d];
+      toward += normal[d] * Generic[d];
+      nn += normal[d] * normal[d];
     }
+    // An end within 1e-10 of the segment's and the face's size from the
+    // face's plane lies on it (decided once per face: the same in both cells).
+    nn = std::sqrt(nn);
+    const double size = length + (D == 3 ? std::sqrt(nn) : nn);
+    const double snap = HeightTolerance * size * nn;
+    ga = std::fabs(ga) <= snap ? 0.0 : ga;
+    gb = std::fabs(gb) <= snap ? 0.0 : gb;
     const double sign = side > 0.0 ? 1.0 : -1.0;
     const double ia = sign * ga; // >= 0: end a on the cell's side
     const double ib = sign * gb;
@@ -404,13 +434,8 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
     {
       if (ia == 0.0 && ib == 0.0)
       {
-        // In the face's plane: this cell's if the face is on the boundary,
-        // else the cell's on the generic direction's side.
-        if (!((s.Boundary >> k) & 1u) && !(sign * generic > 0.0))
-        {
-          return false;
-        }
         on |= 1u << k;
+        generic |= unsigned(sign * toward > 0.0) << k;
       }
       continue;
     }
@@ -439,6 +464,37 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   if (!(lo <= hi + tolerance))
   {
     return false;
+  }
+  // A segment in the planes of some faces (on a face, or along an edge)
+  // belongs to one of the cells holding it: on a face, to the one the
+  // generic direction points into, or the only one on the boundary; along
+  // an edge, where no cell knows whether the edge is on the boundary (the
+  // generic direction may point out of the mesh there), every cell around
+  // it claims it (Tied) and the assembler keeps one. The others touch it (a
+  // piece without length): the front passes on.
+  const int planes = ((on & 1u) != 0) + ((on & 2u) != 0) + ((on & 4u) != 0) + ((on & 8u) != 0);
+  const bool boundary = (on & s.Boundary) != 0;
+  piece.Tied = D == 3 && planes >= 2;
+  const bool owned = planes == 0 || piece.Tied || generic == on || boundary;
+  if (piece.Tied)
+  {
+    // The edge: the corners not opposite the two faces.
+    int e = 0;
+    for (int k = 0; k < N && e < 2; ++k)
+    {
+      if (!((on >> k) & 1u) || planes > 2)
+      {
+        piece.Edge[e++] = s.Points[k];
+      }
+    }
+    if (piece.Edge[0] > piece.Edge[1])
+    {
+      std::swap(piece.Edge[0], piece.Edge[1]);
+    }
+  }
+  if (!owned)
+  {
+    hi = lo;
   }
   piece.NumberOfVertices = lo < hi ? 2 : 1;
   piece.X[0][0] = lo;

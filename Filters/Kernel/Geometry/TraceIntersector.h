@@ -29,13 +29,19 @@
  * Curves in a triangle mesh (2D) or a tetrahedral mesh (CurveTraceIntersector).
  * The target segment is clipped by each face's half-space. The face's value
  * at the segment's two ends (the orientation of the face's points, sorted by
- * id, with the end) is computed once per face: two cells sharing a face cut
- * the segment at the same parameter, so their intervals tile the segment. A
- * segment lying in a face's plane (line) belongs to the cell on the side of
- * a fixed generic direction, or to the only cell where the face is on the
- * boundary.
+ * id, with the end; within 1e-10 of the sizes, zero) is computed once per
+ * face: two cells sharing a face cut the segment at the same parameter, so
+ * their intervals tile the segment. A segment lying in a face's plane (line)
+ * belongs to the cell on the side of a fixed generic direction, or to the
+ * only cell where the face is on the boundary; one along an edge (3D) is
+ * claimed by every cell around it (Tied) and kept once by the assembler.
+ * Cuts within 1e-10 of the segment's length of each other (through a vertex
+ * or an edge of the cell) count as touching.
  *
- * Neither kind screens: a false Intersect means the cells do not meet.
+ * Cells that only touch a target, and cells holding a segment that another
+ * cell owns, meet it in a piece without measure, so that the front passes
+ * through them; neither kind screens: a false Intersect means the cells do
+ * not meet.
  */
 #ifndef MeshProjection_Kernel_TraceIntersector_h
 #define MeshProjection_Kernel_TraceIntersector_h
@@ -45,6 +51,8 @@
 #include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
+
+#include <utility>
 
 namespace mp
 {
@@ -115,6 +123,11 @@ public:
     unsigned SourceFaces = 0;
     AffineCell<Base::Corners, 1> Source;
     const Cell* Target = nullptr;
+    /// Along an edge of the source: every cell around the edge (Edge: its
+    /// point ids, ascending) claims the piece, and the assembler keeps the
+    /// claim of the lowest source cell id.
+    bool Tied = false;
+    Index Edge[2] = { -1, -1 };
   };
 
   static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
@@ -124,6 +137,9 @@ public:
   static bool Intersect(const Cell& t, const SourceCellType& s, Piece& piece);
   static bool Screened(const Piece&) { return false; }
   static double SourceScale(const SourceCellType&, const Piece&) { return 0.0; }
+  /// Whether the piece is claimed by every source cell around an edge, and which edge.
+  static bool Tied(const Piece& piece) { return piece.Tied; }
+  static std::pair<Index, Index> TieKey(const Piece& piece) { return { piece.Edge[0], piece.Edge[1] }; }
   static const AffineCell<Base::Corners, 1>& SourceCell(const SourceCellType&, const Piece& piece)
   {
     return piece.Source;

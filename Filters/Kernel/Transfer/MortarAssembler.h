@@ -33,6 +33,7 @@
 #include "Transfer/Space.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -65,6 +66,18 @@ double AddPieceBlocks(const typename Intersector::Piece& piece, const typename I
   AddTargetBlock<TargetSpace::Dofs, K>(lt, M, Mtt);
   return measure;
 }
+
+/// Whether intersector I's pieces can be claimed by several source cells
+/// (I::Tied, I::TieKey: traces of curves along edges on the boundary).
+template <class I, class = void>
+struct HasTies : std::false_type
+{
+};
+template <class I>
+struct HasTies<I, std::void_t<decltype(I::TieKey(std::declval<const typename I::Piece&>()))>>
+  : std::true_type
+{
+};
 
 template <class Intersector, class TargetSpace, class SourceSpace>
 struct MortarAssembler
@@ -106,11 +119,46 @@ struct MortarAssembler
   std::vector<Column> BlockColumns; ///< source functions its pieces met
   std::vector<double> BlockValues;  ///< Nt per column
 
+  /// Pieces of the current target cell claimed by several source cells
+  /// (HasTies): each edge's claim from the lowest source cell id is kept.
+  struct Tie
+  {
+    std::pair<Index, Index> Key;
+    typename SourceSideOf<Intersector>::type::Cell Source;
+    typename Intersector::Piece Piece;
+  };
+  std::vector<Tie> Ties;
+
+  void SettleTies()
+  {
+    if (this->Ties.empty())
+    {
+      return;
+    }
+    std::vector<Tie> ties;
+    ties.swap(this->Ties);
+    std::sort(ties.begin(), ties.end(), [](const Tie& a, const Tie& b) {
+      return a.Key != b.Key ? a.Key < b.Key : a.Source.Id < b.Source.Id;
+    });
+    for (size_t i = 0; i < ties.size(); ++i)
+    {
+      if (i == 0 || ties[i].Key != ties[i - 1].Key)
+      {
+        ties[i].Piece.Target = &this->CurrentCell; // the search's own has moved on
+        this->Add(this->CurrentCell, ties[i].Source, ties[i].Piece);
+      }
+    }
+  }
+
   void Flush()
   {
     if (this->Current < 0)
     {
       return;
+    }
+    if constexpr (HasTies<Intersector>::value)
+    {
+      this->SettleTies();
     }
     const double covered = this->Moments[0][0];
     const double fraction = covered / this->CurrentCell.Measure;
@@ -187,6 +235,21 @@ struct MortarAssembler
       this->BlockValues.clear();
       this->CellRhs.assign(static_cast<size_t>(Nt) * this->Components, 0.0);
     }
+    if constexpr (HasTies<Intersector>::value)
+    {
+      if (Intersector::Tied(piece))
+      {
+        this->Ties.push_back({ Intersector::TieKey(piece), s, piece });
+        return;
+      }
+    }
+    this->Add(t, s, piece);
+  }
+
+  /// Adds one piece of the current target cell.
+  template <class SourceCell>
+  void Add(const Cell& t, const SourceCell& s, const typename Intersector::Piece& piece)
+  {
     if (this->Excluded && this->Excluded[s.Id])
     {
       return; // a hole in the source (no data there)
