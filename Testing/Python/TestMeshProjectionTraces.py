@@ -13,13 +13,14 @@ import meshprojection
 import mpgmsh
 from mptesting import check, finish, mortar
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_STRING
-from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkReverseSense
 from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
 from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource
 
 
 def linear(x, y, z):
@@ -163,7 +164,37 @@ image.SetOrigin(-0.05, -0.05, -0.05)
 image.SetSpacing(1.1 / 8, 1.1 / 7, 1.1 / 9)
 check_trace("sphere in an image", scaled(mpgmsh.surface("sphere", 0.1), 0.4, (0.5, 0.5, 0.5)), image)
 
+# A plane through many of the image's vertices (x + y + z = 1.5 through a 5^3
+# image of spacing 0.25): tetrahedra with corners on the plane.
+centre = np.array([0.5, 0.5, 0.5])
+u = 0.35 * np.array([1.0, -1.0, 0.0]) / math.sqrt(2.0)
+v = 0.35 * np.array([1.0, 1.0, -2.0]) / math.sqrt(6.0)
+plane = vtkPlaneSource()
+plane.SetOutputPointsPrecision(1)  # double: points on the plane to rounding
+plane.SetOrigin(*(centre - u - v))
+plane.SetPoint1(*(centre + u - v))
+plane.SetPoint2(*(centre - u + v))
+plane.SetResolution(11, 13)
+plane.Update()
+grid = vtkImageData()
+grid.SetDimensions(5, 5, 5)
+grid.SetSpacing(0.25, 0.25, 0.25)
+check_trace("plane through an image's vertices", plane.GetOutput(), grid)
+
 # --- Curves in a volume, and in a 2D mesh (in its plane) -----------------------
+# Every edge of the box's tetrahedra, on the box's own points (in double
+# precision: vtkExtractEdges writes float points, 1e-8 off the edges, where
+# the cuts of nearly parallel faces are ill-conditioned; see the README).
+tets = vtk_to_numpy(box.GetCells().GetConnectivityArray()).reshape(-1, 4)
+pairs = np.sort(tets[:, [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]]].reshape(-1, 2), axis=1)
+pairs = np.unique(pairs, axis=0)
+lines = vtkCellArray()
+lines.SetData(numpy_to_vtkIdTypeArray(np.arange(0, 2 * len(pairs) + 1, 2, dtype=np.int64), deep=True),
+              numpy_to_vtkIdTypeArray(np.ascontiguousarray(pairs.ravel()), deep=True))
+edges = vtkPolyData()
+edges.SetPoints(box.GetPoints())
+edges.SetLines(lines)
+check_trace("every edge of the box's tetrahedra", edges, box)
 check_trace("B-spline in the ball", scaled(mpgmsh.curve("spline", 0.05), 0.25, (0.0, 0.0, -0.3)), ball)
 square = mpgmsh.surface("patch0", 0.07)
 check_trace("wave in a square", mpgmsh.moved(mpgmsh.curve("wave", 0.03), 0.0, (0.0, 0.5, 0.0)), square)
