@@ -14,8 +14,8 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "Testing", "Python"))
-import meshprojection  # noqa: E402
 import mpgmsh  # noqa: E402
+from mpbench import time_filter  # noqa: E402
 
 h = float(sys.argv[1]) if len(sys.argv) > 1 else 0.006
 start = time.time()
@@ -23,19 +23,4 @@ target = mpgmsh.surface("sphere", h, 6)
 source = mpgmsh.with_point_field(mpgmsh.surface("sphere", 1.3 * h, 5), "f", lambda x, y, z: x * y + np.sin(2 * z))
 print("meshing %.1f s: target %d triangles, source %d" % (time.time() - start, target.GetNumberOfCells(),
                                                            source.GetNumberOfCells()))
-for threads in (1, 2):
-    best = None
-    for repeat in range(2):
-        f = meshprojection.vtkMeshProjectionFilter()
-        f.SetInputData(target)
-        f.SetSourceData(source)
-        f.SetNumberOfThreads(threads)
-        f.SetCacheOperator(False)
-        start = time.time()
-        f.Update()
-        seconds = time.time() - start
-        if best is None or seconds < best[0]:
-            best = (seconds, f.GetInputTime(), f.GetNeighborsTime(), f.GetSearchTime(), f.GetSolveTime(),
-                    f.GetNumberOfIntersections())
-    print("%d thread(s): %.3f s (input %.3f, neighbours %.3f, search %.3f, solve %.3f), %d pieces" %
-          ((threads,) + best))
+time_filter(target, source)

@@ -17,8 +17,8 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "Testing", "Python"))
-import meshprojection  # noqa: E402
 import mpgmsh  # noqa: E402
+from mpbench import time_filter  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkStaticCellLocator  # noqa: E402
 from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
 from vtkmodules.vtkFiltersCore import vtkResampleWithDataSet  # noqa: E402
@@ -36,22 +36,7 @@ moved.Update()
 target = moved.GetOutput()
 print("meshing %.1f s: target %d triangles, source %d tetrahedra" % (
     time.time() - start, target.GetNumberOfCells(), source.GetNumberOfCells()))
-for threads in (1, 2):
-    best = None
-    for repeat in range(2):
-        f = meshprojection.vtkMeshProjectionFilter()
-        f.SetInputData(target)
-        f.SetSourceData(source)
-        f.SetNumberOfThreads(threads)
-        f.SetCacheOperator(False)
-        start = time.time()
-        f.Update()
-        seconds = time.time() - start
-        if best is None or seconds < best[0]:
-            best = (seconds, f.GetInputTime(), f.GetNeighborsTime(), f.GetSearchTime(), f.GetSolveTime(),
-                    f.GetNumberOfIntersections())
-    print("%d thread(s): %.3f s (input %.3f, neighbours %.3f, search %.3f, solve %.3f), %d pieces" %
-          ((threads,) + best))
+time_filter(target, source)
 best = None
 for repeat in range(2):
     probe = vtkResampleWithDataSet()

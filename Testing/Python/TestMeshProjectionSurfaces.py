@@ -10,7 +10,7 @@ import numpy as np
 
 import meshprojection
 import mpgmsh
-from mptesting import check, finish, mortar
+from mptesting import check, covered_by_pieces, finish, mortar
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_STRING
@@ -54,15 +54,6 @@ def facet_areas(mesh):
             s += np.cross(p[k] - p[0], p[k + 1] - p[0])
         areas.append(0.5 * np.linalg.norm(s))
     return np.array(areas)
-
-
-def covered_by_pieces(f, target):
-    pieces = f.GetOutput(1)
-    area = vtk_to_numpy(pieces.GetCellData().GetArray("Area"))
-    cell = vtk_to_numpy(pieces.GetCellData().GetArray("TargetCellId"))
-    covered = np.zeros(target.GetNumberOfCells())
-    np.add.at(covered, cell, area)
-    return covered
 
 
 def p1_integral(mesh, u):

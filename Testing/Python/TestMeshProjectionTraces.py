@@ -11,7 +11,7 @@ import numpy as np
 
 import meshprojection
 import mpgmsh
-from mptesting import check, finish, mortar
+from mptesting import check, covered_by_pieces, finish, mortar
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_STRING
@@ -82,16 +82,6 @@ def cell_measures(mesh):
             s += np.cross(p[k] - p[0], p[k + 1] - p[0])
         result.append(0.5 * np.linalg.norm(s))
     return np.array(result)
-
-
-def covered_by_pieces(f, target):
-    pieces = f.GetOutput(1)
-    name = "Length" if target.GetNumberOfLines() else "Area"
-    measure = vtk_to_numpy(pieces.GetCellData().GetArray(name))
-    cell = vtk_to_numpy(pieces.GetCellData().GetArray("TargetCellId"))
-    covered = np.zeros(target.GetNumberOfCells())
-    np.add.at(covered, cell, measure)
-    return covered
 
 
 def check_trace(what, target, source, whole=True, field=linear):

@@ -67,6 +67,20 @@ def mortar(target, source, brute=False, pieces=True, **properties):
     return f
 
 
+def covered_by_pieces(f, target):
+    """Per target cell, the summed measure of the filter `f`'s pieces (port 1:
+    "Area" of polygons, or "Length" of segments when the target has lines)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    pieces = f.GetOutput(1)
+    name = "Length" if target.GetNumberOfLines() else "Area"
+    measure = vtk_to_numpy(pieces.GetCellData().GetArray(name))
+    cell = vtk_to_numpy(pieces.GetCellData().GetArray("TargetCellId"))
+    covered = np.zeros(target.GetNumberOfCells())
+    np.add.at(covered, cell, measure)
+    return covered
+
+
 def integral(grid, name, component=0):
     """Exact integral of a P1 point array over a triangle or tetrahedron mesh
     (numpy, no VTK filter); returns (integral, area or volume)."""

@@ -2,6 +2,7 @@
 #include "Geometry/TraceIntersector.h"
 
 #include "Geometry/IntersectionPieces.h"
+#include "Geometry/Moments.h"
 #include "Geometry/Predicates.h"
 #include "Geometry/Reach.h"
 
@@ -25,33 +26,6 @@ inline double Dot3(const double* a, const double* b)
 inline double Extent(const double box[6])
 {
   return std::max({ box[1] - box[0], box[3] - box[2], box[5] - box[4] });
-}
-
-/// Moments M (about o) added to `sum` (about `origin`): the shift o - origin.
-template <int K>
-void AddMomentsAbout(const double (&M)[K][K], const double* o, const double* origin, double (&sum)[K][K])
-{
-  constexpr int D = K - 1;
-  double d[D];
-  for (int a = 0; a < D; ++a)
-  {
-    d[a] = o[a] - origin[a];
-  }
-  sum[0][0] += M[0][0];
-  double first[D];
-  for (int a = 0; a < D; ++a)
-  {
-    first[a] = M[0][a + 1] + d[a] * M[0][0];
-    sum[0][a + 1] += first[a];
-    sum[a + 1][0] += first[a];
-  }
-  for (int a = 0; a < D; ++a)
-  {
-    for (int b = 0; b < D; ++b)
-    {
-      sum[a + 1][b + 1] += M[a + 1][b + 1] + d[a] * M[0][b + 1] + first[a] * d[b];
-    }
-  }
 }
 
 // A generic direction: a segment lying in a face's plane belongs to the cell
@@ -306,7 +280,8 @@ double SurfaceTraceIntersector::Moments(const Piece& piece, double (&origin)[2],
         std::fill(row, row + 3, 0.0);
       }
     }
-    AddMomentsAbout<3>(m, o, origin, M);
+    const double shift[2] = { o[0] - origin[0], o[1] - origin[1] };
+    AddShiftedMoments<3>(m, shift, M);
     total += area;
   }
   return total;

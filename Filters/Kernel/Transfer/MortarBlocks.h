@@ -15,6 +15,8 @@
 #ifndef MeshProjection_Kernel_MortarBlocks_h
 #define MeshProjection_Kernel_MortarBlocks_h
 
+#include "Geometry/Moments.h"
+
 #include <cmath>
 
 namespace mp
@@ -111,40 +113,6 @@ void AddFieldBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const d
   }
 }
 
-/**
- * Adds the moment matrix M of a piece, taken about the point o, to
- * `moments`, taken about the point o - d (d = o minus the new origin):
- * first moments gain d m0, second moments d m1^T + m1 d^T + d d^T m0.
- * Summing the pieces of a target cell about one of its corners gives the
- * moments of the covered part of the cell, from which its target mass
- * block follows once per cell instead of once per piece.
- */
-template <int K>
-void AddShiftedMoments(const double (&M)[K][K], const double* d, double (&moments)[K][K])
-{
-  constexpr int D = K - 1;
-  moments[0][0] += M[0][0];
-  double first[D];
-  for (int a = 0; a < D; ++a)
-  {
-    first[a] = M[0][a + 1] + d[a] * M[0][0];
-    moments[0][a + 1] += first[a];
-    moments[a + 1][0] += first[a];
-  }
-  for (int a = 0; a < D; ++a)
-  {
-    for (int b = a; b < D; ++b)
-    {
-      // With the shifted first moments: m2 + d m1^T + m1' d^T, m1' = m1 + d m0.
-      const double v = M[a + 1][b + 1] + d[a] * M[0][b + 1] + first[a] * d[b];
-      moments[a + 1][b + 1] += v;
-      if (b != a)
-      {
-        moments[b + 1][a + 1] += v;
-      }
-    }
-  }
-}
 } // namespace mp
 
 #endif
