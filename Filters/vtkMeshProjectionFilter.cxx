@@ -1720,7 +1720,12 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
                              ? "(a composite Source is one mesh of all its blocks: do its blocks "
                                "overlap?)"
                              : "(folded, inverted among their neighbours, or duplicated)")
-                      << ". The result is not a projection of one field there.");
+                      << ". The result is not a projection of one field there."
+                      << (trace && run.CompositeSource
+                             ? " A surface or curve lying on the faces between two blocks takes "
+                               "both blocks' cells there (each block's faces are its boundary): "
+                               "merge the blocks with their points first (Merge Blocks)."
+                             : ""));
     }
   }
   // Arrays with non-finite values: an operator per transfer and set of

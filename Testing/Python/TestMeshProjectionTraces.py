@@ -15,9 +15,9 @@ from mptesting import check, covered_by_pieces, finish, mortar
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_STRING
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkMultiBlockDataSet, vtkPolyData
 from vtkmodules.vtkCommonTransforms import vtkTransform
-from vtkmodules.vtkFiltersCore import vtkReverseSense
+from vtkmodules.vtkFiltersCore import vtkAppendFilter, vtkReverseSense
 from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
 from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
 from vtkmodules.vtkFiltersSources import vtkPlaneSource
@@ -219,6 +219,57 @@ for h in (0.3, 0.15):
 rate = math.log(errors[0] / errors[1], 2)
 print("smooth field on a sphere in the ball: rms errors %s, rate %.2f" % (errors, rate))
 check(rate > 1.7, "smooth field: second order (rate %.2f)" % rate)
+
+# --- A plane between two blocks of a composite Source -------------------------
+# Each block's faces are its boundary: both blocks take the plane (reported);
+# merged with their points, the blocks are one mesh and the plane takes the
+# cells its normal points to (the upper block's value 2).
+def half_box(z0, value):
+    g = vtkImageData()
+    g.SetDimensions(5, 5, 3)
+    g.SetSpacing(0.25, 0.25, 0.25)
+    g.SetOrigin(0.0, 0.0, z0)
+    c = numpy_to_vtk(np.full(g.GetNumberOfCells(), value), deep=True)
+    c.SetName("c")
+    g.GetCellData().AddArray(c)
+    return g
+
+
+blocks = vtkMultiBlockDataSet()
+blocks.SetBlock(0, half_box(0.0, 1.0))
+blocks.SetBlock(1, half_box(0.5, 2.0))
+between = vtkPlaneSource()
+between.SetOutputPointsPrecision(1)
+between.SetOrigin(0.05, 0.05, 0.5)
+between.SetPoint1(0.95, 0.05, 0.5)
+between.SetPoint2(0.05, 0.95, 0.5)
+between.SetResolution(7, 6)
+between.Update()
+warnings = []
+
+
+@calldata_type(VTK_STRING)
+def on_warning(obj, event, text):
+    warnings.append(str(text))
+
+
+f = meshprojection.vtkMeshProjectionFilter()
+f.AddObserver("WarningEvent", on_warning)
+f.SetInputData(between.GetOutput())
+f.SetSourceData(blocks)
+f.SetCellDataTarget(2)
+f.Update()
+check(any("between two blocks" in w for w in warnings), "a plane between blocks: reported (%r)" % warnings)
+merged = vtkAppendFilter()
+merged.SetMergePoints(True)
+merged.AddInputData(blocks.GetBlock(0))
+merged.AddInputData(blocks.GetBlock(1))
+merged.Update()
+f = mortar(between.GetOutput(), merged.GetOutput(), CellDataTarget=2)
+c = values(f.GetOutput(), "c", cells=True)
+fraction = values(f.GetOutput(), "CoveredFraction", cells=True)
+check(np.all(c == 2.0) and np.all(np.abs(fraction - 1) < 1e-12),
+      "a plane between merged blocks: the upper cells, covered once (%s, %g)" % (np.unique(c), fraction.max()))
 
 # --- Pairs that are not traces ------------------------------------------------
 messages = []
