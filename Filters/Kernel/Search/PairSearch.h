@@ -51,7 +51,10 @@
  * find exactly the same pairs.
  *
  * `Intersector` is the cell-pair geometry (TriangleIntersector in 2D); the
- * search itself does not depend on the dimension. `Visitor` is called as
+ * search itself does not depend on the dimension. The source cells may be
+ * of another kind than the target's (traces: a surface or curve in a volume
+ * mesh): they are prepared, walked and counted by face with the
+ * intersector's SourceSide (Geometry/SourceSide.h). `Visitor` is called as
  * visit(targetCell, sourceCell, piece) for every pair that meets.
  *
  * Both searches can be limited to the target cells [begin, end): the front
