@@ -116,10 +116,20 @@ def check_trace(what, target, source, whole=True, field=linear):
         check(mask.all(), "%s: every point valid (%d of %d)" % (what, mask.sum(), len(mask)))
     x = points(front.GetOutput())
     if field is linear:
-        error = np.max(np.abs(uf - linear(x[:, 0], x[:, 1], x[:, 2]))[mask])
-        # A function barely covered (a target leaving the volume) has an
-        # ill-conditioned row: there the solver's tolerance shows.
-        check(error < (1e-11 if whole else 1e-9), "%s: a linear field is exact (%g)" % (what, error))
+        # Where the target leaves the volume, a function whose support is
+        # barely covered has an ill-conditioned row (the README's "Not yet"):
+        # there the solver's tolerance shows. Checked: the points whose
+        # cells are all covered whole.
+        inner = mask.copy()
+        if not whole:
+            fraction = values(front.GetOutput(), "CoveredFraction", cells=True)
+            cells = target.GetPolys() if target.GetNumberOfPolys() else target.GetLines()
+            offsets = vtk_to_numpy(cells.GetOffsetsArray())
+            connectivity = vtk_to_numpy(cells.GetConnectivityArray())
+            for c in np.where(fraction < 1 - 1e-12)[0]:
+                inner[connectivity[offsets[c]:offsets[c + 1]]] = False
+        error = np.max(np.abs(uf - linear(x[:, 0], x[:, 1], x[:, 2]))[inner])
+        check(error < 1e-11, "%s: a linear field is exact (%g at %d points)" % (what, error, inner.sum()))
     fd = front.GetOutput().GetFieldData()
     check(fd.GetArray("TargetIntegral_f") is not None and fd.GetArray("SourceIntegral_f") is None,
           "%s: the target integral only (the source is a volume)" % what)
