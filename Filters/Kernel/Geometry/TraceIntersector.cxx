@@ -16,6 +16,8 @@ namespace
 {
 /// Heights (distances) this small relative to the target cell count as zero.
 constexpr double HeightTolerance = 1e-10;
+/// Pieces smaller than this fraction of the target cell are rounding slivers.
+constexpr double SliverFraction = 1e-13;
 
 inline double Dot3(const double* a, const double* b)
 {
@@ -235,6 +237,14 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
   {
     // A cross-section without area: the tetrahedron touches the plane.
     return piece.SourceFaces == 0 && zeros > 0 && touching();
+  }
+  if (Measure(piece) < SliverFraction * t.Measure)
+  {
+    // A sliver of rounding size (where the facet and the tetrahedron only
+    // touch): no measure, as for the tetrahedra (TetrahedronIntersector),
+    // but the front passes on through its faces.
+    piece.NumberOfParts = 0;
+    return true;
   }
   // The tetrahedron's barycentric coordinates on the target's plane.
   AffineCell<4, 2>& f = piece.Source;
@@ -471,7 +481,8 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   {
     hi = lo;
   }
-  piece.NumberOfVertices = lo < hi ? 2 : 1;
+  // Shorter than a rounding sliver: no length (the front still passes on).
+  piece.NumberOfVertices = hi - lo > SliverFraction * length ? 2 : 1;
   piece.X[0][0] = lo;
   piece.X[1][0] = std::max(lo, hi);
   // Face k of the target is its corner 1 - k.
