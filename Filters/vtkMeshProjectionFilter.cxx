@@ -2110,6 +2110,33 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   {
     const std::vector<char>& valid = *toDataSet(onPoints->GetValid());
     std::copy(valid.begin(), valid.end(), mask->GetPointer(0));
+    // Valid points whose cells are all covered only in slivers: their
+    // values are extrapolated from a sliver (an ill-conditioned row) and
+    // can be far off. Say so, with the remedy.
+    const mp::MeshView& view = targetMesh.View();
+    std::vector<float> most(static_cast<size_t>(view.NumberOfPoints), 0.0f);
+    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      const float f = static_cast<float>(fraction[static_cast<size_t>(view.ParentOf(c))]);
+      const mp::Index* p = view.Cell(c);
+      for (int k = 0; k < view.CornersPerCell(); ++k)
+      {
+        most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
+      }
+    }
+    vtkIdType slivers = 0;
+    for (size_t i = 0; i < most.size(); ++i)
+    {
+      slivers += onPoints->GetValid()[i] && most[i] < 1e-3f;
+    }
+    if (slivers > 0 && this->Internal->Warned.insert("slivers/" + role).second)
+    {
+      vtkWarningMacro(<< slivers << " " << role
+                      << " points are valid through slivers only (every cell around them is "
+                         "covered less than 0.1%): their values are extrapolated from the "
+                         "sliver and can be far off. Where Input reaches beyond Source, leave "
+                         "out points whose cells' CoveredFraction is that small.");
+    }
   }
   else
   {

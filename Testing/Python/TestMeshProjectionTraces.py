@@ -292,6 +292,24 @@ fraction = values(f.GetOutput(), "CoveredFraction", cells=True)
 check(np.all(c == 2.0) and np.all(np.abs(fraction - 1) < 1e-12),
       "a plane between merged blocks: the upper cells, covered once (%s, %g)" % (np.unique(c), fraction.max()))
 
+# --- Points valid through slivers only are reported ------------------------
+# (any kind of pair: here a 2D square half beyond another; such a point's
+# value is extrapolated from a sliver, 0.5 off on this pair).
+del warnings[:]
+f = meshprojection.vtkMeshProjectionFilter()
+f.AddObserver("WarningEvent", on_warning)
+f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (-0.5, 0.5, 0.0)))
+f.SetSourceData(mpgmsh.with_point_field(mpgmsh.surface("patch0", 0.05), "f", linear))
+f.Update()
+check(any("valid through slivers only" in w for w in warnings), "points valid through slivers: reported (%r)" % warnings)
+del warnings[:]
+f = meshprojection.vtkMeshProjectionFilter()  # a fresh one: each warning is given once
+f.AddObserver("WarningEvent", on_warning)
+f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (0.37, 0.0, 0.0)))
+f.SetSourceData(mpgmsh.with_point_field(mpgmsh.surface("patch0", 0.05), "f", linear))
+f.Update()
+check(not any("slivers" in w for w in warnings), "no sliver warning without slivers (%r)" % warnings)
+
 # --- Pairs that are not traces ------------------------------------------------
 messages = []
 
