@@ -10,10 +10,8 @@ import numpy as np
 
 import meshprojection
 import mpgmsh
-from mptesting import check, covered_by_pieces, finish, mortar
-from vtkmodules.util.misc import calldata_type
+from mptesting import check, covered_by_pieces, finish, mortar, observed_filter
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkReverseSense, vtkStripper
 
@@ -258,16 +256,7 @@ mixed = vtkPolyData()
 mixed.SetPoints(source.GetPoints())
 mixed.SetPolys(polys)
 mixed.GetPointData().ShallowCopy(source.GetPointData())
-warnings = []
-
-
-@calldata_type(VTK_STRING)
-def on_warning(obj, event, text):
-    warnings.append(str(text))
-
-
-f = meshprojection.vtkMeshProjectionFilter()
-f.AddObserver("WarningEvent", on_warning)
+f, warnings = observed_filter("WarningEvent")
 f.SetInputData(target)
 f.SetSourceData(mixed)
 f.Update()

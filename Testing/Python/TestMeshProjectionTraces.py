@@ -9,12 +9,9 @@ import math
 
 import numpy as np
 
-import meshprojection
 import mpgmsh
-from mptesting import check, covered_by_pieces, finish, mortar
-from vtkmodules.util.misc import calldata_type
+from mptesting import check, covered_by_pieces, finish, mortar, observed_filter
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkMultiBlockDataSet, vtkPolyData
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkAppendFilter, vtkReverseSense
@@ -266,16 +263,7 @@ between.SetPoint1(0.95, 0.05, 0.5)
 between.SetPoint2(0.05, 0.95, 0.5)
 between.SetResolution(7, 6)
 between.Update()
-warnings = []
-
-
-@calldata_type(VTK_STRING)
-def on_warning(obj, event, text):
-    warnings.append(str(text))
-
-
-f = meshprojection.vtkMeshProjectionFilter()
-f.AddObserver("WarningEvent", on_warning)
+f, warnings = observed_filter("WarningEvent")
 f.SetInputData(between.GetOutput())
 f.SetSourceData(blocks)
 f.SetCellDataTarget(2)
@@ -295,37 +283,22 @@ check(np.all(c == 2.0) and np.all(np.abs(fraction - 1) < 1e-12),
 # --- Points valid through slivers only are reported ------------------------
 # (any kind of pair: here a 2D square half beyond another; such a point's
 # value is extrapolated from a sliver, 0.5 off on this pair).
-del warnings[:]
-f = meshprojection.vtkMeshProjectionFilter()
-f.AddObserver("WarningEvent", on_warning)
+f, warnings = observed_filter("WarningEvent")
 f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (-0.5, 0.5, 0.0)))
 f.SetSourceData(mpgmsh.with_point_field(mpgmsh.surface("patch0", 0.05), "f", linear))
 f.Update()
 check(any("valid through slivers only" in w for w in warnings), "points valid through slivers: reported (%r)" % warnings)
-del warnings[:]
-f = meshprojection.vtkMeshProjectionFilter()  # a fresh one: each warning is given once
-f.AddObserver("WarningEvent", on_warning)
+f, warnings = observed_filter("WarningEvent")  # a fresh one: each warning is given once
 f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (0.37, 0.0, 0.0)))
 f.SetSourceData(mpgmsh.with_point_field(mpgmsh.surface("patch0", 0.05), "f", linear))
 f.Update()
 check(not any("slivers" in w for w in warnings), "no sliver warning without slivers (%r)" % warnings)
 
 # --- Pairs that are not traces ------------------------------------------------
-messages = []
-
-
-@calldata_type(VTK_STRING)
-def on_error(obj, event, text):
-    messages.append(str(text))
-
-
 for target, source, expected in ((ball, mpgmsh.surface("sphere", 0.2), "not to a mesh of a higher dimension"),
                                  (mpgmsh.curve("spline", 0.1), square, "leaves the plane of the 2D Source"),
                                  (mpgmsh.curve("circle", 0.1), mpgmsh.surface("sphere", 0.2), "not from a curved surface")):
-    del messages[:]
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.AddObserver("ErrorEvent", on_error)
-    f.GetExecutive().AddObserver("ErrorEvent", on_error)
+    f, messages = observed_filter("ErrorEvent")
     f.SetInputData(target)
     f.SetSourceData(mpgmsh.with_point_field(source, "f", linear))
     f.Update()

@@ -67,6 +67,26 @@ def mortar(target, source, brute=False, pieces=True, **properties):
     return f
 
 
+def observed_filter(*events):
+    """A fresh filter and the list its messages of the given events
+    ("WarningEvent", "ErrorEvent": also the executive's) are collected in."""
+    import meshprojection
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.vtkCommonCore import VTK_STRING
+    texts = []
+
+    @calldata_type(VTK_STRING)
+    def collect(obj, event, text):
+        texts.append(str(text))
+
+    f = meshprojection.vtkMeshProjectionFilter()
+    for event in events:
+        f.AddObserver(event, collect)
+        if event == "ErrorEvent":
+            f.GetExecutive().AddObserver(event, collect)
+    return f, texts
+
+
 def covered_by_pieces(f, target):
     """Per target cell, the summed measure of the filter `f`'s pieces (port 1:
     "Area" of polygons, or "Length" of segments when the target has lines)."""
