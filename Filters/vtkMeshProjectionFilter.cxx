@@ -1515,12 +1515,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   if (trace && (extensive || this->ConserveSourceIntegral) &&
     this->Internal->Warned.insert("trace/" + role).second)
   {
+    const std::string densities = std::string("extensive cell arrays are given as the Source's "
+                                              "densities (per unit of its ") +
+      (sourceMesh.Dimension() == 3 ? "volume), " : "area), ");
     vtkWarningMacro(<< role << " lies inside the " << sourceMesh.Dimension()
-                    << "D Source (a trace): "
-                    << (extensive ? "extensive cell arrays are given as the Source's densities "
-                                    "(per unit of its "
-                                  : "")
-                    << (extensive ? (sourceMesh.Dimension() == 3 ? "volume), " : "area), ") : "")
+                    << "D Source (a trace): " << (extensive ? densities : std::string())
                     << (this->ConserveSourceIntegral ? "ConserveSourceIntegral does nothing, " : "")
                     << "since a surface or curve holds no part of the Source's integrals.");
   }
@@ -2105,6 +2104,18 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
+  // Per kernel point, the largest covered fraction of the cells around it.
+  const mp::MeshView& view = targetMesh.View();
+  std::vector<double> most(static_cast<size_t>(view.NumberOfPoints), 0.0);
+  for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    const double f = fraction[static_cast<size_t>(view.ParentOf(c))];
+    const mp::Index* p = view.Cell(c);
+    for (int k = 0; k < view.CornersPerCell(); ++k)
+    {
+      most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
+    }
+  }
   const mp::MortarOperator* onPoints = operators[0] ? operators[0] : operators[3];
   if (onPoints)
   {
@@ -2113,21 +2124,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     // Valid points whose cells are all covered only in slivers: their
     // values are extrapolated from a sliver (an ill-conditioned row) and
     // can be far off. Say so, with the remedy.
-    const mp::MeshView& view = targetMesh.View();
-    std::vector<float> most(static_cast<size_t>(view.NumberOfPoints), 0.0f);
-    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
-    {
-      const float f = static_cast<float>(fraction[static_cast<size_t>(view.ParentOf(c))]);
-      const mp::Index* p = view.Cell(c);
-      for (int k = 0; k < view.CornersPerCell(); ++k)
-      {
-        most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
-      }
-    }
     vtkIdType slivers = 0;
     for (size_t i = 0; i < most.size(); ++i)
     {
-      slivers += onPoints->GetValid()[i] && most[i] < 1e-3f;
+      slivers += onPoints->GetValid()[i] && most[i] < 1e-3;
     }
     if (slivers > 0 && this->Internal->Warned.insert("slivers/" + role).second)
     {
@@ -2141,18 +2141,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   else
   {
     // A point is valid when a cell around it meets the source.
-    mask->Fill(0);
-    const mp::MeshView& view = targetMesh.View();
-    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+    for (size_t i = 0; i < most.size(); ++i)
     {
-      if (fraction[static_cast<size_t>(view.ParentOf(c))] > 0)
-      {
-        const mp::Index* p = view.Cell(c);
-        for (int k = 0; k < view.CornersPerCell(); ++k)
-        {
-          mask->SetValue(targetMesh.DataSetPoint(p[k]), 1);
-        }
-      }
+      mask->SetValue(targetMesh.DataSetPoint(static_cast<mp::Index>(i)), most[i] > 0 ? 1 : 0);
     }
   }
   AddValidMasks(mask, pointValid, outPD);
