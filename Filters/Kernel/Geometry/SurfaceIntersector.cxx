@@ -4,20 +4,13 @@
 #include "Geometry/IntersectionPieces.h"
 #include "Geometry/Reach.h"
 #include "Geometry/Predicates.h"
+#include "Mesh/Vec3.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace mp
 {
-namespace
-{
-inline double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-} // namespace
-
 void SurfaceIntersector::ToFrame(const Cell& frame, const double* x, double uv[2], double& height)
 {
   const double d[3] = { x[0] - frame.Origin[0], x[1] - frame.Origin[1], x[2] - frame.Origin[2] };
@@ -49,9 +42,12 @@ bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
   const double* x0 = cell.Corner[0];
   const double* x1 = cell.Corner[1];
   const double* x2 = cell.Corner[2];
-  const double a[3] = { x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2] };
-  const double b[3] = { x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2] };
-  double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+  double a[3];
+  double b[3];
+  double n[3];
+  Sub(x1, x0, a);
+  Sub(x2, x0, b);
+  Cross(a, b, n);
   const double nn = std::sqrt(Dot(n, n));
   const double la = std::sqrt(Dot(a, a));
   if (!(nn > 0.0) || !(la > 0.0) || !std::isfinite(nn) || !std::isfinite(la))
@@ -65,11 +61,7 @@ bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     cell.Axis[0][d] = a[d] / la;
   }
   // Second axis: normal x first axis, unit by construction (up to rounding).
-  const double* u = cell.Axis[0];
-  const double* m = cell.Normal;
-  cell.Axis[1][0] = m[1] * u[2] - m[2] * u[1];
-  cell.Axis[1][1] = m[2] * u[0] - m[0] * u[2];
-  cell.Axis[1][2] = m[0] * u[1] - m[1] * u[0];
+  Cross(cell.Normal, cell.Axis[0], cell.Axis[1]);
   for (int k = 0; k < 3; ++k)
   {
     double h;

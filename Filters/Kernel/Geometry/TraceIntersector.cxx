@@ -5,6 +5,7 @@
 #include "Geometry/Moments.h"
 #include "Geometry/Predicates.h"
 #include "Geometry/Reach.h"
+#include "Mesh/Vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,11 +19,6 @@ namespace
 constexpr double HeightTolerance = 1e-10;
 /// Pieces smaller than this fraction of the target cell are rounding slivers.
 constexpr double SliverFraction = 1e-13;
-
-inline double Dot3(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /// The largest extent of a box (xmin, xmax, ymin, ymax, zmin, zmax).
 inline double Extent(const double box[6])
@@ -236,7 +232,7 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
   if (piece.NumberOfParts == 0)
   {
     // A cross-section without area: the tetrahedron touches the plane.
-    return piece.SourceFaces == 0 && zeros > 0 && touching();
+    return zeros > 0 && touching();
   }
   if (Measure(piece) < SliverFraction * t.Measure)
   {
@@ -257,9 +253,9 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
   for (int r = 0; r < 3; ++r)
   {
     const double* inverse = s.Inverse[r];
-    f.Affine[r + 1][0] = Dot3(inverse, d0);
-    f.Affine[r + 1][1] = Dot3(inverse, t.Axis[0]);
-    f.Affine[r + 1][2] = Dot3(inverse, t.Axis[1]);
+    f.Affine[r + 1][0] = Dot(inverse, d0);
+    f.Affine[r + 1][1] = Dot(inverse, t.Axis[0]);
+    f.Affine[r + 1][2] = Dot(inverse, t.Axis[1]);
     for (int k = 0; k < 3; ++k)
     {
       f.Affine[0][k] -= f.Affine[r + 1][k];
@@ -376,11 +372,11 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
     {
       const double* v1 = s.X[f[1]];
       const double* v2 = s.X[f[2]];
-      const double e1[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
-      const double e2[3] = { v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2] };
-      normal[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      double e1[3];
+      double e2[3];
+      Sub(v1, v0, e1);
+      Sub(v2, v0, e2);
+      Cross(e1, e2, normal);
       side = Orient3D(v0, v1, v2, s.X[k]);
     }
     else

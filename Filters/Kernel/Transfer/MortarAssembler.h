@@ -68,7 +68,7 @@ double AddPieceBlocks(const typename Intersector::Piece& piece, const typename I
 }
 
 /// Whether intersector I's pieces can be claimed by several source cells
-/// (I::Tied, I::TieKey: traces of curves along edges on the boundary).
+/// (I::Tied, I::TieKey: traces of curves along edges of the source).
 template <class I, class = void>
 struct HasTies : std::false_type
 {
