@@ -25,6 +25,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "vtkMeshProjectionMesh.h"
+#include "vtkMeshProjectionParts.h"
 
 #include "Geometry/Measures.h"
 #include "Mesh/CellNeighbors.h"
@@ -908,24 +909,44 @@ int vtkMeshProjectionFilter::Execute(
   {
     vtkWarningMacro(<< note);
   }
-  if (!corrupt.empty())
+  std::string failed = corrupt;
+  if (failed.empty() && !source)
   {
-    vtkErrorMacro(<< corrupt);
-    return 1;
+    failed = std::string("Source is a ") + sourceObject->GetClassName() +
+      ": a dataset or a composite dataset is needed.";
   }
-  if (!source)
+  if (failed.empty() && this->Parts && this->PreserveBounds)
   {
-    vtkErrorMacro(<< "Source is a " << sourceObject->GetClassName()
-                  << ": a dataset or a composite dataset is needed.");
+    failed = "PreserveBounds is not available on several processes yet (its clipping needs "
+             "the whole rows of M_ts): turn it off, or run on one process.";
+  }
+  if (this->Parts)
+  {
+    // Each process gets the Source cells its part of Input needs, from all.
+    failed = this->Parts->Agree(failed);
+    if (failed.empty())
+    {
+      const double reach = input && this->SurfaceReach > 0 ? this->SurfaceReach : 0.0;
+      source = this->Parts->GatherSource(source, input, reach, failed);
+      failed = this->Parts->Agree(failed);
+    }
+  }
+  if (!failed.empty())
+  {
+    vtkErrorMacro(<< failed);
     return 1;
   }
   run.Source = source;
   run.CompositeSource = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   {
     run.SourceMesh.SetOrdering(this->Renumbering);
-    const std::string why = run.SourceMesh.Wrap(source, "Source");
+    std::string why = run.SourceMesh.Wrap(source, "Source");
     this->CheckTime += run.SourceMesh.CheckSeconds();
     this->RenumberTime += run.SourceMesh.OrderSeconds();
+    if (this->Parts)
+    {
+      why = this->Parts->Agree(why);
+    }
     if (!why.empty())
     {
       vtkErrorMacro(<< why);
@@ -1108,6 +1129,46 @@ int vtkMeshProjectionFilter::Execute(
   {
     leaves.push_back({ 0u, one, vtkDataSet::SafeDownCast(output), std::string() });
   }
+  // On several processes every process runs every leaf that any has (the
+  // solves are collective): an empty dataset stands for one it lacks, and a
+  // leaf empty everywhere is skipped everywhere.
+  std::vector<vtkSmartPointer<vtkDataObject>> standIns;
+  std::vector<char> emptyEverywhere(leaves.size(), 0);
+  if (this->Parts && compositeInput)
+  {
+    std::vector<unsigned int> here;
+    for (const Block& b : leaves)
+    {
+      here.push_back(b.FlatIndex);
+    }
+    const std::vector<unsigned int> all = this->Parts->Union(here);
+    std::vector<Block> complete;
+    for (unsigned int flat : all)
+    {
+      auto found = std::find_if(
+        leaves.begin(), leaves.end(), [flat](const Block& b) { return b.FlatIndex == flat; });
+      if (found != leaves.end())
+      {
+        complete.push_back(*found);
+        continue;
+      }
+      vtkNew<vtkUnstructuredGrid> none, noneOut;
+      standIns.emplace_back(none.GetPointer());
+      standIns.emplace_back(noneOut.GetPointer());
+      complete.push_back({ flat, none, noneOut, "block of flat index " + std::to_string(flat) });
+    }
+    leaves.swap(complete);
+    std::vector<char> cells(leaves.size(), 0);
+    for (size_t i = 0; i < leaves.size(); ++i)
+    {
+      cells[i] = leaves[i].Target->GetNumberOfCells() > 0;
+    }
+    this->Parts->Or(cells);
+    for (size_t i = 0; i < leaves.size(); ++i)
+    {
+      emptyEverywhere[i] = !cells[i];
+    }
+  }
   // Operators of leaves no longer there are dropped.
   for (auto it = kept.Leaves.begin(); it != kept.Leaves.end();)
   {
@@ -1122,7 +1183,7 @@ int vtkMeshProjectionFilter::Execute(
   {
     vtkDataSet* target = leaves[i].Target;
     vtkDataSet* out = leaves[i].Output;
-    if (compositeInput && target->GetNumberOfCells() == 0)
+    if (compositeInput && (this->Parts ? emptyEverywhere[i] != 0 : target->GetNumberOfCells() == 0))
     {
       vtkDebugMacro(<< leaves[i].Name << " is empty: skipped.");
       continue;
@@ -1226,6 +1287,25 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
   const mp::MeshView& view = run.SourceMesh.View();
   const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
   const int width = g.Components;
+  // On several processes, an array with non-finite values on any process is
+  // projected with its own operator on all (with no cell left out where it
+  // has none), each array alone: the solves are collective.
+  std::vector<char> anywhere(g.Arrays.size(), 0);
+  if (this->Parts)
+  {
+    for (size_t a = 0; a < g.Arrays.size(); ++a)
+    {
+      const int nc = g.Arrays[a]->GetNumberOfComponents();
+      for (mp::Index f = 0; f < functions && !anywhere[a]; ++f)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          anywhere[a] = anywhere[a] || !std::isfinite(g.Values[f * width + g.Offsets[a] + k]);
+        }
+      }
+    }
+    this->Parts->Or(anywhere);
+  }
   for (int a = 0; a < static_cast<int>(g.Arrays.size()); ++a)
   {
     const int nc = g.Arrays[a]->GetNumberOfComponents();
@@ -1246,7 +1326,7 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
       }
       values += count;
     });
-    if (values == 0)
+    if (values == 0 && !anywhere[a])
     {
       continue;
     }
@@ -1270,8 +1350,10 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
     });
     Fingerprint print;
     print.Add(excluded.data(), excluded.size());
-    auto hole = std::find_if(g.Holes.begin(), g.Holes.end(),
-      [&](const Holed& h) { return h.Print == print.Hash && h.Excluded == excluded; });
+    auto hole = this->Parts ? g.Holes.end()
+                            : std::find_if(g.Holes.begin(), g.Holes.end(), [&](const Holed& h) {
+                                return h.Print == print.Hash && h.Excluded == excluded;
+                              });
     if (hole == g.Holes.end())
     {
       g.Holes.emplace_back();
@@ -1290,7 +1372,7 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
     const vtkIdType cells = std::count(parents.begin(), parents.end(), 1);
     const std::string label = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
     const char* kind = association == 0 ? "point" : "cell";
-    if (this->Internal->Warned.insert(std::string("nonfinite/") + kind + "/" + label).second)
+    if (values > 0 && this->Internal->Warned.insert(std::string("nonfinite/") + kind + "/" + label).second)
     {
       // Once per array, not at every time step.
       vtkWarningMacro(<< "Source " << kind << " array '" << label << "' has " << values
@@ -1390,6 +1472,30 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   mpvtk::SimplexMesh& sourceMesh = run.SourceMesh;
   const std::string role = name.empty() ? std::string("Input") : "Input " + name;
   auto progress = [&run](double f) { return run.Progress(run.From + run.Span * f); };
+  // On several processes: each projects onto its part of the dataset, which
+  // first learns the points it shares (and gets global point ids). The
+  // processes then agree twice per leaf, before the operators are built
+  // (whether all can keep theirs) and before the solve (whether all built
+  // theirs); a process that fails earlier takes part in the rounds left,
+  // with its reason, so that all stop together.
+  vtkSmartPointer<vtkDataSet> shared;
+  if (this->Parts)
+  {
+    shared = this->Parts->ShareTarget(target);
+    target = shared;
+  }
+  int rounds = 0;
+  auto agree = [&](const std::string& why, bool* flag = nullptr) {
+    ++rounds;
+    return this->Parts ? this->Parts->Agree(why, flag) : why;
+  };
+  auto fail = [&](const std::string& why) {
+    while (this->Parts && rounds < 2)
+    {
+      agree(why);
+    }
+    return why;
+  };
 
   // 1. The target: triangles in Source's plane (2D) or tetrahedra (3D).
   mpvtk::SimplexMesh targetMesh;
@@ -1401,7 +1507,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     this->NumberOfRenumberedMeshes = targetMesh.Ordered() + sourceMesh.Ordered();
     if (!why.empty())
     {
-      return why;
+      return fail(why);
     }
   }
   this->WarnLeftOut(targetMesh, role);
@@ -1412,12 +1518,16 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   if (targetCells == 0 || sourceCells == 0)
   {
     vtkDataSet* empty = targetCells == 0 ? target : source;
-    vtkWarningMacro(<< (targetCells == 0 ? role : std::string("Source"))
-                    << (empty->GetNumberOfCells() == 0
-                           ? " has no cells"
-                           : " has no cells to project with (all are ghost cells, or of a lower "
-                             "dimension)")
-                    << ": every projected point is invalid.");
+    // (On several processes a part may well be empty: not worth a warning.)
+    if (!this->Parts)
+    {
+      vtkWarningMacro(<< (targetCells == 0 ? role : std::string("Source"))
+                      << (empty->GetNumberOfCells() == 0
+                             ? " has no cells"
+                             : " has no cells to project with (all are ghost cells, or of a lower "
+                               "dimension)")
+                      << ": every projected point is invalid.");
+    }
     // An empty mesh takes the dimension of the other one.
     int d = std::max(targetCells ? targetMesh.Dimension() : 0, sourceCells ? sourceMesh.Dimension() : 0);
     d = d > 0 ? d : 2;
@@ -1437,13 +1547,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           << sourceMesh.Dimension() << "D: values go to a mesh of the same dimension, or from "
           << "a volume mesh (2D or 3D) to a surface or curve inside it (a trace), not to a "
           << "mesh of a higher dimension.";
-      return why.str();
+      return fail(why.str());
     }
     if (sourceMesh.Surface())
     {
       why << role << " is a curve but Source a surface in 3D: a curve takes values from "
           << "curves, from a 2D mesh in its plane or from a 3D mesh, not from a curved surface.";
-      return why.str();
+      return fail(why.str());
     }
     trace = true;
   }
@@ -1468,7 +1578,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         std::ostringstream why;
         why << role << " is a curve that leaves the plane of the 2D Source (by up to " << off
             << "): a curve takes values from a 2D mesh only in its plane.";
-        return why.str();
+        return fail(why.str());
       }
       targetMesh.UseFrameAsOwn(plane);
       sourceMesh.UseFrame(plane);
@@ -1481,8 +1591,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     // planar surface too).
     if (!std::isfinite(this->SurfaceReach) || !std::isfinite(this->MaximumNormalAngle))
     {
-      return "SurfaceReach and MaximumNormalAngle must be numbers (they are " +
-        std::to_string(this->SurfaceReach) + " and " + std::to_string(this->MaximumNormalAngle) + ").";
+      return fail("SurfaceReach and MaximumNormalAngle must be numbers (they are " +
+        std::to_string(this->SurfaceReach) + " and " + std::to_string(this->MaximumNormalAngle) + ").");
     }
     targetMesh.UseAsSurface();
     sourceMesh.UseAsSurface();
@@ -1496,7 +1606,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const std::string error = UseOnePlane(targetMesh, sourceMesh, warning);
     if (!error.empty())
     {
-      return error;
+      return fail(error);
     }
     if (!warning.empty() && run.FirstLeaf)
     {
@@ -1536,8 +1646,16 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       static_cast<double>(this->NormalOrientation) };
     print.Add(contact, sizeof contact);
   }
-  const bool sameGeometry =
+  bool sameGeometry =
     this->CacheOperator && kept.HasFingerprint && kept.GeometryFingerprint == print.Hash;
+  {
+    // Kept operators are reused only where every process can keep its own.
+    const std::string elsewhere = agree(std::string(), &sameGeometry);
+    if (!elsewhere.empty())
+    {
+      return fail(elsewhere);
+    }
+  }
   if (!sameGeometry)
   {
     kept.Clear();
@@ -1647,7 +1765,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const double from = 0.1 + 0.8 * built / toBuild;
     if (!progress(from))
     {
-      return "stopped";
+      return fail("stopped");
     }
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
     options.TargetSpace = TargetSpaceOf(t);
@@ -1664,11 +1782,11 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     });
     if (!ok && fresh[t]->GetError() == "stopped")
     {
-      return "stopped";
+      return fail("stopped");
     }
     if (!ok)
     {
-      return "Projection failed: " + fresh[t]->GetError();
+      return fail("Projection failed: " + fresh[t]->GetError());
     }
     operators[t] = fresh[t].get();
     this->SearchTime += fresh[t]->GetTimings().Search;
@@ -1767,8 +1885,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           made->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), holeOptions);
         if (!ok)
         {
-          return made->GetError() == "stopped" ? made->GetError()
-                                                : "Projection failed: " + made->GetError();
+          return fail(made->GetError() == "stopped" ? made->GetError()
+                                                     : "Projection failed: " + made->GetError());
         }
         this->SearchTime += made->GetTimings().Search;
         this->AssemblyTime += made->GetTimings().Assembly;
@@ -1796,7 +1914,38 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   Lap(run.Stage);
   if (!progress(0.9))
   {
-    return "stopped";
+    return fail("stopped");
+  }
+  {
+    const std::string elsewhere = agree(std::string());
+    if (!elsewhere.empty())
+    {
+      return elsewhere;
+    }
+  }
+  // One global system: rows shared with other processes completed in
+  // every product, and the functions valid anywhere valid everywhere.
+  mp::SolverHooks hooks[2]; // P1, P0 target functions
+  if (this->Parts)
+  {
+    hooks[0] = this->Parts->Hooks(true, static_cast<mp::Index>(target->GetNumberOfPoints()),
+      [&targetMesh](mp::Index f) { return targetMesh.DataSetPoint(f); });
+    hooks[1] = this->Parts->Hooks(false, 0, nullptr);
+    for (int t = 0; t < 4; ++t)
+    {
+      if (!operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
+      {
+        continue;
+      }
+      const_cast<mp::MortarOperator*>(operators[t])->ShareValidity(hooks[0]);
+      for (const mp::MortarOperator* op : byArray[t])
+      {
+        if (op != operators[t])
+        {
+          const_cast<mp::MortarOperator*>(op)->ShareValidity(hooks[0]);
+        }
+      }
+    }
   }
 
   // 3. Apply: M_ts u_s, then M_tt (consistent, from the previous step's
@@ -1819,7 +1968,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     mp::ApplyOptions apply;
     apply.Mass = this->MassMatrix == LUMPED_MASS ? mp::MassType::Lumped : mp::MassType::Consistent;
     apply.Bounded = this->PreserveBounds;
-    if (!fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size)
+    const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    bool warm = !fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
+    if (this->Parts)
+    {
+      this->Parts->Agree(std::string(), &warm); // all processes start alike
+    }
+    if (warm)
     {
       values.assign(k.Solution.begin(), k.Solution.end());
       apply.Solve.StartFromX = true;
@@ -1828,7 +1983,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     {
       values.resize(size);
     }
-    if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply))
+    if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply, hook))
     {
       kept.Clear();
       return std::string("The projection of ") + TransferName(t) +
@@ -1848,7 +2003,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         hole.Components);
       mp::ApplyOptions holeApply = apply;
       holeApply.Solve.StartFromX = false;
-      if (!holeOp.Apply(hole.Values.data(), hole.Components, own.data(), fill, holeApply))
+      if (!holeOp.Apply(hole.Values.data(), hole.Components, own.data(), fill, holeApply, hook))
       {
         kept.Clear();
         return std::string("The projection of ") + TransferName(t) +
@@ -1970,7 +2125,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   for (int t : { 0, 2, 1, 3 })
   {
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
-    if (results[t].empty())
+    if (!operators[t] || g.Components == 0)
     {
       continue;
     }
@@ -2038,6 +2193,15 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
             }
           }
         }
+      }
+      if (this->Parts)
+      {
+        // Totals over the processes (their pieces do not overlap).
+        std::vector<double> both(sourceIntegral);
+        both.insert(both.end(), targetIntegral.begin(), targetIntegral.end());
+        this->Parts->Sum(both.data(), 2 * nc);
+        std::copy(both.begin(), both.begin() + nc, sourceIntegral.begin());
+        std::copy(both.begin() + nc, both.end(), targetIntegral.begin());
       }
       // Optionally, the projection scaled to the Source's own integral (the
       // facetizations of a curved surface differ in area).

@@ -188,6 +188,7 @@ class vtkDataSet;
 namespace mpvtk
 {
 class SimplexMesh;
+class Parts;
 }
 class vtkDoubleArray;
 class vtkIdTypeArray;
@@ -559,6 +560,10 @@ protected:
   double AssemblyTime = 0;
   double SolveTime = 0;
   double OutputTime = 0;
+
+  /// The processes of a distributed run (vtkPMeshProjectionFilter sets it
+  /// during RequestData); null: serial.
+  mpvtk::Parts* Parts = nullptr;
 
 private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;

@@ -582,6 +582,24 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     ? vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0)
     : nullptr;
 
+  // Cells are split from their corner of lowest global id (the GlobalIds
+  // point array) when there is one, else of lowest point id: with global
+  // ids a cell is split alike in any piece of a distributed mesh and in
+  // the whole mesh.
+  std::vector<mp::Index> keys;
+  if (vtkDataArray* global = data->GetPointData()->GetGlobalIds())
+  {
+    const vtkIdType np = data->GetNumberOfPoints();
+    if (global->GetNumberOfTuples() >= np && global->GetNumberOfComponents() == 1)
+    {
+      keys.resize(static_cast<size_t>(np));
+      for (vtkIdType p = 0; p < np; ++p)
+      {
+        keys[p] = static_cast<mp::Index>(global->GetTuple1(p));
+      }
+    }
+  }
+  const mp::Index* key = keys.empty() ? nullptr : keys.data();
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(data);
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
   const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
@@ -637,7 +655,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
         VTK_FALLTHROUGH;
       case VTK_QUAD:
       case VTK_POLYGON:
-        if (!mp::SplitPolygon(x, ids.data(), static_cast<int>(ids.size()), simplices))
+        if (!mp::SplitPolygon(x, ids.data(), static_cast<int>(ids.size()), simplices, key))
         {
           status = mp::SplitStatus::NotStarShaped;
         }
@@ -659,14 +677,14 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
         vtkIdType nfaces = 0;
         const vtkIdType* faces = nullptr;
         grid->GetFaceStream(c, nfaces, faces);
-        status = mp::SplitPolyhedron(x, faces, static_cast<int>(nfaces), false, simplices);
+        status = mp::SplitPolyhedron(x, faces, static_cast<int>(nfaces), false, simplices, key);
         break;
       }
       default:
         if (StandardShape(type, shape))
         {
           const int nfaces = mp::StandardCellFaces(shape, ids.data(), stream);
-          status = mp::SplitPolyhedron(x, stream.data(), nfaces, true, simplices);
+          status = mp::SplitPolyhedron(x, stream.data(), nfaces, true, simplices, key);
         }
         break;
     }

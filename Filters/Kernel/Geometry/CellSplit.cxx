@@ -118,7 +118,8 @@ bool CutEars(const std::vector<double>& uv, const Index* ids, int n, std::vector
 }
 } // namespace
 
-bool SplitPolygon(const double* points, const Index* ids, int n, std::vector<Index>& triangles)
+bool SplitPolygon(
+  const double* points, const Index* ids, int n, std::vector<Index>& triangles, const Index* keys)
 {
   if (n < 3)
   {
@@ -135,7 +136,7 @@ bool SplitPolygon(const double* points, const Index* ids, int n, std::vector<Ind
   int m = 0;
   for (int k = 1; k < n; ++k)
   {
-    m = ids[k] < ids[m] ? k : m;
+    m = (keys ? keys[ids[k]] < keys[ids[m]] : ids[k] < ids[m]) ? k : m;
   }
   int sign = 0;
   bool oneSigned = true;
@@ -255,7 +256,7 @@ bool OrientFaces(std::vector<Index>& stream, const std::vector<size_t>& start, i
 } // namespace
 
 SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces, bool oriented,
-  std::vector<Index>& tetrahedra)
+  std::vector<Index>& tetrahedra, const Index* keys)
 {
   thread_local std::vector<Index> stream;
   thread_local std::vector<size_t> start;
@@ -282,6 +283,12 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
   }
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  if (keys)
+  {
+    // Apexes tried in the order of their keys.
+    std::sort(corners.begin(), corners.end(),
+      [keys](Index a, Index b) { return keys[a] < keys[b]; });
+  }
   if (corners.empty())
   {
     return SplitStatus::OpenFaces;
@@ -320,7 +327,7 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
       int m = 0;
       for (int i = 1; i < n; ++i)
       {
-        m = v[i] < v[m] ? i : m;
+        m = (keys ? keys[v[i]] < keys[v[m]] : v[i] < v[m]) ? i : m;
       }
       for (int i = 1; i + 1 < n; ++i)
       {

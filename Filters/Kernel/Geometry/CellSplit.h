@@ -55,13 +55,21 @@ enum class SplitStatus
   OpenFaces      ///< the faces do not close a volume (an edge not shared by exactly two)
 };
 
+/*
+ * `keys` (optional, one per point id) replaces the point ids in the rule:
+ * the lowest corner is the one of lowest key. Global point ids as keys
+ * give the same split on every process of a distributed mesh, whatever
+ * each process's own numbering.
+ */
+
 /**
  * Splits a planar polygon (ids: its n >= 3 corners in order) into
  * triangles (3 ids each, appended), in the polygon's own plane. Triangles of
  * zero area are left out. Returns false for a polygon that cannot be cut
  * into ears (self-intersecting); nothing is appended then.
  */
-bool SplitPolygon(const double* points, const Index* ids, int n, std::vector<Index>& triangles);
+bool SplitPolygon(const double* points, const Index* ids, int n, std::vector<Index>& triangles,
+  const Index* keys = nullptr);
 
 /**
  * Splits a 3D cell given by its faces, as a VTK face stream without the
@@ -72,7 +80,7 @@ bool SplitPolygon(const double* points, const Index* ids, int n, std::vector<Ind
  * appended; flat tetrahedra (see above) are left out.
  */
 SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces, bool oriented,
-  std::vector<Index>& tetrahedra);
+  std::vector<Index>& tetrahedra, const Index* keys = nullptr);
 
 /// The standard linear 3D cells other than the tetrahedron.
 enum class CellShape

@@ -292,7 +292,8 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
   const SolverHooks& hooks) const
 {
   const Index n = this->A.Rows;
-  if (n <= 0 || c <= 0)
+  // A part without rows still takes part in the distributed sums.
+  if (c <= 0 || (n <= 0 && !hooks.Reduce && !hooks.Exchange))
   {
     return true;
   }

@@ -338,6 +338,33 @@ void MortarOperator::Assemble(
   this->Timings.Assembly += Seconds(start);
 }
 
+void MortarOperator::ShareValidity(const SolverHooks& hooks)
+{
+  if (!hooks.Exchange)
+  {
+    return;
+  }
+  const Index n = this->TargetMass.Rows;
+  std::vector<double> diagonal(static_cast<size_t>(n), 0.0);
+  for (Index i = 0; i < n; ++i)
+  {
+    diagonal[i] = this->Valid[i] ? this->TargetMass.Values[this->TargetMass.Find(i, i)] : 0.0;
+  }
+  hooks.Exchange(diagonal.data(), 1);
+  this->NumberOfValid = 0;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (!this->Valid[i] && diagonal[i] > 0.0)
+    {
+      // Covered in another part only: this part's row is empty (the 1 that
+      // decoupled it goes), the other parts complete it.
+      this->Valid[i] = 1;
+      this->TargetMass.Values[this->TargetMass.Find(i, i)] = 0.0;
+    }
+    this->NumberOfValid += this->Valid[i];
+  }
+}
+
 bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
   double fill, const SolveOptions& solve, const SolverHooks& hooks) const
 {
@@ -410,7 +437,8 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   const SolveOptions& solve = options.Solve;
   const auto start = std::chrono::steady_clock::now();
   const Index n = this->TargetMass.Rows;
-  if (!this->Solver || components <= 0 || n == 0)
+  // A part without rows of a distributed system still takes part in its sums.
+  if (!this->Solver || components <= 0 || (n == 0 && !hooks.Reduce && !hooks.Exchange))
   {
     this->Timings.Solve = Seconds(start);
     return this->Solver != nullptr || components <= 0;

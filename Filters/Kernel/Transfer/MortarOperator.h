@@ -158,6 +158,17 @@ public:
   bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
     const ApplyOptions& options, const SolverHooks& hooks = SolverHooks()) const;
 
+  /**
+   * A distributed system (rows of target functions shared by several parts,
+   * each part built on its own target cells): makes the valid functions
+   * those valid in any part. hooks.Exchange sums the diagonals of M_tt over
+   * the parts sharing a row; a function covered in another part only
+   * becomes valid here with an empty row (its diagonal 1 goes to 0), which
+   * the other parts complete in every product. Collective: every part calls
+   * it once per operator, in the same order. Default hooks: nothing changes.
+   */
+  void ShareValidity(const SolverHooks& hooks);
+
   /// Bytes held by the operator's matrices, right-hand sides and pieces.
   size_t MemoryBytes() const;
   /// Per target function: int phi_i over the covered part (the row sums of M_tt).

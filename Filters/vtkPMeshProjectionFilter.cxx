@@ -1,0 +1,1319 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPMeshProjectionFilter.h"
+
+#include "vtkMeshProjectionParts.h"
+
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkCellTypes.h"
+#include "vtkCharArray.h"
+#include "vtkCommunicator.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMPICommunicator.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+vtkStandardNewMacro(vtkPMeshProjectionFilter);
+vtkCxxSetObjectMacro(vtkPMeshProjectionFilter, Controller, vtkMultiProcessController);
+
+namespace
+{
+using Box = std::array<double, 6>; // xmin, xmax, ymin, ymax, zmin, zmax
+
+Box EmptyBox()
+{
+  const double big = std::numeric_limits<double>::max();
+  return { big, -big, big, -big, big, -big };
+}
+
+void Grow(Box& b, const double* x)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    b[2 * d] = std::min(b[2 * d], x[d]);
+    b[2 * d + 1] = std::max(b[2 * d + 1], x[d]);
+  }
+}
+
+bool Meet(const Box& a, const Box& b)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    if (a[2 * d] > b[2 * d + 1] || b[2 * d] > a[2 * d + 1])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool Inside(const Box& b, const double* x)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    if (x[d] < b[2 * d] || x[d] > b[2 * d + 1])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A process's part of Input seen from afar: its bounding box, cut into a
+/// grid of bins, each with the box of the cells' parts inside it.
+struct Cover
+{
+  Box Bounds = EmptyBox();
+  int Bins[3] = { 1, 1, 1 };
+  std::vector<Box> Boxes; ///< per bin (empty boxes where no cell reaches)
+
+  bool Empty() const { return this->Bounds[0] > this->Bounds[1]; }
+  /// The range of bins along axis d that [lo, hi] reaches.
+  void Range(int d, double lo, double hi, int& first, int& last) const
+  {
+    const double a = this->Bounds[2 * d];
+    const double w = this->Bounds[2 * d + 1] - a;
+    const int n = this->Bins[d];
+    if (n == 1 || !(w > 0))
+    {
+      first = last = 0;
+      return;
+    }
+    first = std::max(0, std::min(n - 1, static_cast<int>(std::floor((lo - a) / w * n))));
+    last = std::max(0, std::min(n - 1, static_cast<int>(std::floor((hi - a) / w * n))));
+  }
+  bool Meets(const Box& b) const
+  {
+    if (this->Empty() || !Meet(this->Bounds, b))
+    {
+      return false;
+    }
+    int lo[3], hi[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Range(d, b[2 * d], b[2 * d + 1], lo[d], hi[d]);
+    }
+    for (int k = lo[2]; k <= hi[2]; ++k)
+    {
+      for (int j = lo[1]; j <= hi[1]; ++j)
+      {
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          if (Meet(this->Boxes[(k * this->Bins[1] + j) * this->Bins[0] + i], b))
+          {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+};
+
+/// The box of a cell's points.
+Box CellBox(vtkDataSet* data, vtkIdType c, vtkIdList* ids)
+{
+  Box b = EmptyBox();
+  data->GetCellPoints(c, ids);
+  double x[3];
+  for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+  {
+    data->GetPoint(ids->GetId(k), x);
+    Grow(b, x);
+  }
+  return b;
+}
+
+bool IsGhost(vtkUnsignedCharArray* ghosts, vtkIdType c)
+{
+  return ghosts &&
+    (ghosts->GetValue(c) & (vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL));
+}
+
+/// The datasets of a data object (itself, or a composite's leaves).
+std::vector<vtkDataSet*> DataSetsOf(vtkDataObject* data)
+{
+  std::vector<vtkDataSet*> all;
+  if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))
+  {
+    all.push_back(one);
+  }
+  else if (vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> iter;
+    iter.TakeReference(composite->NewIterator());
+    iter->SkipEmptyNodesOn();
+    for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
+    {
+      if (vtkDataSet* leaf = vtkDataSet::SafeDownCast(iter->GetCurrentDataObject()))
+      {
+        all.push_back(leaf);
+      }
+    }
+  }
+  return all;
+}
+
+/// A point's identity across processes: its global id, or its coordinates' bits.
+struct PointKey
+{
+  double X[3];
+  bool operator==(const PointKey& o) const { return std::memcmp(this->X, o.X, sizeof X) == 0; }
+};
+struct PointKeyHash
+{
+  size_t operator()(const PointKey& k) const
+  {
+    std::uint64_t h = 1469598103934665603ull;
+    const unsigned char* b = reinterpret_cast<const unsigned char*>(k.X);
+    for (size_t i = 0; i < sizeof k.X; ++i)
+    {
+      h = (h ^ b[i]) * 1099511628211ull;
+    }
+    return static_cast<size_t>(h);
+  }
+};
+
+PointKey KeyOf(const double* x)
+{
+  PointKey k;
+  for (int d = 0; d < 3; ++d)
+  {
+    k.X[d] = x[d] == 0.0 ? 0.0 : x[d]; // -0 is 0
+  }
+  return k;
+}
+
+template <class T>
+void Append(std::vector<char>& buffer, const T* values, size_t count)
+{
+  const size_t at = buffer.size();
+  buffer.resize(at + count * sizeof(T));
+  if (count)
+  {
+    std::memcpy(buffer.data() + at, values, count * sizeof(T));
+  }
+}
+
+template <class T>
+std::vector<T> Read(const std::vector<char>& buffer)
+{
+  std::vector<T> values(buffer.size() / sizeof(T));
+  if (!values.empty())
+  {
+    std::memcpy(values.data(), buffer.data(), values.size() * sizeof(T));
+  }
+  return values;
+}
+
+/// The arrays of a dataset's points or cells that take part: numeric, named,
+/// not the ghost, global id or pedigree id arrays.
+std::vector<vtkDataArray*> ArraysOf(vtkDataSetAttributes* data)
+{
+  std::vector<vtkDataArray*> arrays;
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* a = data->GetArray(i);
+    if (!a || !a->GetName() || a == data->GetGlobalIds() || a == data->GetPedigreeIds() ||
+      std::string(a->GetName()) == vtkDataSetAttributes::GhostArrayName())
+    {
+      continue;
+    }
+    arrays.push_back(a);
+  }
+  return arrays;
+}
+
+std::string Signature(vtkDataArray* a)
+{
+  return std::string(a->GetName()) + "\t" + std::to_string(a->GetDataType()) + "\t" +
+    std::to_string(a->GetNumberOfComponents());
+}
+
+class MPIParts : public mpvtk::Parts
+{
+public:
+  explicit MPIParts(vtkMultiProcessController* controller)
+    : C(controller)
+    , Mpi(vtkMPICommunicator::SafeDownCast(controller->GetCommunicator()))
+    , Me(controller->GetLocalProcessId())
+    , N(controller->GetNumberOfProcesses())
+  {
+  }
+  int Rank() const override { return this->Me; }
+  int Size() const override { return this->N; }
+  double SentBytes() const override { return this->Sent; }
+  vtkIdType Received = 0;
+
+  std::string Agree(const std::string& why, bool* flag) override
+  {
+    int mine[2] = { why.empty() ? this->N : this->Me, flag ? (*flag ? 1 : 0) : 1 };
+    int all[2] = { 0, 0 };
+    this->C->AllReduce(mine, all, 2, vtkCommunicator::MIN_OP);
+    if (flag)
+    {
+      *flag = all[1] != 0;
+    }
+    const int first = all[0];
+    if (first >= this->N)
+    {
+      return std::string();
+    }
+    std::string text = first == this->Me ? why : std::string();
+    long long length = static_cast<long long>(text.size());
+    this->C->Broadcast(&length, 1, first);
+    text.resize(static_cast<size_t>(length));
+    if (length > 0)
+    {
+      this->C->Broadcast(&text[0], length, first);
+    }
+    return first == this->Me ? why : text + " (on process " + std::to_string(first) + ")";
+  }
+
+  void Or(std::vector<char>& flags) override
+  {
+    std::vector<int> mine(flags.begin(), flags.end()), all(flags.size());
+    if (!flags.empty())
+    {
+      this->C->AllReduce(mine.data(), all.data(), static_cast<vtkIdType>(mine.size()),
+        vtkCommunicator::MAX_OP);
+    }
+    for (size_t i = 0; i < flags.size(); ++i)
+    {
+      flags[i] = all[i] != 0;
+    }
+  }
+
+  void Sum(double* values, int count) override
+  {
+    if (count <= 0)
+    {
+      return;
+    }
+    std::vector<double> mine(values, values + count);
+    this->C->AllReduce(mine.data(), values, count, vtkCommunicator::SUM_OP);
+  }
+
+  std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override
+  {
+    std::vector<std::vector<char>> out(static_cast<size_t>(this->N));
+    for (int r = 0; r < this->N; ++r)
+    {
+      Append(out[r], values.data(), values.size());
+    }
+    std::vector<unsigned int> all;
+    for (const std::vector<char>& in : this->AllToAll(out))
+    {
+      const std::vector<unsigned int> v = Read<unsigned int>(in);
+      all.insert(all.end(), v.begin(), v.end());
+    }
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
+  }
+
+  vtkSmartPointer<vtkDataSet> GatherSource(
+    vtkDataSet* source, vtkDataObject* input, double reach, std::string& error) override;
+  vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
+  mp::SolverHooks Hooks(bool points, mp::Index rows,
+    const std::function<vtkIdType(mp::Index)>& dataSetPoint) override;
+
+private:
+  /// Every process sends out[r] to process r; returns what each sent here.
+  std::vector<std::vector<char>> AllToAll(std::vector<std::vector<char>>& out);
+  /// Sends send[k] to ranks[k] and receives recv[k] (sizes known) from it.
+  void Swap(const std::vector<int>& ranks, std::vector<std::vector<double>>& send,
+    std::vector<std::vector<double>>& recv);
+
+  vtkMultiProcessController* C;
+  vtkMPICommunicator* Mpi;
+  int Me;
+  int N;
+  double Sent = 0;
+  // The last shared target: per neighbour (ascending ranks), the points
+  // shared with it, in an order both agree on; per point, the lowest
+  // process that has it.
+  std::vector<int> Neighbours;
+  std::vector<std::vector<vtkIdType>> SharedPoints;
+  std::vector<int> Owner;
+  // The hooks' state (kernel rows).
+  std::vector<std::vector<mp::Index>> Rows;
+  std::vector<char> Counted;
+  std::vector<mp::Index> SharedRows; ///< distinct, ascending
+};
+
+std::vector<std::vector<char>> MPIParts::AllToAll(std::vector<std::vector<char>>& out)
+{
+  const int n = this->N;
+  std::vector<long long> sizes(static_cast<size_t>(n)), all(static_cast<size_t>(n) * n);
+  for (int r = 0; r < n; ++r)
+  {
+    sizes[r] = static_cast<long long>(out[r].size());
+  }
+  this->C->AllGather(sizes.data(), all.data(), n);
+  std::vector<std::vector<char>> in(static_cast<size_t>(n));
+  in[this->Me].swap(out[this->Me]);
+  // Messages in chunks below 2^31 bytes (MPI counts are ints).
+  const long long chunk = 1LL << 30;
+  size_t count = 0;
+  for (int r = 0; r < n; ++r)
+  {
+    if (r != this->Me)
+    {
+      in[r].resize(static_cast<size_t>(all[static_cast<size_t>(r) * n + this->Me]));
+      count += static_cast<size_t>((static_cast<long long>(in[r].size()) + chunk - 1) / chunk);
+      count += static_cast<size_t>((sizes[r] + chunk - 1) / chunk);
+    }
+  }
+  std::vector<vtkMPICommunicator::Request> requests(count);
+  size_t k = 0;
+  const int tag = 73901;
+  for (int r = 0; r < n; ++r)
+  {
+    for (long long at = 0; r != this->Me && at < static_cast<long long>(in[r].size()); at += chunk)
+    {
+      const int length = static_cast<int>(std::min<long long>(chunk, in[r].size() - at));
+      this->Mpi->NoBlockReceive(in[r].data() + at, length, r, tag, requests[k++]);
+    }
+  }
+  for (int r = 0; r < n; ++r)
+  {
+    for (long long at = 0; r != this->Me && at < sizes[r]; at += chunk)
+    {
+      const int length = static_cast<int>(std::min<long long>(chunk, sizes[r] - at));
+      this->Mpi->NoBlockSend(out[r].data() + at, length, r, tag, requests[k++]);
+      this->Sent += length;
+    }
+  }
+  if (k > 0)
+  {
+    this->Mpi->WaitAll(static_cast<int>(k), requests.data());
+  }
+  return in;
+}
+
+void MPIParts::Swap(const std::vector<int>& ranks, std::vector<std::vector<double>>& send,
+  std::vector<std::vector<double>>& recv)
+{
+  std::vector<vtkMPICommunicator::Request> requests(2 * ranks.size());
+  size_t k = 0;
+  const int tag = 73902;
+  for (size_t i = 0; i < ranks.size(); ++i)
+  {
+    if (!recv[i].empty())
+    {
+      this->Mpi->NoBlockReceive(
+        recv[i].data(), static_cast<int>(recv[i].size()), ranks[i], tag, requests[k++]);
+    }
+  }
+  for (size_t i = 0; i < ranks.size(); ++i)
+  {
+    if (!send[i].empty())
+    {
+      this->Mpi->NoBlockSend(
+        send[i].data(), static_cast<int>(send[i].size()), ranks[i], tag, requests[k++]);
+      this->Sent += static_cast<double>(send[i].size() * sizeof(double));
+    }
+  }
+  if (k > 0)
+  {
+    this->Mpi->WaitAll(static_cast<int>(k), requests.data());
+  }
+}
+
+vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
+  vtkDataSet* source, vtkDataObject* input, double reach, std::string& error)
+{
+  const int n = this->N;
+  vtkNew<vtkIdList> ids;
+  // 1. This process's part of Input, as boxes: a grid of bins over its
+  // bounds, each with the box of the (grown) cells' parts inside it.
+  Cover mine;
+  {
+    std::vector<Box> cells;
+    for (vtkDataSet* leaf : DataSetsOf(input))
+    {
+      vtkUnsignedCharArray* ghosts = leaf->GetCellGhostArray();
+      for (vtkIdType c = 0; c < leaf->GetNumberOfCells(); ++c)
+      {
+        if (IsGhost(ghosts, c) || leaf->GetCellType(c) == VTK_EMPTY_CELL)
+        {
+          continue;
+        }
+        Box b = CellBox(leaf, c, ids);
+        double size = 0;
+        for (int d = 0; d < 3; ++d)
+        {
+          size = std::max(size, b[2 * d + 1] - b[2 * d]);
+        }
+        const double grow = reach * size + 1e-9 * size;
+        for (int d = 0; d < 3; ++d)
+        {
+          b[2 * d] -= grow;
+          b[2 * d + 1] += grow;
+        }
+        cells.push_back(b);
+        for (int d = 0; d < 3; ++d)
+        {
+          mine.Bounds[2 * d] = std::min(mine.Bounds[2 * d], b[2 * d]);
+          mine.Bounds[2 * d + 1] = std::max(mine.Bounds[2 * d + 1], b[2 * d + 1]);
+        }
+      }
+    }
+    if (!cells.empty())
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        mine.Bins[d] = mine.Bounds[2 * d + 1] > mine.Bounds[2 * d] ? 16 : 1;
+      }
+      mine.Boxes.assign(static_cast<size_t>(mine.Bins[0]) * mine.Bins[1] * mine.Bins[2], EmptyBox());
+      for (const Box& b : cells)
+      {
+        int lo[3], hi[3];
+        for (int d = 0; d < 3; ++d)
+        {
+          mine.Range(d, b[2 * d], b[2 * d + 1], lo[d], hi[d]);
+        }
+        for (int k = lo[2]; k <= hi[2]; ++k)
+        {
+          for (int j = lo[1]; j <= hi[1]; ++j)
+          {
+            for (int i = lo[0]; i <= hi[0]; ++i)
+            {
+              // The cell's part inside the bin (bins tile the bounds).
+              const int at[3] = { i, j, k };
+              Box part = b;
+              for (int d = 0; d < 3; ++d)
+              {
+                const double a = mine.Bounds[2 * d];
+                const double w = (mine.Bounds[2 * d + 1] - a) / mine.Bins[d];
+                if (mine.Bins[d] > 1)
+                {
+                  part[2 * d] = std::max(part[2 * d], at[d] == 0 ? -HUGE_VAL : a + w * at[d]);
+                  part[2 * d + 1] = std::min(
+                    part[2 * d + 1], at[d] == mine.Bins[d] - 1 ? HUGE_VAL : a + w * (at[d] + 1));
+                }
+              }
+              Box& bin = mine.Boxes[(k * mine.Bins[1] + j) * mine.Bins[0] + i];
+              for (int d = 0; d < 3; ++d)
+              {
+                bin[2 * d] = std::min(bin[2 * d], part[2 * d]);
+                bin[2 * d + 1] = std::max(bin[2 * d + 1], part[2 * d + 1]);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  // 2. Every process's boxes, to every process.
+  std::vector<Cover> covers(static_cast<size_t>(n));
+  {
+    std::vector<char> packed;
+    std::vector<double> head(mine.Bounds.begin(), mine.Bounds.end());
+    for (int d = 0; d < 3; ++d)
+    {
+      head.push_back(mine.Bins[d]);
+    }
+    Append(packed, head.data(), head.size());
+    for (const Box& b : mine.Boxes)
+    {
+      Append(packed, b.data(), 6);
+    }
+    std::vector<std::vector<char>> out(static_cast<size_t>(n), packed);
+    std::vector<std::vector<char>> in = this->AllToAll(out);
+    for (int r = 0; r < n; ++r)
+    {
+      const std::vector<double> v = Read<double>(in[r]);
+      if (v.size() < 9)
+      {
+        continue;
+      }
+      std::copy(v.begin(), v.begin() + 6, covers[r].Bounds.begin());
+      for (int d = 0; d < 3; ++d)
+      {
+        covers[r].Bins[d] = static_cast<int>(v[6 + d]);
+      }
+      for (size_t at = 9; at + 6 <= v.size(); at += 6)
+      {
+        Box b;
+        std::copy(v.begin() + at, v.begin() + at + 6, b.begin());
+        covers[r].Boxes.push_back(b);
+      }
+    }
+  }
+  // 3. The arrays every process's Source has (those with cells); global ids
+  // of the Source's points: its own when every process has them, else each
+  // process's numbering after those of the processes before it.
+  const vtkIdType np = source->GetNumberOfPoints();
+  std::vector<vtkDataArray*> arrays[2] = { ArraysOf(source->GetPointData()),
+    ArraysOf(source->GetCellData()) };
+  std::vector<std::string> common[2];
+  bool ownIds = true;
+  long long offset = 0;
+  {
+    vtkDataArray* global = source->GetPointData()->GetGlobalIds();
+    const bool has = source->GetNumberOfCells() > 0;
+    const bool usable = global && global->GetNumberOfComponents() == 1 &&
+      global->GetNumberOfTuples() >= np;
+    std::string text = has ? "1" : "0";
+    text += usable || !has ? "1\n" : "0\n";
+    for (int a = 0; a < 2; ++a)
+    {
+      for (vtkDataArray* array : arrays[a])
+      {
+        text += std::to_string(a) + "\t" + Signature(array) + "\n";
+      }
+    }
+    std::vector<std::vector<char>> out(static_cast<size_t>(n));
+    for (int r = 0; r < n; ++r)
+    {
+      Append(out[r], text.data(), text.size());
+    }
+    std::vector<long long> counts(static_cast<size_t>(n));
+    const long long mineCount = static_cast<long long>(np);
+    this->C->AllGather(&mineCount, counts.data(), 1);
+    for (int r = 0; r < this->Me; ++r)
+    {
+      offset += counts[r];
+    }
+    std::map<std::string, int> seen;
+    int sources = 0;
+    for (const std::vector<char>& in : this->AllToAll(out))
+    {
+      const std::string t(in.begin(), in.end());
+      if (t.size() < 2 || t[0] != '1')
+      {
+        ownIds = ownIds && (t.size() < 2 || t[1] == '1');
+        continue;
+      }
+      ownIds = ownIds && t[1] == '1';
+      ++sources;
+      size_t at = t.find('\n') + 1;
+      while (at < t.size())
+      {
+        const size_t end = t.find('\n', at);
+        ++seen[t.substr(at, end - at)];
+        at = end + 1;
+      }
+    }
+    for (const auto& s : seen)
+    {
+      if (s.second == sources)
+      {
+        common[s.first[0] - '0'].push_back(s.first.substr(2));
+      }
+    }
+  }
+  std::vector<long long> key(static_cast<size_t>(np));
+  {
+    vtkDataArray* global = source->GetPointData()->GetGlobalIds();
+    for (vtkIdType p = 0; p < np; ++p)
+    {
+      key[p] = ownIds && global ? static_cast<long long>(global->GetTuple1(p)) : offset + p;
+    }
+  }
+  for (int a = 0; a < 2; ++a)
+  {
+    std::vector<vtkDataArray*> kept;
+    for (vtkDataArray* array : arrays[a])
+    {
+      if (std::find(common[a].begin(), common[a].end(), Signature(array)) != common[a].end())
+      {
+        kept.push_back(array);
+      }
+    }
+    arrays[a].swap(kept);
+  }
+  // 4. Each Source cell (not a ghost) to every process whose boxes it meets,
+  // as a grid of its own: double points, their global ids, the common arrays.
+  std::vector<std::vector<vtkIdType>> toSend(static_cast<size_t>(n));
+  {
+    vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
+    for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
+    {
+      if (IsGhost(ghosts, c) || source->GetCellType(c) == VTK_EMPTY_CELL)
+      {
+        continue;
+      }
+      const Box b = CellBox(source, c, ids);
+      for (int r = 0; r < n; ++r)
+      {
+        if (covers[r].Meets(b))
+        {
+          toSend[r].push_back(c);
+        }
+      }
+    }
+  }
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(source);
+  auto pieceOf = [&](const std::vector<vtkIdType>& cells) {
+    vtkNew<vtkUnstructuredGrid> piece;
+    std::unordered_map<vtkIdType, vtkIdType> local;
+    std::vector<vtkIdType> points;
+    auto idOf = [&](vtkIdType p) {
+      auto found = local.emplace(p, static_cast<vtkIdType>(points.size()));
+      if (found.second)
+      {
+        points.push_back(p);
+      }
+      return found.first->second;
+    };
+    piece->AllocateExact(static_cast<vtkIdType>(cells.size()), 8 * static_cast<vtkIdType>(cells.size()));
+    std::vector<vtkIdType> pts, faces;
+    for (vtkIdType c : cells)
+    {
+      source->GetCellPoints(c, ids);
+      pts.resize(static_cast<size_t>(ids->GetNumberOfIds()));
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        pts[k] = idOf(ids->GetId(k));
+      }
+      const int type = source->GetCellType(c);
+      if (type == VTK_POLYHEDRON && grid)
+      {
+        vtkIdType nfaces = 0;
+        const vtkIdType* stream = nullptr;
+        grid->GetFaceStream(c, nfaces, stream);
+        faces.clear();
+        const vtkIdType* f = stream;
+        for (vtkIdType k = 0; k < nfaces; ++k)
+        {
+          const vtkIdType m = *f++;
+          faces.push_back(m);
+          for (vtkIdType i = 0; i < m; ++i)
+          {
+            faces.push_back(idOf(*f++));
+          }
+        }
+        piece->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data(), nfaces, faces.data());
+      }
+      else
+      {
+        piece->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data());
+      }
+    }
+    vtkNew<vtkPoints> xyz;
+    xyz->SetDataTypeToDouble();
+    xyz->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+    vtkNew<vtkIdTypeArray> global;
+    global->SetName("vtkMeshProjectionGlobalIds");
+    global->SetNumberOfValues(static_cast<vtkIdType>(points.size()));
+    double x[3];
+    for (size_t i = 0; i < points.size(); ++i)
+    {
+      source->GetPoint(points[i], x);
+      xyz->SetPoint(static_cast<vtkIdType>(i), x);
+      global->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(key[points[i]]));
+    }
+    piece->SetPoints(xyz);
+    piece->GetPointData()->AddArray(global);
+    for (int a = 0; a < 2; ++a)
+    {
+      const std::vector<vtkIdType>& from = a == 0 ? points : cells;
+      vtkDataSetAttributes* to = a == 0 ? static_cast<vtkDataSetAttributes*>(piece->GetPointData())
+                                        : piece->GetCellData();
+      for (vtkDataArray* array : arrays[a])
+      {
+        vtkSmartPointer<vtkDataArray> copy;
+        copy.TakeReference(array->NewInstance());
+        copy->SetName(array->GetName());
+        copy->SetNumberOfComponents(array->GetNumberOfComponents());
+        for (int k = 0; k < array->GetNumberOfComponents(); ++k)
+        {
+          if (array->GetComponentName(k))
+          {
+            copy->SetComponentName(k, array->GetComponentName(k));
+          }
+        }
+        copy->SetNumberOfTuples(static_cast<vtkIdType>(from.size()));
+        for (size_t i = 0; i < from.size(); ++i)
+        {
+          copy->SetTuple(static_cast<vtkIdType>(i), from[i], array);
+        }
+        to->AddArray(copy);
+      }
+    }
+    return vtkSmartPointer<vtkUnstructuredGrid>(piece.GetPointer());
+  };
+  std::vector<vtkSmartPointer<vtkUnstructuredGrid>> pieces;
+  {
+    std::vector<std::vector<char>> out(static_cast<size_t>(n));
+    vtkSmartPointer<vtkUnstructuredGrid> own;
+    for (int r = 0; r < n; ++r)
+    {
+      if (toSend[r].empty())
+      {
+        continue;
+      }
+      vtkSmartPointer<vtkUnstructuredGrid> piece = pieceOf(toSend[r]);
+      if (r == this->Me)
+      {
+        own = piece;
+        continue;
+      }
+      vtkNew<vtkCharArray> bytes;
+      if (!vtkCommunicator::MarshalDataObject(piece, bytes))
+      {
+        error = "the Source cells for process " + std::to_string(r) + " could not be packed";
+      }
+      Append(out[r], bytes->GetPointer(0), static_cast<size_t>(bytes->GetNumberOfValues()));
+    }
+    std::vector<std::vector<char>> in = this->AllToAll(out);
+    for (int r = 0; r < n; ++r)
+    {
+      if (r == this->Me)
+      {
+        if (own)
+        {
+          pieces.push_back(own);
+        }
+        continue;
+      }
+      if (in[r].empty())
+      {
+        continue;
+      }
+      vtkNew<vtkCharArray> bytes;
+      bytes->SetArray(in[r].data(), static_cast<vtkIdType>(in[r].size()), 1);
+      vtkNew<vtkUnstructuredGrid> piece;
+      if (!vtkCommunicator::UnMarshalDataObject(bytes, piece))
+      {
+        error = "the Source cells from process " + std::to_string(r) + " could not be read";
+        continue;
+      }
+      pieces.push_back(piece.GetPointer());
+    }
+  }
+  // 5. One grid: points merged by global id, in the order of their ids.
+  vtkNew<vtkUnstructuredGrid> merged;
+  std::vector<std::vector<vtkIdType>> newId(pieces.size());
+  std::vector<std::pair<long long, std::pair<size_t, vtkIdType>>> all;
+  vtkIdType cellCount = 0;
+  for (size_t i = 0; i < pieces.size(); ++i)
+  {
+    vtkDataArray* global = pieces[i]->GetPointData()->GetArray("vtkMeshProjectionGlobalIds");
+    if (!global || global->GetNumberOfTuples() != pieces[i]->GetNumberOfPoints())
+    {
+      error = "Source cells arrived without their points' global ids";
+      return merged.GetPointer();
+    }
+    for (vtkIdType p = 0; p < pieces[i]->GetNumberOfPoints(); ++p)
+    {
+      all.push_back({ static_cast<long long>(global->GetTuple1(p)), { i, p } });
+    }
+    newId[i].resize(static_cast<size_t>(pieces[i]->GetNumberOfPoints()));
+    cellCount += pieces[i]->GetNumberOfCells();
+  }
+  std::sort(all.begin(), all.end());
+  vtkNew<vtkPoints> xyz;
+  xyz->SetDataTypeToDouble();
+  vtkNew<vtkIdTypeArray> globalIds;
+  globalIds->SetName("GlobalIds");
+  std::vector<std::pair<size_t, vtkIdType>> firstOf; // per merged point
+  for (size_t k = 0; k < all.size(); ++k)
+  {
+    if (k == 0 || all[k].first != all[k - 1].first)
+    {
+      firstOf.push_back(all[k].second);
+      globalIds->InsertNextValue(static_cast<vtkIdType>(all[k].first));
+    }
+    newId[all[k].second.first][all[k].second.second] = static_cast<vtkIdType>(firstOf.size() - 1);
+  }
+  xyz->SetNumberOfPoints(static_cast<vtkIdType>(firstOf.size()));
+  for (size_t p = 0; p < firstOf.size(); ++p)
+  {
+    xyz->SetPoint(static_cast<vtkIdType>(p),
+      pieces[firstOf[p].first]->GetPoints()->GetPoint(firstOf[p].second));
+  }
+  merged->SetPoints(xyz);
+  merged->AllocateExact(cellCount, 8 * cellCount);
+  std::vector<vtkIdType> pts, faces;
+  for (size_t i = 0; i < pieces.size(); ++i)
+  {
+    vtkUnstructuredGrid* piece = pieces[i];
+    for (vtkIdType c = 0; c < piece->GetNumberOfCells(); ++c)
+    {
+      vtkIdType npts = 0;
+      const vtkIdType* p = nullptr;
+      piece->GetCellPoints(c, npts, p);
+      pts.resize(static_cast<size_t>(npts));
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        pts[k] = newId[i][p[k]];
+      }
+      const int type = piece->GetCellType(c);
+      if (type == VTK_POLYHEDRON)
+      {
+        vtkIdType nfaces = 0;
+        const vtkIdType* stream = nullptr;
+        piece->GetFaceStream(c, nfaces, stream);
+        faces.clear();
+        for (vtkIdType k = 0; k < nfaces; ++k)
+        {
+          const vtkIdType m = *stream++;
+          faces.push_back(m);
+          for (vtkIdType j = 0; j < m; ++j)
+          {
+            faces.push_back(newId[i][*stream++]);
+          }
+        }
+        merged->InsertNextCell(type, npts, pts.data(), nfaces, faces.data());
+      }
+      else
+      {
+        merged->InsertNextCell(type, npts, pts.data());
+      }
+    }
+  }
+  this->Received = cellCount;
+  // The common arrays, in the Source's own types and order.
+  for (int a = 0; a < 2; ++a)
+  {
+    vtkDataSetAttributes* to = a == 0 ? static_cast<vtkDataSetAttributes*>(merged->GetPointData())
+                                      : merged->GetCellData();
+    const vtkIdType size = a == 0 ? static_cast<vtkIdType>(firstOf.size()) : cellCount;
+    for (const std::string& signature : common[a])
+    {
+      const size_t tab = signature.find('\t');
+      const std::string name = signature.substr(0, tab);
+      const int type = std::stoi(signature.substr(tab + 1));
+      const int nc = std::stoi(signature.substr(signature.rfind('\t') + 1));
+      vtkSmartPointer<vtkDataArray> array;
+      array.TakeReference(vtkDataArray::CreateDataArray(type));
+      array->SetName(name.c_str());
+      array->SetNumberOfComponents(nc);
+      array->SetNumberOfTuples(size);
+      vtkIdType at = 0;
+      for (size_t i = 0; i < pieces.size(); ++i)
+      {
+        vtkDataArray* from = (a == 0 ? static_cast<vtkDataSetAttributes*>(pieces[i]->GetPointData())
+                                     : pieces[i]->GetCellData())
+                               ->GetArray(name.c_str());
+        if (!from)
+        {
+          error = "Source array '" + name + "' is missing from the cells of a process";
+          return merged.GetPointer();
+        }
+        if (a == 0)
+        {
+          for (vtkIdType p = 0; p < pieces[i]->GetNumberOfPoints(); ++p)
+          {
+            array->SetTuple(newId[i][p], p, from);
+          }
+        }
+        else
+        {
+          for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
+          {
+            array->SetTuple(at + c, c, from);
+          }
+          at += pieces[i]->GetNumberOfCells();
+        }
+      }
+      // Component names and the active attributes as the Source has them.
+      vtkDataSetAttributes* own = source->GetAttributes(a == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
+      if (vtkDataArray* original = own->GetArray(name.c_str()))
+      {
+        for (int k = 0; k < nc && k < original->GetNumberOfComponents(); ++k)
+        {
+          if (original->GetComponentName(k))
+          {
+            array->SetComponentName(k, original->GetComponentName(k));
+          }
+        }
+      }
+      to->AddArray(array);
+      if (own->GetScalars() && own->GetScalars()->GetName() && name == own->GetScalars()->GetName())
+      {
+        to->SetActiveScalars(name.c_str());
+      }
+      if (own->GetVectors() && own->GetVectors()->GetName() && name == own->GetVectors()->GetName())
+      {
+        to->SetActiveVectors(name.c_str());
+      }
+    }
+  }
+  merged->GetPointData()->SetGlobalIds(globalIds);
+  return merged.GetPointer();
+}
+
+vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
+{
+  const int n = this->N;
+  const vtkIdType np = target->GetNumberOfPoints();
+  vtkDataArray* global = target->GetPointData()->GetGlobalIds();
+  bool useIds = np == 0 ||
+    (global && global->GetNumberOfComponents() == 1 && global->GetNumberOfTuples() >= np);
+  this->Agree(std::string(), &useIds);
+  std::vector<double> x(static_cast<size_t>(3 * np));
+  Box bounds = EmptyBox();
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    target->GetPoint(p, &x[3 * p]);
+    Grow(bounds, &x[3 * p]);
+  }
+  std::vector<double> boxes(static_cast<size_t>(6 * n));
+  this->C->AllGather(bounds.data(), boxes.data(), 6);
+  auto boxOf = [&](int r) {
+    Box b;
+    std::copy(boxes.begin() + 6 * r, boxes.begin() + 6 * r + 6, b.begin());
+    return b;
+  };
+  auto idOf = [&](vtkIdType p) { return static_cast<double>(global->GetTuple1(p)); };
+  // Candidates to each higher process: the points inside its box (their
+  // ids, or coordinates); it answers which it has.
+  std::vector<std::vector<vtkIdType>> candidates(static_cast<size_t>(n));
+  std::vector<std::vector<char>> out(static_cast<size_t>(n));
+  for (int r = this->Me + 1; r < n; ++r)
+  {
+    const Box b = boxOf(r);
+    if (!Meet(b, bounds))
+    {
+      continue;
+    }
+    for (vtkIdType p = 0; p < np; ++p)
+    {
+      if (Inside(b, &x[3 * p]))
+      {
+        candidates[r].push_back(p);
+        if (useIds)
+        {
+          const double id = idOf(p);
+          Append(out[r], &id, 1);
+        }
+        else
+        {
+          const PointKey k = KeyOf(&x[3 * p]);
+          Append(out[r], k.X, 3);
+        }
+      }
+    }
+  }
+  std::vector<std::vector<char>> in = this->AllToAll(out);
+  std::unordered_map<PointKey, vtkIdType, PointKeyHash> index;
+  bool indexed = false;
+  std::vector<std::vector<vtkIdType>> shared(static_cast<size_t>(n));
+  std::vector<std::vector<char>> answers(static_cast<size_t>(n));
+  for (int s = 0; s < this->Me; ++s)
+  {
+    const std::vector<double> v = Read<double>(in[s]);
+    if (v.empty())
+    {
+      continue;
+    }
+    if (!indexed)
+    {
+      index.reserve(static_cast<size_t>(np));
+      for (vtkIdType p = 0; p < np; ++p)
+      {
+        PointKey k;
+        if (useIds)
+        {
+          k.X[0] = idOf(p);
+          k.X[1] = k.X[2] = 0.0;
+        }
+        else
+        {
+          k = KeyOf(&x[3 * p]);
+        }
+        index.emplace(k, p);
+      }
+      indexed = true;
+    }
+    const size_t width = useIds ? 1 : 3;
+    for (size_t at = 0; at + width <= v.size(); at += width)
+    {
+      PointKey k;
+      k.X[0] = v[at];
+      k.X[1] = useIds ? 0.0 : v[at + 1];
+      k.X[2] = useIds ? 0.0 : v[at + 2];
+      auto found = index.find(k);
+      const char yes = found != index.end();
+      answers[s].push_back(yes);
+      if (yes)
+      {
+        shared[s].push_back(found->second);
+      }
+    }
+  }
+  std::vector<std::vector<char>> replies = this->AllToAll(answers);
+  for (int r = this->Me + 1; r < n; ++r)
+  {
+    for (size_t i = 0; i < replies[r].size() && i < candidates[r].size(); ++i)
+    {
+      if (replies[r][i])
+      {
+        shared[r].push_back(candidates[r][i]);
+      }
+    }
+  }
+  this->Neighbours.clear();
+  this->SharedPoints.clear();
+  this->Owner.assign(static_cast<size_t>(np), this->Me);
+  for (int r = 0; r < n; ++r)
+  {
+    if (!shared[r].empty())
+    {
+      this->Neighbours.push_back(r);
+      for (vtkIdType p : shared[r])
+      {
+        this->Owner[p] = std::min(this->Owner[p], r);
+      }
+      this->SharedPoints.push_back(shared[r]);
+    }
+  }
+  if (useIds)
+  {
+    return target;
+  }
+  // Global ids made: each process numbers the points it owns after those
+  // of the processes before it; the others learn them from their owner.
+  long long owned = 0;
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    owned += this->Owner[p] == this->Me;
+  }
+  std::vector<long long> counts(static_cast<size_t>(n));
+  this->C->AllGather(&owned, counts.data(), 1);
+  long long next = 0;
+  for (int r = 0; r < this->Me; ++r)
+  {
+    next += counts[r];
+  }
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName("GlobalIds");
+  ids->SetNumberOfValues(np);
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    ids->SetValue(p, this->Owner[p] == this->Me ? static_cast<vtkIdType>(next++) : -1);
+  }
+  std::vector<std::vector<double>> send(this->Neighbours.size()), recv(this->Neighbours.size());
+  for (size_t i = 0; i < this->Neighbours.size(); ++i)
+  {
+    for (vtkIdType p : this->SharedPoints[i])
+    {
+      send[i].push_back(static_cast<double>(ids->GetValue(p)));
+    }
+    recv[i].resize(this->SharedPoints[i].size());
+  }
+  this->Swap(this->Neighbours, send, recv);
+  for (size_t i = 0; i < this->Neighbours.size(); ++i)
+  {
+    if (this->Neighbours[i] > this->Me)
+    {
+      continue;
+    }
+    for (size_t k = 0; k < this->SharedPoints[i].size(); ++k)
+    {
+      const vtkIdType p = this->SharedPoints[i][k];
+      if (this->Owner[p] == this->Neighbours[i])
+      {
+        ids->SetValue(p, static_cast<vtkIdType>(recv[i][k]));
+      }
+    }
+  }
+  vtkSmartPointer<vtkDataSet> copy;
+  copy.TakeReference(target->NewInstance());
+  copy->ShallowCopy(target);
+  copy->GetPointData()->SetGlobalIds(ids);
+  return copy;
+}
+
+mp::SolverHooks MPIParts::Hooks(
+  bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint)
+{
+  mp::SolverHooks hooks;
+  hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
+  if (!points)
+  {
+    return hooks;
+  }
+  std::vector<mp::Index> rowOf(static_cast<size_t>(rows));
+  this->Counted.assign(static_cast<size_t>(rows), 0);
+  for (mp::Index f = 0; f < rows; ++f)
+  {
+    const vtkIdType p = dataSetPoint(f);
+    rowOf[static_cast<size_t>(p)] = f;
+    this->Counted[f] = this->Owner[static_cast<size_t>(p)] == this->Me;
+  }
+  this->Rows.assign(this->Neighbours.size(), std::vector<mp::Index>());
+  this->SharedRows.clear();
+  for (size_t i = 0; i < this->Neighbours.size(); ++i)
+  {
+    for (vtkIdType p : this->SharedPoints[i])
+    {
+      this->Rows[i].push_back(rowOf[static_cast<size_t>(p)]);
+    }
+    this->SharedRows.insert(this->SharedRows.end(), this->Rows[i].begin(), this->Rows[i].end());
+  }
+  std::sort(this->SharedRows.begin(), this->SharedRows.end());
+  this->SharedRows.erase(
+    std::unique(this->SharedRows.begin(), this->SharedRows.end()), this->SharedRows.end());
+  hooks.Counted = this->Counted.data();
+  hooks.Exchange = [this](double* v, int width) {
+    const size_t k = this->Neighbours.size();
+    std::vector<std::vector<double>> send(k), recv(k);
+    for (size_t i = 0; i < k; ++i)
+    {
+      send[i].reserve(this->Rows[i].size() * width);
+      for (mp::Index f : this->Rows[i])
+      {
+        send[i].insert(send[i].end(), v + f * width, v + (f + 1) * width);
+      }
+      recv[i].resize(send[i].size());
+    }
+    this->Swap(this->Neighbours, send, recv);
+    // Each shared row: the parts summed in the order of their processes,
+    // from 0, on every process alike (the same value everywhere, bit for bit).
+    std::unordered_map<mp::Index, size_t> slot;
+    slot.reserve(this->SharedRows.size());
+    std::vector<double> own(this->SharedRows.size() * width), sum(own.size(), 0.0);
+    for (size_t s = 0; s < this->SharedRows.size(); ++s)
+    {
+      slot[this->SharedRows[s]] = s;
+      std::copy(v + this->SharedRows[s] * width, v + (this->SharedRows[s] + 1) * width,
+        own.begin() + s * width);
+    }
+    bool mineAdded = false;
+    auto addOwn = [&]() {
+      for (size_t e = 0; e < own.size(); ++e)
+      {
+        sum[e] += own[e];
+      }
+      mineAdded = true;
+    };
+    for (size_t i = 0; i < k; ++i)
+    {
+      if (!mineAdded && this->Neighbours[i] > this->Me)
+      {
+        addOwn();
+      }
+      for (size_t j = 0; j < this->Rows[i].size(); ++j)
+      {
+        const size_t s = slot[this->Rows[i][j]];
+        for (int c = 0; c < width; ++c)
+        {
+          sum[s * width + c] += recv[i][j * width + c];
+        }
+      }
+    }
+    if (!mineAdded)
+    {
+      addOwn();
+    }
+    for (size_t s = 0; s < this->SharedRows.size(); ++s)
+    {
+      std::copy(sum.begin() + s * width, sum.begin() + (s + 1) * width,
+        v + this->SharedRows[s] * width);
+    }
+  };
+  return hooks;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkPMeshProjectionFilter::vtkPMeshProjectionFilter()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+vtkPMeshProjectionFilter::~vtkPMeshProjectionFilter()
+{
+  this->SetController(nullptr);
+}
+
+int vtkPMeshProjectionFilter::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  if (this->Controller && this->Controller->GetNumberOfProcesses() > 1)
+  {
+    // Each process reads its own piece of Source (not the whole of it): the
+    // cells its part of Input needs come from the others.
+    using SDDP = vtkStreamingDemandDrivenPipeline;
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0);
+    if (sourceInfo)
+    {
+      sourceInfo->CopyEntry(outInfo, SDDP::UPDATE_PIECE_NUMBER());
+      sourceInfo->CopyEntry(outInfo, SDDP::UPDATE_NUMBER_OF_PIECES());
+      sourceInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+  }
+  return 1;
+}
+
+int vtkPMeshProjectionFilter::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->GlobalNumberOfIntersections = 0;
+  this->GlobalCoveredMeasure = 0;
+  this->GlobalReceivedSourceCells = this->ReceivedSourceCells = 0;
+  this->GlobalSentBytes = this->SentBytes = 0;
+  vtkMultiProcessController* controller = this->Controller;
+  if (!controller || controller->GetNumberOfProcesses() <= 1)
+  {
+    const int done = this->Superclass::RequestData(request, inputVector, outputVector);
+    this->GlobalNumberOfIntersections = this->NumberOfIntersections;
+    this->GlobalCoveredMeasure = this->CoveredMeasure;
+    return done;
+  }
+  if (!vtkMPICommunicator::SafeDownCast(controller->GetCommunicator()))
+  {
+    vtkErrorMacro(<< "Several processes need an MPI controller (vtkMPIController); this one is a "
+                  << controller->GetClassName() << ".");
+    return 0;
+  }
+  MPIParts parts(controller);
+  this->Parts = &parts;
+  const int done = this->Superclass::RequestData(request, inputVector, outputVector);
+  this->Parts = nullptr;
+  this->ReceivedSourceCells = parts.Received;
+  this->SentBytes = parts.SentBytes();
+  double totals[4] = { static_cast<double>(this->NumberOfIntersections), this->CoveredMeasure,
+    static_cast<double>(this->ReceivedSourceCells), this->SentBytes };
+  double sums[4] = { 0, 0, 0, 0 };
+  controller->AllReduce(totals, sums, 4, vtkCommunicator::SUM_OP);
+  this->GlobalNumberOfIntersections = static_cast<vtkIdType>(sums[0]);
+  this->GlobalCoveredMeasure = sums[1];
+  this->GlobalReceivedSourceCells = static_cast<vtkIdType>(sums[2]);
+  this->GlobalSentBytes = sums[3];
+  return done;
+}
+
+void vtkPMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "GlobalNumberOfIntersections: " << this->GlobalNumberOfIntersections << "\n";
+  os << indent << "GlobalCoveredMeasure: " << this->GlobalCoveredMeasure << "\n";
+  os << indent << "GlobalReceivedSourceCells: " << this->GlobalReceivedSourceCells << "\n";
+  os << indent << "GlobalSentBytes: " << this->GlobalSentBytes << "\n";
+}

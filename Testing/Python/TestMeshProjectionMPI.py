@@ -1,0 +1,417 @@
+"""vtkPMeshProjectionFilter on several MPI processes (run under mpiexec with
+Debian's python3): every partitioning gives the serial result.
+
+Each process builds the same meshes, projects them whole with the serial
+filter (the reference), then takes its part of them by a partitioning and
+runs the parallel filter. Checked on every process, for its own points and
+cells: values equal the serial ones (1e-10 of the field's range), the valid
+masks equal the serial ones, points shared by processes have the same
+value everywhere (bit for bit), and the integrals in the field data (totals
+over the processes) equal the serial ones (conservation). Partitionings:
+Redistribute DataSet (DIY), a random split of the cells, blocks in x, all
+Source on one process and all Input on another, one process without Input.
+Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds; point and
+cell data; lumped mass; a composite Input; a time step reusing the operator.
+"""
+import os
+import sys
+import traceback
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkIdList, vtkPoints
+from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_TETRA, VTK_TRIANGLE, vtkCellArray,
+                                           vtkMultiBlockDataSet, vtkUnstructuredGrid)
+from vtkmodules.vtkFiltersCore import vtkExtractCells
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.vtkParallelMPI import vtkMPIController
+
+
+
+def _abort(kind, value, tb):
+    # One process failing must end all (the others would wait in a collective).
+    traceback.print_exception(kind, value, tb)
+    sys.stderr.flush()
+    os._exit(1)
+
+
+sys.excepthook = _abort
+controller = vtkMultiProcessController.GetGlobalController()
+if controller is None or controller.GetNumberOfProcesses() < 2:
+    controller = vtkMPIController()
+    controller.Initialize()
+    vtkMultiProcessController.SetGlobalController(controller)
+rank = controller.GetLocalProcessId()
+size = controller.GetNumberOfProcesses()
+
+import meshprojection  # noqa: E402  (after MPI is up)
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAILED on process %d: %s" % (rank, what), file=sys.stderr)
+
+
+# ---- meshes ---------------------------------------------------------------
+def grid(points, cells, cell_type):
+    g = vtkUnstructuredGrid()
+    p = vtkPoints()
+    p.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float64), deep=True))
+    g.SetPoints(p)
+    ca = vtkCellArray()
+    n = cells.shape[1]
+    offsets = np.arange(0, n * len(cells) + 1, n, dtype=np.int64)
+    ca.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True),
+               numpy_to_vtkIdTypeArray(cells.astype(np.int64).ravel(), deep=True))
+    g.SetCells(cell_type, ca)
+    return g
+
+
+def structured(n, lo, hi, dim, seed, jitter=0.25):
+    """Points of an n^dim grid of [lo, hi]^dim, interior ones jittered."""
+    axes = [np.linspace(lo[d], hi[d], n + 1) for d in range(dim)]
+    mesh = np.meshgrid(*axes, indexing="ij")
+    x = np.zeros(((n + 1) ** dim, 3))
+    for d in range(dim):
+        x[:, d] = mesh[d].ravel()
+    rng = np.random.default_rng(seed)
+    h = (np.array(hi) - np.array(lo)) / n
+    inner = np.all([(x[:, d] > lo[d] + 1e-12) & (x[:, d] < hi[d] - 1e-12) for d in range(dim)], axis=0)
+    for d in range(dim):
+        x[inner, d] += jitter * h[d] * rng.uniform(-1, 1, inner.sum())
+    return x
+
+
+def index(n, dim):
+    return np.arange((n + 1) ** dim).reshape((n + 1,) * dim)
+
+
+def triangles(n, lo, hi, seed):
+    x = structured(n, lo, hi, 2, seed)
+    v = index(n, 2)
+    a, b, c, d = v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()
+    cells = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
+    return grid(x, cells, VTK_TRIANGLE)
+
+
+def hexahedra(n, lo, hi, seed):
+    x = structured(n, lo, hi, 3, seed)
+    v = index(n, 3)
+    c = [v[i:n + i, j:n + j, k:n + k].ravel() for (i, j, k) in
+         [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]]
+    return grid(x, np.stack(c, 1), VTK_HEXAHEDRON)
+
+
+def tetrahedra(n, lo, hi, seed):
+    x = structured(n, lo, hi, 3, seed)
+    v = index(n, 3)
+    c = [v[i:n + i, j:n + j, k:n + k].ravel() for (i, j, k) in
+         [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]]
+    # Six tetrahedra around the diagonal 0-6 of each cube (conforming).
+    tets = [(0, 1, 2, 6), (0, 2, 3, 6), (0, 3, 7, 6), (0, 7, 4, 6), (0, 4, 5, 6), (0, 5, 1, 6)]
+    cells = np.concatenate([np.stack([c[a], c[b], c[d], c[e]], 1) for (a, b, d, e) in tets])
+    return grid(x, cells, VTK_TETRA)
+
+
+def with_fields(g, name="f"):
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    f = np.sin(3 * x[:, 0]) + x[:, 1] ** 2 + 0.5 * x[:, 2]
+    a = numpy_to_vtk(f, deep=True)
+    a.SetName(name)
+    g.GetPointData().AddArray(a)
+    lin = numpy_to_vtk(np.stack([1 + 2 * x[:, 0] - x[:, 1] + 3 * x[:, 2], x[:, 0]], 1).copy(), deep=True)
+    lin.SetName("linear")
+    g.GetPointData().AddArray(lin)
+    centres = np.array([np.mean([g.GetPoint(i) for i in _ids(g, c)], axis=0) for c in range(g.GetNumberOfCells())])
+    cf = numpy_to_vtk(np.cos(2 * centres[:, 0]) + centres[:, 1], deep=True)
+    cf.SetName("cellf")
+    g.GetCellData().AddArray(cf)
+    return g
+
+
+def _ids(g, c):
+    ids = g.GetCell(c).GetPointIds()
+    return [ids.GetId(k) for k in range(ids.GetNumberOfIds())]
+
+
+def numbered(g):
+    """The original point and cell ids, as arrays that extraction carries."""
+    for data, n in ((g.GetPointData(), g.GetNumberOfPoints()), (g.GetCellData(), g.GetNumberOfCells())):
+        a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
+        a.SetName("origId")
+        data.AddArray(a)
+    return g
+
+
+def centres(g):
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    conn = vtk_to_numpy(g.GetCells().GetConnectivityArray())
+    offs = vtk_to_numpy(g.GetCells().GetOffsetsArray())
+    n = offs[1] - offs[0]
+    return x[conn.reshape(-1, n)].mean(axis=1)
+
+
+# ---- partitionings ----------------------------------------------------------
+def extract(g, keep, global_ids=False):
+    e = vtkExtractCells()
+    e.SetInputData(g)
+    ids = vtkIdList()
+    for c in np.nonzero(keep)[0]:
+        ids.InsertNextId(int(c))
+    e.SetCellList(ids)
+    e.Update()
+    out = vtkUnstructuredGrid()
+    out.ShallowCopy(e.GetOutput())
+    if global_ids:
+        out.GetPointData().SetGlobalIds(out.GetPointData().GetArray("origId"))
+    return out
+
+
+def split(g, how, role, global_ids=False):
+    n = g.GetNumberOfCells()
+    if how == "random":
+        owner = np.random.default_rng(7 if role == "input" else 8).integers(0, size, n)
+    elif how == "blocks":
+        x = centres(g)[:, 0]
+        owner = np.minimum((np.argsort(np.argsort(x)) * size) // n, size - 1)
+    elif how == "apart":
+        owner = np.full(n, size - 1 if role == "input" else 0)
+    elif how == "empty":
+        # Input on every process but the last, Source split at random.
+        owner = np.random.default_rng(9).integers(0, size - 1 if role == "input" else size, n)
+    else:
+        raise ValueError(how)
+    return extract(g, owner == rank, global_ids)
+
+
+def redistributed(g):
+    """Redistribute DataSet as a ParaView user does: all on process 0 first."""
+    from vtkmodules.vtkFiltersParallelDIY2 import vtkRedistributeDataSetFilter
+    r = vtkRedistributeDataSetFilter()
+    r.SetController(controller)
+    r.SetInputData(g if rank == 0 else vtkUnstructuredGrid())
+    r.Update()
+    out = r.GetOutputDataObject(0)
+    if not isinstance(out, vtkUnstructuredGrid):
+        from vtkmodules.vtkFiltersCore import vtkAppendFilter
+        a = vtkAppendFilter()
+        a.AddInputData(out)
+        a.Update()
+        out = a.GetOutput()
+    result = vtkUnstructuredGrid()
+    result.ShallowCopy(out)
+    return result
+
+
+# ---- the comparison ---------------------------------------------------------
+def run(filter_class, target, source, **props):
+    f = filter_class()
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    for k, v in props.items():
+        getattr(f, "Set" + k)(v)
+    f.Update()
+    return f
+
+
+def arrays_of(data):
+    return {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
+
+
+def compare(what, serial_out, local_out, ranges):
+    """The local output against the serial one, by original ids."""
+    for assoc in ("point", "cell"):
+        sd = serial_out.GetPointData() if assoc == "point" else serial_out.GetCellData()
+        ld = local_out.GetPointData() if assoc == "point" else local_out.GetCellData()
+        if local_out.GetNumberOfPoints() == 0:
+            continue
+        ids = vtk_to_numpy(ld.GetArray("origId"))
+        sid = vtk_to_numpy(sd.GetArray("origId"))
+        pos = np.full(int(max(sid.max(initial=0), ids.max(initial=0))) + 1, -1)
+        pos[sid] = np.arange(len(sid))
+        check(np.all(pos[ids] >= 0), "%s: %s ids all in the serial output" % (what, assoc))
+        ids = pos[ids]
+        mask_name = "vtkValidPointMask" if assoc == "point" else "vtkValidCellMask"
+        sm = vtk_to_numpy(sd.GetArray(mask_name))[ids] if sd.GetArray(mask_name) else None
+        lm = vtk_to_numpy(ld.GetArray(mask_name)) if ld.GetArray(mask_name) else None
+        check((sm is None) == (lm is None), "%s: %s mask present alike" % (what, assoc))
+        if sm is not None and lm is not None:
+            bad = np.count_nonzero(sm != lm)
+            check(bad == 0, "%s: %d %s masks differ from serial" % (what, bad, assoc))
+        for name, lv in arrays_of(ld).items():
+            if name in ("origId", mask_name, "CoveredFraction") or name.startswith("vtk"):
+                continue
+            if sd.GetArray(name) is None:
+                check(False, "%s: %s array %s not in the serial output" % (what, assoc, name))
+                continue
+            sv = vtk_to_numpy(sd.GetArray(name))[ids]
+            valid = lm.astype(bool) if lm is not None else np.ones(len(ids), bool)
+            if lv.ndim == 1:
+                lv, sv = lv[:, None], sv[:, None]
+            scale = ranges.get(name, 1.0)
+            err = np.max(np.abs(lv[valid] - sv[valid])) / scale if valid.any() else 0.0
+            check(err <= 1e-10, "%s: %s %s differs from serial by %.3g of its range" % (what, assoc, name, err))
+            check(np.array_equal(np.isnan(lv[~valid]), np.isnan(sv[~valid])),
+                  "%s: %s %s fill values differ" % (what, assoc, name))
+
+
+def shared_points_agree(what, out):
+    """Points on several processes: the same values everywhere, bit for bit."""
+    pd = out.GetPointData()
+    ids = vtk_to_numpy(pd.GetArray("origId")) if out.GetNumberOfPoints() else np.zeros(0, np.int64)
+    name = "f" if pd.GetArray("f") is not None else None
+    vals = vtk_to_numpy(pd.GetArray(name)) if name and out.GetNumberOfPoints() else np.zeros(0)
+    # Every process's (id, value) pairs to every process.
+    parts = allgather(np.concatenate([ids.astype(np.float64), vals.astype(np.float64)]))
+    seen = {}
+    differ = 0
+    for part in parts:
+        m = len(part) // 2
+        for i, v in zip(part[:m].astype(np.int64), part[m:]):
+            if i in seen and not (seen[i] == v or (np.isnan(seen[i]) and np.isnan(v))):
+                differ += 1
+            seen.setdefault(i, v)
+    check(differ == 0, "%s: %d shared points differ between processes" % (what, differ))
+
+
+def allreduce_max(value):
+    from vtkmodules.vtkParallelCore import vtkCommunicator
+    out = numpy_to_vtk(np.zeros(1))
+    controller.AllReduce(numpy_to_vtk(np.array([float(value)])), out, vtkCommunicator.MAX_OP)
+    return float(vtk_to_numpy(out)[0])
+
+
+def allgather(values):
+    """Each process's 1D float array, to every process (a list by rank)."""
+    m = int(allreduce_max(len(values)))
+    padded = np.full(m + 1, np.nan)
+    padded[0] = len(values)
+    padded[1:len(values) + 1] = values
+    recv = numpy_to_vtk(np.zeros(size * (m + 1)), deep=True)
+    controller.AllGather(numpy_to_vtk(padded, deep=True), recv)
+    everything = vtk_to_numpy(recv).reshape(size, m + 1)
+    return [row[1:1 + int(row[0])] for row in everything]
+
+
+def integrals(out):
+    fd = out.GetFieldData()
+    return {fd.GetArrayName(i): vtk_to_numpy(fd.GetArray(i)).copy() for i in range(fd.GetNumberOfArrays())
+            if fd.GetArrayName(i).startswith(("SourceIntegral_", "TargetIntegral_"))}
+
+
+def case(what, target, source, how, global_ids=False, composite=False, **props):
+    numbered(target)
+    serial = run(meshprojection.vtkMeshProjectionFilter, target, source, CacheOperator=False, **props)
+    sout = serial.GetOutputDataObject(0)
+    if how == "redistribute":
+        lt, ls = redistributed(target), redistributed(source)
+    else:
+        lt, ls = split(target, how, "input", global_ids), split(source, how, "source")
+    ranges = {}
+    for name in ("f", "linear", "cellf"):
+        for data in (source.GetPointData(), source.GetCellData()):
+            if data.GetArray(name) is not None:
+                v = vtk_to_numpy(data.GetArray(name))
+                ranges[name] = float(np.ptp(v)) or 1.0
+    if composite:
+        # Two blocks: the local part cut in two by y (a block may be empty here).
+        y = centres(lt)[:, 1] if lt.GetNumberOfCells() else np.zeros(0)
+        mb = vtkMultiBlockDataSet()
+        mb.SetNumberOfBlocks(2)
+        for b, keep in enumerate((y < 0.5, y >= 0.5)):
+            mb.SetBlock(b, extract(lt, keep) if lt.GetNumberOfCells() else vtkUnstructuredGrid())
+        lt = mb
+    par = run(meshprojection.vtkPMeshProjectionFilter, lt, ls, **props)
+    out = par.GetOutputDataObject(0)
+    if composite:
+        # Each block is its own system: the serial run on the same two blocks, whole.
+        yt = centres(target)[:, 1]
+        whole = vtkMultiBlockDataSet()
+        whole.SetNumberOfBlocks(2)
+        for b, keep in enumerate((yt < 0.5, yt >= 0.5)):
+            whole.SetBlock(b, extract(target, keep))
+        sb = run(meshprojection.vtkMeshProjectionFilter, whole, source, CacheOperator=False, **props)
+        for b in range(2):
+            compare("%s block %d" % (what, b), sb.GetOutputDataObject(0).GetBlock(b), out.GetBlock(b), ranges)
+        return par
+    compare(what, sout, out, ranges)
+    shared_points_agree(what, out)
+    si, pi = integrals(sout), integrals(out)
+    check(set(si) == set(pi), "%s: integral arrays %s vs %s" % (what, sorted(si), sorted(pi)))
+    for k in si:
+        if k in pi:
+            err = np.max(np.abs(si[k] - pi[k])) / max(1e-300, np.max(np.abs(si[k])))
+            check(err <= 1e-10, "%s: %s total %s vs serial %s" % (what, k, pi[k], si[k]))
+    return par
+
+
+# 2D: triangles, the Source reaching beyond Input on one side (partial cover).
+t2 = with_fields(triangles(36, (0, 0, 0), (1, 1, 0), 1))
+s2 = with_fields(triangles(29, (-0.13, 0.07, 0), (0.91, 1.2, 0), 2))
+for how in ("random", "blocks", "apart", "empty", "redistribute"):
+    case("2D " + how, t2, s2, how)
+case("2D lumped, cells to points", t2, s2, "random", MassMatrix=1, CellDataTarget=3)
+case("2D composite", t2, s2, "random", composite=True)
+
+# 3D: tetrahedra, and hexahedra whose points carry GlobalIds.
+t3 = with_fields(tetrahedra(9, (0, 0, 0), (1, 1, 1), 3))
+s3 = with_fields(tetrahedra(8, (0.05, -0.1, 0.02), (1.1, 0.95, 1.07), 4))
+for how in ("random", "blocks", "apart", "redistribute"):
+    case("3D " + how, t3, s3, how)
+h3 = with_fields(hexahedra(7, (0, 0, 0), (1, 1, 1), 5))
+hs = with_fields(hexahedra(6, (0.03, 0.02, -0.04), (1.04, 0.97, 1.02), 6))
+gid = numpy_to_vtkIdTypeArray(np.arange(hs.GetNumberOfPoints(), dtype=np.int64), deep=True)
+gid.SetName("gid")
+hs.GetPointData().SetGlobalIds(gid)
+numbered(h3)
+h3.GetPointData().SetGlobalIds(h3.GetPointData().GetArray("origId"))
+case("3D hexahedra with GlobalIds", h3, hs, "random", global_ids=True)
+
+# Linear fields are exact in parallel too (P1 to P1).
+par = case("2D linear", t2, s2, "blocks")
+out = par.GetOutputDataObject(0)
+if out.GetNumberOfPoints():
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    lin = vtk_to_numpy(out.GetPointData().GetArray("linear"))
+    valid = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask")).astype(bool)
+    exact = 1 + 2 * x[:, 0] - x[:, 1] + 3 * x[:, 2]
+    check(np.max(np.abs(lin[valid, 0] - exact[valid]), initial=0) < 1e-11, "2D linear field exact in parallel")
+
+# A new time step of the Source field: the kept operator is reused on every
+# process, and the result is the serial one for the new field.
+lt, ls = split(numbered(t2), "random", "input"), split(s2, "random", "source")
+f = meshprojection.vtkPMeshProjectionFilter()
+f.SetInputData(lt)
+f.SetSourceData(ls)
+f.Update()
+check(f.GetNumberOfOperatorsBuilt() > 0, "time: built at the first step")
+# (Inputs given as data are not time series: the second execution sees the
+# same meshes and keeps an assembled operator, the third reuses it.)
+for step in (2, 3):
+    for data in (ls, s2):
+        a = data.GetPointData().GetArray("f")
+        for i in range(a.GetNumberOfTuples()):
+            a.SetValue(i, 2.0 * a.GetValue(i) + 1.0)
+        a.Modified()
+        data.Modified()
+    f.Update()
+check(f.GetNumberOfOperatorsBuilt() == 0, "time: the operator is reused at the third step (built %d)"
+      % f.GetNumberOfOperatorsBuilt())
+check(f.GetOperatorReused(), "time: OperatorReused at the third step")
+serial = run(meshprojection.vtkMeshProjectionFilter, t2, s2, CacheOperator=False)
+compare("time step 3", serial.GetOutputDataObject(0), f.GetOutputDataObject(0),
+        {"f": float(np.ptp(vtk_to_numpy(s2.GetPointData().GetArray("f")))), "linear": 1.0, "cellf": 1.0})
+
+# Global statistics: totals over the processes.
+check(f.GetGlobalNumberOfIntersections() >= f.GetNumberOfIntersections(), "global pieces >= local")
+check(abs(f.GetGlobalCoveredMeasure() - serial.GetCoveredMeasure()) < 1e-12,
+      "global covered measure %.15g vs serial %.15g" % (f.GetGlobalCoveredMeasure(), serial.GetCoveredMeasure()))
+
+bad = int(sum(allgather(np.array([float(len(failures))]))[r][0] for r in range(size)))
+if rank == 0:
+    print("%d processes: %s" % (size, "all checks passed" if bad == 0 else "%d check(s) failed" % bad))
+controller.Finalize()
+sys.exit(1 if bad else 0)
