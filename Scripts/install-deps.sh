@@ -24,6 +24,7 @@ PACKAGES=(
   paraview
   paraview-dev
   python3-paraview
+  openmpi-bin                # mpiexec: the MPI tests (vtkPMeshProjectionFilter) and bench_mpi.py
 
   # --- needed by paraview-dev's CMake config, not pulled in by it ---
   python3-matplotlib         # Scripts/plot_benchmark.py (the README's performance plot)
