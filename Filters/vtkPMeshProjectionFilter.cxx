@@ -363,6 +363,11 @@ private:
   std::vector<std::vector<mp::Index>> Rows;
   std::vector<char> Counted;
   std::vector<mp::Index> SharedRows; ///< distinct, ascending
+  /// Points of one process at one place (or with one global id, as a
+  /// ghost cells generator may leave them) are one point: each point's
+  /// first copy (Representative), and the rows of those with copies.
+  std::vector<vtkIdType> Representative;
+  std::vector<std::vector<mp::Index>> Copies; ///< rows of one point, ascending, first the rows' representative
 };
 
 std::vector<std::vector<char>> MPIParts::AllToAll(std::vector<std::vector<char>>& out)
@@ -984,6 +989,23 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     return b;
   };
   auto idOf = [&](vtkIdType p) { return static_cast<double>(global->GetTuple1(p)); };
+  std::unordered_map<PointKey, vtkIdType, PointKeyHash> index;
+  index.reserve(static_cast<size_t>(np));
+  this->Representative.resize(static_cast<size_t>(np));
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    PointKey k;
+    if (useIds)
+    {
+      k.X[0] = idOf(p);
+      k.X[1] = k.X[2] = 0.0;
+    }
+    else
+    {
+      k = KeyOf(&x[3 * p]);
+    }
+    this->Representative[p] = index.emplace(k, p).first->second;
+  }
   // Candidates to each higher process: the points inside its box (their
   // ids, or coordinates); it answers which it has.
   std::vector<std::vector<vtkIdType>> candidates(static_cast<size_t>(n));
@@ -997,7 +1019,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     }
     for (vtkIdType p = 0; p < np; ++p)
     {
-      if (Inside(b, &x[3 * p]))
+      if (this->Representative[p] == p && Inside(b, &x[3 * p]))
       {
         candidates[r].push_back(p);
         if (useIds)
@@ -1014,8 +1036,6 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     }
   }
   std::vector<std::vector<char>> in = this->AllToAll(out);
-  std::unordered_map<PointKey, vtkIdType, PointKeyHash> index;
-  bool indexed = false;
   std::vector<std::vector<vtkIdType>> shared(static_cast<size_t>(n));
   std::vector<std::vector<char>> answers(static_cast<size_t>(n));
   for (int s = 0; s < this->Me; ++s)
@@ -1024,25 +1044,6 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     if (v.empty())
     {
       continue;
-    }
-    if (!indexed)
-    {
-      index.reserve(static_cast<size_t>(np));
-      for (vtkIdType p = 0; p < np; ++p)
-      {
-        PointKey k;
-        if (useIds)
-        {
-          k.X[0] = idOf(p);
-          k.X[1] = k.X[2] = 0.0;
-        }
-        else
-        {
-          k = KeyOf(&x[3 * p]);
-        }
-        index.emplace(k, p);
-      }
-      indexed = true;
     }
     const size_t width = useIds ? 1 : 3;
     for (size_t at = 0; at + width <= v.size(); at += width)
@@ -1086,6 +1087,10 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
       this->SharedPoints.push_back(shared[r]);
     }
   }
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    this->Owner[p] = this->Owner[this->Representative[p]];
+  }
   if (useIds)
   {
     return target;
@@ -1095,7 +1100,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
   long long owned = 0;
   for (vtkIdType p = 0; p < np; ++p)
   {
-    owned += this->Owner[p] == this->Me;
+    owned += this->Owner[p] == this->Me && this->Representative[p] == p;
   }
   std::vector<long long> counts(static_cast<size_t>(n));
   this->C->AllGather(&owned, counts.data(), 1);
@@ -1109,7 +1114,8 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
   ids->SetNumberOfValues(np);
   for (vtkIdType p = 0; p < np; ++p)
   {
-    ids->SetValue(p, this->Owner[p] == this->Me ? static_cast<vtkIdType>(next++) : -1);
+    ids->SetValue(p,
+      this->Owner[p] == this->Me && this->Representative[p] == p ? static_cast<vtkIdType>(next++) : -1);
   }
   std::vector<std::vector<double>> send(this->Neighbours.size()), recv(this->Neighbours.size());
   for (size_t i = 0; i < this->Neighbours.size(); ++i)
@@ -1136,6 +1142,10 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
       }
     }
   }
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    ids->SetValue(p, ids->GetValue(this->Representative[p]));
+  }
   vtkSmartPointer<vtkDataSet> copy;
   copy.TakeReference(target->NewInstance());
   copy->ShallowCopy(target);
@@ -1158,7 +1168,27 @@ mp::SolverHooks MPIParts::Hooks(
   {
     const vtkIdType p = dataSetPoint(f);
     rowOf[static_cast<size_t>(p)] = f;
-    this->Counted[f] = this->Owner[static_cast<size_t>(p)] == this->Me;
+    this->Counted[f] =
+      this->Owner[static_cast<size_t>(p)] == this->Me && this->Representative[static_cast<size_t>(p)] == p;
+  }
+  this->Copies.clear();
+  {
+    std::map<vtkIdType, std::vector<mp::Index>> groups;
+    for (mp::Index f = 0; f < rows; ++f)
+    {
+      const vtkIdType p = dataSetPoint(f);
+      if (this->Representative[static_cast<size_t>(p)] != p)
+      {
+        groups[this->Representative[static_cast<size_t>(p)]].push_back(f);
+      }
+    }
+    for (auto& g : groups)
+    {
+      std::vector<mp::Index> rowsOf(1, rowOf[static_cast<size_t>(g.first)]);
+      std::sort(g.second.begin(), g.second.end());
+      rowsOf.insert(rowsOf.end(), g.second.begin(), g.second.end());
+      this->Copies.push_back(rowsOf);
+    }
   }
   this->Rows.assign(this->Neighbours.size(), std::vector<mp::Index>());
   this->SharedRows.clear();
@@ -1175,6 +1205,17 @@ mp::SolverHooks MPIParts::Hooks(
     std::unique(this->SharedRows.begin(), this->SharedRows.end()), this->SharedRows.end());
   hooks.Counted = this->Counted.data();
   hooks.Exchange = [this](double* v, int width) {
+    // Copies of one point here: summed into its first copy (in row order).
+    for (const std::vector<mp::Index>& rows : this->Copies)
+    {
+      for (size_t j = 1; j < rows.size(); ++j)
+      {
+        for (int c = 0; c < width; ++c)
+        {
+          v[rows[0] * width + c] += v[rows[j] * width + c];
+        }
+      }
+    }
     const size_t k = this->Neighbours.size();
     std::vector<std::vector<double>> send(k), recv(k);
     for (size_t i = 0; i < k; ++i)
@@ -1229,6 +1270,13 @@ mp::SolverHooks MPIParts::Hooks(
     {
       std::copy(sum.begin() + s * width, sum.begin() + (s + 1) * width,
         v + this->SharedRows[s] * width);
+    }
+    for (const std::vector<mp::Index>& rows : this->Copies)
+    {
+      for (size_t j = 1; j < rows.size(); ++j)
+      {
+        std::copy(v + rows[0] * width, v + (rows[0] + 1) * width, v + rows[j] * width);
+      }
     }
   };
   return hooks;
