@@ -1287,25 +1287,6 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
   const mp::MeshView& view = run.SourceMesh.View();
   const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
   const int width = g.Components;
-  // On several processes, an array with non-finite values on any process is
-  // projected with its own operator on all (with no cell left out where it
-  // has none), each array alone: the solves are collective.
-  std::vector<char> anywhere(g.Arrays.size(), 0);
-  if (this->Parts)
-  {
-    for (size_t a = 0; a < g.Arrays.size(); ++a)
-    {
-      const int nc = g.Arrays[a]->GetNumberOfComponents();
-      for (mp::Index f = 0; f < functions && !anywhere[a]; ++f)
-      {
-        for (int k = 0; k < nc; ++k)
-        {
-          anywhere[a] = anywhere[a] || !std::isfinite(g.Values[f * width + g.Offsets[a] + k]);
-        }
-      }
-    }
-    this->Parts->Or(anywhere);
-  }
   for (int a = 0; a < static_cast<int>(g.Arrays.size()); ++a)
   {
     const int nc = g.Arrays[a]->GetNumberOfComponents();
@@ -1326,7 +1307,15 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
       }
       values += count;
     });
-    if (values == 0 && !anywhere[a])
+    // On several processes, an array with non-finite values on any process is
+    // projected with its own operator on all (with no cell left out where it
+    // has none), each array alone: the solves are collective.
+    std::vector<char> anywhere(1, values > 0);
+    if (this->Parts)
+    {
+      this->Parts->Or(anywhere);
+    }
+    if (!anywhere[0])
     {
       continue;
     }

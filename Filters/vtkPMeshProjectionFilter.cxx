@@ -58,6 +58,16 @@ void Grow(Box& b, const double* x)
   }
 }
 
+/// a := the box of a and b.
+void Unite(Box& a, const Box& b)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    a[2 * d] = std::min(a[2 * d], b[2 * d]);
+    a[2 * d + 1] = std::max(a[2 * d + 1], b[2 * d + 1]);
+  }
+}
+
 bool Meet(const Box& a, const Box& b)
 {
   for (int d = 0; d < 3; ++d)
@@ -145,6 +155,41 @@ Box CellBox(vtkDataSet* data, vtkIdType c, vtkIdList* ids)
     Grow(b, x);
   }
   return b;
+}
+
+/// Appends cell c of `from` to `to`, its point ids through `map` (a
+/// polyhedron with its faces).
+template <class Map>
+void CopyCell(vtkDataSet* from, vtkIdType c, const Map& map, vtkUnstructuredGrid* to, vtkIdList* ids,
+  std::vector<vtkIdType>& pts, std::vector<vtkIdType>& faces)
+{
+  from->GetCellPoints(c, ids);
+  pts.resize(static_cast<size_t>(ids->GetNumberOfIds()));
+  for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+  {
+    pts[k] = map(ids->GetId(k));
+  }
+  const int type = from->GetCellType(c);
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(from);
+  if (type != VTK_POLYHEDRON || !grid)
+  {
+    to->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data());
+    return;
+  }
+  vtkIdType nfaces = 0;
+  const vtkIdType* f = nullptr;
+  grid->GetFaceStream(c, nfaces, f);
+  faces.clear();
+  for (vtkIdType k = 0; k < nfaces; ++k)
+  {
+    const vtkIdType m = *f++;
+    faces.push_back(m);
+    for (vtkIdType i = 0; i < m; ++i)
+    {
+      faces.push_back(map(*f++));
+    }
+  }
+  to->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data(), nfaces, faces.data());
 }
 
 bool IsGhost(vtkUnsignedCharArray* ghosts, vtkIdType c)
@@ -481,11 +526,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
           b[2 * d + 1] += grow;
         }
         cells.push_back(b);
-        for (int d = 0; d < 3; ++d)
-        {
-          mine.Bounds[2 * d] = std::min(mine.Bounds[2 * d], b[2 * d]);
-          mine.Bounds[2 * d + 1] = std::max(mine.Bounds[2 * d + 1], b[2 * d + 1]);
-        }
+        Unite(mine.Bounds, b);
       }
     }
     if (!cells.empty())
@@ -522,12 +563,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
                     part[2 * d + 1], at[d] == mine.Bins[d] - 1 ? HUGE_VAL : a + w * (at[d] + 1));
                 }
               }
-              Box& bin = mine.Boxes[(k * mine.Bins[1] + j) * mine.Bins[0] + i];
-              for (int d = 0; d < 3; ++d)
-              {
-                bin[2 * d] = std::min(bin[2 * d], part[2 * d]);
-                bin[2 * d + 1] = std::max(bin[2 * d + 1], part[2 * d + 1]);
-              }
+              Unite(mine.Boxes[(k * mine.Bins[1] + j) * mine.Bins[0] + i], part);
             }
           }
         }
@@ -674,7 +710,6 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
       }
     }
   }
-  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(source);
   auto pieceOf = [&](const std::vector<vtkIdType>& cells) {
     vtkNew<vtkUnstructuredGrid> piece;
     std::unordered_map<vtkIdType, vtkIdType> local;
@@ -691,35 +726,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
     std::vector<vtkIdType> pts, faces;
     for (vtkIdType c : cells)
     {
-      source->GetCellPoints(c, ids);
-      pts.resize(static_cast<size_t>(ids->GetNumberOfIds()));
-      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-      {
-        pts[k] = idOf(ids->GetId(k));
-      }
-      const int type = source->GetCellType(c);
-      if (type == VTK_POLYHEDRON && grid)
-      {
-        vtkIdType nfaces = 0;
-        const vtkIdType* stream = nullptr;
-        grid->GetFaceStream(c, nfaces, stream);
-        faces.clear();
-        const vtkIdType* f = stream;
-        for (vtkIdType k = 0; k < nfaces; ++k)
-        {
-          const vtkIdType m = *f++;
-          faces.push_back(m);
-          for (vtkIdType i = 0; i < m; ++i)
-          {
-            faces.push_back(idOf(*f++));
-          }
-        }
-        piece->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data(), nfaces, faces.data());
-      }
-      else
-      {
-        piece->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data());
-      }
+      CopyCell(source, c, idOf, piece, ids, pts, faces);
     }
     vtkNew<vtkPoints> xyz;
     xyz->SetDataTypeToDouble();
@@ -859,39 +866,10 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
   std::vector<vtkIdType> pts, faces;
   for (size_t i = 0; i < pieces.size(); ++i)
   {
-    vtkUnstructuredGrid* piece = pieces[i];
-    for (vtkIdType c = 0; c < piece->GetNumberOfCells(); ++c)
+    const std::vector<vtkIdType>& to = newId[i];
+    for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
     {
-      vtkIdType npts = 0;
-      const vtkIdType* p = nullptr;
-      piece->GetCellPoints(c, npts, p);
-      pts.resize(static_cast<size_t>(npts));
-      for (vtkIdType k = 0; k < npts; ++k)
-      {
-        pts[k] = newId[i][p[k]];
-      }
-      const int type = piece->GetCellType(c);
-      if (type == VTK_POLYHEDRON)
-      {
-        vtkIdType nfaces = 0;
-        const vtkIdType* stream = nullptr;
-        piece->GetFaceStream(c, nfaces, stream);
-        faces.clear();
-        for (vtkIdType k = 0; k < nfaces; ++k)
-        {
-          const vtkIdType m = *stream++;
-          faces.push_back(m);
-          for (vtkIdType j = 0; j < m; ++j)
-          {
-            faces.push_back(newId[i][*stream++]);
-          }
-        }
-        merged->InsertNextCell(type, npts, pts.data(), nfaces, faces.data());
-      }
-      else
-      {
-        merged->InsertNextCell(type, npts, pts.data());
-      }
+      CopyCell(pieces[i], c, [&to](vtkIdType p) { return to[p]; }, merged, ids, pts, faces);
     }
   }
   this->Received = cellCount;
@@ -989,22 +967,25 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     return b;
   };
   auto idOf = [&](vtkIdType p) { return static_cast<double>(global->GetTuple1(p)); };
+  // Each point's identity: its global id (then the key's first number), or
+  // its coordinates; sent as the key's first `width` numbers.
+  const size_t width = useIds ? 1 : 3;
+  std::vector<PointKey> keys(static_cast<size_t>(np));
   std::unordered_map<PointKey, vtkIdType, PointKeyHash> index;
   index.reserve(static_cast<size_t>(np));
   this->Representative.resize(static_cast<size_t>(np));
   for (vtkIdType p = 0; p < np; ++p)
   {
-    PointKey k;
     if (useIds)
     {
-      k.X[0] = idOf(p);
-      k.X[1] = k.X[2] = 0.0;
+      keys[p].X[0] = idOf(p);
+      keys[p].X[1] = keys[p].X[2] = 0.0;
     }
     else
     {
-      k = KeyOf(&x[3 * p]);
+      keys[p] = KeyOf(&x[3 * p]);
     }
-    this->Representative[p] = index.emplace(k, p).first->second;
+    this->Representative[p] = index.emplace(keys[p], p).first->second;
   }
   // Candidates to each higher process: the points inside its box (their
   // ids, or coordinates); it answers which it has.
@@ -1022,16 +1003,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
       if (this->Representative[p] == p && Inside(b, &x[3 * p]))
       {
         candidates[r].push_back(p);
-        if (useIds)
-        {
-          const double id = idOf(p);
-          Append(out[r], &id, 1);
-        }
-        else
-        {
-          const PointKey k = KeyOf(&x[3 * p]);
-          Append(out[r], k.X, 3);
-        }
+        Append(out[r], keys[p].X, width);
       }
     }
   }
@@ -1045,13 +1017,10 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     {
       continue;
     }
-    const size_t width = useIds ? 1 : 3;
     for (size_t at = 0; at + width <= v.size(); at += width)
     {
-      PointKey k;
-      k.X[0] = v[at];
-      k.X[1] = useIds ? 0.0 : v[at + 1];
-      k.X[2] = useIds ? 0.0 : v[at + 2];
+      PointKey k{ { 0.0, 0.0, 0.0 } };
+      std::copy(v.begin() + at, v.begin() + at + width, k.X);
       auto found = index.find(k);
       const char yes = found != index.end();
       answers[s].push_back(yes);
