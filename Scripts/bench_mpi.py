@@ -7,7 +7,7 @@ process holds, receives, sends and allocates.
         [--repeat R] [--threads T] [--seed N]
 
 Every process builds the same pair of meshes from jittered grids (the
-builders of Testing/Python/TestMeshProjectionMPI.py, vectorised; no cell
+builders of Testing/Python/mpmpi.py, shared with the MPI test; no cell
 inverted):
   * tri: about 10^6 target triangles of the unit square and a Source of
     about 0.8 x 10^6 triangles of a slightly shifted square;
@@ -40,34 +40,18 @@ Markdown: one row per process, the global totals and a summary line
 import argparse
 import ctypes
 import gc
-import os
 import sys
 import time
-import traceback
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING, vtkPoints
-from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE, vtkCellArray, vtkUnstructuredGrid
-from vtkmodules.vtkFiltersCore import vtkExtractCells
-from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import VTK_STRING
+from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE
+from vtkmodules.vtkParallelCore import vtkCommunicator
 
+import mpmpi  # noqa: E402  (Testing/Python: shared with the MPI test)
 
-def _abort(kind, value, tb):
-    # One process failing must end all (the others would wait in a collective).
-    traceback.print_exception(kind, value, tb)
-    sys.stderr.flush()
-    os._exit(1)
-
-
-sys.excepthook = _abort
-controller = vtkMultiProcessController.GetGlobalController()
-ours = controller is None  # (pvbatch --mpi finalizes its own)
-if ours:
-    from vtkmodules.vtkParallelMPI import vtkMPIController
-    controller = vtkMPIController()
-    controller.Initialize()
-    vtkMultiProcessController.SetGlobalController(controller)
+controller, ours = mpmpi.start()  # (pvbatch --mpi finalizes its own)
 rank = controller.GetLocalProcessId()
 size = controller.GetNumberOfProcesses()
 
@@ -76,23 +60,11 @@ import meshprojection  # noqa: E402  (after MPI is up)
 
 # ---- collectives ------------------------------------------------------------
 def allreduce(value, op=vtkCommunicator.MAX_OP):
-    out = numpy_to_vtk(np.zeros(1), deep=True)
-    controller.AllReduce(numpy_to_vtk(np.array([float(value)]), deep=True), out, op)
-    return float(vtk_to_numpy(out)[0])
+    return mpmpi.allreduce(controller, value, op)
 
 
 def allgather(values):
-    """Each process's 1D float array, to every process (a list by rank).
-    (AllGatherV crashes from Python: a padded AllGather.)"""
-    values = np.asarray(values, dtype=np.float64)
-    m = int(allreduce(len(values)))
-    padded = np.full(m + 1, np.nan)
-    padded[0] = len(values)
-    padded[1:len(values) + 1] = values
-    recv = numpy_to_vtk(np.zeros(size * (m + 1)), deep=True)
-    controller.AllGather(numpy_to_vtk(padded, deep=True), recv)
-    everything = vtk_to_numpy(recv).reshape(size, m + 1)
-    return [row[1:1 + int(row[0])].copy() for row in everything]
+    return mpmpi.allgather(controller, values)
 
 
 # ---- memory -----------------------------------------------------------------
@@ -123,64 +95,19 @@ def reset_peak():
         return False
 
 
-# ---- meshes (vectorised) ------------------------------------------------------
-def grid(points, cells, cell_type):
-    g = vtkUnstructuredGrid()
-    p = vtkPoints()
-    p.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float64), deep=True))
-    g.SetPoints(p)
-    ca = vtkCellArray()
-    n = cells.shape[1]
-    offsets = np.arange(0, n * len(cells) + 1, n, dtype=np.int64)
-    ca.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True),
-               numpy_to_vtkIdTypeArray(np.ascontiguousarray(cells, dtype=np.int64).ravel(), deep=True))
-    g.SetCells(cell_type, ca)
-    return g
-
-
-def structured(n, lo, hi, dim, seed, jitter=0.25):
-    """Points of an n^dim grid of [lo, hi]^dim (first axis slowest), interior
-    ones jittered by up to `jitter` of the spacing."""
-    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
-    idx = np.indices((n + 1,) * dim).reshape(dim, -1).T
-    h = (hi[:dim] - lo[:dim]) / n
-    x = np.zeros((len(idx), 3))
-    x[:, :dim] = lo[:dim] + idx * h
-    inner = np.all((idx > 0) & (idx < n), axis=1)
-    rng = np.random.default_rng(seed)
-    x[inner, :dim] += jitter * h * rng.uniform(-1, 1, (int(inner.sum()), dim))
-    return x
-
-
-def triangles(n, lo, hi, seed):
-    x = structured(n, lo, hi, 2, seed)
-    v = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
-    a, b, c, d = v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()
-    return x, np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)]), VTK_TRIANGLE
-
-
-def tetrahedra(n, lo, hi, seed):
-    # (Jitter 0.2, not the test's 0.25: that inverts a tetrahedron at these sizes.)
-    x = structured(n, lo, hi, 3, seed, jitter=0.2)
-    v = np.arange((n + 1) ** 3).reshape((n + 1,) * 3)
-    c = [v[i:n + i, j:n + j, k:n + k].ravel() for (i, j, k) in
-         [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]]
-    # Six tetrahedra around the diagonal 0-6 of each cube (conforming).
-    tets = [(0, 1, 2, 6), (0, 2, 3, 6), (0, 3, 7, 6), (0, 7, 4, 6), (0, 4, 5, 6), (0, 5, 1, 6)]
-    return x, np.concatenate([np.stack([c[a], c[b], c[d], c[e]], 1) for (a, b, d, e) in tets]), VTK_TETRA
-
-
+# ---- meshes -------------------------------------------------------------------
 def mesh(kind, cells, lo, hi, seed):
     """About `cells` triangles / tetrahedra of the box [lo, hi], with a point
     field "f" and a cell field "g"; and the x of the cell centres."""
     if kind == "tri":
         n = max(2, int(round(np.sqrt(cells / 2.0))))
-        x, conn, ctype = triangles(n, lo, hi, seed)
+        x, conn, ctype = (*mpmpi.triangles(n, lo, hi, seed), VTK_TRIANGLE)
     else:
         n = max(2, int(round((cells / 6.0) ** (1.0 / 3))))
-        x, conn, ctype = tetrahedra(n, lo, hi, seed)
+        # (Jitter 0.2, not 0.25: that inverts a tetrahedron at these sizes.)
+        x, conn, ctype = (*mpmpi.tetrahedra(n, lo, hi, seed, jitter=0.2), VTK_TETRA)
     centres = x[conn].mean(axis=1)
-    g = grid(x, conn, ctype)
+    g = mpmpi.grid(x, conn, ctype)
     f = numpy_to_vtk(np.sin(3 * x[:, 0]) * np.cos(2 * x[:, 1]) + 0.5 * x[:, 2], deep=True)
     f.SetName("f")
     g.GetPointData().AddArray(f)
@@ -199,17 +126,6 @@ def owners(how, cx, seed):
         owner[order] = np.minimum((np.arange(n) * size) // n, size - 1)
         return owner
     return np.random.default_rng(seed).integers(0, size, n)
-
-
-def extract(g, keep):
-    e = vtkExtractCells()
-    e.SetInputData(g)
-    ids = np.nonzero(keep)[0].astype(np.int64)
-    e.SetCellIds(ids.tolist(), len(ids))
-    e.Update()
-    out = vtkUnstructuredGrid()
-    out.ShallowCopy(e.GetOutput())
-    return out
 
 
 # ---- one run ------------------------------------------------------------------
@@ -263,8 +179,8 @@ def main():
     total_target, total_source = target.GetNumberOfCells(), source.GetNumberOfCells()
     build = time.perf_counter() - start
     start = time.perf_counter()
-    local_target = extract(target, owners(args.partition, tx, args.seed) == rank)
-    local_source = extract(source, owners(args.partition, sx, args.seed + 1) == rank)
+    local_target = mpmpi.extract(target, owners(args.partition, tx, args.seed) == rank)
+    local_source = mpmpi.extract(source, owners(args.partition, sx, args.seed + 1) == rank)
     split = time.perf_counter() - start
     del target, source, tx, sx
     release()

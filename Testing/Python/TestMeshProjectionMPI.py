@@ -13,34 +13,15 @@ Source on one process and all Input on another, one process without Input.
 Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds; point and
 cell data; lumped mass; a composite Input; a time step reusing the operator.
 """
-import os
 import sys
-import traceback
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkIdList, vtkPoints
-from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_TETRA, VTK_TRIANGLE, vtkCellArray,
-                                           vtkMultiBlockDataSet, vtkUnstructuredGrid)
-from vtkmodules.vtkFiltersCore import vtkExtractCells
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
-from vtkmodules.vtkParallelMPI import vtkMPIController
+from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_TETRA, VTK_TRIANGLE, vtkMultiBlockDataSet, vtkUnstructuredGrid
 
+import mpmpi
 
-
-def _abort(kind, value, tb):
-    # One process failing must end all (the others would wait in a collective).
-    traceback.print_exception(kind, value, tb)
-    sys.stderr.flush()
-    os._exit(1)
-
-
-sys.excepthook = _abort
-controller = vtkMultiProcessController.GetGlobalController()
-if controller is None or controller.GetNumberOfProcesses() < 2:
-    controller = vtkMPIController()
-    controller.Initialize()
-    vtkMultiProcessController.SetGlobalController(controller)
+controller, made_here = mpmpi.start()
 rank = controller.GetLocalProcessId()
 size = controller.GetNumberOfProcesses()
 
@@ -56,64 +37,16 @@ def check(condition, what):
 
 
 # ---- meshes ---------------------------------------------------------------
-def grid(points, cells, cell_type):
-    g = vtkUnstructuredGrid()
-    p = vtkPoints()
-    p.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float64), deep=True))
-    g.SetPoints(p)
-    ca = vtkCellArray()
-    n = cells.shape[1]
-    offsets = np.arange(0, n * len(cells) + 1, n, dtype=np.int64)
-    ca.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True),
-               numpy_to_vtkIdTypeArray(cells.astype(np.int64).ravel(), deep=True))
-    g.SetCells(cell_type, ca)
-    return g
-
-
-def structured(n, lo, hi, dim, seed, jitter=0.25):
-    """Points of an n^dim grid of [lo, hi]^dim, interior ones jittered."""
-    axes = [np.linspace(lo[d], hi[d], n + 1) for d in range(dim)]
-    mesh = np.meshgrid(*axes, indexing="ij")
-    x = np.zeros(((n + 1) ** dim, 3))
-    for d in range(dim):
-        x[:, d] = mesh[d].ravel()
-    rng = np.random.default_rng(seed)
-    h = (np.array(hi) - np.array(lo)) / n
-    inner = np.all([(x[:, d] > lo[d] + 1e-12) & (x[:, d] < hi[d] - 1e-12) for d in range(dim)], axis=0)
-    for d in range(dim):
-        x[inner, d] += jitter * h[d] * rng.uniform(-1, 1, inner.sum())
-    return x
-
-
-def index(n, dim):
-    return np.arange((n + 1) ** dim).reshape((n + 1,) * dim)
-
-
 def triangles(n, lo, hi, seed):
-    x = structured(n, lo, hi, 2, seed)
-    v = index(n, 2)
-    a, b, c, d = v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()
-    cells = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
-    return grid(x, cells, VTK_TRIANGLE)
+    return mpmpi.grid(*mpmpi.triangles(n, lo, hi, seed), VTK_TRIANGLE)
 
 
 def hexahedra(n, lo, hi, seed):
-    x = structured(n, lo, hi, 3, seed)
-    v = index(n, 3)
-    c = [v[i:n + i, j:n + j, k:n + k].ravel() for (i, j, k) in
-         [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]]
-    return grid(x, np.stack(c, 1), VTK_HEXAHEDRON)
+    return mpmpi.grid(*mpmpi.hexahedra(n, lo, hi, seed), VTK_HEXAHEDRON)
 
 
 def tetrahedra(n, lo, hi, seed):
-    x = structured(n, lo, hi, 3, seed)
-    v = index(n, 3)
-    c = [v[i:n + i, j:n + j, k:n + k].ravel() for (i, j, k) in
-         [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]]
-    # Six tetrahedra around the diagonal 0-6 of each cube (conforming).
-    tets = [(0, 1, 2, 6), (0, 2, 3, 6), (0, 3, 7, 6), (0, 7, 4, 6), (0, 4, 5, 6), (0, 5, 1, 6)]
-    cells = np.concatenate([np.stack([c[a], c[b], c[d], c[e]], 1) for (a, b, d, e) in tets])
-    return grid(x, cells, VTK_TETRA)
+    return mpmpi.grid(*mpmpi.tetrahedra(n, lo, hi, seed), VTK_TETRA)
 
 
 def with_fields(g, name="f"):
@@ -156,15 +89,7 @@ def centres(g):
 
 # ---- partitionings ----------------------------------------------------------
 def extract(g, keep, global_ids=False):
-    e = vtkExtractCells()
-    e.SetInputData(g)
-    ids = vtkIdList()
-    for c in np.nonzero(keep)[0]:
-        ids.InsertNextId(int(c))
-    e.SetCellList(ids)
-    e.Update()
-    out = vtkUnstructuredGrid()
-    out.ShallowCopy(e.GetOutput())
+    out = mpmpi.extract(g, keep)
     if global_ids:
         out.GetPointData().SetGlobalIds(out.GetPointData().GetArray("origId"))
     return out
@@ -282,23 +207,8 @@ def shared_points_agree(what, out):
     check(differ == 0, "%s: %d shared points differ between processes" % (what, differ))
 
 
-def allreduce_max(value):
-    from vtkmodules.vtkParallelCore import vtkCommunicator
-    out = numpy_to_vtk(np.zeros(1))
-    controller.AllReduce(numpy_to_vtk(np.array([float(value)])), out, vtkCommunicator.MAX_OP)
-    return float(vtk_to_numpy(out)[0])
-
-
 def allgather(values):
-    """Each process's 1D float array, to every process (a list by rank)."""
-    m = int(allreduce_max(len(values)))
-    padded = np.full(m + 1, np.nan)
-    padded[0] = len(values)
-    padded[1:len(values) + 1] = values
-    recv = numpy_to_vtk(np.zeros(size * (m + 1)), deep=True)
-    controller.AllGather(numpy_to_vtk(padded, deep=True), recv)
-    everything = vtk_to_numpy(recv).reshape(size, m + 1)
-    return [row[1:1 + int(row[0])] for row in everything]
+    return mpmpi.allgather(controller, values)
 
 
 def integrals(out):
@@ -433,5 +343,6 @@ check(abs(f.GetGlobalCoveredMeasure() - serial.GetCoveredMeasure()) < 1e-12,
 bad = int(sum(allgather(np.array([float(len(failures))]))[r][0] for r in range(size)))
 if rank == 0:
     print("%d processes: %s" % (size, "all checks passed" if bad == 0 else "%d check(s) failed" % bad))
-controller.Finalize()
+if made_here:
+    controller.Finalize()  # (pvbatch finalizes its own)
 sys.exit(1 if bad else 0)
