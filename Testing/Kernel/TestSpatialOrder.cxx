@@ -150,6 +150,59 @@ TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
   }
 }
 
+TEST(SpatialOrder, InterleavedSweepsCountAsShuffled)
+{
+  // 2D: all lower triangles of a grid, then all upper ones (ids and points
+  // tidy, but no cell has a face neighbour among the cells numbered next to
+  // it). 3D: the six tetrahedra of each cube grouped by kind.
+  TestMesh two;
+  two.Dimension = 2;
+  const int n = 80;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      const double wobble = (i > 0 && i < n && j > 0 && j < n) ? 0.2 * std::sin(7.0 * i + 3.0 * j) : 0.0;
+      two.Points.insert(two.Points.end(), { (i + wobble) / n, (j - wobble) / n, 0.0 });
+    }
+  }
+  for (int half = 0; half < 2; ++half)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const Index a = j * (n + 1) + i;
+        const Index b = a + 1;
+        const Index c = a + n + 2;
+        const Index d = a + n + 1;
+        two.Cells.insert(two.Cells.end(), { a, half ? c : b, half ? d : c });
+      }
+    }
+  }
+  two.Finish();
+  const TestMesh cubes = mptest::CubeMesh(12, 11, 10, 0.15, 3);
+  TestMesh kinds;
+  kinds.Dimension = 3;
+  kinds.Points = cubes.Points;
+  for (Index kind = 0; kind < 6; ++kind)
+  {
+    for (Index c = kind; c < cubes.NumberOfCells(); c += 6)
+    {
+      kinds.Cells.insert(kinds.Cells.end(), &cubes.Cells[4 * c], &cubes.Cells[4 * c] + 4);
+    }
+  }
+  kinds.Finish();
+  for (const TestMesh* m : { &two, &kinds })
+  {
+    const double tidy =
+      4.0 * std::pow(static_cast<double>(m->NumberOfPoints()), -1.0 / m->Dimension);
+    EXPECT_GE(mp::NumberingSpread(m->View(false)), 0.5) << m->Dimension << "D interleaved";
+    const Renumbered r(*m);
+    EXPECT_LT(mp::NumberingSpread(r.Mesh.View(false)), tidy) << m->Dimension << "D renumbered";
+  }
+}
+
 TEST(SpatialOrder, UnusedAndNonFinitePointsComeLastAndDoNotSpoilTheOrder)
 {
   TestMesh m = Shuffled(mptest::GridMesh(30, 30, 0.2, 5), 2);
