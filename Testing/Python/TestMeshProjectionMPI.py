@@ -7,7 +7,9 @@ runs the parallel filter. Checked on every process, for its own points and
 cells: values equal the serial ones (1e-10 of the field's range), the valid
 masks equal the serial ones, points shared by processes have the same
 value everywhere (bit for bit), and the integrals in the field data (totals
-over the processes) equal the serial ones (conservation). Partitionings:
+over the processes) equal the serial ones (conservation), and the warning
+on points valid through slivers only gives the serial count, once.
+Partitionings:
 Redistribute DataSet (DIY), a random split of the cells, blocks in x, all
 Source on one process and all Input on another, one process without Input.
 Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds; point and
@@ -15,7 +17,11 @@ cell data; lumped mass; a composite Input; a time step reusing the operator.
 """
 import sys
 
+import re
+
 import numpy as np
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_TETRA, VTK_TRIANGLE, vtkMultiBlockDataSet, vtkUnstructuredGrid
 
@@ -134,12 +140,29 @@ def redistributed(g):
 # ---- the comparison ---------------------------------------------------------
 def run(filter_class, target, source, **props):
     f = filter_class()
+    texts = []
+
+    @calldata_type(VTK_STRING)
+    def collect(obj, event, text):
+        texts.append(str(text))
+
+    f.AddObserver("WarningEvent", collect)
+    f.warnings = texts
     f.SetInputData(target)
     f.SetSourceData(source)
     for k, v in props.items():
         getattr(f, "Set" + k)(v)
     f.Update()
     return f
+
+
+def slivers_said(f):
+    """The number of points valid through slivers only in f's warning (0: none)."""
+    for text in f.warnings:
+        m = re.search(r"(\d+) \S+ points are valid through slivers only", text)
+        if m:
+            return int(m.group(1))
+    return 0
 
 
 def arrays_of(data):
@@ -267,6 +290,11 @@ def case(what, target, source, how, global_ids=False, composite=False, ghosts=Fa
         return par
     compare(what, sout, out, ranges)
     shared_points_agree(what, out)
+    # Points valid through slivers only: the serial count, said once (by
+    # process 0), however many processes share such a point's cells.
+    said = [int(v[0]) for v in allgather([slivers_said(par)])]
+    expected = [slivers_said(serial)] + [0] * (size - 1)
+    check(said == expected, "%s: points valid through slivers said %s, serial %s" % (what, said, expected[0]))
     si, pi = integrals(sout), integrals(out)
     check(set(si) == set(pi), "%s: integral arrays %s vs %s" % (what, sorted(si), sorted(pi)))
     for k in si:
@@ -284,6 +312,12 @@ for how in ("random", "blocks", "apart", "empty", "redistribute"):
 case("2D lumped, cells to points", t2, s2, "random", MassMatrix=1, CellDataTarget=3)
 case("2D composite", t2, s2, "random", composite=True)
 case("2D ghost cells", t2, s2, "blocks", ghosts=True)
+# Source ending 2e-5 past the first column of a regular Input: the second
+# column covered in slivers only. The points between the first two columns
+# also have well-covered cells, maybe on another process (not slivers).
+tr = with_fields(mpmpi.grid(*mpmpi.triangles(36, (0, 0, 0), (1, 1, 0), 7, jitter=0.0), VTK_TRIANGLE))
+ss = with_fields(triangles(29, (-0.5, -0.1, 0), (1 / 36 + 2e-5, 1.1, 0), 8))
+case("2D slivers at the Source's edge", tr, ss, "random")
 
 # 3D: tetrahedra, and hexahedra whose points carry GlobalIds.
 t3 = with_fields(tetrahedra(9, (0, 0, 0), (1, 1, 1), 3))
