@@ -271,17 +271,22 @@ struct VertexGraph
   int NumberOfVertices = 0;
   double X[MaxVertices][3];
   int Next[MaxVertices][3];
+  /// Back[v][j]: the slot of v among the neighbours of Next[v][j], so that
+  /// walks around faces never search for it.
+  int Back[MaxVertices][3];
   unsigned On[MaxVertices];
   int Original[MaxVertices]; ///< corner of the clipped cell, or -1
 
   void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
   {
     static const int next[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+    static const int back[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 }, { 2, 2, 1 } };
     this->NumberOfVertices = 4;
     for (int v = 0; v < 4; ++v)
     {
       std::copy(c.X[v], c.X[v] + 3, this->X[v]);
       std::copy(next[v], next[v] + 3, this->Next[v]);
+      std::copy(back[v], back[v] + 3, this->Back[v]);
       this->On[v] = (15u & ~(1u << v)) << 4;
       for (int k = 0; k < 4; ++k)
       {
@@ -289,11 +294,6 @@ struct VertexGraph
       }
       this->Original[v] = v;
     }
-  }
-
-  int SlotOf(int v, int neighbor) const
-  {
-    return this->Next[v][0] == neighbor ? 0 : (this->Next[v][1] == neighbor ? 1 : 2);
   }
 
   /// Keeps the part on the inner side of plane `bit`; false when it cannot
@@ -365,10 +365,13 @@ struct VertexGraph
         this->On[w] = (this->On[v] & this->On[q]) | bit;
         this->Original[w] = -1;
         this->Next[w][0] = v;
+        this->Back[w][0] = j;
         this->Next[w][1] = -1;
         this->Next[w][2] = -1;
         this->Beyond[w - n] = q;
+        this->BeyondBack[w - n] = this->Back[v][j]; // the slot of v in q
         this->Next[v][j] = w;
+        this->Back[v][j] = 0;
       }
     }
     // Link each new vertex w (on the edge kept v -> clipped q) to the next
@@ -376,38 +379,35 @@ struct VertexGraph
     // through the clipped vertices (whose links are still the old ones).
     for (int w = n; w < total; ++w)
     {
-      int previous = this->Next[w][0];
       int current = this->Beyond[w - n];
+      int slot = this->BeyondBack[w - n]; // of the vertex we came from, in current
       for (int steps = 0;; ++steps)
       {
         if (steps > MaxVertices)
         {
           return false;
         }
-        const int next = this->Next[current][(this->SlotOf(current, previous) + 1) % 3];
+        // Clipped vertices keep their old links (and back slots).
+        const int out = slot == 2 ? 0 : slot + 1;
+        const int next = this->Next[current][out];
+        const int back = this->Back[current][out]; // the slot of current in next
         if (d[next] < 0.0)
         {
-          previous = current;
           current = next;
+          slot = back;
           continue;
         }
         // next is kept: the edge next -> current carries a new vertex, in
         // the slot of next that pointed to current.
-        int found = -1;
-        for (int j = 0; j < 3; ++j)
-        {
-          const int x = this->Next[next][j];
-          if (x >= n && this->Beyond[x - n] == current)
-          {
-            found = x;
-          }
-        }
-        if (found < 0)
+        const int found = this->Next[next][back];
+        if (found < n || this->Beyond[found - n] != current)
         {
           return false;
         }
         this->Next[w][1] = found;
+        this->Back[w][1] = 2;
         this->Next[found][2] = w;
+        this->Back[found][2] = 1;
         break;
       }
     }
@@ -433,6 +433,7 @@ struct VertexGraph
           return false;
         }
         this->Next[to][j] = map[x];
+        this->Back[to][j] = this->Back[v][j];
       }
       if (to != v)
       {
@@ -445,6 +446,7 @@ struct VertexGraph
     return true;
   }
   int Beyond[MaxVertices]; ///< per new vertex (index - n): the clipped end of its edge
+  int BeyondBack[MaxVertices]; ///< per new vertex: the slot of its kept end in Beyond
 
   /**
    * The faces, walked from the links: the faces of positive area whose
@@ -495,7 +497,8 @@ struct VertexGraph
           holdsApex |= a == 0;
           common &= this->On[a];
           const int b = this->Next[a][slot];
-          slot = (this->SlotOf(b, a) + 1) % 3;
+          const int back = this->Back[a][slot];
+          slot = back == 2 ? 0 : back + 1;
           a = b;
         } while (a != v || slot != j);
         const unsigned target = (common >> targetShift) & 15u;
