@@ -790,7 +790,7 @@ std::vector<double> ParseList(const char* text)
 }
 
 const char* const FilterStageNames[7] = { "reading the inputs", "neighbours (VTK cell links)",
-  "seeding (vtkStaticCellLocator)", "search + intersections + integrals", "assembly", "solve",
+  "seeding (boundary-cell bins)", "search + intersections + integrals", "assembly", "solve",
   "writing the outputs" };
 
 /// --peer: libsupermesh's time on the same meshes, against the filter's.

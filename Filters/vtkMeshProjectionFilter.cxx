@@ -1680,7 +1680,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   auto prepareSearch = [&]() {
     if (!searchReady && mp::SearchNeedsNeighbors(options.Method))
     {
-      // Neighbours (VTK cell links) and the seed locator (vtkStaticCellLocator).
+      // Neighbours (VTK cell links) and the seed locator (bins of the boundary cells).
       targetMesh.BuildNeighbors();
       if (!run.SourceNeighbors)
       {
@@ -1715,7 +1715,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         // A Source without cells has nothing to locate: the kernel's own
         // (empty) locator answers the front's questions then.
         run.Locator.reset(sourceCells > 0
-            ? static_cast<mp::CandidateLocator*>(new mpvtk::StaticLocator(sourceMesh))
+            ? static_cast<mp::CandidateLocator*>(new mpvtk::SourceLocator(sourceMesh))
             : new mp::BoxGridLocator(sourceMesh.View()));
         run.SourceNeighbors = true;
         this->LocatorTime += Lap(run.Stage);

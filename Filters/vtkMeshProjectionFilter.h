@@ -18,8 +18,8 @@
  * Japhet ("An algorithm for non-matching grid projections with linear
  * complexity", Domain Decomposition Methods in Science and Engineering XVIII,
  * 2009): neighbours come from VTK's static cell links; a front starts with
- * a walk through the source, and re-seeds from a vtkStaticCellLocator over
- * the source's boundary cells (one over all source cells is built only when
+ * a walk through the source, and re-seeds from bins over the source's
+ * boundary cells (bins over all source cells are built only when
  * that cannot settle a cell, e.g. targets reaching beyond the source); the
  * geometry and the numerics live in a VTK-free kernel (Filters/Kernel).
  *
@@ -491,7 +491,7 @@ public:
    * inputs (cell types, the split of cells that are not simplices,
    * coordinate checks, the fields gathered), the cell
    * neighbours (VTK cell links), the locator over the source's boundary
-   * cells (vtkStaticCellLocator), the pair search with the intersections and
+   * cells (bins of their boxes), the pair search with the intersections and
    * local integrals (and a locator over all source cells, when one is
    * needed), the assembly, the solve, and writing the outputs.
    */

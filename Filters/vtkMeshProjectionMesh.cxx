@@ -21,7 +21,6 @@
 #include "vtkRectilinearGrid.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticCellLinksTemplate.h"
-#include "vtkStaticCellLocator.h"
 #include "vtkStructuredGrid.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
@@ -863,40 +862,6 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       }
     }
   }
-  // Points no cell uses may hold anything (NaN, 1e300): VTK's locators
-  // bound all points, so they see a copy where such points sit on a used one.
-  this->CleanGrid = nullptr;
-  const vtkIdType np = this->Kernel.NumberOfPoints;
-  auto wild = [this](vtkIdType p) {
-    const double* x = this->OriginalPoints + 3 * p;
-    for (int d = 0; d < 3; ++d)
-    {
-      if (!(std::fabs(x[d]) <= 1e100))
-      {
-        return true;
-      }
-    }
-    return false;
-  };
-  vtkIdType firstWild = -1;
-  for (vtkIdType p = 0; p < np && firstWild < 0 && this->Kernel.NumberOfCells > 0; ++p)
-  {
-    firstWild = wild(p) ? p : -1;
-  }
-  if (firstWild >= 0)
-  {
-    vtkNew<vtkPoints> clean;
-    clean->SetDataTypeToDouble();
-    clean->SetNumberOfPoints(np);
-    const double* anchor = this->Kernel.Point(ids[0]);
-    for (vtkIdType p = 0; p < np; ++p)
-    {
-      clean->SetPoint(p, wild(p) ? anchor : this->OriginalPoints + 3 * p);
-    }
-    this->CleanGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-    this->CleanGrid->ShallowCopy(this->SimplexGrid);
-    this->CleanGrid->SetPoints(clean);
-  }
   double deviation = 0.0;
   double size = 0.0;
   this->Kernel.SpaceDimension = this->Kernel.CellDimension;
@@ -1010,128 +975,62 @@ void SimplexMesh::BuildNeighbors()
   }
 }
 
-struct StaticLocator::Shared
-{
-  vtkUnstructuredGrid* Grid = nullptr;
-  vtkSmartPointer<vtkStaticCellLocator> All;      ///< over Grid, built when first asked
-  vtkSmartPointer<vtkStaticCellLocator> Boundary; ///< over BoundaryGrid
-  vtkSmartPointer<vtkUnstructuredGrid> BoundaryGrid;
-  std::vector<mp::Index> BoundaryCells; ///< kernel id of each BoundaryGrid cell
-  std::mutex Lock;
-};
-
-StaticLocator::StaticLocator(const SimplexMesh& mesh)
+SourceLocator::SourceLocator(const SimplexMesh& mesh)
   : Mesh(mesh)
-  , Locators(std::make_shared<Shared>())
 {
-  Shared& l = *this->Locators;
-  vtkUnstructuredGrid* grid = mesh.LocatorGrid();
-  l.Grid = grid;
-  mp::BoundaryCells(mesh.View(), l.BoundaryCells);
-  // The boundary cells as a grid of their own on the source's points.
-  const int corners = mesh.View().CornersPerCell();
-  const vtkIdType n = static_cast<vtkIdType>(l.BoundaryCells.size());
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(n + 1);
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(corners * n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    offsets->SetValue(i, corners * i);
-    const mp::Index* ids = mesh.View().Cell(l.BoundaryCells[i]);
-    for (int k = 0; k < corners; ++k)
-    {
-      connectivity->SetValue(corners * i + k, ids[k]);
-    }
-  }
-  offsets->SetValue(n, corners * n);
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  l.BoundaryGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  l.BoundaryGrid->SetPoints(grid->GetPoints());
-  l.BoundaryGrid->SetCells(SimplexType(corners - 1), cells);
-  l.Boundary = vtkSmartPointer<vtkStaticCellLocator>::New();
-  l.Boundary->SetDataSet(l.BoundaryGrid);
-  // Bins about two source cells wide, as for the whole source: the
-  // automatic choice would size them for the boundary cells filling the
-  // bounding box, and each query would return (and de-duplicate) many cells.
-  const double* bounds = l.BoundaryGrid->GetBounds();
-  const double lo[3] = { bounds[0], bounds[2], bounds[4] };
-  const double hi[3] = { bounds[1], bounds[3], bounds[5] };
-  int divisions[3];
   // A 2D mesh outside the planes z = constant spreads over 3D boxes.
   // (Curves and surfaces in space too.)
-  const int binDimension = mesh.Dimension() == 1 ||
-      (mesh.Dimension() == 2 && (!mesh.Frame().IsIdentity() || mesh.View().IsSurfaceMesh()))
-    ? 3
-    : mesh.Dimension();
-  mp::BinDivisions(lo, hi, binDimension, mesh.View().NumberOfCells, n, divisions);
-  l.Boundary->AutomaticOff();
-  l.Boundary->SetDivisions(divisions);
-  if (n > 0) // a closed surface has no boundary (VTK would report an error)
-  {
-    l.Boundary->BuildLocator();
-  }
+  const bool space = mesh.Dimension() == 1 ||
+    (mesh.Dimension() == 2 && (!mesh.Frame().IsIdentity() || mesh.View().IsSurfaceMesh()));
+  mp::MeshView view = mesh.View();
+  view.Points = mesh.SpacePoints();
+  view.SpaceDimension = space ? 3 : mesh.Dimension();
+  this->Flat = view.SpaceDimension == 2;
+  this->Bins.reset(new mp::BoxGridLocator(view));
 }
 
-StaticLocator::StaticLocator(std::shared_ptr<Shared> shared, const SimplexMesh& mesh)
+SourceLocator::SourceLocator(
+  const SimplexMesh& mesh, std::unique_ptr<mp::CandidateLocator> bins, bool flat)
   : Mesh(mesh)
-  , Locators(std::move(shared))
+  , Bins(std::move(bins))
+  , Flat(flat)
 {
 }
 
-std::unique_ptr<mp::CandidateLocator> StaticLocator::NewForThread() const
+std::unique_ptr<mp::CandidateLocator> SourceLocator::NewForThread() const
 {
-  return std::unique_ptr<mp::CandidateLocator>(new StaticLocator(this->Locators, this->Mesh));
+  return std::unique_ptr<mp::CandidateLocator>(
+    new SourceLocator(this->Mesh, this->Bins->NewForThread(), this->Flat));
 }
 
-StaticLocator::~StaticLocator() = default;
+SourceLocator::~SourceLocator() = default;
 
-void StaticLocator::FindCandidates(const double box[6], std::vector<mp::Index>& cells)
-{
-  this->Find(true, box, cells);
-}
-
-void StaticLocator::FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells)
-{
-  this->Find(false, box, cells);
-}
-
-void StaticLocator::Find(bool all, const double box[6], std::vector<mp::Index>& cells)
+void SourceLocator::ToSpace(const double box[6], double bounds[6]) const
 {
   // 2D: the kernel works in the frame's (x, y); the source lies in its own plane.
-  double bounds[6] = { box[0], box[1], box[2], box[3], box[4], box[5] };
+  std::copy(box, box + 6, bounds);
   if (this->Mesh.Dimension() == 2 && !this->Mesh.View().IsSurfaceMesh())
   {
     this->Mesh.Frame().BoxToSpace(box, bounds);
   }
-  Shared& l = *this->Locators;
+  if (this->Flat)
   {
-    std::lock_guard<std::mutex> guard(l.Lock);
-    if (all && !l.All)
-    {
-      l.All = vtkSmartPointer<vtkStaticCellLocator>::New();
-      l.All->SetDataSet(l.Grid);
-      l.All->BuildLocator();
-    }
-    if (all || !l.BoundaryCells.empty())
-    {
-      (all ? l.All : l.Boundary)->FindCellsWithinBounds(bounds, this->Ids);
-    }
-    else
-    {
-      this->Ids->Reset();
-    }
+    bounds[4] = bounds[5] = 0.0; // the bins' cells have z = 0
   }
-  cells.clear();
-  for (vtkIdType id : *this->Ids)
-  {
-    const mp::Index c = all ? this->Mesh.ToKernel(id) : l.BoundaryCells[id];
-    if (c >= 0)
-    {
-      cells.push_back(c);
-    }
-  }
+}
+
+void SourceLocator::FindCandidates(const double box[6], std::vector<mp::Index>& cells)
+{
+  double bounds[6];
+  this->ToSpace(box, bounds);
+  this->Bins->FindCandidates(bounds, cells);
+}
+
+void SourceLocator::FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells)
+{
+  double bounds[6];
+  this->ToSpace(box, bounds);
+  this->Bins->FindBoundaryCandidates(bounds, cells);
 }
 
 namespace

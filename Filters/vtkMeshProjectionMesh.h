@@ -24,7 +24,7 @@
  * cells have none of the mesh in them, so they are never covered), and
  * ToVTK() maps a kernel simplex to its cell of Grid(). Neighbours come from
  * vtkStaticCellLinks through the kernel's face matcher (mp::MatchFaces),
- * seeds from vtkStaticCellLocator.
+ * seeds from bins over the source's cells (SourceLocator).
  *
  * Not a public class of the module: no export macro, not wrapped.
  */
@@ -50,7 +50,6 @@
 class vtkDataSet;
 class vtkIdList;
 class vtkPolyData;
-class vtkStaticCellLocator;
 class vtkUnstructuredGrid;
 
 namespace mpvtk
@@ -105,12 +104,8 @@ public:
   double OrderSeconds() const { return this->OrderTime; }
   /// The simplices the kernel sees: the dataset itself, or its split.
   vtkUnstructuredGrid* Grid() const { return this->SimplexGrid; }
-  /// Grid() for VTK's locators: its points that no cell uses and that are
-  /// not finite (or beyond 1e100) moved onto a used point.
-  vtkUnstructuredGrid* LocatorGrid() const
-  {
-    return this->CleanGrid ? this->CleanGrid.GetPointer() : this->SimplexGrid;
-  }
+  /// The kernel's points in space (before any plane frame), 3 per point.
+  const double* SpacePoints() const { return this->OriginalPoints; }
   /// Cells left out for being of lower dimension than the mesh (vertices,
   /// lines, faces of a volume mesh).
   vtkIdType LowerDimensionalCells() const { return this->LowerDimensional; }
@@ -178,7 +173,6 @@ private:
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
   vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
-  vtkSmartPointer<vtkUnstructuredGrid> CleanGrid; ///< see LocatorGrid()
   std::vector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
   const double* OriginalPoints = nullptr;        ///< the points before any plane frame
   vtkIdType LowerDimensional = 0;
@@ -206,34 +200,33 @@ private:
 };
 
 /**
- * The kernel's candidate search over a source mesh, answered by
- * vtkStaticCellLocator: one over the source's boundary cells (a grid of
- * those cells sharing the source's points), built at once, and one over the
+ * The kernel's candidate search over a source mesh: mp::BoxGridLocator's
+ * bins over the cells' boxes in space (the source's own coordinates, so
+ * that the leaves of a composite Input may see it in different plane
+ * frames), one over the boundary cells, built at once, and one over the
  * whole source, built on the first question that needs it (see
- * CandidateLocator.h: on meshes of the same domain, never).
+ * CandidateLocator.h: on meshes of the same domain, never). Ghost cells
+ * are not the kernel's and never found.
  */
-class StaticLocator : public mp::CandidateLocator
+class SourceLocator : public mp::CandidateLocator
 {
 public:
   /// `mesh` must have its neighbours (SimplexMesh::BuildNeighbors).
-  explicit StaticLocator(const SimplexMesh& mesh);
-  ~StaticLocator() override;
+  explicit SourceLocator(const SimplexMesh& mesh);
+  ~SourceLocator() override;
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
   void FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells) override;
-  /// Shares the VTK locators; queries (and the lazy build) are serialized by
-  /// a shared mutex (they are rare: first seeds and cells at the source
-  /// boundary), since VTK 9.2 does not document FindCellsWithinBounds as
-  /// thread-safe.
+  /// Shares the bins (read only, the lazy one built once); no locks.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
 
 private:
-  struct Shared;
-  StaticLocator(std::shared_ptr<Shared> shared, const SimplexMesh& mesh);
-  void Find(bool all, const double box[6], std::vector<mp::Index>& cells);
+  SourceLocator(const SimplexMesh& mesh, std::unique_ptr<mp::CandidateLocator> bins, bool flat);
+  /// The kernel's box (in the mesh's frame) in space.
+  void ToSpace(const double box[6], double bounds[6]) const;
 
   const SimplexMesh& Mesh;
-  std::shared_ptr<Shared> Locators;
-  vtkNew<vtkIdList> Ids;
+  std::unique_ptr<mp::CandidateLocator> Bins;
+  bool Flat = false; ///< bins in (x, y) only: a mesh in z = constant
 };
 
 /// 2D: one polygon per intersecting pair in the target's plane, with

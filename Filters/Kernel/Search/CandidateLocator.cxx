@@ -70,21 +70,18 @@ void BinDivisions(const double lo[3], const double hi[3], int dimension, Index m
   }
 }
 
-BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared, Index cells)
+BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared)
   : Grids(std::move(shared))
-  , Stamp(static_cast<size_t>(cells), -1)
 {
 }
 
 std::unique_ptr<CandidateLocator> BoxGridLocator::NewForThread() const
 {
-  return std::unique_ptr<CandidateLocator>(
-    new BoxGridLocator(this->Grids, static_cast<Index>(this->Stamp.size())));
+  return std::unique_ptr<CandidateLocator>(new BoxGridLocator(this->Grids));
 }
 
 BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   : Grids(std::make_shared<Shared>())
-  , Stamp(static_cast<size_t>(mesh.NumberOfCells), -1)
 {
   this->Grids->Mesh = mesh;
   if (mesh.Neighbors)
@@ -192,7 +189,6 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)
 {
   cells.clear();
-  ++this->Query;
   int lo[3];
   int hi[3];
   g.Range(box, lo, hi);
@@ -201,15 +197,12 @@ void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Ind
       for (int i = lo[0]; i <= hi[0]; ++i)
       {
         const size_t bin = (size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i;
-        for (Index p = g.BinStart[bin]; p < g.BinStart[bin + 1]; ++p)
-        {
-          const Index c = g.BinCells[p];
-          if (this->Stamp[c] != this->Query)
-          {
-            this->Stamp[c] = this->Query;
-            cells.push_back(c);
-          }
-        }
+        cells.insert(cells.end(), g.BinCells.begin() + g.BinStart[bin],
+          g.BinCells.begin() + g.BinStart[bin + 1]);
       }
+  // A cell spanning several bins once (sorting the few found costs less
+  // than a mark per source cell and thread).
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
 } // namespace mp
