@@ -189,20 +189,47 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)
 {
   cells.clear();
-  int lo[3];
-  int hi[3];
-  g.Range(box, lo, hi);
-  for (int k = lo[2]; k <= hi[2]; ++k)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i)
+  int first[3];
+  int last[3];
+  g.Range(box, first, last);
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i)
       {
         const size_t bin = (size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i;
         cells.insert(cells.end(), g.BinCells.begin() + g.BinStart[bin],
           g.BinCells.begin() + g.BinStart[bin + 1]);
       }
   // A cell spanning several bins once (sorting the few found costs less
-  // than a mark per source cell and thread).
+  // than a mark per source cell and thread), and only cells whose own box
+  // meets the box: bins are two cells wide, so most cells in them do not,
+  // and each would cost the search a prepared cell and a test.
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  // The box grown by 1e-6 of its size: a box mapped from a plane frame
+  // to space is rounded, and a cell lying in that plane has no thickness.
+  double size = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    size = std::max(size, box[2 * d + 1] - box[2 * d]);
+  }
+  const double pad = 1e-6 * size;
+  double lo[3];
+  double hi[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = box[2 * d] - pad;
+    hi[d] = box[2 * d + 1] + pad;
+  }
+  const MeshView& mesh = this->Grids->Mesh;
+  cells.erase(std::remove_if(cells.begin(), cells.end(),
+                [&](Index c) {
+                  double b[6];
+                  CellBox(mesh, c, b);
+                  // (NaN compares false: such a cell stays)
+                  return b[1] < lo[0] || b[0] > hi[0] || b[3] < lo[1] || b[2] > hi[1] ||
+                    b[5] < lo[2] || b[4] > hi[2];
+                }),
+    cells.end());
 }
 } // namespace mp
