@@ -174,6 +174,17 @@ bool IsMask(const std::string& name)
   return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0;
 }
 
+/// Ids of a dataset's own points or cells (its GlobalIds and PedigreeIds, and
+/// the original ids extraction and redistribution filters add): not fields.
+bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array)
+{
+  const char* name = array ? array->GetName() : nullptr;
+  return array &&
+    (array == data->GetGlobalIds() || array == data->GetPedigreeIds() ||
+      (name &&
+        (std::string(name) == "vtkOriginalPointIds" || std::string(name) == "vtkOriginalCellIds")));
+}
+
 /// vtkDataObject's attribute type of the filter's associations: 0 points, 1 cells.
 int AttributeType(int association)
 {
@@ -356,7 +367,7 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
       const char* name = attributes->GetArrayName(i);
       if (name && attributes->GetArray(i) && !selection->ArrayExists(name) &&
         std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
-        !IsMask(name))
+        !IsMask(name) && !IsIdArray(attributes, attributes->GetAbstractArray(i)))
       {
         selection->AddArray(name, selection->GetUnknownArraySetting() != 0);
       }
@@ -987,9 +998,7 @@ int vtkMeshProjectionFilter::Execute(
       {
         continue;
       }
-      // Ids of the Source's own points and cells are not fields.
-      if (abstract == data->GetGlobalIds() || abstract == data->GetPedigreeIds() ||
-        label == "vtkOriginalPointIds" || label == "vtkOriginalCellIds")
+      if (IsIdArray(data, abstract))
       {
         continue;
       }

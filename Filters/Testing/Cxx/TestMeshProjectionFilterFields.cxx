@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -346,6 +347,54 @@ int Fields(const char* targetFile, const char* sourceFile)
   full->SetSourceData(source);
   full->Update();
   MP_CHECK(all.size() >= 5 && all.back() == 1.0 && std::is_sorted(all.begin(), all.end()));
+
+  // Id arrays (GlobalIds, vtkOriginalCellIds from Redistribute DataSet or
+  // Extract Cells, ...) are not fields: never projected, never offered in
+  // the array lists.
+  {
+    vtkNew<vtkUnstructuredGrid> withIds;
+    withIds->ShallowCopy(source);
+    for (int association = 0; association < 2; ++association)
+    {
+      vtkDataSetAttributes* data = association == 0
+        ? static_cast<vtkDataSetAttributes*>(withIds->GetPointData())
+        : static_cast<vtkDataSetAttributes*>(withIds->GetCellData());
+      const vtkIdType n = association == 0 ? withIds->GetNumberOfPoints() : withIds->GetNumberOfCells();
+      for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
+      {
+        vtkNew<vtkIdTypeArray> ids;
+        ids->SetName(name);
+        ids->SetNumberOfValues(n);
+        for (vtkIdType i = 0; i < n; ++i)
+        {
+          ids->SetValue(i, i);
+        }
+        if (std::string(name) == "Gids")
+        {
+          data->SetGlobalIds(ids);
+        }
+        else
+        {
+          data->AddArray(ids);
+        }
+      }
+    }
+    vtkNew<vtkMeshProjectionFilter> lister;
+    lister->SetInputData(target);
+    lister->SetSourceData(withIds);
+    lister->Update();
+    for (vtkDataArraySelection* list :
+      { lister->GetPointDataArraySelection(), lister->GetCellDataArraySelection() })
+    {
+      MP_CHECK(list->GetNumberOfArrays() > 0);
+      for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
+      {
+        MP_CHECK(!list->ArrayExists(name));
+      }
+    }
+    MP_CHECK(lister->GetPointDataArraySelection()->ArrayExists("Smooth"));
+    MP_CHECK(!lister->GetUnstructuredGridOutput()->GetCellData()->GetArray("vtkOriginalCellIds"));
+  }
   return failures;
 }
 /**
