@@ -420,7 +420,10 @@ public:
    * insertion order) is renumbered along a space-filling (Morton) curve, in a copy, so that
    * the time does not depend on how the input is numbered; a mesh numbered
    * with locality (a sweep, a mesh generator's renumbering) is used as it
-   * is. ALWAYS_RENUMBER and NEVER_RENUMBER force either. The outputs are in
+   * is. With more than one thread, a mesh whose cells seldom have a face
+   * neighbour among the cells numbered next to them (interleaved sweeps) is
+   * renumbered too, since the threads take ranges of ids. ALWAYS_RENUMBER and
+   * NEVER_RENUMBER force either. The outputs are in
    * the datasets' own numbering in every case, and equal up to summation
    * order.
    */

@@ -482,11 +482,17 @@ void SimplexMesh::OrderInSpace()
 {
   const mp::Index n = this->Kernel.NumberOfCells;
   const mp::Index np = this->Kernel.NumberOfPoints;
+  // Automatic: ids that do not follow space, or (with threads) ranges of
+  // ids that are not regions of space (interleaved sweeps: harmless to one
+  // front, but each thread's front could never step to a neighbour).
+  auto tidy = [&] {
+    return mp::NumberingSpread(this->Kernel) <=
+      4.0 * std::pow(static_cast<double>(np), -1.0 / this->Dimension()) &&
+      (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1 ||
+        mp::ChainedFraction(this->Kernel) >= 0.5);
+  };
   if (this->OrderingMode == NEVER || n == 0 ||
-    (this->OrderingMode == AUTOMATIC &&
-      (n < MinimumOrderedCells ||
-        mp::NumberingSpread(this->Kernel) <=
-          4.0 * std::pow(static_cast<double>(np), -1.0 / this->Dimension()))))
+    (this->OrderingMode == AUTOMATIC && (n < MinimumOrderedCells || tidy())))
   {
     return;
   }

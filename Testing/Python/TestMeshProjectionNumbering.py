@@ -17,7 +17,12 @@ user sees must be the same:
        split follows the file's point ids, the three modes on one shuffled
        file;
     d. NumberOfThreads: 1 and 2 threads give the same result, and the
-       application's SMP backend is left as it was.
+       application's SMP backend is left as it was;
+    e. interleaved sweeps (the triangles 2-coloured so that no two of a
+       colour share an edge, one colour after the other, each in sweep
+       order): Automatic leaves them alone on one thread and renumbers them
+       on two (each thread takes a range of ids), with the result of the
+       meshes as generated.
 """
 import math
 
@@ -246,5 +251,64 @@ d = max(np.nanmax(np.abs(a[k] - b[k])) for k in a)
 check(d < 1e-12, "1 and 2 threads differ by %.3g" % d)
 check(vtkSMPTools.GetBackend() == backend, "the SMP backend changed to " + vtkSMPTools.GetBackend())
 print("threads: 1 vs 2 differ by %.3g, backend %s" % (d, backend))
+
+
+# e. Interleaved sweeps: the cells 2-coloured across their edges (the grid's
+# points have 4 or 8 triangles around them: the colouring exists), one colour
+# after the other (points as they were).
+def interleaved(grid):
+    n = grid.GetNumberOfCells()
+    tri = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).astype(np.int64).reshape(n, 3)
+    by_edge = {}
+    for c, (a, b, d) in enumerate(tri):
+        for e in ((a, b), (b, d), (d, a)):
+            by_edge.setdefault((min(e), max(e)), []).append(c)
+    colour = np.full(n, -1)
+    for start in range(n):
+        if colour[start] >= 0:
+            continue
+        colour[start] = 0
+        stack = [start]
+        while stack:
+            c = stack.pop()
+            a, b, d = tri[c]
+            for e in ((a, b), (b, d), (d, a)):
+                for o in by_edge[(min(e), max(e))]:
+                    if colour[o] < 0:
+                        colour[o] = 1 - colour[c]
+                        stack.append(o)
+                    check(o == c or colour[o] != colour[c], "interleaved: the triangles have no 2-colouring")
+    order = np.concatenate((np.flatnonzero(colour == 0), np.flatnonzero(colour == 1)))
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray()).astype(np.int64)
+    conn = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).astype(np.int64)
+    sizes = np.diff(offsets)[order]
+    ca = vtkCellArray()
+    o = vtkIdTypeArray()
+    o.DeepCopy(numpy_to_vtk(np.concatenate(([0], np.cumsum(sizes))), deep=1, array_type=vtkIdTypeArray().GetDataType()))
+    c = vtkIdTypeArray()
+    c.DeepCopy(numpy_to_vtk(np.concatenate([conn[offsets[k]:offsets[k + 1]] for k in order]), deep=1,
+                            array_type=vtkIdTypeArray().GetDataType()))
+    ca.SetData(o, c)
+    out = vtkUnstructuredGrid()
+    out.SetPoints(grid.GetPoints())
+    out.SetCells(numpy_to_vtk(vtk_to_numpy(grid.GetCellTypesArray())[order].copy(), deep=1), ca)
+    out.GetPointData().ShallowCopy(grid.GetPointData())
+    for i in range(grid.GetCellData().GetNumberOfArrays()):
+        a = numpy_to_vtk(vtk_to_numpy(grid.GetCellData().GetArray(i))[order].copy(), deep=1)
+        a.SetName(grid.GetCellData().GetArrayName(i))
+        out.GetCellData().AddArray(a)
+    return out, order
+
+
+it, ct = interleaved(t2)
+is_, cs = interleaved(s2)
+plain = project(t2, s2, NEVER, threads=1)
+same_t, same_s = np.arange(t2.GetNumberOfPoints()), np.arange(s2.GetNumberOfPoints())
+for threads, expected in ((1, 0), (2, 2)):
+    f = project(it, is_, AUTOMATIC, threads=threads)
+    check(f.GetNumberOfRenumberedMeshes() == expected,
+          "interleaved sweeps, %d thread(s): Automatic renumbered %d meshes (expected %d)"
+          % (threads, f.GetNumberOfRenumberedMeshes(), expected))
+    compare("interleaved sweeps, %d thread(s)" % threads, plain, f, 2, ct, same_t, cs, same_s)
 
 finish()

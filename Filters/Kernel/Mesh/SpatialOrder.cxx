@@ -226,21 +226,24 @@ double NumberingSpread(const MeshView& mesh)
   const auto middle = static_cast<std::ptrdiff_t>(samples / 2);
   std::nth_element(spread.begin(), spread.begin() + middle, spread.end());
   std::nth_element(jump.begin(), jump.begin() + middle, jump.end());
-  const double spreadOfIds = static_cast<double>(std::max(spread[middle], jump[middle])) /
+  return static_cast<double>(std::max(spread[middle], jump[middle])) /
     static_cast<double>(mesh.NumberOfPoints);
-  // Chained cells: a cell with a face neighbour among the few cells
-  // numbered next to it. In a sweep or along a curve nearly every cell has
-  // one, and the ranges of ids that the threads take are regions of space
-  // the front can cross. Ids and points can both look tidy while cells
-  // alternate between interleaved sweeps (all lower triangles of a grid,
-  // then all upper ones): no cell then has a face neighbour nearby in ids,
-  // every range is spread over the whole mesh, and the front of a thread
-  // can never step to the next cell. Such a numbering counts as shuffled.
-  Index chained = 0;
+}
+
+double ChainedFraction(const MeshView& mesh)
+{
+  const Index n = mesh.NumberOfCells;
+  if (n < 2)
+  {
+    return 1.0;
+  }
+  const int corners = mesh.CornersPerCell();
+  const Index samples = std::min<Index>(n, 4096);
   const Index reach = 4;
+  Index chained = 0;
   for (Index s = 0; s < samples; ++s)
   {
-    const Index c = (n - 1) * s / samples;
+    const Index c = (n - 1) * s / std::max<Index>(1, samples - 1);
     const Index* ids = mesh.Cell(c);
     bool found = false;
     for (Index o = std::max<Index>(0, c - reach); o <= std::min(n - 1, c + reach) && !found; ++o)
@@ -259,7 +262,7 @@ double NumberingSpread(const MeshView& mesh)
     }
     chained += found;
   }
-  return 2 * chained < samples ? std::max(spreadOfIds, 0.5) : spreadOfIds;
+  return static_cast<double>(chained) / static_cast<double>(samples);
 }
 
 void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,

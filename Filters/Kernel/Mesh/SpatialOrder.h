@@ -62,12 +62,19 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order,
  * between the ids of a cell's points, and of the distance between the
  * lowest point ids of two consecutive cells, the larger of the two divided
  * by the number of points. About n^(-1/d) for a mesh numbered along a sweep
- * or a curve, about 1/2 for a shuffled one. At least 1/2 also when fewer
- * than half the sampled cells share a face with a cell at most 4 ids away
- * (interleaved sweeps: ids and points tidy, but no range of ids a region
- * of space).
+ * or a curve, about 1/2 for a shuffled one.
  */
 double NumberingSpread(const MeshView& mesh);
+
+/**
+ * The fraction of a sample of `mesh`'s cells that share a face with a cell
+ * at most 4 ids away: nearly 1 for a mesh numbered along a sweep or a curve,
+ * where a range of ids is a region of space that a front can cross from
+ * cell to cell. Interleaved sweeps (all lower triangles of a grid, then all
+ * upper ones) look tidy to NumberingSpread but give about 0: every range of
+ * ids, such as a thread's, is then spread over the whole mesh.
+ */
+double ChainedFraction(const MeshView& mesh);
 
 /**
  * `mesh` renumbered by order.Cells, into the caller's arrays: `points` (3
