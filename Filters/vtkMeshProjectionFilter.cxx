@@ -2285,38 +2285,35 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     std::copy(valid.begin(), valid.end(), mask->GetPointer(0));
     // Valid points whose cells are all covered only in slivers: their
     // values are extrapolated from a sliver (an ill-conditioned row) and
-    // can be far off. Say so, with the remedy.
-    vtkIdType slivers = 0;
+    // can be far off. Say so, with the remedy. On several processes a
+    // point on a partition boundary has cells on
+    // each: it is such a point only when the cells of every process around
+    // it are slivers (the hooks complete `covered` across processes; alone
+    // they do nothing). Counted once (by its owner), the total said once
+    // (by process 0), as the serial filter would.
+    const mp::SolverHooks& shared = hooks[0];
+    const size_t rows = static_cast<size_t>(target->GetNumberOfPoints());
+    std::vector<double> covered(std::max(most.size(), rows), 0.0);
+    for (size_t i = 0; i < most.size(); ++i)
+    {
+      covered[i] = most[i] >= 1e-3 ? 1.0 : 0.0;
+    }
+    if (shared.Exchange)
+    {
+      shared.Exchange(covered.data(), 1);
+    }
+    double total = 0.0;
+    for (size_t i = 0; i < most.size(); ++i)
+    {
+      const bool counted = !shared.Counted || i >= rows || shared.Counted[i];
+      total += onPoints->GetValid()[i] && covered[i] == 0.0 && counted ? 1.0 : 0.0;
+    }
     if (this->Parts)
     {
-      // On several processes a point on a partition boundary has cells on
-      // each: it is such a point only when the cells of every process
-      // around it are slivers. Counted once (by its owner), the total said
-      // once (by process 0), as the serial filter would.
-      const mp::SolverHooks& shared = hooks[0];
-      const size_t rows = static_cast<size_t>(target->GetNumberOfPoints());
-      std::vector<double> covered(std::max(most.size(), rows), 0.0);
-      for (size_t i = 0; i < most.size(); ++i)
-      {
-        covered[i] = most[i] >= 1e-3 ? 1.0 : 0.0;
-      }
-      shared.Exchange(covered.data(), 1);
-      double total = 0.0;
-      for (size_t i = 0; i < most.size(); ++i)
-      {
-        const bool counted = !shared.Counted || i >= rows || shared.Counted[i];
-        total += onPoints->GetValid()[i] && covered[i] == 0.0 && counted ? 1.0 : 0.0;
-      }
       this->Parts->Sum(&total, 1);
-      slivers = this->Parts->Rank() == 0 ? static_cast<vtkIdType>(total) : 0;
+      total = this->Parts->Rank() == 0 ? total : 0.0;
     }
-    else
-    {
-      for (size_t i = 0; i < most.size(); ++i)
-      {
-        slivers += onPoints->GetValid()[i] && most[i] < 1e-3;
-      }
-    }
+    const vtkIdType slivers = static_cast<vtkIdType>(total);
     if (slivers > 0 && this->Internal->Warned.insert("slivers/" + role).second)
     {
       vtkWarningMacro(<< slivers << " " << role
