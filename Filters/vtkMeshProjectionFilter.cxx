@@ -174,17 +174,6 @@ bool IsMask(const std::string& name)
   return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0;
 }
 
-/// Ids of a dataset's own points or cells (its GlobalIds and PedigreeIds, and
-/// the original ids extraction and redistribution filters add): not fields.
-bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array)
-{
-  const char* name = array ? array->GetName() : nullptr;
-  return array &&
-    (array == data->GetGlobalIds() || array == data->GetPedigreeIds() ||
-      (name &&
-        (std::string(name) == "vtkOriginalPointIds" || std::string(name) == "vtkOriginalCellIds")));
-}
-
 /// vtkDataObject's attribute type of the filter's associations: 0 points, 1 cells.
 int AttributeType(int association)
 {
@@ -367,7 +356,7 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
       const char* name = attributes->GetArrayName(i);
       if (name && attributes->GetArray(i) && !selection->ArrayExists(name) &&
         std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
-        !IsMask(name) && !IsIdArray(attributes, attributes->GetAbstractArray(i)))
+        !IsMask(name) && !mpvtk::IsIdArray(attributes, attributes->GetAbstractArray(i)))
       {
         selection->AddArray(name, selection->GetUnknownArraySetting() != 0);
       }
@@ -998,7 +987,7 @@ int vtkMeshProjectionFilter::Execute(
       {
         continue;
       }
-      if (IsIdArray(data, abstract))
+      if (mpvtk::IsIdArray(data, abstract))
       {
         continue;
       }

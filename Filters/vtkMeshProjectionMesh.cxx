@@ -362,6 +362,15 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
   return std::string();
 }
 
+bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array)
+{
+  const char* name = array ? array->GetName() : nullptr;
+  return array &&
+    (array == data->GetGlobalIds() || array == data->GetPedigreeIds() ||
+      (name &&
+        (std::string(name) == "vtkOriginalPointIds" || std::string(name) == "vtkOriginalCellIds")));
+}
+
 mp::TaskRunner SMPTaskRunner()
 {
   mp::TaskRunner runner;

@@ -47,7 +47,9 @@
 #include <string>
 #include <vector>
 
+class vtkAbstractArray;
 class vtkDataSet;
+class vtkDataSetAttributes;
 class vtkIdList;
 class vtkPolyData;
 class vtkUnstructuredGrid;
@@ -70,6 +72,11 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role);
 /// The kernel's task runner on vtkSMPTools: one task per thread of the
 /// backend in use (the filter's own scope, see NumberOfThreads).
 mp::TaskRunner SMPTaskRunner();
+
+/// Ids of a dataset's own points or cells (its GlobalIds and PedigreeIds, and
+/// the vtkOriginalPointIds/CellIds that extraction and redistribution
+/// filters add): not fields, never listed, projected or sent.
+bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array);
 
 class SimplexMesh
 {

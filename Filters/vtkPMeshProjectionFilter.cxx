@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPMeshProjectionFilter.h"
 
+#include "vtkMeshProjectionMesh.h"
 #include "vtkMeshProjectionParts.h"
 
 #include "vtkCellData.h"
@@ -275,14 +276,14 @@ std::vector<T> Read(const std::vector<char>& buffer)
 }
 
 /// The arrays of a dataset's points or cells that take part: numeric, named,
-/// not the ghost, global id or pedigree id arrays.
+/// not the ghost array nor ids (mpvtk::IsIdArray).
 std::vector<vtkDataArray*> ArraysOf(vtkDataSetAttributes* data)
 {
   std::vector<vtkDataArray*> arrays;
   for (int i = 0; i < data->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* a = data->GetArray(i);
-    if (!a || !a->GetName() || a == data->GetGlobalIds() || a == data->GetPedigreeIds() ||
+    if (!a || !a->GetName() || mpvtk::IsIdArray(data, a) ||
       std::string(a->GetName()) == vtkDataSetAttributes::GhostArrayName())
     {
       continue;
