@@ -14,6 +14,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
+#include "vtkNew.h"
 #include "vtkPointSet.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"

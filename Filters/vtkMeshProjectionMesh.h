@@ -38,19 +38,16 @@
 #include "Mesh/Tasks.h"
 #include "Search/CandidateLocator.h"
 
-#include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
 class vtkAbstractArray;
 class vtkDataSet;
 class vtkDataSetAttributes;
-class vtkIdList;
 class vtkPolyData;
 class vtkUnstructuredGrid;
 

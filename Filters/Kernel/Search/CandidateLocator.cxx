@@ -33,8 +33,13 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
     box[2 * d] = box[2 * d + 1] = 0.0;
   }
 }
-} // namespace
 
+/**
+ * Divisions of a uniform bin grid over the box [lo, hi] for `binnedCells`
+ * cells of a mesh of `meshCells` cells filling it: bins about two of the
+ * mesh's cells wide, at most about 8 bins per binned cell (a few boundary
+ * cells in a large box), at most 4096 per axis.
+ */
 void BinDivisions(const double lo[3], const double hi[3], int dimension, Index meshCells,
   Index binnedCells, int divisions[3])
 {
@@ -69,6 +74,7 @@ void BinDivisions(const double lo[3], const double hi[3], int dimension, Index m
     }
   }
 }
+} // namespace
 
 BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared)
   : Grids(std::move(shared))

@@ -59,14 +59,6 @@ public:
   virtual std::unique_ptr<CandidateLocator> NewForThread() const = 0;
 };
 
-/**
- * Divisions of a uniform bin grid over the box [lo, hi] for `binnedCells`
- * cells of a mesh of `meshCells` cells filling it: bins about two of the
- * mesh's cells wide, at most about 8 bins per binned cell (a few boundary
- * cells in a large box), at most 4096 per axis.
- */
-void BinDivisions(const double lo[3], const double hi[3], int dimension, Index meshCells,
-  Index binnedCells, int divisions[3]);
 
 /**
  * Uniform grids of bins (about 2^d cells per bin) over the cells' bounding
