@@ -789,7 +789,7 @@ std::vector<double> ParseList(const char* text)
   return values;
 }
 
-const char* const FilterStageNames[7] = { "reading the inputs", "neighbours (VTK cell links)",
+const char* const FilterStageNames[7] = { "reading the inputs", "neighbours",
   "seeding (boundary-cell bins)", "search + intersections + integrals", "assembly", "solve",
   "writing the outputs" };
 

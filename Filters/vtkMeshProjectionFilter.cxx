@@ -1678,7 +1678,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   auto prepareSearch = [&]() {
     if (!searchReady && mp::SearchNeedsNeighbors(options.Method))
     {
-      // Neighbours (VTK cell links) and the seed locator (bins of the boundary cells).
+      // Neighbours and the seed locator (bins of the boundary cells).
       targetMesh.BuildNeighbors();
       if (!run.SourceNeighbors)
       {

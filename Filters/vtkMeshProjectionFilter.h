@@ -17,7 +17,7 @@
  * The intersecting cell pairs are found by the advancing front of Gander &
  * Japhet ("An algorithm for non-matching grid projections with linear
  * complexity", Domain Decomposition Methods in Science and Engineering XVIII,
- * 2009): neighbours come from VTK's static cell links; a front starts with
+ * 2009): neighbours come from the kernel's face matcher; a front starts with
  * a walk through the source, and re-seeds from bins over the source's
  * boundary cells (bins over all source cells are built only when
  * that cannot settle a cell, e.g. targets reaching beyond the source); the
@@ -493,7 +493,7 @@ public:
    * Wall-clock seconds of the stages of the last execution: reading the
    * inputs (cell types, the split of cells that are not simplices,
    * coordinate checks, the fields gathered), the cell
-   * neighbours (VTK cell links), the locator over the source's boundary
+   * neighbours, the locator over the source's boundary
    * cells (bins of their boxes), the pair search with the intersections and
    * local integrals (and a locator over all source cells, when one is
    * needed), the assembly, the solve, and writing the outputs.

@@ -21,7 +21,6 @@
 #include "vtkPolyData.h"
 #include "vtkRectilinearGrid.h"
 #include "vtkSMPTools.h"
-#include "vtkStaticCellLinksTemplate.h"
 #include "vtkStructuredGrid.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
@@ -926,44 +925,6 @@ void SimplexMesh::UseFrame(const mp::PlaneFrame& frame)
   }
 }
 
-namespace
-{
-/**
- * Face neighbours from VTK's static cell links with point ids of type TIds
- * (32-bit ids halve the links' memory traffic when the grid allows them).
- */
-template <typename TIds>
-void FaceNeighbors(vtkUnstructuredGrid* grid, const mp::MeshView& kernel,
-  const std::function<mp::Index(vtkIdType)>& toKernel, mp::LargeVector<mp::NeighborId>& neighbors,
-  vtkIdType& nonManifoldFaces)
-{
-  vtkStaticCellLinksTemplate<TIds> links;
-  // The threaded build counts with atomics: slower on one thread.
-  links.SetSequentialProcessing(vtkSMPTools::GetEstimatedNumberOfThreads() <= 1);
-  links.BuildLinks(grid);
-  const bool ghosts = kernel.NumberOfCells != grid->GetNumberOfCells();
-  std::atomic<vtkIdType> nonManifold(0);
-  vtkSMPTools::For(0, kernel.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
-    // The cells around a point, from VTK's links, in kernel ids (ghost cells
-    // are not the kernel's: they never match).
-    auto around = [&](mp::Index point, const auto& visit) {
-      const vtkIdType count = links.GetNcells(point);
-      const TIds* cells = links.GetCells(point);
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        const mp::Index c = ghosts ? toKernel(cells[i]) : static_cast<mp::Index>(cells[i]);
-        if (c >= 0)
-        {
-          visit(c);
-        }
-      }
-    };
-    nonManifold += mp::MatchFaces(kernel, around, neighbors.data(), begin, end);
-  });
-  nonManifoldFaces = nonManifold / 2;
-}
-} // namespace
-
 void SimplexMesh::BuildNeighbors()
 {
   const vtkIdType n = this->Kernel.NumberOfCells;
@@ -972,23 +933,15 @@ void SimplexMesh::BuildNeighbors()
   {
     return; // no neighbours: the kernel refuses the front for so many cells, and says so
   }
-  this->Neighbors.assign(corners * static_cast<size_t>(n), -1);
+  this->Neighbors.resize(corners * static_cast<size_t>(n));
   this->Kernel.Neighbors = this->Neighbors.data();
   if (n == 0)
   {
     return;
   }
-  auto toKernel = [this](vtkIdType c) { return this->ToKernel(c); };
-  const vtkIdType uses = this->SimplexGrid->GetCells()->GetNumberOfConnectivityIds();
-  if (this->SimplexGrid->GetNumberOfPoints() < VTK_INT_MAX && this->SimplexGrid->GetNumberOfCells() < VTK_INT_MAX &&
-    uses < VTK_INT_MAX)
-  {
-    FaceNeighbors<int>(this->SimplexGrid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
-  }
-  else
-  {
-    FaceNeighbors<vtkIdType>(this->SimplexGrid, this->Kernel, toKernel, this->Neighbors, this->NonManifold);
-  }
+  // The kernel's own cells around each point (ghost cells are not the
+  // kernel's: they are never neighbours).
+  this->NonManifold = mp::BuildFaceNeighbors(this->Kernel, this->Neighbors.data(), SMPTaskRunner());
 }
 
 SourceLocator::SourceLocator(const SimplexMesh& mesh)

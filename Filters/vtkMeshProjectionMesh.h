@@ -23,7 +23,7 @@
  * functions are numbered as the dataset's cells (ghost and lower-dimensional
  * cells have none of the mesh in them, so they are never covered), and
  * ToVTK() maps a kernel simplex to its cell of Grid(). Neighbours come from
- * vtkStaticCellLinks through the kernel's face matcher (mp::MatchFaces),
+ * the kernel's face matcher (mp::BuildFaceNeighbors) over the kernel's cells,
  * seeds from bins over the source's cells (SourceLocator).
  *
  * Not a public class of the module: no export macro, not wrapped.
@@ -120,7 +120,7 @@ public:
   vtkIdType SplitCells() const { return this->SplitCount; }
   /// Seconds Wrap() spent in CheckDataSet.
   double CheckSeconds() const { return this->CheckTime; }
-  /// Face neighbours from vtkStaticCellLinks (call after Wrap).
+  /// Face neighbours, matched by the kernel in the filter's threads (call after Wrap).
   void BuildNeighbors();
 
   const mp::MeshView& View() const { return this->Kernel; }

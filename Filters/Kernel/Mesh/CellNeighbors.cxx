@@ -2,6 +2,7 @@
 #include "Mesh/CellNeighbors.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <limits>
 
@@ -10,34 +11,73 @@ namespace mp
 namespace
 {
 template <class Id>
-Index FaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
+Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
 {
   std::vector<Id> start;
   std::vector<Id> around;
   BuildPointCells(mesh, start, around);
-  neighbors.assign(static_cast<size_t>(mesh.NumberOfCells) * mesh.CornersPerCell(), -1);
-  const Index nonManifold = MatchFaces(
-    mesh,
-    [&](Index p, const auto& visit) {
-      for (Id i = start[p]; i < start[p + 1]; ++i)
-      {
-        visit(static_cast<Index>(around[i]));
-      }
-    },
-    neighbors.data(), 0, mesh.NumberOfCells);
-  return nonManifold / 2;
+  const int corners = mesh.CornersPerCell();
+  const Index size = mesh.NumberOfCells * corners;
+  runner.ForRanges(size, [&](Index begin, Index end) {
+    std::fill(neighbors + begin, neighbors + end, NeighborId(-1));
+    return 0;
+  });
+  std::atomic<bool> repeated(false);
+  const Index nonManifold = runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
+    Index count = 0;
+    switch (corners)
+    {
+      case 2:
+        count = MatchFacesAtPoints<2>(mesh, start.data(), around.data(), neighbors, begin, end);
+        break;
+      case 3:
+        count = MatchFacesAtPoints<3>(mesh, start.data(), around.data(), neighbors, begin, end);
+        break;
+      default:
+        count = MatchFacesAtPoints<4>(mesh, start.data(), around.data(), neighbors, begin, end);
+    }
+    if (count < 0)
+    {
+      repeated = true;
+      return Index(0);
+    }
+    return count;
+  });
+  if (!repeated)
+  {
+    return nonManifold / 2;
+  }
+  // A cell names a point twice: the face matcher's own rule, from the start.
+  std::fill(neighbors, neighbors + size, NeighborId(-1));
+  return MatchFaces(
+           mesh,
+           [&](Index p, const auto& visit) {
+             for (Id i = start[p]; i < start[p + 1]; ++i)
+             {
+               visit(static_cast<Index>(around[i]));
+             }
+           },
+           neighbors, 0, mesh.NumberOfCells) /
+    2;
 }
 } // namespace
 
-Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
+Index BuildFaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
 {
   // The point-to-cell lists with 32-bit ids when they fit: half the memory.
   if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
   {
-    return FaceNeighbors<std::int32_t>(mesh, neighbors);
+    return FaceNeighbors<std::int32_t>(mesh, neighbors, runner);
   }
-  return FaceNeighbors<Index>(mesh, neighbors);
+  return FaceNeighbors<Index>(mesh, neighbors, runner);
 }
+
+Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)
+{
+  neighbors.resize(static_cast<size_t>(mesh.NumberOfCells) * mesh.CornersPerCell());
+  return BuildFaceNeighbors(mesh, neighbors.data(), TaskRunner());
+}
+
 Index MisorientedEdges(const MeshView& mesh)
 {
   if (mesh.CellDimension != 2 || !mesh.Neighbors)

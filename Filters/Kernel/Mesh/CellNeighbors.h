@@ -3,18 +3,20 @@
  * @file CellNeighbors.h
  * @brief Face neighbours of a simplicial mesh, without VTK.
  *
- * One face matcher (MatchFaces) for every caller: for each face, the cells
- * around its first corner that hold its other corners. Where the cells
- * around a point come from is the caller's: BuildFaceNeighbors takes them
- * from the kernel's own point-to-cell lists (a counting sort; for the tests,
- * the benchmark and any caller without VTK), the VTK filter from VTK's
- * static cell links. Linear time. A face shared by more than two cells (a
+ * BuildFaceNeighbors, for every caller (the filter, the tests, the
+ * benchmark): the kernel's own point-to-cell lists (a counting sort), and
+ * each face matched at its lowest point (MatchFacesAtPoints); MatchFaces,
+ * face by face among the cells around its first corner, where a cell names
+ * a point twice. Linear time. A face shared by more than two cells (a
  * non-manifold mesh) gets no neighbour, and their number is returned.
  */
 #ifndef MeshProjection_Kernel_CellNeighbors_h
 #define MeshProjection_Kernel_CellNeighbors_h
 
 #include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
+
+#include <algorithm>
 
 #include <cstddef>
 #include <vector>
@@ -111,10 +113,147 @@ Index MatchFaces(
 }
 
 /**
- * Fills `neighbors` with (CellDimension + 1) * NumberOfCells entries: for cell c
- * and face k (opposite corner k) the cell across, or -1. Returns the number
- * of non-manifold faces found. The mesh must have fewer than 2^31 cells.
+ * Matches faces at their lowest point: for each point p of [begin, end),
+ * the faces of the cells around p (start, around: BuildPointCells) whose
+ * other corners all have higher ids, grouped by those corners. A group of
+ * two cells are each other's neighbours (both entries written); a face of
+ * more than two cells gets none, and adds its number of cells to the count
+ * returned (so half the sum over all points is MatchFaces' count halved:
+ * the number of non-manifold faces when each is shared by three cells).
+ * Every face is matched at one point only, so concurrent ranges of points
+ * never write the same entry. Entries of faces without a partner are left
+ * as they are (-1). Cells naming a point twice are not matched alike by
+ * MatchFaces: returns -1 when one is around a point of the range (the
+ * caller then matches with MatchFaces).
+ *
+ * Faster than MatchFaces: each cell's corners are read once per corner,
+ * not once per face and cell around the face's first corner.
  */
+template <int Corners, class Id>
+Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around,
+  NeighborId* neighbors, Index begin, Index end)
+{
+  struct Face
+  {
+    Index Key[2]; // the face's other corners, increasing (unused: -1)
+    Index Cell;
+    int Side;
+    bool operator<(const Face& o) const
+    {
+      return this->Key[0] < o.Key[0] || (this->Key[0] == o.Key[0] && this->Key[1] < o.Key[1]);
+    }
+    bool Same(const Face& o) const { return this->Key[0] == o.Key[0] && this->Key[1] == o.Key[1]; }
+  };
+  std::vector<Face> faces;
+  Index nonManifold = 0;
+  for (Index p = begin; p < end; ++p)
+  {
+    // Room for every face through p; written in place (a face built aside
+    // and copied in stalls on its partly written bytes).
+    const size_t room = static_cast<size_t>(start[p + 1] - start[p]) * (Corners - 1);
+    if (faces.size() < room)
+    {
+      faces.resize(room);
+    }
+    size_t count = 0;
+    for (Id i = start[p]; i < start[p + 1]; ++i)
+    {
+      const Index c = static_cast<Index>(around[i]);
+      const Index* ids = mesh.Cell(c);
+      int at = -1;
+      int times = 0;
+      for (int l = 0; l < Corners; ++l)
+      {
+        if (ids[l] == p)
+        {
+          at = l;
+          ++times;
+        }
+      }
+      if (times != 1)
+      {
+        return -1;
+      }
+      // The faces through p: opposite each other corner.
+      for (int k = 0; k < Corners; ++k)
+      {
+        if (k == at)
+        {
+          continue;
+        }
+        Index key0 = -1;
+        Index key1 = -1;
+        for (int l = 0; l < Corners; ++l)
+        {
+          if (l != k && l != at)
+          {
+            (key0 < 0 ? key0 : key1) = ids[l];
+          }
+        }
+        if (key1 >= 0 && key1 < key0)
+        {
+          std::swap(key0, key1);
+        }
+        if (key0 >= 0 && key0 < p)
+        {
+          continue; // matched at a lower point
+        }
+        Face& f = faces[count++];
+        f.Key[0] = key0;
+        f.Key[1] = key1;
+        f.Cell = c;
+        f.Side = k;
+      }
+    }
+    // Group equal faces: few, so pairs are looked for among those after each.
+    for (size_t a = 0; a < count; ++a)
+    {
+      if (faces[a].Cell < 0)
+      {
+        continue; // grouped already
+      }
+      size_t partner = a;
+      Index same = 1;
+      for (size_t b = a + 1; b < count; ++b)
+      {
+        if (faces[b].Same(faces[a]))
+        {
+          partner = b;
+          ++same;
+        }
+      }
+      if (same == 2)
+      {
+        neighbors[faces[a].Cell * Corners + faces[a].Side] = static_cast<NeighborId>(faces[partner].Cell);
+        neighbors[faces[partner].Cell * Corners + faces[partner].Side] = static_cast<NeighborId>(faces[a].Cell);
+        faces[partner].Cell = -1;
+      }
+      else if (same > 2)
+      {
+        nonManifold += same;
+        for (size_t b = a + 1; b < count; ++b)
+        {
+          if (faces[b].Same(faces[a]))
+          {
+            faces[b].Cell = -1;
+          }
+        }
+      }
+    }
+  }
+  return nonManifold;
+}
+
+/**
+ * Fills `neighbors` with (CellDimension + 1) * NumberOfCells entries: for cell c
+ * and face k (opposite corner k) the cell across, or -1, from the kernel's
+ * own point-to-cell lists (BuildPointCells, one pass on one task) and
+ * MatchFacesAtPoints over ranges of points in `runner`'s tasks (MatchFaces
+ * when a cell names a point twice). Returns the number of non-manifold faces
+ * found. The mesh must have fewer than 2^31 cells.
+ */
+Index BuildFaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner);
+/// The same into a vector, on one task.
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors);
 
 /// The cells around every point, in CSR form: point p is used by the cells
