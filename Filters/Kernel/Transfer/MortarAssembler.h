@@ -177,9 +177,11 @@ struct MortarAssembler
     for (int i = 0; i < Nt; ++i)
     {
       const bool shared = this->Shared && this->Shared[dofs[i]];
+      Index positions[Nt];
+      this->Mass->FindAll(dofs[i], dofs, Nt, positions);
       for (int k = 0; k < Nt; ++k)
       {
-        const Index position = this->Mass->Find(dofs[i], dofs[k]);
+        const Index position = positions[k];
         if (shared)
         {
           this->Deferred.emplace_back(position, mtt[i][k]);
