@@ -510,34 +510,15 @@ void SimplexMesh::OrderInSpace()
   mp::SpatialOrder order;
   mp::OrderAlongCurve(this->Kernel, order, runner);
   const int corners = this->Kernel.CornersPerCell();
-  vtkNew<vtkDoubleArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(np);
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(corners * n);
+  // The copy in the kernel's own arrays (on huge pages, without the offsets
+  // and cell types a VTK grid would add: nothing reads it as one).
+  mp::LargeVector<double> coordinates(3 * static_cast<size_t>(np));
+  mp::LargeVector<mp::Index> connectivity(corners * static_cast<size_t>(n));
   std::vector<mp::Index> parent(static_cast<size_t>(n));
-  mp::RenumberMesh(this->Kernel, order, coordinates->GetPointer(0), connectivity->GetPointer(0),
-    parent.data(), runner);
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(n + 1);
-  vtkIdType* o = offsets->GetPointer(0);
-  vtkSMPTools::For(0, n + 1, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      o[c] = corners * c;
-    }
-  });
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
-  this->OrderedGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  this->OrderedGrid->SetPoints(points);
-  this->OrderedGrid->SetCells(SimplexType(corners - 1), cells);
+  mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), parent.data(), runner);
   // The kernel sees the copy; P0 functions and the pieces' ids still name
   // the dataset's cells (through Parent), P1 ones name kernel points
   // (DataSetPoint maps them back).
-  this->SimplexGrid = this->OrderedGrid;
   if (!this->Kernel.Parent)
   {
     this->Kernel.NumberOfParents = n;
@@ -545,12 +526,17 @@ void SimplexMesh::OrderInSpace()
   }
   this->ParentIds.swap(parent);
   this->Kernel.Parent = this->ParentIds.data();
-  this->Kernel.Connectivity = connectivity->GetPointer(0);
-  this->Kernel.Points = coordinates->GetPointer(0);
+  this->OrderedConnectivity.swap(connectivity);
+  this->OrderedPoints.swap(coordinates);
+  this->Kernel.Connectivity = this->OrderedConnectivity.data();
+  this->Kernel.Points = this->OrderedPoints.data();
   this->OriginalPoints = this->Kernel.Points;
   this->PointOrder.swap(order.Points);
-  this->KernelToVTK.clear();
-  this->VTKToKernel.clear();
+  // What the old numbering needed and nothing reads any more.
+  std::vector<mp::Index>().swap(this->ConnectivityCopy);
+  std::vector<mp::Index>().swap(this->AllConnectivityCopy);
+  std::vector<double>().swap(this->PointCopy);
+  this->AllConnectivity = nullptr;
   this->OrderTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -793,12 +779,10 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   }
   if (this->Ghosts > 0)
   {
-    this->VTKToKernel.assign(static_cast<size_t>(numberOfCells), -1);
     for (vtkIdType c = 0; c < numberOfCells; ++c)
     {
       if (!(ghosts->GetValue(c) & skip))
       {
-        this->VTKToKernel[c] = static_cast<mp::Index>(this->KernelToVTK.size());
         this->KernelToVTK.push_back(c);
         this->ConnectivityCopy.insert(this->ConnectivityCopy.end(),
           this->AllConnectivity + corners * c, this->AllConnectivity + corners * (c + 1));
@@ -824,6 +808,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   if (parents < 0 && this->Ghosts > 0)
   {
     this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
+    std::vector<vtkIdType>().swap(this->KernelToVTK);
     parents = numberOfCells;
   }
   if (parents >= 0)

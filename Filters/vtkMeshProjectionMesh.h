@@ -21,8 +21,8 @@
  * in place for planes z = constant and mapped into the frame otherwise.
  * Ghost cells (DUPLICATECELL, HIDDENCELL) are left out. The kernel's P0
  * functions are numbered as the dataset's cells (ghost and lower-dimensional
- * cells have none of the mesh in them, so they are never covered), and
- * ToVTK() maps a kernel simplex to its cell of Grid(). Neighbours come from
+ * cells have none of the mesh in them, so they are never covered).
+ * Neighbours come from
  * the kernel's face matcher (mp::BuildFaceNeighbors) over the kernel's cells,
  * seeds from bins over the source's cells (SourceLocator).
  *
@@ -107,7 +107,7 @@ public:
   const mp::Index* PointOrderData() const { return this->PointOrder.empty() ? nullptr : this->PointOrder.data(); }
   /// Seconds Wrap() spent renumbering (0 when it did not).
   double OrderSeconds() const { return this->OrderTime; }
-  /// The simplices the kernel sees: the dataset itself, or its split.
+  /// The simplices, before any renumbering: the dataset itself, or its split.
   vtkUnstructuredGrid* Grid() const { return this->SimplexGrid; }
   /// The kernel's points in space (before any plane frame), 3 per point.
   const double* SpacePoints() const { return this->OriginalPoints; }
@@ -164,11 +164,7 @@ public:
   const mp::PlaneFrame& Frame() const { return this->Seen; }
   vtkIdType NonManifoldFaces() const { return this->NonManifold; }
   vtkIdType GhostCells() const { return this->Ghosts; }
-  /// The Grid() id of a kernel simplex, and the kernel id of a Grid() cell
-  /// (-1 for a ghost). The dataset's cell of a kernel simplex is
-  /// View().ParentOf(c).
-  vtkIdType ToVTK(mp::Index c) const { return this->KernelToVTK.empty() ? c : this->KernelToVTK[c]; }
-  mp::Index ToKernel(vtkIdType c) const { return this->VTKToKernel.empty() ? c : this->VTKToKernel[c]; }
+  /// The dataset's cell of a kernel simplex is View().ParentOf(c).
 
 private:
   /// `parents`: the dataset's cells when `grid` is its split (ParentIds set), else -1.
@@ -186,8 +182,9 @@ private:
   double CheckTime = 0;
   double OrderTime = 0;
   int OrderingMode = AUTOMATIC;
-  std::vector<mp::Index> PointOrder;                ///< kernel point -> dataset point (empty: same)
-  vtkSmartPointer<vtkUnstructuredGrid> OrderedGrid; ///< the renumbered simplices, when Ordered()
+  std::vector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
+  mp::LargeVector<double> OrderedPoints;        ///< the renumbered points, when Ordered()
+  mp::LargeVector<mp::Index> OrderedConnectivity; ///< and simplices
   mp::MeshView Kernel;
   std::vector<double> PointCopy;
   std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant
@@ -195,8 +192,7 @@ private:
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   std::vector<mp::Index> AllConnectivityCopy;
   mp::LargeVector<mp::NeighborId> Neighbors;
-  std::vector<vtkIdType> KernelToVTK; ///< empty when the grid has no ghost cells
-  std::vector<mp::Index> VTKToKernel; ///< -1 for ghost cells; empty likewise
+  std::vector<vtkIdType> KernelToVTK; ///< the grid's cells that are not ghosts, while wrapping
   mp::PlaneFrame Own;
   mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;
