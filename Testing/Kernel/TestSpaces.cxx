@@ -894,6 +894,25 @@ TEST(PlaneFrame, AxisPlanes)
     EXPECT_EQ(uv[3 * p], z.Points[3 * p]);
     EXPECT_EQ(uv[3 * p + 1], z.Points[3 * p + 1]);
   }
+  // Every corner at one z takes a short way (one pass); the same mesh with
+  // one corner 1e-13 above the others takes the general fit, and both give
+  // the same frame.
+  TestMesh nearly = z;
+  nearly.Points[3 * 7 + 2] += 1e-13;
+  mp::PlaneFrame general;
+  double generalDeviation = -1;
+  ASSERT_TRUE(general.Fit(Surface(nearly), generalDeviation, size));
+  EXPECT_GT(generalDeviation, 0.0);
+  EXPECT_TRUE(general.IsIdentity());
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_EQ(frame.GetNormal()[d], general.GetNormal()[d]) << d;
+  }
+  EXPECT_NEAR(frame.Offset(), general.Offset(), 1e-13);
+  EXPECT_NEAR(frame.Tolerance(), general.Tolerance(), 1e-22);
+  std::vector<double> generalUV;
+  general.ToPlane(Surface(z), generalUV);
+  EXPECT_EQ(uv, generalUV);
 
   // x = -2.5 (the grid's x, y become y, z): axis aligned, not the identity.
   TestMesh x = mptest::GridMesh(5, 4, 0.25, 135);

@@ -27,6 +27,8 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     lo[d] = std::numeric_limits<double>::infinity();
     hi[d] = -lo[d];
   }
+  // The box and the mean of the corners, in one pass.
+  double mean[3] = { 0, 0, 0 };
   for (Index i = 0; i < uses; ++i)
   {
     const double* x = mesh.Point(mesh.Connectivity[i]);
@@ -34,11 +36,42 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     {
       lo[d] = std::min(lo[d], x[d]);
       hi[d] = std::max(hi[d], x[d]);
+      mean[d] += x[d];
     }
   }
   for (int d = 0; d < 3; ++d)
   {
     size = std::max(size, hi[d] - lo[d]);
+  }
+  // Every corner at one finite z, and a cell of positive area: the plane
+  // z = constant is the one the general fit below finds (every normal along
+  // z; the aligned frame, at distance 0 from every corner), without its
+  // four passes and the normals' array. The common 2D mesh.
+  if (lo[2] == hi[2] && std::isfinite(lo[2]))
+  {
+    bool area = false;
+    for (Index c = 0; c < mesh.NumberOfCells && !area; ++c)
+    {
+      const Index* ids = mesh.Cell(c);
+      const double* a = mesh.Point(ids[0]);
+      const double* b = mesh.Point(ids[1]);
+      const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
+      area = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) != 0.0;
+    }
+    if (area)
+    {
+      std::fill(this->Normal, this->Normal + 3, 0.0);
+      this->Normal[2] = 1.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        this->Origin[d] = mean[d] / static_cast<double>(uses);
+      }
+      this->Origin[2] = 0.5 * (lo[2] + hi[2]);
+      this->SetAxes();
+      this->PlaneOffset = this->Origin[2];
+      this->PlaneTolerance = 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
+      return true;
+    }
   }
   // The normal: the cells' normals summed, each turned to agree with the
   // largest one (a mesh's triangles may come in either orientation).
@@ -97,15 +130,6 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     }
   }
   // The plane through the mean of the corners.
-  double mean[3] = { 0, 0, 0 };
-  for (Index i = 0; i < uses; ++i)
-  {
-    const double* x = mesh.Point(mesh.Connectivity[i]);
-    for (int d = 0; d < 3; ++d)
-    {
-      mean[d] += x[d];
-    }
-  }
   for (int d = 0; d < 3; ++d)
   {
     this->Origin[d] = mean[d] / static_cast<double>(uses);
