@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -122,6 +123,32 @@ TEST(CellNeighbors, SameAsFaceByFaceOnTrianglesTetrahedraAndCurves)
     mptest::Polyline(t, [](double s, double* x) { x[0] = std::cos(3 * s); x[1] = std::sin(3 * s); x[2] = 0; }, false);
   ExpectSameNeighbours(curve, "open curve");
   ExpectSameNeighbours(Shuffled(curve, 13), "shuffled curve");
+}
+
+TEST(CellNeighbors, CellsAroundPointsAreTheSameOnSeveralTasks)
+{
+  // Concurrent tasks count and place their own cells' uses: the same sorted
+  // lists as one task, on meshes with more and fewer uses per point (large
+  // enough for several tasks: 65,536 cells per task at least).
+  for (const TestMesh& mesh : { Shuffled(mptest::GridMesh(330, 320, 0.2, 21), 22),
+         Shuffled(mptest::CubeMesh(36, 35, 34, 0.2, 23), 24) })
+  {
+    std::vector<Index> start;
+    std::vector<Index> cells;
+    mp::BuildPointCells(mesh.View(false), start, cells);
+    ASSERT_EQ(start.back(), mesh.NumberOfCells() * (mesh.Dimension + 1));
+    for (int tasks : { 2, 3, 7 })
+    {
+      std::vector<Index> taskStart;
+      std::vector<std::int32_t> taskCells32;
+      std::vector<std::int32_t> taskStart32;
+      mp::BuildPointCells(mesh.View(false), taskStart32, taskCells32, Threads(tasks));
+      EXPECT_TRUE(std::equal(start.begin(), start.end(), taskStart32.begin(), taskStart32.end()))
+        << tasks << " tasks, dimension " << mesh.Dimension;
+      EXPECT_TRUE(std::equal(cells.begin(), cells.end(), taskCells32.begin(), taskCells32.end()))
+        << tasks << " tasks, dimension " << mesh.Dimension;
+    }
+  }
 }
 
 TEST(CellNeighbors, NonManifoldFacesGetNoNeighbour)

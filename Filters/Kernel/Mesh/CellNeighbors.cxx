@@ -15,7 +15,7 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
 {
   std::vector<Id> start;
   std::vector<Id> around;
-  BuildPointCells(mesh, start, around);
+  BuildPointCells(mesh, start, around, runner);
   const int corners = mesh.CornersPerCell();
   const Index size = mesh.NumberOfCells * corners;
   runner.ForRanges(size, [&](Index begin, Index end) {

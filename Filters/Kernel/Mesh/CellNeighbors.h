@@ -256,36 +256,100 @@ Index BuildFaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const Task
 /// The same into a vector, on one task.
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors);
 
-/// The cells around every point, in CSR form: point p is used by the cells
-/// cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). The
-/// vectors' element type (Index, or 32-bit to halve the memory) must hold
-/// corners x cells.
+/**
+ * The cells around every point, in CSR form: point p is used by the cells
+ * cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). The
+ * vectors' element type (Index, or 32-bit to halve the memory) must hold
+ * corners x cells. A counting sort; with a runner of several tasks, each
+ * counts and places the uses of its range of cells (per-task counts: at
+ * most as many tasks as uses per point, so that they take no more memory
+ * than `cells`), the same lists as on one.
+ */
 template <class Vector>
-void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells)
+void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells, const TaskRunner& runner)
 {
   using Id = typename Vector::value_type;
   const int corners = mesh.CornersPerCell();
-  start.assign(static_cast<std::size_t>(mesh.NumberOfPoints) + 1, 0);
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  const Index np = mesh.NumberOfPoints;
+  const Index n = mesh.NumberOfCells;
+  const Index uses = n * corners;
+  const int tasks = static_cast<int>(std::min<Index>(
+    runner.TasksFor(n, 65536), std::max<Index>(1, np > 0 ? uses / np : 1)));
+  start.assign(static_cast<std::size_t>(np) + 1, 0);
+  if (tasks == 1)
   {
-    for (int k = 0; k < corners; ++k)
+    for (Index c = 0; c < n; ++c)
     {
-      ++start[mesh.Cell(c)[k] + 1];
+      for (int k = 0; k < corners; ++k)
+      {
+        ++start[mesh.Cell(c)[k] + 1];
+      }
     }
+    for (Index p = 0; p < np; ++p)
+    {
+      start[p + 1] += start[p];
+    }
+    cells.resize(static_cast<std::size_t>(start.back()));
+    Vector fill(start.begin(), start.end() - 1);
+    for (Index c = 0; c < n; ++c) // cell ids come out sorted per point
+    {
+      for (int k = 0; k < corners; ++k)
+      {
+        cells[fill[mesh.Cell(c)[k]]++] = static_cast<Id>(c);
+      }
+    }
+    return;
   }
-  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  // Per task: its uses of each point, then where they go in the point's list.
+  std::vector<Vector> count(static_cast<std::size_t>(tasks));
+  runner.RunAll(tasks, [&](int k) {
+    Vector& mine = count[k];
+    mine.assign(static_cast<std::size_t>(np), 0);
+    for (Index c = RangeBegin(n, k, tasks); c < RangeBegin(n, k + 1, tasks); ++c)
+    {
+      for (int j = 0; j < corners; ++j)
+      {
+        ++mine[mesh.Cell(c)[j]];
+      }
+    }
+  });
+  runner.ForRanges(np, [&](Index begin, Index end) {
+    for (Index p = begin; p < end; ++p)
+    {
+      Id before = 0;
+      for (int k = 0; k < tasks; ++k)
+      {
+        const Id here = count[k][p];
+        count[k][p] = before;
+        before += here;
+      }
+      start[p + 1] = before;
+    }
+    return 0;
+  });
+  for (Index p = 0; p < np; ++p)
   {
     start[p + 1] += start[p];
   }
   cells.resize(static_cast<std::size_t>(start.back()));
-  Vector fill(start.begin(), start.end() - 1);
-  for (Index c = 0; c < mesh.NumberOfCells; ++c) // cell ids come out sorted per point
-  {
-    for (int k = 0; k < corners; ++k)
+  runner.RunAll(tasks, [&](int k) {
+    Vector& mine = count[k];
+    for (Index c = RangeBegin(n, k, tasks); c < RangeBegin(n, k + 1, tasks); ++c)
     {
-      cells[fill[mesh.Cell(c)[k]]++] = static_cast<Id>(c);
+      for (int j = 0; j < corners; ++j)
+      {
+        const Index p = mesh.Cell(c)[j];
+        cells[start[p] + mine[p]++] = static_cast<Id>(c);
+      }
     }
-  }
+  });
+}
+
+/// The same on one task.
+template <class Vector>
+void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells)
+{
+  BuildPointCells(mesh, start, cells, TaskRunner());
 }
 
 /// The cells with at least one face without neighbour (mesh.Neighbors must

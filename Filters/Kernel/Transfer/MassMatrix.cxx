@@ -23,7 +23,7 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
 {
   LargeVector<Id> cellStart;
   LargeVector<Id> cells;
-  BuildPointCells(mesh, cellStart, cells);
+  BuildPointCells(mesh, cellStart, cells, runner);
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
   const int tasks = runner.TasksFor(points, 4096);
