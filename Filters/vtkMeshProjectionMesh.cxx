@@ -512,8 +512,8 @@ void SimplexMesh::OrderInSpace()
   const int corners = this->Kernel.CornersPerCell();
   // The copy in the kernel's own arrays (on huge pages, without the offsets
   // and cell types a VTK grid would add: nothing reads it as one).
-  mp::LargeVector<double> coordinates(3 * static_cast<size_t>(np));
-  mp::LargeVector<mp::Index> connectivity(corners * static_cast<size_t>(n));
+  mp::LargeBuffer<double> coordinates(3 * static_cast<size_t>(np)); // written whole by RenumberMesh
+  mp::LargeBuffer<mp::Index> connectivity(corners * static_cast<size_t>(n));
   std::vector<mp::Index> parent(static_cast<size_t>(n));
   mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), parent.data(), runner);
   // The kernel sees the copy; P0 functions and the pieces' ids still name

@@ -183,8 +183,8 @@ private:
   double OrderTime = 0;
   int OrderingMode = AUTOMATIC;
   std::vector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
-  mp::LargeVector<double> OrderedPoints;        ///< the renumbered points, when Ordered()
-  mp::LargeVector<mp::Index> OrderedConnectivity; ///< and simplices
+  mp::LargeBuffer<double> OrderedPoints;          ///< the renumbered points, when Ordered()
+  mp::LargeBuffer<mp::Index> OrderedConnectivity; ///< and simplices
   mp::MeshView Kernel;
   std::vector<double> PointCopy;
   std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant

@@ -22,6 +22,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -122,6 +124,54 @@ struct LargeAllocator
 /// A std::vector whose large buffers sit on huge pages where the system allows.
 template <class T>
 using LargeVector = std::vector<T, LargeAllocator<T>>;
+
+/**
+ * A fixed-size array on the same pages, left uninitialized: for arrays that
+ * are written whole before they are read (a vector would first write
+ * zeros over all of it, one thread touching every page), such as the
+ * renumbered copy of a mesh.
+ */
+template <class T>
+class LargeBuffer
+{
+  static_assert(std::is_trivially_copyable<T>::value, "LargeBuffer holds plain values");
+
+public:
+  LargeBuffer() = default;
+  explicit LargeBuffer(std::size_t n)
+    : Values(n > 0 ? LargeAllocator<T>().allocate(n) : nullptr)
+    , Count(n)
+  {
+  }
+  LargeBuffer(const LargeBuffer&) = delete;
+  LargeBuffer& operator=(const LargeBuffer&) = delete;
+  LargeBuffer(LargeBuffer&& other) noexcept { this->swap(other); }
+  LargeBuffer& operator=(LargeBuffer&& other) noexcept
+  {
+    LargeBuffer(std::move(other)).swap(*this);
+    return *this;
+  }
+  ~LargeBuffer()
+  {
+    if (this->Values)
+    {
+      LargeAllocator<T>().deallocate(this->Values, this->Count);
+    }
+  }
+  void swap(LargeBuffer& other) noexcept
+  {
+    std::swap(this->Values, other.Values);
+    std::swap(this->Count, other.Count);
+  }
+  T* data() noexcept { return this->Values; }
+  const T* data() const noexcept { return this->Values; }
+  std::size_t size() const noexcept { return this->Count; }
+  bool empty() const noexcept { return this->Count == 0; }
+
+private:
+  T* Values = nullptr;
+  std::size_t Count = 0;
+};
 } // namespace mp
 
 #endif
