@@ -87,8 +87,9 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
       hooks.Exchange(v, width);
     }
   };
+  // The preconditioned residual z = D^-1 r is never stored: it is formed
+  // where it is used (one vector less to hold and to stream).
   LargeVector<double> r(size);
-  LargeVector<double> z(size);
   LargeVector<double> p(size);
   LargeVector<double> q(size);
   LargeVector<double> inverseDiagonal(static_cast<size_t>(n));
@@ -138,6 +139,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     return sum;
   });
   reduce(bb);
+  LargeVector<double>().swap(rowSums); // only the start needed them
   std::vector<double> goal(static_cast<size_t>(c));
   for (int k = 0; k < c; ++k)
   {
@@ -158,12 +160,12 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
       {
         const Index e = i * c + k;
         r[e] = B[e] - q[e];
-        z[e] = inverseDiagonal[i] * r[e];
-        p[e] = z[e];
+        const double z = inverseDiagonal[i] * r[e];
+        p[e] = z;
         if (count)
         {
           part.Values[k] += r[e] * r[e];
-          part.Values[c + k] += r[e] * z[e];
+          part.Values[c + k] += r[e] * z;
         }
       }
     }
@@ -242,11 +244,10 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
           const Index e = i * c + k;
           X[e] += alpha[k] * p[e];
           r[e] -= alpha[k] * q[e];
-          z[e] = inverseDiagonal[i] * r[e];
           if (count)
           {
             part.Values[k] += r[e] * r[e];
-            part.Values[c + k] += r[e] * z[e];
+            part.Values[c + k] += r[e] * (inverseDiagonal[i] * r[e]);
           }
         }
       }
@@ -279,7 +280,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         for (int k = 0; k < c; ++k)
         {
           const Index e = i * c + k;
-          p[e] = converged[k] ? 0.0 : z[e] + beta[k] * p[e];
+          p[e] = converged[k] ? 0.0 : inverseDiagonal[i] * r[e] + beta[k] * p[e];
         }
       }
       return 0.0;
