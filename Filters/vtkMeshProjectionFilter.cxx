@@ -1898,6 +1898,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   {
     it = holesUsed.count(it->first) ? std::next(it) : kept.Holes.erase(it);
   }
+  // Every operator of this leaf is built: the target's neighbours go before
+  // the solves need their room (the Source's may serve other leaves).
+  targetMesh.ReleaseNeighbors();
   Lap(run.Stage);
   if (!progress(0.9))
   {

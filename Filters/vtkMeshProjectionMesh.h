@@ -122,6 +122,12 @@ public:
   double CheckSeconds() const { return this->CheckTime; }
   /// Face neighbours, matched by the kernel in the filter's threads (call after Wrap).
   void BuildNeighbors();
+  /// Gives the neighbours' memory back once no search will need them.
+  void ReleaseNeighbors()
+  {
+    mp::LargeVector<mp::NeighborId>().swap(this->Neighbors);
+    this->Kernel.Neighbors = nullptr;
+  }
 
   const mp::MeshView& View() const { return this->Kernel; }
   /// Sets the dimension of a mesh without cells (it takes the other mesh's).
