@@ -2028,6 +2028,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     {
       kept.Operators[t] = Kept();
     }
+    if (fresh[t])
+    {
+      fresh[t]->ReleaseMatrices(); // solved and not kept: room for the outputs
+    }
   }
   if (fresh[0] || fresh[1] || fresh[2] || fresh[3])
   {

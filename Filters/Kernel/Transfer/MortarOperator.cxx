@@ -373,6 +373,19 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   return this->Apply(sourceValues, components, targetValues, fill, options, hooks);
 }
 
+void MortarOperator::ReleaseMatrices()
+{
+  this->Solver.reset();
+  for (CsrMatrix* m : { &this->TargetMass, &this->MixedMass })
+  {
+    CsrMatrix empty;
+    empty.Rows = m->Rows;
+    empty.Columns = m->Columns;
+    *m = std::move(empty);
+  }
+  LargeVector<double>().swap(this->Rhs);
+}
+
 size_t MortarOperator::MemoryBytes() const
 {
   auto csr = [](const CsrMatrix& m) {

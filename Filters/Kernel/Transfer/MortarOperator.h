@@ -180,6 +180,13 @@ public:
   const CsrMatrix& GetMixedMass() const { return this->MixedMass; }
   /// Whether M_ts was assembled (Apply takes any field).
   bool HasMixedMass() const { return this->Options.Fields == nullptr; }
+  /**
+   * Gives back the matrices, the right-hand sides and the solver of an
+   * operator that will not be applied again (the sizes stay); what results
+   * are written from (validity, covered fractions and integrals, the
+   * pieces) stays too.
+   */
+  void ReleaseMatrices();
   SpaceType GetTargetSpace() const { return this->Options.TargetSpace; }
   SpaceType GetSourceSpace() const { return this->Options.SourceSpace; }
   Index GetNumberOfTargetFunctions() const { return this->TargetMass.Rows; }
