@@ -768,16 +768,19 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   }
 
   // Ghost cells (duplicated from another piece, or hidden) are left out.
+  // (A split has none: Split() left out and counted the dataset's.)
   vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
   const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
+  vtkIdType gridGhosts = 0;
   if (ghosts)
   {
     for (vtkIdType c = 0; c < numberOfCells; ++c)
     {
-      this->Ghosts += (ghosts->GetValue(c) & skip) != 0;
+      gridGhosts += (ghosts->GetValue(c) & skip) != 0;
     }
   }
-  if (this->Ghosts > 0)
+  this->Ghosts += gridGhosts;
+  if (gridGhosts > 0)
   {
     for (vtkIdType c = 0; c < numberOfCells; ++c)
     {
@@ -805,12 +808,12 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   this->Kernel.Parent = nullptr;
   this->Kernel.NumberOfParents = 0;
   this->Kernel.OneCellPerParent = false;
-  if (parents < 0 && this->Ghosts > 0)
+  if (parents < 0 && gridGhosts > 0)
   {
     this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
-    std::vector<vtkIdType>().swap(this->KernelToVTK);
     parents = numberOfCells;
   }
+  std::vector<vtkIdType>().swap(this->KernelToVTK);
   if (parents >= 0)
   {
     this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();

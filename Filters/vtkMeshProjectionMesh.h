@@ -169,8 +169,9 @@ public:
   /// The frame the kernel sees the mesh in, moved onto the mesh's own plane.
   const mp::PlaneFrame& Frame() const { return this->Seen; }
   vtkIdType NonManifoldFaces() const { return this->NonManifold; }
+  /// Ghost cells left out (the dataset's; View().ParentOf(c) is the
+  /// dataset's cell of kernel simplex c).
   vtkIdType GhostCells() const { return this->Ghosts; }
-  /// The dataset's cell of a kernel simplex is View().ParentOf(c).
 
 private:
   /// `parents`: the dataset's cells when `grid` is its split (ParentIds set), else -1.
@@ -198,7 +199,7 @@ private:
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   std::vector<mp::Index> AllConnectivityCopy;
   mp::LargeVector<mp::NeighborId> Neighbors;
-  std::vector<vtkIdType> KernelToVTK; ///< the grid's cells that are not ghosts, while wrapping
+  std::vector<vtkIdType> KernelToVTK; ///< while wrapping a grid with ghosts: its other cells
   mp::PlaneFrame Own;
   mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;

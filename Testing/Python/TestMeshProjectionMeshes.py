@@ -28,11 +28,13 @@ from vtkmodules.vtkCommonCore import VTK_STRING, vtkIdList, vtkPoints
 from vtkmodules.vtkCommonDataModel import (VTK_HEXAGONAL_PRISM, VTK_PENTAGONAL_PRISM,
                                            VTK_POLYHEDRON, VTK_QUADRATIC_TETRA,
                                            VTK_QUADRATIC_TRIANGLE, VTK_TRIANGLE, vtkCellArray,
-                                           vtkImageData, vtkMultiBlockDataSet,
+                                           vtkDataSetAttributes, vtkImageData,
+                                           vtkMultiBlockDataSet,
                                            vtkPartitionedDataSet,
                                            vtkPartitionedDataSetCollection, vtkPointSet, vtkPolyData,
                                            vtkRectilinearGrid, vtkStructuredGrid, vtkTable,
                                            vtkUnstructuredGrid)
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersCore import vtkStripper
 from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
 
@@ -421,6 +423,36 @@ in_x = Projection(im2x, same_x)
 in_z = Projection(im2, same_z)
 d = relative_difference(point_array(in_x.out, "V"), point_array(in_z.out, "V"))
 check(d <= 1e-12, "image in x = 0.3 == image in z = 0 for a field moving with the mesh (%g)" % d)
+
+# Image data on both ports, of other extents: the Source is asked for its
+# whole extent, not for the Input's (the pipeline's default, beyond the
+# coarser Source's extent here; a reader would give only that part).
+fine = image((0.0, 0.0, 0.0), (1.0 / 20, 1.0 / 16, 1.0), (21, 17, 1))
+coarse = image((-0.1, -0.1, 0.0), (1.2 / 9, 1.2 / 7, 1.0), (10, 8, 1))
+p = Projection(fine, coarse)
+check_linear(p, "image <- coarser image of a larger extent", expected_covered=1.0, all_valid=True)
+asked = p.filter.GetExecutive().GetInputInformation(1, 0).Get(vtkStreamingDemandDrivenPipeline.UPDATE_EXTENT())
+check(tuple(asked) == tuple(coarse.GetExtent()),
+      "the Source asked for %s, its whole extent is %s" % (tuple(asked), coarse.GetExtent()))
+# Pixels and voxels with ghost cells (split cells: the split leaves them
+# out): no crash, the ghost cell uncovered, Linear exact elsewhere.
+# (Each ghost cell's corners are shared with other cells: all stay valid.)
+for ghosted, what, cell in ((image((0.1, 0.1, 0.0), (0.08, 0.08, 1.0), (11, 11, 1)), "pixels", 5),
+                            (image((0.1, 0.1, 0.1), (0.1, 0.1, 0.1), (7, 7, 7)), "voxels", 86)):
+    ghost = np.zeros(ghosted.GetNumberOfCells(), dtype=np.uint8)
+    ghost[cell] = vtkDataSetAttributes.DUPLICATECELL
+    g = numpy_to_vtk(ghost, deep=1)
+    g.SetName(vtkDataSetAttributes.GhostArrayName())
+    ghosted.GetCellData().AddArray(g)
+    p = Projection(ghosted, MESHES["tets_box"] if what == "voxels" else coarse)
+    check(not p.errors, "%s with a ghost cell: errors %r" % (what, p.errors))
+    fraction = cell_array(p.out, "CoveredFraction")
+    check(fraction[cell] == 0 and np.all(np.delete(fraction, cell) > 0),
+          "%s with a ghost cell: covered fractions %s" % (what, fraction[:8]))
+    err, valid = linear_error(p.out)
+    check(err <= 1e-12 and valid == p.out.GetNumberOfPoints(),
+          "%s with a ghost cell: Linear error %g, %d of %d points valid"
+          % (what, err, valid, p.out.GetNumberOfPoints()))
 
 # vtkRectilinearGrid: graded coordinates of [0,1]^3.
 rg = vtkRectilinearGrid()
