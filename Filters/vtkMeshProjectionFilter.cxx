@@ -541,6 +541,14 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
     sourceInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
     sourceInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
     sourceInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    // A structured Source whole, not the Input's extent (the pipeline's
+    // default): a reader would give only the part inside that extent, and
+    // an extent beyond the Source's is an error.
+    sourceInfo->Remove(SDDP::UPDATE_EXTENT());
+    if (sourceInfo->Has(SDDP::WHOLE_EXTENT()))
+    {
+      sourceInfo->Set(SDDP::UPDATE_EXTENT(), sourceInfo->Get(SDDP::WHOLE_EXTENT()), 6);
+    }
     // Both inputs at the time asked of the output.
     if (outInfo->Has(SDDP::UPDATE_TIME_STEP()))
     {
@@ -2018,6 +2026,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   }
   // Kept for the next execution (and GetMatrix), or dropped; so are those
   // this execution did not use.
+  const bool builtHere = fresh[0] || fresh[1] || fresh[2] || fresh[3];
   for (int t = 0; t < 4; ++t)
   {
     if (fresh[t] && this->CacheOperator && fresh[t]->HasMixedMass())
@@ -2033,7 +2042,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       fresh[t]->ReleaseMatrices(); // solved and not kept: room for the outputs
     }
   }
-  if (fresh[0] || fresh[1] || fresh[2] || fresh[3])
+  if (builtHere) // (the kept ones were moved out of `fresh` just above)
   {
     auto keep = [](const mpvtk::SimplexMesh& mesh, std::vector<mp::Index>& order) {
       order.clear();
