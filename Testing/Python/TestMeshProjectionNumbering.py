@@ -311,4 +311,35 @@ for threads, expected in ((1, 0), (2, 2)):
           % (threads, f.GetNumberOfRenumberedMeshes(), expected))
     compare("interleaved sweeps, %d thread(s)" % threads, plain, f, 2, ct, same_t, cs, same_s)
 
+
+# f. Operators assembled and kept at the first execution (PreserveBounds
+# needs M_ts at once, so GetMatrix asks for no second one): their matrices
+# are read out in the datasets' numbering at the first execution, and again
+# after Input changes to the same mesh in another numbering (a mutation that
+# forgets the new point order fails both).
+def kept_matrices(label, f, points_t, points_s):
+    for which in (f.TARGET_MASS, f.MIXED_MASS):
+        m0 = matrix(plain, 0, which)
+        m1 = matrix(f, 0, which)
+        cols = points_t if which == f.TARGET_MASS else points_s
+        back = m1.tocoo()
+        remapped = csr_matrix((back.data, (points_t[back.row], cols[back.col])), shape=m0.shape)
+        d = abs(remapped - m0).max() / abs(m0).max()
+        check(d < 1e-13, "%s: matrix %d differs by %.3g" % (label, which, d))
+
+
+bounded = vtkMeshProjectionFilter()
+bounded.SetRenumbering(ALWAYS)
+bounded.SetPreserveBounds(True)
+bounded.SetInputData(t2)
+bounded.SetSourceData(s2)
+bounded.Update()
+check(bounded.GetNumberOfRenumberedMeshes() == 2, "bounded: renumbered %d meshes" % bounded.GetNumberOfRenumberedMeshes())
+kept_matrices("kept at the first execution", bounded, same_t, same_s)
+st2, _, pt2 = shuffled(t2, 5)
+bounded.SetInputData(st2)
+bounded.Update()
+kept_matrices("kept after Input changed", bounded, pt2, same_s)
+print("matrices of operators kept at once: in the datasets' numbering")
+
 finish()
