@@ -127,7 +127,9 @@ Index MatchFaces(
  * caller then matches with MatchFaces).
  *
  * Faster than MatchFaces: each cell's corners are read once per corner,
- * not once per face and cell around the face's first corner.
+ * not once per face and cell around the face's first corner. Linear in
+ * n log n in the faces through a point when they are many (sorted), as
+ * around the centre of a fan.
  */
 template <int Corners, class Id>
 Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around,
@@ -205,7 +207,34 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
         f.Side = k;
       }
     }
-    // Group equal faces: few, so pairs are looked for among those after each.
+    // Group equal faces: usually few, so pairs are looked for among those
+    // after each; around a point of many cells (a fan), sorted first.
+    auto link = [&](const Face& f, const Face& g) {
+      neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
+      neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
+    };
+    if (count > 32)
+    {
+      std::sort(faces.begin(), faces.begin() + count);
+      for (size_t a = 0; a < count;)
+      {
+        size_t b = a + 1;
+        while (b < count && faces[b].Same(faces[a]))
+        {
+          ++b;
+        }
+        if (b - a == 2)
+        {
+          link(faces[a], faces[a + 1]);
+        }
+        else if (b - a > 2)
+        {
+          nonManifold += static_cast<Index>(b - a);
+        }
+        a = b;
+      }
+      continue;
+    }
     for (size_t a = 0; a < count; ++a)
     {
       if (faces[a].Cell < 0)
@@ -224,8 +253,7 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
       }
       if (same == 2)
       {
-        neighbors[faces[a].Cell * Corners + faces[a].Side] = static_cast<NeighborId>(faces[partner].Cell);
-        neighbors[faces[partner].Cell * Corners + faces[partner].Side] = static_cast<NeighborId>(faces[a].Cell);
+        link(faces[a], faces[partner]);
         faces[partner].Cell = -1;
       }
       else if (same > 2)
@@ -247,7 +275,7 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
 /**
  * Fills `neighbors` with (CellDimension + 1) * NumberOfCells entries: for cell c
  * and face k (opposite corner k) the cell across, or -1, from the kernel's
- * own point-to-cell lists (BuildPointCells, one pass on one task) and
+ * own point-to-cell lists (BuildPointCells, in `runner`'s tasks) and
  * MatchFacesAtPoints over ranges of points in `runner`'s tasks (MatchFaces
  * when a cell names a point twice). Returns the number of non-manifold faces
  * found. The mesh must have fewer than 2^31 cells.

@@ -206,14 +206,11 @@ void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Ind
         cells.insert(cells.end(), g.BinCells.begin() + g.BinStart[bin],
           g.BinCells.begin() + g.BinStart[bin + 1]);
       }
-  // A cell spanning several bins once (sorting the few found costs less
-  // than a mark per source cell and thread), and only cells whose own box
-  // meets the box: bins are two cells wide, so most cells in them do not,
-  // and each would cost the search a prepared cell and a test.
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  // The box grown by 1e-6 of its size: a box mapped from a plane frame
-  // to space is rounded, and a cell lying in that plane has no thickness.
+  // Only cells whose own box meets the box: bins are two cells wide, so
+  // most cells in them do not, and each would cost the search a prepared
+  // cell and a test. The box is grown by 1e-6 of its size: a box mapped
+  // from a plane frame to space is rounded, and a cell lying in that plane
+  // has no thickness.
   double size = 0.0;
   for (int d = 0; d < 3; ++d)
   {
@@ -237,5 +234,9 @@ void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Ind
                     b[5] < lo[2] || b[4] > hi[2];
                 }),
     cells.end());
+  // Then a cell spanning several bins once: sorting the few left costs
+  // less than a mark per source cell and thread.
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
 } // namespace mp

@@ -280,7 +280,8 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         for (int k = 0; k < c; ++k)
         {
           const Index e = i * c + k;
-          p[e] = converged[k] ? 0.0 : inverseDiagonal[i] * r[e] + beta[k] * p[e];
+          const double z = inverseDiagonal[i] * r[e];
+          p[e] = converged[k] ? 0.0 : z + beta[k] * p[e];
         }
       }
       return 0.0;

@@ -30,7 +30,7 @@ struct CsrMatrix
   LargeVector<double> Values;
 
   Index NonZeros() const { return this->RowStart.empty() ? 0 : this->RowStart.back(); }
-  /// Position of entry (i, k) in Values, or the row's end when absent.
+  /// Position of entry (i, k) in Values; when absent, where it would go in the row.
   Index Find(Index i, Index k) const
   {
     const Column* begin = this->ColumnIndex.data() + this->RowStart[i];
@@ -38,7 +38,6 @@ struct CsrMatrix
     return static_cast<Index>(
       std::lower_bound(begin, end, static_cast<Column>(k)) - this->ColumnIndex.data());
   }
-  /// The entry (i, k), 0 when the pattern does not hold it.
   /**
    * Find() for `n` columns of row i at once (each in the row): on a short
    * row by counting the row's columns below each, without branches (the
@@ -69,6 +68,7 @@ struct CsrMatrix
       positions[j] = begin + below;
     }
   }
+  /// The entry (i, k), 0 when the pattern does not hold it.
   double Entry(Index i, Index k) const
   {
     const Index p = this->Find(i, k);
