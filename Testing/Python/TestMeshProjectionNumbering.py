@@ -163,6 +163,19 @@ def matrix(f, transfer, which):
                       shape=(len(start) - 1, ncols))
 
 
+def same_matrices(label, plain, f, points_t, points_s):
+    """The point transfer's (P1 -> P1) M_tt and M_ts of f, rows and columns
+    mapped back through the shuffles, equal plain's."""
+    for which in (f.TARGET_MASS, f.MIXED_MASS):
+        m0 = matrix(plain, 0, which)
+        m1 = matrix(f, 0, which)
+        cols = points_t if which == f.TARGET_MASS else points_s
+        back = m1.tocoo()
+        remapped = csr_matrix((back.data, (points_t[back.row], cols[back.col])), shape=m0.shape)
+        d = abs(remapped - m0).max() / abs(m0).max()
+        check(d < 1e-13, "%s: matrix %d differs by %.3g" % (label, which, d))
+
+
 def compare(label, plain, f, dim, cells_t, points_t, cells_s, points_s, tol=1e-11):
     """f ran on shuffled meshes; plain on the meshes as generated."""
     po, so = plain.GetOutput(), f.GetOutput()
@@ -191,15 +204,7 @@ def compare(label, plain, f, dim, cells_t, points_t, cells_s, points_s, tol=1e-1
     check(set(a) == set(mapped), "%s: %d vs %d intersecting pairs" % (label, len(a), len(mapped)))
     worst = max((abs(a[k] - mapped[k]) for k in a if k in mapped), default=0.0)
     check(worst < 1e-14, "%s: piece measures differ by %.3g" % (label, worst))
-    # Matrices of the point transfer (P1 -> P1): rows and columns as the datasets' points.
-    for which in (f.TARGET_MASS, f.MIXED_MASS):
-        m0 = matrix(plain, 0, which)
-        m1 = matrix(f, 0, which)
-        cols = points_t if which == f.TARGET_MASS else points_s
-        back = m1.tocoo()
-        remapped = csr_matrix((back.data, (points_t[back.row], cols[back.col])), shape=m0.shape)
-        d = abs(remapped - m0).max() / abs(m0).max()
-        check(d < 1e-13, "%s: matrix %d differs by %.3g" % (label, which, d))
+    same_matrices(label, plain, f, points_t, points_s)
     print("%-32s renumbered %d of 2, %d pieces" % (label, f.GetNumberOfRenumberedMeshes(), len(b)))
 
 
@@ -317,17 +322,6 @@ for threads, expected in ((1, 0), (2, 2)):
 # are read out in the datasets' numbering at the first execution, and again
 # after Input changes to the same mesh in another numbering (a mutation that
 # forgets the new point order fails both).
-def kept_matrices(label, f, points_t, points_s):
-    for which in (f.TARGET_MASS, f.MIXED_MASS):
-        m0 = matrix(plain, 0, which)
-        m1 = matrix(f, 0, which)
-        cols = points_t if which == f.TARGET_MASS else points_s
-        back = m1.tocoo()
-        remapped = csr_matrix((back.data, (points_t[back.row], cols[back.col])), shape=m0.shape)
-        d = abs(remapped - m0).max() / abs(m0).max()
-        check(d < 1e-13, "%s: matrix %d differs by %.3g" % (label, which, d))
-
-
 bounded = vtkMeshProjectionFilter()
 bounded.SetRenumbering(ALWAYS)
 bounded.SetPreserveBounds(True)
@@ -335,11 +329,11 @@ bounded.SetInputData(t2)
 bounded.SetSourceData(s2)
 bounded.Update()
 check(bounded.GetNumberOfRenumberedMeshes() == 2, "bounded: renumbered %d meshes" % bounded.GetNumberOfRenumberedMeshes())
-kept_matrices("kept at the first execution", bounded, same_t, same_s)
+same_matrices("kept at the first execution", plain, bounded, same_t, same_s)
 st2, _, pt2 = shuffled(t2, 5)
 bounded.SetInputData(st2)
 bounded.Update()
-kept_matrices("kept after Input changed", bounded, pt2, same_s)
+same_matrices("kept after Input changed", plain, bounded, pt2, same_s)
 print("matrices of operators kept at once: in the datasets' numbering")
 
 finish()
