@@ -772,6 +772,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
   const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
   vtkIdType gridGhosts = 0;
+  std::vector<vtkIdType> others; // the grid's cells that are not ghosts (when some are)
   if (ghosts)
   {
     for (vtkIdType c = 0; c < numberOfCells; ++c)
@@ -786,13 +787,13 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     {
       if (!(ghosts->GetValue(c) & skip))
       {
-        this->KernelToVTK.push_back(c);
+        others.push_back(c);
         this->ConnectivityCopy.insert(this->ConnectivityCopy.end(),
           this->AllConnectivity + corners * c, this->AllConnectivity + corners * (c + 1));
       }
     }
     this->Kernel.Connectivity = this->ConnectivityCopy.data();
-    this->Kernel.NumberOfCells = static_cast<mp::Index>(this->KernelToVTK.size());
+    this->Kernel.NumberOfCells = static_cast<mp::Index>(others.size());
   }
   else
   {
@@ -810,10 +811,9 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   this->Kernel.OneCellPerParent = false;
   if (parents < 0 && gridGhosts > 0)
   {
-    this->ParentIds.assign(this->KernelToVTK.begin(), this->KernelToVTK.end());
+    this->ParentIds.assign(others.begin(), others.end());
     parents = numberOfCells;
   }
-  std::vector<vtkIdType>().swap(this->KernelToVTK);
   if (parents >= 0)
   {
     this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
@@ -921,7 +921,8 @@ void SimplexMesh::BuildNeighbors()
   {
     return; // no neighbours: the kernel refuses the front for so many cells, and says so
   }
-  this->Neighbors.resize(corners * static_cast<size_t>(n));
+  // Every entry written by BuildFaceNeighbors (in the tasks), none before.
+  this->Neighbors = mp::LargeBuffer<mp::NeighborId>(corners * static_cast<size_t>(n));
   this->Kernel.Neighbors = this->Neighbors.data();
   if (n == 0)
   {

@@ -125,7 +125,7 @@ public:
   /// Gives the neighbours' memory back once no search will need them.
   void ReleaseNeighbors()
   {
-    mp::LargeVector<mp::NeighborId>().swap(this->Neighbors);
+    this->Neighbors = mp::LargeBuffer<mp::NeighborId>();
     this->Kernel.Neighbors = nullptr;
   }
 
@@ -198,8 +198,7 @@ private:
   std::vector<mp::Index> ConnectivityCopy;
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   std::vector<mp::Index> AllConnectivityCopy;
-  mp::LargeVector<mp::NeighborId> Neighbors;
-  std::vector<vtkIdType> KernelToVTK; ///< while wrapping a grid with ghosts: its other cells
+  mp::LargeBuffer<mp::NeighborId> Neighbors;
   mp::PlaneFrame Own;
   mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;

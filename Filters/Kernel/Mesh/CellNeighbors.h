@@ -127,8 +127,8 @@ Index MatchFaces(
  * caller then matches with MatchFaces).
  *
  * Faster than MatchFaces: each cell's corners are read once per corner,
- * not once per face and cell around the face's first corner. Linear in
- * n log n in the faces through a point when they are many (sorted), as
+ * not once per face and cell around the face's first corner. The faces
+ * through a point are sorted to be grouped: n log n in their number, also
  * around the centre of a fan.
  */
 template <int Corners, class Id>
@@ -207,66 +207,28 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
         f.Side = k;
       }
     }
-    // Group equal faces: usually few, so pairs are looked for among those
-    // after each; around a point of many cells (a fan), sorted first.
-    auto link = [&](const Face& f, const Face& g) {
-      neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
-      neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
-    };
-    if (count > 32)
+    // Equal faces side by side, then each group: two cells are neighbours,
+    // more share a non-manifold face.
+    std::sort(faces.begin(), faces.begin() + count);
+    for (size_t a = 0; a < count;)
     {
-      std::sort(faces.begin(), faces.begin() + count);
-      for (size_t a = 0; a < count;)
+      size_t b = a + 1;
+      while (b < count && faces[b].Same(faces[a]))
       {
-        size_t b = a + 1;
-        while (b < count && faces[b].Same(faces[a]))
-        {
-          ++b;
-        }
-        if (b - a == 2)
-        {
-          link(faces[a], faces[a + 1]);
-        }
-        else if (b - a > 2)
-        {
-          nonManifold += static_cast<Index>(b - a);
-        }
-        a = b;
+        ++b;
       }
-      continue;
-    }
-    for (size_t a = 0; a < count; ++a)
-    {
-      if (faces[a].Cell < 0)
+      if (b - a == 2)
       {
-        continue; // grouped already
+        const Face& f = faces[a];
+        const Face& g = faces[a + 1];
+        neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
+        neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
       }
-      size_t partner = a;
-      Index same = 1;
-      for (size_t b = a + 1; b < count; ++b)
+      else if (b - a > 2)
       {
-        if (faces[b].Same(faces[a]))
-        {
-          partner = b;
-          ++same;
-        }
+        nonManifold += static_cast<Index>(b - a);
       }
-      if (same == 2)
-      {
-        link(faces[a], faces[partner]);
-        faces[partner].Cell = -1;
-      }
-      else if (same > 2)
-      {
-        nonManifold += same;
-        for (size_t b = a + 1; b < count; ++b)
-        {
-          if (faces[b].Same(faces[a]))
-          {
-            faces[b].Cell = -1;
-          }
-        }
-      }
+      a = b;
     }
   }
   return nonManifold;
@@ -288,10 +250,10 @@ Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbor
  * The cells around every point, in CSR form: point p is used by the cells
  * cells[start[p]], ..., cells[start[p + 1] - 1] (in increasing order). The
  * vectors' element type (Index, or 32-bit to halve the memory) must hold
- * corners x cells. A counting sort; with a runner of several tasks, each
- * counts and places the uses of its range of cells (per-task counts: at
- * most as many tasks as uses per point, so that they take no more memory
- * than `cells`), the same lists as on one.
+ * corners x cells. A counting sort: each task counts and places the uses
+ * of its range of cells (per-task counts: at most as many tasks as uses
+ * per point, so that they take no more memory than `cells`), the same
+ * lists on any number of tasks.
  */
 template <class Vector>
 void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells, const TaskRunner& runner)
@@ -304,30 +266,6 @@ void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells, const T
   const int tasks = static_cast<int>(std::min<Index>(
     runner.TasksFor(n, 65536), std::max<Index>(1, np > 0 ? uses / np : 1)));
   start.assign(static_cast<std::size_t>(np) + 1, 0);
-  if (tasks == 1)
-  {
-    for (Index c = 0; c < n; ++c)
-    {
-      for (int k = 0; k < corners; ++k)
-      {
-        ++start[mesh.Cell(c)[k] + 1];
-      }
-    }
-    for (Index p = 0; p < np; ++p)
-    {
-      start[p + 1] += start[p];
-    }
-    cells.resize(static_cast<std::size_t>(start.back()));
-    Vector fill(start.begin(), start.end() - 1);
-    for (Index c = 0; c < n; ++c) // cell ids come out sorted per point
-    {
-      for (int k = 0; k < corners; ++k)
-      {
-        cells[fill[mesh.Cell(c)[k]]++] = static_cast<Id>(c);
-      }
-    }
-    return;
-  }
   // Per task: its uses of each point, then where they go in the point's list.
   std::vector<Vector> count(static_cast<std::size_t>(tasks));
   runner.RunAll(tasks, [&](int k) {

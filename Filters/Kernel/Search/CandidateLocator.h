@@ -59,7 +59,6 @@ public:
   virtual std::unique_ptr<CandidateLocator> NewForThread() const = 0;
 };
 
-
 /**
  * Uniform grids of bins (about 2^d cells per bin) over the cells' bounding
  * boxes: one over the boundary cells, built at once from the mesh's
