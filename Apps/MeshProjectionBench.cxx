@@ -192,9 +192,8 @@ void Renumber(TestMesh& m, const std::string& order, unsigned seed)
     // Points in the order the sorted cells first use them: the kernel's
     // renumbering, given this cell order.
     mp::SpatialOrder sorted;
-    sorted.Cells.swap(cellOrder);
-    std::vector<Index> parent(static_cast<size_t>(cells));
-    mp::RenumberMesh(m.View(false), sorted, x.data(), ids.data(), parent.data());
+    sorted.Cells.assign(cellOrder.begin(), cellOrder.end());
+    mp::RenumberMesh(m.View(false), sorted, x.data(), ids.data(), sorted.Cells.data());
   }
   m.Points.swap(x);
   m.Cells.swap(ids);

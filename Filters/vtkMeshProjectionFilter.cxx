@@ -2102,7 +2102,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     {
       w.assign(static_cast<size_t>(fromCells ? view.Parents() : view.NumberOfPoints), 0.0);
       const int corners = view.CornersPerCell();
-      const std::vector<double>& covered = op.GetSourceCovered();
+      const mp::LargeVector<double>& covered = op.GetSourceCovered();
       const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
       mp::ForEachCellMeasure(view, [&](mp::Index c, double whole) {
         double m = covered[static_cast<size_t>(c)];

@@ -514,8 +514,8 @@ void SimplexMesh::OrderInSpace()
   // and cell types a VTK grid would add: nothing reads it as one).
   mp::LargeBuffer<double> coordinates(3 * static_cast<size_t>(np)); // written whole by RenumberMesh
   mp::LargeBuffer<mp::Index> connectivity(corners * static_cast<size_t>(n));
-  std::vector<mp::Index> parent(static_cast<size_t>(n));
-  mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), parent.data(), runner);
+  // The parents overwrite the cell order (no array of their own).
+  mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
   // The kernel sees the copy; P0 functions and the pieces' ids still name
   // the dataset's cells (through Parent), P1 ones name kernel points
   // (DataSetPoint maps them back).
@@ -524,7 +524,7 @@ void SimplexMesh::OrderInSpace()
     this->Kernel.NumberOfParents = n;
     this->Kernel.OneCellPerParent = true; // the renumbering is the only parent map
   }
-  this->ParentIds.swap(parent);
+  this->ParentIds.swap(order.Cells);
   this->Kernel.Parent = this->ParentIds.data();
   this->OrderedConnectivity.swap(connectivity);
   this->OrderedPoints.swap(coordinates);
@@ -533,9 +533,9 @@ void SimplexMesh::OrderInSpace()
   this->OriginalPoints = this->Kernel.Points;
   this->PointOrder.swap(order.Points);
   // What the old numbering needed and nothing reads any more.
-  std::vector<mp::Index>().swap(this->ConnectivityCopy);
-  std::vector<mp::Index>().swap(this->AllConnectivityCopy);
-  std::vector<double>().swap(this->PointCopy);
+  mp::LargeVector<mp::Index>().swap(this->ConnectivityCopy);
+  mp::LargeVector<mp::Index>().swap(this->AllConnectivityCopy);
+  mp::LargeVector<double>().swap(this->PointCopy);
   this->AllConnectivity = nullptr;
   this->OrderTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

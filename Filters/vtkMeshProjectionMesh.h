@@ -181,7 +181,7 @@ private:
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
   vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
-  std::vector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
+  mp::LargeVector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
   const double* OriginalPoints = nullptr;        ///< the points before any plane frame
   vtkIdType LowerDimensional = 0;
   vtkIdType Flat = 0;
@@ -189,15 +189,15 @@ private:
   double CheckTime = 0;
   double OrderTime = 0;
   int OrderingMode = AUTOMATIC;
-  std::vector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
+  mp::LargeVector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
   mp::LargeBuffer<double> OrderedPoints;          ///< the renumbered points, when Ordered()
   mp::LargeBuffer<mp::Index> OrderedConnectivity; ///< and simplices
   mp::MeshView Kernel;
-  std::vector<double> PointCopy;
+  mp::LargeVector<double> PointCopy;
   std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant
-  std::vector<mp::Index> ConnectivityCopy;
+  mp::LargeVector<mp::Index> ConnectivityCopy;
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
-  std::vector<mp::Index> AllConnectivityCopy;
+  mp::LargeVector<mp::Index> AllConnectivityCopy;
   mp::LargeBuffer<mp::NeighborId> Neighbors;
   mp::PlaneFrame Own;
   mp::PlaneFrame Seen;

@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <functional>
 #include <random>
+#include <thread>
 #include <vector>
 
 using mp::Index;
@@ -52,8 +54,9 @@ TestMesh Shuffled(const TestMesh& m, unsigned seed)
   return s;
 }
 
-bool IsPermutation(std::vector<Index> v)
+bool IsPermutation(const mp::LargeVector<Index>& order)
 {
+  std::vector<Index> v(order.begin(), order.end());
   std::sort(v.begin(), v.end());
   for (size_t i = 0; i < v.size(); ++i)
   {
@@ -83,6 +86,49 @@ struct Renumbered
     this->Mesh.Finish();
   }
 };
+
+/// A runner of `tasks` tasks on threads of their own (concurrent: true) or
+/// one after the other.
+mp::TaskRunner Tasks(int tasks, bool concurrent)
+{
+  mp::TaskRunner runner;
+  runner.Tasks = tasks;
+  if (concurrent)
+  {
+    runner.Run = [](int count, const std::function<void(int)>& task) {
+      std::vector<std::thread> threads;
+      for (int k = 0; k < count; ++k)
+      {
+        threads.emplace_back(task, k);
+      }
+      for (std::thread& t : threads)
+      {
+        t.join();
+      }
+    };
+  }
+  return runner;
+}
+
+/// Everything RenumberMesh gives, for comparisons.
+struct Copy
+{
+  mp::SpatialOrder Order;
+  std::vector<double> Points;
+  std::vector<Index> Cells;
+  std::vector<Index> Parent;
+};
+
+Copy RenumberWith(const TestMesh& m, const mp::LargeVector<Index>& cells, const mp::TaskRunner& runner)
+{
+  Copy c;
+  c.Order.Cells = cells;
+  c.Points.resize(m.Points.size());
+  c.Cells.resize(m.Cells.size());
+  c.Parent.resize(cells.size());
+  mp::RenumberMesh(m.View(false), c.Order, c.Points.data(), c.Cells.data(), c.Parent.data(), runner);
+  return c;
+}
 
 double Smooth(double x, double y, double z)
 {
@@ -145,6 +191,74 @@ TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
         // Points are numbered in the order the cells first use them.
         ASSERT_LE(p, next);
         next = std::max(next, p + 1);
+      }
+    }
+  }
+}
+
+TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
+{
+  // Meshes large enough for 3 tasks (16384 cells each at least), shuffled,
+  // with an unused point first and one last. The renumbering's tasks claim
+  // points concurrently; whatever the race, the result must be the serial
+  // first-use numbering. Besides the curve's order (ranges of cells that
+  // are regions of space: only their borders are contested), cells in a
+  // random order make nearly every point used by several tasks.
+  for (int dimension : { 2, 3 })
+  {
+    TestMesh m = Shuffled(dimension == 2 ? mptest::GridMesh(170, 160, 0.25, 3)
+                                         : mptest::CubeMesh(20, 20, 25, 0.15, 3),
+      5);
+    m.Points.insert(m.Points.begin(), { 0.5, 0.5, 0.5 });
+    for (Index& id : m.Cells)
+    {
+      ++id;
+    }
+    m.Points.insert(m.Points.end(), { 0.25, 0.25, 0.25 });
+    m.Finish();
+    ASSERT_GE(m.NumberOfCells(), 3 * 16384);
+    mp::SpatialOrder serial;
+    mp::OrderAlongCurve(m.View(false), serial);
+    mp::LargeVector<Index> random = serial.Cells;
+    std::shuffle(random.begin(), random.end(), std::mt19937(8));
+    for (const mp::LargeVector<Index>* cells : { &serial.Cells, &random })
+    {
+      const Copy expected = RenumberWith(m, *cells, mp::TaskRunner());
+      // The serial copy: points in first-use order, unused ones last.
+      Index next = 0;
+      for (Index id : expected.Cells)
+      {
+        ASSERT_LE(id, next);
+        next = std::max(next, id + 1);
+      }
+      EXPECT_EQ(next, m.NumberOfPoints() - 2);
+      EXPECT_EQ(expected.Order.Points[next], 0);
+      EXPECT_EQ(expected.Order.Points[next + 1], m.NumberOfPoints() - 1);
+      for (int tasks : { 2, 3 })
+      {
+        for (bool concurrent : { false, true })
+        {
+          const mp::TaskRunner runner = Tasks(tasks, concurrent);
+          if (cells == &serial.Cells)
+          {
+            mp::SpatialOrder order;
+            mp::OrderAlongCurve(m.View(false), order, runner);
+            EXPECT_EQ(order.Cells, serial.Cells) << dimension << "D, " << tasks << " tasks";
+          }
+          // Several times: the races differ from run to run.
+          for (int run = 0; run < 3; ++run)
+          {
+            const Copy c = RenumberWith(m, *cells, runner);
+            const std::string what = std::to_string(dimension) + "D, " +
+              (cells == &random ? "random" : "curve") + " order, " + std::to_string(tasks) +
+              (concurrent ? " concurrent" : " sequential") + " tasks";
+            EXPECT_EQ(c.Order.Points, expected.Order.Points) << what;
+            EXPECT_EQ(c.Order.NewPoint, expected.Order.NewPoint) << what;
+            EXPECT_EQ(c.Cells, expected.Cells) << what;
+            EXPECT_EQ(c.Points, expected.Points) << what;
+            EXPECT_EQ(c.Parent, expected.Parent) << what;
+          }
+        }
       }
     }
   }

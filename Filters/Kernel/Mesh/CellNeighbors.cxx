@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Mesh/CellNeighbors.h"
+#include "Mesh/LargeArray.h"
 
 #include <algorithm>
 #include <atomic>
@@ -13,8 +14,8 @@ namespace
 template <class Id>
 Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
 {
-  std::vector<Id> start;
-  std::vector<Id> around;
+  LargeVector<Id> start;
+  LargeVector<Id> around;
   BuildPointCells(mesh, start, around, runner);
   const int corners = mesh.CornersPerCell();
   const Index size = mesh.NumberOfCells * corners;

@@ -148,7 +148,7 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   }
   const double top = std::ldexp(1.0, bits) - 1.0;
   // Key in the high 32 bits, cell id in the low ones.
-  std::vector<std::uint64_t> keys(static_cast<size_t>(n));
+  LargeVector<std::uint64_t> keys(static_cast<size_t>(n));
   runner.ForRanges(n, [&](Index begin, Index end) {
     const int corners = mesh.CornersPerCell();
     for (Index c = begin; c < end; ++c)
@@ -175,40 +175,64 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     return 0;
   });
   // Least-significant-digit radix sort on the key's 32 bits in three digits
-  // of 11, 11 and 10 bits, the three histograms counted in one pass: stable,
-  // so equal keys stay in id order.
+  // of 11, 11 and 10 bits: stable, so equal keys stay in id order. Each
+  // task counts and then moves its own range of keys; the buckets' starts
+  // are laid out bucket by bucket and, within a bucket, task by task, so
+  // that the result is the same for any number of tasks.
   constexpr int Shifts[3] = { 32, 43, 54 };
   constexpr size_t Buckets = 2048;
-  std::vector<size_t> count(3 * (Buckets + 1), 0);
-  for (std::uint64_t k : keys)
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      ++count[d * (Buckets + 1) + ((k >> Shifts[d]) & (Buckets - 1)) + 1];
-    }
-  }
-  std::vector<std::uint64_t> other(keys.size());
+  const int tasks = runner.TasksFor(n, 16384);
+  std::vector<size_t> count(static_cast<size_t>(tasks) * Buckets);
+  LargeVector<std::uint64_t> other(keys.size());
   for (int d = 0; d < 3; ++d)
   {
-    size_t* start = count.data() + d * (Buckets + 1);
-    if (start[1 + ((keys[0] >> Shifts[d]) & (Buckets - 1))] == keys.size())
+    const int shift = Shifts[d];
+    runner.RunAll(tasks, [&](int t) {
+      size_t* mine = count.data() + static_cast<size_t>(t) * Buckets;
+      std::fill(mine, mine + Buckets, size_t(0));
+      const Index end = RangeBegin(n, t + 1, tasks);
+      for (Index i = RangeBegin(n, t, tasks); i < end; ++i)
+      {
+        ++mine[(keys[i] >> shift) & (Buckets - 1)];
+      }
+    });
+    size_t at = 0;
+    bool moves = true;
+    for (size_t b = 0; b < Buckets; ++b)
+    {
+      size_t inBucket = 0;
+      for (int t = 0; t < tasks; ++t)
+      {
+        size_t& c = count[static_cast<size_t>(t) * Buckets + b];
+        const size_t here = c;
+        c = at;
+        at += here;
+        inBucket += here;
+      }
+      moves &= inBucket != keys.size();
+    }
+    if (!moves)
     {
       continue; // one value of this digit: nothing moves
     }
-    for (size_t b = 0; b < Buckets; ++b)
-    {
-      start[b + 1] += start[b];
-    }
-    for (std::uint64_t k : keys)
-    {
-      other[start[(k >> Shifts[d]) & (Buckets - 1)]++] = k;
-    }
+    runner.RunAll(tasks, [&](int t) {
+      size_t* start = count.data() + static_cast<size_t>(t) * Buckets;
+      const Index end = RangeBegin(n, t + 1, tasks);
+      for (Index i = RangeBegin(n, t, tasks); i < end; ++i)
+      {
+        const std::uint64_t k = keys[i];
+        other[start[(k >> shift) & (Buckets - 1)]++] = k;
+      }
+    });
     keys.swap(other);
   }
-  for (Index c = 0; c < n; ++c)
-  {
-    order.Cells[c] = static_cast<Index>(keys[c] & 0xffffffffULL);
-  }
+  runner.ForRanges(n, [&](Index begin, Index end) {
+    for (Index c = begin; c < end; ++c)
+    {
+      order.Cells[c] = static_cast<Index>(keys[c] & 0xffffffffULL);
+    }
+    return 0;
+  });
 }
 
 double NumberingSpread(const MeshView& mesh)
@@ -278,50 +302,164 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   const Index n = mesh.NumberOfCells;
   const Index np = mesh.NumberOfPoints;
   const int corners = mesh.CornersPerCell();
-  // Points in the order the ordered cells first use them, numbered while
-  // the cells are copied (one pass over the old cells).
-  order.NewPoint.assign(static_cast<size_t>(np), -1);
-  order.Points.resize(static_cast<size_t>(np));
-  Index next = 0;
-  for (Index c = 0; c < n; ++c)
-  {
-    // Two stages of prefetching: the connectivity of the cell 2 * Ahead
-    // on, the point slots of the one Ahead on (its ids asked for before).
-    if (c + 2 * Ahead < n)
+  // Points are numbered in the order the ordered cells first use them. The
+  // ordered cells are split into ranges, one per task, and each task claims
+  // the points its cells use, in its own order: claim[p] holds the claiming
+  // task (plus one) in the bits from Shift up and the point's place in
+  // that task's list below. A task takes over a point claimed by a later
+  // task (an atomic exchange of a larger value for a smaller one), so in
+  // the end each point is claimed by the first range using it, at its
+  // first use there; the ranges' surviving claims, one range after the
+  // other, are then exactly the serial first-use order. Connectivity holds
+  // claims until they are resolved to the new ids (with one task, the
+  // claims are the new ids).
+  constexpr int Shift = 40;
+  constexpr Index Local = (Index(1) << Shift) - 1;
+  constexpr Index Unclaimed = std::numeric_limits<Index>::max();
+  const int tasks =
+    np < Local ? static_cast<int>(std::min<Index>(runner.TasksFor(n, 16384), 4096)) : 1;
+  const bool concurrent = tasks > 1 && runner.Run;
+  order.NewPoint.resize(static_cast<size_t>(np));
+  Index* claim = order.NewPoint.data();
+  runner.ForRanges(np, [&](Index begin, Index end) {
+    std::fill(claim + begin, claim + end, Unclaimed);
+    return 0;
+  });
+  std::vector<LargeVector<Index>> claimed(static_cast<size_t>(tasks));
+  runner.RunAll(tasks, [&](int t) {
+    const Index first = RangeBegin(n, t, tasks);
+    const Index last = RangeBegin(n, t + 1, tasks);
+    // One task: the claims are the new ids themselves.
+    const Index mine = tasks == 1 ? 0 : (Index(t) + 1) << Shift;
+    const Index later = (Index(t) + 2) << Shift; // claims from here on are later tasks'
+    LargeVector<Index>& list = claimed[t];
+    list.reserve(static_cast<size_t>(tasks == 1 ? np : (np / tasks) + (np / tasks) / 8 + 16));
+    for (Index c = first; c < last; ++c)
     {
-      Prefetch(mesh.Cell(order.Cells[c + 2 * Ahead]));
-    }
-    if (c + Ahead < n)
-    {
-      const Index* ahead = mesh.Cell(order.Cells[c + Ahead]);
+      // Two stages of prefetching: the connectivity of the cell 2 * Ahead
+      // on, the claims of the one Ahead on (its ids asked for before).
+      if (c + 2 * Ahead < last)
+      {
+        Prefetch(mesh.Cell(order.Cells[c + 2 * Ahead]));
+      }
+      if (c + Ahead < last)
+      {
+        const Index* ahead = mesh.Cell(order.Cells[c + Ahead]);
+        for (int k = 0; k < corners; ++k)
+        {
+          Prefetch(claim + ahead[k]);
+        }
+        if (mesh.Parent)
+        {
+          Prefetch(mesh.Parent + order.Cells[c + Ahead]);
+        }
+      }
+      const Index old = order.Cells[c];
+      const Index* ids = mesh.Cell(old);
       for (int k = 0; k < corners; ++k)
       {
-        Prefetch(&order.NewPoint[ahead[k]]);
+        Index* slot = claim + ids[k];
+        Index value;
+        if (!concurrent)
+        {
+          value = *slot;
+          if (value == Unclaimed)
+          {
+            value = *slot = mine | static_cast<Index>(list.size());
+            list.push_back(ids[k]);
+          }
+        }
+        else
+        {
+          value = __atomic_load_n(slot, __ATOMIC_RELAXED);
+          // An earlier task's claim or this task's own stays; a later
+          // task's (or none) is taken over.
+          while (value >= later)
+          {
+            const Index want = mine | static_cast<Index>(list.size());
+            if (__atomic_compare_exchange_n(slot, &value, want, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+            {
+              value = want;
+              list.push_back(ids[k]);
+              break;
+            }
+          }
+        }
+        connectivity[corners * c + k] = value;
       }
-      if (mesh.Parent)
-      {
-        Prefetch(mesh.Parent + order.Cells[c + Ahead]);
-      }
+      parent[c] = mesh.ParentOf(old);
     }
-    const Index old = order.Cells[c];
-    const Index* ids = mesh.Cell(old);
-    for (int k = 0; k < corners; ++k)
-    {
-      Index& p = order.NewPoint[ids[k]];
-      if (p < 0)
-      {
-        p = next;
-        order.Points[next++] = ids[k];
-      }
-      connectivity[corners * c + k] = p;
-    }
-    parent[c] = mesh.ParentOf(old);
+  });
+  // Each task's surviving claims get consecutive new ids after those of the
+  // tasks before it; its list then maps each of its claims, surviving or
+  // not, to the point's new id.
+  order.Points.resize(static_cast<size_t>(np));
+  Index next = 0;
+  if (tasks == 1)
+  {
+    next = static_cast<Index>(claimed[0].size());
+    std::copy(claimed[0].begin(), claimed[0].end(), order.Points.begin());
   }
+  else
+  {
+    std::vector<Index> offset(static_cast<size_t>(tasks) + 1, 0);
+    runner.RunAll(tasks, [&](int t) {
+      const Index mine = (Index(t) + 1) << Shift;
+      Index kept = 0;
+      const LargeVector<Index>& list = claimed[t];
+      for (size_t i = 0; i < list.size(); ++i)
+      {
+        kept += __atomic_load_n(claim + list[i], __ATOMIC_RELAXED) == (mine | static_cast<Index>(i));
+      }
+      offset[t + 1] = kept;
+    });
+    for (int t = 0; t < tasks; ++t)
+    {
+      offset[t + 1] += offset[t];
+    }
+    next = offset[tasks];
+    // Surviving claims become new ids (below 2^Shift: no task's claim), and
+    // their list entries the new id with a mark; the others are looked up
+    // once every task has written its new ids.
+    constexpr Index Resolved = Index(1) << 62;
+    runner.RunAll(tasks, [&](int t) {
+      const Index mine = (Index(t) + 1) << Shift;
+      Index id = offset[t];
+      LargeVector<Index>& list = claimed[t];
+      for (size_t i = 0; i < list.size(); ++i)
+      {
+        const Index p = list[i];
+        if (__atomic_load_n(claim + p, __ATOMIC_RELAXED) == (mine | static_cast<Index>(i)))
+        {
+          order.Points[id] = p;
+          __atomic_store_n(claim + p, id, __ATOMIC_RELAXED);
+          list[i] = id++ | Resolved;
+        }
+      }
+    });
+    runner.RunAll(tasks, [&](int t) {
+      for (Index& entry : claimed[t])
+      {
+        entry = (entry & Resolved) ? entry & ~Resolved : claim[entry];
+      }
+    });
+    runner.RunAll(tasks, [&](int t) {
+      const Index end = corners * RangeBegin(n, t + 1, tasks);
+      for (Index i = corners * RangeBegin(n, t, tasks); i < end; ++i)
+      {
+        const Index value = connectivity[i];
+        connectivity[i] = claimed[(value >> Shift) - 1][value & Local];
+      }
+    });
+  }
+  std::vector<LargeVector<Index>>().swap(claimed);
+  // Points no cell uses: last, in their old order.
   for (Index p = 0; p < np; ++p)
   {
-    if (order.NewPoint[p] < 0)
+    Index& id = order.NewPoint[p];
+    if (id == Unclaimed)
     {
-      order.NewPoint[p] = next;
+      id = next;
       order.Points[next++] = p;
     }
   }

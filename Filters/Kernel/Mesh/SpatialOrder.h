@@ -26,6 +26,7 @@
 #ifndef MeshProjection_Kernel_SpatialOrder_h
 #define MeshProjection_Kernel_SpatialOrder_h
 
+#include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/Tasks.h"
 
@@ -43,9 +44,9 @@ std::uint64_t MortonIndex(const std::uint32_t* x, int dimension);
 
 struct SpatialOrder
 {
-  std::vector<Index> Cells;  ///< new cell id -> old cell id
-  std::vector<Index> Points; ///< new point id -> old point id
-  std::vector<Index> NewPoint; ///< old point id -> new point id
+  LargeVector<Index> Cells;    ///< new cell id -> old cell id
+  LargeVector<Index> Points;   ///< new point id -> old point id
+  LargeVector<Index> NewPoint; ///< old point id -> new point id
 };
 
 /**
@@ -82,6 +83,9 @@ double ChainedFraction(const MeshView& mesh);
  * `parent` (per new cell, mesh.ParentOf of its old cell). The points are
  * numbered in the order the ordered cells first use them, those no cell
  * uses last in their old order (order.Points and order.NewPoint are set).
+ * `parent` may be order.Cells itself: each entry is read before it is
+ * overwritten. The cells are copied in `runner`'s tasks, which give the
+ * same numbering as one task.
  */
 void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   Index* connectivity, Index* parent, const TaskRunner& runner = TaskRunner());

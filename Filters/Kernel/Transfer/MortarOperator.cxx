@@ -219,7 +219,7 @@ void MortarOperator::Assemble(
   std::vector<MixedBlocks> blocks(static_cast<size_t>(tasks));
   std::vector<IntersectionPieces> pieces(static_cast<size_t>(tasks > 1 ? tasks : 0));
   // How much of each source cell the pieces cover: per task, summed after.
-  std::vector<std::vector<double>> met(static_cast<size_t>(tasks));
+  std::vector<LargeVector<double>> met(static_cast<size_t>(tasks));
   for (int k = 0; k < tasks; ++k)
   {
     Assembler& a = assemblers[k];

@@ -201,7 +201,7 @@ public:
   /// Per source cell (kernel numbering): the measure of its part the pieces
   /// cover, measured on the source cell (for surfaces and curves through
   /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
-  const std::vector<double>& GetSourceCovered() const { return this->SourceCovered; }
+  const LargeVector<double>& GetSourceCovered() const { return this->SourceCovered; }
   /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
   Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
   /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
@@ -227,7 +227,7 @@ private:
   std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;
   std::vector<double> CoveredFraction;
-  std::vector<double> SourceCovered;
+  LargeVector<double> SourceCovered;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
   SearchStatistics Statistics;
