@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
 #include <limits>
 
@@ -181,33 +182,40 @@ void MortarOperator::Assemble(
   // The target cells in ranges, one per task, each with its own front,
   // locator and sums.
   const Index cells = target.NumberOfCells;
-  const int tasks = runner.TasksFor(cells, 64);
+  // (At most 65535: the shared functions are found by 16-bit task marks.)
+  const int tasks = std::min(runner.TasksFor(cells, 64), 65535);
   // Target functions on cells of more than one task: their M_tt rows are
   // summed after the tasks (MortarAssembler::Shared).
-  std::vector<char> shared;
+  // Each task marks the functions of its cells with its number (plus one)
+  // where no task has yet; a function found marked by another task is
+  // shared. (Relaxed atomics: of two tasks marking at once, one sees the
+  // other's mark.)
+  LargeVector<char> shared;
   if (tasks > 1)
   {
     shared.assign(static_cast<size_t>(rows), 0);
-    std::vector<int> owner(static_cast<size_t>(rows), -1);
-    for (int k = 0; k < tasks; ++k)
-    {
+    LargeVector<std::uint16_t> mark(static_cast<size_t>(rows), 0);
+    runner.RunAll(tasks, [&](int k) {
+      const auto mine = static_cast<std::uint16_t>(k + 1);
       for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
       {
         Index dofs[TargetSpace::Dofs];
         TargetSpace::MeshCellDofs(target, c, dofs);
         for (Index f : dofs)
         {
-          if (owner[f] < 0)
+          std::uint16_t seen = __atomic_load_n(&mark[f], __ATOMIC_RELAXED);
+          if (seen == 0 &&
+            __atomic_compare_exchange_n(&mark[f], &seen, mine, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
           {
-            owner[f] = k;
+            continue;
           }
-          else if (owner[f] != k)
+          if (seen != mine)
           {
-            shared[f] = 1;
+            __atomic_store_n(&shared[f], char(1), __ATOMIC_RELAXED);
           }
         }
       }
-    }
+    });
   }
   using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
   const bool single = this->Options.Fields != nullptr;
@@ -314,27 +322,32 @@ void MortarOperator::Assemble(
   // entry of the covered mass matrix is positive. An invalid function's
   // whole row is zero (no piece touches its support); a 1 on the diagonal
   // decouples it.
-  this->Valid.assign(static_cast<size_t>(rows), 0);
-  this->RowSums.assign(static_cast<size_t>(rows), 0.0);
-  for (Index i = 0; i < rows; ++i)
-  {
-    double& diagonal = this->TargetMass.Values[this->TargetMass.Find(i, i)];
-    if (diagonal > 0.0)
+  this->Valid.resize(static_cast<size_t>(rows));
+  this->RowSums.resize(static_cast<size_t>(rows));
+  this->NumberOfValid += runner.ForRanges(rows, [&](Index begin, Index end) {
+    Index valid = 0;
+    for (Index i = begin; i < end; ++i)
     {
-      this->Valid[i] = 1;
-      ++this->NumberOfValid;
+      double& diagonal = this->TargetMass.Values[this->TargetMass.Find(i, i)];
+      const bool isValid = diagonal > 0.0;
       double sum = 0.0;
-      for (Index p = this->TargetMass.RowStart[i]; p < this->TargetMass.RowStart[i + 1]; ++p)
+      if (isValid)
       {
-        sum += this->TargetMass.Values[p];
+        ++valid;
+        for (Index p = this->TargetMass.RowStart[i]; p < this->TargetMass.RowStart[i + 1]; ++p)
+        {
+          sum += this->TargetMass.Values[p];
+        }
       }
+      else
+      {
+        diagonal = 1.0;
+      }
+      this->Valid[i] = isValid ? 1 : 0;
       this->RowSums[i] = sum;
     }
-    else
-    {
-      diagonal = 1.0;
-    }
-  }
+    return valid;
+  }, 16384);
   this->Timings.Assembly += Seconds(start);
 }
 
