@@ -284,9 +284,15 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
         " cell types." + advice;
     }
     const unsigned char* t = n > 0 ? types->GetPointer(0) : nullptr;
+    // The types VTK knows, once (not a name lookup per cell).
+    bool known[256];
+    for (int type = 0; type < 256; ++type)
+    {
+      known[type] = std::strcmp(vtkCellTypes::GetClassNameFromTypeId(type), "UnknownClass") != 0;
+    }
     for (vtkIdType c = 0; c < n; ++c)
     {
-      if (std::strcmp(vtkCellTypes::GetClassNameFromTypeId(t[c]), "UnknownClass") == 0)
+      if (!known[t[c]])
       {
         return role + " cell " + std::to_string(c) + " has the unknown cell type " +
           std::to_string(t[c]) + "." + advice;
@@ -841,9 +847,39 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   this->OrderInSpace();
 
   // The points the cells use: finite, and within the predicates' range.
+  // The first use of a point that is not, found in the tasks (each range
+  // stops at its first; the smallest wins), is reported.
   const mp::Index* ids = this->Kernel.Connectivity;
-  for (vtkIdType i = 0; i < corners * this->Kernel.NumberOfCells; ++i)
+  const mp::Index uses = corners * this->Kernel.NumberOfCells;
+  auto wrong = [](const double* x) {
+    bool bad = false;
+    for (int d = 0; d < 3; ++d)
+    {
+      const double a = std::fabs(x[d]);
+      bad |= !(a <= 1e100) || (a != 0.0 && a < 1e-100); // NaN fails a <= 1e100
+    }
+    return bad;
+  };
+  std::atomic<mp::Index> firstWrong(uses);
+  const mp::TaskRunner runner = SMPTaskRunner();
+  const int tasks = runner.TasksFor(uses, 65536);
+  runner.RunAll(tasks, [&](int k) {
+    const mp::Index end = mp::RangeBegin(uses, k + 1, tasks);
+    for (mp::Index i = mp::RangeBegin(uses, k, tasks); i < end; ++i)
+    {
+      if (wrong(this->Kernel.Point(ids[i])))
+      {
+        mp::Index seen = firstWrong;
+        while (i < seen && !firstWrong.compare_exchange_weak(seen, i))
+        {
+        }
+        return;
+      }
+    }
+  });
+  if (firstWrong < uses)
   {
+    const mp::Index i = firstWrong;
     const double* x = this->Kernel.Point(ids[i]);
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
