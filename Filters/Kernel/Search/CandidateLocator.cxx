@@ -101,14 +101,31 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
 BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subset)
 {
   const Index count = subset ? static_cast<Index>(subset->size()) : mesh.NumberOfCells;
-  auto cellAt = [&](Index i) { return subset ? (*subset)[i] : i; };
+  if (subset)
+  {
+    this->Cells = *subset;
+    this->Boxes.resize(6 * static_cast<size_t>(count));
+    for (Index i = 0; i < count; ++i)
+    {
+      CellBox(mesh, this->Cells[i], &this->Boxes[6 * i]);
+    }
+  }
+  // The box of the i-th binned cell.
+  double box[6];
+  auto boxOf = [&](Index i) -> const double* {
+    if (subset)
+    {
+      return &this->Boxes[6 * i];
+    }
+    CellBox(mesh, i, box);
+    return box;
+  };
   double lo[3] = { 0, 0, 0 };
   double hi[3] = { 0, 0, 0 };
   bool first = true;
-  double box[6];
   for (Index i = 0; i < count; ++i)
   {
-    CellBox(mesh, cellAt(i), box);
+    const double* box = boxOf(i);
     for (int d = 0; d < 3; ++d)
     {
       if (!std::isfinite(box[2 * d]) || !std::isfinite(box[2 * d + 1]))
@@ -131,11 +148,10 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
   }
   const size_t bins = size_t(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2];
   std::vector<Index> counts(bins + 1, 0);
-  auto forEachBin = [&](Index c, auto&& f) {
-    CellBox(mesh, c, box);
+  auto forEachBin = [&](Index i, auto&& f) {
     int a[3];
     int b[3];
-    this->Range(box, a, b);
+    this->Range(boxOf(i), a, b);
     for (int k = a[2]; k <= b[2]; ++k)
       for (int j = a[1]; j <= b[1]; ++j)
         for (int i = a[0]; i <= b[0]; ++i)
@@ -143,7 +159,7 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
   };
   for (Index i = 0; i < count; ++i)
   {
-    forEachBin(cellAt(i), [&](size_t bin) { ++counts[bin + 1]; });
+    forEachBin(i, [&](size_t bin) { ++counts[bin + 1]; });
   }
   for (size_t b = 0; b < bins; ++b)
   {
@@ -153,8 +169,7 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
   this->BinCells.resize(static_cast<size_t>(counts[bins]));
   for (Index i = 0; i < count; ++i)
   {
-    const Index c = cellAt(i);
-    forEachBin(c, [&](size_t bin) { this->BinCells[counts[bin]++] = c; });
+    forEachBin(i, [&](size_t bin) { this->BinCells[counts[bin]++] = i; });
   }
 }
 
@@ -195,17 +210,6 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)
 {
   cells.clear();
-  int first[3];
-  int last[3];
-  g.Range(box, first, last);
-  for (int k = first[2]; k <= last[2]; ++k)
-    for (int j = first[1]; j <= last[1]; ++j)
-      for (int i = first[0]; i <= last[0]; ++i)
-      {
-        const size_t bin = (size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i;
-        cells.insert(cells.end(), g.BinCells.begin() + g.BinStart[bin],
-          g.BinCells.begin() + g.BinStart[bin + 1]);
-      }
   // Only cells whose own box meets the box: bins are two cells wide, so
   // most cells in them do not, and each would cost the search a prepared
   // cell and a test. The box is grown by 1e-6 of its size: a box mapped
@@ -225,15 +229,36 @@ void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Ind
     hi[d] = box[2 * d + 1] + pad;
   }
   const MeshView& mesh = this->Grids->Mesh;
-  cells.erase(std::remove_if(cells.begin(), cells.end(),
-                [&](Index c) {
-                  double b[6];
-                  CellBox(mesh, c, b);
-                  // (NaN compares false: such a cell stays)
-                  return b[1] < lo[0] || b[0] > hi[0] || b[3] < lo[1] || b[2] > hi[1] ||
-                    b[5] < lo[2] || b[4] > hi[2];
-                }),
-    cells.end());
+  const bool stored = !g.Boxes.empty();
+  int first[3];
+  int last[3];
+  g.Range(box, first, last);
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i)
+      {
+        const size_t bin = (size_t(k) * g.Divisions[1] + j) * g.Divisions[0] + i;
+        for (Index at = g.BinStart[bin]; at < g.BinStart[bin + 1]; ++at)
+        {
+          const Index position = g.BinCells[at];
+          double own[6];
+          const double* b = own;
+          if (stored)
+          {
+            b = &g.Boxes[6 * position];
+          }
+          else
+          {
+            CellBox(mesh, position, own);
+          }
+          // (NaN compares false: such a cell stays)
+          if (!(b[1] < lo[0] || b[0] > hi[0] || b[3] < lo[1] || b[2] > hi[1] || b[5] < lo[2] ||
+                b[4] > hi[2]))
+          {
+            cells.push_back(stored ? g.Cells[position] : position);
+          }
+        }
+      }
   // Then a cell spanning several bins once: sorting the few left costs
   // less than a mark per source cell and thread.
   std::sort(cells.begin(), cells.end());

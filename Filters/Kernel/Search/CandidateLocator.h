@@ -81,7 +81,12 @@ private:
     double Spacing[3] = { 1, 1, 1 };
     int Divisions[3] = { 1, 1, 1 };
     std::vector<Index> BinStart; ///< CSR offsets into BinCells
-    std::vector<Index> BinCells;
+    std::vector<Index> BinCells; ///< positions in the binned cells (= cell ids for all cells)
+    /// For a subset: its cells, and their boxes (6 per cell), computed once
+    /// instead of at every query. Empty for all cells (the memory of a box
+    /// per cell of the mesh; that grid is built only without neighbours).
+    std::vector<Index> Cells;
+    std::vector<double> Boxes;
     /// Bins over `cells` of `mesh` (every cell when `cells` is null).
     Bins(const MeshView& mesh, const std::vector<Index>* cells);
     void Range(const double box[6], int lo[3], int hi[3]) const;
