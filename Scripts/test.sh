@@ -2,7 +2,8 @@
 # Install the dependencies, build, and run every test (kernel, VTK C++ with
 # images, VTK Python, pvpython, ParaView GUI, installed C++ example), and the
 # filter's tests again with every mesh renumbered inside the filter; then
-# build the C++ code again with clang's AddressSanitizer and UBSan
+# the kernel's threaded tests under ThreadSanitizer (Scripts/tsan-kernel.sh);
+# then build the C++ code again with clang's AddressSanitizer and UBSan
 # (Scripts/build-sanitized.sh) and run the kernel and VTK C++ tests and the
 # whole-filter fuzzer there, and the VTK C++ tests and the fuzzer's corpus
 # once more with every mesh renumbered.
@@ -21,6 +22,10 @@ timeout 3000 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-
 # outputs must not change), without the kernel fuzzers and the install test.
 MESHPROJECTION_RENUMBERING=always timeout 1800 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
   ctest --output-on-failure --parallel 2 -LE Fuzz -E "^Example\.|^Kernel\."
+
+# The kernel's concurrent code (renumbering claims, shared-row marks, the
+# search, assembly and solve in ranges) under ThreadSanitizer.
+timeout 900 bash "$root/Scripts/tsan-kernel.sh"
 
 bash "$root/Scripts/build-sanitized.sh"
 cd "${SANITIZE_DIR:-$root/build-sanitized}"

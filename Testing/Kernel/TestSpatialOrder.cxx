@@ -87,13 +87,25 @@ struct Renumbered
   }
 };
 
-/// A runner of `tasks` tasks on threads of their own (concurrent: true) or
-/// one after the other.
-mp::TaskRunner Tasks(int tasks, bool concurrent)
+/// How a runner runs its tasks: one after the other without a Run (the
+/// kernel then knows they cannot overlap), on threads of their own, or
+/// through a Run that calls them one after the other in reverse or shuffled
+/// order (the kernel must assume they overlap: later ranges then claim
+/// first, so earlier ones take over nearly every point they share,
+/// deterministically, as threads do only when they happen to overlap).
+enum class RunMode
+{
+  Sequential,
+  Threads,
+  Reversed,
+  Shuffled
+};
+
+mp::TaskRunner Tasks(int tasks, RunMode mode)
 {
   mp::TaskRunner runner;
   runner.Tasks = tasks;
-  if (concurrent)
+  if (mode == RunMode::Threads)
   {
     runner.Run = [](int count, const std::function<void(int)>& task) {
       std::vector<std::thread> threads;
@@ -104,6 +116,22 @@ mp::TaskRunner Tasks(int tasks, bool concurrent)
       for (std::thread& t : threads)
       {
         t.join();
+      }
+    };
+  }
+  else if (mode != RunMode::Sequential)
+  {
+    runner.Run = [mode](int count, const std::function<void(int)>& task) {
+      std::vector<int> order(static_cast<size_t>(count));
+      std::iota(order.begin(), order.end(), 0);
+      std::reverse(order.begin(), order.end());
+      if (mode == RunMode::Shuffled)
+      {
+        std::shuffle(order.begin(), order.end(), std::mt19937(count));
+      }
+      for (int k : order)
+      {
+        task(k);
       }
     };
   }
@@ -119,14 +147,29 @@ struct Copy
   std::vector<Index> Parent;
 };
 
-Copy RenumberWith(const TestMesh& m, const mp::LargeVector<Index>& cells, const mp::TaskRunner& runner)
+Copy RenumberWith(const TestMesh& m, const mp::LargeVector<Index>& cells, const mp::TaskRunner& runner,
+  const std::vector<Index>* parents = nullptr, bool inPlace = false)
 {
   Copy c;
   c.Order.Cells = cells;
   c.Points.resize(m.Points.size());
   c.Cells.resize(m.Cells.size());
+  mp::MeshView view = m.View(false);
+  if (parents)
+  {
+    view.Parent = parents->data();
+    view.NumberOfParents = *std::max_element(parents->begin(), parents->end()) + 1;
+  }
+  if (inPlace)
+  {
+    // The parents overwrite the order, as the filter asks.
+    mp::RenumberMesh(view, c.Order, c.Points.data(), c.Cells.data(), c.Order.Cells.data(), runner);
+    c.Parent.assign(c.Order.Cells.begin(), c.Order.Cells.end());
+    c.Order.Cells = cells;
+    return c;
+  }
   c.Parent.resize(cells.size());
-  mp::RenumberMesh(m.View(false), c.Order, c.Points.data(), c.Cells.data(), c.Parent.data(), runner);
+  mp::RenumberMesh(view, c.Order, c.Points.data(), c.Cells.data(), c.Parent.data(), runner);
   return c;
 }
 
@@ -200,8 +243,8 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
 {
   // Meshes large enough for 3 tasks (16384 cells each at least), shuffled,
   // with an unused point first and one last. The renumbering's tasks claim
-  // points concurrently; whatever the race, the result must be the serial
-  // first-use numbering. Besides the curve's order (ranges of cells that
+  // points concurrently; whatever the race or the order the tasks run in,
+  // the result must be the serial first-use numbering. Besides the curve's order (ranges of cells that
   // are regions of space: only their borders are contested), cells in a
   // random order make nearly every point used by several tasks.
   for (int dimension : { 2, 3 })
@@ -234,30 +277,46 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
       EXPECT_EQ(next, m.NumberOfPoints() - 2);
       EXPECT_EQ(expected.Order.Points[next], 0);
       EXPECT_EQ(expected.Order.Points[next + 1], m.NumberOfPoints() - 1);
-      for (int tasks : { 2, 3 })
+      // A parent map (two simplices per original cell, as a split gives)
+      // and the parents written over the order, as the filter does.
+      std::vector<Index> parents(static_cast<size_t>(m.NumberOfCells()));
+      for (size_t c = 0; c < parents.size(); ++c)
       {
-        for (bool concurrent : { false, true })
+        parents[c] = static_cast<Index>(c / 2);
+      }
+      const Copy expectedWithParents = RenumberWith(m, *cells, mp::TaskRunner(), &parents);
+      for (size_t c = 0; c < parents.size(); ++c)
+      {
+        ASSERT_EQ(expectedWithParents.Parent[c], (*cells)[c] / 2);
+      }
+      for (int tasks : { 2, 3, 7 })
+      {
+        for (RunMode mode : { RunMode::Sequential, RunMode::Threads, RunMode::Reversed, RunMode::Shuffled })
         {
-          const mp::TaskRunner runner = Tasks(tasks, concurrent);
+          const mp::TaskRunner runner = Tasks(tasks, mode);
+          const std::string what = std::to_string(dimension) + "D, " +
+            (cells == &random ? "random" : "curve") + " order, " + std::to_string(tasks) +
+            " tasks, run mode " + std::to_string(static_cast<int>(mode));
           if (cells == &serial.Cells)
           {
             mp::SpatialOrder order;
             mp::OrderAlongCurve(m.View(false), order, runner);
-            EXPECT_EQ(order.Cells, serial.Cells) << dimension << "D, " << tasks << " tasks";
+            EXPECT_EQ(order.Cells, serial.Cells) << what;
           }
-          // Several times: the races differ from run to run.
-          for (int run = 0; run < 3; ++run)
+          // Threads several times: their races differ from run to run.
+          for (int run = 0; run < (mode == RunMode::Threads ? 3 : 1); ++run)
           {
             const Copy c = RenumberWith(m, *cells, runner);
-            const std::string what = std::to_string(dimension) + "D, " +
-              (cells == &random ? "random" : "curve") + " order, " + std::to_string(tasks) +
-              (concurrent ? " concurrent" : " sequential") + " tasks";
             EXPECT_EQ(c.Order.Points, expected.Order.Points) << what;
             EXPECT_EQ(c.Order.NewPoint, expected.Order.NewPoint) << what;
             EXPECT_EQ(c.Cells, expected.Cells) << what;
             EXPECT_EQ(c.Points, expected.Points) << what;
             EXPECT_EQ(c.Parent, expected.Parent) << what;
           }
+          const Copy inPlace = RenumberWith(m, *cells, runner, &parents, true);
+          EXPECT_EQ(inPlace.Order.Points, expected.Order.Points) << what << ", in place";
+          EXPECT_EQ(inPlace.Cells, expected.Cells) << what << ", in place";
+          EXPECT_EQ(inPlace.Parent, expectedWithParents.Parent) << what << ", in place";
         }
       }
     }
