@@ -5,6 +5,7 @@
 // non-manifold faces and cells that name a point twice, on one task and on
 // several concurrent ones.
 #include "GeneratedMeshes.h"
+#include "Threads.h"
 #include "Mesh/CellNeighbors.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +15,6 @@
 #include <cmath>
 #include <numeric>
 #include <random>
-#include <thread>
 
 namespace
 {
@@ -43,20 +43,7 @@ Index Reference(const mp::MeshView& mesh, std::vector<NeighborId>& neighbors)
 
 mp::TaskRunner Threads(int tasks)
 {
-  mp::TaskRunner runner;
-  runner.Tasks = tasks;
-  runner.Run = [](int count, const std::function<void(int)>& task) {
-    std::vector<std::thread> threads;
-    for (int k = 0; k < count; ++k)
-    {
-      threads.emplace_back(task, k);
-    }
-    for (std::thread& t : threads)
-    {
-      t.join();
-    }
-  };
-  return runner;
+  return mptest::ThreadRunner(tasks);
 }
 
 /// Cells and points in random order (the cells' corners rotated too).

@@ -2,6 +2,7 @@
 #include "Geometry/TetrahedronIntersector.h"
 #include "Search/PairSearch.h"
 #include "GeneratedMeshes.h"
+#include "Threads.h"
 #include "Transfer/MortarAssembler.h"
 #include "Transfer/MortarOperator.h"
 
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <thread>
 
 using mp::Index;
 using mptest::TestMesh;
@@ -330,13 +330,7 @@ TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
     options.KeepPieces = true;
     if (threads)
     {
-      options.Runner.Run = [](int count, const std::function<void(int)>& task) {
-        std::vector<std::thread> pool;
-        for (int k = 0; k < count; ++k)
-          pool.emplace_back(task, k);
-        for (auto& t : pool)
-          t.join();
-      };
+      options.Runner.Run = mptest::RunInThreads;
     }
     else
     {

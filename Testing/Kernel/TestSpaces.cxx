@@ -5,6 +5,7 @@
 // hooks, the matrices as read out; and the plane frames of planar meshes.
 #include "Mesh/PlaneFrame.h"
 #include "GeneratedMeshes.h"
+#include "Threads.h"
 #include "Transfer/BlockCG.h"
 #include "Transfer/CsrMatrix.h"
 #include "Transfer/MortarOperator.h"
@@ -17,7 +18,6 @@
 #include <memory>
 #include <random>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -204,19 +204,6 @@ void ExpectCsr(const mp::CsrMatrix& m, const std::string& what)
   }
 }
 
-/// Runs task(0..count-1) in threads of their own.
-void RunInThreads(int count, const std::function<void(int)>& task)
-{
-  std::vector<std::thread> pool;
-  for (int k = 0; k < count; ++k)
-  {
-    pool.emplace_back(task, k);
-  }
-  for (auto& t : pool)
-  {
-    t.join();
-  }
-}
 } // namespace
 
 // (a) Entries by hand. On the split triangle (area 1/2, halves 1/4) with
@@ -649,7 +636,7 @@ TEST(Spaces, ConcurrentTasksGiveTheSerialMatrices)
       options.TargetSpace = pair.Target;
       options.SourceSpace = pair.Source;
       options.Runner.Tasks = 3;
-      options.Runner.Run = RunInThreads;
+      options.Runner.Run = mptest::RunInThreads;
       mp::MortarOperator concurrent;
       ASSERT_TRUE(concurrent.Build(meshes.first.View(), meshes.second.View(), &locator, options))
         << what;
@@ -727,7 +714,7 @@ TEST(Spaces, SingleUseFieldsGiveTheAssembledProjection)
         options.Fields = fields.data();
         options.FieldComponents = 2;
         options.Runner.Tasks = tasks;
-        options.Runner.Run = RunInThreads;
+        options.Runner.Run = mptest::RunInThreads;
         mp::MortarOperator single;
         ASSERT_TRUE(single.Build(target.View(), source.View(), &locator, options)) << what;
         EXPECT_FALSE(single.HasMixedMass()) << what;

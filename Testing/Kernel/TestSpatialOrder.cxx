@@ -7,6 +7,7 @@
 #include "Search/CandidateLocator.h"
 #include "Transfer/MortarOperator.h"
 #include "GeneratedMeshes.h"
+#include "Threads.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +16,6 @@
 #include <numeric>
 #include <functional>
 #include <random>
-#include <thread>
 #include <vector>
 
 using mp::Index;
@@ -107,17 +107,7 @@ mp::TaskRunner Tasks(int tasks, RunMode mode)
   runner.Tasks = tasks;
   if (mode == RunMode::Threads)
   {
-    runner.Run = [](int count, const std::function<void(int)>& task) {
-      std::vector<std::thread> threads;
-      for (int k = 0; k < count; ++k)
-      {
-        threads.emplace_back(task, k);
-      }
-      for (std::thread& t : threads)
-      {
-        t.join();
-      }
-    };
+    runner.Run = mptest::RunInThreads;
   }
   else if (mode != RunMode::Sequential)
   {
