@@ -196,7 +196,9 @@ struct Fingerprint
       for (int k = 0; k < nc; ++k)
       {
         const double v = array->GetComponent(t, k);
-        this->Add(&v, sizeof v);
+        std::uint64_t w;
+        std::memcpy(&w, &v, sizeof w);
+        this->Add(w); // one round per value (not a block's)
       }
     }
   }
