@@ -4,6 +4,7 @@
 #include "vtkMeshProjectionMesh.h"
 #include "vtkMeshProjectionParts.h"
 
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkCellTypes.h"
@@ -158,6 +159,46 @@ Box CellBox(vtkDataSet* data, vtkIdType c, vtkIdList* ids)
   return b;
 }
 
+/**
+ * The boxes of a dataset's cells: straight from an unstructured grid's cell
+ * array and double points (no id list, no virtual call per point), else
+ * through vtkDataSet's calls. One cell at a time, on one thread.
+ */
+class CellBoxes
+{
+public:
+  explicit CellBoxes(vtkDataSet* data)
+    : Data(data)
+    , Grid(vtkUnstructuredGrid::SafeDownCast(data))
+  {
+    vtkPoints* points = this->Grid ? this->Grid->GetPoints() : nullptr;
+    vtkDoubleArray* x = points ? vtkDoubleArray::SafeDownCast(points->GetData()) : nullptr;
+    this->X = x && x->GetNumberOfComponents() == 3 && this->Grid->GetCells() ? x->GetPointer(0) : nullptr;
+  }
+  Box operator()(vtkIdType c)
+  {
+    if (!this->X)
+    {
+      return CellBox(this->Data, c, this->Ids);
+    }
+    Box b = EmptyBox();
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    this->Grid->GetCellPoints(c, npts, pts);
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      Grow(b, this->X + 3 * pts[k]);
+    }
+    return b;
+  }
+
+private:
+  vtkDataSet* Data;
+  vtkUnstructuredGrid* Grid;
+  const double* X = nullptr;
+  vtkNew<vtkIdList> Ids;
+};
+
 /// Appends cell c of `from` to `to`, its point ids through `map` (a
 /// polyhedron with its faces).
 template <class Map>
@@ -192,6 +233,57 @@ void CopyCell(vtkDataSet* from, vtkIdType c, const Map& map, vtkUnstructuredGrid
   }
   to->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data(), nfaces, faces.data());
 }
+
+/**
+ * Cells gathered in bulk (types, offsets, connectivity), then set on a grid
+ * at once instead of one InsertNextCell each. Not for polyhedra (their face
+ * streams take InsertNextCell: see CopyCell).
+ */
+struct CellBuffer
+{
+  std::vector<unsigned char> Types;
+  std::vector<vtkIdType> Offsets{ 0 };
+  std::vector<vtkIdType> Connectivity;
+
+  /// Appends cell c of `from`, its point ids through `map`.
+  template <class Map>
+  void Add(vtkDataSet* from, vtkUnstructuredGrid* grid, vtkIdType c, const Map& map, vtkIdList* ids)
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    if (grid)
+    {
+      grid->GetCellPoints(c, npts, pts);
+    }
+    else
+    {
+      from->GetCellPoints(c, ids);
+      npts = ids->GetNumberOfIds();
+      pts = ids->GetPointer(0);
+    }
+    this->Types.push_back(static_cast<unsigned char>(from->GetCellType(c)));
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      this->Connectivity.push_back(map(pts[k]));
+    }
+    this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
+  }
+  void SetOn(vtkUnstructuredGrid* to) const
+  {
+    auto array = [](const std::vector<vtkIdType>& values) {
+      vtkNew<vtkIdTypeArray> a;
+      a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+      std::copy(values.begin(), values.end(), a->GetPointer(0));
+      return a;
+    };
+    vtkNew<vtkCellArray> cells;
+    cells->SetData(array(this->Offsets), array(this->Connectivity));
+    vtkNew<vtkUnsignedCharArray> types;
+    types->SetNumberOfValues(static_cast<vtkIdType>(this->Types.size()));
+    std::copy(this->Types.begin(), this->Types.end(), types->GetPointer(0));
+    to->SetCells(types, cells);
+  }
+};
 
 bool IsGhost(vtkUnsignedCharArray* ghosts, vtkIdType c)
 {
@@ -508,13 +600,14 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
     for (vtkDataSet* leaf : DataSetsOf(input))
     {
       vtkUnsignedCharArray* ghosts = leaf->GetCellGhostArray();
+      CellBoxes boxOf(leaf);
       for (vtkIdType c = 0; c < leaf->GetNumberOfCells(); ++c)
       {
         if (IsGhost(ghosts, c) || leaf->GetCellType(c) == VTK_EMPTY_CELL)
         {
           continue;
         }
-        Box b = CellBox(leaf, c, ids);
+        Box b = boxOf(c);
         double size = 0;
         for (int d = 0; d < 3; ++d)
         {
@@ -695,13 +788,14 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
   std::vector<std::vector<vtkIdType>> toSend(static_cast<size_t>(n));
   {
     vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
+    CellBoxes boxOf(source);
     for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
     {
       if (IsGhost(ghosts, c) || source->GetCellType(c) == VTK_EMPTY_CELL)
       {
         continue;
       }
-      const Box b = CellBox(source, c, ids);
+      const Box b = boxOf(c);
       for (int r = 0; r < n; ++r)
       {
         if (covers[r].Meets(b))
@@ -713,21 +807,41 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
   }
   auto pieceOf = [&](const std::vector<vtkIdType>& cells) {
     vtkNew<vtkUnstructuredGrid> piece;
-    std::unordered_map<vtkIdType, vtkIdType> local;
+    // The piece's points in the order its cells first use them.
+    std::vector<vtkIdType> local(static_cast<size_t>(source->GetNumberOfPoints()), -1);
     std::vector<vtkIdType> points;
     auto idOf = [&](vtkIdType p) {
-      auto found = local.emplace(p, static_cast<vtkIdType>(points.size()));
-      if (found.second)
+      vtkIdType& id = local[static_cast<size_t>(p)];
+      if (id < 0)
       {
+        id = static_cast<vtkIdType>(points.size());
         points.push_back(p);
       }
-      return found.first->second;
+      return id;
     };
-    piece->AllocateExact(static_cast<vtkIdType>(cells.size()), 8 * static_cast<vtkIdType>(cells.size()));
-    std::vector<vtkIdType> pts, faces;
+    bool polyhedra = false;
     for (vtkIdType c : cells)
     {
-      CopyCell(source, c, idOf, piece, ids, pts, faces);
+      polyhedra = polyhedra || source->GetCellType(c) == VTK_POLYHEDRON;
+    }
+    if (polyhedra)
+    {
+      piece->AllocateExact(static_cast<vtkIdType>(cells.size()), 8 * static_cast<vtkIdType>(cells.size()));
+      std::vector<vtkIdType> pts, faces;
+      for (vtkIdType c : cells)
+      {
+        CopyCell(source, c, idOf, piece, ids, pts, faces);
+      }
+    }
+    else
+    {
+      CellBuffer buffer;
+      vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(source);
+      for (vtkIdType c : cells)
+      {
+        buffer.Add(source, grid, c, idOf, ids);
+      }
+      buffer.SetOn(piece);
     }
     vtkNew<vtkPoints> xyz;
     xyz->SetDataTypeToDouble();
@@ -863,15 +977,41 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
       pieces[firstOf[p].first]->GetPoints()->GetPoint(firstOf[p].second));
   }
   merged->SetPoints(xyz);
-  merged->AllocateExact(cellCount, 8 * cellCount);
-  std::vector<vtkIdType> pts, faces;
-  for (size_t i = 0; i < pieces.size(); ++i)
+  bool polyhedra = false;
+  for (const auto& piece : pieces)
   {
-    const std::vector<vtkIdType>& to = newId[i];
-    for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
+    vtkUnsignedCharArray* types = piece->GetCellTypesArray();
+    const unsigned char* t = types ? types->GetPointer(0) : nullptr;
+    for (vtkIdType c = 0; t && c < types->GetNumberOfValues(); ++c)
     {
-      CopyCell(pieces[i], c, [&to](vtkIdType p) { return to[p]; }, merged, ids, pts, faces);
+      polyhedra = polyhedra || t[c] == VTK_POLYHEDRON;
     }
+  }
+  if (polyhedra)
+  {
+    merged->AllocateExact(cellCount, 8 * cellCount);
+    std::vector<vtkIdType> pts, faces;
+    for (size_t i = 0; i < pieces.size(); ++i)
+    {
+      const std::vector<vtkIdType>& to = newId[i];
+      for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
+      {
+        CopyCell(pieces[i], c, [&to](vtkIdType p) { return to[p]; }, merged, ids, pts, faces);
+      }
+    }
+  }
+  else
+  {
+    CellBuffer buffer;
+    for (size_t i = 0; i < pieces.size(); ++i)
+    {
+      const std::vector<vtkIdType>& to = newId[i];
+      for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
+      {
+        buffer.Add(pieces[i], pieces[i], c, [&to](vtkIdType p) { return to[p]; }, ids);
+      }
+    }
+    buffer.SetOn(merged);
   }
   this->Received = cellCount;
   // The common arrays, in the Source's own types and order.

@@ -240,7 +240,8 @@ def integrals(out):
             if fd.GetArrayName(i).startswith(("SourceIntegral_", "TargetIntegral_"))}
 
 
-def case(what, target, source, how, global_ids=False, composite=False, ghosts=False, **props):
+def case(what, target, source, how, global_ids=False, composite=False, ghosts=False,
+         polydata=False, **props):
     numbered(target)
     serial = run(meshprojection.vtkMeshProjectionFilter, target, source, CacheOperator=False, **props)
     sout = serial.GetOutputDataObject(0)
@@ -248,6 +249,15 @@ def case(what, target, source, how, global_ids=False, composite=False, ghosts=Fa
         lt, ls = redistributed(target), redistributed(source)
     else:
         lt, ls = split(target, how, "input", global_ids), split(source, how, "source")
+    if polydata:
+        # Each process's part of Source as polydata (its cells reach the
+        # others through the generic cell calls, not an unstructured grid's arrays).
+        from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+        g = vtkGeometryFilter()
+        g.SetInputData(ls)
+        g.MergingOff()
+        g.Update()
+        ls = g.GetOutput()
     if ghosts:
         # A layer of ghost cells, as ParaView's Ghost Cells filter makes it
         # (without GlobalIds it copies the interface points: one process
@@ -312,6 +322,7 @@ for how in ("random", "blocks", "apart", "empty", "redistribute"):
 case("2D lumped, cells to points", t2, s2, "random", MassMatrix=1, CellDataTarget=3)
 case("2D composite", t2, s2, "random", composite=True)
 case("2D ghost cells", t2, s2, "blocks", ghosts=True)
+case("2D polydata Source", t2, s2, "blocks", polydata=True)
 # Source ending 2e-5 past the first column of a regular Input: the second
 # column covered in slivers only. The points between the first two columns
 # also have well-covered cells, maybe on another process (not slivers).
