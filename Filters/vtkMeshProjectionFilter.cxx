@@ -974,6 +974,30 @@ int vtkMeshProjectionFilter::Execute(
     failed = "PreserveBounds is not available on several processes yet (its clipping needs "
              "the whole rows of M_ts): turn it off, or run on one process.";
   }
+  if (this->Parts && failed.empty())
+  {
+    // The gathering reads every cell of Source and of Input's blocks before
+    // the wraps check them (as the serial filter does): every id and offset
+    // first, so that a corrupt dataset is an error on every process, not a
+    // read or write out of its arrays.
+    failed = mpvtk::CheckDataSet(source, "Source");
+    if (vtkDataSet* one = vtkDataSet::SafeDownCast(input))
+    {
+      failed = failed.empty() ? mpvtk::CheckDataSet(one, "Input") : failed;
+    }
+    else if (vtkCompositeDataSet* blocks = vtkCompositeDataSet::SafeDownCast(input))
+    {
+      vtkSmartPointer<vtkCompositeDataIterator> iter;
+      iter.TakeReference(blocks->NewIterator());
+      for (iter->InitTraversal(); !iter->IsDoneWithTraversal() && failed.empty(); iter->GoToNextItem())
+      {
+        if (vtkDataSet* leaf = vtkDataSet::SafeDownCast(iter->GetCurrentDataObject()))
+        {
+          failed = mpvtk::CheckDataSet(leaf, "Input");
+        }
+      }
+    }
+  }
   if (this->Parts)
   {
     // Each process gets the Source cells its part of Input needs, from all.

@@ -380,6 +380,36 @@ serial = run(meshprojection.vtkMeshProjectionFilter, t2, s2, CacheOperator=False
 compare("time step 3", serial.GetOutputDataObject(0), f.GetOutputDataObject(0),
         {"f": float(np.ptp(vtk_to_numpy(s2.GetPointData().GetArray("f")))), "linear": 1.0, "cellf": 1.0})
 
+# A corrupt Source or Input part (a cell naming a point that does not
+# exist) on one process: an error on every process, as the serial filter
+# gives, before the gathering reads any cell (it once read and wrote out of
+# the arrays there), and no crash.
+for role in ("Source", "Input"):
+    for bad_id in (lambda n: n, lambda n: -1, lambda n: n + 100000000):
+        lt, ls = split(numbered(t2), "blocks", "input"), split(s2, "blocks", "source")
+        spoiled = ls if role == "Source" else lt
+        if rank == size - 1 and spoiled.GetNumberOfCells() > 0:
+            c = vtk_to_numpy(spoiled.GetCells().GetConnectivityArray())
+            c[0] = bad_id(spoiled.GetNumberOfPoints())
+            spoiled.GetCells().GetConnectivityArray().Modified()
+        spoilt = meshprojection.vtkPMeshProjectionFilter()
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def collect_error(obj, event, text):
+            errors.append(str(text))
+
+        spoilt.AddObserver("ErrorEvent", collect_error)
+        spoilt.SetInputData(lt)
+        spoilt.SetSourceData(ls)
+        spoilt.Update()
+        said = any(("%s: cell 0 refers to point" % role) in e for e in errors)
+        check(all(int(v[0]) for v in allgather([1.0 if said else 0.0])),
+              "corrupt %s: the error on every process (here: %s)" % (role, errors[:1]))
+        out = spoilt.GetOutputDataObject(0)
+        check(out is not None and out.GetPointData().GetArray("vtkValidPointMask") is None,
+              "corrupt %s: nothing projected" % role)
+
 # Global statistics: totals over the processes.
 check(f.GetGlobalNumberOfIntersections() >= f.GetNumberOfIntersections(), "global pieces >= local")
 check(abs(f.GetGlobalCoveredMeasure() - serial.GetCoveredMeasure()) < 1e-12,
