@@ -199,77 +199,89 @@ private:
   vtkNew<vtkIdList> Ids;
 };
 
-/// Appends cell c of `from` to `to`, its point ids through `map` (a
-/// polyhedron with its faces).
-template <class Map>
-void CopyCell(vtkDataSet* from, vtkIdType c, const Map& map, vtkUnstructuredGrid* to, vtkIdList* ids,
-  std::vector<vtkIdType>& pts, std::vector<vtkIdType>& faces)
+/**
+ * Appends cells of other datasets to a grid, their point ids through a map.
+ * Without polyhedra the cells are gathered in bulk (types, offsets,
+ * connectivity) and set on the grid at once by Finish(), instead of one
+ * InsertNextCell each; with polyhedra among them each cell is inserted,
+ * a polyhedron with its face stream.
+ */
+class CellCopier
 {
-  from->GetCellPoints(c, ids);
-  pts.resize(static_cast<size_t>(ids->GetNumberOfIds()));
-  for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+public:
+  CellCopier(vtkUnstructuredGrid* to, bool polyhedra, vtkIdType cells)
+    : To(to)
+    , Polyhedra(polyhedra)
   {
-    pts[k] = map(ids->GetId(k));
-  }
-  const int type = from->GetCellType(c);
-  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(from);
-  if (type != VTK_POLYHEDRON || !grid)
-  {
-    to->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data());
-    return;
-  }
-  vtkIdType nfaces = 0;
-  const vtkIdType* f = nullptr;
-  grid->GetFaceStream(c, nfaces, f);
-  faces.clear();
-  for (vtkIdType k = 0; k < nfaces; ++k)
-  {
-    const vtkIdType m = *f++;
-    faces.push_back(m);
-    for (vtkIdType i = 0; i < m; ++i)
+    if (polyhedra)
     {
-      faces.push_back(map(*f++));
+      to->AllocateExact(cells, 8 * cells);
     }
   }
-  to->InsertNextCell(type, static_cast<vtkIdType>(pts.size()), pts.data(), nfaces, faces.data());
-}
-
-/**
- * Cells gathered in bulk (types, offsets, connectivity), then set on a grid
- * at once instead of one InsertNextCell each. Not for polyhedra (their face
- * streams take InsertNextCell: see CopyCell).
- */
-struct CellBuffer
-{
-  std::vector<unsigned char> Types;
-  std::vector<vtkIdType> Offsets{ 0 };
-  std::vector<vtkIdType> Connectivity;
-
   /// Appends cell c of `from`, its point ids through `map`.
   template <class Map>
-  void Add(vtkDataSet* from, vtkUnstructuredGrid* grid, vtkIdType c, const Map& map, vtkIdList* ids)
+  void Add(vtkDataSet* from, vtkIdType c, const Map& map)
   {
+    if (from != this->From)
+    {
+      this->From = from;
+      this->Grid = vtkUnstructuredGrid::SafeDownCast(from);
+    }
     vtkIdType npts = 0;
     const vtkIdType* pts = nullptr;
-    if (grid)
+    if (this->Grid)
     {
-      grid->GetCellPoints(c, npts, pts);
+      this->Grid->GetCellPoints(c, npts, pts);
     }
     else
     {
-      from->GetCellPoints(c, ids);
-      npts = ids->GetNumberOfIds();
-      pts = ids->GetPointer(0);
+      from->GetCellPoints(c, this->Ids);
+      npts = this->Ids->GetNumberOfIds();
+      pts = this->Ids->GetPointer(0);
     }
-    this->Types.push_back(static_cast<unsigned char>(from->GetCellType(c)));
+    const int type = from->GetCellType(c);
+    if (!this->Polyhedra)
+    {
+      this->Types.push_back(static_cast<unsigned char>(type));
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        this->Connectivity.push_back(map(pts[k]));
+      }
+      this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
+      return;
+    }
+    this->Points.resize(static_cast<size_t>(npts));
     for (vtkIdType k = 0; k < npts; ++k)
     {
-      this->Connectivity.push_back(map(pts[k]));
+      this->Points[k] = map(pts[k]);
     }
-    this->Offsets.push_back(static_cast<vtkIdType>(this->Connectivity.size()));
+    if (type != VTK_POLYHEDRON || !this->Grid)
+    {
+      this->To->InsertNextCell(type, npts, this->Points.data());
+      return;
+    }
+    vtkIdType nfaces = 0;
+    const vtkIdType* f = nullptr;
+    this->Grid->GetFaceStream(c, nfaces, f);
+    this->Faces.clear();
+    for (vtkIdType k = 0; k < nfaces; ++k)
+    {
+      const vtkIdType m = *f++;
+      this->Faces.push_back(m);
+      for (vtkIdType i = 0; i < m; ++i)
+      {
+        this->Faces.push_back(map(*f++));
+      }
+    }
+    this->To->InsertNextCell(type, npts, this->Points.data(), nfaces, this->Faces.data());
   }
-  void SetOn(vtkUnstructuredGrid* to) const
+  /// Sets the gathered cells on the grid (nothing to do with polyhedra).
+  void Finish() const
   {
+    if (this->Polyhedra)
+    {
+      return;
+    }
     auto array = [](const std::vector<vtkIdType>& values) {
       vtkNew<vtkIdTypeArray> a;
       a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
@@ -281,8 +293,19 @@ struct CellBuffer
     vtkNew<vtkUnsignedCharArray> types;
     types->SetNumberOfValues(static_cast<vtkIdType>(this->Types.size()));
     std::copy(this->Types.begin(), this->Types.end(), types->GetPointer(0));
-    to->SetCells(types, cells);
+    this->To->SetCells(types, cells);
   }
+
+private:
+  vtkUnstructuredGrid* To;
+  bool Polyhedra;
+  vtkDataSet* From = nullptr;
+  vtkUnstructuredGrid* Grid = nullptr;
+  vtkNew<vtkIdList> Ids;
+  std::vector<unsigned char> Types;
+  std::vector<vtkIdType> Offsets{ 0 };
+  std::vector<vtkIdType> Connectivity;
+  std::vector<vtkIdType> Points, Faces; // one cell's, with polyhedra
 };
 
 bool IsGhost(vtkUnsignedCharArray* ghosts, vtkIdType c)
@@ -591,7 +614,6 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
   vtkDataSet* source, vtkDataObject* input, double reach, std::string& error)
 {
   const int n = this->N;
-  vtkNew<vtkIdList> ids;
   // 1. This process's part of Input, as boxes: a grid of bins over its
   // bounds, each with the box of the (grown) cells' parts inside it.
   Cover mine;
@@ -824,25 +846,12 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
     {
       polyhedra = polyhedra || source->GetCellType(c) == VTK_POLYHEDRON;
     }
-    if (polyhedra)
+    CellCopier copier(piece, polyhedra, static_cast<vtkIdType>(cells.size()));
+    for (vtkIdType c : cells)
     {
-      piece->AllocateExact(static_cast<vtkIdType>(cells.size()), 8 * static_cast<vtkIdType>(cells.size()));
-      std::vector<vtkIdType> pts, faces;
-      for (vtkIdType c : cells)
-      {
-        CopyCell(source, c, idOf, piece, ids, pts, faces);
-      }
+      copier.Add(source, c, idOf);
     }
-    else
-    {
-      CellBuffer buffer;
-      vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(source);
-      for (vtkIdType c : cells)
-      {
-        buffer.Add(source, grid, c, idOf, ids);
-      }
-      buffer.SetOn(piece);
-    }
+    copier.Finish();
     vtkNew<vtkPoints> xyz;
     xyz->SetDataTypeToDouble();
     xyz->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
@@ -987,32 +996,16 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
       polyhedra = polyhedra || t[c] == VTK_POLYHEDRON;
     }
   }
-  if (polyhedra)
+  CellCopier copier(merged, polyhedra, cellCount);
+  for (size_t i = 0; i < pieces.size(); ++i)
   {
-    merged->AllocateExact(cellCount, 8 * cellCount);
-    std::vector<vtkIdType> pts, faces;
-    for (size_t i = 0; i < pieces.size(); ++i)
+    const std::vector<vtkIdType>& to = newId[i];
+    for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
     {
-      const std::vector<vtkIdType>& to = newId[i];
-      for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
-      {
-        CopyCell(pieces[i], c, [&to](vtkIdType p) { return to[p]; }, merged, ids, pts, faces);
-      }
+      copier.Add(pieces[i], c, [&to](vtkIdType p) { return to[p]; });
     }
   }
-  else
-  {
-    CellBuffer buffer;
-    for (size_t i = 0; i < pieces.size(); ++i)
-    {
-      const std::vector<vtkIdType>& to = newId[i];
-      for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
-      {
-        buffer.Add(pieces[i], pieces[i], c, [&to](vtkIdType p) { return to[p]; }, ids);
-      }
-    }
-    buffer.SetOn(merged);
-  }
+  copier.Finish();
   this->Received = cellCount;
   // The common arrays, in the Source's own types and order.
   for (int a = 0; a < 2; ++a)

@@ -23,7 +23,9 @@ import numpy as np
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_TETRA, VTK_TRIANGLE, vtkMultiBlockDataSet, vtkUnstructuredGrid
+from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_POLYHEDRON, VTK_TETRA, VTK_TRIANGLE,
+                                           vtkMultiBlockDataSet, vtkUnstructuredGrid)
 
 import mpmpi
 
@@ -344,6 +346,23 @@ numbered(h3)
 h3.GetPointData().SetGlobalIds(h3.GetPointData().GetArray("origId"))
 case("3D hexahedra with GlobalIds", h3, hs, "random", global_ids=True)
 case("3D ghost cells", t3, s3, "blocks", ghosts=True)
+# The same hexahedra as polyhedra (face streams): the Source cells travel
+# and merge one by one with their faces.
+HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
+hp = vtkUnstructuredGrid()
+hp.SetPoints(hs.GetPoints())
+for corners in vtk_to_numpy(hs.GetCells().GetConnectivityArray()).reshape(-1, 8):
+    stream = vtkIdList()
+    stream.InsertNextId(6)
+    for face in HEX_FACES:
+        stream.InsertNextId(4)
+        for i in face:
+            stream.InsertNextId(int(corners[i]))
+    hp.InsertNextCell(VTK_POLYHEDRON, stream)
+hp.GetPointData().ShallowCopy(hs.GetPointData())
+hp.GetCellData().ShallowCopy(hs.GetCellData())
+check(hp.GetCellType(0) == VTK_POLYHEDRON, "polyhedra built")
+case("3D polyhedra Source with GlobalIds", h3, hp, "random", global_ids=True)
 
 # Linear fields are exact in parallel too (P1 to P1).
 par = case("2D linear", t2, s2, "blocks")
