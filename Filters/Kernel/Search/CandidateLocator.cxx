@@ -110,16 +110,8 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
       CellBox(mesh, this->Cells[i], &this->Boxes[6 * i]);
     }
   }
-  // The box of the i-th binned cell.
-  double box[6];
-  auto boxOf = [&](Index i) -> const double* {
-    if (subset)
-    {
-      return &this->Boxes[6 * i];
-    }
-    CellBox(mesh, i, box);
-    return box;
-  };
+  double scratch[6];
+  auto boxOf = [&](Index i) { return this->BoxOf(mesh, i, scratch); };
   double lo[3] = { 0, 0, 0 };
   double hi[3] = { 0, 0, 0 };
   bool first = true;
@@ -171,6 +163,16 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
   {
     forEachBin(i, [&](size_t bin) { this->BinCells[counts[bin]++] = i; });
   }
+}
+
+const double* BoxGridLocator::Bins::BoxOf(const MeshView& mesh, Index position, double scratch[6]) const
+{
+  if (!this->Boxes.empty())
+  {
+    return &this->Boxes[6 * static_cast<size_t>(position)];
+  }
+  CellBox(mesh, position, scratch);
+  return scratch;
 }
 
 void BoxGridLocator::Bins::Range(const double box[6], int lo[3], int hi[3]) const
@@ -229,7 +231,6 @@ void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Ind
     hi[d] = box[2 * d + 1] + pad;
   }
   const MeshView& mesh = this->Grids->Mesh;
-  const bool stored = !g.Boxes.empty();
   int first[3];
   int last[3];
   g.Range(box, first, last);
@@ -241,21 +242,13 @@ void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Ind
         for (Index at = g.BinStart[bin]; at < g.BinStart[bin + 1]; ++at)
         {
           const Index position = g.BinCells[at];
-          double own[6];
-          const double* b = own;
-          if (stored)
-          {
-            b = &g.Boxes[6 * position];
-          }
-          else
-          {
-            CellBox(mesh, position, own);
-          }
+          double scratch[6];
+          const double* b = g.BoxOf(mesh, position, scratch);
           // (NaN compares false: such a cell stays)
           if (!(b[1] < lo[0] || b[0] > hi[0] || b[3] < lo[1] || b[2] > hi[1] || b[5] < lo[2] ||
                 b[4] > hi[2]))
           {
-            cells.push_back(stored ? g.Cells[position] : position);
+            cells.push_back(g.CellOf(position));
           }
         }
       }
