@@ -102,6 +102,31 @@ int PointsOfType(int type)
   }
 }
 
+/**
+ * The smallest i in [0, n) for which wrong(i) holds, or n, found in the
+ * filter's threads: each range stops at its first (or once a smaller one is
+ * known), and the smallest reported wins.
+ */
+template <typename Wrong>
+vtkIdType FirstWhere(vtkIdType n, const Wrong& wrong)
+{
+  std::atomic<vtkIdType> first(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end && i < first; ++i)
+    {
+      if (wrong(i))
+      {
+        vtkIdType seen = first;
+        while (i < seen && !first.compare_exchange_weak(seen, i))
+        {
+        }
+        return;
+      }
+    }
+  });
+  return first;
+}
+
 /// The first cell (numbered from `first`) of `cells` that reads outside
 /// its arrays or names a point outside [0, numberOfPoints), as an error, or
 /// an empty string. `expected(c)` gives the count a cell must have (see
@@ -125,32 +150,19 @@ std::string CheckCells(const T* offsets, vtkIdType numberOfOffsets, const T* ids
         << "and end within it).";
     return why.str();
   }
-  // The first offending cell, found in parallel: each range reports its
-  // first, the smallest wins.
-  std::atomic<vtkIdType> bad(n);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end && c < bad; ++c)
+  // The first offending cell.
+  const vtkIdType c = FirstWhere(n, [&](vtkIdType c) {
+    const T from = offsets[c];
+    const T to = offsets[c + 1];
+    bool wrong = to < from;
+    const int count = expected(c);
+    wrong = wrong || (count > 0 && to - from != count) || (count < 0 && to - from < -count);
+    for (T i = from; i < to && !wrong; ++i)
     {
-      const T from = offsets[c];
-      const T to = offsets[c + 1];
-      bool wrong = to < from;
-      const int count = expected(c);
-      wrong = wrong || (count > 0 && to - from != count) || (count < 0 && to - from < -count);
-      for (T i = from; i < to && !wrong; ++i)
-      {
-        wrong = ids[i] < 0 || ids[i] >= numberOfPoints;
-      }
-      if (wrong)
-      {
-        vtkIdType seen = bad;
-        while (c < seen && !bad.compare_exchange_weak(seen, c))
-        {
-        }
-        return;
-      }
+      wrong = ids[i] < 0 || ids[i] >= numberOfPoints;
     }
+    return wrong;
   });
-  const vtkIdType c = bad;
   if (c == n)
   {
     return std::string();
@@ -847,11 +859,11 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   this->OrderInSpace();
 
   // The points the cells use: finite, and within the predicates' range.
-  // The first use of a point that is not, found in the tasks (each range
-  // stops at its first; the smallest wins), is reported.
+  // The first use of a point that is not is reported.
   const mp::Index* ids = this->Kernel.Connectivity;
   const mp::Index uses = corners * this->Kernel.NumberOfCells;
-  auto wrong = [](const double* x) {
+  const mp::Index i = FirstWhere(uses, [&](vtkIdType u) {
+    const double* x = this->Kernel.Point(ids[u]);
     bool bad = false;
     for (int d = 0; d < 3; ++d)
     {
@@ -859,27 +871,9 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       bad |= !(a <= 1e100) || (a != 0.0 && a < 1e-100); // NaN fails a <= 1e100
     }
     return bad;
-  };
-  std::atomic<mp::Index> firstWrong(uses);
-  const mp::TaskRunner runner = SMPTaskRunner();
-  const int tasks = runner.TasksFor(uses, 65536);
-  runner.RunAll(tasks, [&](int k) {
-    const mp::Index end = mp::RangeBegin(uses, k + 1, tasks);
-    for (mp::Index i = mp::RangeBegin(uses, k, tasks); i < end; ++i)
-    {
-      if (wrong(this->Kernel.Point(ids[i])))
-      {
-        mp::Index seen = firstWrong;
-        while (i < seen && !firstWrong.compare_exchange_weak(seen, i))
-        {
-        }
-        return;
-      }
-    }
   });
-  if (firstWrong < uses)
+  if (i < uses)
   {
-    const mp::Index i = firstWrong;
     const double* x = this->Kernel.Point(ids[i]);
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
