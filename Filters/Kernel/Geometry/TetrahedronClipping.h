@@ -248,6 +248,25 @@ inline void FaceSides(
   }
 }
 
+/// Stores summed moments in the piece: M unset unless the volume is positive.
+inline void SetMoments(
+  double m0, const double (&m1)[3], const double (&m2)[3][3], TetrahedronIntersector::Piece& piece)
+{
+  piece.M[0][0] = m0;
+  if (!(m0 > 0.0))
+  {
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    piece.M[0][a + 1] = piece.M[a + 1][0] = m1[a];
+    for (int b = 0; b < 3; ++b)
+    {
+      piece.M[a + 1][b + 1] = b >= a ? m2[a][b] : m2[b][a];
+    }
+  }
+}
+
 /**
  * A convex polyhedron as a graph in which every vertex has three
  * neighbours, listed so that the face to the left of the directed edge
@@ -460,11 +479,19 @@ struct VertexGraph
     piece.NumberOfTetrahedra = 0;
     piece.TouchedFaces = 0;
     piece.SourceFaces = 0;
+    piece.M[0][0] = 0.0;
     const int n = this->NumberOfVertices;
     if (n == 0)
     {
       return true;
     }
+    // The moments about vertex 0, summed tetrahedron by tetrahedron as
+    // TetrahedronIntersector::Moments would (the same operations: vertex 0's
+    // offset is zero), from the edges the volumes take anyway.
+    std::copy(this->X[0], this->X[0] + 3, piece.Origin);
+    double m0 = 0.0;
+    double m1[3] = { 0.0, 0.0, 0.0 };
+    double m2[3][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
     unsigned any = 0;
     for (int v = 0; v < n; ++v)
     {
@@ -528,7 +555,14 @@ struct VertexGraph
           {
             continue;
           }
-          const double six = SixVolume(corners[0], corners[1], corners[2], corners[3]);
+          Vec p[3]; // corners 1-3 about corner 0
+          for (int k = 0; k < 3; ++k)
+          {
+            Sub(corners[k + 1], corners[0], p[k]);
+          }
+          Vec normal;
+          Cross(p[1], p[2], normal);
+          const double six = Dot(p[0], normal); // SixVolume
           if (six == 0.0)
           {
             continue;
@@ -542,7 +576,23 @@ struct VertexGraph
           {
             std::copy(corners[k], corners[k] + 3, piece.X[t][k]);
           }
-          piece.Volume[t] = six / 6.0;
+          const double v = six / 6.0;
+          piece.Volume[t] = v;
+          double sum[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            sum[a] = p[0][a] + p[1][a] + p[2][a];
+          }
+          m0 += v;
+          for (int a = 0; a < 3; ++a)
+          {
+            m1[a] += v * sum[a] / 4.0;
+            for (int b = a; b < 3; ++b)
+            {
+              const double sq = p[0][a] * p[0][b] + p[1][a] * p[1][b] + p[2][a] * p[2][b];
+              m2[a][b] += v / 20.0 * (sq + sum[a] * sum[b]);
+            }
+          }
         }
         if (needArea && Dot(area, area) > minArea2)
         {
@@ -550,6 +600,7 @@ struct VertexGraph
         }
       }
     }
+    SetMoments(m0, m1, m2, piece);
     return true;
   }
 };

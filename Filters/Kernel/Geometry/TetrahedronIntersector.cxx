@@ -262,6 +262,7 @@ bool TetrahedronIntersector::IntersectCells(
       }
     }
     piece.NumberOfTetrahedra = n;
+    SumMoments(piece);
     unsigned any = 0;
     for (int i = 0; i < n; ++i)
     {
@@ -295,7 +296,7 @@ bool TetrahedronIntersector::IntersectCells(
   // taken as touching (its contribution would be below the tolerances of
   // the projection anyway), the same way for every search.
   return piece.NumberOfTetrahedra > 0 &&
-    Measure(piece) > 1e-13 * std::min(t.Measure, s.Measure);
+    piece.M[0][0] > 1e-13 * std::min(t.Measure, s.Measure); // the volume
 }
 
 double TetrahedronIntersector::Measure(const Piece& piece)
@@ -311,17 +312,29 @@ double TetrahedronIntersector::Measure(const Piece& piece)
 double TetrahedronIntersector::Moments(
   const Piece& piece, double (&origin)[3], double (&M)[4][4])
 {
+  if (piece.NumberOfTetrahedra == 0 || !(piece.M[0][0] > 0.0))
+  {
+    return 0.0;
+  }
+  std::copy(piece.Origin, piece.Origin + 3, origin);
+  std::copy(&piece.M[0][0], &piece.M[0][0] + 16, &M[0][0]);
+  return piece.M[0][0];
+}
+
+void TetrahedronIntersector::SumMoments(Piece& piece)
+{
   // Moments up to order 2 of the piece relative to one of its vertices (a
   // local origin inside both cells keeps affine functions of size 1 over
   // the piece, so that thin cells cannot make them cancel): on a
   // tetrahedron of volume V, integral of x_i = V mean(x_i) and of
   // x_i x_j = V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj).
+  piece.M[0][0] = 0.0;
   if (piece.NumberOfTetrahedra == 0)
   {
-    return 0.0;
+    return;
   }
   const double* o = piece.X[0][0];
-  std::copy(o, o + 3, origin);
+  std::copy(o, o + 3, piece.Origin);
   double m0 = 0.0;
   double m1[3] = { 0, 0, 0 };
   double m2[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
@@ -330,7 +343,7 @@ double TetrahedronIntersector::Moments(
     double p[4][3];
     for (int a = 0; a < 4; ++a)
     {
-      Sub(piece.X[n][a], o, p[a]);
+      Sub(piece.X[n][a], piece.Origin, p[a]);
     }
     const double v = piece.Volume[n]; // signed: rounding may leave a sliver negative
     if (v == 0.0)
@@ -353,20 +366,7 @@ double TetrahedronIntersector::Moments(
       }
     }
   }
-  if (!(m0 > 0.0))
-  {
-    return 0.0;
-  }
-  M[0][0] = m0;
-  for (int i = 0; i < 3; ++i)
-  {
-    M[0][i + 1] = M[i + 1][0] = m1[i];
-    for (int j = 0; j < 3; ++j)
-    {
-      M[i + 1][j + 1] = j >= i ? m2[i][j] : m2[j][i];
-    }
-  }
-  return m0;
+  SetMoments(m0, m1, m2, piece);
 }
 
 void TetrahedronIntersector::AppendPiece(

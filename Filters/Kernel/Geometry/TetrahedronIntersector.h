@@ -64,6 +64,11 @@ public:
     int NumberOfTetrahedra = 0;
     double X[MaxTetrahedra][4][3];
     double Volume[MaxTetrahedra]; ///< of each tetrahedron, > 0 (from the clipping)
+    /// The moments of the tetrahedra about Origin (= X[0][0]), as Moments
+    /// returns them, summed by Intersect while it cuts the piece (M[0][0]:
+    /// the volume; M unset when it is not positive).
+    double Origin[3];
+    double M[4][4];
     /// bit k: the piece has a face of positive area (above 1e-12 of the
     /// smaller cell's typical face) on target face k
     unsigned TouchedFaces = 0;
@@ -115,7 +120,7 @@ public:
    * The piece's moments up to order 2 about `origin` (set to one of its
    * vertices): M[0][0] the volume, M[0][1+a] the first moments, M[1+a][1+b]
    * the second moments of x - origin. Returns the volume, 0 (M unset) for a
-   * piece without interior.
+   * piece without interior. Those Intersect summed: no work per tetrahedron.
    */
   static double Moments(const Piece& piece, double (&origin)[3], double (&M)[4][4]);
   static double Measure(const Piece& piece);
@@ -124,6 +129,8 @@ public:
   static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 
 private:
+  /// Sums the moments of the piece's tetrahedra into its Origin and M.
+  static void SumMoments(Piece& piece);
   static bool IntersectCells(const Cell& t, const Cell& s, Piece& piece, bool asGraph);
 };
 } // namespace mp
