@@ -212,27 +212,37 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
 }
 
 /**
- * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and four
- * points, with the filters of all sixteen evaluated first, without branches,
- * and the exact path taken only for the undecided ones.
+ * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
+ * corners of `other`, with the filters of all sixteen evaluated first,
+ * without branches, and the exact path taken only for the undecided ones.
+ * The filters bound |x - a| by the extent of the two cells' boxes together
+ * (once per pair instead of per point): looser than FaceSide's own, so a
+ * point this one leaves undecided is then classified by FaceSide, and the
+ * signs and values are FaceSide's either way.
  */
-inline void FaceSides(
-  const TetrahedronIntersector::Cell& c, const double (&x)[4][3], double (&sides)[4][4])
+inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIntersector::Cell& other,
+  double (&sides)[4][4])
 {
-    bool decided = true;
+  const double(&x)[4][3] = other.X;
+  double size = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    size = std::max(size,
+      std::max(c.Box[2 * d + 1], other.Box[2 * d + 1]) - std::min(c.Box[2 * d], other.Box[2 * d]));
+  }
+  bool decided = true;
   for (int k = 0; k < 4; ++k)
   {
     const double* a = c.X[(k + 1) % 4];
-    const double bound = 64.0 * RoundingUnit * c.NormalScale[k];
+    const double bound = 64.0 * RoundingUnit * c.NormalScale[k] * size;
     for (int v = 0; v < 4; ++v)
     {
       const double w0 = x[v][0] - a[0];
       const double w1 = x[v][1] - a[1];
       const double w2 = x[v][2] - a[2];
       const double d = c.Normal[k][0] * w0 + c.Normal[k][1] * w1 + c.Normal[k][2] * w2;
-      const double size = std::max(std::max(std::fabs(w0), std::fabs(w1)), std::fabs(w2));
       sides[k][v] = d;
-      decided &= std::fabs(d) > bound * size;
+      decided &= std::fabs(d) > bound;
     }
   }
   if (decided)

@@ -149,8 +149,8 @@ bool TetrahedronIntersector::IntersectCells(
   unsigned beyond = 0;
   unsigned beyondS = 0;
   unsigned onPlane[4] = { 0, 0, 0, 0 }; // per target plane: source corners on it
-  FaceSides(t, s.X, exact);
-  FaceSides(s, t.X, exactS);
+  FaceSides(t, s, exact);
+  FaceSides(s, t, exactS);
   for (int k = 0; k < 4; ++k)
   {
     int off = 0;
