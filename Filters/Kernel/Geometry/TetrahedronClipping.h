@@ -196,9 +196,10 @@ inline void ClipByPlane(const ClipTet& t, const double* normal, const double* or
 /// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
 inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const double* x)
 {
-  // Fast path: the precomputed normal, with a forward error bound (about
-  // 42 eps |u| |v| |x - a| for the rounded differences, cross and dot
-  // products; 64 eps to spare). Only near-coplanar points go exact.
+  // Fast path: the precomputed normal, with a forward error bound (a
+  // first-order count gives under 50 eps |u| |v| |x - a|, max-norms, for the
+  // rounded differences, cross and dot products; 64 eps to spare). Only
+  // near-coplanar points go exact.
   const double* a = c.X[(k + 1) % 4];
   const double w[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
   const double d = c.Normal[k][0] * w[0] + c.Normal[k][1] * w[1] + c.Normal[k][2] * w[2];
@@ -218,7 +219,8 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
  * The filters bound |x - a| by the extent of the two cells' boxes together
  * (once per pair instead of per point): looser than FaceSide's own, so a
  * point this one leaves undecided is then classified by FaceSide, and the
- * signs and values are FaceSide's either way.
+ * signs and values are FaceSide's either way. (Looser still for cells of
+ * very different sizes or shapes: more pairs then take that second pass.)
  */
 inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIntersector::Cell& other,
   double (&sides)[4][4])
@@ -496,8 +498,8 @@ struct VertexGraph
       return true;
     }
     // The moments about vertex 0, summed tetrahedron by tetrahedron as
-    // TetrahedronIntersector::Moments would (the same operations: vertex 0's
-    // offset is zero), from the edges the volumes take anyway.
+    // TetrahedronIntersector::SumMoments does (the same operations: vertex
+    // 0's offset is zero), from the edges the volumes take anyway.
     std::copy(this->X[0], this->X[0] + 3, piece.Origin);
     double m0 = 0.0;
     double m1[3] = { 0.0, 0.0, 0.0 };
@@ -586,21 +588,21 @@ struct VertexGraph
           {
             std::copy(corners[k], corners[k] + 3, piece.X[t][k]);
           }
-          const double v = six / 6.0;
-          piece.Volume[t] = v;
+          const double volume = six / 6.0;
+          piece.Volume[t] = volume;
           double sum[3];
-          for (int a = 0; a < 3; ++a)
+          for (int r = 0; r < 3; ++r)
           {
-            sum[a] = p[0][a] + p[1][a] + p[2][a];
+            sum[r] = p[0][r] + p[1][r] + p[2][r];
           }
-          m0 += v;
-          for (int a = 0; a < 3; ++a)
+          m0 += volume;
+          for (int r = 0; r < 3; ++r)
           {
-            m1[a] += v * sum[a] / 4.0;
-            for (int b = a; b < 3; ++b)
+            m1[r] += volume * sum[r] / 4.0;
+            for (int q = r; q < 3; ++q)
             {
-              const double sq = p[0][a] * p[0][b] + p[1][a] * p[1][b] + p[2][a] * p[2][b];
-              m2[a][b] += v / 20.0 * (sq + sum[a] * sum[b]);
+              const double sq = p[0][r] * p[0][q] + p[1][r] * p[1][q] + p[2][r] * p[2][q];
+              m2[r][q] += volume / 20.0 * (sq + sum[r] * sum[q]);
             }
           }
         }

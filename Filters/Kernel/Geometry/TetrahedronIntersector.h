@@ -63,10 +63,13 @@ public:
   {
     int NumberOfTetrahedra = 0;
     double X[MaxTetrahedra][4][3];
-    double Volume[MaxTetrahedra]; ///< of each tetrahedron, > 0 (from the clipping)
+    /// Of each tetrahedron, signed: rounding may leave a sliver negative.
+    double Volume[MaxTetrahedra];
     /// The moments of the tetrahedra about Origin (= X[0][0]), as Moments
-    /// returns them, summed by Intersect while it cuts the piece (M[0][0]:
-    /// the volume; M unset when it is not positive).
+    /// returns them, set by Intersect when it has tetrahedra: summed while
+    /// the clipper's graph cuts the piece, or after the splitting clipper.
+    /// M[0][0], the volume, is always set then; the other entries only when
+    /// it is positive.
     double Origin[3];
     double M[4][4];
     /// bit k: the piece has a face of positive area (above 1e-12 of the
@@ -119,8 +122,9 @@ public:
   /**
    * The piece's moments up to order 2 about `origin` (set to one of its
    * vertices): M[0][0] the volume, M[0][1+a] the first moments, M[1+a][1+b]
-   * the second moments of x - origin. Returns the volume, 0 (M unset) for a
-   * piece without interior. Those Intersect summed: no work per tetrahedron.
+   * the second moments of x - origin. Returns the volume, 0 (origin and M
+   * unset) for a piece without interior. Those Intersect summed: no work
+   * per tetrahedron.
    */
   static double Moments(const Piece& piece, double (&origin)[3], double (&M)[4][4]);
   static double Measure(const Piece& piece);
