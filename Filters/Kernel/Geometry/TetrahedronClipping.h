@@ -260,6 +260,42 @@ inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIn
   }
 }
 
+/**
+ * Adds a tetrahedron's moments about a point o to m0, m1, m2 (upper
+ * triangle): `p` holds its corners minus o, all four, or three when the
+ * fourth is o itself. On a tetrahedron of volume V, the integral of x_i is
+ * V mean(x_i) and of x_i x_j V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj).
+ */
+template <int N>
+inline void AddTetrahedronMoments(
+  double volume, const double (&p)[N][3], double& m0, double (&m1)[3], double (&m2)[3][3])
+{
+  static_assert(N == 3 || N == 4, "corners about o, without o itself");
+  double sum[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    sum[i] = p[0][i];
+    for (int a = 1; a < N; ++a)
+    {
+      sum[i] += p[a][i];
+    }
+  }
+  m0 += volume;
+  for (int i = 0; i < 3; ++i)
+  {
+    m1[i] += volume * sum[i] / 4.0;
+    for (int j = i; j < 3; ++j)
+    {
+      double sq = p[0][i] * p[0][j];
+      for (int a = 1; a < N; ++a)
+      {
+        sq += p[a][i] * p[a][j];
+      }
+      m2[i][j] += volume / 20.0 * (sq + sum[i] * sum[j]);
+    }
+  }
+}
+
 /// Stores summed moments in the piece: M unset unless the volume is positive.
 inline void SetMoments(
   double m0, const double (&m1)[3], const double (&m2)[3][3], TetrahedronIntersector::Piece& piece)
@@ -588,23 +624,8 @@ struct VertexGraph
           {
             std::copy(corners[k], corners[k] + 3, piece.X[t][k]);
           }
-          const double volume = six / 6.0;
-          piece.Volume[t] = volume;
-          double sum[3];
-          for (int r = 0; r < 3; ++r)
-          {
-            sum[r] = p[0][r] + p[1][r] + p[2][r];
-          }
-          m0 += volume;
-          for (int r = 0; r < 3; ++r)
-          {
-            m1[r] += volume * sum[r] / 4.0;
-            for (int q = r; q < 3; ++q)
-            {
-              const double sq = p[0][r] * p[0][q] + p[1][r] * p[1][q] + p[2][r] * p[2][q];
-              m2[r][q] += volume / 20.0 * (sq + sum[r] * sum[q]);
-            }
-          }
+          piece.Volume[t] = six / 6.0;
+          AddTetrahedronMoments(piece.Volume[t], p, m0, m1, m2);
         }
         if (needArea && Dot(area, area) > minArea2)
         {

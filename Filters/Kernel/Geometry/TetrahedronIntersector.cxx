@@ -325,9 +325,7 @@ void TetrahedronIntersector::SumMoments(Piece& piece)
 {
   // Moments up to order 2 of the piece relative to one of its vertices (a
   // local origin inside both cells keeps affine functions of size 1 over
-  // the piece, so that thin cells cannot make them cancel): on a
-  // tetrahedron of volume V, integral of x_i = V mean(x_i) and of
-  // x_i x_j = V/20 (sum_a x_ai x_aj + sum_a x_ai sum_a x_aj).
+  // the piece, so that thin cells cannot make them cancel).
   piece.M[0][0] = 0.0;
   if (piece.NumberOfTetrahedra == 0)
   {
@@ -340,31 +338,17 @@ void TetrahedronIntersector::SumMoments(Piece& piece)
   double m2[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
   for (int n = 0; n < piece.NumberOfTetrahedra; ++n)
   {
-    double p[4][3];
-    for (int a = 0; a < 4; ++a)
-    {
-      Sub(piece.X[n][a], piece.Origin, p[a]);
-    }
     const double v = piece.Volume[n]; // signed: rounding may leave a sliver negative
     if (v == 0.0)
     {
       continue;
     }
-    double sum[3];
-    for (int i = 0; i < 3; ++i)
+    double p[4][3];
+    for (int a = 0; a < 4; ++a)
     {
-      sum[i] = p[0][i] + p[1][i] + p[2][i] + p[3][i];
+      Sub(piece.X[n][a], piece.Origin, p[a]);
     }
-    m0 += v;
-    for (int i = 0; i < 3; ++i)
-    {
-      m1[i] += v * sum[i] / 4.0;
-      for (int j = i; j < 3; ++j)
-      {
-        const double sq = p[0][i] * p[0][j] + p[1][i] * p[1][j] + p[2][i] * p[2][j] + p[3][i] * p[3][j];
-        m2[i][j] += v / 20.0 * (sq + sum[i] * sum[j]);
-      }
-    }
+    AddTetrahedronMoments(v, p, m0, m1, m2);
   }
   SetMoments(m0, m1, m2, piece);
 }
