@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 using mp::TriangleIntersector;
@@ -223,6 +225,126 @@ TEST(TriangleIntersector, RandomPairsMatchClipping)
     EXPECT_NEAR(Pair(s, t).Area(), p.Area(), 1e-14) << n;
   }
   EXPECT_GT(met, 5000);
+}
+
+namespace
+{
+// Twice the signed area of the turn u -> v -> w.
+double Turn(const double* u, const double* v, const double* w)
+{
+  return (v[0] - u[0]) * (w[1] - u[1]) - (v[1] - u[1]) * (w[0] - u[0]);
+}
+
+// The piece is a convex counterclockwise polygon of distinct vertices: no
+// turn clockwise beyond rounding (`scale`: the cells' size), and its area
+// (a fan from vertex 0, which misordered vertices would cross) matches the
+// clipping oracle's.
+void ExpectConvexPiece(const Pair& p, long double expected, double scale, const std::string& what)
+{
+  const auto& piece = p.Piece;
+  const int n = piece.NumberOfVertices;
+  for (int i = 0; i < n; ++i)
+  {
+    const double* u = piece.X[i];
+    const double* v = piece.X[(i + 1) % n];
+    const double* w = piece.X[(i + 2) % n];
+    EXPECT_FALSE(u[0] == v[0] && u[1] == v[1]) << what << ": vertex " << i << " repeated";
+    if (n >= 3)
+    {
+      EXPECT_GE(Turn(u, v, w), -1e-15 * scale * scale) << what << ": turn at vertex " << i;
+    }
+  }
+  EXPECT_NEAR(p.Area(), static_cast<double>(expected), 1e-14 * scale * scale) << what;
+}
+} // namespace
+
+// Most pairs are in general position (no corner on a line of the other
+// cell): their vertices are ordered by the edges they lie on rather than
+// sorted. Pieces of every vertex count, from both roles, in random
+// positions and rotations, are convex, counterclockwise, without repeated
+// vertices and of the oracle's area.
+TEST(TriangleIntersector, GeneralPositionPiecesAreConvexPolygons)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int counts[7] = {};
+  for (int n = 0; n < 20000; ++n)
+  {
+    double t[3][2];
+    double s[3][2];
+    for (auto& x : t)
+      x[0] = u(rng), x[1] = u(rng);
+    // Half the pairs: a source of similar size near the target's center
+    // (hexagons, pentagons); else smaller (contained, one corner inside).
+    const double size = n % 2 ? 1.0 : 0.4;
+    for (auto& x : s)
+      x[0] = size * u(rng), x[1] = size * u(rng);
+    if (TriangleArea(t) < 1e-4 || TriangleArea(s) < 1e-4)
+      continue;
+    for (int roles = 0; roles < 2; ++roles)
+    {
+      Pair p = roles ? Pair(s, t) : Pair(t, s);
+      if (!p.Met)
+      {
+        EXPECT_LT(ClipArea(t, s), 1e-15) << n;
+        continue;
+      }
+      ++counts[std::min(p.Piece.NumberOfVertices, 6)];
+      ExpectConvexPiece(p, ClipArea(t, s), 1.0, "pair " + std::to_string(n));
+    }
+  }
+  for (int v = 3; v <= 6; ++v)
+  {
+    EXPECT_GT(counts[v], 100) << v << " vertices";
+  }
+}
+
+// A source edge passing at a tiny distance from a target corner, on either
+// side: two crossings (or a crossing and the corner) nearly coincide and
+// round onto each other. The piece keeps the right order and no repeated
+// vertex, for distances from 1e-8 down to subnormal.
+TEST(TriangleIntersector, NearlyCoincidentCrossings)
+{
+  const double t[3][2] = { { 0.1, 0.2 }, { 1.3, 0.1 }, { 0.3, 1.1 } };
+  const double distances[] = { 1e-8, 1e-12, 1e-15, 1e-16, 1e-17, 1e-20, 1e-300, 4e-320 };
+  int checked = 0;
+  for (int corner = 0; corner < 3; ++corner)
+  {
+    const double* c = t[corner];
+    const double* a = t[(corner + 1) % 3];
+    const double* b = t[(corner + 2) % 3];
+    // The direction from the corner into the triangle (toward the mean of
+    // the other corners) and a unit normal to the cutting line.
+    double d[2] = { 0.5 * (a[0] + b[0]) - c[0], 0.5 * (a[1] + b[1]) - c[1] };
+    const double length = std::hypot(d[0], d[1]);
+    d[0] /= length;
+    d[1] /= length;
+    for (double distance : distances)
+    {
+      for (int side = -1; side <= 1; side += 2)
+      {
+        // The cutting line passes at signed distance side * distance from
+        // the corner, across the corner's direction; the source lies on the
+        // far side of it (the triangle's body), reaching well beyond.
+        const double m[2] = { c[0] + side * distance * d[0], c[1] + side * distance * d[1] };
+        const double e[2] = { -d[1], d[0] };
+        const double s[3][2] = { { m[0] + 3 * e[0], m[1] + 3 * e[1] },
+          { m[0] - 3 * e[0], m[1] - 3 * e[1] }, { m[0] + 3 * d[0], m[1] + 3 * d[1] } };
+        for (int roles = 0; roles < 2; ++roles)
+        {
+          Pair p = roles ? Pair(s, t) : Pair(t, s);
+          char what[96];
+          std::snprintf(what, sizeof what, "corner %d, distance %g%s", corner, side * distance,
+            roles ? ", roles swapped" : "");
+          ASSERT_TRUE(p.Met) << what;
+          ExpectConvexPiece(p, ClipArea(t, s), 1.0, what);
+          EXPECT_GE(p.Piece.NumberOfVertices, 3) << what;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, 3 * 8 * 2 * 2);
 }
 
 TEST(TriangleIntersector, MortarEntriesOfIdenticalTriangles)

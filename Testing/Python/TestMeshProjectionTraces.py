@@ -281,13 +281,27 @@ check(np.all(c == 2.0) and np.all(np.abs(fraction - 1) < 1e-12),
       "a plane between merged blocks: the upper cells, covered once (%s, %g)" % (np.unique(c), fraction.max()))
 
 # --- Points valid through slivers only are reported ------------------------
-# (any kind of pair: here a 2D square half beyond another; such a point's
-# value is extrapolated from a sliver, 0.5 off on this pair).
+# (any kind of pair: here a 2D square beside another, reaching 1e-5 into
+# it: the points on that edge are valid, their cells covered in a strip of
+# about 1e-5 / 0.07 of their area, and their values extrapolated from it).
 f, warnings = observed_filter("WarningEvent")
-f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (-0.5, 0.5, 0.0)))
+f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (-1.0 + 1e-5, 0.0, 0.0)))
 f.SetSourceData(mpgmsh.with_point_field(mpgmsh.surface("patch0", 0.05), "f", linear))
 f.Update()
-check(any("valid through slivers only" in w for w in warnings), "points valid through slivers: reported (%r)" % warnings)
+out = f.GetOutput()
+fraction = values(out, "CoveredFraction", cells=True)
+cells = out.GetPolys()
+offsets = vtk_to_numpy(cells.GetOffsetsArray())
+connectivity = vtk_to_numpy(cells.GetConnectivityArray())
+most = np.zeros(out.GetNumberOfPoints())
+for c in range(out.GetNumberOfCells()):
+    ids = connectivity[offsets[c]:offsets[c + 1]]
+    most[ids] = np.maximum(most[ids], fraction[c])
+mask = values(out, "vtkValidPointMask").astype(bool)
+through_slivers = np.sum(mask & (most < 1e-3))
+check(through_slivers >= 10, "points valid through slivers: made (%d)" % through_slivers)
+check(any("%d Input points are valid through slivers only" % through_slivers in w for w in warnings),
+      "points valid through slivers: reported (%r)" % warnings)
 f, warnings = observed_filter("WarningEvent")  # a fresh one: each warning is given once
 f.SetInputData(mpgmsh.moved(mpgmsh.surface("patch0", 0.07), 0.0, (0.37, 0.0, 0.0)))
 f.SetSourceData(mpgmsh.with_point_field(mpgmsh.surface("patch0", 0.05), "f", linear))

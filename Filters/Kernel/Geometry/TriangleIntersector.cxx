@@ -115,6 +115,61 @@ void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
 }
 
 /**
+ * Orders the vertices of a piece in general position (no corner of either
+ * cell on a line of the other's edges) by the edges they lie on, without
+ * sorting: each vertex lies on two of the six edge lines (0-2 the target's,
+ * 3-5 the source's), one along which the piece's boundary arrives (`in`) and
+ * one along which it leaves (`out`), both cells and the piece traversed
+ * counterclockwise. A convex piece has at most one edge on each line, so the
+ * vertex after v is the one arriving along v's leaving line. The labels
+ * come from exact signs, so the order is exact even where rounded crossings
+ * nearly coincide. Returns false (the piece untouched) unless the labels
+ * chain all the vertices into one cycle; drops rounded crossings equal to
+ * their predecessor.
+ */
+bool ChainByEdges(TriangleIntersector::Piece& p, const unsigned char* in, const unsigned char* out)
+{
+  const int n = p.NumberOfVertices;
+  if (n < 3 || n > 6)
+  {
+    return false;
+  }
+  signed char arriving[6] = { -1, -1, -1, -1, -1, -1 };
+  for (int v = 0; v < n; ++v)
+  {
+    arriving[in[v]] = static_cast<signed char>(v);
+  }
+  double ordered[6][2];
+  int v = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    ordered[i][0] = p.X[v][0];
+    ordered[i][1] = p.X[v][1];
+    v = arriving[out[v]];
+    // One cycle through all n vertices: back at the first only at the end.
+    if (v < 0 || (v == 0) != (i == n - 1))
+    {
+      return false;
+    }
+  }
+  p.X[0][0] = ordered[0][0];
+  p.X[0][1] = ordered[0][1];
+  int m = 1;
+  for (int i = 1; i < n; ++i)
+  {
+    p.X[m][0] = ordered[i][0];
+    p.X[m][1] = ordered[i][1];
+    m += (ordered[i][0] != p.X[m - 1][0]) | (ordered[i][1] != p.X[m - 1][1]);
+  }
+  if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
+  {
+    --m;
+  }
+  p.NumberOfVertices = m;
+  return true;
+}
+
+/**
  * o[k][j] = Orient2D(a[k], b[k], c[j]) for 3 lines and 3 points, with one
  * floating-point filter for all nine (Predicates.h): the nine determinants
  * and their error bounds are computed without branches, and only when one is
@@ -150,12 +205,6 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
   }
 }
 
-inline void AddVertex(TriangleIntersector::Piece& p, double x, double y)
-{
-  p.X[p.NumberOfVertices][0] = x;
-  p.X[p.NumberOfVertices][1] = y;
-  ++p.NumberOfVertices;
-}
 } // namespace
 
 bool TriangleIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
@@ -279,6 +328,20 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     return false;
   }
   constexpr unsigned column = 1u | 8u | 64u; // entries [0][0], [1][0], [2][0]
+  // Each vertex's edge lines, arriving and leaving (ChainByEdges): target
+  // edge k is line k, source edge l line 3 + l; edge k runs from corner
+  // k + 1 to corner k + 2, so corner i is reached along edge i + 1 and left
+  // along edge i + 2.
+  unsigned char in[MaxPolygonVertices];
+  unsigned char out[MaxPolygonVertices];
+  int n = 0;
+  auto add = [&piece, &in, &out, &n](double x, double y, unsigned arriving, unsigned leaving) {
+    piece.X[n][0] = x;
+    piece.X[n][1] = y;
+    in[n] = static_cast<unsigned char>(arriving);
+    out[n] = static_cast<unsigned char>(leaving);
+    ++n;
+  };
   // Corners of the target in the closed source: they lie on the two target
   // faces that meet at that corner, and on the source faces they are on.
   const unsigned zeroS = ~(posS | negS);
@@ -288,7 +351,7 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     if (!(negS & (column << i)))
     {
       targetInside |= 1u << i;
-      AddVertex(piece, t.X[i][0], t.X[i][1]);
+      add(t.X[i][0], t.X[i][1], (i + 1) % 3, (i + 2) % 3);
       piece.TouchedFaces |= 7u & ~(1u << i);
       const unsigned on = (zeroS >> i) & column; // bits 0, 3, 6: on source edge 0, 1, 2
       piece.SourceFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
@@ -313,7 +376,7 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     }
     if (!known)
     {
-      AddVertex(piece, s.X[j][0], s.X[j][1]);
+      add(s.X[j][0], s.X[j][1], 3 + (j + 1) % 3, 3 + (j + 2) % 3);
     }
   }
   // Proper crossings: both pairs of end points strictly on opposite sides.
@@ -341,14 +404,30 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
       const double* c = s.X[(l + 1) % 3];
       const double* d = s.X[(l + 2) % 3];
       const double u = oc / (oc - od);
-      AddVertex(piece, c[0] + u * (d[0] - c[0]), c[1] + u * (d[1] - c[1]));
+      // Source edge l entering the target's side of edge k (c outside):
+      // the piece arrives along target edge k and leaves along l; leaving
+      // it, the other way round.
+      const unsigned entering = oc < 0.0;
+      const unsigned target = static_cast<unsigned>(k);
+      const unsigned source = static_cast<unsigned>(3 + l);
+      add(c[0] + u * (d[0] - c[0]), c[1] + u * (d[1] - c[1]), entering ? target : source,
+        entering ? source : target);
       piece.TouchedFaces |= 1u << k;
       piece.SourceFaces |= 1u << l;
     }
   }
+  piece.NumberOfVertices = n;
   if (piece.NumberOfVertices == 0)
   {
     return false;
+  }
+  // In general position (no orientation zero) the labels order the piece;
+  // a corner on a line of the other cell (shared points, touching cells)
+  // can put several vertices on one point or line: sorted by angle.
+  constexpr unsigned all = 0x1FFu;
+  if (((zeroS | zeroT) & all) == 0 && ChainByEdges(piece, in, out))
+  {
+    return true;
   }
   SortAndRemoveDoubles(piece);
   return true;
