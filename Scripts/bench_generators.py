@@ -1,7 +1,7 @@
 """The filter against libsupermesh on meshes as a real mesh generator numbers them.
 
     /usr/bin/python3 Scripts/bench_generators.py [--bench BIN] [--peer LIB]
-        [--meshes DIR] [--sizes 2:1e5,2:1e6,3:1e4,3:1e5] [--markdown FILE]
+        [--meshes DIR] [--sizes 2:1e5,2:1e6,3:1e4,3:1e5] [--runs 3] [--markdown FILE]
 
 Gmsh (its Python API, `apt-get install python3-gmsh`) meshes two non-matching
 pairs of domains, each pair with two of its algorithms so that nothing lines
@@ -20,8 +20,10 @@ For every pair and every order (as Gmsh numbers them, sorted into bands,
 cells and points shuffled: mesh-projection-bench --order) it runs
 mesh-projection-bench --filter-only on 1 and 2 threads and, in the same run,
 libsupermesh's intersections on the same meshes (--peer; found with the
-`libsupermesh` Python package of a `python3` on PATH when not given), and
-prints one Markdown table: the whole filter's seconds, its speed-up, the
+`libsupermesh` Python package of a `python3` on PATH when not given), each
+timed --runs times (default 3) with the best kept, the filter's and the
+peer's alike (on a shared virtual machine single runs vary by 30% and more),
+and prints one Markdown table: the whole filter's seconds, its speed-up, the
 peer's seconds and the ratio, the filter's peak memory beyond its inputs,
 and per pair the worst order over the best.
 """
@@ -130,8 +132,8 @@ def find_peer():
         return None
 
 
-def run(bench, target, source, order, threads, peer):
-    command = [bench, "--filter-only", "--threads", str(threads), "--order", order,
+def run(bench, target, source, order, threads, peer, runs):
+    command = [bench, "--filter-only", "--threads", str(threads), "--runs", str(runs), "--order", order,
                "--target", target, "--source", source]
     if peer:
         command += ["--peer", peer]
@@ -140,7 +142,7 @@ def run(bench, target, source, order, threads, peer):
     result = {
         "cells": int(re.search(r"target (\d+) cells", out).group(1)),
         "source": int(re.search(r"source (\d+) cells", out).group(1)),
-        "filter": float(re.search(r"VTK filter \(one run\)" + number, out).group(1)),
+        "filter": float(re.search(r"VTK filter \((?:one run|best of \d+)\)" + number, out).group(1)),
         "renumber": float(re.search(r"of which renumbering" + number, out).group(1)),
         "renumbered": int(re.search(r"\((\d) of 2 meshes\)", out).group(1)),
     }
@@ -157,6 +159,7 @@ def main():
     parser.add_argument("--peer", default=None, help="libsupermesh's shared library")
     parser.add_argument("--meshes", default=os.path.join(ROOT, "build", "bench-meshes"))
     parser.add_argument("--sizes", default="2:1e5,2:1e6,3:1e4,3:1e5")
+    parser.add_argument("--runs", type=int, default=3, help="runs per measurement, the best kept")
     parser.add_argument("--markdown", default=None, help="also write the table to this file")
     args = parser.parse_args()
     peer = args.peer or find_peer()
@@ -173,8 +176,8 @@ def main():
         target, source = pair(args.meshes, dim, cells)
         times = {}
         for order in ("asis", "sorted", "shuffled"):
-            one = run(args.bench, target, source, order, 1, peer)
-            two = run(args.bench, target, source, order, 2, None)
+            one = run(args.bench, target, source, order, 1, peer, args.runs)
+            two = run(args.bench, target, source, order, 2, None, args.runs)
             times[order] = one["filter"]
             label = "%dD %s %d / %d" % (dim, "triangles" if dim == 2 else "tetrahedra", one["cells"], one["source"])
             name = {"asis": "as Gmsh numbers them", "sorted": "sorted into bands", "shuffled": "shuffled"}[order]
