@@ -31,6 +31,26 @@ inline double PseudoAngle(double dx, double dy)
 }
 
 
+// Stores the n ordered points as the piece's vertices, each only when it
+// differs from the one before (and the last when it differs from the first).
+void StoreWithoutRepeats(const double (*ordered)[2], int n, TriangleIntersector::Piece& p)
+{
+  p.X[0][0] = ordered[0][0];
+  p.X[0][1] = ordered[0][1];
+  int m = 1;
+  for (int i = 1; i < n; ++i)
+  {
+    p.X[m][0] = ordered[i][0];
+    p.X[m][1] = ordered[i][1];
+    m += (ordered[i][0] != p.X[m - 1][0]) | (ordered[i][1] != p.X[m - 1][1]);
+  }
+  if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
+  {
+    --m;
+  }
+  p.NumberOfVertices = m;
+}
+
 // Orders the points counterclockwise around their mean and drops exact
 // duplicates (a crossing that rounds onto another point).
 //
@@ -98,20 +118,7 @@ void SortAndRemoveDoubles(TriangleIntersector::Piece& p)
     sorted[i][0] = p.X[from][0];
     sorted[i][1] = p.X[from][1];
   }
-  p.X[0][0] = sorted[0][0];
-  p.X[0][1] = sorted[0][1];
-  int m = 1;
-  for (int i = 1; i < n; ++i)
-  {
-    p.X[m][0] = sorted[i][0];
-    p.X[m][1] = sorted[i][1];
-    m += (sorted[i][0] != p.X[m - 1][0]) | (sorted[i][1] != p.X[m - 1][1]);
-  }
-  if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
-  {
-    --m;
-  }
-  p.NumberOfVertices = m;
+  StoreWithoutRepeats(sorted, n, p);
 }
 
 /**
@@ -152,20 +159,7 @@ bool ChainByEdges(TriangleIntersector::Piece& p, const unsigned char* in, const 
       return false;
     }
   }
-  p.X[0][0] = ordered[0][0];
-  p.X[0][1] = ordered[0][1];
-  int m = 1;
-  for (int i = 1; i < n; ++i)
-  {
-    p.X[m][0] = ordered[i][0];
-    p.X[m][1] = ordered[i][1];
-    m += (ordered[i][0] != p.X[m - 1][0]) | (ordered[i][1] != p.X[m - 1][1]);
-  }
-  if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
-  {
-    --m;
-  }
-  p.NumberOfVertices = m;
+  StoreWithoutRepeats(ordered, n, p);
   return true;
 }
 
