@@ -612,6 +612,61 @@ int FilterRuns = 1;
 /// --renumber auto|always|never: the filter's Renumbering.
 int Renumbering = vtkMeshProjectionFilter::AUTOMATIC_RENUMBERING;
 
+/**
+ * Runs the whole VTK filter on the pair `runs` times on `threads` threads and
+ * keeps the best time in `best`, with that run's stages, checks, renumbering
+ * and counts in slot `slot` of `r` (and its intersections in `pairs`, when
+ * given). With `peak`, each run starts from memory given back to the system
+ * and `r.FilterPeak` gets the largest peak beyond what was resident before it
+ * (MiB).
+ */
+void TimeFilter(vtkUnstructuredGrid* targetGrid, vtkUnstructuredGrid* sourceGrid, int threads,
+  int runs, bool peak, int slot, double& best, Row& r, Index* pairs = nullptr)
+{
+  for (int run = 0; run < runs; ++run)
+  {
+    vtkNew<vtkMeshProjectionFilter> filter;
+    filter->SetNumberOfThreads(threads);
+    filter->SetRenumbering(Renumbering);
+    filter->SetInputData(targetGrid);
+    filter->SetSourceData(sourceGrid);
+    double before = 0;
+    if (peak)
+    {
+#if defined(__GLIBC__)
+      malloc_trim(0);
+#endif
+      before = StatusMiB("VmRSS:");
+      ResetPeakMemory();
+    }
+    const auto t0 = Clock::now();
+    filter->Update();
+    const double seconds = Since(t0);
+    if (peak)
+    {
+      r.FilterPeak = std::max(r.FilterPeak, StatusMiB("VmHWM:") - before);
+    }
+    if (best >= 0 && seconds >= best)
+    {
+      continue;
+    }
+    best = seconds;
+    const double stages[7] = { filter->GetInputTime(), filter->GetNeighborsTime(),
+      filter->GetLocatorTime(), filter->GetSearchTime(), filter->GetAssemblyTime(),
+      filter->GetSolveTime(), filter->GetOutputTime() };
+    std::copy(stages, stages + 7, r.FilterStages[slot]);
+    r.CheckTime[slot] = filter->GetCheckTime();
+    r.RenumberTime[slot] = filter->GetRenumberTime();
+    r.Renumbered = filter->GetNumberOfRenumberedMeshes();
+    r.Tests = filter->GetNumberOfIntersectionTests();
+    r.Queries = filter->GetNumberOfLocatorQueries();
+    if (pairs)
+    {
+      *pairs = filter->GetNumberOfIntersections();
+    }
+  }
+}
+
 Row Measure(int dim, double n, double bruteMax, bool filterOnly)
 {
   Row r{};
@@ -634,40 +689,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     auto sourceGrid = ToVTK(source, &u);
     auto targetGrid = ToVTK(target, nullptr);
     r.VTKInputs = (targetGrid->GetActualMemorySize() + sourceGrid->GetActualMemorySize()) / 1024.0;
-    r.Filter1 = -1;
     r.FilterPeak = 0;
-    for (int run = 0; run < FilterRuns; ++run)
-    {
-      vtkNew<vtkMeshProjectionFilter> filter;
-      filter->SetNumberOfThreads(FilterThreads);
-      filter->SetRenumbering(Renumbering);
-      filter->SetInputData(targetGrid);
-      filter->SetSourceData(sourceGrid);
-#if defined(__GLIBC__)
-      malloc_trim(0);
-#endif
-      const double before = StatusMiB("VmRSS:");
-      ResetPeakMemory();
-      const auto t0 = Clock::now();
-      filter->Update();
-      const double seconds = Since(t0);
-      r.FilterPeak = std::max(r.FilterPeak, StatusMiB("VmHWM:") - before);
-      if (r.Filter1 >= 0 && seconds >= r.Filter1)
-      {
-        continue;
-      }
-      r.Filter1 = seconds;
-      const double stages[7] = { filter->GetInputTime(), filter->GetNeighborsTime(),
-        filter->GetLocatorTime(), filter->GetSearchTime(), filter->GetAssemblyTime(),
-        filter->GetSolveTime(), filter->GetOutputTime() };
-      std::copy(stages, stages + 7, r.FilterStages[0]);
-      r.CheckTime[0] = filter->GetCheckTime();
-      r.RenumberTime[0] = filter->GetRenumberTime();
-      r.Renumbered = filter->GetNumberOfRenumberedMeshes();
-      r.Pairs = filter->GetNumberOfIntersections();
-      r.Tests = filter->GetNumberOfIntersectionTests();
-      r.Queries = filter->GetNumberOfLocatorQueries();
-    }
+    TimeFilter(targetGrid, sourceGrid, FilterThreads, FilterRuns, true, 0, r.Filter1, r, &r.Pairs);
     for (int run = 0; HavePeer && run < FilterRuns; ++run)
     {
       const double seconds = ThePeer.Run(target, source, r.PeerMeasure, r.PeerCandidates, r.PeerPieces);
@@ -749,33 +772,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
   // for fresh memory pages or a busy neighbour that the others do not.
   for (int threads : { 1, 2 })
   {
-    double& best = threads == 1 ? r.Filter1 : r.Filter2;
-    for (int run = 0; run < 3; ++run)
-    {
-      vtkNew<vtkMeshProjectionFilter> filter;
-      filter->SetNumberOfThreads(threads);
-      filter->SetRenumbering(Renumbering);
-      filter->SetInputData(targetGrid);
-      filter->SetSourceData(sourceGrid);
-      t0 = Clock::now();
-      filter->Update();
-      const double seconds = Since(t0);
-      if (best < 0 || seconds < best)
-      {
-        best = seconds;
-        double* stages = r.FilterStages[threads - 1];
-        stages[0] = filter->GetInputTime();
-        r.CheckTime[threads - 1] = filter->GetCheckTime();
-        r.RenumberTime[threads - 1] = filter->GetRenumberTime();
-        r.Renumbered = filter->GetNumberOfRenumberedMeshes();
-        stages[1] = filter->GetNeighborsTime();
-        stages[2] = filter->GetLocatorTime();
-        stages[3] = filter->GetSearchTime();
-        stages[4] = filter->GetAssemblyTime();
-        stages[5] = filter->GetSolveTime();
-        stages[6] = filter->GetOutputTime();
-      }
-    }
+    TimeFilter(targetGrid, sourceGrid, threads, 3, false, threads - 1,
+      threads == 1 ? r.Filter1 : r.Filter2, r);
   }
   vtkNew<vtkResampleWithDataSet> resample;
   resample->SetInputData(targetGrid);
@@ -827,8 +825,8 @@ void PrintFilter(const Row& r)
     static_cast<long long>(r.Pairs));
   const std::string runs =
     FilterRuns > 1 ? "VTK filter (best of " + std::to_string(FilterRuns) + ")" : "VTK filter (one run)";
-  std::printf("  %-34s %10.4f  (%.2f tests per pair, %lld locator queries)\n", runs.c_str(), r.Filter1, double(r.Tests) / std::max<Index>(1, r.Pairs),
-    static_cast<long long>(r.Queries));
+  std::printf("  %-34s %10.4f  (%.2f tests per pair, %lld locator queries)\n", runs.c_str(),
+    r.Filter1, double(r.Tests) / std::max<Index>(1, r.Pairs), static_cast<long long>(r.Queries));
   for (int k = 0; k < 7; ++k)
   {
     std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[0][k]);
