@@ -31,8 +31,10 @@ double Orient2DExact(const double* a, const double* b, const double* c);
 
 /**
  * Twice the signed area of triangle (a, b, c): positive when counterclockwise.
- * The sign is exact; the magnitude is accurate to a few ulps.
- * Inputs are (x, y) pairs. Inline: the floating-point filter decides almost
+ * The sign is exact. The magnitude is the rounded determinant when the
+ * floating-point filter decides (its error below the filter's bound, so
+ * large relative to the value only for nearly collinear points), else
+ * close to the exact value. Inputs are (x, y) pairs. Inline: the floating-point filter decides almost
  * every call; only near-degenerate ones take the exact path.
  */
 inline double Orient2D(const double* a, const double* b, const double* c)
@@ -59,7 +61,9 @@ inline double Orient2D(const double* a, const double* b, const double* c)
  * Six times the signed volume of tetrahedron (a, b, c, d): positive when d
  * lies on the side of plane (a, b, c) where (a, b, c) turns counterclockwise
  * seen from d... i.e. det[b - a, c - a, d - a]. The sign is exact; the
- * magnitude is accurate to a few ulps. Inputs are (x, y, z) triples.
+ * magnitude, as Orient2D's, is the rounded determinant when the filter
+ * decides (large relative error only for nearly coplanar points), else close
+ * to the exact value. Inputs are (x, y, z) triples.
  */
 double Orient3D(const double* a, const double* b, const double* c, const double* d);
 

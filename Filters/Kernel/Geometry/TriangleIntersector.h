@@ -7,11 +7,14 @@
  * grid projections with linear complexity" (DD18, 2009): the intersection of
  * two triangles is the convex hull of (a) the points where an edge of one
  * crosses an edge of the other and (b) the corners of each triangle lying in
- * the other, borderline cases included; sorting these points
- * counterclockwise and removing duplicates gives the polygon. Unlike the
- * original floating-point tests, every decision here is the sign of an
- * exactly evaluated orientation (Predicates.h), so a corner lying on an edge
- * is "inside" for both cells that share the edge.
+ * the other, borderline cases included; these points in counterclockwise
+ * order, duplicates removed, are the polygon. Unlike the original
+ * floating-point tests, every decision here is the sign of an exactly
+ * evaluated orientation (Predicates.h), so a corner lying on an edge is
+ * "inside" for both cells that share the edge; in general position those
+ * signs also give the order (each point lies on two edge lines, the polygon
+ * arriving along one and leaving along the other), else the points are
+ * sorted by angle.
  *
  * Along with the polygon it reports which faces (edges) of the target
  * triangle the closed source triangle touches: the target's neighbours
