@@ -199,6 +199,33 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
   }
 }
 
+
+/**
+ * Where source edge c-d crosses the line of target edge a-b, from the
+ * orientations oc = Orient2D(a, b, c) and od = Orient2D(a, b, d) (strictly
+ * of opposite signs). Their signs are exact, but a determinant the filter
+ * decided is only the rounded one, whose error (below 2^-51 of the sum of
+ * its two products' magnitudes, its scale) is large relative to it when c
+ * or d lies very near the line; so then is the error of the crossing's
+ * place along c-d (on nearly parallel edges, a few percent of a piece's
+ * area were seen). A determinant below `limit` (2^-19 D^2, D the extent of
+ * both cells' boxes together: at least 2^-20 of its scale, since a scale
+ * is at most 2 D^2) is recomputed exactly with its partner, so that each
+ * one used is within about 2^-31 of its value.
+ */
+inline void Crossing(const double* a, const double* b, const double* c, const double* d,
+  double oc, double od, double limit, double (&x)[2])
+{
+  if (std::fabs(oc) < limit || std::fabs(od) < limit)
+  {
+    oc = Orient2DExact(a, b, c);
+    od = Orient2DExact(a, b, d);
+  }
+  const double u = oc / (oc - od);
+  x[0] = c[0] + u * (d[0] - c[0]);
+  x[1] = c[1] + u * (d[1] - c[1]);
+}
+
 } // namespace
 
 bool TriangleIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
@@ -385,6 +412,10 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   };
   const unsigned straddleT = straddle(posT, negT);
   const unsigned straddleS = straddle(posS, negS);
+  // Crossings' determinants below this are recomputed exactly (Crossing).
+  double extent = std::max(t.Box[1], s.Box[1]) - std::min(t.Box[0], s.Box[0]);
+  extent = std::max(extent, std::max(t.Box[3], s.Box[3]) - std::min(t.Box[2], s.Box[2]));
+  const double limit = 0x1p-19 * extent * extent;
   for (int k = 0; k < 3; ++k)
   {
     for (int l = 0; l < 3; ++l)
@@ -393,19 +424,17 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
       {
         continue;
       }
-      const double oc = ot[k][(l + 1) % 3];
-      const double od = ot[k][(l + 2) % 3];
-      const double* c = s.X[(l + 1) % 3];
-      const double* d = s.X[(l + 2) % 3];
-      const double u = oc / (oc - od);
+      const int ci = (l + 1) % 3;
+      const int di = (l + 2) % 3;
+      double x[2];
+      Crossing(t.X[(k + 1) % 3], t.X[(k + 2) % 3], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit, x);
       // Source edge l entering the target's side of edge k (c outside):
       // the piece arrives along target edge k and leaves along l; leaving
       // it, the other way round.
-      const unsigned entering = oc < 0.0;
+      const unsigned entering = ot[k][ci] < 0.0;
       const unsigned target = static_cast<unsigned>(k);
       const unsigned source = static_cast<unsigned>(3 + l);
-      add(c[0] + u * (d[0] - c[0]), c[1] + u * (d[1] - c[1]), entering ? target : source,
-        entering ? source : target);
+      add(x[0], x[1], entering ? target : source, entering ? source : target);
       piece.TouchedFaces |= 1u << k;
       piece.SourceFaces |= 1u << l;
     }
