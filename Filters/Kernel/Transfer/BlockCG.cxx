@@ -33,6 +33,42 @@ struct Sums
     return *this;
   }
 };
+/**
+ * Where a range's partial sums are added up: for compile-time widths a
+ * local array (kept in registers: added through part.Values, each term
+ * would be a load and a store that the next row waits for), copied into
+ * `part` at the end; else part's own values. The same additions in the
+ * same order either way.
+ */
+template <int FixedC, int PerColumn>
+struct LocalSums
+{
+  double Local[FixedC > 0 ? PerColumn * FixedC : 1] = {};
+  Sums& Part;
+  explicit LocalSums(Sums& part)
+    : Part(part)
+  {
+  }
+  double& operator[](int k)
+  {
+    if constexpr (FixedC > 0)
+    {
+      return this->Local[k];
+    }
+    else
+    {
+      return this->Part.Values[k];
+    }
+  }
+  Sums& Done()
+  {
+    if constexpr (FixedC > 0)
+    {
+      std::copy(this->Local, this->Local + PerColumn * FixedC, this->Part.Values.begin());
+    }
+    return this->Part;
+  }
+};
 } // namespace
 
 struct BlockCG::Direct
@@ -119,7 +155,8 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   // Started from the lumped-mass solution x_i = b_i / sum_k A_ik (already
   // second-order accurate for smooth fields: fewer iterations), or from X.
   Sums bb = this->Runner.ForRanges(n, [&](Index begin, Index end) {
-    Sums sum(c);
+    Sums part(c);
+    LocalSums<FixedC, 1> sum(part);
     for (Index i = begin; i < end; ++i)
     {
       inverseDiagonal[i] = 1.0 / inverseDiagonal[i];
@@ -132,11 +169,11 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         }
         if (!counted || counted[i])
         {
-          sum.Values[k] += b * b;
+          sum[k] += b * b;
         }
       }
     }
-    return sum;
+    return sum.Done();
   });
   reduce(bb);
   LargeVector<double>().swap(rowSums); // only the start needed them
@@ -153,6 +190,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   // Residuals, and the first direction; per column |r|^2 and r.z.
   Sums sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
     Sums part(2 * c);
+    LocalSums<FixedC, 2> sum(part);
     for (Index i = begin; i < end; ++i)
     {
       const bool count = !counted || counted[i];
@@ -164,12 +202,12 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         p[e] = z;
         if (count)
         {
-          part.Values[k] += r[e] * r[e];
-          part.Values[c + k] += r[e] * z;
+          sum[k] += r[e] * r[e];
+          sum[c + k] += r[e] * z;
         }
       }
     }
-    return part;
+    return sum.Done();
   });
   reduce(sums);
   std::vector<double> rz(static_cast<size_t>(c));
@@ -198,6 +236,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     // unless shared rows must be completed in between.
     auto dot = [&](Index begin, Index end) {
       Sums part(c);
+      LocalSums<FixedC, 1> sum(part);
       for (Index i = begin; i < end; ++i)
       {
         if (counted && !counted[i])
@@ -206,10 +245,10 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         }
         for (int k = 0; k < c; ++k)
         {
-          part.Values[k] += p[i * c + k] * q[i * c + k];
+          sum[k] += p[i * c + k] * q[i * c + k];
         }
       }
-      return part;
+      return sum.Done();
     };
     Sums pq;
     if (hooks.Exchange)
@@ -236,22 +275,31 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     // x, r and z in one pass, with |r|^2 and r.z.
     sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
       Sums part(2 * c);
+      LocalSums<FixedC, 2> sum(part);
+      // The step lengths in registers (not reloaded after every store).
+      double steps[FixedC > 0 ? FixedC : 1];
+      const double* step = alpha.data();
+      if (FixedC > 0)
+      {
+        std::copy(alpha.begin(), alpha.begin() + c, steps);
+        step = steps;
+      }
       for (Index i = begin; i < end; ++i)
       {
         const bool count = !counted || counted[i];
         for (int k = 0; k < c; ++k)
         {
           const Index e = i * c + k;
-          X[e] += alpha[k] * p[e];
-          r[e] -= alpha[k] * q[e];
+          X[e] += step[k] * p[e];
+          r[e] -= step[k] * q[e];
           if (count)
           {
-            part.Values[k] += r[e] * r[e];
-            part.Values[c + k] += r[e] * (inverseDiagonal[i] * r[e]);
+            sum[k] += r[e] * r[e];
+            sum[c + k] += r[e] * (inverseDiagonal[i] * r[e]);
           }
         }
       }
-      return part;
+      return sum.Done();
     });
     reduce(sums);
     for (int k = 0; k < c; ++k)
@@ -275,13 +323,25 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
       break;
     }
     this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      // beta, and 0 for converged columns (as locals, like the steps above).
+      double factors[FixedC > 0 ? FixedC : 1];
+      char dones[FixedC > 0 ? FixedC : 1];
+      const double* factor = beta.data();
+      const char* done = converged.data();
+      if (FixedC > 0)
+      {
+        std::copy(beta.begin(), beta.begin() + c, factors);
+        std::copy(converged.begin(), converged.begin() + c, dones);
+        factor = factors;
+        done = dones;
+      }
       for (Index i = begin; i < end; ++i)
       {
         for (int k = 0; k < c; ++k)
         {
           const Index e = i * c + k;
           const double z = inverseDiagonal[i] * r[e];
-          p[e] = converged[k] ? 0.0 : z + beta[k] * p[e];
+          p[e] = done[k] ? 0.0 : z + factor[k] * p[e];
         }
       }
       return 0.0;

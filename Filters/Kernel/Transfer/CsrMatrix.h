@@ -82,17 +82,43 @@ struct CsrMatrix
   void Multiply(const double* X, double* Y, int dynamicC, Index begin, Index end) const
   {
     const int c = FixedC > 0 ? FixedC : dynamicC;
+    const Index* start = this->RowStart.data();
+    const Column* columns = this->ColumnIndex.data();
+    const double* values = this->Values.data();
     for (Index i = begin; i < end; ++i)
     {
       double* y = Y + i * c;
-      std::fill(y, y + c, 0.0);
-      for (Index p = this->RowStart[i]; p < this->RowStart[i + 1]; ++p)
+      if constexpr (FixedC > 0)
       {
-        const double v = this->Values[p];
-        const double* x = X + static_cast<Index>(this->ColumnIndex[p]) * c;
-        for (int k = 0; k < c; ++k)
+        // The row's sums in registers, stored once (through y, which the
+        // compiler must assume may alias the matrix, each term would be a
+        // store and a reload); the same additions in the same order.
+        double sum[FixedC] = {};
+        for (Index p = start[i]; p < start[i + 1]; ++p)
         {
-          y[k] += v * x[k];
+          const double v = values[p];
+          const double* x = X + static_cast<Index>(columns[p]) * FixedC;
+          for (int k = 0; k < FixedC; ++k)
+          {
+            sum[k] += v * x[k];
+          }
+        }
+        for (int k = 0; k < FixedC; ++k)
+        {
+          y[k] = sum[k];
+        }
+      }
+      else
+      {
+        std::fill(y, y + c, 0.0);
+        for (Index p = start[i]; p < start[i + 1]; ++p)
+        {
+          const double v = values[p];
+          const double* x = X + static_cast<Index>(columns[p]) * c;
+          for (int k = 0; k < c; ++k)
+          {
+            y[k] += v * x[k];
+          }
         }
       }
     }
