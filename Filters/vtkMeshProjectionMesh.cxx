@@ -859,11 +859,13 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   this->OrderInSpace();
 
   // The points the cells use: finite, and within the predicates' range.
-  // The first use of a point that is not is reported.
+  // The first use of a point that is not is reported. All points are
+  // checked first, in storage order (a fraction of the uses, read
+  // sequentially); the uses only when some point fails (it may be unused).
   const mp::Index* ids = this->Kernel.Connectivity;
   const mp::Index uses = corners * this->Kernel.NumberOfCells;
-  const mp::Index i = FirstWhere(uses, [&](vtkIdType u) {
-    const double* x = this->Kernel.Point(ids[u]);
+  auto badPoint = [&](mp::Index p) {
+    const double* x = this->Kernel.Point(p);
     bool bad = false;
     for (int d = 0; d < 3; ++d)
     {
@@ -871,7 +873,11 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       bad |= !(a <= 1e100) || (a != 0.0 && a < 1e-100); // NaN fails a <= 1e100
     }
     return bad;
-  });
+  };
+  const mp::Index i = FirstWhere(this->Kernel.NumberOfPoints, badPoint) ==
+      this->Kernel.NumberOfPoints
+    ? uses
+    : FirstWhere(uses, [&](vtkIdType u) { return badPoint(ids[u]); });
   if (i < uses)
   {
     const double* x = this->Kernel.Point(ids[i]);

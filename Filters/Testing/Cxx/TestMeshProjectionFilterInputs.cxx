@@ -300,6 +300,31 @@ int TestMeshProjectionFilterInputs(int, char*[])
     Run run(target, broken);
     MP_CHECK(run.ErrorSays("Source has a point with a NaN or infinite coordinate (point 5)"));
     MP_CHECK(Unchanged(run.Output(), target));
+    // A NaN point that no cell uses is no error: the projection is the
+    // one without it.
+    vtkNew<vtkUnstructuredGrid> extra;
+    extra->DeepCopy(source);
+    extra->GetPoints()->InsertNextPoint(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+    for (int a = 0; a < extra->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* values = extra->GetPointData()->GetArray(a);
+      if (values)
+      {
+        values->InsertNextTuple(values->GetTuple(0));
+      }
+    }
+    Run unused(target, extra);
+    Run plain(target, source);
+    MP_CHECK(!unused.Observer->GetError());
+    MP_CHECK(!plain.Observer->GetError());
+    vtkDataArray* got = unused.Output()->GetPointData()->GetArray("Linear");
+    vtkDataArray* want = plain.Output()->GetPointData()->GetArray("Linear");
+    MP_CHECK(got && want && got->GetNumberOfTuples() == want->GetNumberOfTuples());
+    for (vtkIdType i = 0; got && want && i < want->GetNumberOfTuples(); ++i)
+    {
+      MP_CHECK(got->GetTuple1(i) == want->GetTuple1(i) ||
+        (std::isnan(got->GetTuple1(i)) && std::isnan(want->GetTuple1(i))));
+    }
   }
   {
     // Infinite coordinates, in Source and in Input, 2D and 3D: an error and
