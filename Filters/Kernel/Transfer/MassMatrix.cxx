@@ -12,6 +12,23 @@ namespace mp
 {
 namespace
 {
+/// Sorts v[0..8) with the 19 compare-exchanges of an optimal network.
+inline void SortEight(Column* v)
+{
+  auto exchange = [v](int i, int j) {
+    const Column a = v[i];
+    const Column b = v[j];
+    v[i] = std::min(a, b);
+    v[j] = std::max(a, b);
+  };
+  exchange(0, 2), exchange(1, 3), exchange(4, 6), exchange(5, 7);
+  exchange(0, 4), exchange(1, 5), exchange(2, 6), exchange(3, 7);
+  exchange(0, 1), exchange(2, 3), exchange(4, 5), exchange(6, 7);
+  exchange(2, 4), exchange(3, 5);
+  exchange(1, 4), exchange(3, 6);
+  exchange(1, 2), exchange(3, 4), exchange(5, 6);
+}
+
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
 /// around each point (with ids of type Id: 32 bits when they fit, half the
@@ -34,75 +51,63 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     LargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
-    std::vector<Column> row;
-    // Short rows are gathered in a buffer on the stack and insertion-sorted:
-    // the point itself and the other corners of its cells (in 2D about 13
-    // entries before duplicates go). Longer ones (most points in 3D: about
-    // 70) take the vector and std::sort below.
-    constexpr Index Small = 64;
-    Column small[Small];
+    // A row is the point itself and the other corners of its cells (in 2D
+    // about 12 candidates for 7 columns, in 3D about 70 for 15). Each
+    // candidate is written and kept unless seen[q] already names this row:
+    // no branch, no sort of the repeats. The distinct ones are then sorted:
+    // up to 8 by a fixed network of branch-free exchanges, else by
+    // insertion or std::sort.
+    LargeVector<Column> seen(static_cast<size_t>(points), Column(-1));
+    std::vector<Column> row(16);
     for (Index p = RangeBegin(points, k, tasks); p < RangeBegin(points, k + 1, tasks); ++p)
     {
-      if (1 + (n - 1) * (cellStart[p + 1] - cellStart[p]) <= Small)
+      const Index candidates = 1 + n * (cellStart[p + 1] - cellStart[p]);
+      if (static_cast<Index>(row.size()) < std::max<Index>(candidates, 8))
       {
-        Index size = 0;
-        small[size++] = static_cast<Column>(p);
-        for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
-        {
-          const Index* ids = mesh.Cell(cells[i]);
-          for (int c = 0; c < n; ++c)
-          {
-            if (ids[c] != p)
-            {
-              small[size++] = static_cast<Column>(ids[c]);
-            }
-          }
-        }
-        for (Index i = 1; i < size; ++i)
-        {
-          const Column v = small[i];
-          Index j = i;
-          for (; j > 0 && small[j - 1] > v; --j)
-          {
-            small[j] = small[j - 1];
-          }
-          small[j] = v;
-        }
-        const Index unique = std::unique(small, small + size) - small;
-        block.insert(block.end(), small, small + unique);
-        start[p + 1] = unique;
-        continue;
+        row.resize(static_cast<size_t>(std::max<Index>(candidates, 8)));
       }
-      row.assign(1, static_cast<Column>(p));
+      Column* r = row.data();
+      const auto self = static_cast<Column>(p);
+      r[0] = self;
+      seen[p] = self;
+      Index size = 1;
       for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
       {
         const Index* ids = mesh.Cell(cells[i]);
         for (int c = 0; c < n; ++c)
         {
-          row.push_back(static_cast<Column>(ids[c]));
+          const auto q = static_cast<Column>(ids[c]);
+          r[size] = q;
+          size += seen[q] != self;
+          seen[q] = self;
         }
       }
-      // Rows are short (7 entries in 2D, 15 in 3D on average): insertion
-      // sort, unless a point has very many cells around it.
-      if (row.size() > 64)
+      if (size <= 8)
       {
-        std::sort(row.begin(), row.end());
+        for (Index i = size; i < 8; ++i)
+        {
+          r[i] = std::numeric_limits<Column>::max();
+        }
+        SortEight(r);
+      }
+      else if (size <= 32)
+      {
+        for (Index i = 1; i < size; ++i)
+        {
+          const Column v = r[i];
+          Index j = i;
+          for (; j > 0 && r[j - 1] > v; --j)
+          {
+            r[j] = r[j - 1];
+          }
+          r[j] = v;
+        }
       }
       else
       {
-        for (size_t i = 1; i < row.size(); ++i)
-        {
-          const Column v = row[i];
-          size_t j = i;
-          for (; j > 0 && row[j - 1] > v; --j)
-          {
-            row[j] = row[j - 1];
-          }
-          row[j] = v;
-        }
+        std::sort(r, r + size);
       }
-      const Index size = std::unique(row.begin(), row.end()) - row.begin();
-      block.insert(block.end(), row.begin(), row.begin() + size);
+      block.insert(block.end(), r, r + size);
       start[p + 1] = size;
     }
   };
