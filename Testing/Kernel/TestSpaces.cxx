@@ -8,6 +8,7 @@
 #include "Threads.h"
 #include "Transfer/BlockCG.h"
 #include "Transfer/CsrMatrix.h"
+#include "Transfer/MassMatrix.h"
 #include "Transfer/MortarOperator.h"
 
 #include <gtest/gtest.h>
@@ -921,4 +922,73 @@ TEST(PlaneFrame, AxisPlanes)
   TestMesh empty;
   ASSERT_TRUE(frame.Fit(Surface(empty), deviation, size));
   EXPECT_TRUE(frame.IsIdentity());
+}
+
+// M_tt's pattern (MassPattern) is the point graph: each point with itself
+// and with every point it shares a cell with, columns sorted, no repeats.
+// Rows of every length the pattern builder sorts differently (up to 8, up
+// to 32, more: a fan of 50 triangles, the cube's tetrahedra), a point used
+// by no cell, on one task and on three.
+TEST(MassPattern, IsThePointGraph)
+{
+  std::vector<TestMesh> meshes = { mptest::GridMesh(9, 7, 0.3, 5), mptest::CubeMesh(4, 3, 3, 0.2, 6) };
+  // A fan: the centre point 0 in 50 triangles, its rim points in 2 each,
+  // and a last point no cell uses.
+  TestMesh fan;
+  fan.Points = { 0.0, 0.0, 0.0 };
+  const int rim = 50;
+  for (int k = 0; k < rim; ++k)
+  {
+    const double a = 2.0 * M_PI * k / rim;
+    fan.Points.insert(fan.Points.end(), { std::cos(a), std::sin(a), 0.0 });
+  }
+  for (int k = 0; k < rim; ++k)
+  {
+    fan.Cells.insert(fan.Cells.end(), { 0, 1 + k, 1 + (k + 1) % rim });
+  }
+  fan.Points.insert(fan.Points.end(), { 5.0, 5.0, 0.0 });
+  meshes.push_back(fan);
+  int lengths[3] = {}; // rows of up to 8, up to 32, more columns
+  for (const TestMesh& mesh : meshes)
+  {
+    const mp::MeshView view = mesh.View(false);
+    const Index n = view.NumberOfPoints;
+    std::vector<std::vector<int>> expected(static_cast<size_t>(n));
+    for (Index p = 0; p < n; ++p)
+    {
+      expected[p].push_back(static_cast<int>(p));
+    }
+    for (Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      for (int a = 0; a < view.CornersPerCell(); ++a)
+      {
+        for (int b = 0; b < view.CornersPerCell(); ++b)
+        {
+          expected[view.Cell(c)[a]].push_back(static_cast<int>(view.Cell(c)[b]));
+        }
+      }
+    }
+    for (auto& row : expected)
+    {
+      std::sort(row.begin(), row.end());
+      row.erase(std::unique(row.begin(), row.end()), row.end());
+      ++lengths[row.size() <= 8 ? 0 : (row.size() <= 32 ? 1 : 2)];
+    }
+    for (int tasks : { 1, 3 })
+    {
+      mp::CsrMatrix m;
+      mp::MassPattern(SpaceType::P1, view, mptest::ThreadRunner(tasks), m);
+      ASSERT_EQ(m.Rows, n);
+      ASSERT_EQ(m.Values.size(), m.ColumnIndex.size());
+      for (Index p = 0; p < n; ++p)
+      {
+        const std::vector<int> row(
+          m.ColumnIndex.begin() + m.RowStart[p], m.ColumnIndex.begin() + m.RowStart[p + 1]);
+        EXPECT_EQ(row, expected[p]) << "row " << p << ", " << tasks << " tasks";
+      }
+    }
+  }
+  EXPECT_GT(lengths[0], 50);
+  EXPECT_GT(lengths[1], 10);
+  EXPECT_EQ(lengths[2], 1);
 }
