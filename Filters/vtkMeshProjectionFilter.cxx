@@ -2174,23 +2174,34 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       const int corners = view.CornersPerCell();
       const mp::LargeVector<double>& covered = op.GetSourceCovered();
       const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
-      mp::ForEachCellMeasure(view, [&](mp::Index c, double whole) {
+      // The cells' measures in the filter's threads (0: degenerate), then
+      // summed in cell order.
+      std::vector<double> measures(static_cast<size_t>(view.NumberOfCells));
+      vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+        std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
+        mp::ForEachCellMeasure(
+          view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
+          begin, end);
+      });
+      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+      {
+        const double whole = measures[static_cast<size_t>(c)];
         double m = covered[static_cast<size_t>(c)];
-        if (!(m > 0.0))
+        if (!(whole > 0.0) || !(m > 0.0))
         {
-          return;
+          continue;
         }
         m = projected && m >= 0.9 * whole ? whole : std::min(m, whole);
         if (fromCells)
         {
           w[static_cast<size_t>(view.ParentOf(c))] += m;
-          return;
+          continue;
         }
         for (int k = 0; k < corners; ++k)
         {
           w[static_cast<size_t>(view.Cell(c)[k])] += m / corners;
         }
-      });
+      }
     }
     return w;
   };

@@ -22,14 +22,16 @@
 
 namespace mp
 {
-/// Calls visit(c, measure) for every cell of the mesh that is not degenerate.
+/// Calls visit(c, measure) for every cell of the mesh (of cells [begin,
+/// end) when given) that is not degenerate.
 template <class Visit>
-void ForEachCellMeasure(const MeshView& mesh, Visit visit)
+void ForEachCellMeasure(const MeshView& mesh, Visit visit, Index begin = 0, Index end = -1)
 {
+  end = end < 0 ? mesh.NumberOfCells : end;
   WithIntersectorOf(mesh, [&](auto* tag) { // the intersector's type only
     using Intersector = std::remove_pointer_t<decltype(tag)>;
     typename Intersector::Cell cell;
-    for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    for (Index c = begin; c < end; ++c)
     {
       if (Intersector::Prepare(mesh, c, cell))
       {

@@ -14,8 +14,9 @@ namespace
 template <class Id>
 Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
 {
-  LargeVector<Id> start;
-  LargeVector<Id> around;
+  // (The lists are written whole by BuildPointCells' tasks: not zeroed first.)
+  UninitializedLargeVector<Id> start;
+  UninitializedLargeVector<Id> around;
   BuildPointCells(mesh, start, around, runner);
   const int corners = mesh.CornersPerCell();
   const Index size = mesh.NumberOfCells * corners;

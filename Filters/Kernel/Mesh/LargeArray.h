@@ -126,6 +126,46 @@ template <class T>
 using LargeVector = std::vector<T, LargeAllocator<T>>;
 
 /**
+ * LargeAllocator whose elements are default-initialized: resize() leaves
+ * plain values as they are instead of writing zeros, so that a vector
+ * filled afterwards by concurrent tasks is first touched by those tasks.
+ * (A fresh page costs its first writer a page fault: on the project's
+ * virtual machines, which hand freed memory back to their host, about
+ * 4 ms per 2 MiB huge page, some fifty times the time of writing it, so
+ * one thread zeroing a large array is a long serial stretch of a run.)
+ */
+template <class T>
+struct UninitializedAllocator : LargeAllocator<T>
+{
+  using value_type = T;
+  template <class U>
+  struct rebind
+  {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
+  {
+  }
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A LargeVector whose resize() does not initialize plain values: callers
+/// write every element (see UninitializedAllocator).
+template <class T>
+using UninitializedLargeVector = std::vector<T, UninitializedAllocator<T>>;
+
+/**
  * A fixed-size array on the same pages, left uninitialized: for arrays that
  * are written whole before they are read (a vector would first write
  * zeros over all of it, one thread touching every page), such as the

@@ -148,7 +148,8 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   }
   const double top = std::ldexp(1.0, bits) - 1.0;
   // Key in the high 32 bits, cell id in the low ones.
-  LargeVector<std::uint64_t> keys(static_cast<size_t>(n));
+  // (keys and other are written whole by tasks: not zeroed first.)
+  UninitializedLargeVector<std::uint64_t> keys(static_cast<size_t>(n));
   runner.ForRanges(n, [&](Index begin, Index end) {
     const int corners = mesh.CornersPerCell();
     for (Index c = begin; c < end; ++c)
@@ -183,7 +184,7 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   constexpr size_t Buckets = 2048;
   const int tasks = runner.TasksFor(n, 16384);
   std::vector<size_t> count(static_cast<size_t>(tasks) * Buckets);
-  LargeVector<std::uint64_t> other(keys.size());
+  UninitializedLargeVector<std::uint64_t> other(keys.size());
   for (int d = 0; d < 3; ++d)
   {
     const int shift = Shifts[d];

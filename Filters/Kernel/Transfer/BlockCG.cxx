@@ -125,11 +125,13 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   };
   // The preconditioned residual z = D^-1 r is never stored: it is formed
   // where it is used (one vector less to hold and to stream).
-  LargeVector<double> r(size);
-  LargeVector<double> p(size);
-  LargeVector<double> q(size);
-  LargeVector<double> inverseDiagonal(static_cast<size_t>(n));
-  LargeVector<double> rowSums(options.StartFromX ? 0 : static_cast<size_t>(n));
+  // Written whole by the row ranges' tasks below before they are read (not
+  // zeroed first: each task is the first to touch its pages).
+  UninitializedLargeVector<double> r(size);
+  UninitializedLargeVector<double> p(size);
+  UninitializedLargeVector<double> q(size);
+  UninitializedLargeVector<double> inverseDiagonal(static_cast<size_t>(n));
+  UninitializedLargeVector<double> rowSums(options.StartFromX ? 0 : static_cast<size_t>(n));
   converged.assign(static_cast<size_t>(c), 0);
   this->Runner.ForRanges(n, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i)
@@ -176,7 +178,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     return sum.Done();
   });
   reduce(bb);
-  LargeVector<double>().swap(rowSums); // only the start needed them
+  UninitializedLargeVector<double>().swap(rowSums); // only the start needed them
   std::vector<double> goal(static_cast<size_t>(c));
   for (int k = 0; k < c; ++k)
   {

@@ -26,8 +26,9 @@ struct CsrMatrix
   Index Rows = 0;
   Index Columns = 0;
   LargeVector<Index> RowStart{ 0 };
-  LargeVector<Column> ColumnIndex;
-  LargeVector<double> Values;
+  /// Written whole by their builders, in concurrent tasks (not zeroed first).
+  UninitializedLargeVector<Column> ColumnIndex;
+  UninitializedLargeVector<double> Values;
 
   Index NonZeros() const { return this->RowStart.empty() ? 0 : this->RowStart.back(); }
   /// Position of entry (i, k) in Values; when absent, where it would go in the row.

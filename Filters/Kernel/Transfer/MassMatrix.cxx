@@ -36,19 +36,19 @@ inline void SortEight(Column* v)
 /// given, each into a block of its own, then moved into place.
 template <class Id>
 void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Index>& start,
-  LargeVector<Column>& columns)
+  UninitializedLargeVector<Column>& columns)
 {
-  LargeVector<Id> cellStart;
-  LargeVector<Id> cells;
+  UninitializedLargeVector<Id> cellStart;
+  UninitializedLargeVector<Id> cells;
   BuildPointCells(mesh, cellStart, cells, runner);
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
   const int tasks = runner.TasksFor(points, 4096);
   start.assign(static_cast<size_t>(points) + 1, 0);
   // One task writes its rows straight into `columns`.
-  std::vector<LargeVector<Column>> blocks(static_cast<size_t>(tasks > 1 ? tasks : 0));
+  std::vector<UninitializedLargeVector<Column>> blocks(static_cast<size_t>(tasks > 1 ? tasks : 0));
   auto rows = [&](int k) {
-    LargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
+    UninitializedLargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
     // A row is the point itself and the other corners of its cells (in 2D
@@ -121,13 +121,13 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     columns.resize(static_cast<size_t>(start[points]));
     runner.RunAll(tasks, [&](int k) {
       std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[RangeBegin(points, k, tasks)]);
-      LargeVector<Column>().swap(blocks[k]);
+      UninitializedLargeVector<Column>().swap(blocks[k]);
     });
   }
 }
 
 void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Index>& start,
-  LargeVector<Column>& columns)
+  UninitializedLargeVector<Column>& columns)
 {
   if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
   {
@@ -164,6 +164,12 @@ void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner
       matrix.ColumnIndex[i] = static_cast<Column>(i);
     }
   }
-  matrix.Values.assign(matrix.ColumnIndex.size(), 0.0);
+  // Zeros written by concurrent tasks (each the first to touch its pages).
+  matrix.Values.resize(matrix.ColumnIndex.size());
+  double* values = matrix.Values.data();
+  runner.ForRanges(static_cast<Index>(matrix.Values.size()), [values](Index begin, Index end) {
+    std::fill(values + begin, values + end, 0.0);
+    return 0;
+  }, 1 << 18);
 }
 } // namespace mp

@@ -228,10 +228,11 @@ void MortarOperator::Assemble(
   std::vector<IntersectionPieces> pieces(static_cast<size_t>(tasks > 1 ? tasks : 0));
   // How much of each source cell the pieces cover: per task, summed after.
   std::vector<LargeVector<double>> met(static_cast<size_t>(tasks));
+  // Each zeroed by its task (the first to touch its pages: see LargeArray.h).
+  runner.RunAll(tasks, [&](int k) { met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0); });
   for (int k = 0; k < tasks; ++k)
   {
     Assembler& a = assemblers[k];
-    met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0);
     a.SourceCovered = met[k].data();
     a.Target = &target;
     a.Source = &source;
