@@ -2176,7 +2176,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
       // The cells' measures in the filter's threads (0: degenerate), then
       // summed in cell order.
-      std::vector<double> measures(static_cast<size_t>(view.NumberOfCells));
+      mp::UninitializedLargeVector<double> measures(static_cast<size_t>(view.NumberOfCells));
       vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
         std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
         mp::ForEachCellMeasure(

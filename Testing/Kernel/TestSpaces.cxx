@@ -928,10 +928,12 @@ TEST(PlaneFrame, AxisPlanes)
 // and with every point it shares a cell with, columns sorted, no repeats.
 // Rows of every length the pattern builder sorts differently (up to 8, up
 // to 32, more: a fan of 50 triangles, the cube's tetrahedra), a point used
-// by no cell, on one task and on three.
+// by no cell, on one task and on three (the two larger meshes have enough
+// points to be split into three ranges).
 TEST(MassPattern, IsThePointGraph)
 {
-  std::vector<TestMesh> meshes = { mptest::GridMesh(9, 7, 0.3, 5), mptest::CubeMesh(4, 3, 3, 0.2, 6) };
+  std::vector<TestMesh> meshes = { mptest::GridMesh(9, 7, 0.3, 5), mptest::CubeMesh(4, 3, 3, 0.2, 6),
+    mptest::GridMesh(130, 100, 0.3, 7), mptest::CubeMesh(25, 25, 25, 0.2, 8) };
   // A fan: the centre point 0 in 50 triangles, its rim points in 2 each,
   // and a last point no cell uses.
   TestMesh fan;
@@ -949,8 +951,10 @@ TEST(MassPattern, IsThePointGraph)
   fan.Points.insert(fan.Points.end(), { 5.0, 5.0, 0.0 });
   meshes.push_back(fan);
   int lengths[3] = {}; // rows of up to 8, up to 32, more columns
+  int split = 0;        // meshes of at least 3 x 4096 points (PointGraph's grain)
   for (const TestMesh& mesh : meshes)
   {
+    split += mesh.NumberOfPoints() >= 3 * 4096;
     const mp::MeshView view = mesh.View(false);
     const Index n = view.NumberOfPoints;
     std::vector<std::vector<int>> expected(static_cast<size_t>(n));
@@ -974,7 +978,9 @@ TEST(MassPattern, IsThePointGraph)
       row.erase(std::unique(row.begin(), row.end()), row.end());
       ++lengths[row.size() <= 8 ? 0 : (row.size() <= 32 ? 1 : 2)];
     }
-    for (int tasks : { 1, 3 })
+    // Three tasks first: their copy into place must not find a buffer that
+    // the serial run left with the right columns (freed, then reused).
+    for (int tasks : { 3, 1 })
     {
       mp::CsrMatrix m;
       mp::MassPattern(SpaceType::P1, view, mptest::ThreadRunner(tasks), m);
@@ -991,4 +997,5 @@ TEST(MassPattern, IsThePointGraph)
   EXPECT_GT(lengths[0], 50);
   EXPECT_GT(lengths[1], 10);
   EXPECT_EQ(lengths[2], 1);
+  EXPECT_EQ(split, 2);
 }

@@ -350,9 +350,10 @@ TEST(TriangleIntersector, NearlyCoincidentCrossings)
 
 #if defined(__SIZEOF_FLOAT128__)
 // The clipping oracle in binary128 (113-bit significands): the differences
-// and products of double coordinates are exact in it, so its orientations
-// are exact to 2^-105 of their scale, far below the tiny determinants of
-// nearly collinear points that the long double oracle cannot resolve.
+// of double coordinates of similar size are exact in it and their products
+// nearly so, so its orientations are accurate to about 2^-110 of their
+// scale, far below the tiny determinants of nearly collinear points that
+// the long double oracle cannot resolve.
 __float128 ClipAreaQuad(const double t[3][2], const double s[3][2])
 {
   using Q = __float128;

@@ -14,7 +14,7 @@ namespace
 template <class Id>
 Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
 {
-  // (The lists are written whole by BuildPointCells' tasks: not zeroed first.)
+  // (The cell lists are written whole by BuildPointCells' tasks: not zeroed first.)
   UninitializedLargeVector<Id> start;
   UninitializedLargeVector<Id> around;
   BuildPointCells(mesh, start, around, runner);

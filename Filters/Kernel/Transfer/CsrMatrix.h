@@ -26,7 +26,7 @@ struct CsrMatrix
   Index Rows = 0;
   Index Columns = 0;
   LargeVector<Index> RowStart{ 0 };
-  /// Written whole by their builders, in concurrent tasks (not zeroed first).
+  /// Written whole by their builders (mostly in concurrent tasks), not zeroed first.
   UninitializedLargeVector<Column> ColumnIndex;
   UninitializedLargeVector<double> Values;
 

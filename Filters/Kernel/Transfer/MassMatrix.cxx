@@ -43,7 +43,12 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   BuildPointCells(mesh, cellStart, cells, runner);
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
-  const int tasks = runner.TasksFor(points, 4096);
+  // Each task marks candidates in an array over all points (`seen` below):
+  // at most as many tasks as uses of a point by cells, so that the marks
+  // take no more memory than the point-cell lists.
+  const Index uses = points > 0 ? mesh.NumberOfCells * n / points : 0;
+  const int tasks = static_cast<int>(
+    std::min<Index>(runner.TasksFor(points, 4096), std::max<Index>(1, uses)));
   start.assign(static_cast<size_t>(points) + 1, 0);
   // One task writes its rows straight into `columns`.
   std::vector<UninitializedLargeVector<Column>> blocks(static_cast<size_t>(tasks > 1 ? tasks : 0));
