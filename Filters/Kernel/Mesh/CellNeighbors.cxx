@@ -20,10 +20,7 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
   BuildPointCells(mesh, start, around, runner);
   const int corners = mesh.CornersPerCell();
   const Index size = mesh.NumberOfCells * corners;
-  runner.ForRanges(size, [&](Index begin, Index end) {
-    std::fill(neighbors + begin, neighbors + end, NeighborId(-1));
-    return 0;
-  });
+  runner.Fill(neighbors, size, NeighborId(-1));
   std::atomic<bool> repeated(false);
   const Index nonManifold = runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     Index count = 0;

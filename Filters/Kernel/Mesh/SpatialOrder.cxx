@@ -322,10 +322,7 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   const bool concurrent = tasks > 1 && runner.Run;
   order.NewPoint.resize(static_cast<size_t>(np));
   Index* claim = order.NewPoint.data();
-  runner.ForRanges(np, [&](Index begin, Index end) {
-    std::fill(claim + begin, claim + end, Unclaimed);
-    return 0;
-  });
+  runner.Fill(claim, np, Unclaimed);
   std::vector<LargeVector<Index>> claimed(static_cast<size_t>(tasks));
   runner.RunAll(tasks, [&](int t) {
     const Index first = RangeBegin(n, t, tasks);

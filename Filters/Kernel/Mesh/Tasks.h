@@ -89,6 +89,16 @@ struct TaskRunner
     }
     return sum;
   }
+  /// Sets data[0..n) to `value` in ranges of at least `grain` items (each
+  /// task the first to touch its pages of a fresh array: see LargeArray.h).
+  template <class T>
+  void Fill(T* data, Index n, T value, Index grain = 4096) const
+  {
+    this->ForRanges(n, [data, value](Index begin, Index end) {
+      std::fill(data + begin, data + end, value);
+      return 0;
+    }, grain);
+  }
 };
 } // namespace mp
 

@@ -171,10 +171,6 @@ void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner
   }
   // Zeros written by concurrent tasks (each the first to touch its pages).
   matrix.Values.resize(matrix.ColumnIndex.size());
-  double* values = matrix.Values.data();
-  runner.ForRanges(static_cast<Index>(matrix.Values.size()), [values](Index begin, Index end) {
-    std::fill(values + begin, values + end, 0.0);
-    return 0;
-  }, 1 << 18);
+  runner.Fill(matrix.Values.data(), static_cast<Index>(matrix.Values.size()), 0.0, 1 << 18);
 }
 } // namespace mp
