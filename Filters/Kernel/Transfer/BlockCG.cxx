@@ -69,6 +69,37 @@ struct LocalSums
     return this->Part;
   }
 };
+/**
+ * A range's read-only copy of per-column values (step lengths, factors,
+ * flags): for compile-time widths a local array, which the compiler keeps
+ * in registers (read through the vector, each value would be reloaded
+ * after every store to the solver's vectors); else the vector itself.
+ */
+template <int FixedC, class T>
+struct LocalValues
+{
+  T Local[FixedC > 0 ? FixedC : 1];
+  const T* Source;
+  explicit LocalValues(const std::vector<T>& values)
+    : Source(values.data())
+  {
+    if constexpr (FixedC > 0)
+    {
+      std::copy(values.begin(), values.begin() + FixedC, this->Local);
+    }
+  }
+  T operator[](int k) const
+  {
+    if constexpr (FixedC > 0)
+    {
+      return this->Local[k];
+    }
+    else
+    {
+      return this->Source[k];
+    }
+  }
+};
 } // namespace
 
 struct BlockCG::Direct
@@ -278,14 +309,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
       Sums part(2 * c);
       LocalSums<FixedC, 2> sum(part);
-      // The step lengths in registers (not reloaded after every store).
-      double steps[FixedC > 0 ? FixedC : 1];
-      const double* step = alpha.data();
-      if (FixedC > 0)
-      {
-        std::copy(alpha.begin(), alpha.begin() + c, steps);
-        step = steps;
-      }
+      const LocalValues<FixedC, double> step(alpha);
       for (Index i = begin; i < end; ++i)
       {
         const bool count = !counted || counted[i];
@@ -325,18 +349,8 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
       break;
     }
     this->Runner.ForRanges(n, [&](Index begin, Index end) {
-      // beta, and 0 for converged columns (as locals, like the steps above).
-      double factors[FixedC > 0 ? FixedC : 1];
-      char dones[FixedC > 0 ? FixedC : 1];
-      const double* factor = beta.data();
-      const char* done = converged.data();
-      if (FixedC > 0)
-      {
-        std::copy(beta.begin(), beta.begin() + c, factors);
-        std::copy(converged.begin(), converged.begin() + c, dones);
-        factor = factors;
-        done = dones;
-      }
+      const LocalValues<FixedC, double> factor(beta);
+      const LocalValues<FixedC, char> done(converged);
       for (Index i = begin; i < end; ++i)
       {
         for (int k = 0; k < c; ++k)
