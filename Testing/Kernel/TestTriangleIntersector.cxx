@@ -42,10 +42,12 @@ struct Pair
   double Area() const { return TriangleIntersector::Measure(Piece); }
 };
 
-// An independent oracle: Sutherland-Hodgman clipping in long double.
-long double ClipArea(const double t[3][2], const double s[3][2])
+// An independent oracle: Sutherland-Hodgman clipping in the floating-point
+// type R (long double here; binary128 for nearly collinear edges below).
+template <class R>
+R ClipAreaIn(const double t[3][2], const double s[3][2])
 {
-  using P = std::pair<long double, long double>;
+  using P = std::pair<R, R>;
   std::vector<P> poly = { { t[0][0], t[0][1] }, { t[1][0], t[1][1] }, { t[2][0], t[2][1] } };
   auto cross = [](P a, P b, P c) {
     return (b.first - a.first) * (c.second - a.second) - (b.second - a.second) * (c.first - a.first);
@@ -62,26 +64,31 @@ long double ClipArea(const double t[3][2], const double s[3][2])
     {
       const P p = poly[i];
       const P q = poly[(i + 1) % poly.size()];
-      const long double dp = cross(a, b, p);
-      const long double dq = cross(a, b, q);
+      const R dp = cross(a, b, p);
+      const R dq = cross(a, b, q);
       if (dp >= 0)
         out.push_back(p);
       if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0))
       {
-        const long double u = dp / (dp - dq);
+        const R u = dp / (dp - dq);
         out.push_back({ p.first + u * (q.first - p.first), p.second + u * (q.second - p.second) });
       }
     }
     poly = out;
   }
-  long double twice = 0;
+  R twice = 0;
   for (size_t i = 0; i < poly.size(); ++i)
   {
     const P p = poly[i];
     const P q = poly[(i + 1) % poly.size()];
     twice += p.first * q.second - p.second * q.first;
   }
-  return std::fabs(twice) / 2;
+  return (twice < 0 ? -twice : twice) / 2;
+}
+
+long double ClipArea(const double t[3][2], const double s[3][2])
+{
+  return ClipAreaIn<long double>(t, s);
 }
 
 double TriangleArea(const double t[3][2])
@@ -348,53 +355,6 @@ TEST(TriangleIntersector, NearlyCoincidentCrossings)
   EXPECT_EQ(checked, 3 * 8 * 2 * 2);
 }
 
-#if defined(__SIZEOF_FLOAT128__)
-// The clipping oracle in binary128 (113-bit significands): the differences
-// of double coordinates of similar size are exact in it and their products
-// nearly so, so its orientations are accurate to about 2^-110 of their
-// scale, far below the tiny determinants of nearly collinear points that
-// the long double oracle cannot resolve.
-__float128 ClipAreaQuad(const double t[3][2], const double s[3][2])
-{
-  using Q = __float128;
-  struct P
-  {
-    Q X, Y;
-  };
-  auto cross = [](const P& a, const P& b, const P& c) {
-    return (b.X - a.X) * (c.Y - a.Y) - (b.Y - a.Y) * (c.X - a.X);
-  };
-  std::vector<P> poly = { { t[0][0], t[0][1] }, { t[1][0], t[1][1] }, { t[2][0], t[2][1] } };
-  if (cross(poly[0], poly[1], poly[2]) < 0)
-    std::swap(poly[1], poly[2]);
-  P sp[3] = { { s[0][0], s[0][1] }, { s[1][0], s[1][1] }, { s[2][0], s[2][1] } };
-  if (cross(sp[0], sp[1], sp[2]) < 0)
-    std::swap(sp[1], sp[2]);
-  for (int e = 0; e < 3 && !poly.empty(); ++e)
-  {
-    std::vector<P> out;
-    for (size_t i = 0; i < poly.size(); ++i)
-    {
-      const P p = poly[i];
-      const P q = poly[(i + 1) % poly.size()];
-      const Q dp = cross(sp[e], sp[(e + 1) % 3], p);
-      const Q dq = cross(sp[e], sp[(e + 1) % 3], q);
-      if (dp >= 0)
-        out.push_back(p);
-      if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0))
-      {
-        const Q u = dp / (dp - dq);
-        out.push_back({ p.X + u * (q.X - p.X), p.Y + u * (q.Y - p.Y) });
-      }
-    }
-    poly = out;
-  }
-  Q twice = 0;
-  for (size_t i = 1; i + 1 < poly.size(); ++i)
-    twice += cross(poly[0], poly[i], poly[i + 1]);
-  return twice / 2;
-}
-#endif
 
 // Corners of the source put on lines of the target's edges (rounded there,
 // then moved a few ulps): edges nearly collinear with the target's, at
@@ -473,7 +433,12 @@ TEST(TriangleIntersector, NearlyCollinearEdgesCrossAtTheirExactPlace)
         collinear |= o != 0.0 && std::fabs(o) < 1e-14 * extent * extent;
       }
     nearlyCollinear += collinear;
-    const double expected = static_cast<double>(ClipAreaQuad(t, s));
+    // The oracle in binary128 (113-bit significands): the differences of
+    // double coordinates of similar size are exact in it and their products
+    // nearly so, so its orientations are accurate to about 2^-110 of their
+    // scale, far below the tiny determinants of nearly collinear points
+    // that the long double oracle cannot resolve.
+    const double expected = static_cast<double>(ClipAreaIn<__float128>(t, s));
     for (int roles = 0; roles < 2; ++roles)
     {
       Pair p = roles ? Pair(s, t) : Pair(t, s);
