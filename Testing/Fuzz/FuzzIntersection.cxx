@@ -8,6 +8,7 @@
 // included) or as small integers on a lattice, which makes shared vertices,
 // vertices on edges and faces, collinear edges and coplanar faces common.
 // Any broken invariant aborts, which libFuzzer reports with the input.
+#include "Geometry/Predicates.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Mesh/CellNeighbors.h"
@@ -150,7 +151,7 @@ void CheckPair(Reader& in)
     }
     sizes = std::max(sizes, size);
   }
-  const double slack = 64 * 1.1102230246251565e-16 * largest * std::pow(sizes, Intersector::Dimension - 1);
+  const double slack = 64 * mp::RoundingUnit * largest * std::pow(sizes, Intersector::Dimension - 1);
   typename Intersector::Piece ab;
   typename Intersector::Piece ba;
   const bool metAB = Intersector::Intersect(p.A, p.B, ab);
