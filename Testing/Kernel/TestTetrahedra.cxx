@@ -2,6 +2,7 @@
 // 3D: the tetrahedron intersector, the advancing front over tetrahedral
 // meshes (== brute force), completeness of the pieces, exactness on linear
 // fields and conservation.
+#include "Geometry/TetrahedronClipping.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "SearchComparison.h"
 #include "Transfer/MortarAssembler.h"
@@ -188,6 +189,77 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
   }
   EXPECT_GT(met, 1500);
   EXPECT_GT(wellShaped, 500);
+}
+
+// The first clip from the table of a tetrahedron's cuts against SetTetrahedron
+// and Clip: bit for bit the same graph (vertices, order, links, bits) for
+// every pattern of corners inside and outside, and refused when a corner
+// lies on the plane (shared corners).
+TEST(Tetrahedra, TableCutIsTheClippedGraph)
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int patterns[16] = {};
+  int refused = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    double t[4][3];
+    double s[4][3];
+    for (auto& x : t)
+      for (double& c : x)
+        c = u(rng);
+    for (auto& x : s)
+      for (double& c : x)
+        c = 0.8 * u(rng);
+    if (n % 5 == 0) // a shared corner: on two of the planes
+      std::copy(t[1], t[1] + 3, s[2]);
+    const TestMesh m = TwoTetrahedra(t, s);
+    if (m.CellVolume(0) < 1e-6 || m.CellVolume(1) < 1e-6)
+      continue;
+    TetrahedronIntersector::Cell a;
+    TetrahedronIntersector::Cell b;
+    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
+    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+    double sides[4][4];
+    mp::clipping::FaceSides(a, b, sides); // b's corners against a's planes
+    for (int k = 0; k < 4; ++k)
+    {
+      mp::clipping::VertexGraph table;
+      mp::clipping::VertexGraph clip;
+      const bool cut = table.SetClippedTetrahedron(b, sides, k);
+      unsigned pattern = 0;
+      bool onPlane = false;
+      for (int v = 0; v < 4; ++v)
+      {
+        pattern |= (sides[k][v] < 0.0 ? 1u : 0u) << v;
+        onPlane |= sides[k][v] == 0.0;
+      }
+      ASSERT_EQ(cut, !onPlane && pattern != 0 && pattern != 15) << n;
+      if (!cut)
+      {
+        refused += onPlane;
+        continue;
+      }
+      ++patterns[pattern];
+      clip.SetTetrahedron(b, sides);
+      ASSERT_TRUE(clip.Clip(a.Normal[k], a.X[(k + 1) % 4], 1u << k, sides[k]));
+      ASSERT_EQ(table.NumberOfVertices, clip.NumberOfVertices) << n;
+      for (int v = 0; v < clip.NumberOfVertices; ++v)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          ASSERT_EQ(table.X[v][c], clip.X[v][c]) << n << " " << v; // bit for bit
+          ASSERT_EQ(table.Next[v][c], clip.Next[v][c]) << n << " " << v;
+          ASSERT_EQ(table.Back[v][c], clip.Back[v][c]) << n << " " << v;
+        }
+        ASSERT_EQ(table.On[v], clip.On[v]) << n << " " << v;
+        ASSERT_EQ(table.Original[v], clip.Original[v]) << n << " " << v;
+      }
+    }
+  }
+  for (unsigned p = 1; p < 15; ++p)
+    EXPECT_GT(patterns[p], 100) << "pattern " << p;
+  EXPECT_GT(refused, 1000);
 }
 
 TEST(Tetrahedra, MortarEntriesOfIdenticalTetrahedra)

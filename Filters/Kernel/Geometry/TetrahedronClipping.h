@@ -344,23 +344,161 @@ struct VertexGraph
   unsigned On[MaxVertices];
   int Original[MaxVertices]; ///< corner of the clipped cell, or -1
 
+  /// The links of a tetrahedron (0, 1, 2, 3), positively oriented.
+  static constexpr int TetrahedronNext[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+  static constexpr int TetrahedronBack[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 }, { 2, 2, 1 } };
+
+  /// The bits SetTetrahedron gives corner v: the cell's faces through it,
+  /// and the clipping planes it lies on.
+  static unsigned CornerBits(int v, const double (&sides)[4][4])
+  {
+    unsigned on = (15u & ~(1u << v)) << 4;
+    for (int k = 0; k < 4; ++k)
+    {
+      on |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+    }
+    return on;
+  }
+
   void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
   {
-    static const int next[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
-    static const int back[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 }, { 2, 2, 1 } };
     this->NumberOfVertices = 4;
     for (int v = 0; v < 4; ++v)
     {
       std::copy(c.X[v], c.X[v] + 3, this->X[v]);
-      std::copy(next[v], next[v] + 3, this->Next[v]);
-      std::copy(back[v], back[v] + 3, this->Back[v]);
-      this->On[v] = (15u & ~(1u << v)) << 4;
-      for (int k = 0; k < 4; ++k)
-      {
-        this->On[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
-      }
+      std::copy(TetrahedronNext[v], TetrahedronNext[v] + 3, this->Next[v]);
+      std::copy(TetrahedronBack[v], TetrahedronBack[v] + 3, this->Back[v]);
+      this->On[v] = CornerBits(v, sides);
       this->Original[v] = v;
     }
+  }
+
+  /// What clipping a tetrahedron by one plane makes, for one pattern of
+  /// corners inside and outside (none on the plane): the vertices (a kept
+  /// corner, or the crossing on the edge from a kept corner to a clipped
+  /// one) and their links.
+  struct TetrahedronCut
+  {
+    int NumberOfVertices = 0;
+    int From[6][2] = {}; ///< kept corner, and clipped corner (-1: the kept corner itself)
+    int Next[6][3] = {};
+    int Back[6][3] = {};
+  };
+
+  /// The cuts of the 16 patterns (bit v: corner v outside), made once by
+  /// Clip itself on a tetrahedron whose corners are +1 or -1 from the plane.
+  static const TetrahedronCut* TetrahedronCuts()
+  {
+    struct Table
+    {
+      TetrahedronCut Cut[16];
+      Table()
+      {
+        const double unit[4][4] = {};
+        for (unsigned pattern = 1; pattern < 15; ++pattern)
+        {
+          double d[4];
+          for (int v = 0; v < 4; ++v)
+          {
+            d[v] = (pattern >> v) & 1u ? -1.0 : 1.0;
+          }
+          VertexGraph g;
+          TetrahedronIntersector::Cell c;
+          for (int v = 0; v < 4; ++v)
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              c.X[v][a] = a + 1 == v ? 1.0 : 0.0;
+            }
+          }
+          g.SetTetrahedron(c, unit);
+          const double normal[3] = { 0.0, 0.0, 0.0 }; // unused: every vertex is a corner
+          g.Clip(normal, normal, 1u, d);
+          TetrahedronCut& cut = this->Cut[pattern];
+          cut.NumberOfVertices = g.NumberOfVertices;
+          // Clip's order: the kept corners, then the crossings in the
+          // order of their kept corner and its links.
+          int r = 0;
+          for (int v = 0; v < 4; ++v)
+          {
+            if (d[v] > 0.0)
+            {
+              cut.From[r][0] = v;
+              cut.From[r++][1] = -1;
+            }
+          }
+          for (int v = 0; v < 4; ++v)
+          {
+            for (int j = 0; j < 3 && d[v] > 0.0; ++j)
+            {
+              if (d[TetrahedronNext[v][j]] < 0.0)
+              {
+                cut.From[r][0] = v;
+                cut.From[r++][1] = TetrahedronNext[v][j];
+              }
+            }
+          }
+          for (int w = 0; w < g.NumberOfVertices; ++w)
+          {
+            std::copy(g.Next[w], g.Next[w] + 3, cut.Next[w]);
+            std::copy(g.Back[w], g.Back[w] + 3, cut.Back[w]);
+          }
+        }
+      }
+    };
+    static const Table table;
+    return table.Cut;
+  }
+
+  /**
+   * SetTetrahedron and then Clip by plane `k` (bit 1 << k, sides[k] the
+   * corners' distances), in one step from the table of cuts: the same
+   * vertices, in the same order, with the same links and bits, and the
+   * crossings computed by the same expression. False, with nothing set,
+   * when a corner lies on the plane or none is clipped or kept.
+   */
+  bool SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k)
+  {
+    const double* d = sides[k];
+    unsigned pattern = 0;
+    bool onPlane = false;
+    for (int v = 0; v < 4; ++v)
+    {
+      pattern |= (d[v] < 0.0 ? 1u : 0u) << v;
+      onPlane |= d[v] == 0.0;
+    }
+    if (onPlane || pattern == 0 || pattern == 15)
+    {
+      return false;
+    }
+    const TetrahedronCut& cut = TetrahedronCuts()[pattern];
+    const unsigned bit = 1u << k;
+    this->NumberOfVertices = cut.NumberOfVertices;
+    for (int r = 0; r < cut.NumberOfVertices; ++r)
+    {
+      const int v = cut.From[r][0];
+      const int q = cut.From[r][1];
+      const unsigned on = CornerBits(v, sides);
+      if (q < 0)
+      {
+        std::copy(c.X[v], c.X[v] + 3, this->X[r]);
+        this->On[r] = on;
+        this->Original[r] = v;
+      }
+      else
+      {
+        const double u = d[v] / (d[v] - d[q]);
+        for (int a = 0; a < 3; ++a)
+        {
+          this->X[r][a] = c.X[v][a] + u * (c.X[q][a] - c.X[v][a]);
+        }
+        this->On[r] = (on & CornerBits(q, sides)) | bit;
+        this->Original[r] = -1;
+      }
+      std::copy(cut.Next[r], cut.Next[r] + 3, this->Next[r]);
+      std::copy(cut.Back[r], cut.Back[r] + 3, this->Back[r]);
+    }
+    return true;
   }
 
   /// Keeps the part on the inner side of plane `bit`; false when it cannot
@@ -620,10 +758,10 @@ struct VertexGraph
             return false;
           }
           const int t = piece.NumberOfTetrahedra++;
-          for (int k = 0; k < 4; ++k)
-          {
-            std::copy(corners[k], corners[k] + 3, piece.X[t][k]);
-          }
+          piece.Corner[t][0] = 0;
+          piece.Corner[t][1] = cycle[0];
+          piece.Corner[t][2] = cycle[i];
+          piece.Corner[t][3] = cycle[i + 1];
           piece.Volume[t] = six / 6.0;
           AddTetrahedronMoments(piece.Volume[t], p, m0, m1, m2);
         }
@@ -632,6 +770,10 @@ struct VertexGraph
           piece.TouchedFaces |= target;
         }
       }
+    }
+    for (int v = 0; v < n; ++v) // the tetrahedra's corners
+    {
+      std::copy(this->X[v], this->X[v] + 3, piece.Points[v]);
     }
     SetMoments(m0, m1, m2, piece);
     return true;

@@ -189,9 +189,23 @@ bool TetrahedronIntersector::IntersectCells(
   const double minArea = 2e-12 * std::min(t.FaceScale, s.FaceScale);
   const double minArea2 = minArea * minArea;
   VertexGraph graph;
-  graph.SetTetrahedron(clipped, sides);
+  // The first plane that cuts, from the table of a tetrahedron's cuts when
+  // no corner lies on it (the same graph as clipping, with less work).
+  int k = 0;
+  while (k < 4 && !(cut & (1u << k)))
+  {
+    ++k;
+  }
+  if (asGraph && k < 4 && graph.SetClippedTetrahedron(clipped, sides, k))
+  {
+    ++k;
+  }
+  else
+  {
+    graph.SetTetrahedron(clipped, sides);
+  }
   bool clippedAsGraph = asGraph;
-  for (int k = 0; k < 4 && graph.NumberOfVertices > 0 && clippedAsGraph; ++k)
+  for (; k < 4 && graph.NumberOfVertices > 0 && clippedAsGraph; ++k)
   {
     if (cut & (1u << k))
     {
@@ -239,7 +253,11 @@ bool TetrahedronIntersector::IntersectCells(
     for (int i = 0; i < n; ++i)
     {
       const ClipTet& c = current[i];
-      std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.X[i][0][0]);
+      std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.Points[4 * i][0]);
+      for (int k = 0; k < 4; ++k)
+      {
+        piece.Corner[i][k] = 4 * i + k;
+      }
       piece.Volume[i] = c.Volume / 6.0;
       for (int f = 0; f < 4; ++f)
       {
@@ -301,12 +319,9 @@ bool TetrahedronIntersector::IntersectCells(
 
 double TetrahedronIntersector::Measure(const Piece& piece)
 {
-  double volume = 0.0;
-  for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
-  {
-    volume += piece.Volume[i];
-  }
-  return volume;
+  // The volumes' sum, as the moments summed them (the graph and the
+  // splitting clipper both set it whenever there are tetrahedra).
+  return piece.NumberOfTetrahedra > 0 ? piece.M[0][0] : 0.0;
 }
 
 double TetrahedronIntersector::Moments(
@@ -331,7 +346,7 @@ void TetrahedronIntersector::SumMoments(Piece& piece)
   {
     return;
   }
-  const double* o = piece.X[0][0];
+  const double* o = piece.Points[piece.Corner[0][0]];
   std::copy(o, o + 3, piece.Origin);
   double m0 = 0.0;
   double m1[3] = { 0, 0, 0 };
@@ -346,7 +361,7 @@ void TetrahedronIntersector::SumMoments(Piece& piece)
     double p[4][3];
     for (int a = 0; a < 4; ++a)
     {
-      Sub(piece.X[n][a], piece.Origin, p[a]);
+      Sub(piece.Points[piece.Corner[n][a]], piece.Origin, p[a]);
     }
     AddTetrahedronMoments(v, p, m0, m1, m2);
   }
@@ -358,13 +373,16 @@ void TetrahedronIntersector::AppendPiece(
 {
   for (int i = 0; i < p.NumberOfTetrahedra; ++i)
   {
-    const auto& x = p.X[i];
     const double v = p.Volume[i];
     if (!(v > 0.0))
     {
       continue;
     }
-    pieces.Points.insert(pieces.Points.end(), &x[0][0], &x[0][0] + 12);
+    for (int k = 0; k < 4; ++k)
+    {
+      const double* x = p.Points[p.Corner[i][k]];
+      pieces.Points.insert(pieces.Points.end(), x, x + 3);
+    }
     pieces.Offsets.push_back(pieces.Offsets.back() + 4);
     pieces.TargetCell.push_back(target);
     pieces.SourceCell.push_back(source);

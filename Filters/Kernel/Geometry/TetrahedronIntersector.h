@@ -62,10 +62,14 @@ public:
   struct Piece
   {
     int NumberOfTetrahedra = 0;
-    double X[MaxTetrahedra][4][3];
+    /// Corner k of tetrahedron i is Points[Corner[i][k]]: from the vertex
+    /// graph, its vertices (tetrahedra share them, and only they are
+    /// copied); from the splitting clipper, four points per tetrahedron.
+    int Corner[MaxTetrahedra][4];
+    double Points[4 * MaxTetrahedra][3];
     /// Of each tetrahedron, signed: rounding may leave a sliver negative.
     double Volume[MaxTetrahedra];
-    /// The moments of the tetrahedra about Origin (= X[0][0]), as Moments
+    /// The moments of the tetrahedra about Origin (= their first corner), as Moments
     /// returns them, set by Intersect when it has tetrahedra: summed while
     /// the clipper's graph cuts the piece, or after the splitting clipper.
     /// M[0][0], the volume, is always set then; the other entries only when
