@@ -192,15 +192,19 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
 }
 
 // The first clip from the table of a tetrahedron's cuts against SetTetrahedron
-// and Clip: bit for bit the same graph (vertices, order, links, bits) for
-// every pattern of corners inside and outside, and refused when a corner
-// lies on the plane (shared corners).
+// and Clip, and the second from the table of second cuts against Clip: bit
+// for bit the same graph (vertices, order, links, bits) for every pattern of
+// corners inside and outside, and refused when a vertex lies on the plane
+// (shared corners).
 TEST(Tetrahedra, TableCutIsTheClippedGraph)
 {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int patterns[16] = {};
   int refused = 0;
+  int seconds = 0;
+  int secondRefused = 0;
+  int cutsBySize[10] = {};
   for (int n = 0; n < 20000; ++n)
   {
     double t[4][3];
@@ -226,7 +230,7 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
     {
       mp::clipping::VertexGraph table;
       mp::clipping::VertexGraph clip;
-      const bool cut = table.SetClippedTetrahedron(b, sides, k);
+      const unsigned cut = table.SetClippedTetrahedron(b, sides, k);
       unsigned pattern = 0;
       bool onPlane = false;
       for (int v = 0; v < 4; ++v)
@@ -234,7 +238,7 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
         pattern |= (sides[k][v] < 0.0 ? 1u : 0u) << v;
         onPlane |= sides[k][v] == 0.0;
       }
-      ASSERT_EQ(cut, !onPlane && pattern != 0 && pattern != 15) << n;
+      ASSERT_EQ(cut, !onPlane && pattern != 0 && pattern != 15 ? pattern : 0u) << n;
       if (!cut)
       {
         refused += onPlane;
@@ -255,11 +259,43 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
         ASSERT_EQ(table.On[v], clip.On[v]) << n << " " << v;
         ASSERT_EQ(table.Original[v], clip.Original[v]) << n << " " << v;
       }
+      // The second cut, by each other plane, from its table.
+      for (int l = 0; l < 4; ++l)
+      {
+        if (l == k)
+          continue;
+        mp::clipping::VertexGraph second = table;
+        mp::clipping::VertexGraph clipped = clip;
+        if (!second.ClipSecond(cut, a.Normal[l], a.X[(l + 1) % 4], 1u << l, sides[l]))
+        {
+          ++secondRefused;
+          continue;
+        }
+        ++seconds;
+        ASSERT_TRUE(clipped.Clip(a.Normal[l], a.X[(l + 1) % 4], 1u << l, sides[l]));
+        ASSERT_EQ(second.NumberOfVertices, clipped.NumberOfVertices) << n;
+        cutsBySize[std::min(clipped.NumberOfVertices, 9)]++;
+        for (int v = 0; v < clipped.NumberOfVertices; ++v)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            ASSERT_EQ(second.X[v][c], clipped.X[v][c]) << n << " " << v;
+            ASSERT_EQ(second.Next[v][c], clipped.Next[v][c]) << n << " " << v;
+            ASSERT_EQ(second.Back[v][c], clipped.Back[v][c]) << n << " " << v;
+          }
+          ASSERT_EQ(second.On[v], clipped.On[v]) << n << " " << v;
+          ASSERT_EQ(second.Original[v], clipped.Original[v]) << n << " " << v;
+        }
+      }
     }
   }
   for (unsigned p = 1; p < 15; ++p)
     EXPECT_GT(patterns[p], 100) << "pattern " << p;
   EXPECT_GT(refused, 1000);
+  EXPECT_GT(seconds, 50000);
+  EXPECT_GT(secondRefused, 1000); // a shared corner on the second plane
+  for (int size : { 0, 4, 6, 8 }) // three links per vertex: an even number
+    EXPECT_GT(cutsBySize[size], 100) << size << " vertices";
 }
 
 TEST(Tetrahedra, MortarEntriesOfIdenticalTetrahedra)

@@ -454,10 +454,11 @@ struct VertexGraph
    * SetTetrahedron and then Clip by plane `k` (bit 1 << k, sides[k] the
    * corners' distances), in one step from the table of cuts: the same
    * vertices, in the same order, with the same links and bits, and the
-   * crossings computed by the same expression. False, with nothing set,
-   * when a corner lies on the plane or none is clipped or kept.
+   * crossings computed by the same expression. Returns the pattern of
+   * corners outside (bit v: corner v), 0 with nothing set when a corner
+   * lies on the plane or none is clipped or kept.
    */
-  bool SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k)
+  unsigned SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k)
   {
     const double* d = sides[k];
     unsigned pattern = 0;
@@ -469,7 +470,7 @@ struct VertexGraph
     }
     if (onPlane || pattern == 0 || pattern == 15)
     {
-      return false;
+      return 0;
     }
     const TetrahedronCut& cut = TetrahedronCuts()[pattern];
     const unsigned bit = 1u << k;
@@ -498,6 +499,173 @@ struct VertexGraph
       std::copy(cut.Next[r], cut.Next[r] + 3, this->Next[r]);
       std::copy(cut.Back[r], cut.Back[r] + 3, this->Back[r]);
     }
+    return pattern;
+  }
+
+  /// The second cut, of the graph a first cut `first` (a pattern of
+  /// TetrahedronCuts) left, for one pattern of its vertices inside and
+  /// outside (bit v: vertex v outside; none on the plane): vertices (kept,
+  /// or the crossing on a link from a kept one to a clipped one) and links.
+  struct SecondCut
+  {
+    bool Valid = false; ///< Clip made it (a pattern no plane makes may not close)
+    int NumberOfVertices = 0;
+    signed char From[12][2] = {};
+    signed char Next[12][3] = {};
+    signed char Back[12][3] = {};
+  };
+
+  /// SecondCuts()[64 * first + pattern], made once by Clip's Cut on the
+  /// graphs of the table of first cuts.
+  static const SecondCut* SecondCuts()
+  {
+    struct Table
+    {
+      SecondCut Cut[16 * 64];
+      Table()
+      {
+        const double unit[4][4] = {};
+        TetrahedronIntersector::Cell c;
+        for (int v = 0; v < 4; ++v)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            c.X[v][a] = a + 1 == v ? 1.0 : 0.0;
+          }
+        }
+        for (unsigned first = 1; first < 15; ++first)
+        {
+          double sides[4][4] = {};
+          for (int v = 0; v < 4; ++v)
+          {
+            sides[0][v] = (first >> v) & 1u ? -1.0 : 1.0;
+          }
+          VertexGraph one;
+          one.SetClippedTetrahedron(c, sides, 0);
+          const int n = one.NumberOfVertices;
+          for (unsigned pattern = 1; pattern + 1 < (1u << n); ++pattern)
+          {
+            double d[MaxVertices];
+            for (int v = 0; v < n; ++v)
+            {
+              d[v] = (pattern >> v) & 1u ? -1.0 : 1.0;
+            }
+            VertexGraph g = one;
+            SecondCut& cut = this->Cut[64 * first + pattern];
+            if (!g.Cut(d, 2u) || g.NumberOfVertices > 12)
+            {
+              continue;
+            }
+            cut.Valid = true;
+            cut.NumberOfVertices = g.NumberOfVertices;
+            int r = 0; // Cut's order, as for the first cuts
+            for (int v = 0; v < n; ++v)
+            {
+              if (d[v] > 0.0)
+              {
+                cut.From[r][0] = static_cast<signed char>(v);
+                cut.From[r++][1] = -1;
+              }
+            }
+            for (int v = 0; v < n; ++v)
+            {
+              for (int j = 0; j < 3 && d[v] > 0.0; ++j)
+              {
+                if (d[one.Next[v][j]] < 0.0)
+                {
+                  cut.From[r][0] = static_cast<signed char>(v);
+                  cut.From[r++][1] = static_cast<signed char>(one.Next[v][j]);
+                }
+              }
+            }
+            for (int w = 0; w < g.NumberOfVertices; ++w)
+            {
+              for (int j = 0; j < 3; ++j)
+              {
+                cut.Next[w][j] = static_cast<signed char>(g.Next[w][j]);
+                cut.Back[w][j] = static_cast<signed char>(g.Back[w][j]);
+              }
+            }
+          }
+        }
+      }
+    };
+    static const Table table;
+    return table.Cut;
+  }
+
+  /**
+   * Clip of the graph SetClippedTetrahedron made with pattern `first`, from
+   * the table of second cuts: the same graph as Clip (vertices, order,
+   * links, bits; crossings by the same expression). False, with nothing
+   * changed, when a vertex lies on the plane (then Clip does it).
+   */
+  bool ClipSecond(unsigned first, const double* normal, const double* origin, unsigned bit, const double sides[4])
+  {
+    const int n = this->NumberOfVertices;
+    double d[6];
+    unsigned pattern = 0;
+    bool onPlane = false;
+    for (int v = 0; v < n; ++v)
+    {
+      d[v] = this->Distance(v, normal, origin, bit, sides);
+      pattern |= (d[v] < 0.0 ? 1u : 0u) << v;
+      onPlane |= d[v] == 0.0;
+    }
+    if (onPlane)
+    {
+      return false;
+    }
+    if (pattern == 0)
+    {
+      return true; // all inside
+    }
+    if (pattern + 1 == (1u << n))
+    {
+      this->NumberOfVertices = 0; // no volume left
+      return true;
+    }
+    const SecondCut& cut = SecondCuts()[64 * first + pattern];
+    if (!cut.Valid)
+    {
+      return false;
+    }
+    double x[6][3];
+    unsigned on[6];
+    int original[6];
+    for (int v = 0; v < n; ++v)
+    {
+      std::copy(this->X[v], this->X[v] + 3, x[v]);
+      on[v] = this->On[v];
+      original[v] = this->Original[v];
+    }
+    this->NumberOfVertices = cut.NumberOfVertices;
+    for (int r = 0; r < cut.NumberOfVertices; ++r)
+    {
+      const int v = cut.From[r][0];
+      const int q = cut.From[r][1];
+      if (q < 0)
+      {
+        std::copy(x[v], x[v] + 3, this->X[r]);
+        this->On[r] = on[v];
+        this->Original[r] = original[v];
+      }
+      else
+      {
+        const double u = d[v] / (d[v] - d[q]);
+        for (int a = 0; a < 3; ++a)
+        {
+          this->X[r][a] = x[v][a] + u * (x[q][a] - x[v][a]);
+        }
+        this->On[r] = (on[v] & on[q]) | bit;
+        this->Original[r] = -1;
+      }
+      for (int j = 0; j < 3; ++j)
+      {
+        this->Next[r][j] = cut.Next[r][j];
+        this->Back[r][j] = cut.Back[r][j];
+      }
+    }
     return true;
   }
 
@@ -512,20 +680,7 @@ struct VertexGraph
     bool anyOutside = false;
     for (int v = 0; v < n; ++v)
     {
-      if (this->Original[v] >= 0)
-      {
-        d[v] = sides[this->Original[v]];
-      }
-      else if (this->On[v] & bit)
-      {
-        d[v] = 0.0;
-      }
-      else
-      {
-        Vec r;
-        Sub(this->X[v], origin, r);
-        d[v] = Dot(normal, r);
-      }
+      d[v] = this->Distance(v, normal, origin, bit, sides);
       anyInside |= d[v] > 0.0;
       anyOutside |= d[v] < 0.0;
       if (d[v] == 0.0)
@@ -542,6 +697,30 @@ struct VertexGraph
     {
       return true;
     }
+    return this->Cut(d, bit);
+  }
+
+  /// Vertex v's distance from the plane as Clip takes it: a corner's exact
+  /// side, 0 on the plane, else from the plane's normal.
+  double Distance(int v, const double* normal, const double* origin, unsigned bit, const double sides[4]) const
+  {
+    if (this->Original[v] >= 0)
+    {
+      return sides[this->Original[v]];
+    }
+    if (this->On[v] & bit)
+    {
+      return 0.0;
+    }
+    Vec r;
+    Sub(this->X[v], origin, r);
+    return Dot(normal, r);
+  }
+
+  /// Clip's cut for distances d with vertices on both sides.
+  bool Cut(const double* d, unsigned bit)
+  {
+    const int n = this->NumberOfVertices;
     // New vertices on the edges from kept to clipped vertices.
     int total = n;
     for (int v = 0; v < n; ++v)

@@ -189,14 +189,15 @@ bool TetrahedronIntersector::IntersectCells(
   const double minArea = 2e-12 * std::min(t.FaceScale, s.FaceScale);
   const double minArea2 = minArea * minArea;
   VertexGraph graph;
-  // The first plane that cuts, from the table of a tetrahedron's cuts when
-  // no corner lies on it (the same graph as clipping, with less work).
+  // The first two planes that cut, from the tables of cuts when no vertex
+  // lies on them (the same graph as clipping, with less work).
   int k = 0;
   while (k < 4 && !(cut & (1u << k)))
   {
     ++k;
   }
-  if (asGraph && k < 4 && graph.SetClippedTetrahedron(clipped, sides, k))
+  const unsigned first = asGraph && k < 4 ? graph.SetClippedTetrahedron(clipped, sides, k) : 0u;
+  if (first)
   {
     ++k;
   }
@@ -204,13 +205,19 @@ bool TetrahedronIntersector::IntersectCells(
   {
     graph.SetTetrahedron(clipped, sides);
   }
+  bool second = first != 0;
   bool clippedAsGraph = asGraph;
   for (; k < 4 && graph.NumberOfVertices > 0 && clippedAsGraph; ++k)
   {
     if (cut & (1u << k))
     {
-      clippedAsGraph =
-        graph.Clip(clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k]);
+      const double* normal = clipping.Normal[k];
+      const double* origin = clipping.X[(k + 1) % 4];
+      if (!second || !graph.ClipSecond(first, normal, origin, 1u << k, sides[k]))
+      {
+        clippedAsGraph = graph.Clip(normal, origin, 1u << k, sides[k]);
+      }
+      second = false;
     }
   }
   clippedAsGraph = clippedAsGraph && graph.Decompose(targetShift, minArea2, piece);
