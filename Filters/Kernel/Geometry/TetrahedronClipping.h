@@ -6,8 +6,9 @@
  *
  * ClipByPlane splits a tetrahedron by a plane into at most three (the
  * reference clipper); VertexGraph keeps the clipped cell as a convex
- * polyhedron whose vertices each have three neighbours (the fast one). Both
- * classify the corners of the clipped cell with FaceSides, exactly signed.
+ * polyhedron whose vertices each have three neighbours (the fast one), its
+ * first two cuts from tables of the topologies they make. Both classify the
+ * corners of the clipped cell with FaceSides, exactly signed.
  */
 #ifndef MeshProjection_Kernel_TetrahedronClipping_h
 #define MeshProjection_Kernel_TetrahedronClipping_h
