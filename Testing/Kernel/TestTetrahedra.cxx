@@ -33,6 +33,18 @@ TestMesh TwoTetrahedra(const double t[4][3], const double s[4][3])
   return m;
 }
 
+/// A random pair: t's corners in [-1, 1]^3, s's in [-scale, scale]^3 (t's drawn first).
+void RandomPair(std::mt19937& rng, double scale, double (&t)[4][3], double (&s)[4][3])
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto& x : t)
+    for (double& c : x)
+      c = u(rng);
+  for (auto& x : s)
+    for (double& c : x)
+      c = scale * u(rng);
+}
+
 double PairVolume(const double t[4][3], const double s[4][3], unsigned* touched = nullptr)
 {
   const TestMesh m = TwoTetrahedra(t, s);
@@ -95,18 +107,12 @@ TEST(Tetrahedra, HandComputedVolumes)
 TEST(Tetrahedra, RandomPairsAreSymmetricAndBounded)
 {
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   int met = 0;
   for (int n = 0; n < 5000; ++n)
   {
     double t[4][3];
     double s[4][3];
-    for (auto& x : t)
-      for (double& c : x)
-        c = u(rng);
-    for (auto& x : s)
-      for (double& c : x)
-        c = 0.7 * u(rng);
+    RandomPair(rng, 0.7, t, s);
     if (n % 3 == 0) // share a corner
       std::copy(t[0], t[0] + 3, s[0]);
     const TestMesh m = TwoTetrahedra(t, s);
@@ -128,19 +134,13 @@ TEST(Tetrahedra, RandomPairsAreSymmetricAndBounded)
 TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
 {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   int met = 0;
   int wellShaped = 0;
   for (int n = 0; n < 5000; ++n)
   {
     double t[4][3];
     double s[4][3];
-    for (auto& x : t)
-      for (double& c : x)
-        c = u(rng);
-    for (auto& x : s)
-      for (double& c : x)
-        c = 0.8 * u(rng);
+    RandomPair(rng, 0.8, t, s);
     if (n % 3 == 0) // share a corner
       std::copy(t[0], t[0] + 3, s[0]);
     if (n % 3 == 1) // share a face (the source on either side of it)
@@ -199,7 +199,6 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
 TEST(Tetrahedra, TableCutIsTheClippedGraph)
 {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   int patterns[16] = {};
   int refused = 0;
   int seconds = 0;
@@ -209,12 +208,7 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
   {
     double t[4][3];
     double s[4][3];
-    for (auto& x : t)
-      for (double& c : x)
-        c = u(rng);
-    for (auto& x : s)
-      for (double& c : x)
-        c = 0.8 * u(rng);
+    RandomPair(rng, 0.8, t, s);
     if (n % 5 == 0) // a shared corner: on two of the planes
       std::copy(t[1], t[1] + 3, s[2]);
     const TestMesh m = TwoTetrahedra(t, s);
