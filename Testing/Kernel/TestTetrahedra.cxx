@@ -194,9 +194,25 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
   EXPECT_GT(wellShaped, 500);
 }
 
+// A graph from the tables carries their faces: those a walk finds, in its order.
+void ExpectTableFaces(const mp::clipping::VertexGraph& graph, int pair)
+{
+  ASSERT_NE(graph.Faces, nullptr) << pair;
+  mp::clipping::FaceCycles<mp::clipping::VertexGraph::MaxVertices> walked;
+  ASSERT_TRUE(graph.WalkFaces(walked)) << pair;
+  ASSERT_EQ(graph.Faces->NumberOfFaces, walked.NumberOfFaces) << pair;
+  for (int f = 0, at = 0; f < walked.NumberOfFaces; at += walked.Size[f++])
+  {
+    ASSERT_EQ(graph.Faces->Size[f], walked.Size[f]) << pair;
+    for (int i = 0; i < walked.Size[f]; ++i)
+      ASSERT_EQ(graph.Faces->Vertex[at + i], walked.Vertex[at + i]) << pair;
+  }
+}
+
 // The first clip from the table of a tetrahedron's cuts against SetTetrahedron
 // and Clip, and the second from the table of second cuts against Clip: bit
-// for bit the same graph (vertices, order, links, bits) for every pattern of
+// for bit the same graph (vertices, order, links, bits, and the faces a walk
+// finds) for every pattern of
 // corners inside and outside, and refused when a vertex lies on the plane
 // (shared corners).
 TEST(Tetrahedra, TableCutIsTheClippedGraph)
@@ -256,6 +272,7 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
         ASSERT_EQ(table.On[v], clip.On[v]) << n << " " << v;
         ASSERT_EQ(table.Original[v], clip.Original[v]) << n << " " << v;
       }
+      ExpectTableFaces(table, n);
       // The second cut, by each other plane, from its table.
       for (int l = 0; l < 4; ++l)
       {
@@ -283,6 +300,8 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
           ASSERT_EQ(second.On[v], clipped.On[v]) << n << " " << v;
           ASSERT_EQ(second.Original[v], clipped.Original[v]) << n << " " << v;
         }
+        if (second.NumberOfVertices > 0)
+          ExpectTableFaces(second, n);
       }
     }
   }

@@ -333,10 +333,25 @@ inline void SetMoments(
  * Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits 4-7:
  * the clipped cell's own faces (face k opposite corner k).
  */
+/// The faces of a vertex graph of at most V vertices, in the order
+/// VertexGraph::WalkFaces finds them: each a cycle of vertices.
+template <int V>
+struct FaceCycles
+{
+  int NumberOfFaces = 0;
+  signed char Size[V / 2 + 2];  ///< three links per vertex: V / 2 + 2 faces
+  signed char Vertex[3 * V];    ///< the cycles one after the other
+};
+
 struct VertexGraph
 {
   static constexpr int MaxVertices = 48;
+  /// The faces of the table's graphs (at most 12 vertices).
+  using TableFaces = FaceCycles<12>;
   int NumberOfVertices = 0;
+  /// The faces when the graph is one of the tables' (then Decompose need
+  /// not walk them), else null.
+  const TableFaces* Faces = nullptr;
   double X[MaxVertices][3];
   int Next[MaxVertices][3];
   /// Back[v][j]: the slot of v among the neighbours of Next[v][j], so that
@@ -364,6 +379,7 @@ struct VertexGraph
   void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
   {
     this->NumberOfVertices = 4;
+    this->Faces = nullptr;
     for (int v = 0; v < 4; ++v)
     {
       std::copy(c.X[v], c.X[v] + 3, this->X[v]);
@@ -384,6 +400,8 @@ struct VertexGraph
     int From[6][2] = {}; ///< kept corner, and clipped corner (-1: the kept corner itself)
     int Next[6][3] = {};
     int Back[6][3] = {};
+    TableFaces Faces;
+    bool HasFaces = false;
   };
 
   /// The cuts of the 16 patterns (bit v: corner v outside), made once by
@@ -444,6 +462,7 @@ struct VertexGraph
             std::copy(g.Next[w], g.Next[w] + 3, cut.Next[w]);
             std::copy(g.Back[w], g.Back[w] + 3, cut.Back[w]);
           }
+          cut.HasFaces = g.WalkFaces(cut.Faces);
         }
       }
     };
@@ -476,6 +495,7 @@ struct VertexGraph
     const TetrahedronCut& cut = TetrahedronCuts()[pattern];
     const unsigned bit = 1u << k;
     this->NumberOfVertices = cut.NumberOfVertices;
+    this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
     for (int r = 0; r < cut.NumberOfVertices; ++r)
     {
       const int v = cut.From[r][0];
@@ -514,6 +534,8 @@ struct VertexGraph
     signed char From[12][2] = {};
     signed char Next[12][3] = {};
     signed char Back[12][3] = {};
+    TableFaces Faces;
+    bool HasFaces = false;
   };
 
   /// SecondCuts()[64 * first + pattern], made once by Clip's Cut on the
@@ -587,6 +609,7 @@ struct VertexGraph
                 cut.Back[w][j] = static_cast<signed char>(g.Back[w][j]);
               }
             }
+            cut.HasFaces = g.WalkFaces(cut.Faces);
           }
         }
       }
@@ -641,6 +664,7 @@ struct VertexGraph
       original[v] = this->Original[v];
     }
     this->NumberOfVertices = cut.NumberOfVertices;
+    this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
     for (int r = 0; r < cut.NumberOfVertices; ++r)
     {
       const int v = cut.From[r][0];
@@ -721,6 +745,7 @@ struct VertexGraph
   /// Clip's cut for distances d with vertices on both sides.
   bool Cut(const double* d, unsigned bit)
   {
+    this->Faces = nullptr; // a new graph
     const int n = this->NumberOfVertices;
     // New vertices on the edges from kept to clipped vertices.
     int total = n;
@@ -834,36 +859,16 @@ struct VertexGraph
   int BeyondBack[MaxVertices]; ///< per new vertex: the slot of its kept end in Beyond
 
   /**
-   * The faces, walked from the links: the faces of positive area whose
-   * vertices all lie on target face k set bit k of `touched` (target faces
-   * are the vertex bits from `targetShift`), and the tetrahedra from vertex
-   * 0 to the triangles of the faces not holding it go to the piece. False
-   * when a walk does not close or the piece has no room.
+   * The faces, walked from the links: from each vertex and link not yet
+   * walked, in order, the face to the left of that link, its vertices from
+   * there; visit(cycle, size, holdsVertex0, commonBits) for each, stopping
+   * when it returns false. False when a walk does not close, or a visit
+   * said so.
    */
-  bool Decompose(int targetShift, double minArea2, TetrahedronIntersector::Piece& piece) const
+  template <class Visit>
+  bool WalkFaces(Visit&& visit) const
   {
-    piece.NumberOfTetrahedra = 0;
-    piece.TouchedFaces = 0;
-    piece.SourceFaces = 0;
-    piece.M[0][0] = 0.0;
     const int n = this->NumberOfVertices;
-    if (n == 0)
-    {
-      return true;
-    }
-    // The moments about vertex 0, summed tetrahedron by tetrahedron as
-    // TetrahedronIntersector::SumMoments does (the same operations: vertex
-    // 0's offset is zero), from the edges the volumes take anyway.
-    std::copy(this->X[0], this->X[0] + 3, piece.Origin);
-    double m0 = 0.0;
-    double m1[3] = { 0.0, 0.0, 0.0 };
-    double m2[3][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
-    unsigned any = 0;
-    for (int v = 0; v < n; ++v)
-    {
-      any |= this->On[v];
-    }
-    piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
     bool visited[MaxVertices][3] = {};
     int cycle[MaxVertices];
     for (int v = 0; v < n; ++v)
@@ -894,62 +899,148 @@ struct VertexGraph
           slot = back == 2 ? 0 : back + 1;
           a = b;
         } while (a != v || slot != j);
-        const unsigned target = (common >> targetShift) & 15u;
-        if (size < 3 || (holdsApex && !(target & ~piece.TouchedFaces)))
+        if (!visit(cycle, size, holdsApex, common))
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  /// The walked faces into `faces`; false when a walk does not close or
+  /// they do not fit.
+  template <int V>
+  bool WalkFaces(FaceCycles<V>& faces) const
+  {
+    faces.NumberOfFaces = 0;
+    int used = 0;
+    return this->WalkFaces([&](const int* cycle, int size, bool, unsigned) {
+      if (faces.NumberOfFaces == V / 2 + 2 || used + size > 3 * V)
+      {
+        return false;
+      }
+      faces.Size[faces.NumberOfFaces++] = static_cast<signed char>(size);
+      for (int i = 0; i < size; ++i)
+      {
+        faces.Vertex[used++] = static_cast<signed char>(cycle[i]);
+      }
+      return true;
+    });
+  }
+
+  /**
+   * The faces (the tables' when the graph is one of theirs, else walked):
+   * the faces of positive area whose vertices all lie on target face k set
+   * bit k of `touched` (target faces are the vertex bits from
+   * `targetShift`), and the tetrahedra from vertex 0 to the triangles of
+   * the faces not holding it go to the piece. False when a walk does not
+   * close or the piece has no room.
+   */
+  bool Decompose(int targetShift, double minArea2, TetrahedronIntersector::Piece& piece) const
+  {
+    piece.NumberOfTetrahedra = 0;
+    piece.TouchedFaces = 0;
+    piece.SourceFaces = 0;
+    piece.M[0][0] = 0.0;
+    const int n = this->NumberOfVertices;
+    if (n == 0)
+    {
+      return true;
+    }
+    // The moments about vertex 0, summed tetrahedron by tetrahedron as
+    // TetrahedronIntersector::SumMoments does (the same operations: vertex
+    // 0's offset is zero), from the edges the volumes take anyway.
+    std::copy(this->X[0], this->X[0] + 3, piece.Origin);
+    double m0 = 0.0;
+    double m1[3] = { 0.0, 0.0, 0.0 };
+    double m2[3][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
+    unsigned any = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      any |= this->On[v];
+    }
+    piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
+    auto face = [&](const auto* cycle, int size, bool holdsApex, unsigned common) {
+      const unsigned target = (common >> targetShift) & 15u;
+      if (size < 3 || (holdsApex && !(target & ~piece.TouchedFaces)))
+      {
+        return true;
+      }
+      // Only a face on a target face not yet known touched needs its area.
+      const bool needArea = (target & ~piece.TouchedFaces) != 0;
+      Vec area = { 0.0, 0.0, 0.0 };
+      for (int i = 1; i + 1 < size; ++i)
+      {
+        const double* corners[4] = { this->X[0], this->X[cycle[0]], this->X[cycle[i]],
+          this->X[cycle[i + 1]] };
+        if (needArea)
+        {
+          Vec e, f, g;
+          Sub(corners[2], corners[1], e);
+          Sub(corners[3], corners[1], f);
+          Cross(e, f, g);
+          for (int c = 0; c < 3; ++c)
+          {
+            area[c] += g[c];
+          }
+        }
+        if (holdsApex)
         {
           continue;
         }
-        // Only a face on a target face not yet known touched needs its area.
-        const bool needArea = (target & ~piece.TouchedFaces) != 0;
-        Vec area = { 0.0, 0.0, 0.0 };
-        for (int i = 1; i + 1 < size; ++i)
+        Vec p[3]; // corners 1-3 about corner 0
+        for (int k = 0; k < 3; ++k)
         {
-          const double* corners[4] = { this->X[0], this->X[cycle[0]], this->X[cycle[i]],
-            this->X[cycle[i + 1]] };
-          if (needArea)
-          {
-            Vec e, f, g;
-            Sub(corners[2], corners[1], e);
-            Sub(corners[3], corners[1], f);
-            Cross(e, f, g);
-            for (int c = 0; c < 3; ++c)
-            {
-              area[c] += g[c];
-            }
-          }
-          if (holdsApex)
-          {
-            continue;
-          }
-          Vec p[3]; // corners 1-3 about corner 0
-          for (int k = 0; k < 3; ++k)
-          {
-            Sub(corners[k + 1], corners[0], p[k]);
-          }
-          Vec normal;
-          Cross(p[1], p[2], normal);
-          const double six = Dot(p[0], normal); // SixVolume
-          if (six == 0.0)
-          {
-            continue;
-          }
-          if (piece.NumberOfTetrahedra == TetrahedronIntersector::MaxTetrahedra)
-          {
-            return false;
-          }
-          const int t = piece.NumberOfTetrahedra++;
-          piece.Corner[t][0] = 0;
-          piece.Corner[t][1] = cycle[0];
-          piece.Corner[t][2] = cycle[i];
-          piece.Corner[t][3] = cycle[i + 1];
-          piece.Volume[t] = six / 6.0;
-          AddTetrahedronMoments(piece.Volume[t], p, m0, m1, m2);
+          Sub(corners[k + 1], corners[0], p[k]);
         }
-        if (needArea && Dot(area, area) > minArea2)
+        Vec normal;
+        Cross(p[1], p[2], normal);
+        const double six = Dot(p[0], normal); // SixVolume
+        if (six == 0.0)
         {
-          piece.TouchedFaces |= target;
+          continue;
+        }
+        if (piece.NumberOfTetrahedra == TetrahedronIntersector::MaxTetrahedra)
+        {
+          return false;
+        }
+        const int t = piece.NumberOfTetrahedra++;
+        piece.Corner[t][0] = 0;
+        piece.Corner[t][1] = cycle[0];
+        piece.Corner[t][2] = cycle[i];
+        piece.Corner[t][3] = cycle[i + 1];
+        piece.Volume[t] = six / 6.0;
+        AddTetrahedronMoments(piece.Volume[t], p, m0, m1, m2);
+      }
+      if (needArea && Dot(area, area) > minArea2)
+      {
+        piece.TouchedFaces |= target;
+      }
+      return true;
+    };
+    if (const TableFaces* faces = this->Faces)
+    {
+      // A graph of the tables: its faces as a walk finds them.
+      const signed char* cycle = faces->Vertex;
+      for (int f = 0; f < faces->NumberOfFaces; cycle += faces->Size[f++])
+      {
+        bool holdsApex = false;
+        unsigned common = 0xFFu;
+        for (int i = 0; i < faces->Size[f]; ++i)
+        {
+          holdsApex |= cycle[i] == 0;
+          common &= this->On[cycle[i]];
+        }
+        if (!face(cycle, faces->Size[f], holdsApex, common))
+        {
+          return false;
         }
       }
+    }
+    else if (!this->WalkFaces(face))
+    {
+      return false;
     }
     for (int v = 0; v < n; ++v) // the tetrahedra's corners
     {
