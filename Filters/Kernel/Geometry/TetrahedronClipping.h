@@ -18,6 +18,7 @@
 #include "Mesh/Vec3.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace mp
@@ -476,7 +477,7 @@ struct VertexGraph
    * vertices, in the same order, with the same links and bits, and the
    * crossings computed by the same expression. Returns the pattern of
    * corners outside (bit v: corner v), 0 with nothing set when a corner
-   * lies on the plane or none is clipped or kept.
+   * lies on the plane (or its side is NaN) or none is clipped or kept.
    */
   unsigned SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k)
   {
@@ -486,7 +487,7 @@ struct VertexGraph
     for (int v = 0; v < 4; ++v)
     {
       pattern |= (d[v] < 0.0 ? 1u : 0u) << v;
-      onPlane |= d[v] == 0.0;
+      onPlane |= !(d[v] < 0.0 || d[v] > 0.0); // on it, or NaN: Clip decides
     }
     if (onPlane || pattern == 0 || pattern == 15)
     {
@@ -529,7 +530,7 @@ struct VertexGraph
   /// or the crossing on a link from a kept one to a clipped one) and links.
   struct SecondCut
   {
-    bool Valid = false; ///< Clip made it (a pattern no plane makes may not close)
+    bool Valid = false; ///< Cut made it, in at most 12 vertices (all do: at most 10; a guard)
     int NumberOfVertices = 0;
     signed char From[12][2] = {};
     signed char Next[12][3] = {};
@@ -622,11 +623,13 @@ struct VertexGraph
    * Clip of the graph SetClippedTetrahedron made with pattern `first`, from
    * the table of second cuts: the same graph as Clip (vertices, order,
    * links, bits; crossings by the same expression). False, with nothing
-   * changed, when a vertex lies on the plane (then Clip does it).
+   * changed, when a vertex lies on the plane or its distance is NaN (then
+   * Clip does it).
    */
   bool ClipSecond(unsigned first, const double* normal, const double* origin, unsigned bit, const double sides[4])
   {
     const int n = this->NumberOfVertices;
+    assert(n <= 6); // a first cut's graph
     double d[6];
     unsigned pattern = 0;
     bool onPlane = false;
@@ -634,7 +637,7 @@ struct VertexGraph
     {
       d[v] = this->Distance(v, normal, origin, bit, sides);
       pattern |= (d[v] < 0.0 ? 1u : 0u) << v;
-      onPlane |= d[v] == 0.0;
+      onPlane |= !(d[v] < 0.0 || d[v] > 0.0); // on it, or NaN: Clip decides
     }
     if (onPlane)
     {
@@ -801,6 +804,10 @@ struct VertexGraph
         const int out = slot == 2 ? 0 : slot + 1;
         const int next = this->Next[current][out];
         const int back = this->Back[current][out]; // the slot of current in next
+        if (next < 0 || next >= n)
+        {
+          return false; // not an old link: inconsistent signs (NaN distances)
+        }
         if (d[next] < 0.0)
         {
           current = next;

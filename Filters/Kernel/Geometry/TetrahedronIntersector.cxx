@@ -190,7 +190,8 @@ bool TetrahedronIntersector::IntersectCells(
   const double minArea2 = minArea * minArea;
   VertexGraph graph;
   // The first two planes that cut, from the tables of cuts when no vertex
-  // lies on them (the same graph as clipping, with less work).
+  // lies on them (the same graph as clipping, with less work; a corner on
+  // the first plane leaves both to Clip).
   int k = 0;
   while (k < 4 && !(cut & (1u << k)))
   {

@@ -69,7 +69,7 @@ public:
     double Points[4 * MaxTetrahedra][3];
     /// Of each tetrahedron, signed: rounding may leave a sliver negative.
     double Volume[MaxTetrahedra];
-    /// The moments of the tetrahedra about Origin (= their first corner), as Moments
+    /// The moments of the tetrahedra about Origin (= Points[Corner[0][0]]), as Moments
     /// returns them, set by Intersect when it has tetrahedra: summed while
     /// the clipper's graph cuts the piece, or after the splitting clipper.
     /// M[0][0], the volume, is always set then; the other entries only when
