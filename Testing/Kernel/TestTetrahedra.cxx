@@ -201,10 +201,14 @@ bool SameBits(double a, double b)
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-void ExpectSameGraph(const mp::clipping::VertexGraph& a, const mp::clipping::VertexGraph& b, int pair)
+/// The same graph bit for bit (and, unless one comes from the tables and the
+/// other from Clip, the same face list).
+void ExpectSameGraph(const mp::clipping::VertexGraph& a, const mp::clipping::VertexGraph& b,
+  int pair, bool sameFaces = true)
 {
   ASSERT_EQ(a.NumberOfVertices, b.NumberOfVertices) << pair;
-  ASSERT_EQ(a.Faces, b.Faces) << pair;
+  if (sameFaces)
+    ASSERT_EQ(a.Faces, b.Faces) << pair;
   for (int v = 0; v < a.NumberOfVertices; ++v)
   {
     for (int c = 0; c < 3; ++c)
@@ -284,18 +288,7 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
       ++patterns[pattern];
       clip.SetTetrahedron(b, sides);
       ASSERT_TRUE(clip.Clip(a.Normal[k], a.X[(k + 1) % 4], 1u << k, sides[k]));
-      ASSERT_EQ(table.NumberOfVertices, clip.NumberOfVertices) << n;
-      for (int v = 0; v < clip.NumberOfVertices; ++v)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          ASSERT_TRUE(SameBits(table.X[v][c], clip.X[v][c])) << n << " " << v;
-          ASSERT_EQ(table.Next[v][c], clip.Next[v][c]) << n << " " << v;
-          ASSERT_EQ(table.Back[v][c], clip.Back[v][c]) << n << " " << v;
-        }
-        ASSERT_EQ(table.On[v], clip.On[v]) << n << " " << v;
-        ASSERT_EQ(table.Original[v], clip.Original[v]) << n << " " << v;
-      }
+      ExpectSameGraph(table, clip, n, false);
       ExpectTableFaces(table, n);
       // The second cut, by each other plane, from its table.
       for (int l = 0; l < 4; ++l)
@@ -312,19 +305,8 @@ TEST(Tetrahedra, TableCutIsTheClippedGraph)
         }
         ++seconds;
         ASSERT_TRUE(clipped.Clip(a.Normal[l], a.X[(l + 1) % 4], 1u << l, sides[l]));
-        ASSERT_EQ(second.NumberOfVertices, clipped.NumberOfVertices) << n;
         cutsBySize[std::min(clipped.NumberOfVertices, 9)]++;
-        for (int v = 0; v < clipped.NumberOfVertices; ++v)
-        {
-          for (int c = 0; c < 3; ++c)
-          {
-            ASSERT_TRUE(SameBits(second.X[v][c], clipped.X[v][c])) << n << " " << v;
-            ASSERT_EQ(second.Next[v][c], clipped.Next[v][c]) << n << " " << v;
-            ASSERT_EQ(second.Back[v][c], clipped.Back[v][c]) << n << " " << v;
-          }
-          ASSERT_EQ(second.On[v], clipped.On[v]) << n << " " << v;
-          ASSERT_EQ(second.Original[v], clipped.Original[v]) << n << " " << v;
-        }
+        ExpectSameGraph(second, clipped, n, false);
         if (second.NumberOfVertices > 0)
           ExpectTableFaces(second, n);
       }
