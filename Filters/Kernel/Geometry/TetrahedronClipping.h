@@ -317,6 +317,16 @@ inline void SetMoments(
   }
 }
 
+/// The faces of a vertex graph of at most V vertices, in the order
+/// VertexGraph::WalkFaces finds them: each a cycle of vertices.
+template <int V>
+struct FaceCycles
+{
+  int NumberOfFaces = 0;
+  signed char Size[V / 2 + 2];  ///< three links per vertex: V / 2 + 2 faces
+  signed char Vertex[3 * V];    ///< the cycles one after the other
+};
+
 /**
  * A convex polyhedron as a graph in which every vertex has three
  * neighbours, listed so that the face to the left of the directed edge
@@ -334,16 +344,6 @@ inline void SetMoments(
  * Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits 4-7:
  * the clipped cell's own faces (face k opposite corner k).
  */
-/// The faces of a vertex graph of at most V vertices, in the order
-/// VertexGraph::WalkFaces finds them: each a cycle of vertices.
-template <int V>
-struct FaceCycles
-{
-  int NumberOfFaces = 0;
-  signed char Size[V / 2 + 2];  ///< three links per vertex: V / 2 + 2 faces
-  signed char Vertex[3 * V];    ///< the cycles one after the other
-};
-
 struct VertexGraph
 {
   static constexpr int MaxVertices = 48;
