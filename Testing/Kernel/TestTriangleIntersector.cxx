@@ -454,6 +454,71 @@ TEST(TriangleIntersector, NearlyCollinearEdgesCrossAtTheirExactPlace)
 #endif
 }
 
+// A tiny triangle (size h, near the origin) across an edge or a corner of a
+// huge one (its other corners L = 1e6..1e15 h away). A crossing placed
+// along the huge edge carries an error of about the rounding unit times its
+// length, up to 10% of h at these ratios; placed along the shorter edge it
+// is within rounding of h. Both roles, against clipping the tiny triangle
+// by the huge one's lines in binary128 (exact differences at these ratios).
+TEST(TriangleIntersector, TinyCellsAgainstHugeOnesKeepTheirArea)
+{
+#if !defined(__SIZEOF_FLOAT128__)
+  GTEST_SKIP() << "no binary128 type for the oracle";
+#else
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int met[2] = {};
+  int checked = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    const double h = std::ldexp(1.0, -40 + static_cast<int>(rng() % 80));
+    const double ratio = std::pow(10.0, 6.0 + 9.0 * unit(rng));
+    const double L = ratio * h;
+    double small[3][2];
+    double huge[3][2];
+    const double angle = 6.283185307179586 * unit(rng);
+    const double cx = h * (unit(rng) - 0.5);
+    const double cy = h * (unit(rng) - 0.5);
+    const double ux = std::cos(angle);
+    const double uy = std::sin(angle);
+    // The huge triangle: an edge through a point within h of the origin
+    // (n even) or a corner there (n odd), its other corners about L away.
+    if (n % 2 == 0)
+    {
+      const double a = 0.2 + 0.8 * unit(rng);
+      const double b = 0.2 + 0.8 * unit(rng);
+      huge[0][0] = cx - a * L * ux, huge[0][1] = cy - a * L * uy;
+      huge[1][0] = cx + b * L * ux, huge[1][1] = cy + b * L * uy;
+      huge[2][0] = cx - L * uy, huge[2][1] = cy + L * ux;
+    }
+    else
+    {
+      const double opening = 0.2 + 2.5 * unit(rng);
+      huge[0][0] = cx, huge[0][1] = cy;
+      huge[1][0] = cx + L * ux, huge[1][1] = cy + L * uy;
+      huge[2][0] = cx + L * std::cos(angle + opening), huge[2][1] = cy + L * std::sin(angle + opening);
+    }
+    for (auto& x : small)
+      x[0] = h * (unit(rng) - 0.5), x[1] = h * (unit(rng) - 0.5);
+    const double expected = static_cast<double>(ClipAreaIn<__float128>(small, huge));
+    if (TriangleArea(small) < 1e-3 * h * h)
+      continue;
+    met[n % 2] += expected > 1e-3 * h * h && expected < std::min(TriangleArea(small), TriangleArea(huge));
+    for (int roles = 0; roles < 2; ++roles)
+    {
+      Pair p = roles ? Pair(huge, small) : Pair(small, huge);
+      const double got = p.Met ? p.Area() : 0.0;
+      ASSERT_NEAR(got, expected, 1e-13 * h * h)
+        << "pair " << n << (roles ? ", roles swapped" : "") << ", h " << h << ", L/h " << ratio;
+      ++checked;
+    }
+  }
+  for (int shape = 0; shape < 2; ++shape)
+    EXPECT_GT(met[shape], 2000) << "shape " << shape; // partly covered: crossings made
+  EXPECT_GT(checked, 35000);
+#endif
+}
+
 TEST(TriangleIntersector, MortarEntriesOfIdenticalTriangles)
 {
   // Integral of phi_i phi_j over a triangle of area A: A/12 (1 + delta_ij).

@@ -201,21 +201,38 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
 
 
 /**
- * Where source edge c-d crosses the line of target edge a-b, from the
- * orientations oc = Orient2D(a, b, c) and od = Orient2D(a, b, d) (strictly
- * of opposite signs). Their signs are exact, but a determinant the filter
- * decided is only the rounded one, whose error (below 2^-51 of the sum of
- * its two products' magnitudes, its scale) is large relative to it when c
- * or d lies very near the line; so then is the error of the crossing's
- * place along c-d (on nearly parallel edges, a few percent of a piece's
- * area were seen). A determinant below `limit` (2^-19 D^2, D the extent of
- * both cells' boxes together: at least 2^-20 of its scale, since a scale
- * is at most 2 D^2) is recomputed exactly with its partner, so that each
- * one used is within about 2^-31 of its value.
+ * Where target edge a-b and source edge c-d cross (properly), given the
+ * sides oa, ob of a, b w.r.t. the line of c-d and oc, od of c, d w.r.t. the
+ * line of a-b (each pair strictly of opposite signs).
+ *
+ * Their signs are exact, but a determinant the filter decided is only the
+ * rounded one, whose error (below 2^-51 of the sum of its two products'
+ * magnitudes, its scale) is large relative to it when a point lies very
+ * near the line; so then is the error of the crossing's place along the
+ * edge (on nearly parallel edges, a few percent of a piece's area were
+ * seen). A determinant below `limit` (2^-19 D^2, D the extent of both
+ * cells' boxes together: at least 2^-20 of its scale, since a scale is at
+ * most 2 D^2) is recomputed exactly with its partner, so that each one used
+ * is within about 2^-31 of its value.
+ *
+ * Placed along an edge, the point's error is about the rounding unit times
+ * the edge's length (the error of u times it). Along the source edge c-d
+ * (the usual way) that is below 2^-48 of the target's size unless the
+ * source is much larger (`careful`: its box more than 16 times the
+ * target's; from a huge source edge the error could exceed a tiny target
+ * itself): the point is then placed along the shorter edge.
  */
-inline void Crossing(const double* a, const double* b, const double* c, const double* d,
-  double oc, double od, double limit, double (&x)[2])
+inline void Crossing(const double* a, const double* b, double oa, double ob, const double* c,
+  const double* d, double oc, double od, double limit, bool careful, double (&x)[2])
 {
+  if (careful && (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) <
+                   (d[0] - c[0]) * (d[0] - c[0]) + (d[1] - c[1]) * (d[1] - c[1]))
+  {
+    std::swap(a, c); // along the target edge a-b, across the line of c-d
+    std::swap(b, d);
+    std::swap(oa, oc);
+    std::swap(ob, od);
+  }
   if (std::fabs(oc) < limit || std::fabs(od) < limit)
   {
     oc = Orient2DExact(a, b, c);
@@ -416,6 +433,10 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   double extent = std::max(t.Box[1], s.Box[1]) - std::min(t.Box[0], s.Box[0]);
   extent = std::max(extent, std::max(t.Box[3], s.Box[3]) - std::min(t.Box[2], s.Box[2]));
   const double limit = 0x1p-19 * extent * extent;
+  // A source much larger than the target: crossings placed carefully.
+  const double sourceSize = std::max(s.Box[1] - s.Box[0], s.Box[3] - s.Box[2]);
+  const double targetSize = std::max(t.Box[1] - t.Box[0], t.Box[3] - t.Box[2]);
+  const bool careful = sourceSize > 16.0 * targetSize;
   for (int k = 0; k < 3; ++k)
   {
     for (int l = 0; l < 3; ++l)
@@ -427,7 +448,9 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
       const int ci = (l + 1) % 3;
       const int di = (l + 2) % 3;
       double x[2];
-      Crossing(t.X[(k + 1) % 3], t.X[(k + 2) % 3], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit, x);
+      const int ai = (k + 1) % 3;
+      const int bi = (k + 2) % 3;
+      Crossing(t.X[ai], t.X[bi], os[l][ai], os[l][bi], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit, careful, x);
       // Source edge l entering the target's side of edge k (c outside):
       // the piece arrives along target edge k and leaves along l; leaving
       // it, the other way round.
