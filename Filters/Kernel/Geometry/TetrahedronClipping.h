@@ -391,30 +391,128 @@ struct VertexGraph
     }
   }
 
-  /// What clipping a tetrahedron by one plane makes, for one pattern of
-  /// corners inside and outside (none on the plane): the vertices (a kept
-  /// corner, or the crossing on the edge from a kept corner to a clipped
-  /// one) and their links.
-  struct TetrahedronCut
+  /// What one cut of a graph of the tables makes, for one pattern of its
+  /// vertices inside and outside (none on the plane): the vertices (a kept
+  /// one, or the crossing on the link from a kept one to a clipped one), in
+  /// Cut's order, their links and the faces.
+  struct TableCut
   {
+    bool Valid = false; ///< Cut made it, in at most 12 vertices (all do: at most 10; a guard)
     int NumberOfVertices = 0;
-    int From[6][2] = {}; ///< kept corner, and clipped corner (-1: the kept corner itself)
-    int Next[6][3] = {};
-    int Back[6][3] = {};
+    signed char From[12][2] = {}; ///< kept vertex, and clipped one (-1: the kept vertex itself)
+    signed char Next[12][3] = {};
+    signed char Back[12][3] = {};
     TableFaces Faces;
     bool HasFaces = false;
   };
 
-  /// The cuts of the 16 patterns (bit v: corner v outside), made once by
-  /// Clip itself on a tetrahedron whose corners are +1 or -1 from the plane.
-  static const TetrahedronCut* TetrahedronCuts()
+  /// The tetrahedron the tables are made on (Cut's topology depends on the
+  /// signs of the distances only).
+  static TetrahedronIntersector::Cell ReferenceTetrahedron()
+  {
+    TetrahedronIntersector::Cell c;
+    for (int v = 0; v < 4; ++v)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        c.X[v][a] = a + 1 == v ? 1.0 : 0.0;
+      }
+    }
+    return c;
+  }
+
+  /// The cut of `before` at distances d (+1 or -1) as `cut` records it:
+  /// Cut's own result, its vertices named in Cut's order (the kept
+  /// vertices, then the crossings by kept vertex and link).
+  static void MakeCut(const VertexGraph& before, const double* d, unsigned bit, TableCut& cut)
+  {
+    VertexGraph after = before;
+    if (!after.Cut(d, bit) || after.NumberOfVertices > 12)
+    {
+      return;
+    }
+    const int n = before.NumberOfVertices;
+    int r = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      if (d[v] > 0.0)
+      {
+        cut.From[r][0] = static_cast<signed char>(v);
+        cut.From[r++][1] = -1;
+      }
+    }
+    for (int v = 0; v < n; ++v)
+    {
+      for (int j = 0; j < 3 && d[v] > 0.0; ++j)
+      {
+        if (d[before.Next[v][j]] < 0.0)
+        {
+          cut.From[r][0] = static_cast<signed char>(v);
+          cut.From[r++][1] = static_cast<signed char>(before.Next[v][j]);
+        }
+      }
+    }
+    cut.NumberOfVertices = after.NumberOfVertices;
+    for (int w = 0; w < after.NumberOfVertices; ++w)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        cut.Next[w][j] = static_cast<signed char>(after.Next[w][j]);
+        cut.Back[w][j] = static_cast<signed char>(after.Back[w][j]);
+      }
+    }
+    cut.HasFaces = after.WalkFaces(cut.Faces);
+    cut.Valid = true;
+  }
+
+  /// The graph `cut` makes of the vertices x, on, original (the graph
+  /// before it) at distances d from plane `bit`: the crossings computed by
+  /// Cut's expression.
+  void SetCut(const TableCut& cut, const double (*x)[3], const unsigned* on, const int* original,
+    const double* d, unsigned bit)
+  {
+    this->NumberOfVertices = cut.NumberOfVertices;
+    this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
+    for (int r = 0; r < cut.NumberOfVertices; ++r)
+    {
+      const int v = cut.From[r][0];
+      const int q = cut.From[r][1];
+      if (q < 0)
+      {
+        std::copy(x[v], x[v] + 3, this->X[r]);
+        this->On[r] = on[v];
+        this->Original[r] = original[v];
+      }
+      else
+      {
+        const double u = d[v] / (d[v] - d[q]);
+        for (int a = 0; a < 3; ++a)
+        {
+          this->X[r][a] = x[v][a] + u * (x[q][a] - x[v][a]);
+        }
+        this->On[r] = (on[v] & on[q]) | bit;
+        this->Original[r] = -1;
+      }
+      for (int j = 0; j < 3; ++j)
+      {
+        this->Next[r][j] = cut.Next[r][j];
+        this->Back[r][j] = cut.Back[r][j];
+      }
+    }
+  }
+
+  /// The cuts of a tetrahedron by one plane, for the 16 patterns of its
+  /// corners (bit v: corner v outside; 0 and 15 unused).
+  static const TableCut* TetrahedronCuts()
   {
     struct Table
     {
-      TetrahedronCut Cut[16];
+      TableCut Cut[16];
       Table()
       {
         const double unit[4][4] = {};
+        VertexGraph tetrahedron;
+        tetrahedron.SetTetrahedron(ReferenceTetrahedron(), unit);
         for (unsigned pattern = 1; pattern < 15; ++pattern)
         {
           double d[4];
@@ -422,48 +520,7 @@ struct VertexGraph
           {
             d[v] = (pattern >> v) & 1u ? -1.0 : 1.0;
           }
-          VertexGraph g;
-          TetrahedronIntersector::Cell c;
-          for (int v = 0; v < 4; ++v)
-          {
-            for (int a = 0; a < 3; ++a)
-            {
-              c.X[v][a] = a + 1 == v ? 1.0 : 0.0;
-            }
-          }
-          g.SetTetrahedron(c, unit);
-          const double normal[3] = { 0.0, 0.0, 0.0 }; // unused: every vertex is a corner
-          g.Clip(normal, normal, 1u, d);
-          TetrahedronCut& cut = this->Cut[pattern];
-          cut.NumberOfVertices = g.NumberOfVertices;
-          // Clip's order: the kept corners, then the crossings in the
-          // order of their kept corner and its links.
-          int r = 0;
-          for (int v = 0; v < 4; ++v)
-          {
-            if (d[v] > 0.0)
-            {
-              cut.From[r][0] = v;
-              cut.From[r++][1] = -1;
-            }
-          }
-          for (int v = 0; v < 4; ++v)
-          {
-            for (int j = 0; j < 3 && d[v] > 0.0; ++j)
-            {
-              if (d[TetrahedronNext[v][j]] < 0.0)
-              {
-                cut.From[r][0] = v;
-                cut.From[r++][1] = TetrahedronNext[v][j];
-              }
-            }
-          }
-          for (int w = 0; w < g.NumberOfVertices; ++w)
-          {
-            std::copy(g.Next[w], g.Next[w] + 3, cut.Next[w]);
-            std::copy(g.Back[w], g.Back[w] + 3, cut.Back[w]);
-          }
-          cut.HasFaces = g.WalkFaces(cut.Faces);
+          MakeCut(tetrahedron, d, 1u, this->Cut[pattern]);
         }
       }
     };
@@ -489,74 +546,32 @@ struct VertexGraph
       pattern |= (d[v] < 0.0 ? 1u : 0u) << v;
       onPlane |= !(d[v] < 0.0 || d[v] > 0.0); // on it, or NaN: Clip decides
     }
-    if (onPlane || pattern == 0 || pattern == 15)
+    const TableCut& cut = TetrahedronCuts()[pattern];
+    if (onPlane || !cut.Valid) // (also none clipped or none kept)
     {
       return 0;
     }
-    const TetrahedronCut& cut = TetrahedronCuts()[pattern];
-    const unsigned bit = 1u << k;
-    this->NumberOfVertices = cut.NumberOfVertices;
-    this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
-    for (int r = 0; r < cut.NumberOfVertices; ++r)
+    unsigned on[4];
+    for (int v = 0; v < 4; ++v)
     {
-      const int v = cut.From[r][0];
-      const int q = cut.From[r][1];
-      const unsigned on = CornerBits(v, sides);
-      if (q < 0)
-      {
-        std::copy(c.X[v], c.X[v] + 3, this->X[r]);
-        this->On[r] = on;
-        this->Original[r] = v;
-      }
-      else
-      {
-        const double u = d[v] / (d[v] - d[q]);
-        for (int a = 0; a < 3; ++a)
-        {
-          this->X[r][a] = c.X[v][a] + u * (c.X[q][a] - c.X[v][a]);
-        }
-        this->On[r] = (on & CornerBits(q, sides)) | bit;
-        this->Original[r] = -1;
-      }
-      std::copy(cut.Next[r], cut.Next[r] + 3, this->Next[r]);
-      std::copy(cut.Back[r], cut.Back[r] + 3, this->Back[r]);
+      on[v] = CornerBits(v, sides);
     }
+    static constexpr int corners[4] = { 0, 1, 2, 3 };
+    this->SetCut(cut, c.X, on, corners, d, 1u << k);
     return pattern;
   }
 
-  /// The second cut, of the graph a first cut `first` (a pattern of
-  /// TetrahedronCuts) left, for one pattern of its vertices inside and
-  /// outside (bit v: vertex v outside; none on the plane): vertices (kept,
-  /// or the crossing on a link from a kept one to a clipped one) and links.
-  struct SecondCut
-  {
-    bool Valid = false; ///< Cut made it, in at most 12 vertices (all do: at most 10; a guard)
-    int NumberOfVertices = 0;
-    signed char From[12][2] = {};
-    signed char Next[12][3] = {};
-    signed char Back[12][3] = {};
-    TableFaces Faces;
-    bool HasFaces = false;
-  };
-
-  /// SecondCuts()[64 * first + pattern], made once by Clip's Cut on the
-  /// graphs of the table of first cuts.
-  static const SecondCut* SecondCuts()
+  /// SecondCuts()[64 * first + pattern]: the cuts of the table of first
+  /// cuts' graphs (`first` a pattern of TetrahedronCuts), for every pattern
+  /// of their 4 or 6 vertices (bit v: vertex v outside).
+  static const TableCut* SecondCuts()
   {
     struct Table
     {
-      SecondCut Cut[16 * 64];
+      TableCut Cut[16 * 64];
       Table()
       {
-        const double unit[4][4] = {};
-        TetrahedronIntersector::Cell c;
-        for (int v = 0; v < 4; ++v)
-        {
-          for (int a = 0; a < 3; ++a)
-          {
-            c.X[v][a] = a + 1 == v ? 1.0 : 0.0;
-          }
-        }
+        const TetrahedronIntersector::Cell c = ReferenceTetrahedron();
         for (unsigned first = 1; first < 15; ++first)
         {
           double sides[4][4] = {};
@@ -574,43 +589,7 @@ struct VertexGraph
             {
               d[v] = (pattern >> v) & 1u ? -1.0 : 1.0;
             }
-            VertexGraph g = one;
-            SecondCut& cut = this->Cut[64 * first + pattern];
-            if (!g.Cut(d, 2u) || g.NumberOfVertices > 12)
-            {
-              continue;
-            }
-            cut.Valid = true;
-            cut.NumberOfVertices = g.NumberOfVertices;
-            int r = 0; // Cut's order, as for the first cuts
-            for (int v = 0; v < n; ++v)
-            {
-              if (d[v] > 0.0)
-              {
-                cut.From[r][0] = static_cast<signed char>(v);
-                cut.From[r++][1] = -1;
-              }
-            }
-            for (int v = 0; v < n; ++v)
-            {
-              for (int j = 0; j < 3 && d[v] > 0.0; ++j)
-              {
-                if (d[one.Next[v][j]] < 0.0)
-                {
-                  cut.From[r][0] = static_cast<signed char>(v);
-                  cut.From[r++][1] = static_cast<signed char>(one.Next[v][j]);
-                }
-              }
-            }
-            for (int w = 0; w < g.NumberOfVertices; ++w)
-            {
-              for (int j = 0; j < 3; ++j)
-              {
-                cut.Next[w][j] = static_cast<signed char>(g.Next[w][j]);
-                cut.Back[w][j] = static_cast<signed char>(g.Back[w][j]);
-              }
-            }
-            cut.HasFaces = g.WalkFaces(cut.Faces);
+            MakeCut(one, d, 2u, this->Cut[64 * first + pattern]);
           }
         }
       }
@@ -652,11 +631,12 @@ struct VertexGraph
       this->NumberOfVertices = 0; // no volume left
       return true;
     }
-    const SecondCut& cut = SecondCuts()[64 * first + pattern];
+    const TableCut& cut = SecondCuts()[64 * first + pattern];
     if (!cut.Valid)
     {
       return false;
     }
+    // The graph before the cut, aside (the cut overwrites it).
     double x[6][3];
     unsigned on[6];
     int original[6];
@@ -666,34 +646,7 @@ struct VertexGraph
       on[v] = this->On[v];
       original[v] = this->Original[v];
     }
-    this->NumberOfVertices = cut.NumberOfVertices;
-    this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
-    for (int r = 0; r < cut.NumberOfVertices; ++r)
-    {
-      const int v = cut.From[r][0];
-      const int q = cut.From[r][1];
-      if (q < 0)
-      {
-        std::copy(x[v], x[v] + 3, this->X[r]);
-        this->On[r] = on[v];
-        this->Original[r] = original[v];
-      }
-      else
-      {
-        const double u = d[v] / (d[v] - d[q]);
-        for (int a = 0; a < 3; ++a)
-        {
-          this->X[r][a] = x[v][a] + u * (x[q][a] - x[v][a]);
-        }
-        this->On[r] = (on[v] & on[q]) | bit;
-        this->Original[r] = -1;
-      }
-      for (int j = 0; j < 3; ++j)
-      {
-        this->Next[r][j] = cut.Next[r][j];
-        this->Back[r][j] = cut.Back[r][j];
-      }
-    }
+    this->SetCut(cut, x, on, original, d, bit);
     return true;
   }
 
