@@ -132,6 +132,94 @@ TEST(Tetrahedra, RandomPairsAreSymmetricAndBounded)
   EXPECT_GT(met, 1000);
 }
 
+// Apart (the search's screen for the locator's candidates) only for cells
+// that do not meet: random pairs spread so that most miss, and pairs that
+// face each other across a plane, mirrored through a face of t and moved
+// by a few ulps either way (sides at the filter's bound).
+TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
+{
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int apart = 0;
+  int missedWithBoxesMeeting = 0;
+  int screened = 0;
+  int mirrored = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    double t[4][3];
+    double s[4][3];
+    RandomPair(rng, 1.0, t, s);
+    if (n % 2 == 0)
+    {
+      // Mirrored through face k of t (corners k+1..k+3), then moved along
+      // its normal by a few ulps of the coordinates, out or in.
+      const int k = n % 8 / 2;
+      const double* a = t[(k + 1) % 4];
+      double e1[3];
+      double e2[3];
+      double normal[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        e1[c] = t[(k + 2) % 4][c] - a[c];
+        e2[c] = t[(k + 3) % 4][c] - a[c];
+      }
+      normal[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      const double nn = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+      const double shift = std::ldexp(static_cast<double>(static_cast<int>(rng() % 9) - 4), -52);
+      for (int v = 0; v < 4; ++v)
+      {
+        double w = 0.0;
+        for (int c = 0; c < 3; ++c)
+          w += (t[v][c] - a[c]) * normal[c];
+        for (int c = 0; c < 3; ++c)
+          s[v][c] = t[v][c] - 2.0 * w / nn * normal[c] + shift * normal[c] / std::sqrt(nn);
+      }
+      ++mirrored;
+    }
+    else
+    {
+      const double offset[3] = { 1.5 * u(rng), 1.5 * u(rng), 1.5 * u(rng) };
+      for (auto& x : s)
+        for (int c = 0; c < 3; ++c)
+          x[c] += offset[c];
+    }
+    const TestMesh m = TwoTetrahedra(t, s);
+    if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
+      continue;
+    TetrahedronIntersector::Cell a;
+    TetrahedronIntersector::Cell b;
+    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
+    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+    TetrahedronIntersector::Piece p;
+    const bool metAB = TetrahedronIntersector::Intersect(a, b, p);
+    const bool metBA = TetrahedronIntersector::Intersect(b, a, p);
+    const bool split = TetrahedronIntersector::IntersectBySplitting(a, b, p);
+    const bool isApart = TetrahedronIntersector::Apart(a, b);
+    ASSERT_EQ(isApart, TetrahedronIntersector::Apart(b, a)) << n;
+    if (isApart)
+    {
+      ASSERT_FALSE(metAB || metBA || split) << "pair " << n << " meets but is called apart";
+      ++apart;
+    }
+    bool boxesMeet = true;
+    for (int c = 0; c < 3; ++c)
+      boxesMeet = boxesMeet && !(a.Box[2 * c + 1] < b.Box[2 * c] || b.Box[2 * c + 1] < a.Box[2 * c]);
+    if (!metAB && boxesMeet && n % 2)
+    {
+      ++missedWithBoxesMeeting;
+      screened += isApart;
+    }
+  }
+  EXPECT_GT(mirrored, 5000);
+  EXPECT_GT(apart, 5000);
+  // Most shifted pairs that miss although their boxes meet are screened by
+  // a face plane (the others are separated by edge directions only).
+  EXPECT_GT(missedWithBoxesMeeting, 1000);
+  EXPECT_GT(screened, missedWithBoxesMeeting / 2);
+}
+
 // The vertex-graph clipper (Intersect) against the splitting clipper
 // (IntersectBySplitting) on random pairs, a third of them sharing a corner
 // and a third sharing a face: same meeting decision, touched faces and seed

@@ -116,6 +116,42 @@ void TetrahedronIntersector::Bounds(const Cell& cell, double box[6])
   std::copy(cell.Box, cell.Box + 6, box);
 }
 
+bool TetrahedronIntersector::Apart(const Cell& t, const Cell& s)
+{
+  double size = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (t.Box[2 * c + 1] < s.Box[2 * c] || s.Box[2 * c + 1] < t.Box[2 * c])
+    {
+      return true;
+    }
+    size = std::max(
+      size, std::max(t.Box[2 * c + 1], s.Box[2 * c + 1]) - std::min(t.Box[2 * c], s.Box[2 * c]));
+  }
+  // FaceSides' filter, the same bound: a side below -bound is negative.
+  auto outside = [size](const Cell& c, const Cell& other) {
+    for (int k = 0; k < 4; ++k)
+    {
+      const double* a = c.X[(k + 1) % 4];
+      const double bound = 64.0 * RoundingUnit * c.NormalScale[k] * size;
+      bool all = true;
+      for (int v = 0; v < 4; ++v)
+      {
+        const double* x = other.X[v];
+        const double d = c.Normal[k][0] * (x[0] - a[0]) + c.Normal[k][1] * (x[1] - a[1]) +
+          c.Normal[k][2] * (x[2] - a[2]);
+        all &= d < -bound;
+      }
+      if (all)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  return outside(t, s) || outside(s, t);
+}
+
 bool TetrahedronIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
 {
   return IntersectCells(t, s, piece, true);

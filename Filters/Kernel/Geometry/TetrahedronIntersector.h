@@ -120,6 +120,14 @@ public:
    * clipper below takes over.
    */
   static bool Intersect(const Cell& t, const Cell& s, Piece& piece);
+  /**
+   * True only when the cells certainly do not meet (Intersect is then
+   * false): their boxes are disjoint, or the four corners of one lie
+   * strictly outside a face plane of the other by FaceSides' filter (so
+   * exactly). A cheap screen that stops at the first separating plane, for
+   * candidates that mostly miss (the locator's); false says nothing.
+   */
+  static bool Apart(const Cell& t, const Cell& s);
   /// The same with the reference clipper only: every plane splits every
   /// tetrahedron of the piece in at most three (slower; for tests).
   static bool IntersectBySplitting(const Cell& t, const Cell& s, Piece& piece);

@@ -74,12 +74,28 @@
 
 #include <algorithm>
 #include <functional>
+#include <type_traits>
+#include <utility>
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
 namespace mp
 {
+/// Whether the intersector screens candidates with Apart(target, source)
+/// (cells of one kind only).
+template <class Intersector, class Sources, class = void>
+struct HasApart : std::false_type
+{
+};
+template <class Intersector, class Sources>
+struct HasApart<Intersector, Sources,
+  std::enable_if_t<std::is_same<typename Intersector::Cell, typename Sources::Cell>::value,
+    decltype(void(Intersector::Apart(std::declval<const typename Intersector::Cell&>(),
+      std::declval<const typename Intersector::Cell&>())))>> : std::true_type
+{
+};
+
 /**
  * A small direct-mapped cache of prepared source cells. The front visits the
  * source cells around a region many times in a row (each about as often as
@@ -237,6 +253,17 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       if (stamp[c] != tId)
       {
         stamp[c] = tId;
+        // Most candidates miss: a cheap screen first where the geometry
+        // has one (tetrahedra), counted as the test it settles.
+        if constexpr (HasApart<Intersector, Sources>::value)
+        {
+          const SourceCell* cell = sources.Get(c);
+          if (cell && Intersector::Apart(t, *cell))
+          {
+            ++stats.IntersectionTests;
+            continue;
+          }
+        }
         inner.push_back(c);
       }
     }
