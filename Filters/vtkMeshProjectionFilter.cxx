@@ -2165,7 +2165,59 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // to 90% or more counts whole, so that a Source covered whole gives its
   // own integral exactly.
   std::map<std::pair<const mp::MortarOperator*, bool>, std::vector<double>> sourceWeights;
-  auto weightsOf = [&](const mp::MortarOperator& op, bool fromCells) -> const std::vector<double>& {
+  // On several processes each has its part of a source cell's covered
+  // measure (the pieces of its own target cells): for the rule above, which
+  // is not linear, the parts of surfaces' and curves' cells are summed over
+  // the processes (by the cells' corners' global ids) and each process
+  // takes its share of the result. (Otherwise the measures are only capped
+  // at the cell's own, which parts that do not overlap never reach.) A
+  // collective: called for every array on every process; `needed` false
+  // (the weights known) sends nothing.
+  auto coveredTotals = [&](const mp::MortarOperator& op, bool needed) {
+    std::vector<double> total;
+    if (!this->Parts)
+    {
+      return total;
+    }
+    const mp::MeshView& view = sourceMesh.View();
+    const int corners = view.CornersPerCell();
+    const mp::LargeVector<double>& covered = op.GetSourceCovered();
+    std::vector<long long> keys;
+    std::vector<double> parts;
+    std::vector<mp::Index> cells;
+    vtkDataArray* global = source->GetPointData()->GetGlobalIds();
+    if (needed && (view.IsSurfaceMesh() || view.IsCurveMesh()) && global && corners <= 3)
+    {
+      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+      {
+        if (covered[static_cast<size_t>(c)] > 0.0)
+        {
+          long long key[3] = { -1, -1, -1 };
+          for (int k = 0; k < corners; ++k)
+          {
+            key[k] = static_cast<long long>(
+              global->GetTuple1(sourceMesh.DataSetPoint(view.Cell(c)[k])));
+          }
+          std::sort(key, key + corners);
+          keys.insert(keys.end(), key, key + 3);
+          parts.push_back(covered[static_cast<size_t>(c)]);
+          cells.push_back(c);
+        }
+      }
+    }
+    const std::vector<double> sums = this->Parts->SumByKey(keys, 3, parts);
+    if (!cells.empty())
+    {
+      total.assign(static_cast<size_t>(view.NumberOfCells), 0.0);
+      for (size_t i = 0; i < cells.size(); ++i)
+      {
+        total[static_cast<size_t>(cells[i])] = sums[i];
+      }
+    }
+    return total;
+  };
+  auto weightsOf = [&](const mp::MortarOperator& op, bool fromCells,
+                     const std::vector<double>& total) -> const std::vector<double>& {
     std::vector<double>& w = sourceWeights[std::make_pair(&op, fromCells)];
     const mp::MeshView& view = sourceMesh.View();
     if (w.empty())
@@ -2191,7 +2243,15 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         {
           continue;
         }
-        m = projected && m >= 0.9 * whole ? whole : std::min(m, whole);
+        if (!total.empty() && total[static_cast<size_t>(c)] > 0.0)
+        {
+          const double all = total[static_cast<size_t>(c)];
+          m *= (all >= 0.9 * whole ? whole : std::min(all, whole)) / all;
+        }
+        else
+        {
+          m = projected && m >= 0.9 * whole ? whole : std::min(m, whole);
+        }
         if (fromCells)
         {
           w[static_cast<size_t>(view.ParentOf(c))] += m;
@@ -2259,7 +2319,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       std::vector<double> sourceIntegral(static_cast<size_t>(nc), 0.0);
       std::vector<double> targetIntegral(static_cast<size_t>(nc), 0.0);
       {
-        const std::vector<double>& w = weightsOf(op, fromCells);
+        const bool known = sourceWeights.count(std::make_pair(&op, fromCells)) > 0;
+        const std::vector<double>& w = weightsOf(op, fromCells, coveredTotals(op, !known));
         for (size_t j = 0; j < w.size(); ++j)
         {
           for (int k = 0; k < nc; ++k)

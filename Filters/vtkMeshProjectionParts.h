@@ -59,6 +59,14 @@ public:
   virtual void Sum(double* values, int count) = 0;
   /// The union over the processes (sorted).
   virtual std::vector<unsigned int> Union(const std::vector<unsigned int>& values) = 0;
+  /**
+   * Entry i of this process is keyed by keys[width * i ... width * i +
+   * width - 1] with value values[i]; returns, per entry, the sum of the
+   * values of all entries with that key on all processes (collective: every
+   * process calls it, with the same width, entries or not).
+   */
+  virtual std::vector<double> SumByKey(
+    const std::vector<long long>& keys, int width, const std::vector<double>& values) = 0;
 
   /**
    * Per dataset of Input: finds the points this process shares with others

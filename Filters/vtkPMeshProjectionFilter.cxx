@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -494,6 +495,85 @@ public:
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
     return all;
+  }
+
+  std::vector<double> SumByKey(
+    const std::vector<long long>& keys, int width, const std::vector<double>& values) override
+  {
+    // Each entry goes to the process its key hashes to, which sums the
+    // entries of each key and answers every entry, in the order received.
+    const int n = this->N;
+    const size_t w = static_cast<size_t>(width);
+    std::vector<std::vector<char>> out(static_cast<size_t>(n));
+    std::vector<std::vector<size_t>> sent(static_cast<size_t>(n));
+    for (size_t i = 0; i < values.size(); ++i)
+    {
+      std::uint64_t h = 1469598103934665603ULL;
+      for (size_t k = 0; k < w; ++k)
+      {
+        h = (h ^ static_cast<std::uint64_t>(keys[w * i + k])) * 1099511628211ULL;
+      }
+      const size_t r = static_cast<size_t>((h ^ (h >> 29)) % static_cast<std::uint64_t>(n));
+      long long bits;
+      std::memcpy(&bits, &values[i], sizeof(bits));
+      Append(out[r], keys.data() + w * i, w);
+      Append(out[r], &bits, 1);
+      sent[r].push_back(i);
+    }
+    std::vector<std::vector<char>> in = this->AllToAll(out);
+    // Received entries (process, position), sorted by key: runs of one key.
+    std::vector<std::vector<long long>> got(static_cast<size_t>(n));
+    std::vector<std::pair<int, size_t>> order;
+    for (int r = 0; r < n; ++r)
+    {
+      got[r] = Read<long long>(in[r]);
+      for (size_t j = 0; j < got[r].size() / (w + 1); ++j)
+      {
+        order.emplace_back(r, j);
+      }
+    }
+    auto keyOf = [&](const std::pair<int, size_t>& e) { return got[e.first].data() + (w + 1) * e.second; };
+    std::sort(order.begin(), order.end(), [&](const std::pair<int, size_t>& a, const std::pair<int, size_t>& b) {
+      const long long* x = keyOf(a);
+      const long long* y = keyOf(b);
+      return std::lexicographical_compare(x, x + w, y, y + w) || (std::equal(x, x + w, y) && a < b);
+    });
+    std::vector<std::vector<double>> answer(static_cast<size_t>(n));
+    for (int r = 0; r < n; ++r)
+    {
+      answer[r].resize(got[r].size() / (w + 1));
+    }
+    for (size_t a = 0; a < order.size();)
+    {
+      size_t b = a;
+      double total = 0.0;
+      for (; b < order.size() && std::equal(keyOf(order[a]), keyOf(order[a]) + w, keyOf(order[b])); ++b)
+      {
+        double v;
+        std::memcpy(&v, keyOf(order[b]) + w, sizeof(v));
+        total += v; // in (process, position) order: the same on any run
+      }
+      for (; a < b; ++a)
+      {
+        answer[order[a].first][order[a].second] = total;
+      }
+    }
+    for (int r = 0; r < n; ++r)
+    {
+      out[r].clear();
+      Append(out[r], answer[r].data(), answer[r].size());
+    }
+    in = this->AllToAll(out);
+    std::vector<double> sums(values.size(), 0.0);
+    for (int r = 0; r < n; ++r)
+    {
+      const std::vector<double> back = Read<double>(in[r]);
+      for (size_t j = 0; j < back.size() && j < sent[r].size(); ++j)
+      {
+        sums[sent[r][j]] = back[j];
+      }
+    }
+    return sums;
   }
 
   vtkSmartPointer<vtkDataSet> GatherSource(

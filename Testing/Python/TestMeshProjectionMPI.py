@@ -12,7 +12,8 @@ on points valid through slivers only gives the serial count, once.
 Partitionings:
 Redistribute DataSet (DIY), a random split of the cells, blocks in x, all
 Source on one process and all Input on another, one process without Input.
-Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds; point and
+Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds, surfaces,
+curves and traces in 3D; point and
 cell data; lumped mass; a composite Input; a time step reusing the operator.
 """
 import sys
@@ -24,7 +25,7 @@ from vtkmodules.util.misc import calldata_type
 from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdList
-from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_POLYHEDRON, VTK_TETRA, VTK_TRIANGLE,
+from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_LINE, VTK_POLYHEDRON, VTK_TETRA, VTK_TRIANGLE,
                                            vtkMultiBlockDataSet, vtkUnstructuredGrid)
 
 import mpmpi
@@ -363,6 +364,39 @@ hp.GetPointData().ShallowCopy(hs.GetPointData())
 hp.GetCellData().ShallowCopy(hs.GetCellData())
 check(hp.GetCellType(0) == VTK_POLYHEDRON, "polyhedra built")
 case("3D polyhedra Source with GlobalIds", h3, hp, "random", global_ids=True)
+
+# Surfaces and curves in 3D, and traces (a surface in a volume Source):
+# the same partitionings give the serial result too.
+def bent(g, height=0.3):
+    """A flat mesh of the unit square lifted onto z = height (x^2 + y^2)."""
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    x[:, 2] = height * (x[:, 0] ** 2 + x[:, 1] ** 2)
+    g.GetPoints().Modified()
+    return g
+
+
+def helix(n, turns, seed):
+    """n jittered segments along a helix (lines)."""
+    rng = np.random.default_rng(seed)
+    u = np.linspace(0.0, 1.0, n + 1)
+    u[1:-1] += (rng.random(n - 1) - 0.5) * 0.4 / n
+    a = 2 * np.pi * turns * u
+    points = np.stack([0.5 + 0.4 * np.cos(a), 0.5 + 0.4 * np.sin(a), u], 1)
+    cells = np.stack([np.arange(n), np.arange(1, n + 1)], 1)
+    return mpmpi.grid(points, cells, VTK_LINE)
+
+
+ts2 = with_fields(bent(triangles(30, (0, 0, 0), (1, 1, 0), 11)))
+ss2 = with_fields(bent(triangles(23, (-0.05, 0.04, 0), (0.93, 1.1, 0), 12)))
+for how in ("random", "blocks", "redistribute"):
+    case("surface " + how, ts2, ss2, how)
+tc = with_fields(helix(300, 2, 13))
+sc = with_fields(helix(217, 2, 14))
+for how in ("random", "blocks"):
+    case("curve " + how, tc, sc, how)
+tt = with_fields(bent(triangles(20, (0.1, 0.1, 0), (0.9, 0.9, 0), 15), 0.5))
+for how in ("random", "blocks"):
+    case("trace " + how, tt, s3, how)
 
 # Linear fields are exact in parallel too (P1 to P1).
 par = case("2D linear", t2, s2, "blocks")
