@@ -390,6 +390,7 @@ ts2 = with_fields(bent(triangles(30, (0, 0, 0), (1, 1, 0), 11)))
 ss2 = with_fields(bent(triangles(23, (-0.05, 0.04, 0), (0.93, 1.1, 0), 12)))
 for how in ("random", "blocks", "redistribute"):
     case("surface " + how, ts2, ss2, how)
+case("surface scaled to the Source's integral", ts2, ss2, "random", ConserveSourceIntegral=1)
 tc = with_fields(helix(300, 2, 13))
 sc = with_fields(helix(217, 2, 14))
 for how in ("random", "blocks"):
