@@ -50,6 +50,19 @@ void RandomPair(std::mt19937& rng, double scale, double (&t)[4][3], double (&s)[
       c = scale * u(rng);
 }
 
+/// The cells of TwoTetrahedra(t, s), prepared; false (skip the pair) when
+/// either has a volume below 1e-4.
+bool PreparedPair(const double t[4][3], const double s[4][3], TetrahedronIntersector::Cell& a,
+  TetrahedronIntersector::Cell& b)
+{
+  const TestMesh m = TwoTetrahedra(t, s);
+  if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
+    return false;
+  EXPECT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
+  EXPECT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+  return true;
+}
+
 double PairVolume(const double t[4][3], const double s[4][3], unsigned* touched = nullptr)
 {
   const TestMesh m = TwoTetrahedra(t, s);
@@ -185,13 +198,10 @@ TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
         for (int c = 0; c < 3; ++c)
           x[c] += offset[c];
     }
-    const TestMesh m = TwoTetrahedra(t, s);
-    if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
-      continue;
     TetrahedronIntersector::Cell a;
     TetrahedronIntersector::Cell b;
-    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
-    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+    if (!PreparedPair(t, s, a, b))
+      continue;
     TetrahedronIntersector::Piece p;
     const bool metAB = TetrahedronIntersector::Intersect(a, b, p);
     const bool metBA = TetrahedronIntersector::Intersect(b, a, p);
@@ -239,13 +249,11 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
     if (n % 3 == 1) // share a face (the source on either side of it)
       for (int k = 0; k < 3; ++k)
         std::copy(t[k], t[k] + 3, s[k]);
-    const TestMesh m = TwoTetrahedra(t, s);
-    if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
-      continue;
     TetrahedronIntersector::Cell a;
     TetrahedronIntersector::Cell b;
-    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
-    ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
+    if (!PreparedPair(t, s, a, b))
+      continue;
+    const TestMesh m = TwoTetrahedra(t, s);
     TetrahedronIntersector::Piece graph;
     TetrahedronIntersector::Piece split;
     const bool g = TetrahedronIntersector::Intersect(a, b, graph);
