@@ -454,12 +454,13 @@ TEST(TriangleIntersector, NearlyCollinearEdgesCrossAtTheirExactPlace)
 #endif
 }
 
-// A tiny triangle (size h, near the origin) across an edge or a corner of a
-// huge one (its other corners L = 1e6..1e15 h away). A crossing placed
+// A small triangle (size h, near the origin) across an edge or a corner of
+// a huge one (its other corners L = 20..1e15 h away). A crossing placed
 // along the huge edge carries an error of about the rounding unit times its
-// length, up to 10% of h at these ratios; placed along the shorter edge it
-// is within rounding of h. Both roles, against clipping the tiny triangle
-// by the huge one's lines in binary128 (exact differences at these ratios).
+// length, up to 10% of h at these ratios; placed along the shorter edge,
+// from exact orientations, it is within rounding of h. Both roles, against
+// clipping the small triangle by the huge one's lines in binary128 (exact
+// differences at these ratios).
 TEST(TriangleIntersector, TinyCellsAgainstHugeOnesKeepTheirArea)
 {
 #if !defined(__SIZEOF_FLOAT128__)
@@ -472,7 +473,7 @@ TEST(TriangleIntersector, TinyCellsAgainstHugeOnesKeepTheirArea)
   for (int n = 0; n < 20000; ++n)
   {
     const double h = std::ldexp(1.0, -40 + static_cast<int>(rng() % 80));
-    const double ratio = std::pow(10.0, 6.0 + 9.0 * unit(rng));
+    const double ratio = std::pow(10.0, 1.3 + 13.7 * unit(rng)); // 20 to 1e15
     const double L = ratio * h;
     double small[3][2];
     double huge[3][2];

@@ -215,12 +215,15 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
  * most 2 D^2) is recomputed exactly with its partner, so that each one used
  * is within about 2^-31 of its value.
  *
- * Placed along an edge, the point's error is about the rounding unit times
- * the edge's length (the error of u times it). Along the source edge c-d
- * (the usual way) that is below 2^-48 of the target's size unless the
- * source is much larger (`careful`: its box more than 16 times the
- * target's; from a huge source edge the error could exceed a tiny target
- * itself): the point is then placed along the shorter edge.
+ * Placed along an edge, the point's error is about the rounding unit u
+ * times the edge's length (the error of u times it), and the rounded
+ * orientations' errors (about u D^2) add about u D^2 / |o| of it. For
+ * cells of similar sizes both stay within rounding of the cells. For a
+ * small cell (size h) and a huge one (size L: `careful`, one box more than
+ * 16 times the other) the first is up to u L along a huge edge, and the
+ * second u L / h relative, since the orientations are about L h: both
+ * could exceed the small cell. The point is then placed along the shorter
+ * edge, from exact orientations.
  */
 inline void Crossing(const double* a, const double* b, double oa, double ob, const double* c,
   const double* d, double oc, double od, double limit, bool careful, double (&x)[2])
@@ -233,7 +236,7 @@ inline void Crossing(const double* a, const double* b, double oa, double ob, con
     std::swap(oa, oc);
     std::swap(ob, od);
   }
-  if (std::fabs(oc) < limit || std::fabs(od) < limit)
+  if (careful || std::fabs(oc) < limit || std::fabs(od) < limit)
   {
     oc = Orient2DExact(a, b, c);
     od = Orient2DExact(a, b, d);
@@ -433,10 +436,10 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   double extent = std::max(t.Box[1], s.Box[1]) - std::min(t.Box[0], s.Box[0]);
   extent = std::max(extent, std::max(t.Box[3], s.Box[3]) - std::min(t.Box[2], s.Box[2]));
   const double limit = 0x1p-19 * extent * extent;
-  // A source much larger than the target: crossings placed carefully.
+  // Cells of very different sizes: crossings placed carefully.
   const double sourceSize = std::max(s.Box[1] - s.Box[0], s.Box[3] - s.Box[2]);
   const double targetSize = std::max(t.Box[1] - t.Box[0], t.Box[3] - t.Box[2]);
-  const bool careful = sourceSize > 16.0 * targetSize;
+  const bool careful = sourceSize > 16.0 * targetSize || targetSize > 16.0 * sourceSize;
   for (int k = 0; k < 3; ++k)
   {
     for (int l = 0; l < 3; ++l)
