@@ -148,7 +148,8 @@ TEST(Tetrahedra, RandomPairsAreSymmetricAndBounded)
 // Apart (the search's screen for the locator's candidates) only for cells
 // that do not meet: random pairs spread so that most miss, and pairs that
 // face each other across a plane, mirrored through a face of t and moved
-// by a few ulps either way (sides at the filter's bound).
+// either way by up to 4 steps of 2^-52, 2^-48 or 2^-44 (sides below, at
+// and above the filter's bound).
 TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
 {
   std::mt19937 rng(29);
@@ -157,6 +158,8 @@ TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
   int missedWithBoxesMeeting = 0;
   int screened = 0;
   int mirrored = 0;
+  int mirroredApart = 0;
+  int mirroredMet = 0;
   for (int n = 0; n < 20000; ++n)
   {
     double t[4][3];
@@ -180,7 +183,10 @@ TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
       normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
       normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
       const double nn = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
-      const double shift = std::ldexp(static_cast<double>(static_cast<int>(rng() % 9) - 4), -52);
+      // Steps of 2^-52, 2^-48 or 2^-44 (the filter's bound is about 2^-47
+      // of these cells' size): sides on both sides of it.
+      const int step = -52 + 4 * static_cast<int>(rng() % 3);
+      const double shift = std::ldexp(static_cast<double>(static_cast<int>(rng() % 9) - 4), step);
       for (int v = 0; v < 4; ++v)
       {
         double w = 0.0;
@@ -213,6 +219,11 @@ TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
       ASSERT_FALSE(metAB || metBA || split) << "pair " << n << " meets but is called apart";
       ++apart;
     }
+    if (n % 2 == 0)
+    {
+      mirroredApart += isApart;
+      mirroredMet += metAB;
+    }
     bool boxesMeet = true;
     for (int c = 0; c < 3; ++c)
       boxesMeet = boxesMeet && !(a.Box[2 * c + 1] < b.Box[2 * c] || b.Box[2 * c + 1] < a.Box[2 * c]);
@@ -224,6 +235,8 @@ TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
   }
   EXPECT_GT(mirrored, 5000);
   EXPECT_GT(apart, 5000);
+  EXPECT_GT(mirroredApart, 500); // moved out beyond the bound
+  EXPECT_GT(mirroredMet, 500);   // moved in enough to meet
   // Most shifted pairs that miss although their boxes meet are screened by
   // a face plane (the others are separated by edge directions only).
   EXPECT_GT(missedWithBoxesMeeting, 1000);
