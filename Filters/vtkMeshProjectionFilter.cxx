@@ -2192,20 +2192,31 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       {
         if (covered[static_cast<size_t>(c)] > 0.0)
         {
-          long long key[3] = { -1, -1, -1 };
+          // The corners' global ids, sorted, and the parity of that sort:
+          // a cell is the same on every process, and two cells on the same
+          // corners in opposite orientations (a curve going back along
+          // itself, a two-sided surface) stay apart.
+          long long key[4] = { -1, -1, -1, 0 };
           for (int k = 0; k < corners; ++k)
           {
             key[k] = static_cast<long long>(
               global->GetTuple1(sourceMesh.DataSetPoint(view.Cell(c)[k])));
           }
+          for (int k = 0; k < corners; ++k)
+          {
+            for (int j = k + 1; j < corners; ++j)
+            {
+              key[3] ^= key[k] > key[j] ? 1 : 0;
+            }
+          }
           std::sort(key, key + corners);
-          keys.insert(keys.end(), key, key + 3);
+          keys.insert(keys.end(), key, key + 4);
           parts.push_back(covered[static_cast<size_t>(c)]);
           cells.push_back(c);
         }
       }
     }
-    const std::vector<double> sums = this->Parts->SumByKey(keys, 3, parts);
+    const std::vector<double> sums = this->Parts->SumByKey(keys, 4, parts);
     if (!cells.empty())
     {
       total.assign(static_cast<size_t>(view.NumberOfCells), 0.0);

@@ -25,7 +25,7 @@ from vtkmodules.util.misc import calldata_type
 from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdList
-from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_LINE, VTK_POLYHEDRON, VTK_TETRA, VTK_TRIANGLE,
+from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_LINE, VTK_POLYHEDRON, VTK_QUAD, VTK_TETRA, VTK_TRIANGLE,
                                            vtkMultiBlockDataSet, vtkUnstructuredGrid)
 
 import mpmpi
@@ -391,6 +391,20 @@ ss2 = with_fields(bent(triangles(23, (-0.05, 0.04, 0), (0.93, 1.1, 0), 12)))
 for how in ("random", "blocks", "redistribute"):
     case("surface " + how, ts2, ss2, how)
 case("surface scaled to the Source's integral", ts2, ss2, "random", ConserveSourceIntegral=1)
+for how in ("apart", "empty"):
+    case("surface " + how, ts2, ss2, how)
+
+
+def quads(n, lo, hi, seed):
+    """A jittered n x n grid of quads (split into triangles by the filter)."""
+    x = mpmpi.structured(n, lo, hi, 2, seed)
+    v = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
+    cells = np.stack([v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()], 1)
+    return mpmpi.grid(x, cells, VTK_QUAD)
+
+
+sq = with_fields(bent(quads(17, (-0.05, 0.04, 0), (0.93, 1.1, 0), 16)))
+case("surface of quads as Source", ts2, sq, "random")
 tc = with_fields(helix(300, 2, 13))
 sc = with_fields(helix(217, 2, 14))
 for how in ("random", "blocks"):
