@@ -1539,7 +1539,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   auto progress = [&run](double f) { return run.Progress(run.From + run.Span * f); };
   // On several processes: each projects onto its part of the dataset, which
   // first learns the points it shares (and gets global point ids). The
-  // processes then agree twice per leaf, before the operators are built
+  // processes then agree three times per leaf: whether it is a surface
+  // (any process's parts out of one plane), before the operators are built
   // (whether all can keep theirs) and before the solve (whether all built
   // theirs); a process that fails earlier takes part in the rounds left,
   // with its reason, so that all stop together.
@@ -1555,7 +1556,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     return this->Parts ? this->Parts->Agree(why, flag) : why;
   };
   auto fail = [&](const std::string& why) {
-    while (this->Parts && rounds < 2)
+    while (this->Parts && rounds < 3)
     {
       agree(why);
     }
@@ -1622,6 +1623,17 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     trace = true;
   }
+  // A 2D leaf is a surface in 3D when either mesh leaves one plane; on
+  // several processes when it does on any (a process whose parts happen to
+  // be planar, e.g. one face of a box, projects as the serial run does).
+  bool planar = trace || targetMesh.Dimension() != 2 || !(targetMesh.Surface() || sourceMesh.Surface());
+  {
+    const std::string elsewhere = agree(std::string(), &planar);
+    if (!elsewhere.empty())
+    {
+      return fail(elsewhere);
+    }
+  }
   if (trace)
   {
     if (targetMesh.Dimension() == 2)
@@ -1649,8 +1661,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       sourceMesh.UseFrame(plane);
     }
   }
-  else if (targetMesh.Dimension() == 1 ||
-    (targetMesh.Dimension() == 2 && (targetMesh.Surface() || sourceMesh.Surface())))
+  else if (targetMesh.Dimension() == 1 || (targetMesh.Dimension() == 2 && !planar))
   {
     // A curve, or a surface in 3D: both meshes are seen as they are (a
     // planar surface too).

@@ -405,6 +405,20 @@ def quads(n, lo, hi, seed):
 
 sq = with_fields(bent(quads(17, (-0.05, 0.04, 0), (0.93, 1.1, 0), 16)))
 case("surface of quads as Source", ts2, sq, "random")
+
+
+def folded(g):
+    """Flat for x < 0.6, bent up beyond: in blocks, the first process's parts
+    of both meshes lie in one plane, the last's do not."""
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    x[:, 2] = np.where(x[:, 0] > 0.6, 0.8 * (x[:, 0] - 0.6) ** 2, 0.0)
+    g.GetPoints().Modified()
+    return g
+
+
+tf = with_fields(folded(triangles(30, (0, 0, 0), (1, 1, 0), 17)))
+sf = with_fields(folded(triangles(23, (-0.043, 0.031, 0), (0.97, 1.07, 0), 18)))
+case("surface flat on one process", tf, sf, "blocks")
 tc = with_fields(helix(300, 2, 13))
 sc = with_fields(helix(217, 2, 14))
 for how in ("random", "blocks"):
