@@ -2265,15 +2265,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         {
           continue;
         }
-        if (!total.empty() && total[static_cast<size_t>(c)] > 0.0)
-        {
-          const double all = total[static_cast<size_t>(c)];
-          m *= (all >= 0.9 * whole ? whole : std::min(all, whole)) / all;
-        }
-        else
-        {
-          m = projected && m >= 0.9 * whole ? whole : std::min(m, whole);
-        }
+        // The rule: a cell covered to 90% counts whole (surfaces, curves).
+        auto counted = [&](double cover) {
+          return projected && cover >= 0.9 * whole ? whole : std::min(cover, whole);
+        };
+        // With the processes' total cover `all`: this process's share of it.
+        const double all = total.empty() ? 0.0 : total[static_cast<size_t>(c)];
+        m = all > 0.0 ? m * (counted(all) / all) : counted(m);
         if (fromCells)
         {
           w[static_cast<size_t>(view.ParentOf(c))] += m;

@@ -345,18 +345,21 @@ struct PointKey
   double X[3];
   bool operator==(const PointKey& o) const { return std::memcmp(this->X, o.X, sizeof X) == 0; }
 };
+/// FNV-1a over bytes.
+std::uint64_t Fnv1a(const void* data, size_t bytes)
+{
+  std::uint64_t h = 1469598103934665603ull;
+  const unsigned char* b = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < bytes; ++i)
+  {
+    h = (h ^ b[i]) * 1099511628211ull;
+  }
+  return h;
+}
+
 struct PointKeyHash
 {
-  size_t operator()(const PointKey& k) const
-  {
-    std::uint64_t h = 1469598103934665603ull;
-    const unsigned char* b = reinterpret_cast<const unsigned char*>(k.X);
-    for (size_t i = 0; i < sizeof k.X; ++i)
-    {
-      h = (h ^ b[i]) * 1099511628211ull;
-    }
-    return static_cast<size_t>(h);
-  }
+  size_t operator()(const PointKey& k) const { return static_cast<size_t>(Fnv1a(k.X, sizeof k.X)); }
 };
 
 PointKey KeyOf(const double* x)
@@ -508,11 +511,7 @@ public:
     std::vector<std::vector<size_t>> sent(static_cast<size_t>(n));
     for (size_t i = 0; i < values.size(); ++i)
     {
-      std::uint64_t h = 1469598103934665603ULL;
-      for (size_t k = 0; k < w; ++k)
-      {
-        h = (h ^ static_cast<std::uint64_t>(keys[w * i + k])) * 1099511628211ULL;
-      }
+      const std::uint64_t h = Fnv1a(keys.data() + w * i, w * sizeof(long long));
       const size_t r = static_cast<size_t>((h ^ (h >> 29)) % static_cast<std::uint64_t>(n));
       long long bits;
       std::memcpy(&bits, &values[i], sizeof(bits));

@@ -395,15 +395,8 @@ for how in ("apart", "empty"):
     case("surface " + how, ts2, ss2, how)
 
 
-def quads(n, lo, hi, seed):
-    """A jittered n x n grid of quads (split into triangles by the filter)."""
-    x = mpmpi.structured(n, lo, hi, 2, seed)
-    v = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
-    cells = np.stack([v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()], 1)
-    return mpmpi.grid(x, cells, VTK_QUAD)
-
-
-sq = with_fields(bent(quads(17, (-0.05, 0.04, 0), (0.93, 1.1, 0), 16)))
+# Quads, split into triangles by the filter on every process alike.
+sq = with_fields(bent(mpmpi.grid(*mpmpi.quads(17, (-0.05, 0.04, 0), (0.93, 1.1, 0), 16), VTK_QUAD)))
 case("surface of quads as Source", ts2, sq, "random")
 
 

@@ -87,12 +87,17 @@ def structured(n, lo, hi, dim, seed, jitter=0.25):
     return x
 
 
-def triangles(n, lo, hi, seed, jitter=0.25):
-    """Points and triangles (two per square) of a jittered n x n grid."""
+def quads(n, lo, hi, seed, jitter=0.25):
+    """Points and quads of a jittered n x n grid."""
     x = structured(n, lo, hi, 2, seed, jitter)
     v = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
-    a, b, c, d = v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()
-    return x, np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
+    return x, np.stack([v[:-1, :-1].ravel(), v[1:, :-1].ravel(), v[1:, 1:].ravel(), v[:-1, 1:].ravel()], 1)
+
+
+def triangles(n, lo, hi, seed, jitter=0.25):
+    """Points and triangles (two per square) of a jittered n x n grid."""
+    x, q = quads(n, lo, hi, seed, jitter)
+    return x, np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
 
 
 def _cube_corners(n):
