@@ -1159,9 +1159,18 @@ int vtkMeshProjectionFilter::Execute(
       (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
   }
   this->InputTime += Lap(run.Stage);
-  if (!run.Progress(0.05))
   {
-    return aborted();
+    // A stop (the abort flag) is local: on several processes all stop
+    // together, at the points where they agree, or none waits for the others.
+    bool go = run.Progress(0.05);
+    if (this->Parts)
+    {
+      this->Parts->Agree(std::string(), &go);
+    }
+    if (!go)
+    {
+      return aborted();
+    }
   }
 
   // 3. Each dataset of Input: its own projection (one system per leaf).
@@ -1269,7 +1278,8 @@ int vtkMeshProjectionFilter::Execute(
     vtkSmartPointer<vtkDataObject> leafPieces;
     const std::string why =
       this->ProjectLeaf(target, out, run, kept.Leaves[leaves[i].FlatIndex], leaves[i].Name, leafPieces);
-    if (why == "stopped")
+    // (Stopped on this process, or on another: "stopped (on process k)".)
+    if (why == "stopped" || why.rfind("stopped (on process ", 0) == 0)
     {
       return aborted();
     }
@@ -1487,6 +1497,105 @@ void vtkMeshProjectionFilter::WarnLeftOut(const mpvtk::SimplexMesh& mesh, const 
   }
 }
 
+std::string vtkMeshProjectionFilter::AgreeOnShape(mpvtk::SimplexMesh& target,
+  mpvtk::SimplexMesh& source, const std::string& role, bool& trace, bool& planar)
+{
+  // Each process sees only its parts of the meshes. What the serial filter
+  // decides from the whole meshes is decided here from every process's
+  // parts, gathered (each process's values in its own slot of a sum):
+  // - a trace (a surface or curve inside a volume): a process without
+  //   Input or Source cells cannot tell one; it takes the others' word and
+  //   their dimensions, so that every process makes the same outputs;
+  // - a 2D leaf lies in one plane only when every process's parts of each
+  //   mesh lie in one and the same plane (each process's may be flat in a
+  //   plane of its own: separate sheets, split by blocks); else the leaf is
+  //   a surface everywhere, as in the serial run.
+  constexpr int PerMesh = 7; // has cells, dimension, normal, offset, tolerance
+  constexpr int Width = 1 + 2 * PerMesh;
+  const int size = this->Parts->Size();
+  std::vector<double> all(static_cast<size_t>(size) * Width, 0.0);
+  double* mine = all.data() + static_cast<size_t>(this->Parts->Rank()) * Width;
+  mpvtk::SimplexMesh* meshes[2] = { &target, &source };
+  mine[0] = trace ? 1.0 : 0.0;
+  for (int m = 0; m < 2; ++m)
+  {
+    double* at = mine + 1 + PerMesh * m;
+    const mp::PlaneFrame& plane = meshes[m]->OwnPlane();
+    at[0] = meshes[m]->View().NumberOfCells > 0 ? 1.0 : 0.0;
+    at[1] = meshes[m]->Dimension();
+    std::copy(plane.GetNormal(), plane.GetNormal() + 3, at + 2);
+    at[5] = plane.Offset();
+    at[6] = plane.Tolerance();
+  }
+  this->Parts->Sum(all.data(), static_cast<int>(all.size()));
+  bool anyTrace = false;
+  int dimension[2] = { 0, 0 }; // of each mesh's cells, where a process has some
+  for (int p = 0; p < size; ++p)
+  {
+    const double* at = all.data() + static_cast<size_t>(p) * Width;
+    anyTrace = anyTrace || at[0] != 0.0;
+    for (int m = 0; m < 2; ++m)
+    {
+      if (at[1 + PerMesh * m] != 0.0)
+      {
+        dimension[m] = std::max(dimension[m], static_cast<int>(at[2 + PerMesh * m]));
+      }
+    }
+  }
+  if (anyTrace && !trace)
+  {
+    if (target.View().NumberOfCells > 0 && source.View().NumberOfCells > 0)
+    {
+      return role + " and Source have cells of the same dimension on process " +
+        std::to_string(this->Parts->Rank()) + " but not on others: each mesh's cells must be of one "
+        "dimension on every process.";
+    }
+    trace = true;
+    planar = true; // (as for a trace on one process: never a surface leaf)
+    for (int m = 0; m < 2; ++m)
+    {
+      if (meshes[m]->View().NumberOfCells == 0 && dimension[m] > 0)
+      {
+        meshes[m]->SetDimension(dimension[m]);
+      }
+    }
+    return std::string();
+  }
+  if (trace || !planar || target.Dimension() != 2)
+  {
+    return std::string();
+  }
+  // Planes: the same when parallel (normals within 1e-9 rad, as
+  // PlaneFrame::IsParallel) and within the larger tolerance of each other.
+  auto same = [](const double* a, const double* b) {
+    const double* n = a + 2;
+    const double* k = b + 2;
+    const double c[3] = { n[1] * k[2] - n[2] * k[1], n[2] * k[0] - n[0] * k[2],
+      n[0] * k[1] - n[1] * k[0] };
+    if (!(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] <= 1e-18))
+    {
+      return false;
+    }
+    const bool flipped = n[0] * k[0] + n[1] * k[1] + n[2] * k[2] < 0.0;
+    return std::fabs(a[5] - (flipped ? -b[5] : b[5])) <= std::max(a[6], b[6]);
+  };
+  for (int m = 0; m < 2 && planar; ++m)
+  {
+    const double* first = nullptr;
+    for (int p = 0; p < size && planar; ++p)
+    {
+      const double* at = all.data() + static_cast<size_t>(p) * Width + 1 + PerMesh * m;
+      if (at[0] == 0.0)
+      {
+        continue;
+      }
+      planar = first ? same(first, at) : true;
+      first = first ? first : at;
+    }
+  }
+  return std::string();
+}
+
 namespace
 {
 /**
@@ -1632,6 +1741,17 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     if (!elsewhere.empty())
     {
       return fail(elsewhere);
+    }
+  }
+  if (this->Parts)
+  {
+    // The rest of what the serial filter sees in the whole meshes: every
+    // process here (all passed the round above) gathers every process's
+    // dimensions and planes, and all decide alike.
+    const std::string why = this->AgreeOnShape(targetMesh, sourceMesh, role, trace, planar);
+    if (!why.empty())
+    {
+      return fail(why);
     }
   }
   if (trace)
@@ -2135,7 +2255,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     keep(targetMesh, kept.TargetPoints);
     keep(sourceMesh, kept.SourcePoints);
   }
-  if (!progress(0.95))
+  // On several processes the outputs are written in step (sums over them):
+  // a stop now (after the last agreement) waits for the next leaf's.
+  if (!progress(0.95) && !this->Parts)
   {
     return "stopped";
   }

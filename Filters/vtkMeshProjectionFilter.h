@@ -582,6 +582,10 @@ private:
   std::string ProjectLeaf(vtkDataSet* target, vtkDataSet* output, Execution& run, Leaf& kept,
     const std::string& name, vtkSmartPointer<vtkDataObject>& pieces);
   void WarnLeftOut(const mpvtk::SimplexMesh& mesh, const std::string& role);
+  /// On several processes: decides, alike on all, what only the whole
+  /// meshes show (see the definition). Collective.
+  std::string AgreeOnShape(mpvtk::SimplexMesh& target, mpvtk::SimplexMesh& source,
+    const std::string& role, bool& trace, bool& planar);
   /// Groups the arrays of an association with NaN or infinite values by the
   /// Source cells they leave out (Execution's Holes), and warns.
   void FindNonFinite(Execution& run, int association);

@@ -14,7 +14,8 @@ Redistribute DataSet (DIY), a random split of the cells, blocks in x, all
 Source on one process and all Input on another, one process without Input.
 Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds, surfaces,
 curves and traces in 3D; point and
-cell data; lumped mass; a composite Input; a time step reusing the operator.
+cell data; lumped mass; a composite Input; a time step reusing the operator;
+a run stopped on one process only (no process waits for it).
 """
 import sys
 
@@ -412,12 +413,32 @@ def folded(g):
 tf = with_fields(folded(triangles(30, (0, 0, 0), (1, 1, 0), 17)))
 sf = with_fields(folded(triangles(23, (-0.043, 0.031, 0), (0.97, 1.07, 0), 18)))
 case("surface flat on one process", tf, sf, "blocks")
+
+
+def sheets(n, inset, seed):
+    """One flat sheet per process, side by side in x with gaps between, each
+    in a plane of its own (slope and height of its own): in blocks, every
+    process's parts of both meshes are flat, each in another plane, while
+    the whole meshes are a surface."""
+    points, cells = [], []
+    for k in range(size):
+        x, c = mpmpi.triangles(n, (k / size + inset, inset, 0), ((k + 1) / size - inset, 1 - inset, 0), seed + k)
+        x[:, 2] = 0.4 * (k + 1) * (x[:, 0] - k / size) + 0.1 * k
+        cells.append(c + sum(len(p) for p in points))
+        points.append(x)
+    return mpmpi.grid(np.concatenate(points), np.concatenate(cells), VTK_TRIANGLE)
+
+
+case("surface of sheets flat in planes of their own", with_fields(sheets(9, 0.06, 21)),
+     with_fields(sheets(7, 0.04, 31)), "blocks")
 tc = with_fields(helix(300, 2, 13))
 sc = with_fields(helix(217, 2, 14))
 for how in ("random", "blocks"):
     case("curve " + how, tc, sc, how)
 tt = with_fields(bent(triangles(20, (0.1, 0.1, 0), (0.9, 0.9, 0), 15), 0.5))
-for how in ("random", "blocks"):
+# "apart", "empty": processes without Input or Source cells, which cannot
+# see the trace themselves, make the same outputs as the others.
+for how in ("random", "blocks", "apart", "empty"):
     case("trace " + how, tt, s3, how)
 
 # Linear fields are exact in parallel too (P1 to P1).
@@ -484,6 +505,36 @@ for role in ("Source", "Input"):
         out = spoilt.GetOutputDataObject(0)
         check(out is not None and out.GetPointData().GetArray("vtkValidPointMask") is None,
               "corrupt %s: nothing projected" % role)
+
+# Stopped on one process only (AbortExecute, as the GUI's stop sets it),
+# at several points of a composite Input's run: no process waits for the
+# others, and all give the same kind of output (Input as it came, or all
+# projected when the stop came too late to matter).
+lt = split(numbered(t2), "random", "input")
+ls = split(s2, "random", "source")
+y = centres(lt)[:, 1] if lt.GetNumberOfCells() else np.zeros(0)
+blocks = vtkMultiBlockDataSet()
+blocks.SetNumberOfBlocks(3)
+for b, keep in enumerate((y < 0.3, (y >= 0.3) & (y < 0.7), y >= 0.7)):
+    blocks.SetBlock(b, extract(lt, keep) if lt.GetNumberOfCells() else vtkUnstructuredGrid())
+for at in (0.01, 0.06, 0.2, 0.36, 0.5, 0.62, 0.9, 0.97):
+    stopped = meshprojection.vtkPMeshProjectionFilter()
+
+    def stop(obj, event, at=at):
+        if rank == size - 1 and obj.GetProgress() >= at:
+            obj.SetAbortExecute(1)
+
+    stopped.AddObserver("ProgressEvent", stop)
+    stopped.SetInputData(blocks)
+    stopped.SetSourceData(ls)
+    stopped.Update()
+    out = stopped.GetOutputDataObject(0)
+    projected = [out.GetBlock(b) is not None and out.GetBlock(b).GetPointData().GetArray("vtkValidPointMask") is not None
+                 and out.GetBlock(b).GetNumberOfCells() > 0 for b in range(3)]
+    kinds = allgather([float(any(projected))])
+    check(len({int(v[0]) for v in kinds}) == 1,
+          "stopped at %g on the last process: projected on processes %s" % (at, [int(v[0]) for v in kinds]))
+    check(at > 0.9 or not any(int(v[0]) for v in kinds), "stopped at %g: nothing projected" % at)
 
 # Global statistics: totals over the processes.
 check(f.GetGlobalNumberOfIntersections() >= f.GetNumberOfIntersections(), "global pieces >= local")
