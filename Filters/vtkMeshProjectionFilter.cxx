@@ -969,11 +969,6 @@ int vtkMeshProjectionFilter::Execute(
     failed = std::string("Source is a ") + sourceObject->GetClassName() +
       ": a dataset or a composite dataset is needed.";
   }
-  if (failed.empty() && this->Parts && this->PreserveBounds)
-  {
-    failed = "PreserveBounds is not available on several processes yet (its clipping needs "
-             "the whole rows of M_ts): turn it off, or run on one process.";
-  }
   if (this->Parts && failed.empty())
   {
     // The gathering reads every cell of Source and of Input's blocks before

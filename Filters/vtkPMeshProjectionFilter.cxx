@@ -580,6 +580,10 @@ public:
   vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
   mp::SolverHooks Hooks(bool points, mp::Index rows,
     const std::function<vtkIdType(mp::Index)>& dataSetPoint) override;
+  /// The hooks' Exchange: completes the shared rows of v (rows x width) with
+  /// the parts' sum, in the order of their processes (the same value
+  /// everywhere, bit for bit), or with their minimum.
+  void Complete(double* v, int width, bool minimum);
 
 private:
   /// Every process sends out[r] to process r; returns what each sent here.
@@ -1335,6 +1339,87 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
   return copy;
 }
 
+void MPIParts::Complete(double* v, int width, bool minimum)
+{
+  auto combine = [minimum](double& into, double value) {
+    into = minimum ? std::min(into, value) : into + value;
+  };
+  // Copies of one point here: combined into its first copy (in row order).
+  for (const std::vector<mp::Index>& rows : this->Copies)
+  {
+    for (size_t j = 1; j < rows.size(); ++j)
+    {
+      for (int c = 0; c < width; ++c)
+      {
+        combine(v[rows[0] * width + c], v[rows[j] * width + c]);
+      }
+    }
+  }
+  const size_t k = this->Neighbours.size();
+  std::vector<std::vector<double>> send(k), recv(k);
+  for (size_t i = 0; i < k; ++i)
+  {
+    send[i].reserve(this->Rows[i].size() * width);
+    for (mp::Index f : this->Rows[i])
+    {
+      send[i].insert(send[i].end(), v + f * width, v + (f + 1) * width);
+    }
+    recv[i].resize(send[i].size());
+  }
+  this->Swap(this->Neighbours, send, recv);
+  // Each shared row: the parts combined in the order of their processes,
+  // from 0, on every process alike (the same value everywhere, bit for bit).
+  std::unordered_map<mp::Index, size_t> slot;
+  slot.reserve(this->SharedRows.size());
+  std::vector<double> own(this->SharedRows.size() * width);
+  std::vector<double> sum(own.size(), minimum ? std::numeric_limits<double>::infinity() : 0.0);
+  for (size_t s = 0; s < this->SharedRows.size(); ++s)
+  {
+    slot[this->SharedRows[s]] = s;
+    std::copy(v + this->SharedRows[s] * width, v + (this->SharedRows[s] + 1) * width,
+      own.begin() + s * width);
+  }
+  bool mineAdded = false;
+  auto addOwn = [&]() {
+    for (size_t e = 0; e < own.size(); ++e)
+    {
+      combine(sum[e], own[e]);
+    }
+    mineAdded = true;
+  };
+  for (size_t i = 0; i < k; ++i)
+  {
+    if (!mineAdded && this->Neighbours[i] > this->Me)
+    {
+      addOwn();
+    }
+    for (size_t j = 0; j < this->Rows[i].size(); ++j)
+    {
+      const size_t s = slot[this->Rows[i][j]];
+      for (int c = 0; c < width; ++c)
+      {
+        combine(sum[s * width + c], recv[i][j * width + c]);
+      }
+    }
+  }
+  if (!mineAdded)
+  {
+    addOwn();
+  }
+  for (size_t s = 0; s < this->SharedRows.size(); ++s)
+  {
+    std::copy(sum.begin() + s * width, sum.begin() + (s + 1) * width,
+      v + this->SharedRows[s] * width);
+  }
+  for (const std::vector<mp::Index>& rows : this->Copies)
+  {
+    for (size_t j = 1; j < rows.size(); ++j)
+    {
+      std::copy(v + rows[0] * width, v + (rows[0] + 1) * width, v + rows[j] * width);
+    }
+  }
+  }
+
 mp::SolverHooks MPIParts::Hooks(
   bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint)
 {
@@ -1386,81 +1471,8 @@ mp::SolverHooks MPIParts::Hooks(
   this->SharedRows.erase(
     std::unique(this->SharedRows.begin(), this->SharedRows.end()), this->SharedRows.end());
   hooks.Counted = this->Counted.data();
-  hooks.Exchange = [this](double* v, int width) {
-    // Copies of one point here: summed into its first copy (in row order).
-    for (const std::vector<mp::Index>& rows : this->Copies)
-    {
-      for (size_t j = 1; j < rows.size(); ++j)
-      {
-        for (int c = 0; c < width; ++c)
-        {
-          v[rows[0] * width + c] += v[rows[j] * width + c];
-        }
-      }
-    }
-    const size_t k = this->Neighbours.size();
-    std::vector<std::vector<double>> send(k), recv(k);
-    for (size_t i = 0; i < k; ++i)
-    {
-      send[i].reserve(this->Rows[i].size() * width);
-      for (mp::Index f : this->Rows[i])
-      {
-        send[i].insert(send[i].end(), v + f * width, v + (f + 1) * width);
-      }
-      recv[i].resize(send[i].size());
-    }
-    this->Swap(this->Neighbours, send, recv);
-    // Each shared row: the parts summed in the order of their processes,
-    // from 0, on every process alike (the same value everywhere, bit for bit).
-    std::unordered_map<mp::Index, size_t> slot;
-    slot.reserve(this->SharedRows.size());
-    std::vector<double> own(this->SharedRows.size() * width), sum(own.size(), 0.0);
-    for (size_t s = 0; s < this->SharedRows.size(); ++s)
-    {
-      slot[this->SharedRows[s]] = s;
-      std::copy(v + this->SharedRows[s] * width, v + (this->SharedRows[s] + 1) * width,
-        own.begin() + s * width);
-    }
-    bool mineAdded = false;
-    auto addOwn = [&]() {
-      for (size_t e = 0; e < own.size(); ++e)
-      {
-        sum[e] += own[e];
-      }
-      mineAdded = true;
-    };
-    for (size_t i = 0; i < k; ++i)
-    {
-      if (!mineAdded && this->Neighbours[i] > this->Me)
-      {
-        addOwn();
-      }
-      for (size_t j = 0; j < this->Rows[i].size(); ++j)
-      {
-        const size_t s = slot[this->Rows[i][j]];
-        for (int c = 0; c < width; ++c)
-        {
-          sum[s * width + c] += recv[i][j * width + c];
-        }
-      }
-    }
-    if (!mineAdded)
-    {
-      addOwn();
-    }
-    for (size_t s = 0; s < this->SharedRows.size(); ++s)
-    {
-      std::copy(sum.begin() + s * width, sum.begin() + (s + 1) * width,
-        v + this->SharedRows[s] * width);
-    }
-    for (const std::vector<mp::Index>& rows : this->Copies)
-    {
-      for (size_t j = 1; j < rows.size(); ++j)
-      {
-        std::copy(v + rows[0] * width, v + (rows[0] + 1) * width, v + rows[j] * width);
-      }
-    }
-  };
+  hooks.Exchange = [this](double* v, int width) { this->Complete(v, width, false); };
+  hooks.ExchangeMinimum = [this](double* v, int width) { this->Complete(v, width, true); };
   return hooks;
 }
 } // namespace

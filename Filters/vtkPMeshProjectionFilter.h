@@ -23,8 +23,8 @@
  * the output arrays, the masks and covered fractions, the intersection
  * outputs, and the superclass's statistics; the field data integrals
  * (SourceIntegral_, TargetIntegral_) and the Global... statistics here are
- * totals over the processes. PreserveBounds is not available on several
- * processes yet (an error says so).
+ * totals over the processes. PreserveBounds too gives the serial result
+ * (each point's bounds completed across the processes that share it).
  *
  * With one process (or no controller) it is the serial filter, as
  * vtkPResampleWithDataSet is vtkResampleWithDataSet's. The controller is the

@@ -40,6 +40,9 @@ struct SolverHooks
   std::function<void(double* values, int count)> Reduce;
   /// Completes the rows shared with other parts in `vectors` (rows x width).
   std::function<void(double* vectors, int width)> Exchange;
+  /// As Exchange, with the smallest of the parts' values instead of their
+  /// sum (the bounds of PreserveBounds); may be null where Exchange is.
+  std::function<void(double* vectors, int width)> ExchangeMinimum;
   /// Per row: 1 when this part counts it in dot products (null: every row).
   const char* Counted = nullptr;
 };

@@ -416,13 +416,17 @@ namespace
 /**
  * Clip and assured sum on column `k` of x (rows x c): each valid value into
  * [low_i, high_i], then the difference to `total` (sum of w_i x_i wanted)
- * spread in proportion to w_i times the room left.
+ * spread in proportion to w_i times the room left. On a distributed system
+ * the sums are over the rows each part counts, summed over the parts (`w`,
+ * `low`, `high` and x complete in shared rows, so every part clips them
+ * alike).
  */
 void ClipAndAssuredSum(double* x, int c, int k, const std::vector<double>& w,
   const std::vector<char>& valid, const std::vector<double>& low, const std::vector<double>& high,
-  double total)
+  double total, const SolverHooks& hooks)
 {
   const Index n = static_cast<Index>(w.size());
+  const char* counted = hooks.Counted;
   double clipped = 0.0;
   for (Index i = 0; i < n; ++i)
   {
@@ -430,17 +434,25 @@ void ClipAndAssuredSum(double* x, int c, int k, const std::vector<double>& w,
     {
       double& v = x[i * c + k];
       v = std::min(high[i], std::max(low[i], v));
-      clipped += w[i] * v;
+      clipped += !counted || counted[i] ? w[i] * v : 0.0;
     }
+  }
+  if (hooks.Reduce)
+  {
+    hooks.Reduce(&clipped, 1);
   }
   const double missing = total - clipped;
   double room = 0.0;
   for (Index i = 0; i < n; ++i)
   {
-    if (valid[i])
+    if (valid[i] && (!counted || counted[i]))
     {
       room += w[i] * (missing > 0 ? high[i] - x[i * c + k] : x[i * c + k] - low[i]);
     }
+  }
+  if (hooks.Reduce)
+  {
+    hooks.Reduce(&room, 1);
   }
   if (!(room > 0.0) || missing == 0.0)
   {
@@ -537,11 +549,20 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   }
   if (ok && options.Bounded && options.Mass == MassType::Consistent)
   {
-    if (!this->HasMixedMass() || hooks.Exchange || hooks.Reduce)
+    if (!this->HasMixedMass() || (hooks.Exchange && !hooks.ExchangeMinimum))
     {
-      return false; // local bounds need M_ts's rows (serial systems)
+      return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
+    }
+    // Each row's bounds: the Source values of its columns (a shared row's
+    // columns are spread over the parts: their extremes, completed). The
+    // weights: M_tt's row sums, completed like the right-hand sides.
+    std::vector<double> weights(this->RowSums);
+    if (hooks.Exchange)
+    {
+      hooks.Exchange(weights.data(), 1);
     }
     std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
+    std::vector<double> extremes(hooks.ExchangeMinimum ? 2 * static_cast<size_t>(n) : 0);
     for (int k = 0; k < components; ++k)
     {
       double total = 0.0;
@@ -557,12 +578,31 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
         }
         low[i] = lo;
         high[i] = hi;
-        if (this->Valid[i])
+        if (this->Valid[i] && (!hooks.Counted || hooks.Counted[i]))
         {
           total += rhs[i * components + k]; // sum_i (M_ts u_s)_i = int u_s over the covered part
         }
       }
-      ClipAndAssuredSum(targetValues, components, k, this->RowSums, this->Valid, low, high, total);
+      if (hooks.Reduce)
+      {
+        hooks.Reduce(&total, 1);
+      }
+      if (hooks.ExchangeMinimum)
+      {
+        // The largest as the smallest of the negated values.
+        for (Index i = 0; i < n; ++i)
+        {
+          extremes[2 * i] = low[i];
+          extremes[2 * i + 1] = -high[i];
+        }
+        hooks.ExchangeMinimum(extremes.data(), 2);
+        for (Index i = 0; i < n; ++i)
+        {
+          low[i] = extremes[2 * i];
+          high[i] = -extremes[2 * i + 1];
+        }
+      }
+      ClipAndAssuredSum(targetValues, components, k, weights, this->Valid, low, high, total, hooks);
     }
   }
   for (Index i = 0; i < n; ++i)
