@@ -2303,18 +2303,20 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // (the weights known) sends nothing.
   auto coveredTotals = [&](const mp::MortarOperator& op, bool needed) {
     std::vector<double> total;
-    if (!this->Parts)
+    const mp::MeshView& view = sourceMesh.View();
+    // (Volumes and planar meshes have no such rule: nothing to sum. Every
+    // process sees the same kind of leaf: its shape is agreed.)
+    if (!this->Parts || !(view.IsSurfaceMesh() || view.IsCurveMesh()))
     {
       return total;
     }
-    const mp::MeshView& view = sourceMesh.View();
     const int corners = view.CornersPerCell();
     const mp::LargeVector<double>& covered = op.GetSourceCovered();
     std::vector<long long> keys;
     std::vector<double> parts;
     std::vector<mp::Index> cells;
     vtkDataArray* global = source->GetPointData()->GetGlobalIds();
-    if (needed && (view.IsSurfaceMesh() || view.IsCurveMesh()) && global && corners <= 3)
+    if (needed && global && corners <= 3)
     {
       for (mp::Index c = 0; c < view.NumberOfCells; ++c)
       {
