@@ -550,5 +550,7 @@ bad = int(sum(allgather(np.array([float(len(failures))]))[r][0] for r in range(s
 if rank == 0:
     print("%d processes: %s" % (size, "all checks passed" if bad == 0 else "%d check(s) failed" % bad))
 if made_here:
-    controller.Finalize()  # (pvbatch finalizes its own)
-sys.exit(1 if bad else 0)
+    controller.Finalize()
+    sys.exit(1 if bad else 0)
+elif bad:
+    sys.exit(1)  # (pvbatch finalizes its own; a SystemExit on success made it exit with 1)
