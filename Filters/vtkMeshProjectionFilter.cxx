@@ -2162,6 +2162,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     mp::ApplyOptions apply;
     apply.Mass = this->MassMatrix == LUMPED_MASS ? mp::MassType::Lumped : mp::MassType::Consistent;
     apply.Bounded = this->PreserveBounds;
+    apply.Solve.MaxIterations = this->MaximumIterations;
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
     bool warm = !fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
     if (this->Parts)
@@ -2773,6 +2774,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";
   os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent") << "\n";
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
+  os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
   os << indent << "SurfaceReach: " << this->SurfaceReach << "\n";
   os << indent << "ConserveSourceIntegral: " << (this->ConserveSourceIntegral ? "On" : "Off") << "\n";
   os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";

@@ -336,6 +336,19 @@ public:
 
   ///@{
   /**
+   * The most conjugate-gradient iterations per solve of the consistent mass
+   * matrix (to a relative residual of 1e-14); fields still unconverged then
+   * go to the sparse direct solver (LDL^T; on several processes the whole
+   * system gathered on process 0). 0: the direct solver only. Default 500
+   * (a mass matrix needs about 25; many more only where targets are
+   * covered in slivers).
+   */
+  vtkSetClampMacro(MaximumIterations, int, 0, 1000000);
+  vtkGetMacro(MaximumIterations, int);
+  ///@}
+
+  ///@{
+  /**
    * Surfaces in 3D (triangles, quads or polygons not in one plane; see the
    * class description). SurfaceReach: the largest distance between a source
    * facet and a target facet's plane at which they still meet, relative to
@@ -538,6 +551,7 @@ protected:
   int CellDataQuantity = INTENSIVE;
   int MassMatrix = CONSISTENT_MASS;
   bool PreserveBounds = false;
+  int MaximumIterations = 500;
   double SurfaceReach = 0.5;
   double MaximumNormalAngle = 45.0;
   int NormalOrientation = SAME_ORIENTATION;

@@ -14,7 +14,7 @@ Redistribute DataSet (DIY), a random split of the cells, blocks in x, all
 Source on one process and all Input on another, one process without Input.
 Meshes: triangles (2D), tetrahedra (3D), hexahedra with GlobalIds, surfaces,
 curves and traces in 3D; point and
-cell data; lumped mass; PreserveBounds; a composite Input; a time step reusing the operator;
+cell data; lumped mass; PreserveBounds; the direct solver; a composite Input; a time step reusing the operator;
 a run stopped on one process only (no process waits for it).
 """
 import sys
@@ -328,6 +328,9 @@ case("2D lumped, cells to points", t2, s2, "random", MassMatrix=1, CellDataTarge
 # columns a shared point has on several processes; the assured sum over all.
 case("2D PreserveBounds", t2, s2, "random", PreserveBounds=1)
 case("2D PreserveBounds, cells to points", t2, s2, "blocks", PreserveBounds=1, CellDataTarget=3)
+# The direct solver (no iterations, or too few), the whole system gathered.
+case("2D direct solver", t2, s2, "random", MaximumIterations=0)
+case("2D direct solver after 3 iterations, Redistribute DataSet", t2, s2, "redistribute", MaximumIterations=3)
 case("2D composite", t2, s2, "random", composite=True)
 case("2D ghost cells", t2, s2, "blocks", ghosts=True)
 case("2D polydata Source", t2, s2, "blocks", polydata=True)
@@ -353,6 +356,7 @@ h3.GetPointData().SetGlobalIds(h3.GetPointData().GetArray("origId"))
 case("3D hexahedra with GlobalIds", h3, hs, "random", global_ids=True)
 case("3D ghost cells", t3, s3, "blocks", ghosts=True)
 case("3D PreserveBounds", t3, s3, "random", PreserveBounds=1)
+case("3D direct solver, GlobalIds", t3, s3, "blocks", global_ids=True, MaximumIterations=0)
 # The same hexahedra as polyhedra (face streams): the Source cells travel
 # and merge one by one with their faces.
 HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))

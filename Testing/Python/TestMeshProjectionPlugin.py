@@ -34,7 +34,7 @@ check(projection.FillWithNaN == 1 and projection.FillValue == 0, "fill defaults"
 check(set(projection.ListProperties()) == {
     "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
-    "MassMatrix", "PreserveBounds", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
+    "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "NormalOrientation"},
       "properties %r" % projection.ListProperties())
@@ -45,6 +45,7 @@ check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "C
 check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "Consistent",
       "quantity and mass defaults")
 check(projection.PreserveBounds == 0 and projection.CacheOperator == 1, "bounds and cache defaults")
+check(projection.MaximumIterations == 500, "iterations default %r" % projection.MaximumIterations)
 check(projection.NumberOfThreads == 0 and projection.Renumbering == "Automatic",
       "threads and renumbering defaults %r %r" % (projection.NumberOfThreads, projection.Renumbering))
 # The Source was read before the filter was made (as in the GUI): its arrays

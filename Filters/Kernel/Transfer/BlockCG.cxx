@@ -386,7 +386,9 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
     }
     if (hooks.Reduce || hooks.Exchange)
     {
-      return false; // a distributed matrix cannot be factored here
+      // A distributed matrix: factored where its parts are gathered (all
+      // columns left at once; every part takes part).
+      return hooks.Direct && hooks.Direct(this->A, B, X, c, converged);
     }
     if (!this->Factor)
     {
@@ -416,6 +418,47 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
     const Eigen::VectorXd solution =
       this->Factor->Solver->solve(Eigen::Map<const Eigen::VectorXd>(b.data(), n));
     for (Index i = 0; i < n; ++i)
+    {
+      X[i * c + k] = solution[i];
+    }
+  }
+  return true;
+}
+
+bool BlockCG::SolveEntries(Index rows, const std::vector<Index>& row,
+  const std::vector<Index>& column, const std::vector<double>& value, const double* B, double* X,
+  int c)
+{
+  if (rows <= 0 || c <= 0)
+  {
+    return true;
+  }
+  std::vector<Triplet> entries;
+  entries.reserve(value.size());
+  for (size_t e = 0; e < value.size(); ++e)
+  {
+    entries.emplace_back(row[e], column[e], value[e]);
+  }
+  SparseMatrix matrix(rows, rows);
+  matrix.setFromTriplets(entries.begin(), entries.end()); // duplicates summed
+  Eigen::SimplicialLDLT<SparseMatrix> solver(matrix);
+  if (solver.info() != Eigen::Success)
+  {
+    return false;
+  }
+  Eigen::VectorXd b(rows);
+  for (int k = 0; k < c; ++k)
+  {
+    for (Index i = 0; i < rows; ++i)
+    {
+      b[i] = B[i * c + k];
+    }
+    const Eigen::VectorXd solution = solver.solve(b);
+    if (solver.info() != Eigen::Success)
+    {
+      return false;
+    }
+    for (Index i = 0; i < rows; ++i)
     {
       X[i * c + k] = solution[i];
     }

@@ -43,6 +43,15 @@ struct SolverHooks
   /// As Exchange, with the smallest of the parts' values instead of their
   /// sum (the bounds of PreserveBounds); may be null where Exchange is.
   std::function<void(double* vectors, int width)> ExchangeMinimum;
+  /**
+   * Solves the whole distributed system A X = B directly for the columns
+   * k with converged[k] == 0 (collective: every part calls it with the same
+   * flags), writing this part's rows of X; false when the factorization
+   * fails. Null: a distributed system has no direct fallback.
+   */
+  std::function<bool(const CsrMatrix& A, const double* B, double* X, int c,
+    const std::vector<char>& converged)>
+    Direct;
   /// Per row: 1 when this part counts it in dot products (null: every row).
   const char* Counted = nullptr;
 };
@@ -71,11 +80,21 @@ public:
 
   /**
    * Solves A X = B: the iterations, then the sparse direct solver for the
-   * columns that did not converge (serial systems only: with hooks set it
-   * returns false for them). False when that fails too.
+   * columns that did not converge (a distributed system through the Direct
+   * hook: without one it returns false for them). False when that fails too.
    */
   bool Solve(const double* B, double* X, int c, const SolveOptions& options,
     const SolverHooks& hooks = SolverHooks()) const;
+
+  /**
+   * The sparse direct solver (LDL^T) on a matrix given by its entries
+   * (duplicates summed: a distributed matrix's parts gathered in one
+   * place): solves for `c` right-hand sides B (rows x c), into X. False
+   * when the factorization fails.
+   */
+  static bool SolveEntries(Index rows, const std::vector<Index>& row,
+    const std::vector<Index>& column, const std::vector<double>& value, const double* B, double* X,
+    int c);
 
 private:
   template <int FixedC>
