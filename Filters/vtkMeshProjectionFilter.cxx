@@ -1932,14 +1932,12 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     searchReady = true;
   };
-  int toBuild = 0;
-  for (int t = 0; t < 4; ++t)
-  {
-    toBuild += used[t] && !kept.Operators[t].Operator;
-  }
+  // The operators to build, all from one search (each piece goes to every
+  // operator's sums: point and cell data cost one search, not two).
   std::unique_ptr<mp::MortarOperator> fresh[4];
   const mp::MortarOperator* operators[4] = {};
-  double built = 0;
+  std::vector<mp::MortarOperator*> making;
+  std::vector<mp::OperatorOptions> makingOptions;
   for (int t = 0; t < 4; ++t)
   {
     if (!used[t])
@@ -1951,39 +1949,47 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       operators[t] = kept.Operators[t].Operator.get();
       continue;
     }
-    prepareSearch();
-    // This operator's share of the bar, after those built before it.
-    const double from = 0.1 + 0.8 * built / toBuild;
-    if (!progress(from))
-    {
-      return fail("stopped");
-    }
     const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
     options.TargetSpace = TargetSpaceOf(t);
     options.SourceSpace = SourceSpaceOf(t);
     options.Fields = assembled || g.Components == 0 ? nullptr : g.Values.data();
     options.FieldComponents = assembled ? 0 : g.Components;
-    options.Progress = [&progress, from, toBuild](double f) {
-      return progress(from + 0.8 * f / toBuild);
-    };
+    options.Progress = [&progress](double f) { return progress(0.1 + 0.8 * f); };
     fresh[t].reset(new mp::MortarOperator);
+    making.push_back(fresh[t].get());
+    makingOptions.push_back(options);
+  }
+  const int built = static_cast<int>(making.size());
+  if (built > 0)
+  {
+    prepareSearch();
+    if (!progress(0.1))
+    {
+      return fail("stopped");
+    }
     bool ok = false;
     Watched(this, run.Mailbox, [&]() {
-      ok = fresh[t]->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), options);
+      ok = mp::MortarOperator::BuildTogether(
+        making, makingOptions, targetMesh.View(), sourceMesh.View(), run.Locator.get());
     });
-    if (!ok && fresh[t]->GetError() == "stopped")
+    if (!ok && making[0]->GetError() == "stopped")
     {
       return fail("stopped");
     }
     if (!ok)
     {
-      return fail("Projection failed: " + fresh[t]->GetError());
+      return fail("Projection failed: " + making[0]->GetError());
     }
-    operators[t] = fresh[t].get();
-    this->SearchTime += fresh[t]->GetTimings().Search;
-    this->AssemblyTime += fresh[t]->GetTimings().Assembly;
-    ++this->NumberOfOperatorsBuilt;
-    built += 1;
+    for (int t = 0; t < 4; ++t)
+    {
+      if (fresh[t])
+      {
+        operators[t] = fresh[t].get();
+        this->SearchTime += fresh[t]->GetTimings().Search;
+        this->AssemblyTime += fresh[t]->GetTimings().Assembly;
+        ++this->NumberOfOperatorsBuilt;
+      }
+    }
     Lap(run.Stage);
   }
   const mp::MortarOperator* first = nullptr; // coverage, statistics, pieces

@@ -585,3 +585,126 @@ TEST(MortarProjector, ExcludedSourceCellsAreAHole)
     }
   }
 }
+
+// Several operators from one search (the filter's point and cell data):
+// each is the operator its own Build gives, bit for bit, with fields given
+// or M_ts assembled, on one task or several, in 2D, 3D and on surfaces.
+TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
+{
+  struct Pair
+  {
+    const char* Name;
+    TestMesh Target;
+    TestMesh Source;
+  };
+  TestMesh shiftedCube = mptest::CubeMesh(6, 5, 7, 0.2, 122);
+  for (size_t i = 0; i < shiftedCube.Points.size(); ++i)
+  {
+    shiftedCube.Points[i] = 0.9 * shiftedCube.Points[i] + 0.17 * static_cast<double>(i % 3 + 1) - 0.2;
+  }
+  shiftedCube.Finish();
+  TestMesh sphere = mptest::Icosphere(5);
+  TestMesh uv = mptest::UvSphere(12, 19);
+  sphere.Finish();
+  uv.Finish();
+  const Pair pairs[] = { { "2D", mptest::GridMesh(17, 15, 0.25, 111, 0, 0, 1, 1, LShapeWithHole),
+                           mptest::GridMesh(13, 19, 0.25, 112, -0.1, 0.05, 1, 1, LShapeWithHole) },
+    { "3D", mptest::CubeMesh(7, 6, 5, 0.2, 121), shiftedCube }, { "surface", sphere, uv } };
+  const mp::SpaceType spaces[4][2] = { { mp::SpaceType::P1, mp::SpaceType::P1 },
+    { mp::SpaceType::P1, mp::SpaceType::P0 }, { mp::SpaceType::P0, mp::SpaceType::P1 },
+    { mp::SpaceType::P0, mp::SpaceType::P0 } };
+  for (const Pair& pair : pairs)
+  {
+    const mp::MeshView target = pair.Target.View();
+    const mp::MeshView source = pair.Source.View();
+    // Fields per source space: two components.
+    std::vector<double> fields[2];
+    for (Index p = 0; p < source.NumberOfPoints; ++p)
+    {
+      const double* x = source.Point(p);
+      fields[0].insert(fields[0].end(), { Smooth(x[0], x[1]) + x[2], 1.0 + x[0] - 2.0 * x[2] });
+    }
+    for (Index c = 0; c < source.NumberOfCells; ++c)
+    {
+      fields[1].insert(fields[1].end(), { std::cos(3.0 * static_cast<double>(c)), 0.5 });
+    }
+    for (int tasks : { 1, 3 })
+    {
+      for (bool given : { false, true })
+      {
+        std::vector<mp::OperatorOptions> options(4);
+        for (int k = 0; k < 4; ++k)
+        {
+          options[k].TargetSpace = spaces[k][0];
+          options[k].SourceSpace = spaces[k][1];
+          options[k].KeepPieces = k == 0;
+          options[k].Runner.Tasks = tasks;
+          options[k].Runner.Run = mptest::RunInThreads;
+          // Fields given to every other operator (right-hand sides summed
+          // during the search), M_ts assembled for the others.
+          if (given == (k % 2 == 0))
+          {
+            const std::vector<double>& f = fields[spaces[k][1] == mp::SpaceType::P1 ? 0 : 1];
+            options[k].Fields = f.data();
+            options[k].FieldComponents = 2;
+          }
+        }
+        mp::MortarOperator alone[4];
+        mp::MortarOperator together[4];
+        for (int k = 0; k < 4; ++k)
+        {
+          mp::BoxGridLocator locator(source);
+          ASSERT_TRUE(alone[k].Build(target, source, &locator, options[k])) << alone[k].GetError();
+        }
+        mp::BoxGridLocator locator(source);
+        ASSERT_TRUE(mp::MortarOperator::BuildTogether(
+          { &together[0], &together[1], &together[2], &together[3] }, options, target, source, &locator))
+          << together[0].GetError();
+        for (int k = 0; k < 4; ++k)
+        {
+          const std::string what = std::string(pair.Name) + " operator " + std::to_string(k) +
+            ", " + std::to_string(tasks) + " tasks" + (given ? ", fields given" : "");
+          const mp::MortarOperator& a = alone[k];
+          const mp::MortarOperator& b = together[k];
+          EXPECT_EQ(a.GetTargetMass().RowStart, b.GetTargetMass().RowStart) << what;
+          EXPECT_EQ(a.GetTargetMass().ColumnIndex, b.GetTargetMass().ColumnIndex) << what;
+          EXPECT_EQ(a.GetTargetMass().Values, b.GetTargetMass().Values) << what;
+          EXPECT_EQ(a.GetMixedMass().RowStart, b.GetMixedMass().RowStart) << what;
+          EXPECT_EQ(a.GetMixedMass().ColumnIndex, b.GetMixedMass().ColumnIndex) << what;
+          EXPECT_EQ(a.GetMixedMass().Values, b.GetMixedMass().Values) << what;
+          EXPECT_EQ(a.HasMixedMass(), b.HasMixedMass()) << what;
+          EXPECT_EQ(a.GetValid(), b.GetValid()) << what;
+          EXPECT_EQ(a.GetCoveredIntegrals(), b.GetCoveredIntegrals()) << what;
+          EXPECT_EQ(a.GetCoveredFraction(), b.GetCoveredFraction()) << what;
+          EXPECT_EQ(a.GetSourceCovered(), b.GetSourceCovered()) << what;
+          EXPECT_EQ(a.GetCoveredMeasure(), b.GetCoveredMeasure()) << what;
+          EXPECT_EQ(a.GetStatistics().Pieces, b.GetStatistics().Pieces) << what;
+          EXPECT_EQ(a.GetStatistics().IntersectionTests, b.GetStatistics().IntersectionTests) << what;
+          EXPECT_EQ(a.GetPieces().Size(), b.GetPieces().Size()) << what;
+          EXPECT_EQ(a.GetPieces().Measure, b.GetPieces().Measure) << what;
+          EXPECT_GT(a.GetNumberOfValid(), 0) << what;
+          const std::vector<double>& f = fields[spaces[k][1] == mp::SpaceType::P1 ? 0 : 1];
+          std::vector<double> ua(static_cast<size_t>(a.GetNumberOfTargetFunctions()) * 2);
+          std::vector<double> ub(ua.size());
+          ASSERT_TRUE(a.Apply(f.data(), 2, ua.data(), -1.0)) << what;
+          ASSERT_TRUE(b.Apply(f.data(), 2, ub.data(), -1.0)) << what;
+          EXPECT_EQ(ua, ub) << what;
+        }
+      }
+    }
+  }
+  // Two operators of one pair of spaces, or searches that differ, are refused.
+  const TestMesh t = mptest::GridMesh(5, 5, 0.2, 131);
+  const TestMesh s = mptest::GridMesh(4, 6, 0.2, 132);
+  mp::BoxGridLocator locator(s.View());
+  mp::MortarOperator a, b;
+  std::vector<mp::OperatorOptions> same(2);
+  EXPECT_FALSE(mp::MortarOperator::BuildTogether({ &a, &b }, same, t.View(), s.View(), &locator));
+  EXPECT_NE(b.GetError().find("pairs of spaces"), std::string::npos) << b.GetError();
+  same[1].TargetSpace = mp::SpaceType::P0;
+  same[1].Method = mp::SearchMethod::BruteForce;
+  EXPECT_FALSE(mp::MortarOperator::BuildTogether({ &a, &b }, same, t.View(), s.View(), &locator));
+  EXPECT_NE(a.GetError().find("share their search"), std::string::npos) << a.GetError();
+  same[1].Method = mp::SearchMethod::AdvancingFront;
+  EXPECT_TRUE(mp::MortarOperator::BuildTogether({ &a, &b }, same, t.View(), s.View(), &locator));
+}

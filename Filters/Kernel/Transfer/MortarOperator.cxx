@@ -52,23 +52,13 @@ MortarOperator::~MortarOperator() = default;
 bool MortarOperator::Build(const MeshView& target, const MeshView& source,
   CandidateLocator* locator, const OperatorOptions& options)
 {
-  this->Options = options;
-  this->Options.Runner.Tasks = std::max(1, options.Runner.Tasks);
-  this->TargetMass = CsrMatrix();
-  this->MixedMass = CsrMatrix();
-  LargeVector<double>().swap(this->Rhs);
-  this->Solver.reset();
-  this->Statistics = SearchStatistics();
-  this->Timings = OperatorTimings();
-  this->Pieces = IntersectionPieces();
-  this->Error.clear();
-  this->Valid.clear();
-  this->NumberOfValid = 0;
-  this->CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
-  this->SourceCovered.clear();
-  this->CoveredMeasure = 0;
-  this->OvercoveredCells = 0;
+  return BuildTogether({ this }, { options }, target, source, locator);
+}
 
+bool MortarOperator::Check(
+  const MeshView& target, const MeshView& source, CandidateLocator* locator)
+{
+  const OperatorOptions& options = this->Options;
   for (const auto& mesh : { std::make_pair(&target, "Input (target)"), std::make_pair(&source, "Source") })
   {
     const MeshView& m = *mesh.first;
@@ -126,230 +116,418 @@ bool MortarOperator::Build(const MeshView& target, const MeshView& source,
       " functions; at most 2^31 - 1 are supported";
     return false;
   }
-  this->Pieces.Dimension = target.CellDimension;
-  WithIntersectorOf(target, source, [&](auto* tag) {
-    this->Dispatch<std::remove_pointer_t<decltype(tag)>>(target, source, locator);
-  });
-  if (!this->Error.empty())
-  {
-    this->TargetMass = CsrMatrix();
-    this->MixedMass = CsrMatrix();
-    this->Valid.clear();
-    return false;
-  }
-  if (target.Parent)
-  {
-    // Split cells: the covered fraction of each original cell.
-    this->CoveredFraction = ParentFractions(target, this->CoveredFraction);
-  }
-  this->Solver.reset(new BlockCG(this->TargetMass, this->Options.Runner));
   return true;
 }
 
-template <class Intersector>
-void MortarOperator::Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator)
+bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators,
+  const std::vector<OperatorOptions>& options, const MeshView& target, const MeshView& source,
+  CandidateLocator* locator)
 {
-  constexpr int D = Intersector::Dimension;
-  using SourceP1 = typename SourceP1Of<Intersector>::type;
-  const bool p1t = this->Options.TargetSpace == SpaceType::P1;
-  const bool p1s = this->Options.SourceSpace == SpaceType::P1;
-  if (p1t && p1s)
+  if (operators.empty() || options.size() != operators.size())
   {
-    this->Assemble<Intersector, P1Space<D>, SourceP1>(target, source, locator);
+    return false;
   }
-  else if (p1t)
+  bool ok = true;
+  unsigned pairs = 0; // the pairs of spaces taken
+  for (size_t i = 0; i < operators.size(); ++i)
   {
-    this->Assemble<Intersector, P1Space<D>, P0Space<D>>(target, source, locator);
-  }
-  else if (p1s)
-  {
-    this->Assemble<Intersector, P0Space<D>, SourceP1>(target, source, locator);
-  }
-  else
-  {
-    this->Assemble<Intersector, P0Space<D>, P0Space<D>>(target, source, locator);
-  }
-}
-
-template <class Intersector, class TargetSpace, class SourceSpace>
-void MortarOperator::Assemble(
-  const MeshView& target, const MeshView& source, CandidateLocator* locator)
-{
-  auto start = std::chrono::steady_clock::now();
-  const TaskRunner& runner = this->Options.Runner;
-  MassPattern(TargetSpace::Type, target, runner, this->TargetMass);
-  const Index rows = this->TargetMass.Rows;
-  // The target cells in ranges, one per task, each with its own front,
-  // locator and sums.
-  const Index cells = target.NumberOfCells;
-  // (At most 65535: the shared functions are found by 16-bit task marks.)
-  const int tasks = std::min(runner.TasksFor(cells, 64), 65535);
-  // Target functions on cells of more than one task: their M_tt rows are
-  // summed after the tasks (MortarAssembler::Shared).
-  // Each task marks the functions of its cells with its number (plus one)
-  // where no task has yet; a function found marked by another task is
-  // shared. (Relaxed atomics: of two tasks marking at once, one sees the
-  // other's mark.)
-  LargeVector<char> shared;
-  if (tasks > 1)
-  {
-    shared.assign(static_cast<size_t>(rows), 0);
-    LargeVector<std::uint16_t> mark(static_cast<size_t>(rows), 0);
-    runner.RunAll(tasks, [&](int k) {
-      const auto mine = static_cast<std::uint16_t>(k + 1);
-      for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
-      {
-        Index dofs[TargetSpace::Dofs];
-        TargetSpace::MeshCellDofs(target, c, dofs);
-        for (Index f : dofs)
-        {
-          std::uint16_t seen = __atomic_load_n(&mark[f], __ATOMIC_RELAXED);
-          if (seen == 0 &&
-            __atomic_compare_exchange_n(&mark[f], &seen, mine, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-          {
-            continue;
-          }
-          if (seen != mine)
-          {
-            __atomic_store_n(&shared[f], char(1), __ATOMIC_RELAXED);
-          }
-        }
-      }
-    });
-  }
-  using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
-  const bool single = this->Options.Fields != nullptr;
-  if (single)
-  {
-    this->Rhs.assign(static_cast<size_t>(rows) * this->Options.FieldComponents, 0.0);
-  }
-  std::vector<Assembler> assemblers(static_cast<size_t>(tasks));
-  std::vector<MixedBlocks> blocks(static_cast<size_t>(tasks));
-  std::vector<IntersectionPieces> pieces(static_cast<size_t>(tasks > 1 ? tasks : 0));
-  // How much of each source cell the pieces cover: per task, summed after.
-  std::vector<LargeVector<double>> met(static_cast<size_t>(tasks));
-  // Each zeroed by its task (the first to touch its pages: see LargeArray.h).
-  runner.RunAll(tasks, [&](int k) { met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0); });
-  for (int k = 0; k < tasks; ++k)
-  {
-    Assembler& a = assemblers[k];
-    a.SourceCovered = met[k].data();
-    a.Target = &target;
-    a.Source = &source;
-    a.Mass = &this->TargetMass;
-    a.Shared = tasks > 1 ? shared.data() : nullptr;
-    a.CoveredFraction = this->CoveredFraction.data();
-    a.Excluded = this->Options.ExcludedSourceCells;
-    if (this->Options.KeepPieces)
+    MortarOperator& op = *operators[i];
+    op.Options = options[i];
+    op.Options.Runner.Tasks = std::max(1, options[i].Runner.Tasks);
+    op.TargetMass = CsrMatrix();
+    op.MixedMass = CsrMatrix();
+    LargeVector<double>().swap(op.Rhs);
+    op.Solver.reset();
+    op.Statistics = SearchStatistics();
+    op.Timings = OperatorTimings();
+    op.Pieces = IntersectionPieces();
+    op.Error.clear();
+    op.Valid.clear();
+    op.NumberOfValid = 0;
+    op.CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
+    op.SourceCovered.clear();
+    op.CoveredMeasure = 0;
+    op.OvercoveredCells = 0;
+    op.Pieces.Dimension = target.CellDimension;
+    const unsigned pair = 1u << ((op.Options.TargetSpace == SpaceType::P1 ? 2 : 0) +
+      (op.Options.SourceSpace == SpaceType::P1 ? 1 : 0));
+    if (pairs & pair)
     {
-      a.Pieces = tasks > 1 ? &pieces[k] : &this->Pieces;
+      op.Error = "operators built together need pairs of spaces of their own";
+      ok = false;
     }
-    MixedBlocks& b = blocks[k];
-    b.RowsPerBlock = TargetSpace::Dofs;
-    a.Blocks = &b;
-    if (single)
+    pairs |= pair;
+    if (i > 0 && (op.Options.Method != options[0].Method ||
+                   op.Options.ExcludedSourceCells != options[0].ExcludedSourceCells))
     {
-      // Right-hand sides only: no blocks.
-      a.Fields = this->Options.Fields;
-      a.Components = this->Options.FieldComponents;
-      a.Rhs = this->Rhs.data();
+      op.Error = "operators built together share their search: the same method and excluded cells";
+      ok = false;
+    }
+    ok = ok && op.Check(target, source, locator);
+  }
+  if (!ok)
+  {
+    // Every operator says why (the first reason found).
+    std::string why;
+    for (MortarOperator* op : operators)
+    {
+      why = why.empty() ? op->Error : why;
+    }
+    for (MortarOperator* op : operators)
+    {
+      op->Error = why;
+    }
+    return false;
+  }
+  WithIntersectorOf(target, source, [&](auto* tag) {
+    AssembleTogether<std::remove_pointer_t<decltype(tag)>>(operators, target, source, locator);
+  });
+  bool built = true;
+  for (MortarOperator* op : operators)
+  {
+    if (!op->Error.empty())
+    {
+      op->TargetMass = CsrMatrix();
+      op->MixedMass = CsrMatrix();
+      op->Valid.clear();
+      built = false;
       continue;
     }
-    // Room for the blocks of the range's cells at a generous estimate of
-    // columns per cell (the corners of the source cells meeting it): pages
-    // of an untouched reservation cost nothing, and the buffers never grow
-    // by copying on ordinary meshes.
-    const Index rangeCells = RangeBegin(cells, k + 1, tasks) - RangeBegin(cells, k, tasks);
-    const Index columnsPerCell = SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
-    b.Rows.reserve(static_cast<size_t>(rangeCells * TargetSpace::Dofs));
-    b.Start.reserve(static_cast<size_t>(rangeCells + 1));
-    b.Columns.reserve(static_cast<size_t>(rangeCells * columnsPerCell));
-    b.Values.reserve(static_cast<size_t>(rangeCells * columnsPerCell * TargetSpace::Dofs));
+    if (target.Parent)
+    {
+      // Split cells: the covered fraction of each original cell.
+      op->CoveredFraction = ParentFractions(target, op->CoveredFraction);
+    }
+    op->Solver.reset(new BlockCG(op->TargetMass, op->Options.Runner));
   }
-  this->Timings.Assembly = Seconds(start);
+  return built;
+}
 
-  start = std::chrono::steady_clock::now();
-  if (!SearchInRanges<Intersector>(this->Options.Method, target, source, locator, runner,
-        assemblers, this->Statistics, this->Options.Progress))
+/**
+ * One operator's share of a search: its M_tt pattern, the marks of its
+ * target functions shared by tasks, one assembler per task with its blocks,
+ * pieces and source cover, and what follows the search. Several sessions
+ * take the pieces of one search (MortarOperator::BuildTogether), each
+ * summing them in the order a search of its own would.
+ */
+template <class Intersector, class TargetSpace, class SourceSpace>
+struct MortarOperator::Session
+{
+  using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
+  MortarOperator* Op = nullptr;
+  LargeVector<char> Shared;
+  std::vector<Assembler> Assemblers;
+  std::vector<MixedBlocks> Blocks;
+  std::vector<IntersectionPieces> Pieces;
+  // How much of each source cell the pieces cover: per task, summed after.
+  std::vector<LargeVector<double>> Met;
+
+  void Prepare(MortarOperator& op, const MeshView& target, const MeshView& source, int tasks)
   {
-    this->Error = "stopped";
-    return;
-  }
-  for (Assembler& a : assemblers)
-  {
-    a.Flush();
-  }
-  // The tasks' contributions, in task order (deterministic).
-  for (int k = 0; k < tasks; ++k)
-  {
-    Assembler& a = assemblers[k];
-    for (const auto& entry : a.Deferred)
-    {
-      this->TargetMass.Values[entry.first] += entry.second;
-    }
-    for (const auto& entry : a.DeferredRhs)
-    {
-      this->Rhs[entry.first] += entry.second;
-    }
+    auto start = std::chrono::steady_clock::now();
+    this->Op = &op;
+    const TaskRunner& runner = op.Options.Runner;
+    MassPattern(TargetSpace::Type, target, runner, op.TargetMass);
+    const Index rows = op.TargetMass.Rows;
+    const Index cells = target.NumberOfCells;
+    // Target functions on cells of more than one task: their M_tt rows are
+    // summed after the tasks (MortarAssembler::Shared).
+    // Each task marks the functions of its cells with its number (plus one)
+    // where no task has yet; a function found marked by another task is
+    // shared. (Relaxed atomics: of two tasks marking at once, one sees the
+    // other's mark.)
     if (tasks > 1)
     {
-      this->Pieces.Append(pieces[k]);
-    }
-    this->CoveredMeasure += a.CoveredSum;
-    this->OvercoveredCells += a.Overcovered;
-    if (k == 0)
-    {
-      this->SourceCovered.swap(met[0]);
-    }
-    else
-    {
-      for (size_t c = 0; c < this->SourceCovered.size(); ++c)
-      {
-        this->SourceCovered[c] += met[k][c];
-      }
-    }
-    this->Statistics.Pieces += a.Count;
-  }
-  assemblers.clear();
-  pieces.clear();
-  this->Timings.Search = Seconds(start);
-
-  start = std::chrono::steady_clock::now();
-  if (!single)
-  {
-    AssembleMixedMatrix(blocks, rows, SpaceSize(SourceSpace::Type, source), runner, this->MixedMass);
-  }
-  // A function is valid when its support meets the source: its diagonal
-  // entry of the covered mass matrix is positive. An invalid function's
-  // whole row is zero (no piece touches its support); a 1 on the diagonal
-  // decouples it.
-  this->Valid.resize(static_cast<size_t>(rows));
-  this->RowSums.resize(static_cast<size_t>(rows));
-  this->NumberOfValid += runner.ForRanges(rows, [&](Index begin, Index end) {
-    Index valid = 0;
-    for (Index i = begin; i < end; ++i)
-    {
-      double& diagonal = this->TargetMass.Values[this->TargetMass.Find(i, i)];
-      const bool isValid = diagonal > 0.0;
-      double sum = 0.0;
-      if (isValid)
-      {
-        ++valid;
-        for (Index p = this->TargetMass.RowStart[i]; p < this->TargetMass.RowStart[i + 1]; ++p)
+      LargeVector<char>& shared = this->Shared;
+      shared.assign(static_cast<size_t>(rows), 0);
+      LargeVector<std::uint16_t> mark(static_cast<size_t>(rows), 0);
+      runner.RunAll(tasks, [&](int k) {
+        const auto mine = static_cast<std::uint16_t>(k + 1);
+        for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
         {
-          sum += this->TargetMass.Values[p];
+          Index dofs[TargetSpace::Dofs];
+          TargetSpace::MeshCellDofs(target, c, dofs);
+          for (Index f : dofs)
+          {
+            std::uint16_t seen = __atomic_load_n(&mark[f], __ATOMIC_RELAXED);
+            if (seen == 0 &&
+              __atomic_compare_exchange_n(&mark[f], &seen, mine, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+            {
+              continue;
+            }
+            if (seen != mine)
+            {
+              __atomic_store_n(&shared[f], char(1), __ATOMIC_RELAXED);
+            }
+          }
         }
+      });
+    }
+    const bool single = op.Options.Fields != nullptr;
+    if (single)
+    {
+      op.Rhs.assign(static_cast<size_t>(rows) * op.Options.FieldComponents, 0.0);
+    }
+    this->Assemblers.resize(static_cast<size_t>(tasks));
+    this->Blocks.resize(static_cast<size_t>(tasks));
+    this->Pieces.resize(static_cast<size_t>(tasks > 1 ? tasks : 0));
+    this->Met.resize(static_cast<size_t>(tasks));
+    // Each zeroed by its task (the first to touch its pages: see LargeArray.h).
+    runner.RunAll(tasks, [&](int k) { this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0); });
+    for (int k = 0; k < tasks; ++k)
+    {
+      Assembler& a = this->Assemblers[k];
+      a.SourceCovered = this->Met[k].data();
+      a.Target = &target;
+      a.Source = &source;
+      a.Mass = &op.TargetMass;
+      a.Shared = tasks > 1 ? this->Shared.data() : nullptr;
+      a.CoveredFraction = op.CoveredFraction.data();
+      a.Excluded = op.Options.ExcludedSourceCells;
+      if (op.Options.KeepPieces)
+      {
+        a.Pieces = tasks > 1 ? &this->Pieces[k] : &op.Pieces;
+      }
+      MixedBlocks& b = this->Blocks[k];
+      b.RowsPerBlock = TargetSpace::Dofs;
+      a.Blocks = &b;
+      if (single)
+      {
+        // Right-hand sides only: no blocks.
+        a.Fields = op.Options.Fields;
+        a.Components = op.Options.FieldComponents;
+        a.Rhs = op.Rhs.data();
+        continue;
+      }
+      // Room for the blocks of the range's cells at a generous estimate of
+      // columns per cell (the corners of the source cells meeting it): pages
+      // of an untouched reservation cost nothing, and the buffers never grow
+      // by copying on ordinary meshes.
+      const Index rangeCells = RangeBegin(cells, k + 1, tasks) - RangeBegin(cells, k, tasks);
+      const Index columnsPerCell = SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
+      b.Rows.reserve(static_cast<size_t>(rangeCells * TargetSpace::Dofs));
+      b.Start.reserve(static_cast<size_t>(rangeCells + 1));
+      b.Columns.reserve(static_cast<size_t>(rangeCells * columnsPerCell));
+      b.Values.reserve(static_cast<size_t>(rangeCells * columnsPerCell * TargetSpace::Dofs));
+    }
+    op.Timings.Assembly = Seconds(start);
+  }
+
+  /// After the search: the tasks' sums merged, M_ts, the valid functions.
+  void Finish(const MeshView& source)
+  {
+    MortarOperator& op = *this->Op;
+    auto start = std::chrono::steady_clock::now();
+    const TaskRunner& runner = op.Options.Runner;
+    const int tasks = static_cast<int>(this->Assemblers.size());
+    for (Assembler& a : this->Assemblers)
+    {
+      a.Flush();
+    }
+    // The tasks' contributions, in task order (deterministic).
+    for (int k = 0; k < tasks; ++k)
+    {
+      Assembler& a = this->Assemblers[k];
+      for (const auto& entry : a.Deferred)
+      {
+        op.TargetMass.Values[entry.first] += entry.second;
+      }
+      for (const auto& entry : a.DeferredRhs)
+      {
+        op.Rhs[entry.first] += entry.second;
+      }
+      if (tasks > 1)
+      {
+        op.Pieces.Append(this->Pieces[k]);
+      }
+      op.CoveredMeasure += a.CoveredSum;
+      op.OvercoveredCells += a.Overcovered;
+      if (k == 0)
+      {
+        op.SourceCovered.swap(this->Met[0]);
       }
       else
       {
-        diagonal = 1.0;
+        for (size_t c = 0; c < op.SourceCovered.size(); ++c)
+        {
+          op.SourceCovered[c] += this->Met[k][c];
+        }
       }
-      this->Valid[i] = isValid ? 1 : 0;
-      this->RowSums[i] = sum;
+      op.Statistics.Pieces += a.Count;
     }
-    return valid;
-  }, 16384);
-  this->Timings.Assembly += Seconds(start);
+    std::vector<Assembler>().swap(this->Assemblers);
+    std::vector<IntersectionPieces>().swap(this->Pieces);
+    std::vector<LargeVector<double>>().swap(this->Met);
+    op.Timings.Search += Seconds(start);
+
+    start = std::chrono::steady_clock::now();
+    const Index rows = op.TargetMass.Rows;
+    if (op.Options.Fields == nullptr)
+    {
+      AssembleMixedMatrix(this->Blocks, rows, SpaceSize(SourceSpace::Type, source), runner, op.MixedMass);
+    }
+    std::vector<MixedBlocks>().swap(this->Blocks);
+    // A function is valid when its support meets the source: its diagonal
+    // entry of the covered mass matrix is positive. An invalid function's
+    // whole row is zero (no piece touches its support); a 1 on the diagonal
+    // decouples it.
+    op.Valid.resize(static_cast<size_t>(rows));
+    op.RowSums.resize(static_cast<size_t>(rows));
+    op.NumberOfValid += runner.ForRanges(rows, [&](Index begin, Index end) {
+      Index valid = 0;
+      for (Index i = begin; i < end; ++i)
+      {
+        double& diagonal = op.TargetMass.Values[op.TargetMass.Find(i, i)];
+        const bool isValid = diagonal > 0.0;
+        double sum = 0.0;
+        if (isValid)
+        {
+          ++valid;
+          for (Index p = op.TargetMass.RowStart[i]; p < op.TargetMass.RowStart[i + 1]; ++p)
+          {
+            sum += op.TargetMass.Values[p];
+          }
+        }
+        else
+        {
+          diagonal = 1.0;
+        }
+        op.Valid[i] = isValid ? 1 : 0;
+        op.RowSums[i] = sum;
+      }
+      return valid;
+    }, 16384);
+    op.Timings.Assembly += Seconds(start);
+  }
+};
+
+namespace
+{
+/**
+ * The visitor of one search that several operators share: each piece to
+ * each session's assembler of the task (at most one per pair of spaces;
+ * the others null).
+ */
+template <class A, class B, class C, class E>
+struct SharedVisitor
+{
+  A* First = nullptr;
+  B* Second = nullptr;
+  C* Third = nullptr;
+  E* Fourth = nullptr;
+  template <class Cell, class SourceCell, class Piece>
+  void operator()(const Cell& t, const SourceCell& s, const Piece& piece)
+  {
+    if (this->First)
+    {
+      (*this->First)(t, s, piece);
+    }
+    if (this->Second)
+    {
+      (*this->Second)(t, s, piece);
+    }
+    if (this->Third)
+    {
+      (*this->Third)(t, s, piece);
+    }
+    if (this->Fourth)
+    {
+      (*this->Fourth)(t, s, piece);
+    }
+  }
+};
+} // namespace
+
+template <class Intersector>
+void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operators,
+  const MeshView& target, const MeshView& source, CandidateLocator* locator)
+{
+  constexpr int D = Intersector::Dimension;
+  using SourceP1 = typename SourceP1Of<Intersector>::type;
+  using P1 = P1Space<D>;
+  using P0 = P0Space<D>;
+  // The sessions by pair of spaces: P1 <- P1, P1 <- P0, P0 <- P1, P0 <- P0.
+  std::unique_ptr<Session<Intersector, P1, SourceP1>> s11;
+  std::unique_ptr<Session<Intersector, P1, P0>> s10;
+  std::unique_ptr<Session<Intersector, P0, SourceP1>> s01;
+  std::unique_ptr<Session<Intersector, P0, P0>> s00;
+  MortarOperator& lead = *operators[0];
+  const TaskRunner& runner = lead.Options.Runner;
+  // The target cells in ranges, one per task, each with its own front,
+  // locator and sums. (At most 65535: the shared functions are found by
+  // 16-bit task marks.)
+  const int tasks = std::min(runner.TasksFor(target.NumberOfCells, 64), 65535);
+  for (MortarOperator* op : operators)
+  {
+    const bool p1t = op->Options.TargetSpace == SpaceType::P1;
+    const bool p1s = op->Options.SourceSpace == SpaceType::P1;
+    if (p1t && p1s)
+    {
+      s11.reset(new Session<Intersector, P1, SourceP1>);
+      s11->Prepare(*op, target, source, tasks);
+    }
+    else if (p1t)
+    {
+      s10.reset(new Session<Intersector, P1, P0>);
+      s10->Prepare(*op, target, source, tasks);
+    }
+    else if (p1s)
+    {
+      s01.reset(new Session<Intersector, P0, SourceP1>);
+      s01->Prepare(*op, target, source, tasks);
+    }
+    else
+    {
+      s00.reset(new Session<Intersector, P0, P0>);
+      s00->Prepare(*op, target, source, tasks);
+    }
+  }
+  using Visitor = SharedVisitor<typename Session<Intersector, P1, SourceP1>::Assembler,
+    typename Session<Intersector, P1, P0>::Assembler,
+    typename Session<Intersector, P0, SourceP1>::Assembler,
+    typename Session<Intersector, P0, P0>::Assembler>;
+  std::vector<Visitor> visitors(static_cast<size_t>(tasks));
+  for (int k = 0; k < tasks; ++k)
+  {
+    visitors[k].First = s11 ? &s11->Assemblers[k] : nullptr;
+    visitors[k].Second = s10 ? &s10->Assemblers[k] : nullptr;
+    visitors[k].Third = s01 ? &s01->Assemblers[k] : nullptr;
+    visitors[k].Fourth = s00 ? &s00->Assemblers[k] : nullptr;
+  }
+  auto start = std::chrono::steady_clock::now();
+  SearchStatistics statistics;
+  const bool done = SearchInRanges<Intersector>(lead.Options.Method, target, source, locator,
+    runner, visitors, statistics, lead.Options.Progress);
+  const double seconds = Seconds(start);
+  for (MortarOperator* op : operators)
+  {
+    op->Statistics = statistics;
+    op->Timings.Search = op == &lead ? seconds : 0.0; // the search once, on the first
+    if (!done)
+    {
+      op->Error = "stopped";
+    }
+  }
+  if (!done)
+  {
+    return;
+  }
+  if (s11)
+  {
+    s11->Finish(source);
+  }
+  if (s10)
+  {
+    s10->Finish(source);
+  }
+  if (s01)
+  {
+    s01->Finish(source);
+  }
+  if (s00)
+  {
+    s00->Finish(source);
+  }
 }
 
 void MortarOperator::ShareValidity(const SolverHooks& hooks)

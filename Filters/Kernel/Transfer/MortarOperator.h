@@ -145,6 +145,22 @@ public:
     const OperatorOptions& options = OperatorOptions());
 
   /**
+   * Builds several operators on the same meshes from one search (the
+   * transfers of point and cell data, say): the pairs and their pieces are
+   * found once and every piece goes to each operator's sums, in the order
+   * its own Build would sum them, so each operator is the one its own Build
+   * gives, bit for bit. Each takes its options[i] (spaces, fields, pieces
+   * kept); the search's method, excluded cells, runner and progress are
+   * options[0]'s, and the method and excluded cells must be the same for
+   * all; at most one operator per pair of spaces. The search's time and
+   * statistics: on every operator, its time on the first only. False (each
+   * GetError() saying why) when any fails.
+   */
+  static bool BuildTogether(const std::vector<MortarOperator*>& operators,
+    const std::vector<OperatorOptions>& options, const MeshView& target, const MeshView& source,
+    CandidateLocator* locator);
+
+  /**
    * Projects a source field (source functions x `components`, row-major)
    * onto the target functions (target functions x components, row-major).
    * Invalid target functions get `fill`. With solve.StartFromX the solve
@@ -213,9 +229,12 @@ public:
 
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
-  void Assemble(const MeshView& target, const MeshView& source, CandidateLocator* locator);
+  struct Session;
+  /// The checks of the meshes and options (Options set): false, with Error set, on unusable input.
+  bool Check(const MeshView& target, const MeshView& source, CandidateLocator* locator);
   template <class Intersector>
-  void Dispatch(const MeshView& target, const MeshView& source, CandidateLocator* locator);
+  static void AssembleTogether(const std::vector<MortarOperator*>& operators,
+    const MeshView& target, const MeshView& source, CandidateLocator* locator);
 
   OperatorOptions Options;
   CsrMatrix TargetMass;
