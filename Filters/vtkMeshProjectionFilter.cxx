@@ -426,6 +426,46 @@ vtkDataArraySelection* vtkMeshProjectionFilter::GetCellDataArraySelection()
   return this->Internal->CellArrays;
 }
 
+namespace
+{
+// A list from ParaView starts: arrays it will not name are then those it
+// did not know (all projected if it names none, see SetStatus).
+void ClearStatuses(vtkDataArraySelection* selection)
+{
+  selection->RemoveAllArrays();
+  selection->SetUnknownArraySetting(1);
+}
+
+void SetStatus(vtkDataArraySelection* selection, const char* name, int status)
+{
+  if (name)
+  {
+    selection->SetArraySetting(name, status);
+    selection->SetUnknownArraySetting(0); // the list names arrays: others are not wanted
+  }
+}
+} // namespace
+
+void vtkMeshProjectionFilter::ClearPointDataArrayStatuses()
+{
+  ClearStatuses(this->Internal->PointArrays);
+}
+
+void vtkMeshProjectionFilter::SetPointDataArrayStatus(const char* name, int status)
+{
+  SetStatus(this->Internal->PointArrays, name, status);
+}
+
+void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
+{
+  ClearStatuses(this->Internal->CellArrays);
+}
+
+void vtkMeshProjectionFilter::SetCellDataArrayStatus(const char* name, int status)
+{
+  SetStatus(this->Internal->CellArrays, name, status);
+}
+
 vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
 {
   size_t bytes = 0;

@@ -296,6 +296,22 @@ public:
 
   ///@{
   /**
+   * ParaView's array lists (the PointDataArrays and CellDataArrays
+   * properties): each change of a list clears the selection, then states
+   * the status of each array the list names. Source arrays a list does not
+   * name are then not projected (a script that names arrays before Source
+   * has run, when the list cannot know the others), unless it names none:
+   * then all are. (Through the selections' own calls above, arrays not
+   * listed stay enabled.)
+   */
+  void ClearPointDataArrayStatuses();
+  void SetPointDataArrayStatus(const char* name, int status);
+  void ClearCellDataArrayStatuses();
+  void SetCellDataArrayStatus(const char* name, int status);
+  ///@}
+
+  ///@{
+  /**
    * Where Source point arrays go (TO_POINTS: default) and where Source cell
    * arrays go (TO_CELLS: default); TO_POINTS_AND_CELLS gives both.
    */

@@ -102,6 +102,35 @@ check(chosen.GetPointData().GetArray("Smooth") is not None and
 projection.PointDataArrays = ["Smooth", "Linear", "Velocity"]
 projection.CellDataArrays = ["Region"]
 projection.UpdatePipeline()
+# A script that names arrays before Source has run (keyword arguments, or
+# a replayed trace: the lists do not know Source's arrays yet): only those
+# named are projected, the others were not wanted. Naming none leaves all.
+for form in ("keywords", "trace"):
+    fresh_source = OpenDataFile(os.path.join(DATA, "lshape_source.vtu"))  # not run yet
+    fresh_target = OpenDataFile(os.path.join(DATA, "lshape_target.vtu"))
+    if form == "keywords":
+        named = MeshProjection(Input=fresh_target, Source=fresh_source,  # noqa: F821
+                               PointDataArrays=["Linear"])
+    else:
+        named = MeshProjection(Input=fresh_target, Source=fresh_source)  # noqa: F821
+        named.PointDataArrays = ["Linear"]
+    named.UpdatePipeline()
+    got = servermanager.Fetch(named)
+    check(got.GetPointData().GetArray("Linear") is not None and
+          got.GetPointData().GetArray("Smooth") is None and
+          got.GetPointData().GetArray("Velocity") is None and
+          got.GetCellData().GetArray("Region") is not None,
+          "%s: only the named point arrays, every cell array: %r %r" % (
+              form, [got.GetPointData().GetArrayName(i) for i in range(got.GetPointData().GetNumberOfArrays())],
+              [got.GetCellData().GetArrayName(i) for i in range(got.GetCellData().GetNumberOfArrays())]))
+    # The panel's list then shows the unnamed arrays off.
+    named.UpdatePipelineInformation()
+    check(list(named.PointDataArrays) == ["Linear"] and
+          sorted(named.PointDataArrays.Available) == ["Linear", "Smooth", "Velocity"],
+          "%s: the list %r of %r" % (form, list(named.PointDataArrays), named.PointDataArrays.Available))
+    Delete(named)
+    Delete(fresh_source)
+    Delete(fresh_target)
 # The operators are kept: another transfer (lumped) only applies them.
 projection.MassMatrix = "Lumped"
 projection.UpdatePipeline()
