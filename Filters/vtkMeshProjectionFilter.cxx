@@ -2594,6 +2594,30 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
   }
 
+  // Without active scalars (none in Source, none in Input), the first
+  // projected scalar array becomes them (points first), so that ParaView
+  // shows the result coloured by it rather than in a solid colour.
+  if (!outPD->GetScalars() && !outCD->GetScalars())
+  {
+    for (auto* names : { &pointNames, &cellNames })
+    {
+      vtkDataSetAttributes* data = names == &pointNames ? static_cast<vtkDataSetAttributes*>(outPD)
+                                                        : static_cast<vtkDataSetAttributes*>(outCD);
+      for (const std::string& name : *names)
+      {
+        vtkDataArray* a = data->GetArray(name.c_str());
+        if (a && a->GetNumberOfComponents() == 1 && !data->GetScalars())
+        {
+          data->SetActiveScalars(name.c_str());
+        }
+      }
+      if (data->GetScalars())
+      {
+        break;
+      }
+    }
+  }
+
   // 5. Where the result is defined, and how much of each cell is covered.
   const std::vector<double>& fraction = first->GetCoveredFraction();
   vtkNew<vtkCharArray> mask;

@@ -161,6 +161,9 @@ try:
 except AttributeError:
     pass
 display = Show(projection, view)
+# Shown coloured by the first projected scalar array (neither mesh has
+# active scalars: the filter makes it the output's), not in a solid colour.
+check(list(display.ColorArrayName) == ["POINTS", "Smooth"], "shown coloured by %r" % (display.ColorArrayName,))
 display.SetRepresentationType("Surface With Edges")
 display.EdgeColor = [0.3, 0.3, 0.3]
 ColorBy(display, ("POINTS", "Smooth"))
