@@ -305,6 +305,11 @@ struct vtkMeshProjectionFilter::Internals
   vtkNew<vtkDataArraySelection> PointArrays;
   vtkNew<vtkDataArraySelection> CellArrays;
   bool Listing = false; ///< the filter is adding Source's arrays to the selections
+  /// Per association: every Source array name the filter has listed; those
+  /// listed when ParaView's list last started; those the list named since.
+  std::set<std::string> Listed[2];
+  std::set<std::string> ListedAtList[2];
+  std::set<std::string> Named[2];
 
   /// The selection of point (association 0) or cell (1) arrays.
   vtkDataArraySelection* Selection(int association)
@@ -400,11 +405,15 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
     for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
     {
       const char* name = attributes->GetArrayName(i);
-      if (name && attributes->GetArray(i) && !selection->ArrayExists(name) &&
+      if (name && attributes->GetArray(i) &&
         std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
         !IsMask(name) && !mpvtk::IsIdArray(attributes, attributes->GetAbstractArray(i)))
       {
-        selection->AddArray(name, selection->GetUnknownArraySetting() != 0);
+        this->Internal->Listed[association].insert(name);
+        if (!selection->ArrayExists(name))
+        {
+          selection->AddArray(name, selection->GetUnknownArraySetting() != 0);
+        }
       }
     }
   }
@@ -426,44 +435,57 @@ vtkDataArraySelection* vtkMeshProjectionFilter::GetCellDataArraySelection()
   return this->Internal->CellArrays;
 }
 
-namespace
+// A list from ParaView starts (it names its arrays next). What of Source's
+// arrays it does not name: a list that names every array listed when it
+// started is the panel's whole list, and arrays that appear later (a new
+// time step's, a renamed one) are projected as by default; a list that
+// names fewer (a script that set it before Source had run, or with
+// keyword arguments: it could not know the others) wants only those; a
+// list that names none, all.
+void vtkMeshProjectionFilter::ClearStatuses(int association)
 {
-// A list from ParaView starts: arrays it will not name are then those it
-// did not know (all projected if it names none, see SetStatus).
-void ClearStatuses(vtkDataArraySelection* selection)
-{
+  Internals& in = *this->Internal;
+  in.ListedAtList[association] = in.Listed[association];
+  in.Named[association].clear();
+  vtkDataArraySelection* selection = in.Selection(association);
   selection->RemoveAllArrays();
   selection->SetUnknownArraySetting(1);
 }
 
-void SetStatus(vtkDataArraySelection* selection, const char* name, int status)
+void vtkMeshProjectionFilter::SetStatus(int association, const char* name, int status)
 {
-  if (name)
+  if (!name)
   {
-    selection->SetArraySetting(name, status);
-    selection->SetUnknownArraySetting(0); // the list names arrays: others are not wanted
+    return;
   }
+  Internals& in = *this->Internal;
+  in.Named[association].insert(name);
+  vtkDataArraySelection* selection = in.Selection(association);
+  selection->SetArraySetting(name, status);
+  const std::set<std::string>& known = in.ListedAtList[association];
+  const bool whole = !known.empty() &&
+    std::includes(in.Named[association].begin(), in.Named[association].end(), known.begin(), known.end());
+  selection->SetUnknownArraySetting(whole ? 1 : 0);
 }
-} // namespace
 
 void vtkMeshProjectionFilter::ClearPointDataArrayStatuses()
 {
-  ClearStatuses(this->Internal->PointArrays);
+  this->ClearStatuses(0);
 }
 
 void vtkMeshProjectionFilter::SetPointDataArrayStatus(const char* name, int status)
 {
-  SetStatus(this->Internal->PointArrays, name, status);
+  this->SetStatus(0, name, status);
 }
 
 void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
 {
-  ClearStatuses(this->Internal->CellArrays);
+  this->ClearStatuses(1);
 }
 
 void vtkMeshProjectionFilter::SetCellDataArrayStatus(const char* name, int status)
 {
-  SetStatus(this->Internal->CellArrays, name, status);
+  this->SetStatus(1, name, status);
 }
 
 vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
@@ -1577,7 +1599,20 @@ std::string vtkMeshProjectionFilter::AgreeOnShape(mpvtk::SimplexMesh& target,
       }
     }
   }
-  if (anyTrace && !trace)
+  // A mesh without cells here takes the dimension its cells have elsewhere
+  // (a curve leaf is one on every process, not a planar leaf where a
+  // process has no cells).
+  for (int m = 0; m < 2; ++m)
+  {
+    if (meshes[m]->View().NumberOfCells == 0 && dimension[m] > 0)
+    {
+      meshes[m]->SetDimension(dimension[m]);
+    }
+  }
+  // (Of different dimensions where no process holds cells of both, e.g.
+  // a surface entirely outside the volume: a trace too, as in serial.)
+  const bool differ = dimension[0] > 0 && dimension[1] > 0 && dimension[0] != dimension[1];
+  if ((anyTrace || differ) && !trace)
   {
     if (target.View().NumberOfCells > 0 && source.View().NumberOfCells > 0)
     {
@@ -1585,16 +1620,15 @@ std::string vtkMeshProjectionFilter::AgreeOnShape(mpvtk::SimplexMesh& target,
         std::to_string(this->Parts->Rank()) + " but not on others: each mesh's cells must be of one "
         "dimension on every process.";
     }
+    if (dimension[0] > dimension[1])
+    {
+      return role + " is a " + std::to_string(dimension[0]) + "D mesh but Source is " +
+        std::to_string(dimension[1]) + "D: values go to a mesh of the same dimension, or from a "
+        "volume mesh (2D or 3D) to a surface or curve inside it (a trace), not to a mesh of a "
+        "higher dimension.";
+    }
     trace = true;
     planar = true; // (as for a trace on one process: never a surface leaf)
-    for (int m = 0; m < 2; ++m)
-    {
-      if (meshes[m]->View().NumberOfCells == 0 && dimension[m] > 0)
-      {
-        meshes[m]->SetDimension(dimension[m]);
-      }
-    }
-    return std::string();
   }
   if (trace || !planar || target.Dimension() != 2)
   {
@@ -1699,12 +1733,23 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     ++rounds;
     return this->Parts ? this->Parts->Agree(why, flag) : why;
   };
-  auto fail = [&](const std::string& why) {
+  // A process that fails takes part in the rounds left, with its reason,
+  // and acts on what the first of them agreed (the same on every process:
+  // a stop here and a failure on a lower process in the same round is
+  // that failure everywhere, and the other way round a stop), so that all
+  // go on or stop alike. `agreed`: the reason came from a round already.
+  auto fail = [&](const std::string& why, bool agreed = false) {
+    std::string outcome = why;
     while (this->Parts && rounds < 3)
     {
-      agree(why);
+      const std::string first = agree(why);
+      if (!agreed)
+      {
+        outcome = first.empty() ? why : first;
+        agreed = true;
+      }
     }
-    return why;
+    return outcome;
   };
 
   // 1. The target: triangles in Source's plane (2D) or tetrahedra (3D).
@@ -1775,7 +1820,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const std::string elsewhere = agree(std::string(), &planar);
     if (!elsewhere.empty())
     {
-      return fail(elsewhere);
+      return fail(elsewhere, true);
     }
   }
   if (this->Parts)
@@ -1805,7 +1850,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       {
         off = std::max(off, std::fabs(plane.Distance(curve.Point(p))));
       }
-      if (!(off <= std::max(plane.Tolerance(), 1e-12)))
+      // (A process without Source cells has no plane of its own to check
+      // against: on several processes the others check theirs.)
+      if (sourceCells > 0 && !(off <= std::max(plane.Tolerance(), 1e-12)))
       {
         std::ostringstream why;
         why << role << " is a curve that leaves the plane of the 2D Source (by up to " << off
@@ -1884,7 +1931,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const std::string elsewhere = agree(std::string(), &sameGeometry);
     if (!elsewhere.empty())
     {
-      return fail(elsewhere);
+      return fail(elsewhere, true);
     }
   }
   if (!sameGeometry)
@@ -2350,20 +2397,21 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // (the weights known) sends nothing.
   auto coveredTotals = [&](const mp::MortarOperator& op, bool needed) {
     std::vector<double> total;
-    const mp::MeshView& view = sourceMesh.View();
-    // (Volumes and planar meshes have no such rule: nothing to sum. Every
-    // process sees the same kind of leaf: its shape is agreed.)
-    if (!this->Parts || !(view.IsSurfaceMesh() || view.IsCurveMesh()))
+    if (!this->Parts)
     {
       return total;
     }
+    const mp::MeshView& view = sourceMesh.View();
+    // (Volumes and planar meshes have no such rule: no keys, but the call is
+    // collective all the same: a process's meshes may be empty.)
+    const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
     const int corners = view.CornersPerCell();
     const mp::LargeVector<double>& covered = op.GetSourceCovered();
     std::vector<long long> keys;
     std::vector<double> parts;
     std::vector<mp::Index> cells;
     vtkDataArray* global = source->GetPointData()->GetGlobalIds();
-    if (needed && global && corners <= 3)
+    if (needed && projected && global && corners <= 3)
     {
       for (mp::Index c = 0; c < view.NumberOfCells; ++c)
       {

@@ -298,11 +298,12 @@ public:
   /**
    * ParaView's array lists (the PointDataArrays and CellDataArrays
    * properties): each change of a list clears the selection, then states
-   * the status of each array the list names. Source arrays a list does not
-   * name are then not projected (a script that names arrays before Source
-   * has run, when the list cannot know the others), unless it names none:
-   * then all are. (Through the selections' own calls above, arrays not
-   * listed stay enabled.)
+   * the status of each array the list names. A list naming every array the
+   * filter had listed (the panel's) leaves arrays that appear later
+   * projected; a list naming fewer (a script that named arrays before
+   * Source had run, when the list could not know the others) projects
+   * only what it enables; a list naming none, all. (Through the
+   * selections' own calls above, arrays not listed stay enabled.)
    */
   void ClearPointDataArrayStatuses();
   void SetPointDataArrayStatus(const char* name, int status);
@@ -601,6 +602,8 @@ protected:
 private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;
   void SelectionModified();
+  void ClearStatuses(int association);
+  void SetStatus(int association, const char* name, int status);
   void ListSourceArrays(vtkDataObject* source);
   struct Internals;
   struct Kept;

@@ -637,7 +637,7 @@ TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
         {
           options[k].TargetSpace = spaces[k][0];
           options[k].SourceSpace = spaces[k][1];
-          options[k].KeepPieces = k == 0;
+          options[k].KeepPieces = true;
           options[k].Runner.Tasks = tasks;
           options[k].Runner.Run = mptest::RunInThreads;
           // Fields given to every other operator (right-hand sides summed

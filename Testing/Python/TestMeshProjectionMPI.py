@@ -442,8 +442,29 @@ case("surface of sheets flat in planes of their own", with_fields(sheets(9, 0.06
      with_fields(sheets(7, 0.04, 31)), "blocks")
 tc = with_fields(helix(300, 2, 13))
 sc = with_fields(helix(217, 2, 14))
-for how in ("random", "blocks"):
+# "apart", "empty": processes without cells see no curve themselves.
+for how in ("random", "blocks", "apart", "empty"):
     case("curve " + how, tc, sc, how)
+
+
+def line(n, x0, x1, y, z):
+    """n segments along x at height y, z."""
+    xs = np.linspace(x0, x1, n + 1)
+    points = np.stack([xs, np.full(n + 1, y), np.full(n + 1, z)], 1)
+    return mpmpi.grid(points, np.stack([np.arange(n), np.arange(1, n + 1)], 1), VTK_LINE)
+
+
+def lifted(g, z):
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    x[:, 2] = z
+    g.GetPoints().Modified()
+    return g
+
+
+# A curve in a 2D Source's plane (z = 0.25) running far beyond it: in
+# blocks, the last process has curve but no Source cells.
+case("curve trace in a plane z = 0.25", with_fields(line(80, 0.1, 4.0, 0.5, 0.25)),
+     with_fields(lifted(triangles(20, (0, 0, 0), (1, 1, 0), 2), 0.25)), "blocks")
 tt = with_fields(bent(triangles(20, (0.1, 0.1, 0), (0.9, 0.9, 0), 15), 0.5))
 # "apart", "empty": processes without Input or Source cells, which cannot
 # see the trace themselves, make the same outputs as the others.

@@ -131,6 +131,21 @@ for form in ("keywords", "trace"):
     Delete(named)
     Delete(fresh_source)
     Delete(fresh_target)
+# The panel's whole list (here the default, all of Source's arrays): an
+# array that appears upstream later (renamed) is projected too.
+from paraview.simple import Calculator  # noqa: E402
+calc = Calculator(Input=source, ResultArrayName="Extra", Function="coordsX")
+calc.UpdatePipeline()
+later = MeshProjection(Input=target, Source=calc)  # noqa: F821
+later.UpdatePipeline()
+check(servermanager.Fetch(later).GetPointData().GetArray("Extra") is not None, "Extra projected")
+calc.ResultArrayName = "Later"
+later.UpdatePipeline()
+got = servermanager.Fetch(later).GetPointData()
+check(got.GetArray("Later") is not None and got.GetArray("Smooth") is not None,
+      "an array appearing later is projected: %r" % [got.GetArrayName(i) for i in range(got.GetNumberOfArrays())])
+Delete(later)
+Delete(calc)
 # The operators are kept: another transfer (lumped) only applies them.
 projection.MassMatrix = "Lumped"
 projection.UpdatePipeline()

@@ -148,6 +148,7 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.SourceCovered.clear();
     op.CoveredMeasure = 0;
     op.OvercoveredCells = 0;
+    op.SourceFunctions = 0;
     op.Pieces.Dimension = target.CellDimension;
     const unsigned pair = 1u << ((op.Options.TargetSpace == SpaceType::P1 ? 2 : 0) +
       (op.Options.SourceSpace == SpaceType::P1 ? 1 : 0));
@@ -222,7 +223,9 @@ struct MortarOperator::Session
   // How much of each source cell the pieces cover: per task, summed after.
   std::vector<LargeVector<double>> Met;
 
-  void Prepare(MortarOperator& op, const MeshView& target, const MeshView& source, int tasks)
+  /// `cover`: this session sums how much of each source cell the pieces
+  /// cover (the same for every operator of a search: one session does).
+  void Prepare(MortarOperator& op, const MeshView& target, const MeshView& source, int tasks, bool cover)
   {
     auto start = std::chrono::steady_clock::now();
     this->Op = &op;
@@ -271,13 +274,16 @@ struct MortarOperator::Session
     this->Assemblers.resize(static_cast<size_t>(tasks));
     this->Blocks.resize(static_cast<size_t>(tasks));
     this->Pieces.resize(static_cast<size_t>(tasks > 1 ? tasks : 0));
-    this->Met.resize(static_cast<size_t>(tasks));
+    this->Met.resize(static_cast<size_t>(cover ? tasks : 0));
     // Each zeroed by its task (the first to touch its pages: see LargeArray.h).
-    runner.RunAll(tasks, [&](int k) { this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0); });
+    if (cover)
+    {
+      runner.RunAll(tasks, [&](int k) { this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0); });
+    }
     for (int k = 0; k < tasks; ++k)
     {
       Assembler& a = this->Assemblers[k];
-      a.SourceCovered = this->Met[k].data();
+      a.SourceCovered = cover ? this->Met[k].data() : nullptr;
       a.Target = &target;
       a.Source = &source;
       a.Mass = &op.TargetMass;
@@ -342,7 +348,11 @@ struct MortarOperator::Session
       }
       op.CoveredMeasure += a.CoveredSum;
       op.OvercoveredCells += a.Overcovered;
-      if (k == 0)
+      if (this->Met.empty())
+      {
+        // (Another session of the search sums the cover: copied after.)
+      }
+      else if (k == 0)
       {
         op.SourceCovered.swap(this->Met[0]);
       }
@@ -457,29 +467,33 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   // locator and sums. (At most 65535: the shared functions are found by
   // 16-bit task marks.)
   const int tasks = std::min(runner.TasksFor(target.NumberOfCells, 64), 65535);
+  // The cover of the source cells is the same for every operator (the
+  // same pieces, the same excluded cells): the lead's session sums it
+  // (per-task arrays of source cells: once, not per operator).
   for (MortarOperator* op : operators)
   {
     const bool p1t = op->Options.TargetSpace == SpaceType::P1;
     const bool p1s = op->Options.SourceSpace == SpaceType::P1;
+    const bool cover = op == &lead;
     if (p1t && p1s)
     {
       s11.reset(new Session<Intersector, P1, SourceP1>);
-      s11->Prepare(*op, target, source, tasks);
+      s11->Prepare(*op, target, source, tasks, cover);
     }
     else if (p1t)
     {
       s10.reset(new Session<Intersector, P1, P0>);
-      s10->Prepare(*op, target, source, tasks);
+      s10->Prepare(*op, target, source, tasks, cover);
     }
     else if (p1s)
     {
       s01.reset(new Session<Intersector, P0, SourceP1>);
-      s01->Prepare(*op, target, source, tasks);
+      s01->Prepare(*op, target, source, tasks, cover);
     }
     else
     {
       s00.reset(new Session<Intersector, P0, P0>);
-      s00->Prepare(*op, target, source, tasks);
+      s00->Prepare(*op, target, source, tasks, cover);
     }
   }
   auto start = std::chrono::steady_clock::now();
@@ -541,6 +555,13 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   if (s00)
   {
     s00->Finish(source);
+  }
+  for (MortarOperator* op : operators)
+  {
+    if (op != &lead)
+    {
+      op->SourceCovered = lead.SourceCovered;
+    }
   }
 }
 
