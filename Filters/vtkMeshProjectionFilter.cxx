@@ -2256,6 +2256,12 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     apply.Mass = this->MassMatrix == LUMPED_MASS ? mp::MassType::Lumped : mp::MassType::Consistent;
     apply.Bounded = this->PreserveBounds;
     apply.Solve.MaxIterations = this->MaximumIterations;
+    if (!this->Parts)
+    {
+      // Progress and a stop inside the solve too (one process: several
+      // would have to stop at the same iteration).
+      apply.Solve.Progress = [&progress](double done) { return progress(0.9 + 0.05 * done); };
+    }
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
     bool warm = !fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
     if (this->Parts)
@@ -2273,6 +2279,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply, hook))
     {
+      if (op.SolveWasStopped())
+      {
+        return "stopped";
+      }
       kept.Clear();
       return std::string("The projection of ") + TransferName(t) +
         " failed: the mass matrix of the covered target part could not be solved.";
@@ -2293,6 +2303,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       holeApply.Solve.StartFromX = false;
       if (!holeOp.Apply(hole.Values.data(), hole.Components, own.data(), fill, holeApply, hook))
       {
+        if (holeOp.SolveWasStopped())
+        {
+          return "stopped";
+        }
         kept.Clear();
         return std::string("The projection of ") + TransferName(t) +
           " failed: the mass matrix of the covered target part could not be solved.";

@@ -708,3 +708,46 @@ TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
   same[1].Method = mp::SearchMethod::AdvancingFront;
   EXPECT_TRUE(mp::MortarOperator::BuildTogether({ &a, &b }, same, t.View(), s.View(), &locator));
 }
+
+// The solve reports how far it has come and stops when asked: the result
+// with a progress hook that lets it go on is the one without, bit for bit;
+// a hook that says stop ends it (false, no direct solver, WasStopped).
+TEST(MortarProjector, SolveProgressAndStop)
+{
+  const TestMesh target = mptest::GridMesh(24, 22, 0.25, 141, 0, 0, 1, 1, LShapeWithHole);
+  const TestMesh source = mptest::GridMesh(19, 27, 0.25, 142, 0, 0, 1, 1, LShapeWithHole);
+  const std::vector<double> us = mptest::Sample(source, Smooth);
+  mp::BoxGridLocator locator(source.View());
+  mp::MortarOperator projector;
+  ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator));
+  std::vector<double> plain(static_cast<size_t>(target.NumberOfPoints()));
+  ASSERT_TRUE(projector.Apply(us.data(), 1, plain.data(), std::nan("")));
+  EXPECT_FALSE(projector.SolveWasStopped());
+  std::vector<double> reported;
+  mp::SolveOptions watched;
+  watched.Progress = [&reported](double done) {
+    reported.push_back(done);
+    return true;
+  };
+  std::vector<double> again(plain.size());
+  ASSERT_TRUE(projector.Apply(us.data(), 1, again.data(), std::nan(""), watched));
+  EXPECT_EQ(again, plain);
+  ASSERT_GT(reported.size(), 5u);
+  for (double f : reported)
+  {
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+  }
+  EXPECT_GT(reported.back(), 0.7); // near the tolerance at the last iterations
+  EXPECT_LT(reported.front(), 0.5);
+  int calls = 0;
+  mp::SolveOptions stopping;
+  stopping.Progress = [&calls](double) { return ++calls < 3; };
+  std::vector<double> stopped(plain.size());
+  EXPECT_FALSE(projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping));
+  EXPECT_TRUE(projector.SolveWasStopped());
+  EXPECT_EQ(calls, 3);
+  // And the next solve is not taken for stopped.
+  ASSERT_TRUE(projector.Apply(us.data(), 1, again.data(), std::nan("")));
+  EXPECT_FALSE(projector.SolveWasStopped());
+}

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <cmath>
 
 namespace mp
 {
@@ -262,9 +263,30 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     open += !converged[k];
     rz[k] = sums.Values[c + k];
   }
+  // Each column's squared residual at the start, for the progress.
+  const std::vector<double> start(sums.Values.begin(), sums.Values.begin() + c);
+  this->Stopped = false;
   int iteration = 0;
   for (; iteration < options.MaxIterations && open > 0; ++iteration)
   {
+    if (options.Progress && iteration > 0)
+    {
+      double done = 1.0;
+      for (int k = 0; k < c; ++k)
+      {
+        // log(r0 / r) / log(r0 / goal), the squares' ratios alike.
+        if (!converged[k] && start[k] > goal[k] && sums.Values[k] > 0.0)
+        {
+          const double f = std::log(start[k] / sums.Values[k]) / std::log(start[k] / goal[k]);
+          done = std::min(done, std::max(0.0, f));
+        }
+      }
+      if (!options.Progress(std::min(1.0, done)))
+      {
+        this->Stopped = true;
+        break;
+      }
+    }
     // q = A p and p.q: in one pass over each range (q still in cache)
     // unless shared rows must be completed in between.
     auto dot = [&](Index begin, Index end) {
@@ -370,6 +392,7 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
   const SolverHooks& hooks) const
 {
   const Index n = this->A.Rows;
+  this->Stopped = false;
   // A part without rows still takes part in the distributed sums.
   if (c <= 0 || (n <= 0 && !hooks.Reduce && !hooks.Exchange))
   {
@@ -377,6 +400,10 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
   }
   std::vector<char> converged;
   this->Iterate(B, X, c, options, converged, hooks);
+  if (this->Stopped)
+  {
+    return false; // asked to stop: no direct solver either
+  }
   LargeVector<double> b;
   for (int k = 0; k < c; ++k)
   {

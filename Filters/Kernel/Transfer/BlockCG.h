@@ -63,6 +63,15 @@ struct SolveOptions
   /// Start from the X given (e.g. the previous time step's solution)
   /// rather than from the lumped solution x_i = b_i / sum_k A_ik.
   bool StartFromX = false;
+  /**
+   * Called after each iteration with how far the solve has come, in [0, 1]
+   * (for the column furthest from its tolerance: the reduction of its
+   * residual so far over the reduction asked, in logarithms); false stops
+   * it: Solve then returns false at once (no direct solver) and
+   * BlockCG::WasStopped() says so. Null: not called. Serial systems: a
+   * distributed solve must stop on every part at once (leave it null).
+   */
+  std::function<bool(double done)> Progress;
 };
 
 class BlockCG
@@ -85,6 +94,8 @@ public:
    */
   bool Solve(const double* B, double* X, int c, const SolveOptions& options,
     const SolverHooks& hooks = SolverHooks()) const;
+  /// Whether the last Iterate or Solve was stopped by SolveOptions::Progress.
+  bool WasStopped() const { return this->Stopped; }
 
   /**
    * The sparse direct solver (LDL^T) on a matrix given by its entries
@@ -104,6 +115,7 @@ private:
   const CsrMatrix& A;
   TaskRunner Runner;
   mutable std::unique_ptr<Direct> Factor; ///< built on the first need
+  mutable bool Stopped = false;
 };
 } // namespace mp
 

@@ -226,6 +226,8 @@ public:
   const OperatorTimings& GetTimings() const { return this->Timings; }
   const IntersectionPieces& GetPieces() const { return this->Pieces; }
   const std::string& GetError() const { return this->Error; }
+  /// Whether the last Apply's solve was stopped (SolveOptions::Progress).
+  bool SolveWasStopped() const { return this->Solver && this->Solver->WasStopped(); }
 
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>

@@ -347,6 +347,32 @@ int Fields(const char* targetFile, const char* sourceFile)
   full->SetSourceData(source);
   full->Update();
   MP_CHECK(all.size() >= 5 && all.back() == 1.0 && std::is_sorted(all.begin(), all.end()));
+  // The solve reports its progress too (between 0.9 and 0.95), and stops there when asked.
+  MP_CHECK(std::any_of(all.begin(), all.end(), [](double f) { return f > 0.9 && f < 0.95; }));
+  vtkNew<vtkMeshProjectionFilter> inSolve;
+  vtkNew<vtkTest::ErrorObserver> inSolveObserver;
+  inSolve->AddObserver(vtkCommand::WarningEvent, inSolveObserver);
+  inSolve->SetInputData(target);
+  inSolve->SetSourceData(source);
+  std::vector<double> solveSeen;
+  State inSolveState{ inSolve, &solveSeen };
+  vtkNew<vtkCallbackCommand> stopInSolve;
+  stopInSolve->SetClientData(&inSolveState);
+  stopInSolve->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
+    State* s = static_cast<State*>(data);
+    s->Seen->push_back(*static_cast<double*>(amount));
+    if (*static_cast<double*>(amount) > 0.9 && *static_cast<double*>(amount) < 0.95)
+    {
+      s->Filter->SetAbortExecute(1);
+    }
+  });
+  inSolve->AddObserver(vtkCommand::ProgressEvent, stopInSolve);
+  inSolve->Update();
+  MP_CHECK(inSolveObserver->GetWarning() &&
+    inSolveObserver->GetWarningMessage().find("Aborted") != std::string::npos);
+  MP_CHECK(!inSolve->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
+  // (Stopped at the solve's first report: nothing of the outputs' stage after it.)
+  MP_CHECK(std::none_of(solveSeen.begin(), solveSeen.end(), [](double f) { return f >= 0.95 && f < 1.0; }));
 
   // Id arrays (GlobalIds, vtkOriginalCellIds from Redistribute DataSet or
   // Extract Cells, ...) are not fields: never projected, never offered in
