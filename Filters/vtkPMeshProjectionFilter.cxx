@@ -1558,53 +1558,7 @@ mp::SolverHooks MPIParts::Hooks(
   hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
   if (!points)
   {
-    // Cells: no row is shared, each process's part of the system is its
-    // own; solved here, and failed everywhere when it fails anywhere.
-    hooks.Direct = [this](const mp::CsrMatrix& A, const double* B, double* X, int c,
-                     const std::vector<char>& converged) {
-      std::vector<int> open;
-      for (int k = 0; k < c; ++k)
-      {
-        if (!converged[static_cast<size_t>(k)])
-        {
-          open.push_back(k);
-        }
-      }
-      const mp::Index rows = A.Rows;
-      const int width = static_cast<int>(open.size());
-      std::vector<mp::Index> row, column;
-      std::vector<double> value(A.Values.begin(), A.Values.end());
-      for (mp::Index f = 0; f < rows; ++f)
-      {
-        for (mp::Index e = A.RowStart[f]; e < A.RowStart[f + 1]; ++e)
-        {
-          row.push_back(f);
-          column.push_back(static_cast<mp::Index>(A.ColumnIndex[e]));
-        }
-      }
-      std::vector<double> b(static_cast<size_t>(rows) * width), x(b.size(), 0.0);
-      for (mp::Index f = 0; f < rows; ++f)
-      {
-        for (int k = 0; k < width; ++k)
-        {
-          b[f * width + k] = B[f * c + open[k]];
-        }
-      }
-      double failed = mp::BlockCG::SolveEntries(rows, row, column, value, b.data(), x.data(), width) ? 0.0 : 1.0;
-      this->Sum(&failed, 1);
-      if (failed != 0.0)
-      {
-        return false;
-      }
-      for (mp::Index f = 0; f < rows; ++f)
-      {
-        for (int k = 0; k < width; ++k)
-        {
-          X[f * c + open[k]] = x[f * width + k];
-        }
-      }
-      return true;
-    };
+    // Cells: no row is shared (BlockCG factors each part's own rows).
     return hooks;
   }
   std::vector<mp::Index> rowOf(static_cast<size_t>(rows));

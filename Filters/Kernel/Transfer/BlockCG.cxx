@@ -404,18 +404,27 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
   {
     return false; // asked to stop: no direct solver either
   }
+  if (std::all_of(converged.begin(), converged.end(), [](char done) { return done != 0; }))
+  {
+    return true;
+  }
+  if (hooks.Exchange)
+  {
+    // Rows shared by parts: the matrix is factored where its parts are
+    // gathered (all columns left at once; every part takes part).
+    return hooks.Direct && hooks.Direct(this->A, B, X, c, converged);
+  }
+  // This part's rows are its own (one part, or parts that share no row):
+  // factored here, and with several parts every part learns whether any
+  // failed (the same number of sums on every part: the columns left are
+  // the same everywhere).
+  bool solved = true;
   LargeVector<double> b;
-  for (int k = 0; k < c; ++k)
+  for (int k = 0; k < c && solved && n > 0; ++k)
   {
     if (converged[k])
     {
       continue;
-    }
-    if (hooks.Reduce || hooks.Exchange)
-    {
-      // A distributed matrix: factored where its parts are gathered (all
-      // columns left at once; every part takes part).
-      return hooks.Direct && hooks.Direct(this->A, B, X, c, converged);
     }
     if (!this->Factor)
     {
@@ -433,9 +442,10 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
       this->Factor.reset(new Direct);
       this->Factor->Solver.reset(new Eigen::SimplicialLDLT<SparseMatrix>(matrix));
     }
-    if (this->Factor->Solver->info() != Eigen::Success)
+    solved = this->Factor->Solver->info() == Eigen::Success;
+    if (!solved)
     {
-      return false;
+      break;
     }
     b.resize(static_cast<size_t>(n));
     for (Index i = 0; i < n; ++i)
@@ -449,7 +459,13 @@ bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& optio
       X[i * c + k] = solution[i];
     }
   }
-  return true;
+  if (hooks.Reduce)
+  {
+    double failed = solved ? 0.0 : 1.0;
+    hooks.Reduce(&failed, 1);
+    solved = failed == 0.0;
+  }
+  return solved;
 }
 
 bool BlockCG::SolveEntries(Index rows, const std::vector<Index>& row,

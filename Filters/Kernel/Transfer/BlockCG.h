@@ -47,7 +47,8 @@ struct SolverHooks
    * Solves the whole distributed system A X = B directly for the columns
    * k with converged[k] == 0 (collective: every part calls it with the same
    * flags), writing this part's rows of X; false when the factorization
-   * fails. Null: a distributed system has no direct fallback.
+   * fails. Used where rows are shared (Exchange set); null there: no direct
+   * fallback. (Parts that share no row factor their own rows.)
    */
   std::function<bool(const CsrMatrix& A, const double* B, double* X, int c,
     const std::vector<char>& converged)>
@@ -89,8 +90,9 @@ public:
 
   /**
    * Solves A X = B: the iterations, then the sparse direct solver for the
-   * columns that did not converge (a distributed system through the Direct
-   * hook: without one it returns false for them). False when that fails too.
+   * columns that did not converge: this part's own matrix, or, where rows
+   * are shared with other parts, through the Direct hook (without one it
+   * returns false for them). False when that fails too.
    */
   bool Solve(const double* B, double* X, int c, const SolveOptions& options,
     const SolverHooks& hooks = SolverHooks()) const;
