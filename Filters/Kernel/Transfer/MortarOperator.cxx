@@ -348,15 +348,12 @@ struct MortarOperator::Session
       }
       op.CoveredMeasure += a.CoveredSum;
       op.OvercoveredCells += a.Overcovered;
-      if (this->Met.empty())
-      {
-        // (Another session of the search sums the cover: copied after.)
-      }
-      else if (k == 0)
+      // (Without Met, another session of the search sums the cover: copied after.)
+      if (!this->Met.empty() && k == 0)
       {
         op.SourceCovered.swap(this->Met[0]);
       }
-      else
+      else if (!this->Met.empty())
       {
         for (size_t c = 0; c < op.SourceCovered.size(); ++c)
         {
@@ -496,6 +493,25 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
       s00->Prepare(*op, target, source, tasks, cover);
     }
   }
+  // Calls f on each session made.
+  auto forEachSession = [&](auto&& f) {
+    if (s11)
+    {
+      f(*s11);
+    }
+    if (s10)
+    {
+      f(*s10);
+    }
+    if (s01)
+    {
+      f(*s01);
+    }
+    if (s00)
+    {
+      f(*s00);
+    }
+  };
   auto start = std::chrono::steady_clock::now();
   SearchStatistics statistics;
   auto search = [&](auto& visitors) {
@@ -507,8 +523,7 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   {
     // One operator: its assemblers visit the pieces themselves (no
     // dispatch per piece: 1% of a 3D run).
-    done = s11 ? search(s11->Assemblers)
-                 : s10 ? search(s10->Assemblers) : s01 ? search(s01->Assemblers) : search(s00->Assemblers);
+    forEachSession([&](auto& session) { done = search(session.Assemblers); });
   }
   else
   {
@@ -540,22 +555,7 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   {
     return;
   }
-  if (s11)
-  {
-    s11->Finish(source);
-  }
-  if (s10)
-  {
-    s10->Finish(source);
-  }
-  if (s01)
-  {
-    s01->Finish(source);
-  }
-  if (s00)
-  {
-    s00->Finish(source);
-  }
+  forEachSession([&](auto& session) { session.Finish(source); });
   for (MortarOperator* op : operators)
   {
     if (op != &lead)
