@@ -62,6 +62,14 @@ namespace
  * Input has no cells); a Source in a parallel plane is projected onto it,
  * with a `warning`. Returns an error when the planes are not parallel.
  */
+/// Input of a higher dimension than Source: refused (the same words on one process or several).
+std::string HigherDimensionError(const std::string& role, int target, int source)
+{
+  return role + " is a " + std::to_string(target) + "D mesh but Source is " + std::to_string(source) +
+    "D: values go to a mesh of the same dimension, or from a volume mesh (2D or 3D) to a surface "
+    "or curve inside it (a trace), not to a mesh of a higher dimension.";
+}
+
 std::string UseOnePlane(mpvtk::SimplexMesh& target, mpvtk::SimplexMesh& source, std::string& warning)
 {
   const bool sourceOnly = target.View().NumberOfCells == 0;
@@ -1622,10 +1630,7 @@ std::string vtkMeshProjectionFilter::AgreeOnShape(mpvtk::SimplexMesh& target,
     }
     if (dimension[0] > dimension[1])
     {
-      return role + " is a " + std::to_string(dimension[0]) + "D mesh but Source is " +
-        std::to_string(dimension[1]) + "D: values go to a mesh of the same dimension, or from a "
-        "volume mesh (2D or 3D) to a surface or curve inside it (a trace), not to a mesh of a "
-        "higher dimension.";
+      return HigherDimensionError(role, dimension[0], dimension[1]);
     }
     trace = true;
     planar = true; // (as for a trace on one process: never a surface leaf)
@@ -1634,14 +1639,12 @@ std::string vtkMeshProjectionFilter::AgreeOnShape(mpvtk::SimplexMesh& target,
   {
     return std::string();
   }
-  // Planes: the same when parallel (normals within 1e-9 rad, as
-  // PlaneFrame::IsParallel) and within the larger tolerance of each other.
+  // Planes: the same when parallel (PlaneFrame's test) and within the
+  // larger tolerance of each other.
   auto same = [](const double* a, const double* b) {
     const double* n = a + 2;
     const double* k = b + 2;
-    const double c[3] = { n[1] * k[2] - n[2] * k[1], n[2] * k[0] - n[0] * k[2],
-      n[0] * k[1] - n[1] * k[0] };
-    if (!(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] <= 1e-18))
+    if (!mp::PlaneFrame::AreParallel(n, k))
     {
       return false;
     }
@@ -1798,11 +1801,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     std::ostringstream why;
     if (targetMesh.Dimension() > sourceMesh.Dimension())
     {
-      why << role << " is a " << targetMesh.Dimension() << "D mesh but Source is "
-          << sourceMesh.Dimension() << "D: values go to a mesh of the same dimension, or from "
-          << "a volume mesh (2D or 3D) to a surface or curve inside it (a trace), not to a "
-          << "mesh of a higher dimension.";
-      return fail(why.str());
+      return fail(HigherDimensionError(role, targetMesh.Dimension(), sourceMesh.Dimension()));
     }
     if (sourceMesh.Surface())
     {
@@ -2277,15 +2276,19 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     {
       values.resize(size);
     }
-    if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply, hook))
-    {
-      if (op.SolveWasStopped())
+    // Why an Apply failed: a stop, or a system it could not solve.
+    auto failedApply = [&](const mp::MortarOperator& applied) {
+      if (applied.SolveWasStopped())
       {
-        return "stopped";
+        return std::string("stopped");
       }
       kept.Clear();
       return std::string("The projection of ") + TransferName(t) +
         " failed: the mass matrix of the covered target part could not be solved.";
+    };
+    if (!op.Apply(g.Values.data(), g.Components, values.data(), fill, apply, hook))
+    {
+      return failedApply(op);
     }
     this->SolveTime += op.GetTimings().Solve;
     if (this->CacheOperator)
@@ -2303,13 +2306,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       holeApply.Solve.StartFromX = false;
       if (!holeOp.Apply(hole.Values.data(), hole.Components, own.data(), fill, holeApply, hook))
       {
-        if (holeOp.SolveWasStopped())
-        {
-          return "stopped";
-        }
-        kept.Clear();
-        return std::string("The projection of ") + TransferName(t) +
-          " failed: the mass matrix of the covered target part could not be solved.";
+        return failedApply(holeOp);
       }
       this->SolveTime += holeOp.GetTimings().Solve;
       const size_t rows = static_cast<size_t>(holeOp.GetNumberOfTargetFunctions());
@@ -2659,25 +2656,21 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // Without active scalars (none in Source, none in Input), the first
   // projected scalar array becomes them (points first), so that ParaView
   // shows the result coloured by it rather than in a solid colour.
-  if (!outPD->GetScalars() && !outCD->GetScalars())
-  {
-    for (auto* names : { &pointNames, &cellNames })
+  auto makeScalars = [](vtkDataSetAttributes* data, const std::vector<std::string>& names) {
+    for (const std::string& name : names)
     {
-      vtkDataSetAttributes* data = names == &pointNames ? static_cast<vtkDataSetAttributes*>(outPD)
-                                                        : static_cast<vtkDataSetAttributes*>(outCD);
-      for (const std::string& name : *names)
+      vtkDataArray* a = data->GetArray(name.c_str());
+      if (a && a->GetNumberOfComponents() == 1)
       {
-        vtkDataArray* a = data->GetArray(name.c_str());
-        if (a && a->GetNumberOfComponents() == 1 && !data->GetScalars())
-        {
-          data->SetActiveScalars(name.c_str());
-        }
-      }
-      if (data->GetScalars())
-      {
-        break;
+        data->SetActiveScalars(name.c_str());
+        return true;
       }
     }
+    return false;
+  };
+  if (!outPD->GetScalars() && !outCD->GetScalars() && !makeScalars(outPD, pointNames))
+  {
+    makeScalars(outCD, cellNames);
   }
 
   // 5. Where the result is defined, and how much of each cell is covered.

@@ -224,8 +224,11 @@ double PlaneFrame::Distance(const double* x) const
 
 bool PlaneFrame::IsParallel(const PlaneFrame& other) const
 {
-  const double* a = this->Normal;
-  const double* b = other.Normal;
+  return AreParallel(this->Normal, other.Normal);
+}
+
+bool PlaneFrame::AreParallel(const double* a, const double* b)
+{
   const double c[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
     a[0] * b[1] - a[1] * b[0] };
   return Dot(c, c) <= 1e-18;

@@ -40,6 +40,8 @@ public:
   double Distance(const double* x) const;
   /// Whether `other`'s plane is parallel to this one (normals within 1e-9 rad).
   bool IsParallel(const PlaneFrame& other) const;
+  /// The same test on two unit normals.
+  static bool AreParallel(const double* n, const double* m);
   /// How far from the plane a point may lie and still count as in it (set by Fit).
   double Tolerance() const { return this->PlaneTolerance; }
   /// The plane is z = constant: the points' (x, y) are their 2D coordinates.
