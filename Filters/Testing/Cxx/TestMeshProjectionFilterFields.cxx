@@ -16,6 +16,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkTestErrorObserver.h"
 
@@ -26,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace
@@ -302,77 +304,60 @@ int Fields(const char* targetFile, const char* sourceFile)
   std::cout << targetFile << ": reused (warm start) vs single-use " << worst << "\n";
   MP_CHECK(single && reused->GetNumberOfTuples() == single->GetNumberOfTuples() && worst < 1e-12);
 
-  // Abort from a progress observer: Input as it came, a warning.
-  vtkNew<vtkMeshProjectionFilter> aborted;
-  vtkNew<vtkTest::ErrorObserver> abortObserver;
-  aborted->AddObserver(vtkCommand::WarningEvent, abortObserver);
-  aborted->SetInputData(target);
-  aborted->SetSourceData(source);
-  std::vector<double> seen;
-  vtkNew<vtkCallbackCommand> onProgress;
-  struct State
+  // A run watched by a progress observer that stops it once the progress
+  // is in (from, to): the progress it saw, and whether it said "Aborted".
+  struct Watch
   {
     vtkMeshProjectionFilter* Filter;
-    std::vector<double>* Seen;
-  } state{ aborted, &seen };
-  onProgress->SetClientData(&state);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
-    State* s = static_cast<State*>(data);
-    s->Seen->push_back(*static_cast<double*>(amount));
-    if (*static_cast<double*>(amount) > 0.1)
-    {
-      s->Filter->SetAbortExecute(1);
-    }
-  });
-  aborted->AddObserver(vtkCommand::ProgressEvent, onProgress);
-  aborted->Update();
-  MP_CHECK(abortObserver->GetWarning() &&
-    abortObserver->GetWarningMessage().find("Aborted") != std::string::npos);
-  MP_CHECK(!aborted->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth") ||
-    aborted->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth") == target->GetPointData()->GetArray("Smooth"));
-  MP_CHECK(aborted->GetUnstructuredGridOutput()->GetNumberOfPoints() == target->GetNumberOfPoints());
-  MP_CHECK(!aborted->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
-  MP_CHECK(seen.size() >= 2 && std::is_sorted(seen.begin(), seen.end()));
+    std::vector<double> Seen;
+    double From, To;
+  };
+  auto watchedRun = [&](double from, double to, Watch& watch) {
+    vtkSmartPointer<vtkMeshProjectionFilter> filter = vtkSmartPointer<vtkMeshProjectionFilter>::New();
+    vtkNew<vtkTest::ErrorObserver> warnings;
+    filter->AddObserver(vtkCommand::WarningEvent, warnings);
+    filter->SetInputData(target);
+    filter->SetSourceData(source);
+    watch = Watch{ filter, {}, from, to };
+    vtkNew<vtkCallbackCommand> onProgress;
+    onProgress->SetClientData(&watch);
+    onProgress->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
+      Watch* w = static_cast<Watch*>(data);
+      const double f = *static_cast<double*>(amount);
+      w->Seen.push_back(f);
+      if (f > w->From && f < w->To)
+      {
+        w->Filter->SetAbortExecute(1);
+      }
+    });
+    filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+    filter->Update();
+    const bool said = warnings->GetWarning() && warnings->GetWarningMessage().find("Aborted") != std::string::npos;
+    return std::make_pair(filter, said);
+  };
+  // Abort from a progress observer: Input as it came, a warning.
+  Watch early;
+  const auto aborted = watchedRun(0.1, 2.0, early);
+  MP_CHECK(aborted.second);
+  vtkUnstructuredGrid* abortedOut = aborted.first->GetUnstructuredGridOutput();
+  MP_CHECK(!abortedOut->GetPointData()->GetArray("Smooth") ||
+    abortedOut->GetPointData()->GetArray("Smooth") == target->GetPointData()->GetArray("Smooth"));
+  MP_CHECK(abortedOut->GetNumberOfPoints() == target->GetNumberOfPoints());
+  MP_CHECK(!abortedOut->GetPointData()->GetArray("vtkValidPointMask"));
+  MP_CHECK(early.Seen.size() >= 2 && std::is_sorted(early.Seen.begin(), early.Seen.end()));
   // Progress of a whole run goes up to 1 through the stages.
-  vtkNew<vtkMeshProjectionFilter> full;
-  std::vector<double> all;
-  State fullState{ nullptr, &all };
-  vtkNew<vtkCallbackCommand> record;
-  record->SetClientData(&fullState);
-  record->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
-    static_cast<State*>(data)->Seen->push_back(*static_cast<double*>(amount));
-  });
-  full->AddObserver(vtkCommand::ProgressEvent, record);
-  full->SetInputData(target);
-  full->SetSourceData(source);
-  full->Update();
+  Watch whole;
+  MP_CHECK(!watchedRun(2.0, 2.0, whole).second);
+  const std::vector<double>& all = whole.Seen;
   MP_CHECK(all.size() >= 5 && all.back() == 1.0 && std::is_sorted(all.begin(), all.end()));
   // The solve reports its progress too (between 0.9 and 0.95), and stops there when asked.
   MP_CHECK(std::any_of(all.begin(), all.end(), [](double f) { return f > 0.9 && f < 0.95; }));
-  vtkNew<vtkMeshProjectionFilter> inSolve;
-  vtkNew<vtkTest::ErrorObserver> inSolveObserver;
-  inSolve->AddObserver(vtkCommand::WarningEvent, inSolveObserver);
-  inSolve->SetInputData(target);
-  inSolve->SetSourceData(source);
-  std::vector<double> solveSeen;
-  State inSolveState{ inSolve, &solveSeen };
-  vtkNew<vtkCallbackCommand> stopInSolve;
-  stopInSolve->SetClientData(&inSolveState);
-  stopInSolve->SetCallback([](vtkObject*, unsigned long, void* data, void* amount) {
-    State* s = static_cast<State*>(data);
-    s->Seen->push_back(*static_cast<double*>(amount));
-    if (*static_cast<double*>(amount) > 0.9 && *static_cast<double*>(amount) < 0.95)
-    {
-      s->Filter->SetAbortExecute(1);
-    }
-  });
-  inSolve->AddObserver(vtkCommand::ProgressEvent, stopInSolve);
-  inSolve->Update();
-  MP_CHECK(inSolveObserver->GetWarning() &&
-    inSolveObserver->GetWarningMessage().find("Aborted") != std::string::npos);
-  MP_CHECK(!inSolve->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
+  Watch inSolve;
+  const auto stoppedInSolve = watchedRun(0.9, 0.95, inSolve);
+  MP_CHECK(stoppedInSolve.second);
+  MP_CHECK(!stoppedInSolve.first->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
   // (Stopped at the solve's first report: nothing of the outputs' stage after it.)
-  MP_CHECK(std::none_of(solveSeen.begin(), solveSeen.end(), [](double f) { return f >= 0.95 && f < 1.0; }));
+  MP_CHECK(std::none_of(inSolve.Seen.begin(), inSolve.Seen.end(), [](double f) { return f >= 0.95 && f < 1.0; }));
 
   // Id arrays (GlobalIds, vtkOriginalCellIds from Redistribute DataSet or
   // Extract Cells, ...) are not fields: never projected, never offered in
