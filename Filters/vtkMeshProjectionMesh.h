@@ -223,6 +223,8 @@ public:
   ~SourceLocator() override;
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
   void FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells) override;
+  /// The bins' answer (faces in space: a 3D mesh's own).
+  bool Supports(mp::Index cell, int face) const override { return this->Bins->Supports(cell, face); }
   /// Shares the bins (read only, the lazy one built once); no locks.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
 

@@ -379,18 +379,6 @@ double TetrahedronIntersector::Measure(const Piece& piece)
   return piece.NumberOfTetrahedra > 0 ? piece.M[0][0] : 0.0;
 }
 
-double TetrahedronIntersector::Moments(
-  const Piece& piece, double (&origin)[3], double (&M)[4][4])
-{
-  if (piece.NumberOfTetrahedra == 0 || !(piece.M[0][0] > 0.0))
-  {
-    return 0.0;
-  }
-  std::copy(piece.Origin, piece.Origin + 3, origin);
-  std::copy(&piece.M[0][0], &piece.M[0][0] + 16, &M[0][0]);
-  return piece.M[0][0];
-}
-
 void TetrahedronIntersector::SumMoments(Piece& piece)
 {
   // Moments up to order 2 of the piece relative to one of its vertices (a

@@ -2,6 +2,7 @@
 #include "Search/CandidateLocator.h"
 
 #include "Mesh/CellNeighbors.h"
+#include "Search/SupportingFaces.h"
 
 #include <algorithm>
 #include <cmath>
@@ -94,8 +95,15 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   {
     std::vector<Index> boundary;
     BoundaryCells(mesh, boundary);
+    this->Grids->Supporting = SupportingFaces(mesh, boundary);
     this->Grids->Boundary.reset(new Bins(mesh, &boundary));
   }
+}
+
+bool BoxGridLocator::Supports(Index cell, int face) const
+{
+  const std::vector<unsigned char>& supporting = this->Grids->Supporting;
+  return !supporting.empty() && (supporting[static_cast<size_t>(cell)] >> face & 1u);
 }
 
 BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subset)

@@ -53,6 +53,20 @@ public:
   }
 
   /**
+   * True when face `face` (mesh-local) of source cell `cell`, a face
+   * without neighbour, supports the source: the whole source lies on the
+   * cell's side of its plane (SupportingFaces.h). A target cell whose inner
+   * front met the boundary only at such faces needs no boundary query.
+   * False says nothing (the default).
+   */
+  virtual bool Supports(Index cell, int face) const
+  {
+    (void)cell;
+    (void)face;
+    return false;
+  }
+
+  /**
    * A locator over the same cells for another thread: concurrent tasks each
    * query their own. It may share the (read-only) index with this one.
    */
@@ -72,6 +86,7 @@ public:
   explicit BoxGridLocator(const MeshView& mesh);
   void FindCandidates(const double box[6], std::vector<Index>& cells) override;
   void FindBoundaryCandidates(const double box[6], std::vector<Index>& cells) override;
+  bool Supports(Index cell, int face) const override;
   std::unique_ptr<CandidateLocator> NewForThread() const override;
 
 private:
@@ -100,6 +115,9 @@ private:
   {
     MeshView Mesh;
     std::unique_ptr<const Bins> Boundary;
+    /// Of each cell: bit k set when face k is a boundary face supporting
+    /// the mesh (SupportingFaces.h; tetrahedra in space only, else empty).
+    std::vector<unsigned char> Supporting;
     std::once_flag AllBuilt;
     std::unique_ptr<const Bins> All; ///< set once, under AllBuilt
   };

@@ -29,7 +29,9 @@
  * face that has the point strictly beyond it; a bounded number of steps).
  * Where there is no seed, where the seed does not meet the cell, or where the
  * inner front runs into the source boundary (there the cell's intersection
- * may be disconnected), the locator is asked, in two steps:
+ * may be disconnected; in 3D not when every boundary face it ran into
+ * supports the source, Search/SupportingFaces.h), the locator is asked, in
+ * two steps:
  *  - first for the source cells *at the boundary* near the cell. That is
  *    enough whenever the cell meets the source boundary: every group of
  *    source cells meeting the cell that the inner front cannot reach from
@@ -93,6 +95,18 @@ struct HasApart<Intersector, Sources,
   std::enable_if_t<std::is_same<typename Intersector::Cell, typename Sources::Cell>::value,
     decltype(void(Intersector::Apart(std::declval<const typename Intersector::Cell&>(),
       std::declval<const typename Intersector::Cell&>())))>> : std::true_type
+{
+};
+
+/// Whether the intersector's cells meet only in positive volume
+/// (tetrahedra), so that a boundary face supporting the source
+/// (CandidateLocator::Supports) cannot cut a target cell's cover apart.
+template <class Intersector, class = void>
+struct MeetsInVolume : std::false_type
+{
+};
+template <class Intersector>
+struct MeetsInVolume<Intersector, std::enable_if_t<Intersector::MeetsInVolume>> : std::true_type
 {
 };
 
@@ -379,7 +393,16 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
           const Index n = source.Neighbor(sId, s.Face[k]);
           if (n < 0)
           {
-            blocked = true;
+            // A boundary face with the whole source on the cell's side
+            // bounds the cover without cutting it apart: no query for it.
+            if constexpr (MeetsInVolume<Intersector>::value)
+            {
+              blocked = blocked || !locator.Supports(sId, s.Face[k]);
+            }
+            else
+            {
+              blocked = true;
+            }
           }
           else if (stamp[n] != tId)
           {

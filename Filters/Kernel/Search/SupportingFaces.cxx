@@ -1,0 +1,365 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Search/SupportingFaces.h"
+
+#include "Geometry/Predicates.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+namespace mp
+{
+namespace
+{
+/// A k-d tree of boxes over points, for "is every point on one side of
+/// this plane?".
+class PointTree
+{
+public:
+  PointTree(const double* x, std::vector<Index> ids)
+    : X(x)
+    , Ids(std::move(ids))
+  {
+    this->Nodes.reserve(2 * (this->Ids.size() / LeafSize + 1));
+    this->Nodes.emplace_back();
+    this->Build(0, 0, static_cast<Index>(this->Ids.size()));
+    // The points in tree order: a leaf's are read one after the other.
+    this->Packed.resize(3 * this->Ids.size());
+    for (size_t i = 0; i < this->Ids.size(); ++i)
+    {
+      std::copy(x + 3 * this->Ids[i], x + 3 * this->Ids[i] + 3, &this->Packed[3 * i]);
+    }
+  }
+
+  /**
+   * 1 when every point lies in the closed half-space of plane (a, b, c)
+   * where Orient3D(a, b, c, .) has the sign `side` (+1 or -1) or is zero,
+   * 0 when one does not, -1 when `budget` node visits did not tell.
+   */
+  int AllOnSide(const double* a, const double* b, const double* c, double side, Index budget) const
+  {
+    double e1[3];
+    double e2[3];
+    double scale1 = 0.0;
+    double scale2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      e1[d] = b[d] - a[d];
+      e2[d] = c[d] - a[d];
+      scale1 = std::max(scale1, std::fabs(e1[d]));
+      scale2 = std::max(scale2, std::fabs(e2[d]));
+    }
+    // Orient3D(a, b, c, v) = n . (v - a) with n = e1 x e2; `outward` points
+    // to the side that must hold no point.
+    const double outward[3] = { -side * (e1[1] * e2[2] - e1[2] * e2[1]),
+      -side * (e1[2] * e2[0] - e1[0] * e2[2]), -side * (e1[0] * e2[1] - e1[1] * e2[0]) };
+    // The rounded normal is within 12 u |e1|max |e2|max of the exact one
+    // per component, and the rounded bound of a box below within 8 u |n|
+    // per unit of `reach`: with this slack a box below -slack * reach holds
+    // no point on the plane or beyond it.
+    const double slack = 256.0 * RoundingUnit * scale1 * scale2;
+    std::array<Index, 128> stack;
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+      const Node& node = this->Nodes[static_cast<size_t>(stack[--top])];
+      if (--budget < 0)
+      {
+        return -1;
+      }
+      double bound = 0.0;
+      double reach = 0.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double lo = node.Lo[d] - a[d];
+        const double hi = node.Hi[d] - a[d];
+        bound += std::max(outward[d] * lo, outward[d] * hi);
+        reach += std::max(std::fabs(lo), std::fabs(hi));
+      }
+      if (bound < -slack * reach)
+      {
+        continue; // every point of the box strictly inside
+      }
+      if (node.Child < 0)
+      {
+        for (Index i = node.Begin; i < node.End; ++i)
+        {
+          // The same bound for the point alone, then the exact sign.
+          const double* x = &this->Packed[3 * static_cast<size_t>(i)];
+          double value = 0.0;
+          double distance = 0.0;
+          for (int d = 0; d < 3; ++d)
+          {
+            value += outward[d] * (x[d] - a[d]);
+            distance += std::fabs(x[d] - a[d]);
+          }
+          if (!(value < -slack * distance) && !OnSide(a, b, c, x, side))
+          {
+            return 0;
+          }
+        }
+        continue;
+      }
+      if (top + 2 > static_cast<int>(stack.size()))
+      {
+        return -1; // deeper than any tree built here
+      }
+      stack[top++] = node.Child;
+      stack[top++] = node.Child + 1;
+    }
+    return 1;
+  }
+
+private:
+  static constexpr Index LeafSize = 8;
+  struct Node
+  {
+    double Lo[3];
+    double Hi[3];
+    Index Begin;
+    Index End;
+    Index Child; ///< the first of two children, or -1 for a leaf
+  };
+
+  void Build(Index at, Index begin, Index end)
+  {
+    Node node;
+    node.Begin = begin;
+    node.End = end;
+    node.Child = -1;
+    for (int d = 0; d < 3; ++d)
+    {
+      node.Lo[d] = HUGE_VAL;
+      node.Hi[d] = -HUGE_VAL;
+    }
+    for (Index i = begin; i < end; ++i)
+    {
+      const double* x = this->X + 3 * this->Ids[static_cast<size_t>(i)];
+      for (int d = 0; d < 3; ++d)
+      {
+        node.Lo[d] = std::min(node.Lo[d], x[d]);
+        node.Hi[d] = std::max(node.Hi[d], x[d]);
+      }
+    }
+    if (end - begin > LeafSize)
+    {
+      int axis = 0;
+      for (int d = 1; d < 3; ++d)
+      {
+        if (node.Hi[d] - node.Lo[d] > node.Hi[axis] - node.Lo[axis])
+        {
+          axis = d;
+        }
+      }
+      const Index middle = begin + (end - begin) / 2;
+      const double* x = this->X;
+      std::nth_element(this->Ids.begin() + begin, this->Ids.begin() + middle,
+        this->Ids.begin() + end,
+        [x, axis](Index p, Index q) { return x[3 * p + axis] < x[3 * q + axis]; });
+      node.Child = static_cast<Index>(this->Nodes.size());
+      this->Nodes.emplace_back();
+      this->Nodes.emplace_back();
+      this->Nodes[static_cast<size_t>(at)] = node;
+      this->Build(node.Child, begin, middle);
+      this->Build(node.Child + 1, middle, end);
+      return;
+    }
+    this->Nodes[static_cast<size_t>(at)] = node;
+  }
+
+  /// Whether x is on the plane or on the `side` of it, exactly (the
+  /// plane's own corners without an exact evaluation of 0).
+  static bool OnSide(const double* a, const double* b, const double* c, const double* x, double side)
+  {
+    auto same = [x](const double* p) { return x[0] == p[0] && x[1] == p[1] && x[2] == p[2]; };
+    return same(a) || same(b) || same(c) || Orient3D(a, b, c, x) * side >= 0.0;
+  }
+
+  const double* X;
+  std::vector<Index> Ids;
+  std::vector<Node> Nodes;
+  std::vector<double> Packed;
+};
+
+Index Root(std::vector<Index>& parent, Index i)
+{
+  while (parent[static_cast<size_t>(i)] != i)
+  {
+    Index& p = parent[static_cast<size_t>(i)];
+    p = parent[static_cast<size_t>(p)];
+    i = p;
+  }
+  return i;
+}
+} // namespace
+
+std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vector<Index>& cells)
+{
+  std::vector<unsigned char> flags;
+  if (mesh.CellDimension != 3 || mesh.SpaceDimension != 3 || !mesh.Neighbors)
+  {
+    return flags;
+  }
+  flags.assign(static_cast<size_t>(mesh.NumberOfCells), 0);
+  // The faces without neighbour: (cell, face).
+  struct Face
+  {
+    Index Cell;
+    int K;
+  };
+  std::vector<Face> faces;
+  for (const Index c : cells)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      if (mesh.Neighbor(c, k) < 0)
+      {
+        faces.push_back({ c, k });
+      }
+    }
+  }
+  auto corner = [&](const Face& f, int j) { return mesh.Cell(f.Cell)[(f.K + 1 + j) % 4]; };
+  auto opposite = [&](const Face& f) { return mesh.Cell(f.Cell)[f.K]; };
+
+  // Their corners, all finite (else no face supports the mesh): the cells
+  // of positive volume lie in the hull of those (the source's extreme
+  // points are on its boundary, which those faces cover).
+  std::vector<Index> ids;
+  {
+    std::vector<char> used(static_cast<size_t>(mesh.NumberOfPoints), 0);
+    for (const Face& f : faces)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        const Index p = corner(f, j);
+        if (p < 0 || p >= mesh.NumberOfPoints)
+        {
+          return flags;
+        }
+        if (!used[static_cast<size_t>(p)])
+        {
+          used[static_cast<size_t>(p)] = 1;
+          const double* x = mesh.Point(p);
+          if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+          {
+            return flags;
+          }
+          ids.push_back(p);
+        }
+      }
+    }
+  }
+  const PointTree tree(mesh.Points, std::move(ids));
+  // Which side of face f's plane point p is on (0: on it).
+  auto sideOf = [&](const Face& f, Index p) {
+    const double o = Orient3D(mesh.Point(corner(f, 0)), mesh.Point(corner(f, 1)),
+      mesh.Point(corner(f, 2)), mesh.Point(p));
+    return o > 0.0 ? 1 : (o < 0.0 ? -1 : 0);
+  };
+  // 1 supports, 0 does not, -1 undecided within `budget` node visits.
+  auto test = [&](const Face& f, Index budget) {
+    const int inner = sideOf(f, opposite(f));
+    return inner == 0 ? 0
+                      : tree.AllOnSide(mesh.Point(corner(f, 0)), mesh.Point(corner(f, 1)),
+                          mesh.Point(corner(f, 2)), inner, budget);
+  };
+  auto mark = [&](const Face& f) {
+    flags[static_cast<size_t>(f.Cell)] |= static_cast<unsigned char>(1u << f.K);
+  };
+
+  // Each face on its own first (on a curved boundary a few dozen visits
+  // tell); those with many points on or near their plane then together
+  // with the faces of the same plane.
+  std::vector<Face> crowded;
+  for (const Face& f : faces)
+  {
+    const int supports = test(f, 256);
+    if (supports == 1)
+    {
+      mark(f);
+    }
+    else if (supports < 0)
+    {
+      crowded.push_back(f);
+    }
+  }
+  if (crowded.empty())
+  {
+    return flags;
+  }
+  // Planes: faces that share an edge, lie exactly in one plane and have
+  // their cells on one side of it are one (union-find).
+  struct Edge
+  {
+    Index Low;
+    Index High;
+    Index Face;
+    bool operator<(const Edge& o) const
+    {
+      return this->Low != o.Low ? this->Low < o.Low
+                                : (this->High != o.High ? this->High < o.High : this->Face < o.Face);
+    }
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * crowded.size());
+  for (size_t f = 0; f < crowded.size(); ++f)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      const Index p = corner(crowded[f], j);
+      const Index q = corner(crowded[f], (j + 1) % 3);
+      edges.push_back({ std::min(p, q), std::max(p, q), static_cast<Index>(f) });
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  auto sameEdge = [&](size_t e, size_t g) {
+    return edges[e].Low == edges[g].Low && edges[e].High == edges[g].High;
+  };
+  std::vector<Index> plane(crowded.size());
+  std::iota(plane.begin(), plane.end(), Index(0));
+  for (size_t e = 0; e + 1 < edges.size(); ++e)
+  {
+    // Only edges of exactly two of these faces.
+    if (!sameEdge(e, e + 1) || (e + 2 < edges.size() && sameEdge(e, e + 2)) ||
+      (e > 0 && sameEdge(e - 1, e)))
+    {
+      continue;
+    }
+    const Face& fa = crowded[static_cast<size_t>(edges[e].Face)];
+    const Face& fb = crowded[static_cast<size_t>(edges[e + 1].Face)];
+    Index apex = -1; // fb's corner off the edge
+    for (int j = 0; j < 3; ++j)
+    {
+      const Index p = corner(fb, j);
+      apex = (p != edges[e].Low && p != edges[e].High) ? p : apex;
+    }
+    const int inner = sideOf(fa, opposite(fa));
+    if (apex >= 0 && inner != 0 && sideOf(fa, apex) == 0 && sideOf(fa, opposite(fb)) == inner)
+    {
+      plane[static_cast<size_t>(Root(plane, edges[e].Face))] = Root(plane, edges[e + 1].Face);
+    }
+  }
+  std::vector<Index> facesOnPlane(crowded.size(), 0);
+  for (size_t f = 0; f < crowded.size(); ++f)
+  {
+    ++facesOnPlane[static_cast<size_t>(Root(plane, static_cast<Index>(f)))];
+  }
+  std::vector<signed char> supports(crowded.size(), -1);
+  for (size_t f = 0; f < crowded.size(); ++f)
+  {
+    const size_t root = static_cast<size_t>(Root(plane, static_cast<Index>(f)));
+    if (supports[root] < 0)
+    {
+      supports[root] = test(crowded[root], 512 + 8 * facesOnPlane[root]) == 1;
+    }
+    if (supports[root] == 1)
+    {
+      mark(crowded[f]);
+    }
+  }
+  return flags;
+}
+} // namespace mp

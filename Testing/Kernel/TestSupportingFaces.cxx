@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Supporting boundary faces (Search/SupportingFaces.h): the fast test
+// against an exact brute-force oracle, and the front that trusts them
+// against the brute-force search where a target cell's cover is cut apart.
+#include "Geometry/Predicates.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Search/SupportingFaces.h"
+#include "SearchComparison.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+using mp::Index;
+using mp::TetrahedronIntersector;
+using mptest::TestMesh;
+
+namespace
+{
+/// `m` without the cells whose centre `drop` says, then its neighbours.
+TestMesh WithoutCells(const TestMesh& m, const std::function<bool(const double*)>& drop)
+{
+  TestMesh out = m;
+  out.Cells.clear();
+  for (Index c = 0; c < m.NumberOfCells(); ++c)
+  {
+    double centre[3] = { 0, 0, 0 };
+    for (int k = 0; k < 4; ++k)
+      for (int d = 0; d < 3; ++d)
+        centre[d] += m.Points[3 * m.Cells[4 * c + k] + d] / 4;
+    if (!drop(centre))
+      out.Cells.insert(out.Cells.end(), m.Cells.begin() + 4 * c, m.Cells.begin() + 4 * c + 4);
+  }
+  out.Finish();
+  return out;
+}
+
+/// Every used point against every boundary face's plane, exactly.
+std::vector<unsigned char> Oracle(const TestMesh& m)
+{
+  const mp::MeshView v = m.View();
+  std::vector<char> used(static_cast<size_t>(m.NumberOfPoints()), 0);
+  for (Index p : m.Cells)
+    used[p] = 1;
+  std::vector<unsigned char> flags(static_cast<size_t>(m.NumberOfCells()), 0);
+  for (Index c = 0; c < m.NumberOfCells(); ++c)
+  {
+    const Index* ids = v.Cell(c);
+    for (int k = 0; k < 4; ++k)
+    {
+      if (v.Neighbor(c, k) >= 0)
+        continue;
+      const double* a = v.Point(ids[(k + 1) % 4]);
+      const double* b = v.Point(ids[(k + 2) % 4]);
+      const double* d = v.Point(ids[(k + 3) % 4]);
+      const double inner = mp::Orient3D(a, b, d, v.Point(ids[k]));
+      bool supports = inner != 0.0;
+      for (Index p = 0; p < m.NumberOfPoints() && supports; ++p)
+        supports = !used[p] || mp::Orient3D(a, b, d, v.Point(p)) * inner >= 0.0;
+      if (supports)
+        flags[c] |= static_cast<unsigned char>(1u << k);
+    }
+  }
+  return flags;
+}
+
+std::vector<unsigned char> Fast(const TestMesh& m)
+{
+  std::vector<Index> boundary;
+  mp::BoundaryCells(m.View(), boundary);
+  return mp::SupportingFaces(m.View(), boundary);
+}
+
+/// How many boundary faces the flags name.
+Index Count(const std::vector<unsigned char>& flags)
+{
+  Index n = 0;
+  for (unsigned char f : flags)
+    for (int k = 0; k < 4; ++k)
+      n += (f >> k) & 1u;
+  return n;
+}
+
+Index BoundaryFaces(const TestMesh& m)
+{
+  Index n = 0;
+  for (mp::NeighborId id : m.Neighbors)
+    n += id < 0;
+  return n;
+}
+
+/// Boundary points moved by up to `amount` along random directions: a
+/// boundary with small folds both ways, faces nearly in one plane.
+void Roughen(TestMesh& m, double amount, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount, amount);
+  std::vector<char> onBoundary(static_cast<size_t>(m.NumberOfPoints()), 0);
+  for (Index c = 0; c < m.NumberOfCells(); ++c)
+    for (int k = 0; k < 4; ++k)
+      if (m.Neighbors[4 * c + k] < 0)
+        for (int j = 1; j < 4; ++j)
+          onBoundary[m.Cells[4 * c + (k + j) % 4]] = 1;
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+    if (onBoundary[p])
+      for (int d = 0; d < 3; ++d)
+        m.Points[3 * p + d] += u(rng);
+}
+
+/// Locators that trust every boundary face, or none.
+struct TrustingLocator : mp::BoxGridLocator
+{
+  TrustingLocator(const mp::MeshView& mesh, bool trust)
+    : mp::BoxGridLocator(mesh)
+    , Trust(trust)
+  {
+  }
+  bool Supports(Index, int) const override { return this->Trust; }
+  bool Trust;
+};
+
+struct FrontRun
+{
+  mptest::PairRecorder<TetrahedronIntersector> Pairs;
+  mp::SearchStatistics Stats;
+  FrontRun(const TestMesh& target, const TestMesh& source, mp::CandidateLocator& locator)
+  {
+    mp::AdvancingFrontSearch<TetrahedronIntersector>(
+      target.View(), source.View(), locator, this->Pairs, this->Stats);
+    std::sort(this->Pairs.Pairs.begin(), this->Pairs.Pairs.end());
+  }
+};
+} // namespace
+
+TEST(SupportingFaces, MatchTheExactOracle)
+{
+  struct Case
+  {
+    std::string Name;
+    TestMesh Mesh;
+    bool Convex;
+  };
+  std::vector<Case> cases;
+  cases.push_back({ "small cube", mptest::CubeMesh(3, 4, 5, 0.15, 1), true });
+  // 17 x 17 points on each side: more than a face's own budget, so the
+  // faces of each side are tested together.
+  cases.push_back({ "large cube", mptest::CubeMesh(16, 16, 16, 0.15, 2), true });
+  cases.push_back({ "notched", WithoutCells(mptest::CubeMesh(8, 8, 8, 0.15, 3), [](const double* x) {
+    return x[0] > 0.5 && x[1] > 0.5;
+  }),
+    false });
+  TestMesh rough = mptest::CubeMesh(6, 7, 8, 0.15, 4);
+  Roughen(rough, 1e-3 / 8, 5);
+  cases.push_back({ "rough", rough, false });
+  // Far from the origin and small: the bounds' rounding matters.
+  TestMesh far = rough;
+  mptest::Move3D(far, 0.4, 0.7, 1e-6, 1e3, -2e3, 5e2);
+  cases.push_back({ "rough, small and far", far, false });
+  TestMesh coarse = mptest::CubeMesh(1, 1, 1, 0.0, 6);
+  mptest::Move3D(coarse, 0, 0, 1e5, 3, -7, 11); // exact: the sides stay flat
+  cases.push_back({ "one cube of six tetrahedra", coarse, true });
+  for (const Case& c : cases)
+  {
+    const std::vector<unsigned char> fast = Fast(c.Mesh);
+    const std::vector<unsigned char> exact = Oracle(c.Mesh);
+    ASSERT_EQ(fast.size(), exact.size()) << c.Name;
+    for (size_t i = 0; i < fast.size(); ++i)
+    {
+      ASSERT_EQ(int(fast[i]), int(exact[i])) << c.Name << ", cell " << i;
+    }
+    if (c.Convex)
+    {
+      EXPECT_EQ(Count(fast), BoundaryFaces(c.Mesh)) << c.Name;
+    }
+    else
+    {
+      EXPECT_GT(Count(fast), 0) << c.Name;
+      EXPECT_LT(Count(fast), BoundaryFaces(c.Mesh)) << c.Name;
+    }
+  }
+}
+
+TEST(SupportingFaces, NoneWithoutFiniteBoundaryOrForOtherMeshes)
+{
+  TestMesh m = mptest::CubeMesh(3, 3, 3, 0.15, 7);
+  m.Points[0] = std::numeric_limits<double>::quiet_NaN(); // a corner of the box
+  EXPECT_EQ(Count(Fast(m)), 0);
+  const TestMesh flat = mptest::GridMesh(4, 4, 0.2, 8);
+  std::vector<Index> boundary;
+  mp::BoundaryCells(flat.View(), boundary);
+  EXPECT_TRUE(mp::SupportingFaces(flat.View(), boundary).empty());
+}
+
+TEST(SupportingFaces, FrontFindsCoversCutApartByTheSource)
+{
+  // Two slabs with a gap: coarse target cells across the gap meet both,
+  // and the slabs' faces along the gap support neither: the front must
+  // ask the locator there. Trusting every face misses pairs, which shows
+  // that this case needs the query.
+  const TestMesh slabs = WithoutCells(mptest::CubeMesh(8, 8, 8, 0.15, 9),
+    [](const double* x) { return x[0] > 0.375 && x[0] < 0.625; });
+  // A slot from the top: one connected source, concave along the slot.
+  const TestMesh slotted = WithoutCells(mptest::CubeMesh(8, 8, 8, 0.15, 10),
+    [](const double* x) { return x[0] > 0.375 && x[0] < 0.625 && x[2] > 0.25; });
+  // The middle column of cubes (x from 1/3 to 2/3) spans the gap.
+  const TestMesh target = mptest::CubeMesh(3, 2, 2, 0.15, 11);
+  for (const TestMesh* source : { &slabs, &slotted })
+  {
+    const std::string what = source == &slabs ? "slabs" : "slotted";
+    mptest::SearchComparison<TetrahedronIntersector> s(target, *source);
+    s.ExpectSamePairs(what);
+    if (source == &slabs)
+    {
+      TrustingLocator careless(source->View(), true);
+      const FrontRun missing(target, *source, careless);
+      EXPECT_LT(missing.Pairs.Pairs.size(), s.Brute.Pairs.size()) << what;
+    }
+  }
+}
+
+TEST(SupportingFaces, SpareTheQueriesOnConvexSources)
+{
+  // A smaller box in the target's domain (its sides exactly flat: scaled
+  // and moved along the axes): the target's cells reach beyond its
+  // boundary all around. Trusting the supporting faces finds the same
+  // pairs with far fewer queries among the boundary cells than trusting
+  // none (both ask among all cells for the target cells it misses).
+  std::mt19937 rng(12);
+  for (int n = 0; n < 6; ++n)
+  {
+    TestMesh source = mptest::CubeMesh(5 + n % 2, 6, 5, 0.15, rng());
+    mptest::Move3D(source, 0, 0, 0.75 - 0.125 * (n % 3), 0.125, 0.0625 * (n % 2), 0.25);
+    const TestMesh target = mptest::CubeMesh(6, 5 + n % 3, 6, 0.15, rng());
+    const std::string what = "case " + std::to_string(n);
+    mptest::SearchComparison<TetrahedronIntersector> s(target, source);
+    s.ExpectSamePairs(what);
+    TrustingLocator none(source.View(), false);
+    const FrontRun asking(target, source, none);
+    EXPECT_EQ(asking.Pairs.Pairs, s.Front.Pairs) << what;
+    const Index trusting = s.FrontStats.LocatorQueries - s.FrontStats.FullLocatorQueries;
+    const Index all = asking.Stats.LocatorQueries - asking.Stats.FullLocatorQueries;
+    EXPECT_LT(4 * trusting, all) << what;
+  }
+}
