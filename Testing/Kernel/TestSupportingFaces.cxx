@@ -248,3 +248,40 @@ TEST(SupportingFaces, SpareTheQueriesOnConvexSources)
     EXPECT_LT(4 * trusting, all) << what;
   }
 }
+
+TEST(SupportingFaces, OnlySubstantialPiecesAreTrusted)
+{
+  // From a projection of image data onto a Gmsh box (renumbered): the front
+  // met the target cell first in source cell A, whose piece is a rounding
+  // sliver at Intersect's floor; A's neighbour across the face the sliver
+  // lies on does not meet the cell, and the cell's real cover (B's piece,
+  // among others) was reached only by the boundary query. Such a piece
+  // must not spare that query.
+  const double t[4][3] = { { 0, 0.80000000000000004, 0.5 }, { 0, 0.80000000000000004, 0.75 },
+    { 0.16666666666666666, 1, 0.75 }, { 0, 1, 0.75 } };
+  const double a[4][3] = { { 0, 0.90519492276591973, 0.50009609567510971 },
+    { 0, 0.78902439024390203, 0.49999999999999989 },
+    { 0, 0.85522054191364383, 0.3679200936970265 },
+    { 0.16396897933529997, 0.82604532665850006, 0.36746206371251156 } };
+  const double b[4][3] = { { 0, 0.78902439024390203, 0.49999999999999989 },
+    { 0, 0.90519492276591973, 0.50009609567510971 },
+    { 0, 0.86171324987264719, 0.6339257120304993 },
+    { 0.17627975138032753, 0.83778337479834919, 0.56785762652698857 } };
+  TestMesh m;
+  m.Dimension = 3;
+  for (const auto* cell : { t, a, b })
+    for (int k = 0; k < 4; ++k)
+      m.Points.insert(m.Points.end(), { cell[k][0], cell[k][1], cell[k][2] });
+  m.Cells = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11 };
+  TetrahedronIntersector::Cell ct, ca, cb;
+  ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, ct));
+  ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, ca));
+  ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 2, cb));
+  TetrahedronIntersector::Piece piece;
+  ASSERT_TRUE(TetrahedronIntersector::Intersect(ct, ca, piece)); // at the floor
+  EXPECT_LT(TetrahedronIntersector::Measure(piece), 1e-15);
+  EXPECT_FALSE(TetrahedronIntersector::Substantial(ct, ca, piece));
+  ASSERT_TRUE(TetrahedronIntersector::Intersect(ct, cb, piece));
+  EXPECT_GT(TetrahedronIntersector::Measure(piece), 1e-5);
+  EXPECT_TRUE(TetrahedronIntersector::Substantial(ct, cb, piece));
+}

@@ -29,6 +29,8 @@
 
 #include "Mesh/MeshView.h"
 
+#include <algorithm>
+
 namespace mp
 {
 struct IntersectionPieces;
@@ -93,6 +95,18 @@ public:
     int SeedFace[4];
   };
 
+  /**
+   * Whether a piece is far above rounding: at least 1e-9 of the smaller
+   * cell's volume (Intersect's own floor is 1e-13). Only such pieces are
+   * trusted to bound a target cell's cover at supporting boundary faces
+   * (Search/SupportingFaces.h): a sliver of rounding size where the cells
+   * nearly only touch can lie on a face whose neighbour, tested on its own,
+   * does not meet the target.
+   */
+  static bool Substantial(const Cell& t, const Cell& s, const Piece& piece)
+  {
+    return piece.NumberOfTetrahedra > 0 && piece.M[0][0] >= 1e-9 * std::min(t.Measure, s.Measure);
+  }
   /// Gathers cell `id`; false for a cell of zero (or non-finite) volume.
   static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
   /// The source cell as the spaces see it on a piece: itself.

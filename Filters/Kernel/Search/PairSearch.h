@@ -382,6 +382,15 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
             }
           }
         }
+        // Its boundary faces that support the source are trusted (no query)
+        // only when the piece is far above rounding: a sliver where the
+        // cells nearly only touch can have faces that its neighbours,
+        // tested on their own, do not confirm.
+        bool trusted = false;
+        if constexpr (MeetsInVolume<Intersector>::value)
+        {
+          trusted = Intersector::Substantial(t, s, piece);
+        }
         // Only across the faces of s that the target reaches: any other
         // source cell meeting the target is reached through cells meeting it.
         for (int k = 0; k < SourceFaces; ++k)
@@ -395,14 +404,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
           {
             // A boundary face with the whole source on the cell's side
             // bounds the cover without cutting it apart: no query for it.
-            if constexpr (MeetsInVolume<Intersector>::value)
-            {
-              blocked = blocked || !locator.Supports(sId, s.Face[k]);
-            }
-            else
-            {
-              blocked = true;
-            }
+            blocked = blocked || !trusted || !locator.Supports(sId, s.Face[k]);
           }
           else if (stamp[n] != tId)
           {
