@@ -285,3 +285,40 @@ TEST(SupportingFaces, OnlySubstantialPiecesAreTrusted)
   EXPECT_GT(TetrahedronIntersector::Measure(piece), 1e-5);
   EXPECT_TRUE(TetrahedronIntersector::Substantial(ct, cb, piece));
 }
+
+TEST(SupportingFaces, FrontEqualsBruteForceOnShuffledBoxes)
+{
+  // Boxes whose sides are exactly flat against boxes that reach beyond
+  // them or share their sides, on lattices that align (faces and corners
+  // in common: pieces at Intersect's floor) or not, the cells of both in
+  // random order so that the front meets the boundary from every side.
+  std::mt19937 rng(13);
+  auto shuffled = [&rng](TestMesh m) {
+    const Index n = m.NumberOfCells();
+    std::vector<Index> order(static_cast<size_t>(n));
+    for (Index c = 0; c < n; ++c)
+      order[c] = c;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<Index> cells;
+    for (Index c : order)
+      cells.insert(cells.end(), m.Cells.begin() + 4 * c, m.Cells.begin() + 4 * c + 4);
+    m.Cells = cells;
+    m.Finish();
+    return m;
+  };
+  for (int n = 0; n < 60; ++n)
+  {
+    const double jitter = n % 3 == 0 ? 0.0 : 0.15;
+    TestMesh source = shuffled(mptest::CubeMesh(2 + n % 4, 3 + n % 3, 2 + n % 5, jitter, rng()));
+    TestMesh target = shuffled(mptest::CubeMesh(3 + n % 5, 2 + n % 4, 3 + n % 3, n % 2 ? jitter : 0.0, rng()));
+    // Shifts and scales by powers of two keep the sides exactly flat.
+    if (n % 4 == 1)
+      mptest::Move3D(source, 0, 0, 0.75, 0.125, 0.125, 0.0);
+    if (n % 4 == 2)
+      mptest::Move3D(target, 0, 0, 1.0, 0.5, 0.25, -0.25);
+    mptest::SearchComparison<TetrahedronIntersector> s(target, source);
+    s.ExpectSamePairs("case " + std::to_string(n));
+    if (HasFatalFailure())
+      return;
+  }
+}

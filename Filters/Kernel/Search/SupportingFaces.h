@@ -23,6 +23,12 @@
  * T in positive volume (all of which lie in R, the source being in every
  * H_f) overlaps a cell met: it is one (cells do not overlap each other).
  *
+ * That argument is exact; the pieces are not. A piece of rounding size (a
+ * sliver at Intersect's floor, where the cells nearly only touch) can lie
+ * on a face whose neighbour, tested on its own, does not meet T, and the
+ * front would stop there: so the front trusts the faces of substantial
+ * pieces only (TetrahedronIntersector::Substantial) and asks otherwise.
+ *
  * On a convex source every boundary face supports it. A Gmsh ball's facets
  * are not exactly a convex hull's (a few edges fold inward by rounding or
  * the surface mesher's choice), and all faces but those near such edges
