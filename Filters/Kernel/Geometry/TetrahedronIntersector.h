@@ -153,8 +153,8 @@ public:
    * vertices): M[0][0] the volume, M[0][1+a] the first moments, M[1+a][1+b]
    * the second moments of x - origin. Returns the volume, 0 (origin and M
    * unset) for a piece without interior. Those Intersect summed: no work
-   * per tetrahedron. (Inline: a copy the caller's optimizer removes, where
-   * a call cost about 2% of a 3D projection.)
+   * per tetrahedron. (Inline, so that the caller may fold the copy away:
+   * out of line it was a memcpy call per pair.)
    */
   static double Moments(const Piece& piece, double (&origin)[3], double (&M)[4][4])
   {
