@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <random>
 #include <string>
@@ -148,9 +149,14 @@ TEST(SupportingFaces, MatchTheExactOracle)
   };
   std::vector<Case> cases;
   cases.push_back({ "small cube", mptest::CubeMesh(3, 4, 5, 0.15, 1), true });
-  // 17 x 17 points on each side: more than a face's own budget, so the
-  // faces of each side are tested together.
-  cases.push_back({ "large cube", mptest::CubeMesh(16, 16, 16, 0.15, 2), true });
+  // 25 x 25 points on the two large sides: more than a face's own budget,
+  // so the faces of each side are tested together; with one of those
+  // points raised by 1e-9, none of that side's faces supports the box.
+  const TestMesh slab = mptest::CubeMesh(24, 24, 2, 0.15, 2);
+  cases.push_back({ "flat box", slab, true });
+  TestMesh raised = slab;
+  raised.Points[3 * ((2 * 25 + 20) * 25 + 7) + 2] += 1e-9; // a point of the top side
+  cases.push_back({ "flat box, one point raised", raised, false });
   cases.push_back({ "notched", WithoutCells(mptest::CubeMesh(8, 8, 8, 0.15, 3), [](const double* x) {
     return x[0] > 0.5 && x[1] > 0.5;
   }),
@@ -165,6 +171,51 @@ TEST(SupportingFaces, MatchTheExactOracle)
   TestMesh coarse = mptest::CubeMesh(1, 1, 1, 0.0, 6);
   mptest::Move3D(coarse, 0, 0, 1e5, 3, -7, 11); // exact: the sides stay flat
   cases.push_back({ "one cube of six tetrahedra", coarse, true });
+  // Points beyond a face's plane by rounding size only: a tilted face far
+  // from the origin, and a small cell with a corner where the rounded
+  // value of the plane's equation says "inside" but the exact sign says
+  // "beyond" (the bounds' slack must keep such points).
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0, found = 0; trial < 200000 && found < 3; ++trial)
+  {
+    double a[3], b[3], c[3], x[3], e1[3], e2[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      a[d] = 1000.0 + u(rng);
+      b[d] = 1000.0 + u(rng);
+      c[d] = 1000.0 + u(rng);
+    }
+    const double sb = 3.0 + u(rng), sc = -2.5 + u(rng); // far outside the triangle
+    for (int d = 0; d < 3; ++d)
+    {
+      e1[d] = b[d] - a[d];
+      e2[d] = c[d] - a[d];
+      x[d] = a[d] + sb * e1[d] + sc * e2[d];
+    }
+    const double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+      e1[0] * e2[1] - e1[1] * e2[0] };
+    double value = 0.0; // the rounded equation, positive beyond
+    for (int d = 0; d < 3; ++d)
+      value += n[d] * (x[d] - a[d]);
+    if (!(mp::Orient3D(a, b, c, x) > 0.0) || !(value < 0.0))
+      continue;
+    ++found;
+    TestMesh m;
+    m.Dimension = 3;
+    const double inner[3] = { a[0] - n[0], a[1] - n[1], a[2] - n[2] };
+    for (const double* q : std::initializer_list<const double*>{ inner, a, b, c })
+      m.Points.insert(m.Points.end(), { q[0], q[1], q[2] });
+    const double h = 1e-3;
+    m.Points.insert(m.Points.end(), { x[0], x[1], x[2] });
+    m.Points.insert(m.Points.end(), { x[0] - h * n[0], x[1] - h * n[1] + h, x[2] - h * n[2] });
+    m.Points.insert(m.Points.end(), { x[0] - h * n[0] + h, x[1] - h * n[1], x[2] - h * n[2] });
+    m.Points.insert(m.Points.end(), { x[0] - h * n[0], x[1] - h * n[1], x[2] - h * n[2] + h });
+    m.Cells = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    m.Finish();
+    cases.push_back({ "rounding-size overhang " + std::to_string(found), m, false });
+  }
+  ASSERT_EQ(cases.size(), size_t(10));
   for (const Case& c : cases)
   {
     const std::vector<unsigned char> fast = Fast(c.Mesh);

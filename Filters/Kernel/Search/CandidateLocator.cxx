@@ -95,14 +95,21 @@ BoxGridLocator::BoxGridLocator(const MeshView& mesh)
   {
     std::vector<Index> boundary;
     BoundaryCells(mesh, boundary);
-    this->Grids->Supporting = SupportingFaces(mesh, boundary);
     this->Grids->Boundary.reset(new Bins(mesh, &boundary));
   }
 }
 
 bool BoxGridLocator::Supports(Index cell, int face) const
 {
-  const std::vector<unsigned char>& supporting = this->Grids->Supporting;
+  Shared& g = *this->Grids;
+  if (!g.Boundary)
+  {
+    return false;
+  }
+  // Tested on the first question (traces and fronts that never meet the
+  // boundary never pay for it), by whichever thread asks first.
+  std::call_once(g.SupportingBuilt, [&g] { g.Supporting = SupportingFaces(g.Mesh, g.Boundary->Cells); });
+  const std::vector<unsigned char>& supporting = g.Supporting;
   return !supporting.empty() && (supporting[static_cast<size_t>(cell)] >> face & 1u);
 }
 

@@ -116,7 +116,9 @@ private:
     MeshView Mesh;
     std::unique_ptr<const Bins> Boundary;
     /// Of each cell: bit k set when face k is a boundary face supporting
-    /// the mesh (SupportingFaces.h; tetrahedra in space only, else empty).
+    /// the mesh (SupportingFaces.h; tetrahedra in space only, else empty),
+    /// set once, under SupportingBuilt, on the first Supports().
+    std::once_flag SupportingBuilt;
     std::vector<unsigned char> Supporting;
     std::once_flag AllBuilt;
     std::unique_ptr<const Bins> All; ///< set once, under AllBuilt

@@ -36,7 +36,9 @@ public:
   /**
    * 1 when every point lies in the closed half-space of plane (a, b, c)
    * where Orient3D(a, b, c, .) has the sign `side` (+1 or -1) or is zero,
-   * 0 when one does not, -1 when `budget` node visits did not tell.
+   * 0 when one does not, -1 when `budget` did not tell: a node visit
+   * costs 1, an exact evaluation (a point on or near the plane) 16. Also
+   * -1 where the bounds' arithmetic could overflow or underflow.
    */
   int AllOnSide(const double* a, const double* b, const double* c, double side, Index budget) const
   {
@@ -60,6 +62,13 @@ public:
     // per unit of `reach`: with this slack a box below -slack * reach holds
     // no point on the plane or beyond it.
     const double slack = 256.0 * RoundingUnit * scale1 * scale2;
+    // The error model holds for normal numbers only: every term below is
+    // at most the normal's scale times the reach of the tree's box.
+    const double largest = 8.0 * scale1 * scale2 * this->Reach(a);
+    if (!(largest < 1e300) || !(largest > 1e-280))
+    {
+      return -1;
+    }
     std::array<Index, 128> stack;
     int top = 0;
     stack[top++] = 0;
@@ -96,9 +105,13 @@ public:
             value += outward[d] * (x[d] - a[d]);
             distance += std::fabs(x[d] - a[d]);
           }
-          if (!(value < -slack * distance) && !OnSide(a, b, c, x, side))
+          if (!(value < -slack * distance))
           {
-            return 0;
+            budget -= 16;
+            if (!OnSide(a, b, c, x, side))
+            {
+              return 0;
+            }
           }
         }
         continue;
@@ -114,6 +127,22 @@ public:
   }
 
 private:
+  /// The largest |v - a|_1 over the root's box (0 for an empty tree).
+  double Reach(const double* a) const
+  {
+    if (this->Ids.empty())
+    {
+      return 0.0;
+    }
+    const Node& root = this->Nodes[0];
+    double reach = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      reach += std::max(std::fabs(root.Lo[d] - a[d]), std::fabs(root.Hi[d] - a[d]));
+    }
+    return reach;
+  }
+
   static constexpr Index LeafSize = 8;
   struct Node
   {
@@ -353,7 +382,7 @@ std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vect
     const size_t root = static_cast<size_t>(Root(plane, static_cast<Index>(f)));
     if (supports[root] < 0)
     {
-      supports[root] = test(crowded[root], 512 + 8 * facesOnPlane[root]) == 1;
+      supports[root] = test(crowded[root], 512 + 32 * facesOnPlane[root]) == 1;
     }
     if (supports[root] == 1)
     {

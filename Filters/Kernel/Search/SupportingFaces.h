@@ -23,11 +23,16 @@
  * T in positive volume (all of which lie in R, the source being in every
  * H_f) overlaps a cell met: it is one (cells do not overlap each other).
  *
- * That argument is exact; the pieces are not. A piece of rounding size (a
- * sliver at Intersect's floor, where the cells nearly only touch) can lie
- * on a face whose neighbour, tested on its own, does not meet T, and the
- * front would stop there: so the front trusts the faces of substantial
- * pieces only (TetrahedronIntersector::Substantial) and asks otherwise.
+ * That argument holds for exact pieces; Intersect's are rounded, and
+ * count a pair as meeting above a floor (1e-13 of the smaller cell). A
+ * piece of rounding size met first (a sliver where the cells nearly only
+ * touch) can lie on a face whose neighbour, tested on its own, does not
+ * meet T, and the front would stop there: so the front trusts the faces
+ * of substantial pieces only (TetrahedronIntersector::Substantial) and
+ * asks otherwise. What remains is the gap the front has anywhere, away
+ * from the boundary too: a neighbour that T reaches by less than the floor
+ * is not met, and a much smaller cell beyond it that meets T above its own
+ * floor is reached by no front (graded meshes at 1e-7 scale ratios).
  *
  * On a convex source every boundary face supports it. A Gmsh ball's facets
  * are not exactly a convex hull's (a few edges fold inward by rounding or
@@ -39,9 +44,11 @@
  * of a box) are tested together. The points are searched through a k-d
  * tree of boxes, a box skipped when a bound of its rounding error shows all
  * its points strictly inside; a face whose plane passes near more points
- * than its budget allows (visits of tree nodes, in proportion to the faces
- * of its plane) is left unsupported, so the cost stays linear in the
- * boundary. Non-finite points make no face supporting.
+ * than its budget allows (visits of tree nodes and exact evaluations, in
+ * proportion to the faces of its plane) is left unsupported, so the cost
+ * stays linear in the boundary. Non-finite points make no face
+ * supporting, nor do magnitudes where the bounds could overflow or
+ * underflow.
  */
 #ifndef MeshProjection_Kernel_SupportingFaces_h
 #define MeshProjection_Kernel_SupportingFaces_h
