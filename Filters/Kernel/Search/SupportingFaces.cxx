@@ -25,12 +25,6 @@ public:
     this->Nodes.reserve(2 * (this->Ids.size() / LeafSize + 1));
     this->Nodes.emplace_back();
     this->Build(0, 0, static_cast<Index>(this->Ids.size()));
-    // The points in tree order: a leaf's are read one after the other.
-    this->Packed.resize(3 * this->Ids.size());
-    for (size_t i = 0; i < this->Ids.size(); ++i)
-    {
-      std::copy(x + 3 * this->Ids[i], x + 3 * this->Ids[i] + 3, &this->Packed[3 * i]);
-    }
   }
 
   /**
@@ -97,7 +91,7 @@ public:
         for (Index i = node.Begin; i < node.End; ++i)
         {
           // The same bound for the point alone, then the exact sign.
-          const double* x = &this->Packed[3 * static_cast<size_t>(i)];
+          const double* x = this->X + 3 * this->Ids[static_cast<size_t>(i)];
           double value = 0.0;
           double distance = 0.0;
           for (int d = 0; d < 3; ++d)
@@ -210,7 +204,6 @@ private:
   const double* X;
   std::vector<Index> Ids;
   std::vector<Node> Nodes;
-  std::vector<double> Packed;
 };
 
 Index Root(std::vector<Index>& parent, Index i)
