@@ -281,7 +281,7 @@ std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vect
       mesh.Point(corner(f, 2)), mesh.Point(p));
     return o > 0.0 ? 1 : (o < 0.0 ? -1 : 0);
   };
-  // 1 supports, 0 does not, -1 undecided within `budget` node visits.
+  // 1 supports, 0 does not, -1 undecided within `budget` (AllOnSide).
   auto test = [&](const Face& f, Index budget) {
     const int inner = sideOf(f, opposite(f));
     return inner == 0 ? 0
