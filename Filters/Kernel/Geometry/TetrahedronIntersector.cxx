@@ -47,7 +47,9 @@ bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     const double* x = mesh.Point(ids[k]);
     cell.Points[k] = ids[k];
     cell.Face[k] = k;
-    std::copy(x, x + 3, cell.X[k]);
+    cell.X[k][0] = x[0]; // (std::copy of 3 doubles was a memmove call)
+    cell.X[k][1] = x[1];
+    cell.X[k][2] = x[2];
   }
   double six = Orient3D(cell.X[0], cell.X[1], cell.X[2], cell.X[3]);
   if (!(six != 0.0) || !std::isfinite(six))
@@ -232,18 +234,33 @@ bool TetrahedronIntersector::IntersectCells(
   // tables of cuts when no vertex lies on them (the same graph as
   // clipping, with less work; a corner on the first plane leaves both to
   // Clip).
-  int planes[4];
-  int cutting = 0;
-  for (int outside = 3; outside >= 1; --outside)
+  // Sorted without branches (as a loop over the counts, their mispredicted
+  // branches were 5% of a 3D 10^4 run): key (corners outside) * 4 + 3 - p
+  // for a cutting plane p (1-3 corners outside: 4 would have separated the
+  // cells), 0 for the others, sorted down by a network of five
+  // compare-exchanges; ties keep face order.
+  unsigned key[4];
+  for (int p = 0; p < 4; ++p)
   {
-    for (int p = 0; p < 4; ++p)
-    {
-      if ((cut & (1u << p)) &&
-        (sides[p][0] < 0.0) + (sides[p][1] < 0.0) + (sides[p][2] < 0.0) + (sides[p][3] < 0.0) == outside)
-      {
-        planes[cutting++] = p;
-      }
-    }
+    const unsigned outside = (sides[p][0] < 0.0) + (sides[p][1] < 0.0) + (sides[p][2] < 0.0) + (sides[p][3] < 0.0);
+    key[p] = ((cut >> p) & 1u) * ((outside << 2) | (3u - static_cast<unsigned>(p)));
+  }
+  auto order = [&key](int a, int b) {
+    const unsigned high = std::max(key[a], key[b]);
+    const unsigned low = std::min(key[a], key[b]);
+    key[a] = high;
+    key[b] = low;
+  };
+  order(0, 1);
+  order(2, 3);
+  order(0, 2);
+  order(1, 3);
+  order(1, 2);
+  const int cutting = static_cast<int>(count(cut));
+  int planes[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    planes[i] = 3 - static_cast<int>(key[i] & 3u);
   }
   int i = 0;
   const unsigned first = asGraph && i < cutting ? graph.SetClippedTetrahedron(clipped, sides, planes[0]) : 0u;
