@@ -66,6 +66,13 @@ bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     }
     six = -six;
   }
+  for (int v = 0; v < 4; ++v)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      cell.ByAxis[a][v] = cell.X[v][a];
+    }
+  }
   cell.Measure = six / 6.0;
   cell.FaceScale = std::pow(cell.Measure, 2.0 / 3.0);
   for (int c = 0; c < 3; ++c)
@@ -184,27 +191,25 @@ bool TetrahedronIntersector::IntersectCells(
   // source corners on or outside it (or the reverse) separates the cells.
   double exact[4][4];
   double exactS[4][4]; // the reverse: target corner v w.r.t. source face plane k
-  unsigned beyond = 0;
-  unsigned beyondS = 0;
-  unsigned onPlane[4] = { 0, 0, 0, 0 }; // per target plane: source corners on it
   FaceSides(t, s, exact);
   FaceSides(s, t, exactS);
+  SideBits bits;  // of exact
+  SideBits bitsS; // of exactS
+  GetSideBits(exact, bits);
+  GetSideBits(exactS, bitsS);
+  unsigned beyond = 0;
+  unsigned beyondS = 0;
+  const unsigned (&onPlane)[4] = bits.Zero; // per target plane: source corners on it
+  bool apart = false;
   for (int k = 0; k < 4; ++k)
   {
-    int off = 0;
-    int offS = 0;
-    for (int v = 0; v < 4; ++v)
-    {
-      off += exact[k][v] <= 0.0;
-      beyond |= (exact[k][v] < 0.0 ? 1u : 0u) << k;
-      onPlane[k] |= (exact[k][v] == 0.0 ? 1u : 0u) << v;
-      offS += exactS[k][v] <= 0.0;
-      beyondS |= (exactS[k][v] < 0.0 ? 1u : 0u) << k;
-    }
-    if (off == 4 || offS == 4)
-    {
-      return false; // at most a shared face, edge or vertex: no volume
-    }
+    beyond |= (bits.Negative[k] != 0 ? 1u : 0u) << k;
+    beyondS |= (bitsS.Negative[k] != 0 ? 1u : 0u) << k;
+    apart |= (bits.NotPositive[k] == 15u) | (bitsS.NotPositive[k] == 15u);
+  }
+  if (apart)
+  {
+    return false; // at most a shared face, edge or vertex: no volume
   }
 
   // The intersection is the source clipped by the target planes it reaches
@@ -212,12 +217,12 @@ bool TetrahedronIntersector::IntersectCells(
   // fewer planes cut (the work grows fast with the number of planes).
   // Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits
   // 4-7: the clipped cell's own faces (face k opposite corner k).
-  auto count = [](unsigned bits) { return (bits & 1u) + ((bits >> 1) & 1u) + ((bits >> 2) & 1u) + ((bits >> 3) & 1u); };
-  const bool clipTarget = count(beyondS) < count(beyond);
+  const bool clipTarget = CountBits4(beyondS) < CountBits4(beyond);
   const Cell& clipped = clipTarget ? t : s;
   const Cell& clipping = clipTarget ? s : t;
   const double(&sides)[4][4] = clipTarget ? exactS : exact;
   const unsigned cut = clipTarget ? beyondS : beyond;
+  const unsigned(&negative)[4] = clipTarget ? bitsS.Negative : bits.Negative;
 
   const int targetShift = clipTarget ? 4 : 0;
   // A face of the piece "has positive area" above 1e-12 of the smaller
@@ -242,7 +247,7 @@ bool TetrahedronIntersector::IntersectCells(
   unsigned key[4];
   for (int p = 0; p < 4; ++p)
   {
-    const unsigned outside = (sides[p][0] < 0.0) + (sides[p][1] < 0.0) + (sides[p][2] < 0.0) + (sides[p][3] < 0.0);
+    const unsigned outside = CountBits4(negative[p]);
     key[p] = ((cut >> p) & 1u) * ((outside << 2) | (3u - static_cast<unsigned>(p)));
   }
   auto order = [&key](int a, int b) {
@@ -256,7 +261,7 @@ bool TetrahedronIntersector::IntersectCells(
   order(0, 2);
   order(1, 3);
   order(1, 2);
-  const int cutting = static_cast<int>(count(cut));
+  const int cutting = static_cast<int>(CountBits4(cut));
   int planes[4];
   for (int i = 0; i < 4; ++i)
   {

@@ -53,6 +53,9 @@ public:
     Index Points[4];   ///< point ids, positively oriented
     int Face[4];       ///< mesh-local face index of face k (k opposite corner k)
     double X[4][3];
+    /// X by coordinate (ByAxis[a][v] = X[v][a]): the four corners' distances
+    /// from a plane are then one vector expression (FaceSides).
+    double ByAxis[3][4];
     double Box[6];     ///< xmin, xmax, ymin, ymax, zmin, zmax
     double Measure;    ///< volume, > 0
     double FaceScale;  ///< volume^(2/3): the area of a typical face
