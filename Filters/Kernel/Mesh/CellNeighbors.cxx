@@ -22,7 +22,9 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
   const Index size = mesh.NumberOfCells * corners;
   runner.Fill(neighbors, size, NeighborId(-1));
   std::atomic<bool> repeated(false);
-  const Index nonManifold = runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
+  // MatchFacesAtPoints packs two point ids + 1 into 32 bits each.
+  const bool packable = mesh.NumberOfPoints < (Index(1) << 32) - 1;
+  const Index nonManifold = !packable ? 0 : runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     Index count = 0;
     switch (corners)
     {
@@ -42,11 +44,12 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
     }
     return count;
   });
-  if (!repeated)
+  if (packable && !repeated)
   {
     return nonManifold / 2;
   }
-  // A cell names a point twice: the face matcher's own rule, from the start.
+  // A cell names a point twice (or the ids do not pack): the face
+  // matcher's own rule, from the start.
   std::fill(neighbors, neighbors + size, NeighborId(-1));
   return MatchFaces(
            mesh,

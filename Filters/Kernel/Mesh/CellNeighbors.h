@@ -124,7 +124,8 @@ Index MatchFaces(
  * never write the same entry. Entries of faces without a partner are left
  * as they are (-1). Cells naming a point twice are not matched alike by
  * MatchFaces: returns -1 when one is around a point of the range (the
- * caller then matches with MatchFaces).
+ * caller then matches with MatchFaces). The mesh must have fewer than
+ * 2^32 - 1 points (a face's two other corners are one 64-bit key).
  *
  * Faster than MatchFaces: each cell's corners are read once per corner,
  * not once per face and cell around the face's first corner. The faces
@@ -135,16 +136,19 @@ template <int Corners, class Id>
 Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around,
   NeighborId* neighbors, Index begin, Index end)
 {
+  // The face's other corners, increasing (unused: -1), packed into one
+  // 64-bit key (the caller checks that the mesh has fewer than 2^32 - 1
+  // points): one comparison per step of the sort instead of two.
   struct Face
   {
-    Index Key[2]; // the face's other corners, increasing (unused: -1)
+    unsigned long long Key;
     Index Cell;
     int Side;
-    bool operator<(const Face& o) const
-    {
-      return this->Key[0] < o.Key[0] || (this->Key[0] == o.Key[0] && this->Key[1] < o.Key[1]);
-    }
-    bool Same(const Face& o) const { return this->Key[0] == o.Key[0] && this->Key[1] == o.Key[1]; }
+    bool operator<(const Face& o) const { return this->Key < o.Key; }
+    bool Same(const Face& o) const { return this->Key == o.Key; }
+  };
+  auto pack = [](Index key0, Index key1) {
+    return (static_cast<unsigned long long>(key0 + 1) << 32) | static_cast<unsigned long long>(key1 + 1);
   };
   std::vector<Face> faces;
   Index nonManifold = 0;
@@ -201,8 +205,7 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
           continue; // matched at a lower point
         }
         Face& f = faces[count++];
-        f.Key[0] = key0;
-        f.Key[1] = key1;
+        f.Key = pack(key0, key1);
         f.Cell = c;
         f.Side = k;
       }
