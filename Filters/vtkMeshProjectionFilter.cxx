@@ -715,6 +715,7 @@ struct vtkMeshProjectionFilter::Execution
   double Span = 0.9;
   std::chrono::steady_clock::time_point Stage;
   bool FirstLeaf = true;
+  bool LastLeaf = true; ///< no leaf after this one reads the Source mesh
 };
 
 namespace
@@ -1341,6 +1342,7 @@ int vtkMeshProjectionFilter::Execute(
     run.From = 0.05 + 0.9 * static_cast<double>(i) / leaves.size();
     run.Span = 0.9 / leaves.size();
     vtkSmartPointer<vtkDataObject> leafPieces;
+    run.LastLeaf = i + 1 == leaves.size();
     const std::string why =
       this->ProjectLeaf(target, out, run, kept.Leaves[leaves[i].FlatIndex], leaves[i].Name, leafPieces);
     // (Stopped on this process, or on another: "stopped (on process k)".)
@@ -2234,6 +2236,172 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
   }
 
+  // Per source function, its integral over the part of the Source the
+  // operator's pieces cover (P1: a third of the covered area of each
+  // triangle around the point, the field's mean there taken as the cell's;
+  // P0: the cell's covered measure); cells without data for the array (NaN
+  // holes) are not covered. For surfaces and curves the pieces, projected
+  // along each target facet's own normal, cover a source cell only up to
+  // O(h^2) (0.25% short to 3.7% over on a sphere at h/R = 0.2): a cell covered
+  // to 90% or more counts whole, so that a Source covered whole gives its
+  // own integral exactly.
+  std::map<std::pair<const mp::MortarOperator*, bool>, std::vector<double>> sourceWeights;
+  // On several processes each has its part of a source cell's covered
+  // measure (the pieces of its own target cells): for the rule above, which
+  // is not linear, the parts of surfaces' and curves' cells are summed over
+  // the processes (by the cells' corners' global ids) and each process
+  // takes its share of the result. (Otherwise the measures are only capped
+  // at the cell's own, which parts that do not overlap never reach.) A
+  // collective: called for every array on every process; `needed` false
+  // (the weights known) sends nothing.
+  auto coveredTotals = [&](const mp::MortarOperator& op, bool needed) {
+    std::vector<double> total;
+    if (!this->Parts)
+    {
+      return total;
+    }
+    const mp::MeshView& view = sourceMesh.View();
+    // (Volumes and planar meshes have no such rule: no keys, but the call is
+    // collective all the same: a process's meshes may be empty.)
+    const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
+    const int corners = view.CornersPerCell();
+    const mp::LargeVector<double>& covered = op.GetSourceCovered();
+    std::vector<long long> keys;
+    std::vector<double> parts;
+    std::vector<mp::Index> cells;
+    vtkDataArray* global = source->GetPointData()->GetGlobalIds();
+    if (needed && projected && global && corners <= 3)
+    {
+      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+      {
+        if (covered[static_cast<size_t>(c)] > 0.0)
+        {
+          // The corners' global ids, sorted, and the parity of that sort:
+          // a cell is the same on every process, and two cells on the same
+          // corners in opposite orientations (a curve going back along
+          // itself, a two-sided surface) stay apart.
+          long long key[4] = { -1, -1, -1, 0 };
+          for (int k = 0; k < corners; ++k)
+          {
+            key[k] = static_cast<long long>(
+              global->GetTuple1(sourceMesh.DataSetPoint(view.Cell(c)[k])));
+          }
+          for (int k = 0; k < corners; ++k)
+          {
+            for (int j = k + 1; j < corners; ++j)
+            {
+              key[3] ^= key[k] > key[j] ? 1 : 0;
+            }
+          }
+          std::sort(key, key + corners);
+          keys.insert(keys.end(), key, key + 4);
+          parts.push_back(covered[static_cast<size_t>(c)]);
+          cells.push_back(c);
+        }
+      }
+    }
+    const std::vector<double> sums = this->Parts->SumByKey(keys, 4, parts);
+    if (!cells.empty())
+    {
+      total.assign(static_cast<size_t>(view.NumberOfCells), 0.0);
+      for (size_t i = 0; i < cells.size(); ++i)
+      {
+        total[static_cast<size_t>(cells[i])] = sums[i];
+      }
+    }
+    return total;
+  };
+  auto weightsOf = [&](const mp::MortarOperator& op, bool fromCells,
+                     const std::vector<double>& total) -> const std::vector<double>& {
+    std::vector<double>& w = sourceWeights[std::make_pair(&op, fromCells)];
+    const mp::MeshView& view = sourceMesh.View();
+    if (w.empty())
+    {
+      w.assign(static_cast<size_t>(fromCells ? view.Parents() : view.NumberOfPoints), 0.0);
+      const int corners = view.CornersPerCell();
+      const mp::LargeVector<double>& covered = op.GetSourceCovered();
+      const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
+      // The cells' measures in the filter's threads (0: degenerate), then
+      // summed in cell order.
+      mp::UninitializedLargeVector<double> measures(static_cast<size_t>(view.NumberOfCells));
+      vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+        std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
+        mp::ForEachCellMeasure(
+          view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
+          begin, end);
+      });
+      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+      {
+        const double whole = measures[static_cast<size_t>(c)];
+        double m = covered[static_cast<size_t>(c)];
+        if (!(whole > 0.0) || !(m > 0.0))
+        {
+          continue;
+        }
+        // The rule: a cell covered to 90% counts whole (surfaces, curves).
+        auto counted = [&](double cover) {
+          return projected && cover >= 0.9 * whole ? whole : std::min(cover, whole);
+        };
+        // With the processes' total cover `all`: this process's share of it.
+        const double all = total.empty() ? 0.0 : total[static_cast<size_t>(c)];
+        m = all > 0.0 ? m * (counted(all) / all) : counted(m);
+        if (fromCells)
+        {
+          w[static_cast<size_t>(view.ParentOf(c))] += m;
+          continue;
+        }
+        for (int k = 0; k < corners; ++k)
+        {
+          w[static_cast<size_t>(view.Cell(c)[k])] += m / corners;
+        }
+      }
+    }
+    return w;
+  };
+  // Per kernel point of the target, the largest covered fraction of the
+  // cells around it (for the valid point mask): computed here when the
+  // target's geometry goes before the solves (below), else with the mask.
+  const std::vector<double>& fraction = first->GetCoveredFraction();
+  std::vector<double> most;
+  bool haveMost = false;
+  auto pointCover = [&]() {
+    const mp::MeshView& view = targetMesh.View();
+    most.assign(static_cast<size_t>(view.NumberOfPoints), 0.0);
+    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      const double f = fraction[static_cast<size_t>(view.ParentOf(c))];
+      const mp::Index* p = view.Cell(c);
+      for (int k = 0; k < view.CornersPerCell(); ++k)
+      {
+        most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
+      }
+    }
+    haveMost = true;
+  };
+  // The last leaf's meshes are read again by the outputs only: what those
+  // take from them is taken now, and the meshes' own arrays (a renumbered
+  // copy, neighbours, the Source's locator) go before the solves need
+  // their room. (Not with the intersection pieces, which read both meshes,
+  // nor on several processes, whose Source weights are collective.)
+  if (run.LastLeaf && !this->OutputIntersections && !this->Parts)
+  {
+    for (int t = 0; t < 4; ++t)
+    {
+      const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+      for (size_t a = 0; operators[t] && a < g.Arrays.size(); ++a)
+      {
+        weightsOf(*byArray[t][a], SourceSpaceOf(t) == mp::SpaceType::P0, std::vector<double>());
+      }
+    }
+    if (targetMesh.OwnsGeometry())
+    {
+      pointCover();
+      targetMesh.ReleaseGeometry();
+    }
+    run.Locator.reset();
+    sourceMesh.ReleaseGeometry();
+  }
+
   // 3. Apply: M_ts u_s, then M_tt (consistent, from the previous step's
   // solution when the same arrays were projected with the same operator)
   // or its row sums (lumped); bounds when asked.
@@ -2387,128 +2555,6 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       copy[static_cast<size_t>(targetMesh.DataSetPoint(static_cast<mp::Index>(f)))] = valid[f];
     }
     return &copy;
-  };
-  // Per source function, its integral over the part of the Source the
-  // operator's pieces cover (P1: a third of the covered area of each
-  // triangle around the point, the field's mean there taken as the cell's;
-  // P0: the cell's covered measure); cells without data for the array (NaN
-  // holes) are not covered. For surfaces and curves the pieces, projected
-  // along each target facet's own normal, cover a source cell only up to
-  // O(h^2) (0.25% short to 3.7% over on a sphere at h/R = 0.2): a cell covered
-  // to 90% or more counts whole, so that a Source covered whole gives its
-  // own integral exactly.
-  std::map<std::pair<const mp::MortarOperator*, bool>, std::vector<double>> sourceWeights;
-  // On several processes each has its part of a source cell's covered
-  // measure (the pieces of its own target cells): for the rule above, which
-  // is not linear, the parts of surfaces' and curves' cells are summed over
-  // the processes (by the cells' corners' global ids) and each process
-  // takes its share of the result. (Otherwise the measures are only capped
-  // at the cell's own, which parts that do not overlap never reach.) A
-  // collective: called for every array on every process; `needed` false
-  // (the weights known) sends nothing.
-  auto coveredTotals = [&](const mp::MortarOperator& op, bool needed) {
-    std::vector<double> total;
-    if (!this->Parts)
-    {
-      return total;
-    }
-    const mp::MeshView& view = sourceMesh.View();
-    // (Volumes and planar meshes have no such rule: no keys, but the call is
-    // collective all the same: a process's meshes may be empty.)
-    const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
-    const int corners = view.CornersPerCell();
-    const mp::LargeVector<double>& covered = op.GetSourceCovered();
-    std::vector<long long> keys;
-    std::vector<double> parts;
-    std::vector<mp::Index> cells;
-    vtkDataArray* global = source->GetPointData()->GetGlobalIds();
-    if (needed && projected && global && corners <= 3)
-    {
-      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
-      {
-        if (covered[static_cast<size_t>(c)] > 0.0)
-        {
-          // The corners' global ids, sorted, and the parity of that sort:
-          // a cell is the same on every process, and two cells on the same
-          // corners in opposite orientations (a curve going back along
-          // itself, a two-sided surface) stay apart.
-          long long key[4] = { -1, -1, -1, 0 };
-          for (int k = 0; k < corners; ++k)
-          {
-            key[k] = static_cast<long long>(
-              global->GetTuple1(sourceMesh.DataSetPoint(view.Cell(c)[k])));
-          }
-          for (int k = 0; k < corners; ++k)
-          {
-            for (int j = k + 1; j < corners; ++j)
-            {
-              key[3] ^= key[k] > key[j] ? 1 : 0;
-            }
-          }
-          std::sort(key, key + corners);
-          keys.insert(keys.end(), key, key + 4);
-          parts.push_back(covered[static_cast<size_t>(c)]);
-          cells.push_back(c);
-        }
-      }
-    }
-    const std::vector<double> sums = this->Parts->SumByKey(keys, 4, parts);
-    if (!cells.empty())
-    {
-      total.assign(static_cast<size_t>(view.NumberOfCells), 0.0);
-      for (size_t i = 0; i < cells.size(); ++i)
-      {
-        total[static_cast<size_t>(cells[i])] = sums[i];
-      }
-    }
-    return total;
-  };
-  auto weightsOf = [&](const mp::MortarOperator& op, bool fromCells,
-                     const std::vector<double>& total) -> const std::vector<double>& {
-    std::vector<double>& w = sourceWeights[std::make_pair(&op, fromCells)];
-    const mp::MeshView& view = sourceMesh.View();
-    if (w.empty())
-    {
-      w.assign(static_cast<size_t>(fromCells ? view.Parents() : view.NumberOfPoints), 0.0);
-      const int corners = view.CornersPerCell();
-      const mp::LargeVector<double>& covered = op.GetSourceCovered();
-      const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
-      // The cells' measures in the filter's threads (0: degenerate), then
-      // summed in cell order.
-      mp::UninitializedLargeVector<double> measures(static_cast<size_t>(view.NumberOfCells));
-      vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
-        std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
-        mp::ForEachCellMeasure(
-          view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
-          begin, end);
-      });
-      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
-      {
-        const double whole = measures[static_cast<size_t>(c)];
-        double m = covered[static_cast<size_t>(c)];
-        if (!(whole > 0.0) || !(m > 0.0))
-        {
-          continue;
-        }
-        // The rule: a cell covered to 90% counts whole (surfaces, curves).
-        auto counted = [&](double cover) {
-          return projected && cover >= 0.9 * whole ? whole : std::min(cover, whole);
-        };
-        // With the processes' total cover `all`: this process's share of it.
-        const double all = total.empty() ? 0.0 : total[static_cast<size_t>(c)];
-        m = all > 0.0 ? m * (counted(all) / all) : counted(m);
-        if (fromCells)
-        {
-          w[static_cast<size_t>(view.ParentOf(c))] += m;
-          continue;
-        }
-        for (int k = 0; k < corners; ++k)
-        {
-          w[static_cast<size_t>(view.Cell(c)[k])] += m / corners;
-        }
-      }
-    }
-    return w;
   };
   vtkFieldData* outFD = output->GetFieldData();
   for (int t : { 0, 2, 1, 3 })
@@ -2674,21 +2720,12 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   }
 
   // 5. Where the result is defined, and how much of each cell is covered.
-  const std::vector<double>& fraction = first->GetCoveredFraction();
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
-  // Per kernel point, the largest covered fraction of the cells around it.
-  const mp::MeshView& view = targetMesh.View();
-  std::vector<double> most(static_cast<size_t>(view.NumberOfPoints), 0.0);
-  for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+  if (!haveMost)
   {
-    const double f = fraction[static_cast<size_t>(view.ParentOf(c))];
-    const mp::Index* p = view.Cell(c);
-    for (int k = 0; k < view.CornersPerCell(); ++k)
-    {
-      most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
-    }
+    pointCover();
   }
   const mp::MortarOperator* onPoints = operators[0] ? operators[0] : operators[3];
   if (onPoints)

@@ -949,6 +949,21 @@ void SimplexMesh::UseFrame(const mp::PlaneFrame& frame)
   }
 }
 
+void SimplexMesh::ReleaseGeometry()
+{
+  this->ReleaseNeighbors();
+  this->OrderedPoints = mp::LargeBuffer<double>();
+  this->OrderedConnectivity = mp::LargeBuffer<mp::Index>();
+  mp::LargeVector<double>().swap(this->PointCopy);
+  std::vector<double>().swap(this->FramePoints);
+  mp::LargeVector<mp::Index>().swap(this->ConnectivityCopy);
+  mp::LargeVector<mp::Index>().swap(this->AllConnectivityCopy);
+  this->AllConnectivity = nullptr;
+  this->OriginalPoints = nullptr;
+  this->Kernel.Points = nullptr;
+  this->Kernel.Connectivity = nullptr;
+}
+
 void SimplexMesh::BuildNeighbors()
 {
   const vtkIdType n = this->Kernel.NumberOfCells;

@@ -129,6 +129,23 @@ public:
     this->Kernel.Neighbors = nullptr;
   }
 
+  /// Whether the kernel's points or cells are copies of the mesh's own (a
+  /// renumbering, points of another type, cells without ghosts or of
+  /// another width, points in a plane frame): what ReleaseGeometry gives back.
+  bool OwnsGeometry() const
+  {
+    return !this->OrderedPoints.empty() || !this->OrderedConnectivity.empty() ||
+      !this->PointCopy.empty() || !this->ConnectivityCopy.empty() ||
+      !this->AllConnectivityCopy.empty() || !this->FramePoints.empty();
+  }
+  /**
+   * Gives back the kernel's points, cells and neighbours (copies, or the
+   * view of the dataset's) once nothing reads them any more: the view
+   * keeps its counts and parents, DataSetPoint its map, but no points or
+   * cells (null).
+   */
+  void ReleaseGeometry();
+
   const mp::MeshView& View() const { return this->Kernel; }
   /// Sets the dimension of a mesh without cells (it takes the other mesh's).
   void SetDimension(int d) { this->Kernel.CellDimension = this->Kernel.SpaceDimension = d; }

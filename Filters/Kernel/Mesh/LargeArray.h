@@ -28,6 +28,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace mp
@@ -42,6 +43,20 @@ struct LargeAllocator
   {
     return (bytes + HugePage - 1) / HugePage * HugePage;
   }
+
+#if defined(__linux__)
+  /// What allocate() keeps mapped of a block of `bytes`: up to the next system page.
+  static std::size_t Mapped(std::size_t bytes)
+  {
+    static const std::size_t page = [] {
+      const long size = sysconf(_SC_PAGESIZE);
+      return size > 0 && HugePage % static_cast<std::size_t>(size) == 0
+        ? static_cast<std::size_t>(size)
+        : HugePage;
+    }();
+    return (bytes + page - 1) / page * page;
+  }
+#endif
 
   LargeAllocator() = default;
   template <class U>
@@ -75,13 +90,22 @@ struct LargeAllocator
     {
       munmap(begin, static_cast<std::size_t>(aligned - begin));
     }
-    const std::size_t tail = static_cast<std::size_t>(begin + rounded + HugePage - (aligned + rounded));
+    // Mapped up to the system page after the last element only: a huge
+    // page there would be faulted whole for the few bytes of the block's
+    // end that it holds (on average 1 MiB of every block, some 10% of a
+    // projection's peak), so the block's end is on small pages.
+    const std::size_t kept = Mapped(bytes);
+    const std::size_t tail = static_cast<std::size_t>(begin + rounded + HugePage - (aligned + kept));
     if (tail > 0)
     {
-      munmap(aligned + rounded, tail);
+      munmap(aligned + kept, tail);
     }
 #if defined(MADV_HUGEPAGE)
-    madvise(aligned, rounded, MADV_HUGEPAGE); // advice only: failure changes nothing
+    // Advice only (failure changes nothing), on the whole huge pages.
+    if (bytes >= HugePage)
+    {
+      madvise(aligned, bytes / HugePage * HugePage, MADV_HUGEPAGE);
+    }
 #endif
     return reinterpret_cast<T*>(aligned);
 #else
@@ -103,7 +127,7 @@ struct LargeAllocator
       return;
     }
 #if defined(__linux__)
-    munmap(p, Rounded(bytes));
+    munmap(p, Mapped(bytes));
 #else
     std::free(p);
 #endif
