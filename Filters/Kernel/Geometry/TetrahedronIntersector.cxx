@@ -369,21 +369,21 @@ bool TetrahedronIntersector::IntersectCells(
   for (int k = 0; k < 4; ++k)
   {
     piece.SeedFace[k] = -1;
-    if ((piece.TouchedFaces & (1u << k)) && !(beyond & (1u << k)))
+  }
+  // Touched faces the source does not reach beyond (bits: a loop over
+  // them, not a mispredicted test per face): the cap lies in a face of the
+  // source, the one whose three corners are on the plane (the source is on
+  // the inner side of it); else no face of positive area after all.
+  for (unsigned lying = piece.TouchedFaces & ~beyond & 15u; lying != 0; lying &= lying - 1)
+  {
+    const int k = __builtin_ctz(lying);
+    if (CountBits4(onPlane[k]) == 3)
     {
-      // The cap lies in a face of the source: the one whose three corners
-      // are on the plane (the source is on the inner side of it).
-      for (int f = 0; f < 4; ++f)
-      {
-        if (onPlane[k] == (15u & ~(1u << f)))
-        {
-          piece.SeedFace[k] = f;
-        }
-      }
-      if (piece.SeedFace[k] < 0)
-      {
-        piece.TouchedFaces &= ~(1u << k); // no face of positive area after all
-      }
+      piece.SeedFace[k] = __builtin_ctz(15u & ~onPlane[k]);
+    }
+    else
+    {
+      piece.TouchedFaces &= ~(1u << k);
     }
   }
   // Rounding in the clipping can leave slivers of relative size ~1e-16
