@@ -440,30 +440,32 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   const double sourceSize = std::max(s.Box[1] - s.Box[0], s.Box[3] - s.Box[2]);
   const double targetSize = std::max(t.Box[1] - t.Box[0], t.Box[3] - t.Box[2]);
   const bool careful = sourceSize > 16.0 * targetSize || targetSize > 16.0 * sourceSize;
-  for (int k = 0; k < 3; ++k)
+  // The crossings as bits 3k + l (straddleS transposed: bit 3l + k to
+  // 3k + l), visited lowest first: the order of a loop over k and l,
+  // without its test per pair of edges (mispredicted, it was a third of
+  // the mispredicted branches of a 2D run's intersections).
+  const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
+    ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
+  for (unsigned crossings = straddleT & transposed & 0x1FFu; crossings != 0; crossings &= crossings - 1)
   {
-    for (int l = 0; l < 3; ++l)
-    {
-      if (((straddleT >> (3 * k + l)) & (straddleS >> (3 * l + k)) & 1u) == 0)
-      {
-        continue;
-      }
-      const int ci = (l + 1) % 3;
-      const int di = (l + 2) % 3;
-      double x[2];
-      const int ai = (k + 1) % 3;
-      const int bi = (k + 2) % 3;
-      Crossing(t.X[ai], t.X[bi], os[l][ai], os[l][bi], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit, careful, x);
-      // Source edge l entering the target's side of edge k (c outside):
-      // the piece arrives along target edge k and leaves along l; leaving
-      // it, the other way round.
-      const unsigned entering = ot[k][ci] < 0.0;
-      const unsigned target = static_cast<unsigned>(k);
-      const unsigned source = static_cast<unsigned>(3 + l);
-      add(x[0], x[1], entering ? target : source, entering ? source : target);
-      piece.TouchedFaces |= 1u << k;
-      piece.SourceFaces |= 1u << l;
-    }
+    const int bit = __builtin_ctz(crossings);
+    const int k = bit / 3;
+    const int l = bit % 3;
+    const int ci = (l + 1) % 3;
+    const int di = (l + 2) % 3;
+    double x[2];
+    const int ai = (k + 1) % 3;
+    const int bi = (k + 2) % 3;
+    Crossing(t.X[ai], t.X[bi], os[l][ai], os[l][bi], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit, careful, x);
+    // Source edge l entering the target's side of edge k (c outside):
+    // the piece arrives along target edge k and leaves along l; leaving
+    // it, the other way round.
+    const unsigned entering = ot[k][ci] < 0.0;
+    const unsigned target = static_cast<unsigned>(k);
+    const unsigned source = static_cast<unsigned>(3 + l);
+    add(x[0], x[1], entering ? target : source, entering ? source : target);
+    piece.TouchedFaces |= 1u << k;
+    piece.SourceFaces |= 1u << l;
   }
   piece.NumberOfVertices = n;
   if (piece.NumberOfVertices == 0)
