@@ -371,15 +371,15 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         lastMet = sId;
         ++stats.TouchingPairs;
         visit(t, s, piece);
-        for (int k = 0; k < Faces; ++k)
+        // The faces' bits visited lowest first (a test per face was
+        // mispredicted a third of the time): the same order.
+        for (unsigned touched = piece.TouchedFaces & ((1u << Faces) - 1u); touched != 0; touched &= touched - 1)
         {
-          if (piece.TouchedFaces & (1u << k))
+          const int k = __builtin_ctz(touched);
+          const Index next = Intersector::FaceSeed(piece, k, s, source);
+          if (next >= 0)
           {
-            const Index next = Intersector::FaceSeed(piece, k, s, source);
-            if (next >= 0)
-            {
-              faceSeed[k] = next;
-            }
+            faceSeed[k] = next;
           }
         }
         // Its boundary faces that support the source are trusted (no query)
@@ -393,12 +393,9 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         }
         // Only across the faces of s that the target reaches: any other
         // source cell meeting the target is reached through cells meeting it.
-        for (int k = 0; k < SourceFaces; ++k)
+        for (unsigned reached = piece.SourceFaces & ((1u << SourceFaces) - 1u); reached != 0; reached &= reached - 1)
         {
-          if (!(piece.SourceFaces & (1u << k)))
-          {
-            continue;
-          }
+          const int k = __builtin_ctz(reached);
           const Index n = source.Neighbor(sId, s.Face[k]);
           if (n < 0)
           {
