@@ -166,15 +166,14 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
     {
       const Index c = static_cast<Index>(around[i]);
       const Index* ids = mesh.Cell(c);
+      // Without branches (tested per corner, they were mispredicted).
       int at = -1;
       int times = 0;
       for (int l = 0; l < Corners; ++l)
       {
-        if (ids[l] == p)
-        {
-          at = l;
-          ++times;
-        }
+        const bool here = ids[l] == p;
+        at = here ? l : at;
+        times += here;
       }
       if (times != 1)
       {
@@ -187,27 +186,36 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
         {
           continue;
         }
+        // The corners other than k and at, in increasing order (from a
+        // table for tetrahedra: a loop testing each was mispredicted).
         Index key0 = -1;
         Index key1 = -1;
-        for (int l = 0; l < Corners; ++l)
+        if constexpr (Corners == 3)
         {
-          if (l != k && l != at)
-          {
-            (key0 < 0 ? key0 : key1) = ids[l];
-          }
+          key0 = ids[3 - k - at];
+        }
+        else if constexpr (Corners == 4)
+        {
+          static constexpr signed char others[4][4][2] = {
+            { { -1, -1 }, { 2, 3 }, { 1, 3 }, { 1, 2 } },
+            { { 2, 3 }, { -1, -1 }, { 0, 3 }, { 0, 2 } },
+            { { 1, 3 }, { 0, 3 }, { -1, -1 }, { 0, 1 } },
+            { { 1, 2 }, { 0, 2 }, { 0, 1 }, { -1, -1 } },
+          };
+          key0 = ids[others[k][at][0]];
+          key1 = ids[others[k][at][1]];
         }
         if (key1 >= 0 && key1 < key0)
         {
           std::swap(key0, key1);
         }
-        if (key0 >= 0 && key0 < p)
-        {
-          continue; // matched at a lower point
-        }
-        Face& f = faces[count++];
+        // Written in any case, kept (count advanced) unless matched at a
+        // lower point: no branch. (Room for all faces through p.)
+        Face& f = faces[count];
         f.Key = pack(key0, key1);
         f.Cell = c;
         f.Side = k;
+        count += !(key0 >= 0 && key0 < p);
       }
     }
     // Equal faces side by side, then each group: two cells are neighbours,
