@@ -13,6 +13,7 @@
 #ifndef MeshProjection_Kernel_TetrahedronClipping_h
 #define MeshProjection_Kernel_TetrahedronClipping_h
 
+#include "Geometry/Lanes.h"
 #include "Geometry/Predicates.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Mesh/Vec3.h"
@@ -21,9 +22,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace mp
 {
@@ -197,10 +195,6 @@ inline void ClipByPlane(const ClipTet& t, const double* normal, const double* or
   Emit(out, n, p[2], q[0], q[1], q[2]);
 }
 
-/// Two doubles, two 64-bit lanes of comparison results (-1 true, 0 false).
-typedef double Doubles2 __attribute__((vector_size(16)));
-typedef long long Mask2 __attribute__((vector_size(16)));
-
 /// Positive when x is strictly inside the plane of face k of a prepared
 /// (positively oriented) cell; exact sign. For a positive tetrahedron
 /// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
@@ -242,8 +236,7 @@ inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIn
     size = std::max(size,
       std::max(c.Box[2 * d + 1], other.Box[2 * d + 1]) - std::min(c.Box[2 * d], other.Box[2 * d]));
   }
-  // The corners by coordinate, two per vector (GCC/Clang vector
-  // extensions: SSE2 on x86-64, plain code elsewhere): the same operations
+  // The corners by coordinate, two per vector (Lanes.h): the same operations
   // in the same order as FaceSide's fast path, so the same values; a lane
   // is decided when its distance is beyond the bound on either side (a NaN
   // never is). Scalar, these 32 evaluations per pair were 11% of a 3D run.
@@ -251,9 +244,9 @@ inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIn
   Doubles2 x0[2], x1[2], x2[2];
   for (int h = 0; h < 2; ++h)
   {
-    std::memcpy(&x0[h], &corner[0][2 * h], sizeof(Doubles2));
-    std::memcpy(&x1[h], &corner[1][2 * h], sizeof(Doubles2));
-    std::memcpy(&x2[h], &corner[2][2 * h], sizeof(Doubles2));
+    x0[h] = LoadLanes(&corner[0][2 * h]);
+    x1[h] = LoadLanes(&corner[1][2 * h]);
+    x2[h] = LoadLanes(&corner[2][2 * h]);
   }
   Mask2 decided = { -1, -1 };
   for (int k = 0; k < 4; ++k)
@@ -290,25 +283,14 @@ struct SideBits
   unsigned Zero[4];
 };
 
-/// Bit l of the result: lane l of a comparison's mask is true.
-inline unsigned LaneBits(Mask2 mask)
-{
-#if defined(__SSE2__)
-  return static_cast<unsigned>(_mm_movemask_pd(reinterpret_cast<__m128d>(mask)));
-#else
-  return static_cast<unsigned>((mask[0] & 1) | (mask[1] & 2));
-#endif
-}
-
 /// SideBits of a table, two lanes at a time (compared one by one, the
 /// 48 comparisons and shifts were 4% of a 3D run).
 inline void GetSideBits(const double (&sides)[4][4], SideBits& bits)
 {
   for (int k = 0; k < 4; ++k)
   {
-    Doubles2 r0, r1;
-    std::memcpy(&r0, &sides[k][0], sizeof r0);
-    std::memcpy(&r1, &sides[k][2], sizeof r1);
+    const Doubles2 r0 = LoadLanes(&sides[k][0]);
+    const Doubles2 r1 = LoadLanes(&sides[k][2]);
     bits.Negative[k] = LaneBits(r0 < 0.0) | LaneBits(r1 < 0.0) << 2;
     bits.NotPositive[k] = LaneBits(r0 <= 0.0) | LaneBits(r1 <= 0.0) << 2;
     bits.Zero[k] = LaneBits(r0 == 0.0) | LaneBits(r1 == 0.0) << 2;

@@ -2,15 +2,13 @@
 #include "Geometry/TriangleIntersector.h"
 
 #include "Geometry/IntersectionPieces.h"
+#include "Geometry/Lanes.h"
 #include "Geometry/Predicates.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace mp
 {
@@ -176,23 +174,13 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
 {
   // The three points as the lanes of two vectors per coordinate (points
   // 0-1, and 2 twice), so that each line's determinants and filters are
-  // two vector expressions (GCC/Clang vector extensions: SSE2 on x86-64):
+  // two vector expressions (Lanes.h):
   // the same operations in the same order as one at a time, the same
   // values. Scalar, these 18 filtered orientations per pair were an eighth
   // of a 2D run's instructions.
-  typedef double Doubles2 __attribute__((vector_size(16)));
-  typedef long long Mask2 __attribute__((vector_size(16)));
   constexpr double bound = (3.0 + 16.0 * RoundingUnit) * RoundingUnit;
   const Doubles2 cx[2] = { { c[0][0], c[1][0] }, { c[2][0], c[2][0] } };
   const Doubles2 cy[2] = { { c[0][1], c[1][1] }, { c[2][1], c[2][1] } };
-  const Mask2 magnitudeBits = { 0x7FFFFFFFFFFFFFFFLL, 0x7FFFFFFFFFFFFFFFLL };
-  auto magnitude = [&magnitudeBits](Doubles2 v) {
-    Mask2 bits;
-    std::memcpy(&bits, &v, sizeof v);
-    bits &= magnitudeBits; // the sign bit cleared: |v|
-    std::memcpy(&v, &bits, sizeof v);
-    return v;
-  };
   Mask2 decidedLanes = { -1, -1 };
   for (int k = 0; k < 3; ++k)
   {
@@ -208,7 +196,7 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
       {
         o[k][1] = det[1];
       }
-      decidedLanes &= magnitude(det) > bound * (magnitude(left) + magnitude(right));
+      decidedLanes &= Magnitude(det) > bound * (Magnitude(left) + Magnitude(right));
     }
   }
   const bool decided = (decidedLanes[0] & decidedLanes[1]) != 0;
@@ -234,23 +222,13 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
  */
 inline void SignBits3x3(const double (&o)[3][3], unsigned& pos, unsigned& neg)
 {
-  typedef double Doubles2 __attribute__((vector_size(16)));
-  typedef long long Mask2 __attribute__((vector_size(16)));
-  auto laneBits = [](Mask2 mask) {
-#if defined(__SSE2__)
-    return static_cast<unsigned>(_mm_movemask_pd(reinterpret_cast<__m128d>(mask)));
-#else
-    return static_cast<unsigned>((mask[0] & 1) | (mask[1] & 2));
-#endif
-  };
   pos = 0;
   neg = 0;
   for (int k = 0; k < 3; ++k)
   {
-    Doubles2 r;
-    std::memcpy(&r, &o[k][0], sizeof r);
-    pos |= (laneBits(r > 0.0) | static_cast<unsigned>(o[k][2] > 0.0) << 2) << (3 * k);
-    neg |= (laneBits(r < 0.0) | static_cast<unsigned>(o[k][2] < 0.0) << 2) << (3 * k);
+    const Doubles2 r = LoadLanes(&o[k][0]);
+    pos |= (LaneBits(r > 0.0) | static_cast<unsigned>(o[k][2] > 0.0) << 2) << (3 * k);
+    neg |= (LaneBits(r < 0.0) | static_cast<unsigned>(o[k][2] < 0.0) << 2) << (3 * k);
   }
 }
 
