@@ -129,12 +129,13 @@ def shuffled(grid, seed):
     return out, cells, points
 
 
-def project(target, source, mode, extensive=False, threads=0):
+def project(target, source, mode, extensive=False, threads=0, intersections=True, bounds=False):
     f = vtkMeshProjectionFilter()
     f.SetRenumbering(mode)
     f.SetNumberOfThreads(threads)
-    f.SetOutputIntersections(True)
+    f.SetOutputIntersections(intersections)
     f.SetCellDataQuantity(f.EXTENSIVE if extensive else f.INTENSIVE)
+    f.SetPreserveBounds(bounds)
     f.SetInputData(target)
     f.SetSourceData(source)
     f.Update()
@@ -347,20 +348,6 @@ print("matrices of operators kept at once: in the datasets' numbering")
 # intersections output (which keeps them), whatever the renumbering, the
 # threads, the cell data's quantity, PreserveBounds, a kept operator's
 # second execution, and the matrices read out afterwards.
-def released(target, source, mode, extensive, threads, bounds, keep):
-    f = vtkMeshProjectionFilter()
-    f.SetRenumbering(mode)
-    f.SetNumberOfThreads(threads)
-    f.SetOutputIntersections(keep)
-    f.SetCellDataQuantity(f.EXTENSIVE if extensive else f.INTENSIVE)
-    f.SetPreserveBounds(bounds)
-    f.SetCacheOperator(True)
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.Update()
-    return f
-
-
 st3, _, _ = shuffled(t3, 7)
 ss3, _, _ = shuffled(s3, 8)
 st2s, _, _ = shuffled(t2, 9)
@@ -368,7 +355,7 @@ ss2s, _, _ = shuffled(s2, 10)
 for label, target, source in (("2D", st2s, ss2s), ("3D", st3, ss3)):
     for name, mode in MODES.items():
         for extensive, threads, bounds in ((False, 1, False), (True, 2, False), (False, 2, True)):
-            runs = [released(target, source, mode, extensive, threads, bounds, keep) for keep in (True, False)]
+            runs = [project(target, source, mode, extensive, threads, keep, bounds) for keep in (True, False)]
             for f in runs:  # a second execution: the kept operators again
                 f.Modified()
                 f.Update()
