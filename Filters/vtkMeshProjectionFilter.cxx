@@ -721,6 +721,114 @@ struct vtkMeshProjectionFilter::Execution
 namespace
 {
 /**
+ * For every cell c of `view` in turn and each of its corners p, apply(p,
+ * value(c)), skipping cells whose value is not positive: as that loop
+ * would, in the order it would (sums come out bit for bit the same), but
+ * in `runner`'s tasks over ranges of cells. A range applies directly to
+ * the points no earlier range uses (ids above the largest id of the
+ * earlier ranges' cells, so no two tasks write one point) and keeps the
+ * others' values until every range is done, then applies them in cell
+ * order. Numberings that follow space (a renumbered copy numbers points as
+ * its cells first use them) keep few; when more than a sixteenth of the
+ * corners would wait (ids with no such order), one loop does it all.
+ */
+template <class Value, class Apply>
+void ForCellCornersInOrder(
+  const mp::MeshView& view, const mp::TaskRunner& runner, const Value& value, const Apply& apply)
+{
+  const mp::Index n = view.NumberOfCells;
+  const int corners = view.CornersPerCell();
+  auto serial = [&](mp::Index begin, mp::Index end) {
+    for (mp::Index c = begin; c < end; ++c)
+    {
+      const double v = value(c);
+      if (v > 0.0)
+      {
+        const mp::Index* ids = view.Cell(c);
+        for (int k = 0; k < corners; ++k)
+        {
+          apply(ids[k], v);
+        }
+      }
+    }
+  };
+  const int tasks = runner.TasksFor(n, 16384);
+  if (tasks < 2)
+  {
+    serial(0, n);
+    return;
+  }
+  auto range = [&](int k) { return std::make_pair(mp::RangeBegin(n, k, tasks), mp::RangeBegin(n, k + 1, tasks)); };
+  // Ids below first[k] may be used by the cells of an earlier range.
+  std::vector<mp::Index> first(static_cast<size_t>(tasks), 0);
+  std::vector<mp::Index> waiting(static_cast<size_t>(tasks), 0);
+  runner.RunAll(tasks, [&](int k) {
+    mp::Index top = -1;
+    for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
+    {
+      top = std::max(top, view.Connectivity[i]);
+    }
+    first[k] = top;
+  });
+  mp::Index top = 0;
+  for (int k = 0; k < tasks; ++k)
+  {
+    const mp::Index largest = first[k];
+    first[k] = top;
+    top = std::max(top, largest + 1);
+  }
+  runner.RunAll(tasks, [&](int k) {
+    mp::Index count = 0;
+    for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
+    {
+      count += view.Connectivity[i] < first[k];
+    }
+    waiting[k] = count;
+  });
+  mp::Index total = 0;
+  for (mp::Index count : waiting)
+  {
+    total += count;
+  }
+  if (total > corners * n / 16)
+  {
+    serial(0, n);
+    return;
+  }
+  std::vector<std::vector<std::pair<mp::Index, double>>> kept(static_cast<size_t>(tasks));
+  runner.RunAll(tasks, [&](int k) {
+    std::vector<std::pair<mp::Index, double>>& mine = kept[k];
+    mine.reserve(static_cast<size_t>(waiting[k]));
+    for (mp::Index c = range(k).first; c < range(k).second; ++c)
+    {
+      const double v = value(c);
+      if (v > 0.0)
+      {
+        const mp::Index* ids = view.Cell(c);
+        for (int j = 0; j < corners; ++j)
+        {
+          if (ids[j] >= first[k])
+          {
+            apply(ids[j], v);
+          }
+          else
+          {
+            mine.emplace_back(ids[j], v);
+          }
+        }
+      }
+    }
+  });
+  for (const auto& mine : kept)
+  {
+    for (const auto& entry : mine)
+    {
+      apply(entry.first, entry.second);
+    }
+  }
+}
+
+/**
  * Runs `work` (whose parallel loops report progress through run.Progress)
  * so that its progress reaches the pipeline's thread: with several SMP
  * threads no task need run on the calling thread (VTK's STDThread backend
@@ -2330,13 +2438,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
           begin, end);
       });
-      for (mp::Index c = 0; c < view.NumberOfCells; ++c)
-      {
+      // The part of cell c counted (0: none).
+      auto part = [&](mp::Index c) {
         const double whole = measures[static_cast<size_t>(c)];
-        double m = covered[static_cast<size_t>(c)];
+        const double m = covered[static_cast<size_t>(c)];
         if (!(whole > 0.0) || !(m > 0.0))
         {
-          continue;
+          return 0.0;
         }
         // The rule: a cell covered to 90% counts whole (surfaces, curves).
         auto counted = [&](double cover) {
@@ -2344,15 +2452,38 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         };
         // With the processes' total cover `all`: this process's share of it.
         const double all = total.empty() ? 0.0 : total[static_cast<size_t>(c)];
-        m = all > 0.0 ? m * (counted(all) / all) : counted(m);
-        if (fromCells)
+        return all > 0.0 ? m * (counted(all) / all) : counted(m);
+      };
+      if (!fromCells)
+      {
+        // Summed in cell order, in the filter's threads.
+        ForCellCornersInOrder(view, mpvtk::SMPTaskRunner(),
+          [&](mp::Index c) { return part(c) / corners; },
+          [&](mp::Index p, double share) { w[static_cast<size_t>(p)] += share; });
+      }
+      else if (!view.Parent || view.OneCellPerParent)
+      {
+        // One cell per dataset cell: nothing to sum.
+        vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+          for (vtkIdType c = begin; c < end; ++c)
+          {
+            const double m = part(c);
+            if (m > 0.0)
+            {
+              w[static_cast<size_t>(view.ParentOf(c))] += m;
+            }
+          }
+        });
+      }
+      else
+      {
+        for (mp::Index c = 0; c < view.NumberOfCells; ++c)
         {
-          w[static_cast<size_t>(view.ParentOf(c))] += m;
-          continue;
-        }
-        for (int k = 0; k < corners; ++k)
-        {
-          w[static_cast<size_t>(view.Cell(c)[k])] += m / corners;
+          const double m = part(c);
+          if (m > 0.0)
+          {
+            w[static_cast<size_t>(view.ParentOf(c))] += m;
+          }
         }
       }
     }
@@ -2513,9 +2644,12 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   }
   if (builtHere) // (the kept ones were moved out of `fresh` just above)
   {
-    auto keep = [](const mpvtk::SimplexMesh& mesh, std::vector<mp::Index>& order) {
-      order.clear();
-      if (mesh.Ordered())
+    // (Only GetMatrix reads them: for kept operators.)
+    const bool anyKept = kept.Operators[0].Operator || kept.Operators[1].Operator ||
+      kept.Operators[2].Operator || kept.Operators[3].Operator;
+    auto keep = [anyKept](const mpvtk::SimplexMesh& mesh, std::vector<mp::Index>& order) {
+      std::vector<mp::Index>().swap(order);
+      if (mesh.Ordered() && anyKept)
       {
         order.assign(mesh.PointOrderData(), mesh.PointOrderData() + mesh.View().NumberOfPoints);
       }
@@ -2550,10 +2684,12 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     validCopies.emplace_back(valid.size());
     std::vector<char>& copy = validCopies.back();
-    for (size_t f = 0; f < valid.size(); ++f)
-    {
-      copy[static_cast<size_t>(targetMesh.DataSetPoint(static_cast<mp::Index>(f)))] = valid[f];
-    }
+    vtkSMPTools::For(0, static_cast<vtkIdType>(valid.size()), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType f = begin; f < end; ++f)
+      {
+        copy[static_cast<size_t>(targetMesh.DataSetPoint(f))] = valid[f];
+      }
+    });
     return &copy;
   };
   vtkFieldData* outFD = output->GetFieldData();
@@ -2661,15 +2797,17 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           }
         }
       }
-      for (vtkIdType f = 0; f < n; ++f)
-      {
-        const double scale = totals && op.GetValid()[f] ? covered[f] : 1.0;
-        const vtkIdType to = toPoints ? targetMesh.DataSetPoint(f) : f;
-        for (int k = 0; k < nc; ++k)
+      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType f = begin; f < end; ++f)
         {
-          out[to * nc + k] = scale * (op.GetValid()[f] ? factor[k] : 1.0) * values[f * width + offset + k];
+          const double scale = totals && op.GetValid()[f] ? covered[f] : 1.0;
+          const vtkIdType to = toPoints ? targetMesh.DataSetPoint(f) : f;
+          for (int k = 0; k < nc; ++k)
+          {
+            out[to * nc + k] = scale * (op.GetValid()[f] ? factor[k] : 1.0) * values[f * width + offset + k];
+          }
         }
-      }
+      });
       // (A trace has no Source integral: the Source is a volume around it.)
       for (int which = trace ? 1 : 0; which < 2 && main; ++which)
       {
@@ -2775,10 +2913,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   else
   {
     // A point is valid when a cell around it meets the source.
-    for (size_t i = 0; i < most.size(); ++i)
-    {
-      mask->SetValue(targetMesh.DataSetPoint(static_cast<mp::Index>(i)), most[i] > 0 ? 1 : 0);
-    }
+    char* to = mask->GetPointer(0);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(most.size()), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        to[targetMesh.DataSetPoint(i)] = most[i] > 0 ? 1 : 0;
+      }
+    });
   }
   AddValidMasks(mask, pointValid, outPD);
   if (const mp::MortarOperator* onCells = operators[1] ? operators[1] : operators[2])

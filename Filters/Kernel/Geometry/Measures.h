@@ -15,6 +15,7 @@
 
 #include "Geometry/Intersectors.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
 
 #include <algorithm>
 #include <type_traits>
@@ -51,17 +52,22 @@ inline std::vector<double> ParentMeasures(const MeshView& mesh)
 
 /// Per original cell, the covered fraction of its measure, from the
 /// covered fraction of each of its simplices.
-inline std::vector<double> ParentFractions(const MeshView& mesh, const std::vector<double>& fraction)
+inline std::vector<double> ParentFractions(
+  const MeshView& mesh, const std::vector<double>& fraction, const TaskRunner& runner = TaskRunner())
 {
   if (mesh.Parent && mesh.OneCellPerParent)
   {
     // Only renumbered: each parent's fraction is its one simplex's (already
-    // at most 1; 0 for a simplex of no measure, which the search skips).
+    // at most 1; 0 for a simplex of no measure, which the search skips),
+    // moved in `runner`'s tasks (each parent written once).
     std::vector<double> moved(static_cast<size_t>(mesh.Parents()), 0.0);
-    for (Index c = 0; c < mesh.NumberOfCells; ++c)
-    {
-      moved[static_cast<size_t>(mesh.Parent[c])] = std::min(1.0, fraction[static_cast<size_t>(c)]);
-    }
+    runner.ForRanges(mesh.NumberOfCells, [&](Index begin, Index end) {
+      for (Index c = begin; c < end; ++c)
+      {
+        moved[static_cast<size_t>(mesh.Parent[c])] = std::min(1.0, fraction[static_cast<size_t>(c)]);
+      }
+      return 0;
+    }, Index(1) << 16);
     return moved;
   }
   std::vector<double> measure(static_cast<size_t>(mesh.Parents()), 0.0);

@@ -25,22 +25,29 @@ double Seconds(std::chrono::steady_clock::time_point since)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-std::string CheckIds(const MeshView& mesh, const char* name)
+/// How many of ids[0..n) lie outside [0, bound), counted in `runner`'s tasks.
+Index CountOutside(const Index* ids, Index n, Index bound, const TaskRunner& runner)
 {
-  const Index n = mesh.NumberOfCells * mesh.CornersPerCell();
-  for (Index i = 0; i < n; ++i)
-  {
-    if (mesh.Connectivity[i] < 0 || mesh.Connectivity[i] >= mesh.NumberOfPoints)
+  return runner.ForRanges(n, [=](Index begin, Index end) {
+    Index outside = 0;
+    for (Index i = begin; i < end; ++i)
     {
-      return std::string(name) + ": a cell refers to a point that does not exist";
+      // (A negative id is a huge unsigned one.)
+      outside += static_cast<std::uint64_t>(ids[i]) >= static_cast<std::uint64_t>(bound);
     }
+    return outside;
+  }, Index(1) << 16);
+}
+
+std::string CheckIds(const MeshView& mesh, const char* name, const TaskRunner& runner)
+{
+  if (CountOutside(mesh.Connectivity, mesh.NumberOfCells * mesh.CornersPerCell(), mesh.NumberOfPoints, runner) > 0)
+  {
+    return std::string(name) + ": a cell refers to a point that does not exist";
   }
-  for (Index c = 0; mesh.Parent && c < mesh.NumberOfCells; ++c)
+  if (mesh.Parent && CountOutside(mesh.Parent, mesh.NumberOfCells, mesh.NumberOfParents, runner) > 0)
   {
-    if (mesh.Parent[c] < 0 || mesh.Parent[c] >= mesh.NumberOfParents)
-    {
-      return std::string(name) + ": a cell's parent does not exist";
-    }
+    return std::string(name) + ": a cell's parent does not exist";
   }
   return std::string();
 }
@@ -73,7 +80,7 @@ bool MortarOperator::Check(
     this->Error = CheckSearchMesh(m, mesh.second, options.Method);
     if (this->Error.empty())
     {
-      this->Error = CheckIds(m, mesh.second);
+      this->Error = CheckIds(m, mesh.second, options.Runner);
     }
     if (!this->Error.empty())
     {
@@ -197,7 +204,7 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     if (target.Parent)
     {
       // Split cells: the covered fraction of each original cell.
-      op->CoveredFraction = ParentFractions(target, op->CoveredFraction);
+      op->CoveredFraction = ParentFractions(target, op->CoveredFraction, op->Options.Runner);
     }
     op->Solver.reset(new BlockCG(op->TargetMass, op->Options.Runner));
   }
@@ -355,10 +362,15 @@ struct MortarOperator::Session
       }
       else if (!this->Met.empty())
       {
-        for (size_t c = 0; c < op.SourceCovered.size(); ++c)
-        {
-          op.SourceCovered[c] += this->Met[k][c];
-        }
+        const double* met = this->Met[k].data();
+        double* covered = op.SourceCovered.data();
+        runner.ForRanges(static_cast<Index>(op.SourceCovered.size()), [=](Index begin, Index end) {
+          for (Index c = begin; c < end; ++c)
+          {
+            covered[c] += met[c];
+          }
+          return 0;
+        }, Index(1) << 16);
       }
       op.Statistics.Pieces += a.Count;
     }
