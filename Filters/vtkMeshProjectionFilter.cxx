@@ -2074,12 +2074,15 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // (NumberOfThreads, see RequestData).
   options.Runner = mpvtk::SMPTaskRunner();
   bool searchReady = false;
+  const bool usesTargetPoints = used[0] || used[3]; // (P1 targets: M_tt has a point graph)
   // Neighbours and the Source locator, once, before the first operator is built.
   auto prepareSearch = [&]() {
     if (!searchReady && mp::SearchNeedsNeighbors(options.Method))
     {
-      // Neighbours and the seed locator (bins of the boundary cells).
-      targetMesh.BuildNeighbors();
+      // Neighbours and the seed locator (bins of the boundary cells). The
+      // target's cells around its points stay for M_tt's pattern (P1)
+      // until its neighbours go, once the operators are built.
+      targetMesh.BuildNeighbors(usesTargetPoints);
       if (!run.SourceNeighbors)
       {
         sourceMesh.BuildNeighbors();

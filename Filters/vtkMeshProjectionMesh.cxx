@@ -964,8 +964,10 @@ void SimplexMesh::ReleaseGeometry()
   this->Kernel.Connectivity = nullptr;
 }
 
-void SimplexMesh::BuildNeighbors()
+void SimplexMesh::BuildNeighbors(bool keepPointCells)
 {
+  this->Around.reset();
+  this->Kernel.Around = nullptr;
   const vtkIdType n = this->Kernel.NumberOfCells;
   const int corners = this->Kernel.CornersPerCell();
   if (n > std::numeric_limits<mp::NeighborId>::max())
@@ -981,7 +983,20 @@ void SimplexMesh::BuildNeighbors()
   }
   // The kernel's own cells around each point (ghost cells are not the
   // kernel's: they are never neighbours).
-  this->NonManifold = mp::BuildFaceNeighbors(this->Kernel, this->Neighbors.data(), SMPTaskRunner());
+  if (keepPointCells)
+  {
+    this->Around.reset(new mp::PointCells);
+  }
+  this->NonManifold =
+    mp::BuildFaceNeighbors(this->Kernel, this->Neighbors.data(), SMPTaskRunner(), this->Around.get());
+  if (this->Around && this->Around->Fit(this->Kernel))
+  {
+    this->Kernel.Around = this->Around.get();
+  }
+  else
+  {
+    this->Around.reset();
+  }
 }
 
 SourceLocator::SourceLocator(const SimplexMesh& mesh)

@@ -32,6 +32,7 @@
 #define vtkMeshProjectionMesh_h
 
 #include "Geometry/IntersectionPieces.h"
+#include "Mesh/CellNeighbors.h"
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/PlaneFrame.h"
@@ -120,13 +121,19 @@ public:
   vtkIdType SplitCells() const { return this->SplitCount; }
   /// Seconds Wrap() spent in CheckDataSet.
   double CheckSeconds() const { return this->CheckTime; }
-  /// Face neighbours, matched by the kernel in the filter's threads (call after Wrap).
-  void BuildNeighbors();
-  /// Gives the neighbours' memory back once no search will need them.
+  /// Face neighbours, matched by the kernel in the filter's threads (call
+  /// after Wrap). `keepPointCells`: the cells around each point, which the
+  /// matching builds, stay (View().Around) for the target mass matrix's
+  /// pattern, until ReleaseNeighbors.
+  void BuildNeighbors(bool keepPointCells = false);
+  /// Gives the neighbours' memory back once no search will need them (and
+  /// the cells around the points).
   void ReleaseNeighbors()
   {
     this->Neighbors = mp::LargeBuffer<mp::NeighborId>();
     this->Kernel.Neighbors = nullptr;
+    this->Around.reset();
+    this->Kernel.Around = nullptr;
   }
 
   /// Whether the kernel's points or cells are copies of the mesh's own (a
@@ -216,6 +223,7 @@ private:
   const mp::Index* AllConnectivity = nullptr; ///< every cell of the grid, ghosts included
   mp::LargeVector<mp::Index> AllConnectivityCopy;
   mp::LargeBuffer<mp::NeighborId> Neighbors;
+  std::unique_ptr<mp::PointCells> Around; ///< (on the heap: the view points to it)
   mp::PlaneFrame Own;
   mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;

@@ -3,6 +3,7 @@
 // P1 -> P0, source -> target) in 2D and 3D: hand-computed entries,
 // constants, conservation, one operator applied many times, the solver's
 // hooks, the matrices as read out; and the plane frames of planar meshes.
+#include "Mesh/CellNeighbors.h"
 #include "Mesh/PlaneFrame.h"
 #include "GeneratedMeshes.h"
 #include "Threads.h"
@@ -980,17 +981,34 @@ TEST(MassPattern, IsThePointGraph)
     }
     // Three tasks first: their copy into place must not find a buffer that
     // the serial run left with the right columns (freed, then reused).
+    // Each also from the cells around the points that the neighbours'
+    // construction kept (emptied once read), and with kept lists of
+    // another mesh (not used: built anew).
+    mp::PointCells other;
+    other.Start.assign(3, 0);
     for (int tasks : { 3, 1 })
     {
-      mp::CsrMatrix m;
-      mp::MassPattern(SpaceType::P1, view, mptest::ThreadRunner(tasks), m);
-      ASSERT_EQ(m.Rows, n);
-      ASSERT_EQ(m.Values.size(), m.ColumnIndex.size());
-      for (Index p = 0; p < n; ++p)
+      for (int lists : { 0, 1, 2 })
       {
-        const std::vector<int> row(
-          m.ColumnIndex.begin() + m.RowStart[p], m.ColumnIndex.begin() + m.RowStart[p + 1]);
-        EXPECT_EQ(row, expected[p]) << "row " << p << ", " << tasks << " tasks";
+        mp::MeshView seen = view;
+        mp::PointCells around;
+        std::vector<mp::NeighborId> neighbors(static_cast<size_t>(view.NumberOfCells * view.CornersPerCell()));
+        mp::BuildFaceNeighbors(view, neighbors.data(), mptest::ThreadRunner(tasks), &around);
+        ASSERT_TRUE(around.Fit(view));
+        ASSERT_EQ(around.Cells.size(), static_cast<size_t>(view.NumberOfCells * view.CornersPerCell()));
+        seen.Around = lists == 1 ? &around : (lists == 2 ? &other : nullptr);
+        mp::CsrMatrix m;
+        mp::MassPattern(SpaceType::P1, seen, mptest::ThreadRunner(tasks), m);
+        EXPECT_EQ(around.Start.empty(), lists == 1);
+        EXPECT_EQ(other.Start.size(), 3u);
+        ASSERT_EQ(m.Rows, n);
+        ASSERT_EQ(m.Values.size(), m.ColumnIndex.size());
+        for (Index p = 0; p < n; ++p)
+        {
+          const std::vector<int> row(
+            m.ColumnIndex.begin() + m.RowStart[p], m.ColumnIndex.begin() + m.RowStart[p + 1]);
+          EXPECT_EQ(row, expected[p]) << "row " << p << ", " << tasks << " tasks, lists " << lists;
+        }
       }
     }
   }

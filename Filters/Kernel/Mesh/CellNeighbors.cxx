@@ -6,13 +6,14 @@
 #include <atomic>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 namespace mp
 {
 namespace
 {
 template <class Id>
-Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
+Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner, PointCells* keep)
 {
   // (The cell lists are written whole by BuildPointCells' tasks: not zeroed first.)
   UninitializedLargeVector<Id> start;
@@ -44,14 +45,26 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
     }
     return count;
   });
+  // (For the target mass matrix's pattern: the same lists.)
+  auto kept = [&] {
+    if constexpr (std::is_same<Id, std::int32_t>::value)
+    {
+      if (keep)
+      {
+        keep->Start.swap(start);
+        keep->Cells.swap(around);
+      }
+    }
+  };
   if (packable && !repeated)
   {
+    kept();
     return nonManifold / 2;
   }
   // A cell names a point twice (or the ids do not pack): the face
   // matcher's own rule, from the start.
   std::fill(neighbors, neighbors + size, NeighborId(-1));
-  return MatchFaces(
+  const Index matched = MatchFaces(
            mesh,
            [&](Index p, const auto& visit) {
              for (Id i = start[p]; i < start[p + 1]; ++i)
@@ -61,17 +74,24 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
            },
            neighbors, 0, mesh.NumberOfCells) /
     2;
+  kept();
+  return matched;
 }
 } // namespace
 
-Index BuildFaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner)
+Index BuildFaceNeighbors(
+  const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner, PointCells* keep)
 {
+  if (keep)
+  {
+    *keep = PointCells();
+  }
   // The point-to-cell lists with 32-bit ids when they fit: half the memory.
   if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
   {
-    return FaceNeighbors<std::int32_t>(mesh, neighbors, runner);
+    return FaceNeighbors<std::int32_t>(mesh, neighbors, runner, keep);
   }
-  return FaceNeighbors<Index>(mesh, neighbors, runner);
+  return FaceNeighbors<Index>(mesh, neighbors, runner, keep);
 }
 
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors)

@@ -13,12 +13,14 @@
 #ifndef MeshProjection_Kernel_CellNeighbors_h
 #define MeshProjection_Kernel_CellNeighbors_h
 
+#include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/Tasks.h"
 
 #include <algorithm>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace mp
@@ -246,14 +248,32 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
 }
 
 /**
+ * The cells around each point (BuildPointCells' lists, 32-bit), as the
+ * neighbours' construction built them: kept when asked, for the target
+ * mass matrix's pattern (Transfer/MassMatrix.h), which needs the same lists.
+ */
+struct PointCells
+{
+  UninitializedLargeVector<std::int32_t> Start;
+  UninitializedLargeVector<std::int32_t> Cells;
+  /// Whether these are the lists of `mesh` (as many starts as its points, plus one).
+  bool Fit(const MeshView& mesh) const
+  {
+    return !this->Start.empty() && static_cast<Index>(this->Start.size()) == mesh.NumberOfPoints + 1;
+  }
+};
+
+/**
  * Fills `neighbors` with (CellDimension + 1) * NumberOfCells entries: for cell c
  * and face k (opposite corner k) the cell across, or -1, from the kernel's
  * own point-to-cell lists (BuildPointCells, in `runner`'s tasks) and
  * MatchFacesAtPoints over ranges of points in `runner`'s tasks (MatchFaces
  * when a cell names a point twice). Returns the number of non-manifold faces
- * found. The mesh must have fewer than 2^31 cells.
+ * found. The mesh must have fewer than 2^31 cells. With `keep`, the lists
+ * are moved into it when they have 32-bit ids (else it is left empty).
  */
-Index BuildFaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner);
+Index BuildFaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner,
+  PointCells* keep = nullptr);
 /// The same into a vector, on one task.
 Index BuildFaceNeighbors(const MeshView& mesh, std::vector<NeighborId>& neighbors);
 

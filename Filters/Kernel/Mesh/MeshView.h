@@ -44,6 +44,8 @@ static_assert(sizeof(Index) == 8, "mp::Index must be a 64-bit integer");
 using NeighborId = int;
 static_assert(sizeof(NeighborId) == 4, "mp::NeighborId must be a 32-bit integer");
 
+struct PointCells;
+
 struct MeshView
 {
   int CellDimension = 2;               ///< 1: segments, 2: triangles, 3: tetrahedra
@@ -60,6 +62,11 @@ struct MeshView
   /// per-cell values moved.
   bool OneCellPerParent = false;
   const NeighborId* Neighbors = nullptr; ///< (CellDimension + 1) * NumberOfCells cell ids or -1
+  /// The cells around each point, when the neighbours' construction kept
+  /// them (CellNeighbors.h): M_tt's pattern reads them instead of building
+  /// them again, and empties them (their memory back before the search).
+  /// Null: not kept.
+  PointCells* Around = nullptr;
   /**
    * Surfaces in 3D (CellDimension 2, SpaceDimension 3) and curves
    * (CellDimension 1), read from the target's view: a source facet meets a

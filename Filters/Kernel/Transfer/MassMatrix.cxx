@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace mp
@@ -32,15 +33,28 @@ inline void SortEight(Column* v)
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
 /// around each point (with ids of type Id: 32 bits when they fit, half the
-/// memory); rows in concurrent tasks over point ranges when a runner is
-/// given, each into a block of its own, then moved into place.
+/// memory; those the neighbours' construction kept, mesh.Around, when
+/// there are, emptied once read); rows in concurrent tasks over point
+/// ranges when a runner is given, each into a block of its own, then moved
+/// into place.
 template <class Id>
 void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Index>& start,
   UninitializedLargeVector<Column>& columns)
 {
   UninitializedLargeVector<Id> cellStart;
   UninitializedLargeVector<Id> cells;
-  BuildPointCells(mesh, cellStart, cells, runner);
+  if constexpr (std::is_same<Id, std::int32_t>::value)
+  {
+    if (mesh.Around && mesh.Around->Fit(mesh))
+    {
+      cellStart.swap(mesh.Around->Start);
+      cells.swap(mesh.Around->Cells);
+    }
+  }
+  if (cellStart.empty())
+  {
+    BuildPointCells(mesh, cellStart, cells, runner);
+  }
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
   // Each task marks candidates in an array over all points (`seen` below):
