@@ -720,6 +720,16 @@ struct vtkMeshProjectionFilter::Execution
 
 namespace
 {
+/// to[0..n) = from[0..n), in the filter's threads (each the first to touch
+/// its part of a fresh output array).
+template <class T>
+void CopyInThreads(const T* from, size_t n, T* to)
+{
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), 65536, [&](vtkIdType begin, vtkIdType end) {
+    std::copy(from + begin, from + end, to + begin);
+  });
+}
+
 /**
  * For every cell c of `view` in turn and each of its corners p, apply(p,
  * value(c)), skipping cells whose value is not positive: as that loop
@@ -2872,7 +2882,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   if (onPoints)
   {
     const std::vector<char>& valid = *toDataSet(onPoints->GetValid());
-    std::copy(valid.begin(), valid.end(), mask->GetPointer(0));
+    CopyInThreads(valid.data(), valid.size(), mask->GetPointer(0));
     // Valid points whose cells are all covered only in slivers: their
     // values are extrapolated from a sliver (an ill-conditioned row) and
     // can be far off. Say so, with the remedy. On several processes a
@@ -2883,21 +2893,27 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     // (by process 0), as the serial filter would.
     const mp::SolverHooks& shared = hooks[0];
     const size_t rows = static_cast<size_t>(target->GetNumberOfPoints());
-    std::vector<double> covered(std::max(most.size(), rows), 0.0);
-    for (size_t i = 0; i < most.size(); ++i)
-    {
-      covered[i] = most[i] >= 1e-3 ? 1.0 : 0.0;
-    }
+    mp::UninitializedLargeVector<double> covered(std::max(most.size(), rows));
+    vtkSMPTools::For(0, static_cast<vtkIdType>(covered.size()), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        covered[i] = static_cast<size_t>(i) < most.size() && most[i] >= 1e-3 ? 1.0 : 0.0;
+      }
+    });
     if (shared.Exchange)
     {
       shared.Exchange(covered.data(), 1);
     }
-    double total = 0.0;
-    for (size_t i = 0; i < most.size(); ++i)
-    {
-      const bool counted = !shared.Counted || i >= rows || shared.Counted[i];
-      total += onPoints->GetValid()[i] && covered[i] == 0.0 && counted ? 1.0 : 0.0;
-    }
+    // (A count: the same in any order.)
+    double total = mpvtk::SMPTaskRunner().ForRanges(static_cast<mp::Index>(most.size()), [&](mp::Index begin, mp::Index end) {
+      double count = 0.0;
+      for (mp::Index i = begin; i < end; ++i)
+      {
+        const bool counted = !shared.Counted || static_cast<size_t>(i) >= rows || shared.Counted[i];
+        count += onPoints->GetValid()[i] && covered[i] == 0.0 && counted ? 1.0 : 0.0;
+      }
+      return count;
+    });
     if (this->Parts)
     {
       this->Parts->Sum(&total, 1);
@@ -2930,13 +2946,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     vtkNew<vtkCharArray> cellMask;
     cellMask->SetName("vtkValidCellMask");
     cellMask->SetNumberOfValues(ntc);
-    std::copy(onCells->GetValid().begin(), onCells->GetValid().end(), cellMask->GetPointer(0));
+    CopyInThreads(onCells->GetValid().data(), onCells->GetValid().size(), cellMask->GetPointer(0));
     AddValidMasks(cellMask, cellValid, outCD);
   }
   vtkNew<vtkDoubleArray> covered;
   covered->SetName("CoveredFraction");
   covered->SetNumberOfValues(ntc);
-  std::copy(fraction.begin(), fraction.end(), covered->GetPointer(0));
+  CopyInThreads(fraction.data(), fraction.size(), covered->GetPointer(0));
   outCD->AddArray(covered);
 
   // 6. Optionally, the intersection pieces.
