@@ -26,7 +26,11 @@ user sees must be the same:
     f. operators kept at the first execution: their matrices in the
        datasets' numbering, also after Input changed numbering;
     g. without OutputIntersections (the meshes give their geometry back
-       before the solve): every array and matrix bit for bit as with it.
+       before the solve): every array and matrix bit for bit as with it;
+    h. the Source's integrals, whose weights two threads sum over ranges of
+       cells (a Source of more than 32768 cells, inside Input): the exact
+       integral of a linear field and the cell sums of a cell field, on 1
+       and 2 threads, renumbered (the ranges' own sums) or not (one loop).
 """
 import math
 
@@ -372,5 +376,42 @@ for label, target, source in (("2D", st2s, ss2s), ("3D", st3, ss3)):
                 check(m0.shape == m1.shape and abs(m0 - m1).max() == 0.0,
                       "%s: matrix %d differs without the intersections output" % (what, which))
 print("geometry given back before the solve: the same arrays and matrices")
+
+# h. The Source weights of the integrals, summed over ranges of cells on two
+# threads (in cell order: each range adds into the points no earlier range
+# uses, the others after). A shuffled Source of 33800 triangles on the unit
+# square inside an Input on [-0.1, 1.1]^2, so that every Source cell is
+# covered whole: the integrals of Linear and of the cell array Mean are those
+# over the Source's own triangles (areas and corner means from its points).
+source = with_fields(simplices((131, 131, 1), 0.0, 2))
+source, cells_s, points_s = shuffled(source, 11)
+target = simplices((70, 70, 1), 0.0, 2)
+x = vtk_to_numpy(target.GetPoints().GetData()).astype(float)
+x[:, :2] = 1.2 * x[:, :2] - 0.1
+target.GetPoints().SetData(numpy_to_vtk(x, deep=1))
+xs = vtk_to_numpy(source.GetPoints().GetData()).astype(float)
+tri = vtk_to_numpy(source.GetCells().GetConnectivityArray()).reshape(-1, 3)
+u, v = xs[tri[:, 1]] - xs[tri[:, 0]], xs[tri[:, 2]] - xs[tri[:, 0]]
+area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+linear = vtk_to_numpy(source.GetPointData().GetArray("Linear")).astype(float)
+mean = vtk_to_numpy(source.GetCellData().GetArray("Mean")).astype(float)
+expected = {"SourceIntegral_Linear": float(np.sum(area * linear[tri].mean(axis=1))),
+            "SourceIntegral_Mean (cell data)": float(np.sum(area * mean))}
+found = {}
+for name, mode in (("Always", ALWAYS), ("Never", NEVER)):
+    for threads in (1, 2):
+        f = project(target, source, mode, threads=threads)
+        fd = f.GetOutput().GetFieldData()
+        check(f.GetNumberOfRenumberedMeshes() == (2 if mode == ALWAYS else 0),
+              "h: %s renumbered %d meshes" % (name, f.GetNumberOfRenumberedMeshes()))
+        for key, value in expected.items():
+            got = fd.GetArray(key).GetValue(0)
+            found.setdefault(key, []).append(got)
+            check(abs(got - value) <= 1e-12 * abs(value),
+                  "h: %s, %d thread(s): %s = %.17g, expected %.17g" % (name, threads, key, got, value))
+for key, values in found.items():
+    spread = (max(values) - min(values)) / abs(expected[key])
+    check(spread <= 1e-13, "h: %s differs by %.3g across modes and threads" % (key, spread))
+print("Source integrals over ranges of cells: %s" % {k: v[0] for k, v in found.items()})
 
 finish()
