@@ -23,6 +23,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkWeakPointer.h"
 
 #include "vtkMeshProjectionMesh.h"
 #include "vtkMeshProjectionParts.h"
@@ -318,6 +319,8 @@ struct vtkMeshProjectionFilter::Internals
   std::set<std::string> Listed[2];
   std::set<std::string> ListedAtList[2];
   std::set<std::string> Named[2];
+  /// The Source's producer when its arrays were last listed.
+  vtkWeakPointer<vtkAlgorithm> ListedProducer;
 
   /// The selection of point (association 0) or cell (1) arrays.
   vtkDataArraySelection* Selection(int association)
@@ -426,6 +429,45 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
     }
   }
   this->Internal->Listing = false;
+}
+
+// Another Source (another producer on port 1, once its data has arrays):
+// the names listed from the previous one that it does not have leave the
+// lists, whatever their status. One producer's time steps and blocks keep
+// every name (an array may come back with the next step).
+void vtkMeshProjectionFilter::ListSource(vtkDataObject* data)
+{
+  Internals& in = *this->Internal;
+  vtkAlgorithm* producer = this->GetNumberOfInputConnections(1) > 0 ? this->GetInputAlgorithm(1, 0) : nullptr;
+  if (producer == in.ListedProducer.GetPointer())
+  {
+    this->ListSourceArrays(data);
+    return;
+  }
+  const std::set<std::string> before[2] = { in.Listed[0], in.Listed[1] };
+  in.Listed[0].clear();
+  in.Listed[1].clear();
+  this->ListSourceArrays(data);
+  if (in.Listed[0].empty() && in.Listed[1].empty())
+  {
+    // Not run yet (or no arrays): decided once it has some.
+    in.Listed[0] = before[0];
+    in.Listed[1] = before[1];
+    return;
+  }
+  in.ListedProducer = producer;
+  in.Listing = true;
+  for (int association = 0; association < 2; ++association)
+  {
+    for (const std::string& name : before[association])
+    {
+      if (!in.Listed[association].count(name))
+      {
+        in.Selection(association)->RemoveArrayByName(name.c_str());
+      }
+    }
+  }
+  in.Listing = false;
 }
 
 vtkMeshProjectionFilter::~vtkMeshProjectionFilter()
@@ -619,7 +661,7 @@ int vtkMeshProjectionFilter::RequestInformation(
   // array selection lists; RequestData completes them.
   if (vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0))
   {
-    this->ListSourceArrays(sourceInfo->Get(vtkDataObject::DATA_OBJECT()));
+    this->ListSource(sourceInfo->Get(vtkDataObject::DATA_OBJECT()));
   }
   std::sort(steps.begin(), steps.end());
   steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
@@ -1229,7 +1271,7 @@ int vtkMeshProjectionFilter::Execute(
     run.SourcePrint = sourcePrint.Hash;
   }
 
-  this->ListSourceArrays(sourceObject);
+  this->ListSource(sourceObject);
   // 2. The fields: the selected numeric arrays of Source, side by side (P0:
   // one value per Source cell; ghost and lower-dimensional cells' values
   // are never used).

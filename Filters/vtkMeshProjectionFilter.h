@@ -605,6 +605,7 @@ private:
   void ClearStatuses(int association);
   void SetStatus(int association, const char* name, int status);
   void ListSourceArrays(vtkDataObject* source);
+  void ListSource(vtkDataObject* source);
   struct Internals;
   struct Kept;
   struct Leaf;

@@ -146,6 +146,29 @@ check(got.GetArray("Later") is not None and got.GetArray("Smooth") is not None,
       "an array appearing later is projected: %r" % [got.GetArrayName(i) for i in range(got.GetNumberOfArrays())])
 Delete(later)
 Delete(calc)
+# Another Source (another producer): the panel's lists name its arrays only,
+# not those of the Source before it; back to the first, they come back.
+from paraview.simple import PassArrays  # noqa: E402
+passed = PassArrays(Input=source, PointDataArrays=["Linear"], CellDataArrays=[])
+passed.UpdatePipeline()
+kept = servermanager.Fetch(passed)
+kept_names = [sorted(d.GetArrayName(i) for i in range(d.GetNumberOfArrays()))
+              for d in (kept.GetPointData(), kept.GetCellData())]
+switched = MeshProjection(Input=target, Source=source)  # noqa: F821
+switched.UpdatePipeline()
+switched.Source = passed
+switched.UpdatePipeline()
+switched.UpdatePipelineInformation()
+lists = [sorted(switched.PointDataArrays.Available), sorted(switched.CellDataArrays.Available)]
+check(lists == kept_names and kept_names[0] == ["Linear"],
+      "after the Source changed the lists are %r, the new Source has %r" % (lists, kept_names))
+switched.Source = source
+switched.UpdatePipeline()
+switched.UpdatePipelineInformation()
+check(sorted(switched.PointDataArrays.Available) == ["Linear", "Smooth", "Velocity"],
+      "back to the first Source: %r" % list(switched.PointDataArrays.Available))
+Delete(switched)
+Delete(passed)
 # The operators are kept: another transfer (lumped) only applies them.
 projection.MassMatrix = "Lumped"
 projection.UpdatePipeline()
