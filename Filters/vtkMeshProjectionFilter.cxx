@@ -2516,10 +2516,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           [&](mp::Index c) { return part(c) / corners; },
           [&](mp::Index p, double share) { w[static_cast<size_t>(p)] += share; });
       }
-      else if (!view.Parent || view.OneCellPerParent)
+      else
       {
-        // One cell per dataset cell: nothing to sum.
-        vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+        auto add = [&](vtkIdType begin, vtkIdType end) {
           for (vtkIdType c = begin; c < end; ++c)
           {
             const double m = part(c);
@@ -2528,17 +2527,16 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
               w[static_cast<size_t>(view.ParentOf(c))] += m;
             }
           }
-        });
-      }
-      else
-      {
-        for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+        };
+        // One cell per dataset cell: nothing to sum, in the threads; split
+        // cells' parts in cell order, in one loop.
+        if (!view.Parent || view.OneCellPerParent)
         {
-          const double m = part(c);
-          if (m > 0.0)
-          {
-            w[static_cast<size_t>(view.ParentOf(c))] += m;
-          }
+          vtkSMPTools::For(0, view.NumberOfCells, add);
+        }
+        else
+        {
+          add(0, view.NumberOfCells);
         }
       }
     }
