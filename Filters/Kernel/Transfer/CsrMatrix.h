@@ -86,7 +86,41 @@ struct CsrMatrix
     const Index* start = this->RowStart.data();
     const Column* columns = this->ColumnIndex.data();
     const double* values = this->Values.data();
-    for (Index i = begin; i < end; ++i)
+    Index i = begin;
+    if constexpr (FixedC == 1)
+    {
+      // Two rows at a time, each with its own running sum in its own order
+      // (the same additions as one row at a time, the same values): the
+      // second row's chain of dependent additions runs beside the first's
+      // instead of after it (one chain was latency bound).
+      for (; i + 1 < end; i += 2)
+      {
+        const Index a0 = start[i];
+        const Index b0 = start[i + 1];
+        const Index b1 = start[i + 2];
+        const Index n0 = b0 - a0;
+        const Index n1 = b1 - b0;
+        const Index both = n0 < n1 ? n0 : n1;
+        double s0 = 0.0;
+        double s1 = 0.0;
+        for (Index j = 0; j < both; ++j)
+        {
+          s0 += values[a0 + j] * X[columns[a0 + j]];
+          s1 += values[b0 + j] * X[columns[b0 + j]];
+        }
+        for (Index j = both; j < n0; ++j)
+        {
+          s0 += values[a0 + j] * X[columns[a0 + j]];
+        }
+        for (Index j = both; j < n1; ++j)
+        {
+          s1 += values[b0 + j] * X[columns[b0 + j]];
+        }
+        Y[i] = s0;
+        Y[i + 1] = s1;
+      }
+    }
+    for (; i < end; ++i)
     {
       double* y = Y + i * c;
       if constexpr (FixedC > 0)
