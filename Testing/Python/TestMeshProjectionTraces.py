@@ -97,8 +97,24 @@ def check_trace(what, target, source, whole=True, field=linear):
     front = mortar(target, source)
     brute = mortar(target, source, brute=True)
     uf, ub = values(front.GetOutput()), values(brute.GetOutput())
-    check(np.allclose(uf, ub, rtol=0, atol=1e-12, equal_nan=True),
-          "%s: front == brute force (%g)" % (what, np.nanmax(np.abs(uf - ub))))
+    # 1e-12 at every point that a cell covered by more than 0.1% holds; the
+    # points valid through slivers only (the filter warns about them: their
+    # rows are ill conditioned, about 1 / the cover, so the pieces' rounding,
+    # summed in another order by the brute force, grows) to 1e-9.
+    fraction = values(front.GetOutput(), "CoveredFraction", cells=True)
+    cells = target.GetPolys() if target.GetNumberOfPolys() else target.GetLines()
+    offsets = vtk_to_numpy(cells.GetOffsetsArray())
+    connectivity = vtk_to_numpy(cells.GetConnectivityArray())
+    best = np.zeros(len(uf))
+    for c in range(len(fraction)):
+        ids = connectivity[offsets[c]:offsets[c + 1]]
+        best[ids] = np.maximum(best[ids], fraction[c])
+    tolerance = np.where(best >= 1e-3, 1e-12, 1e-9)
+    difference = np.abs(uf - ub)
+    same = (difference <= tolerance) | (np.isnan(uf) & np.isnan(ub))
+    check(same.all(), "%s: front == brute force (%g where covered, %g through slivers only)" % (
+        what, np.nanmax(np.where(best >= 1e-3, difference, 0.0)),
+        np.nanmax(np.where(best < 1e-3, difference, 0.0))))
     measures = cell_measures(target)
     covered = covered_by_pieces(front, target)
     over = np.max((covered - measures) / measures)

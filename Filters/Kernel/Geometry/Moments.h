@@ -10,6 +10,35 @@
 namespace mp
 {
 /**
+ * The moment matrix M of a piece, taken about the point o, as `shifted`,
+ * taken about the point o - d (d = o minus the new origin): first moments
+ * gain d m0, second moments d m1^T + m1 d^T + d d^T m0.
+ */
+template <int K>
+void ShiftMoments(const double (&M)[K][K], const double* d, double (&shifted)[K][K])
+{
+  constexpr int D = K - 1;
+  shifted[0][0] = M[0][0];
+  double first[D];
+  for (int a = 0; a < D; ++a)
+  {
+    first[a] = M[0][a + 1] + d[a] * M[0][0];
+    shifted[0][a + 1] = first[a];
+    shifted[a + 1][0] = first[a];
+  }
+  for (int a = 0; a < D; ++a)
+  {
+    for (int b = a; b < D; ++b)
+    {
+      // With the shifted first moments: m2 + d m1^T + m1' d^T, m1' = m1 + d m0.
+      const double v = M[a + 1][b + 1] + d[a] * M[0][b + 1] + first[a] * d[b];
+      shifted[a + 1][b + 1] = v;
+      shifted[b + 1][a + 1] = v;
+    }
+  }
+}
+
+/**
  * Adds the moment matrix M of a piece, taken about the point o, to
  * `moments`, taken about the point o - d (d = o minus the new origin):
  * first moments gain d m0, second moments d m1^T + m1 d^T + d d^T m0.
@@ -20,26 +49,13 @@ namespace mp
 template <int K>
 void AddShiftedMoments(const double (&M)[K][K], const double* d, double (&moments)[K][K])
 {
-  constexpr int D = K - 1;
-  moments[0][0] += M[0][0];
-  double first[D];
-  for (int a = 0; a < D; ++a)
+  double shifted[K][K];
+  ShiftMoments<K>(M, d, shifted);
+  for (int a = 0; a < K; ++a)
   {
-    first[a] = M[0][a + 1] + d[a] * M[0][0];
-    moments[0][a + 1] += first[a];
-    moments[a + 1][0] += first[a];
-  }
-  for (int a = 0; a < D; ++a)
-  {
-    for (int b = a; b < D; ++b)
+    for (int b = 0; b < K; ++b)
     {
-      // With the shifted first moments: m2 + d m1^T + m1' d^T, m1' = m1 + d m0.
-      const double v = M[a + 1][b + 1] + d[a] * M[0][b + 1] + first[a] * d[b];
-      moments[a + 1][b + 1] += v;
-      if (b != a)
-      {
-        moments[b + 1][a + 1] += v;
-      }
+      moments[a][b] += shifted[a][b];
     }
   }
 }

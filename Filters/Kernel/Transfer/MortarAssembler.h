@@ -111,7 +111,9 @@ struct MortarAssembler
   int Components = 0;
   double* Rhs = nullptr;
   std::vector<std::pair<Index, double>> DeferredRhs; ///< (position in Rhs, value)
-  std::vector<double> CellRhs; ///< the current cell's, Nt x Components
+  /// The current cell's pieces' moments times each source field, about its
+  /// corner 0 (Components x K): its right-hand sides follow once per cell.
+  std::vector<double> CellField;
 
   Index Current = -1;  ///< the target cell whose pieces are coming
   Cell CurrentCell;
@@ -194,6 +196,10 @@ struct MortarAssembler
     }
     if (this->Fields)
     {
+      // int lt_i u_c over the covered part: the target functions about the
+      // corner the moments were summed about, once per cell.
+      double lt[Nt][K];
+      TargetSpace::Basis(this->CurrentCell, this->CurrentCell.X[0], lt);
       const int nc = this->Components;
       for (int i = 0; i < Nt; ++i)
       {
@@ -201,13 +207,19 @@ struct MortarAssembler
         for (int c = 0; c < nc; ++c)
         {
           const Index position = dofs[i] * nc + c;
+          const double* field = &this->CellField[static_cast<size_t>(c) * K];
+          double value = 0.0;
+          for (int a = 0; a < K; ++a)
+          {
+            value += lt[i][a] * field[a];
+          }
           if (shared)
           {
-            this->DeferredRhs.emplace_back(position, this->CellRhs[i * nc + c]);
+            this->DeferredRhs.emplace_back(position, value);
           }
           else
           {
-            this->Rhs[position] += this->CellRhs[i * nc + c];
+            this->Rhs[position] += value;
           }
         }
       }
@@ -235,7 +247,7 @@ struct MortarAssembler
       }
       this->BlockColumns.clear();
       this->BlockValues.clear();
-      this->CellRhs.assign(static_cast<size_t>(Nt) * this->Components, 0.0);
+      this->CellField.assign(static_cast<size_t>(K) * this->Components, 0.0);
     }
     if constexpr (HasTies<Intersector>::value)
     {
@@ -268,27 +280,42 @@ struct MortarAssembler
     {
       d[a] = o[a] - t.X[0][a];
     }
-    AddShiftedMoments<K>(M, d, this->Moments);
-    double lt[Nt][K];
-    double ls[Ns][K];
-    // The source cell as the spaces see it on the piece (a surface's source
+    // The source cell as the spaces see it on a piece (a surface's source
     // facet: its image in the target's plane).
     const auto& sourceCell = Intersector::SourceCell(s, piece);
-    TargetSpace::Basis(t, o, lt);
-    SourceSpace::Basis(sourceCell, o, ls);
     Index dofs[Ns];
     SourceSpace::CellDofs(*this->Source, sourceCell, dofs);
     if (this->Fields)
     {
+      // The piece's moments about the target cell's corner 0 (summed for
+      // the cell's mass block) times the source fields, as affine
+      // functions about that corner: the target functions come in once per
+      // cell (Flush), not once per piece.
+      double shifted[K][K];
+      ShiftMoments<K>(M, d, shifted);
+      for (int a = 0; a < K; ++a)
+      {
+        for (int b = 0; b < K; ++b)
+        {
+          this->Moments[a][b] += shifted[a][b];
+        }
+      }
+      double ls[Ns][K];
+      SourceSpace::Basis(sourceCell, t.X[0], ls);
       const double* u[Ns];
       for (int j = 0; j < Ns; ++j)
       {
         u[j] = this->Fields + dofs[j] * this->Components;
       }
-      AddFieldBlock<Nt, Ns, K>(lt, ls, M, u, this->Components, this->CellRhs.data());
+      AddFieldMoments<Ns, K>(ls, shifted, u, this->Components, this->CellField.data());
       this->Finish(t, s, piece, measure);
       return;
     }
+    AddShiftedMoments<K>(M, d, this->Moments);
+    double lt[Nt][K];
+    double ls[Ns][K];
+    TargetSpace::Basis(t, o, lt);
+    SourceSpace::Basis(sourceCell, o, ls);
     double mts[Nt][Ns] = {};
     AddMixedBlock<Nt, Ns, K>(lt, ls, M, mts);
     for (int j = 0; j < Ns; ++j)

@@ -113,6 +113,36 @@ void AddFieldBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const d
   }
 }
 
+/**
+ * field[c * K + a] += (M u_c)[a] for the source fields u_c = sum_j u[j][c]
+ * ls_j (u[j]: the values of source function j), all affine functions about
+ * the origin of the moments M: the integrals of u_c against any affine
+ * function f are then f^T field_c, summed over pieces first.
+ */
+template <int Ns, int K>
+void AddFieldMoments(const double (&ls)[Ns][K], const double (&M)[K][K],
+  const double* const (&u)[Ns], int components, double* field)
+{
+  for (int c = 0; c < components; ++c)
+  {
+    double f[K];
+    for (int k = 0; k < K; ++k)
+    {
+      f[k] = 0.0;
+      for (int j = 0; j < Ns; ++j)
+      {
+        f[k] += u[j][c] * ls[j][k];
+      }
+    }
+    double Mf[K];
+    MomentTimes<K>(M, f, Mf);
+    for (int a = 0; a < K; ++a)
+    {
+      field[c * K + a] += Mf[a];
+    }
+  }
+}
+
 } // namespace mp
 
 #endif
