@@ -220,6 +220,56 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
         count += !(key0 >= 0 && key0 < p);
       }
     }
+    // Triangles' faces through p, up to 8 of them (about 6 around a point
+    // inside a 2D mesh): their keys (the other corner, in the high 32 bits)
+    // with their places below, ordered by a fixed network of branch-free
+    // exchanges (an insertion sort of the faces mispredicted a branch or
+    // two per face), then the groups of equal keys as below.
+    if constexpr (Corners == 3)
+    {
+      if (count <= 8)
+      {
+        unsigned long long order[8];
+        for (size_t i = 0; i < 8; ++i)
+        {
+          order[i] = i < count ? faces[i].Key | i : ~0ULL;
+        }
+        auto exchange = [&order](int i, int j) {
+          const unsigned long long a = order[i];
+          const unsigned long long b = order[j];
+          order[i] = a < b ? a : b;
+          order[j] = a < b ? b : a;
+        };
+        exchange(0, 2), exchange(1, 3), exchange(4, 6), exchange(5, 7);
+        exchange(0, 4), exchange(1, 5), exchange(2, 6), exchange(3, 7);
+        exchange(0, 1), exchange(2, 3), exchange(4, 5), exchange(6, 7);
+        exchange(2, 4), exchange(3, 5);
+        exchange(1, 4), exchange(3, 6);
+        exchange(1, 2), exchange(3, 4), exchange(5, 6);
+        for (size_t a = 0; a < count;)
+        {
+          const unsigned long long key = order[a] >> 32;
+          size_t b = a + 1;
+          while (b < count && (order[b] >> 32) == key)
+          {
+            ++b;
+          }
+          if (b - a == 2)
+          {
+            const Face& f = faces[order[a] & 0xffffffffULL];
+            const Face& g = faces[order[a + 1] & 0xffffffffULL];
+            neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
+            neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
+          }
+          else if (b - a > 2)
+          {
+            nonManifold += static_cast<Index>(b - a);
+          }
+          a = b;
+        }
+        continue;
+      }
+    }
     // Equal faces side by side, then each group: two cells are neighbours,
     // more share a non-manifold face.
     std::sort(faces.begin(), faces.begin() + count);
