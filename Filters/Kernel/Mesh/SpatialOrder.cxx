@@ -80,22 +80,6 @@ inline void Prefetch(const void* address)
 /// How many cells ahead the prefetches run.
 constexpr Index Ahead = 16;
 
-void Centre(const MeshView& mesh, Index c, double x[3])
-{
-  const int corners = mesh.CornersPerCell();
-  const Index* ids = mesh.Cell(c);
-  x[0] = x[1] = x[2] = 0.0;
-  for (int k = 0; k < corners; ++k)
-  {
-    const double* p = mesh.Point(ids[k]);
-    x[0] += p[0];
-    x[1] += p[1];
-    x[2] += p[2];
-  }
-  x[0] /= corners;
-  x[1] /= corners;
-  x[2] /= corners;
-}
 } // namespace
 
 void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner& runner)
@@ -147,8 +131,30 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     scale[k] = (std::ldexp(1.0, bits) - 1.0) / (box.Hi[a] - box.Lo[a]);
   }
   const double top = std::ldexp(1.0, bits) - 1.0;
-  // Key in the high 32 bits, cell id in the low ones.
-  // (keys and other are written whole by tasks: not zeroed first.)
+  // Each point's position on the curve (in storage order: no random
+  // access), then each cell's key: the lowest of its corners' positions in
+  // the high 32 bits, the cell id in the low ones. (A key from the cell's
+  // centre read every corner's three coordinates in the old numbering,
+  // mostly cache misses: 0.07 s of a 2D pair of 10^6 cells; the corners'
+  // positions are a sixth of the points' bytes, and the order they give
+  // keeps the front's search as fast.)
+  // (pointKeys, keys and other are written whole by tasks: not zeroed first.)
+  UninitializedLargeVector<std::uint32_t> pointKeys(static_cast<size_t>(np));
+  runner.ForRanges(np, [&](Index begin, Index end) {
+    for (Index p = begin; p < end; ++p)
+    {
+      const double* x = mesh.Point(p);
+      std::uint32_t q[3] = {};
+      for (int k = 0; k < dimension; ++k)
+      {
+        const double s = (x[axes[k]] - box.Lo[axes[k]]) * scale[k];
+        // NaN and beyond the box (non-finite points) clamped: any key will do.
+        q[k] = s > 0 ? static_cast<std::uint32_t>(std::min(s, top)) : 0u;
+      }
+      pointKeys[p] = static_cast<std::uint32_t>(MortonIndex(q, dimension));
+    }
+    return 0;
+  });
   UninitializedLargeVector<std::uint64_t> keys(static_cast<size_t>(n));
   runner.ForRanges(n, [&](Index begin, Index end) {
     const int corners = mesh.CornersPerCell();
@@ -159,22 +165,20 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
         const Index* ahead = mesh.Cell(c + Ahead);
         for (int k = 0; k < corners; ++k)
         {
-          Prefetch(mesh.Point(ahead[k]));
+          Prefetch(pointKeys.data() + ahead[k]);
         }
       }
-      double x[3];
-      Centre(mesh, c, x);
-      std::uint32_t q[3] = {};
-      for (int k = 0; k < dimension; ++k)
+      const Index* ids = mesh.Cell(c);
+      std::uint32_t lowest = pointKeys[ids[0]];
+      for (int k = 1; k < corners; ++k)
       {
-        const double s = (x[axes[k]] - box.Lo[axes[k]]) * scale[k];
-        // NaN and beyond the box (non-finite points) clamped: any key will do.
-        q[k] = s > 0 ? static_cast<std::uint32_t>(std::min(s, top)) : 0u;
+        lowest = std::min(lowest, pointKeys[ids[k]]);
       }
-      keys[c] = (MortonIndex(q, dimension) << 32) | static_cast<std::uint64_t>(c);
+      keys[c] = (static_cast<std::uint64_t>(lowest) << 32) | static_cast<std::uint64_t>(c);
     }
     return 0;
   });
+  UninitializedLargeVector<std::uint32_t>().swap(pointKeys);
   // Least-significant-digit radix sort on the key's 32 bits in three digits
   // of 11, 11 and 10 bits: stable, so equal keys stay in id order. Each
   // task counts and then moves its own range of keys; the buckets' starts

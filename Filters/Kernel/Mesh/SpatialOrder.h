@@ -2,7 +2,7 @@
 /**
  * @file SpatialOrder.h
  * @brief A numbering of a mesh's cells and points that follows space: cells
- *        along a Z-order (Morton) curve through their centres, points in the
+ *        along a Z-order (Morton) curve through their points, points in the
  *        order those cells first use them.
  *
  * Everything the projection does walks the mesh through space: the front
@@ -16,12 +16,14 @@
  * few passes over the mesh and makes the time independent of the input's
  * numbering.
  *
- * The curve's position is the interleaved bits of the centre's coordinates
- * quantised to 2^16 (2D) or 2^10 (3D) steps per axis of the points'
- * bounding box (axes of zero extent left out: a planar mesh in any plane
- * is ordered in 2D), a 32-bit key sorted by a radix sort. A Hilbert curve keeps neighbours slightly closer, but
- * its key costs an unpredictable branch per bit and axis: a first version
- * here spent about 0.7 us per cell on it, the Morton key a few ns.
+ * A point's position on the curve is the interleaved bits of its
+ * coordinates quantised to 2^16 (2D) or 2^10 (3D) steps per axis of the
+ * points' bounding box (axes of zero extent left out: a planar mesh in any
+ * plane is ordered in 2D); a cell's is the lowest of its corners'
+ * positions, a 32-bit key sorted by a radix sort. A Hilbert curve keeps
+ * neighbours slightly closer, but its key costs an unpredictable branch per
+ * bit and axis: a first version here spent about 0.7 us per cell on it,
+ * the Morton key a few ns.
  */
 #ifndef MeshProjection_Kernel_SpatialOrder_h
 #define MeshProjection_Kernel_SpatialOrder_h
@@ -50,8 +52,8 @@ struct SpatialOrder
 };
 
 /**
- * The order of `mesh`'s cells along a Z-order curve through their centres
- * (ties kept in the old order): order.Cells (the identity for meshes of
+ * The order of `mesh`'s cells along a Z-order curve, each at the lowest
+ * position of its corners (ties kept in the old order): order.Cells (the identity for meshes of
  * 2^32 cells or more). Keys are computed in `runner`'s tasks.
  */
 void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order,
