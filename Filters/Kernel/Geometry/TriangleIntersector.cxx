@@ -34,6 +34,9 @@ inline double PseudoAngle(double dx, double dy)
 
 // Stores the n ordered points as the piece's vertices, each only when it
 // differs from the one before (and the last when it differs from the first).
+// A point left out equals the last one kept, so each is compared with its
+// predecessor in `ordered` (not with the last one stored: that comparison
+// waited for the store before it, a chain through every vertex).
 void StoreWithoutRepeats(const double (*ordered)[2], int n, TriangleIntersector::Piece& p)
 {
   p.X[0][0] = ordered[0][0];
@@ -43,7 +46,7 @@ void StoreWithoutRepeats(const double (*ordered)[2], int n, TriangleIntersector:
   {
     p.X[m][0] = ordered[i][0];
     p.X[m][1] = ordered[i][1];
-    m += (ordered[i][0] != p.X[m - 1][0]) | (ordered[i][1] != p.X[m - 1][1]);
+    m += (ordered[i][0] != ordered[i - 1][0]) | (ordered[i][1] != ordered[i - 1][1]);
   }
   if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
   {
