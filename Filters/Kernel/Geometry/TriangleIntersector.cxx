@@ -525,60 +525,6 @@ double TriangleIntersector::Measure(const Piece& p)
   return 0.5 * twice;
 }
 
-double TriangleIntersector::Moments(const Piece& p, double (&origin)[2], double (&M)[3][3])
-{
-  // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to its first
-  // vertex, edge by edge (Green's theorem): exact for any polygon. A local
-  // origin inside both cells keeps affine functions of size 1 over the
-  // piece, so that thin cells cannot make them cancel.
-  if (p.NumberOfVertices < 3)
-  {
-    return 0.0;
-  }
-  const double ox = p.X[0][0];
-  const double oy = p.X[0][1];
-  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
-  for (int i = 1; i + 1 < p.NumberOfVertices; ++i)
-  {
-    const int j = i + 1;
-    const double px = p.X[i][0] - ox;
-    const double py = p.X[i][1] - oy;
-    const double qx = p.X[j][0] - ox;
-    const double qy = p.X[j][1] - oy;
-    const double cross = px * qy - py * qx;
-    m0 += cross;
-    mx += cross * (px + qx);
-    my += cross * (py + qy);
-    mxx += cross * (px * px + px * qx + qx * qx);
-    myy += cross * (py * py + py * qy + qy * qy);
-    mxy += cross * (2 * px * py + px * qy + qx * py + 2 * qx * qy);
-  }
-  // Scaled by products with the constants' reciprocals (within a rounding
-  // of the quotients): five divisions were 40% of this function's time.
-  constexpr double sixth = 1.0 / 6.0;
-  constexpr double twelfth = 1.0 / 12.0;
-  constexpr double twentyFourth = 1.0 / 24.0;
-  m0 *= 0.5;
-  mx *= sixth;
-  my *= sixth;
-  mxx *= twelfth;
-  myy *= twelfth;
-  mxy *= twentyFourth;
-  if (!(m0 > 0.0))
-  {
-    return 0.0; // rounding of a sliver
-  }
-  origin[0] = ox;
-  origin[1] = oy;
-  // The integral of (a + b x + c y)(a' + b' x + c' y) is (a, b, c) M (a', b', c')^T.
-  M[0][0] = m0;
-  M[0][1] = M[1][0] = mx;
-  M[0][2] = M[2][0] = my;
-  M[1][1] = mxx;
-  M[1][2] = M[2][1] = mxy;
-  M[2][2] = myy;
-  return m0;
-}
 
 void TriangleIntersector::AppendPiece(
   const Piece& p, Index target, Index source, IntersectionPieces& pieces)
