@@ -117,10 +117,11 @@ void AddFieldBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const d
  * field[c * K + a] += (M u_c)[a] for the source fields u_c = sum_j u[j][c]
  * ls_j (u[j]: the values of source function j), all affine functions about
  * the origin of the moments M: the integrals of u_c against any affine
- * function f are then f^T field_c, summed over pieces first.
+ * function f are then f^T field_c, summed over pieces first. Always
+ * inlined into the assembler, as the moments it reads (Moments.h).
  */
 template <int Ns, int K>
-void AddFieldMoments(const double (&ls)[Ns][K], const double (&M)[K][K],
+inline __attribute__((always_inline)) void AddFieldMoments(const double (&ls)[Ns][K], const double (&M)[K][K],
   const double* const (&u)[Ns], int components, double* field)
 {
   for (int c = 0; c < components; ++c)
