@@ -22,7 +22,8 @@ mesh-projection-bench --filter-only on 1 and 2 threads and, in the same run,
 libsupermesh's intersections on the same meshes (--peer; found with the
 `libsupermesh` Python package of a `python3` on PATH when not given), each
 timed --runs times (default 3) with the best kept, the filter's and the
-peer's alike (on a shared virtual machine single runs vary by 30% and more),
+peer's alike, their runs alternating (on a shared virtual machine single
+runs vary by 30% and more, and busy spells last seconds),
 and prints one Markdown table: the whole filter's seconds, its speed-up, the
 peer's seconds and the ratio, the filter's peak memory beyond its inputs,
 and per pair the worst order over the best.
