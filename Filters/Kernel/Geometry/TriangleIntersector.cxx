@@ -48,7 +48,7 @@ void StoreWithoutRepeats(const double (*ordered)[2], int n, TriangleIntersector:
     p.X[m][1] = ordered[i][1];
     m += (ordered[i][0] != ordered[i - 1][0]) | (ordered[i][1] != ordered[i - 1][1]);
   }
-  if (m > 2 && p.X[m - 1][0] == p.X[0][0] && p.X[m - 1][1] == p.X[0][1])
+  if (m > 2 && ordered[n - 1][0] == ordered[0][0] && ordered[n - 1][1] == ordered[0][1])
   {
     --m;
   }
