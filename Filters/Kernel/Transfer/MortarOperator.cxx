@@ -143,7 +143,7 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.Options.Runner.Tasks = std::max(1, options[i].Runner.Tasks);
     op.TargetMass = CsrMatrix();
     op.MixedMass = CsrMatrix();
-    LargeVector<double>().swap(op.Rhs);
+    UninitializedLargeVector<double>().swap(op.Rhs);
     op.Solver.reset();
     op.Statistics = SearchStatistics();
     op.Timings = OperatorTimings();
@@ -223,7 +223,7 @@ struct MortarOperator::Session
 {
   using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
   MortarOperator* Op = nullptr;
-  LargeVector<char> Shared;
+  UninitializedLargeVector<char> Shared;
   std::vector<Assembler> Assemblers;
   std::vector<MixedBlocks> Blocks;
   std::vector<IntersectionPieces> Pieces;
@@ -248,9 +248,12 @@ struct MortarOperator::Session
     // other's mark.)
     if (tasks > 1)
     {
-      LargeVector<char>& shared = this->Shared;
-      shared.assign(static_cast<size_t>(rows), 0);
-      LargeVector<std::uint16_t> mark(static_cast<size_t>(rows), 0);
+      // (Zeros written by the tasks, each the first to touch its pages.)
+      UninitializedLargeVector<char>& shared = this->Shared;
+      shared.resize(static_cast<size_t>(rows));
+      runner.Fill(shared.data(), rows, char(0), Index(1) << 16);
+      UninitializedLargeVector<std::uint16_t> mark(static_cast<size_t>(rows));
+      runner.Fill(mark.data(), rows, std::uint16_t(0), Index(1) << 16);
       runner.RunAll(tasks, [&](int k) {
         const auto mine = static_cast<std::uint16_t>(k + 1);
         for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
@@ -276,7 +279,10 @@ struct MortarOperator::Session
     const bool single = op.Options.Fields != nullptr;
     if (single)
     {
-      op.Rhs.assign(static_cast<size_t>(rows) * op.Options.FieldComponents, 0.0);
+      // Zeros written by the tasks (each the first to touch its pages).
+      const Index size = rows * op.Options.FieldComponents;
+      op.Rhs.resize(static_cast<size_t>(size));
+      runner.Fill(op.Rhs.data(), size, 0.0, Index(1) << 16);
     }
     this->Assemblers.resize(static_cast<size_t>(tasks));
     this->Blocks.resize(static_cast<size_t>(tasks));
@@ -622,7 +628,7 @@ void MortarOperator::ReleaseMatrices()
     empty.Columns = m->Columns;
     *m = std::move(empty);
   }
-  LargeVector<double>().swap(this->Rhs);
+  UninitializedLargeVector<double>().swap(this->Rhs);
 }
 
 size_t MortarOperator::MemoryBytes() const

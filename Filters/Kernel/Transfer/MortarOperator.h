@@ -241,7 +241,7 @@ private:
   OperatorOptions Options;
   CsrMatrix TargetMass;
   CsrMatrix MixedMass;
-  LargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
+  UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
   std::vector<char> Valid;
