@@ -15,6 +15,7 @@
 
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/SortEight.h"
 #include "Mesh/Tasks.h"
 
 #include <algorithm>
@@ -234,18 +235,7 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
         {
           order[i] = i < count ? faces[i].Key | i : ~0ULL;
         }
-        auto exchange = [&order](int i, int j) {
-          const unsigned long long a = order[i];
-          const unsigned long long b = order[j];
-          order[i] = a < b ? a : b;
-          order[j] = a < b ? b : a;
-        };
-        exchange(0, 2), exchange(1, 3), exchange(4, 6), exchange(5, 7);
-        exchange(0, 4), exchange(1, 5), exchange(2, 6), exchange(3, 7);
-        exchange(0, 1), exchange(2, 3), exchange(4, 5), exchange(6, 7);
-        exchange(2, 4), exchange(3, 5);
-        exchange(1, 4), exchange(3, 6);
-        exchange(1, 2), exchange(3, 4), exchange(5, 6);
+        SortEight(order);
         for (size_t a = 0; a < count;)
         {
           const unsigned long long key = order[a] >> 32;

@@ -2,6 +2,7 @@
 #include "Transfer/MassMatrix.h"
 
 #include "Mesh/CellNeighbors.h"
+#include "Mesh/SortEight.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -13,23 +14,6 @@ namespace mp
 {
 namespace
 {
-/// Sorts v[0..8) with the 19 compare-exchanges of an optimal network.
-inline void SortEight(Column* v)
-{
-  auto exchange = [v](int i, int j) {
-    const Column a = v[i];
-    const Column b = v[j];
-    v[i] = std::min(a, b);
-    v[j] = std::max(a, b);
-  };
-  exchange(0, 2), exchange(1, 3), exchange(4, 6), exchange(5, 7);
-  exchange(0, 4), exchange(1, 5), exchange(2, 6), exchange(3, 7);
-  exchange(0, 1), exchange(2, 3), exchange(4, 5), exchange(6, 7);
-  exchange(2, 4), exchange(3, 5);
-  exchange(1, 4), exchange(3, 6);
-  exchange(1, 2), exchange(3, 4), exchange(5, 6);
-}
-
 /// The CSR pattern of the point graph of a simplicial mesh (every pair of
 /// points sharing a cell, and every point with itself), from the cells
 /// around each point (with ids of type Id: 32 bits when they fit, half the

@@ -84,36 +84,6 @@ void AddMixedBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const d
 }
 
 /**
- * rhs[i * components + c] += int lt_i u_c for the source field u_c =
- * sum_j u[j][c] ls_j (u[j]: the values of source function j): the
- * right-hand side M_ts u_s of a piece without forming M_ts, the source
- * field being one affine function on the piece.
- */
-template <int Nt, int Ns, int K>
-void AddFieldBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const double (&M)[K][K],
-  const double* const (&u)[Ns], int components, double* rhs)
-{
-  for (int c = 0; c < components; ++c)
-  {
-    double field[K];
-    for (int k = 0; k < K; ++k)
-    {
-      field[k] = 0.0;
-      for (int j = 0; j < Ns; ++j)
-      {
-        field[k] += u[j][c] * ls[j][k];
-      }
-    }
-    double Mf[K];
-    MomentTimes<K>(M, field, Mf);
-    for (int i = 0; i < Nt; ++i)
-    {
-      rhs[i * components + c] += DotK<K>(lt[i], Mf);
-    }
-  }
-}
-
-/**
  * field[c * K + a] += (M u_c)[a] for the source fields u_c = sum_j u[j][c]
  * ls_j (u[j]: the values of source function j), all affine functions about
  * the origin of the moments M: the integrals of u_c against any affine
