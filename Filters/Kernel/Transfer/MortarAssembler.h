@@ -280,6 +280,17 @@ struct MortarAssembler
     {
       d[a] = o[a] - t.X[0][a];
     }
+    // The piece's moments about the target cell's corner 0, summed for the
+    // cell's mass block.
+    double shifted[K][K];
+    ShiftMoments<K>(M, d, shifted);
+    for (int a = 0; a < K; ++a)
+    {
+      for (int b = 0; b < K; ++b)
+      {
+        this->Moments[a][b] += shifted[a][b];
+      }
+    }
     // The source cell as the spaces see it on a piece (a surface's source
     // facet: its image in the target's plane).
     const auto& sourceCell = Intersector::SourceCell(s, piece);
@@ -287,19 +298,9 @@ struct MortarAssembler
     SourceSpace::CellDofs(*this->Source, sourceCell, dofs);
     if (this->Fields)
     {
-      // The piece's moments about the target cell's corner 0 (summed for
-      // the cell's mass block) times the source fields, as affine
-      // functions about that corner: the target functions come in once per
-      // cell (Flush), not once per piece.
-      double shifted[K][K];
-      ShiftMoments<K>(M, d, shifted);
-      for (int a = 0; a < K; ++a)
-      {
-        for (int b = 0; b < K; ++b)
-        {
-          this->Moments[a][b] += shifted[a][b];
-        }
-      }
+      // Those moments times the source fields, as affine functions about
+      // that corner: the target functions come in once per cell (Flush),
+      // not once per piece.
       double ls[Ns][K];
       SourceSpace::Basis(sourceCell, t.X[0], ls);
       const double* u[Ns];
@@ -311,7 +312,6 @@ struct MortarAssembler
       this->Finish(t, s, piece, measure);
       return;
     }
-    AddShiftedMoments<K>(M, d, this->Moments);
     double lt[Nt][K];
     double ls[Ns][K];
     TargetSpace::Basis(t, o, lt);
