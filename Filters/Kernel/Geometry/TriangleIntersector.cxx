@@ -525,7 +525,6 @@ double TriangleIntersector::Measure(const Piece& p)
   return 0.5 * twice;
 }
 
-
 void TriangleIntersector::AppendPiece(
   const Piece& p, Index target, Index source, IntersectionPieces& pieces)
 {
