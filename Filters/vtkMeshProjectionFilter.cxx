@@ -796,7 +796,7 @@ void ForCellCornersInOrder(
       const double v = value(c);
       if (v > 0.0)
       {
-        const mp::Index* ids = view.Cell(c);
+        const mp::CellCorners ids = view.Cell(c);
         for (int k = 0; k < corners; ++k)
         {
           apply(ids[k], v);
@@ -818,7 +818,7 @@ void ForCellCornersInOrder(
     mp::Index top = -1;
     for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
     {
-      top = std::max(top, view.Connectivity[i]);
+      top = std::max(top, view.Corner(i));
     }
     first[k] = top;
   });
@@ -833,7 +833,7 @@ void ForCellCornersInOrder(
     mp::Index count = 0;
     for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
     {
-      count += view.Connectivity[i] < first[k];
+      count += view.Corner(i) < first[k];
     }
     waiting[k] = count;
   });
@@ -856,7 +856,7 @@ void ForCellCornersInOrder(
       const double v = value(c);
       if (v > 0.0)
       {
-        const mp::Index* ids = view.Cell(c);
+        const mp::CellCorners ids = view.Cell(c);
         for (int j = 0; j < corners; ++j)
         {
           if (ids[j] >= first[k])
@@ -1643,7 +1643,7 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
           excluded[c] = bad[view.ParentOf(c)];
           continue;
         }
-        const mp::Index* p = view.Cell(c);
+        const mp::CellCorners p = view.Cell(c);
         for (int k = 0; k < corners; ++k)
         {
           excluded[c] = excluded[c] || bad[p[k]];
@@ -2126,15 +2126,14 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // (NumberOfThreads, see RequestData).
   options.Runner = mpvtk::SMPTaskRunner();
   bool searchReady = false;
-  const bool usesTargetPoints = used[0] || used[3]; // (P1 targets: M_tt has a point graph)
   // Neighbours and the Source locator, once, before the first operator is built.
   auto prepareSearch = [&]() {
     if (!searchReady && mp::SearchNeedsNeighbors(options.Method))
     {
-      // Neighbours and the seed locator (bins of the boundary cells). The
-      // target's cells around its points stay for M_tt's pattern (P1)
-      // until its neighbours go, once the operators are built.
-      targetMesh.BuildNeighbors(usesTargetPoints);
+      // Neighbours and the seed locator (bins of the boundary cells). (M_tt's
+      // pattern builds the target's cells around its points again once the
+      // search is done: kept, they would take room during the search.)
+      targetMesh.BuildNeighbors();
       if (!run.SourceNeighbors)
       {
         sourceMesh.BuildNeighbors();
@@ -2209,6 +2208,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     fresh[t].reset(new mp::MortarOperator);
     making.push_back(fresh[t].get());
     makingOptions.push_back(options);
+    // M_tt once the Source's arrays are gone (below).
+    makingOptions.back().DeferTargetMass = true;
   }
   const int built = static_cast<int>(making.size());
   if (built > 0)
@@ -2374,31 +2375,6 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       return elsewhere;
     }
   }
-  // One global system: rows shared with other processes completed in
-  // every product, and the functions valid anywhere valid everywhere.
-  mp::SolverHooks hooks[2]; // P1, P0 target functions
-  if (this->Parts)
-  {
-    hooks[0] = this->Parts->Hooks(true, static_cast<mp::Index>(target->GetNumberOfPoints()),
-      [&targetMesh](mp::Index f) { return targetMesh.DataSetPoint(f); });
-    hooks[1] = this->Parts->Hooks(false, 0, nullptr);
-    for (int t = 0; t < 4; ++t)
-    {
-      if (!operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
-      {
-        continue;
-      }
-      const_cast<mp::MortarOperator*>(operators[t])->ShareValidity(hooks[0]);
-      for (const mp::MortarOperator* op : byArray[t])
-      {
-        if (op != operators[t])
-        {
-          const_cast<mp::MortarOperator*>(op)->ShareValidity(hooks[0]);
-        }
-      }
-    }
-  }
-
   // Per source function, its integral over the part of the Source the
   // operator's pieces cover (P1: a third of the covered area of each
   // triangle around the point, the field's mean there taken as the cell's;
@@ -2554,7 +2530,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     for (mp::Index c = 0; c < view.NumberOfCells; ++c)
     {
       const double f = fraction[static_cast<size_t>(view.ParentOf(c))];
-      const mp::Index* p = view.Cell(c);
+      const mp::CellCorners p = view.Cell(c);
       for (int k = 0; k < view.CornersPerCell(); ++k)
       {
         most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
@@ -2577,14 +2553,55 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         weightsOf(*byArray[t][a], SourceSpaceOf(t) == mp::SpaceType::P0, std::vector<double>());
       }
     }
-    if (targetMesh.OwnsGeometry())
-    {
-      pointCover();
-      targetMesh.ReleaseGeometry();
-    }
     run.Locator.reset();
     sourceMesh.ReleaseGeometry();
+    if (!assembled)
+    {
+      sourceMesh.ReleaseOrder(); // no operator of this execution is kept
+    }
   }
+  // M_tt of the operators built by this execution, on the target alone:
+  // the Source's arrays and both meshes' neighbours are gone by now when
+  // nothing else reads them, so that they and M_tt are never alive at once.
+  for (int t = 0; t < 4; ++t)
+  {
+    if (fresh[t])
+    {
+      const double before = fresh[t]->GetTimings().Assembly;
+      fresh[t]->CompleteTargetMass(targetMesh.View());
+      this->AssemblyTime += fresh[t]->GetTimings().Assembly - before;
+    }
+  }
+  if (run.LastLeaf && !this->OutputIntersections && !this->Parts && targetMesh.OwnsGeometry())
+  {
+    pointCover();
+    targetMesh.ReleaseGeometry();
+  }
+  // One global system: rows shared with other processes completed in
+  // every product, and the functions valid anywhere valid everywhere.
+  mp::SolverHooks hooks[2]; // P1, P0 target functions
+  if (this->Parts)
+  {
+    hooks[0] = this->Parts->Hooks(true, static_cast<mp::Index>(target->GetNumberOfPoints()),
+      [&targetMesh](mp::Index f) { return targetMesh.DataSetPoint(f); });
+    hooks[1] = this->Parts->Hooks(false, 0, nullptr);
+    for (int t = 0; t < 4; ++t)
+    {
+      if (!operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
+      {
+        continue;
+      }
+      const_cast<mp::MortarOperator*>(operators[t])->ShareValidity(hooks[0]);
+      for (const mp::MortarOperator* op : byArray[t])
+      {
+        if (op != operators[t])
+        {
+          const_cast<mp::MortarOperator*>(op)->ShareValidity(hooks[0]);
+        }
+      }
+    }
+  }
+
 
   // 3. Apply: M_ts u_s, then M_tt (consistent, from the previous step's
   // solution when the same arrays were projected with the same operator)

@@ -544,9 +544,30 @@ void SimplexMesh::OrderInSpace()
   }
   this->ParentIds.swap(order.Cells);
   this->Kernel.Parent = this->ParentIds.data();
-  this->OrderedConnectivity.swap(connectivity);
+  if (np < std::numeric_limits<std::int32_t>::max())
+  {
+    // Point ids in 32 bits: half the memory of the copy's cells.
+    mp::LargeBuffer<std::int32_t> narrow(corners * static_cast<size_t>(n)); // written whole below
+    const mp::Index* wide = connectivity.data();
+    std::int32_t* to = narrow.data();
+    runner.ForRanges(corners * n, [wide, to](mp::Index begin, mp::Index end) {
+      for (mp::Index i = begin; i < end; ++i)
+      {
+        to[i] = static_cast<std::int32_t>(wide[i]);
+      }
+      return 0;
+    }, mp::Index(1) << 16);
+    connectivity = mp::LargeBuffer<mp::Index>();
+    this->OrderedConnectivity32.swap(narrow);
+    this->Kernel.Connectivity = nullptr;
+    this->Kernel.Connectivity32 = this->OrderedConnectivity32.data();
+  }
+  else
+  {
+    this->OrderedConnectivity.swap(connectivity);
+    this->Kernel.Connectivity = this->OrderedConnectivity.data();
+  }
   this->OrderedPoints.swap(coordinates);
-  this->Kernel.Connectivity = this->OrderedConnectivity.data();
   this->Kernel.Points = this->OrderedPoints.data();
   this->OriginalPoints = this->Kernel.Points;
   this->PointOrder.swap(order.Points);
@@ -811,11 +832,13 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       }
     }
     this->Kernel.Connectivity = this->ConnectivityCopy.data();
+    this->Kernel.Connectivity32 = nullptr;
     this->Kernel.NumberOfCells = static_cast<mp::Index>(others.size());
   }
   else
   {
     this->Kernel.Connectivity = this->AllConnectivity;
+    this->Kernel.Connectivity32 = nullptr;
     this->Kernel.NumberOfCells = numberOfCells;
   }
   this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
@@ -862,7 +885,8 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   // The first use of a point that is not is reported. All points are
   // checked first, in storage order (a fraction of the uses, read
   // sequentially); the uses only when some point fails (it may be unused).
-  const mp::Index* ids = this->Kernel.Connectivity;
+  const mp::MeshView& kernel = this->Kernel;
+  auto ids = [&kernel](mp::Index u) { return kernel.Corner(u); };
   const mp::Index uses = corners * this->Kernel.NumberOfCells;
   auto badPoint = [&](mp::Index p) {
     const double* x = this->Kernel.Point(p);
@@ -877,14 +901,14 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   const mp::Index i = FirstWhere(this->Kernel.NumberOfPoints, badPoint) ==
       this->Kernel.NumberOfPoints
     ? uses
-    : FirstWhere(uses, [&](vtkIdType u) { return badPoint(ids[u]); });
+    : FirstWhere(uses, [&](vtkIdType u) { return badPoint(ids(u)); });
   if (i < uses)
   {
-    const double* x = this->Kernel.Point(ids[i]);
+    const double* x = this->Kernel.Point(ids(i));
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
       why << role << " has a point with a NaN or infinite coordinate (point "
-          << this->DataSetPoint(ids[i]) << ").";
+          << this->DataSetPoint(ids(i)) << ").";
       return why.str();
     }
     for (int d = 0; d < 3; ++d)
@@ -893,7 +917,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
       if (a != 0.0 && (a < 1e-100 || a > 1e100))
       {
         why << role << " has a coordinate of magnitude " << a << " (point "
-            << this->DataSetPoint(ids[i])
+            << this->DataSetPoint(ids(i))
             << "): coordinates must be 0 or between 1e-100 and 1e100 in magnitude, where "
             << "the exact geometric predicates can neither underflow nor overflow. Rescale "
             << "the mesh.";
@@ -954,6 +978,7 @@ void SimplexMesh::ReleaseGeometry()
   this->ReleaseNeighbors();
   this->OrderedPoints = mp::LargeBuffer<double>();
   this->OrderedConnectivity = mp::LargeBuffer<mp::Index>();
+  this->OrderedConnectivity32 = mp::LargeBuffer<std::int32_t>();
   mp::LargeVector<double>().swap(this->PointCopy);
   std::vector<double>().swap(this->FramePoints);
   mp::LargeVector<mp::Index>().swap(this->ConnectivityCopy);
@@ -962,6 +987,18 @@ void SimplexMesh::ReleaseGeometry()
   this->OriginalPoints = nullptr;
   this->Kernel.Points = nullptr;
   this->Kernel.Connectivity = nullptr;
+  this->Kernel.Connectivity32 = nullptr;
+}
+
+void SimplexMesh::ReleaseOrder()
+{
+  mp::LargeVector<mp::Index>().swap(this->PointOrder);
+  if (this->Kernel.OneCellPerParent)
+  {
+    // Only a renumbering's parents (split cells keep theirs: Parents() counts them).
+    mp::LargeVector<mp::Index>().swap(this->ParentIds);
+    this->Kernel.Parent = nullptr;
+  }
 }
 
 void SimplexMesh::BuildNeighbors(bool keepPointCells)

@@ -142,6 +142,7 @@ public:
   bool OwnsGeometry() const
   {
     return !this->OrderedPoints.empty() || !this->OrderedConnectivity.empty() ||
+      !this->OrderedConnectivity32.empty() ||
       !this->PointCopy.empty() || !this->ConnectivityCopy.empty() ||
       !this->AllConnectivityCopy.empty() || !this->FramePoints.empty();
   }
@@ -152,6 +153,13 @@ public:
    * cells (null).
    */
   void ReleaseGeometry();
+  /**
+   * After ReleaseGeometry, when nothing will map this mesh's points or
+   * cells back any more (no operator kept for GetMatrix): gives back a
+   * renumbering's maps too. DataSetPoint and ParentOf are then no longer
+   * valid; the counts stay.
+   */
+  void ReleaseOrder();
 
   const mp::MeshView& View() const { return this->Kernel; }
   /// Sets the dimension of a mesh without cells (it takes the other mesh's).
@@ -216,6 +224,7 @@ private:
   mp::LargeVector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
   mp::LargeBuffer<double> OrderedPoints;          ///< the renumbered points, when Ordered()
   mp::LargeBuffer<mp::Index> OrderedConnectivity; ///< and simplices
+  mp::LargeBuffer<std::int32_t> OrderedConnectivity32; ///< or these, below 2^31 points
   mp::MeshView Kernel;
   mp::LargeVector<double> PointCopy;
   std::vector<double> FramePoints; ///< the points in a plane frame other than z = constant

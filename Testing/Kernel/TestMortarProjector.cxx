@@ -751,3 +751,134 @@ TEST(MortarProjector, SolveProgressAndStop)
   ASSERT_TRUE(projector.Apply(us.data(), 1, again.data(), std::nan("")));
   EXPECT_FALSE(projector.SolveWasStopped());
 }
+
+// M_tt is assembled after the search, from the target alone: with
+// DeferTargetMass the operator has no matrix, validity or solver until
+// CompleteTargetMass, which then gives the very matrix a plain Build does;
+// a view of the same meshes with 32-bit connectivity (what a renumbered
+// copy holds) gives the same operator bit for bit; concurrent tasks the
+// same pattern and values within 1e-15 (a cell's pieces come in the order
+// of its task's front). P1 and P0 targets, 2D (covered in part: the
+// source's boundary and hole cut target cells) and 3D.
+TEST(MortarProjector, TargetMassAfterTheSearch)
+{
+  struct Pair
+  {
+    const char* Name;
+    TestMesh Target;
+    TestMesh Source;
+  };
+  TestMesh shifted = mptest::CubeMesh(5, 6, 5, 0.2, 131);
+  mptest::Move3D(shifted, 0.1, 0.05, 0.9, 0.1, 0.05, -0.05);
+  const Pair pairs[] = { { "2D", mptest::GridMesh(31, 27, 0.25, 141, 0, 0, 1, 1, LShapeWithHole),
+                           mptest::GridMesh(23, 29, 0.25, 142, -0.1, 0.05, 1, 1, LShapeWithHole) },
+    { "3D", mptest::CubeMesh(6, 5, 6, 0.2, 132), shifted } };
+  for (const Pair& pair : pairs)
+  {
+    const mp::MeshView target = pair.Target.View();
+    const mp::MeshView source = pair.Source.View();
+    // The same meshes through 32-bit connectivity.
+    std::vector<std::int32_t> narrow[2];
+    mp::MeshView narrowViews[2] = { target, source };
+    for (int m = 0; m < 2; ++m)
+    {
+      const mp::MeshView& v = m == 0 ? target : source;
+      for (Index i = 0; i < v.NumberOfCells * v.CornersPerCell(); ++i)
+      {
+        narrow[m].push_back(static_cast<std::int32_t>(v.Connectivity[i]));
+      }
+      narrowViews[m].Connectivity = nullptr;
+      narrowViews[m].Connectivity32 = narrow[m].data();
+    }
+    for (mp::SpaceType space : { mp::SpaceType::P1, mp::SpaceType::P0 })
+    {
+      const std::string name = std::string(pair.Name) + (space == mp::SpaceType::P1 ? " P1" : " P0");
+      auto build = [&](const mp::MeshView& t, const mp::MeshView& s, int tasks, bool defer,
+                     mp::MortarOperator& op) {
+        mp::BoxGridLocator locator(s);
+        mp::OperatorOptions options;
+        options.TargetSpace = space;
+        options.SourceSpace = space;
+        options.DeferTargetMass = defer;
+        options.Runner = tasks > 1 ? mptest::ThreadRunner(tasks) : mp::TaskRunner();
+        EXPECT_TRUE(op.Build(t, s, &locator, options)) << name;
+      };
+      mp::MortarOperator plain;
+      build(target, source, 1, false, plain);
+      const mp::CsrMatrix& m = plain.GetTargetMass();
+      ASSERT_GT(m.Values.size(), 0u) << name;
+      std::vector<double> us(static_cast<size_t>(plain.GetNumberOfSourceFunctions()));
+      for (size_t j = 0; j < us.size(); ++j)
+      {
+        us[j] = std::sin(0.7 * static_cast<double>(j)) + 2.0;
+      }
+      std::vector<double> expected(static_cast<size_t>(plain.GetNumberOfTargetFunctions()));
+      ASSERT_TRUE(plain.Apply(us.data(), 1, expected.data(), -1.0)) << name;
+      // Cells covered in part: the covered integrals fall short of the whole
+      // cells' somewhere (else the blocks kept would not be tested).
+      Index partial = 0;
+      for (double f : plain.GetCoveredFraction())
+      {
+        partial += f > 0.0 && f < 1.0 - 1e-9;
+      }
+      EXPECT_GT(partial, 5) << name;
+      // tolerance 0: bit for bit.
+      auto same = [&](const mp::MortarOperator& op, const std::string& what, double tolerance = 0.0) {
+        const mp::CsrMatrix& o = op.GetTargetMass();
+        ASSERT_EQ(o.Rows, m.Rows) << name << what;
+        EXPECT_TRUE(std::equal(o.RowStart.begin(), o.RowStart.end(), m.RowStart.begin(), m.RowStart.end())) << name << what;
+        EXPECT_TRUE(std::equal(o.ColumnIndex.begin(), o.ColumnIndex.end(), m.ColumnIndex.begin(), m.ColumnIndex.end())) << name << what;
+        ASSERT_EQ(o.Values.size(), m.Values.size()) << name << what;
+        double scale = 0.0;
+        for (double v : m.Values)
+        {
+          scale = std::max(scale, std::fabs(v));
+        }
+        for (size_t i = 0; i < m.Values.size(); ++i)
+        {
+          ASSERT_LE(std::fabs(o.Values[i] - m.Values[i]), tolerance * scale) << name << what << ", entry " << i;
+        }
+        EXPECT_EQ(op.GetValid(), plain.GetValid()) << name << what;
+        for (size_t i = 0; i < expected.size(); ++i)
+        {
+          ASSERT_LE(std::fabs(op.GetCoveredIntegrals()[i] - plain.GetCoveredIntegrals()[i]), tolerance * scale) << name << what;
+        }
+        for (size_t c = 0; c < plain.GetCoveredFraction().size(); ++c)
+        {
+          ASSERT_LE(std::fabs(op.GetCoveredFraction()[c] - plain.GetCoveredFraction()[c]), tolerance) << name << what;
+        }
+        std::vector<double> ut(expected.size());
+        ASSERT_TRUE(op.Apply(us.data(), 1, ut.data(), -1.0)) << name << what;
+        for (size_t i = 0; i < expected.size(); ++i)
+        {
+          // (The solve's own tolerance for a tolerance > 0.)
+          ASSERT_NEAR(ut[i], expected[i], tolerance > 0.0 ? 1e-10 : 0.0) << name << what << ", function " << i;
+        }
+      };
+      {
+        mp::MortarOperator deferred;
+        build(target, source, 1, true, deferred);
+        EXPECT_EQ(deferred.GetNumberOfTargetFunctions(), m.Rows) << name;
+        EXPECT_TRUE(deferred.GetValid().empty()) << name;
+        EXPECT_EQ(deferred.GetTargetMass().Values.size(), 0u) << name;
+        std::vector<double> ut(expected.size());
+        EXPECT_FALSE(deferred.Apply(us.data(), 1, ut.data(), -1.0)) << name;
+        deferred.CompleteTargetMass(target);
+        same(deferred, " deferred");
+        deferred.CompleteTargetMass(target); // a second call changes nothing
+        same(deferred, " completed twice");
+      }
+      for (int tasks : { 2, 3, 7 })
+      {
+        mp::MortarOperator threaded;
+        build(target, source, tasks, false, threaded);
+        same(threaded, " " + std::to_string(tasks) + " tasks", 1e-15);
+      }
+      mp::MortarOperator narrowOp;
+      build(narrowViews[0], narrowViews[1], 1, false, narrowOp);
+      same(narrowOp, " 32-bit connectivity");
+      EXPECT_TRUE(std::equal(narrowOp.GetSourceCovered().begin(), narrowOp.GetSourceCovered().end(),
+        plain.GetSourceCovered().begin(), plain.GetSourceCovered().end())) << name;
+    }
+  }
+}

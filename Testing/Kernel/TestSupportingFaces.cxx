@@ -52,7 +52,7 @@ std::vector<unsigned char> Oracle(const TestMesh& m)
   std::vector<unsigned char> flags(static_cast<size_t>(m.NumberOfCells()), 0);
   for (Index c = 0; c < m.NumberOfCells(); ++c)
   {
-    const Index* ids = v.Cell(c);
+    const mp::CellCorners ids = v.Cell(c);
     for (int k = 0; k < 4; ++k)
     {
       if (v.Neighbor(c, k) >= 0)

@@ -22,7 +22,7 @@ double SegmentIntersector::ToFrame(const Cell& frame, const double* x, double of
 
 bool SegmentIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 {
-  const Index* ids = mesh.Cell(id);
+  const CellCorners ids = mesh.Cell(id);
   cell.Id = id;
   const double* a = mesh.Point(ids[0]);
   const double* b = mesh.Point(ids[1]);

@@ -21,7 +21,7 @@ void SurfaceIntersector::ToFrame(const Cell& frame, const double* x, double uv[2
 
 bool SurfaceIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 {
-  const Index* ids = mesh.Cell(id);
+  const CellCorners ids = mesh.Cell(id);
   cell.Id = id;
   double longest = 0.0;
   for (int k = 0; k < 3; ++k)

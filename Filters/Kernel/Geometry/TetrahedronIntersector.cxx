@@ -40,7 +40,7 @@ int TetrahedronIntersector::Locate(const Cell& cell, const double* q, int first)
 
 bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 {
-  const Index* ids = mesh.Cell(id);
+  const CellCorners ids = mesh.Cell(id);
   cell.Id = id;
   for (int k = 0; k < 4; ++k)
   {

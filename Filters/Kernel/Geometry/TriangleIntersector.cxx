@@ -285,7 +285,7 @@ inline void Crossing(const double* a, const double* b, double oa, double ob, con
 
 bool TriangleIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
 {
-  const Index* ids = mesh.Cell(id);
+  const CellCorners ids = mesh.Cell(id);
   cell.Id = id;
   for (int k = 0; k < 3; ++k)
   {

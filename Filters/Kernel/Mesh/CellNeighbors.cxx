@@ -109,7 +109,7 @@ Index MisorientedEdges(const MeshView& mesh)
   Index count = 0;
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
-    const Index* ids = mesh.Cell(c);
+    const CellCorners ids = mesh.Cell(c);
     for (int k = 0; k < 3; ++k)
     {
       const Index n = mesh.Neighbor(c, k);
@@ -121,7 +121,7 @@ Index MisorientedEdges(const MeshView& mesh)
       // run through it the other way.
       const Index from = ids[(k + 1) % 3];
       const Index to = ids[(k + 2) % 3];
-      const Index* other = mesh.Cell(n);
+      const CellCorners other = mesh.Cell(n);
       for (int j = 0; j < 3; ++j)
       {
         count += other[j] == from && other[(j + 1) % 3] == to;

@@ -45,7 +45,7 @@ Index MatchFacesOf(
   Index nonManifold = 0;
   for (Index c = begin; c < end; ++c)
   {
-    const Index* ids = mesh.Cell(c);
+    const CellCorners ids = mesh.Cell(c);
     for (int k = 0; k < corners; ++k)
     {
       if (neighbors[c * corners + k] >= 0)
@@ -60,7 +60,7 @@ Index MatchFacesOf(
       Index found = -1;
       int matches = 0;
       around(first, [&](Index other) {
-        const Index* o = mesh.Cell(other);
+        const CellCorners o = mesh.Cell(other);
         bool shares = false;
         bool shares3 = false;
         for (int l = 0; l < corners; ++l)
@@ -81,7 +81,7 @@ Index MatchFacesOf(
         // is not on it.
         if (found >= begin && found < end)
         {
-          const Index* o = mesh.Cell(found);
+          const CellCorners o = mesh.Cell(found);
           for (int l = 0; l < corners; ++l)
           {
             if (o[l] != first && o[l] != second && o[l] != third)
@@ -168,7 +168,7 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
     for (Id i = start[p]; i < start[p + 1]; ++i)
     {
       const Index c = static_cast<Index>(around[i]);
-      const Index* ids = mesh.Cell(c);
+      const CellCorners ids = mesh.Cell(c);
       // Without branches (tested per corner, they were mispredicted).
       int at = -1;
       int times = 0;

@@ -31,6 +31,8 @@
 #ifndef MeshProjection_Kernel_MeshView_h
 #define MeshProjection_Kernel_MeshView_h
 
+#include <cstdint>
+
 namespace mp
 {
 /// Cell and point ids: 64-bit, and the same type as VTK's vtkIdType and
@@ -46,6 +48,30 @@ static_assert(sizeof(NeighborId) == 4, "mp::NeighborId must be a 32-bit integer"
 
 struct PointCells;
 
+/**
+ * The corners of one cell, read from a 64-bit or a 32-bit connectivity
+ * (MeshView::Connectivity, MeshView::Connectivity32), indexed like an array.
+ */
+class CellCorners
+{
+public:
+  CellCorners(const Index* wide, const std::int32_t* narrow)
+    : Wide(wide)
+    , Narrow(narrow)
+  {
+  }
+  Index operator[](Index k) const { return this->Narrow ? Index(this->Narrow[k]) : this->Wide[k]; }
+  /// Where the corners are stored (to prefetch them).
+  const void* Address() const
+  {
+    return this->Narrow ? static_cast<const void*>(this->Narrow) : static_cast<const void*>(this->Wide);
+  }
+
+private:
+  const Index* Wide;
+  const std::int32_t* Narrow;
+};
+
 struct MeshView
 {
   int CellDimension = 2;               ///< 1: segments, 2: triangles, 3: tetrahedra
@@ -53,6 +79,9 @@ struct MeshView
   const double* Points = nullptr;      ///< 3 * NumberOfPoints coordinates
   Index NumberOfPoints = 0;
   const Index* Connectivity = nullptr; ///< (CellDimension + 1) * NumberOfCells point ids
+  /// The same in 32 bits (half the memory: a renumbered copy of a mesh of
+  /// fewer than 2^31 points); when set, it is read instead of Connectivity.
+  const std::int32_t* Connectivity32 = nullptr;
   Index NumberOfCells = 0;
   /// The original cell of each simplex (null: each simplex is its own).
   const Index* Parent = nullptr;
@@ -84,7 +113,19 @@ struct MeshView
   int SurfaceOrientation = 0;
 
   int CornersPerCell() const { return this->CellDimension + 1; }
-  const Index* Cell(Index c) const { return this->Connectivity + c * this->CornersPerCell(); }
+  CellCorners Cell(Index c) const
+  {
+    const Index at = c * this->CornersPerCell();
+    return this->Connectivity32 ? CellCorners(nullptr, this->Connectivity32 + at)
+                                : CellCorners(this->Connectivity + at, nullptr);
+  }
+  /// Entry i of the connectivity (corner i % corners of cell i / corners).
+  Index Corner(Index i) const
+  {
+    return this->Connectivity32 ? Index(this->Connectivity32[i]) : this->Connectivity[i];
+  }
+  /// Whether the mesh has its connectivity (in either width).
+  bool HasConnectivity() const { return this->Connectivity || this->Connectivity32; }
   const double* Point(Index p) const { return this->Points + 3 * p; }
   Index Neighbor(Index c, int face) const
   {

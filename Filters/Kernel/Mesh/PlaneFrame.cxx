@@ -31,7 +31,7 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
   double mean[3] = { 0, 0, 0 };
   for (Index i = 0; i < uses; ++i)
   {
-    const double* x = mesh.Point(mesh.Connectivity[i]);
+    const double* x = mesh.Point(mesh.Corner(i));
     for (int d = 0; d < 3; ++d)
     {
       lo[d] = std::min(lo[d], x[d]);
@@ -52,7 +52,7 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     bool area = false;
     for (Index c = 0; c < mesh.NumberOfCells && !area; ++c)
     {
-      const Index* ids = mesh.Cell(c);
+      const CellCorners ids = mesh.Cell(c);
       const double* a = mesh.Point(ids[0]);
       const double* b = mesh.Point(ids[1]);
       const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
@@ -80,7 +80,7 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
   std::vector<double> normals(static_cast<size_t>(3 * mesh.NumberOfCells));
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
-    const Index* ids = mesh.Cell(c);
+    const CellCorners ids = mesh.Cell(c);
     const double* a = mesh.Point(ids[0]);
     const double* b = mesh.Point(ids[1]);
     const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
@@ -138,7 +138,7 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     double largest = 0.0;
     for (Index i = 0; i < uses; ++i)
     {
-      largest = std::max(largest, std::fabs(frame.Distance(mesh.Point(mesh.Connectivity[i]))));
+      largest = std::max(largest, std::fabs(frame.Distance(mesh.Point(mesh.Corner(i)))));
     }
     return largest;
   };

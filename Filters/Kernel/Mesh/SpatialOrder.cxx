@@ -162,13 +162,13 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     {
       if (c + Ahead < end)
       {
-        const Index* ahead = mesh.Cell(c + Ahead);
+        const CellCorners ahead = mesh.Cell(c + Ahead);
         for (int k = 0; k < corners; ++k)
         {
           Prefetch(pointKeys.data() + ahead[k]);
         }
       }
-      const Index* ids = mesh.Cell(c);
+      const CellCorners ids = mesh.Cell(c);
       std::uint32_t lowest = pointKeys[ids[0]];
       for (int k = 1; k < corners; ++k)
       {
@@ -251,12 +251,28 @@ double NumberingSpread(const MeshView& mesh)
   const Index samples = std::min<Index>(n - 1, 4096);
   std::vector<Index> spread(static_cast<size_t>(samples));
   std::vector<Index> jump(static_cast<size_t>(samples));
-  auto lowest = [&](Index c) { return *std::min_element(mesh.Cell(c), mesh.Cell(c) + corners); };
+  auto lowest = [&](Index c) {
+    const CellCorners ids = mesh.Cell(c);
+    Index low = ids[0];
+    for (int k = 1; k < corners; ++k)
+    {
+      low = std::min(low, ids[k]);
+    }
+    return low;
+  };
+  auto highest = [&](Index c) {
+    const CellCorners ids = mesh.Cell(c);
+    Index high = ids[0];
+    for (int k = 1; k < corners; ++k)
+    {
+      high = std::max(high, ids[k]);
+    }
+    return high;
+  };
   for (Index s = 0; s < samples; ++s)
   {
     const Index c = (n - 1) * s / samples;
-    const Index* ids = mesh.Cell(c);
-    spread[s] = *std::max_element(ids, ids + corners) - lowest(c);
+    spread[s] = highest(c) - lowest(c);
     jump[s] = std::abs(lowest(c + 1) - lowest(c));
   }
   const auto middle = static_cast<std::ptrdiff_t>(samples / 2);
@@ -280,7 +296,7 @@ double ChainedFraction(const MeshView& mesh)
   for (Index s = 0; s < samples; ++s)
   {
     const Index c = (n - 1) * s / std::max<Index>(1, samples - 1);
-    const Index* ids = mesh.Cell(c);
+    const CellCorners ids = mesh.Cell(c);
     bool found = false;
     for (Index o = std::max<Index>(0, c - reach); o <= std::min(n - 1, c + reach) && !found; ++o)
     {
@@ -288,11 +304,16 @@ double ChainedFraction(const MeshView& mesh)
       {
         continue;
       }
-      const Index* other = mesh.Cell(o);
+      const CellCorners other = mesh.Cell(o);
       int common = 0;
       for (int a = 0; a < corners; ++a)
       {
-        common += std::count(other, other + corners, ids[a]) > 0;
+        bool shared = false;
+        for (int b = 0; b < corners; ++b)
+        {
+          shared = shared || other[b] == ids[a];
+        }
+        common += shared;
       }
       found = common >= corners - 1;
     }
@@ -342,11 +363,11 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
       // on, the claims of the one Ahead on (its ids asked for before).
       if (c + 2 * Ahead < last)
       {
-        Prefetch(mesh.Cell(order.Cells[c + 2 * Ahead]));
+        Prefetch(mesh.Cell(order.Cells[c + 2 * Ahead]).Address());
       }
       if (c + Ahead < last)
       {
-        const Index* ahead = mesh.Cell(order.Cells[c + Ahead]);
+        const CellCorners ahead = mesh.Cell(order.Cells[c + Ahead]);
         for (int k = 0; k < corners; ++k)
         {
           Prefetch(claim + ahead[k]);
@@ -357,7 +378,7 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
         }
       }
       const Index old = order.Cells[c];
-      const Index* ids = mesh.Cell(old);
+      const CellCorners ids = mesh.Cell(old);
       for (int k = 0; k < corners; ++k)
       {
         Index* slot = claim + ids[k];

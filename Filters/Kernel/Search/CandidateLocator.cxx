@@ -14,7 +14,7 @@ namespace
 {
 void CellBox(const MeshView& mesh, Index c, double box[6])
 {
-  const Index* ids = mesh.Cell(c);
+  const CellCorners ids = mesh.Cell(c);
   for (int d = 0; d < 3; ++d)
   {
     box[2 * d] = std::numeric_limits<double>::infinity();

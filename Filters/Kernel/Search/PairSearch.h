@@ -217,7 +217,8 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   LargeVector<char> queued(static_cast<size_t>(std::max<Index>(0, end - begin)), 0); // of cell begin + i
   // stamp[s] == t: source cell s was already tried for target cell t. A
   // stamp instead of the paper's per-cell flag vector keeps the work linear.
-  LargeVector<Index> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
+  // (32 bits: the front's meshes have fewer than 2^31 cells, MeshView.h.)
+  LargeVector<NeighborId> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
   std::vector<Seed> outer; // a binary heap: the smallest target id first
   auto later = [](const Seed& a, const Seed& b) { return a.Target > b.Target; };
   std::vector<Index> inner;
@@ -264,9 +265,9 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     ++stats.LocatorQueries;
     for (Index c : candidates)
     {
-      if (stamp[c] != tId)
+      if (stamp[c] != static_cast<NeighborId>(tId))
       {
-        stamp[c] = tId;
+        stamp[c] = static_cast<NeighborId>(tId);
         // Most candidates miss: a cheap screen first where the geometry
         // has one (tetrahedra), counted as the test it settles.
         if constexpr (HasApart<Intersector, Sources>::value)
@@ -320,7 +321,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
     int level = 0;
     if (seed >= 0)
     {
-      stamp[seed] = tId;
+      stamp[seed] = static_cast<NeighborId>(tId);
       inner.push_back(seed);
     }
     else

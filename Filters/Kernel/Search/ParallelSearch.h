@@ -41,7 +41,7 @@ inline bool SearchNeedsNeighbors(SearchMethod method)
 inline std::string CheckSearchMesh(const MeshView& mesh, const char* name, SearchMethod method)
 {
   const bool front = SearchNeedsNeighbors(method);
-  if (mesh.NumberOfCells > 0 && (!mesh.Points || !mesh.Connectivity))
+  if (mesh.NumberOfCells > 0 && (!mesh.Points || !mesh.HasConnectivity()))
   {
     return std::string(name) + ": missing points or connectivity";
   }

@@ -5,6 +5,10 @@
 #include "Mesh/SortEight.h"
 
 #include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -54,6 +58,7 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     UninitializedLargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
+
     // A row is the point itself and the other corners of its cells (in 2D
     // about 12 candidates for 7 columns, in 3D about 70 for 15). Each
     // candidate is written and kept unless seen[q] already names this row:
@@ -76,7 +81,7 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
       Index size = 1;
       for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
       {
-        const Index* ids = mesh.Cell(cells[i]);
+        const CellCorners ids = mesh.Cell(cells[i]);
         for (int c = 0; c < n; ++c)
         {
           const auto q = static_cast<Column>(ids[c]);
@@ -142,9 +147,191 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   }
 }
 
+/**
+ * M_tt's values for P1, its pattern made (the cells around the points,
+ * which the pattern needed, are gone by now: the values take their room).
+ * Each task owns a range of rows and goes through all cells, adding the
+ * rows of its range of each cell's block: a row sums its cells' blocks in
+ * cell order, whatever the number of tasks.
+ */
+void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& runner, CsrMatrix& matrix)
+{
+  const int n = mesh.CornersPerCell();
+  const Index points = mesh.NumberOfPoints;
+  const Index cells = mesh.NumberOfCells;
+  // The element mass of a whole cell: unit (1 + delta_ik) times its measure.
+  const double unit = 1.0 / ((mesh.CellDimension + 1) * (mesh.CellDimension + 2));
+  const int tasks = runner.TasksFor(points, 1 << 16);
+  const Index* rowStart = matrix.RowStart.data();
+  const Column* columns = matrix.ColumnIndex.data();
+  double* values = matrix.Values.data();
+  const Index entries = rowStart[points];
+  // Adds block row `a` of a cell on functions `dofs` into row dofs[a]. Each
+  // column is found in the row: among its first 8 entries by two vector
+  // compares (no branch to mispredict: most rows have 7 entries in 2D),
+  // else by a scan.
+  auto addRow = [=](const Index* dofs, int a, const double* row) {
+    const Index begin = rowStart[dofs[a]];
+    const bool short8 = rowStart[dofs[a] + 1] - begin <= 8 && begin + 8 <= entries;
+    for (int b = 0; b < n; ++b)
+    {
+      const auto q = static_cast<Column>(dofs[b]);
+#if defined(__SSE2__)
+      if (short8)
+      {
+        const __m128i want = _mm_set1_epi32(q);
+        const __m128i low = _mm_loadu_si128(reinterpret_cast<const __m128i*>(columns + begin));
+        const __m128i high = _mm_loadu_si128(reinterpret_cast<const __m128i*>(columns + begin + 4));
+        const int mask = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(low, want))) |
+          (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(high, want))) << 4);
+        values[begin + __builtin_ctz(static_cast<unsigned>(mask))] += row[b];
+        continue;
+      }
+#endif
+      Index p = begin;
+      while (columns[p] != q)
+      {
+        ++p;
+      }
+      values[p] += row[b];
+    }
+  };
+  runner.RunAll(tasks, [&](int k) {
+    const Index first = RangeBegin(points, k, tasks);
+    const Index last = RangeBegin(points, k + 1, tasks);
+    auto mine = [first, last](Index p) { return p >= first && p < last; };
+    for (Index c = 0; c < cells; ++c)
+    {
+      const float state = masses.State[static_cast<size_t>(c)];
+      if (state == CellMasses::None)
+      {
+        continue;
+      }
+      const CellCorners ids = mesh.Cell(c);
+      Index dofs[4];
+      bool any = false;
+      for (int a = 0; a < n; ++a)
+      {
+        dofs[a] = ids[a];
+        any = any || mine(dofs[a]);
+      }
+      if (!any)
+      {
+        continue;
+      }
+      if (state != CellMasses::Part)
+      {
+        const double m = unit * CellMasses::Covered(mesh, c, state);
+        for (int a = 0; a < n; ++a)
+        {
+          if (mine(dofs[a]))
+          {
+            double row[4] = { m, m, m, m };
+            row[a] = 2.0 * m;
+            addRow(dofs, a, row);
+          }
+        }
+        continue;
+      }
+      // The upper triangle kept, row by row.
+      const double* b = masses.Find(c);
+      double block[4][4];
+      for (int a = 0; a < n; ++a)
+      {
+        for (int k = a; k < n; ++k)
+        {
+          block[a][k] = block[k][a] = *b++;
+        }
+      }
+      for (int a = 0; a < n; ++a)
+      {
+        if (mine(dofs[a]))
+        {
+          addRow(dofs, a, block[a]);
+        }
+      }
+    }
+  });
+}
+
 } // namespace
 
-void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner, CsrMatrix& matrix)
+double SimplexMeasure(const MeshView& mesh, Index c)
+{
+  const CellCorners ids = mesh.Cell(c);
+  const double* a = mesh.Point(ids[0]);
+  if (mesh.CellDimension == 2 && mesh.SpaceDimension == 2)
+  {
+    const double* b = mesh.Point(ids[1]);
+    const double* d = mesh.Point(ids[2]);
+    return 0.5 * std::fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+  }
+  const int dims = mesh.SpaceDimension;
+  double e[3][3] = {};
+  for (int k = 1; k <= mesh.CellDimension; ++k)
+  {
+    const double* b = mesh.Point(ids[k]);
+    for (int d = 0; d < dims; ++d)
+    {
+      e[k - 1][d] = b[d] - a[d];
+    }
+  }
+  switch (mesh.CellDimension)
+  {
+    case 1:
+      return std::sqrt(e[0][0] * e[0][0] + e[0][1] * e[0][1] + e[0][2] * e[0][2]);
+    case 2:
+    {
+      const double x = e[0][1] * e[1][2] - e[0][2] * e[1][1];
+      const double y = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+      const double z = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+      return 0.5 * std::sqrt(x * x + y * y + z * z);
+    }
+    default:
+      return std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+               e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+        6.0;
+  }
+}
+
+void CellMasses::Gather(std::vector<PartialMasses>& tasks)
+{
+  PartialMasses all;
+  for (PartialMasses& t : tasks)
+  {
+    all.Cells.insert(all.Cells.end(), t.Cells.begin(), t.Cells.end());
+    all.Blocks.insert(all.Blocks.end(), t.Blocks.begin(), t.Blocks.end());
+    t = PartialMasses();
+  }
+  // Sorted by cell (each cell once: it is flushed once).
+  std::vector<Index> order(all.Cells.size());
+  for (size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = static_cast<Index>(i);
+  }
+  std::sort(order.begin(), order.end(), [&](Index x, Index y) { return all.Cells[x] < all.Cells[y]; });
+  const size_t n = static_cast<size_t>(this->Dofs * (this->Dofs + 1) / 2);
+  PartialMasses& sorted = this->Partial;
+  sorted = PartialMasses();
+  sorted.Cells.reserve(order.size());
+  sorted.Blocks.reserve(order.size() * n);
+  for (Index i : order)
+  {
+    sorted.Cells.push_back(all.Cells[i]);
+    sorted.Blocks.insert(sorted.Blocks.end(), all.Blocks.begin() + i * n, all.Blocks.begin() + (i + 1) * n);
+  }
+}
+
+const double* CellMasses::Find(Index c) const
+{
+  const auto at = std::lower_bound(this->Partial.Cells.begin(), this->Partial.Cells.end(), c);
+  const size_t i = static_cast<size_t>(at - this->Partial.Cells.begin());
+  return this->Partial.Blocks.data() + i * static_cast<size_t>(this->Dofs * (this->Dofs + 1) / 2);
+}
+
+void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses* masses,
+  const TaskRunner& runner, CsrMatrix& matrix)
 {
   matrix = CsrMatrix();
   const Index n = SpaceSize(space, mesh);
@@ -170,5 +357,49 @@ void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner
   // Zeros written by concurrent tasks (each the first to touch its pages).
   matrix.Values.resize(matrix.ColumnIndex.size());
   runner.Fill(matrix.Values.data(), static_cast<Index>(matrix.Values.size()), 0.0, 1 << 18);
+  if (!masses)
+  {
+    return;
+  }
+  if (space == SpaceType::P1)
+  {
+    P1Values(mesh, *masses, runner, matrix);
+    return;
+  }
+  // P0: each cell's measure (whole) or covered measure into its original
+  // cell's row, in cell order; in tasks when each row has one cell.
+  double* values = matrix.Values.data();
+  auto add = [&mesh, masses, values](Index begin, Index end) {
+    for (Index c = begin; c < end; ++c)
+    {
+      const float state = masses->State[static_cast<size_t>(c)];
+      if (state == CellMasses::None)
+      {
+        continue;
+      }
+      if (state != CellMasses::Part)
+      {
+        values[mesh.ParentOf(c)] += CellMasses::Covered(mesh, c, state);
+      }
+      else
+      {
+        values[mesh.ParentOf(c)] += *masses->Find(c);
+      }
+    }
+    return 0;
+  };
+  if (!mesh.Parent || mesh.OneCellPerParent)
+  {
+    runner.ForRanges(mesh.NumberOfCells, add, Index(1) << 16);
+  }
+  else
+  {
+    add(0, mesh.NumberOfCells);
+  }
+}
+
+void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner, CsrMatrix& matrix)
+{
+  AssembleTargetMass(space, mesh, nullptr, runner, matrix);
 }
 } // namespace mp

@@ -9,17 +9,18 @@
  * int phi_i psi_j to the block of the current target cell, and sums the
  * piece's moments about the target cell's first corner. When the cell's
  * last piece has come (the searches deliver the pieces of a target cell one
- * after the other), the covered part's moments give the cell's target mass
- * block at once (the exact element mass matrix when the cell is covered
- * whole), added into M_tt, and the cell's mixed block is appended to the
- * task's MixedBlocks (MixedMatrix.h). For a single use the assembler can
+ * after the other), the cell is marked as covered whole (its target mass
+ * block is the element mass matrix, formed once the search is done:
+ * MassMatrix.h) or its block from the covered part's moments is kept, and
+ * the cell's mixed block is appended to the task's MixedBlocks
+ * (MixedMatrix.h). For a single use the assembler can
  * instead sum the right-hand sides M_ts u_s of given fields (Fields): the
  * source field is one affine function on each piece, integrated against
  * the target functions, and M_ts is never formed.
  *
  * With concurrent tasks, target functions whose cells belong to several
- * tasks (Shared) are not written into M_tt directly but collected in
- * Deferred and added after all tasks, in task order.
+ * tasks (Shared) get their right-hand sides collected in DeferredRhs and
+ * added after all tasks, in task order.
  */
 #ifndef MeshProjection_Kernel_MortarAssembler_h
 #define MeshProjection_Kernel_MortarAssembler_h
@@ -28,11 +29,13 @@
 #include "Geometry/SourceSide.h"
 #include "Mesh/MeshView.h"
 #include "Transfer/CsrMatrix.h"
+#include "Transfer/MassMatrix.h"
 #include "Transfer/MixedMatrix.h"
 #include "Transfer/MortarBlocks.h"
 #include "Transfer/Space.h"
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -90,10 +93,14 @@ struct MortarAssembler
 
   const MeshView* Target = nullptr;
   const MeshView* Source = nullptr;
-  CsrMatrix* Mass = nullptr;    ///< M_tt: its pattern, values being summed
+  /// Per target kernel cell: what M_tt takes from it (CellMasses::State),
+  /// written when its last piece has come ...
+  float* MassState = nullptr;
+  PartialMasses* Partial = nullptr; ///< ... and the blocks of cells covered in part (this task's)
   MixedBlocks* Blocks = nullptr; ///< this task's mixed blocks
-  /// Per target kernel cell: the covered fraction of its measure, written
-  /// when its last piece has come (each cell belongs to one task).
+  /// Per target kernel cell (per original cell when each is one simplex:
+  /// MeshView::OneCellPerParent): the covered fraction of its measure,
+  /// written when its last piece has come (each cell belongs to one task).
   double* CoveredFraction = nullptr;
   double CoveredSum = 0.0; ///< measure of all pieces of this task
   Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
@@ -104,7 +111,6 @@ struct MortarAssembler
   /// source cell (this task's own array, or null).
   double* SourceCovered = nullptr;
   const char* Shared = nullptr; ///< per target function; null for a single task
-  std::vector<std::pair<Index, double>> Deferred; ///< (position in M_tt, value)
   /// Right-hand sides instead of blocks: the source fields (source
   /// functions x Components) and their sums (target functions x Components).
   const double* Fields = nullptr;
@@ -165,34 +171,30 @@ struct MortarAssembler
     const double covered = this->Moments[0][0];
     const double fraction = covered / this->CurrentCell.Measure;
     this->Overcovered += fraction > 1.0 + 1e-9;
-    this->CoveredFraction[this->Current] = std::min(1.0, fraction);
+    // (A renumbered target's cell writes its original cell's fraction: the
+    // same place as ParentFractions would move it to, without a second array.)
+    const MeshView& target = *this->Target;
+    this->CoveredFraction[target.Parent && target.OneCellPerParent ? target.Parent[this->Current]
+                                                                   : this->Current] =
+      std::min(1.0, fraction);
     this->CoveredSum += covered;
+    const Index current = this->Current;
     this->Current = -1;
     if (!(covered > 0.0))
     {
       return; // only touching pieces
     }
-    double mtt[Nt][Nt];
-    TargetSpace::MassFromMoments(this->CurrentCell, this->Moments, mtt);
     Index dofs[Nt];
     TargetSpace::CellDofs(*this->Target, this->CurrentCell, dofs);
-    for (int i = 0; i < Nt; ++i)
+    // M_tt's block: formed again from the cell when it is covered whole
+    // (MassMatrix.h), else kept.
+    const float state = CellMasses::StateOf(*this->Target, current, covered);
+    this->MassState[current] = state;
+    if (state == CellMasses::Part)
     {
-      const bool shared = this->Shared && this->Shared[dofs[i]];
-      Index positions[Nt];
-      this->Mass->FindAll(dofs[i], dofs, Nt, positions);
-      for (int k = 0; k < Nt; ++k)
-      {
-        const Index position = positions[k];
-        if (shared)
-        {
-          this->Deferred.emplace_back(position, mtt[i][k]);
-        }
-        else
-        {
-          this->Mass->Values[position] += mtt[i][k];
-        }
-      }
+      double mtt[Nt][Nt];
+      TargetSpace::MassFromMoments(this->CurrentCell, this->Moments, mtt);
+      this->Partial->Add(*this->Target, current, dofs, mtt);
     }
     if (this->Fields)
     {

@@ -26,7 +26,8 @@ double Seconds(std::chrono::steady_clock::time_point since)
 }
 
 /// How many of ids[0..n) lie outside [0, bound), counted in `runner`'s tasks.
-Index CountOutside(const Index* ids, Index n, Index bound, const TaskRunner& runner)
+template <class Id>
+Index CountOutside(const Id* ids, Index n, Index bound, const TaskRunner& runner)
 {
   return runner.ForRanges(n, [=](Index begin, Index end) {
     Index outside = 0;
@@ -41,7 +42,9 @@ Index CountOutside(const Index* ids, Index n, Index bound, const TaskRunner& run
 
 std::string CheckIds(const MeshView& mesh, const char* name, const TaskRunner& runner)
 {
-  if (CountOutside(mesh.Connectivity, mesh.NumberOfCells * mesh.CornersPerCell(), mesh.NumberOfPoints, runner) > 0)
+  const Index uses = mesh.NumberOfCells * mesh.CornersPerCell();
+  if ((mesh.Connectivity32 ? CountOutside(mesh.Connectivity32, uses, mesh.NumberOfPoints, runner)
+                           : CountOutside(mesh.Connectivity, uses, mesh.NumberOfPoints, runner)) > 0)
   {
     return std::string(name) + ": a cell refers to a point that does not exist";
   }
@@ -142,6 +145,8 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.Options = options[i];
     op.Options.Runner.Tasks = std::max(1, options[i].Runner.Tasks);
     op.TargetMass = CsrMatrix();
+    op.Masses = CellMasses();
+    op.MassPending = false;
     op.MixedMass = CsrMatrix();
     UninitializedLargeVector<double>().swap(op.Rhs);
     op.Solver.reset();
@@ -196,19 +201,72 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     if (!op->Error.empty())
     {
       op->TargetMass = CsrMatrix();
+      op->Masses = CellMasses();
       op->MixedMass = CsrMatrix();
       op->Valid.clear();
       built = false;
       continue;
     }
-    if (target.Parent)
+    if (target.Parent && !target.OneCellPerParent)
     {
-      // Split cells: the covered fraction of each original cell.
+      // Split cells: the covered fraction of each original cell (cells only
+      // renumbered have theirs in place already: MortarAssembler::Flush).
       op->CoveredFraction = ParentFractions(target, op->CoveredFraction, op->Options.Runner);
     }
-    op->Solver.reset(new BlockCG(op->TargetMass, op->Options.Runner));
+    op->MassPending = true;
+    if (!op->Options.DeferTargetMass)
+    {
+      op->CompleteTargetMass(target);
+    }
   }
   return built;
+}
+
+void MortarOperator::CompleteTargetMass(const MeshView& target)
+{
+  if (!this->MassPending)
+  {
+    return;
+  }
+  this->MassPending = false;
+  auto start = std::chrono::steady_clock::now();
+  const TaskRunner& runner = this->Options.Runner;
+  AssembleTargetMass(this->Options.TargetSpace, target, &this->Masses, runner, this->TargetMass);
+  this->Masses = CellMasses();
+  // A function is valid when its support meets the source: its diagonal
+  // entry of the covered mass matrix is positive. An invalid function's
+  // whole row is zero (no piece touches its support); a 1 on the diagonal
+  // decouples it.
+  const Index rows = this->TargetMass.Rows;
+  CsrMatrix& mass = this->TargetMass;
+  this->Valid.resize(static_cast<size_t>(rows));
+  this->RowSums.resize(static_cast<size_t>(rows));
+  this->NumberOfValid += runner.ForRanges(rows, [&](Index begin, Index end) {
+    Index valid = 0;
+    for (Index i = begin; i < end; ++i)
+    {
+      double& diagonal = mass.Values[mass.Find(i, i)];
+      const bool isValid = diagonal > 0.0;
+      double sum = 0.0;
+      if (isValid)
+      {
+        ++valid;
+        for (Index p = mass.RowStart[i]; p < mass.RowStart[i + 1]; ++p)
+        {
+          sum += mass.Values[p];
+        }
+      }
+      else
+      {
+        diagonal = 1.0;
+      }
+      this->Valid[i] = isValid ? 1 : 0;
+      this->RowSums[i] = sum;
+    }
+    return valid;
+  }, 16384);
+  this->Solver.reset(new BlockCG(this->TargetMass, runner));
+  this->Timings.Assembly += Seconds(start);
 }
 
 /**
@@ -227,6 +285,7 @@ struct MortarOperator::Session
   std::vector<Assembler> Assemblers;
   std::vector<MixedBlocks> Blocks;
   std::vector<IntersectionPieces> Pieces;
+  std::vector<PartialMasses> Partial; ///< per task: M_tt's blocks of cells covered in part
   // How much of each source cell the pieces cover: per task, summed after.
   std::vector<LargeVector<double>> Met;
 
@@ -237,16 +296,25 @@ struct MortarOperator::Session
     auto start = std::chrono::steady_clock::now();
     this->Op = &op;
     const TaskRunner& runner = op.Options.Runner;
-    MassPattern(TargetSpace::Type, target, runner, op.TargetMass);
-    const Index rows = op.TargetMass.Rows;
+    // M_tt comes after the search (MassMatrix.h): per target cell what it
+    // takes, written by the tasks (each cell's state by the task of the
+    // cell; zeros first, each task the first to touch its pages).
+    const Index rows = SpaceSize(TargetSpace::Type, target);
+    op.TargetMass = CsrMatrix();
+    op.TargetMass.Rows = op.TargetMass.Columns = rows;
     const Index cells = target.NumberOfCells;
+    op.Masses.Dofs = TargetSpace::Dofs;
+    op.Masses.State.resize(static_cast<size_t>(cells));
+    runner.Fill(op.Masses.State.data(), cells, CellMasses::None, Index(1) << 16);
+    this->Partial.resize(static_cast<size_t>(tasks));
     // Target functions on cells of more than one task: their M_tt rows are
     // summed after the tasks (MortarAssembler::Shared).
     // Each task marks the functions of its cells with its number (plus one)
     // where no task has yet; a function found marked by another task is
     // shared. (Relaxed atomics: of two tasks marking at once, one sees the
     // other's mark.)
-    if (tasks > 1)
+    const bool single = op.Options.Fields != nullptr;
+    if (tasks > 1 && single)
     {
       // (Zeros written by the tasks, each the first to touch its pages.)
       UninitializedLargeVector<char>& shared = this->Shared;
@@ -276,7 +344,6 @@ struct MortarOperator::Session
         }
       });
     }
-    const bool single = op.Options.Fields != nullptr;
     if (single)
     {
       // Zeros written by the tasks (each the first to touch its pages).
@@ -299,8 +366,9 @@ struct MortarOperator::Session
       a.SourceCovered = cover ? this->Met[k].data() : nullptr;
       a.Target = &target;
       a.Source = &source;
-      a.Mass = &op.TargetMass;
-      a.Shared = tasks > 1 ? this->Shared.data() : nullptr;
+      a.MassState = op.Masses.State.data();
+      a.Partial = &this->Partial[k];
+      a.Shared = tasks > 1 && single ? this->Shared.data() : nullptr;
       a.CoveredFraction = op.CoveredFraction.data();
       a.Excluded = op.Options.ExcludedSourceCells;
       if (op.Options.KeepPieces)
@@ -347,10 +415,6 @@ struct MortarOperator::Session
     for (int k = 0; k < tasks; ++k)
     {
       Assembler& a = this->Assemblers[k];
-      for (const auto& entry : a.Deferred)
-      {
-        op.TargetMass.Values[entry.first] += entry.second;
-      }
       for (const auto& entry : a.DeferredRhs)
       {
         op.Rhs[entry.first] += entry.second;
@@ -392,36 +456,8 @@ struct MortarOperator::Session
       AssembleMixedMatrix(this->Blocks, rows, SpaceSize(SourceSpace::Type, source), runner, op.MixedMass);
     }
     std::vector<MixedBlocks>().swap(this->Blocks);
-    // A function is valid when its support meets the source: its diagonal
-    // entry of the covered mass matrix is positive. An invalid function's
-    // whole row is zero (no piece touches its support); a 1 on the diagonal
-    // decouples it.
-    op.Valid.resize(static_cast<size_t>(rows));
-    op.RowSums.resize(static_cast<size_t>(rows));
-    op.NumberOfValid += runner.ForRanges(rows, [&](Index begin, Index end) {
-      Index valid = 0;
-      for (Index i = begin; i < end; ++i)
-      {
-        double& diagonal = op.TargetMass.Values[op.TargetMass.Find(i, i)];
-        const bool isValid = diagonal > 0.0;
-        double sum = 0.0;
-        if (isValid)
-        {
-          ++valid;
-          for (Index p = op.TargetMass.RowStart[i]; p < op.TargetMass.RowStart[i + 1]; ++p)
-          {
-            sum += op.TargetMass.Values[p];
-          }
-        }
-        else
-        {
-          diagonal = 1.0;
-        }
-        op.Valid[i] = isValid ? 1 : 0;
-        op.RowSums[i] = sum;
-      }
-      return valid;
-    }, 16384);
+    op.Masses.Gather(this->Partial);
+    std::vector<PartialMasses>().swap(this->Partial);
     op.Timings.Assembly += Seconds(start);
   }
 };

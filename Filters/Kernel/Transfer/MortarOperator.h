@@ -21,9 +21,12 @@
  * they are reported invalid and receive a fill value (their rows of M_tt
  * hold a 1 on the diagonal).
  *
- * Build() takes the two geometries alone: it runs the search, sums M_tt
- * (compressed rows over the target space's pattern) and M_ts (compressed
- * rows, target functions x source functions). Apply() then projects any
+ * Build() takes the two geometries alone: it runs the search, which sums
+ * M_ts (compressed rows, target functions x source functions) and leaves
+ * per target cell what M_tt takes from it, then assembles M_tt (compressed
+ * rows over the target space's pattern) from the target alone
+ * (MassMatrix.h; OperatorOptions::DeferTargetMass lets the caller free the
+ * source first). Apply() then projects any
  * field, as often as wanted: M_ts u_s, then the block conjugate gradients
  * (BlockCG.h). Both matrices can be read out.
  *
@@ -43,6 +46,7 @@
 #include "Search/SearchStatistics.h"
 #include "Transfer/BlockCG.h"
 #include "Transfer/CsrMatrix.h"
+#include "Transfer/MassMatrix.h"
 #include "Transfer/Space.h"
 
 #include <memory>
@@ -80,6 +84,17 @@ struct OperatorOptions
   /// Progress of the search, and a way to stop it (Tasks.h); Build() then
   /// returns false with GetError() "stopped".
   ProgressHook Progress;
+  /**
+   * Build() and BuildTogether() stop after the search: M_tt (and with it
+   * the valid functions, the covered integrals and the solver) is
+   * assembled by CompleteTargetMass(), which needs the target's geometry
+   * only. A caller can give back the source's arrays and both meshes'
+   * neighbours in between, so that they and M_tt are never alive at once.
+   * Until then the operator holds only what M_tt takes from each target
+   * cell (MassMatrix.h: a byte per cell, and the blocks of the cells covered
+   * in part).
+   */
+  bool DeferTargetMass = false;
 };
 
 /// How Apply() turns the right-hand sides into the projected field.
@@ -121,8 +136,8 @@ struct ApplyOptions
 /// Wall-clock seconds of the stages of Build() and of the last Apply().
 struct OperatorTimings
 {
-  double Search = 0;   ///< pair search + intersections + local blocks + M_tt sums
-  double Assembly = 0; ///< the M_tt pattern, M_ts from the blocks, valid functions
+  double Search = 0;   ///< pair search + intersections + local blocks + right-hand sides
+  double Assembly = 0; ///< M_tt, M_ts from the blocks, valid functions
   double Solve = 0;    ///< the last Apply() (M_ts u_s and the solve)
 };
 
@@ -159,6 +174,15 @@ public:
   static bool BuildTogether(const std::vector<MortarOperator*>& operators,
     const std::vector<OperatorOptions>& options, const MeshView& target, const MeshView& source,
     CandidateLocator* locator);
+
+  /**
+   * After a Build() or BuildTogether() with OperatorOptions::DeferTargetMass:
+   * assembles M_tt on `target` (the same target, with its geometry; its
+   * neighbours and the source are no longer read), then the valid
+   * functions, the covered integrals and the solver. Does nothing when they
+   * are there already or the build failed.
+   */
+  void CompleteTargetMass(const MeshView& target);
 
   /**
    * Projects a source field (source functions x `components`, row-major)
@@ -240,6 +264,8 @@ private:
 
   OperatorOptions Options;
   CsrMatrix TargetMass;
+  CellMasses Masses; ///< from the search until M_tt is assembled
+  bool MassPending = false; ///< the search is done, M_tt not assembled yet
   CsrMatrix MixedMass;
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;

@@ -54,7 +54,11 @@ struct P1Space
   /// The functions on mesh cell c, from the mesh alone (any order).
   static void MeshCellDofs(const MeshView& mesh, Index c, Index (&dofs)[Dofs])
   {
-    std::copy(mesh.Cell(c), mesh.Cell(c) + Dofs, dofs);
+    const CellCorners ids = mesh.Cell(c);
+    for (int k = 0; k < Dofs; ++k)
+    {
+      dofs[k] = ids[k];
+    }
   }
   /// The functions on a prepared cell, in the order of Basis().
   template <class Cell>
