@@ -2521,7 +2521,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // Per kernel point of the target, the largest covered fraction of the
   // cells around it (for the valid point mask): computed here when the
   // target's geometry goes before the solves (below), else with the mask.
-  const std::vector<double>& fraction = first->GetCoveredFraction();
+  const mp::LargeVector<double>& fraction = first->GetCoveredFraction();
   std::vector<double> most;
   bool haveMost = false;
   auto pointCover = [&]() {

@@ -531,9 +531,19 @@ void SimplexMesh::OrderInSpace()
   // The copy in the kernel's own arrays (on huge pages, without the offsets
   // and cell types a VTK grid would add: nothing reads it as one).
   mp::LargeBuffer<double> coordinates(3 * static_cast<size_t>(np)); // written whole by RenumberMesh
-  mp::LargeBuffer<mp::Index> connectivity(corners * static_cast<size_t>(n));
-  // The parents overwrite the cell order (no array of their own).
-  mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
+  // The parents overwrite the cell order (no array of their own). Point ids
+  // in 32 bits below 2^31 points: half the memory of the copy's cells.
+  const bool narrow = np < std::numeric_limits<std::int32_t>::max();
+  mp::LargeBuffer<mp::Index> connectivity(narrow ? 0 : corners * static_cast<size_t>(n));
+  mp::LargeBuffer<std::int32_t> connectivity32(narrow ? corners * static_cast<size_t>(n) : 0);
+  if (narrow)
+  {
+    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity32.data(), order.Cells.data(), runner);
+  }
+  else
+  {
+    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
+  }
   // The kernel sees the copy; P0 functions and the pieces' ids still name
   // the dataset's cells (through Parent), P1 ones name kernel points
   // (DataSetPoint maps them back).
@@ -544,29 +554,10 @@ void SimplexMesh::OrderInSpace()
   }
   this->ParentIds.swap(order.Cells);
   this->Kernel.Parent = this->ParentIds.data();
-  if (np < std::numeric_limits<std::int32_t>::max())
-  {
-    // Point ids in 32 bits: half the memory of the copy's cells.
-    mp::LargeBuffer<std::int32_t> narrow(corners * static_cast<size_t>(n)); // written whole below
-    const mp::Index* wide = connectivity.data();
-    std::int32_t* to = narrow.data();
-    runner.ForRanges(corners * n, [wide, to](mp::Index begin, mp::Index end) {
-      for (mp::Index i = begin; i < end; ++i)
-      {
-        to[i] = static_cast<std::int32_t>(wide[i]);
-      }
-      return 0;
-    }, mp::Index(1) << 16);
-    connectivity = mp::LargeBuffer<mp::Index>();
-    this->OrderedConnectivity32.swap(narrow);
-    this->Kernel.Connectivity = nullptr;
-    this->Kernel.Connectivity32 = this->OrderedConnectivity32.data();
-  }
-  else
-  {
-    this->OrderedConnectivity.swap(connectivity);
-    this->Kernel.Connectivity = this->OrderedConnectivity.data();
-  }
+  this->OrderedConnectivity.swap(connectivity);
+  this->OrderedConnectivity32.swap(connectivity32);
+  this->Kernel.Connectivity = narrow ? nullptr : this->OrderedConnectivity.data();
+  this->Kernel.Connectivity32 = narrow ? this->OrderedConnectivity32.data() : nullptr;
   this->OrderedPoints.swap(coordinates);
   this->Kernel.Points = this->OrderedPoints.data();
   this->OriginalPoints = this->Kernel.Points;

@@ -137,8 +137,9 @@ struct Copy
   std::vector<Index> Parent;
 };
 
+/// `narrow`: the cells renumbered into 32-bit ids (then widened into c.Cells).
 Copy RenumberWith(const TestMesh& m, const mp::LargeVector<Index>& cells, const mp::TaskRunner& runner,
-  const std::vector<Index>* parents = nullptr, bool inPlace = false)
+  const std::vector<Index>* parents = nullptr, bool inPlace = false, bool narrow = false)
 {
   Copy c;
   c.Order.Cells = cells;
@@ -159,6 +160,13 @@ Copy RenumberWith(const TestMesh& m, const mp::LargeVector<Index>& cells, const 
     return c;
   }
   c.Parent.resize(cells.size());
+  if (narrow)
+  {
+    std::vector<std::int32_t> ids(m.Cells.size(), -1);
+    mp::RenumberMesh(view, c.Order, c.Points.data(), ids.data(), c.Parent.data(), runner);
+    c.Cells.assign(ids.begin(), ids.end());
+    return c;
+  }
   mp::RenumberMesh(view, c.Order, c.Points.data(), c.Cells.data(), c.Parent.data(), runner);
   return c;
 }
@@ -257,6 +265,7 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
     for (const mp::LargeVector<Index>* cells : { &serial.Cells, &random })
     {
       const Copy expected = RenumberWith(m, *cells, mp::TaskRunner());
+      EXPECT_EQ(RenumberWith(m, *cells, mp::TaskRunner(), nullptr, false, true).Cells, expected.Cells);
       // The serial copy: points in first-use order, unused ones last.
       Index next = 0;
       for (Index id : expected.Cells)
@@ -303,6 +312,12 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
             EXPECT_EQ(c.Points, expected.Points) << what;
             EXPECT_EQ(c.Parent, expected.Parent) << what;
           }
+          // 32-bit ids (what the filter's copies hold): the same numbering.
+          const Copy narrow = RenumberWith(m, *cells, runner, nullptr, false, true);
+          EXPECT_EQ(narrow.Order.Points, expected.Order.Points) << what << ", 32 bits";
+          EXPECT_EQ(narrow.Cells, expected.Cells) << what << ", 32 bits";
+          EXPECT_EQ(narrow.Points, expected.Points) << what << ", 32 bits";
+          EXPECT_EQ(narrow.Parent, expected.Parent) << what << ", 32 bits";
           const Copy inPlace = RenumberWith(m, *cells, runner, &parents, true);
           EXPECT_EQ(inPlace.Order.Points, expected.Order.Points) << what << ", in place";
           EXPECT_EQ(inPlace.Cells, expected.Cells) << what << ", in place";
@@ -448,7 +463,8 @@ TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
       mp::BoxGridLocator locator(source.View());
       mp::MortarOperator op;
       EXPECT_TRUE(op.Build(view, source.View(), &locator, mp::OperatorOptions()));
-      return op.GetCoveredFraction();
+      const mp::LargeVector<double>& f = op.GetCoveredFraction();
+      return std::vector<double>(f.begin(), f.end());
     };
     const std::vector<double> plain = fractions(target.View());
     mp::MeshView view = t.Mesh.View();

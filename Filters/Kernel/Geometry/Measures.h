@@ -14,6 +14,7 @@
 #define MeshProjection_Kernel_Measures_h
 
 #include "Geometry/Intersectors.h"
+#include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/Tasks.h"
 
@@ -52,15 +53,15 @@ inline std::vector<double> ParentMeasures(const MeshView& mesh)
 
 /// Per original cell, the covered fraction of its measure, from the
 /// covered fraction of each of its simplices.
-inline std::vector<double> ParentFractions(
-  const MeshView& mesh, const std::vector<double>& fraction, const TaskRunner& runner = TaskRunner())
+inline LargeVector<double> ParentFractions(
+  const MeshView& mesh, const LargeVector<double>& fraction, const TaskRunner& runner = TaskRunner())
 {
   if (mesh.Parent && mesh.OneCellPerParent)
   {
     // Only renumbered: each parent's fraction is its one simplex's (already
     // at most 1; 0 for a simplex of no measure, which the search skips),
     // moved in `runner`'s tasks (each parent written once).
-    std::vector<double> moved(static_cast<size_t>(mesh.Parents()), 0.0);
+    LargeVector<double> moved(static_cast<size_t>(mesh.Parents()), 0.0);
     runner.ForRanges(mesh.NumberOfCells, [&](Index begin, Index end) {
       for (Index c = begin; c < end; ++c)
       {
@@ -71,7 +72,7 @@ inline std::vector<double> ParentFractions(
     return moved;
   }
   std::vector<double> measure(static_cast<size_t>(mesh.Parents()), 0.0);
-  std::vector<double> covered(measure.size(), 0.0);
+  LargeVector<double> covered(measure.size(), 0.0);
   ForEachCellMeasure(mesh, [&](Index c, double m) {
     const size_t p = static_cast<size_t>(mesh.ParentOf(c));
     measure[p] += m;

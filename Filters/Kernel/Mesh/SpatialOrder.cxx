@@ -2,6 +2,7 @@
 #include "Mesh/SpatialOrder.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -322,8 +323,11 @@ double ChainedFraction(const MeshView& mesh)
   return static_cast<double>(chained) / static_cast<double>(samples);
 }
 
-void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
-  Index* connectivity, Index* parent, const TaskRunner& runner)
+namespace
+{
+template <class Id>
+void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out,
+  Index* parent, const TaskRunner& runner)
 {
   const Index n = mesh.NumberOfCells;
   const Index np = mesh.NumberOfPoints;
@@ -336,9 +340,10 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   // task (an atomic exchange of a larger value for a smaller one), so in
   // the end each point is claimed by the first range using it, at its
   // first use there; the ranges' surviving claims, one range after the
-  // other, are then exactly the serial first-use order. Connectivity holds
-  // claims until they are resolved to the new ids (with one task, the
-  // claims are the new ids).
+  // other, are then exactly the serial first-use order. With one task the
+  // claims are the new ids, written into `out` at once; with several `out`
+  // holds the old ids until every claim is resolved (32 bits are enough for
+  // either: no task bits), then the new ones.
   constexpr int Shift = 40;
   constexpr Index Local = (Index(1) << Shift) - 1;
   constexpr Index Unclaimed = std::numeric_limits<Index>::max();
@@ -408,7 +413,7 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
             }
           }
         }
-        connectivity[corners * c + k] = value;
+        out[corners * c + k] = static_cast<Id>(tasks == 1 ? value : ids[k]);
       }
       parent[c] = mesh.ParentOf(old);
     }
@@ -441,37 +446,28 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
       offset[t + 1] += offset[t];
     }
     next = offset[tasks];
-    // Surviving claims become new ids (below 2^Shift: no task's claim), and
-    // their list entries the new id with a mark; the others are looked up
-    // once every task has written its new ids.
-    constexpr Index Resolved = Index(1) << 62;
+    // Surviving claims become new ids (below 2^Shift: no task's claim):
+    // each point's slot then holds its new id, by which the cells' old ids
+    // are replaced once every task has written its own.
     runner.RunAll(tasks, [&](int t) {
       const Index mine = (Index(t) + 1) << Shift;
       Index id = offset[t];
-      LargeVector<Index>& list = claimed[t];
+      const LargeVector<Index>& list = claimed[t];
       for (size_t i = 0; i < list.size(); ++i)
       {
         const Index p = list[i];
         if (__atomic_load_n(claim + p, __ATOMIC_RELAXED) == (mine | static_cast<Index>(i)))
         {
           order.Points[id] = p;
-          __atomic_store_n(claim + p, id, __ATOMIC_RELAXED);
-          list[i] = id++ | Resolved;
+          __atomic_store_n(claim + p, id++, __ATOMIC_RELAXED);
         }
-      }
-    });
-    runner.RunAll(tasks, [&](int t) {
-      for (Index& entry : claimed[t])
-      {
-        entry = (entry & Resolved) ? entry & ~Resolved : claim[entry];
       }
     });
     runner.RunAll(tasks, [&](int t) {
       const Index end = corners * RangeBegin(n, t + 1, tasks);
       for (Index i = corners * RangeBegin(n, t, tasks); i < end; ++i)
       {
-        const Index value = connectivity[i];
-        connectivity[i] = claimed[(value >> Shift) - 1][value & Local];
+        out[i] = static_cast<Id>(claim[static_cast<Index>(out[i])]);
       }
     });
   }
@@ -497,5 +493,18 @@ void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
     }
     return 0;
   });
+}
+} // namespace
+
+void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
+  Index* connectivity, Index* parent, const TaskRunner& runner)
+{
+  Renumber(mesh, order, points, connectivity, parent, runner);
+}
+
+void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
+  std::int32_t* connectivity, Index* parent, const TaskRunner& runner)
+{
+  Renumber(mesh, order, points, connectivity, parent, runner);
 }
 } // namespace mp

@@ -91,6 +91,9 @@ double ChainedFraction(const MeshView& mesh);
  */
 void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   Index* connectivity, Index* parent, const TaskRunner& runner = TaskRunner());
+/// The same with the new connectivity in 32 bits (a mesh of fewer than 2^31 points).
+void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
+  std::int32_t* connectivity, Index* parent, const TaskRunner& runner = TaskRunner());
 
 } // namespace mp
 

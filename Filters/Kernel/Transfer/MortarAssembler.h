@@ -98,9 +98,8 @@ struct MortarAssembler
   float* MassState = nullptr;
   PartialMasses* Partial = nullptr; ///< ... and the blocks of cells covered in part (this task's)
   MixedBlocks* Blocks = nullptr; ///< this task's mixed blocks
-  /// Per target kernel cell (per original cell when each is one simplex:
-  /// MeshView::OneCellPerParent): the covered fraction of its measure,
-  /// written when its last piece has come (each cell belongs to one task).
+  /// Per target kernel cell: the covered fraction of its measure, written
+  /// when its last piece has come (each cell belongs to one task).
   double* CoveredFraction = nullptr;
   double CoveredSum = 0.0; ///< measure of all pieces of this task
   Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
@@ -171,12 +170,7 @@ struct MortarAssembler
     const double covered = this->Moments[0][0];
     const double fraction = covered / this->CurrentCell.Measure;
     this->Overcovered += fraction > 1.0 + 1e-9;
-    // (A renumbered target's cell writes its original cell's fraction: the
-    // same place as ParentFractions would move it to, without a second array.)
-    const MeshView& target = *this->Target;
-    this->CoveredFraction[target.Parent && target.OneCellPerParent ? target.Parent[this->Current]
-                                                                   : this->Current] =
-      std::min(1.0, fraction);
+    this->CoveredFraction[this->Current] = std::min(1.0, fraction);
     this->CoveredSum += covered;
     const Index current = this->Current;
     this->Current = -1;

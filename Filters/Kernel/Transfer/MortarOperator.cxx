@@ -207,12 +207,6 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
       built = false;
       continue;
     }
-    if (target.Parent && !target.OneCellPerParent)
-    {
-      // Split cells: the covered fraction of each original cell (cells only
-      // renumbered have theirs in place already: MortarAssembler::Flush).
-      op->CoveredFraction = ParentFractions(target, op->CoveredFraction, op->Options.Runner);
-    }
     op->MassPending = true;
     if (!op->Options.DeferTargetMass)
     {
@@ -231,6 +225,14 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
   this->MassPending = false;
   auto start = std::chrono::steady_clock::now();
   const TaskRunner& runner = this->Options.Runner;
+  if (target.Parent)
+  {
+    // Split or renumbered cells: the covered fraction of each original cell
+    // (here rather than right after the search: with DeferTargetMass the
+    // Source's arrays are gone by now, and the two arrays of fractions take
+    // no room from the search's).
+    this->CoveredFraction = ParentFractions(target, this->CoveredFraction, runner);
+  }
   AssembleTargetMass(this->Options.TargetSpace, target, &this->Masses, runner, this->TargetMass);
   this->Masses = CellMasses();
   // A function is valid when its support meets the source: its diagonal

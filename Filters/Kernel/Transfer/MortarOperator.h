@@ -236,8 +236,9 @@ public:
   const std::vector<char>& GetValid() const { return this->Valid; }
   Index GetNumberOfValid() const { return this->NumberOfValid; }
   /// Per target cell: the covered fraction of its measure (per original
-  /// cell when the target's simplices have parents; 0 for a parent without any).
-  const std::vector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
+  /// cell when the target's simplices have parents, once M_tt is there:
+  /// CompleteTargetMass; 0 for a parent without any).
+  const LargeVector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
   /// Per source cell (kernel numbering): the measure of its part the pieces
   /// cover, measured on the source cell (for surfaces and curves through
   /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
@@ -273,7 +274,7 @@ private:
   std::vector<char> Valid;
   std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;
-  std::vector<double> CoveredFraction;
+  LargeVector<double> CoveredFraction; ///< (given back to the system when replaced)
   LargeVector<double> SourceCovered;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
