@@ -167,24 +167,30 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
   double* values = matrix.Values.data();
   const Index entries = rowStart[points];
   // Adds block row `a` of a cell on functions `dofs` into row dofs[a]. Each
-  // column is found in the row: among its first 8 entries by two vector
-  // compares (no branch to mispredict: most rows have 7 entries in 2D),
-  // else by a scan.
+  // column is found among the row's first 8 (2D: most rows have 7 entries)
+  // or 16 entries (3D: about 15) by vector compares, with no branch to
+  // mispredict; else by a scan.
   auto addRow = [=](const Index* dofs, int a, const double* row) {
     const Index begin = rowStart[dofs[a]];
-    const bool short8 = rowStart[dofs[a] + 1] - begin <= 8 && begin + 8 <= entries;
+    const Index length = rowStart[dofs[a] + 1] - begin;
+    const int width = length <= 8 && begin + 8 <= entries ? 8 : (length <= 16 && begin + 16 <= entries ? 16 : 0);
     for (int b = 0; b < n; ++b)
     {
       const auto q = static_cast<Column>(dofs[b]);
 #if defined(__SSE2__)
-      if (short8)
+      if (width > 0)
       {
         const __m128i want = _mm_set1_epi32(q);
-        const __m128i low = _mm_loadu_si128(reinterpret_cast<const __m128i*>(columns + begin));
-        const __m128i high = _mm_loadu_si128(reinterpret_cast<const __m128i*>(columns + begin + 4));
-        const int mask = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(low, want))) |
-          (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(high, want))) << 4);
-        values[begin + __builtin_ctz(static_cast<unsigned>(mask))] += row[b];
+        auto match = [&](int at) {
+          const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(columns + begin + at));
+          return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, want)))) << at;
+        };
+        unsigned mask = match(0) | match(4);
+        if (width == 16)
+        {
+          mask |= match(8) | match(12);
+        }
+        values[begin + __builtin_ctz(mask)] += row[b];
         continue;
       }
 #endif
