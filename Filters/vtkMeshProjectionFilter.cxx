@@ -2299,6 +2299,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // cells left out are the same). byArray[t][a]: the operator of array a.
   std::vector<const mp::MortarOperator*> byArray[4];
   std::vector<std::unique_ptr<mp::MortarOperator>> holeFresh;
+  // The hole operators this execution builds (their M_tt comes later, as the others').
+  std::vector<mp::MortarOperator*> holeBuilt;
   std::set<std::pair<int, std::uint64_t>> holesUsed;
   for (int t = 0; t < 4; ++t)
   {
@@ -2329,6 +2331,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         holeOptions.Fields = assembled ? nullptr : hole.Values.data();
         holeOptions.FieldComponents = assembled ? 0 : hole.Components;
         holeOptions.Progress = [&progress](double) { return progress(0.9); };
+        holeOptions.DeferTargetMass = true; // (completed with the others, below)
         std::unique_ptr<mp::MortarOperator> made(new mp::MortarOperator);
         const bool ok =
           made->Build(targetMesh.View(), sourceMesh.View(), run.Locator.get(), holeOptions);
@@ -2341,6 +2344,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         this->AssemblyTime += made->GetTimings().Assembly;
         ++this->NumberOfOperatorsBuilt;
         op = made.get();
+        holeBuilt.push_back(made.get());
         if (this->CacheOperator && made->HasMixedMass())
         {
           kept.Holes[key] = std::move(made);
@@ -2555,9 +2559,20 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     run.Locator.reset();
     sourceMesh.ReleaseGeometry();
-    if (!assembled)
+    // The point order and parents too when no operator of this execution
+    // will be kept (GetMatrix maps a kept one's columns through them).
+    bool keeps = false;
+    for (int t = 0; t < 4; ++t)
     {
-      sourceMesh.ReleaseOrder(); // no operator of this execution is kept
+      keeps = keeps || (fresh[t] && this->CacheOperator && fresh[t]->HasMixedMass());
+    }
+    for (const mp::MortarOperator* op : holeBuilt)
+    {
+      keeps = keeps || (this->CacheOperator && op->HasMixedMass());
+    }
+    if (!keeps)
+    {
+      sourceMesh.ReleaseOrder();
     }
   }
   // M_tt of the operators built by this execution, on the target alone:
@@ -2567,10 +2582,14 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   {
     if (fresh[t])
     {
-      const double before = fresh[t]->GetTimings().Assembly;
-      fresh[t]->CompleteTargetMass(targetMesh.View());
-      this->AssemblyTime += fresh[t]->GetTimings().Assembly - before;
+      holeBuilt.push_back(fresh[t].get());
     }
+  }
+  for (mp::MortarOperator* op : holeBuilt)
+  {
+    const double before = op->GetTimings().Assembly;
+    op->CompleteTargetMass(targetMesh.View());
+    this->AssemblyTime += op->GetTimings().Assembly - before;
   }
   if (run.LastLeaf && !this->OutputIntersections && !this->Parts && targetMesh.OwnsGeometry())
   {

@@ -343,6 +343,22 @@ st2, _, pt2 = shuffled(t2, 5)
 bounded.SetInputData(st2)
 bounded.Update()
 same_matrices("kept after Input changed", plain, bounded, pt2, same_s)
+# A Source without arrays: the point transfer is assembled all the same
+# (the mask and coverage), and kept; the Source's point order, which its
+# columns are mapped back through, must outlive the release of its
+# geometry (dropping it with the geometry fails this).
+bare = vtkUnstructuredGrid()
+bare.DeepCopy(s2)
+bare.GetPointData().Initialize()
+bare.GetCellData().Initialize()
+kept = vtkMeshProjectionFilter()
+kept.SetRenumbering(ALWAYS)
+kept.SetInputData(t2)
+kept.SetSourceData(bare)
+kept.Update()
+check(kept.GetNumberOfRenumberedMeshes() == 2, "no arrays: renumbered %d meshes" % kept.GetNumberOfRenumberedMeshes())
+check(kept.GetNumberOfOperatorsBuilt() == 1, "no arrays: built %d operators" % kept.GetNumberOfOperatorsBuilt())
+same_matrices("no Source arrays, kept at the first execution", plain, kept, same_t, same_s)
 print("matrices of operators kept at once: in the datasets' numbering")
 
 

@@ -93,8 +93,8 @@ struct MeshView
   const NeighborId* Neighbors = nullptr; ///< (CellDimension + 1) * NumberOfCells cell ids or -1
   /// The cells around each point, when the neighbours' construction kept
   /// them (CellNeighbors.h): M_tt's pattern reads them instead of building
-  /// them again, and empties them (their memory back before the search).
-  /// Null: not kept.
+  /// them again, and empties them. Null: not kept (the filter does not keep
+  /// them: M_tt comes after the search, which they would take room from).
   PointCells* Around = nullptr;
   /**
    * Surfaces in 3D (CellDimension 2, SpaceDimension 3) and curves

@@ -272,8 +272,9 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
 }
 
 /**
- * One operator's share of a search: its M_tt pattern, the marks of its
- * target functions shared by tasks, one assembler per task with its blocks,
+ * One operator's share of a search: what M_tt takes from each target cell
+ * (assembled after the search), the marks of its target functions shared
+ * by tasks, one assembler per task with its blocks,
  * pieces and source cover, and what follows the search. Several sessions
  * take the pieces of one search (MortarOperator::BuildTogether), each
  * summing them in the order a search of its own would.
@@ -309,8 +310,9 @@ struct MortarOperator::Session
     op.Masses.State.resize(static_cast<size_t>(cells));
     runner.Fill(op.Masses.State.data(), cells, CellMasses::None, Index(1) << 16);
     this->Partial.resize(static_cast<size_t>(tasks));
-    // Target functions on cells of more than one task: their M_tt rows are
-    // summed after the tasks (MortarAssembler::Shared).
+    // Target functions on cells of more than one task: their right-hand
+    // sides are summed after the tasks (MortarAssembler::Shared; fields
+    // given at Build only).
     // Each task marks the functions of its cells with its number (plus one)
     // where no task has yet; a function found marked by another task is
     // shared. (Relaxed atomics: of two tasks marking at once, one sees the

@@ -90,9 +90,10 @@ struct OperatorOptions
    * assembled by CompleteTargetMass(), which needs the target's geometry
    * only. A caller can give back the source's arrays and both meshes'
    * neighbours in between, so that they and M_tt are never alive at once.
-   * Until then the operator holds only what M_tt takes from each target
-   * cell (MassMatrix.h: a byte per cell, and the blocks of the cells covered
-   * in part).
+   * Until then the operator holds, for M_tt, only what it takes from each
+   * target cell (MassMatrix.h: a float per cell, and the blocks of the cells
+   * covered in part), besides its right-hand sides or M_ts and the covered
+   * fractions (per kernel cell until then).
    */
   bool DeferTargetMass = false;
 };
