@@ -18,6 +18,14 @@ using mptest::TestMesh;
 
 namespace
 {
+/// A named target and source.
+struct MeshPair
+{
+  const char* Name;
+  TestMesh Target;
+  TestMesh Source;
+};
+
 struct Projection
 {
   mp::MortarOperator Projector;
@@ -610,12 +618,6 @@ TEST(MortarProjector, ExcludedSourceCellsAreAHole)
 // or M_ts assembled, on one task or several, in 2D, 3D and on surfaces.
 TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
 {
-  struct Pair
-  {
-    const char* Name;
-    TestMesh Target;
-    TestMesh Source;
-  };
   TestMesh shiftedCube = mptest::CubeMesh(6, 5, 7, 0.2, 122);
   for (size_t i = 0; i < shiftedCube.Points.size(); ++i)
   {
@@ -626,13 +628,13 @@ TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
   TestMesh uv = mptest::UvSphere(12, 19);
   sphere.Finish();
   uv.Finish();
-  const Pair pairs[] = { { "2D", mptest::GridMesh(17, 15, 0.25, 111, 0, 0, 1, 1, LShapeWithHole),
+  const MeshPair pairs[] = { { "2D", mptest::GridMesh(17, 15, 0.25, 111, 0, 0, 1, 1, LShapeWithHole),
                            mptest::GridMesh(13, 19, 0.25, 112, -0.1, 0.05, 1, 1, LShapeWithHole) },
     { "3D", mptest::CubeMesh(7, 6, 5, 0.2, 121), shiftedCube }, { "surface", sphere, uv } };
   const mp::SpaceType spaces[4][2] = { { mp::SpaceType::P1, mp::SpaceType::P1 },
     { mp::SpaceType::P1, mp::SpaceType::P0 }, { mp::SpaceType::P0, mp::SpaceType::P1 },
     { mp::SpaceType::P0, mp::SpaceType::P0 } };
-  for (const Pair& pair : pairs)
+  for (const MeshPair& pair : pairs)
   {
     const mp::MeshView target = pair.Target.View();
     const mp::MeshView source = pair.Source.View();
@@ -781,18 +783,12 @@ TEST(MortarProjector, SolveProgressAndStop)
 // source's boundary and hole cut target cells) and 3D.
 TEST(MortarProjector, TargetMassAfterTheSearch)
 {
-  struct Pair
-  {
-    const char* Name;
-    TestMesh Target;
-    TestMesh Source;
-  };
   TestMesh shifted = mptest::CubeMesh(5, 6, 5, 0.2, 131);
   mptest::Move3D(shifted, 0.1, 0.05, 0.9, 0.1, 0.05, -0.05);
-  const Pair pairs[] = { { "2D", mptest::GridMesh(31, 27, 0.25, 141, 0, 0, 1, 1, LShapeWithHole),
+  const MeshPair pairs[] = { { "2D", mptest::GridMesh(31, 27, 0.25, 141, 0, 0, 1, 1, LShapeWithHole),
                            mptest::GridMesh(23, 29, 0.25, 142, -0.1, 0.05, 1, 1, LShapeWithHole) },
     { "3D", mptest::CubeMesh(6, 5, 6, 0.2, 132), shifted } };
-  for (const Pair& pair : pairs)
+  for (const MeshPair& pair : pairs)
   {
     const mp::MeshView target = pair.Target.View();
     const mp::MeshView source = pair.Source.View();

@@ -252,28 +252,22 @@ double NumberingSpread(const MeshView& mesh)
   const Index samples = std::min<Index>(n - 1, 4096);
   std::vector<Index> spread(static_cast<size_t>(samples));
   std::vector<Index> jump(static_cast<size_t>(samples));
-  auto lowest = [&](Index c) {
+  // The lowest and highest point ids of cell c.
+  auto extremes = [&](Index c) {
     const CellCorners ids = mesh.Cell(c);
-    Index low = ids[0];
+    std::pair<Index, Index> e(ids[0], ids[0]);
     for (int k = 1; k < corners; ++k)
     {
-      low = std::min(low, ids[k]);
+      e.first = std::min(e.first, ids[k]);
+      e.second = std::max(e.second, ids[k]);
     }
-    return low;
+    return e;
   };
-  auto highest = [&](Index c) {
-    const CellCorners ids = mesh.Cell(c);
-    Index high = ids[0];
-    for (int k = 1; k < corners; ++k)
-    {
-      high = std::max(high, ids[k]);
-    }
-    return high;
-  };
+  auto lowest = [&](Index c) { return extremes(c).first; };
   for (Index s = 0; s < samples; ++s)
   {
     const Index c = (n - 1) * s / samples;
-    spread[s] = highest(c) - lowest(c);
+    spread[s] = extremes(c).second - extremes(c).first;
     jump[s] = std::abs(lowest(c + 1) - lowest(c));
   }
   const auto middle = static_cast<std::ptrdiff_t>(samples / 2);
