@@ -58,7 +58,6 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     UninitializedLargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
     block.clear();
     block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
-
     // A row is the point itself and the other corners of its cells (in 2D
     // about 12 candidates for 7 columns, in 3D about 70 for 15). Each
     // candidate is written and kept unless seen[q] already names this row:
@@ -244,9 +243,9 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
       double block[4][4];
       for (int a = 0; a < n; ++a)
       {
-        for (int k = a; k < n; ++k)
+        for (int j = a; j < n; ++j)
         {
-          block[a][k] = block[k][a] = *b++;
+          block[a][j] = block[j][a] = *b++;
         }
       }
       for (int a = 0; a < n; ++a)
