@@ -2299,8 +2299,9 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // cells left out are the same). byArray[t][a]: the operator of array a.
   std::vector<const mp::MortarOperator*> byArray[4];
   std::vector<std::unique_ptr<mp::MortarOperator>> holeFresh;
-  // The hole operators this execution builds (their M_tt comes later, as the others').
-  std::vector<mp::MortarOperator*> holeBuilt;
+  // The operators this execution builds, whose M_tt comes once the Source
+  // is released (the hole operators added here, the others after them).
+  std::vector<mp::MortarOperator*> deferred;
   std::set<std::pair<int, std::uint64_t>> holesUsed;
   for (int t = 0; t < 4; ++t)
   {
@@ -2344,7 +2345,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         this->AssemblyTime += made->GetTimings().Assembly;
         ++this->NumberOfOperatorsBuilt;
         op = made.get();
-        holeBuilt.push_back(made.get());
+        deferred.push_back(made.get());
         if (this->CacheOperator && made->HasMixedMass())
         {
           kept.Holes[key] = std::move(made);
@@ -2542,6 +2543,13 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     haveMost = true;
   };
+  for (int t = 0; t < 4; ++t)
+  {
+    if (fresh[t])
+    {
+      deferred.push_back(fresh[t].get());
+    }
+  }
   // The last leaf's meshes are read again by the outputs only: what those
   // take from them is taken now, and the meshes' own arrays (a renumbered
   // copy, neighbours, the Source's locator) go before the solves need
@@ -2562,11 +2570,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     // The point order and parents too when no operator of this execution
     // will be kept (GetMatrix maps a kept one's columns through them).
     bool keeps = false;
-    for (int t = 0; t < 4; ++t)
-    {
-      keeps = keeps || (fresh[t] && this->CacheOperator && fresh[t]->HasMixedMass());
-    }
-    for (const mp::MortarOperator* op : holeBuilt)
+    for (const mp::MortarOperator* op : deferred)
     {
       keeps = keeps || (this->CacheOperator && op->HasMixedMass());
     }
@@ -2578,14 +2582,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // M_tt of the operators built by this execution, on the target alone:
   // the Source's arrays and both meshes' neighbours are gone by now when
   // nothing else reads them, so that they and M_tt are never alive at once.
-  for (int t = 0; t < 4; ++t)
-  {
-    if (fresh[t])
-    {
-      holeBuilt.push_back(fresh[t].get());
-    }
-  }
-  for (mp::MortarOperator* op : holeBuilt)
+  for (mp::MortarOperator* op : deferred)
   {
     const double before = op->GetTimings().Assembly;
     op->CompleteTargetMass(targetMesh.View());

@@ -267,7 +267,8 @@ double NumberingSpread(const MeshView& mesh)
   for (Index s = 0; s < samples; ++s)
   {
     const Index c = (n - 1) * s / samples;
-    spread[s] = extremes(c).second - extremes(c).first;
+    const std::pair<Index, Index> e = extremes(c);
+    spread[s] = e.second - e.first;
     jump[s] = std::abs(lowest(c + 1) - lowest(c));
   }
   const auto middle = static_cast<std::ptrdiff_t>(samples / 2);

@@ -3,6 +3,7 @@
 
 #include "Mesh/CellNeighbors.h"
 #include "Mesh/SortEight.h"
+#include "Mesh/Vec3.h"
 
 #include <algorithm>
 #if defined(__SSE2__)
@@ -265,38 +266,26 @@ double SimplexMeasure(const MeshView& mesh, Index c)
 {
   const CellCorners ids = mesh.Cell(c);
   const double* a = mesh.Point(ids[0]);
-  if (mesh.CellDimension == 2 && mesh.SpaceDimension == 2)
+  double e[3][3];
+  for (int k = 0; k < mesh.CellDimension; ++k)
   {
-    const double* b = mesh.Point(ids[1]);
-    const double* d = mesh.Point(ids[2]);
-    return 0.5 * std::fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
-  }
-  const int dims = mesh.SpaceDimension;
-  double e[3][3] = {};
-  for (int k = 1; k <= mesh.CellDimension; ++k)
-  {
-    const double* b = mesh.Point(ids[k]);
-    for (int d = 0; d < dims; ++d)
+    Sub(mesh.Point(ids[k + 1]), a, e[k]);
+    if (mesh.SpaceDimension == 2)
     {
-      e[k - 1][d] = b[d] - a[d];
+      e[k][2] = 0.0; // (a planar mesh's z is constant only to its flatness)
     }
   }
+  double n[3];
   switch (mesh.CellDimension)
   {
     case 1:
-      return std::sqrt(e[0][0] * e[0][0] + e[0][1] * e[0][1] + e[0][2] * e[0][2]);
+      return std::sqrt(Dot(e[0], e[0]));
     case 2:
-    {
-      const double x = e[0][1] * e[1][2] - e[0][2] * e[1][1];
-      const double y = e[0][2] * e[1][0] - e[0][0] * e[1][2];
-      const double z = e[0][0] * e[1][1] - e[0][1] * e[1][0];
-      return 0.5 * std::sqrt(x * x + y * y + z * z);
-    }
+      Cross(e[0], e[1], n);
+      return 0.5 * std::sqrt(Dot(n, n));
     default:
-      return std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-               e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
-        6.0;
+      Cross(e[1], e[2], n);
+      return std::fabs(Dot(e[0], n)) / 6.0;
   }
 }
 
