@@ -137,7 +137,7 @@ struct Fingerprint
       return;
     }
     std::vector<std::uint64_t> hashes(blocks);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(blocks), 1, [&](vtkIdType begin, vtkIdType end) {
+    mpvtk::For(0, static_cast<vtkIdType>(blocks), 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType k = begin; k < end; ++k)
       {
         const size_t from = static_cast<size_t>(k) * Block;
@@ -767,7 +767,7 @@ namespace
 template <class T>
 void CopyInThreads(const T* from, size_t n, T* to)
 {
-  vtkSMPTools::For(0, static_cast<vtkIdType>(n), 65536, [&](vtkIdType begin, vtkIdType end) {
+  mpvtk::For(0, static_cast<vtkIdType>(n), 65536, [&](vtkIdType begin, vtkIdType end) {
     std::copy(from + begin, from + end, to + begin);
   });
 }
@@ -883,11 +883,13 @@ void ForCellCornersInOrder(
 /**
  * Runs `work` (whose parallel loops report progress through run.Progress)
  * so that its progress reaches the pipeline's thread: with several SMP
- * threads no task need run on the calling thread (VTK's STDThread backend
- * runs them all on its pool), and the GUI takes progress events only from
- * the thread that runs the pipeline. So `work` runs on a thread of its own
- * while this one waits and passes on what the tasks report. An exception
- * in `work` is thrown again here.
+ * threads the task that reports need not run on the calling thread (VTK's
+ * STDThread backend runs them all on threads of its own; the execution's
+ * WorkerScope on any of its threads), and the GUI takes progress events
+ * only from the thread that runs the pipeline. So `work` runs on a thread
+ * of its own (with the execution's WorkerScope) while this one waits and
+ * passes on what the tasks report. An exception in `work` is thrown again
+ * here.
  */
 void Watched(vtkAlgorithm* filter, ProgressMailbox& box, const std::function<void()>& work)
 {
@@ -902,7 +904,9 @@ void Watched(vtkAlgorithm* filter, ProgressMailbox& box, const std::function<voi
   }
   bool done = false;
   std::exception_ptr failure;
+  mp::WorkerPool* pool = mpvtk::CurrentWorkers();
   std::thread worker([&]() {
+    mpvtk::WorkerScope workers(pool); // the execution's threads, from this one
     try
     {
       work();
@@ -1098,7 +1102,11 @@ int vtkMeshProjectionFilter::RequestData(
     config.Backend = "STDThread";
   }
   int result = 0;
-  vtkSMPTools::LocalScope(config, [&]() { result = this->Execute(inputVector, outputVector); });
+  vtkSMPTools::LocalScope(config, [&]() {
+    // Threads started once for the execution's loops (mpvtk::WorkerScope).
+    mpvtk::WorkerScope workers(vtkSMPTools::GetEstimatedNumberOfThreads());
+    result = this->Execute(inputVector, outputVector);
+  });
   return result;
 }
 
@@ -1361,7 +1369,7 @@ int vtkMeshProjectionFilter::Execute(
       vtkDataArray* array = g.Arrays[a];
       const int nc = array->GetNumberOfComponents();
       const int width = g.Components;
-      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+      mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType f = begin; f < end; ++f)
         {
           // Extensive values become densities (total / measure).
@@ -1607,7 +1615,7 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
     // The functions (points or cells) where a component is NaN or infinite.
     std::vector<char> bad(static_cast<size_t>(functions), 0);
     std::atomic<vtkIdType> values(0);
-    vtkSMPTools::For(0, functions, [&](vtkIdType begin, vtkIdType end) {
+    mpvtk::For(0, functions, [&](vtkIdType begin, vtkIdType end) {
       vtkIdType count = 0;
       for (vtkIdType f = begin; f < end; ++f)
       {
@@ -1635,7 +1643,7 @@ void vtkMeshProjectionFilter::FindNonFinite(Execution& run, int association)
     // The Source cells (kernel simplices) that use such a value.
     std::vector<char> excluded(static_cast<size_t>(view.NumberOfCells), 0);
     const int corners = view.CornersPerCell();
-    vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+    mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType c = begin; c < end; ++c)
       {
         if (association == 1)
@@ -2468,7 +2476,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       // The cells' measures in the filter's threads (0: degenerate), then
       // summed in cell order.
       mp::UninitializedLargeVector<double> measures(static_cast<size_t>(view.NumberOfCells));
-      vtkSMPTools::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+      mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
         std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
         mp::ForEachCellMeasure(
           view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
@@ -2513,7 +2521,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         // cells' parts in cell order, in one loop.
         if (!view.Parent || view.OneCellPerParent)
         {
-          vtkSMPTools::For(0, view.NumberOfCells, add);
+          mpvtk::For(0, view.NumberOfCells, add);
         }
         else
         {
@@ -2770,7 +2778,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     }
     validCopies.emplace_back(valid.size());
     std::vector<char>& copy = validCopies.back();
-    vtkSMPTools::For(0, static_cast<vtkIdType>(valid.size()), [&](vtkIdType begin, vtkIdType end) {
+    mpvtk::For(0, static_cast<vtkIdType>(valid.size()), [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType f = begin; f < end; ++f)
       {
         copy[static_cast<size_t>(targetMesh.DataSetPoint(f))] = valid[f];
@@ -2883,7 +2891,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
           }
         }
       }
-      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+      mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType f = begin; f < end; ++f)
         {
           const double scale = totals && op.GetValid()[f] ? covered[f] : 1.0;
@@ -2967,7 +2975,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     const mp::SolverHooks& shared = hooks[0];
     const size_t rows = static_cast<size_t>(target->GetNumberOfPoints());
     mp::UninitializedLargeVector<double> covered(std::max(most.size(), rows));
-    vtkSMPTools::For(0, static_cast<vtkIdType>(covered.size()), [&](vtkIdType begin, vtkIdType end) {
+    mpvtk::For(0, static_cast<vtkIdType>(covered.size()), [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
         covered[i] = static_cast<size_t>(i) < most.size() && most[i] >= 1e-3 ? 1.0 : 0.0;
@@ -3006,7 +3014,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   {
     // A point is valid when a cell around it meets the source.
     char* to = mask->GetPointer(0);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(most.size()), [&](vtkIdType begin, vtkIdType end) {
+    mpvtk::For(0, static_cast<vtkIdType>(most.size()), [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
         to[targetMesh.DataSetPoint(i)] = most[i] > 0 ? 1 : 0;

@@ -111,7 +111,7 @@ template <typename Wrong>
 vtkIdType FirstWhere(vtkIdType n, const Wrong& wrong)
 {
   std::atomic<vtkIdType> first(n);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+  mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end && i < first; ++i)
     {
       if (wrong(i))
@@ -389,11 +389,48 @@ bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array)
         (std::string(name) == "vtkOriginalPointIds" || std::string(name) == "vtkOriginalCellIds")));
 }
 
+namespace
+{
+/// This thread's WorkerScope's pool.
+thread_local mp::WorkerPool* Workers = nullptr;
+} // namespace
+
+WorkerScope::WorkerScope(int threads)
+  : Previous(Workers)
+{
+  if (threads > 1 && std::string(vtkSMPTools::GetBackend()) == "STDThread")
+  {
+    this->Owned.reset(new mp::WorkerPool(threads));
+    Workers = this->Owned.get();
+  }
+}
+
+WorkerScope::WorkerScope(mp::WorkerPool* pool)
+  : Previous(Workers)
+{
+  Workers = pool;
+}
+
+WorkerScope::~WorkerScope()
+{
+  Workers = this->Previous;
+}
+
+mp::WorkerPool* CurrentWorkers()
+{
+  return Workers;
+}
+
 mp::TaskRunner SMPTaskRunner()
 {
   mp::TaskRunner runner;
   runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
   runner.Run = [](int count, const std::function<void(int)>& task) {
+    if (mp::WorkerPool* pool = Workers)
+    {
+      pool->Run(count, task);
+      return;
+    }
     vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType k = begin; k < end; ++k)
       {
@@ -600,7 +637,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     else
     {
       data->GetPoint(0, x); // structured data: computes its points, thread-safe after the first
-      vtkSMPTools::For(0, np, [&](vtkIdType begin, vtkIdType end) {
+      mpvtk::For(0, np, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType p = begin; p < end; ++p)
         {
           data->GetPoint(p, x + 3 * p);

@@ -37,10 +37,14 @@
 #include "Mesh/MeshView.h"
 #include "Mesh/PlaneFrame.h"
 #include "Mesh/Tasks.h"
+#include "Mesh/WorkerPool.h"
 #include "Search/CandidateLocator.h"
 
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
+
+#include <algorithm>
 
 #include <memory>
 #include <string>
@@ -67,9 +71,76 @@ namespace mpvtk
  */
 std::string CheckDataSet(vtkDataSet* data, const std::string& role);
 
-/// The kernel's task runner on vtkSMPTools: one task per thread of the
-/// backend in use (the filter's own scope, see NumberOfThreads).
+/**
+ * The filter's threads for one execution. VTK 9.2's STDThread backend
+ * starts new threads for every vtkSMPTools::For (40-80 us on a 2-core
+ * virtual machine, for each of the ~150 loops of a projection); so while
+ * a WorkerScope is alive on a thread and STDThread is the backend in use,
+ * that thread's loops (SMPTaskRunner, For below) run on an mp::WorkerPool
+ * of as many threads as the backend would use, started once. Other
+ * backends (TBB, OpenMP: their own lasting pools) are used as they are.
+ */
+class WorkerScope
+{
+public:
+  /// A pool of `threads` threads (this one included) for this thread's
+  /// loops, when the backend is STDThread and `threads` > 1.
+  explicit WorkerScope(int threads);
+  /// Another thread of the same execution sharing `pool` (null: none).
+  explicit WorkerScope(mp::WorkerPool* pool);
+  ~WorkerScope();
+  WorkerScope(const WorkerScope&) = delete;
+  WorkerScope& operator=(const WorkerScope&) = delete;
+
+private:
+  std::unique_ptr<mp::WorkerPool> Owned;
+  mp::WorkerPool* Previous = nullptr;
+};
+
+/// The pool of the WorkerScope alive on this thread, or null.
+mp::WorkerPool* CurrentWorkers();
+
+/// The kernel's task runner: one task per thread of the backend in use
+/// (the filter's own scope, see NumberOfThreads), run on the calling
+/// thread's WorkerScope when it has one (looked up at each call: a kept
+/// operator's runner outlives the execution that made it), else by
+/// vtkSMPTools.
 mp::TaskRunner SMPTaskRunner();
+
+/**
+ * body(begin, end) over [first, last) in ranges of `grain` items (0: about
+ * four ranges per thread), concurrently: vtkSMPTools::For on the calling
+ * thread's WorkerScope when it has one.
+ */
+template <class Body>
+void For(vtkIdType first, vtkIdType last, vtkIdType grain, const Body& body)
+{
+  mp::WorkerPool* pool = CurrentWorkers();
+  if (!pool)
+  {
+    vtkSMPTools::For(first, last, grain, body);
+    return;
+  }
+  const vtkIdType n = last - first;
+  if (n <= 0)
+  {
+    return;
+  }
+  if (grain <= 0)
+  {
+    grain = std::max<vtkIdType>(1, n / (4 * pool->Threads()));
+  }
+  const vtkIdType count = (n + grain - 1) / grain;
+  pool->Run(static_cast<int>(count), [&](int k) {
+    const vtkIdType begin = first + static_cast<vtkIdType>(k) * grain;
+    body(begin, std::min(last, begin + grain));
+  });
+}
+template <class Body>
+void For(vtkIdType first, vtkIdType last, const Body& body)
+{
+  For(first, last, 0, body);
+}
 
 /// Ids of a dataset's own points or cells (its GlobalIds and PedigreeIds, and
 /// the vtkOriginalPointIds/CellIds that extraction and redistribution

@@ -12,7 +12,8 @@ flags=(-std=c++17 -O1 -g -fsanitize=thread -I"$root/Filters/Kernel" -I"$root/Uti
   -I/usr/include/eigen3)
 sources=("$root"/Filters/Kernel/*/*.cxx
   "$root"/Testing/Kernel/TestSpatialOrder.cxx "$root"/Testing/Kernel/TestCellNeighbors.cxx
-  "$root"/Testing/Kernel/TestSpaces.cxx "$root"/Testing/Kernel/TestMortarProjector.cxx)
+  "$root"/Testing/Kernel/TestSpaces.cxx "$root"/Testing/Kernel/TestMortarProjector.cxx
+  "$root"/Testing/Kernel/TestWorkerPool.cxx)
 objects=()
 for s in "${sources[@]}"; do
   objects+=("$out/$(basename "${s%.cxx}").o")

@@ -2,6 +2,7 @@
 #include "Geometry/TetrahedronIntersector.h"
 #include "Search/PairSearch.h"
 #include "GeneratedMeshes.h"
+#include "Mesh/WorkerPool.h"
 #include "Threads.h"
 #include "Transfer/MortarAssembler.h"
 #include "Transfer/MortarOperator.h"
@@ -331,14 +332,27 @@ TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
   const TestMesh target = mptest::GridMesh(30, 30, 0.25, 91, 0, 0, 1, 1, LShapeWithHole);
   const TestMesh source = mptest::GridMesh(28, 36, 0.25, 92, 0, 0, 1, 1, LShapeWithHole);
   const auto us = mptest::Sample(source, Smooth);
-  auto run = [&](int tasks, bool threads, std::vector<double>& ut, mp::IntersectionPieces& pieces) {
+  // The tasks one after the other, on threads of their own, or on a pool
+  // of three threads (the filter's way: mp::WorkerPool).
+  enum Mode
+  {
+    InTurn,
+    OnThreads,
+    OnPool
+  };
+  mp::WorkerPool pool(3);
+  auto run = [&](int tasks, Mode mode, std::vector<double>& ut, mp::IntersectionPieces& pieces) {
     mp::BoxGridLocator locator(source.View());
     mp::OperatorOptions options;
     options.Runner.Tasks = tasks;
     options.KeepPieces = true;
-    if (threads)
+    if (mode == OnThreads)
     {
       options.Runner.Run = mptest::RunInThreads;
+    }
+    else if (mode == OnPool)
+    {
+      options.Runner = pool.Runner(tasks);
     }
     else
     {
@@ -357,16 +371,22 @@ TEST(MortarProjector, ConcurrentTasksGiveTheSerialResult)
   };
   std::vector<double> serial;
   mp::IntersectionPieces serialPieces;
-  const Index pieces = run(1, false, serial, serialPieces);
+  const Index pieces = run(1, InTurn, serial, serialPieces);
   for (int tasks : { 2, 3, 7 })
   {
-    for (bool threads : { false, true })
+    std::vector<double> inTurn;
+    for (Mode mode : { InTurn, OnThreads, OnPool })
     {
       std::vector<double> ut;
       mp::IntersectionPieces p;
-      EXPECT_EQ(run(tasks, threads, ut, p), pieces) << tasks;
+      EXPECT_EQ(run(tasks, mode, ut, p), pieces) << tasks;
       for (size_t i = 0; i < ut.size(); ++i)
         ASSERT_NEAR(ut[i], serial[i], 1e-13) << tasks << " tasks, point " << i;
+      // A number of tasks gives one result, however they run.
+      if (mode == InTurn)
+        inTurn = ut;
+      else
+        EXPECT_EQ(ut, inTurn) << tasks << " tasks, mode " << mode;
       // The same pieces, in another order.
       std::vector<std::pair<Index, Index>> a;
       std::vector<std::pair<Index, Index>> b;
