@@ -312,11 +312,12 @@ struct MortarOperator::Session
     this->Partial.resize(static_cast<size_t>(tasks));
     // Target functions on cells of more than one task: their right-hand
     // sides are summed after the tasks (MortarAssembler::Shared; fields
-    // given at Build only).
-    // Each task marks the functions of its cells with its number (plus one)
-    // where no task has yet; a function found marked by another task is
-    // shared. (Relaxed atomics: of two tasks marking at once, one sees the
-    // other's mark.)
+    // given at Build only). Each task writes its number (plus one) on the
+    // functions of its cells; once all have, a task that finds another's
+    // number on one of its functions marks it shared (the last writer's
+    // number stays; every other task using it sees that number). Plain
+    // stores, no read-modify-write: a locked exchange per function cost
+    // more than the rest of the preparation.
     const bool single = op.Options.Fields != nullptr;
     if (tasks > 1 && single)
     {
@@ -326,26 +327,29 @@ struct MortarOperator::Session
       runner.Fill(shared.data(), rows, char(0), Index(1) << 16);
       UninitializedLargeVector<std::uint16_t> mark(static_cast<size_t>(rows));
       runner.Fill(mark.data(), rows, std::uint16_t(0), Index(1) << 16);
-      runner.RunAll(tasks, [&](int k) {
-        const auto mine = static_cast<std::uint16_t>(k + 1);
+      auto eachFunction = [&](int k, auto&& visit) {
         for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
         {
           Index dofs[TargetSpace::Dofs];
           TargetSpace::MeshCellDofs(target, c, dofs);
           for (Index f : dofs)
           {
-            std::uint16_t seen = __atomic_load_n(&mark[f], __ATOMIC_RELAXED);
-            if (seen == 0 &&
-              __atomic_compare_exchange_n(&mark[f], &seen, mine, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-            {
-              continue;
-            }
-            if (seen != mine)
-            {
-              __atomic_store_n(&shared[f], char(1), __ATOMIC_RELAXED);
-            }
+            visit(f);
           }
         }
+      };
+      runner.RunAll(tasks, [&](int k) {
+        const auto mine = static_cast<std::uint16_t>(k + 1);
+        eachFunction(k, [&](Index f) { __atomic_store_n(&mark[f], mine, __ATOMIC_RELAXED); });
+      });
+      runner.RunAll(tasks, [&](int k) {
+        const auto mine = static_cast<std::uint16_t>(k + 1);
+        eachFunction(k, [&](Index f) {
+          if (__atomic_load_n(&mark[f], __ATOMIC_RELAXED) != mine)
+          {
+            __atomic_store_n(&shared[f], char(1), __ATOMIC_RELAXED);
+          }
+        });
       });
     }
     if (single)
