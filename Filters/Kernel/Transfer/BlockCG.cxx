@@ -108,9 +108,10 @@ struct BlockCG::Direct
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> Solver;
 };
 
-BlockCG::BlockCG(const CsrMatrix& matrix, const TaskRunner& runner)
+BlockCG::BlockCG(const CsrMatrix& matrix, const TaskRunner& runner, const double* rowSums)
   : A(matrix)
   , Runner(runner)
+  , RowSums(rowSums)
 {
 }
 
@@ -163,13 +164,17 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   UninitializedLargeVector<double> p(size);
   UninitializedLargeVector<double> q(size);
   UninitializedLargeVector<double> inverseDiagonal(static_cast<size_t>(n));
-  UninitializedLargeVector<double> rowSums(options.StartFromX ? 0 : static_cast<size_t>(n));
+  // The row sums for the lumped start: given (a serial system's), or summed
+  // here (a distributed one's are completed across the parts in place).
+  const bool given = this->RowSums && !hooks.Exchange;
+  UninitializedLargeVector<double> rowSums(options.StartFromX || given ? 0 : static_cast<size_t>(n));
+  const double* sumOf = given ? this->RowSums : rowSums.data();
   converged.assign(static_cast<size_t>(c), 0);
   this->Runner.ForRanges(n, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i)
     {
       inverseDiagonal[i] = this->A.Values[this->A.Find(i, i)];
-      if (!options.StartFromX)
+      if (!options.StartFromX && !given)
       {
         double rowSum = 0.0;
         for (Index k = this->A.RowStart[i]; k < this->A.RowStart[i + 1]; ++k)
@@ -182,7 +187,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
     return 0.0;
   });
   exchange(inverseDiagonal.data(), 1);
-  if (!options.StartFromX)
+  if (!options.StartFromX && !given)
   {
     exchange(rowSums.data(), 1);
   }
@@ -199,7 +204,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
         const double b = B[i * c + k];
         if (!options.StartFromX)
         {
-          X[i * c + k] = rowSums[i] > 0.0 ? b / rowSums[i] : 0.0;
+          X[i * c + k] = sumOf[i] > 0.0 ? b / sumOf[i] : 0.0;
         }
         if (!counted || counted[i])
         {

@@ -78,7 +78,12 @@ struct SolveOptions
 class BlockCG
 {
 public:
-  BlockCG(const CsrMatrix& matrix, const TaskRunner& runner);
+  /// `rowSums`, when given, are the row sums of `matrix` summed in row
+  /// order (the same bits Iterate would sum; 0 allowed for rows whose only
+  /// entry is a decoupling 1, whose right-hand side is 0): the lumped start
+  /// of a serial system reads them instead of summing the matrix again.
+  /// They must outlive the solver.
+  BlockCG(const CsrMatrix& matrix, const TaskRunner& runner, const double* rowSums = nullptr);
   ~BlockCG();
 
   /**
@@ -116,6 +121,7 @@ private:
   struct Direct;
   const CsrMatrix& A;
   TaskRunner Runner;
+  const double* RowSums = nullptr;
   mutable std::unique_ptr<Direct> Factor; ///< built on the first need
   mutable bool Stopped = false;
 };

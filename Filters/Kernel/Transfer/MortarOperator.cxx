@@ -267,7 +267,9 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
     }
     return valid;
   }, 16384);
-  this->Solver.reset(new BlockCG(this->TargetMass, runner));
+  // (Its lumped start reads the valid rows' sums just made: an invalid
+  // row's decoupling 1 is left out, but its right-hand side is 0.)
+  this->Solver.reset(new BlockCG(this->TargetMass, runner, this->RowSums.data()));
   this->Timings.Assembly += Seconds(start);
 }
 
