@@ -3,8 +3,10 @@
  * @file Tasks.h
  * @brief How the kernel runs concurrent tasks: a runner the caller injects.
  *
- * The kernel owns no threads. Its callers hand it a runner (the VTK filter
- * passes vtkSMPTools::For; the tests std::thread) and a number of tasks;
+ * The kernel's loops start no threads. Their callers hand them a runner
+ * (the VTK filter passes its WorkerPool, or vtkSMPTools::For on backends
+ * other than STDThread; the tests std::thread, or a WorkerPool) and a
+ * number of tasks;
  * the kernel splits its loops into that many ranges. Sums over ranges are
  * added in range order, so a given number of tasks always gives the same
  * result.
