@@ -431,6 +431,14 @@ mp::TaskRunner SMPTaskRunner()
       pool->Run(count, task);
       return;
     }
+    if (mp::WorkerPool::InsideTask())
+    {
+      for (int k = 0; k < count; ++k)
+      {
+        task(k); // inside a task of a pool (on one of its workers): in turn
+      }
+      return;
+    }
     vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType k = begin; k < end; ++k)
       {

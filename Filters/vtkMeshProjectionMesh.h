@@ -45,6 +45,7 @@
 #include "vtkType.h"
 
 #include <algorithm>
+#include <limits>
 
 #include <memory>
 #include <string>
@@ -116,12 +117,17 @@ template <class Body>
 void For(vtkIdType first, vtkIdType last, vtkIdType grain, const Body& body)
 {
   mp::WorkerPool* pool = CurrentWorkers();
+  const vtkIdType n = last - first;
+  if (n > 0 && mp::WorkerPool::InsideTask())
+  {
+    body(first, last); // inside a task of the pool: in turn, no threads of its own
+    return;
+  }
   if (!pool)
   {
     vtkSMPTools::For(first, last, grain, body);
     return;
   }
-  const vtkIdType n = last - first;
   if (n <= 0)
   {
     return;
@@ -130,6 +136,8 @@ void For(vtkIdType first, vtkIdType last, vtkIdType grain, const Body& body)
   {
     grain = std::max<vtkIdType>(1, n / (4 * pool->Threads()));
   }
+  // (At most as many ranges as an int counts.)
+  grain = std::max(grain, n / std::numeric_limits<int>::max() + 1);
   const vtkIdType count = (n + grain - 1) / grain;
   pool->Run(static_cast<int>(count), [&](int k) {
     const vtkIdType begin = first + static_cast<vtkIdType>(k) * grain;

@@ -46,10 +46,10 @@ TEST(WorkerPool, EveryTaskOnceInJobsInQuickSuccession)
   }
 }
 
-TEST(WorkerPool, TasksRunOnSeveralThreads)
+/// Whether two tasks that each wait for the other (up to 20 s) both finish:
+/// only if the pool runs them at once.
+static bool RunAtOnce(mp::WorkerPool& pool)
 {
-  // Two tasks that each wait for the other: done only if both run at once.
-  mp::WorkerPool pool(2);
   std::atomic<int> arrived(0);
   std::atomic<bool> together(true);
   pool.Run(2, [&](int) {
@@ -65,7 +65,15 @@ TEST(WorkerPool, TasksRunOnSeveralThreads)
       std::this_thread::yield();
     }
   });
-  EXPECT_TRUE(together.load());
+  return together.load();
+}
+
+TEST(WorkerPool, TasksRunOnSeveralThreads)
+{
+  mp::WorkerPool pool(2);
+  EXPECT_FALSE(mp::WorkerPool::InsideTask());
+  EXPECT_TRUE(RunAtOnce(pool));
+  EXPECT_FALSE(mp::WorkerPool::InsideTask());
 }
 
 TEST(WorkerPool, JobsAfterTheWorkersFellAsleepAndLongTasks)
@@ -103,7 +111,26 @@ TEST(WorkerPool, AnExceptionReachesTheCallerOnceEveryTaskEnded)
                  }),
     std::runtime_error);
   EXPECT_EQ(ran.load(), 9);
-  EachOnce(pool, 9); // and the pool goes on
+  EachOnce(pool, 9); // and the pool goes on, its caller not left "inside a task"
+  EXPECT_FALSE(mp::WorkerPool::InsideTask());
+  EXPECT_TRUE(RunAtOnce(pool));
+  // A job run in turn (from inside a task) runs every task too before its
+  // exception goes on.
+  std::atomic<int> inner(0);
+  EXPECT_THROW(pool.Run(2,
+                 [&](int) {
+                   EXPECT_TRUE(mp::WorkerPool::InsideTask());
+                   pool.Run(3, [&](int k) {
+                     inner.fetch_add(1);
+                     if (k == 0)
+                     {
+                       throw std::runtime_error("inner task failed");
+                     }
+                   });
+                 }),
+    std::runtime_error);
+  EXPECT_EQ(inner.load(), 6);
+  EXPECT_TRUE(RunAtOnce(pool));
 }
 
 TEST(WorkerPool, NestedAndConcurrentCallsRunInTurn)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Mesh/WorkerPool.h"
 
+#include <algorithm>
 #include <chrono>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -13,6 +14,14 @@ namespace
 /// Set while this thread runs a task of a pool: a Run from inside a task
 /// runs its tasks on this thread.
 thread_local bool InTask = false;
+
+/// InTask set for a scope, then put back as it was.
+struct TaskScope
+{
+  bool Outer = InTask;
+  TaskScope() { InTask = true; }
+  ~TaskScope() { InTask = this->Outer; }
+};
 
 /// How long a thread waits spinning (for the next job, for the job's last
 /// task) before it waits asleep.
@@ -49,13 +58,32 @@ bool SpinUntil(const Done& done)
 
 WorkerPool::WorkerPool(int threads)
 {
-  for (int k = 1; k < threads; ++k)
+  try
   {
-    this->Workers.emplace_back([this]() { this->Work(); });
+    this->Workers.reserve(static_cast<size_t>(std::max(0, threads - 1)));
+    for (int k = 1; k < threads; ++k)
+    {
+      this->Workers.emplace_back([this]() { this->Work(); });
+    }
+  }
+  catch (...)
+  {
+    this->Join(); // the workers started (a thread the system refused: no pool)
+    throw;
   }
 }
 
 WorkerPool::~WorkerPool()
+{
+  this->Join();
+}
+
+bool WorkerPool::InsideTask()
+{
+  return InTask;
+}
+
+void WorkerPool::Join()
 {
   {
     std::lock_guard<std::mutex> lock(this->Lock);
@@ -67,6 +95,7 @@ WorkerPool::~WorkerPool()
   {
     t.join();
   }
+  this->Workers.clear();
 }
 
 TaskRunner WorkerPool::Runner(int tasks)
@@ -77,10 +106,18 @@ TaskRunner WorkerPool::Runner(int tasks)
   return runner;
 }
 
+void WorkerPool::Keep(std::exception_ptr failure)
+{
+  std::lock_guard<std::mutex> lock(this->FailureLock);
+  if (!this->Failure)
+  {
+    this->Failure = failure;
+  }
+}
+
 void WorkerPool::Take(const std::function<void(int)>* task, int count)
 {
-  const bool outer = InTask;
-  InTask = true;
+  const TaskScope scope;
   for (int i = this->Next.fetch_add(1, std::memory_order_relaxed); i < count;
        i = this->Next.fetch_add(1, std::memory_order_relaxed))
   {
@@ -90,11 +127,7 @@ void WorkerPool::Take(const std::function<void(int)>* task, int count)
     }
     catch (...)
     {
-      std::lock_guard<std::mutex> lock(this->FailureLock);
-      if (!this->Failure)
-      {
-        this->Failure = std::current_exception();
-      }
+      this->Keep(std::current_exception());
     }
     // The last task's end wakes a caller waiting asleep (it set
     // CallerWaiting under Lock before it looked at Finished).
@@ -107,7 +140,6 @@ void WorkerPool::Take(const std::function<void(int)>* task, int count)
       }
     }
   }
-  InTask = outer;
 }
 
 void WorkerPool::Work()
@@ -149,11 +181,31 @@ void WorkerPool::Run(int count, const std::function<void(int)>& task)
   {
     return;
   }
-  if (count == 1 || this->Workers.empty() || InTask || !this->Running.try_lock())
+  if (count == 1)
   {
+    task(0);
+    return;
+  }
+  if (this->Workers.empty() || InTask || !this->Running.try_lock())
+  {
+    // In turn on this thread (as tasks of this pool: a Run inside runs in
+    // turn too), every task even after one threw, as the workers would.
+    const TaskScope scope;
+    std::exception_ptr failure;
     for (int i = 0; i < count; ++i)
     {
-      task(i);
+      try
+      {
+        task(i);
+      }
+      catch (...)
+      {
+        failure = failure ? failure : std::current_exception();
+      }
+    }
+    if (failure)
+    {
+      std::rethrow_exception(failure);
     }
     return;
   }

@@ -48,7 +48,8 @@ public:
    * thread, each index once, and returns when all have returned. A call
    * from inside a task, or while another thread's call is running, runs
    * its tasks one after the other on its own thread. The first exception a
-   * task throws is thrown again here, once every task has ended.
+   * task throws is thrown again here, once every task has ended (either
+   * way).
    */
   void Run(int count, const std::function<void(int)>& task);
 
@@ -56,8 +57,16 @@ public:
   /// the runner's calls).
   TaskRunner Runner(int tasks);
 
+  /// Whether this thread is running a task of a pool (where a loop had
+  /// better run in turn than start threads of its own).
+  static bool InsideTask();
+
 private:
   void Work();
+  /// Stops and joins the workers.
+  void Join();
+  /// Keeps `failure` unless an earlier one is kept.
+  void Keep(std::exception_ptr failure);
   /// Takes and runs the current job's tasks until none is left.
   void Take(const std::function<void(int)>* task, int count);
 
