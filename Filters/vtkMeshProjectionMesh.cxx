@@ -400,8 +400,15 @@ WorkerScope::WorkerScope(int threads)
 {
   if (threads > 1 && std::string(vtkSMPTools::GetBackend()) == "STDThread")
   {
-    this->Owned.reset(new mp::WorkerPool(threads));
-    Workers = this->Owned.get();
+    try
+    {
+      this->Owned.reset(new mp::WorkerPool(threads));
+      Workers = this->Owned.get();
+    }
+    catch (const std::exception&)
+    {
+      // No threads to be had: the loops go to vtkSMPTools as without a scope.
+    }
   }
 }
 
