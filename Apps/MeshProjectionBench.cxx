@@ -15,10 +15,13 @@
 // a locator search (vtkStaticCellLocator::FindCellsWithinBounds per target
 // cell, then the same intersector), and of the whole VTK filter against
 // ParaView's Resample With Dataset (vtkResampleWithDataSet) on the same
-// target, with the filter on 1 and 2 threads (vtkSMPTools, STDThread).
+// target, with the filter on 1 and 2 threads (its own scope: STDThread, on
+// the filter's WorkerPool).
 // --filter-only runs just the VTK filter once per size (the best of N runs
 // with --runs N, the peer's too, the two alternating), on the calling thread (or on N threads with
-// --threads N), and prints its stages (for profiling).
+// --threads N; with --threads N,M on N and on M threads in alternating runs,
+// so that both meet the same spells of a shared host's load, and their
+// ratio), and prints its stages (for profiling).
 // --order asis|sorted|shuffled renumbers both meshes first, --renumber sets
 // the filter's Renumbering, --target/--source read a pair of .vtu files
 // instead (one run), and --peer LIB times libsupermesh's intersections on
@@ -604,8 +607,10 @@ struct Peer
 Peer ThePeer;
 bool HavePeer = false;
 
-/// --threads: the threads of the filter in --filter-only runs.
+/// --threads N[,M]: the threads of the filter in --filter-only runs (and
+/// of the runs alternating with them; 0: none).
 int FilterThreads = 1;
+int FilterThreads2 = 0;
 /// --runs: --filter-only times the filter and the peer this many times
 /// each and keeps the best of each (the peak memory: the first run's).
 int FilterRuns = 1;
@@ -657,9 +662,12 @@ void TimeFilter(vtkUnstructuredGrid* targetGrid, vtkUnstructuredGrid* sourceGrid
     std::copy(stages, stages + 7, r.FilterStages[slot]);
     r.CheckTime[slot] = filter->GetCheckTime();
     r.RenumberTime[slot] = filter->GetRenumberTime();
-    r.Renumbered = filter->GetNumberOfRenumberedMeshes();
-    r.Tests = filter->GetNumberOfIntersectionTests();
-    r.Queries = filter->GetNumberOfLocatorQueries();
+    if (slot == 0) // (the counts printed are the first slot's runs')
+    {
+      r.Renumbered = filter->GetNumberOfRenumberedMeshes();
+      r.Tests = filter->GetNumberOfIntersectionTests();
+      r.Queries = filter->GetNumberOfLocatorQueries();
+    }
     if (pairs)
     {
       *pairs = filter->GetNumberOfIntersections();
@@ -701,6 +709,10 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
       if (run == 0)
       {
         firstPeak = r.FilterPeak;
+      }
+      if (FilterThreads2 > 0)
+      {
+        TimeFilter(targetGrid, sourceGrid, FilterThreads2, 1, false, 1, r.Filter2, r);
       }
       if (HavePeer)
       {
@@ -852,6 +864,17 @@ void PrintFilter(const Row& r)
   }
   std::printf("  %-34s %10.1f MiB (inputs %.1f MiB, ratio %.2f)\n", "filter's peak memory beyond inputs",
     r.FilterPeak, r.VTKInputs, r.FilterPeak / r.VTKInputs);
+  if (FilterThreads2 > 0)
+  {
+    // The runs alternating with those above, on the other number of threads.
+    const std::string other = "VTK filter on " + std::to_string(FilterThreads2) + " threads";
+    std::printf("  %-34s %10.4f  (%d against %d threads: %.2fx)\n", other.c_str(), r.Filter2,
+      FilterThreads2, FilterThreads, r.Filter1 / r.Filter2);
+    for (int k = 0; k < 7; ++k)
+    {
+      std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[1][k]);
+    }
+  }
   PrintPeer(r, r.Filter1);
 }
 
@@ -918,7 +941,13 @@ int main(int argc, char* argv[])
     if (a == "--filter-only")
       filterOnly = true;
     else if (a == "--threads" && i + 1 < argc)
-      FilterThreads = std::max(1, std::atoi(argv[++i]));
+    {
+      const std::string value = argv[++i];
+      const size_t comma = value.find(',');
+      FilterThreads = std::max(1, std::atoi(value.substr(0, comma).c_str()));
+      FilterThreads2 =
+        comma == std::string::npos ? 0 : std::max(1, std::atoi(value.substr(comma + 1).c_str()));
+    }
     else if (a == "--runs" && i + 1 < argc)
       FilterRuns = std::max(1, std::atoi(argv[++i]));
     else if (a == "--dim" && i + 1 < argc)

@@ -18,12 +18,13 @@ build/bench-meshes) as .vtu and reused.
 
 For every pair and every order (as Gmsh numbers them, sorted into bands,
 cells and points shuffled: mesh-projection-bench --order) it runs
-mesh-projection-bench --filter-only on 1 and 2 threads and, in the same run,
-libsupermesh's intersections on the same meshes (--peer; found with the
-`libsupermesh` Python package of a `python3` on PATH when not given), each
-timed --runs times (default 3) with the best kept, the filter's and the
-peer's alike, their runs alternating (on a shared virtual machine single
-runs vary by 30% and more, and busy spells last seconds),
+mesh-projection-bench --filter-only --threads 1,2 (the filter on 1 and 2
+threads) and, in the same run, libsupermesh's intersections on the same
+meshes (--peer; found with the `libsupermesh` Python package of a `python3`
+on PATH when not given), each timed --runs times (default 3) with the best
+kept, the filter's (on either number of threads) and the peer's alike,
+their runs alternating (on a shared virtual machine single runs vary by 30%
+and more, and busy spells last seconds),
 and prints one Markdown table: the whole filter's seconds, its speed-up, the
 peer's seconds and the ratio, the filter's peak memory beyond its inputs,
 and per pair the worst order over the best.
@@ -134,6 +135,7 @@ def find_peer():
 
 
 def run(bench, target, source, order, threads, peer, runs):
+    """`threads` "1,2": one and two threads in alternating runs (and the peer's)."""
     command = [bench, "--filter-only", "--threads", str(threads), "--runs", str(runs), "--order", order,
                "--target", target, "--source", source]
     if peer:
@@ -149,6 +151,8 @@ def run(bench, target, source, order, threads, peer, runs):
     }
     m = re.search(r"inputs [0-9.]+ MiB, ratio ([^)]+)\)", out)
     result["memory"] = float(m.group(1)) if m else float("nan")
+    m = re.search(r"VTK filter on \d+ threads" + number, out)
+    result["filter2"] = float(m.group(1)) if m else None
     m = re.search(r"libsupermesh intersections only" + number, out)
     result["peer"] = float(m.group(1)) if m else None
     return result
@@ -177,8 +181,9 @@ def main():
         target, source = pair(args.meshes, dim, cells)
         times = {}
         for order in ("asis", "sorted", "shuffled"):
-            one = run(args.bench, target, source, order, 1, peer, args.runs)
-            two = run(args.bench, target, source, order, 2, None, args.runs)
+            # One and two threads and the peer in alternating runs of one process.
+            one = run(args.bench, target, source, order, "1,2", peer, args.runs)
+            two = {"filter": one["filter2"]}
             times[order] = one["filter"]
             label = "%dD %s %d / %d" % (dim, "triangles" if dim == 2 else "tetrahedra", one["cells"], one["source"])
             name = {"asis": "as Gmsh numbers them", "sorted": "sorted into bands", "shuffled": "shuffled"}[order]
