@@ -110,8 +110,9 @@ mp::TaskRunner SMPTaskRunner();
 
 /**
  * body(begin, end) over [first, last) in ranges of `grain` items (0: about
- * four ranges per thread), concurrently: vtkSMPTools::For on the calling
- * thread's WorkerScope when it has one.
+ * four ranges per thread), concurrently: on the calling thread's
+ * WorkerScope when it has one, else by vtkSMPTools::For; in one call on
+ * this thread inside a task of a pool (whose workers have no scope).
  */
 template <class Body>
 void For(vtkIdType first, vtkIdType last, vtkIdType grain, const Body& body)
