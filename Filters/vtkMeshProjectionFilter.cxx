@@ -2535,10 +2535,24 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // cells around it (for the valid point mask): computed here when the
   // target's geometry goes before the solves (below), else with the mask.
   const mp::LargeVector<double>& fraction = first->GetCoveredFraction();
-  std::vector<double> most;
+  mp::LargeVector<double> most;
   bool haveMost = false;
   auto pointCover = [&]() {
     const mp::MeshView& view = targetMesh.View();
+    haveMost = true;
+    // Made with M_tt (P1 target functions of an operator built here), in
+    // the filter's threads; else here.
+    for (int t = 0; t < 4; ++t)
+    {
+      if (fresh[t].get() == first)
+      {
+        fresh[t]->TakePointCover(most);
+      }
+    }
+    if (most.size() == static_cast<size_t>(view.NumberOfPoints))
+    {
+      return;
+    }
     most.assign(static_cast<size_t>(view.NumberOfPoints), 0.0);
     for (mp::Index c = 0; c < view.NumberOfCells; ++c)
     {
@@ -2549,7 +2563,6 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
       }
     }
-    haveMost = true;
   };
   for (int t = 0; t < 4; ++t)
   {

@@ -487,3 +487,72 @@ TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
     }
   }
 }
+
+TEST(SpatialOrder, PointCoverIsTheLargestFractionAroundEachPoint)
+{
+  // The point cover made with M_tt (P1 targets), on the plain and the
+  // renumbered target (its parents' fractions moved or summed), in one task
+  // and in threads: bit for bit the largest covered fraction of the cells
+  // around each point, as a plain loop over the cells finds it; none for
+  // P0 targets.
+  for (int dimension : { 2, 3 })
+  {
+    TestMesh target = Shuffled(dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1)
+                                              : mptest::CubeMesh(7, 7, 7, 0.15, 1), 4);
+    const TestMesh source = dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2)
+                                           : mptest::CubeMesh(6, 8, 7, 0.15, 2);
+    for (size_t p = 0; p < target.Points.size(); p += 3)
+    {
+      target.Points[p] = 0.3 + 0.9 * target.Points[p]; // [0.3, 1.2]: a third outside
+    }
+    target.Finish();
+    const Renumbered t(target);
+    mp::MeshView views[3] = { target.View(), t.Mesh.View(), t.Mesh.View() };
+    for (int v : { 1, 2 })
+    {
+      views[v].Parent = t.Parent.data();
+      views[v].NumberOfParents = target.NumberOfCells();
+      views[v].OneCellPerParent = v == 1;
+    }
+    for (const mp::MeshView& view : views)
+    {
+      for (int tasks : { 1, 3 })
+      {
+        mp::BoxGridLocator locator(source.View());
+        mp::OperatorOptions options;
+        options.Runner = mptest::ThreadRunner(tasks);
+        mp::MortarOperator op;
+        ASSERT_TRUE(op.Build(view, source.View(), &locator, options));
+        const mp::LargeVector<double>& f = op.GetCoveredFraction();
+        std::vector<double> expected(static_cast<size_t>(view.NumberOfPoints), 0.0);
+        for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+        {
+          const mp::CellCorners ids = view.Cell(c);
+          for (int k = 0; k < view.CornersPerCell(); ++k)
+          {
+            double& most = expected[static_cast<size_t>(ids[k])];
+            most = std::max(most, f[static_cast<size_t>(view.ParentOf(c))]);
+          }
+        }
+        mp::LargeVector<double> cover;
+        op.TakePointCover(cover);
+        ASSERT_EQ(cover.size(), expected.size());
+        int partial = 0;
+        for (size_t p = 0; p < expected.size(); ++p)
+        {
+          ASSERT_EQ(cover[p], expected[p]) << dimension << "D, view " << &view - views << ", point " << p;
+          partial += expected[p] > 0.01 && expected[p] < 0.99;
+        }
+        EXPECT_GT(partial, 5) << dimension << "D";
+        mp::LargeVector<double> again;
+        op.TakePointCover(again);
+        EXPECT_TRUE(again.empty()); // handed over once
+        options.TargetSpace = mp::SpaceType::P0;
+        mp::MortarOperator cells;
+        ASSERT_TRUE(cells.Build(view, source.View(), &locator, options));
+        cells.TakePointCover(again);
+        EXPECT_TRUE(again.empty());
+      }
+    }
+  }
+}

@@ -152,9 +152,13 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
  * which the pattern needed, are gone by now: the values take their room).
  * Each task owns a range of rows and goes through all cells, adding the
  * rows of its range of each cell's block: a row sums its cells' blocks in
- * cell order, whatever the number of tasks.
+ * cell order, whatever the number of tasks. With `cover`, each point of
+ * the task's range also takes the largest of `cellValue` over its cells
+ * (a reading of cells the loop makes anyway, by the task owning
+ * the point: no two tasks write one).
  */
-void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& runner, CsrMatrix& matrix)
+void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& runner,
+  CsrMatrix& matrix, const CellValues& cellValue, double* cover)
 {
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
@@ -209,7 +213,7 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
     for (Index c = 0; c < cells; ++c)
     {
       const float state = masses.State[static_cast<size_t>(c)];
-      if (state == CellMasses::None)
+      if (state == CellMasses::None && !cover)
       {
         continue;
       }
@@ -224,6 +228,23 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
       if (!any)
       {
         continue;
+      }
+      if (cover)
+      {
+        // (An uncovered cell's parent may be covered by its other cells.)
+        const double v = cellValue.Values[cellValue.ByParent ? mesh.ParentOf(c) : c];
+        const double f = cellValue.AtMostOne ? std::min(1.0, v) : v;
+        for (int a = 0; a < n; ++a)
+        {
+          if (mine(dofs[a]))
+          {
+            cover[dofs[a]] = std::max(cover[dofs[a]], f);
+          }
+        }
+        if (state == CellMasses::None)
+        {
+          continue;
+        }
       }
       if (state != CellMasses::Part)
       {
@@ -325,8 +346,12 @@ const double* CellMasses::Find(Index c) const
 }
 
 void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses* masses,
-  const TaskRunner& runner, CsrMatrix& matrix)
+  const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue, LargeVector<double>* pointCover)
 {
+  if (pointCover)
+  {
+    pointCover->clear();
+  }
   matrix = CsrMatrix();
   const Index n = SpaceSize(space, mesh);
   matrix.Rows = matrix.Columns = n;
@@ -357,7 +382,14 @@ void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses*
   }
   if (space == SpaceType::P1)
   {
-    P1Values(mesh, *masses, runner, matrix);
+    double* cover = nullptr;
+    if (pointCover && cellValue.Values)
+    {
+      pointCover->resize(static_cast<size_t>(mesh.NumberOfPoints));
+      runner.Fill(pointCover->data(), mesh.NumberOfPoints, 0.0, 1 << 18);
+      cover = pointCover->data();
+    }
+    P1Values(mesh, *masses, runner, matrix, cellValue, cover);
     return;
   }
   // P0: each cell's measure (whole) or covered measure into its original

@@ -114,9 +114,25 @@ struct CellMasses
   const double* Find(Index c) const;
 };
 
-/// M_tt for `space` on `mesh` from `masses` (null: the pattern with zero values).
+/// A value per cell of a mesh: Values[ByParent ? mesh.ParentOf(c) : c],
+/// taken at most 1 with AtMostOne (null Values: none).
+struct CellValues
+{
+  const double* Values = nullptr;
+  bool ByParent = false;
+  bool AtMostOne = false;
+};
+
+/**
+ * M_tt for `space` on `mesh` from `masses` (null: the pattern with zero
+ * values). With `pointCover` and `cellValue`, for P1 with masses: per
+ * point of `mesh`, the largest value of its cells (0 for a point no cell
+ * uses), made by the same pass over the cells; else `pointCover` is left
+ * empty.
+ */
 void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses* masses,
-  const TaskRunner& runner, CsrMatrix& matrix);
+  const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue = CellValues(),
+  LargeVector<double>* pointCover = nullptr);
 
 /// The CSR pattern of M_tt for `space` on `mesh`, with zero values.
 void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner, CsrMatrix& matrix);

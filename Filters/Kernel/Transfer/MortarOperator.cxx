@@ -225,15 +225,45 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
   this->MassPending = false;
   auto start = std::chrono::steady_clock::now();
   const TaskRunner& runner = this->Options.Runner;
+  // The point cover (the largest covered fraction around each point) is
+  // made with M_tt, from the fraction of each kernel cell read in cell
+  // order when each parent has one cell (renumbered: the parents' order is
+  // the dataset's, reading it by parent was a cache miss a cell).
+  LargeVector<double> cellFraction;
+  CellValues coverFrom;
   if (target.Parent)
   {
     // Split or renumbered cells: the covered fraction of each original cell
     // (here rather than right after the search: with DeferTargetMass the
     // Source's arrays are gone by now, and the two arrays of fractions take
     // no room from the search's).
-    this->CoveredFraction = ParentFractions(target, this->CoveredFraction, runner);
+    LargeVector<double> parents = ParentFractions(target, this->CoveredFraction, runner);
+    cellFraction.swap(this->CoveredFraction);
+    this->CoveredFraction.swap(parents);
+    if (target.OneCellPerParent)
+    {
+      coverFrom.Values = cellFraction.data(); // (ParentFractions's value: at most 1)
+      coverFrom.AtMostOne = true;
+    }
+    else
+    {
+      coverFrom.Values = this->CoveredFraction.data();
+      coverFrom.ByParent = true;
+      LargeVector<double>().swap(cellFraction);
+    }
   }
-  AssembleTargetMass(this->Options.TargetSpace, target, &this->Masses, runner, this->TargetMass);
+  else
+  {
+    coverFrom.Values = this->CoveredFraction.data();
+  }
+  const size_t have = coverFrom.Values == cellFraction.data() ? cellFraction.size() : this->CoveredFraction.size();
+  if (have < static_cast<size_t>(coverFrom.ByParent ? target.Parents() : target.NumberOfCells))
+  {
+    coverFrom = CellValues(); // (no fractions: no cover)
+  }
+  AssembleTargetMass(this->Options.TargetSpace, target, &this->Masses, runner, this->TargetMass,
+    coverFrom, &this->PointCover);
+  LargeVector<double>().swap(cellFraction);
   this->Masses = CellMasses();
   // A function is valid when its support meets the source: its diagonal
   // entry of the covered mass matrix is positive. An invalid function's
@@ -685,7 +715,8 @@ size_t MortarOperator::MemoryBytes() const
   };
   return csr(this->TargetMass) + csr(this->MixedMass) + this->Rhs.capacity() * sizeof(double) +
     this->Valid.capacity() + this->RowSums.capacity() * sizeof(double) +
-    this->CoveredFraction.capacity() * sizeof(double) + this->Pieces.MemoryBytes();
+    this->CoveredFraction.capacity() * sizeof(double) + this->PointCover.capacity() * sizeof(double) +
+    this->Pieces.MemoryBytes();
 }
 
 namespace

@@ -240,6 +240,15 @@ public:
   /// cell when the target's simplices have parents, once M_tt is there:
   /// CompleteTargetMass; 0 for a parent without any).
   const LargeVector<double>& GetCoveredFraction() const { return this->CoveredFraction; }
+  /**
+   * Per point of the target (kernel numbering), for P1 target functions:
+   * the largest covered fraction (GetCoveredFraction) of the cells around
+   * it, made with M_tt by CompleteTargetMass (or a Build without
+   * DeferTargetMass) in the same pass over the cells. Handed over (swapped
+   * with `into`, then empty here): nothing keeps it with the operator.
+   * Empty for P0 target functions or once taken.
+   */
+  void TakePointCover(LargeVector<double>& into) { into.swap(this->PointCover); LargeVector<double>().swap(this->PointCover); }
   /// Per source cell (kernel numbering): the measure of its part the pieces
   /// cover, measured on the source cell (for surfaces and curves through
   /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
@@ -276,6 +285,7 @@ private:
   std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;
   LargeVector<double> CoveredFraction; ///< (given back to the system when replaced)
+  LargeVector<double> PointCover;      ///< (until TakePointCover)
   LargeVector<double> SourceCovered;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
