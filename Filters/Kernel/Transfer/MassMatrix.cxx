@@ -53,12 +53,15 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   const int tasks = static_cast<int>(
     std::min<Index>(runner.TasksFor(points, 4096), std::max<Index>(1, uses)));
   start.assign(static_cast<size_t>(points) + 1, 0);
-  // One task writes its rows straight into `columns`.
-  std::vector<UninitializedLargeVector<Column>> blocks(static_cast<size_t>(tasks > 1 ? tasks : 0));
+  // The first task writes its rows straight into `columns`, reserved for
+  // all rows at the usual count (pages of a reservation cost nothing until
+  // written), the others into blocks of their own, moved in after it.
+  const size_t perRow = n == 3 ? 7 : 15;
+  std::vector<UninitializedLargeVector<Column>> blocks(static_cast<size_t>(tasks));
   auto rows = [&](int k) {
-    UninitializedLargeVector<Column>& block = tasks > 1 ? blocks[k] : columns;
+    UninitializedLargeVector<Column>& block = k == 0 ? columns : blocks[k];
     block.clear();
-    block.reserve(static_cast<size_t>(points / tasks + 1) * (n == 3 ? 7 : 15));
+    block.reserve(static_cast<size_t>(k == 0 ? points + 1 : points / tasks + 1) * perRow);
     // A row is the point itself and the other corners of its cells (in 2D
     // about 12 candidates for 7 columns, in 3D about 70 for 15). Each
     // candidate is written and kept unless seen[q] already names this row:
@@ -126,8 +129,11 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   }
   if (tasks > 1)
   {
+    // (Past the reservation on unusual meshes: the first task's rows are
+    // moved with the rest, as a vector grows.)
     columns.resize(static_cast<size_t>(start[points]));
-    runner.RunAll(tasks, [&](int k) {
+    runner.RunAll(tasks - 1, [&](int i) {
+      const int k = i + 1;
       std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[RangeBegin(points, k, tasks)]);
       UninitializedLargeVector<Column>().swap(blocks[k]);
     });
