@@ -979,7 +979,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     return std::string();
   }
   if (this->Kernel.NumberOfCells > 0 && this->Dimension() == 2 &&
-    !this->Own.Fit(this->Kernel, deviation, size))
+    !this->Own.Fit(this->Kernel, deviation, size, SMPTaskRunner()))
   {
     // Not in one plane: a surface in 3D (SurfaceIntersector.h).
     this->NotPlanar = true;

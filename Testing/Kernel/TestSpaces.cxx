@@ -859,6 +859,57 @@ TEST(PlaneFrame, PointOffThePlaneIsRejected)
   EXPECT_LT(deviation, 2e-3);
 }
 
+TEST(PlaneFrame, TheSamePlaneInAnyNumberOfTasks)
+{
+  // A tilted plane of 2 x 230^2 triangles (over 300,000 corners: blocks
+  // of the corners' box and sum in several tasks): 1, 2 and 3 tasks give
+  // the same frame bit for bit, its origin the corners' mean.
+  TestMesh m = mptest::GridMesh(230, 230, 0.25, 71);
+  for (Index p = 0; p < m.NumberOfPoints(); ++p)
+  {
+    double* x = &m.Points[3 * p];
+    x[2] = 0.3 * x[0] - 0.2 * x[1] + 5.0;
+  }
+  const mp::MeshView view = Surface(m);
+  ASSERT_GT(view.NumberOfCells * 3, Index(8) << 15);
+  double mean[3] = { 0, 0, 0 };
+  for (Index i = 0; i < 3 * view.NumberOfCells; ++i)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      mean[d] += view.Point(view.Corner(i))[d];
+    }
+  }
+  mp::PlaneFrame serial;
+  double deviation = -1;
+  double size = -1;
+  ASSERT_TRUE(serial.Fit(view, deviation, size));
+  EXPECT_FALSE(serial.IsAxisAligned());
+  const double zero[3] = { 0, 0, 0 };
+  double origin[3];
+  serial.ToSpace(zero, origin);
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_NEAR(origin[d], mean[d] / (3.0 * view.NumberOfCells), 1e-12) << d;
+  }
+  std::vector<double> uv;
+  serial.ToPlane(view, uv);
+  for (int tasks : { 2, 3 })
+  {
+    mp::PlaneFrame frame;
+    double otherDeviation = -1;
+    double otherSize = -1;
+    ASSERT_TRUE(frame.Fit(view, otherDeviation, otherSize, mptest::ThreadRunner(tasks)));
+    EXPECT_EQ(otherDeviation, deviation) << tasks;
+    EXPECT_EQ(otherSize, size) << tasks;
+    EXPECT_EQ(frame.Offset(), serial.Offset()) << tasks;
+    EXPECT_EQ(frame.Tolerance(), serial.Tolerance()) << tasks;
+    std::vector<double> other;
+    frame.ToPlane(view, other);
+    EXPECT_TRUE(other == uv) << tasks; // origin and axes bit for bit
+  }
+}
+
 TEST(PlaneFrame, AxisPlanes)
 {
   // z = 0.75: the identity (the points' x, y are used in place).

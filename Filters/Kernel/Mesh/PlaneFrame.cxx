@@ -9,7 +9,7 @@
 
 namespace mp
 {
-bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
+bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, const TaskRunner& runner)
 {
   *this = PlaneFrame();
   deviation = 0.0;
@@ -27,16 +27,44 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size)
     lo[d] = std::numeric_limits<double>::infinity();
     hi[d] = -lo[d];
   }
-  // The box and the mean of the corners, in one pass.
+  // The box and the mean of the corners, in one pass: per block of
+  // corners its box and sum (in tasks), then the blocks' in block order.
+  constexpr Index Block = Index(1) << 15;
+  const Index blocks = (uses + Block - 1) / Block;
+  std::vector<double> partial(static_cast<size_t>(9 * blocks));
+  runner.ForRanges(blocks, [&](Index first, Index last) {
+    for (Index b = first; b < last; ++b)
+    {
+      double* box = &partial[static_cast<size_t>(9 * b)];
+      for (int d = 0; d < 3; ++d)
+      {
+        box[d] = std::numeric_limits<double>::infinity();
+        box[3 + d] = -box[d];
+        box[6 + d] = 0.0;
+      }
+      const Index end = std::min(uses, (b + 1) * Block);
+      for (Index i = b * Block; i < end; ++i)
+      {
+        const double* x = mesh.Point(mesh.Corner(i));
+        for (int d = 0; d < 3; ++d)
+        {
+          box[d] = std::min(box[d], x[d]);
+          box[3 + d] = std::max(box[3 + d], x[d]);
+          box[6 + d] += x[d];
+        }
+      }
+    }
+    return 0;
+  }, 4);
   double mean[3] = { 0, 0, 0 };
-  for (Index i = 0; i < uses; ++i)
+  for (Index b = 0; b < blocks; ++b)
   {
-    const double* x = mesh.Point(mesh.Corner(i));
+    const double* box = &partial[static_cast<size_t>(9 * b)];
     for (int d = 0; d < 3; ++d)
     {
-      lo[d] = std::min(lo[d], x[d]);
-      hi[d] = std::max(hi[d], x[d]);
-      mean[d] += x[d];
+      lo[d] = std::min(lo[d], box[d]);
+      hi[d] = std::max(hi[d], box[3 + d]);
+      mean[d] += box[6 + d];
     }
   }
   for (int d = 0; d < 3; ++d)

@@ -18,6 +18,7 @@
 #define MeshProjection_Kernel_PlaneFrame_h
 
 #include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
 
 #include <vector>
 
@@ -32,9 +33,12 @@ public:
    * the largest distance of a corner from the fitted plane and `size` the
    * mesh's extent (the tolerance is 1e-9 of its size, or of the plane's
    * distance from the origin when larger). A mesh without cells gets the
-   * plane z = 0.
+   * plane z = 0. The corners' box and mean are read in `runner`'s tasks,
+   * the mean summed in fixed blocks of corners, in block order: the same
+   * plane for any number of tasks.
    */
-  bool Fit(const MeshView& mesh, double& deviation, double& size);
+  bool Fit(const MeshView& mesh, double& deviation, double& size,
+    const TaskRunner& runner = TaskRunner());
 
   /// Signed distance of x from the plane.
   double Distance(const double* x) const;
