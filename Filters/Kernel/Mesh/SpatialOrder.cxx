@@ -425,15 +425,29 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
   }
   else
   {
+    // Each task keeps its surviving claims, in order, at the front of its
+    // list, and marks each one's slot as resolved: its task and its place
+    // among the survivors (bit 62 set: no claim, whose task bits end below
+    // it, can equal it, so the other tasks' checks of their own claims are
+    // not fooled while this runs).
+    constexpr Index Resolved = Index(1) << 62;
     std::vector<Index> offset(static_cast<size_t>(tasks) + 1, 0);
     runner.RunAll(tasks, [&](int t) {
       const Index mine = (Index(t) + 1) << Shift;
+      const Index resolved = Resolved | (Index(t) << Shift);
+      LargeVector<Index>& list = claimed[t];
       Index kept = 0;
-      const LargeVector<Index>& list = claimed[t];
       for (size_t i = 0; i < list.size(); ++i)
       {
-        kept += __atomic_load_n(claim + list[i], __ATOMIC_RELAXED) == (mine | static_cast<Index>(i));
+        const Index p = list[i];
+        if (__atomic_load_n(claim + p, __ATOMIC_RELAXED) == (mine | static_cast<Index>(i)))
+        {
+          list[kept] = p;
+          __atomic_store_n(claim + p, resolved | kept, __ATOMIC_RELAXED);
+          ++kept;
+        }
       }
+      list.resize(static_cast<size_t>(kept));
       offset[t + 1] = kept;
     });
     for (int t = 0; t < tasks; ++t)
@@ -441,20 +455,19 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
       offset[t + 1] += offset[t];
     }
     next = offset[tasks];
-    // Surviving claims become new ids (below 2^Shift: no task's claim):
-    // each point's slot then holds its new id, by which the cells' old ids
-    // are replaced once every task has written its own.
+    // The survivors get consecutive new ids after those of the tasks before
+    // theirs: each task copies its list into place and turns the slots of a
+    // range of points (in storage order) into new ids; then the cells' old
+    // ids are replaced by their points' new ids.
     runner.RunAll(tasks, [&](int t) {
-      const Index mine = (Index(t) + 1) << Shift;
-      Index id = offset[t];
-      const LargeVector<Index>& list = claimed[t];
-      for (size_t i = 0; i < list.size(); ++i)
+      std::copy(claimed[t].begin(), claimed[t].end(), order.Points.begin() + offset[t]);
+      const Index end = RangeBegin(np, t + 1, tasks);
+      for (Index p = RangeBegin(np, t, tasks); p < end; ++p)
       {
-        const Index p = list[i];
-        if (__atomic_load_n(claim + p, __ATOMIC_RELAXED) == (mine | static_cast<Index>(i)))
+        const Index value = claim[p];
+        if (value != Unclaimed)
         {
-          order.Points[id] = p;
-          __atomic_store_n(claim + p, id++, __ATOMIC_RELAXED);
+          claim[p] = offset[static_cast<size_t>((value & ~Resolved) >> Shift)] + (value & Local);
         }
       }
     });
