@@ -488,6 +488,86 @@ TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
   }
 }
 
+TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
+{
+  // M_tt's values come from tasks owning ranges of points (from 2^17
+  // points on: two tasks and more), each adding its rows of every cell's
+  // block in cell order: on a renumbered mesh of 203,401 points, from
+  // cells covered whole, in part (blocks of their own) and not at all, 2
+  // and 3 tasks give the one-task matrix and point cover bit for bit, with
+  // the cover's values per cell and per parent.
+  const TestMesh mesh = Shuffled(mptest::GridMesh(450, 450, 0.25, 5), 6);
+  ASSERT_GE(mesh.NumberOfPoints(), Index(3) << 16);
+  const Renumbered t(mesh);
+  mp::MeshView view = t.Mesh.View();
+  view.Parent = t.Parent.data();
+  view.NumberOfParents = mesh.NumberOfCells();
+  view.OneCellPerParent = true;
+  const Index cells = view.NumberOfCells;
+  mp::CellMasses masses;
+  masses.Dofs = 3;
+  masses.State.resize(static_cast<size_t>(cells));
+  std::vector<double> perCell(static_cast<size_t>(cells));
+  std::vector<double> perParent(static_cast<size_t>(cells));
+  std::vector<mp::PartialMasses> partial(1);
+  for (Index c = 0; c < cells; ++c)
+  {
+    const unsigned h = static_cast<unsigned>(c) * 2654435761u;
+    const int kind = static_cast<int>(h >> 28) % 4; // whole (2 in 4), in part, none
+    masses.State[static_cast<size_t>(c)] =
+      kind == 3 ? mp::CellMasses::None : (kind == 2 ? mp::CellMasses::Part : 1e-13f * (kind - 0.5f));
+    if (kind == 2)
+    {
+      const mp::CellCorners ids = view.Cell(c);
+      const Index dofs[3] = { ids[0], ids[1], ids[2] };
+      const double m = 1e-6 * (1 + (h & 1023));
+      const double block[3][3] = { { 2 * m, m, 0.5 * m }, { m, 3 * m, m }, { 0.5 * m, m, 2 * m } };
+      partial[0].Add(view, c, dofs, block);
+    }
+    perCell[static_cast<size_t>(c)] = ((h >> 8) & 1023) / 1023.0;
+    perParent[static_cast<size_t>(view.Parent[c])] = ((h >> 12) & 1023) / 1023.0;
+  }
+  masses.Gather(partial);
+  for (bool byParent : { false, true })
+  {
+    mp::CellValues values;
+    values.Values = byParent ? perParent.data() : perCell.data();
+    values.ByParent = byParent;
+    mp::CsrMatrix serial;
+    mp::LargeVector<double> serialCover;
+    for (int tasks : { 1, 2, 3 })
+    {
+      mp::CsrMatrix mass;
+      mp::LargeVector<double> cover;
+      mp::AssembleTargetMass(
+        mp::SpaceType::P1, view, &masses, mptest::ThreadRunner(tasks), mass, values, &cover);
+      ASSERT_EQ(cover.size(), static_cast<size_t>(view.NumberOfPoints));
+      if (tasks == 1)
+      {
+        serial = mass;
+        serialCover = cover;
+        // The cover is the largest value around each point.
+        std::vector<double> expected(cover.size(), 0.0);
+        for (Index c = 0; c < cells; ++c)
+        {
+          const mp::CellCorners ids = view.Cell(c);
+          for (int k = 0; k < 3; ++k)
+          {
+            double& most = expected[static_cast<size_t>(ids[k])];
+            most = std::max(most, byParent ? perParent[static_cast<size_t>(view.Parent[c])] : perCell[static_cast<size_t>(c)]);
+          }
+        }
+        EXPECT_TRUE(std::equal(expected.begin(), expected.end(), cover.begin())) << byParent;
+        continue;
+      }
+      EXPECT_TRUE(mass.RowStart == serial.RowStart) << tasks;
+      EXPECT_TRUE(mass.ColumnIndex == serial.ColumnIndex) << tasks;
+      EXPECT_TRUE(mass.Values == serial.Values) << tasks << " tasks, by parent " << byParent;
+      EXPECT_TRUE(cover == serialCover) << tasks << " tasks, by parent " << byParent;
+    }
+  }
+}
+
 TEST(SpatialOrder, PointCoverIsTheLargestFractionAroundEachPoint)
 {
   // The point cover made with M_tt (P1 targets), on the plain and the
