@@ -35,12 +35,15 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, cons
   runner.ForRanges(blocks, [&](Index first, Index last) {
     for (Index b = first; b < last; ++b)
     {
-      double* box = &partial[static_cast<size_t>(9 * b)];
+      // (In locals, written out once: stores through `partial` each corner
+      // took twice the time of the loop.)
+      double low[3];
+      double high[3];
+      double sum[3] = { 0, 0, 0 };
       for (int d = 0; d < 3; ++d)
       {
-        box[d] = std::numeric_limits<double>::infinity();
-        box[3 + d] = -box[d];
-        box[6 + d] = 0.0;
+        low[d] = std::numeric_limits<double>::infinity();
+        high[d] = -low[d];
       }
       const Index end = std::min(uses, (b + 1) * Block);
       for (Index i = b * Block; i < end; ++i)
@@ -48,11 +51,15 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, cons
         const double* x = mesh.Point(mesh.Corner(i));
         for (int d = 0; d < 3; ++d)
         {
-          box[d] = std::min(box[d], x[d]);
-          box[3 + d] = std::max(box[3 + d], x[d]);
-          box[6 + d] += x[d];
+          low[d] = std::min(low[d], x[d]);
+          high[d] = std::max(high[d], x[d]);
+          sum[d] += x[d];
         }
       }
+      double* box = &partial[static_cast<size_t>(9 * b)];
+      std::copy(low, low + 3, box);
+      std::copy(high, high + 3, box + 3);
+      std::copy(sum, sum + 3, box + 6);
     }
     return 0;
   }, 4);
