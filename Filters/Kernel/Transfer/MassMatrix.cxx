@@ -244,8 +244,7 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
         {
           __builtin_prefetch(cellValue.Values + mesh.ParentOf(c + 16));
         }
-        const double v = cellValue.Values[cellValue.ByParent ? mesh.ParentOf(c) : c];
-        const double f = cellValue.AtMostOne ? std::min(1.0, v) : v;
+        const double f = cellValue.Values[cellValue.ByParent ? mesh.ParentOf(c) : c];
         for (int a = 0; a < n; ++a)
         {
           if (mine(dofs[a]))

@@ -114,13 +114,12 @@ struct CellMasses
   const double* Find(Index c) const;
 };
 
-/// A value per cell of a mesh: Values[ByParent ? mesh.ParentOf(c) : c],
-/// taken at most 1 with AtMostOne (null Values: none).
+/// A value per cell of a mesh: Values[ByParent ? mesh.ParentOf(c) : c]
+/// (null Values: none).
 struct CellValues
 {
   const double* Values = nullptr;
   bool ByParent = false;
-  bool AtMostOne = false;
 };
 
 /**
