@@ -773,6 +773,44 @@ void CopyInThreads(const T* from, size_t n, T* to)
 }
 
 /**
+ * Per component k < nc, the sum of term(i, k) over i in [0, n), in the
+ * filter's threads: each block of 2^14 items summed on its own, then the
+ * blocks' sums in block order (the same sums on any number of threads).
+ */
+template <class Term>
+std::vector<double> SumInBlocks(vtkIdType n, int nc, const Term& term)
+{
+  constexpr vtkIdType Block = vtkIdType(1) << 14;
+  const vtkIdType blocks = (n + Block - 1) / Block;
+  std::vector<double> partial(static_cast<size_t>(blocks * nc), 0.0);
+  mpvtk::For(0, blocks, 1, [&](vtkIdType begin, vtkIdType end) {
+    std::vector<double> sum(static_cast<size_t>(nc));
+    for (vtkIdType b = begin; b < end; ++b)
+    {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      const vtkIdType last = std::min(n, (b + 1) * Block);
+      for (vtkIdType i = b * Block; i < last; ++i)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          sum[static_cast<size_t>(k)] += term(i, k);
+        }
+      }
+      std::copy(sum.begin(), sum.end(), partial.begin() + b * nc);
+    }
+  });
+  std::vector<double> total(static_cast<size_t>(nc), 0.0);
+  for (vtkIdType b = 0; b < blocks; ++b)
+  {
+    for (int k = 0; k < nc; ++k)
+    {
+      total[static_cast<size_t>(k)] += partial[static_cast<size_t>(b * nc + k)];
+    }
+  }
+  return total;
+}
+
+/**
  * For every cell c of `view` in turn and each of its corners p, apply(p,
  * value(c)), skipping cells whose value is not positive: as that loop
  * would, in the order it would (sums come out bit for bit the same), but
@@ -2850,28 +2888,18 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
       // The integrals: of the Source field over the part of Source the
       // pieces cover, and of the projection over the covered target (which
       // equals that of the projected Source field there).
-      std::vector<double> sourceIntegral(static_cast<size_t>(nc), 0.0);
-      std::vector<double> targetIntegral(static_cast<size_t>(nc), 0.0);
+      std::vector<double> sourceIntegral;
+      std::vector<double> targetIntegral;
       {
         const bool known = sourceWeights.count(std::make_pair(&op, fromCells)) > 0;
         const std::vector<double>& w = weightsOf(op, fromCells, coveredTotals(op, !known));
-        for (size_t j = 0; j < w.size(); ++j)
-        {
-          for (int k = 0; k < nc; ++k)
-          {
-            sourceIntegral[k] += w[j] * g.Values[j * width + offset + k];
-          }
-        }
-        for (vtkIdType f = 0; f < n; ++f)
-        {
-          if (op.GetValid()[f])
-          {
-            for (int k = 0; k < nc; ++k)
-            {
-              targetIntegral[k] += covered[f] * values[f * width + offset + k];
-            }
-          }
-        }
+        sourceIntegral = SumInBlocks(static_cast<vtkIdType>(w.size()), nc,
+          [&](vtkIdType j, int k) { return w[j] * g.Values[j * width + offset + k]; });
+        const std::vector<char>& valid = op.GetValid();
+        // (An invalid function's value, the fill, may be NaN: left out.)
+        targetIntegral = SumInBlocks(n, nc, [&](vtkIdType f, int k) {
+          return valid[f] ? covered[f] * values[f * width + offset + k] : 0.0;
+        });
       }
       if (this->Parts)
       {
