@@ -441,6 +441,35 @@ TEST(SpatialOrder, TheProjectionBetweenRenumberedMeshesIsTheSame)
   }
 }
 
+namespace
+{
+/// A target and a source: a shuffled grid (2D) or cube (3D) stretched in x
+/// over [0.3, 1.2], a third of it beyond the unit box the source covers;
+/// and the target renumbered.
+struct PartlyCovered
+{
+  TestMesh Target;
+  TestMesh Source;
+  Renumbered Ordered;
+  explicit PartlyCovered(int dimension)
+    : Target(Stretched(Shuffled(dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1)
+                                               : mptest::CubeMesh(7, 7, 7, 0.15, 1), 4)))
+    , Source(dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2) : mptest::CubeMesh(6, 8, 7, 0.15, 2))
+    , Ordered(Target)
+  {
+  }
+  static TestMesh Stretched(TestMesh m)
+  {
+    for (size_t p = 0; p < m.Points.size(); p += 3)
+    {
+      m.Points[p] = 0.3 + 0.9 * m.Points[p];
+    }
+    m.Finish();
+    return m;
+  }
+};
+} // namespace
+
 TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
 {
   // A target partly outside the source (fractions strictly between 0 and
@@ -449,16 +478,10 @@ TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
   // it (the measure-weighted sums), equals the plain mesh's.
   for (int dimension : { 2, 3 })
   {
-    TestMesh target = Shuffled(dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1)
-                                              : mptest::CubeMesh(7, 7, 7, 0.15, 1), 4);
-    const TestMesh source = dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2)
-                                           : mptest::CubeMesh(6, 8, 7, 0.15, 2);
-    for (size_t p = 0; p < target.Points.size(); p += 3)
-    {
-      target.Points[p] = 0.3 + 0.9 * target.Points[p]; // [0.3, 1.2]: a third outside
-    }
-    target.Finish();
-    const Renumbered t(target);
+    const PartlyCovered pair(dimension);
+    const TestMesh& target = pair.Target;
+    const TestMesh& source = pair.Source;
+    const Renumbered& t = pair.Ordered;
     auto fractions = [&source](const mp::MeshView& view) {
       mp::BoxGridLocator locator(source.View());
       mp::MortarOperator op;
@@ -577,32 +600,24 @@ TEST(SpatialOrder, PointCoverIsTheLargestFractionAroundEachPoint)
   // P0 targets.
   for (int dimension : { 2, 3 })
   {
-    TestMesh target = Shuffled(dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1)
-                                              : mptest::CubeMesh(7, 7, 7, 0.15, 1), 4);
-    const TestMesh source = dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2)
-                                           : mptest::CubeMesh(6, 8, 7, 0.15, 2);
-    for (size_t p = 0; p < target.Points.size(); p += 3)
-    {
-      target.Points[p] = 0.3 + 0.9 * target.Points[p]; // [0.3, 1.2]: a third outside
-    }
-    target.Finish();
-    const Renumbered t(target);
-    mp::MeshView views[3] = { target.View(), t.Mesh.View(), t.Mesh.View() };
+    const PartlyCovered meshes(dimension);
+    const Renumbered& ordered = meshes.Ordered;
+    mp::MeshView views[3] = { meshes.Target.View(), ordered.Mesh.View(), ordered.Mesh.View() };
     for (int v : { 1, 2 })
     {
-      views[v].Parent = t.Parent.data();
-      views[v].NumberOfParents = target.NumberOfCells();
+      views[v].Parent = ordered.Parent.data();
+      views[v].NumberOfParents = meshes.Target.NumberOfCells();
       views[v].OneCellPerParent = v == 1;
     }
     for (const mp::MeshView& view : views)
     {
       for (int tasks : { 1, 3 })
       {
-        mp::BoxGridLocator locator(source.View());
+        mp::BoxGridLocator locator(meshes.Source.View());
         mp::OperatorOptions options;
         options.Runner = mptest::ThreadRunner(tasks);
         mp::MortarOperator op;
-        ASSERT_TRUE(op.Build(view, source.View(), &locator, options));
+        ASSERT_TRUE(op.Build(view, meshes.Source.View(), &locator, options));
         const mp::LargeVector<double>& f = op.GetCoveredFraction();
         std::vector<double> expected(static_cast<size_t>(view.NumberOfPoints), 0.0);
         for (mp::Index c = 0; c < view.NumberOfCells; ++c)
@@ -629,7 +644,7 @@ TEST(SpatialOrder, PointCoverIsTheLargestFractionAroundEachPoint)
         EXPECT_TRUE(again.empty()); // handed over once
         options.TargetSpace = mp::SpaceType::P0;
         mp::MortarOperator cells;
-        ASSERT_TRUE(cells.Build(view, source.View(), &locator, options));
+        ASSERT_TRUE(cells.Build(view, meshes.Source.View(), &locator, options));
         cells.TakePointCover(again);
         EXPECT_TRUE(again.empty());
       }
