@@ -237,9 +237,9 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
       }
       if (cover)
       {
-        // (An uncovered cell's parent may be covered by its other cells.)
-        // (By parent: the dataset's order, a cache miss a cell unless asked
-        // for ahead.)
+        // (Uncovered cells too: a parent may be covered by its other cells.
+        // By parent, the values are in the dataset's order: a cache miss a
+        // cell unless asked for ahead.)
         if (cellValue.ByParent && c + 16 < cells)
         {
           __builtin_prefetch(cellValue.Values + mesh.ParentOf(c + 16));
