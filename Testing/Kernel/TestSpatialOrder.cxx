@@ -240,11 +240,12 @@ TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
 TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
 {
   // Meshes large enough for 3 tasks (16384 cells each at least), shuffled,
-  // with an unused point first and one last. The renumbering's tasks claim
-  // points concurrently; whatever the race or the order the tasks run in,
-  // the result must be the serial first-use numbering. Besides the curve's order (ranges of cells that
-  // are regions of space: only their borders are contested), cells in a
-  // random order make nearly every point used by several tasks.
+  // with an unused point first and one last. The renumbering's tasks list
+  // the points their ranges of cells use concurrently; whatever the order
+  // the tasks run in, the result must be the serial first-use numbering.
+  // Besides the curve's order (ranges of cells that are regions of space:
+  // only their borders are shared), cells in a random order make nearly
+  // every point used by several tasks.
   for (int dimension : { 2, 3 })
   {
     TestMesh m = Shuffled(dimension == 2 ? mptest::GridMesh(170, 160, 0.25, 3)

@@ -327,50 +327,44 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
   const Index n = mesh.NumberOfCells;
   const Index np = mesh.NumberOfPoints;
   const int corners = mesh.CornersPerCell();
-  // Points are numbered in the order the ordered cells first use them. The
-  // ordered cells are split into ranges, one per task, and each task claims
-  // the points its cells use, in its own order: claim[p] holds the claiming
-  // task (plus one) in the bits from Shift up and the point's place in
-  // that task's list below. A task takes over a point claimed by a later
-  // task (an atomic exchange of a larger value for a smaller one), so in
-  // the end each point is claimed by the first range using it, at its
-  // first use there; the ranges' surviving claims, one range after the
-  // other, are then exactly the serial first-use order. With one task the
-  // claims are the new ids, written into `out` at once; with several `out`
-  // holds the old ids until every claim is resolved (32 bits are enough for
-  // either: no task bits), then the new ones.
-  constexpr int Shift = 40;
-  constexpr Index Local = (Index(1) << Shift) - 1;
+  // Points are numbered in the order the ordered cells first use them.
+  // With one task, in one pass: a point's slot in NewPoint is its new id
+  // from its first use on. With several, the ordered cells are split into
+  // ranges, one per task, and each task lists the points its cells use in
+  // their first use there, a point seen once set in a bit array of the
+  // task's own (an eighth of a byte a point, mostly in the core's cache:
+  // the tasks share no memory in this pass; slots claimed by atomic
+  // exchanges, as first written here, were lines shared by the two cores
+  // whenever the user's numbering mixes the ranges' points, and that pass
+  // did not run faster on two threads than on one). A point then belongs to
+  // the first range using it: the bits of the ranges before a task's are
+  // cleared from its own, its list keeps the points whose bits remain, and
+  // the lists, one range after the other, are exactly the serial first-use
+  // order; meanwhile `out` holds the old ids (32 bits are enough).
   constexpr Index Unclaimed = std::numeric_limits<Index>::max();
-  const int tasks =
-    np < Local ? static_cast<int>(std::min<Index>(runner.TasksFor(n, 16384), 4096)) : 1;
-  const bool concurrent = tasks > 1 && runner.Run;
+  // (At most 64 tasks: their bits take no more room than NewPoint.)
+  const int tasks = static_cast<int>(std::min<Index>(runner.TasksFor(n, 16384), 64));
   order.NewPoint.resize(static_cast<size_t>(np));
-  Index* claim = order.NewPoint.data();
-  runner.Fill(claim, np, Unclaimed);
-  std::vector<LargeVector<Index>> claimed(static_cast<size_t>(tasks));
-  runner.RunAll(tasks, [&](int t) {
-    const Index first = RangeBegin(n, t, tasks);
-    const Index last = RangeBegin(n, t + 1, tasks);
-    // One task: the claims are the new ids themselves.
-    const Index mine = tasks == 1 ? 0 : (Index(t) + 1) << Shift;
-    const Index later = (Index(t) + 2) << Shift; // claims from here on are later tasks'
-    LargeVector<Index>& list = claimed[t];
-    list.reserve(static_cast<size_t>(tasks == 1 ? np : (np / tasks) + (np / tasks) / 8 + 16));
-    for (Index c = first; c < last; ++c)
+  Index* newId = order.NewPoint.data();
+  runner.Fill(newId, np, Unclaimed);
+  order.Points.resize(static_cast<size_t>(np));
+  Index next = 0;
+  if (tasks == 1)
+  {
+    for (Index c = 0; c < n; ++c)
     {
       // Two stages of prefetching: the connectivity of the cell 2 * Ahead
-      // on, the claims of the one Ahead on (its ids asked for before).
-      if (c + 2 * Ahead < last)
+      // on, the slots of the one Ahead on (its ids asked for before).
+      if (c + 2 * Ahead < n)
       {
         Prefetch(mesh.Cell(order.Cells[c + 2 * Ahead]).Address());
       }
-      if (c + Ahead < last)
+      if (c + Ahead < n)
       {
         const CellCorners ahead = mesh.Cell(order.Cells[c + Ahead]);
         for (int k = 0; k < corners; ++k)
         {
-          Prefetch(claim + ahead[k]);
+          Prefetch(newId + ahead[k]);
         }
         if (mesh.Parent)
         {
@@ -381,73 +375,89 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
       const CellCorners ids = mesh.Cell(old);
       for (int k = 0; k < corners; ++k)
       {
-        Index* slot = claim + ids[k];
-        Index value;
-        if (!concurrent)
+        Index& slot = newId[ids[k]];
+        if (slot == Unclaimed)
         {
-          value = *slot;
-          if (value == Unclaimed)
-          {
-            value = *slot = mine | static_cast<Index>(list.size());
-            list.push_back(ids[k]);
-          }
+          slot = next;
+          order.Points[next++] = ids[k];
         }
-        else
-        {
-          value = __atomic_load_n(slot, __ATOMIC_RELAXED);
-          // An earlier task's claim or this task's own stays; a later
-          // task's (or none) is taken over.
-          while (value >= later)
-          {
-            const Index want = mine | static_cast<Index>(list.size());
-            if (__atomic_compare_exchange_n(slot, &value, want, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-            {
-              value = want;
-              list.push_back(ids[k]);
-              break;
-            }
-          }
-        }
-        out[corners * c + k] = static_cast<Id>(tasks == 1 ? value : ids[k]);
+        out[corners * c + k] = static_cast<Id>(slot);
       }
       parent[c] = mesh.ParentOf(old);
     }
-  });
-  // Each task's surviving claims get consecutive new ids after those of the
-  // tasks before it; its list then maps each of its claims, surviving or
-  // not, to the point's new id.
-  order.Points.resize(static_cast<size_t>(np));
-  Index next = 0;
-  if (tasks == 1)
-  {
-    next = static_cast<Index>(claimed[0].size());
-    std::copy(claimed[0].begin(), claimed[0].end(), order.Points.begin());
   }
   else
   {
-    // Each task keeps its surviving claims, in order, at the front of its
-    // list, and marks each one's slot as resolved: its task and its place
-    // among the survivors (bit 62 set: no claim, whose task bits end below
-    // it, can equal it, so the other tasks' checks of their own claims are
-    // not fooled while this runs).
-    constexpr Index Resolved = Index(1) << 62;
-    std::vector<Index> offset(static_cast<size_t>(tasks) + 1, 0);
+    using Word = std::uint64_t;
+    const size_t words = static_cast<size_t>(np / 64 + 1);
+    std::vector<UninitializedLargeVector<Word>> seen(static_cast<size_t>(tasks));
+    std::vector<LargeVector<Index>> used(static_cast<size_t>(tasks));
     runner.RunAll(tasks, [&](int t) {
-      const Index mine = (Index(t) + 1) << Shift;
-      const Index resolved = Resolved | (Index(t) << Shift);
-      LargeVector<Index>& list = claimed[t];
-      Index kept = 0;
-      for (size_t i = 0; i < list.size(); ++i)
+      UninitializedLargeVector<Word>& bits = seen[t];
+      bits.resize(words);
+      std::fill(bits.begin(), bits.end(), Word(0));
+      Word* mine = bits.data();
+      LargeVector<Index>& list = used[t];
+      list.reserve(static_cast<size_t>((np / tasks) + (np / tasks) / 8 + 16));
+      const Index first = RangeBegin(n, t, tasks);
+      const Index last = RangeBegin(n, t + 1, tasks);
+      for (Index c = first; c < last; ++c)
       {
-        const Index p = list[i];
-        if (__atomic_load_n(claim + p, __ATOMIC_RELAXED) == (mine | static_cast<Index>(i)))
+        if (c + Ahead < last)
         {
-          list[kept] = p;
-          __atomic_store_n(claim + p, resolved | kept, __ATOMIC_RELAXED);
-          ++kept;
+          Prefetch(mesh.Cell(order.Cells[c + Ahead]).Address());
+          if (mesh.Parent)
+          {
+            Prefetch(mesh.Parent + order.Cells[c + Ahead]);
+          }
+        }
+        const Index old = order.Cells[c];
+        const CellCorners ids = mesh.Cell(old);
+        for (int k = 0; k < corners; ++k)
+        {
+          const Index p = ids[k];
+          Word& w = mine[p >> 6];
+          const Word bit = Word(1) << (p & 63);
+          if (!(w & bit))
+          {
+            w |= bit;
+            list.push_back(p);
+          }
+          out[corners * c + k] = static_cast<Id>(p);
+        }
+        parent[c] = mesh.ParentOf(old);
+      }
+    });
+    // Each word of the bits, across the tasks in order: the bits of the
+    // ranges before each task's cleared from its own (in ranges of words).
+    runner.ForRanges(static_cast<Index>(words), [&](Index begin, Index end) {
+      for (Index w = begin; w < end; ++w)
+      {
+        Word before = 0;
+        for (int t = 0; t < tasks; ++t)
+        {
+          Word& bits = seen[t][w];
+          const Word own = bits;
+          bits = own & ~before;
+          before |= own;
         }
       }
+      return 0;
+    }, 4096);
+    // Each task keeps the points whose bits remain, in order; they get
+    // consecutive new ids after those of the tasks before it.
+    std::vector<Index> offset(static_cast<size_t>(tasks) + 1, 0);
+    runner.RunAll(tasks, [&](int t) {
+      const Word* bits = seen[t].data();
+      LargeVector<Index>& list = used[t];
+      Index kept = 0;
+      for (const Index p : list)
+      {
+        list[kept] = p;
+        kept += (bits[p >> 6] >> (p & 63)) & 1;
+      }
       list.resize(static_cast<size_t>(kept));
+      UninitializedLargeVector<Word>().swap(seen[t]);
       offset[t + 1] = kept;
     });
     for (int t = 0; t < tasks; ++t)
@@ -455,31 +465,25 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
       offset[t + 1] += offset[t];
     }
     next = offset[tasks];
-    // The survivors get consecutive new ids after those of the tasks before
-    // theirs: each task copies its list into place and turns the slots of a
-    // range of points (in storage order) into new ids; then the cells' old
-    // ids are replaced by their points' new ids.
+    // Each task copies its list into place and writes its points' new ids;
+    // then the cells' old ids are replaced by their points' new ids.
     runner.RunAll(tasks, [&](int t) {
-      std::copy(claimed[t].begin(), claimed[t].end(), order.Points.begin() + offset[t]);
-      const Index end = RangeBegin(np, t + 1, tasks);
-      for (Index p = RangeBegin(np, t, tasks); p < end; ++p)
+      const LargeVector<Index>& list = used[t];
+      std::copy(list.begin(), list.end(), order.Points.begin() + offset[t]);
+      for (size_t i = 0; i < list.size(); ++i)
       {
-        const Index value = claim[p];
-        if (value != Unclaimed)
-        {
-          claim[p] = offset[static_cast<size_t>((value & ~Resolved) >> Shift)] + (value & Local);
-        }
+        newId[list[i]] = offset[t] + static_cast<Index>(i);
       }
     });
+    std::vector<LargeVector<Index>>().swap(used);
     runner.RunAll(tasks, [&](int t) {
       const Index end = corners * RangeBegin(n, t + 1, tasks);
       for (Index i = corners * RangeBegin(n, t, tasks); i < end; ++i)
       {
-        out[i] = static_cast<Id>(claim[static_cast<Index>(out[i])]);
+        out[i] = static_cast<Id>(newId[static_cast<Index>(out[i])]);
       }
     });
   }
-  std::vector<LargeVector<Index>>().swap(claimed);
   // Points no cell uses: last, in their old order.
   for (Index p = 0; p < np; ++p)
   {
