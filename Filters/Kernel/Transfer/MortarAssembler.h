@@ -109,7 +109,9 @@ struct MortarAssembler
   /// Per source cell: the measure of its part covered by pieces, on the
   /// source cell (this task's own array, or null).
   double* SourceCovered = nullptr;
-  const char* Shared = nullptr; ///< per target function; null for a single task
+  /// Per target function a bit (function f: bit f % 64 of word f / 64), set
+  /// when cells of several tasks use it; null for a single task.
+  const std::uint64_t* Shared = nullptr;
   /// Right-hand sides instead of blocks: the source fields (source
   /// functions x Components) and their sums (target functions x Components).
   const double* Fields = nullptr;
@@ -199,7 +201,7 @@ struct MortarAssembler
       const int nc = this->Components;
       for (int i = 0; i < Nt; ++i)
       {
-        const bool shared = this->Shared && this->Shared[dofs[i]];
+        const bool shared = this->Shared && ((this->Shared[dofs[i] >> 6] >> (dofs[i] & 63)) & 1);
         for (int c = 0; c < nc; ++c)
         {
           const Index position = dofs[i] * nc + c;

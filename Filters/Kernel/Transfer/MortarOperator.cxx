@@ -297,7 +297,7 @@ struct MortarOperator::Session
 {
   using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
   MortarOperator* Op = nullptr;
-  UninitializedLargeVector<char> Shared;
+  UninitializedLargeVector<std::uint64_t> Shared; ///< per target function a bit (MortarAssembler::Shared)
   std::vector<Assembler> Assemblers;
   std::vector<MixedBlocks> Blocks;
   std::vector<IntersectionPieces> Pieces;
@@ -325,45 +325,60 @@ struct MortarOperator::Session
     this->Partial.resize(static_cast<size_t>(tasks));
     // Target functions on cells of more than one task: their right-hand
     // sides are summed after the tasks (MortarAssembler::Shared; fields
-    // given at Build only). Each task writes its number (plus one) on the
-    // functions of its cells; once all have, a task that finds another's
-    // number on one of its functions marks it shared (the last writer's
-    // number stays; every other task using it sees that number). Plain
-    // stores, no read-modify-write: a locked exchange per function cost
-    // more than the rest of the preparation.
+    // given at Build only). Each task sets a bit per function of its cells
+    // in a set of its own (an eighth of a byte per function, mostly in its
+    // core's cache: no memory shared; 16-bit marks in one array, which the
+    // tasks wrote and then read back, took two passes over the cells with
+    // the cores sharing the marks' lines); then, word by word and task
+    // after task, a function met again is shared. In batches of 64 tasks,
+    // so that the sets never take more room than 8 bytes a function.
     const bool single = op.Options.Fields != nullptr;
     if (tasks > 1 && single)
     {
-      // (Zeros written by the tasks, each the first to touch its pages.)
-      UninitializedLargeVector<char>& shared = this->Shared;
-      shared.resize(static_cast<size_t>(rows));
-      runner.Fill(shared.data(), rows, char(0), Index(1) << 16);
-      UninitializedLargeVector<std::uint16_t> mark(static_cast<size_t>(rows));
-      runner.Fill(mark.data(), rows, std::uint16_t(0), Index(1) << 16);
-      auto eachFunction = [&](int k, auto&& visit) {
-        for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
-        {
-          Index dofs[TargetSpace::Dofs];
-          TargetSpace::MeshCellDofs(target, c, dofs);
-          for (Index f : dofs)
+      using Word = std::uint64_t;
+      const Index words = rows / 64 + 1;
+      UninitializedLargeVector<Word> seen(static_cast<size_t>(words));
+      UninitializedLargeVector<Word>& shared = this->Shared;
+      shared.resize(static_cast<size_t>(words));
+      runner.Fill(seen.data(), words, Word(0), Index(1) << 12);
+      runner.Fill(shared.data(), words, Word(0), Index(1) << 12);
+      constexpr int Batch = 64;
+      std::vector<UninitializedLargeVector<Word>> bits(static_cast<size_t>(std::min(tasks, Batch)));
+      for (int batch = 0; batch < tasks; batch += Batch)
+      {
+        const int count = std::min(Batch, tasks - batch);
+        runner.RunAll(count, [&](int i) {
+          UninitializedLargeVector<Word>& mine = bits[i];
+          mine.resize(static_cast<size_t>(words));
+          std::fill(mine.begin(), mine.end(), Word(0));
+          Word* set = mine.data();
+          const int k = batch + i;
+          for (Index c = RangeBegin(cells, k, tasks); c < RangeBegin(cells, k + 1, tasks); ++c)
           {
-            visit(f);
-          }
-        }
-      };
-      runner.RunAll(tasks, [&](int k) {
-        const auto mine = static_cast<std::uint16_t>(k + 1);
-        eachFunction(k, [&](Index f) { __atomic_store_n(&mark[f], mine, __ATOMIC_RELAXED); });
-      });
-      runner.RunAll(tasks, [&](int k) {
-        const auto mine = static_cast<std::uint16_t>(k + 1);
-        eachFunction(k, [&](Index f) {
-          if (__atomic_load_n(&mark[f], __ATOMIC_RELAXED) != mine)
-          {
-            __atomic_store_n(&shared[f], char(1), __ATOMIC_RELAXED);
+            Index dofs[TargetSpace::Dofs];
+            TargetSpace::MeshCellDofs(target, c, dofs);
+            for (Index f : dofs)
+            {
+              set[f >> 6] |= Word(1) << (f & 63);
+            }
           }
         });
-      });
+        runner.ForRanges(words, [&](Index begin, Index end) {
+          for (Index w = begin; w < end; ++w)
+          {
+            Word before = seen[w];
+            Word twice = shared[w];
+            for (int i = 0; i < count; ++i)
+            {
+              twice |= before & bits[i][w];
+              before |= bits[i][w];
+            }
+            seen[w] = before;
+            shared[w] = twice;
+          }
+          return 0;
+        }, Index(1) << 12);
+      }
     }
     if (single)
     {
