@@ -346,11 +346,11 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
   const int tasks = static_cast<int>(std::min<Index>(runner.TasksFor(n, 16384), 64));
   order.NewPoint.resize(static_cast<size_t>(np));
   Index* newId = order.NewPoint.data();
-  runner.Fill(newId, np, Unclaimed);
   order.Points.resize(static_cast<size_t>(np));
   Index next = 0;
   if (tasks == 1)
   {
+    runner.Fill(newId, np, Unclaimed);
     for (Index c = 0; c < n; ++c)
     {
       // Two stages of prefetching: the connectivity of the cell 2 * Ahead
@@ -429,7 +429,8 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
       }
     });
     // Each word of the bits, across the tasks in order: the bits of the
-    // ranges before each task's cleared from its own (in ranges of words).
+    // ranges before each task's cleared from its own (in ranges of words);
+    // points in no task's set (no cell uses them) marked unclaimed.
     runner.ForRanges(static_cast<Index>(words), [&](Index begin, Index end) {
       for (Index w = begin; w < end; ++w)
       {
@@ -440,6 +441,13 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
           const Word own = bits;
           bits = own & ~before;
           before |= own;
+        }
+        for (Index p = 64 * w; p < std::min(np, 64 * w + 64) && before != ~Word(0); ++p)
+        {
+          if (!((before >> (p & 63)) & 1))
+          {
+            newId[p] = Unclaimed;
+          }
         }
       }
       return 0;
@@ -485,7 +493,7 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
     });
   }
   // Points no cell uses: last, in their old order.
-  for (Index p = 0; p < np; ++p)
+  for (Index p = 0; p < np && next < np; ++p)
   {
     Index& id = order.NewPoint[p];
     if (id == Unclaimed)
