@@ -551,9 +551,8 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   MortarOperator& lead = *operators[0];
   const TaskRunner& runner = lead.Options.Runner;
   // The target cells in ranges, one per task, each with its own front,
-  // locator and sums. (At most 65535: the shared functions are found by
-  // 16-bit task marks.)
-  const int tasks = std::min(runner.TasksFor(target.NumberOfCells, 64), 65535);
+  // locator and sums.
+  const int tasks = runner.TasksFor(target.NumberOfCells, 64);
   // The cover of the source cells is the same for every operator (the
   // same pieces, the same excluded cells): the lead's session sums it
   // (per-task arrays of source cells: once, not per operator).
