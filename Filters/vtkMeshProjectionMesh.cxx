@@ -1035,11 +1035,11 @@ void SimplexMesh::ReleaseGeometry()
 
 void SimplexMesh::ReleaseOrder()
 {
-  mp::LargeVector<mp::Index>().swap(this->PointOrder);
+  mp::UninitializedLargeVector<mp::Index>().swap(this->PointOrder);
   if (this->Kernel.OneCellPerParent)
   {
     // Only a renumbering's parents (split cells keep theirs: Parents() counts them).
-    mp::LargeVector<mp::Index>().swap(this->ParentIds);
+    mp::UninitializedLargeVector<mp::Index>().swap(this->ParentIds);
     this->Kernel.Parent = nullptr;
   }
 }

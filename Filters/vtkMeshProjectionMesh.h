@@ -293,7 +293,7 @@ private:
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
   vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
-  mp::LargeVector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
+  mp::UninitializedLargeVector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
   const double* OriginalPoints = nullptr;        ///< the points before any plane frame
   vtkIdType LowerDimensional = 0;
   vtkIdType Flat = 0;
@@ -301,7 +301,7 @@ private:
   double CheckTime = 0;
   double OrderTime = 0;
   int OrderingMode = AUTOMATIC;
-  mp::LargeVector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
+  mp::UninitializedLargeVector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
   mp::LargeBuffer<double> OrderedPoints;          ///< the renumbered points, when Ordered()
   mp::LargeBuffer<mp::Index> OrderedConnectivity; ///< and simplices
   mp::LargeBuffer<std::int32_t> OrderedConnectivity32; ///< or these, below 2^31 points

@@ -54,7 +54,7 @@ TestMesh Shuffled(const TestMesh& m, unsigned seed)
   return s;
 }
 
-bool IsPermutation(const mp::LargeVector<Index>& order)
+bool IsPermutation(const mp::UninitializedLargeVector<Index>& order)
 {
   std::vector<Index> v(order.begin(), order.end());
   std::sort(v.begin(), v.end());
@@ -138,7 +138,7 @@ struct Copy
 };
 
 /// `narrow`: the cells renumbered into 32-bit ids (then widened into c.Cells).
-Copy RenumberWith(const TestMesh& m, const mp::LargeVector<Index>& cells, const mp::TaskRunner& runner,
+Copy RenumberWith(const TestMesh& m, const mp::UninitializedLargeVector<Index>& cells, const mp::TaskRunner& runner,
   const std::vector<Index>* parents = nullptr, bool inPlace = false, bool narrow = false)
 {
   Copy c;
@@ -261,9 +261,9 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
     ASSERT_GE(m.NumberOfCells(), 3 * 16384);
     mp::SpatialOrder serial;
     mp::OrderAlongCurve(m.View(false), serial);
-    mp::LargeVector<Index> random = serial.Cells;
+    mp::UninitializedLargeVector<Index> random = serial.Cells;
     std::shuffle(random.begin(), random.end(), std::mt19937(8));
-    for (const mp::LargeVector<Index>* cells : { &serial.Cells, &random })
+    for (const mp::UninitializedLargeVector<Index>* cells : { &serial.Cells, &random })
     {
       const Copy expected = RenumberWith(m, *cells, mp::TaskRunner());
       EXPECT_EQ(RenumberWith(m, *cells, mp::TaskRunner(), nullptr, false, true).Cells, expected.Cells);

@@ -88,9 +88,9 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   const Index n = mesh.NumberOfCells;
   const Index np = mesh.NumberOfPoints;
   order.Cells.resize(static_cast<size_t>(n));
-  std::iota(order.Cells.begin(), order.Cells.end(), Index(0));
   if (n < 2 || n > Index(0xffffffff))
   {
+    std::iota(order.Cells.begin(), order.Cells.end(), Index(0));
     return; // keys carry the cell id in 32 bits
   }
   // The box of the points (in storage order: no random access), leaving out

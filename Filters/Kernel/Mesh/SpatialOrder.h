@@ -44,11 +44,12 @@ namespace mp
  */
 std::uint64_t MortonIndex(const std::uint32_t* x, int dimension);
 
+/// (Written whole by the functions below, not zeroed first.)
 struct SpatialOrder
 {
-  LargeVector<Index> Cells;    ///< new cell id -> old cell id
-  LargeVector<Index> Points;   ///< new point id -> old point id
-  LargeVector<Index> NewPoint; ///< old point id -> new point id
+  UninitializedLargeVector<Index> Cells;    ///< new cell id -> old cell id
+  UninitializedLargeVector<Index> Points;   ///< new point id -> old point id
+  UninitializedLargeVector<Index> NewPoint; ///< old point id -> new point id
 };
 
 /**
