@@ -130,13 +130,27 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   if (tasks > 1)
   {
     // (Past the reservation on unusual meshes: the first task's rows are
-    // moved with the rest, as a vector grows.)
+    // moved with the rest, as a vector grows.) The other blocks are copied
+    // in after them by ranges of the columns (each range from the blocks it
+    // overlaps: the copy shared by every thread, not one block per task).
     columns.resize(static_cast<size_t>(start[points]));
-    runner.RunAll(tasks - 1, [&](int i) {
-      const int k = i + 1;
-      std::copy(blocks[k].begin(), blocks[k].end(), columns.begin() + start[RangeBegin(points, k, tasks)]);
-      UninitializedLargeVector<Column>().swap(blocks[k]);
-    });
+    const Index moved = start[RangeBegin(points, 1, tasks)];
+    runner.ForRanges(start[points] - moved, [&](Index begin, Index end) {
+      for (int k = 1; k < tasks; ++k)
+      {
+        const Index from = start[RangeBegin(points, k, tasks)] - moved;
+        const Index to = start[RangeBegin(points, k + 1, tasks)] - moved;
+        const Index a = std::max(begin, from);
+        const Index b = std::min(end, to);
+        if (a < b)
+        {
+          const Column* block = blocks[k].data();
+          std::copy(block + (a - from), block + (b - from), columns.data() + moved + a);
+        }
+      }
+      return 0;
+    }, Index(1) << 16);
+    std::vector<UninitializedLargeVector<Column>>().swap(blocks);
   }
 }
 
