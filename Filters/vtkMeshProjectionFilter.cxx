@@ -819,8 +819,9 @@ std::vector<double> SumInBlocks(vtkIdType n, int nc, const Term& term)
  * earlier ranges' cells, so no two tasks write one point) and keeps the
  * others' values until every range is done, then applies them in cell
  * order. Numberings that follow space (a renumbered copy numbers points as
- * its cells first use them) keep few; when more than a sixteenth of the
- * corners would wait (ids with no such order), one loop does it all.
+ * its cells first use them) keep few; a range that would keep more than a
+ * sixteenth of its corners (ids with no such order) stops, and its
+ * remaining cells are applied after the values kept, in one loop.
  */
 template <class Value, class Apply>
 void ForCellCornersInOrder(
@@ -851,7 +852,6 @@ void ForCellCornersInOrder(
   auto range = [&](int k) { return std::make_pair(mp::RangeBegin(n, k, tasks), mp::RangeBegin(n, k + 1, tasks)); };
   // Ids below first[k] may be used by the cells of an earlier range.
   std::vector<mp::Index> first(static_cast<size_t>(tasks), 0);
-  std::vector<mp::Index> waiting(static_cast<size_t>(tasks), 0);
   runner.RunAll(tasks, [&](int k) {
     mp::Index top = -1;
     for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
@@ -867,34 +867,27 @@ void ForCellCornersInOrder(
     first[k] = top;
     top = std::max(top, largest + 1);
   }
-  runner.RunAll(tasks, [&](int k) {
-    mp::Index count = 0;
-    for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
-    {
-      count += view.Corner(i) < first[k];
-    }
-    waiting[k] = count;
-  });
-  mp::Index total = 0;
-  for (mp::Index count : waiting)
-  {
-    total += count;
-  }
-  if (total > corners * n / 16)
-  {
-    serial(0, n);
-    return;
-  }
+  // Each range applies directly what it can and keeps the rest, up to a
+  // sixteenth of its corners: a range that would keep more stops at that
+  // cell (ids with no such order), and its remaining cells are applied in
+  // one loop after the values kept by it and the ranges before it (points
+  // of later ranges' direct values are none of its points).
+  std::vector<mp::Index> stopped(static_cast<size_t>(tasks), -1);
   std::vector<std::vector<std::pair<mp::Index, double>>> kept(static_cast<size_t>(tasks));
   runner.RunAll(tasks, [&](int k) {
     std::vector<std::pair<mp::Index, double>>& mine = kept[k];
-    mine.reserve(static_cast<size_t>(waiting[k]));
+    const size_t room = static_cast<size_t>(corners * (range(k).second - range(k).first) / 16);
     for (mp::Index c = range(k).first; c < range(k).second; ++c)
     {
       const double v = value(c);
       if (v > 0.0)
       {
         const mp::CellCorners ids = view.Cell(c);
+        if (mine.size() + corners > room)
+        {
+          stopped[k] = c;
+          return;
+        }
         for (int j = 0; j < corners; ++j)
         {
           if (ids[j] >= first[k])
@@ -909,11 +902,15 @@ void ForCellCornersInOrder(
       }
     }
   });
-  for (const auto& mine : kept)
+  for (int k = 0; k < tasks; ++k)
   {
-    for (const auto& entry : mine)
+    for (const auto& entry : kept[k])
     {
       apply(entry.first, entry.second);
+    }
+    if (stopped[k] >= 0)
+    {
+      serial(stopped[k], range(k).second);
     }
   }
 }
