@@ -23,7 +23,7 @@ timeout 3000 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-
 MESHPROJECTION_RENUMBERING=always timeout 1800 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
   ctest --output-on-failure --parallel 2 -LE Fuzz -E "^Example\.|^Kernel\."
 
-# The kernel's concurrent code (renumbering claims, shared-row marks, the
+# The kernel's concurrent code (renumbering's point sets, shared rows' sets, the
 # search, assembly and solve in ranges) under ThreadSanitizer.
 timeout 900 bash "$root/Scripts/tsan-kernel.sh"
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The kernel's concurrent code under ThreadSanitizer: the kernel and the unit
 # tests that run it in several tasks on std::threads (the renumbering's
-# claims and sort, the neighbours, the search and assembly in ranges, the
-# shared rows' marks, the solve) compiled by clang with -fsanitize=thread
+# point sets and sort, the neighbours, the search and assembly in ranges, the
+# shared rows' bit sets, the solve) compiled by clang with -fsanitize=thread
 # into ${TSAN_DIR:-build-tsan}, then run. A data race fails the run.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
