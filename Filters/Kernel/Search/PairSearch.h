@@ -26,7 +26,9 @@
  * (the first one, and the first of every part the front cannot reach) gets
  * its seed from a walk through the source mesh toward its center, from the
  * last source cell met (a visibility walk: always into the neighbour across a
- * face that has the point strictly beyond it; a bounded number of steps).
+ * face that has the point strictly beyond it; a bounded number of steps);
+ * where a hole of the source on the way stops it, a second walk from the
+ * nearest of a sample of source cells (WalkStarts).
  * Where there is no seed, where the seed does not meet the cell, or where the
  * inner front runs into the source boundary (there the cell's intersection
  * may be disconnected; in 3D not when every boundary face it ran into
@@ -76,6 +78,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <type_traits>
 #include <utility>
 #include <cmath>
@@ -153,6 +156,81 @@ private:
   std::vector<Index> Ids;
   std::vector<char> Valid;
   std::vector<typename Intersector::Cell> Cells;
+};
+
+/**
+ * Other starts for walks: about 2 sqrt(n) source cells at a regular stride of
+ * ids, with their centres, gathered on the first question. A walk from the
+ * last source cell met stops where a hole or a bay of the source lies on its
+ * way; one from the sampled cell nearest the point is short, so it seldom
+ * meets one, and saves the query among all source cells (and the index over
+ * all of them that it builds). Ids spread the samples over the mesh for any
+ * numbering that is not adversarial; the start is a heuristic, the search's
+ * result does not depend on it.
+ */
+class WalkStarts
+{
+public:
+  explicit WalkStarts(const MeshView& mesh)
+    : Mesh(mesh)
+  {
+  }
+  /// How many cells are sampled: about 2 sqrt(n).
+  static Index Samples(Index n)
+  {
+    return std::min<Index>(n, 2 * static_cast<Index>(std::sqrt(static_cast<double>(n))) + 1);
+  }
+  /// The sampled cell whose centre is nearest q (the mesh's first
+  /// SpaceDimension coordinates), or -1 for a mesh without cells. Costs
+  /// Samples() steps.
+  Index Nearest(const double* q)
+  {
+    const MeshView& m = this->Mesh;
+    const int dims = m.SpaceDimension;
+    if (this->Ids.empty() && m.NumberOfCells > 0)
+    {
+      const Index n = m.NumberOfCells;
+      const Index samples = Samples(n);
+      const int corners = m.CornersPerCell();
+      for (Index i = 0; i < samples; ++i)
+      {
+        const Index c = static_cast<Index>((2 * i + 1) * n / (2 * samples));
+        const CellCorners ids = m.Cell(c);
+        double centre[3] = { 0.0, 0.0, 0.0 };
+        for (int k = 0; k < corners; ++k)
+        {
+          for (int d = 0; d < dims; ++d)
+          {
+            centre[d] += m.Point(ids[k])[d] / corners;
+          }
+        }
+        this->Ids.push_back(c);
+        this->Centres.insert(this->Centres.end(), centre, centre + dims);
+      }
+    }
+    Index best = -1;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < this->Ids.size(); ++i)
+    {
+      double d2 = 0.0;
+      for (int d = 0; d < dims; ++d)
+      {
+        const double e = this->Centres[i * dims + d] - q[d];
+        d2 += e * e;
+      }
+      if (d2 < nearest)
+      {
+        nearest = d2;
+        best = this->Ids[i];
+      }
+    }
+    return best;
+  }
+
+private:
+  const MeshView& Mesh;
+  std::vector<Index> Ids;
+  std::vector<double> Centres; ///< SpaceDimension coordinates per sample
 };
 
 /**
@@ -241,6 +319,9 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   const Index maxWalk = 100 +
     4 * static_cast<Index>(std::pow(
           static_cast<double>(source.NumberOfCells), 1.0 / Sources::Dimension));
+  WalkStarts starts(source);
+  const Index startSamples = WalkStarts::Samples(source.NumberOfCells);
+  Index restarts = 0; // walks started again from a sample
   bool askedAll = false; // a query among all source cells was made: no more walks
   // Walks are for the few cells that start a front. Where there are many
   // (a target of many disconnected pieces, e.g. cells that share no
@@ -310,7 +391,25 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       double q[3] = { 0.0, 0.0, 0.0 };
       Intersector::Center(t, q);
       ++stats.SeedWalks;
-      return WalkToward<Sources>(source, sources, from, q, maxWalk, stats.WalkSteps);
+      const Index found = WalkToward<Sources>(source, sources, from, q, maxWalk, stats.WalkSteps);
+      // Stopped on the way (a hole of the source, a cell of zero measure): once more,
+      // from the sampled cell nearest the center. Each look-up scans the
+      // samples: allowed while they add up to at most 16 per treated cell
+      // and 64 scans, so that the search stays linear.
+      const Index scans = restarts + 1;
+      if (found >= 0 || stats.WalkSteps >= walkBudget() ||
+        scans * startSamples > 16 * treated + 64 * startSamples)
+      {
+        return found;
+      }
+      restarts = scans;
+      const Index near = starts.Nearest(q);
+      if (near < 0 || near == from)
+      {
+        return -1;
+      }
+      ++stats.SeedWalks;
+      return WalkToward<Sources>(source, sources, near, q, maxWalk, stats.WalkSteps);
     };
     if (seed < 0)
     {
