@@ -2613,6 +2613,10 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   // nor on several processes, whose Source weights are collective.)
   if (run.LastLeaf && !this->OutputIntersections && !this->Parts)
   {
+    // (Counted with the assembly: 17 ms of a Gmsh 2D pair of 10^6
+    // triangles on one thread, otherwise in no stage. Made later, with the
+    // outputs, they are counted there.)
+    const auto weighing = std::chrono::steady_clock::now();
     for (int t = 0; t < 4; ++t)
     {
       const Gathered& g = fields[SourceSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
@@ -2621,6 +2625,8 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
         weightsOf(*byArray[t][a], SourceSpaceOf(t) == mp::SpaceType::P0, std::vector<double>());
       }
     }
+    this->AssemblyTime +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - weighing).count();
     run.Locator.reset();
     sourceMesh.ReleaseGeometry();
     // The point order and parents too when no operator of this execution

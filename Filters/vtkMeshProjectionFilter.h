@@ -526,7 +526,9 @@ public:
    * neighbours, the locator over the source's boundary
    * cells (bins of their boxes), the pair search with the intersections and
    * local integrals (and a locator over all source cells, when one is
-   * needed), the assembly, the solve, and writing the outputs.
+   * needed), the assembly (M_tt, and the Source's covered integrals that
+   * the conservation figures compare with), the solve, and writing the
+   * outputs.
    */
   vtkGetMacro(InputTime, double);
   /// Of InputTime: checking both meshes' ids, offsets, types and face
