@@ -408,7 +408,7 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
       {
         return -1;
       }
-      ++stats.SeedWalks;
+      ++stats.WalkRestarts;
       return WalkToward<Sources>(source, sources, near, q, maxWalk, stats.WalkSteps);
     };
     if (seed < 0)

@@ -26,6 +26,7 @@ struct SearchStatistics
   Index LocatorQueries = 0;    ///< candidate look-ups in the locator (seeds and re-seeds)
   Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
   Index SeedWalks = 0;         ///< walks through the source toward an unseeded target cell
+  Index WalkRestarts = 0;      ///< of those stopped on the way, made again from a sampled source cell
   Index WalkSteps = 0;         ///< source cells those walks went through
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
   /// Source cells of zero measure, skipped: those the front met (all, for
@@ -42,6 +43,7 @@ struct SearchStatistics
     this->LocatorQueries += o.LocatorQueries;
     this->FullLocatorQueries += o.FullLocatorQueries;
     this->SeedWalks += o.SeedWalks;
+    this->WalkRestarts += o.WalkRestarts;
     this->WalkSteps += o.WalkSteps;
     this->DegenerateTargetCells += o.DegenerateTargetCells;
     return *this;
