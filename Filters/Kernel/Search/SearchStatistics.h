@@ -27,7 +27,7 @@ struct SearchStatistics
   Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
   Index SeedWalks = 0;         ///< walks through the source toward an unseeded target cell
   Index WalkRestarts = 0;      ///< of those stopped on the way, made again from a sampled source cell
-  Index WalkSteps = 0;         ///< source cells those walks went through
+  Index WalkSteps = 0;         ///< source cells those walks (and their restarts) went through
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
   /// Source cells of zero measure, skipped: those the front met (all, for
   /// the brute force); unmet ones could not have mattered.
