@@ -26,7 +26,9 @@
 #include "vtkWeakPointer.h"
 
 #include "vtkMeshProjectionMesh.h"
-#include "vtkMeshProjectionParts.h"
+#include "Parallel/Parts.h"
+#include "Projection/ArraySelection.h"
+#include "Projection/Composite.h"
 
 #include "Geometry/Measures.h"
 #include "Mesh/CellNeighbors.h"
@@ -58,6 +60,15 @@ vtkStandardNewMacro(vtkMeshProjectionFilter);
 
 namespace
 {
+// (Transitional: the string protocol over the seam's verdicts.)
+std::string AgreeText(mpvtk::Parts* parts, const std::string& why, bool* flag = nullptr)
+{
+  const mpvtk::Verdict mine = why.empty() ? mpvtk::Verdict()
+    : why == "stopped"                    ? mpvtk::Verdict::Stop()
+                                          : mpvtk::Verdict::Fail(why);
+  const mpvtk::Verdict all = parts->Agree(mine, flag);
+  return all.Ok() ? std::string() : all.Why;
+}
 /**
  * 2D: sees both meshes in the frame of Input's plane (of Source's when
  * Input has no cells); a Source in a parallel plane is projected onto it,
@@ -222,12 +233,6 @@ struct Fingerprint
     this->Add(grid->GetCellGhostArray());
   }
 };
-
-/// The filter's own masks (of an earlier projection): not fields.
-bool IsMask(const std::string& name)
-{
-  return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0;
-}
 
 /// vtkDataObject's attribute type of the filter's associations: 0 points, 1 cells.
 int AttributeType(int association)
@@ -416,9 +421,7 @@ void vtkMeshProjectionFilter::ListSourceArrays(vtkDataObject* data)
     for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
     {
       const char* name = attributes->GetArrayName(i);
-      if (name && attributes->GetArray(i) &&
-        std::string(name) != vtkDataSetAttributes::GhostArrayName() &&
-        !IsMask(name) && !mpvtk::IsIdArray(attributes, attributes->GetAbstractArray(i)))
+      if (name && attributes->GetArray(i) && mpvtk::IsField(attributes, attributes->GetAbstractArray(i)))
       {
         this->Internal->Listed[association].insert(name);
         if (!selection->ArrayExists(name))
@@ -1270,12 +1273,12 @@ int vtkMeshProjectionFilter::Execute(
   if (this->Parts)
   {
     // Each process gets the Source cells its part of Input needs, from all.
-    failed = this->Parts->Agree(failed);
+    failed = AgreeText(this->Parts, failed);
     if (failed.empty())
     {
       const double reach = input && this->SurfaceReach > 0 ? this->SurfaceReach : 0.0;
       source = this->Parts->GatherSource(source, input, reach, failed);
-      failed = this->Parts->Agree(failed);
+      failed = AgreeText(this->Parts, failed);
     }
   }
   if (!failed.empty())
@@ -1292,7 +1295,7 @@ int vtkMeshProjectionFilter::Execute(
     this->RenumberTime += run.SourceMesh.OrderSeconds();
     if (this->Parts)
     {
-      why = this->Parts->Agree(why);
+      why = AgreeText(this->Parts, why);
     }
     if (!why.empty())
     {
@@ -1329,12 +1332,7 @@ int vtkMeshProjectionFilter::Execute(
       vtkAbstractArray* abstract = data->GetAbstractArray(i);
       const char* name = abstract->GetName();
       const std::string label = name ? name : "(unnamed)";
-      if (label == vtkDataSetAttributes::GhostArrayName() || IsMask(label) ||
-        (name && !selection->ArrayIsEnabled(name)))
-      {
-        continue;
-      }
-      if (mpvtk::IsIdArray(data, abstract))
+      if (!mpvtk::IsField(data, abstract) || (name && !selection->ArrayIsEnabled(name)))
       {
         continue;
       }
@@ -1434,7 +1432,7 @@ int vtkMeshProjectionFilter::Execute(
     bool go = run.Progress(0.05);
     if (this->Parts)
     {
-      this->Parts->Agree(std::string(), &go);
+      AgreeText(this->Parts, std::string(), &go);
     }
     if (!go)
     {
@@ -1939,7 +1937,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
   int rounds = 0;
   auto agree = [&](const std::string& why, bool* flag = nullptr) {
     ++rounds;
-    return this->Parts ? this->Parts->Agree(why, flag) : why;
+    return this->Parts ? AgreeText(this->Parts, why, flag) : why;
   };
   // A process that fails takes part in the rounds left, with its reason,
   // and acts on what the first of them agreed (the same on every process:
@@ -2712,7 +2710,7 @@ std::string vtkMeshProjectionFilter::ProjectLeaf(vtkDataSet* target, vtkDataSet*
     bool warm = !fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
     if (this->Parts)
     {
-      this->Parts->Agree(std::string(), &warm); // all processes start alike
+      AgreeText(this->Parts, std::string(), &warm); // all processes start alike
     }
     if (warm)
     {

@@ -380,15 +380,6 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
   return std::string();
 }
 
-bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array)
-{
-  const char* name = array ? array->GetName() : nullptr;
-  return array &&
-    (array == data->GetGlobalIds() || array == data->GetPedigreeIds() ||
-      (name &&
-        (std::string(name) == "vtkOriginalPointIds" || std::string(name) == "vtkOriginalCellIds")));
-}
-
 namespace
 {
 /// This thread's WorkerScope's pool.

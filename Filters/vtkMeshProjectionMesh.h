@@ -151,11 +151,6 @@ void For(vtkIdType first, vtkIdType last, const Body& body)
   For(first, last, 0, body);
 }
 
-/// Ids of a dataset's own points or cells (its GlobalIds and PedigreeIds, and
-/// the vtkOriginalPointIds/CellIds that extraction and redistribution
-/// filters add): not fields, never listed, projected or sent.
-bool IsIdArray(vtkDataSetAttributes* data, vtkAbstractArray* array);
-
 class SimplexMesh
 {
 public:

@@ -2,7 +2,8 @@
 #include "vtkPMeshProjectionFilter.h"
 
 #include "vtkMeshProjectionMesh.h"
-#include "vtkMeshProjectionParts.h"
+#include "Parallel/Parts.h"
+#include "Projection/ArraySelection.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -394,16 +395,15 @@ std::vector<T> Read(const std::vector<char>& buffer)
   return values;
 }
 
-/// The arrays of a dataset's points or cells that take part: numeric, named,
-/// not the ghost array nor ids (mpvtk::IsIdArray).
+/// The arrays of a dataset's points or cells that take part: numeric, named
+/// fields (Projection/ArraySelection.h).
 std::vector<vtkDataArray*> ArraysOf(vtkDataSetAttributes* data)
 {
   std::vector<vtkDataArray*> arrays;
   for (int i = 0; i < data->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* a = data->GetArray(i);
-    if (!a || !a->GetName() || mpvtk::IsIdArray(data, a) ||
-      std::string(a->GetName()) == vtkDataSetAttributes::GhostArrayName())
+    if (!a || !a->GetName() || !mpvtk::IsField(data, a))
     {
       continue;
     }
@@ -433,9 +433,10 @@ public:
   double SentBytes() const override { return this->Sent; }
   vtkIdType Received = 0;
 
-  std::string Agree(const std::string& why, bool* flag) override
+  mpvtk::Verdict Agree(const mpvtk::Verdict& verdict, bool* flag) override
   {
-    int mine[2] = { why.empty() ? this->N : this->Me, flag ? (*flag ? 1 : 0) : 1 };
+    const bool done = verdict.Ok();
+    int mine[2] = { done ? this->N : this->Me, flag ? (*flag ? 1 : 0) : 1 };
     int all[2] = { 0, 0 };
     this->C->AllReduce(mine, all, 2, vtkCommunicator::MIN_OP);
     if (flag)
@@ -445,17 +446,22 @@ public:
     const int first = all[0];
     if (first >= this->N)
     {
-      return std::string();
+      return mpvtk::Verdict();
     }
-    std::string text = first == this->Me ? why : std::string();
-    long long length = static_cast<long long>(text.size());
-    this->C->Broadcast(&length, 1, first);
-    text.resize(static_cast<size_t>(length));
-    if (length > 0)
+    // The first process's outcome and reason, to the others.
+    std::string text = first == this->Me ? verdict.Why : std::string();
+    long long head[2] = { static_cast<long long>(verdict.What), static_cast<long long>(text.size()) };
+    this->C->Broadcast(head, 2, first);
+    text.resize(static_cast<size_t>(head[1]));
+    if (head[1] > 0)
     {
-      this->C->Broadcast(&text[0], length, first);
+      this->C->Broadcast(&text[0], head[1], first);
     }
-    return first == this->Me ? why : text + " (on process " + std::to_string(first) + ")";
+    if (first == this->Me)
+    {
+      return verdict;
+    }
+    return { static_cast<mpvtk::Outcome>(head[0]), text + " (on process " + std::to_string(first) + ")" };
   }
 
   void Or(std::vector<char>& flags) override
@@ -1176,7 +1182,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
   vtkDataArray* global = target->GetPointData()->GetGlobalIds();
   bool useIds = np == 0 ||
     (global && global->GetNumberOfComponents() == 1 && global->GetNumberOfTuples() >= np);
-  this->Agree(std::string(), &useIds);
+  this->Agree(mpvtk::Verdict(), &useIds);
   std::vector<double> x(static_cast<size_t>(3 * np));
   Box bounds = EmptyBox();
   for (vtkIdType p = 0; p < np; ++p)

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Parts.h
+ * @brief The seam between the filter and its processes: what an execution
+ *        asks of them, with the serial answer as the default (not public,
+ *        not wrapped).
+ *
+ * vtkMeshProjectionFilter always runs through a Parts. On one process it is
+ * SerialParts: every collective is the identity (this process is all of
+ * them), so the serial code reads as the distributed one without a branch.
+ * vtkPMeshProjectionFilter installs MPIParts (Parallel/MPIParts.h) while it
+ * runs on several processes: the local machinery (search, pieces, local
+ * blocks) then runs unchanged on each process's part of Input and the
+ * Source cells that part needs, and the solve is one global system.
+ *
+ * Every method but the queries is collective: all processes call it, in the
+ * same order.
+ */
+#ifndef MeshProjection_Parallel_Parts_h
+#define MeshProjection_Parallel_Parts_h
+
+#include "Transfer/BlockCG.h" // SolverHooks
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <algorithm>
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkDataObject;
+class vtkDataSet;
+
+namespace mpvtk
+{
+/// How a step of an execution ended, on this process or, once agreed, on all.
+enum class Outcome
+{
+  Done,    ///< went through
+  Failed,  ///< an error: the reason says why
+  Stopped  ///< the user's abort: the output is Input as it came
+};
+
+/// An outcome with its reason (empty when Done).
+struct Verdict
+{
+  Outcome What = Outcome::Done;
+  std::string Why;
+
+  static Verdict Fail(const std::string& why) { return { Outcome::Failed, why }; }
+  static Verdict Stop() { return { Outcome::Stopped, "stopped" }; }
+  bool Ok() const { return this->What == Outcome::Done; }
+};
+
+class Parts
+{
+public:
+  virtual ~Parts() = default;
+  virtual int Rank() const = 0;
+  virtual int Size() const = 0;
+  /**
+   * Whether this process sees the whole meshes (one process). Where it does
+   * not, a part may be empty without anything being wrong, a Source cell's
+   * covered measure is spread over processes, and a stop must wait for the
+   * next agreement (all processes stop together).
+   */
+  bool Whole() const { return this->Size() == 1; }
+
+  /**
+   * The Source this process projects from. `error` comes in with this
+   * process's failure so far (empty when none) and goes out with the first
+   * process's failure, the same on every process (null is returned then).
+   * Serial: `source` itself. On several processes: first every process
+   * checks Source and Input's datasets (ids and offsets, as the wraps would:
+   * a corrupt dataset is an error on every process, not a read out of its
+   * arrays) and they agree; then it returns every non-ghost Source cell,
+   * from any process, whose bounding box meets a box of this process's
+   * Input cells grown by `reach` times the cell's size (surfaces meet within
+   * a reach), merged by their points' global ids (the Source's GlobalIds, or
+   * ids made from each process's numbering) into one grid whose points are
+   * in the order of those ids, which it carries as GlobalIds. Only the
+   * fields (ArraySelection.h) that every process's Source has are kept.
+   */
+  virtual vtkSmartPointer<vtkDataSet> GatherSource(
+    vtkDataSet* source, vtkDataObject* input, double reach, std::string& error) = 0;
+
+  /**
+   * The verdict of the lowest process whose verdict is not Done (its own
+   * reason on that process, "... (on process k)" elsewhere), else Done.
+   * With `flag`: the flag ANDed over the processes.
+   */
+  virtual Verdict Agree(const Verdict& mine, bool* flag = nullptr) = 0;
+  /// Element-wise OR over the processes.
+  virtual void Or(std::vector<char>& flags) = 0;
+  /// Sums over the processes, in place.
+  virtual void Sum(double* values, int count) = 0;
+  /// The union over the processes (sorted, without repeats).
+  virtual std::vector<unsigned int> Union(const std::vector<unsigned int>& values) = 0;
+  /**
+   * Entry i of this process is keyed by keys[width * i ... width * i +
+   * width - 1] with value values[i]; returns, per entry, the sum of the
+   * values of all entries with that key on all processes (collective: every
+   * process calls it, with the same width, entries or not).
+   */
+  virtual std::vector<double> SumByKey(
+    const std::vector<long long>& keys, int width, const std::vector<double>& values) = 0;
+
+  /**
+   * Per dataset of Input: finds the points this process shares with others
+   * (by the GlobalIds point array when every process has one, else by
+   * their coordinates) and returns the dataset with global point ids (its
+   * own, or made: each point numbered by the lowest process that has it).
+   * Serial: `target` itself.
+   */
+  virtual vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) = 0;
+  /**
+   * The solver's hooks for the last shared dataset: for its points (P1; row
+   * f of the system is point dataSetPoint(f)): shared rows summed over the
+   * processes, each row counted by the lowest process that has it; for its
+   * cells (P0): sums only. They stay valid until the next ShareTarget.
+   * Serial: no hooks (the solver's own sums).
+   */
+  virtual mp::SolverHooks Hooks(
+    bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint) = 0;
+  /// Bytes this process sent (Source cells, shared rows) since it was made.
+  virtual double SentBytes() const = 0;
+};
+
+/// One process: every collective is the identity.
+class SerialParts final : public Parts
+{
+public:
+  int Rank() const override { return 0; }
+  int Size() const override { return 1; }
+  vtkSmartPointer<vtkDataSet> GatherSource(
+    vtkDataSet* source, vtkDataObject*, double, std::string& error) override;
+  Verdict Agree(const Verdict& mine, bool*) override { return mine; }
+  void Or(std::vector<char>&) override {}
+  void Sum(double*, int) override {}
+  std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override
+  {
+    std::vector<unsigned int> all(values);
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
+  }
+  std::vector<double> SumByKey(
+    const std::vector<long long>& keys, int width, const std::vector<double>& values) override;
+  vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
+  mp::SolverHooks Hooks(bool, mp::Index, const std::function<vtkIdType(mp::Index)>&) override
+  {
+    return mp::SolverHooks();
+  }
+  double SentBytes() const override { return 0; }
+};
+} // namespace mpvtk
+
+#endif
