@@ -25,7 +25,11 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkWeakPointer.h"
 
-#include "vtkMeshProjectionMesh.h"
+#include "Adapter/DataSetChecks.h"
+#include "Adapter/IntersectionOutput.h"
+#include "Adapter/SimplexMesh.h"
+#include "Adapter/SourceLocator.h"
+#include "Adapter/Threads.h"
 #include "Parallel/Parts.h"
 #include "Projection/ArraySelection.h"
 #include "Projection/Composite.h"

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPMeshProjectionFilter.h"
 
-#include "vtkMeshProjectionMesh.h"
 #include "Parallel/Parts.h"
 #include "Projection/ArraySelection.h"
 

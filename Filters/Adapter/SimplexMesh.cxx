@@ -1,38 +1,33 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkMeshProjectionMesh.h"
+#include "Adapter/SimplexMesh.h"
 
+#include "Adapter/DataSetChecks.h"
+#include "Adapter/Threads.h"
 #include "Geometry/CellSplit.h"
 #include "Mesh/CellNeighbors.h"
 #include "Mesh/SpatialOrder.h"
 
-#include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
-#include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkCellTypes.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
-#include "vtkPointSet.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkRectilinearGrid.h"
 #include "vtkSMPTools.h"
-#include "vtkStructuredGrid.h"
-#include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <functional>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -43,14 +38,19 @@ namespace mpvtk
 static_assert(std::is_same<vtkTypeInt64, mp::Index>::value,
   "the kernel's ids must match VTK's 64-bit connectivity for zero-copy views");
 
-namespace
+int SimplexType(int d)
 {
+  return d == 1 ? VTK_LINE : (d == 2 ? VTK_TRIANGLE : VTK_TETRA);
+}
+
 const char* CellTypeName(int type)
 {
   const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
   return name ? name : "unknown cell type";
 }
 
+namespace
+{
 /// The shape of a standard 3D cell for the kernel's face tables.
 bool StandardShape(int type, mp::CellShape& shape)
 {
@@ -66,386 +66,6 @@ bool StandardShape(int type, mp::CellShape& shape)
   }
 }
 } // namespace
-
-namespace
-{
-/// The simplex of a mesh of dimension d: line, triangle or tetrahedron.
-int SimplexType(int d)
-{
-  return d == 1 ? VTK_LINE : (d == 2 ? VTK_TRIANGLE : VTK_TETRA);
-}
-
-/// The number of points a cell of a linear type has (-n: at least n), or 0
-/// for a type with no fixed count worth checking (empty, nonlinear cells).
-int PointsOfType(int type)
-{
-  switch (type)
-  {
-    case VTK_VERTEX: return 1;
-    case VTK_POLY_VERTEX: return -1;
-    case VTK_LINE: return 2;
-    case VTK_POLY_LINE: return -2;
-    case VTK_TRIANGLE: return 3;
-    case VTK_TRIANGLE_STRIP: return -3;
-    case VTK_POLYGON: return -3;
-    case VTK_PIXEL: return 4;
-    case VTK_QUAD: return 4;
-    case VTK_TETRA: return 4;
-    case VTK_VOXEL: return 8;
-    case VTK_HEXAHEDRON: return 8;
-    case VTK_WEDGE: return 6;
-    case VTK_PYRAMID: return 5;
-    case VTK_PENTAGONAL_PRISM: return 10;
-    case VTK_HEXAGONAL_PRISM: return 12;
-    case VTK_POLYHEDRON: return -4;
-    default: return 0;
-  }
-}
-
-/**
- * The smallest i in [0, n) for which wrong(i) holds, or n, found in the
- * filter's threads: each range stops at its first (or once a smaller one is
- * known), and the smallest reported wins.
- */
-template <typename Wrong>
-vtkIdType FirstWhere(vtkIdType n, const Wrong& wrong)
-{
-  std::atomic<vtkIdType> first(n);
-  mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end && i < first; ++i)
-    {
-      if (wrong(i))
-      {
-        vtkIdType seen = first;
-        while (i < seen && !first.compare_exchange_weak(seen, i))
-        {
-        }
-        return;
-      }
-    }
-  });
-  return first;
-}
-
-/// The first cell (numbered from `first`) of `cells` that reads outside
-/// its arrays or names a point outside [0, numberOfPoints), as an error, or
-/// an empty string. `expected(c)` gives the count a cell must have (see
-/// PointsOfType; 0: any).
-template <typename T, typename Expected>
-std::string CheckCells(const T* offsets, vtkIdType numberOfOffsets, const T* ids,
-  vtkIdType numberOfIds, vtkIdType numberOfPoints, vtkIdType first, const std::string& what,
-  const Expected& expected)
-{
-  std::ostringstream why;
-  if (numberOfOffsets == 0)
-  {
-    why << what << " has an empty offsets array (it needs one value more than it has cells).";
-    return why.str();
-  }
-  const vtkIdType n = numberOfOffsets - 1;
-  if (offsets[0] != 0 || offsets[n] < 0 || offsets[n] > numberOfIds)
-  {
-    why << what << " has offsets from " << offsets[0] << " to " << offsets[n]
-        << " into a connectivity array of " << numberOfIds << " ids (they must start at 0 "
-        << "and end within it).";
-    return why.str();
-  }
-  // The first offending cell.
-  const vtkIdType c = FirstWhere(n, [&](vtkIdType c) {
-    const T from = offsets[c];
-    const T to = offsets[c + 1];
-    bool wrong = to < from;
-    const int count = expected(c);
-    wrong = wrong || (count > 0 && to - from != count) || (count < 0 && to - from < -count);
-    for (T i = from; i < to && !wrong; ++i)
-    {
-      wrong = ids[i] < 0 || ids[i] >= numberOfPoints;
-    }
-    return wrong;
-  });
-  if (c == n)
-  {
-    return std::string();
-  }
-  const T from = offsets[c];
-  const T to = offsets[c + 1];
-  why << what << ": cell " << first + c;
-  const int count = expected(c);
-  if (to < from)
-  {
-    why << " has offsets " << from << " then " << to << " (they must not decrease).";
-  }
-  else if ((count > 0 && to - from != count) || (count < 0 && to - from < -count))
-  {
-    why << " has " << to - from << " points where its type needs "
-        << (count < 0 ? "at least " : "") << std::abs(count) << '.';
-  }
-  else
-  {
-    for (T i = from; i < to; ++i)
-    {
-      if (ids[i] < 0 || ids[i] >= numberOfPoints)
-      {
-        why << " refers to point " << ids[i] << ", which does not exist (" << numberOfPoints
-            << " points).";
-        break;
-      }
-    }
-  }
-  return why.str();
-}
-
-template <typename Expected>
-std::string CheckCellArray(vtkCellArray* cells, vtkIdType numberOfPoints, vtkIdType first,
-  const std::string& what, const Expected& expected)
-{
-  if (!cells)
-  {
-    return std::string();
-  }
-  if (cells->IsStorage64Bit())
-  {
-    vtkTypeInt64Array* o = cells->GetOffsetsArray64();
-    vtkTypeInt64Array* c = cells->GetConnectivityArray64();
-    return CheckCells(o->GetPointer(0), o->GetNumberOfValues(), c->GetPointer(0),
-      c->GetNumberOfValues(), numberOfPoints, first, what, expected);
-  }
-  vtkTypeInt32Array* o = cells->GetOffsetsArray32();
-  vtkTypeInt32Array* c = cells->GetConnectivityArray32();
-  return CheckCells(o->GetPointer(0), o->GetNumberOfValues(), c->GetPointer(0),
-    c->GetNumberOfValues(), numberOfPoints, first, what, expected);
-}
-
-/// A polyhedron's face stream: nfaces, then per face its count and ids.
-std::string CheckFaceStream(vtkUnstructuredGrid* grid, vtkIdType c, const std::string& role)
-{
-  std::ostringstream why;
-  vtkIdTypeArray* faces = grid->GetFaces();
-  vtkIdTypeArray* locations = grid->GetFaceLocations();
-  if (!faces || !locations || locations->GetNumberOfValues() <= c)
-  {
-    why << role << " cell " << c << " is a polyhedron without a face stream.";
-    return why.str();
-  }
-  const vtkIdType size = faces->GetNumberOfValues();
-  const vtkIdType* f = faces->GetPointer(0);
-  vtkIdType at = locations->GetValue(c);
-  if (at < 0 || at >= size)
-  {
-    why << role << " cell " << c << " is a polyhedron whose face stream starts at " << at
-        << ", outside the faces array (" << size << " values).";
-    return why.str();
-  }
-  const vtkIdType nfaces = f[at++];
-  if (nfaces < 4)
-  {
-    why << role << " cell " << c << " is a polyhedron of " << nfaces
-        << " faces (a closed polyhedron has at least 4).";
-    return why.str();
-  }
-  const vtkIdType np = grid->GetNumberOfPoints();
-  for (vtkIdType k = 0; k < nfaces; ++k)
-  {
-    const vtkIdType count = at < size ? f[at++] : -1;
-    if (count < 3 || count > size - at)
-    {
-      why << role << " cell " << c << " is a polyhedron whose face " << k << " has "
-          << (count < 0 ? std::string("no place in the faces array")
-                        : std::to_string(count) + " points"
-                            + (count < 3 ? " (a face needs 3)" : ", past the end of the faces array"))
-          << '.';
-      return why.str();
-    }
-    for (vtkIdType i = 0; i < count; ++i, ++at)
-    {
-      if (f[at] < 0 || f[at] >= np)
-      {
-        why << role << " cell " << c << " is a polyhedron whose face " << k
-            << " refers to point " << f[at] << ", which does not exist (" << np << " points).";
-        return why.str();
-      }
-    }
-  }
-  return std::string();
-}
-} // namespace
-
-std::string CheckDataSet(vtkDataSet* data, const std::string& role)
-{
-  std::string why;
-  const char* advice = " The dataset is corrupt: check the file, or the program that wrote it.";
-  if (vtkPointSet* pointSet = vtkPointSet::SafeDownCast(data))
-  {
-    vtkPoints* points = pointSet->GetPoints();
-    if (points && points->GetData()->GetNumberOfComponents() != 3)
-    {
-      return role + " has points of " + std::to_string(points->GetData()->GetNumberOfComponents()) +
-        " components (3 are needed)." + advice;
-    }
-  }
-  const vtkIdType np = data->GetNumberOfPoints();
-  if (vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(data))
-  {
-    vtkCellArray* cells = grid->GetCells();
-    const vtkIdType n = cells ? cells->GetNumberOfOffsets() - 1 : 0;
-    vtkUnsignedCharArray* types = grid->GetCellTypesArray();
-    if (n > 0 && (!types || types->GetNumberOfValues() != n || types->GetNumberOfComponents() != 1))
-    {
-      return role + " has " + std::to_string(n) + " cells but " +
-        (types ? std::to_string(types->GetNumberOfValues()) : std::string("no")) +
-        " cell types." + advice;
-    }
-    const unsigned char* t = n > 0 ? types->GetPointer(0) : nullptr;
-    // The types VTK knows, once (not a name lookup per cell).
-    bool known[256];
-    for (int type = 0; type < 256; ++type)
-    {
-      known[type] = std::strcmp(vtkCellTypes::GetClassNameFromTypeId(type), "UnknownClass") != 0;
-    }
-    for (vtkIdType c = 0; c < n; ++c)
-    {
-      if (!known[t[c]])
-      {
-        return role + " cell " + std::to_string(c) + " has the unknown cell type " +
-          std::to_string(t[c]) + "." + advice;
-      }
-    }
-    why = CheckCellArray(cells, np, 0, role, [t](vtkIdType c) { return PointsOfType(t[c]); });
-    for (vtkIdType c = 0; c < n && why.empty(); ++c)
-    {
-      if (t[c] == VTK_POLYHEDRON)
-      {
-        why = CheckFaceStream(grid, c, role);
-      }
-    }
-  }
-  else if (vtkPolyData* poly = vtkPolyData::SafeDownCast(data))
-  {
-    vtkCellArray* arrays[4] = { poly->GetVerts(), poly->GetLines(), poly->GetPolys(),
-      poly->GetStrips() };
-    const char* names[4] = { "vertices", "lines", "polygons", "triangle strips" };
-    const int least[4] = { -1, -2, -3, -3 };
-    vtkIdType first = 0;
-    for (int k = 0; k < 4 && why.empty(); ++k)
-    {
-      const int count = least[k];
-      why = CheckCellArray(arrays[k], np, first, role + "'s " + names[k],
-        [count](vtkIdType) { return count; });
-      first += arrays[k] ? std::max<vtkIdType>(arrays[k]->GetNumberOfOffsets() - 1, 0) : 0;
-    }
-  }
-  else if (vtkStructuredGrid* structured = vtkStructuredGrid::SafeDownCast(data))
-  {
-    int dims[3];
-    structured->GetDimensions(dims);
-    const vtkIdType expected = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
-    if (structured->GetNumberOfCells() > 0 && np != expected)
-    {
-      return role + " is a structured grid of " + std::to_string(dims[0]) + " x " +
-        std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " points but holds " +
-        std::to_string(np) + "." + advice;
-    }
-  }
-  else if (vtkRectilinearGrid* rectilinear = vtkRectilinearGrid::SafeDownCast(data))
-  {
-    int dims[3];
-    rectilinear->GetDimensions(dims);
-    vtkDataArray* axes[3] = { rectilinear->GetXCoordinates(), rectilinear->GetYCoordinates(),
-      rectilinear->GetZCoordinates() };
-    for (int d = 0; d < 3; ++d)
-    {
-      if (rectilinear->GetNumberOfCells() > 0 &&
-        (!axes[d] || axes[d]->GetNumberOfTuples() < dims[d]))
-      {
-        return role + " is a rectilinear grid of " + std::to_string(dims[d]) + " points along " +
-          "xyz"[d] + " but " + (axes[d] ? std::to_string(axes[d]->GetNumberOfTuples()) : "no") +
-          " coordinates." + advice;
-      }
-    }
-  }
-  if (!why.empty())
-  {
-    return why + advice;
-  }
-  // The ghost array (read here) has a value per cell; other arrays are
-  // checked where they are read (Source's fields, a composite's blocks).
-  vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
-  if (ghosts && (ghosts->GetNumberOfComponents() != 1 ||
-                  ghosts->GetNumberOfTuples() < data->GetNumberOfCells()))
-  {
-    return role + "'s cell ghost array has " + std::to_string(ghosts->GetNumberOfTuples()) +
-      " tuples of " + std::to_string(ghosts->GetNumberOfComponents()) + " components for " +
-      std::to_string(data->GetNumberOfCells()) + " cells (one value per cell is needed)." + advice;
-  }
-  return std::string();
-}
-
-namespace
-{
-/// This thread's WorkerScope's pool.
-thread_local mp::WorkerPool* Workers = nullptr;
-} // namespace
-
-WorkerScope::WorkerScope(int threads)
-  : Previous(Workers)
-{
-  if (threads > 1 && std::string(vtkSMPTools::GetBackend()) == "STDThread")
-  {
-    try
-    {
-      this->Owned.reset(new mp::WorkerPool(threads));
-      Workers = this->Owned.get();
-    }
-    catch (const std::exception&)
-    {
-      // No threads to be had: the loops go to vtkSMPTools as without a scope.
-    }
-  }
-}
-
-WorkerScope::WorkerScope(mp::WorkerPool* pool)
-  : Previous(Workers)
-{
-  Workers = pool;
-}
-
-WorkerScope::~WorkerScope()
-{
-  Workers = this->Previous;
-}
-
-mp::WorkerPool* CurrentWorkers()
-{
-  return Workers;
-}
-
-mp::TaskRunner SMPTaskRunner()
-{
-  mp::TaskRunner runner;
-  runner.Tasks = vtkSMPTools::GetEstimatedNumberOfThreads();
-  runner.Run = [](int count, const std::function<void(int)>& task) {
-    if (mp::WorkerPool* pool = Workers)
-    {
-      pool->Run(count, task);
-      return;
-    }
-    if (mp::WorkerPool::InsideTask())
-    {
-      for (int k = 0; k < count; ++k)
-      {
-        task(k); // inside a task of a pool (on one of its workers): in turn
-      }
-      return;
-    }
-    vtkSMPTools::For(0, count, 1, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType k = begin; k < end; ++k)
-      {
-        task(static_cast<int>(k));
-      }
-    });
-  };
-  return runner;
-}
 
 std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
 {
@@ -546,72 +166,6 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
     return error;
   }
   return this->WrapSimplices(this->SplitGrid, role, numberOfCells);
-}
-
-void SimplexMesh::OrderInSpace()
-{
-  const mp::Index n = this->Kernel.NumberOfCells;
-  const mp::Index np = this->Kernel.NumberOfPoints;
-  // Automatic: ids that do not follow space, or (with threads) ranges of
-  // ids that are not regions of space (interleaved sweeps: harmless to one
-  // front, but each thread's front could never step to a neighbour).
-  auto tidy = [&] {
-    return mp::NumberingSpread(this->Kernel) <=
-      4.0 * std::pow(static_cast<double>(np), -1.0 / this->Dimension()) &&
-      (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1 ||
-        mp::ChainedFraction(this->Kernel) >= 0.5);
-  };
-  if (this->OrderingMode == NEVER || n == 0 ||
-    (this->OrderingMode == AUTOMATIC && (n < MinimumOrderedCells || tidy())))
-  {
-    return;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const mp::TaskRunner runner = SMPTaskRunner();
-  mp::SpatialOrder order;
-  mp::OrderAlongCurve(this->Kernel, order, runner);
-  const int corners = this->Kernel.CornersPerCell();
-  // The copy in the kernel's own arrays (on huge pages, without the offsets
-  // and cell types a VTK grid would add: nothing reads it as one).
-  mp::LargeBuffer<double> coordinates(3 * static_cast<size_t>(np)); // written whole by RenumberMesh
-  // The parents overwrite the cell order (no array of their own). Point ids
-  // in 32 bits below 2^31 points: half the memory of the copy's cells.
-  const bool narrow = np < std::numeric_limits<std::int32_t>::max();
-  mp::LargeBuffer<mp::Index> connectivity(narrow ? 0 : corners * static_cast<size_t>(n));
-  mp::LargeBuffer<std::int32_t> connectivity32(narrow ? corners * static_cast<size_t>(n) : 0);
-  if (narrow)
-  {
-    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity32.data(), order.Cells.data(), runner);
-  }
-  else
-  {
-    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
-  }
-  // The kernel sees the copy; P0 functions and the pieces' ids still name
-  // the dataset's cells (through Parent), P1 ones name kernel points
-  // (DataSetPoint maps them back).
-  if (!this->Kernel.Parent)
-  {
-    this->Kernel.NumberOfParents = n;
-    this->Kernel.OneCellPerParent = true; // the renumbering is the only parent map
-  }
-  this->ParentIds.swap(order.Cells);
-  this->Kernel.Parent = this->ParentIds.data();
-  this->OrderedConnectivity.swap(connectivity);
-  this->OrderedConnectivity32.swap(connectivity32);
-  this->Kernel.Connectivity = narrow ? nullptr : this->OrderedConnectivity.data();
-  this->Kernel.Connectivity32 = narrow ? this->OrderedConnectivity32.data() : nullptr;
-  this->OrderedPoints.swap(coordinates);
-  this->Kernel.Points = this->OrderedPoints.data();
-  this->OriginalPoints = this->Kernel.Points;
-  this->PointOrder.swap(order.Points);
-  // What the old numbering needed and nothing reads any more.
-  mp::LargeVector<mp::Index>().swap(this->ConnectivityCopy);
-  mp::LargeVector<mp::Index>().swap(this->AllConnectivityCopy);
-  mp::LargeVector<double>().swap(this->PointCopy);
-  this->AllConnectivity = nullptr;
-  this->OrderTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
@@ -981,6 +535,72 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   return std::string();
 }
 
+void SimplexMesh::OrderInSpace()
+{
+  const mp::Index n = this->Kernel.NumberOfCells;
+  const mp::Index np = this->Kernel.NumberOfPoints;
+  // Automatic: ids that do not follow space, or (with threads) ranges of
+  // ids that are not regions of space (interleaved sweeps: harmless to one
+  // front, but each thread's front could never step to a neighbour).
+  auto tidy = [&] {
+    return mp::NumberingSpread(this->Kernel) <=
+      4.0 * std::pow(static_cast<double>(np), -1.0 / this->Dimension()) &&
+      (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1 ||
+        mp::ChainedFraction(this->Kernel) >= 0.5);
+  };
+  if (this->OrderingMode == NEVER || n == 0 ||
+    (this->OrderingMode == AUTOMATIC && (n < MinimumOrderedCells || tidy())))
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const mp::TaskRunner runner = SMPTaskRunner();
+  mp::SpatialOrder order;
+  mp::OrderAlongCurve(this->Kernel, order, runner);
+  const int corners = this->Kernel.CornersPerCell();
+  // The copy in the kernel's own arrays (on huge pages, without the offsets
+  // and cell types a VTK grid would add: nothing reads it as one).
+  mp::LargeBuffer<double> coordinates(3 * static_cast<size_t>(np)); // written whole by RenumberMesh
+  // The parents overwrite the cell order (no array of their own). Point ids
+  // in 32 bits below 2^31 points: half the memory of the copy's cells.
+  const bool narrow = np < std::numeric_limits<std::int32_t>::max();
+  mp::LargeBuffer<mp::Index> connectivity(narrow ? 0 : corners * static_cast<size_t>(n));
+  mp::LargeBuffer<std::int32_t> connectivity32(narrow ? corners * static_cast<size_t>(n) : 0);
+  if (narrow)
+  {
+    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity32.data(), order.Cells.data(), runner);
+  }
+  else
+  {
+    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
+  }
+  // The kernel sees the copy; P0 functions and the pieces' ids still name
+  // the dataset's cells (through Parent), P1 ones name kernel points
+  // (DataSetPoint maps them back).
+  if (!this->Kernel.Parent)
+  {
+    this->Kernel.NumberOfParents = n;
+    this->Kernel.OneCellPerParent = true; // the renumbering is the only parent map
+  }
+  this->ParentIds.swap(order.Cells);
+  this->Kernel.Parent = this->ParentIds.data();
+  this->OrderedConnectivity.swap(connectivity);
+  this->OrderedConnectivity32.swap(connectivity32);
+  this->Kernel.Connectivity = narrow ? nullptr : this->OrderedConnectivity.data();
+  this->Kernel.Connectivity32 = narrow ? this->OrderedConnectivity32.data() : nullptr;
+  this->OrderedPoints.swap(coordinates);
+  this->Kernel.Points = this->OrderedPoints.data();
+  this->OriginalPoints = this->Kernel.Points;
+  this->PointOrder.swap(order.Points);
+  // What the old numbering needed and nothing reads any more.
+  mp::LargeVector<mp::Index>().swap(this->ConnectivityCopy);
+  mp::LargeVector<mp::Index>().swap(this->AllConnectivityCopy);
+  mp::LargeVector<double>().swap(this->PointCopy);
+  this->AllConnectivity = nullptr;
+  this->OrderTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void SimplexMesh::UseAsSurface()
 {
   this->Kernel.SpaceDimension = 3;
@@ -1068,148 +688,5 @@ void SimplexMesh::BuildNeighbors(bool keepPointCells)
   {
     this->Around.reset();
   }
-}
-
-SourceLocator::SourceLocator(const SimplexMesh& mesh)
-  : Mesh(mesh)
-{
-  // A 2D mesh outside the planes z = constant spreads over 3D boxes.
-  // (Curves and surfaces in space too.)
-  const bool space = mesh.Dimension() == 1 ||
-    (mesh.Dimension() == 2 && (!mesh.Frame().IsIdentity() || mesh.View().IsSurfaceMesh()));
-  mp::MeshView view = mesh.View();
-  view.Points = mesh.SpacePoints();
-  view.SpaceDimension = space ? 3 : mesh.Dimension();
-  this->Flat = view.SpaceDimension == 2;
-  this->Bins.reset(new mp::BoxGridLocator(view));
-}
-
-SourceLocator::SourceLocator(
-  const SimplexMesh& mesh, std::unique_ptr<mp::CandidateLocator> bins, bool flat)
-  : Mesh(mesh)
-  , Bins(std::move(bins))
-  , Flat(flat)
-{
-}
-
-std::unique_ptr<mp::CandidateLocator> SourceLocator::NewForThread() const
-{
-  return std::unique_ptr<mp::CandidateLocator>(
-    new SourceLocator(this->Mesh, this->Bins->NewForThread(), this->Flat));
-}
-
-SourceLocator::~SourceLocator() = default;
-
-void SourceLocator::ToSpace(const double box[6], double bounds[6]) const
-{
-  // 2D: the kernel works in the frame's (x, y); the source lies in its own plane.
-  std::copy(box, box + 6, bounds);
-  if (this->Mesh.Dimension() == 2 && !this->Mesh.View().IsSurfaceMesh())
-  {
-    this->Mesh.Frame().BoxToSpace(box, bounds);
-  }
-  if (this->Flat)
-  {
-    bounds[4] = bounds[5] = 0.0; // the bins' cells have z = 0
-  }
-}
-
-void SourceLocator::FindCandidates(const double box[6], std::vector<mp::Index>& cells)
-{
-  double bounds[6];
-  this->ToSpace(box, bounds);
-  this->Bins->FindCandidates(bounds, cells);
-}
-
-void SourceLocator::FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells)
-{
-  double bounds[6];
-  this->ToSpace(box, bounds);
-  this->Bins->FindBoundaryCandidates(bounds, cells);
-}
-
-namespace
-{
-/// The pieces' points and cells, with SourceCellId / TargetCellId (VTK ids)
-/// and the measure of each cell.
-template <class DataSet>
-vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const SimplexMesh& target,
-  const SimplexMesh& source, const char* measureName,
-  const std::function<void(DataSet*, vtkCellArray*)>& setCells)
-{
-  auto result = vtkSmartPointer<DataSet>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  const vtkIdType nv = static_cast<vtkIdType>(pieces.Points.size() / 3);
-  points->SetNumberOfPoints(nv);
-  for (vtkIdType v = 0; v < nv; ++v)
-  {
-    double x[3];
-    if (target.View().SpaceDimension == 2 && pieces.Dimension < 3)
-    {
-      // Back into the target's plane (a planar mesh, or a curve in a planar Source).
-      target.Frame().ToSpace(&pieces.Points[3 * v], x);
-    }
-    else
-    {
-      std::copy_n(&pieces.Points[3 * v], 3, x);
-    }
-    points->SetPoint(v, x);
-  }
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(pieces.Offsets.size()));
-  std::copy(pieces.Offsets.begin(), pieces.Offsets.end(), offsets->GetPointer(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(nv);
-  for (vtkIdType v = 0; v < nv; ++v)
-  {
-    connectivity->SetValue(v, v);
-  }
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  result->SetPoints(points);
-  setCells(result, cells);
-
-  auto idArray = [&](const char* name, const std::vector<mp::Index>& values,
-                   const SimplexMesh& mesh) {
-    vtkNew<vtkIdTypeArray> a;
-    a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-    for (size_t i = 0; i < values.size(); ++i)
-    {
-      a->SetValue(static_cast<vtkIdType>(i), mesh.View().ParentOf(values[i]));
-    }
-    result->GetCellData()->AddArray(a);
-  };
-  idArray("SourceCellId", pieces.SourceCell, source);
-  idArray("TargetCellId", pieces.TargetCell, target);
-  vtkNew<vtkDoubleArray> measure;
-  measure->SetName(measureName);
-  measure->SetNumberOfValues(static_cast<vtkIdType>(pieces.Measure.size()));
-  std::copy(pieces.Measure.begin(), pieces.Measure.end(), measure->GetPointer(0));
-  result->GetCellData()->AddArray(measure);
-  return result;
-}
-} // namespace
-
-vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source)
-{
-  return MakePieces<vtkPolyData>(pieces, target, source, "Area",
-    [](vtkPolyData* p, vtkCellArray* cells) { p->SetPolys(cells); });
-}
-
-vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source)
-{
-  return MakePieces<vtkPolyData>(pieces, target, source, "Length",
-    [](vtkPolyData* p, vtkCellArray* cells) { p->SetLines(cells); });
-}
-
-vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(
-  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source)
-{
-  return MakePieces<vtkUnstructuredGrid>(pieces, target, source, "Volume",
-    [](vtkUnstructuredGrid* g, vtkCellArray* cells) { g->SetCells(VTK_TETRA, cells); });
 }
 } // namespace mpvtk

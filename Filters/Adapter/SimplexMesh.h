@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file vtkMeshProjectionMesh.h
- * @brief Private to vtkMeshProjectionFilter: any vtkDataSet seen as the
- *        kernel's simplicial mesh, with VTK's neighbours and locator.
+ * @file SimplexMesh.h
+ * @brief Any vtkDataSet seen as the kernel's simplicial mesh (mp::MeshView),
+ *        with its face neighbours; the VTK side of every projection.
  *
  * Wrap() takes a dataset of any type (unstructured grid, polydata, image
  * data, rectilinear or structured grid). An unstructured grid of only
@@ -19,138 +19,46 @@
  *
  * A 2D mesh is then seen in a plane frame (UseFrame): the points are used
  * in place for planes z = constant and mapped into the frame otherwise.
- * Ghost cells (DUPLICATECELL, HIDDENCELL) are left out. The kernel's P0
- * functions are numbered as the dataset's cells (ghost and lower-dimensional
- * cells have none of the mesh in them, so they are never covered).
- * Neighbours come from
- * the kernel's face matcher (mp::BuildFaceNeighbors) over the kernel's cells,
- * seeds from bins over the source's cells (SourceLocator).
+ * Ghost cells (Adapter/Ghosts.h: DUPLICATECELL, HIDDENCELL) are left out.
+ * The kernel's P0 functions are numbered as the dataset's cells (ghost and
+ * lower-dimensional cells have none of the mesh in them, so they are never
+ * covered). Neighbours come from the kernel's face matcher
+ * (mp::BuildFaceNeighbors) over the kernel's cells.
+ *
+ * Contract: the dataset must outlive the mesh and stay unchanged while the
+ * kernel reads it (the view may be its own arrays). Wrap() reads nothing
+ * before CheckDataSet (Adapter/DataSetChecks.h) has passed it.
  *
  * Not a public class of the module: no export macro, not wrapped.
  */
-#ifndef vtkMeshProjectionMesh_h
-#define vtkMeshProjectionMesh_h
+#ifndef MeshProjection_Adapter_SimplexMesh_h
+#define MeshProjection_Adapter_SimplexMesh_h
 
-#include "Geometry/IntersectionPieces.h"
 #include "Mesh/CellNeighbors.h"
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/PlaneFrame.h"
-#include "Mesh/Tasks.h"
-#include "Mesh/WorkerPool.h"
-#include "Search/CandidateLocator.h"
 
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
-#include <algorithm>
-#include <limits>
-
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
-class vtkAbstractArray;
 class vtkDataSet;
-class vtkDataSetAttributes;
-class vtkPolyData;
 class vtkUnstructuredGrid;
 
 namespace mpvtk
 {
-/**
- * Checks what VTK itself trusts: every point id of every cell (and of every
- * polyhedron face) is within [0, number of points), offsets start at 0,
- * never decrease and stay within the connectivity, cell types are known and
- * cells have as many points as their type needs, structured grids hold as
- * many points (coordinates) as their dimensions say, and a ghost array has
- * one value per cell (other arrays are checked where they are read).
- * Returns an error naming `role`, the first offending cell and the value,
- * or an empty string. Wrap() calls it first; a composite's blocks are
- * checked before they are appended.
- */
-std::string CheckDataSet(vtkDataSet* data, const std::string& role);
+/// The VTK type of the simplex of a mesh of dimension d: line, triangle or tetrahedron.
+int SimplexType(int d);
 
-/**
- * The filter's threads for one execution. VTK 9.2's STDThread backend
- * starts new threads for every vtkSMPTools::For (40-80 us on a 2-core
- * virtual machine, for each of the ~150 loops of a projection); so while
- * a WorkerScope is alive on a thread and STDThread is the backend in use,
- * that thread's loops (SMPTaskRunner, For below) run on an mp::WorkerPool
- * of as many threads as the backend would use, started once. Other
- * backends (TBB, OpenMP: their own lasting pools) are used as they are.
- */
-class WorkerScope
-{
-public:
-  /// A pool of `threads` threads (this one included) for this thread's
-  /// loops, when the backend is STDThread and `threads` > 1.
-  explicit WorkerScope(int threads);
-  /// Another thread of the same execution sharing `pool` (null: none).
-  explicit WorkerScope(mp::WorkerPool* pool);
-  ~WorkerScope();
-  WorkerScope(const WorkerScope&) = delete;
-  WorkerScope& operator=(const WorkerScope&) = delete;
+/// VTK's name of a cell type, for messages.
+const char* CellTypeName(int type);
 
-private:
-  std::unique_ptr<mp::WorkerPool> Owned;
-  mp::WorkerPool* Previous = nullptr;
-};
-
-/// The pool of the WorkerScope alive on this thread, or null.
-mp::WorkerPool* CurrentWorkers();
-
-/// The kernel's task runner: one task per thread of the backend in use
-/// (the filter's own scope, see NumberOfThreads), run on the calling
-/// thread's WorkerScope when it has one (looked up at each call: a kept
-/// operator's runner outlives the execution that made it), else by
-/// vtkSMPTools.
-mp::TaskRunner SMPTaskRunner();
-
-/**
- * body(begin, end) over [first, last) in ranges of `grain` items (0: about
- * four ranges per thread), concurrently: on the calling thread's
- * WorkerScope when it has one, else by vtkSMPTools::For; in one call on
- * this thread inside a task of a pool (whose workers have no scope).
- */
-template <class Body>
-void For(vtkIdType first, vtkIdType last, vtkIdType grain, const Body& body)
-{
-  mp::WorkerPool* pool = CurrentWorkers();
-  const vtkIdType n = last - first;
-  if (n > 0 && mp::WorkerPool::InsideTask())
-  {
-    body(first, last); // inside a task of the pool: in turn, no threads of its own
-    return;
-  }
-  if (!pool)
-  {
-    vtkSMPTools::For(first, last, grain, body);
-    return;
-  }
-  if (n <= 0)
-  {
-    return;
-  }
-  if (grain <= 0)
-  {
-    grain = std::max<vtkIdType>(1, n / (4 * pool->Threads()));
-  }
-  // (At most as many ranges as an int counts.)
-  grain = std::max(grain, n / std::numeric_limits<int>::max() + 1);
-  const vtkIdType count = (n + grain - 1) / grain;
-  pool->Run(static_cast<int>(count), [&](int k) {
-    const vtkIdType begin = first + static_cast<vtkIdType>(k) * grain;
-    body(begin, std::min(last, begin + grain));
-  });
-}
-template <class Body>
-void For(vtkIdType first, vtkIdType last, const Body& body)
-{
-  For(first, last, 0, body);
-}
-
+/// A dataset seen as the kernel's simplicial mesh (see the file's comment).
 class SimplexMesh
 {
 public:
@@ -314,51 +222,6 @@ private:
   vtkIdType Ghosts = 0;
   bool NotPlanar = false;
 };
-
-/**
- * The kernel's candidate search over a source mesh: mp::BoxGridLocator's
- * bins over the cells' boxes in space (the source's own coordinates, so
- * that the leaves of a composite Input may see it in different plane
- * frames), one over the boundary cells, built at once, and one over the
- * whole source, built on the first question that needs it (see
- * CandidateLocator.h: on meshes of the same domain, never). Ghost cells
- * are not the kernel's and never found.
- */
-class SourceLocator : public mp::CandidateLocator
-{
-public:
-  /// `mesh` must have its neighbours (SimplexMesh::BuildNeighbors).
-  explicit SourceLocator(const SimplexMesh& mesh);
-  ~SourceLocator() override;
-  void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
-  void FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells) override;
-  /// The bins' answer (faces in space: a 3D mesh's own).
-  bool Supports(mp::Index cell, int face) const override { return this->Bins->Supports(cell, face); }
-  /// Shares the bins (read only, the lazy one built once); no locks.
-  std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
-
-private:
-  SourceLocator(const SimplexMesh& mesh, std::unique_ptr<mp::CandidateLocator> bins, bool flat);
-  /// The kernel's box (in the mesh's frame) in space.
-  void ToSpace(const double box[6], double bounds[6]) const;
-
-  const SimplexMesh& Mesh;
-  std::unique_ptr<mp::CandidateLocator> Bins;
-  bool Flat = false; ///< bins in (x, y) only: a mesh in z = constant
-};
-
-/// 2D: one polygon per intersecting pair in the target's plane, with
-/// SourceCellId, TargetCellId (VTK ids) and Area.
-vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source);
-/// Curves: one segment per intersecting pair on the target's segment, with
-/// SourceCellId, TargetCellId and Length.
-vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source);
-/// 3D: the tetrahedra decomposing each intersection polyhedron, with
-/// SourceCellId, TargetCellId and Volume.
-vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(
-  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source);
 } // namespace mpvtk
 
 #endif
