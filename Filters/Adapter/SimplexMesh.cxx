@@ -2,6 +2,7 @@
 #include "Adapter/SimplexMesh.h"
 
 #include "Adapter/DataSetChecks.h"
+#include "Adapter/Ghosts.h"
 #include "Adapter/Threads.h"
 #include "Geometry/CellSplit.h"
 #include "Mesh/CellNeighbors.h"
@@ -12,7 +13,6 @@
 #include "vtkCellTypes.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
-#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
@@ -229,7 +229,6 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   const mp::Index* key = keys.empty() ? nullptr : keys.data();
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(data);
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
-  const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
   std::vector<mp::Index> simplices;
   simplices.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 24 : 6));
   this->ParentIds.clear();
@@ -249,7 +248,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
       this->LowerDimensional += type != VTK_EMPTY_CELL;
       continue;
     }
-    if (ghosts && (ghosts->GetValue(c) & skip))
+    if (IsLeftOutGhost(ghosts, c))
     {
       ++this->Ghosts;
       continue;
@@ -397,14 +396,13 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   // Ghost cells (duplicated from another piece, or hidden) are left out.
   // (A split has none: Split() left out and counted the dataset's.)
   vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
-  const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
   vtkIdType gridGhosts = 0;
   std::vector<vtkIdType> others; // the grid's cells that are not ghosts (when some are)
   if (ghosts)
   {
     for (vtkIdType c = 0; c < numberOfCells; ++c)
     {
-      gridGhosts += (ghosts->GetValue(c) & skip) != 0;
+      gridGhosts += IsLeftOutGhost(ghosts, c);
     }
   }
   this->Ghosts += gridGhosts;
@@ -412,7 +410,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   {
     for (vtkIdType c = 0; c < numberOfCells; ++c)
     {
-      if (!(ghosts->GetValue(c) & skip))
+      if (!IsLeftOutGhost(ghosts, c))
       {
         others.push_back(c);
         this->ConnectivityCopy.insert(this->ConnectivityCopy.end(),
