@@ -4,7 +4,6 @@
 #include "Adapter/DataSetChecks.h"
 #include "Adapter/Ghosts.h"
 #include "Adapter/Threads.h"
-#include "Geometry/CellSplit.h"
 #include "Mesh/CellNeighbors.h"
 #include "Mesh/SpatialOrder.h"
 
@@ -14,11 +13,6 @@
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
-#include "vtkIdList.h"
-#include "vtkIdTypeArray.h"
-#include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
 #include "vtkTypeInt64Array.h"
@@ -48,24 +42,6 @@ const char* CellTypeName(int type)
   const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
   return name ? name : "unknown cell type";
 }
-
-namespace
-{
-/// The shape of a standard 3D cell for the kernel's face tables.
-bool StandardShape(int type, mp::CellShape& shape)
-{
-  switch (type)
-  {
-    case VTK_HEXAHEDRON: shape = mp::CellShape::Hexahedron; return true;
-    case VTK_VOXEL: shape = mp::CellShape::Voxel; return true;
-    case VTK_WEDGE: shape = mp::CellShape::Wedge; return true;
-    case VTK_PYRAMID: shape = mp::CellShape::Pyramid; return true;
-    case VTK_PENTAGONAL_PRISM: shape = mp::CellShape::PentagonalPrism; return true;
-    case VTK_HEXAGONAL_PRISM: shape = mp::CellShape::HexagonalPrism; return true;
-    default: return false;
-  }
-}
-} // namespace
 
 std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
 {
@@ -166,207 +142,6 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
     return error;
   }
   return this->WrapSimplices(this->SplitGrid, role, numberOfCells);
-}
-
-std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
-{
-  const vtkIdType numberOfCells = data->GetNumberOfCells();
-  const int dimension = this->Kernel.CellDimension;
-  // The points, as doubles: the dataset's own array when it holds doubles.
-  vtkSmartPointer<vtkPoints> points;
-  vtkPointSet* pointSet = vtkPointSet::SafeDownCast(data);
-  if (pointSet && pointSet->GetPoints() && pointSet->GetPoints()->GetDataType() == VTK_DOUBLE)
-  {
-    points = pointSet->GetPoints();
-  }
-  else
-  {
-    points = vtkSmartPointer<vtkPoints>::New();
-    points->SetDataTypeToDouble();
-    const vtkIdType np = data->GetNumberOfPoints();
-    points->SetNumberOfPoints(np);
-    double* x = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
-    if (pointSet && pointSet->GetPoints())
-    {
-      vtkPoints* from = pointSet->GetPoints();
-      for (vtkIdType p = 0; p < np; ++p)
-      {
-        from->GetPoint(p, x + 3 * p);
-      }
-    }
-    else
-    {
-      data->GetPoint(0, x); // structured data: computes its points, thread-safe after the first
-      mpvtk::For(0, np, [&](vtkIdType begin, vtkIdType end) {
-        for (vtkIdType p = begin; p < end; ++p)
-        {
-          data->GetPoint(p, x + 3 * p);
-        }
-      });
-    }
-  }
-  const double* x = points->GetNumberOfPoints() > 0
-    ? vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0)
-    : nullptr;
-
-  // Cells are split from their corner of lowest global id (the GlobalIds
-  // point array) when there is one, else of lowest point id: with global
-  // ids a cell is split alike in any piece of a distributed mesh and in
-  // the whole mesh.
-  std::vector<mp::Index> keys;
-  if (vtkDataArray* global = data->GetPointData()->GetGlobalIds())
-  {
-    const vtkIdType np = data->GetNumberOfPoints();
-    if (global->GetNumberOfTuples() >= np && global->GetNumberOfComponents() == 1)
-    {
-      keys.resize(static_cast<size_t>(np));
-      for (vtkIdType p = 0; p < np; ++p)
-      {
-        keys[p] = static_cast<mp::Index>(global->GetTuple1(p));
-      }
-    }
-  }
-  const mp::Index* key = keys.empty() ? nullptr : keys.data();
-  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(data);
-  vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
-  std::vector<mp::Index> simplices;
-  simplices.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 24 : 6));
-  this->ParentIds.clear();
-  this->ParentIds.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 6 : 2));
-  vtkNew<vtkIdList> scratch;
-  std::vector<mp::Index> ids;
-  std::vector<mp::Index> stream;
-  vtkIdType refused = 0;
-  vtkIdType firstRefused = -1;
-  mp::SplitStatus firstStatus = mp::SplitStatus::Split;
-  const int corners = dimension + 1;
-  for (vtkIdType c = 0; c < numberOfCells; ++c)
-  {
-    const int type = data->GetCellType(c);
-    if (type == VTK_EMPTY_CELL || vtkCellTypes::GetDimension(static_cast<unsigned char>(type)) < dimension)
-    {
-      this->LowerDimensional += type != VTK_EMPTY_CELL;
-      continue;
-    }
-    if (IsLeftOutGhost(ghosts, c))
-    {
-      ++this->Ghosts;
-      continue;
-    }
-    const size_t before = simplices.size();
-    vtkIdType npts = 0;
-    const vtkIdType* pts = nullptr;
-    data->GetCellPoints(c, npts, pts, scratch);
-    ids.assign(pts, pts + npts); // ids and counts checked by CheckDataSet
-    mp::SplitStatus status = mp::SplitStatus::Split;
-    mp::CellShape shape;
-    switch (type)
-    {
-      case VTK_LINE:
-      case VTK_TRIANGLE:
-      case VTK_TETRA:
-        simplices.insert(simplices.end(), ids.begin(), ids.end());
-        break;
-      case VTK_POLY_LINE:
-        for (size_t k = 0; k + 1 < ids.size(); ++k)
-        {
-          if (ids[k] != ids[k + 1])
-          {
-            simplices.insert(simplices.end(), { ids[k], ids[k + 1] });
-          }
-        }
-        break;
-      case VTK_PIXEL:
-        std::swap(ids[2], ids[3]); // x, y order -> around the square
-        VTK_FALLTHROUGH;
-      case VTK_QUAD:
-      case VTK_POLYGON:
-        if (!mp::SplitPolygon(x, ids.data(), static_cast<int>(ids.size()), simplices, key))
-        {
-          status = mp::SplitStatus::NotStarShaped;
-        }
-        break;
-      case VTK_TRIANGLE_STRIP:
-        for (size_t k = 0; k + 2 < ids.size(); ++k)
-        {
-          if (ids[k] != ids[k + 1] && ids[k + 1] != ids[k + 2] && ids[k] != ids[k + 2])
-          {
-            // Every other triangle of a strip runs the other way round: as
-            // VTK orients them, all alike (it matters on surfaces).
-            const bool odd = k % 2 == 1;
-            simplices.insert(simplices.end(), { ids[odd ? k + 1 : k], ids[odd ? k : k + 1], ids[k + 2] });
-          }
-        }
-        break;
-      case VTK_POLYHEDRON:
-      {
-        vtkIdType nfaces = 0;
-        const vtkIdType* faces = nullptr;
-        grid->GetFaceStream(c, nfaces, faces);
-        status = mp::SplitPolyhedron(x, faces, static_cast<int>(nfaces), false, simplices, key);
-        break;
-      }
-      default:
-        if (StandardShape(type, shape))
-        {
-          const int nfaces = mp::StandardCellFaces(shape, ids.data(), stream);
-          status = mp::SplitPolyhedron(x, stream.data(), nfaces, true, simplices, key);
-        }
-        break;
-    }
-    if (status != mp::SplitStatus::Split)
-    {
-      firstRefused = refused++ == 0 ? c : firstRefused;
-      firstStatus = refused == 1 ? status : firstStatus;
-      continue;
-    }
-    const size_t added = (simplices.size() - before) / corners;
-    this->Flat += added == 0;
-    this->SplitCount += type != SimplexType(dimension);
-    this->ParentIds.insert(this->ParentIds.end(), added, c);
-  }
-  if (refused > 0)
-  {
-    std::ostringstream why;
-    why << role << " cell " << firstRefused << " (" << CellTypeName(data->GetCellType(firstRefused))
-        << ") cannot be split into " << (dimension == 3 ? "tetrahedra" : "triangles")
-        << " on its own corners: ";
-    if (firstStatus == mp::SplitStatus::OpenFaces)
-    {
-      why << "its faces do not close a volume (an edge is not shared by exactly two faces)";
-    }
-    else if (dimension == 3)
-    {
-      why << "it is inverted, twisted or not convex enough (the cone from each of its corners "
-             "over its faces folds over itself)";
-    }
-    else
-    {
-      why << "its outline crosses itself";
-    }
-    why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise" : std::string())
-        << ". Check the mesh, or apply " << (dimension == 3 ? "Tetrahedralize" : "Triangulate")
-        << " first.";
-    return why.str();
-  }
-  // The simplices as a grid of their own on the same points.
-  const vtkIdType n = static_cast<vtkIdType>(simplices.size() / corners);
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(n + 1);
-  vtkIdType* o = offsets->GetPointer(0);
-  for (vtkIdType i = 0; i <= n; ++i)
-  {
-    o[i] = corners * i;
-  }
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(simplices.size()));
-  std::copy(simplices.begin(), simplices.end(), connectivity->GetPointer(0));
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  this->SplitGrid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  this->SplitGrid->SetPoints(points);
-  this->SplitGrid->SetCells(SimplexType(dimension), cells);
-  return std::string();
 }
 
 std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents)

@@ -191,6 +191,9 @@ public:
 private:
   /// `parents`: the dataset's cells when `grid` is its split (ParentIds set), else -1.
   std::string WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents = -1);
+  /// Splits every cell of the mesh's dimension into simplices (SplitGrid),
+  /// counting the cells left out; an error names the first cell that
+  /// cannot be split (SimplexSplit.cxx).
   std::string Split(vtkDataSet* data, const char* role);
   void OrderInSpace();
 

@@ -1,0 +1,322 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SimplexMesh::Split: a dataset's cells split into simplices on their own
+// points (Geometry/CellSplit.h), for the datasets that are not already a
+// grid of one simplex type.
+#include "Adapter/SimplexMesh.h"
+
+#include "Adapter/Ghosts.h"
+#include "Adapter/Threads.h"
+#include "Geometry/CellSplit.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellType.h"
+#include "vtkCellTypes.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <sstream>
+#include <utility>
+
+namespace mpvtk
+{
+namespace
+{
+/// The shape of a standard 3D cell for the kernel's face tables.
+bool StandardShape(int type, mp::CellShape& shape)
+{
+  switch (type)
+  {
+    case VTK_HEXAHEDRON: shape = mp::CellShape::Hexahedron; return true;
+    case VTK_VOXEL: shape = mp::CellShape::Voxel; return true;
+    case VTK_WEDGE: shape = mp::CellShape::Wedge; return true;
+    case VTK_PYRAMID: shape = mp::CellShape::Pyramid; return true;
+    case VTK_PENTAGONAL_PRISM: shape = mp::CellShape::PentagonalPrism; return true;
+    case VTK_HEXAGONAL_PRISM: shape = mp::CellShape::HexagonalPrism; return true;
+    default: return false;
+  }
+}
+
+/// The dataset's points as doubles: its own array when it holds doubles
+/// (the split grid then shares it), else a copy (explicit points for image
+/// and rectilinear data).
+vtkSmartPointer<vtkPoints> PointsAsDoubles(vtkDataSet* data)
+{
+  vtkPointSet* pointSet = vtkPointSet::SafeDownCast(data);
+  if (pointSet && pointSet->GetPoints() && pointSet->GetPoints()->GetDataType() == VTK_DOUBLE)
+  {
+    return pointSet->GetPoints();
+  }
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  const vtkIdType np = data->GetNumberOfPoints();
+  points->SetNumberOfPoints(np);
+  double* x = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
+  if (pointSet && pointSet->GetPoints())
+  {
+    vtkPoints* from = pointSet->GetPoints();
+    for (vtkIdType p = 0; p < np; ++p)
+    {
+      from->GetPoint(p, x + 3 * p);
+    }
+  }
+  else
+  {
+    data->GetPoint(0, x); // structured data: computes its points, thread-safe after the first
+    mpvtk::For(0, np, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        data->GetPoint(p, x + 3 * p);
+      }
+    });
+  }
+  return points;
+}
+
+/// The keys the splits order corners by: the GlobalIds point array when
+/// there is a usable one, else none (empty: the point ids). With global
+/// ids a cell is split alike in any piece of a distributed mesh and in
+/// the whole mesh.
+std::vector<mp::Index> SplitKeys(vtkDataSet* data)
+{
+  std::vector<mp::Index> keys;
+  if (vtkDataArray* global = data->GetPointData()->GetGlobalIds())
+  {
+    const vtkIdType np = data->GetNumberOfPoints();
+    if (global->GetNumberOfTuples() >= np && global->GetNumberOfComponents() == 1)
+    {
+      keys.resize(static_cast<size_t>(np));
+      for (vtkIdType p = 0; p < np; ++p)
+      {
+        keys[p] = static_cast<mp::Index>(global->GetTuple1(p));
+      }
+    }
+  }
+  return keys;
+}
+
+/**
+ * Splits one cell at a time into simplices appended to a list, on the
+ * dataset's points `x` and with the corners ordered by `key` (null: point
+ * ids). Scratch arrays are kept from cell to cell.
+ */
+class CellSplitter
+{
+public:
+  CellSplitter(vtkDataSet* data, const double* x, const mp::Index* key)
+    : Data(data)
+    , Grid(vtkUnstructuredGrid::SafeDownCast(data))
+    , X(x)
+    , Key(key)
+  {
+  }
+
+  /// Appends cell c's simplices (of type `type`) to `simplices`.
+  mp::SplitStatus Split(vtkIdType c, int type, std::vector<mp::Index>& simplices)
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    this->Data->GetCellPoints(c, npts, pts, this->Scratch);
+    this->Ids.assign(pts, pts + npts); // ids and counts checked by CheckDataSet
+    std::vector<mp::Index>& ids = this->Ids;
+    switch (type)
+    {
+      case VTK_LINE:
+      case VTK_TRIANGLE:
+      case VTK_TETRA:
+        simplices.insert(simplices.end(), ids.begin(), ids.end());
+        return mp::SplitStatus::Split;
+      case VTK_POLY_LINE:
+        SplitPolyLine(ids, simplices);
+        return mp::SplitStatus::Split;
+      case VTK_PIXEL:
+        std::swap(ids[2], ids[3]); // x, y order -> around the square
+        VTK_FALLTHROUGH;
+      case VTK_QUAD:
+      case VTK_POLYGON:
+        return mp::SplitPolygon(this->X, ids.data(), static_cast<int>(ids.size()), simplices, this->Key)
+          ? mp::SplitStatus::Split
+          : mp::SplitStatus::NotStarShaped;
+      case VTK_TRIANGLE_STRIP:
+        SplitStrip(ids, simplices);
+        return mp::SplitStatus::Split;
+      case VTK_POLYHEDRON:
+      {
+        vtkIdType nfaces = 0;
+        const vtkIdType* faces = nullptr;
+        this->Grid->GetFaceStream(c, nfaces, faces);
+        return mp::SplitPolyhedron(
+          this->X, faces, static_cast<int>(nfaces), false, simplices, this->Key);
+      }
+      default:
+        return this->SplitStandard(type, simplices);
+    }
+  }
+
+private:
+  /// A polyline's segments, but those of a repeated point.
+  static void SplitPolyLine(const std::vector<mp::Index>& ids, std::vector<mp::Index>& simplices)
+  {
+    for (size_t k = 0; k + 1 < ids.size(); ++k)
+    {
+      if (ids[k] != ids[k + 1])
+      {
+        simplices.insert(simplices.end(), { ids[k], ids[k + 1] });
+      }
+    }
+  }
+
+  /// A strip's triangles, but those with a repeated point.
+  static void SplitStrip(const std::vector<mp::Index>& ids, std::vector<mp::Index>& simplices)
+  {
+    for (size_t k = 0; k + 2 < ids.size(); ++k)
+    {
+      if (ids[k] != ids[k + 1] && ids[k + 1] != ids[k + 2] && ids[k] != ids[k + 2])
+      {
+        // Every other triangle of a strip runs the other way round: as
+        // VTK orients them, all alike (it matters on surfaces).
+        const bool odd = k % 2 == 1;
+        simplices.insert(simplices.end(), { ids[odd ? k + 1 : k], ids[odd ? k : k + 1], ids[k + 2] });
+      }
+    }
+  }
+
+  /// A standard 3D cell (hexahedron, wedge, ...) through its face table;
+  /// a type without one gives nothing (cells of lower dimension are never
+  /// asked).
+  mp::SplitStatus SplitStandard(int type, std::vector<mp::Index>& simplices)
+  {
+    mp::CellShape shape;
+    if (!StandardShape(type, shape))
+    {
+      return mp::SplitStatus::Split;
+    }
+    const int nfaces = mp::StandardCellFaces(shape, this->Ids.data(), this->Stream);
+    return mp::SplitPolyhedron(this->X, this->Stream.data(), nfaces, true, simplices, this->Key);
+  }
+
+  vtkDataSet* Data;
+  vtkUnstructuredGrid* Grid; ///< the face streams of polyhedra
+  const double* X;
+  const mp::Index* Key;
+  vtkNew<vtkIdList> Scratch;
+  std::vector<mp::Index> Ids;
+  std::vector<mp::Index> Stream;
+};
+
+/// Why the first refused cell (and `refused` - 1 more) cannot be split.
+std::string Refusal(vtkDataSet* data, const char* role, int dimension, vtkIdType firstRefused,
+  mp::SplitStatus firstStatus, vtkIdType refused)
+{
+  std::ostringstream why;
+  why << role << " cell " << firstRefused << " (" << CellTypeName(data->GetCellType(firstRefused))
+      << ") cannot be split into " << (dimension == 3 ? "tetrahedra" : "triangles")
+      << " on its own corners: ";
+  if (firstStatus == mp::SplitStatus::OpenFaces)
+  {
+    why << "its faces do not close a volume (an edge is not shared by exactly two faces)";
+  }
+  else if (dimension == 3)
+  {
+    why << "it is inverted, twisted or not convex enough (the cone from each of its corners "
+           "over its faces folds over itself)";
+  }
+  else
+  {
+    why << "its outline crosses itself";
+  }
+  why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise" : std::string())
+      << ". Check the mesh, or apply " << (dimension == 3 ? "Tetrahedralize" : "Triangulate")
+      << " first.";
+  return why.str();
+}
+
+/// The simplices (`corners` ids each) as a grid of their own on `points`.
+vtkSmartPointer<vtkUnstructuredGrid> SimplexGridOf(
+  vtkPoints* points, const std::vector<mp::Index>& simplices, int dimension)
+{
+  const int corners = dimension + 1;
+  const vtkIdType n = static_cast<vtkIdType>(simplices.size() / corners);
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(n + 1);
+  vtkIdType* o = offsets->GetPointer(0);
+  for (vtkIdType i = 0; i <= n; ++i)
+  {
+    o[i] = corners * i;
+  }
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(simplices.size()));
+  std::copy(simplices.begin(), simplices.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->SetCells(SimplexType(dimension), cells);
+  return grid;
+}
+} // namespace
+
+std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
+{
+  const vtkIdType numberOfCells = data->GetNumberOfCells();
+  const int dimension = this->Kernel.CellDimension;
+  const vtkSmartPointer<vtkPoints> points = PointsAsDoubles(data);
+  const double* x = points->GetNumberOfPoints() > 0
+    ? vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0)
+    : nullptr;
+  // Cells are split from their corner of lowest global id when there are
+  // global ids, else of lowest point id (SplitKeys).
+  const std::vector<mp::Index> keys = SplitKeys(data);
+  CellSplitter splitter(data, x, keys.empty() ? nullptr : keys.data());
+  vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
+  std::vector<mp::Index> simplices;
+  simplices.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 24 : 6));
+  this->ParentIds.clear();
+  this->ParentIds.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 6 : 2));
+  vtkIdType refused = 0;
+  vtkIdType firstRefused = -1;
+  mp::SplitStatus firstStatus = mp::SplitStatus::Split;
+  const int corners = dimension + 1;
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    const int type = data->GetCellType(c);
+    if (type == VTK_EMPTY_CELL || vtkCellTypes::GetDimension(static_cast<unsigned char>(type)) < dimension)
+    {
+      this->LowerDimensional += type != VTK_EMPTY_CELL;
+      continue;
+    }
+    if (IsLeftOutGhost(ghosts, c))
+    {
+      ++this->Ghosts;
+      continue;
+    }
+    const size_t before = simplices.size();
+    const mp::SplitStatus status = splitter.Split(c, type, simplices);
+    if (status != mp::SplitStatus::Split)
+    {
+      firstRefused = refused++ == 0 ? c : firstRefused;
+      firstStatus = refused == 1 ? status : firstStatus;
+      continue;
+    }
+    const size_t added = (simplices.size() - before) / corners;
+    this->Flat += added == 0;
+    this->SplitCount += type != SimplexType(dimension);
+    this->ParentIds.insert(this->ParentIds.end(), added, c);
+  }
+  if (refused > 0)
+  {
+    return Refusal(data, role, dimension, firstRefused, firstStatus, refused);
+  }
+  this->SplitGrid = SimplexGridOf(points, simplices, dimension);
+  return std::string();
+}
+} // namespace mpvtk
