@@ -146,12 +146,28 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
 
 std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents)
 {
-  std::ostringstream why;
   this->SimplexGrid = grid;
   const vtkIdType numberOfCells = grid->GetNumberOfCells();
-  const int corners = this->Kernel.CornersPerCell();
+  this->ViewConnectivity(grid);
+  std::vector<vtkIdType> kept; // the grid's cells that are not ghosts (when some are)
+  const vtkIdType gridGhosts = this->LeaveOutGhosts(grid, kept);
+  this->NameParents(parents, numberOfCells, gridGhosts, kept);
+  this->ViewPoints(grid);
+  // Everything below and after reads the mesh along space when it is renumbered.
+  this->OrderInSpace();
+  const std::string badPoint = this->CheckPoints(role);
+  if (!badPoint.empty())
+  {
+    return badPoint;
+  }
+  this->SeeInPlaneOrSpace();
+  return std::string();
+}
 
-  // Connectivity of every cell: VTK's own array when it is 64-bit.
+void SimplexMesh::ViewConnectivity(vtkUnstructuredGrid* grid)
+{
+  // VTK's own array when it is 64-bit (the kernel's ids), else a copy.
+  const vtkIdType numberOfCells = grid->GetNumberOfCells();
   vtkCellArray* cells = grid->GetCells();
   if (numberOfCells > 0 && cells->IsStorage64Bit())
   {
@@ -167,12 +183,16 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     }
     this->AllConnectivity = this->AllConnectivityCopy.data();
   }
+}
 
+vtkIdType SimplexMesh::LeaveOutGhosts(vtkUnstructuredGrid* grid, std::vector<vtkIdType>& kept)
+{
   // Ghost cells (duplicated from another piece, or hidden) are left out.
   // (A split has none: Split() left out and counted the dataset's.)
+  const vtkIdType numberOfCells = grid->GetNumberOfCells();
+  const int corners = this->Kernel.CornersPerCell();
   vtkUnsignedCharArray* ghosts = grid->GetCellGhostArray();
   vtkIdType gridGhosts = 0;
-  std::vector<vtkIdType> others; // the grid's cells that are not ghosts (when some are)
   if (ghosts)
   {
     for (vtkIdType c = 0; c < numberOfCells; ++c)
@@ -181,28 +201,31 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     }
   }
   this->Ghosts += gridGhosts;
-  if (gridGhosts > 0)
-  {
-    for (vtkIdType c = 0; c < numberOfCells; ++c)
-    {
-      if (!IsLeftOutGhost(ghosts, c))
-      {
-        others.push_back(c);
-        this->ConnectivityCopy.insert(this->ConnectivityCopy.end(),
-          this->AllConnectivity + corners * c, this->AllConnectivity + corners * (c + 1));
-      }
-    }
-    this->Kernel.Connectivity = this->ConnectivityCopy.data();
-    this->Kernel.Connectivity32 = nullptr;
-    this->Kernel.NumberOfCells = static_cast<mp::Index>(others.size());
-  }
-  else
+  this->Kernel.Connectivity32 = nullptr;
+  if (gridGhosts == 0)
   {
     this->Kernel.Connectivity = this->AllConnectivity;
-    this->Kernel.Connectivity32 = nullptr;
     this->Kernel.NumberOfCells = numberOfCells;
+    return 0;
   }
-  this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
+  // A copy of the other cells: the kernel reads its cells contiguously.
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    if (!IsLeftOutGhost(ghosts, c))
+    {
+      kept.push_back(c);
+      this->ConnectivityCopy.insert(this->ConnectivityCopy.end(),
+        this->AllConnectivity + corners * c, this->AllConnectivity + corners * (c + 1));
+    }
+  }
+  this->Kernel.Connectivity = this->ConnectivityCopy.data();
+  this->Kernel.NumberOfCells = static_cast<mp::Index>(kept.size());
+  return gridGhosts;
+}
+
+void SimplexMesh::NameParents(vtkIdType parents, vtkIdType numberOfCells, vtkIdType gridGhosts,
+  const std::vector<vtkIdType>& kept)
+{
   // P0 functions are numbered as the dataset's cells: the split's cells
   // name theirs (Split), a grid's simplices are its cells but ghost cells
   // get none. Never null then, so that the P0 space has one function per
@@ -213,7 +236,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   this->Kernel.OneCellPerParent = false;
   if (parents < 0 && gridGhosts > 0)
   {
-    this->ParentIds.assign(others.begin(), others.end());
+    this->ParentIds.assign(kept.begin(), kept.end());
     parents = numberOfCells;
   }
   if (parents >= 0)
@@ -221,8 +244,12 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     this->Kernel.Parent = this->ParentIds.empty() ? &noParent : this->ParentIds.data();
     this->Kernel.NumberOfParents = parents;
   }
+}
 
-  // Points: VTK's own array when it holds doubles.
+void SimplexMesh::ViewPoints(vtkUnstructuredGrid* grid)
+{
+  this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
+  // VTK's own array when it holds doubles.
   vtkPoints* points = grid->GetPoints();
   vtkDoubleArray* doubles = points ? vtkDoubleArray::SafeDownCast(points->GetData()) : nullptr;
   if (doubles && doubles->GetNumberOfComponents() == 3)
@@ -239,18 +266,19 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     this->Kernel.Points = this->PointCopy.data();
   }
   this->OriginalPoints = this->Kernel.Points;
-  // Everything below and after reads the mesh along space when it is renumbered.
-  this->OrderInSpace();
+}
 
+std::string SimplexMesh::CheckPoints(const char* role) const
+{
   // The points the cells use: finite, and within the predicates' range.
   // The first use of a point that is not is reported. All points are
   // checked first, in storage order (a fraction of the uses, read
   // sequentially); the uses only when some point fails (it may be unused).
   const mp::MeshView& kernel = this->Kernel;
   auto ids = [&kernel](mp::Index u) { return kernel.Corner(u); };
-  const mp::Index uses = corners * this->Kernel.NumberOfCells;
-  auto badPoint = [&](mp::Index p) {
-    const double* x = this->Kernel.Point(p);
+  const mp::Index uses = kernel.CornersPerCell() * kernel.NumberOfCells;
+  auto badPoint = [&kernel](mp::Index p) {
+    const double* x = kernel.Point(p);
     bool bad = false;
     for (int d = 0; d < 3; ++d)
     {
@@ -259,33 +287,39 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     }
     return bad;
   };
-  const mp::Index i = FirstWhere(this->Kernel.NumberOfPoints, badPoint) ==
-      this->Kernel.NumberOfPoints
+  const mp::Index i = FirstWhere(kernel.NumberOfPoints, badPoint) == kernel.NumberOfPoints
     ? uses
     : FirstWhere(uses, [&](vtkIdType u) { return badPoint(ids(u)); });
-  if (i < uses)
+  if (i >= uses)
   {
-    const double* x = this->Kernel.Point(ids(i));
-    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    return std::string();
+  }
+  std::ostringstream why;
+  const double* x = kernel.Point(ids(i));
+  if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+  {
+    why << role << " has a point with a NaN or infinite coordinate (point "
+        << this->DataSetPoint(ids(i)) << ").";
+    return why.str();
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    const double a = std::fabs(x[d]);
+    if (a != 0.0 && (a < 1e-100 || a > 1e100))
     {
-      why << role << " has a point with a NaN or infinite coordinate (point "
-          << this->DataSetPoint(ids(i)) << ").";
+      why << role << " has a coordinate of magnitude " << a << " (point "
+          << this->DataSetPoint(ids(i))
+          << "): coordinates must be 0 or between 1e-100 and 1e100 in magnitude, where "
+          << "the exact geometric predicates can neither underflow nor overflow. Rescale "
+          << "the mesh.";
       return why.str();
     }
-    for (int d = 0; d < 3; ++d)
-    {
-      const double a = std::fabs(x[d]);
-      if (a != 0.0 && (a < 1e-100 || a > 1e100))
-      {
-        why << role << " has a coordinate of magnitude " << a << " (point "
-            << this->DataSetPoint(ids(i))
-            << "): coordinates must be 0 or between 1e-100 and 1e100 in magnitude, where "
-            << "the exact geometric predicates can neither underflow nor overflow. Rescale "
-            << "the mesh.";
-        return why.str();
-      }
-    }
   }
+  return std::string();
+}
+
+void SimplexMesh::SeeInPlaneOrSpace()
+{
   double deviation = 0.0;
   double size = 0.0;
   this->Kernel.SpaceDimension = this->Kernel.CellDimension;
@@ -294,7 +328,7 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
   {
     // Curves are seen in space as they are, planar or not (SegmentIntersector.h).
     this->UseAsSurface();
-    return std::string();
+    return;
   }
   if (this->Kernel.NumberOfCells > 0 && this->Dimension() == 2 &&
     !this->Own.Fit(this->Kernel, deviation, size, SMPTaskRunner()))
@@ -302,10 +336,9 @@ std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* ro
     // Not in one plane: a surface in 3D (SurfaceIntersector.h).
     this->NotPlanar = true;
     this->UseAsSurface();
-    return std::string();
+    return;
   }
   this->Seen = this->Own;
-  return std::string();
 }
 
 void SimplexMesh::OrderInSpace()

@@ -189,13 +189,33 @@ public:
   vtkIdType GhostCells() const { return this->Ghosts; }
 
 private:
+  /// Wrap's last step: the kernel's view of a grid of simplices only.
   /// `parents`: the dataset's cells when `grid` is its split (ParentIds set), else -1.
   std::string WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents = -1);
   /// Splits every cell of the mesh's dimension into simplices (SplitGrid),
   /// counting the cells left out; an error names the first cell that
   /// cannot be split (SimplexSplit.cxx).
   std::string Split(vtkDataSet* data, const char* role);
+
+  // WrapSimplices' steps, in their order.
+  /// AllConnectivity: the grid's cells, ghosts included, as mp::Index.
+  void ViewConnectivity(vtkUnstructuredGrid* grid);
+  /// The kernel's cells: the grid's without its ghosts (counted, and
+  /// returned; `kept` then lists the others), else all of them.
+  vtkIdType LeaveOutGhosts(vtkUnstructuredGrid* grid, std::vector<vtkIdType>& kept);
+  /// The kernel's parents: see WrapSimplices' `parents`.
+  void NameParents(vtkIdType parents, vtkIdType numberOfCells, vtkIdType gridGhosts,
+    const std::vector<vtkIdType>& kept);
+  /// The kernel's points: the grid's own when they are doubles, else a copy.
+  void ViewPoints(vtkUnstructuredGrid* grid);
+  /// Renumbers the mesh along space (see SetOrdering), when it should.
   void OrderInSpace();
+  /// The first point the cells use that is not finite or out of the
+  /// predicates' range, as an error naming `role`, or an empty string.
+  std::string CheckPoints(const char* role) const;
+  /// How the kernel sees the mesh: curves and surfaces in space, a planar
+  /// mesh in its own plane (Own, Seen).
+  void SeeInPlaneOrSpace();
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
   vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
