@@ -179,16 +179,20 @@
 
 #include "MeshProjectionFiltersModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
-#include "vtkSmartPointer.h" // for ProjectLeaf
 
-#include <string> // for ProjectLeaf
+#include <string> // for ReportSkipped
+#include <vector> // for ReportSkipped
 
 class vtkDataArraySelection;
 class vtkDataSet;
 namespace mpvtk
 {
-class SimplexMesh;
+class Messages;
 class Parts;
+class StageClock;
+struct Settings;
+struct Statistics;
+struct Verdict;
 }
 class vtkDoubleArray;
 class vtkIdTypeArray;
@@ -599,32 +603,22 @@ protected:
 
   /// The processes of a distributed run (vtkPMeshProjectionFilter sets it
   /// during RequestData); null: serial.
+  /// The processes' seam (Parallel/Parts.h): installed by vtkPMeshProjectionFilter while it
+  /// runs on several processes; null, one process (mpvtk::SerialParts).
   mpvtk::Parts* Parts = nullptr;
 
 private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;
   void SelectionModified();
-  void ClearStatuses(int association);
-  void SetStatus(int association, const char* name, int status);
-  void ListSourceArrays(vtkDataObject* source);
   void ListSource(vtkDataObject* source);
+  mpvtk::Settings CurrentSettings() const;
+  mpvtk::Verdict Project(vtkInformationVector** inputVector, vtkInformationVector* outputVector,
+    mpvtk::Parts& parts, mpvtk::StageClock& clock, mpvtk::Statistics& stats);
+  void ReportSkipped(const std::vector<std::string>& skipped, size_t leaves, int projected,
+    mpvtk::Messages& say);
+  void Publish(const mpvtk::Statistics& stats, double seconds);
   struct Internals;
-  struct Kept;
-  struct Leaf;
-  struct Execution;
   Internals* Internal;
-  /// Projects Source onto one dataset of Input (a leaf of a composite
-  /// Input, then `name` names it); an empty string, "stopped", or the error.
-  std::string ProjectLeaf(vtkDataSet* target, vtkDataSet* output, Execution& run, Leaf& kept,
-    const std::string& name, vtkSmartPointer<vtkDataObject>& pieces);
-  void WarnLeftOut(const mpvtk::SimplexMesh& mesh, const std::string& role);
-  /// On several processes: decides, alike on all, what only the whole
-  /// meshes show (see the definition). Collective.
-  std::string AgreeOnShape(mpvtk::SimplexMesh& target, mpvtk::SimplexMesh& source,
-    const std::string& role, bool& trace, bool& planar);
-  /// Groups the arrays of an association with NaN or infinite values by the
-  /// Source cells they leave out (Execution's Holes), and warns.
-  void FindNonFinite(Execution& run, int association);
   void operator=(const vtkMeshProjectionFilter&) = delete;
 };
 

@@ -11,6 +11,8 @@
 #ifndef MeshProjection_Projection_Composite_h
 #define MeshProjection_Projection_Composite_h
 
+#include "vtkSmartPointer.h"
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -21,11 +23,52 @@ class vtkDataSet;
 
 namespace mpvtk
 {
+class Messages;
+class Parts;
+
 /// visit(at) for every non-empty leaf of `data` (a composite dataset; nothing otherwise).
 void ForEachLeaf(vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit);
 
 /// The datasets of `data`: itself, or a composite's dataset leaves.
 std::vector<vtkDataSet*> DataSetsOf(vtkDataObject* data);
+
+/**
+ * Source as one dataset: itself, or all the dataset leaves of a composite
+ * Source appended (points not merged: cells of different blocks meeting at
+ * an interface see each other through the locator, and a field continuous
+ * across it gives the merged mesh's result). Each block is checked first
+ * (CheckDataSet: an error names it); arrays some blocks lack or hold too
+ * few tuples of are left out and said in `note`. Null for a data object
+ * that is neither.
+ */
+vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& note, std::string& error);
+
+/// One dataset of Input to project, and its copy in the output.
+struct InputLeaf
+{
+  unsigned int FlatIndex = 0; ///< 0 for a dataset
+  vtkDataSet* Target = nullptr;
+  vtkDataSet* Output = nullptr;
+  std::string Name;             ///< BlockName(), empty when Input is a dataset
+  bool EmptyEverywhere = false; ///< no cells on any process
+};
+
+struct InputLeaves
+{
+  std::vector<InputLeaf> Leaves;
+  /// Empty datasets standing for the blocks this process lacks.
+  std::vector<vtkSmartPointer<vtkDataObject>> StandIns;
+  std::vector<unsigned int> FlatIndices() const;
+};
+
+/**
+ * The datasets of Input (itself, or its dataset leaves; other leaves are
+ * skipped with a warning) with their copies in `output` (PassInput's). On
+ * several processes every process gets every leaf that any has (the
+ * solves are collective): an empty dataset stands for one it lacks, and a
+ * leaf empty everywhere is marked so.
+ */
+InputLeaves LeavesOf(vtkDataObject* input, vtkDataObject* output, Parts& parts, Messages& say);
 
 /// How a leaf is named in messages: "block 'name' (flat index k)" or "block of flat index k".
 std::string BlockName(vtkCompositeDataIterator* at);

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Agreement.h
+ * @brief The rounds in which the processes agree while projecting one leaf,
+ *        by name.
+ *
+ * On several processes every process takes part in each round, in order:
+ * Shape (whether the leaf is a surface: any process's parts out of one
+ * plane), Build (whether every process can reuse its kept operators) and
+ * Solve (whether every process built its operators). A process that fails
+ * or stops before a round still takes part in the rounds left, with its
+ * verdict, and then acts on what the first of them agreed: the same on
+ * every process (a stop here and a failure on a lower process in the same
+ * round is that failure everywhere, and the other way round a stop), so
+ * that all go on or end alike. On one process every round is the identity.
+ */
+#ifndef MeshProjection_Projection_Agreement_h
+#define MeshProjection_Projection_Agreement_h
+
+#include "Parallel/Parts.h"
+
+namespace mpvtk
+{
+class LeafAgreement
+{
+public:
+  enum Round
+  {
+    Shape = 0,
+    Build = 1,
+    Solve = 2,
+    Rounds = 3
+  };
+
+  explicit LeafAgreement(Parts& parts)
+    : P(parts)
+  {
+  }
+
+  /// Round `round` (the next one): this process goes on; `flag` is ANDed over the processes.
+  Verdict At(Round round, bool* flag = nullptr)
+  {
+    this->Next = static_cast<int>(round) + 1;
+    return this->P.Agree(Verdict(), flag);
+  }
+
+  /**
+   * This process ends the leaf with `mine`: takes part in the rounds left
+   * with it and returns what the first of them agreed (`mine` when none is
+   * left, or when `agreed` says `mine` came out of a round already).
+   */
+  Verdict End(const Verdict& mine, bool agreed = false)
+  {
+    Verdict outcome = mine;
+    for (; this->Next < Rounds; ++this->Next)
+    {
+      const Verdict first = this->P.Agree(mine);
+      if (!agreed)
+      {
+        outcome = first.Ok() ? mine : first;
+        agreed = true;
+      }
+    }
+    return outcome;
+  }
+
+private:
+  Parts& P;
+  int Next = 0;
+};
+} // namespace mpvtk
+
+#endif

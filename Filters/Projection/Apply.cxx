@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/Apply.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+
+#include "Projection/OperatorCache.h"
+#include "Projection/Settings.h"
+#include "Projection/SourceSide.h"
+#include "Adapter/SimplexMesh.h"
+
+namespace mpvtk
+{
+namespace
+{
+/// Why an Apply failed: a stop, or a system it could not solve.
+Verdict ApplyFailed(const mp::MortarOperator& applied, Transfer t, KeptLeaf& kept)
+{
+  if (applied.SolveWasStopped())
+  {
+    return Verdict::Stop();
+  }
+  kept.Clear();
+  return Verdict::Fail(std::string("The projection of ") + TransferName(t) +
+    " failed: the mass matrix of the covered target part could not be solved.");
+}
+
+/// The NaN groups' arrays: their own operators, their columns of `values`.
+Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
+  const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  const double fill = ctx.Options.Fill();
+  for (const NaNGroup& group : g.Groups)
+  {
+    const mp::MortarOperator& op = *ops.ByArray[t][group.Arrays[0]];
+    const size_t rows = static_cast<size_t>(op.GetNumberOfTargetFunctions());
+    mp::LargeVector<double> own(rows * group.Components);
+    mp::ApplyOptions groupApply = apply;
+    groupApply.Solve.StartFromX = false;
+    if (!op.Apply(group.Values.data(), group.Components, own.data(), fill, groupApply, hook))
+    {
+      return ApplyFailed(op, t, kept);
+    }
+    ctx.Stats.Solve += op.GetTimings().Solve;
+    int column = 0;
+    for (int a : group.Arrays)
+    {
+      const int nc = g.Arrays[a]->GetNumberOfComponents();
+      for (size_t f = 0; f < rows; ++f)
+      {
+        for (int c = 0; c < nc; ++c)
+        {
+          values[f * g.Components + g.Offsets[a] + c] = own[f * group.Components + column + c];
+        }
+      }
+      column += nc;
+    }
+  }
+  return Verdict();
+}
+
+/// One transfer: its fields' solution (warm started when it may), then the NaN groups'.
+Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
+  const mp::SolverHooks& hook, mp::LargeVector<double>& values)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  const mp::MortarOperator& op = *ops.Operators[t];
+  KeptOperator& k = kept.Operators[t];
+  const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
+  mp::ApplyOptions apply;
+  apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
+  apply.Bounded = ctx.Options.PreserveBounds;
+  apply.Solve.MaxIterations = ctx.Options.MaximumIterations;
+  if (ctx.Processes.Whole())
+  {
+    // Progress and a stop inside the solve too (one process: several
+    // would have to stop at the same iteration).
+    const ProgressShare bar = ctx.Bar;
+    apply.Solve.Progress = [bar](double done) { return bar(0.9 + 0.05 * done); };
+  }
+  bool warm = !ops.Fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
+  ctx.Processes.Agree(Verdict(), &warm); // all processes start alike
+  if (warm)
+  {
+    values.assign(k.Solution.begin(), k.Solution.end());
+    apply.Solve.StartFromX = true;
+  }
+  else
+  {
+    values.resize(size);
+  }
+  if (!op.Apply(g.Values.data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook))
+  {
+    return ApplyFailed(op, t, kept);
+  }
+  ctx.Stats.Solve += op.GetTimings().Solve;
+  if (ctx.Options.CacheOperator)
+  {
+    k.SolutionKey = g.Key;
+    k.Solution.assign(values.begin(), values.end());
+  }
+  return ApplyGroups(ctx, kept, ops, t, apply, hook, values);
+}
+} // namespace
+
+void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2])
+{
+  const SimplexMesh& target = ctx.Target;
+  hooks[0] = ctx.Processes.Hooks(true, static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),
+    [&target](mp::Index f) { return target.DataSetPoint(f); });
+  hooks[1] = ctx.Processes.Hooks(false, 0, nullptr);
+  for (Transfer t : AllTransfers)
+  {
+    if (!ops.Operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
+    {
+      continue;
+    }
+    const_cast<mp::MortarOperator*>(ops.Operators[t])->ShareValidity(hooks[0]);
+    for (const mp::MortarOperator* op : ops.ByArray[t])
+    {
+      if (op != ops.Operators[t])
+      {
+        const_cast<mp::MortarOperator*>(op)->ShareValidity(hooks[0]);
+      }
+    }
+  }
+}
+
+Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
+  const mp::SolverHooks hooks[2], LeafSolutions& solutions)
+{
+  for (Transfer t : AllTransfers)
+  {
+    if (!ops.Operators[t] || ctx.Source.Fields[SourceAssociation(t)].Components == 0)
+    {
+      continue;
+    }
+    const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, solutions.Values[t]);
+    if (!applied.Ok())
+    {
+      return applied;
+    }
+  }
+  return Verdict();
+}
+
+void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops)
+{
+  const bool builtHere = ops.BuiltAny();
+  const bool cache = ctx.Options.CacheOperator;
+  for (Transfer t : AllTransfers)
+  {
+    std::unique_ptr<mp::MortarOperator>& fresh = ops.Fresh[t];
+    if (fresh && cache && fresh->HasMixedMass())
+    {
+      kept.Operators[t].Operator = std::move(fresh);
+    }
+    else if (!plan.Used[t] || !cache)
+    {
+      kept.Operators[t] = KeptOperator();
+    }
+    if (fresh)
+    {
+      fresh->ReleaseMatrices(); // solved and not kept: room for the outputs
+    }
+  }
+  if (!builtHere)
+  {
+    return;
+  }
+  // The meshes' point orders, for GetMatrix (only kept operators are read).
+  const bool anyKept = kept.KeepsAny();
+  auto keep = [anyKept](const SimplexMesh& mesh, std::vector<mp::Index>& order) {
+    std::vector<mp::Index>().swap(order);
+    if (mesh.Ordered() && anyKept)
+    {
+      order.assign(mesh.PointOrderData(), mesh.PointOrderData() + mesh.View().NumberOfPoints);
+    }
+  };
+  keep(ctx.Target, kept.TargetPoints);
+  keep(ctx.Source.Mesh, kept.SourcePoints);
+}
+} // namespace mpvtk

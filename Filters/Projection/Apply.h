@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Apply.h
+ * @brief Applying one leaf's operators: M_ts u_s, then M_tt (consistent,
+ *        from the previous step's solution when the same arrays meet the
+ *        same operator) or its row sums (lumped), with bounds when asked;
+ *        then which operators are kept for the next execution.
+ *
+ * On several processes the systems are one global system each: the rows
+ * shared with other processes are completed in every product (the hooks),
+ * and a function valid on any process is valid on all.
+ */
+#ifndef MeshProjection_Projection_Apply_h
+#define MeshProjection_Projection_Apply_h
+
+#include "Projection/Leaf.h"
+
+#include "Mesh/LargeArray.h"
+#include "Transfer/BlockCG.h"
+
+namespace mpvtk
+{
+struct KeptLeaf;
+
+/// The solutions of one leaf: per transfer, target functions x the fields' components.
+struct LeafSolutions
+{
+  mp::LargeVector<double> Values[NumberOfTransfers];
+};
+
+/// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators share their validity.
+void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2]);
+
+/// Applies every operator in use to its fields (and NaN groups' operators to theirs).
+Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
+  const mp::SolverHooks hooks[2], LeafSolutions& solutions);
+
+/**
+ * Keeps the operators built here for the next execution (and GetMatrix)
+ * when they hold M_ts and CacheOperator is on, drops the others and those
+ * not in use; the ones not kept give back their matrices now.
+ */
+void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops);
+} // namespace mpvtk
+
+#endif

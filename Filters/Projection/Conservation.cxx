@@ -1,0 +1,363 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/Conservation.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkPointData.h"
+
+#include "Parallel/Parts.h"
+#include "Projection/Messages.h"
+#include "Adapter/SimplexMesh.h"
+#include "Adapter/Threads.h"
+
+#include "Geometry/Measures.h"
+#include "Mesh/Tasks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace mpvtk
+{
+namespace
+{
+/**
+ * Per component k < nc, the sum of term(i, k) over i in [0, n), in the
+ * filter's threads: each block of 2^14 items summed on its own, then the
+ * blocks' sums in block order (the same sums on any number of threads).
+ */
+template <class Term>
+std::vector<double> SumInBlocks(vtkIdType n, int nc, const Term& term)
+{
+  constexpr vtkIdType Block = vtkIdType(1) << 14;
+  const vtkIdType blocks = (n + Block - 1) / Block;
+  std::vector<double> partial(static_cast<size_t>(blocks * nc), 0.0);
+  mpvtk::For(0, blocks, 1, [&](vtkIdType begin, vtkIdType end) {
+    std::vector<double> sum(static_cast<size_t>(nc));
+    for (vtkIdType b = begin; b < end; ++b)
+    {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      const vtkIdType last = std::min(n, (b + 1) * Block);
+      for (vtkIdType i = b * Block; i < last; ++i)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          sum[static_cast<size_t>(k)] += term(i, k);
+        }
+      }
+      std::copy(sum.begin(), sum.end(), partial.begin() + b * nc);
+    }
+  });
+  std::vector<double> total(static_cast<size_t>(nc), 0.0);
+  for (vtkIdType b = 0; b < blocks; ++b)
+  {
+    for (int k = 0; k < nc; ++k)
+    {
+      total[static_cast<size_t>(k)] += partial[static_cast<size_t>(b * nc + k)];
+    }
+  }
+  return total;
+}
+
+/**
+ * For every cell c of `view` in turn and each of its corners p, apply(p,
+ * value(c)), skipping cells whose value is not positive: as that loop
+ * would, in the order it would (sums come out bit for bit the same), but
+ * in `runner`'s tasks over ranges of cells. A range applies directly to
+ * the points no earlier range uses (ids above the largest id of the
+ * earlier ranges' cells, so no two tasks write one point) and keeps the
+ * others' values until every range is done, then applies them in cell
+ * order. Numberings that follow space (a renumbered copy numbers points as
+ * its cells first use them) keep few; a range that would keep more than a
+ * sixteenth of its corners (ids with no such order) stops, and its
+ * remaining cells are applied after the values kept, in one loop.
+ */
+template <class Value, class Apply>
+void ForCellCornersInOrder(
+  const mp::MeshView& view, const mp::TaskRunner& runner, const Value& value, const Apply& apply)
+{
+  const mp::Index n = view.NumberOfCells;
+  const int corners = view.CornersPerCell();
+  auto serial = [&](mp::Index begin, mp::Index end) {
+    for (mp::Index c = begin; c < end; ++c)
+    {
+      const double v = value(c);
+      if (v > 0.0)
+      {
+        const mp::CellCorners ids = view.Cell(c);
+        for (int k = 0; k < corners; ++k)
+        {
+          apply(ids[k], v);
+        }
+      }
+    }
+  };
+  const int tasks = runner.TasksFor(n, 16384);
+  if (tasks < 2)
+  {
+    serial(0, n);
+    return;
+  }
+  auto range = [&](int k) { return std::make_pair(mp::RangeBegin(n, k, tasks), mp::RangeBegin(n, k + 1, tasks)); };
+  // Ids below first[k] may be used by the cells of an earlier range.
+  std::vector<mp::Index> first(static_cast<size_t>(tasks), 0);
+  runner.RunAll(tasks, [&](int k) {
+    mp::Index top = -1;
+    for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
+    {
+      top = std::max(top, view.Corner(i));
+    }
+    first[k] = top;
+  });
+  mp::Index top = 0;
+  for (int k = 0; k < tasks; ++k)
+  {
+    const mp::Index largest = first[k];
+    first[k] = top;
+    top = std::max(top, largest + 1);
+  }
+  // Each range applies directly what it can and keeps the rest, up to a
+  // sixteenth of its corners: a range that would keep more stops at that
+  // cell (ids with no such order), and its remaining cells are applied in
+  // one loop after the values kept by it and the ranges before it (points
+  // of later ranges' direct values are none of its points).
+  std::vector<mp::Index> stopped(static_cast<size_t>(tasks), -1);
+  std::vector<std::vector<std::pair<mp::Index, double>>> kept(static_cast<size_t>(tasks));
+  runner.RunAll(tasks, [&](int k) {
+    std::vector<std::pair<mp::Index, double>>& mine = kept[k];
+    const size_t room = static_cast<size_t>(corners * (range(k).second - range(k).first) / 16);
+    for (mp::Index c = range(k).first; c < range(k).second; ++c)
+    {
+      const double v = value(c);
+      if (v > 0.0)
+      {
+        const mp::CellCorners ids = view.Cell(c);
+        if (mine.size() + corners > room)
+        {
+          stopped[k] = c;
+          return;
+        }
+        for (int j = 0; j < corners; ++j)
+        {
+          if (ids[j] >= first[k])
+          {
+            apply(ids[j], v);
+          }
+          else
+          {
+            mine.emplace_back(ids[j], v);
+          }
+        }
+      }
+    }
+  });
+  for (int k = 0; k < tasks; ++k)
+  {
+    for (const auto& entry : kept[k])
+    {
+      apply(entry.first, entry.second);
+    }
+    if (stopped[k] >= 0)
+    {
+      serial(stopped[k], range(k).second);
+    }
+  }
+}
+
+} // namespace
+
+/**
+ * On several processes each has its part of a source cell's covered
+ * measure (the pieces of its own target cells): for the 90% rule, which is
+ * not linear, the parts of surfaces' and curves' cells are summed over the
+ * processes (by the cells' corners' global ids) and each process takes its
+ * share of the result. (Otherwise the measures are only capped at the
+ * cell's own, which parts that do not overlap never reach.) A collective:
+ * called for every array on every process; `needed` false (the weights
+ * known) sends nothing.
+ */
+std::vector<double> SourceWeights::CoveredTotals(const mp::MortarOperator& op, bool needed)
+{
+  std::vector<double> total;
+  if (this->Processes.Whole())
+  {
+    return total; // one process: each cell's cover is whole here
+  }
+  const mp::MeshView& view = this->Source.View();
+  // (Volumes and planar meshes have no such rule: no keys, but the call is
+  // collective all the same: a process's meshes may be empty.)
+  const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
+  const int corners = view.CornersPerCell();
+  const mp::LargeVector<double>& covered = op.GetSourceCovered();
+  std::vector<long long> keys;
+  std::vector<double> parts;
+  std::vector<mp::Index> cells;
+  vtkDataArray* global = this->SourceData->GetPointData()->GetGlobalIds();
+  if (needed && projected && global && corners <= 3)
+  {
+    for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      if (covered[static_cast<size_t>(c)] > 0.0)
+      {
+        // The corners' global ids, sorted, and the parity of that sort:
+        // a cell is the same on every process, and two cells on the same
+        // corners in opposite orientations (a curve going back along
+        // itself, a two-sided surface) stay apart.
+        long long key[4] = { -1, -1, -1, 0 };
+        for (int k = 0; k < corners; ++k)
+        {
+          key[k] = static_cast<long long>(
+            global->GetTuple1(this->Source.DataSetPoint(view.Cell(c)[k])));
+        }
+        for (int k = 0; k < corners; ++k)
+        {
+          for (int j = k + 1; j < corners; ++j)
+          {
+            key[3] ^= key[k] > key[j] ? 1 : 0;
+          }
+        }
+        std::sort(key, key + corners);
+        keys.insert(keys.end(), key, key + 4);
+        parts.push_back(covered[static_cast<size_t>(c)]);
+        cells.push_back(c);
+      }
+    }
+  }
+  const std::vector<double> sums = this->Processes.SumByKey(keys, 4, parts);
+  if (!cells.empty())
+  {
+    total.assign(static_cast<size_t>(view.NumberOfCells), 0.0);
+    for (size_t i = 0; i < cells.size(); ++i)
+    {
+      total[static_cast<size_t>(cells[i])] = sums[i];
+    }
+  }
+  return total;
+}
+
+const std::vector<double>& SourceWeights::Make(
+  const mp::MortarOperator& op, bool fromCells, const std::vector<double>& total)
+{
+  std::vector<double>& w = this->Weights[std::make_pair(&op, fromCells)];
+  const mp::MeshView& view = this->Source.View();
+  if (w.empty())
+  {
+    w.assign(static_cast<size_t>(fromCells ? view.Parents() : view.NumberOfPoints), 0.0);
+    const int corners = view.CornersPerCell();
+    const mp::LargeVector<double>& covered = op.GetSourceCovered();
+    const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
+    // The cells' measures in the filter's threads (0: degenerate), then
+    // summed in cell order.
+    mp::UninitializedLargeVector<double> measures(static_cast<size_t>(view.NumberOfCells));
+    mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+      std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
+      mp::ForEachCellMeasure(
+        view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
+        begin, end);
+    });
+    // The part of cell c counted (0: none).
+    auto part = [&](mp::Index c) {
+      const double whole = measures[static_cast<size_t>(c)];
+      const double m = covered[static_cast<size_t>(c)];
+      if (!(whole > 0.0) || !(m > 0.0))
+      {
+        return 0.0;
+      }
+      // The rule: a cell covered to 90% counts whole (surfaces, curves).
+      auto counted = [&](double cover) {
+        return projected && cover >= 0.9 * whole ? whole : std::min(cover, whole);
+      };
+      // With the processes' total cover `all`: this process's share of it.
+      const double all = total.empty() ? 0.0 : total[static_cast<size_t>(c)];
+      return all > 0.0 ? m * (counted(all) / all) : counted(m);
+    };
+    if (!fromCells)
+    {
+      // Summed in cell order, in the filter's threads.
+      ForCellCornersInOrder(view, mpvtk::SMPTaskRunner(),
+        [&](mp::Index c) { return part(c) / corners; },
+        [&](mp::Index p, double share) { w[static_cast<size_t>(p)] += share; });
+    }
+    else
+    {
+      auto add = [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType c = begin; c < end; ++c)
+        {
+          const double m = part(c);
+          if (m > 0.0)
+          {
+            w[static_cast<size_t>(view.ParentOf(c))] += m;
+          }
+        }
+      };
+      // One cell per dataset cell: nothing to sum, in the threads; split
+      // cells' parts in cell order, in one loop.
+      if (!view.Parent || view.OneCellPerParent)
+      {
+        mpvtk::For(0, view.NumberOfCells, add);
+      }
+      else
+      {
+        add(0, view.NumberOfCells);
+      }
+    }
+  }
+  return w;
+}
+
+const std::vector<double>& SourceWeights::Of(const mp::MortarOperator& op, bool fromCells)
+{
+  const bool known = this->Weights.count(std::make_pair(&op, fromCells)) > 0;
+  return this->Make(op, fromCells, this->CoveredTotals(op, !known));
+}
+
+void SourceWeights::Weigh(const mp::MortarOperator& op, bool fromCells)
+{
+  this->Make(op, fromCells, std::vector<double>());
+}
+
+ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const std::string& name,
+  const std::string& role, Parts& parts, Messages& messages)
+{
+  const int nc = array.Components;
+  const int width = array.Width;
+  const int offset = array.Offset;
+  ArrayIntegrals result;
+  const std::vector<double>& w = array.Weights;
+  result.Source = SumInBlocks(static_cast<vtkIdType>(w.size()), nc,
+    [&](vtkIdType j, int k) { return w[j] * array.Source[j * width + offset + k]; });
+  const std::vector<char>& valid = array.Operator.GetValid();
+  const std::vector<double>& covered = array.Operator.GetCoveredIntegrals();
+  // (An invalid function's value, the fill, may be NaN: left out.)
+  result.Target = SumInBlocks(array.TargetFunctions, nc, [&](vtkIdType f, int k) {
+    return valid[f] ? covered[f] * array.Result[f * width + offset + k] : 0.0;
+  });
+  // Totals over the processes (their pieces do not overlap).
+  std::vector<double> both(result.Source);
+  both.insert(both.end(), result.Target.begin(), result.Target.end());
+  parts.Sum(both.data(), 2 * nc);
+  std::copy(both.begin(), both.begin() + nc, result.Source.begin());
+  std::copy(both.begin() + nc, both.end(), result.Target.begin());
+  // Optionally, the projection scaled to the Source's own integral (the
+  // facetizations of a curved surface differ in area).
+  result.Factor.assign(static_cast<size_t>(nc), 1.0);
+  for (int k = 0; k < nc && conserveSource; ++k)
+  {
+    const double ratio = result.Source[k] / result.Target[k];
+    if (std::isfinite(ratio) && ratio >= 0.5 && ratio <= 2.0)
+    {
+      result.Factor[k] = ratio;
+      result.Target[k] = result.Source[k];
+    }
+    else if (messages.First("conserve/" + name))
+    {
+      std::ostringstream text;
+      text << "ConserveSourceIntegral: " << name << " (component " << k
+           << ") is not scaled: its integral over Source is " << result.Source[k] << " and over "
+           << role << " " << result.Target[k] << " (the ratio must lie within [0.5, 2]).";
+      messages.Warn(text.str());
+    }
+  }
+  return result;
+}
+} // namespace mpvtk

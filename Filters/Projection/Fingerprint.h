@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Fingerprint.h
+ * @brief A 64-bit fingerprint of the contents of VTK arrays and meshes:
+ *        how the operator cache tells that a mesh came again (readers build
+ *        new arrays at every time step, so addresses say nothing).
+ *
+ * The same contents give the same value on any number of threads (blocks
+ * are hashed on their own, then added in order).
+ */
+#ifndef MeshProjection_Projection_Fingerprint_h
+#define MeshProjection_Projection_Fingerprint_h
+
+#include <cstddef>
+#include <cstdint>
+
+class vtkDataArray;
+class vtkUnstructuredGrid;
+
+namespace mpvtk
+{
+class SimplexMesh;
+
+struct Fingerprint
+{
+  std::uint64_t Hash = 0x243F6A8885A308D3ull;
+
+  /// One word.
+  void Add(std::uint64_t word);
+  /// A byte range (hashed in blocks, in the filter's threads).
+  void Add(const void* data, size_t bytes);
+  /// An array's type, size and values (null counts as such).
+  void Add(vtkDataArray* array);
+  /// Points, cells, cell types and ghost cells: all an operator depends on.
+  void Add(vtkUnstructuredGrid* grid);
+  /// A wrapped mesh: its simplices and their parents.
+  void Add(const SimplexMesh& mesh);
+};
+} // namespace mpvtk
+
+#endif

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/LeafProjection.h"
+
+#include "vtkDataSet.h"
+
+#include "Projection/Agreement.h"
+#include "Projection/Apply.h"
+#include "Projection/Conservation.h"
+#include "Projection/Messages.h"
+#include "Projection/OperatorBuild.h"
+#include "Projection/OperatorCache.h"
+#include "Projection/Outputs.h"
+#include "Projection/Settings.h"
+#include "Projection/SourceSide.h"
+#include "Adapter/SimplexMesh.h"
+
+#include <chrono>
+
+namespace mpvtk
+{
+namespace
+{
+/// Stage 1: the target as the kernel's mesh.
+Verdict WrapTarget(const ExecutionShare& run, vtkDataSet* target, const std::string& role,
+  SimplexMesh& mesh, Statistics& stats, LeafAgreement& agreement)
+{
+  mesh.SetOrdering(run.Options.Renumbering);
+  const std::string why = mesh.Wrap(target, role.c_str());
+  stats.Check += mesh.CheckSeconds();
+  stats.Renumber += mesh.OrderSeconds();
+  stats.RenumberedMeshes = mesh.Ordered() + run.Source.Mesh.Ordered();
+  if (!why.empty())
+  {
+    return agreement.End(Verdict::Fail(why));
+  }
+  WarnLeftOut(mesh, role, run.Say);
+  stats.Input += run.Clock.Lap();
+  return Verdict();
+}
+
+/// What the shape means for the user: a Source in a parallel plane, ghost cells, traces.
+void WarnShape(LeafContext& ctx)
+{
+  // The Source's own warnings for the first leaf that gets this far only.
+  const bool first = ctx.Say.FirstInRun("shape");
+  const SimplexMesh& source = ctx.Source.Mesh;
+  if (!ctx.Shape.PlaneWarning.empty() && first)
+  {
+    ctx.Say.Warn(ctx.Shape.PlaneWarning);
+  }
+  if (ctx.Target.GhostCells() || (first && source.GhostCells()))
+  {
+    ctx.Say.Warn("Ghost cells (" + ctx.Role + ": " + std::to_string(ctx.Target.GhostCells()) +
+      ", Source: " + std::to_string(source.GhostCells()) + ") are left out of the projection.");
+  }
+  const bool extensive = ctx.Options.Extensive;
+  const bool conserve = ctx.Options.ConserveSourceIntegral;
+  if (ctx.Shape.Trace && (extensive || conserve))
+  {
+    const std::string densities =
+      std::string("extensive cell arrays are given as the Source's densities (per unit of its ") +
+      (source.Dimension() == 3 ? "volume), " : "area), ");
+    ctx.Say.WarnOnce("trace/" + ctx.Role,
+      ctx.Role + " lies inside the " + std::to_string(source.Dimension()) + "D Source (a trace): " +
+        (extensive ? densities : std::string()) +
+        (conserve ? "ConserveSourceIntegral does nothing, " : "") +
+        "since a surface or curve holds no part of the Source's integrals.");
+  }
+}
+
+/**
+ * Stage 4: what the solves do not need goes before they need the room. The
+ * last leaf's meshes are read again by the outputs only: what those take
+ * from them (the Source weights, the target's point cover) is taken now,
+ * and the meshes' own arrays (a renumbered copy, neighbours, the Source's
+ * locator) go. (Not with the intersection pieces, which read both meshes,
+ * nor on several processes, whose Source weights are collective.) Then
+ * M_tt of the operators built here, on the target alone.
+ */
+bool PrepareSolves(
+  LeafContext& ctx, OperatorSet& ops, SourceWeights& weights, mp::LargeVector<double>& cover)
+{
+  const bool release =
+    ctx.LastReaderOfSource && !ctx.Options.OutputIntersections && ctx.Processes.Whole();
+  SourceSide& source = ctx.Source;
+  if (release)
+  {
+    const auto weighing = std::chrono::steady_clock::now();
+    for (Transfer t : AllTransfers)
+    {
+      for (const mp::MortarOperator* op : ops.ByArray[t])
+      {
+        weights.Weigh(*op, SourceSpaceOf(t) == mp::SpaceType::P0);
+      }
+    }
+    // (Counted with the assembly; made later, with the outputs, they count there.)
+    ctx.Stats.Assembly +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - weighing).count();
+    source.Locator.reset();
+    source.Mesh.ReleaseGeometry();
+    // The point order and parents too when no operator of this execution
+    // will be kept (GetMatrix maps a kept one's columns through them).
+    bool keeps = false;
+    for (const mp::MortarOperator* op : ops.Deferred)
+    {
+      keeps = keeps || (ctx.Options.CacheOperator && op->HasMixedMass());
+    }
+    if (!keeps)
+    {
+      source.Mesh.ReleaseOrder();
+    }
+  }
+  for (mp::MortarOperator* op : ops.Deferred)
+  {
+    const double before = op->GetTimings().Assembly;
+    op->CompleteTargetMass(ctx.Target.View());
+    ctx.Stats.Assembly += op->GetTimings().Assembly - before;
+  }
+  if (release && ctx.Target.OwnsGeometry())
+  {
+    cover = PointCover(ctx.Target, ops);
+    ctx.Target.ReleaseGeometry();
+    return true;
+  }
+  return false;
+}
+} // namespace
+
+LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& kept)
+{
+  LeafResult result;
+  LeafAgreement agreement(run.Processes);
+  // On several processes the dataset first learns the points it shares
+  // with others (and gets global point ids).
+  vtkSmartPointer<vtkDataSet> target = run.Processes.ShareTarget(job.Target);
+  SimplexMesh targetMesh;
+  result.Outcome = WrapTarget(run, target, job.Role, targetMesh, result.Stats, agreement);
+  if (!result.Outcome.Ok())
+  {
+    return result;
+  }
+  LeafContext ctx{ run.Options, run.Processes, run.Say, job.Bar, run.Clock, result.Stats,
+    run.Source, targetMesh, target, job.Role, LeafShape(), job.LastReaderOfSource };
+  const ShapeInputs shapeInputs{ target, run.Source.Data, job.Role, run.Options, run.Processes,
+    run.Say };
+  OperatorPlan plan;
+  OperatorSet ops;
+  result.Outcome =
+    DecideShape(shapeInputs, targetMesh, run.Source.Mesh, agreement, ctx.Shape);
+  if (result.Outcome.Ok())
+  {
+    WarnShape(ctx);
+    result.Outcome = PlanOperators(ctx, kept, agreement, plan);
+  }
+  if (result.Outcome.Ok())
+  {
+    result.Outcome = BuildOperators(ctx, kept, plan, agreement, ops);
+  }
+  if (!result.Outcome.Ok())
+  {
+    return result;
+  }
+  // Every operator of this leaf is built: the target's neighbours go
+  // before the solves need their room (the Source's may serve other leaves).
+  targetMesh.ReleaseNeighbors();
+  run.Clock.Lap();
+  result.Outcome = ctx.Bar(0.9) ? agreement.At(LeafAgreement::Solve)
+                                : agreement.End(Verdict::Stop());
+  if (!result.Outcome.Ok())
+  {
+    return result;
+  }
+  SourceWeights weights(run.Source.Mesh, run.Source.Data, run.Processes);
+  mp::LargeVector<double> cover;
+  const bool haveCover = PrepareSolves(ctx, ops, weights, cover);
+  mp::SolverHooks hooks[2]; // P1, P0 target functions
+  ShareSystems(ctx, ops, hooks);
+  LeafSolutions solutions;
+  result.Outcome = ApplyOperators(ctx, kept, ops, hooks, solutions);
+  if (!result.Outcome.Ok())
+  {
+    return result;
+  }
+  KeepOperators(ctx, kept, plan, ops);
+  // On several processes the outputs are written in step (sums over them):
+  // a stop now (after the last agreement) waits for the next leaf's.
+  if (!ctx.Bar(0.95) && run.Processes.Whole())
+  {
+    result.Outcome = Verdict::Stop();
+    return result;
+  }
+  run.Clock.Lap();
+  if (!haveCover)
+  {
+    cover = PointCover(targetMesh, ops);
+  }
+  WriteLeafOutputs(ctx, job.Output, ops, solutions, weights, cover, hooks[0]);
+  if (run.Options.OutputIntersections)
+  {
+    result.Pieces = LeafPieces(ctx, ops);
+  }
+  result.Stats.Output += run.Clock.Lap();
+  return result;
+}
+} // namespace mpvtk

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/MatrixExport.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkIdTypeArray.h"
+
+#include "Projection/OperatorCache.h"
+
+#include <algorithm>
+#include <fstream>
+#include <utility>
+#include <vector>
+
+namespace mpvtk
+{
+vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, bool mixed,
+  vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values)
+{
+  const mp::MortarOperator& op = *leaf.Operators[transfer].Operator;
+  const mp::CsrMatrix& m = mixed ? op.GetMixedMass() : op.GetTargetMass();
+  // P0 rows and columns are numbered as the datasets' cells, P1 ones as
+  // their points (the kernel's points of a renumbered mesh mapped back).
+  const std::vector<mp::Index>* rowOrder =
+    TargetSpaceOf(transfer) == mp::SpaceType::P1 && !leaf.TargetPoints.empty() ? &leaf.TargetPoints
+                                                                               : nullptr;
+  const mp::SpaceType columnSpace = mixed ? SourceSpaceOf(transfer) : TargetSpaceOf(transfer);
+  const std::vector<mp::Index>& columnPoints = mixed ? leaf.SourcePoints : leaf.TargetPoints;
+  const std::vector<mp::Index>* columnOrder =
+    columnSpace == mp::SpaceType::P1 && !columnPoints.empty() ? &columnPoints : nullptr;
+  rowStart->SetNumberOfComponents(1);
+  rowStart->SetNumberOfTuples(m.Rows + 1);
+  columns->SetNumberOfComponents(1);
+  columns->SetNumberOfTuples(m.NonZeros());
+  values->SetNumberOfComponents(1);
+  values->SetNumberOfTuples(m.NonZeros());
+  // Kernel row of each output row.
+  std::vector<mp::Index> kernelRow(static_cast<size_t>(m.Rows));
+  for (mp::Index i = 0; i < m.Rows; ++i)
+  {
+    kernelRow[static_cast<size_t>(rowOrder ? (*rowOrder)[i] : i)] = i;
+  }
+  vtkIdType next = 0;
+  std::vector<std::pair<mp::Index, double>> row;
+  for (mp::Index r = 0; r < m.Rows; ++r)
+  {
+    rowStart->SetValue(r, next);
+    const mp::Index i = kernelRow[r];
+    row.clear();
+    for (mp::Index p = m.RowStart[i]; p < m.RowStart[i + 1]; ++p)
+    {
+      const mp::Index j = m.ColumnIndex[p];
+      row.emplace_back(columnOrder ? (*columnOrder)[j] : j, m.Values[p]);
+    }
+    if (columnOrder)
+    {
+      std::sort(row.begin(), row.end());
+    }
+    for (const auto& entry : row)
+    {
+      columns->SetValue(next, entry.first);
+      values->SetValue(next++, entry.second);
+    }
+  }
+  rowStart->SetValue(m.Rows, next);
+  return m.Columns;
+}
+
+std::string WriteMatrixMarketFile(const std::string& fileName, const std::string& title,
+  vtkIdType columnCount, vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values)
+{
+  std::ofstream file(fileName);
+  if (!file)
+  {
+    return "Cannot write '" + fileName + "'.";
+  }
+  const vtkIdType rows = rowStart->GetNumberOfTuples() - 1;
+  file << "%%MatrixMarket matrix coordinate real general\n"
+       << "% MeshProjection: " << title << "\n"
+       << rows << " " << columnCount << " " << values->GetNumberOfTuples() << "\n";
+  file.precision(17);
+  for (vtkIdType i = 0; i < rows; ++i)
+  {
+    for (vtkIdType p = rowStart->GetValue(i); p < rowStart->GetValue(i + 1); ++p)
+    {
+      file << i + 1 << " " << columns->GetValue(p) + 1 << " " << values->GetValue(p) << "\n";
+    }
+  }
+  file.close();
+  if (!file)
+  {
+    return "Writing '" + fileName + "' failed.";
+  }
+  return std::string();
+}
+} // namespace mpvtk

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Shape.h
+ * @brief What a leaf's meshes are, decided once both are wrapped: meshes of
+ *        one dimension (2D in one plane, surfaces or curves in space, 3D),
+ *        or a trace (a surface or curve inside a volume Source), and the
+ *        frames both meshes are seen in.
+ *
+ * An empty mesh takes the other's dimension. Input of a higher dimension
+ * than Source, a curve in a curved Source surface, a curve off a planar
+ * Source's plane and 2D meshes in planes that are not parallel are errors.
+ * A 2D leaf is a surface when either mesh leaves one plane, on any
+ * process; a Source in a plane parallel to Input's is projected onto it,
+ * with a warning. On several processes the processes' parts are gathered
+ * so that every process decides as one process seeing the whole meshes
+ * would.
+ */
+#ifndef MeshProjection_Projection_Shape_h
+#define MeshProjection_Projection_Shape_h
+
+#include "Parallel/Parts.h"
+
+#include <string>
+
+class vtkDataSet;
+
+namespace mpvtk
+{
+class LeafAgreement;
+class Messages;
+class SimplexMesh;
+struct Settings;
+
+struct LeafShape
+{
+  bool Trace = false;       ///< a surface or curve inside a volume Source
+  bool Planar = false;      ///< seen in one plane (2D), or not a surface leaf at all
+  std::string PlaneWarning; ///< Source in a parallel plane: said for the first leaf
+};
+
+/// What DecideShape reads besides the meshes.
+struct ShapeInputs
+{
+  vtkDataSet* TargetData;
+  vtkDataSet* SourceData;
+  const std::string& Role; ///< "Input" or "Input block ..."
+  const Settings& Options;
+  Parts& Processes;
+  Messages& Say;
+};
+
+/**
+ * Decides the leaf's shape and puts both meshes in their frames (takes part
+ * in the Shape round of `agreement`); a failure is the agreed verdict.
+ */
+Verdict DecideShape(const ShapeInputs& in, SimplexMesh& target, SimplexMesh& source,
+  LeafAgreement& agreement, LeafShape& shape);
+
+/// Warns once per filter when `mesh` left out cells of lower dimension.
+void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages);
+} // namespace mpvtk
+
+#endif

@@ -1,0 +1,278 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/SourceFields.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataArraySelection.h"
+#include "vtkDataObject.h"
+#include "vtkDataSet.h"
+#include "vtkDataSetAttributes.h"
+
+#include "Parallel/Parts.h"
+#include "Projection/ArraySelection.h"
+#include "Projection/Fingerprint.h"
+#include "Projection/Messages.h"
+#include "Adapter/SimplexMesh.h"
+#include "Adapter/Threads.h"
+
+#include "Geometry/Measures.h"
+#include "Transfer/Space.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace mpvtk
+{
+namespace
+{
+int AttributeType(int association)
+{
+  return association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL;
+}
+
+/// The enabled numeric fields of one association, long enough, in order.
+void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* selection,
+  Messages& messages, GatheredFields& g)
+{
+  vtkDataSetAttributes* data = source->GetAttributes(AttributeType(association));
+  const char* kind = association == 0 ? "point" : "cell";
+  const vtkIdType needed = association == 0 ? source->GetNumberOfPoints() : source->GetNumberOfCells();
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* abstract = data->GetAbstractArray(i);
+    const char* name = abstract->GetName();
+    const std::string label = name ? name : "(unnamed)";
+    if (!IsField(data, abstract) || (name && !selection->ArrayIsEnabled(name)))
+    {
+      continue;
+    }
+    vtkDataArray* array = vtkArrayDownCast<vtkDataArray>(abstract);
+    if (array && array->GetNumberOfTuples() < needed)
+    {
+      messages.WarnOnce(std::string("short/") + kind + "/" + label,
+        "Source " + std::string(kind) + " array '" + label + "' has " +
+          std::to_string(array->GetNumberOfTuples()) + " tuples for " + std::to_string(needed) +
+          " " + kind + "s: it is not projected (the dataset is inconsistent).");
+      continue;
+    }
+    if (!array)
+    {
+      messages.Warn("Source " + std::string(kind) + " array '" + label + "' is not numeric (" +
+        abstract->GetClassName() + "): skipped.");
+      continue;
+    }
+    if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+    {
+      messages.WarnOnce(std::string(kind) + "/" + label, // once per array, not per step
+        "Source " + std::string(kind) + " array '" + label + "' holds integers (" +
+          array->GetClassName() +
+          "): it is projected as real values (a 0/1 indicator becomes a covered fraction, but "
+          "labels and ids do not carry over: use Resample With Dataset for those, or deselect it).");
+    }
+    g.Arrays.push_back(array);
+    g.Offsets.push_back(g.Components);
+    g.Components += array->GetNumberOfComponents();
+    g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
+  }
+}
+
+/// The arrays' values side by side, one row per kernel function.
+void CopyValues(vtkDataSet* source, const SimplexMesh& mesh, int association, bool extensive,
+  GatheredFields& g)
+{
+  const mp::Index n = association == 0 ? source->GetNumberOfPoints()
+                                       : mp::SpaceSize(mp::SpaceType::P0, mesh.View());
+  g.Values.resize(std::max<size_t>(static_cast<size_t>(n) * g.Components, 1));
+  std::vector<double> measure;
+  if (association == 1 && extensive)
+  {
+    measure = mp::ParentMeasures(mesh.View());
+  }
+  // P1 functions are the kernel's points (renumbered, maybe), P0 ones the dataset's cells.
+  const bool points = association == 0;
+  for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)
+  {
+    vtkDataArray* array = g.Arrays[a];
+    const int nc = array->GetNumberOfComponents();
+    const int width = g.Components;
+    mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType f = begin; f < end; ++f)
+      {
+        // Extensive values become densities (total / measure).
+        const double scale = measure.empty() ? 1.0 : (measure[f] > 0 ? 1.0 / measure[f] : 0.0);
+        const vtkIdType from = points ? mesh.DataSetPoint(f) : f;
+        for (int k = 0; k < nc; ++k)
+        {
+          g.Values[f * width + offset + k] = scale * array->GetComponent(from, k);
+        }
+      }
+    });
+    offset += nc;
+  }
+}
+
+/// The kernel functions where a component of array a is NaN or infinite, and how many values.
+std::vector<char> NonFiniteFunctions(const GatheredFields& g, int a, mp::Index functions, vtkIdType& values)
+{
+  const int nc = g.Arrays[a]->GetNumberOfComponents();
+  const int offset = g.Offsets[a];
+  const int width = g.Components;
+  std::vector<char> bad(static_cast<size_t>(functions), 0);
+  std::atomic<vtkIdType> count(0);
+  mpvtk::For(0, functions, [&](vtkIdType begin, vtkIdType end) {
+    vtkIdType here = 0;
+    for (vtkIdType f = begin; f < end; ++f)
+    {
+      for (int k = 0; k < nc; ++k)
+      {
+        const bool finite = std::isfinite(g.Values[f * width + offset + k]);
+        here += !finite;
+        bad[f] = bad[f] || !finite;
+      }
+    }
+    count += here;
+  });
+  values = count;
+  return bad;
+}
+
+/// The Source cells (kernel simplices) that use a bad function.
+std::vector<char> CellsUsing(const mp::MeshView& view, const std::vector<char>& bad, int association)
+{
+  std::vector<char> excluded(static_cast<size_t>(view.NumberOfCells), 0);
+  const int corners = view.CornersPerCell();
+  mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      if (association == 1)
+      {
+        excluded[c] = bad[view.ParentOf(c)];
+        continue;
+      }
+      const mp::CellCorners p = view.Cell(c);
+      for (int k = 0; k < corners; ++k)
+      {
+        excluded[c] = excluded[c] || bad[p[k]];
+      }
+    }
+  });
+  return excluded;
+}
+
+/// Says once per array how many values and cells are left out.
+void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::string& label,
+  int association, vtkIdType values, Messages& messages)
+{
+  const char* kind = association == 0 ? "point" : "cell";
+  const std::string key = std::string("nonfinite/") + kind + "/" + label;
+  if (values == 0 || !messages.First(key))
+  {
+    return;
+  }
+  // The dataset's cells left out (a split cell counts once).
+  std::vector<char> parents(static_cast<size_t>(view.Parents()), 0);
+  for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    parents[view.ParentOf(c)] |= group.Excluded[c];
+  }
+  const vtkIdType cells = std::count(parents.begin(), parents.end(), 1);
+  messages.Warn("Source " + std::string(kind) + " array '" + label + "' has " +
+    std::to_string(values) + " NaN or infinite values: the " + std::to_string(cells) +
+    " Source cells that use them are left out of its projection, as a hole in Source (the "
+    "integral over the rest of the covered part is conserved). Input points and cells left "
+    "without data for it get the fill value and are marked invalid (in vtkValidPointMask and "
+    "vtkValidCellMask, or in masks of its own when the arrays' masks differ).");
+}
+
+/// Each group's arrays side by side, non-finite values as 0 (never used:
+/// their cells are out); their columns in Values likewise, for the
+/// operator of the other arrays.
+void SplitOffGroups(GatheredFields& g, mp::Index functions)
+{
+  const int width = g.Components;
+  for (NaNGroup& group : g.Groups)
+  {
+    group.Values.assign(static_cast<size_t>(functions) * group.Components, 0.0);
+    int column = 0;
+    for (int a : group.Arrays)
+    {
+      const int nc = g.Arrays[a]->GetNumberOfComponents();
+      const int offset = g.Offsets[a];
+      for (mp::Index f = 0; f < functions; ++f)
+      {
+        for (int k = 0; k < nc; ++k)
+        {
+          double& v = g.Values[f * width + offset + k];
+          group.Values[f * group.Components + column + k] = std::isfinite(v) ? v : 0.0;
+          v = 0.0;
+        }
+      }
+      column += nc;
+    }
+  }
+}
+
+/// The NaN groups of one association.
+void FindNaNGroups(const SimplexMesh& mesh, int association, Messages& messages, Parts& parts,
+  GatheredFields& g)
+{
+  const mp::MeshView& view = mesh.View();
+  const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
+  for (int a = 0; a < static_cast<int>(g.Arrays.size()); ++a)
+  {
+    vtkIdType values = 0;
+    const std::vector<char> bad = NonFiniteFunctions(g, a, functions, values);
+    // An array with non-finite values on any process is projected with its
+    // own operator on all (with no cell left out where it has none).
+    std::vector<char> anywhere(1, values > 0);
+    parts.Or(anywhere);
+    if (!anywhere[0])
+    {
+      continue;
+    }
+    std::vector<char> excluded = CellsUsing(view, bad, association);
+    Fingerprint print;
+    print.Add(excluded.data(), excluded.size());
+    // One process: arrays leaving out the same cells share a group. Several:
+    // each array a group of its own, alike on every process.
+    auto group = !parts.Whole() ? g.Groups.end()
+                                : std::find_if(g.Groups.begin(), g.Groups.end(), [&](const NaNGroup& h) {
+                                    return h.Print == print.Hash && h.Excluded == excluded;
+                                  });
+    if (group == g.Groups.end())
+    {
+      g.Groups.emplace_back();
+      group = std::prev(g.Groups.end());
+      group->Excluded.swap(excluded);
+      group->Print = print.Hash;
+    }
+    group->Arrays.push_back(a);
+    group->Components += g.Arrays[a]->GetNumberOfComponents();
+    const std::string label = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
+    WarnNonFinite(view, *group, label, association, values, messages);
+  }
+  SplitOffGroups(g, functions);
+}
+} // namespace
+
+void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
+  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
+  GatheredFields fields[2])
+{
+  for (int association = 0; association < 2; ++association)
+  {
+    SelectArrays(source, association, selections[association], messages, fields[association]);
+  }
+  fields[1].Key += extensive ? "extensive" : "intensive";
+  for (int association = 0; association < 2; ++association)
+  {
+    GatheredFields& g = fields[association];
+    if (g.Components == 0)
+    {
+      continue;
+    }
+    CopyValues(source, mesh, association, extensive, g);
+    FindNaNGroups(mesh, association, messages, parts, g);
+  }
+}
+} // namespace mpvtk

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SourceFields.h
+ * @brief The Source arrays to project, gathered side by side as the kernel
+ *        reads them, and the groups of arrays whose NaN or infinite values
+ *        leave Source cells out.
+ *
+ * Per association (0: point arrays, P1 functions in the kernel's point
+ * order; 1: cell arrays, P0 functions numbered as the dataset's cells),
+ * the selected numeric fields (ArraySelection.h) are copied into one
+ * functions x components block; extensive cell arrays become densities
+ * (total / measure). An array with a NaN or infinite value leaves out the
+ * Source cells that use it, for that array only: arrays that leave out the
+ * same cells form a NaN group, projected by an operator of its own with
+ * those cells as a hole, so that the rest of the covered part stays
+ * conservative. On several processes every array with such values on any
+ * process has a group of its own (the solves are collective).
+ */
+#ifndef MeshProjection_Projection_SourceFields_h
+#define MeshProjection_Projection_SourceFields_h
+
+#include "Mesh/LargeArray.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkDataArraySelection;
+class vtkDataSet;
+
+namespace mpvtk
+{
+class Messages;
+class Parts;
+class SimplexMesh;
+
+/// Arrays with NaN or infinite values that leave out the same Source cells.
+struct NaNGroup
+{
+  std::vector<int> Arrays;        ///< indices into GatheredFields::Arrays
+  std::vector<char> Excluded;     ///< per kernel Source cell
+  std::uint64_t Print = 0;        ///< of Excluded
+  int Components = 0;
+  mp::LargeVector<double> Values; ///< functions x Components, non-finite values as 0
+};
+
+/// The Source arrays of one association, gathered side by side.
+struct GatheredFields
+{
+  std::vector<vtkDataArray*> Arrays;
+  std::vector<int> Offsets; ///< each array's first column
+  int Components = 0;
+  mp::LargeVector<double> Values; ///< functions x Components (NaN groups' columns as 0)
+  std::string Key;                ///< names and components: which solution a warm start may reuse
+  std::vector<NaNGroup> Groups;   ///< the arrays with non-finite values
+};
+
+/**
+ * The fields of `source` (wrapped as `mesh`) that `selections` (points,
+ * cells) enable; warns of arrays skipped (not numeric, too short) or
+ * projected as real values (integers), and of NaN groups.
+ */
+void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
+  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
+  GatheredFields fields[2]);
+} // namespace mpvtk
+
+#endif

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/SourceSide.h"
+
+#include "vtkCompositeDataSet.h"
+#include "vtkDataSet.h"
+
+#include "Parallel/Parts.h"
+#include "Projection/Composite.h"
+#include "Projection/Fingerprint.h"
+#include "Projection/Messages.h"
+#include "Projection/Settings.h"
+#include "Projection/Shape.h"
+#include "Projection/Statistics.h"
+
+namespace mpvtk
+{
+bool SourceSide::AnyTransfer(const Settings& settings) const
+{
+  return (this->Fields[0].Components > 0 && settings.PointDataTarget != 0) ||
+    (this->Fields[1].Components > 0 && settings.CellDataTarget != 0);
+}
+
+Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
+  const Settings& settings, Parts& parts, Messages& messages, Statistics& stats, SourceSide& side)
+{
+  std::string note;
+  std::string failed;
+  vtkSmartPointer<vtkDataSet> source = AppendedSource(sourceObject, note, failed);
+  if (!note.empty())
+  {
+    messages.WarnOnce("note/" + note, note); // once, not at every step
+  }
+  if (failed.empty() && !source)
+  {
+    failed = std::string("Source is a ") + sourceObject->GetClassName() +
+      ": a dataset or a composite dataset is needed.";
+  }
+  // Each process gets the Source cells its part of Input needs, from all.
+  const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
+  source = parts.GatherSource(source, input, reach, failed);
+  if (!failed.empty())
+  {
+    return Verdict::Fail(failed);
+  }
+  side.Data = source;
+  side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
+  side.Mesh.SetOrdering(settings.Renumbering);
+  const std::string why = side.Mesh.Wrap(source, "Source");
+  stats.Check += side.Mesh.CheckSeconds();
+  stats.Renumber += side.Mesh.OrderSeconds();
+  const Verdict wrapped = parts.Agree(why.empty() ? Verdict() : Verdict::Fail(why));
+  if (!wrapped.Ok())
+  {
+    return wrapped;
+  }
+  WarnLeftOut(side.Mesh, "Source", messages);
+  if (side.Mesh.Dimension() == 2 && !side.Mesh.View().IsSurfaceMesh())
+  {
+    // A planar Source in its own plane's coordinates until a leaf picks the
+    // frame both meshes share: its cells' areas (extensive densities) are
+    // then true areas in any plane, not those of its shadow on z = 0.
+    side.Mesh.UseFrame(side.Mesh.OwnPlane());
+  }
+  Fingerprint print;
+  print.Add(side.Mesh);
+  side.Print = print.Hash;
+  return Verdict();
+}
+} // namespace mpvtk

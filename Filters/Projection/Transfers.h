@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Transfers.h
+ * @brief The four transfers (vtkMeshProjectionFilter::Transfers) and what
+ *        each means: the space of the Source functions it reads (P1 point
+ *        arrays or P0 cell arrays), the space of the target functions it
+ *        writes, and the order in which their arrays are written.
+ */
+#ifndef MeshProjection_Projection_Transfers_h
+#define MeshProjection_Projection_Transfers_h
+
+#include "vtkMeshProjectionFilter.h"
+
+#include "Transfer/Space.h"
+
+namespace mpvtk
+{
+using Transfer = vtkMeshProjectionFilter::Transfers;
+constexpr int NumberOfTransfers = 4;
+constexpr Transfer AllTransfers[NumberOfTransfers] = { vtkMeshProjectionFilter::POINTS_TO_POINTS,
+  vtkMeshProjectionFilter::POINTS_TO_CELLS, vtkMeshProjectionFilter::CELLS_TO_CELLS,
+  vtkMeshProjectionFilter::CELLS_TO_POINTS };
+/**
+ * The order the outputs are written in: each association's own transfer
+ * first (points to points, cells to cells), so that an array going to the
+ * other association is the one renamed when the names clash.
+ */
+constexpr Transfer OutputOrder[NumberOfTransfers] = { vtkMeshProjectionFilter::POINTS_TO_POINTS,
+  vtkMeshProjectionFilter::CELLS_TO_CELLS, vtkMeshProjectionFilter::POINTS_TO_CELLS,
+  vtkMeshProjectionFilter::CELLS_TO_POINTS };
+
+/// Which Source fields a transfer reads: 0 point arrays (P1), 1 cell arrays (P0).
+inline int SourceAssociation(Transfer t)
+{
+  return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
+      t == vtkMeshProjectionFilter::POINTS_TO_CELLS
+    ? 0
+    : 1;
+}
+inline bool ToPoints(Transfer t)
+{
+  return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
+    t == vtkMeshProjectionFilter::CELLS_TO_POINTS;
+}
+inline mp::SpaceType SourceSpaceOf(Transfer t)
+{
+  return SourceAssociation(t) == 0 ? mp::SpaceType::P1 : mp::SpaceType::P0;
+}
+inline mp::SpaceType TargetSpaceOf(Transfer t)
+{
+  return ToPoints(t) ? mp::SpaceType::P1 : mp::SpaceType::P0;
+}
+/// A transfer to the association its Source arrays come from (the one whose integrals are reported).
+inline bool IsOwnAssociation(Transfer t)
+{
+  return ToPoints(t) == (SourceAssociation(t) == 0);
+}
+inline const char* TransferName(Transfer t)
+{
+  static const char* names[] = { "points to points", "points to cells", "cells to cells",
+    "cells to points" };
+  return names[t];
+}
+} // namespace mpvtk
+
+#endif
