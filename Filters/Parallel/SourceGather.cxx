@@ -6,6 +6,8 @@
  *        the contract).
  *
  * The steps, each a function below, in the order they run:
+ *  0. the datasets are checked (a corrupt one is an error on every process,
+ *     not a read out of its arrays) and the processes agree;
  *  1. this process's part of Input is seen from afar: a Cover, a grid of
  *     bins over its bounds, each with the box of the grown cells' parts in
  *     it (finer than one bounding box, so that an L-shaped part does not
@@ -16,6 +18,7 @@
  *  4. each Source cell goes, as a small grid of its own (a piece), to
  *     every process whose Cover it meets;
  *  5. the pieces received are merged into one grid, points by global id.
+ * Then the processes agree on the gathering's own failure.
  */
 #include "Parallel/MPIParts.h"
 
@@ -23,6 +26,7 @@
 #include "Adapter/Ghosts.h"
 #include "Projection/ArraySelection.h"
 #include "Projection/Composite.h"
+#include "vtkMeshProjectionMesh.h" // CheckDataSet
 
 #include "vtkCellData.h"
 #include "vtkCellType.h"
@@ -139,6 +143,23 @@ struct SourceFields
   /// Per Source point, its global id.
   std::vector<long long> Key;
 };
+
+// 0. ---------------------------------------------------------------------------
+/// The first failure of CheckDataSet on Source, then on Input's datasets
+/// (empty when all are fine).
+std::string CheckParts(vtkDataSet* source, vtkDataObject* input)
+{
+  std::string failed = CheckDataSet(source, "Source");
+  for (vtkDataSet* leaf : DataSetsOf(input))
+  {
+    if (!failed.empty())
+    {
+      break;
+    }
+    failed = CheckDataSet(leaf, "Input");
+  }
+  return failed;
+}
 
 // 1. ---------------------------------------------------------------------------
 /// The boxes of the cells of this process's part of Input (not those left
@@ -746,6 +767,25 @@ vtkSmartPointer<vtkDataSet> Gather(
 vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
   vtkDataSet* source, vtkDataObject* input, double reach, std::string& error)
 {
-  return Gather(*this, source, input, reach, error);
+  // The checks run before any cell is read, and all processes learn of a
+  // failure on any of them before the gathering's exchanges start.
+  if (error.empty())
+  {
+    error = CheckParts(source, input);
+  }
+  Verdict all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
+  if (!all.Ok())
+  {
+    error = all.Why;
+    return nullptr;
+  }
+  vtkSmartPointer<vtkDataSet> gathered = Gather(*this, source, input, reach, error);
+  all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
+  if (!all.Ok())
+  {
+    error = all.Why;
+    return nullptr;
+  }
+  return gathered;
 }
 } // namespace mpvtk
