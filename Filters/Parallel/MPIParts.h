@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MPIParts.h
+ * @brief The processes of an MPI run, as the filter asks of them (Parts.h):
+ *        installed by vtkPMeshProjectionFilter while it runs on several
+ *        processes (not public, not wrapped).
+ *
+ * Each process holds a part of Input and a part of Source. The collectives
+ * (Agree, Or, Sum, Union, SumByKey, AllToAll, Swap: MPIParts.cxx) are the
+ * only way the processes meet; on them rest the three things that make
+ * the parts one projection:
+ *  - GatherSource (SourceGather.cxx): each process gets the Source cells
+ *    its part of Input needs, from all processes, as one grid;
+ *  - ShareTarget, Hooks, Complete (SharedPoints.cxx): the points a process
+ *    shares with others, and the solver's sums over them, so that the
+ *    solve is one global system and a shared point has one value, bit for
+ *    bit, everywhere;
+ *  - SolveGathered (GatheredSolve.cxx): the solver's fallback, the whole
+ *    system solved on process 0.
+ *
+ * Every collective is called by all processes in the same order; a
+ * process's failure reaches the others through Agree, never by one
+ * process leaving a collective the others wait in.
+ */
+#ifndef MeshProjection_Parallel_MPIParts_h
+#define MeshProjection_Parallel_MPIParts_h
+
+#include "Parallel/Boxes.h"
+#include "Parallel/Marshal.h"
+#include "Parallel/Parts.h"
+
+#include "Transfer/CsrMatrix.h"
+
+#include <unordered_map>
+#include <vector>
+
+class vtkDataSet;
+class vtkMPICommunicator;
+class vtkMultiProcessController;
+
+namespace mpvtk
+{
+class MPIParts final : public Parts
+{
+public:
+  /// `controller` runs on MPI (its communicator is a vtkMPICommunicator).
+  explicit MPIParts(vtkMultiProcessController* controller);
+  int Rank() const override { return this->Me; }
+  int Size() const override { return this->N; }
+  double SentBytes() const override { return this->Sent; }
+  vtkMultiProcessController* Controller() const { return this->C; }
+  /// Source cells this process received in the last GatherSource (its own included).
+  vtkIdType Received = 0;
+
+  // The collectives (MPIParts.cxx).
+  Verdict Agree(const Verdict& mine, bool* flag = nullptr) override;
+  void Or(std::vector<char>& flags) override;
+  void Sum(double* values, int count) override;
+  std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override;
+  /// Each entry is summed on the process its key hashes to, which answers
+  /// every entry: the sums are the same, bit for bit, on any run.
+  std::vector<double> SumByKey(
+    const std::vector<long long>& keys, int width, const std::vector<double>& values) override;
+  /// Every process sends out[r] to process r; returns what each sent here
+  /// (out[Rank()] is moved there). Messages of any size (cut below MPI's
+  /// int counts).
+  std::vector<std::vector<char>> AllToAll(std::vector<std::vector<char>>& out);
+  /// Sends send[k] to ranks[k] and receives recv[k] (sizes known) from it:
+  /// between neighbours only, each pair calling it alike.
+  void Swap(const std::vector<int>& ranks, std::vector<std::vector<double>>& send,
+    std::vector<std::vector<double>>& recv);
+
+  /// See Parts::GatherSource (SourceGather.cxx).
+  vtkSmartPointer<vtkDataSet> GatherSource(
+    vtkDataSet* source, vtkDataObject* input, double reach, std::string& error) override;
+
+  // The shared points (SharedPoints.cxx).
+  vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
+  mp::SolverHooks Hooks(bool points, mp::Index rows,
+    const std::function<vtkIdType(mp::Index)>& dataSetPoint) override;
+  /// The hooks' Exchange: completes the shared rows of v (rows x width) with
+  /// the parts' sum, in the order of their processes (the same value
+  /// everywhere, bit for bit), or with their minimum.
+  void Complete(double* v, int width, bool minimum);
+
+private:
+  // ShareTarget's steps (SharedPoints.cxx).
+  /// Each point's identity (its global id, or its coordinates x) and its
+  /// Representative: the first point of this process with that identity.
+  /// (`index`: each identity's first point.)
+  using PointIndex = std::unordered_map<PointKey, vtkIdType, PointKeyHash>;
+  std::vector<PointKey> KeyPoints(
+    vtkDataSet* target, const std::vector<double>& x, bool useIds, PointIndex& index);
+  /// Per process, the points this process shares with it, in an order
+  /// both agree on: a lower process sends the keys of its points inside
+  /// the higher one's bounds, which answers which it has.
+  std::vector<std::vector<vtkIdType>> FindShared(const std::vector<double>& x, const Box& bounds,
+    const std::vector<PointKey>& keys, const PointIndex& index, size_t width);
+  /// Neighbours, SharedPoints and Owner from the points shared per process.
+  void SetNeighbours(const std::vector<std::vector<vtkIdType>>& shared, vtkIdType points);
+  /// Global ids made (no usable GlobalIds on some process): each process
+  /// numbers the points it owns after those of the processes before it;
+  /// the others learn them from their owner. Returns `target` with them.
+  vtkSmartPointer<vtkDataSet> NumberPoints(vtkDataSet* target);
+
+  /// The hooks' Direct: the system's parts gathered on process 0, solved
+  /// there, each process's rows sent back (GatheredSolve.cxx).
+  bool SolveGathered(const mp::CsrMatrix& A, const double* B, double* X, int c,
+    const std::vector<char>& converged);
+
+  vtkMultiProcessController* C;
+  vtkMPICommunicator* Mpi;
+  int Me;
+  int N;
+  double Sent = 0;
+  // The last shared target: per neighbour (ascending ranks), the points
+  // shared with it, in an order both agree on; per point, the lowest
+  // process that has it.
+  std::vector<int> Neighbours;
+  std::vector<std::vector<vtkIdType>> SharedPoints;
+  std::vector<int> Owner;
+  // The hooks' state (kernel rows).
+  std::vector<std::vector<mp::Index>> Rows;
+  std::vector<char> Counted;
+  std::vector<mp::Index> SharedRows; ///< distinct, ascending
+  /// Points of one process at one place (or with one global id, as a
+  /// ghost cells generator may leave them) are one point: each point's
+  /// first copy (Representative), and the rows of those with copies.
+  std::vector<vtkIdType> Representative;
+  std::vector<std::vector<mp::Index>> Copies; ///< rows of one point, ascending, first the rows' representative
+  /// Per point of the last shared target: its global identity (its
+  /// GlobalIds value, given or made); per row of the hooks: its point's.
+  std::vector<long long> GlobalOf;
+  std::vector<long long> RowGlobal;
+};
+} // namespace mpvtk
+
+#endif
