@@ -208,9 +208,9 @@ struct VertexGraph
     // bit masks (n <= 48 < 64): the clipped vertices, each kept vertex's
     // links to them, the kept vertices with any. Only the crossings are
     // then visited, in the same order as a loop over vertices and links
-    // (whose two tests per link were a tenth of all mispredicted branches
-    // of a 3D run). A link's id is below 48 or -1 (bit 63 of the mask,
-    // never set).
+    // (whose two tests per link depend on the data and were among the most
+    // mispredicted branches of a 3D run). A link's id is below 48 or -1
+    // (bit 63 of the mask, never set).
     unsigned long long clipped = 0;
     for (int v = 0; v < n; ++v)
     {

@@ -97,7 +97,7 @@ inline void VertexGraph::SetCut(const TableCut& cut, const double (*x)[3], const
   this->NumberOfVertices = cut.NumberOfVertices;
   this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
   // The kept vertices come first, then the crossings: two loops without
-  // a branch per vertex (one was mispredicted a fifth of the time).
+  // a branch per vertex (one on the data, often mispredicted).
   // Original of fixed size (as a loop over the crossings it was a memset
   // call), the kept ones' set below.
   std::fill(this->Original + 0, this->Original + 12, -1);

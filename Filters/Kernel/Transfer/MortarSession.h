@@ -74,8 +74,8 @@ struct MortarOperator::Session
     // given at Build only). Each task sets a bit per function of its cells
     // in a set of its own (an eighth of a byte per function, mostly in its
     // core's cache: no memory shared; 16-bit marks in one array, which the
-    // tasks wrote and then read back in a second pass over the cells, took
-    // 4.1 ms on two threads for a target of 10^6 cells, the sets 2.2); then,
+    // tasks wrote and then read back in a second pass over the cells, shared
+    // cache lines between the tasks and took longer); then,
     // word by word and task after task, a function met again is shared. In
     // batches of 64 tasks, so that the sets never take more room than 8
     // bytes a function.
