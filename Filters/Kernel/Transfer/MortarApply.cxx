@@ -78,6 +78,69 @@ void ClipAndAssuredSum(double* x, int c, int k, const std::vector<double>& w,
     }
   }
 }
+
+/**
+ * Bound preservation after a consistent solve (ApplyOptions::Bounded), on
+ * x (n rows x `components`): per component, every row's bounds and the
+ * integral wanted, then ClipAndAssuredSum. Apply has checked that M_ts
+ * and the hooks this needs are there.
+ */
+void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& valid,
+  const std::vector<double>& rowSums, Index n, const double* sourceValues, int components,
+  const double* rhs, double* targetValues, const SolverHooks& hooks)
+{
+  // Each row's bounds: the Source values of its columns (a shared row's
+  // columns are spread over the parts: their extremes, completed). The
+  // weights: M_tt's row sums, completed like the right-hand sides.
+  std::vector<double> weights(rowSums);
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(weights.data(), 1);
+  }
+  std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
+  std::vector<double> extremes(hooks.ExchangeMinimum ? 2 * static_cast<size_t>(n) : 0);
+  for (int k = 0; k < components; ++k)
+  {
+    double total = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (Index p = mixed.RowStart[i]; p < mixed.RowStart[i + 1]; ++p)
+      {
+        const double u = sourceValues[static_cast<Index>(mixed.ColumnIndex[p]) * components + k];
+        lo = std::min(lo, u);
+        hi = std::max(hi, u);
+      }
+      low[i] = lo;
+      high[i] = hi;
+      if (valid[i] && (!hooks.Counted || hooks.Counted[i]))
+      {
+        total += rhs[i * components + k]; // sum_i (M_ts u_s)_i = int u_s over the covered part
+      }
+    }
+    if (hooks.Reduce)
+    {
+      hooks.Reduce(&total, 1);
+    }
+    if (hooks.ExchangeMinimum)
+    {
+      // The largest as the smallest of the negated values.
+      for (Index i = 0; i < n; ++i)
+      {
+        extremes[2 * i] = low[i];
+        extremes[2 * i + 1] = -high[i];
+      }
+      hooks.ExchangeMinimum(extremes.data(), 2);
+      for (Index i = 0; i < n; ++i)
+      {
+        low[i] = extremes[2 * i];
+        high[i] = -extremes[2 * i + 1];
+      }
+    }
+    ClipAndAssuredSum(targetValues, components, k, weights, valid, low, high, total, hooks);
+  }
+}
 } // namespace
 
 bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
@@ -163,57 +226,8 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     {
       return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
     }
-    // Each row's bounds: the Source values of its columns (a shared row's
-    // columns are spread over the parts: their extremes, completed). The
-    // weights: M_tt's row sums, completed like the right-hand sides.
-    std::vector<double> weights(this->RowSums);
-    if (hooks.Exchange)
-    {
-      hooks.Exchange(weights.data(), 1);
-    }
-    std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
-    std::vector<double> extremes(hooks.ExchangeMinimum ? 2 * static_cast<size_t>(n) : 0);
-    for (int k = 0; k < components; ++k)
-    {
-      double total = 0.0;
-      for (Index i = 0; i < n; ++i)
-      {
-        double lo = std::numeric_limits<double>::infinity();
-        double hi = -lo;
-        for (Index p = this->MixedMass.RowStart[i]; p < this->MixedMass.RowStart[i + 1]; ++p)
-        {
-          const double u = sourceValues[static_cast<Index>(this->MixedMass.ColumnIndex[p]) * components + k];
-          lo = std::min(lo, u);
-          hi = std::max(hi, u);
-        }
-        low[i] = lo;
-        high[i] = hi;
-        if (this->Valid[i] && (!hooks.Counted || hooks.Counted[i]))
-        {
-          total += rhs[i * components + k]; // sum_i (M_ts u_s)_i = int u_s over the covered part
-        }
-      }
-      if (hooks.Reduce)
-      {
-        hooks.Reduce(&total, 1);
-      }
-      if (hooks.ExchangeMinimum)
-      {
-        // The largest as the smallest of the negated values.
-        for (Index i = 0; i < n; ++i)
-        {
-          extremes[2 * i] = low[i];
-          extremes[2 * i + 1] = -high[i];
-        }
-        hooks.ExchangeMinimum(extremes.data(), 2);
-        for (Index i = 0; i < n; ++i)
-        {
-          low[i] = extremes[2 * i];
-          high[i] = -extremes[2 * i + 1];
-        }
-      }
-      ClipAndAssuredSum(targetValues, components, k, weights, this->Valid, low, high, total, hooks);
-    }
+    ClipToLocalBounds(this->MixedMass, this->Valid, this->RowSums, n, sourceValues, components, rhs,
+      targetValues, hooks);
   }
   for (Index i = 0; i < n; ++i)
   {
