@@ -14,8 +14,8 @@ namespace mp
  * taken about the point o - d (d = o minus the new origin): first moments
  * gain d m0, second moments d m1^T + m1 d^T + d d^T m0. Always inlined:
  * called, its entries stored one by one were read back by the caller's
- * two-lane loads, which wait for such stores to retire (a fifth of the
- * search's own time at 2D 10^5, with TriangleIntersector::Moments alike).
+ * two-lane loads, which wait for such stores to retire (a sizeable part of
+ * the search's own time, with TriangleIntersector::Moments alike).
  */
 template <int K>
 inline __attribute__((always_inline)) void ShiftMoments(

@@ -234,15 +234,15 @@ bool TetrahedronIntersector::IntersectCells(
   VertexGraph graph;
   // The planes that cut, in the order of how many of the clipped cell's
   // corners they cut off, most first: the graphs the later clips work on
-  // are then smallest (3D 10^4 Gmsh pairs: about 3% less time per pair
-  // than in face order; fewest first, 13% more). The first two from the
+  // are then smallest (less time per pair than in face order; fewest
+  // first takes the most). The first two from the
   // tables of cuts when no vertex lies on them (the same graph as
   // clipping, with less work; a corner on the first plane leaves both to
   // Clip).
-  // Sorted without branches (as a loop over the counts, their mispredicted
-  // branches were 5% of a 3D 10^4 run): key (corners outside) * 4 + 3 - p,
-  // sorted down by a network of five compare-exchanges; ties keep face
-  // order. The cutting planes (1-3 corners outside: 4 would have separated
+  // Sorted without branches (as a loop over the counts, their branches
+  // depend on the data and were often mispredicted): key (corners
+  // outside) * 4 + 3 - p, sorted down by a network of five
+  // compare-exchanges; ties keep face order. The cutting planes (1-3 corners outside: 4 would have separated
   // the cells) come first, with keys of 4 and more; the others (keys below
   // 4) after them are not used.
   unsigned key[4];
@@ -251,7 +251,7 @@ bool TetrahedronIntersector::IntersectCells(
     key[p] = (CountBits4(negative[p]) << 2) | (3u - static_cast<unsigned>(p));
   }
   auto order = [&key](int a, int b) {
-    // By masks: std::max compiled to a branch, mispredicted a third of the time.
+    // By masks: std::max compiled to a branch on the data, often mispredicted.
     const unsigned swap = (key[a] ^ key[b]) & (0u - static_cast<unsigned>(key[a] < key[b]));
     key[a] ^= swap;
     key[b] ^= swap;

@@ -220,8 +220,8 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
 /**
  * Bits 3k + j of pos, neg: o[k][j] > 0, < 0 (a NaN: neither). Entries 0-1
  * of a row as one vector, their signs by SSE2 movemask (generic code
- * elsewhere); compared one by one, these were 6% of a 2D run's
- * instructions.
+ * elsewhere); compared one by one, these were a visible share of a 2D
+ * run's instructions.
  */
 inline void SignBits3x3(const double (&o)[3][3], unsigned& pos, unsigned& neg)
 {
@@ -469,8 +469,8 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   const bool careful = sourceSize > 16.0 * targetSize || targetSize > 16.0 * sourceSize;
   // The crossings as bits 3k + l (straddleS transposed: bit 3l + k to
   // 3k + l), visited lowest first: the order of a loop over k and l,
-  // without its test per pair of edges (mispredicted, it was a third of
-  // the mispredicted branches of a 2D run's intersections).
+  // without its test per pair of edges (unpredictable, it was among the
+  // most mispredicted branches of a 2D run's intersections).
   const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
     ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
   for (unsigned crossings = straddleT & transposed & 0x1FFu; crossings != 0; crossings &= crossings - 1)

@@ -5,9 +5,9 @@
  *
  * A projection of 10^6 cells fills a few hundred MiB of fresh arrays (the
  * mass matrix, neighbours, stamps, solver vectors). Touched 4 KiB page by
- * 4 KiB page, they cost the process a page fault each: about a tenth of
- * the whole run was spent in the operating system's fault handler on the
- * project's benchmark machine. LargeAllocator gives blocks of 2 MiB and more
+ * 4 KiB page, they cost the process a page fault each, and the operating
+ * system's fault handler becomes a visible part of the run.
+ * LargeAllocator gives blocks of 2 MiB and more
  * 2 MiB-aligned and, on Linux, maps them straight from the system (so that
  * they go back to it when freed, not into the C library's heap, where a
  * freed block keeps its pages) and advises them as transparent huge pages
@@ -153,10 +153,10 @@ using LargeVector = std::vector<T, LargeAllocator<T>>;
  * LargeAllocator whose elements are default-initialized: resize() leaves
  * plain values as they are instead of writing zeros, so that a vector
  * filled afterwards by concurrent tasks is first touched by those tasks.
- * (A fresh page costs its first writer a page fault: on the project's
- * virtual machines, which hand freed memory back to their host, about
- * 4 ms per 2 MiB huge page, some fifty times the time of writing it, so
- * one thread zeroing a large array is a long serial stretch of a run.)
+ * (A fresh page costs its first writer a page fault, far dearer than
+ * writing the page, above all on virtual machines that hand freed memory
+ * back to their host; so one thread zeroing a large array is a long
+ * serial stretch of a run.)
  */
 template <class T>
 struct UninitializedAllocator : LargeAllocator<T>

@@ -136,7 +136,7 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   // access), then each cell's key: the lowest of its corners' positions in
   // the high 32 bits, the cell id in the low ones. (A key from the cell's
   // centre read every corner's three coordinates in the old numbering,
-  // mostly cache misses: 0.07 s of a 2D pair of 10^6 cells; the corners'
+  // mostly cache misses, for each cell; the corners'
   // positions are a sixth of the points' bytes, and the order they give
   // keeps the front's search as fast.)
   // (pointKeys, keys and other are written whole by tasks: not zeroed first.)

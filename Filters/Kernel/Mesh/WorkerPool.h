@@ -7,9 +7,9 @@
  * The kernel's loops never start threads: they call the runner they are
  * given (Tasks.h). A runner that starts threads for every call pays for it
  * every time: VTK 9.2's STDThread backend starts a new set of threads for
- * each vtkSMPTools::For (40-80 us each on a 2-core virtual machine, and a
- * projection runs about 150 such loops: the solver's iterations are three
- * loops each). A WorkerPool keeps `threads - 1` workers for its lifetime; the
+ * each vtkSMPTools::For; a projection runs many such loops, short ones
+ * among them (each of the solver's iterations is three), so the starts
+ * add up. A WorkerPool keeps `threads - 1` workers for its lifetime; the
  * caller of Run is the last thread. Between loops the workers wait
  * spinning for a short while (loops follow each other within microseconds
  * in the solver), then asleep.

@@ -16,8 +16,8 @@
  * grids over the cells' bounding boxes; the VTK filter uses it too, over
  * the source's points in space (mpvtk::SourceLocator). (VTK 9.2's
  * vtkStaticCellLocator, used before, de-duplicates each answer with
- * vtkIdList::InsertUniqueId, quadratic in the cells found: 8% of a 3D
- * projection of 10^4 tetrahedra went there.)
+ * vtkIdList::InsertUniqueId, quadratic in the cells found: a visible part
+ * of a 3D projection went there.)
  */
 #ifndef MeshProjection_Kernel_CandidateLocator_h
 #define MeshProjection_Kernel_CandidateLocator_h

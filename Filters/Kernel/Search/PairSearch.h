@@ -471,8 +471,8 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
         lastMet = sId;
         ++stats.TouchingPairs;
         visit(t, s, piece);
-        // The faces' bits visited lowest first (a test per face was
-        // mispredicted a third of the time): the same order.
+        // The faces' bits visited lowest first (a test per face depends on
+        // the data and was often mispredicted): the same order.
         for (unsigned touched = piece.TouchedFaces & ((1u << Faces) - 1u); touched != 0; touched &= touched - 1)
         {
           const int k = __builtin_ctz(touched);

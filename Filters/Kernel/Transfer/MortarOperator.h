@@ -33,7 +33,7 @@
  * For a single use, the fields can be named at Build() instead
  * (OperatorOptions::Fields): their right-hand sides M_ts u_s are summed
  * during the search and M_ts is not stored, which saves the time and the
- * memory of assembling it (about a third of a 2D run); Apply() then
+ * memory of assembling it (a large part of a 2D run); Apply() then
  * projects those fields only.
  */
 #ifndef MeshProjection_Kernel_MortarOperator_h

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file FaceSides.h
+ * @brief On which side of each face plane of one tetrahedron the corners
+ *        of another lie, exactly signed (private to TetrahedronIntersector
+ *        and its tests).
+ *
+ * Both clippers (ClipByPlane.h, VertexGraph.h) cut by the face planes of
+ * the clipping cell and take the sides of the clipped cell's corners from
+ * here: a floating-point filter decides the clear cases, Orient3D the
+ * others, so every corner's side is the exact one and the clip agrees with
+ * the tests that decided the pair meets at all. SideBits turns a table of
+ * sides into bit patterns, which the intersector uses to pick the planes
+ * that cut and the cuts' tables.
+ */
+#ifndef MeshProjection_Kernel_FaceSides_h
+#define MeshProjection_Kernel_FaceSides_h
+
+#include "Geometry/Lanes.h"
+#include "Geometry/Predicates.h"
+#include "Geometry/TetrahedronIntersector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace mp
+{
+namespace clipping
+{
+/// Positive when x is strictly inside the plane of face k of a prepared
+/// (positively oriented) cell; exact sign. For a positive tetrahedron
+/// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
+inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const double* x)
+{
+  // Fast path: the precomputed normal, with a forward error bound (a
+  // first-order count gives under 50 eps |u| |v| |x - a|, max-norms, for the
+  // rounded differences, cross and dot products; 64 eps to spare). Only
+  // near-coplanar points go exact.
+  const double* a = c.X[(k + 1) % 4];
+  const double w[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
+  const double d = c.Normal[k][0] * w[0] + c.Normal[k][1] * w[1] + c.Normal[k][2] * w[2];
+  const double size = std::max({ std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
+    if (std::fabs(d) > 64.0 * RoundingUnit * c.NormalScale[k] * size)
+  {
+    return d;
+  }
+  const double o = Orient3D(a, c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
+  return (k % 2) ? o : -o;
+}
+
+/**
+ * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
+ * corners of `other`, with the filters of all sixteen evaluated first,
+ * without branches, and the exact path taken only for the undecided ones.
+ * The filters bound |x - a| by the extent of the two cells' boxes together
+ * (once per pair instead of per point): looser than FaceSide's own, so a
+ * point this one leaves undecided is then classified by FaceSide, and the
+ * signs and values are FaceSide's either way. (Looser still for cells of
+ * very different sizes or shapes: more pairs then take that second pass.)
+ */
+inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIntersector::Cell& other,
+  double (&sides)[4][4])
+{
+  const double(&x)[4][3] = other.X;
+  double size = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    size = std::max(size,
+      std::max(c.Box[2 * d + 1], other.Box[2 * d + 1]) - std::min(c.Box[2 * d], other.Box[2 * d]));
+  }
+  // The corners by coordinate, two per vector (Lanes.h): the same operations
+  // in the same order as FaceSide's fast path, so the same values; a lane
+  // is decided when its distance is beyond the bound on either side (a NaN
+  // never is). Scalar, these 32 evaluations per pair were a large cost of
+  // a 3D run: they are done for every candidate pair.
+  const double(&corner)[3][4] = other.ByAxis;
+  Doubles2 x0[2], x1[2], x2[2];
+  for (int h = 0; h < 2; ++h)
+  {
+    x0[h] = LoadLanes(&corner[0][2 * h]);
+    x1[h] = LoadLanes(&corner[1][2 * h]);
+    x2[h] = LoadLanes(&corner[2][2 * h]);
+  }
+  Mask2 decided = { -1, -1 };
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* a = c.X[(k + 1) % 4];
+    const double* n = c.Normal[k];
+    const double bound = 64.0 * RoundingUnit * c.NormalScale[k] * size;
+    for (int h = 0; h < 2; ++h)
+    {
+      const Doubles2 d = n[0] * (x0[h] - a[0]) + n[1] * (x1[h] - a[1]) + n[2] * (x2[h] - a[2]);
+      std::memcpy(&sides[k][2 * h], &d, sizeof d);
+      decided &= (d > bound) | (d < -bound);
+    }
+  }
+  if (decided[0] && decided[1])
+  {
+    return;
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    for (int v = 0; v < 4; ++v)
+    {
+      sides[k][v] = FaceSide(c, k, x[v]);
+    }
+  }
+}
+
+/// Of a table sides[k][v] (FaceSides'), per row k, bit v: the side is
+/// negative, not positive, zero (a NaN is none of them).
+struct SideBits
+{
+  unsigned Negative[4];
+  unsigned NotPositive[4];
+  unsigned Zero[4];
+};
+
+/// SideBits of a table, two lanes at a time (compared one by one, the
+/// 48 comparisons and shifts per pair were a visible cost of a 3D run).
+inline void GetSideBits(const double (&sides)[4][4], SideBits& bits)
+{
+  for (int k = 0; k < 4; ++k)
+  {
+    const Doubles2 r0 = LoadLanes(&sides[k][0]);
+    const Doubles2 r1 = LoadLanes(&sides[k][2]);
+    bits.Negative[k] = LaneBits(r0 < 0.0) | LaneBits(r1 < 0.0) << 2;
+    bits.NotPositive[k] = LaneBits(r0 <= 0.0) | LaneBits(r1 <= 0.0) << 2;
+    bits.Zero[k] = LaneBits(r0 == 0.0) | LaneBits(r1 == 0.0) << 2;
+  }
+}
+
+/// The number of bits set in a 4-bit pattern.
+inline unsigned CountBits4(unsigned bits)
+{
+  static constexpr unsigned char count[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
+  return count[bits & 15u];
+}
+} // namespace clipping
+} // namespace mp
+
+#endif

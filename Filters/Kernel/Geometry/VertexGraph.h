@@ -1,0 +1,379 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file VertexGraph.h
+ * @brief The fast clipper: the part of one tetrahedron inside another as a
+ *        convex polyhedron whose vertices each have three neighbours
+ *        (private to TetrahedronIntersector and its tests).
+ *
+ * The graph and its general cut by a plane (Clip, Cut) are here. Its
+ * members come in three files, one per concern, all included by this one:
+ * this file (the graph and Clip), VertexGraphTables.h (the first two cuts
+ * from tables of the topologies they make) and VertexGraphFaces.h (walking
+ * the faces, and the decomposition into tetrahedra with their moments).
+ * The corners' sides come from FaceSides.h; when the graph cannot go on,
+ * the intersector falls back to ClipByPlane.h.
+ */
+#ifndef MeshProjection_Kernel_VertexGraph_h
+#define MeshProjection_Kernel_VertexGraph_h
+
+#include "Geometry/TetrahedronIntersector.h"
+#include "Mesh/Vec3.h"
+
+#include <algorithm>
+
+namespace mp
+{
+namespace clipping
+{
+/// The faces of a vertex graph of at most V vertices, in the order
+/// VertexGraph::WalkFaces finds them: each a cycle of vertices.
+template <int V>
+struct FaceCycles
+{
+  int NumberOfFaces = 0;
+  signed char Size[V / 2 + 2];  ///< three links per vertex: V / 2 + 2 faces
+  signed char Vertex[3 * V];    ///< the cycles one after the other
+};
+
+/**
+ * A convex polyhedron as a graph in which every vertex has three
+ * neighbours, listed so that the face to the left of the directed edge
+ * a -> b continues at b with Next[b][(slot of a in b) + 1 mod 3]; faces are
+ * then counterclockwise seen from outside. A tetrahedron is such a graph,
+ * and clipping keeps it one: each new vertex lies on an edge from a kept
+ * vertex to a clipped one (even when the kept vertex is on the plane, where
+ * the new vertex coincides with it: an edge of length zero, harmless for
+ * volumes and moments), and links to the kept vertex and to the new vertices
+ * before and after it around the cap. Every vertex is classified once per
+ * plane, so the faces stay consistent with each other whatever the
+ * rounding. This keeps a polyhedron of at most ~12 vertices instead of
+ * splitting up to 27 tetrahedra per plane.
+ *
+ * Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits 4-7:
+ * the clipped cell's own faces (face k opposite corner k).
+ */
+struct VertexGraph
+{
+  static constexpr int MaxVertices = 48;
+  /// The faces of the table's graphs (at most 12 vertices).
+  using TableFaces = FaceCycles<12>;
+  int NumberOfVertices = 0;
+  /// The faces when the graph is one of the tables' (then Decompose need
+  /// not walk them), else null.
+  const TableFaces* Faces = nullptr;
+  double X[MaxVertices][3];
+  /// (Bytes: the tables' links are copied as fixed blocks of 36 bytes.)
+  signed char Next[MaxVertices][3];
+  /// Back[v][j]: the slot of v among the neighbours of Next[v][j], so that
+  /// walks around faces never search for it.
+  signed char Back[MaxVertices][3];
+  unsigned On[MaxVertices];
+  int Original[MaxVertices]; ///< corner of the clipped cell, or -1
+
+  /// The links of a tetrahedron (0, 1, 2, 3), positively oriented.
+  static constexpr int TetrahedronNext[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+  static constexpr int TetrahedronBack[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 }, { 2, 2, 1 } };
+
+  /// The bits SetTetrahedron gives corner v: the cell's faces through it,
+  /// and the clipping planes it lies on.
+  static unsigned CornerBits(int v, const double (&sides)[4][4])
+  {
+    unsigned on = (15u & ~(1u << v)) << 4;
+    for (int k = 0; k < 4; ++k)
+    {
+      on |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+    }
+    return on;
+  }
+
+  void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
+  {
+    this->NumberOfVertices = 4;
+    this->Faces = nullptr;
+    for (int v = 0; v < 4; ++v)
+    {
+      std::copy(c.X[v], c.X[v] + 3, this->X[v]);
+      std::copy(TetrahedronNext[v], TetrahedronNext[v] + 3, this->Next[v]);
+      std::copy(TetrahedronBack[v], TetrahedronBack[v] + 3, this->Back[v]);
+      this->On[v] = CornerBits(v, sides);
+      this->Original[v] = v;
+    }
+  }
+
+  // The first two cuts, from tables (VertexGraphTables.h).
+
+  /// What one cut of a graph of the tables makes, for one pattern of its
+  /// vertices inside and outside (none on the plane): the vertices (a kept
+  /// one, or the crossing on the link from a kept one to a clipped one), in
+  /// Cut's order, their links and the faces.
+  struct TableCut;
+
+  /// The tetrahedron the tables are made on (Cut's topology depends on the
+  /// signs of the distances only).
+  static TetrahedronIntersector::Cell ReferenceTetrahedron();
+
+  /// The cut of `before` at distances d (+1 or -1) as `cut` records it:
+  /// Cut's own result, its vertices named in Cut's order (the kept
+  /// vertices, then the crossings by kept vertex and link).
+  static void MakeCut(const VertexGraph& before, const double* d, unsigned bit, TableCut& cut);
+
+  /// The graph `cut` makes of the vertices x, on, original (the graph
+  /// before it) at distances d from plane `bit`: the crossings computed by
+  /// Cut's expression.
+  void SetCut(const TableCut& cut, const double (*x)[3], const unsigned* on, const int* original,
+    const double* d, unsigned bit);
+
+  /// The cuts of a tetrahedron by one plane, for the 16 patterns of its
+  /// corners (bit v: corner v outside; 0 and 15 unused).
+  static const TableCut* TetrahedronCuts();
+
+  /**
+   * SetTetrahedron and then Clip by plane `k` (bit 1 << k, sides[k] the
+   * corners' distances), in one step from the table of cuts: the same
+   * vertices, in the same order, with the same links and bits, and the
+   * crossings computed by the same expression. Returns the pattern of
+   * corners outside (bit v: corner v), 0 with nothing set when a corner
+   * lies on the plane (or its side is NaN) or none is clipped or kept.
+   */
+  unsigned SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k);
+
+  /// SecondCuts()[64 * first + pattern]: the cuts of the table of first
+  /// cuts' graphs (`first` a pattern of TetrahedronCuts), for every pattern
+  /// of their 4 or 6 vertices (bit v: vertex v outside).
+  static const TableCut* SecondCuts();
+
+  /**
+   * Clip of the graph SetClippedTetrahedron made with pattern `first`, from
+   * the table of second cuts: the same graph as Clip (vertices, order,
+   * links, bits; crossings by the same expression). False, with nothing
+   * changed, when a vertex lies on the plane or its distance is NaN (then
+   * Clip does it).
+   */
+  bool ClipSecond(unsigned first, const double* normal, const double* origin, unsigned bit, const double sides[4]);
+
+  /// Keeps the part on the inner side of plane `bit`; false when it cannot
+  /// (capacity, or a face walk that does not come back): then the caller
+  /// falls back to splitting tetrahedra.
+  bool Clip(const double* normal, const double* origin, unsigned bit, const double sides[4])
+  {
+    const int n = this->NumberOfVertices;
+    double d[MaxVertices];
+    bool anyInside = false;
+    bool anyOutside = false;
+    for (int v = 0; v < n; ++v)
+    {
+      d[v] = this->Distance(v, normal, origin, bit, sides);
+      anyInside |= d[v] > 0.0;
+      anyOutside |= d[v] < 0.0;
+      if (d[v] == 0.0)
+      {
+        this->On[v] |= bit;
+      }
+    }
+    if (!anyInside)
+    {
+      this->NumberOfVertices = 0; // no volume left
+      return true;
+    }
+    if (!anyOutside)
+    {
+      return true;
+    }
+    return this->Cut(d, bit);
+  }
+
+  /// Vertex v's distance from the plane as Clip takes it: a corner's exact
+  /// side, 0 on the plane, else from the plane's normal.
+  double Distance(int v, const double* normal, const double* origin, unsigned bit, const double sides[4]) const
+  {
+    if (this->Original[v] >= 0)
+    {
+      return sides[this->Original[v]];
+    }
+    if (this->On[v] & bit)
+    {
+      return 0.0;
+    }
+    Vec r;
+    Sub(this->X[v], origin, r);
+    return Dot(normal, r);
+  }
+
+  /// Clip's cut for distances d with vertices on both sides.
+  bool Cut(const double* d, unsigned bit)
+  {
+    this->Faces = nullptr; // a new graph
+    const int n = this->NumberOfVertices;
+    // New vertices on the edges from kept to clipped vertices, found from
+    // bit masks (n <= 48 < 64): the clipped vertices, each kept vertex's
+    // links to them, the kept vertices with any. Only the crossings are
+    // then visited, in the same order as a loop over vertices and links
+    // (whose two tests per link depend on the data and were among the most
+    // mispredicted branches of a 3D run). A link's id is below 48 or -1
+    // (bit 63 of the mask, never set).
+    unsigned long long clipped = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      clipped |= static_cast<unsigned long long>(d[v] < 0.0) << v;
+    }
+    unsigned links[MaxVertices];
+    unsigned long long from = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      unsigned l = 0;
+      for (int j = 0; j < 3; ++j)
+      {
+        l |= static_cast<unsigned>((clipped >> (this->Next[v][j] & 63)) & 1u) << j;
+      }
+      l *= static_cast<unsigned>(((clipped >> v) & 1u) ^ 1u); // kept vertices only
+      links[v] = l;
+      from |= static_cast<unsigned long long>(l != 0) << v;
+    }
+    int total = n;
+    while (from != 0)
+    {
+      const int v = __builtin_ctzll(from);
+      from &= from - 1;
+      for (unsigned l = links[v]; l != 0; l &= l - 1)
+      {
+        const int j = __builtin_ctz(l);
+        const int q = this->Next[v][j];
+        if (total == MaxVertices)
+        {
+          return false;
+        }
+        const int w = total++;
+        const double u = d[v] / (d[v] - d[q]);
+        for (int c = 0; c < 3; ++c)
+        {
+          this->X[w][c] = this->X[v][c] + u * (this->X[q][c] - this->X[v][c]);
+        }
+        this->On[w] = (this->On[v] & this->On[q]) | bit;
+        this->Original[w] = -1;
+        this->Next[w][0] = static_cast<signed char>(v);
+        this->Back[w][0] = static_cast<signed char>(j);
+        this->Next[w][1] = -1;
+        this->Next[w][2] = -1;
+        this->Beyond[w - n] = q;
+        this->BeyondBack[w - n] = this->Back[v][j]; // the slot of v in q
+        this->Next[v][j] = static_cast<signed char>(w);
+        this->Back[v][j] = 0;
+      }
+    }
+    // Link each new vertex w (on the edge kept v -> clipped q) to the next
+    // new vertex around the face to the left of v -> q: walk that face
+    // through the clipped vertices (whose links are still the old ones).
+    for (int w = n; w < total; ++w)
+    {
+      int current = this->Beyond[w - n];
+      int slot = this->BeyondBack[w - n]; // of the vertex we came from, in current
+      for (int steps = 0;; ++steps)
+      {
+        if (steps > MaxVertices)
+        {
+          return false;
+        }
+        // Clipped vertices keep their old links (and back slots).
+        const int out = slot == 2 ? 0 : slot + 1;
+        const int next = this->Next[current][out];
+        const int back = this->Back[current][out]; // the slot of current in next
+        if (next < 0 || next >= n)
+        {
+          return false; // not an old link: inconsistent signs (NaN distances)
+        }
+        if (d[next] < 0.0)
+        {
+          current = next;
+          slot = back;
+          continue;
+        }
+        // next is kept: the edge next -> current carries a new vertex, in
+        // the slot of next that pointed to current.
+        const int found = this->Next[next][back];
+        if (found < n || this->Beyond[found - n] != current)
+        {
+          return false;
+        }
+        this->Next[w][1] = found;
+        this->Back[w][1] = 2;
+        this->Next[found][2] = w;
+        this->Back[found][2] = 1;
+        break;
+      }
+    }
+    // Compact: drop the clipped vertices. Without a branch per link (the
+    // checks are gathered) or per kept vertex (one moved onto itself is
+    // harmless).
+    int map[MaxVertices];
+    int m = 0;
+    for (int v = 0; v < total; ++v)
+    {
+      const int keep = static_cast<int>(((clipped >> v) & 1u) ^ 1u);
+      map[v] = keep * (m + 1) - 1; // -1 for a clipped vertex
+      m += keep;
+    }
+    bool broken = false;
+    const unsigned long long all = total == 64 ? ~0ull : (1ull << total) - 1;
+    for (unsigned long long kept = all & ~clipped; kept != 0; kept &= kept - 1)
+    {
+      const int v = __builtin_ctzll(kept);
+      const int to = map[v];
+      for (int j = 0; j < 3; ++j)
+      {
+        const int x = this->Next[v][j];
+        const int y = map[x < 0 ? 0 : x];
+        broken |= (x < 0) | (y < 0);
+        this->Next[to][j] = static_cast<signed char>(y);
+        this->Back[to][j] = this->Back[v][j];
+      }
+      this->X[to][0] = this->X[v][0];
+      this->X[to][1] = this->X[v][1];
+      this->X[to][2] = this->X[v][2];
+      this->On[to] = this->On[v];
+      this->Original[to] = this->Original[v];
+    }
+    if (broken)
+    {
+      return false;
+    }
+    this->NumberOfVertices = m;
+    return true;
+  }
+  int Beyond[MaxVertices]; ///< per new vertex (index - n): the clipped end of its edge
+  int BeyondBack[MaxVertices]; ///< per new vertex: the slot of its kept end in Beyond
+
+  // The faces (VertexGraphFaces.h).
+
+  /**
+   * The faces, walked from the links: from each vertex and link not yet
+   * walked, in order, the face to the left of that link, its vertices from
+   * there; visit(cycle, size, holdsVertex0, commonBits) for each, stopping
+   * when it returns false. False when a walk does not close, or a visit
+   * said so.
+   */
+  template <class Visit>
+  bool WalkFaces(Visit&& visit) const;
+
+  /// The walked faces into `faces`; false when a walk does not close or
+  /// they do not fit.
+  template <int V>
+  bool WalkFaces(FaceCycles<V>& faces) const;
+
+  /**
+   * The faces (the tables' when the graph is one of theirs, else walked):
+   * the faces of positive area whose vertices all lie on target face k set
+   * bit k of `touched` (target faces are the vertex bits from
+   * `targetShift`), and the tetrahedra from vertex 0 to the triangles of
+   * the faces not holding it go to the piece. False when a walk does not
+   * close or the piece has no room.
+   */
+  bool Decompose(int targetShift, double minArea2, TetrahedronIntersector::Piece& piece) const;
+};
+} // namespace clipping
+} // namespace mp
+
+// The members defined apart, one concern each.
+#include "Geometry/VertexGraphFaces.h"
+#include "Geometry/VertexGraphTables.h"
+
+#endif

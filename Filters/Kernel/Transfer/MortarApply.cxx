@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MortarOperator (MortarOperator.h), the projection of fields: the
+// right-hand sides M_ts u_s, the solve with M_tt (or its lumped rows), the
+// optional bounds (clip and assured sum) and the fill of invalid functions.
+#include "Transfer/MortarOperator.h"
+
+#include "Transfer/StageClock.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <vector>
+
+namespace mp
+{
+bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const SolveOptions& solve, const SolverHooks& hooks) const
+{
+  ApplyOptions options;
+  options.Solve = solve;
+  return this->Apply(sourceValues, components, targetValues, fill, options, hooks);
+}
+
+namespace
+{
+/**
+ * Clip and assured sum on column `k` of x (rows x c): each valid value into
+ * [low_i, high_i], then the difference to `total` (sum of w_i x_i wanted)
+ * spread in proportion to w_i times the room left. On a distributed system
+ * the sums are over the rows each part counts, summed over the parts (`w`,
+ * `low`, `high` and x complete in shared rows, so every part clips them
+ * alike).
+ */
+void ClipAndAssuredSum(double* x, int c, int k, const std::vector<double>& w,
+  const std::vector<char>& valid, const std::vector<double>& low, const std::vector<double>& high,
+  double total, const SolverHooks& hooks)
+{
+  const Index n = static_cast<Index>(w.size());
+  const char* counted = hooks.Counted;
+  double clipped = 0.0;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i])
+    {
+      double& v = x[i * c + k];
+      v = std::min(high[i], std::max(low[i], v));
+      clipped += !counted || counted[i] ? w[i] * v : 0.0;
+    }
+  }
+  if (hooks.Reduce)
+  {
+    hooks.Reduce(&clipped, 1);
+  }
+  const double missing = total - clipped;
+  double room = 0.0;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i] && (!counted || counted[i]))
+    {
+      room += w[i] * (missing > 0 ? high[i] - x[i * c + k] : x[i * c + k] - low[i]);
+    }
+  }
+  if (hooks.Reduce)
+  {
+    hooks.Reduce(&room, 1);
+  }
+  if (!(room > 0.0) || missing == 0.0)
+  {
+    return; // nothing to give back, or no room (then the sum was already at a bound)
+  }
+  const double scale = missing / room;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i])
+    {
+      double& v = x[i * c + k];
+      v += scale * (missing > 0 ? high[i] - v : v - low[i]);
+    }
+  }
+}
+
+/**
+ * Bound preservation after a consistent solve (ApplyOptions::Bounded), on
+ * x (n rows x `components`): per component, every row's bounds and the
+ * integral wanted, then ClipAndAssuredSum. Apply has checked that M_ts
+ * and the hooks this needs are there.
+ */
+void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& valid,
+  const std::vector<double>& rowSums, Index n, const double* sourceValues, int components,
+  const double* rhs, double* targetValues, const SolverHooks& hooks)
+{
+  // Each row's bounds: the Source values of its columns (a shared row's
+  // columns are spread over the parts: their extremes, completed). The
+  // weights: M_tt's row sums, completed like the right-hand sides.
+  std::vector<double> weights(rowSums);
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(weights.data(), 1);
+  }
+  std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
+  std::vector<double> extremes(hooks.ExchangeMinimum ? 2 * static_cast<size_t>(n) : 0);
+  for (int k = 0; k < components; ++k)
+  {
+    double total = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (Index p = mixed.RowStart[i]; p < mixed.RowStart[i + 1]; ++p)
+      {
+        const double u = sourceValues[static_cast<Index>(mixed.ColumnIndex[p]) * components + k];
+        lo = std::min(lo, u);
+        hi = std::max(hi, u);
+      }
+      low[i] = lo;
+      high[i] = hi;
+      if (valid[i] && (!hooks.Counted || hooks.Counted[i]))
+      {
+        total += rhs[i * components + k]; // sum_i (M_ts u_s)_i = int u_s over the covered part
+      }
+    }
+    if (hooks.Reduce)
+    {
+      hooks.Reduce(&total, 1);
+    }
+    if (hooks.ExchangeMinimum)
+    {
+      // The largest as the smallest of the negated values.
+      for (Index i = 0; i < n; ++i)
+      {
+        extremes[2 * i] = low[i];
+        extremes[2 * i + 1] = -high[i];
+      }
+      hooks.ExchangeMinimum(extremes.data(), 2);
+      for (Index i = 0; i < n; ++i)
+      {
+        low[i] = extremes[2 * i];
+        high[i] = -extremes[2 * i + 1];
+      }
+    }
+    ClipAndAssuredSum(targetValues, components, k, weights, valid, low, high, total, hooks);
+  }
+}
+} // namespace
+
+bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const ApplyOptions& options, const SolverHooks& hooks) const
+{
+  const SolveOptions& solve = options.Solve;
+  const auto start = std::chrono::steady_clock::now();
+  const Index n = this->TargetMass.Rows;
+  // A part without rows of a distributed system still takes part in its sums.
+  if (!this->Solver || components <= 0 || (n == 0 && !hooks.Reduce && !hooks.Exchange))
+  {
+    this->Timings.Solve = SecondsSince(start);
+    return this->Solver != nullptr || components <= 0;
+  }
+  // The right-hand sides: summed during the search for the build's fields,
+  // else M_ts u_s (completed across parts by the Exchange hook).
+  LargeVector<double> product;
+  const double* rhs = this->Rhs.data();
+  if (this->Options.Fields)
+  {
+    if (sourceValues != this->Options.Fields || components != this->Options.FieldComponents)
+    {
+      return false; // built for other fields: M_ts was not stored
+    }
+    if (hooks.Exchange)
+    {
+      product.assign(this->Rhs.begin(), this->Rhs.end());
+    }
+  }
+  else
+  {
+    product.resize(static_cast<size_t>(n) * components);
+    this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
+      this->MixedMass.MultiplyRows(sourceValues, product.data(), components, begin, end);
+      return 0.0;
+    });
+  }
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(product.data(), components);
+  }
+  if (!product.empty())
+  {
+    rhs = product.data();
+  }
+  if (solve.StartFromX)
+  {
+    // Invalid functions hold the fill value of a previous Apply (NaN, say):
+    // their rows and columns of M_tt are zero but for the diagonal, yet
+    // 0 * NaN would spread it through the products. Their solution is 0.
+    for (Index i = 0; i < n; ++i)
+    {
+      if (!this->Valid[i])
+      {
+        std::fill(targetValues + i * components, targetValues + (i + 1) * components, 0.0);
+      }
+    }
+  }
+  bool ok = true;
+  if (options.Mass == MassType::Lumped)
+  {
+    // Row sums of M_tt completed across parts like the right-hand sides.
+    std::vector<double> sums(this->RowSums);
+    if (hooks.Exchange)
+    {
+      hooks.Exchange(sums.data(), 1);
+    }
+    for (Index i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < components; ++k)
+      {
+        targetValues[i * components + k] = sums[i] > 0.0 ? rhs[i * components + k] / sums[i] : 0.0;
+      }
+    }
+  }
+  else
+  {
+    ok = this->Solver->Solve(rhs, targetValues, components, solve, hooks);
+  }
+  if (ok && options.Bounded && options.Mass == MassType::Consistent)
+  {
+    if (!this->HasMixedMass() || (hooks.Exchange && !hooks.ExchangeMinimum))
+    {
+      return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
+    }
+    ClipToLocalBounds(this->MixedMass, this->Valid, this->RowSums, n, sourceValues, components, rhs,
+      targetValues, hooks);
+  }
+  for (Index i = 0; i < n; ++i)
+  {
+    if (!this->Valid[i])
+    {
+      std::fill(targetValues + i * components, targetValues + (i + 1) * components, fill);
+    }
+  }
+  this->Timings.Solve = SecondsSince(start);
+  return ok;
+}
+} // namespace mp
