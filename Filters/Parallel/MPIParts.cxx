@@ -105,7 +105,7 @@ std::vector<double> MPIParts::SumByKey(
   std::vector<std::vector<size_t>> sent(static_cast<size_t>(n));
   for (size_t i = 0; i < values.size(); ++i)
   {
-    const std::uint64_t h = Fnv1a(keys.data() + w * i, w * sizeof(long long));
+    const std::uint64_t h = mp::Fnv1a64(keys.data() + w * i, w * sizeof(long long));
     const size_t r = static_cast<size_t>((h ^ (h >> 29)) % static_cast<std::uint64_t>(n));
     long long bits;
     std::memcpy(&bits, &values[i], sizeof(bits));

@@ -15,6 +15,8 @@
 #ifndef MeshProjection_Parallel_Marshal_h
 #define MeshProjection_Parallel_Marshal_h
 
+#include "Mesh/ContentHash.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -28,23 +30,11 @@ struct PointKey
   double X[3];
   bool operator==(const PointKey& o) const { return std::memcmp(this->X, o.X, sizeof X) == 0; }
 };
-/// FNV-1a over bytes: the point keys' hash and the process a key is summed on
-/// (MPIParts::SumByKey). (The one copy in Parallel/, until a kernel hash header.)
-inline std::uint64_t Fnv1a(const void* data, size_t bytes)
-{
-  std::uint64_t h = 1469598103934665603ull;
-  const unsigned char* b = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < bytes; ++i)
-  {
-    h = (h ^ b[i]) * 1099511628211ull;
-  }
-  return h;
-}
 
-/// Hashes a point key (for unordered maps of points).
+/// Hashes a point key (for unordered maps of points): FNV-1a over its bytes. (for unordered maps of points).
 struct PointKeyHash
 {
-  size_t operator()(const PointKey& k) const { return static_cast<size_t>(Fnv1a(k.X, sizeof k.X)); }
+  size_t operator()(const PointKey& k) const { return static_cast<size_t>(mp::Fnv1a64(k.X, sizeof k.X)); }
 };
 
 /// The key of a point known by its coordinates.

@@ -11,7 +11,8 @@
 #include "Adapter/Threads.h"
 
 #include "Geometry/Measures.h"
-#include "Mesh/Tasks.h"
+#include "Mesh/BlockSums.h"
+#include "Mesh/CellCornersInOrder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,153 +20,6 @@
 
 namespace mpvtk
 {
-namespace
-{
-/**
- * Per component k < nc, the sum of term(i, k) over i in [0, n), in the
- * filter's threads: each block of 2^14 items summed on its own, then the
- * blocks' sums in block order (the same sums on any number of threads).
- */
-template <class Term>
-std::vector<double> SumInBlocks(vtkIdType n, int nc, const Term& term)
-{
-  constexpr vtkIdType Block = vtkIdType(1) << 14;
-  const vtkIdType blocks = (n + Block - 1) / Block;
-  std::vector<double> partial(static_cast<size_t>(blocks * nc), 0.0);
-  mpvtk::For(0, blocks, 1, [&](vtkIdType begin, vtkIdType end) {
-    std::vector<double> sum(static_cast<size_t>(nc));
-    for (vtkIdType b = begin; b < end; ++b)
-    {
-      std::fill(sum.begin(), sum.end(), 0.0);
-      const vtkIdType last = std::min(n, (b + 1) * Block);
-      for (vtkIdType i = b * Block; i < last; ++i)
-      {
-        for (int k = 0; k < nc; ++k)
-        {
-          sum[static_cast<size_t>(k)] += term(i, k);
-        }
-      }
-      std::copy(sum.begin(), sum.end(), partial.begin() + b * nc);
-    }
-  });
-  std::vector<double> total(static_cast<size_t>(nc), 0.0);
-  for (vtkIdType b = 0; b < blocks; ++b)
-  {
-    for (int k = 0; k < nc; ++k)
-    {
-      total[static_cast<size_t>(k)] += partial[static_cast<size_t>(b * nc + k)];
-    }
-  }
-  return total;
-}
-
-/**
- * For every cell c of `view` in turn and each of its corners p, apply(p,
- * value(c)), skipping cells whose value is not positive: as that loop
- * would, in the order it would (sums come out bit for bit the same), but
- * in `runner`'s tasks over ranges of cells. A range applies directly to
- * the points no earlier range uses (ids above the largest id of the
- * earlier ranges' cells, so no two tasks write one point) and keeps the
- * others' values until every range is done, then applies them in cell
- * order. Numberings that follow space (a renumbered copy numbers points as
- * its cells first use them) keep few; a range that would keep more than a
- * sixteenth of its corners (ids with no such order) stops, and its
- * remaining cells are applied after the values kept, in one loop.
- */
-template <class Value, class Apply>
-void ForCellCornersInOrder(
-  const mp::MeshView& view, const mp::TaskRunner& runner, const Value& value, const Apply& apply)
-{
-  const mp::Index n = view.NumberOfCells;
-  const int corners = view.CornersPerCell();
-  auto serial = [&](mp::Index begin, mp::Index end) {
-    for (mp::Index c = begin; c < end; ++c)
-    {
-      const double v = value(c);
-      if (v > 0.0)
-      {
-        const mp::CellCorners ids = view.Cell(c);
-        for (int k = 0; k < corners; ++k)
-        {
-          apply(ids[k], v);
-        }
-      }
-    }
-  };
-  const int tasks = runner.TasksFor(n, 16384);
-  if (tasks < 2)
-  {
-    serial(0, n);
-    return;
-  }
-  auto range = [&](int k) { return std::make_pair(mp::RangeBegin(n, k, tasks), mp::RangeBegin(n, k + 1, tasks)); };
-  // Ids below first[k] may be used by the cells of an earlier range.
-  std::vector<mp::Index> first(static_cast<size_t>(tasks), 0);
-  runner.RunAll(tasks, [&](int k) {
-    mp::Index top = -1;
-    for (mp::Index i = corners * range(k).first; i < corners * range(k).second; ++i)
-    {
-      top = std::max(top, view.Corner(i));
-    }
-    first[k] = top;
-  });
-  mp::Index top = 0;
-  for (int k = 0; k < tasks; ++k)
-  {
-    const mp::Index largest = first[k];
-    first[k] = top;
-    top = std::max(top, largest + 1);
-  }
-  // Each range applies directly what it can and keeps the rest, up to a
-  // sixteenth of its corners: a range that would keep more stops at that
-  // cell (ids with no such order), and its remaining cells are applied in
-  // one loop after the values kept by it and the ranges before it (points
-  // of later ranges' direct values are none of its points).
-  std::vector<mp::Index> stopped(static_cast<size_t>(tasks), -1);
-  std::vector<std::vector<std::pair<mp::Index, double>>> kept(static_cast<size_t>(tasks));
-  runner.RunAll(tasks, [&](int k) {
-    std::vector<std::pair<mp::Index, double>>& mine = kept[k];
-    const size_t room = static_cast<size_t>(corners * (range(k).second - range(k).first) / 16);
-    for (mp::Index c = range(k).first; c < range(k).second; ++c)
-    {
-      const double v = value(c);
-      if (v > 0.0)
-      {
-        const mp::CellCorners ids = view.Cell(c);
-        if (mine.size() + corners > room)
-        {
-          stopped[k] = c;
-          return;
-        }
-        for (int j = 0; j < corners; ++j)
-        {
-          if (ids[j] >= first[k])
-          {
-            apply(ids[j], v);
-          }
-          else
-          {
-            mine.emplace_back(ids[j], v);
-          }
-        }
-      }
-    }
-  });
-  for (int k = 0; k < tasks; ++k)
-  {
-    for (const auto& entry : kept[k])
-    {
-      apply(entry.first, entry.second);
-    }
-    if (stopped[k] >= 0)
-    {
-      serial(stopped[k], range(k).second);
-    }
-  }
-}
-
-} // namespace
-
 /**
  * On several processes each has its part of a source cell's covered
  * measure (the pieces of its own target cells): for the 90% rule, which is
@@ -274,7 +128,7 @@ const std::vector<double>& SourceWeights::Make(
     if (!fromCells)
     {
       // Summed in cell order, in the filter's threads.
-      ForCellCornersInOrder(view, mpvtk::SMPTaskRunner(),
+      mp::ForCellCornersInOrder(view, mpvtk::SMPTaskRunner(),
         [&](mp::Index c) { return part(c) / corners; },
         [&](mp::Index p, double share) { w[static_cast<size_t>(p)] += share; });
     }
@@ -324,12 +178,12 @@ ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const
   const int offset = array.Offset;
   ArrayIntegrals result;
   const std::vector<double>& w = array.Weights;
-  result.Source = SumInBlocks(static_cast<vtkIdType>(w.size()), nc,
+  result.Source = mp::SumInBlocks(static_cast<vtkIdType>(w.size()), nc, mpvtk::SMPTaskRunner(),
     [&](vtkIdType j, int k) { return w[j] * array.Source[j * width + offset + k]; });
   const std::vector<char>& valid = array.Operator.GetValid();
   const std::vector<double>& covered = array.Operator.GetCoveredIntegrals();
   // (An invalid function's value, the fill, may be NaN: left out.)
-  result.Target = SumInBlocks(array.TargetFunctions, nc, [&](vtkIdType f, int k) {
+  result.Target = mp::SumInBlocks(array.TargetFunctions, nc, mpvtk::SMPTaskRunner(), [&](vtkIdType f, int k) {
     return valid[f] ? covered[f] * array.Result[f * width + offset + k] : 0.0;
   });
   // Totals over the processes (their pieces do not overlap).

@@ -5,11 +5,13 @@
  *        how the operator cache tells that a mesh came again (readers build
  *        new arrays at every time step, so addresses say nothing).
  *
- * The same contents give the same value on any number of threads (blocks
- * are hashed on their own, then added in order).
+ * The same contents give the same value on any number of threads: byte
+ * ranges are hashed in the filter's threads (pass mpvtk::SMPTaskRunner()).
  */
 #ifndef MeshProjection_Projection_Fingerprint_h
 #define MeshProjection_Projection_Fingerprint_h
+
+#include "Mesh/ContentHash.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -21,14 +23,10 @@ namespace mpvtk
 {
 class SimplexMesh;
 
-struct Fingerprint
+/// The kernel's content hash (Mesh/ContentHash.h), fed with VTK's arrays and meshes.
+struct Fingerprint : mp::ContentHash
 {
-  std::uint64_t Hash = 0x243F6A8885A308D3ull;
-
-  /// One word.
-  void Add(std::uint64_t word);
-  /// A byte range (hashed in blocks, in the filter's threads).
-  void Add(const void* data, size_t bytes);
+  using mp::ContentHash::Add;
   /// An array's type, size and values (null counts as such).
   void Add(vtkDataArray* array);
   /// Points, cells, cell types and ghost cells: all an operator depends on.

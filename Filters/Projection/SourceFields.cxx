@@ -232,7 +232,7 @@ void FindNaNGroups(const SimplexMesh& mesh, int association, Messages& messages,
     }
     std::vector<char> excluded = CellsUsing(view, bad, association);
     Fingerprint print;
-    print.Add(excluded.data(), excluded.size());
+    print.Add(excluded.data(), excluded.size(), mpvtk::SMPTaskRunner());
     // One process: arrays leaving out the same cells share a group. Several:
     // each array a group of its own, alike on every process.
     auto group = !parts.Whole() ? g.Groups.end()
