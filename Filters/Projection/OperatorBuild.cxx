@@ -360,8 +360,8 @@ Verdict PlanOperators(
   }
   kept.HasFingerprint = s.CacheOperator;
   kept.GeometryFingerprint = print;
-  const bool points = ctx.Source.Fields[0].Components > 0;
-  const bool cells = ctx.Source.Fields[1].Components > 0;
+  const bool points = ctx.Source.Fields[PointArrays].Components > 0;
+  const bool cells = ctx.Source.Fields[CellArrays].Components > 0;
   plan.Used[vtkMeshProjectionFilter::POINTS_TO_POINTS] = points && (s.PointDataTarget & vtkMeshProjectionFilter::TO_POINTS);
   plan.Used[vtkMeshProjectionFilter::POINTS_TO_CELLS] = points && (s.PointDataTarget & vtkMeshProjectionFilter::TO_CELLS);
   plan.Used[vtkMeshProjectionFilter::CELLS_TO_CELLS] = cells && (s.CellDataTarget & vtkMeshProjectionFilter::TO_CELLS);

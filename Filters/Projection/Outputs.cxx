@@ -318,8 +318,10 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
-  const mp::MortarOperator* onPoints =
-    ops.Operators[0] ? ops.Operators[0] : ops.Operators[vtkMeshProjectionFilter::CELLS_TO_POINTS];
+  // The mask of the points' own transfer, else of the cells' transfer to points.
+  const mp::MortarOperator* onPoints = ops.Operators[vtkMeshProjectionFilter::POINTS_TO_POINTS]
+    ? ops.Operators[vtkMeshProjectionFilter::POINTS_TO_POINTS]
+    : ops.Operators[vtkMeshProjectionFilter::CELLS_TO_POINTS];
   if (onPoints)
   {
     const std::vector<char>& valid = *numbering.InDataSet(onPoints->GetValid());
@@ -339,7 +341,10 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     });
   }
   AddValidMasks(mask, written.PointValid, output->GetPointData());
-  if (const mp::MortarOperator* onCells = ops.Operators[1] ? ops.Operators[1] : ops.Operators[2])
+  const mp::MortarOperator* onCells = ops.Operators[vtkMeshProjectionFilter::POINTS_TO_CELLS]
+    ? ops.Operators[vtkMeshProjectionFilter::POINTS_TO_CELLS]
+    : ops.Operators[vtkMeshProjectionFilter::CELLS_TO_CELLS];
+  if (onCells)
   {
     vtkNew<vtkCharArray> cellMask;
     cellMask->SetName("vtkValidCellMask");

@@ -35,6 +35,13 @@ class Messages;
 class Parts;
 class SimplexMesh;
 
+/// The two associations of Source arrays (GatheredFields per association).
+enum Association
+{
+  PointArrays = 0, ///< P1 functions (the kernel's points)
+  CellArrays = 1   ///< P0 functions (the dataset's cells)
+};
+
 /// Arrays with NaN or infinite values that leave out the same Source cells.
 struct NaNGroup
 {

@@ -29,7 +29,7 @@ constexpr Transfer OutputOrder[NumberOfTransfers] = { vtkMeshProjectionFilter::P
   vtkMeshProjectionFilter::CELLS_TO_CELLS, vtkMeshProjectionFilter::POINTS_TO_CELLS,
   vtkMeshProjectionFilter::CELLS_TO_POINTS };
 
-/// Which Source fields a transfer reads: 0 point arrays (P1), 1 cell arrays (P0).
+/// Which Source fields a transfer reads: 0 point arrays (P1), 1 cell arrays (P0) (SourceFields.h's Association).
 inline int SourceAssociation(Transfer t)
 {
   return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
