@@ -19,6 +19,9 @@ Data/ and to the build directory.
   run when they have a main().
 * A block preceded by the line `<!-- not-run -->` is skipped (use sparingly).
   Other languages (sh, cmake on its own) are not run.
+
+It also checks that every relative link and image of README.md and docs/*.md
+names a file, and a heading, that exist.
 """
 import argparse
 import json
@@ -55,6 +58,38 @@ def blocks_of(path):
         out.append((start + 1, language, "\n".join(lines[start + 1:j]) + "\n", skipped))
         i = j + 1
     return out
+
+
+def slug(heading):
+    """GitHub's anchor of a Markdown heading."""
+    text = re.sub(r"[^\w\- ]", "", heading.strip().lower())
+    return text.replace(" ", "-")
+
+
+def check_links(source_dir, failures):
+    """Relative links and images of README.md and docs/*.md name files (and headings) that exist."""
+    pages = ["README.md"] + ["docs/" + f for f in sorted(os.listdir(os.path.join(source_dir, "docs")))
+                             if f.endswith(".md")]
+    anchors = {}
+    for page in pages:
+        text = open(os.path.join(source_dir, page), encoding="utf-8").read()
+        text = re.sub(r"```.*?```", "", text, flags=re.S)
+        anchors[page] = {slug(h) for h in re.findall(r"^#+\s+(.*)$", text, re.M)}
+    checked = 0
+    for page in pages:
+        text = open(os.path.join(source_dir, page), encoding="utf-8").read()
+        text = re.sub(r"```.*?```", "", text, flags=re.S)
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if re.match(r"^[a-z]+:", target):
+                continue
+            path, _, anchor = target.partition("#")
+            resolved = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+            checked += 1
+            if not os.path.exists(os.path.join(source_dir, resolved)):
+                failures.append("%s: link to %s: no such file" % (page, target))
+            elif anchor and resolved in anchors and anchor not in anchors[resolved]:
+                failures.append("%s: link to %s: no such heading" % (page, target))
+    print("links checked: %d" % checked)
 
 
 def kind_of(code):
@@ -121,6 +156,7 @@ def main():
                          % (documented, args.plugin))
 
     failures = []
+    check_links(args.source_dir, failures)
     counts = {"python": 0, "pvpython": 0, "pvbatch": 0, "cpp": 0, "skipped": 0}
     for page in PAGES:
         path = os.path.join(args.source_dir, page)
