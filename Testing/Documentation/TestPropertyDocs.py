@@ -13,7 +13,9 @@ header, in the plugin's XML and in the user guide's property table.
   default_values; a "Default: X" in a property's help must agree too.
 * User guide (docs/user-guide.md): the table under "## Properties" whose
   header starts with `| property | default |`; a default is "all", "on",
-  "off", a number, or "`CONSTANT` (number)".
+  "off", a number, or "`CONSTANT` (number)" (the header's constant of that
+  value); the third column is the panel group, as in the XML's
+  PropertyGroups.
 Also: the header's class comment points at docs/user-guide.md.
 """
 import os
@@ -58,7 +60,7 @@ def header_properties(path):
     if "GetCellDataArraySelection" in src:
         props["CellDataArrays"] = ALL
     comment = re.search(r"/\*\*.*?@class.*?\*/", src, re.S)
-    return props, comment.group(0) if comment else ""
+    return props, comment.group(0) if comment else "", enums
 
 
 def xml_properties(path, problems):
@@ -88,10 +90,14 @@ def xml_properties(path, problems):
             if number(stated.rstrip(".")) != props[name]:
                 problems.append("XML: %s's help says default %s, default_values is %s"
                                 % (name, stated, values))
-    return props
+    groups = {}
+    for group in proxy.findall("PropertyGroup"):
+        for member in group.findall("Property"):
+            groups[member.get("name")] = group.get("label")
+    return props, groups
 
 
-def guide_properties(path, problems):
+def guide_properties(path, problems, enums):
     lines = open(path, encoding="utf-8").read().split("\n")
     start = None
     for i, line in enumerate(lines):
@@ -101,6 +107,7 @@ def guide_properties(path, problems):
     if start is None:
         raise SystemExit("user guide: no '## Properties' section")
     props = {}
+    groups = {}
     table = False
     for line in lines[start + 1:]:
         if line.startswith("## "):
@@ -125,9 +132,12 @@ def guide_properties(path, problems):
         elif text == "off":
             value = 0.0
         else:
-            e = re.fullmatch(r"`\w+`\s*\((-?[0-9.]+)\)", text)
+            e = re.fullmatch(r"`(\w+)`\s*\((-?[0-9.]+)\)", text)
+            if e and enums.get(e.group(1)) != int(float(e.group(2))):
+                problems.append("user guide: %s's default %s is %s in the header"
+                                % (m.group(1), text, enums.get(e.group(1), "not a constant")))
             try:
-                value = number(e.group(1)) if e else number(text)
+                value = number(e.group(2)) if e else number(text)
             except ValueError:
                 problems.append("user guide: %s's default %r is not all/on/off/a number/`NAME` (n)"
                                 % (m.group(1), text))
@@ -135,17 +145,23 @@ def guide_properties(path, problems):
         if m.group(1) in props:
             problems.append("user guide: %s is listed twice" % m.group(1))
         props[m.group(1)] = value
+        if len(cells) > 2:
+            groups[m.group(1)] = cells[2]
     if not props:
         problems.append("user guide: no property table under '## Properties'")
-    return props
+    return props, groups
 
 
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
     problems = []
-    header, comment = header_properties(os.path.join(root, "Filters", "vtkMeshProjectionFilter.h"))
-    xml = xml_properties(os.path.join(root, "Plugin", "MeshProjection.xml"), problems)
-    guide = guide_properties(os.path.join(root, "docs", "user-guide.md"), problems)
+    header, comment, enums = header_properties(os.path.join(root, "Filters", "vtkMeshProjectionFilter.h"))
+    xml, xml_groups = xml_properties(os.path.join(root, "Plugin", "MeshProjection.xml"), problems)
+    guide, guide_groups = guide_properties(os.path.join(root, "docs", "user-guide.md"), problems, enums)
+    for name in sorted(set(xml_groups) | set(guide_groups)):
+        if xml_groups.get(name) != guide_groups.get(name):
+            problems.append("%s: panel group %r in the XML, %r in the user guide"
+                            % (name, xml_groups.get(name), guide_groups.get(name)))
     if "docs/user-guide.md" not in comment:
         problems.append("header: the class comment does not point at docs/user-guide.md")
     sources = {"header": header, "XML": xml, "user guide": guide}
