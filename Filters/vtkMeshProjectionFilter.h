@@ -3,176 +3,40 @@
  * @class   vtkMeshProjectionFilter
  * @brief   Transfers point and cell data between two non-matching meshes by mortar L2 projection.
  *
- * vtkMeshProjectionFilter fills a target mesh (input port 0, "Input") with
- * the point and cell data of a source mesh (input port 1, "Source") such
- * that each projected field is the L2-best approximation of the source
- * field on the target (P1 on points, P0 on cells): it solves M_tt u_t = M_ts u_s, where M_tt is
- * the target mass matrix and M_ts the mixed (mortar) mass matrix, both
- * integrated exactly over the intersection polygons of every pair of source
- * and target cells. Unlike vtkResampleWithDataSet (pointwise probing), the
- * transfer is conservative (the integral of every component is preserved),
- * reproduces linear fields exactly and does not alias when the target is
- * coarser than the source.
+ * Fills Input (port 0, the target) with the point and cell arrays of Source
+ * (port 1, SetSourceConnection/SetSourceData) so that each projected field
+ * is the L2-best approximation of the Source field on the part of Input the
+ * Source covers: M_tt u_t = M_ts u_s, both mass matrices integrated exactly
+ * over the intersection pieces of every pair of cells. Every field's
+ * integral is conserved and linear fields are reproduced exactly; unlike
+ * vtkResampleWithDataSet (pointwise probing) a coarse target does not alias.
+ * Intersecting pairs are found by the linear-complexity advancing front of
+ * Gander & Japhet (2009), with exact predicates; the geometry and numerics
+ * live in a VTK-free kernel (Filters/Kernel).
  *
- * The intersecting cell pairs are found by the advancing front of Gander &
- * Japhet ("An algorithm for non-matching grid projections with linear
- * complexity", Domain Decomposition Methods in Science and Engineering XVIII,
- * 2009): neighbours come from the kernel's face matcher; a front starts with
- * a walk through the source, and re-seeds from bins over the source's
- * boundary cells (bins over all source cells are built only when
- * that cannot settle a cell, e.g. targets reaching beyond the source); the
- * geometry and the numerics live in a VTK-free kernel (Filters/Kernel).
+ * Inputs: any vtkDataSet or composite dataset of them, of the same
+ * dimension (curves, 2D in any plane, surfaces in 3D, volumes), or a trace
+ * (a surface or curve inside a volume Source). Cells that are not simplices
+ * are split on their own points. Point data is a P1 field, cell data P0;
+ * PointDataTarget and CellDataTarget say where each goes, CellDataQuantity
+ * whether cell values are intensive or extensive, MassMatrix and
+ * PreserveBounds how the projection is bounded.
  *
- * Inputs: any two datasets of the same dimension, or a trace (below) (vtkUnstructuredGrid,
- * vtkPolyData, vtkImageData, vtkRectilinearGrid, vtkStructuredGrid), or
- * composite datasets of them (vtkMultiBlockDataSet, vtkPartitionedDataSet,
- * vtkPartitionedDataSetCollection). 2D: triangles, quads, pixels, polygons
- * and triangle strips lying in one plane, any plane (2D meshes with 3D
- * coordinates; planarity is judged relative to the mesh's size). Surfaces
- * in 3D: the same cells not in one plane (two facetizations of a curved
- * surface, an interface, a contact pair): each Source facet is projected
- * onto the Input facet's plane along its normal and intersected there, the
- * integrals taken on the Input facets; facets meet within SurfaceReach and
- * with oriented normals within MaximumNormalAngle (both meshes must be
- * consistently oriented); a planar mesh matched with a surface is one too,
- * two planar meshes stay the 2D case. 3D:
- * tetrahedra, hexahedra, voxels, wedges, pyramids, pentagonal and hexagonal
- * prisms and polyhedra. Cell types may be mixed. The meshes need not cover
- * the same region, be connected or convex. Traces: a surface (planar or
- * not) or a curve inside a 3D Source, or a curve inside a 2D Source in its
- * plane: each Input facet or segment is cut by the Source's cells, and the
- * volume field is projected onto the surface or curve (where it lies
- * inside; only TargetIntegral_ is reported, and extensive cell data stay
- * densities).
+ * Output 0: Input with a double array per projected Source array, the
+ * masks vtkValidPointMask / vtkValidCellMask (and per-array masks when
+ * NaN holes differ), CoveredFraction, and field data SourceIntegral_<array>
+ * and TargetIntegral_<array>. With OutputIntersections, output 1 holds the
+ * intersection polygons or segments and output 2 the polyhedra as
+ * tetrahedra. The output follows the time steps of both inputs; with
+ * CacheOperator the operators are kept while neither mesh changes, and
+ * GetMatrix() / WriteMatrixMarket() export them. Invalid input gives an
+ * error naming the cell and passes Input through.
  *
- * Cells that are not simplices are split into triangles or tetrahedra on
- * their own points, by a rule on the point ids that splits a face shared by
- * two cells the same way on both sides (each polygonal face is fanned from
- * its lowest-numbered point, each 3D cell is the cone from its
- * lowest-numbered point over the faces away from it; see
- * Kernel/Geometry/CellSplit.h). Point data is therefore projected onto the
- * continuous piecewise linear functions on that split, with one value per
- * original point (linear fields stay exact, integrals are conserved), and
- * cell data onto one constant per original cell. A non-convex 3D cell is
- * coned from another corner it is star-shaped from (across its faces
- * through that corner the field may then be discontinuous); a cell
- * star-shaped from none of its corners (inverted, twisted or strongly
- * non-convex) is an error.
- * Cells of lower dimension than the mesh (vertices, lines, the faces of a
- * volume mesh) are left out with a warning (no cell values there);
- * nonlinear cells (quadratic, Lagrange, ...) are an error that names
- * Tessellate.
+ * Every property, output, warning and error, with defaults and when to
+ * change them: docs/user-guide.md. The method: docs/method.md.
+ * vtkPMeshProjectionFilter runs the same on several MPI processes.
  *
- * Composite inputs. A composite Source is one mesh made of all its dataset
- * blocks (their arrays in common; blocks meeting at an interface give the
- * result of the merged mesh). A composite Input is projected block by
- * block: each block is a mesh of its own with its own points and its own
- * system M_tt u_t = M_ts u_s (a point on an interface of two blocks exists
- * in both and gets each block's value; for a continuous field the two
- * agree up to the projection's error, not exactly). Output 0 has Input's
- * block structure; blocks that are empty or not datasets are skipped, a
- * block that cannot be projected (another dimension, another plane) is
- * passed through with a warning. Operators are kept per block.
- *
- * What is projected, and onto what (all Source arrays by default):
- *  - point arrays (PointDataArraySelection) are P1 fields: continuous,
- *    piecewise linear on the cells. They go to Input's points (default),
- *    cells (the L2 projection onto piecewise constants: each cell's mean of
- *    the source field over its covered part), or both (PointDataTarget).
- *  - cell arrays (CellDataArraySelection) are P0 fields: one value per
- *    cell. They go to Input's cells (default), points, or both
- *    (CellDataTarget). Cell to cell is the measure-weighted mean over the
- *    covered part (exact on constants, conservative). CellDataQuantity
- *    says what the values are: INTENSIVE (default: densities, temperatures,
- *    velocities; a value per unit area or volume) or EXTENSIVE (totals:
- *    mass, counts, sums), whose projection keeps totals: each target cell
- *    gets the sum of the source totals times the covered fraction of each
- *    source cell it meets (to points: the projected density, the total per
- *    unit area or volume).
- * MassMatrix CONSISTENT (default) is the L2 projection; LUMPED divides by
- * the row sums instead (never leaves the range of the source values on a
- * target function's support, no solve, but only first order). With
- * PreserveBounds the consistent projection is clipped to those local
- * ranges and the clipped integral given back (clip and assured sum): no
- * overshoot, integral conserved, linear fields still exact.
- *
- * Output port 0: a shallow copy of Input (of its type) with, for each projected array, a
- * vtkDoubleArray of the same name and components (an Input array of the
- * same name is replaced; a point array projected to cells next to a cell
- * array of the same name gets the suffix " (from points)", and likewise
- * " (from cells)"), plus
- *  - "vtkValidPointMask" (char point array): 1 where the point's support
- *    meets the source, else 0; invalid points get NaN (or FillValue);
- *  - "vtkValidCellMask" (char cell array, when arrays go to cells): 1 where
- *    the cell meets the source; invalid cells get NaN (or FillValue);
- *  - "CoveredFraction" (double cell array): the fraction of each target
- *    cell's area (volume) covered by the source;
- *  - field data "SourceIntegral_<array>" (the Source field's integral over
- *    the part of Source the pieces cover) and "TargetIntegral_<array>" (the
- *    projection's over the covered target, equal to the projected Source
- *    field's; for surfaces they differ as the facetizations' areas do, see
- *    ConserveSourceIntegral); cell arrays' names end in " (cell data)".
- * Missing values: a NaN or infinite value in a Source array leaves the
- * Source cells that use it out of that array's projection (a hole in
- * Source for that array only, with an operator of its own; conservation
- * holds on the rest of the common part). Targets left without data get the
- * fill value and are marked in the masks above when every projected array
- * agrees, else in "vtkValidPointMask_<array>" / "vtkValidCellMask_<array>".
- * Corrupt input (ids outside the points, bad offsets, face streams or cell
- * types, a short ghost array) is an error naming the first bad cell, before
- * any cell is read; the output is then Input passed through. Source arrays
- * shorter than the points (cells) are skipped with a warning.
- * When OutputIntersections is on:
- *  - output port 1 (2D inputs, surfaces, curves, traces): the intersection
- *    polygons (for surfaces on the target facets, in 3D), vtkPolyData with
- *    cell arrays "SourceCellId", "TargetCellId" (vtkIdType) and "Area"; for
- *    curves segments, with "Length";
- *  - output port 2 (3D inputs): the intersection polyhedra as their
- *    tetrahedral decomposition, vtkUnstructuredGrid with cell arrays
- *    "SourceCellId", "TargetCellId" and "Volume" (of each tetrahedron).
- * The port not used by the inputs' dimension stays empty. SourceCellId
- * and TargetCellId are the ids of the original cells (a split cell's
- * pieces all name it); for a composite Input the pieces of all blocks are
- * appended, with a "TargetBlock" cell array (the block's flat index).
- *
- * Time: the output advertises the time steps of both inputs (their union)
- * and asks both for the requested time, so a time-varying Source (or
- * Input) is followed. With CacheOperator on (default) the operators (the
- * matrices M_tt and M_ts of each transfer used) are kept between
- * executions and reused while neither mesh changed (same points, cells and
- * cell types, compared by a 64-bit fingerprint of their arrays' contents,
- * since readers build new arrays at every step): a step then costs the
- * right-hand sides and a solve started from the previous step's solution.
- * A one-off run does not form M_ts (the right-hand sides are summed during
- * the search): the operators are assembled when an input advertises time
- * steps, when the meshes of the last execution come again, when
- * PreserveBounds needs M_ts, or when GetMatrix() asks for it.
- * OperatorReused tells whether the last execution reused them;
- * OperatorMemory their size. GetMatrix() gives the kept matrices as
- * compressed rows and WriteMatrixMarket() writes them.
- *
- * Progress is reported through the stages, and AbortExecute stops a run
- * (polled in the search every 8192 target cells): the output is then Input
- * as it came, with a warning.
- *
- * Non-numeric Source arrays (strings, variants) are skipped with a
- * warning; integer arrays are projected as real values, with a warning (an
- * L2 projection of labels or ids is not meaningful). Invalid input (no
- * Source, nonlinear cells, cells that cannot be split, an Input of a
- * higher dimension than Source, a curve off a 2D Source's plane, NaN/Inf
- * coordinates)
- * produces an error and an output that is a plain copy of Input; empty
- * meshes and meshes that do not overlap give a warning and invalid points.
- *
- * Threads: the search, the intersections and the local integrals run in one
- * task per vtkSMPTools thread (ranges of target cells, each with its own
- * advancing front); results equal the serial ones up to summation order.
- * The filter runs them in its own vtkSMPTools scope with NumberOfThreads
- * threads (0, the default: every core), on STDThread when VTK's backend is
- * the sequential one (Debian's default); the application's backend is left
- * as it was.
- *
- * @sa vtkResampleWithDataSet vtkProbeFilter
+ * @sa vtkPMeshProjectionFilter vtkResampleWithDataSet vtkProbeFilter
  */
 #ifndef vtkMeshProjectionFilter_h
 #define vtkMeshProjectionFilter_h

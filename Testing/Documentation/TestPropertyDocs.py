@@ -1,0 +1,187 @@
+"""Every property of the filter has the same name and default in the C++
+header, in the plugin's XML and in the user guide's property table.
+
+    python3 TestPropertyDocs.py SOURCE_DIR
+
+* Header (Filters/vtkMeshProjectionFilter.h): the properties are the
+  vtkSet...Macro names, their defaults the default member initializers
+  (`int MassMatrix = CONSISTENT_MASS;`, enum names resolved), plus the two
+  array selections (GetPointDataArraySelection, GetCellDataArraySelection),
+  whose default is "all".
+* XML (Plugin/MeshProjection.xml): the proxy's Int/Double/StringVector
+  properties (not information-only), their command (Set<Name>) and
+  default_values; a "Default: X" in a property's help must agree too.
+* User guide (docs/user-guide.md): the table under "## Properties" whose
+  header starts with `| property | default |`; a default is "all", "on",
+  "off", a number, or "`CONSTANT` (number)" (the header's constant of that
+  value); the third column is the panel group, as in the XML's
+  PropertyGroups.
+Also: the header's class comment points at docs/user-guide.md.
+"""
+import os
+import re
+import sys
+import xml.etree.ElementTree as ET
+
+ALL = "all"
+
+
+def number(text):
+    return float(text)
+
+
+def header_properties(path):
+    src = open(path, encoding="utf-8").read()
+    enums = {}
+    for body in re.findall(r"\benum\b[^{;]*\{([^}]*)\}", src):
+        for name, value in re.findall(r"\b([A-Z][A-Z0-9_]*)\s*=\s*(-?\d+)", body):
+            enums[name] = int(value)
+    names = re.findall(r"\bvtkSet(?:Clamp)?Macro\(\s*(\w+)\s*,", src)
+    defaults = {}
+    for name, value in re.findall(
+            r"^\s*(?:bool|int|double|float|vtkIdType)\s+(\w+)\s*=\s*([^;]+);", src, re.M):
+        value = value.strip()
+        if value in ("true", "false"):
+            defaults[name] = 1.0 if value == "true" else 0.0
+        elif value in enums:
+            defaults[name] = float(enums[value])
+        else:
+            try:
+                defaults[name] = number(value.rstrip("fF"))
+            except ValueError:
+                defaults[name] = value  # not a property's, or reported below
+    props = {}
+    for name in names:
+        if name not in defaults:
+            raise SystemExit("header: %s has a vtkSet macro but no default member initializer" % name)
+        props[name] = defaults[name]
+    if "GetPointDataArraySelection" in src:
+        props["PointDataArrays"] = ALL
+    if "GetCellDataArraySelection" in src:
+        props["CellDataArrays"] = ALL
+    comment = re.search(r"/\*\*.*?@class.*?\*/", src, re.S)
+    return props, comment.group(0) if comment else "", enums
+
+
+def xml_properties(path, problems):
+    root = ET.parse(path).getroot()
+    proxy = root.find(".//SourceProxy")
+    props = {}
+    for element in proxy:
+        if element.tag not in ("IntVectorProperty", "DoubleVectorProperty", "StringVectorProperty"):
+            continue
+        if element.get("information_only") == "1":
+            continue
+        name = element.get("name")
+        command = element.get("command")
+        if element.tag == "StringVectorProperty":
+            props[name] = ALL
+            continue
+        if command != "Set" + name:
+            problems.append("XML: %s calls %s, not Set%s" % (name, command, name))
+        values = element.get("default_values")
+        if values is None:
+            problems.append("XML: %s has no default_values" % name)
+            continue
+        props[name] = number(values)
+        doc = element.find("Documentation")
+        text = " ".join((doc.text or "").split()) if doc is not None else ""
+        for stated in re.findall(r"\bDefault:?\s+(-?[0-9.]+)", text):
+            if number(stated.rstrip(".")) != props[name]:
+                problems.append("XML: %s's help says default %s, default_values is %s"
+                                % (name, stated, values))
+    groups = {}
+    for group in proxy.findall("PropertyGroup"):
+        for member in group.findall("Property"):
+            groups[member.get("name")] = group.get("label")
+    return props, groups
+
+
+def guide_properties(path, problems, enums):
+    lines = open(path, encoding="utf-8").read().split("\n")
+    start = None
+    for i, line in enumerate(lines):
+        if line.strip() == "## Properties":
+            start = i
+            break
+    if start is None:
+        raise SystemExit("user guide: no '## Properties' section")
+    props = {}
+    groups = {}
+    table = False
+    for line in lines[start + 1:]:
+        if line.startswith("## "):
+            break
+        if re.match(r"^\|\s*property\s*\|\s*default\s*\|", line):
+            table = True
+            continue
+        if table and not line.startswith("|"):
+            break
+        if not table or re.match(r"^\|\s*-", line):
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        m = re.fullmatch(r"`(\w+)`", cells[0])
+        if not m:
+            problems.append("user guide: property cell %r is not one `Name`" % cells[0])
+            continue
+        text = cells[1]
+        if text == ALL:
+            value = ALL
+        elif text == "on":
+            value = 1.0
+        elif text == "off":
+            value = 0.0
+        else:
+            e = re.fullmatch(r"`(\w+)`\s*\((-?[0-9.]+)\)", text)
+            if e and enums.get(e.group(1)) != int(float(e.group(2))):
+                problems.append("user guide: %s's default %s is %s in the header"
+                                % (m.group(1), text, enums.get(e.group(1), "not a constant")))
+            try:
+                value = number(e.group(2)) if e else number(text)
+            except ValueError:
+                problems.append("user guide: %s's default %r is not all/on/off/a number/`NAME` (n)"
+                                % (m.group(1), text))
+                continue
+        if m.group(1) in props:
+            problems.append("user guide: %s is listed twice" % m.group(1))
+        props[m.group(1)] = value
+        if len(cells) > 2:
+            groups[m.group(1)] = cells[2]
+    if not props:
+        problems.append("user guide: no property table under '## Properties'")
+    return props, groups
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
+    problems = []
+    header, comment, enums = header_properties(os.path.join(root, "Filters", "vtkMeshProjectionFilter.h"))
+    xml, xml_groups = xml_properties(os.path.join(root, "Plugin", "MeshProjection.xml"), problems)
+    guide, guide_groups = guide_properties(os.path.join(root, "docs", "user-guide.md"), problems, enums)
+    for name in sorted(set(xml_groups) | set(guide_groups)):
+        if xml_groups.get(name) != guide_groups.get(name):
+            problems.append("%s: panel group %r in the XML, %r in the user guide"
+                            % (name, xml_groups.get(name), guide_groups.get(name)))
+    if "docs/user-guide.md" not in comment:
+        problems.append("header: the class comment does not point at docs/user-guide.md")
+    sources = {"header": header, "XML": xml, "user guide": guide}
+    names = set(header) | set(xml) | set(guide)
+    for name in sorted(names):
+        seen = {where: props[name] for where, props in sources.items() if name in props}
+        missing = [where for where in sources if where not in seen]
+        if missing:
+            problems.append("%s: missing from %s (present in %s)"
+                            % (name, ", ".join(missing), ", ".join(seen)))
+            continue
+        if len(set(map(str, seen.values()))) != 1:
+            problems.append("%s: defaults differ: %s" % (name, seen))
+    print("%d properties: %s" % (len(names), ", ".join(sorted(names))))
+    if problems:
+        print("FAILED:\n  " + "\n  ".join(problems))
+        return 1
+    print("every property has one name and one default in the header, the XML and the user guide")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
