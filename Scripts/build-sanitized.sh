@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The second build of Scripts/test.sh: the kernel, the VTK module, their C++
+# The second build of Scripts/test-sanitizers.sh: the kernel, the VTK module, their C++
 # tests and the whole-filter fuzzer compiled by clang with AddressSanitizer,
 # UndefinedBehaviorSanitizer and libFuzzer's coverage, into
 # ${SANITIZE_DIR:-build-sanitized}. No Python wrapping, no plugin.
