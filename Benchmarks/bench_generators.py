@@ -23,10 +23,9 @@ threads) and, in the same run, libsupermesh's intersections on the same
 meshes (--peer; found with the `libsupermesh` Python package of a `python3`
 on PATH when not given), each timed --runs times (default 5) with the best
 kept, the filter's (on either number of threads) and the peer's alike,
-their runs alternating (on a shared virtual machine single runs vary by 30%
-and more, and busy spells last seconds: the best of three two-thread runs
-of the 2D 10^6 pair as numbered was 0.65-0.79 s from one run of this
-script to the next),
+their runs alternating (on a shared machine single runs vary widely and
+busy spells outlast a run: the best of several alternating runs is what
+repeats from one run of this script to the next),
 and prints one Markdown table: the whole filter's seconds, its speed-up, the
 peer's seconds and the ratio, the filter's peak memory beyond its inputs,
 and per pair the worst order over the best.

@@ -4,7 +4,7 @@
 
 H is the target's mesh size (default 0.006: about 824,000 triangles, Gmsh
 Frontal-Delaunay); the source is 1.3 H (Delaunay). Needs python3-gmsh;
-meshing takes Gmsh about two minutes at the default size. Prints the best
+at the default size Gmsh's meshing outlasts the projection. Prints the best
 of two runs on 1 and on 2 threads, with the stages, as in the README.
 """
 import sys

@@ -4,10 +4,9 @@ tetrahedra of the unit ball.
     PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 Benchmarks/bench_traces.py [H]
 
 H is the ball's mesh size (default 0.04: about 295,000 tetrahedra); the
-sphere's is H / 4 (about 300,000 triangles). Needs python3-gmsh (meshing
-takes Gmsh about 20 s at the default size). Prints the best of two runs on
-1 and on 2 threads, with the stages, as in the README, and beside them
-VTK's probe on the same pair (vtkResampleWithDataSet with a
+sphere's is H / 4 (about 300,000 triangles). Needs python3-gmsh. Prints
+the best of two runs on 1 and on 2 threads, with the stages, as in the
+README, and beside them VTK's probe on the same pair (vtkResampleWithDataSet with a
 vtkStaticCellLocator, as ParaView's Resample With Dataset; not conservative).
 """
 import sys

@@ -485,8 +485,8 @@ TEST(Tetrahedra, EverySecondCutIsInTheTable)
 }
 
 // Distances that overflow make crossings of NaN coordinates: the tables
-// refuse a NaN distance and Clip decides, as before the tables (found by a
-// review: a table's graph differed from Clip's there). The unit
+// refuse a NaN distance and Clip decides (a table's graph would differ from
+// Clip's there). The unit
 // tetrahedron with an infinite side, and a pair of cells of size 1e153.
 TEST(Tetrahedra, NonFiniteDistancesGoToTheGeneralClip)
 {
@@ -530,9 +530,9 @@ TEST(Tetrahedra, NonFiniteDistancesGoToTheGeneralClip)
     { -2.3276872353371758e147, 5.2557225130186107e147, -327.62743472556309 },
     { -3.1255538271833361e147, 5.426499770920166e147, 0.40042535664874812 },
     { 5.4702413361866813e147, 9.7967594056295923e147, -229.08259151887157 } };
-  // A pair with coordinates of 1e308 (found by a review's harness): its
-  // NaN distances once made Cut's face walk read before its array (a crash
-  // at -O3); the walk now stops there and the splitting clipper decides.
+  // A pair with coordinates of 1e308: its NaN distances must stop Cut's
+  // face walk before it reads outside its array (a crash at -O3); the
+  // splitting clipper decides.
   const double u[4][3] = { { 0.60115844048958444, -0.089715186159807336, 0.41011851223159956 },
     { -0.48584992727037024, 0.5195063096477408, 0.52825141128000008 },
     { -1e308, 0.89766054637425619, 0.094802381003500802 },

@@ -362,8 +362,8 @@ TEST(TriangleIntersector, NearlyCoincidentCrossings)
 // The signs of the orientations are exact, but the filter's rounded
 // determinants are far off in size here; the crossings are placed with
 // exactly recomputed ones (Crossing), and every piece has the area of the
-// exact clipping to rounding (with the rounded ones, 7 of these 80,000
-// pieces were 2% to 8% off).
+// exact clipping to rounding (with the rounded ones, a few of these pieces
+// would be off by percents).
 TEST(TriangleIntersector, NearlyCollinearEdgesCrossAtTheirExactPlace)
 {
 #if !defined(__SIZEOF_FLOAT128__)
