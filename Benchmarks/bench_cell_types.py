@@ -85,7 +85,7 @@ def presplit(grid):
     return f.GetOutput()
 
 
-def time_filter(target, source):
+def best_of_three(target, source):
     """Best of 3 runs on one thread (the table is for one thread): total, input stage, search, pieces."""
     total, input_stage, _, search, _, pieces = best_run(target, source, 1, 3)
     return total, input_stage, search, pieces
@@ -114,9 +114,9 @@ def main():
             cases.append(("hexahedra + wedges", mixed(n)))
         split = presplit(ordered)
         cases.append(("pre-split (%s)" % ("Triangulate" if dim == 2 else "Tetrahedralize"), split))
-        reference = time_filter(split, source)[0]
+        reference = best_of_three(split, source)[0]
         for name, target in cases:
-            total, inputs, search, pairs = time_filter(target, source)
+            total, inputs, search, pairs = best_of_three(target, source)
             simplices = presplit(target).GetNumberOfCells() if name.startswith("hexahedra +") else None
             print("| %dD %s | %d | %s | %.3f | %.3f | %.3f | %.2f |" % (
                 dim, name, target.GetNumberOfCells(),
