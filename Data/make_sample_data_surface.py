@@ -1,6 +1,8 @@
 """The surface sample of Data/: two Gmsh facetizations of the unit sphere.
 
-    /usr/bin/python3 Data/make_sample_data_surface.py   (needs python3-gmsh)
+    PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 Data/make_sample_data_surface.py
+
+(needs python3-gmsh, and the build's `mpsupport` package on PYTHONPATH)
 
   sphere_source.vtu  ~6,200 triangles (Frontal-Delaunay, size 0.07),
                      point data Smooth, Linear; cell data Pressure
@@ -22,9 +24,8 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "Testing", "Python"))
 
-import mpgmsh  # noqa: E402
+from mpsupport import gmshmeshes  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkCommonDataModel import VTK_QUAD, VTK_TRIANGLE, vtkUnstructuredGrid  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter  # noqa: E402
@@ -56,7 +57,7 @@ def write(grid, name):
 
 
 def main():
-    source = to_grid(mpgmsh.surface("sphere", 0.07, 6))
+    source = to_grid(gmshmeshes.surface("sphere", 0.07, 6))
     x = vtk_to_numpy(source.GetPoints().GetData())
     add(source.GetPointData(), "Smooth", 2 + np.sin(3 * x[:, 0]) * np.cos(2 * x[:, 1]) + 0.5 * x[:, 2])
     add(source.GetPointData(), "Linear", 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2])
@@ -65,7 +66,7 @@ def main():
     add(source.GetCellData(), "Pressure", 1 + z * z)
     source.GetPointData().SetActiveScalars("Smooth")
     write(source, "sphere_source.vtu")
-    target = to_grid(mpgmsh.surface("sphere", 0.12, 6, quads=True))
+    target = to_grid(gmshmeshes.surface("sphere", 0.12, 6, quads=True))
     write(target, "sphere_target.vtu")
 
 

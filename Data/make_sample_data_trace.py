@@ -1,6 +1,8 @@
 """The trace sample of Data/: a wavy sheet inside the 3D sample's solid.
 
-    /usr/bin/python3 Data/make_sample_data_trace.py   (needs python3-gmsh)
+    PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 Data/make_sample_data_trace.py
+
+(needs python3-gmsh, and the build's `mpsupport` package on PYTHONPATH)
 
   lshape3d_sheet.vtu  ~3,400 triangles (Gmsh Frontal-Delaunay, size 0.07) of
                       the L-shaped section with its square hole (the solid of
@@ -20,10 +22,9 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "Testing", "Python"))
 sys.path.insert(0, HERE)
 
-import mpgmsh  # noqa: E402
+from mpsupport import gmshmeshes  # noqa: E402
 from make_sample_data import write  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
@@ -42,7 +43,7 @@ def section():
 
 
 def main():
-    x, cells = mpgmsh._generate("sheet", 2, section, 0.07, [("Mesh.Algorithm", 6)])
+    x, cells = gmshmeshes._generate("sheet", 2, section, 0.07, [("Mesh.Algorithm", 6)])
     used = np.unique(np.asarray(cells).ravel())
     assert len(used) == len(x), "every Gmsh node is a corner"
     x = np.array(x)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The second build of Scripts/test.sh: the kernel, the VTK module, their C++
-# tests and the whole-filter fuzzer compiled by clang with AddressSanitizer,
-# UndefinedBehaviorSanitizer and libFuzzer's coverage, into
+# The second build of Scripts/test-sanitizers.sh: the kernel, the VTK
+# module, their C++ tests and the whole-filter fuzzer compiled by clang with
+# AddressSanitizer, UndefinedBehaviorSanitizer and libFuzzer's coverage, into
 # ${SANITIZE_DIR:-build-sanitized}. No Python wrapping, no plugin.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -27,7 +27,7 @@ PACKAGES=(
   openmpi-bin                # mpiexec: the MPI tests (vtkPMeshProjectionFilter) and bench_mpi.py
 
   # --- needed by paraview-dev's CMake config, not pulled in by it ---
-  python3-matplotlib         # Scripts/plot_benchmark.py (the README's performance plot)
+  python3-matplotlib         # Benchmarks/plot_benchmark.py (docs/performance.md's plot)
   python3-scipy              # meshprojection.operator_matrices (scipy.sparse) and its tests
   python3-gmsh               # the surface tests' meshes (Gmsh's Python API)
   python3-dev                # FindPython3 Development.Module (VTK::Python); also builds the wrapping
@@ -65,7 +65,7 @@ PACKAGES=(
 
   # --- tests ---
   libgtest-dev               # GoogleTest for the kernel unit tests
-  clang                      # the libFuzzer harness (Testing/Fuzz) is built with clang++
+  clang                      # the libFuzzer harness (Testing/Fuzzing/Intersection) is built with clang++
   libclang-rt-14-dev         #   libFuzzer, AddressSanitizer and UBSan runtimes
   xvfb                       # X server for rendering tests (Debian's VTK/ParaView is GLX-only:
   xauth                      #   no EGL/OSMesa, pvbatch/pvpython need an X display); xvfb-run needs xauth

@@ -1,16 +1,13 @@
 #!/usr/bin/env bash
 # Install the dependencies, build, and run every test (kernel, VTK C++ with
-# images, VTK Python, pvpython, ParaView GUI, installed C++ example), and the
-# filter's tests again with every mesh renumbered inside the filter; then
-# the kernel's threaded tests under ThreadSanitizer (Scripts/tsan-kernel.sh);
-# then build the C++ code again with clang's AddressSanitizer and UBSan
-# (Scripts/build-sanitized.sh) and run the kernel and VTK C++ tests and the
-# whole-filter fuzzer there, and the VTK C++ tests and the fuzzer's corpus
-# once more with every mesh renumbered.
+# images, VTK Python, pvpython, MPI, ParaView GUI, the fuzzers' corpora and
+# a fixed exploration, installed C++ example). The second tier, the same
+# code renumbered, under ThreadSanitizer and under AddressSanitizer/UBSan,
+# is Scripts/test-sanitizers.sh (CI, .ci/run, runs both).
 # Rendering tests run under one virtual X server, started with -noreset: by
 # default an X server resets when its last client disconnects, and a client
 # connecting during that reset is refused ("bad X server connection"), which
-# made a test fail at random when two rendering tests ran in parallel.
+# would fail a test at random when two rendering tests run in parallel.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
@@ -18,21 +15,3 @@ bash "$root/Scripts/install-deps.sh"
 bash "$root/Scripts/build.sh"
 cd "$build"
 timeout 3000 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --parallel 2
-# Once more with every mesh renumbered along space inside the filter (the
-# outputs must not change), without the kernel fuzzers and the install test.
-MESHPROJECTION_RENUMBERING=always timeout 1800 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
-  ctest --output-on-failure --parallel 2 -LE Fuzz -E "^Example\.|^Kernel\."
-
-# The kernel's concurrent code (renumbering's point sets, shared rows' sets, the
-# search, assembly and solve in ranges) under ThreadSanitizer.
-timeout 900 bash "$root/Scripts/tsan-kernel.sh"
-
-bash "$root/Scripts/build-sanitized.sh"
-cd "${SANITIZE_DIR:-$root/build-sanitized}"
-ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  timeout 2400 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure --parallel 2
-# The renumbering's copies and maps under the sanitizers too (the corpus's
-# meshes are below the size Automatic renumbers).
-MESHPROJECTION_RENUMBERING=always ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  timeout 1200 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
-  ctest --output-on-failure --parallel 2 -R "FiltersCxx|Sanitize\.FilterCorpus"

@@ -8,12 +8,17 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${TSAN_DIR:-$root/build-tsan}"
 mkdir -p "$out"
-flags=(-std=c++17 -O1 -g -fsanitize=thread -I"$root/Filters/Kernel" -I"$root/Utilities"
+flags=(-std=c++17 -O1 -g -fsanitize=thread -I"$root/Filters/Kernel" -I"$root/Testing/Support/Cxx"
   -I/usr/include/eigen3)
-sources=("$root"/Filters/Kernel/*/*.cxx
-  "$root"/Testing/Kernel/TestSpatialOrder.cxx "$root"/Testing/Kernel/TestCellNeighbors.cxx
-  "$root"/Testing/Kernel/TestSpaces.cxx "$root"/Testing/Kernel/TestMortarProjector.cxx
-  "$root"/Testing/Kernel/TestWorkerPool.cxx)
+# Every room of the kernel (its Testing folder holds the tests: only the
+# threaded ones below).
+sources=()
+for s in "$root"/Filters/Kernel/*/*.cxx; do
+  [[ $s == "$root"/Filters/Kernel/Testing/* ]] || sources+=("$s")
+done
+sources+=("$root"/Filters/Kernel/Testing/TestSpatialOrder.cxx "$root"/Filters/Kernel/Testing/TestCellNeighbors.cxx
+  "$root"/Filters/Kernel/Testing/TestSpaces.cxx "$root"/Filters/Kernel/Testing/TestMortarProjector.cxx
+  "$root"/Filters/Kernel/Testing/TestWorkerPool.cxx)
 objects=()
 for s in "${sources[@]}"; do
   objects+=("$out/$(basename "${s%.cxx}").o")

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Corrupt and hostile data at the VTK boundary (run under AddressSanitizer
-// too, see Testing/Sanitize):
+// too, see Testing/Fuzzing/Filter):
 // * ids, offsets, cell sizes, cell types, polyhedron face streams, array
 //   lengths that point outside their arrays, on either port, in every
 //   container the filter reads: a clear error naming the cell and the value,

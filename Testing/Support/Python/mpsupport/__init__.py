@@ -1,0 +1,12 @@
+"""MeshProjection's test support, shared by the tests and the benchmarks.
+
+    testing     checks and their summary, sample data, exact P1 integrals,
+                image comparison, time series, blocks and multiblock files
+    meshes      jittered grids of quads, triangles, hexahedra, tetrahedra
+    gmshmeshes  surfaces, curves and volumes meshed by Gmsh (python3-gmsh)
+    mpi         the MPI controller and collectives for pvbatch --symmetric
+
+Not installed: the build copies it next to the `meshprojection` package
+(<build>/lib/python3/dist-packages), which ctest puts on PYTHONPATH; run a
+benchmark script with that directory on PYTHONPATH (Benchmarks/README.md).
+"""

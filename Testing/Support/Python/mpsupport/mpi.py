@@ -1,0 +1,53 @@
+"""What the MPI test and the MPI benchmark share (both run under
+`mpiexec ... pvbatch --mpi --symmetric`): the controller and collectives
+that work from Python. Their meshes are those of mpsupport.meshes."""
+import os
+import sys
+import traceback
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
+
+
+def _abort(kind, value, tb):
+    # One process failing must end all (the others would wait in a collective).
+    traceback.print_exception(kind, value, tb)
+    sys.stderr.flush()
+    os._exit(1)
+
+
+def start():
+    """The global controller (pvbatch --mpi sets it; else an MPI controller
+    made here), with an exception on any process ending all of them.
+    Returns (controller, made here: then the caller finalizes it)."""
+    sys.excepthook = _abort
+    controller = vtkMultiProcessController.GetGlobalController()
+    if controller is not None:
+        return controller, False
+    from vtkmodules.vtkParallelMPI import vtkMPIController
+    controller = vtkMPIController()
+    controller.Initialize()
+    vtkMultiProcessController.SetGlobalController(controller)
+    return controller, True
+
+
+def allreduce(controller, value, op=vtkCommunicator.MAX_OP):
+    out = numpy_to_vtk(np.zeros(1), deep=True)
+    controller.AllReduce(numpy_to_vtk(np.array([float(value)]), deep=True), out, op)
+    return float(vtk_to_numpy(out)[0])
+
+
+def allgather(controller, values):
+    """Each process's 1D float array, to every process (a list by rank).
+    (AllGatherV crashes from Python: a padded AllGather.)"""
+    values = np.asarray(values, dtype=np.float64)
+    size = controller.GetNumberOfProcesses()
+    m = int(allreduce(controller, len(values)))
+    padded = np.full(m + 1, np.nan)
+    padded[0] = len(values)
+    padded[1:len(values) + 1] = values
+    recv = numpy_to_vtk(np.zeros(size * (m + 1)), deep=True)
+    controller.AllGather(numpy_to_vtk(padded, deep=True), recv)
+    everything = vtk_to_numpy(recv).reshape(size, m + 1)
+    return [row[1:1 + int(row[0])].copy() for row in everything]
