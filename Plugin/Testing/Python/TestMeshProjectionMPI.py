@@ -37,13 +37,7 @@ size = controller.GetNumberOfProcesses()
 
 import meshprojection  # noqa: E402  (after MPI is up)
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED on process %d: %s" % (rank, what), file=sys.stderr)
+check = mpi.Checks(controller, made_here)
 
 
 # ---- meshes ---------------------------------------------------------------
@@ -571,11 +565,4 @@ check(f.GetGlobalNumberOfIntersections() >= f.GetNumberOfIntersections(), "globa
 check(abs(f.GetGlobalCoveredMeasure() - serial.GetCoveredMeasure()) < 1e-12,
       "global covered measure %.15g vs serial %.15g" % (f.GetGlobalCoveredMeasure(), serial.GetCoveredMeasure()))
 
-bad = int(sum(allgather(np.array([float(len(failures))]))[r][0] for r in range(size)))
-if rank == 0:
-    print("%d processes: %s" % (size, "all checks passed" if bad == 0 else "%d check(s) failed" % bad))
-if made_here:
-    controller.Finalize()
-    sys.exit(1 if bad else 0)
-elif bad:
-    sys.exit(1)  # (pvbatch finalizes its own; a SystemExit on success made it exit with 1)
+check.finish("%d processes" % size)

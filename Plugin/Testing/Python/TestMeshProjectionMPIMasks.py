@@ -30,13 +30,7 @@ size = controller.GetNumberOfProcesses()
 
 import meshprojection  # noqa: E402  (after MPI is up)
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED on process %d: %s" % (rank, what), file=sys.stderr)
+check = mpi.Checks(controller, made_here)
 
 
 def add(data, name, values):
@@ -153,11 +147,4 @@ check(parallel.GetGlobalSentBytes() == reference.GetGlobalSentBytes(),
       % (parallel.GetGlobalSentBytes(), reference.GetGlobalSentBytes()))
 check(parallel.GetGlobalReceivedSourceCells() > 0, "Source cells gathered")
 
-bad = int(sum(mpi.allgather(controller, np.array([float(len(failures))]))[r][0] for r in range(size)))
-if rank == 0:
-    print("%d processes, masks in Source: %s" % (size, "all checks passed" if bad == 0 else "%d check(s) failed" % bad))
-if made_here:
-    controller.Finalize()
-    sys.exit(1 if bad else 0)
-elif bad:
-    sys.exit(1)  # (pvbatch finalizes its own; a SystemExit on success made it exit with 1)
+check.finish("%d processes, masks in Source" % size)

@@ -51,3 +51,33 @@ def allgather(controller, values):
     controller.AllGather(numpy_to_vtk(padded, deep=True), recv)
     everything = vtk_to_numpy(recv).reshape(size, m + 1)
     return [row[1:1 + int(row[0])].copy() for row in everything]
+
+
+class Checks:
+    """A symmetric MPI test's checks: each process records its failures (and
+    prints them, with its rank); finish() counts them over the processes,
+    prints the verdict on process 0 (`label`: "... all checks passed") and
+    exits as the test runner expects."""
+
+    def __init__(self, controller, made_here):
+        self.controller = controller
+        self.made_here = made_here
+        self.rank = controller.GetLocalProcessId()
+        self.failures = []
+
+    def __call__(self, condition, what):
+        if not condition:
+            self.failures.append(what)
+            print("FAILED on process %d: %s" % (self.rank, what), file=sys.stderr)
+
+    def finish(self, label):
+        size = self.controller.GetNumberOfProcesses()
+        counts = allgather(self.controller, np.array([float(len(self.failures))]))
+        bad = int(sum(counts[r][0] for r in range(size)))
+        if self.rank == 0:
+            print("%s: %s" % (label, "all checks passed" if bad == 0 else "%d check(s) failed" % bad))
+        if self.made_here:
+            self.controller.Finalize()
+            sys.exit(1 if bad else 0)
+        elif bad:
+            sys.exit(1)  # (pvbatch finalizes its own; a SystemExit on success made it exit with 1)
