@@ -385,6 +385,7 @@ int vtkMeshProjectionFilter::Execute(
   vtkPolyData* polygons = vtkPolyData::GetData(outputVector, 1);
   vtkUnstructuredGrid* polyhedra = vtkUnstructuredGrid::GetData(outputVector, 2);
   this->OperatorReused = false;
+  this->Publish(stats, 0.0); // no figures of an earlier execution while this one runs
   // The output is Input as it came, whatever happens next.
   mpvtk::PassInput(input, output, polygons, polyhedra);
   mpvtk::Verdict outcome;
@@ -416,7 +417,8 @@ int vtkMeshProjectionFilter::Execute(
       }
       break;
   }
-  this->Publish(stats, clock.Total());
+  // (The execution's time only when it went through.)
+  this->Publish(stats, input && outcome.Ok() ? clock.Total() : 0.0);
   return 1;
 }
 

@@ -661,7 +661,7 @@ vtkSmartPointer<vtkDataArray> MergedArray(const std::vector<vtkSmartPointer<vtkU
   vtkIdType at = 0;
   for (size_t i = 0; i < pieces.size(); ++i)
   {
-    vtkDataArray* from = pieces[i]->GetAttributes(a == 0 ? vtkDataObject::POINT : vtkDataObject::CELL)
+    vtkDataArray* from = mpvtk::AttributesOf(pieces[i], a)
                            ->GetArray(name.c_str());
     if (!from)
     {

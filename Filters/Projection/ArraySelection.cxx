@@ -15,6 +15,11 @@
 
 namespace mpvtk
 {
+vtkDataSetAttributes* AttributesOf(vtkDataSet* data, int association)
+{
+  return data->GetAttributes(association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
+}
+
 bool IsMask(const std::string& name)
 {
   return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0;
@@ -70,8 +75,7 @@ void SourceArrayLists::ListArrays(vtkDataObject* data)
   {
     for (int association = 0; association < 2; ++association)
     {
-      vtkDataSetAttributes* attributes =
-        source->GetAttributes(association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
+      vtkDataSetAttributes* attributes = AttributesOf(source, association);
       vtkDataArraySelection* selection = this->Selections[association];
       for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
       {

@@ -25,10 +25,14 @@ class vtkAbstractArray;
 class vtkAlgorithm;
 class vtkDataArraySelection;
 class vtkDataObject;
+class vtkDataSet;
 class vtkDataSetAttributes;
 
 namespace mpvtk
 {
+/// The point (association 0) or cell (1) data of `data`.
+vtkDataSetAttributes* AttributesOf(vtkDataSet* data, int association);
+
 /// The filter's own masks (of an earlier projection): not fields.
 bool IsMask(const std::string& name);
 

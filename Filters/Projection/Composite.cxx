@@ -13,6 +13,7 @@
 
 #include "Adapter/DataSetChecks.h"
 #include "Parallel/Parts.h"
+#include "Projection/ArraySelection.h"
 #include "Projection/Messages.h"
 
 #include <algorithm>
@@ -53,13 +54,17 @@ std::vector<vtkDataSet*> DataSetsOf(vtkDataObject* data)
   return all;
 }
 
-std::string BlockName(vtkCompositeDataIterator* at)
+std::string BlockName(unsigned int flat, const char* name)
 {
-  const unsigned int flat = at->GetCurrentFlatIndex();
-  const char* name =
-    at->HasCurrentMetaData() ? at->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME()) : nullptr;
   return name ? std::string("block '") + name + "' (flat index " + std::to_string(flat) + ")"
               : "block of flat index " + std::to_string(flat);
+}
+
+std::string BlockName(vtkCompositeDataIterator* at)
+{
+  const char* name =
+    at->HasCurrentMetaData() ? at->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME()) : nullptr;
+  return BlockName(at->GetCurrentFlatIndex(), name);
 }
 
 /// Source as one dataset: itself, or all the dataset leaves of a composite
@@ -96,7 +101,7 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
       return;
     }
     // vtkAppendFilter trusts the blocks' ids and arrays: checked first.
-    const std::string block = "Source block of flat index " + std::to_string(at->GetCurrentFlatIndex());
+    const std::string block = "Source " + BlockName(at->GetCurrentFlatIndex(), nullptr);
     error = CheckDataSet(leaf, block);
     if (!error.empty())
     {
@@ -107,7 +112,7 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
     for (int association = 0; association < 2; ++association)
     {
       const vtkIdType needed = association == 0 ? leaf->GetNumberOfPoints() : leaf->GetNumberOfCells();
-      vtkDataSetAttributes* attributes = whole->GetAttributes((association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL));
+      vtkDataSetAttributes* attributes = AttributesOf(whole, association);
       for (int a = attributes->GetNumberOfArrays() - 1; a >= 0; --a)
       {
         vtkAbstractArray* array = attributes->GetAbstractArray(a);
@@ -124,7 +129,7 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
         {
           whole.TakeReference(leaf->NewInstance());
           whole->ShallowCopy(leaf);
-          attributes = whole->GetAttributes((association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL));
+          attributes = AttributesOf(whole, association);
         }
         attributes->RemoveArray(a);
       }
@@ -153,11 +158,11 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
     vtkDataSet* leaf = vtkDataSet::SafeDownCast(append->GetInputDataObject(0, i));
     for (int association = 0; association < 2; ++association)
     {
-      vtkDataSetAttributes* attributes = leaf->GetAttributes((association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL));
+      vtkDataSetAttributes* attributes = AttributesOf(leaf, association);
       for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
       {
         const char* name = attributes->GetArrayName(a);
-        if (name && !merged->GetAttributes((association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL))->GetAbstractArray(name) &&
+        if (name && !AttributesOf(merged, association)->GetAbstractArray(name) &&
           std::string(name) != vtkDataSetAttributes::GhostArrayName())
         {
           missing[association].insert(name);
@@ -211,7 +216,7 @@ void CompleteAcrossProcesses(InputLeaves& leaves, Parts& parts)
     vtkNew<vtkUnstructuredGrid> none, noneOut;
     leaves.StandIns.emplace_back(none.GetPointer());
     leaves.StandIns.emplace_back(noneOut.GetPointer());
-    complete.push_back({ flat, none, noneOut, "block of flat index " + std::to_string(flat), false });
+    complete.push_back({ flat, none, noneOut, BlockName(flat, nullptr), false });
   }
   leaves.Leaves.swap(complete);
   std::vector<char> cells(leaves.Leaves.size(), 0);

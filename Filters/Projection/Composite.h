@@ -71,6 +71,7 @@ struct InputLeaves
 InputLeaves LeavesOf(vtkDataObject* input, vtkDataObject* output, Parts& parts, Messages& say);
 
 /// How a leaf is named in messages: "block 'name' (flat index k)" or "block of flat index k".
+std::string BlockName(unsigned int flat, const char* name);
 std::string BlockName(vtkCompositeDataIterator* at);
 } // namespace mpvtk
 

@@ -141,12 +141,9 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   }
   LeafContext ctx{ run.Options, run.Processes, run.Say, job.Bar, run.Clock, result.Stats,
     run.Source, targetMesh, target, job.Role, LeafShape(), job.LastReaderOfSource };
-  const ShapeInputs shapeInputs{ target, run.Source.Data, job.Role, run.Options, run.Processes,
-    run.Say };
   OperatorPlan plan;
   OperatorSet ops;
-  result.Outcome =
-    DecideShape(shapeInputs, targetMesh, run.Source.Mesh, agreement, ctx.Shape);
+  result.Outcome = DecideShape(ctx, agreement);
   if (result.Outcome.Ok())
   {
     WarnShape(ctx);

@@ -25,12 +25,4 @@ bool Messages::WarnOnce(const std::string& key, const std::string& text)
   this->Warn(text);
   return true;
 }
-
-void Messages::WarnOncePerRun(const std::string& key, const std::string& text)
-{
-  if (this->WarnedThisRun.insert(key).second)
-  {
-    this->Warn(text);
-  }
-}
 } // namespace mpvtk

@@ -7,8 +7,9 @@
  *
  * Many warnings concern the data rather than one execution (an integer
  * array, a NaN in Source, slivers): said at every time step they would bury
- * the user. WarnOnce says them once per filter, keyed; WarnOncePerRun once
- * per execution (for the first leaf of a composite Input, say).
+ * the user. WarnOnce says them once per filter, keyed; FirstInRun tells
+ * the first time a key comes in one execution (the first leaf of a
+ * composite Input, say).
  */
 #ifndef MeshProjection_Projection_Messages_h
 #define MeshProjection_Projection_Messages_h
@@ -33,8 +34,6 @@ public:
   void Error(const std::string& text) const;
   /// Says `text` unless `key` was said by this filter before; returns whether it did.
   bool WarnOnce(const std::string& key, const std::string& text);
-  /// Says `text` unless `key` was said in this execution.
-  void WarnOncePerRun(const std::string& key, const std::string& text);
   /// Whether `key` is new to this execution (and marks it said).
   bool FirstInRun(const std::string& key) { return this->WarnedThisRun.insert(key).second; }
   /// Whether `key` is new to the filter (and marks it said): for texts built only then.

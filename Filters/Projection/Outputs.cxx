@@ -15,6 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "Projection/ArraySelection.h"
 #include "Projection/Composite.h"
 #include "Projection/Conservation.h"
 #include "Projection/Messages.h"
@@ -132,9 +133,9 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   // (per unit of its volume or area: a surface holds no part of a total).
   const bool totals = t == vtkMeshProjectionFilter::CELLS_TO_CELLS && ctx.Options.Extensive && !trace;
   vtkDataSetAttributes* sourceData =
-    ctx.Source.Data->GetAttributes(fromCells ? vtkDataObject::CELL : vtkDataObject::POINT);
+    AttributesOf(ctx.Source.Data, SourceAssociation(t));
   vtkDataSetAttributes* outData =
-    output->GetAttributes(toPoints ? vtkDataObject::POINT : vtkDataObject::CELL);
+    AttributesOf(output, toPoints ? PointArrays : CellArrays);
   std::vector<std::string>& names = toPoints ? written.PointNames : written.CellNames;
   const vtkIdType n =
     toPoints ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();

@@ -5,8 +5,10 @@
 
 #include "Parallel/Parts.h"
 #include "Projection/Agreement.h"
+#include "Projection/Leaf.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
+#include "Projection/SourceSide.h"
 #include "Adapter/SimplexMesh.h"
 
 #include "Mesh/PlaneFrame.h"
@@ -284,19 +286,21 @@ void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& mes
       ") are left out of the projection (their cell values are invalid).");
 }
 
-Verdict DecideShape(const ShapeInputs& in, SimplexMesh& target, SimplexMesh& source,
-  LeafAgreement& agreement, LeafShape& shape)
+Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
 {
+  SimplexMesh& target = ctx.Target;
+  SimplexMesh& source = ctx.Source.Mesh;
+  LeafShape& shape = ctx.Shape;
   const vtkIdType targetCells = target.View().NumberOfCells;
   const vtkIdType sourceCells = source.View().NumberOfCells;
   shape = LeafShape();
   if (targetCells == 0 || sourceCells == 0)
   {
-    DimensionOfEmpty(target, source, in.TargetData, in.SourceData, in.Role, in.Processes, in.Say);
+    DimensionOfEmpty(target, source, ctx.TargetData, ctx.Source.Data, ctx.Role, ctx.Processes, ctx.Say);
   }
   else if (target.Dimension() != source.Dimension())
   {
-    const std::string why = TraceOrError(target, source, in.Role);
+    const std::string why = TraceOrError(target, source, ctx.Role);
     if (!why.empty())
     {
       return agreement.End(Verdict::Fail(why));
@@ -314,14 +318,14 @@ Verdict DecideShape(const ShapeInputs& in, SimplexMesh& target, SimplexMesh& sou
   }
   // The rest of what one process sees in the whole meshes (every process
   // here passed the round above; on one process nothing changes).
-  std::string why = AgreeOnShape(in.Processes, target, source, in.Role, shape.Trace, shape.Planar);
+  std::string why = AgreeOnShape(ctx.Processes, target, source, ctx.Role, shape.Trace, shape.Planar);
   if (why.empty() && shape.Trace)
   {
-    why = UseTraceFrames(target, source, in.Role);
+    why = UseTraceFrames(target, source, ctx.Role);
   }
   else if (why.empty() && (target.Dimension() == 1 || (target.Dimension() == 2 && !shape.Planar)))
   {
-    why = UseSurfaces(target, source, in.Options);
+    why = UseSurfaces(target, source, ctx.Options);
   }
   else if (why.empty() && target.Dimension() == 2)
   {

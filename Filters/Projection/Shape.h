@@ -27,6 +27,7 @@ class vtkDataSet;
 namespace mpvtk
 {
 class LeafAgreement;
+struct LeafContext;
 class Messages;
 class SimplexMesh;
 struct Settings;
@@ -38,23 +39,12 @@ struct LeafShape
   std::string PlaneWarning; ///< Source in a parallel plane: said for the first leaf
 };
 
-/// What DecideShape reads besides the meshes.
-struct ShapeInputs
-{
-  vtkDataSet* TargetData;
-  vtkDataSet* SourceData;
-  const std::string& Role; ///< "Input" or "Input block ..."
-  const Settings& Options;
-  Parts& Processes;
-  Messages& Say;
-};
-
 /**
- * Decides the leaf's shape and puts both meshes in their frames (takes part
- * in the Shape round of `agreement`); a failure is the agreed verdict.
+ * Decides the leaf's shape (ctx.Shape) and puts both meshes in their frames
+ * (takes part in the Shape round of `agreement`); a failure is the agreed
+ * verdict.
  */
-Verdict DecideShape(const ShapeInputs& in, SimplexMesh& target, SimplexMesh& source,
-  LeafAgreement& agreement, LeafShape& shape);
+Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement);
 
 /// Warns once per filter when `mesh` left out cells of lower dimension.
 void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages);

@@ -25,16 +25,11 @@ namespace mpvtk
 {
 namespace
 {
-int AttributeType(int association)
-{
-  return association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL;
-}
-
 /// The enabled numeric fields of one association, long enough, in order.
 void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* selection,
   Messages& messages, GatheredFields& g)
 {
-  vtkDataSetAttributes* data = source->GetAttributes(AttributeType(association));
+  vtkDataSetAttributes* data = AttributesOf(source, association);
   const char* kind = association == 0 ? "point" : "cell";
   const vtkIdType needed = association == 0 ? source->GetNumberOfPoints() : source->GetNumberOfCells();
   for (int i = 0; i < data->GetNumberOfArrays(); ++i)
