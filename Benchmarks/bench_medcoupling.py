@@ -20,11 +20,10 @@ import argparse
 import time
 
 import numpy as np
-from mpbench import cube_mesh, square_mesh, to_grid
+from mpbench import cube_mesh, square_mesh, timed_run, to_grid
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 import medcoupling as mc
-import meshprojection
 
 
 def pair(dim, cells):
@@ -46,14 +45,7 @@ def field(points, cells):
 
 
 def filter_run(target, source, threads):
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetNumberOfThreads(threads)
-    f.SetCacheOperator(False)
-    start = time.perf_counter()
-    f.Update()
-    seconds = time.perf_counter() - start
+    seconds, f = timed_run(target, source, threads)
     return seconds, vtk_to_numpy(f.GetOutput().GetCellData().GetArray("g")).copy()
 
 

@@ -34,20 +34,26 @@ def to_grid(points, cells, cell_type, field=None):
     return grid
 
 
+def timed_run(target, source, threads):
+    """One fresh run of the filter on `threads` threads (CacheOperator off:
+    search, assembly and solve each run): (seconds, the filter)."""
+    import meshprojection
+    f = meshprojection.vtkMeshProjectionFilter()
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetNumberOfThreads(threads)
+    f.SetCacheOperator(False)
+    start = time.perf_counter()
+    f.Update()
+    return time.perf_counter() - start, f
+
+
 def best_run(target, source, threads, repeats):
     """The best of `repeats` fresh runs of the filter on `threads` threads:
     (seconds, input, neighbours, search, solve, pieces)."""
-    import meshprojection
     best = None
     for _ in range(repeats):
-        f = meshprojection.vtkMeshProjectionFilter()
-        f.SetInputData(target)
-        f.SetSourceData(source)
-        f.SetNumberOfThreads(threads)
-        f.SetCacheOperator(False)
-        start = time.perf_counter()
-        f.Update()
-        seconds = time.perf_counter() - start
+        seconds, f = timed_run(target, source, threads)
         if best is None or seconds < best[0]:
             best = (seconds, f.GetInputTime(), f.GetNeighborsTime(), f.GetSearchTime(), f.GetSolveTime(),
                     f.GetNumberOfIntersections())

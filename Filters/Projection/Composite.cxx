@@ -67,10 +67,6 @@ std::string BlockName(vtkCompositeDataIterator* at)
   return BlockName(at->GetCurrentFlatIndex(), name);
 }
 
-/// Source as one dataset: itself, or all the dataset leaves of a composite
-/// Source appended (points not merged: cells of different blocks meeting at
-/// an interface see each other through the locator, and a field continuous
-/// across it gives the merged mesh's result).
 vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& note, std::string& error)
 {
   if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))
