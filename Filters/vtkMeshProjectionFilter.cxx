@@ -30,6 +30,7 @@
 #include "Adapter/Threads.h"
 #include "Parallel/Parts.h"
 #include "Projection/ArraySelection.h"
+#include "Projection/CellReconstruction.h"
 #include "Projection/Composite.h"
 #include "Projection/LeafProjection.h"
 #include "Projection/MatrixExport.h"
@@ -319,6 +320,7 @@ mpvtk::Settings vtkMeshProjectionFilter::CurrentSettings() const
   s.PointDataTarget = this->PointDataTarget;
   s.CellDataTarget = this->CellDataTarget;
   s.Extensive = this->CellDataQuantity == EXTENSIVE;
+  s.CellDataReconstruction = this->CellDataReconstruction;
   s.Lumped = this->MassMatrix == LUMPED_MASS;
   s.PreserveBounds = this->PreserveBounds;
   s.MaximumIterations = this->MaximumIterations;
@@ -474,6 +476,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
     source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
+  mpvtk::ReconstructCellFields(settings, source.Mesh.View(), source.Fields[mpvtk::CellArrays]);
   if (!source.AnyTransfer(settings))
   {
     say.Warn("Source has no arrays to project (or none selected): only vtkValidPointMask and "
@@ -593,6 +596,14 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                   << " is kept: run the filter with CacheOperator on and that transfer in use.");
     return -1;
   }
+  if (matrix == MIXED_MASS && cache.FirstOperator(t)->GetSourceSpace() == mp::SpaceType::DP1)
+  {
+    vtkErrorMacro(<< "The mixed matrix of " << mpvtk::TransferName(t)
+                  << " reads the reconstructed cell data (values at the corners of the Source's "
+                     "simplices), not Source's cells: export it with CellDataReconstruction "
+                     "Constant.");
+    return -1;
+  }
   return mpvtk::ExportMatrix(
     *cache.FirstLeaf(t), t, matrix == MIXED_MASS, rowStart, columns, values);
 }
@@ -631,6 +642,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PointDataTarget: " << this->PointDataTarget << "\n";
   os << indent << "CellDataTarget: " << this->CellDataTarget << "\n";
   os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";
+  os << indent << "CellDataReconstruction: " << this->CellDataReconstruction << "\n";
   os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent") << "\n";
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";

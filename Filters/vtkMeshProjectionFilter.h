@@ -87,6 +87,13 @@ public:
     INTENSIVE = 0, ///< per unit area or volume: means are projected
     EXTENSIVE = 1  ///< totals per cell: totals are kept
   };
+  /// How cell arrays are seen on each Source cell (CellDataReconstruction).
+  enum Reconstructions
+  {
+    CONSTANT_RECONSTRUCTION = 0,  ///< the cell's value (first order)
+    LIMITED_RECONSTRUCTION = 1,   ///< linear, limited: second order, no new extrema
+    UNLIMITED_RECONSTRUCTION = 2  ///< linear: second order, exact for linear fields
+  };
   enum MassMatrices
   {
     CONSISTENT_MASS = 0, ///< the L2 projection
@@ -197,6 +204,21 @@ public:
    */
   vtkSetClampMacro(CellDataQuantity, int, INTENSIVE, EXTENSIVE);
   vtkGetMacro(CellDataQuantity, int);
+  ///@}
+
+  ///@{
+  /**
+   * How a Source cell array is seen on each Source cell before it is
+   * projected. CONSTANT_RECONSTRUCTION (default): the cell's value (first
+   * order). LIMITED_RECONSTRUCTION: a linear function with the cell's mean,
+   * its gradient fitted to the neighbouring cells' values and limited so
+   * that no value leaves the range of the cell and its neighbours (second
+   * order, no new extrema). UNLIMITED_RECONSTRUCTION: the same without the
+   * limiter (second order, exact for linear fields). Integrals are kept in
+   * every mode; extensive arrays are reconstructed as densities.
+   */
+  vtkSetClampMacro(CellDataReconstruction, int, CONSTANT_RECONSTRUCTION, UNLIMITED_RECONSTRUCTION);
+  vtkGetMacro(CellDataReconstruction, int);
   ///@}
 
   ///@{
@@ -436,6 +458,7 @@ protected:
   int PointDataTarget = TO_POINTS;
   int CellDataTarget = TO_CELLS;
   int CellDataQuantity = INTENSIVE;
+  int CellDataReconstruction = CONSTANT_RECONSTRUCTION;
   int MassMatrix = CONSISTENT_MASS;
   bool PreserveBounds = false;
   int MaximumIterations = 500;

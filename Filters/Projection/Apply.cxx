@@ -38,7 +38,7 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
     mp::LargeVector<double> own(rows * group.Components);
     mp::ApplyOptions groupApply = apply;
     groupApply.Solve.StartFromX = false;
-    if (!op.Apply(group.Values.data(), group.Components, own.data(), fill, groupApply, hook))
+    if (!op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook))
     {
       return ApplyFailed(op, t, kept);
     }
@@ -90,7 +90,7 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
   {
     values.resize(size);
   }
-  if (!op.Apply(g.Values.data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook))
+  if (!op.Apply(g.Functions().data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook))
   {
     return ApplyFailed(op, t, kept);
   }

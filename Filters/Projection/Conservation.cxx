@@ -90,13 +90,14 @@ std::vector<double> SourceWeights::CoveredTotals(const mp::MortarOperator& op, b
 }
 
 const std::vector<double>& SourceWeights::Make(
-  const mp::MortarOperator& op, bool fromCells, const std::vector<double>& total)
+  const mp::MortarOperator& op, const std::vector<double>& total)
 {
-  std::vector<double>& w = this->Weights[std::make_pair(&op, fromCells)];
+  std::vector<double>& w = this->Weights[&op];
   const mp::MeshView& view = this->Source.View();
+  const mp::SpaceType space = op.GetSourceSpace();
   if (w.empty())
   {
-    w.assign(static_cast<size_t>(fromCells ? view.Parents() : view.NumberOfPoints), 0.0);
+    w.assign(static_cast<size_t>(mp::SpaceSize(space, view)), 0.0);
     const int corners = view.CornersPerCell();
     const mp::LargeVector<double>& covered = op.GetSourceCovered();
     const bool projected = view.IsSurfaceMesh() || view.IsCurveMesh();
@@ -125,7 +126,18 @@ const std::vector<double>& SourceWeights::Make(
       const double all = total.empty() ? 0.0 : total[static_cast<size_t>(c)];
       return all > 0.0 ? m * (counted(all) / all) : counted(m);
     };
-    if (!fromCells)
+    if (space == mp::SpaceType::DP1)
+    {
+      // Each corner of a simplex its share of the simplex's part.
+      mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType c = begin; c < end; ++c)
+        {
+          const double share = part(c) / corners;
+          std::fill(w.begin() + c * corners, w.begin() + (c + 1) * corners, share);
+        }
+      });
+    }
+    else if (space == mp::SpaceType::P1)
     {
       // Summed in cell order, in the filter's threads.
       mp::ForCellCornersInOrder(view, mpvtk::SMPTaskRunner(),
@@ -159,15 +171,15 @@ const std::vector<double>& SourceWeights::Make(
   return w;
 }
 
-const std::vector<double>& SourceWeights::Of(const mp::MortarOperator& op, bool fromCells)
+const std::vector<double>& SourceWeights::Of(const mp::MortarOperator& op)
 {
-  const bool known = this->Weights.count(std::make_pair(&op, fromCells)) > 0;
-  return this->Make(op, fromCells, this->CoveredTotals(op, !known));
+  const bool known = this->Weights.count(&op) > 0;
+  return this->Make(op, this->CoveredTotals(op, !known));
 }
 
-void SourceWeights::Weigh(const mp::MortarOperator& op, bool fromCells)
+void SourceWeights::Weigh(const mp::MortarOperator& op)
 {
-  this->Make(op, fromCells, std::vector<double>());
+  this->Make(op, std::vector<double>());
 }
 
 ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const std::string& name,

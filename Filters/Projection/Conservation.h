@@ -7,7 +7,8 @@
  * SourceIntegral_<array> is the Source field's integral over the part of
  * Source the operator's pieces cover: per Source function a weight (P1: a
  * third (a half, a quarter) of the covered measure of each simplex around
- * the point; P0: the cell's covered measure), NaN groups' cells not
+ * the point; P0: the cell's covered measure; DP1, reconstructed cell data:
+ * a third (...) of its simplex's covered measure), NaN groups' cells not
  * covered. For surfaces and curves the pieces, projected along each target
  * facet's own normal, cover a Source cell only up to O(h^2): a cell
  * covered to 90% or more counts whole, so that a Source covered whole gives
@@ -50,22 +51,21 @@ public:
   {
   }
   /**
-   * The weights of `op`'s Source functions (cells when `fromCells`, else
-   * points). Collective on several processes (every process calls it for
-   * the same arrays, in the same order).
+   * The weights of `op`'s Source functions (its source space's: points,
+   * cells, or the corners of each simplex). Collective on several
+   * processes (every process calls it for the same arrays, in the same order).
    */
-  const std::vector<double>& Of(const mp::MortarOperator& op, bool fromCells);
+  const std::vector<double>& Of(const mp::MortarOperator& op);
   /// As Of(), on this process alone: for one process, before the Source mesh goes.
-  void Weigh(const mp::MortarOperator& op, bool fromCells);
+  void Weigh(const mp::MortarOperator& op);
 
 private:
   std::vector<double> CoveredTotals(const mp::MortarOperator& op, bool needed);
-  const std::vector<double>& Make(
-    const mp::MortarOperator& op, bool fromCells, const std::vector<double>& total);
+  const std::vector<double>& Make(const mp::MortarOperator& op, const std::vector<double>& total);
   const SimplexMesh& Source;
   vtkDataSet* SourceData;
   Parts& Processes;
-  std::map<std::pair<const mp::MortarOperator*, bool>, std::vector<double>> Weights;
+  std::map<const mp::MortarOperator*, std::vector<double>> Weights;
 };
 
 /// One array's integrals over Source and target (per component), and the scale of each component.
@@ -80,7 +80,6 @@ struct ArrayIntegrals
 struct ProjectedArray
 {
   const mp::MortarOperator& Operator;
-  bool FromCells;
   const std::vector<double>& Weights;     ///< SourceWeights::Of
   const mp::LargeVector<double>& Source;  ///< the Source functions' values, `Width` per row
   const mp::LargeVector<double>& Result;  ///< the target functions' values, `Width` per row

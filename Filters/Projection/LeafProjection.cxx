@@ -90,7 +90,7 @@ bool PrepareSolves(
     {
       for (const mp::MortarOperator* op : ops.ByArray[t])
       {
-        weights.Weigh(*op, SourceSpaceOf(t) == mp::SpaceType::P0);
+        weights.Weigh(*op);
       }
     }
     // (Counted with the assembly; made later, with the outputs, they count there.)

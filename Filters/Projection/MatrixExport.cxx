@@ -23,7 +23,7 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, bool mixed,
   const std::vector<mp::Index>* rowOrder =
     TargetSpaceOf(transfer) == mp::SpaceType::P1 && !leaf.TargetPoints.empty() ? &leaf.TargetPoints
                                                                                : nullptr;
-  const mp::SpaceType columnSpace = mixed ? SourceSpaceOf(transfer) : TargetSpaceOf(transfer);
+  const mp::SpaceType columnSpace = mixed ? op.GetSourceSpace() : TargetSpaceOf(transfer);
   const std::vector<mp::Index>& columnPoints = mixed ? leaf.SourcePoints : leaf.TargetPoints;
   const std::vector<mp::Index>* columnOrder =
     columnSpace == mp::SpaceType::P1 && !columnPoints.empty() ? &columnPoints : nullptr;

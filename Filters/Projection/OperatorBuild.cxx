@@ -164,8 +164,8 @@ Verdict BuildMissing(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
     const GatheredFields& g = FieldsOf(ctx, t);
     mp::OperatorOptions options = BaseOptions(ctx);
     options.TargetSpace = TargetSpaceOf(t);
-    options.SourceSpace = SourceSpaceOf(t);
-    options.Fields = plan.Assembled || g.Components == 0 ? nullptr : g.Values.data();
+    options.SourceSpace = SourceSpaceOf(t, ctx.Options.CellDataReconstruction);
+    options.Fields = plan.Assembled || g.Components == 0 ? nullptr : g.Functions().data();
     options.FieldComponents = plan.Assembled ? 0 : g.Components;
     options.Progress = [bar](double f) { return bar(0.1 + 0.8 * f); };
     options.DeferTargetMass = true; // M_tt once the Source's arrays are gone
@@ -275,10 +275,10 @@ Verdict GroupOperator(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan
   const ProgressShare bar = ctx.Bar;
   mp::OperatorOptions options = BaseOptions(ctx);
   options.TargetSpace = TargetSpaceOf(t);
-  options.SourceSpace = SourceSpaceOf(t);
+  options.SourceSpace = SourceSpaceOf(t, ctx.Options.CellDataReconstruction);
   options.KeepPieces = false;
   options.ExcludedSourceCells = group.Excluded.data();
-  options.Fields = plan.Assembled ? nullptr : group.Values.data();
+  options.Fields = plan.Assembled ? nullptr : group.Functions().data();
   options.FieldComponents = plan.Assembled ? 0 : group.Components;
   options.Progress = [bar](double) { return bar(0.9); };
   options.DeferTargetMass = true; // (completed with the others)

@@ -76,6 +76,10 @@ std::uint64_t LeafFingerprint(
   print.Add(sourcePrint);
   print.Add(static_cast<std::uint64_t>(settings.SearchMethod));
   print.Add(static_cast<std::uint64_t>(settings.OutputIntersections));
+  if (settings.CellDataReconstruction != 0)
+  {
+    print.Add(std::uint64_t(0xD1)); // cell data read as DP1: other operators
+  }
   if (!trace && (target.View().IsSurfaceMesh() || target.View().IsCurveMesh()))
   {
     const double contact[3] = { settings.SurfaceReach, settings.MaximumNormalAngle,

@@ -149,7 +149,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     const mp::MortarOperator& op = *ops.ByArray[t][a];
     (toPoints ? written.PointValid : written.CellValid)
       .emplace_back(name, toPoints ? numbering.InDataSet(op.GetValid()) : &op.GetValid());
-    const ProjectedArray projected{ op, fromCells, weights.Of(op, fromCells), g.Values, values,
+    const ProjectedArray projected{ op, weights.Of(op), g.Functions(), values,
       g.Components, offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);

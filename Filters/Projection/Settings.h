@@ -24,6 +24,7 @@ struct Settings
   int PointDataTarget = 1;     ///< vtkMeshProjectionFilter::Targets (bits: 1 points, 2 cells)
   int CellDataTarget = 2;
   bool Extensive = false;      ///< CellDataQuantity is EXTENSIVE
+  int CellDataReconstruction = 0; ///< vtkMeshProjectionFilter::Reconstructions
   bool Lumped = false;         ///< MassMatrix is LUMPED_MASS
   bool PreserveBounds = false;
   int MaximumIterations = 500;

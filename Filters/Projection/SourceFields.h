@@ -50,6 +50,11 @@ struct NaNGroup
   std::uint64_t Print = 0;        ///< of Excluded
   int Components = 0;
   mp::LargeVector<double> Values; ///< functions x Components, non-finite values as 0
+  /// With CellDataReconstruction: Values as DP1 functions (CellReconstruction.h).
+  mp::LargeVector<double> Corners;
+  bool Reconstructed = false;
+  /// What the operators read: Corners when reconstructed, else Values.
+  const mp::LargeVector<double>& Functions() const { return this->Reconstructed ? this->Corners : this->Values; }
 };
 
 /// The Source arrays of one association, gathered side by side.
@@ -61,6 +66,11 @@ struct GatheredFields
   mp::LargeVector<double> Values; ///< functions x Components (NaN groups' columns as 0)
   std::string Key;                ///< names and components: which solution a warm start may reuse
   std::vector<NaNGroup> Groups;   ///< the arrays with non-finite values
+  /// With CellDataReconstruction: Values as DP1 functions (CellReconstruction.h).
+  mp::LargeVector<double> Corners;
+  bool Reconstructed = false;
+  /// What the operators read: Corners when reconstructed, else Values.
+  const mp::LargeVector<double>& Functions() const { return this->Reconstructed ? this->Corners : this->Values; }
 };
 
 /**

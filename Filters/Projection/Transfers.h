@@ -42,9 +42,11 @@ inline bool ToPoints(Transfer t)
   return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
     t == vtkMeshProjectionFilter::CELLS_TO_POINTS;
 }
-inline mp::SpaceType SourceSpaceOf(Transfer t)
+/// The space of the Source functions transfer t reads: cell arrays are DP1 when reconstructed.
+inline mp::SpaceType SourceSpaceOf(Transfer t, int cellDataReconstruction)
 {
-  return SourceAssociation(t) == 0 ? mp::SpaceType::P1 : mp::SpaceType::P0;
+  return SourceAssociation(t) == 0 ? mp::SpaceType::P1
+                                   : (cellDataReconstruction != 0 ? mp::SpaceType::DP1 : mp::SpaceType::P0);
 }
 inline mp::SpaceType TargetSpaceOf(Transfer t)
 {

@@ -86,6 +86,8 @@ struct HasTies<I, std::void_t<decltype(I::TieKey(std::declval<const typename I::
 template <class Intersector, class TargetSpace, class SourceSpace>
 struct MortarAssembler
 {
+  using TargetSpaceType = TargetSpace;
+  using SourceSpaceType = SourceSpace;
   static constexpr int D = Intersector::Dimension;
   static constexpr int K = D + 1;
   static constexpr int Nt = TargetSpace::Dofs;

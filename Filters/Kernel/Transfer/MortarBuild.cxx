@@ -13,6 +13,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -51,8 +52,8 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.OvercoveredCells = 0;
     op.SourceFunctions = 0;
     op.Pieces.Dimension = target.CellDimension;
-    const unsigned pair = 1u << ((op.Options.TargetSpace == SpaceType::P1 ? 2 : 0) +
-      (op.Options.SourceSpace == SpaceType::P1 ? 1 : 0));
+    const unsigned pair = 1u << (3 * (op.Options.TargetSpace == SpaceType::P1 ? 1 : 0) +
+      static_cast<int>(op.Options.SourceSpace));
     if (pairs & pair)
     {
       op.Error = "operators built together need pairs of spaces of their own";
@@ -112,32 +113,30 @@ namespace
  * each session's assembler of the task (at most one per pair of spaces;
  * the others null).
  */
-template <class A, class B, class C, class E>
+template <class... A>
 struct SharedVisitor
 {
-  A* First = nullptr;
-  B* Second = nullptr;
-  C* Third = nullptr;
-  E* Fourth = nullptr;
+  std::tuple<A*...> Each;
   template <class Cell, class SourceCell, class Piece>
   void operator()(const Cell& t, const SourceCell& s, const Piece& piece)
   {
-    if (this->First)
-    {
-      (*this->First)(t, s, piece);
-    }
-    if (this->Second)
-    {
-      (*this->Second)(t, s, piece);
-    }
-    if (this->Third)
-    {
-      (*this->Third)(t, s, piece);
-    }
-    if (this->Fourth)
-    {
-      (*this->Fourth)(t, s, piece);
-    }
+    std::apply(
+      [&](auto*... assembler) {
+        ((assembler ? (*assembler)(t, s, piece) : void()), ...);
+      },
+      this->Each);
+  }
+};
+
+/// The session of one pair of spaces, made when an operator asks for it.
+template <class S>
+struct SessionSlot
+{
+  using Assembler = typename S::Assembler;
+  std::unique_ptr<S> Session;
+  Assembler* AssemblerOf(int task) const
+  {
+    return this->Session ? &this->Session->Assemblers[task] : nullptr;
   }
 };
 } // namespace
@@ -148,13 +147,20 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
 {
   constexpr int D = Intersector::Dimension;
   using SourceP1 = typename SourceP1Of<Intersector>::type;
+  using SourceDP1 = DiscontinuousP1Space<SourceP1>;
   using P1 = P1Space<D>;
   using P0 = P0Space<D>;
-  // The sessions by pair of spaces: P1 <- P1, P1 <- P0, P0 <- P1, P0 <- P0.
-  std::unique_ptr<Session<Intersector, P1, SourceP1>> s11;
-  std::unique_ptr<Session<Intersector, P1, P0>> s10;
-  std::unique_ptr<Session<Intersector, P0, SourceP1>> s01;
-  std::unique_ptr<Session<Intersector, P0, P0>> s00;
+  // The sessions by pair of spaces, target <- source: P1 <- P1, P1 <- P0,
+  // P1 <- DP1, P0 <- P1, P0 <- P0, P0 <- DP1.
+  std::tuple<SessionSlot<Session<Intersector, P1, SourceP1>>, SessionSlot<Session<Intersector, P1, P0>>,
+    SessionSlot<Session<Intersector, P1, SourceDP1>>, SessionSlot<Session<Intersector, P0, SourceP1>>,
+    SessionSlot<Session<Intersector, P0, P0>>, SessionSlot<Session<Intersector, P0, SourceDP1>>>
+    slots;
+  // Calls f on each session made.
+  auto forEachSession = [&](auto&& f) {
+    std::apply(
+      [&](auto&... slot) { ((slot.Session ? f(*slot.Session) : void()), ...); }, slots);
+  };
   MortarOperator& lead = *operators[0];
   const TaskRunner& runner = lead.Options.Runner;
   // The target cells in ranges, one per task, each with its own front,
@@ -165,49 +171,23 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   // (per-task arrays of source cells: once, not per operator).
   for (MortarOperator* op : operators)
   {
-    const bool p1t = op->Options.TargetSpace == SpaceType::P1;
-    const bool p1s = op->Options.SourceSpace == SpaceType::P1;
     const bool cover = op == &lead;
-    if (p1t && p1s)
-    {
-      s11.reset(new Session<Intersector, P1, SourceP1>);
-      s11->Prepare(*op, target, source, tasks, cover);
-    }
-    else if (p1t)
-    {
-      s10.reset(new Session<Intersector, P1, P0>);
-      s10->Prepare(*op, target, source, tasks, cover);
-    }
-    else if (p1s)
-    {
-      s01.reset(new Session<Intersector, P0, SourceP1>);
-      s01->Prepare(*op, target, source, tasks, cover);
-    }
-    else
-    {
-      s00.reset(new Session<Intersector, P0, P0>);
-      s00->Prepare(*op, target, source, tasks, cover);
-    }
+    std::apply(
+      [&](auto&... slot) {
+        auto make = [&](auto& s) {
+          using S = typename std::remove_reference_t<decltype(s)>::element_type;
+          using Target = typename S::Assembler::TargetSpaceType;
+          using Source = typename S::Assembler::SourceSpaceType;
+          if (op->Options.TargetSpace == Target::Type && op->Options.SourceSpace == Source::Type)
+          {
+            s.reset(new S);
+            s->Prepare(*op, target, source, tasks, cover);
+          }
+        };
+        (make(slot.Session), ...);
+      },
+      slots);
   }
-  // Calls f on each session made.
-  auto forEachSession = [&](auto&& f) {
-    if (s11)
-    {
-      f(*s11);
-    }
-    if (s10)
-    {
-      f(*s10);
-    }
-    if (s01)
-    {
-      f(*s01);
-    }
-    if (s00)
-    {
-      f(*s00);
-    }
-  };
   auto start = std::chrono::steady_clock::now();
   SearchStatistics statistics;
   auto search = [&](auto& visitors) {
@@ -223,18 +203,16 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   }
   else
   {
-    using Visitor = SharedVisitor<typename Session<Intersector, P1, SourceP1>::Assembler,
-      typename Session<Intersector, P1, P0>::Assembler,
-      typename Session<Intersector, P0, SourceP1>::Assembler,
-      typename Session<Intersector, P0, P0>::Assembler>;
-    std::vector<Visitor> visitors(static_cast<size_t>(tasks));
-    for (int k = 0; k < tasks; ++k)
-    {
-      visitors[k].First = s11 ? &s11->Assemblers[k] : nullptr;
-      visitors[k].Second = s10 ? &s10->Assemblers[k] : nullptr;
-      visitors[k].Third = s01 ? &s01->Assemblers[k] : nullptr;
-      visitors[k].Fourth = s00 ? &s00->Assemblers[k] : nullptr;
-    }
+    auto visitorsOf = [&](auto&... slot) {
+      using Visitor = SharedVisitor<typename std::remove_reference_t<decltype(slot)>::Assembler...>;
+      std::vector<Visitor> visitors(static_cast<size_t>(tasks));
+      for (int k = 0; k < tasks; ++k)
+      {
+        visitors[k].Each = std::make_tuple(slot.AssemblerOf(k)...);
+      }
+      return visitors;
+    };
+    auto visitors = std::apply(visitorsOf, slots);
     done = search(visitors);
   }
   const double seconds = SecondsSince(start);

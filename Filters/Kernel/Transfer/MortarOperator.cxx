@@ -110,6 +110,11 @@ bool MortarOperator::Check(
       "their plane) or tetrahedra (a trace) can be projected";
     return false;
   }
+  if (options.TargetSpace == SpaceType::DP1)
+  {
+    this->Error = "DP1 is a source space only (reconstructed cell data): the target is P1 or P0";
+    return false;
+  }
   const Index rows = SpaceSize(options.TargetSpace, target);
   const Index columns = SpaceSize(options.SourceSpace, source);
   this->SourceFunctions = columns;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Space.h
- * @brief The function spaces a field lives in: P1 on points, P0 on cells.
+ * @brief The function spaces a field lives in: P1 on points, P0 on cells,
+ *        and DP1, linear on each cell (a reconstruction of cell data).
  *
  * A space says, for a cell (as the intersectors prepare it), which global
  * functions live on it (`CellDofs`), what they are on the cell as affine
@@ -16,6 +17,11 @@
  *  - P0: the piecewise constant functions, one per cell: per original cell
  *    when the mesh's simplices have parents (MeshView::Parent), so that a
  *    split quad or hexahedron keeps one value.
+ *  - DP1: the discontinuous piecewise linear functions, one per corner of
+ *    each simplex (function c (d + 1) + k: corner k of simplex c, in the
+ *    mesh's corner order). A source space only: it carries a cell field
+ *    reconstructed as a linear function on each cell
+ *    (LinearReconstruction.h), given by its values at the corners.
  *
  * Adding a space (e.g. P1 on split cells with a tied centre point) means a
  * struct of this shape here and a case in MortarOperator's dispatch.
@@ -35,13 +41,22 @@ namespace mp
 enum class SpaceType
 {
   P1 = 0, ///< on points (point data)
-  P0 = 1  ///< on cells (cell data)
+  P0 = 1, ///< on cells (cell data)
+  DP1 = 2 ///< on the corners of each simplex (reconstructed cell data; source only)
 };
 
 /// How many functions the space has on `mesh`.
 inline Index SpaceSize(SpaceType type, const MeshView& mesh)
 {
-  return type == SpaceType::P1 ? mesh.NumberOfPoints : mesh.Parents();
+  switch (type)
+  {
+    case SpaceType::P1:
+      return mesh.NumberOfPoints;
+    case SpaceType::P0:
+      return mesh.Parents();
+    default:
+      return mesh.NumberOfCells * mesh.CornersPerCell();
+  }
 }
 
 template <int D>
@@ -188,6 +203,42 @@ struct RestrictedP1Space
       }
       l[j][0] = value;
     }
+  }
+};
+
+/**
+ * DP1 on the cells of `P1` (a P1 space as the pieces see the source:
+ * SourceP1Of): the same functions on each cell, but each cell's own, so
+ * that a field may jump between cells. The prepared cells may order their
+ * corners otherwise than the mesh (e.g. counterclockwise): each function
+ * is named by its corner's place in the mesh's cell.
+ */
+template <class P1>
+struct DiscontinuousP1Space
+{
+  static constexpr SpaceType Type = SpaceType::DP1;
+  static constexpr int Dofs = P1::Dofs;
+  static constexpr int K = P1::K;
+
+  template <class Cell>
+  static void CellDofs(const MeshView& mesh, const Cell& c, Index (&dofs)[Dofs])
+  {
+    const CellCorners corners = mesh.Cell(c.Id);
+    const Index first = c.Id * Dofs;
+    for (int k = 0; k < Dofs; ++k)
+    {
+      int place = 0;
+      while (place + 1 < Dofs && corners[place] != c.Points[k])
+      {
+        ++place;
+      }
+      dofs[k] = first + place;
+    }
+  }
+  template <class Cell>
+  static void Basis(const Cell& c, const double* o, double (&l)[Dofs][K])
+  {
+    P1::Basis(c, o, l);
   }
 };
 
