@@ -71,8 +71,8 @@ public:
     std::vector<std::vector<double>>& recv);
 
   /// See Parts::GatherSource (SourceGather.cxx).
-  vtkSmartPointer<vtkDataSet> GatherSource(
-    vtkDataSet* source, vtkDataObject* input, double reach, std::string& error) override;
+  vtkSmartPointer<vtkDataSet> GatherSource(vtkDataSet* source, vtkDataObject* input, double reach,
+    bool neighborLayer, std::string& error) override;
 
   // The shared points (SharedPoints.cxx).
   vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;

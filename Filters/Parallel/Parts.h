@@ -81,9 +81,12 @@ public:
    * ids made from each process's numbering) into one grid whose points are
    * in the order of those ids, which it carries as GlobalIds. Only the
    * fields (ArraySelection.h) that every process's Source has are kept.
+   * With `neighborLayer`, also every cell that shares a point with such a
+   * cell (the neighbours a reconstruction of cell data fits its gradients
+   * to: CellReconstruction.h).
    */
-  virtual vtkSmartPointer<vtkDataSet> GatherSource(
-    vtkDataSet* source, vtkDataObject* input, double reach, std::string& error) = 0;
+  virtual vtkSmartPointer<vtkDataSet> GatherSource(vtkDataSet* source, vtkDataObject* input,
+    double reach, bool neighborLayer, std::string& error) = 0;
 
   /**
    * The verdict of the lowest process whose verdict is not Done (its own
@@ -134,7 +137,7 @@ public:
   int Rank() const override { return 0; }
   int Size() const override { return 1; }
   vtkSmartPointer<vtkDataSet> GatherSource(
-    vtkDataSet* source, vtkDataObject*, double, std::string& error) override;
+    vtkDataSet* source, vtkDataObject*, double, bool, std::string& error) override;
   Verdict Agree(const Verdict& mine, bool*) override { return mine; }
   void Or(std::vector<char>&) override {}
   void Sum(double*, int) override {}

@@ -16,7 +16,8 @@
  *  3. the processes agree on the fields every Source has, and on global
  *     ids for the Source's points;
  *  4. each Source cell goes, as a small grid of its own (a piece), to
- *     every process whose Cover it meets;
+ *     every process whose Cover it meets (with the neighbour layer, also
+ *     to those whose Cover it meets grown by the LayerMargins);
  *  5. the pieces received are merged into one grid, points by global id.
  * Then the processes agree on the gathering's own failure.
  */
@@ -403,8 +404,69 @@ SourceFields AgreeOnFields(MPIParts& parts, vtkDataSet* source)
 }
 
 // 4. ---------------------------------------------------------------------------
-/// Per process, the Source cells (not left out) whose boxes meet its cover.
-std::vector<std::vector<vtkIdType>> CellsFor(vtkDataSet* source, const std::vector<Cover>& covers)
+/// The largest extent of box b on any axis.
+double SizeOf(const Box& b)
+{
+  return std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+}
+
+/// Box b grown by `margin` on every side.
+Box GrownBy(Box b, double margin)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    b[2 * d] -= margin;
+    b[2 * d + 1] += margin;
+  }
+  return b;
+}
+
+/**
+ * The neighbour layer's reach: per process r, the largest size (SizeOf)
+ * of the Source cells, on any process, whose boxes meet r's Cover (0 when
+ * there is no layer; collective). A cell N sharing a point x with such a
+ * cell C has x within C's box, whose distance to the Cover is at most C's
+ * size per axis: N's box grown by the margin meets the Cover, so N is sent.
+ */
+std::vector<double> LayerMargins(
+  MPIParts& parts, vtkDataSet* source, const std::vector<Cover>& covers, bool layer)
+{
+  std::vector<double> margins(covers.size(), 0.0);
+  if (!layer)
+  {
+    return margins;
+  }
+  std::vector<double> mine(covers.size(), 0.0);
+  vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
+  CellBoxes boxOf(source);
+  for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
+  {
+    if (IsLeftOutGhost(ghosts, c) || source->GetCellType(c) == VTK_EMPTY_CELL)
+    {
+      continue;
+    }
+    const Box b = boxOf(c);
+    for (size_t r = 0; r < covers.size(); ++r)
+    {
+      if (covers[r].Meets(b))
+      {
+        mine[r] = std::max(mine[r], SizeOf(b));
+      }
+    }
+  }
+  parts.Controller()->AllReduce(
+    mine.data(), margins.data(), static_cast<vtkIdType>(mine.size()), vtkCommunicator::MAX_OP);
+  for (double& m : margins)
+  {
+    m += 1e-9 * m; // cells that touch meet after rounding
+  }
+  return margins;
+}
+
+/// Per process, the Source cells (not left out) whose boxes meet its cover
+/// (grown by its margin, LayerMargins).
+std::vector<std::vector<vtkIdType>> CellsFor(
+  vtkDataSet* source, const std::vector<Cover>& covers, const std::vector<double>& margins)
 {
   std::vector<std::vector<vtkIdType>> toSend(covers.size());
   vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
@@ -418,7 +480,7 @@ std::vector<std::vector<vtkIdType>> CellsFor(vtkDataSet* source, const std::vect
     const Box b = boxOf(c);
     for (size_t r = 0; r < covers.size(); ++r)
     {
-      if (covers[r].Meets(b))
+      if (covers[r].Meets(margins[r] > 0.0 ? GrownBy(b, margins[r]) : b))
       {
         toSend[r].push_back(c);
       }
@@ -737,13 +799,14 @@ void MergeFields(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces
 
 /// Steps 1 to 5: the gathered Source (null with `error` on this process's
 /// failure; the caller agrees on it).
-vtkSmartPointer<vtkDataSet> Gather(
-  MPIParts& parts, vtkDataSet* source, vtkDataObject* input, double reach, std::string& error)
+vtkSmartPointer<vtkDataSet> Gather(MPIParts& parts, vtkDataSet* source, vtkDataObject* input,
+  double reach, bool layer, std::string& error)
 {
   const std::vector<Cover> covers = ShareCovers(parts, CoverOf(GrownCellBoxes(input, reach)));
   const SourceFields fields = AgreeOnFields(parts, source);
+  const std::vector<double> margins = LayerMargins(parts, source, covers, layer);
   const std::vector<vtkSmartPointer<vtkUnstructuredGrid>> pieces =
-    ExchangePieces(parts, source, CellsFor(source, covers), fields, error);
+    ExchangePieces(parts, source, CellsFor(source, covers, margins), fields, error);
   Merged merged;
   vtkNew<vtkIdTypeArray> globalIds;
   globalIds->SetName("GlobalIds");
@@ -764,8 +827,8 @@ vtkSmartPointer<vtkDataSet> Gather(
 }
 } // namespace
 
-vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
-  vtkDataSet* source, vtkDataObject* input, double reach, std::string& error)
+vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(vtkDataSet* source, vtkDataObject* input,
+  double reach, bool neighborLayer, std::string& error)
 {
   // The checks run before any cell is read, and all processes learn of a
   // failure on any of them before the gathering's exchanges start.
@@ -779,7 +842,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(
     error = all.Why;
     return nullptr;
   }
-  vtkSmartPointer<vtkDataSet> gathered = Gather(*this, source, input, reach, error);
+  vtkSmartPointer<vtkDataSet> gathered = Gather(*this, source, input, reach, neighborLayer, error);
   all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
   if (!all.Ok())
   {

@@ -128,12 +128,18 @@ const std::vector<double>& SourceWeights::Make(
     };
     if (space == mp::SpaceType::DP1)
     {
-      // Each corner of a simplex its share of the simplex's part.
+      // Each function's own covered integral, in the share the rule counts
+      // of its simplex's cover.
+      const mp::LargeVector<double>& integrals = op.GetSourceFunctionCovered();
       mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType c = begin; c < end; ++c)
         {
-          const double share = part(c) / corners;
-          std::fill(w.begin() + c * corners, w.begin() + (c + 1) * corners, share);
+          const double m = covered[static_cast<size_t>(c)];
+          const double share = m > 0.0 ? part(c) / m : 0.0;
+          for (int k = 0; k < corners; ++k)
+          {
+            w[c * corners + k] = share * integrals[static_cast<size_t>(c * corners + k)];
+          }
         }
       });
     }

@@ -112,6 +112,9 @@ struct MortarAssembler
   /// Per source cell: the measure of its part covered by pieces, on the
   /// source cell (this task's own array, or null).
   double* SourceCovered = nullptr;
+  /// DP1 source functions: per function, its integral over the covered
+  /// part, on the source cell (this task's own array, or null).
+  double* SourceFunctionCovered = nullptr;
   /// Per target function a bit (function f: bit f % 64 of word f / 64), set
   /// when cells of several tasks use it; null for a single task.
   const std::uint64_t* Shared = nullptr;
@@ -310,6 +313,7 @@ struct MortarAssembler
         u[j] = this->Fields + dofs[j] * this->Components;
       }
       AddFieldMoments<Ns, K>(ls, shifted, u, this->Components, this->CellField.data());
+      this->AddFunctionCover(s, piece, ls, shifted[0], dofs);
       this->Finish(t, s, piece, measure);
       return;
     }
@@ -319,6 +323,7 @@ struct MortarAssembler
     SourceSpace::Basis(sourceCell, o, ls);
     double mts[Nt][Ns] = {};
     AddMixedBlock<Nt, Ns, K>(lt, ls, M, mts);
+    this->AddFunctionCover(s, piece, ls, M[0], dofs);
     for (int j = 0; j < Ns; ++j)
     {
       // The block's column of source function dofs[j] (a few per cell).
@@ -340,6 +345,23 @@ struct MortarAssembler
       }
     }
     this->Finish(t, s, piece, measure);
+  }
+
+  /// The piece's integrals of the source functions (ls, about the origin
+  /// of the moments whose first row is `m0`), when they are summed.
+  template <class SourceCell>
+  void AddFunctionCover(const SourceCell& s, const typename Intersector::Piece& piece,
+    const double (&ls)[Ns][K], const double (&m0)[K], const Index (&dofs)[Ns])
+  {
+    if (!this->SourceFunctionCovered)
+    {
+      return;
+    }
+    const double scale = Intersector::SourceScale(s, piece);
+    for (int j = 0; j < Ns; ++j)
+    {
+      this->SourceFunctionCovered[dofs[j]] += scale * DotK<K>(ls[j], m0);
+    }
   }
 
   /// Counts a piece of positive `measure`, and keeps it when asked.

@@ -48,6 +48,7 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.NumberOfValid = 0;
     op.CoveredFraction.assign(static_cast<size_t>(target.NumberOfCells), 0.0);
     op.SourceCovered.clear();
+    op.SourceFunctionCovered.clear();
     op.CoveredMeasure = 0;
     op.OvercoveredCells = 0;
     op.SourceFunctions = 0;

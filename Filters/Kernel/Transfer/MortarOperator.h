@@ -253,6 +253,10 @@ public:
   /// cover, measured on the source cell (for surfaces and curves through
   /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
   const LargeVector<double>& GetSourceCovered() const { return this->SourceCovered; }
+  /// DP1 source functions (reconstructed cell data): per function, its
+  /// integral over the covered part, on the source cell as GetSourceCovered
+  /// measures it; empty for the other source spaces.
+  const LargeVector<double>& GetSourceFunctionCovered() const { return this->SourceFunctionCovered; }
   /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
   Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
   /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
@@ -287,6 +291,7 @@ private:
   LargeVector<double> CoveredFraction; ///< (given back to the system when replaced)
   LargeVector<double> PointCover;      ///< (until TakePointCover)
   LargeVector<double> SourceCovered;
+  LargeVector<double> SourceFunctionCovered;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
   SearchStatistics Statistics;

@@ -50,6 +50,31 @@ struct MortarOperator::Session
   std::vector<PartialMasses> Partial; ///< per task: M_tt's blocks of cells covered in part
   // How much of each source cell the pieces cover: per task, summed after.
   std::vector<LargeVector<double>> Met;
+  // DP1 sources: each function's covered integral, per task, summed after.
+  std::vector<LargeVector<double>> FunctionMet;
+
+  /// Sums the tasks' arrays (in task order) into `sum` (empty when there are none).
+  static void SumTasks(std::vector<LargeVector<double>>& parts, const TaskRunner& runner, LargeVector<double>& sum)
+  {
+    sum.clear();
+    if (parts.empty())
+    {
+      return;
+    }
+    sum.swap(parts[0]);
+    for (size_t k = 1; k < parts.size(); ++k)
+    {
+      const double* part = parts[k].data();
+      double* to = sum.data();
+      runner.ForRanges(static_cast<Index>(sum.size()), [=](Index begin, Index end) {
+        for (Index i = begin; i < end; ++i)
+        {
+          to[i] += part[i];
+        }
+        return 0;
+      }, Index(1) << 16);
+    }
+  }
 
   /// `cover`: this session sums how much of each source cell the pieces
   /// cover (the same for every operator of a search: one session does).
@@ -138,15 +163,25 @@ struct MortarOperator::Session
     this->Blocks.resize(static_cast<size_t>(tasks));
     this->Pieces.resize(static_cast<size_t>(tasks > 1 ? tasks : 0));
     this->Met.resize(static_cast<size_t>(cover ? tasks : 0));
+    // DP1: each function's covered integral (the integrals of reconstructed cell data).
+    constexpr bool functionCover = SourceSpace::Type == SpaceType::DP1;
+    this->FunctionMet.resize(static_cast<size_t>(functionCover ? tasks : 0));
     // Each zeroed by its task (the first to touch its pages: see LargeArray.h).
-    if (cover)
-    {
-      runner.RunAll(tasks, [&](int k) { this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0); });
-    }
+    runner.RunAll(tasks, [&](int k) {
+      if (cover)
+      {
+        this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0);
+      }
+      if (functionCover)
+      {
+        this->FunctionMet[k].assign(static_cast<size_t>(SpaceSize(SpaceType::DP1, source)), 0.0);
+      }
+    });
     for (int k = 0; k < tasks; ++k)
     {
       Assembler& a = this->Assemblers[k];
       a.SourceCovered = cover ? this->Met[k].data() : nullptr;
+      a.SourceFunctionCovered = functionCover ? this->FunctionMet[k].data() : nullptr;
       a.Target = &target;
       a.Source = &source;
       a.MassState = op.Masses.State.data();
@@ -227,9 +262,11 @@ struct MortarOperator::Session
       }
       op.Statistics.Pieces += a.Count;
     }
+    SumTasks(this->FunctionMet, runner, op.SourceFunctionCovered);
     std::vector<Assembler>().swap(this->Assemblers);
     std::vector<IntersectionPieces>().swap(this->Pieces);
     std::vector<LargeVector<double>>().swap(this->Met);
+    std::vector<LargeVector<double>>().swap(this->FunctionMet);
     op.Timings.Search += SecondsSince(start);
 
     start = std::chrono::steady_clock::now();
