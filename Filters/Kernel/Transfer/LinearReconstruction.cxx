@@ -134,10 +134,18 @@ inline double LimiterFactor(double u, double delta, double low, double high)
 void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runner)
 {
   this->Mesh = &mesh;
+  this->GroupSimplices();
+  this->MeasureParents(runner);
+  this->FindSites();
+  this->GatherAroundSites(runner);
+}
+
+void LinearReconstruction::GroupSimplices()
+{
+  // A counting sort of the simplices by parent.
+  const MeshView& mesh = *this->Mesh;
   const Index parents = mesh.Parents();
   const Index cells = mesh.NumberOfCells;
-  const int corners = mesh.CornersPerCell();
-  // Each parent's simplices (a counting sort of the simplices by parent).
   this->SimplexStart.assign(static_cast<size_t>(parents) + 1, 0);
   for (Index c = 0; c < cells; ++c)
   {
@@ -148,15 +156,18 @@ void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runne
     this->SimplexStart[p + 1] += this->SimplexStart[p];
   }
   this->Simplices.resize(static_cast<size_t>(cells));
+  std::vector<Index> next(this->SimplexStart.begin(), this->SimplexStart.end() - 1);
+  for (Index c = 0; c < cells; ++c)
   {
-    std::vector<Index> next(this->SimplexStart.begin(), this->SimplexStart.end() - 1);
-    for (Index c = 0; c < cells; ++c)
-    {
-      this->Simplices[next[mesh.ParentOf(c)]++] = c;
-    }
+    this->Simplices[next[mesh.ParentOf(c)]++] = c;
   }
-  // Centroids and measures, per parent from its simplices; frames of
-  // surfaces' and curves' cells.
+}
+
+void LinearReconstruction::MeasureParents(const TaskRunner& runner)
+{
+  const MeshView& mesh = *this->Mesh;
+  const Index parents = mesh.Parents();
+  const int corners = mesh.CornersPerCell();
   const bool framed = !mesh.IsVolumeMesh();
   this->Centroids.assign(3 * static_cast<size_t>(parents), 0.0);
   this->Measures.assign(static_cast<size_t>(parents), 0.0);
@@ -194,26 +205,60 @@ void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runne
     }
     return 0;
   }, 1024);
-  // The parents around each point, each once.
+}
+
+void LinearReconstruction::FindSites()
+{
+  // Points in the order of their coordinates: equal ones side by side.
+  const MeshView& mesh = *this->Mesh;
   const Index points = mesh.NumberOfPoints;
-  this->AroundStart.assign(static_cast<size_t>(points) + 1, 0);
-  for (Index i = 0; i < cells * corners; ++i)
-  {
-    ++this->AroundStart[static_cast<size_t>(mesh.Corner(i)) + 1];
-  }
+  const int space = mesh.SpaceDimension;
+  std::vector<Index> order(static_cast<size_t>(points));
   for (Index q = 0; q < points; ++q)
+  {
+    order[q] = q;
+  }
+  auto same = [&](Index a, Index b) {
+    return std::equal(mesh.Point(a), mesh.Point(a) + space, mesh.Point(b));
+  };
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+    return std::lexicographical_compare(
+      mesh.Point(a), mesh.Point(a) + space, mesh.Point(b), mesh.Point(b) + space);
+  });
+  this->Site.resize(static_cast<size_t>(points));
+  this->Sites = 0;
+  for (Index i = 0; i < points; ++i)
+  {
+    if (i > 0 && !same(order[i - 1], order[i]))
+    {
+      ++this->Sites;
+    }
+    this->Site[order[i]] = this->Sites;
+  }
+  this->Sites += points > 0 ? 1 : 0;
+}
+
+void LinearReconstruction::GatherAroundSites(const TaskRunner& runner)
+{
+  // The parents around each site, each once.
+  const MeshView& mesh = *this->Mesh;
+  const Index entries = mesh.NumberOfCells * mesh.CornersPerCell();
+  this->AroundStart.assign(static_cast<size_t>(this->Sites) + 1, 0);
+  for (Index i = 0; i < entries; ++i)
+  {
+    ++this->AroundStart[static_cast<size_t>(this->Site[mesh.Corner(i)]) + 1];
+  }
+  for (Index q = 0; q < this->Sites; ++q)
   {
     this->AroundStart[q + 1] += this->AroundStart[q];
   }
-  this->Around.resize(static_cast<size_t>(cells * corners));
+  this->Around.resize(static_cast<size_t>(entries));
+  std::vector<Index> next(this->AroundStart.begin(), this->AroundStart.end() - 1);
+  for (Index i = 0; i < entries; ++i)
   {
-    std::vector<Index> next(this->AroundStart.begin(), this->AroundStart.end() - 1);
-    for (Index i = 0; i < cells * corners; ++i)
-    {
-      this->Around[next[mesh.Corner(i)]++] = mesh.ParentOf(i / corners);
-    }
+    this->Around[next[this->Site[mesh.Corner(i)]]++] = mesh.ParentOf(i / mesh.CornersPerCell());
   }
-  runner.ForRanges(points, [&](Index begin, Index end) {
+  runner.ForRanges(this->Sites, [&](Index begin, Index end) {
     for (Index q = begin; q < end; ++q)
     {
       std::sort(this->Around.begin() + this->AroundStart[q], this->Around.begin() + this->AroundStart[q + 1]);
@@ -231,7 +276,7 @@ void LinearReconstruction::NeighborsOf(Index p, std::vector<Index>& neighbors) c
     const CellCorners ids = mesh.Cell(this->Simplices[i]);
     for (int k = 0; k < mesh.CornersPerCell(); ++k)
     {
-      const Index q = ids[k];
+      const Index q = this->Site[ids[k]];
       for (Index j = this->AroundStart[q]; j < this->AroundStart[q + 1]; ++j)
       {
         if (this->Around[j] != p)
@@ -250,7 +295,7 @@ std::size_t LinearReconstruction::MemoryBytes() const
   return (this->Centroids.capacity() + this->Measures.capacity() + this->Frames.capacity()) *
     sizeof(double) +
     (this->SimplexStart.capacity() + this->Simplices.capacity() + this->AroundStart.capacity() +
-      this->Around.capacity()) *
+      this->Around.capacity() + this->Site.capacity()) *
     sizeof(Index);
 }
 

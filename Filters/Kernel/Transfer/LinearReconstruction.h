@@ -17,7 +17,10 @@
  * values of u_P at the corners of each of P's simplices.
  *
  * The gradient g_P: weighted least squares over the cells that share a
- * point with P (its vertex neighbours N), fitting u_N - u_P by
+ * point with P (its vertex neighbours N; a point is its coordinates, so
+ * that blocks of a composite dataset, or parts gathered from several
+ * processes, that each have their own copy of a point are neighbours
+ * there), fitting u_N - u_P by
  * g . (c_N - c_P) with weights 1 / |c_N - c_P|^2. The mean of a linear
  * field over a cell is its value at the centroid, so the cell averages of
  * a linear field give its gradient exactly, whatever the cells. Vertex
@@ -87,11 +90,16 @@ public:
   const double* Centroid(Index p) const { return &this->Centroids[3 * static_cast<size_t>(p)]; }
   /// The measure of parent p (length, area or volume).
   double Measure(Index p) const { return this->Measures[static_cast<size_t>(p)]; }
-  /// Parents sharing a point with parent p (p itself excluded), ascending.
+  /// Parents sharing a point (by coordinates) with parent p (p itself excluded), ascending.
   void NeighborsOf(Index p, std::vector<Index>& neighbors) const;
   std::size_t MemoryBytes() const;
 
 private:
+  // The steps of Prepare.
+  void GroupSimplices();
+  void MeasureParents(const TaskRunner& runner);
+  void FindSites();
+  void GatherAroundSites(const TaskRunner& runner);
   template <int M>
   void ReconstructRange(Index begin, Index end, const double* values, int components,
     const char* defined, Reconstruction mode, double* corners) const;
@@ -104,7 +112,11 @@ private:
   LargeVector<double> Frames;
   std::vector<Index> SimplexStart; ///< parent p's simplices: Simplices[SimplexStart[p] ...]
   std::vector<Index> Simplices;
-  std::vector<Index> AroundStart;  ///< the parents around point q: Around[AroundStart[q] ...]
+  /// Per point, its site: points at the same coordinates are one site
+  /// (the cells around a point are those around its site).
+  std::vector<Index> Site;
+  Index Sites = 0;
+  std::vector<Index> AroundStart;  ///< the parents around site q: Around[AroundStart[q] ...]
   std::vector<Index> Around;
 };
 } // namespace mp

@@ -7,7 +7,8 @@ each cell, from the cell's own simplices (a degree-2 rule on each).
        cells and to points, on every cell type: Gmsh pairs (triangles, quads,
        mixed 2D; hexahedra, tetrahedra, wedges, mixed 3D), image data,
        hexahedra split into wedges and pyramids, a tilted planar surface, a
-       curve in space, a trace (a plane in tetrahedra), a composite Source;
+       curve in space, a trace (a plane in tetrahedra), a composite Source
+       (which, its blocks cut apart, gives the uncut Source's result);
     b. the observed order on a smooth field, modes 1 and 2, 2D and 3D, over
        two resolutions, is at least 1.8 (mode 0: about 1);
     c. integrals are conserved (every mode, intensive and extensive, to
@@ -298,6 +299,17 @@ out = project(target, composite, LINEAR).GetOutput()
 exact, _ = averages(target, linear)
 err = np.max(np.abs(cell_result(out) - exact)[whole_cells(out)]) / float(np.ptp(exact))
 check(err <= 1e-10, "composite Source: linear exact (%.3g)" % err)
+# Its blocks have their own copies of the points between them: neighbours
+# all the same (points are their coordinates), so a smooth field gives the
+# uncut Source's result.
+with_cell_field(tets, smooth)
+for b, keep in enumerate((centres[:, 0] < 0.6, centres[:, 0] >= 0.6)):
+    composite.SetBlock(b, meshes.extract(tets, keep))
+for mode in (LIMITED, LINEAR):
+    cut_result = cell_result(project(target, composite, mode).GetOutput())
+    whole_result = cell_result(project(target, tets, mode).GetOutput())
+    diff = np.nanmax(np.abs(cut_result - whole_result))
+    check(diff <= 1e-12, "composite Source, mode %d: the uncut Source's result (%.3g)" % (mode, diff))
 
 # ---------------------------------------------------------------------------
 # b. Orders on a smooth field
