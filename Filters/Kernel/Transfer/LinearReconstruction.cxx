@@ -321,142 +321,165 @@ void LinearReconstruction::Reconstruct(const double* values, int components, con
 }
 
 template <int M>
-void LinearReconstruction::ReconstructRange(Index begin, Index end, const double* values,
-  int components, const char* defined, Reconstruction mode, double* corners) const
+void LinearReconstruction::FitGradients(Index p, const double* values, int components,
+  const char* defined, Scratch& scratch) const
 {
   using Vector = Eigen::Matrix<double, M, 1>;
   using Matrix = Eigen::Matrix<double, M, M>;
+  const int space = this->Mesh->SpaceDimension;
+  const double* u = values + p * components;
+  const double* cp = this->Centroid(p);
+  const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
+  // The neighbours with values; w d, d their offsets in the cell's frame,
+  // w = 1 / |c_N - c_P|^2; A = sum w d d^T.
+  this->NeighborsOf(p, scratch.Neighbors);
+  std::vector<Index>& used = scratch.Used;
+  std::vector<double>& weighted = scratch.Weighted;
+  used.clear();
+  weighted.clear();
+  Matrix a = Matrix::Zero();
+  for (Index q : scratch.Neighbors)
+  {
+    if (defined && !defined[q])
+    {
+      continue;
+    }
+    const double* cq = this->Centroid(q);
+    double d[3] = { 0.0, 0.0, 0.0 };
+    for (int i = 0; i < space; ++i)
+    {
+      d[i] = cq[i] - cp[i];
+    }
+    const double squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (!(squared > 0.0))
+    {
+      continue; // the same centroid: no direction
+    }
+    Vector local;
+    for (int k = 0; k < M; ++k)
+    {
+      const double* t = frame ? frame + 3 * k : nullptr;
+      local(k) = t ? d[0] * t[0] + d[1] * t[1] + d[2] * t[2] : d[k];
+    }
+    a += local * local.transpose() / squared;
+    used.push_back(q);
+    for (int k = 0; k < M; ++k)
+    {
+      weighted.push_back(local(k) / squared);
+    }
+  }
+  const Matrix inverse = LeastNormInverse<M>(a);
+  // Per component: g = A^+ sum w d (u_N - u_P), and the range of u_P and its neighbours.
+  for (int c = 0; c < components; ++c)
+  {
+    Vector b = Vector::Zero();
+    double low = u[c];
+    double high = u[c];
+    for (size_t j = 0; j < used.size(); ++j)
+    {
+      const double uq = values[used[j] * components + c];
+      for (int k = 0; k < M; ++k)
+      {
+        b(k) += weighted[M * j + k] * (uq - u[c]);
+      }
+      low = std::min(low, uq);
+      high = std::max(high, uq);
+    }
+    scratch.Low[c] = low;
+    scratch.High[c] = high;
+    const Vector g = inverse * b;
+    double* out = &scratch.Gradient[3 * static_cast<size_t>(c)];
+    for (int i = 0; i < 3; ++i)
+    {
+      double sum = 0.0;
+      for (int k = 0; k < M; ++k)
+      {
+        sum += frame ? g(k) * frame[3 * k + i] : (i == k ? g(k) : 0.0);
+      }
+      out[i] = sum;
+    }
+  }
+}
+
+void LinearReconstruction::Limit(Index p, const double* u, int components, Scratch& scratch) const
+{
+  const MeshView& mesh = *this->Mesh;
+  const double* cp = this->Centroid(p);
+  for (int c = 0; c < components; ++c)
+  {
+    double* g = &scratch.Gradient[3 * static_cast<size_t>(c)];
+    double phi = 1.0;
+    for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
+    {
+      const CellCorners ids = mesh.Cell(this->Simplices[i]);
+      for (int k = 0; k < mesh.CornersPerCell(); ++k)
+      {
+        const double* x = mesh.Point(ids[k]);
+        double delta = 0.0;
+        for (int b = 0; b < mesh.SpaceDimension; ++b)
+        {
+          delta += g[b] * (x[b] - cp[b]);
+        }
+        phi = std::min(phi, LimiterFactor(u[c], delta, scratch.Low[c], scratch.High[c]));
+      }
+    }
+    phi = std::max(0.0, phi);
+    for (int b = 0; b < 3; ++b)
+    {
+      g[b] *= phi;
+    }
+  }
+}
+
+void LinearReconstruction::WriteCorners(
+  Index p, const double* u, int components, const Scratch& scratch, double* corners) const
+{
   const MeshView& mesh = *this->Mesh;
   const int n = mesh.CornersPerCell();
-  const int space = mesh.SpaceDimension;
-  const bool framed = !this->Frames.empty();
-  std::vector<Index> neighbors;
-  std::vector<Vector> offsets; // weighted: sqrt(w) (c_N - c_P) in the cell's frame
-  std::vector<double> gradient(static_cast<size_t>(3) * components);
-  std::vector<double> low(static_cast<size_t>(components));
-  std::vector<double> high(static_cast<size_t>(components));
+  const double* cp = this->Centroid(p);
+  for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
+  {
+    const Index s = this->Simplices[i];
+    const CellCorners ids = mesh.Cell(s);
+    for (int k = 0; k < n; ++k)
+    {
+      const double* x = mesh.Point(ids[k]);
+      double* out = corners + (s * n + k) * components;
+      for (int c = 0; c < components; ++c)
+      {
+        double value = u ? u[c] : 0.0;
+        for (int b = 0; b < mesh.SpaceDimension; ++b)
+        {
+          value += scratch.Gradient[3 * static_cast<size_t>(c) + b] * (x[b] - cp[b]);
+        }
+        out[c] = value;
+      }
+    }
+  }
+}
+
+template <int M>
+void LinearReconstruction::ReconstructRange(Index begin, Index end, const double* values,
+  int components, const char* defined, Reconstruction mode, double* corners) const
+{
+  Scratch scratch;
+  scratch.Gradient.resize(3 * static_cast<size_t>(components));
+  scratch.Low.resize(static_cast<size_t>(components));
+  scratch.High.resize(static_cast<size_t>(components));
   for (Index p = begin; p < end; ++p)
   {
     const double* u = values + p * components;
-    const double* cp = this->Centroid(p);
     const bool has = !defined || defined[p];
-    std::fill(gradient.begin(), gradient.end(), 0.0);
+    std::fill(scratch.Gradient.begin(), scratch.Gradient.end(), 0.0);
     if (has && mode != Reconstruction::Constant)
     {
-      // The neighbours with values, their offsets in the cell's frame.
-      this->NeighborsOf(p, neighbors);
-      size_t used = 0;
-      offsets.resize(neighbors.size());
-      for (Index q : neighbors)
-      {
-        if (defined && !defined[q])
-        {
-          continue;
-        }
-        const double* cq = this->Centroid(q);
-        double d[3] = { 0.0, 0.0, 0.0 };
-        for (int a = 0; a < space; ++a)
-        {
-          d[a] = cq[a] - cp[a];
-        }
-        Vector local;
-        for (int a = 0; a < M; ++a)
-        {
-          const double* t = framed ? &this->Frames[3 * (M * static_cast<size_t>(p) + a)] : nullptr;
-          local(a) = t ? d[0] * t[0] + d[1] * t[1] + d[2] * t[2] : d[a];
-        }
-        const double squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if (!(squared > 0.0))
-        {
-          continue; // the same centroid: no direction
-        }
-        offsets[used] = local / squared; // w d with w = 1 / |d|^2
-        neighbors[used++] = q;
-      }
-      Matrix a = Matrix::Zero();
-      for (size_t j = 0; j < used; ++j)
-      {
-        const double* cq = this->Centroid(neighbors[j]);
-        double d2 = 0.0;
-        for (int b = 0; b < space; ++b)
-        {
-          d2 += (cq[b] - cp[b]) * (cq[b] - cp[b]);
-        }
-        a += (offsets[j] * offsets[j].transpose()) * d2; // w d d^T
-      }
-      const Matrix inverse = LeastNormInverse<M>(a);
-      for (int c = 0; c < components; ++c)
-      {
-        Vector b = Vector::Zero();
-        low[c] = u[c];
-        high[c] = u[c];
-        for (size_t j = 0; j < used; ++j)
-        {
-          const double uq = values[neighbors[j] * components + c];
-          b += offsets[j] * (uq - u[c]);
-          low[c] = std::min(low[c], uq);
-          high[c] = std::max(high[c], uq);
-        }
-        const Vector g = inverse * b;
-        // The gradient in space.
-        for (int i = 0; i < 3; ++i)
-        {
-          double sum = 0.0;
-          for (int k = 0; k < M; ++k)
-          {
-            sum += framed ? g(k) * this->Frames[3 * (M * static_cast<size_t>(p) + k) + i] : (i == k ? g(k) : 0.0);
-          }
-          gradient[3 * c + i] = sum;
-        }
-      }
+      this->FitGradients<M>(p, values, components, defined, scratch);
       if (mode == Reconstruction::Limited)
       {
-        for (int c = 0; c < components; ++c)
-        {
-          double phi = 1.0;
-          const double* g = &gradient[3 * c];
-          for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
-          {
-            const CellCorners ids = mesh.Cell(this->Simplices[i]);
-            for (int k = 0; k < n; ++k)
-            {
-              const double* x = mesh.Point(ids[k]);
-              double delta = 0.0;
-              for (int b = 0; b < space; ++b)
-              {
-                delta += g[b] * (x[b] - cp[b]);
-              }
-              phi = std::min(phi, LimiterFactor(u[c], delta, low[c], high[c]));
-            }
-          }
-          phi = std::max(0.0, phi);
-          for (int b = 0; b < 3; ++b)
-          {
-            gradient[3 * c + b] *= phi;
-          }
-        }
+        this->Limit(p, u, components, scratch);
       }
     }
-    // The values at the corners of the parent's simplices.
-    for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
-    {
-      const Index s = this->Simplices[i];
-      const CellCorners ids = mesh.Cell(s);
-      for (int k = 0; k < n; ++k)
-      {
-        const double* x = mesh.Point(ids[k]);
-        double* out = corners + (s * n + k) * components;
-        for (int c = 0; c < components; ++c)
-        {
-          double value = has ? u[c] : 0.0;
-          for (int b = 0; b < space; ++b)
-          {
-            value += gradient[3 * c + b] * (x[b] - cp[b]);
-          }
-          out[c] = value;
-        }
-      }
-    }
+    this->WriteCorners(p, has ? u : nullptr, components, scratch, corners);
   }
 }
 } // namespace mp

@@ -100,6 +100,20 @@ private:
   void MeasureParents(const TaskRunner& runner);
   void FindSites();
   void GatherAroundSites(const TaskRunner& runner);
+  /// One task's working arrays (Reconstruct).
+  struct Scratch
+  {
+    std::vector<Index> Neighbors;
+    std::vector<Index> Used;        ///< the neighbours with values
+    std::vector<double> Weighted;   ///< M per used neighbour: w d
+    std::vector<double> Gradient;   ///< 3 per component, in space
+    std::vector<double> Low, High;  ///< per component: the range of the cell and its neighbours
+  };
+  // The steps of Reconstruct, per parent p.
+  template <int M>
+  void FitGradients(Index p, const double* values, int components, const char* defined, Scratch& scratch) const;
+  void Limit(Index p, const double* u, int components, Scratch& scratch) const;
+  void WriteCorners(Index p, const double* u, int components, const Scratch& scratch, double* corners) const;
   template <int M>
   void ReconstructRange(Index begin, Index end, const double* values, int components,
     const char* defined, Reconstruction mode, double* corners) const;

@@ -32,7 +32,7 @@ check(projection.FillWithNaN == 1 and projection.FillValue == 0, "fill defaults"
 check(set(projection.ListProperties()) == {
     "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
-    "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
+    "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "NormalOrientation"},
       "properties %r" % projection.ListProperties())
@@ -42,6 +42,8 @@ check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "C
       "transfer defaults %r %r" % (projection.PointDataTarget, projection.CellDataTarget))
 check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "Consistent",
       "quantity and mass defaults")
+check(projection.CellDataReconstruction == "Constant",
+      "reconstruction default %r" % projection.CellDataReconstruction)
 check(projection.PreserveBounds == 0 and projection.CacheOperator == 1, "bounds and cache defaults")
 check(projection.MaximumIterations == 500, "iterations default %r" % projection.MaximumIterations)
 check(projection.NumberOfThreads == 0 and projection.Renumbering == "Automatic",
