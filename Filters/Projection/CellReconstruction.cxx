@@ -29,7 +29,8 @@ std::vector<char> DefinedCells(const mp::MeshView& source, const NaNGroup& group
 }
 } // namespace
 
-void ReconstructCellFields(const Settings& settings, const mp::MeshView& source, GatheredFields& cells)
+void ReconstructCellFields(
+  const Settings& settings, const mp::MeshView& source, bool joinCopies, GatheredFields& cells)
 {
   cells.Reconstructed = false;
   if (settings.CellDataReconstruction == 0 || settings.CellDataTarget == 0)
@@ -39,7 +40,7 @@ void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
   const auto mode = static_cast<mp::Reconstruction>(settings.CellDataReconstruction);
   const mp::TaskRunner runner = SMPTaskRunner();
   mp::LinearReconstruction reconstruction;
-  reconstruction.Prepare(source, runner);
+  reconstruction.Prepare(source, runner, joinCopies);
   const size_t corners = static_cast<size_t>(source.NumberOfCells) * source.CornersPerCell();
   cells.Corners.resize(corners * cells.Components);
   if (cells.Components > 0)

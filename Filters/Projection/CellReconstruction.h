@@ -10,7 +10,10 @@
  * (Transfers.h, SourceSpaceOf); the transfers, the NaN groups, the
  * integrals and the outputs are otherwise those of constant cell data.
  * A NaN group's cells left out are no neighbours for its arrays' gradients
- * (a cell next to a hole uses the neighbours it has). On several processes
+ * (a cell next to a hole uses the neighbours it has). A Source made of
+ * parts (a composite's blocks appended, the processes' parts gathered) has
+ * its own copy of each point between two parts: copies at the same
+ * coordinates are one point there. On several processes
  * each process's gathered Source holds, besides the cells its part needs,
  * the cells around them (SourceGather.cxx, the neighbour layer), so each
  * gradient is the serial one.
@@ -25,8 +28,13 @@ namespace mpvtk
 struct GatheredFields;
 struct Settings;
 
-/// Fills `cells`' Corners (and each NaN group's) when the settings ask for a reconstruction.
-void ReconstructCellFields(const Settings& settings, const mp::MeshView& source, GatheredFields& cells);
+/**
+ * Fills `cells`' Corners (and each NaN group's) when the settings ask for a
+ * reconstruction. `joinCopies`: Source was made of parts (a composite's
+ * blocks, the processes' parts), whose copies of a point are one point.
+ */
+void ReconstructCellFields(
+  const Settings& settings, const mp::MeshView& source, bool joinCopies, GatheredFields& cells);
 } // namespace mpvtk
 
 #endif

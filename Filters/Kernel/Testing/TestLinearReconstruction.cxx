@@ -91,7 +91,7 @@ void ExpectLinearExact(const TestMesh& m, bool pairs, const char* what)
   const std::vector<Index> parent = pairs ? Pairs(m) : std::vector<Index>();
   const mp::MeshView view = WithParents(m, parent);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(2));
+  r.Prepare(view, mptest::ThreadRunner(2), false);
   const std::vector<double> u = Averages(r, view);
   for (int tasks : { 1, 2 })
   {
@@ -141,7 +141,7 @@ TEST(LinearReconstruction, HolesUseTheNeighboursLeft)
   TestMesh m = mptest::GridMesh(10, 10, 0.3, 5);
   const mp::MeshView view = m.View(false);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1));
+  r.Prepare(view, mptest::ThreadRunner(1), false);
   std::vector<double> u = Averages(r, view);
   std::vector<char> defined(u.size(), 1);
   for (Index p = 0; p < view.Parents(); ++p)
@@ -178,7 +178,7 @@ TEST(LinearReconstruction, LimiterKeepsCornersWithinTheNeighbours)
   TestMesh m = mptest::CubeMesh(5, 5, 5, 0.2, 6);
   const mp::MeshView view = m.View(false);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1));
+  r.Prepare(view, mptest::ThreadRunner(1), false);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::vector<double> u(static_cast<size_t>(view.Parents()));
@@ -222,7 +222,7 @@ TEST(LinearReconstruction, LoneCellKeepsItsValue)
   m.Cells = { 0, 1, 2 };
   const mp::MeshView view = m.View(false);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1));
+  r.Prepare(view, mptest::ThreadRunner(1), false);
   const std::vector<double> corners =
     Reconstructed(r, view, std::vector<double>{ 4.0 }, nullptr, mp::Reconstruction::Unlimited);
   for (double v : corners)
@@ -231,18 +231,21 @@ TEST(LinearReconstruction, LoneCellKeepsItsValue)
   }
 }
 
-TEST(LinearReconstruction, CopiesOfAPointAreOnePoint)
+TEST(LinearReconstruction, CopiesOfAPointAreOnePointWhenJoined)
 {
-  // Two triangles on their own copies of the shared edge's points: still
-  // neighbours (a composite dataset's blocks, gathered parts).
+  // Two triangles on their own copies of the shared edge's points: joined,
+  // neighbours (a composite dataset's blocks, gathered parts); else not.
   TestMesh m;
   m.Dimension = 2;
   m.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
   m.Cells = { 0, 1, 2, 3, 4, 5 };
   const mp::MeshView view = m.View(false);
-  mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1));
-  std::vector<Index> neighbors;
-  r.NeighborsOf(0, neighbors);
-  EXPECT_EQ(neighbors, std::vector<Index>{ 1 });
+  for (bool join : { true, false })
+  {
+    mp::LinearReconstruction r;
+    r.Prepare(view, mptest::ThreadRunner(1), join);
+    std::vector<Index> neighbors;
+    r.NeighborsOf(0, neighbors);
+    EXPECT_EQ(neighbors, join ? std::vector<Index>{ 1 } : std::vector<Index>{});
+  }
 }

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Transfer/LinearReconstruction.h"
 
+#include "Mesh/CellNeighbors.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mp
 {
@@ -78,9 +81,32 @@ bool SimplexFrame(const MeshView& mesh, Index c, double* frame)
 }
 
 /**
- * The least-squares normal matrix A's (least-norm) inverse: A^-1 by
- * Cholesky when the neighbours span all M directions well, else the
- * pseudo-inverse without the directions they leave (nearly) open.
+ * Whether the normal matrix A (of neighbours' offsets of unit length
+ * weight) spans all M directions well: its Cholesky factor's smallest
+ * pivot, squared, at least `fraction` of its trace (a direction holding
+ * that share of the neighbours' weight).
+ */
+template <int M>
+bool SpansWell(const Eigen::Matrix<double, M, M>& a, double fraction)
+{
+  const double scale = a.trace();
+  if (!(scale > 0.0))
+  {
+    return false;
+  }
+  Eigen::LLT<Eigen::Matrix<double, M, M>> llt(a);
+  if (llt.info() != Eigen::Success)
+  {
+    return false;
+  }
+  const double smallest = llt.matrixLLT().diagonal().minCoeff();
+  return smallest * smallest > fraction * scale;
+}
+
+/**
+ * The least-squares normal matrix A's (least-norm) inverse: A^-1 when the
+ * neighbours span all M directions, else the pseudo-inverse without the
+ * directions they leave (nearly) open.
  */
 template <int M>
 Eigen::Matrix<double, M, M> LeastNormInverse(const Eigen::Matrix<double, M, M>& a)
@@ -91,15 +117,9 @@ Eigen::Matrix<double, M, M> LeastNormInverse(const Eigen::Matrix<double, M, M>& 
   {
     return Matrix::Zero();
   }
-  Eigen::LLT<Matrix> llt(a);
-  if (llt.info() == Eigen::Success)
+  if (SpansWell<M>(a, 1e-10))
   {
-    const auto d = llt.matrixLLT().diagonal();
-    const double smallest = d.minCoeff();
-    if (smallest * smallest > 1e-10 * scale)
-    {
-      return llt.solve(Matrix::Identity());
-    }
+    return a.inverse();
   }
   Eigen::SelfAdjointEigenSolver<Matrix> eigen(a);
   Matrix inverse = Matrix::Zero();
@@ -131,13 +151,15 @@ inline double LimiterFactor(double u, double delta, double low, double high)
 }
 } // namespace
 
-void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runner)
+void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runner, bool joinCopies)
 {
   this->Mesh = &mesh;
+  this->JoinCopies = joinCopies;
   this->GroupSimplices();
   this->MeasureParents(runner);
   this->FindSites();
   this->GatherAroundSites(runner);
+  this->FindFaceNeighbors(runner);
 }
 
 void LinearReconstruction::GroupSimplices()
@@ -218,6 +240,12 @@ void LinearReconstruction::FindSites()
   {
     order[q] = q;
   }
+  if (!this->JoinCopies)
+  {
+    this->Site.swap(order); // each point its own site
+    this->Sites = points;
+    return;
+  }
   auto same = [&](Index a, Index b) {
     return std::equal(mesh.Point(a), mesh.Point(a) + space, mesh.Point(b));
   };
@@ -267,6 +295,77 @@ void LinearReconstruction::GatherAroundSites(const TaskRunner& runner)
   });
 }
 
+void LinearReconstruction::FindFaceNeighbors(const TaskRunner& runner)
+{
+  // The simplices' face neighbours on the sites (CellNeighbors.h), then
+  // per parent the parents across its simplices' faces.
+  const MeshView& mesh = *this->Mesh;
+  const Index parents = mesh.Parents();
+  const int corners = mesh.CornersPerCell();
+  const Index entries = mesh.NumberOfCells * corners;
+  std::vector<NeighborId> across(static_cast<size_t>(entries), -1);
+  if (!this->JoinCopies)
+  {
+    MeshView own = mesh;
+    own.Neighbors = nullptr;
+    own.Around = nullptr;
+    BuildFaceNeighbors(own, across.data(), runner);
+  }
+  else
+  {
+    std::vector<Index> sites(static_cast<size_t>(entries));
+    runner.ForRanges(entries, [&](Index begin, Index end) {
+      for (Index i = begin; i < end; ++i)
+      {
+        sites[i] = this->Site[mesh.Corner(i)];
+      }
+      return 0;
+    });
+    MeshView onSites = mesh;
+    onSites.Connectivity = sites.data();
+    onSites.Connectivity32 = nullptr;
+    onSites.NumberOfPoints = this->Sites;
+    onSites.Neighbors = nullptr;
+    onSites.Around = nullptr;
+    BuildFaceNeighbors(onSites, across.data(), runner);
+  }
+  const int tasks = runner.TasksFor(parents, 1024);
+  std::vector<std::vector<Index>> found(static_cast<size_t>(tasks));
+  std::vector<Index> count(static_cast<size_t>(parents) + 1, 0);
+  runner.RunAll(tasks, [&](int k) {
+    for (Index p = RangeBegin(parents, k, tasks); p < RangeBegin(parents, k + 1, tasks); ++p)
+    {
+      const size_t first = found[k].size();
+      for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
+      {
+        for (int face = 0; face < corners; ++face)
+        {
+          const NeighborId n = across[static_cast<size_t>(this->Simplices[i] * corners + face)];
+          const Index q = n >= 0 ? mesh.ParentOf(n) : p;
+          if (q != p)
+          {
+            found[k].push_back(q);
+          }
+        }
+      }
+      std::sort(found[k].begin() + first, found[k].end());
+      found[k].erase(std::unique(found[k].begin() + first, found[k].end()), found[k].end());
+      count[p + 1] = static_cast<Index>(found[k].size() - first);
+    }
+  });
+  for (Index p = 0; p < parents; ++p)
+  {
+    count[p + 1] += count[p];
+  }
+  this->FaceStart.swap(count);
+  this->Faces.clear();
+  this->Faces.reserve(static_cast<size_t>(this->FaceStart.back()));
+  for (const std::vector<Index>& part : found)
+  {
+    this->Faces.insert(this->Faces.end(), part.begin(), part.end());
+  }
+}
+
 void LinearReconstruction::NeighborsOf(Index p, std::vector<Index>& neighbors) const
 {
   const MeshView& mesh = *this->Mesh;
@@ -295,7 +394,7 @@ std::size_t LinearReconstruction::MemoryBytes() const
   return (this->Centroids.capacity() + this->Measures.capacity() + this->Frames.capacity()) *
     sizeof(double) +
     (this->SimplexStart.capacity() + this->Simplices.capacity() + this->AroundStart.capacity() +
-      this->Around.capacity() + this->Site.capacity()) *
+      this->Around.capacity() + this->Site.capacity() + this->FaceStart.capacity() + this->Faces.capacity()) *
     sizeof(Index);
 }
 
@@ -304,41 +403,51 @@ void LinearReconstruction::Reconstruct(const double* values, int components, con
 {
   const MeshView& mesh = *this->Mesh;
   const Index parents = mesh.Parents();
+  const std::vector<double> ranges = mode == Reconstruction::Limited
+    ? this->SiteRanges(values, components, defined, runner)
+    : std::vector<double>();
+  const Input in{ values, components, defined, mode, ranges.data() };
   runner.ForRanges(parents, [&](Index begin, Index end) {
     switch (mesh.CellDimension)
     {
       case 1:
-        this->ReconstructRange<1>(begin, end, values, components, defined, mode, corners);
+        this->ReconstructRange<1>(begin, end, in, corners);
         break;
       case 2:
-        this->ReconstructRange<2>(begin, end, values, components, defined, mode, corners);
+        this->ReconstructRange<2>(begin, end, in, corners);
         break;
       default:
-        this->ReconstructRange<3>(begin, end, values, components, defined, mode, corners);
+        this->ReconstructRange<3>(begin, end, in, corners);
     }
     return 0;
   }, 1024);
 }
 
 template <int M>
-void LinearReconstruction::FitGradients(Index p, const double* values, int components,
-  const char* defined, Scratch& scratch) const
+void LinearReconstruction::Stencil(Index p, const char* defined, bool aroundPoints, Scratch& scratch) const
 {
   using Vector = Eigen::Matrix<double, M, 1>;
   using Matrix = Eigen::Matrix<double, M, M>;
   const int space = this->Mesh->SpaceDimension;
-  const double* u = values + p * components;
   const double* cp = this->Centroid(p);
   const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
+  std::vector<Index>& candidates = scratch.Neighbors;
+  if (aroundPoints)
+  {
+    this->NeighborsOf(p, candidates);
+  }
+  else
+  {
+    candidates.assign(this->Faces.begin() + this->FaceStart[p], this->Faces.begin() + this->FaceStart[p + 1]);
+  }
   // The neighbours with values; w d, d their offsets in the cell's frame,
   // w = 1 / |c_N - c_P|^2; A = sum w d d^T.
-  this->NeighborsOf(p, scratch.Neighbors);
   std::vector<Index>& used = scratch.Used;
   std::vector<double>& weighted = scratch.Weighted;
   used.clear();
   weighted.clear();
   Matrix a = Matrix::Zero();
-  for (Index q : scratch.Neighbors)
+  for (Index q : candidates)
   {
     if (defined && !defined[q])
     {
@@ -368,13 +477,32 @@ void LinearReconstruction::FitGradients(Index p, const double* values, int compo
       weighted.push_back(local(k) / squared);
     }
   }
+  Eigen::Map<Matrix>(scratch.Normal) = a;
+}
+
+template <int M>
+void LinearReconstruction::FitGradients(Index p, const double* values, int components,
+  const char* defined, Scratch& scratch) const
+{
+  using Vector = Eigen::Matrix<double, M, 1>;
+  using Matrix = Eigen::Matrix<double, M, M>;
+  const double* u = values + p * components;
+  const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
+  // The face neighbours, or where they do not span the cell's directions
+  // (a corner, a hole, a strip) all the cells around it.
+  this->Stencil<M>(p, defined, false, scratch);
+  if (!SpansWell<M>(Eigen::Map<Matrix>(scratch.Normal), 1e-2))
+  {
+    this->Stencil<M>(p, defined, true, scratch);
+  }
+  const Matrix a = Eigen::Map<Matrix>(scratch.Normal);
+  const std::vector<Index>& used = scratch.Used;
+  const std::vector<double>& weighted = scratch.Weighted;
   const Matrix inverse = LeastNormInverse<M>(a);
-  // Per component: g = A^+ sum w d (u_N - u_P), and the range of u_P and its neighbours.
+  // Per component: g = A^+ sum w d (u_N - u_P).
   for (int c = 0; c < components; ++c)
   {
     Vector b = Vector::Zero();
-    double low = u[c];
-    double high = u[c];
     for (size_t j = 0; j < used.size(); ++j)
     {
       const double uq = values[used[j] * components + c];
@@ -382,11 +510,7 @@ void LinearReconstruction::FitGradients(Index p, const double* values, int compo
       {
         b(k) += weighted[M * j + k] * (uq - u[c]);
       }
-      low = std::min(low, uq);
-      high = std::max(high, uq);
     }
-    scratch.Low[c] = low;
-    scratch.High[c] = high;
     const Vector g = inverse * b;
     double* out = &scratch.Gradient[3 * static_cast<size_t>(c)];
     for (int i = 0; i < 3; ++i)
@@ -401,7 +525,8 @@ void LinearReconstruction::FitGradients(Index p, const double* values, int compo
   }
 }
 
-void LinearReconstruction::Limit(Index p, const double* u, int components, Scratch& scratch) const
+void LinearReconstruction::Limit(
+  Index p, const double* u, int components, const double* ranges, Scratch& scratch) const
 {
   const MeshView& mesh = *this->Mesh;
   const double* cp = this->Centroid(p);
@@ -420,7 +545,8 @@ void LinearReconstruction::Limit(Index p, const double* u, int components, Scrat
         {
           delta += g[b] * (x[b] - cp[b]);
         }
-        phi = std::min(phi, LimiterFactor(u[c], delta, scratch.Low[c], scratch.High[c]));
+        const double* range = ranges + 2 * (this->Site[ids[k]] * components + c);
+        phi = std::min(phi, LimiterFactor(u[c], delta, range[0], range[1]));
       }
     }
     phi = std::max(0.0, phi);
@@ -429,6 +555,35 @@ void LinearReconstruction::Limit(Index p, const double* u, int components, Scrat
       g[b] *= phi;
     }
   }
+}
+
+std::vector<double> LinearReconstruction::SiteRanges(
+  const double* values, int components, const char* defined, const TaskRunner& runner) const
+{
+  std::vector<double> ranges(2 * static_cast<size_t>(this->Sites) * components);
+  runner.ForRanges(this->Sites, [&](Index begin, Index end) {
+    for (Index q = begin; q < end; ++q)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        double low = std::numeric_limits<double>::infinity();
+        double high = -low;
+        for (Index j = this->AroundStart[q]; j < this->AroundStart[q + 1]; ++j)
+        {
+          const Index parent = this->Around[j];
+          if (!defined || defined[parent])
+          {
+            low = std::min(low, values[parent * components + c]);
+            high = std::max(high, values[parent * components + c]);
+          }
+        }
+        ranges[2 * (q * components + c)] = low;
+        ranges[2 * (q * components + c) + 1] = high;
+      }
+    }
+    return 0;
+  });
+  return ranges;
 }
 
 void LinearReconstruction::WriteCorners(
@@ -459,27 +614,24 @@ void LinearReconstruction::WriteCorners(
 }
 
 template <int M>
-void LinearReconstruction::ReconstructRange(Index begin, Index end, const double* values,
-  int components, const char* defined, Reconstruction mode, double* corners) const
+void LinearReconstruction::ReconstructRange(Index begin, Index end, const Input& in, double* corners) const
 {
   Scratch scratch;
-  scratch.Gradient.resize(3 * static_cast<size_t>(components));
-  scratch.Low.resize(static_cast<size_t>(components));
-  scratch.High.resize(static_cast<size_t>(components));
+  scratch.Gradient.resize(3 * static_cast<size_t>(in.Components));
   for (Index p = begin; p < end; ++p)
   {
-    const double* u = values + p * components;
-    const bool has = !defined || defined[p];
+    const double* u = in.Values + p * in.Components;
+    const bool has = !in.Defined || in.Defined[p];
     std::fill(scratch.Gradient.begin(), scratch.Gradient.end(), 0.0);
-    if (has && mode != Reconstruction::Constant)
+    if (has && in.Mode != Reconstruction::Constant)
     {
-      this->FitGradients<M>(p, values, components, defined, scratch);
-      if (mode == Reconstruction::Limited)
+      this->FitGradients<M>(p, in.Values, in.Components, in.Defined, scratch);
+      if (in.Mode == Reconstruction::Limited)
       {
-        this->Limit(p, u, components, scratch);
+        this->Limit(p, u, in.Components, in.Ranges, scratch);
       }
     }
-    this->WriteCorners(p, has ? u : nullptr, components, scratch, corners);
+    this->WriteCorners(p, has ? u : nullptr, in.Components, scratch, corners);
   }
 }
 } // namespace mp

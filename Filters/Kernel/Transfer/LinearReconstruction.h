@@ -16,30 +16,30 @@
  * The field is then handed to the operator in the DP1 space (Space.h): the
  * values of u_P at the corners of each of P's simplices.
  *
- * The gradient g_P: weighted least squares over the cells that share a
- * point with P (its vertex neighbours N; a point is its coordinates, so
- * that blocks of a composite dataset, or parts gathered from several
- * processes, that each have their own copy of a point are neighbours
- * there), fitting u_N - u_P by
- * g . (c_N - c_P) with weights 1 / |c_N - c_P|^2. The mean of a linear
- * field over a cell is its value at the centroid, so the cell averages of
- * a linear field give its gradient exactly, whatever the cells. Vertex
- * neighbours rather than face neighbours: a cell at a corner of the mesh,
- * one next to a hole of missing values, or a split cell whose faces are
- * shared by its own simplices still has neighbours on every side (a face
- * stencil leaves a corner triangle with one), and on several processes the
- * cells around a shared point are the layer the gradients need. Where the
- * neighbours do not span the cell's directions (a cell alone, a row of
- * cells), the gradient is the least-norm one: zero in the directions they
- * leave open. On surfaces and curves the gradient lies in the cell's own
- * plane (line): the neighbours' offsets are taken in a frame of the cell.
+ * The gradient g_P: weighted least squares over P's face neighbours N
+ * (the cells across the faces of its simplices that are not its own),
+ * fitting u_N - u_P by g . (c_N - c_P) with weights 1 / |c_N - c_P|^2. The
+ * mean of a linear field over a cell is its value at the centroid, so the
+ * cell averages of a linear field give its gradient exactly, whatever the
+ * cells. Where the face neighbours with values do not span the cell's
+ * directions well (a corner of the mesh, a cell next to a hole of missing
+ * values, a thin strip), the fit takes every cell that shares a point with
+ * P instead; where even those leave a direction open (a cell alone, a row
+ * of cells), the least-norm gradient: zero in that direction. On surfaces
+ * and curves the gradient lies in the cell's own plane (line): the
+ * neighbours' offsets are taken in a frame of the cell.
  *
- * With the limiter (Barth and Jespersen 1989), g_P is scaled by the largest
- * phi in [0, 1] such that u_P at every corner of P stays within the least
- * and greatest of u_P and its neighbours' values. A linear function's
- * extremes on a cell are at its corners, so the reconstructed field has no
- * value outside that range anywhere on P, and the projection's averages
- * over pieces create no new extrema. Each component is limited on its own.
+ * With the limiter (Barth and Jespersen 1989, with the bounds of each
+ * corner from the cells around it), g_P is scaled by the largest phi in
+ * [0, 1] such that u_P at every corner x of P stays within the least and
+ * greatest value of the cells that share the point x. Those cells are P
+ * and neighbours of P, so u_P nowhere leaves the range of P and its
+ * neighbours (a linear function's extremes on a cell are at its corners),
+ * and the projection's averages over pieces create no new extrema. A
+ * corner's bounds from the cells around it, rather than from P's face
+ * neighbours alone, leave a linear field alone inside the mesh (each
+ * point lies among the centroids around it): the limiter clips at jumps
+ * and extrema, not everywhere. Each component is limited on its own.
  *
  * Cells without a value (`Defined` zero: the NaN holes of an array) are
  * neither fitted nor used as neighbours; their corner values are 0 (their
@@ -73,9 +73,13 @@ class LinearReconstruction
 public:
   /**
    * Prepares the geometry of `mesh` (kept as a view: it must outlive the
-   * calls). Cells are the mesh's parents (MeshView::Parent).
+   * calls). Cells are the mesh's parents (MeshView::Parent). With
+   * `joinCopies`, points at the same coordinates are one point (a mesh
+   * made of parts that each have their own copies of the points between
+   * them: a composite dataset's blocks, the parts of several processes);
+   * else each point is its id.
    */
-  void Prepare(const MeshView& mesh, const TaskRunner& runner);
+  void Prepare(const MeshView& mesh, const TaskRunner& runner, bool joinCopies);
 
   /**
    * The DP1 values (cells x corners x components, row-major; Space.h) of the
@@ -100,6 +104,7 @@ private:
   void MeasureParents(const TaskRunner& runner);
   void FindSites();
   void GatherAroundSites(const TaskRunner& runner);
+  void FindFaceNeighbors(const TaskRunner& runner);
   /// One task's working arrays (Reconstruct).
   struct Scratch
   {
@@ -107,16 +112,31 @@ private:
     std::vector<Index> Used;        ///< the neighbours with values
     std::vector<double> Weighted;   ///< M per used neighbour: w d
     std::vector<double> Gradient;   ///< 3 per component, in space
-    std::vector<double> Low, High;  ///< per component: the range of the cell and its neighbours
+    double Normal[9];               ///< the normal matrix A = sum w d d^T (M x M, column-major)
   };
   // The steps of Reconstruct, per parent p.
+  /// The neighbours of p with values, face neighbours (or all the cells
+  /// around it), with their weighted offsets and normal matrix, in `scratch`.
+  template <int M>
+  void Stencil(Index p, const char* defined, bool aroundPoints, Scratch& scratch) const;
   template <int M>
   void FitGradients(Index p, const double* values, int components, const char* defined, Scratch& scratch) const;
-  void Limit(Index p, const double* u, int components, Scratch& scratch) const;
+  void Limit(Index p, const double* u, int components, const double* ranges, Scratch& scratch) const;
+  /// Per site and component, the least and greatest value of the cells around it with values.
+  std::vector<double> SiteRanges(
+    const double* values, int components, const char* defined, const TaskRunner& runner) const;
+  /// What Reconstruct was given (and the site ranges of the limiter).
+  struct Input
+  {
+    const double* Values;
+    int Components;
+    const char* Defined;
+    Reconstruction Mode;
+    const double* Ranges;
+  };
   void WriteCorners(Index p, const double* u, int components, const Scratch& scratch, double* corners) const;
   template <int M>
-  void ReconstructRange(Index begin, Index end, const double* values, int components,
-    const char* defined, Reconstruction mode, double* corners) const;
+  void ReconstructRange(Index begin, Index end, const Input& in, double* corners) const;
 
   const MeshView* Mesh = nullptr;
   LargeVector<double> Centroids; ///< 3 per parent
@@ -126,12 +146,16 @@ private:
   LargeVector<double> Frames;
   std::vector<Index> SimplexStart; ///< parent p's simplices: Simplices[SimplexStart[p] ...]
   std::vector<Index> Simplices;
-  /// Per point, its site: points at the same coordinates are one site
-  /// (the cells around a point are those around its site).
+  bool JoinCopies = false;
+  /// Per point, its site: with JoinCopies, points at the same coordinates
+  /// are one site, else each point is its own (the cells around a point
+  /// are those around its site).
   std::vector<Index> Site;
   Index Sites = 0;
   std::vector<Index> AroundStart;  ///< the parents around site q: Around[AroundStart[q] ...]
   std::vector<Index> Around;
+  std::vector<Index> FaceStart;    ///< parent p's face neighbours: Faces[FaceStart[p] ...]
+  std::vector<Index> Faces;
 };
 } // namespace mp
 

@@ -98,30 +98,13 @@ def simplex_measures(p):
     return np.abs(np.einsum("ij,ij->i", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6
 
 
-def quadrature(p, f):
-    """The mean of f over each simplex: exact for quadratics."""
-    k = p.shape[1]
-    if k == 2:
-        g = 0.5 / np.sqrt(3)
-        return 0.5 * (f((0.5 - g) * p[:, 0] + (0.5 + g) * p[:, 1]) + f((0.5 + g) * p[:, 0] + (0.5 - g) * p[:, 1]))
-    if k == 3:
-        return sum(f(0.5 * (p[:, a] + p[:, b])) for a, b in ((0, 1), (1, 2), (0, 2))) / 3
-    a, b = 0.5854101966249685, 0.1381966011250105
-    total = 0
-    for j in range(4):
-        w = np.full(4, b)
-        w[j] = a
-        total = total + f(np.einsum("k,nkd->nd", w, p))
-    return total / 4
-
-
 def averages(ds, f):
     """Per cell: the mean of f and the measure."""
     p, cell = simplices(ds)
     m = simplex_measures(p)
     n = ds.GetNumberOfCells()
     measure = np.bincount(cell, m, n)
-    mean = np.bincount(cell, m * quadrature(p, f), n) / np.where(measure > 0, measure, 1)
+    mean = np.bincount(cell, m * meshes.simplex_means(p, f), n) / np.where(measure > 0, measure, 1)
     return mean, measure
 
 

@@ -95,3 +95,24 @@ def extract(g, keep):
     out = vtkUnstructuredGrid()
     out.ShallowCopy(e.GetOutput())
     return out
+
+
+def simplex_means(corners, f):
+    """The mean of f (a function of (n, 3) points) over each simplex whose
+    corners are corners[i] ((n, k, 3), k = 2, 3 or 4): quadrature exact for
+    quadratics (Gauss on segments, edge midpoints on triangles, the
+    four-point rule on tetrahedra)."""
+    p = corners
+    k = p.shape[1]
+    if k == 2:
+        g = 0.5 / np.sqrt(3)
+        return 0.5 * (f((0.5 - g) * p[:, 0] + (0.5 + g) * p[:, 1]) + f((0.5 + g) * p[:, 0] + (0.5 - g) * p[:, 1]))
+    if k == 3:
+        return sum(f(0.5 * (p[:, a] + p[:, b])) for a, b in ((0, 1), (1, 2), (0, 2))) / 3
+    a, b = 0.5854101966249685, 0.1381966011250105
+    total = 0
+    for j in range(4):
+        w = np.full(4, b)
+        w[j] = a
+        total = total + f(np.einsum("k,nkd->nd", w, p))
+    return total / 4
