@@ -36,6 +36,17 @@ double SimplexMeasure(const MeshView& mesh, Index c)
   double e[3][3];
   SimplexEdges(mesh, c, e);
   const int m = mesh.CellDimension;
+  if (m == 2 && mesh.SpaceDimension == 2)
+  {
+    return 0.5 * std::fabs(e[0][0] * e[1][1] - e[0][1] * e[1][0]);
+  }
+  if (m == 3)
+  {
+    return std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+             e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+             e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+      6.0;
+  }
   Eigen::Matrix3d gram = Eigen::Matrix3d::Identity();
   for (int a = 0; a < m; ++a)
   {
@@ -164,14 +175,42 @@ void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runne
 
 void LinearReconstruction::GroupSimplices()
 {
-  // A counting sort of the simplices by parent.
+  // Slots: the parents in the order of their first simplex, so that a
+  // parent's neighbours, numbered alike, lie near it in memory whatever the
+  // dataset's numbering (the kernel's cells are in space order). Then a
+  // counting sort of the simplices by slot.
   const MeshView& mesh = *this->Mesh;
   const Index parents = mesh.Parents();
   const Index cells = mesh.NumberOfCells;
+  this->SlotOf.assign(static_cast<size_t>(parents), -1);
+  this->ParentOfSlot.resize(static_cast<size_t>(parents));
+  Index slots = 0;
+  for (Index c = 0; c < cells; ++c)
+  {
+    Index& slot = this->SlotOf[mesh.ParentOf(c)];
+    if (slot < 0)
+    {
+      slot = slots;
+      this->ParentOfSlot[slots++] = mesh.ParentOf(c);
+    }
+  }
+  for (Index p = 0; p < parents; ++p)
+  {
+    if (this->SlotOf[p] < 0) // (a parent without simplices: last)
+    {
+      this->SlotOf[p] = slots;
+      this->ParentOfSlot[slots++] = p;
+    }
+  }
+  this->SlotsAreParents = true;
+  for (Index p = 0; p < parents && this->SlotsAreParents; ++p)
+  {
+    this->SlotsAreParents = this->SlotOf[p] == p;
+  }
   this->SimplexStart.assign(static_cast<size_t>(parents) + 1, 0);
   for (Index c = 0; c < cells; ++c)
   {
-    ++this->SimplexStart[static_cast<size_t>(mesh.ParentOf(c)) + 1];
+    ++this->SimplexStart[static_cast<size_t>(this->SlotOf[mesh.ParentOf(c)]) + 1];
   }
   for (Index p = 0; p < parents; ++p)
   {
@@ -181,7 +220,7 @@ void LinearReconstruction::GroupSimplices()
   std::vector<Index> next(this->SimplexStart.begin(), this->SimplexStart.end() - 1);
   for (Index c = 0; c < cells; ++c)
   {
-    this->Simplices[next[mesh.ParentOf(c)]++] = c;
+    this->Simplices[next[this->SlotOf[mesh.ParentOf(c)]]++] = c;
   }
 }
 
@@ -192,7 +231,6 @@ void LinearReconstruction::MeasureParents(const TaskRunner& runner)
   const int corners = mesh.CornersPerCell();
   const bool framed = !mesh.IsVolumeMesh();
   this->Centroids.assign(3 * static_cast<size_t>(parents), 0.0);
-  this->Measures.assign(static_cast<size_t>(parents), 0.0);
   this->Frames.assign(framed ? 3 * static_cast<size_t>(mesh.CellDimension) * parents : 0, 0.0);
   runner.ForRanges(parents, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
@@ -219,7 +257,6 @@ void LinearReconstruction::MeasureParents(const TaskRunner& runner)
           hasFrame = SimplexFrame(mesh, c, &this->Frames[3 * mesh.CellDimension * static_cast<size_t>(p)]);
         }
       }
-      this->Measures[p] = measure;
       for (int a = 0; a < 3; ++a)
       {
         this->Centroids[3 * p + a] = measure > 0.0 ? sum[a] / measure : 0.0;
@@ -284,7 +321,7 @@ void LinearReconstruction::GatherAroundSites(const TaskRunner& runner)
   std::vector<Index> next(this->AroundStart.begin(), this->AroundStart.end() - 1);
   for (Index i = 0; i < entries; ++i)
   {
-    this->Around[next[this->Site[mesh.Corner(i)]]++] = mesh.ParentOf(i / mesh.CornersPerCell());
+    this->Around[next[this->Site[mesh.Corner(i)]]++] = this->SlotOf[mesh.ParentOf(i / mesh.CornersPerCell())];
   }
   runner.ForRanges(this->Sites, [&](Index begin, Index end) {
     for (Index q = begin; q < end; ++q)
@@ -341,7 +378,7 @@ void LinearReconstruction::FindFaceNeighbors(const TaskRunner& runner)
         for (int face = 0; face < corners; ++face)
         {
           const NeighborId n = across[static_cast<size_t>(this->Simplices[i] * corners + face)];
-          const Index q = n >= 0 ? mesh.ParentOf(n) : p;
+          const Index q = n >= 0 ? this->SlotOf[mesh.ParentOf(n)] : p;
           if (q != p)
           {
             found[k].push_back(q);
@@ -368,6 +405,16 @@ void LinearReconstruction::FindFaceNeighbors(const TaskRunner& runner)
 
 void LinearReconstruction::NeighborsOf(Index p, std::vector<Index>& neighbors) const
 {
+  this->SlotNeighbors(this->SlotOf[p], neighbors);
+  for (Index& q : neighbors)
+  {
+    q = this->ParentOfSlot[q];
+  }
+  std::sort(neighbors.begin(), neighbors.end());
+}
+
+void LinearReconstruction::SlotNeighbors(Index p, std::vector<Index>& neighbors) const
+{
   const MeshView& mesh = *this->Mesh;
   neighbors.clear();
   for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
@@ -391,9 +438,10 @@ void LinearReconstruction::NeighborsOf(Index p, std::vector<Index>& neighbors) c
 
 std::size_t LinearReconstruction::MemoryBytes() const
 {
-  return (this->Centroids.capacity() + this->Measures.capacity() + this->Frames.capacity()) *
+  return (this->Centroids.capacity() + this->Frames.capacity()) *
     sizeof(double) +
-    (this->SimplexStart.capacity() + this->Simplices.capacity() + this->AroundStart.capacity() +
+    (this->SimplexStart.capacity() + this->Simplices.capacity() + this->SlotOf.capacity() +
+      this->ParentOfSlot.capacity() + this->AroundStart.capacity() +
       this->Around.capacity() + this->Site.capacity() + this->FaceStart.capacity() + this->Faces.capacity()) *
     sizeof(Index);
 }
@@ -403,6 +451,28 @@ void LinearReconstruction::Reconstruct(const double* values, int components, con
 {
   const MeshView& mesh = *this->Mesh;
   const Index parents = mesh.Parents();
+  // The values (and which exist) in slot order.
+  std::vector<double> orderedValues;
+  std::vector<char> orderedDefined;
+  if (!this->SlotsAreParents)
+  {
+    orderedValues.resize(static_cast<size_t>(parents) * components);
+    orderedDefined.resize(defined ? static_cast<size_t>(parents) : 0);
+    runner.ForRanges(parents, [&](Index begin, Index end) {
+      for (Index k = begin; k < end; ++k)
+      {
+        const Index p = this->ParentOfSlot[k];
+        std::copy(values + p * components, values + (p + 1) * components, &orderedValues[k * components]);
+        if (defined)
+        {
+          orderedDefined[k] = defined[p];
+        }
+      }
+      return 0;
+    });
+    values = orderedValues.data();
+    defined = defined ? orderedDefined.data() : nullptr;
+  }
   const std::vector<double> ranges = mode == Reconstruction::Limited
     ? this->SiteRanges(values, components, defined, runner)
     : std::vector<double>();
@@ -429,12 +499,12 @@ void LinearReconstruction::Stencil(Index p, const char* defined, bool aroundPoin
   using Vector = Eigen::Matrix<double, M, 1>;
   using Matrix = Eigen::Matrix<double, M, M>;
   const int space = this->Mesh->SpaceDimension;
-  const double* cp = this->Centroid(p);
+  const double* cp = this->CentroidAt(p);
   const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
   std::vector<Index>& candidates = scratch.Neighbors;
   if (aroundPoints)
   {
-    this->NeighborsOf(p, candidates);
+    this->SlotNeighbors(p, candidates);
   }
   else
   {
@@ -453,7 +523,7 @@ void LinearReconstruction::Stencil(Index p, const char* defined, bool aroundPoin
     {
       continue;
     }
-    const double* cq = this->Centroid(q);
+    const double* cq = this->CentroidAt(q);
     double d[3] = { 0.0, 0.0, 0.0 };
     for (int i = 0; i < space; ++i)
     {
@@ -491,14 +561,15 @@ void LinearReconstruction::FitGradients(Index p, const double* values, int compo
   // The face neighbours, or where they do not span the cell's directions
   // (a corner, a hole, a strip) all the cells around it.
   this->Stencil<M>(p, defined, false, scratch);
-  if (!SpansWell<M>(Eigen::Map<Matrix>(scratch.Normal), 1e-2))
+  const bool faces = SpansWell<M>(Eigen::Map<Matrix>(scratch.Normal), 1e-2);
+  if (!faces)
   {
     this->Stencil<M>(p, defined, true, scratch);
   }
   const Matrix a = Eigen::Map<Matrix>(scratch.Normal);
   const std::vector<Index>& used = scratch.Used;
   const std::vector<double>& weighted = scratch.Weighted;
-  const Matrix inverse = LeastNormInverse<M>(a);
+  const Matrix inverse = faces ? Matrix(a.inverse()) : LeastNormInverse<M>(a);
   // Per component: g = A^+ sum w d (u_N - u_P).
   for (int c = 0; c < components; ++c)
   {
@@ -529,7 +600,7 @@ void LinearReconstruction::Limit(
   Index p, const double* u, int components, const double* ranges, Scratch& scratch) const
 {
   const MeshView& mesh = *this->Mesh;
-  const double* cp = this->Centroid(p);
+  const double* cp = this->CentroidAt(p);
   for (int c = 0; c < components; ++c)
   {
     double* g = &scratch.Gradient[3 * static_cast<size_t>(c)];
@@ -591,7 +662,7 @@ void LinearReconstruction::WriteCorners(
 {
   const MeshView& mesh = *this->Mesh;
   const int n = mesh.CornersPerCell();
-  const double* cp = this->Centroid(p);
+  const double* cp = this->CentroidAt(p);
   for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
   {
     const Index s = this->Simplices[i];

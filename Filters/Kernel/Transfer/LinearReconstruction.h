@@ -91,14 +91,15 @@ public:
     const TaskRunner& runner, double* corners) const;
 
   /// The measure-weighted centroid of parent p (SpaceDimension coordinates used).
-  const double* Centroid(Index p) const { return &this->Centroids[3 * static_cast<size_t>(p)]; }
-  /// The measure of parent p (length, area or volume).
-  double Measure(Index p) const { return this->Measures[static_cast<size_t>(p)]; }
+  const double* Centroid(Index p) const { return this->CentroidAt(this->SlotOf[p]); }
   /// Parents sharing a point (by coordinates) with parent p (p itself excluded), ascending.
   void NeighborsOf(Index p, std::vector<Index>& neighbors) const;
   std::size_t MemoryBytes() const;
 
 private:
+  const double* CentroidAt(Index slot) const { return &this->Centroids[3 * static_cast<size_t>(slot)]; }
+  /// The slots sharing a point with slot p (p excluded), ascending.
+  void SlotNeighbors(Index p, std::vector<Index>& neighbors) const;
   // The steps of Prepare.
   void GroupSimplices();
   void MeasureParents(const TaskRunner& runner);
@@ -140,11 +141,15 @@ private:
 
   const MeshView* Mesh = nullptr;
   LargeVector<double> Centroids; ///< 3 per parent
-  LargeVector<double> Measures;
   /// Per parent: an orthonormal frame of its plane (surfaces) or line
   /// (curves), CellDimension rows of 3; empty for volume meshes.
   LargeVector<double> Frames;
-  std::vector<Index> SimplexStart; ///< parent p's simplices: Simplices[SimplexStart[p] ...]
+  /// Parents are kept in slots, in the order of their first simplex; the
+  /// arrays below and the private functions' `p` are by slot.
+  std::vector<Index> SlotOf;
+  std::vector<Index> ParentOfSlot;
+  bool SlotsAreParents = true;
+  std::vector<Index> SimplexStart; ///< slot p's simplices: Simplices[SimplexStart[p] ...]
   std::vector<Index> Simplices;
   bool JoinCopies = false;
   /// Per point, its site: with JoinCopies, points at the same coordinates
