@@ -2,6 +2,7 @@
 #include "Projection/CellReconstruction.h"
 
 #include "Adapter/Threads.h"
+#include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceFields.h"
 
@@ -29,8 +30,8 @@ std::vector<char> DefinedCells(const mp::MeshView& source, const NaNGroup& group
 }
 } // namespace
 
-void ReconstructCellFields(
-  const Settings& settings, const mp::MeshView& source, bool joinCopies, GatheredFields& cells)
+void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
+  std::uint64_t sourcePrint, bool joinCopies, GatheredFields& cells, KeptReconstruction& kept)
 {
   cells.Reconstructed = false;
   if (settings.CellDataReconstruction == 0 || settings.CellDataTarget == 0)
@@ -39,8 +40,18 @@ void ReconstructCellFields(
   }
   const auto mode = static_cast<mp::Reconstruction>(settings.CellDataReconstruction);
   const mp::TaskRunner runner = SMPTaskRunner();
-  mp::LinearReconstruction reconstruction;
-  reconstruction.Prepare(source, runner, joinCopies);
+  // The geometry: kept from the last execution while Source is the same.
+  if (kept.Geometry && kept.SourcePrint == sourcePrint && kept.Geometry->JoinsCopies() == joinCopies)
+  {
+    kept.Geometry->Rebind(source);
+  }
+  else
+  {
+    kept.Geometry.reset(new mp::LinearReconstruction);
+    kept.Geometry->Prepare(source, runner, joinCopies);
+    kept.SourcePrint = sourcePrint;
+  }
+  const mp::LinearReconstruction& reconstruction = *kept.Geometry;
   const size_t corners = static_cast<size_t>(source.NumberOfCells) * source.CornersPerCell();
   cells.Corners.resize(corners * cells.Components);
   if (cells.Components > 0)
@@ -57,6 +68,10 @@ void ReconstructCellFields(
     reconstruction.Reconstruct(
       group.Values.data(), group.Components, defined.data(), mode, runner, group.Corners.data());
     group.Reconstructed = true;
+  }
+  if (!settings.CacheOperator)
+  {
+    kept = KeptReconstruction();
   }
 }
 } // namespace mpvtk

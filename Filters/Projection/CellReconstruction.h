@@ -23,18 +23,23 @@
 
 #include "Mesh/MeshView.h"
 
+#include <cstdint>
+
 namespace mpvtk
 {
 struct GatheredFields;
+struct KeptReconstruction;
 struct Settings;
 
 /**
  * Fills `cells`' Corners (and each NaN group's) when the settings ask for a
  * reconstruction. `joinCopies`: Source was made of parts (a composite's
  * blocks, the processes' parts), whose copies of a point are one point.
+ * The reconstruction's geometry is kept in `kept` (with CacheOperator)
+ * and serves again while Source's fingerprint `sourcePrint` is the same.
  */
-void ReconstructCellFields(
-  const Settings& settings, const mp::MeshView& source, bool joinCopies, GatheredFields& cells);
+void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
+  std::uint64_t sourcePrint, bool joinCopies, GatheredFields& cells, KeptReconstruction& kept);
 } // namespace mpvtk
 
 #endif

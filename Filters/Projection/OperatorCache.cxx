@@ -56,6 +56,10 @@ size_t OperatorCache::MemoryBytes() const
       }
     }
   }
+  if (this->Reconstruction.Geometry)
+  {
+    bytes += this->Reconstruction.Geometry->MemoryBytes();
+  }
   return bytes;
 }
 
@@ -65,6 +69,10 @@ void OperatorCache::KeepOnly(const std::vector<unsigned int>& present, bool keep
   {
     const bool there = std::find(present.begin(), present.end(), it->first) != present.end();
     it = there && keep ? std::next(it) : this->Leaves.erase(it);
+  }
+  if (!keep)
+  {
+    this->Reconstruction = KeptReconstruction();
   }
 }
 

@@ -19,6 +19,7 @@
 #include "Projection/Transfers.h"
 
 #include "Mesh/LargeArray.h"
+#include "Transfer/LinearReconstruction.h"
 #include "Transfer/MortarOperator.h"
 
 #include <cstdint>
@@ -58,18 +59,26 @@ struct KeptLeaf
   bool KeepsAny() const;
 };
 
+/// The geometry of the Source's cell reconstruction (CellReconstruction.h), while Source is the same.
+struct KeptReconstruction
+{
+  std::uint64_t SourcePrint = 0; ///< SourceSide::Print of the mesh it was prepared on
+  std::unique_ptr<mp::LinearReconstruction> Geometry;
+};
+
 class OperatorCache
 {
 public:
   /// By flat index of Input's leaf (0 for a dataset).
   std::map<unsigned int, KeptLeaf> Leaves;
+  KeptReconstruction Reconstruction;
 
   /// The first leaf that keeps an operator of `transfer` (GetMatrix reads it), or null.
   const KeptLeaf* FirstLeaf(Transfer transfer) const;
   const mp::MortarOperator* FirstOperator(Transfer transfer) const;
-  /// Bytes held by the kept operators and solutions.
+  /// Bytes held by the kept operators and solutions (and the reconstruction's geometry).
   size_t MemoryBytes() const;
-  /// Drops the leaves whose flat index is not in `present` (all when `keep` is false).
+  /// Drops the leaves whose flat index is not in `present` (all, and the reconstruction, when `keep` is false).
   void KeepOnly(const std::vector<unsigned int>& present, bool keep);
 };
 

@@ -80,6 +80,13 @@ public:
    * else each point is its id.
    */
   void Prepare(const MeshView& mesh, const TaskRunner& runner, bool joinCopies);
+  /**
+   * Serves `mesh`, a view of the same mesh Prepare was given (the same
+   * points and cells, in the same order: a later execution's), without
+   * preparing again.
+   */
+  void Rebind(const MeshView& mesh) { this->Mesh = &mesh; }
+  bool JoinsCopies() const { return this->JoinCopies; }
 
   /**
    * The DP1 values (cells x corners x components, row-major; Space.h) of the

@@ -18,8 +18,9 @@ each cell, from the cell's own simplices (a degree-2 rule on each).
        neighbours; without it (mode 2) it does not;
     e. a NaN hole: the cells next to it use the neighbours they have (linear
        stays exact), the hole stays a hole;
-    f. operators kept across a time series: a later step reuses them and
-       gives a fresh run's result; switching the mode builds new ones;
+    f. operators kept across a time series: a later step reuses them (and
+       the reconstruction's geometry) and gives a fresh run's result, also
+       once Source has moved; switching the mode builds new ones;
        GetMatrix refuses the mixed matrix of reconstructed data.
 """
 import os
@@ -408,6 +409,17 @@ for k in range(1, 4):
     fresh = project(target, source, LIMITED).GetOutput()
     diff = np.max(np.abs(cell_result(f.GetOutput()) - cell_result(fresh))[cells])
     check(diff <= 1e-9, "step %d: kept operators give a fresh run's result (%.3g)" % (k, diff))
+# The Source moved (its kept geometry no longer serves): a fresh run's result.
+moved = vtkUnstructuredGrid()
+moved.DeepCopy(source)
+x = vtk_to_numpy(moved.GetPoints().GetData())
+x[:, 0] += 0.05 * np.sin(3 * x[:, 1])
+moved.GetPoints().Modified()
+f.SetSourceData(moved)
+f.Update()
+diff = np.nanmax(np.abs(cell_result(f.GetOutput()) - cell_result(project(target, moved, LIMITED).GetOutput())))
+check(diff <= 1e-9, "moved Source: a fresh run's result (%.3g)" % diff)
+f.SetSourceData(source)
 f.SetCellDataReconstruction(CONSTANT)
 f.Update()
 check(not f.GetOperatorReused(), "another reconstruction: new operators")
