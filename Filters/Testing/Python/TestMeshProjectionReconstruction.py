@@ -9,8 +9,9 @@ each cell, from the cell's own simplices (a degree-2 rule on each).
        hexahedra split into wedges and pyramids, a tilted planar surface, a
        curve in space, a trace (a plane in tetrahedra), a composite Source
        (which, its blocks cut apart, gives the uncut Source's result);
-    b. the observed order on a smooth field, modes 1 and 2, 2D and 3D, over
-       two resolutions, is at least 1.8 (mode 0: about 1);
+    b. the observed order on a smooth field, modes 1 and 2, 2D, 3D and a
+       curved surface (Gmsh spheres), over two resolutions, is at least 1.8
+       (mode 0: about 1);
     c. integrals are conserved (every mode, intensive and extensive, to
        cells and to points);
     d. a step field stays within its bounds under the limiter (mode 1), and
@@ -319,6 +320,19 @@ for dim, sizes in ((2, ((10, 40), (20, 80))), (3, ((5, 12), (10, 24)))):
         order = np.log2(e[0] / e[1])
         check(order >= least and (mode != CONSTANT or order < 1.3),
               "%dD mode %d: observed order %.2f (errors %.3g, %.3g)" % (dim, mode, order, e[0], e[1]))
+
+# On a curved surface (Gmsh spheres): the gradients in each facet's plane.
+from mpsupport import gmshmeshes  # noqa: E402
+e = {mode: [] for mode in (CONSTANT, LIMITED, LINEAR)}
+for hs, ht in ((0.2, 0.05), (0.1, 0.025)):
+    sphere_t = gmshmeshes.surface("sphere", ht)
+    sphere_s = gmshmeshes.surface("sphere", hs, algorithm=5)
+    for mode in e:
+        e[mode].append(l1_error(sphere_t, sphere_s, mode))
+for mode, least in ((CONSTANT, 0.8), (LIMITED, 1.8), (LINEAR, 1.8)):
+    order = np.log2(e[mode][0] / e[mode][1])
+    check(order >= least and (mode != CONSTANT or order < 1.3),
+          "sphere, mode %d: observed order %.2f (errors %.3g, %.3g)" % (mode, order, e[mode][0], e[mode][1]))
 
 # ---------------------------------------------------------------------------
 # c. Conservation
