@@ -20,23 +20,10 @@ import argparse
 import time
 
 import numpy as np
-from mpbench import cube_mesh, square_mesh, timed_run, to_grid
+from mpbench import shifted_pair, timed_run, to_grid
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 import medcoupling as mc
-
-
-def pair(dim, cells):
-    if dim == 2:
-        n = max(2, int(round(np.sqrt(cells / 2.0))))
-        m = max(2, int(round(np.sqrt(0.8 * cells / 2.0))))
-        t, s = square_mesh(n, n, 1), square_mesh(m, m, 2)
-    else:
-        n = max(2, int(round((cells / 6.0) ** (1.0 / 3))))
-        m = max(2, int(round((0.8 * cells / 6.0) ** (1.0 / 3))))
-        t, s = cube_mesh(n, n, n, 1), cube_mesh(m, m, m, 2)
-    shifted = (s[0] + np.array([0.013, -0.011, 0.007 if dim == 3 else 0.0]), s[1], s[2])
-    return t, shifted
 
 
 def field(points, cells):
@@ -86,7 +73,7 @@ def main():
     for item in args.sizes.split(","):
         kind, size = item.split(":")
         dim = 2 if kind == "2D" else 3
-        target, source = pair(dim, float(size))
+        target, source = shifted_pair(dim, float(size))
         values = field(source[0], source[1])
         tg = to_grid(*target)
         sg = to_grid(*source)

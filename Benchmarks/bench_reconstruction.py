@@ -25,7 +25,7 @@ import argparse
 import time
 
 import numpy as np
-from mpbench import cube_mesh, square_mesh, to_grid
+from mpbench import cube_mesh, shifted_pair, square_mesh, timed_run, to_grid
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 from mpsupport import meshes
@@ -35,20 +35,6 @@ MODES = ((0, "constant"), (1, "limited"), (2, "linear"))
 
 def smooth(x):
     return np.sin(2 * x[..., 0]) * np.cos(3 * x[..., 1]) + x[..., 2] ** 2 + 0.5 * x[..., 0]
-
-
-def pair(dim, cells):
-    """The bench pair of about `cells` target cells: (target, source) as (points, cells, type)."""
-    if dim == 2:
-        n = max(2, int(round(np.sqrt(cells / 2.0))))
-        m = max(2, int(round(np.sqrt(0.8 * cells / 2.0))))
-        t, s = square_mesh(n, n, 1), square_mesh(m, m, 2)
-    else:
-        n = max(2, int(round((cells / 6.0) ** (1.0 / 3))))
-        m = max(2, int(round((0.8 * cells / 6.0) ** (1.0 / 3))))
-        t, s = cube_mesh(n, n, n, 1), cube_mesh(m, m, m, 2)
-    shifted = (s[0] + np.array([0.013, -0.011, 0.007 if dim == 3 else 0.0]), s[1], s[2])
-    return t, shifted
 
 
 def shuffled(mesh, seed):
@@ -78,19 +64,6 @@ def with_means(mesh):
     return grid, means, measure
 
 
-def fresh(target, source, mode, threads):
-    import meshprojection
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetNumberOfThreads(threads)
-    f.SetCacheOperator(False)
-    f.SetCellDataReconstruction(mode)
-    start = time.perf_counter()
-    f.Update()
-    return time.perf_counter() - start, f
-
-
 def later_step(target, source, mode, threads, repeats):
     """The best time of a step with kept operators (the Source's array changed in place)."""
     import meshprojection
@@ -118,7 +91,7 @@ def cost(sizes, repeats):
     print("| pair | numbering | threads | constant (s) | limited (s) | ratio | linear (s) | ratio | later step: constant / limited (s) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for dim, cells in sizes:
-        t, s = pair(dim, cells)
+        t, s = shifted_pair(dim, cells)
         for numbering in ("as generated", "shuffled"):
             tm, sm = (t, s) if numbering == "as generated" else (shuffled(t, 3), shuffled(s, 4))
             target, _, _ = with_means(tm)
@@ -130,7 +103,7 @@ def cost(sizes, repeats):
                 times = {mode: float("inf") for mode, _ in MODES}
                 for _ in range(repeats):
                     for mode, _ in MODES:
-                        times[mode] = min(times[mode], fresh(target, source, mode, threads)[0])
+                        times[mode] = min(times[mode], timed_run(target, source, threads, CellDataReconstruction=mode)[0])
                 steps = [later_step(target, source, mode, threads, repeats) for mode in (0, 1)]
                 print("| %dD %.0e cells | %s | %d | %.3f | %.3f | %.2f | %.3f | %.2f | %.3f / %.3f |" % (
                     dim, target.GetNumberOfCells(), numbering, threads, times[0], times[1],
@@ -154,7 +127,7 @@ def accuracy(sizes):
             source, _, _ = with_means(sm)
             row = []
             for mode, _ in MODES:
-                _, f = fresh(target, source, mode, 2)
+                _, f = timed_run(target, source, 2, CellDataReconstruction=mode)
                 got = vtk_to_numpy(f.GetOutput().GetCellData().GetArray("u"))
                 row.append(float(np.sum(np.abs(got - exact) * measure)))
             errors.append(row)

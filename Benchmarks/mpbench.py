@@ -34,15 +34,35 @@ def to_grid(points, cells, cell_type, field=None):
     return grid
 
 
-def timed_run(target, source, threads):
+def shifted_pair(dim, cells):
+    """A target of about `cells` cells (the jittered square's triangles or
+    the cube's tetrahedra) and a Source of about 0.8 times as many on the
+    box shifted a little: (target, source) as (points, cells, type)."""
+    if dim == 2:
+        n = max(2, int(round(np.sqrt(cells / 2.0))))
+        m = max(2, int(round(np.sqrt(0.8 * cells / 2.0))))
+        t, s = square_mesh(n, n, 1), square_mesh(m, m, 2)
+    else:
+        n = max(2, int(round((cells / 6.0) ** (1.0 / 3))))
+        m = max(2, int(round((0.8 * cells / 6.0) ** (1.0 / 3))))
+        t, s = cube_mesh(n, n, n, 1), cube_mesh(m, m, m, 2)
+    shifted = (s[0] + np.array([0.013, -0.011, 0.007 if dim == 3 else 0.0]), s[1], s[2])
+    return t, shifted
+
+
+def timed_run(target, source, threads, **properties):
     """One fresh run of the filter on `threads` threads (CacheOperator off:
-    search, assembly and solve each run): (seconds, the filter)."""
+    search, assembly and solve each run), with any other property by name
+    (CellDataReconstruction=1 calls SetCellDataReconstruction(1)):
+    (seconds, the filter)."""
     import meshprojection
     f = meshprojection.vtkMeshProjectionFilter()
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetNumberOfThreads(threads)
     f.SetCacheOperator(False)
+    for name, value in properties.items():
+        getattr(f, "Set" + name)(value)
     start = time.perf_counter()
     f.Update()
     return time.perf_counter() - start, f

@@ -404,6 +404,21 @@ SourceFields AgreeOnFields(MPIParts& parts, vtkDataSet* source)
 }
 
 // 4. ---------------------------------------------------------------------------
+/// Calls f(c, box of c) for each Source cell c not left out (ghosts, empty cells).
+template <class F>
+void ForEachCellBox(vtkDataSet* source, const F& f)
+{
+  vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
+  CellBoxes boxOf(source);
+  for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
+  {
+    if (!IsLeftOutGhost(ghosts, c) && source->GetCellType(c) != VTK_EMPTY_CELL)
+    {
+      f(c, boxOf(c));
+    }
+  }
+}
+
 /// The largest extent of box b on any axis.
 double SizeOf(const Box& b)
 {
@@ -437,15 +452,7 @@ std::vector<double> LayerMargins(
     return margins;
   }
   std::vector<double> mine(covers.size(), 0.0);
-  vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
-  CellBoxes boxOf(source);
-  for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
-  {
-    if (IsLeftOutGhost(ghosts, c) || source->GetCellType(c) == VTK_EMPTY_CELL)
-    {
-      continue;
-    }
-    const Box b = boxOf(c);
+  ForEachCellBox(source, [&](vtkIdType, const Box& b) {
     for (size_t r = 0; r < covers.size(); ++r)
     {
       if (covers[r].Meets(b))
@@ -453,7 +460,7 @@ std::vector<double> LayerMargins(
         mine[r] = std::max(mine[r], SizeOf(b));
       }
     }
-  }
+  });
   parts.Controller()->AllReduce(
     mine.data(), margins.data(), static_cast<vtkIdType>(mine.size()), vtkCommunicator::MAX_OP);
   for (double& m : margins)
@@ -469,15 +476,7 @@ std::vector<std::vector<vtkIdType>> CellsFor(
   vtkDataSet* source, const std::vector<Cover>& covers, const std::vector<double>& margins)
 {
   std::vector<std::vector<vtkIdType>> toSend(covers.size());
-  vtkUnsignedCharArray* ghosts = source->GetCellGhostArray();
-  CellBoxes boxOf(source);
-  for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
-  {
-    if (IsLeftOutGhost(ghosts, c) || source->GetCellType(c) == VTK_EMPTY_CELL)
-    {
-      continue;
-    }
-    const Box b = boxOf(c);
+  ForEachCellBox(source, [&](vtkIdType c, const Box& b) {
     for (size_t r = 0; r < covers.size(); ++r)
     {
       if (covers[r].Meets(margins[r] > 0.0 ? GrownBy(b, margins[r]) : b))
@@ -485,7 +484,7 @@ std::vector<std::vector<vtkIdType>> CellsFor(
         toSend[r].push_back(c);
       }
     }
-  }
+  });
   return toSend;
 }
 

@@ -74,15 +74,6 @@ def _ids(g, c):
     return [ids.GetId(k) for k in range(ids.GetNumberOfIds())]
 
 
-def numbered(g):
-    """The original point and cell ids, as arrays that extraction carries."""
-    for data, n in ((g.GetPointData(), g.GetNumberOfPoints()), (g.GetCellData(), g.GetNumberOfCells())):
-        a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
-        a.SetName("origId")
-        data.AddArray(a)
-    return g
-
-
 def centres(g):
     x = vtk_to_numpy(g.GetPoints().GetData())
     conn = vtk_to_numpy(g.GetCells().GetConnectivityArray())
@@ -240,7 +231,7 @@ def integrals(out):
 
 def case(what, target, source, how, global_ids=False, composite=False, ghosts=False,
          polydata=False, **props):
-    numbered(target)
+    mpi.numbered(target)
     serial = run(meshprojection.vtkMeshProjectionFilter, target, source, CacheOperator=False, **props)
     sout = serial.GetOutputDataObject(0)
     if how == "redistribute":
@@ -345,7 +336,7 @@ hs = with_fields(hexahedra(6, (0.03, 0.02, -0.04), (1.04, 0.97, 1.02), 6))
 gid = numpy_to_vtkIdTypeArray(np.arange(hs.GetNumberOfPoints(), dtype=np.int64), deep=True)
 gid.SetName("gid")
 hs.GetPointData().SetGlobalIds(gid)
-numbered(h3)
+mpi.numbered(h3)
 h3.GetPointData().SetGlobalIds(h3.GetPointData().GetArray("origId"))
 case("3D hexahedra with GlobalIds", h3, hs, "random", global_ids=True)
 case("3D ghost cells", t3, s3, "blocks", ghosts=True)
@@ -477,7 +468,7 @@ if out.GetNumberOfPoints():
 
 # A new time step of the Source field: the kept operator is reused on every
 # process, and the result is the serial one for the new field.
-lt, ls = split(numbered(t2), "random", "input"), split(s2, "random", "source")
+lt, ls = split(mpi.numbered(t2), "random", "input"), split(s2, "random", "source")
 f = meshprojection.vtkPMeshProjectionFilter()
 f.SetInputData(lt)
 f.SetSourceData(ls)
@@ -506,7 +497,7 @@ compare("time step 3", serial.GetOutputDataObject(0), f.GetOutputDataObject(0),
 # the arrays there), and no crash.
 for role in ("Source", "Input"):
     for bad_id in (lambda n: n, lambda n: -1, lambda n: n + 100000000):
-        lt, ls = split(numbered(t2), "blocks", "input"), split(s2, "blocks", "source")
+        lt, ls = split(mpi.numbered(t2), "blocks", "input"), split(s2, "blocks", "source")
         spoiled = ls if role == "Source" else lt
         if rank == size - 1 and spoiled.GetNumberOfCells() > 0:
             c = vtk_to_numpy(spoiled.GetCells().GetConnectivityArray())
@@ -534,7 +525,7 @@ for role in ("Source", "Input"):
 # at several points of a composite Input's run: no process waits for the
 # others, and all give the same kind of output (Input as it came, or all
 # projected when the stop came too late to matter).
-lt = split(numbered(t2), "random", "input")
+lt = split(mpi.numbered(t2), "random", "input")
 ls = split(s2, "random", "source")
 y = centres(lt)[:, 1] if lt.GetNumberOfCells() else np.zeros(0)
 blocks = vtkMultiBlockDataSet()

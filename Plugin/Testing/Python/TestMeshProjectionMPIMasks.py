@@ -19,7 +19,7 @@ Checked on every process:
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE, vtkUnstructuredGrid
 
 from mpsupport import meshes, mpi
@@ -65,14 +65,6 @@ def with_masks(g):
     return m
 
 
-def numbered(g):
-    for data, n in ((g.GetPointData(), g.GetNumberOfPoints()), (g.GetCellData(), g.GetNumberOfCells())):
-        a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
-        a.SetName("origId")
-        data.AddArray(a)
-    return g
-
-
 def run(filter_class, target, source):
     f = filter_class()
     f.SetInputData(target)
@@ -87,7 +79,7 @@ def names(data):
 
 
 # Input: triangles; Source: other triangles reaching beyond it on one side.
-target = numbered(meshes.grid(*meshes.triangles(24, (0, 0, 0), (1, 1, 0), 1), VTK_TRIANGLE))
+target = mpi.numbered(meshes.grid(*meshes.triangles(24, (0, 0, 0), (1, 1, 0), 1), VTK_TRIANGLE))
 plain = with_fields(meshes.grid(*meshes.triangles(19, (-0.13, 0.07, 0), (0.91, 1.2, 0), 2), VTK_TRIANGLE))
 masked = with_masks(plain)
 ranges = {name: float(np.ptp(vtk_to_numpy(data.GetArray(name)))) or 1.0

@@ -14,7 +14,7 @@ processes (Input in slabs, Source at random), modes 1 (limited) and 2 (linear), 
    of a process's gathered part would not be the serial ones.
 """
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE
 
 from mpsupport import meshes, mpi
@@ -41,14 +41,6 @@ def add(data, name, values):
     data.AddArray(a)
 
 
-def numbered(g):
-    for data, n in ((g.GetPointData(), g.GetNumberOfPoints()), (g.GetCellData(), g.GetNumberOfCells())):
-        a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
-        a.SetName("origId")
-        data.AddArray(a)
-    return g
-
-
 def run(filter_class, target, source, mode):
     f = filter_class()
     f.SetInputData(target)
@@ -69,7 +61,7 @@ for dim in (2, 3):
         target = meshes.grid(*meshes.tetrahedra(9, (0, 0, 0), (1, 1, 1), 1, 0.2), VTK_TETRA)
         source = meshes.grid(*meshes.tetrahedra(7, (-0.1, 0.05, 0), (0.95, 1.1, 1.05), 2, 0.2), VTK_TETRA)
         k = 4
-    numbered(target)
+    mpi.numbered(target)
     c = centres(source, k)
     smooth = np.sin(3 * c[:, 0]) * np.cos(2 * c[:, 1]) + c[:, 2] ** 2
     holed = smooth.copy()

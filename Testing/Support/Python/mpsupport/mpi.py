@@ -53,6 +53,17 @@ def allgather(controller, values):
     return [row[1:1 + int(row[0])].copy() for row in everything]
 
 
+def numbered(g):
+    """g with its original point and cell ids as arrays "origId" (extraction
+    carries them: a process's part is compared with the serial result by them)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray
+    for data, n in ((g.GetPointData(), g.GetNumberOfPoints()), (g.GetCellData(), g.GetNumberOfCells())):
+        a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
+        a.SetName("origId")
+        data.AddArray(a)
+    return g
+
+
 class Checks:
     """A symmetric MPI test's checks: each process records its failures (and
     prints them, with its rank); finish() counts them over the processes,
