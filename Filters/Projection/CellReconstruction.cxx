@@ -36,6 +36,7 @@ void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
   cells.Reconstructed = false;
   if (settings.CellDataReconstruction == 0 || settings.CellDataTarget == 0)
   {
+    kept = KeptReconstruction(); // (held for nothing)
     return;
   }
   const auto mode = static_cast<mp::Reconstruction>(settings.CellDataReconstruction);
