@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Projection/CellReconstruction.h"
 
+#include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
 #include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
@@ -30,9 +31,10 @@ std::vector<char> DefinedCells(const mp::MeshView& source, const NaNGroup& group
 }
 } // namespace
 
-void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
+void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
   std::uint64_t sourcePrint, bool joinCopies, GatheredFields& cells, KeptReconstruction& kept)
 {
+  const mp::MeshView& source = sourceMesh.View();
   cells.Reconstructed = false;
   if (settings.CellDataReconstruction == 0 || settings.CellDataTarget == 0)
   {
@@ -48,6 +50,12 @@ void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
   }
   else
   {
+    if (!joinCopies && !source.Neighbors)
+    {
+      // The Source's face neighbours, which the search would build later
+      // (LeafSearch::Prepare uses them then).
+      sourceMesh.BuildNeighbors();
+    }
     kept.Geometry.reset(new mp::LinearReconstruction);
     kept.Geometry->Prepare(source, runner, joinCopies);
     kept.SourcePrint = sourcePrint;

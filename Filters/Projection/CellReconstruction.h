@@ -30,15 +30,18 @@ namespace mpvtk
 struct GatheredFields;
 struct KeptReconstruction;
 struct Settings;
+class SimplexMesh;
 
 /**
  * Fills `cells`' Corners (and each NaN group's) when the settings ask for a
  * reconstruction. `joinCopies`: Source was made of parts (a composite's
  * blocks, the processes' parts), whose copies of a point are one point.
  * The reconstruction's geometry is kept in `kept` (with CacheOperator)
- * and serves again while Source's fingerprint `sourcePrint` is the same.
+ * and serves again while Source's fingerprint `sourcePrint` is the same;
+ * made, it uses the Source's face neighbours (built here when Source is
+ * one mesh, for the search too).
  */
-void ReconstructCellFields(const Settings& settings, const mp::MeshView& source,
+void ReconstructCellFields(const Settings& settings, SimplexMesh& source,
   std::uint64_t sourcePrint, bool joinCopies, GatheredFields& cells, KeptReconstruction& kept);
 } // namespace mpvtk
 

@@ -81,9 +81,9 @@ void LeafSearch::Prepare()
     // pattern builds the target's cells around its points again once the
     // search is done: kept, they would take room during the search.)
     ctx.Target.BuildNeighbors();
-    if (!source.SearchReady)
+    if (!source.SearchReady && !sourceMesh.View().Neighbors)
     {
-      sourceMesh.BuildNeighbors();
+      sourceMesh.BuildNeighbors(); // (unless the cell reconstruction built them)
     }
     ctx.Stats.Neighbors += ctx.Clock.Lap();
     if (ctx.Target.NonManifoldFaces() || (!source.SearchReady && sourceMesh.NonManifoldFaces()))

@@ -340,13 +340,20 @@ void LinearReconstruction::FindFaceNeighbors(const TaskRunner& runner)
   const Index parents = mesh.Parents();
   const int corners = mesh.CornersPerCell();
   const Index entries = mesh.NumberOfCells * corners;
-  std::vector<NeighborId> across(static_cast<size_t>(entries), -1);
-  if (!this->JoinCopies)
+  std::vector<NeighborId> built;
+  const NeighborId* across = nullptr;
+  if (!this->JoinCopies && mesh.Neighbors)
   {
+    across = mesh.Neighbors; // the mesh's own (its points are the sites)
+  }
+  else if (!this->JoinCopies)
+  {
+    built.assign(static_cast<size_t>(entries), -1);
     MeshView own = mesh;
     own.Neighbors = nullptr;
     own.Around = nullptr;
-    BuildFaceNeighbors(own, across.data(), runner);
+    BuildFaceNeighbors(own, built.data(), runner);
+    across = built.data();
   }
   else
   {
@@ -364,7 +371,9 @@ void LinearReconstruction::FindFaceNeighbors(const TaskRunner& runner)
     onSites.NumberOfPoints = this->Sites;
     onSites.Neighbors = nullptr;
     onSites.Around = nullptr;
-    BuildFaceNeighbors(onSites, across.data(), runner);
+    built.assign(static_cast<size_t>(entries), -1);
+    BuildFaceNeighbors(onSites, built.data(), runner);
+    across = built.data();
   }
   const int tasks = runner.TasksFor(parents, 1024);
   std::vector<std::vector<Index>> found(static_cast<size_t>(tasks));

@@ -77,7 +77,8 @@ public:
    * `joinCopies`, points at the same coordinates are one point (a mesh
    * made of parts that each have their own copies of the points between
    * them: a composite dataset's blocks, the parts of several processes);
-   * else each point is its id.
+   * else each point is its id, and the mesh's face neighbours
+   * (MeshView::Neighbors), when it has them, serve as they are.
    */
   void Prepare(const MeshView& mesh, const TaskRunner& runner, bool joinCopies);
   /**
