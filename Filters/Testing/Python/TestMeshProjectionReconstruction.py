@@ -18,7 +18,8 @@ each cell, from the cell's own simplices (a degree-2 rule on each).
        within the range of each target cell's Source cells and their
        neighbours; without it (mode 2) it does not;
     e. a NaN hole: the cells next to it use the neighbours they have (linear
-       stays exact), the hole stays a hole;
+       stays exact), the hole stays a hole; a Source numbered at random
+       gives the same result;
     f. operators kept across a time series: a later step reuses them (and
        the reconstruction's geometry) and gives a fresh run's result, also
        once Source has moved; switching the mode builds new ones;
@@ -404,6 +405,27 @@ outside = (r > 0.35) & whole_cells(out)  # beyond the hole's cells and the targe
 err = np.max(np.abs(got - exact)[outside]) / float(np.ptp(exact))
 check(err <= 1e-10, "NaN hole: linear exact next to the hole (%.3g)" % err)
 check(np.all(np.isnan(got[r < 0.15])), "NaN hole: target cells inside the hole have no value")
+
+# ---------------------------------------------------------------------------
+# e'. The Source numbered at random: the same result (the gradients do not
+# depend on the order of cells or points).
+source = as_grid(meshes.grid(*meshes.tetrahedra(6, (0, 0, 0), (1, 1, 1), 16, 0.2), VTK_TETRA))
+target = as_grid(meshes.grid(*meshes.tetrahedra(9, (0.05, 0, 0), (1, 1.05, 1), 17, 0.2), VTK_TETRA))
+with_cell_field(source, smooth)
+x = vtk_to_numpy(source.GetPoints().GetData()).astype(float)
+conn = vtk_to_numpy(source.GetCells().GetConnectivityArray()).reshape(-1, 4)
+rng = np.random.default_rng(18)
+point_order, cell_order = rng.permutation(len(x)), rng.permutation(len(conn))
+new_id = np.empty_like(point_order)
+new_id[point_order] = np.arange(len(point_order))
+shuffled = meshes.grid(x[point_order], new_id[conn][cell_order], VTK_TETRA)
+u = numpy_to_vtk(vtk_to_numpy(source.GetCellData().GetArray("u"))[cell_order].copy(), deep=True)
+u.SetName("u")
+shuffled.GetCellData().AddArray(u)
+for mode in (LIMITED, LINEAR):
+    diff = np.nanmax(np.abs(cell_result(project(target, shuffled, mode).GetOutput()) -
+                            cell_result(project(target, source, mode).GetOutput())))
+    check(diff <= 1e-12, "mode %d: a shuffled Source numbering gives the same result (%.3g)" % (mode, diff))
 
 # ---------------------------------------------------------------------------
 # f. Kept operators across steps
