@@ -476,8 +476,8 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
     source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
-  mpvtk::ReconstructCellFields(settings, source.Mesh, source.Print,
-    source.Composite || !parts.Whole(), source.Fields[mpvtk::CellArrays], in.Cache.Reconstruction);
+  mpvtk::ReconstructCellFields(
+    settings, source.Mesh, source.Print, source.Fields[mpvtk::CellArrays], in.Cache.Reconstruction);
   if (!source.AnyTransfer(settings))
   {
     say.Warn("Source has no arrays to project (or none selected): only vtkValidPointMask and "

@@ -32,11 +32,11 @@ std::vector<char> DefinedCells(const mp::MeshView& source, const NaNGroup& group
 } // namespace
 
 void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
-  std::uint64_t sourcePrint, bool joinCopies, GatheredFields& cells, KeptReconstruction& kept)
+  std::uint64_t sourcePrint, GatheredFields& cells, KeptReconstruction& kept)
 {
   const mp::MeshView& source = sourceMesh.View();
   cells.Reconstructed = false;
-  if (settings.CellDataReconstruction == 0 || settings.CellDataTarget == 0)
+  if (!settings.ReconstructsCellData() || (cells.Components == 0 && cells.Groups.empty()))
   {
     kept = KeptReconstruction(); // (held for nothing)
     return;
@@ -44,20 +44,20 @@ void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
   const auto mode = static_cast<mp::Reconstruction>(settings.CellDataReconstruction);
   const mp::TaskRunner runner = SMPTaskRunner();
   // The geometry: kept from the last execution while Source is the same.
-  if (kept.Geometry && kept.SourcePrint == sourcePrint && kept.Geometry->JoinsCopies() == joinCopies)
+  if (kept.Geometry && kept.SourcePrint == sourcePrint)
   {
     kept.Geometry->Rebind(source);
   }
   else
   {
-    if (!joinCopies && !source.Neighbors)
+    if (!source.Neighbors)
     {
       // The Source's face neighbours, which the search would build later
       // (LeafSearch::Prepare uses them then).
       sourceMesh.BuildNeighbors();
     }
     kept.Geometry.reset(new mp::LinearReconstruction);
-    kept.Geometry->Prepare(source, runner, joinCopies);
+    kept.Geometry->Prepare(source, runner);
     kept.SourcePrint = sourcePrint;
   }
   const mp::LinearReconstruction& reconstruction = *kept.Geometry;

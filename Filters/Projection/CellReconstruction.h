@@ -12,8 +12,8 @@
  * A NaN group's cells left out are no neighbours for its arrays' gradients
  * (a cell next to a hole uses the neighbours it has). A Source made of
  * parts (a composite's blocks appended, the processes' parts gathered) has
- * its own copy of each point between two parts: copies at the same
- * coordinates are one point there. On several processes
+ * its own copy of each point between two parts: the kernel joins copies at
+ * the same coordinates. On several processes
  * each process's gathered Source holds, besides the cells its part needs,
  * the cells around them (SourceGather.cxx, the neighbour layer), so each
  * gradient is the serial one.
@@ -34,15 +34,13 @@ class SimplexMesh;
 
 /**
  * Fills `cells`' Corners (and each NaN group's) when the settings ask for a
- * reconstruction. `joinCopies`: Source was made of parts (a composite's
- * blocks, the processes' parts), whose copies of a point are one point.
- * The reconstruction's geometry is kept in `kept` (with CacheOperator)
+ * reconstruction (Settings::ReconstructsCellData). The reconstruction's geometry is kept in `kept` (with CacheOperator)
  * and serves again while Source's fingerprint `sourcePrint` is the same;
- * made, it uses the Source's face neighbours (built here when Source is
- * one mesh, for the search too).
+ * made, it uses the Source's face neighbours (built here, for the search
+ * too).
  */
 void ReconstructCellFields(const Settings& settings, SimplexMesh& source,
-  std::uint64_t sourcePrint, bool joinCopies, GatheredFields& cells, KeptReconstruction& kept);
+  std::uint64_t sourcePrint, GatheredFields& cells, KeptReconstruction& kept);
 } // namespace mpvtk
 
 #endif

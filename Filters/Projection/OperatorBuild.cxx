@@ -164,7 +164,7 @@ Verdict BuildMissing(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
     const GatheredFields& g = FieldsOf(ctx, t);
     mp::OperatorOptions options = BaseOptions(ctx);
     options.TargetSpace = TargetSpaceOf(t);
-    options.SourceSpace = SourceSpaceOf(t, ctx.Options.CellDataReconstruction);
+    options.SourceSpace = SourceSpaceOf(t, ctx.Options.ReconstructsCellData());
     options.Fields = plan.Assembled || g.Components == 0 ? nullptr : g.Functions().data();
     options.FieldComponents = plan.Assembled ? 0 : g.Components;
     options.Progress = [bar](double f) { return bar(0.1 + 0.8 * f); };
@@ -275,7 +275,7 @@ Verdict GroupOperator(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan
   const ProgressShare bar = ctx.Bar;
   mp::OperatorOptions options = BaseOptions(ctx);
   options.TargetSpace = TargetSpaceOf(t);
-  options.SourceSpace = SourceSpaceOf(t, ctx.Options.CellDataReconstruction);
+  options.SourceSpace = SourceSpaceOf(t, ctx.Options.ReconstructsCellData());
   options.KeepPieces = false;
   options.ExcludedSourceCells = group.Excluded.data();
   options.Fields = plan.Assembled ? nullptr : group.Functions().data();

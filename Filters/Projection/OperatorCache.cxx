@@ -84,7 +84,7 @@ std::uint64_t LeafFingerprint(
   print.Add(sourcePrint);
   print.Add(static_cast<std::uint64_t>(settings.SearchMethod));
   print.Add(static_cast<std::uint64_t>(settings.OutputIntersections));
-  if (settings.CellDataReconstruction != 0)
+  if (settings.ReconstructsCellData())
   {
     print.Add(std::uint64_t(0xD1)); // cell data read as DP1: other operators
   }

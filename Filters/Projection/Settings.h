@@ -36,6 +36,8 @@ struct Settings
   int Renumbering = 0;         ///< AUTOMATIC_RENUMBERING, ALWAYS_RENUMBER, NEVER_RENUMBER
   bool AssembleNext = false;   ///< GetMatrix asked for M_ts
 
+  /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
+  bool ReconstructsCellData() const { return this->CellDataReconstruction != 0 && this->CellDataTarget != 0; }
   /// The value of target functions that the Source does not reach.
   double Fill() const
   {

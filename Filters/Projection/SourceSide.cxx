@@ -38,8 +38,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   // Each process gets the Source cells its part of Input needs, from all.
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
   // (With a reconstruction of cell data, and the cells around them.)
-  const bool layer = settings.CellDataReconstruction != 0 && settings.CellDataTarget != 0;
-  source = parts.GatherSource(source, input, reach, layer, failed);
+  source = parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed);
   if (!failed.empty())
   {
     return Verdict::Fail(failed);

@@ -42,11 +42,12 @@ inline bool ToPoints(Transfer t)
   return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
     t == vtkMeshProjectionFilter::CELLS_TO_POINTS;
 }
-/// The space of the Source functions transfer t reads: cell arrays are DP1 when reconstructed.
-inline mp::SpaceType SourceSpaceOf(Transfer t, int cellDataReconstruction)
+/// The space of the Source functions transfer t reads: cell arrays are DP1 when reconstructed
+/// (Settings::ReconstructsCellData).
+inline mp::SpaceType SourceSpaceOf(Transfer t, bool reconstructed)
 {
   return SourceAssociation(t) == 0 ? mp::SpaceType::P1
-                                   : (cellDataReconstruction != 0 ? mp::SpaceType::DP1 : mp::SpaceType::P0);
+                                   : (reconstructed ? mp::SpaceType::DP1 : mp::SpaceType::P0);
 }
 inline mp::SpaceType TargetSpaceOf(Transfer t)
 {

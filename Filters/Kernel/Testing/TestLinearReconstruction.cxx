@@ -91,7 +91,7 @@ void ExpectLinearExact(const TestMesh& m, bool pairs, const char* what)
   const std::vector<Index> parent = pairs ? Pairs(m) : std::vector<Index>();
   const mp::MeshView view = WithParents(m, parent);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(2), false);
+  r.Prepare(view, mptest::ThreadRunner(2));
   const std::vector<double> u = Averages(r, view);
   for (int tasks : { 1, 2 })
   {
@@ -141,7 +141,7 @@ TEST(LinearReconstruction, HolesUseTheNeighboursLeft)
   TestMesh m = mptest::GridMesh(10, 10, 0.3, 5);
   const mp::MeshView view = m.View(false);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1), false);
+  r.Prepare(view, mptest::ThreadRunner(1));
   std::vector<double> u = Averages(r, view);
   std::vector<char> defined(u.size(), 1);
   for (Index p = 0; p < view.Parents(); ++p)
@@ -178,7 +178,7 @@ TEST(LinearReconstruction, LimiterKeepsCornersWithinTheNeighbours)
   TestMesh m = mptest::CubeMesh(5, 5, 5, 0.2, 6);
   const mp::MeshView view = m.View(false);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1), false);
+  r.Prepare(view, mptest::ThreadRunner(1));
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::vector<double> u(static_cast<size_t>(view.Parents()));
@@ -222,7 +222,7 @@ TEST(LinearReconstruction, LoneCellKeepsItsValue)
   m.Cells = { 0, 1, 2 };
   const mp::MeshView view = m.View(false);
   mp::LinearReconstruction r;
-  r.Prepare(view, mptest::ThreadRunner(1), false);
+  r.Prepare(view, mptest::ThreadRunner(1));
   const std::vector<double> corners =
     Reconstructed(r, view, std::vector<double>{ 4.0 }, nullptr, mp::Reconstruction::Unlimited);
   for (double v : corners)
@@ -231,21 +231,62 @@ TEST(LinearReconstruction, LoneCellKeepsItsValue)
   }
 }
 
-TEST(LinearReconstruction, CopiesOfAPointAreOnePointWhenJoined)
+TEST(LinearReconstruction, CopiesOfAPointAreOnePoint)
 {
-  // Two triangles on their own copies of the shared edge's points: joined,
-  // neighbours (a composite dataset's blocks, gathered parts); else not.
+  // Two triangles on their own copies of the shared edge's points (a
+  // composite dataset's blocks, gathered parts, unmerged points): still
+  // neighbours; a linear field exact.
   TestMesh m;
   m.Dimension = 2;
   m.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
   m.Cells = { 0, 1, 2, 3, 4, 5 };
   const mp::MeshView view = m.View(false);
-  for (bool join : { true, false })
+  mp::LinearReconstruction r;
+  r.Prepare(view, mptest::ThreadRunner(1));
+  EXPECT_TRUE(r.JoinsCopies());
+  std::vector<Index> neighbors;
+  r.NeighborsOf(0, neighbors);
+  EXPECT_EQ(neighbors, std::vector<Index>{ 1 });
+  // Every cell of a grid on points of its own.
+  TestMesh grid = mptest::GridMesh(6, 5, 0.3, 8);
+  TestMesh apart;
+  apart.Dimension = 2;
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
   {
-    mp::LinearReconstruction r;
-    r.Prepare(view, mptest::ThreadRunner(1), join);
-    std::vector<Index> neighbors;
-    r.NeighborsOf(0, neighbors);
-    EXPECT_EQ(neighbors, join ? std::vector<Index>{ 1 } : std::vector<Index>{});
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* x = &grid.Points[3 * grid.Cells[3 * c + k]];
+      apart.Points.insert(apart.Points.end(), x, x + 3);
+      apart.Cells.push_back(3 * c + k);
+    }
+  }
+  ExpectLinearExact(apart, false, "cells on points of their own");
+}
+
+TEST(LinearReconstruction, CellsOfZeroMeasureAreNoNeighbours)
+{
+  // A straight curve with a repeated point (a segment of zero length): its
+  // neighbours' gradients as without it.
+  TestMesh curve = mptest::Polyline({ 0.0, 0.1, 0.25, 0.25, 0.4, 0.6, 0.7, 1.0 },
+    [](double s, double* x) {
+      x[0] = 0.8 * s;
+      x[1] = 0.5 * s;
+      x[2] = 0.0;
+    },
+    false, 2);
+  const mp::MeshView view = curve.View(false);
+  mp::LinearReconstruction r;
+  r.Prepare(view, mptest::ThreadRunner(1));
+  std::vector<double> u = Averages(r, view);
+  u[2] = 1e3; // the zero-length segment's value: read by no one
+  const std::vector<double> corners = Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited);
+  for (Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    for (int k = 0; c != 2 && k < 2; ++k)
+    {
+      double x[3] = { 0.0, 0.0, 0.0 };
+      std::copy(view.Point(view.Cell(c)[k]), view.Point(view.Cell(c)[k]) + 2, x);
+      EXPECT_NEAR(corners[2 * c + k], Linear(x), 1e-12) << "segment " << c;
+    }
   }
 }

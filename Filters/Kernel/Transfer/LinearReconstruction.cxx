@@ -162,15 +162,31 @@ inline double LimiterFactor(double u, double delta, double low, double high)
 }
 } // namespace
 
-void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runner, bool joinCopies)
+void LinearReconstruction::Prepare(const MeshView& mesh, const TaskRunner& runner)
 {
   this->Mesh = &mesh;
-  this->JoinCopies = joinCopies;
   this->GroupSimplices();
   this->MeasureParents(runner);
-  this->FindSites();
+  // The face table by point ids (the mesh's own when it has one), then the
+  // sites; where copies of points were joined, the table again on the sites.
+  std::vector<NeighborId> built;
+  const NeighborId* across = mesh.Neighbors;
+  if (!across)
+  {
+    MeshView own = mesh;
+    own.Around = nullptr;
+    built.assign(static_cast<size_t>(mesh.NumberOfCells * mesh.CornersPerCell()), -1);
+    BuildFaceNeighbors(own, built.data(), runner);
+    across = built.data();
+  }
+  this->FindSites(across);
+  if (this->JoinCopies)
+  {
+    this->MatchFacesOnSites(runner, built);
+    across = built.data();
+  }
   this->GatherAroundSites(runner);
-  this->FindFaceNeighbors(runner);
+  this->FindFaceNeighbors(across, runner);
 }
 
 void LinearReconstruction::GroupSimplices()
@@ -231,6 +247,7 @@ void LinearReconstruction::MeasureParents(const TaskRunner& runner)
   const int corners = mesh.CornersPerCell();
   const bool framed = !mesh.IsVolumeMesh();
   this->Centroids.assign(3 * static_cast<size_t>(parents), 0.0);
+  this->Flat.assign(static_cast<size_t>(parents), 0);
   this->Frames.assign(framed ? 3 * static_cast<size_t>(mesh.CellDimension) * parents : 0, 0.0);
   runner.ForRanges(parents, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
@@ -257,55 +274,111 @@ void LinearReconstruction::MeasureParents(const TaskRunner& runner)
           hasFrame = SimplexFrame(mesh, c, &this->Frames[3 * mesh.CellDimension * static_cast<size_t>(p)]);
         }
       }
+      this->Flat[p] = !(measure > 0.0);
+      if (this->Flat[p])
+      {
+        // (No part of any integral: a neighbour of none, its centroid the
+        // corners' mean for its own, unread, gradient.)
+        std::fill(sum, sum + 3, 0.0);
+        Index n = 0;
+        for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i, ++n)
+        {
+          const CellCorners ids = mesh.Cell(this->Simplices[i]);
+          for (int k = 0; k < corners; ++k)
+          {
+            for (int a = 0; a < mesh.SpaceDimension; ++a)
+            {
+              sum[a] += mesh.Point(ids[k])[a] / corners;
+            }
+          }
+        }
+        measure = n > 0 ? static_cast<double>(n) : 1.0;
+      }
       for (int a = 0; a < 3; ++a)
       {
-        this->Centroids[3 * p + a] = measure > 0.0 ? sum[a] / measure : 0.0;
+        this->Centroids[3 * p + a] = sum[a] / measure;
       }
     }
     return 0;
   }, 1024);
 }
 
-void LinearReconstruction::FindSites()
+void LinearReconstruction::FindSites(const NeighborId* across)
 {
-  // Points in the order of their coordinates: equal ones side by side.
+  // Copies of a point can only be where faces have no neighbour by ids (two
+  // cells that share a point by coordinates but not by id are not matched
+  // there): the points of those faces, in the order of their coordinates,
+  // equal ones side by side. Each point is its own site, a copy its run's
+  // first point's.
   const MeshView& mesh = *this->Mesh;
   const Index points = mesh.NumberOfPoints;
   const int space = mesh.SpaceDimension;
-  std::vector<Index> order(static_cast<size_t>(points));
+  const int corners = mesh.CornersPerCell();
+  this->Site.resize(static_cast<size_t>(points));
   for (Index q = 0; q < points; ++q)
   {
-    order[q] = q;
+    this->Site[q] = q;
   }
-  if (!this->JoinCopies)
+  this->Sites = points;
+  this->JoinCopies = false;
+  std::vector<Index> open;
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
-    this->Site.swap(order); // each point its own site
-    this->Sites = points;
-    return;
+    for (int k = 0; k < corners; ++k)
+    {
+      if (across[c * corners + k] < 0)
+      {
+        for (int m = 1; m < corners; ++m)
+        {
+          open.push_back(mesh.Cell(c)[(k + m) % corners]);
+        }
+      }
+    }
   }
+  std::sort(open.begin(), open.end());
+  open.erase(std::unique(open.begin(), open.end()), open.end());
   auto same = [&](Index a, Index b) {
     return std::equal(mesh.Point(a), mesh.Point(a) + space, mesh.Point(b));
   };
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+  std::sort(open.begin(), open.end(), [&](Index a, Index b) {
     return std::lexicographical_compare(
       mesh.Point(a), mesh.Point(a) + space, mesh.Point(b), mesh.Point(b) + space);
   });
-  this->Site.resize(static_cast<size_t>(points));
-  this->Sites = 0;
-  for (Index i = 0; i < points; ++i)
+  for (size_t i = 1; i < open.size(); ++i)
   {
-    if (i > 0 && !same(order[i - 1], order[i]))
+    if (same(open[i - 1], open[i]))
     {
-      ++this->Sites;
+      this->Site[open[i]] = this->Site[open[i - 1]];
+      this->JoinCopies = true;
     }
-    this->Site[order[i]] = this->Sites;
   }
-  this->Sites += points > 0 ? 1 : 0;
+}
+
+void LinearReconstruction::MatchFacesOnSites(const TaskRunner& runner, std::vector<NeighborId>& across) const
+{
+  const MeshView& mesh = *this->Mesh;
+  const Index entries = mesh.NumberOfCells * mesh.CornersPerCell();
+  std::vector<Index> sites(static_cast<size_t>(entries));
+  runner.ForRanges(entries, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i)
+    {
+      sites[i] = this->Site[mesh.Corner(i)];
+    }
+    return 0;
+  });
+  MeshView onSites = mesh;
+  onSites.Connectivity = sites.data();
+  onSites.Connectivity32 = nullptr;
+  onSites.Neighbors = nullptr;
+  onSites.Around = nullptr;
+  across.assign(static_cast<size_t>(entries), -1);
+  BuildFaceNeighbors(onSites, across.data(), runner);
 }
 
 void LinearReconstruction::GatherAroundSites(const TaskRunner& runner)
 {
-  // The parents around each site, each once.
+  // The parents around each site, sorted (a split parent as often as its
+  // simplices there).
   const MeshView& mesh = *this->Mesh;
   const Index entries = mesh.NumberOfCells * mesh.CornersPerCell();
   this->AroundStart.assign(static_cast<size_t>(this->Sites) + 1, 0);
@@ -332,49 +405,13 @@ void LinearReconstruction::GatherAroundSites(const TaskRunner& runner)
   });
 }
 
-void LinearReconstruction::FindFaceNeighbors(const TaskRunner& runner)
+void LinearReconstruction::FindFaceNeighbors(const NeighborId* across, const TaskRunner& runner)
 {
-  // The simplices' face neighbours on the sites (CellNeighbors.h), then
-  // per parent the parents across its simplices' faces.
+  // Per parent, the parents across its simplices' faces (`across`: the
+  // simplices' face neighbours on the sites).
   const MeshView& mesh = *this->Mesh;
   const Index parents = mesh.Parents();
   const int corners = mesh.CornersPerCell();
-  const Index entries = mesh.NumberOfCells * corners;
-  std::vector<NeighborId> built;
-  const NeighborId* across = nullptr;
-  if (!this->JoinCopies && mesh.Neighbors)
-  {
-    across = mesh.Neighbors; // the mesh's own (its points are the sites)
-  }
-  else if (!this->JoinCopies)
-  {
-    built.assign(static_cast<size_t>(entries), -1);
-    MeshView own = mesh;
-    own.Neighbors = nullptr;
-    own.Around = nullptr;
-    BuildFaceNeighbors(own, built.data(), runner);
-    across = built.data();
-  }
-  else
-  {
-    std::vector<Index> sites(static_cast<size_t>(entries));
-    runner.ForRanges(entries, [&](Index begin, Index end) {
-      for (Index i = begin; i < end; ++i)
-      {
-        sites[i] = this->Site[mesh.Corner(i)];
-      }
-      return 0;
-    });
-    MeshView onSites = mesh;
-    onSites.Connectivity = sites.data();
-    onSites.Connectivity32 = nullptr;
-    onSites.NumberOfPoints = this->Sites;
-    onSites.Neighbors = nullptr;
-    onSites.Around = nullptr;
-    built.assign(static_cast<size_t>(entries), -1);
-    BuildFaceNeighbors(onSites, built.data(), runner);
-    across = built.data();
-  }
   const int tasks = runner.TasksFor(parents, 1024);
   std::vector<std::vector<Index>> found(static_cast<size_t>(tasks));
   std::vector<Index> count(static_cast<size_t>(parents) + 1, 0);
@@ -452,7 +489,8 @@ std::size_t LinearReconstruction::MemoryBytes() const
     (this->SimplexStart.capacity() + this->Simplices.capacity() + this->SlotOf.capacity() +
       this->ParentOfSlot.capacity() + this->AroundStart.capacity() +
       this->Around.capacity() + this->Site.capacity() + this->FaceStart.capacity() + this->Faces.capacity()) *
-    sizeof(Index);
+    sizeof(Index) +
+    this->Flat.capacity();
 }
 
 void LinearReconstruction::Reconstruct(const double* values, int components, const char* defined,
@@ -528,9 +566,9 @@ void LinearReconstruction::Stencil(Index p, const char* defined, bool aroundPoin
   Matrix a = Matrix::Zero();
   for (Index q : candidates)
   {
-    if (defined && !defined[q])
+    if ((defined && !defined[q]) || this->Flat[q])
     {
-      continue;
+      continue; // no value, or no measure (its centroid is no place of its value)
     }
     const double* cq = this->CentroidAt(q);
     double d[3] = { 0.0, 0.0, 0.0 };
@@ -608,10 +646,24 @@ void LinearReconstruction::FitGradients(Index p, const double* values, int compo
 void LinearReconstruction::Limit(
   Index p, const double* u, int components, const double* ranges, Scratch& scratch) const
 {
+  // The bounds: the least and greatest value of the cells around P's
+  // corners (P and its neighbours), from the sites' ranges.
   const MeshView& mesh = *this->Mesh;
   const double* cp = this->CentroidAt(p);
   for (int c = 0; c < components; ++c)
   {
+    double low = u[c];
+    double high = u[c];
+    for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
+    {
+      const CellCorners ids = mesh.Cell(this->Simplices[i]);
+      for (int k = 0; k < mesh.CornersPerCell(); ++k)
+      {
+        const double* range = ranges + 2 * (this->Site[ids[k]] * components + c);
+        low = std::min(low, range[0]);
+        high = std::max(high, range[1]);
+      }
+    }
     double* g = &scratch.Gradient[3 * static_cast<size_t>(c)];
     double phi = 1.0;
     for (Index i = this->SimplexStart[p]; i < this->SimplexStart[p + 1]; ++i)
@@ -625,8 +677,7 @@ void LinearReconstruction::Limit(
         {
           delta += g[b] * (x[b] - cp[b]);
         }
-        const double* range = ranges + 2 * (this->Site[ids[k]] * components + c);
-        phi = std::min(phi, LimiterFactor(u[c], delta, range[0], range[1]));
+        phi = std::min(phi, LimiterFactor(u[c], delta, low, high));
       }
     }
     phi = std::max(0.0, phi);

@@ -29,18 +29,19 @@
  * and curves the gradient lies in the cell's own plane (line): the
  * neighbours' offsets are taken in a frame of the cell.
  *
- * With the limiter (Barth and Jespersen 1989, with the bounds of each
- * corner from the cells around it), g_P is scaled by the largest phi in
- * [0, 1] such that u_P at every corner x of P stays within the least and
- * greatest value of the cells that share the point x. Those cells are P
- * and neighbours of P, so u_P nowhere leaves the range of P and its
- * neighbours (a linear function's extremes on a cell are at its corners),
- * and the projection's averages over pieces create no new extrema. A
- * corner's bounds from the cells around it, rather than from P's face
- * neighbours alone, leave a linear field alone inside the mesh (each
- * point lies among the centroids around it): the limiter clips at jumps
- * and extrema, not everywhere. Each component is limited on its own.
+ * With the limiter (Barth and Jespersen 1989), g_P is scaled by the
+ * largest phi in [0, 1] such that u_P at every corner of P stays within the
+ * least and greatest value of the cells around P's corners (P and all the
+ * cells that share a point with it). A linear function's extremes on a
+ * cell are at its corners, so u_P nowhere leaves the range of P and its
+ * neighbours, and the projection's averages over pieces create no new
+ * extrema in cells. Bounds from all the cells around P rather than from its
+ * face neighbours alone leave a linear field alone inside the mesh (each
+ * corner lies among the centroids around P): the limiter clips at jumps,
+ * at extrema and in some cells along the mesh's boundary, not everywhere.
+ * Each component is limited on its own.
  *
+ * Cells of zero measure (no part of any integral) are no one's neighbours.
  * Cells without a value (`Defined` zero: the NaN holes of an array) are
  * neither fitted nor used as neighbours; their corner values are 0 (their
  * pieces are left out of the operator that reads them).
@@ -73,20 +74,20 @@ class LinearReconstruction
 public:
   /**
    * Prepares the geometry of `mesh` (kept as a view: it must outlive the
-   * calls). Cells are the mesh's parents (MeshView::Parent). With
-   * `joinCopies`, points at the same coordinates are one point (a mesh
-   * made of parts that each have their own copies of the points between
-   * them: a composite dataset's blocks, the parts of several processes);
-   * else each point is its id, and the mesh's face neighbours
-   * (MeshView::Neighbors), when it has them, serve as they are.
+   * calls). Cells are the mesh's parents (MeshView::Parent). Points at the
+   * same coordinates are one point (a mesh made of parts that each have
+   * their own copies of the points between them: a composite dataset's
+   * blocks, the parts of several processes, unmerged points). The mesh's
+   * face neighbours (MeshView::Neighbors), when it has them, serve.
    */
-  void Prepare(const MeshView& mesh, const TaskRunner& runner, bool joinCopies);
+  void Prepare(const MeshView& mesh, const TaskRunner& runner);
   /**
    * Serves `mesh`, a view of the same mesh Prepare was given (the same
    * points and cells, in the same order: a later execution's), without
    * preparing again.
    */
   void Rebind(const MeshView& mesh) { this->Mesh = &mesh; }
+  /// Whether Prepare found points at the same coordinates and joined them.
   bool JoinsCopies() const { return this->JoinCopies; }
 
   /**
@@ -100,7 +101,7 @@ public:
 
   /// The measure-weighted centroid of parent p (SpaceDimension coordinates used).
   const double* Centroid(Index p) const { return this->CentroidAt(this->SlotOf[p]); }
-  /// Parents sharing a point (by coordinates) with parent p (p itself excluded), ascending.
+  /// Parents sharing a point (a site) with parent p (p itself excluded), ascending.
   void NeighborsOf(Index p, std::vector<Index>& neighbors) const;
   std::size_t MemoryBytes() const;
 
@@ -111,9 +112,10 @@ private:
   // The steps of Prepare.
   void GroupSimplices();
   void MeasureParents(const TaskRunner& runner);
-  void FindSites();
+  void FindSites(const NeighborId* across);
+  void MatchFacesOnSites(const TaskRunner& runner, std::vector<NeighborId>& across) const;
   void GatherAroundSites(const TaskRunner& runner);
-  void FindFaceNeighbors(const TaskRunner& runner);
+  void FindFaceNeighbors(const NeighborId* across, const TaskRunner& runner);
   /// One task's working arrays (Reconstruct).
   struct Scratch
   {
@@ -149,6 +151,7 @@ private:
 
   const MeshView* Mesh = nullptr;
   LargeVector<double> Centroids; ///< 3 per parent
+  std::vector<char> Flat;        ///< per slot: no measure (no neighbour of any cell)
   /// Per parent: an orthonormal frame of its plane (surfaces) or line
   /// (curves), CellDimension rows of 3; empty for volume meshes.
   LargeVector<double> Frames;
@@ -160,9 +163,9 @@ private:
   std::vector<Index> SimplexStart; ///< slot p's simplices: Simplices[SimplexStart[p] ...]
   std::vector<Index> Simplices;
   bool JoinCopies = false;
-  /// Per point, its site: with JoinCopies, points at the same coordinates
-  /// are one site, else each point is its own (the cells around a point
-  /// are those around its site).
+  /// Per point, its site: itself, or for a copy of a point (the same
+  /// coordinates) the first of them (the cells around a point are those
+  /// around its site; sites not used have none).
   std::vector<Index> Site;
   Index Sites = 0;
   std::vector<Index> AroundStart;  ///< the parents around site q: Around[AroundStart[q] ...]

@@ -34,6 +34,7 @@
 #include "Transfer/MortarBlocks.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace mp
@@ -232,6 +233,7 @@ struct DiscontinuousP1Space
       {
         ++place;
       }
+      assert(corners[place] == c.Points[k] && "a prepared cell's corners are the mesh cell's");
       dofs[k] = first + place;
     }
   }
