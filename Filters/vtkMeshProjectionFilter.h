@@ -91,7 +91,7 @@ public:
   enum Reconstructions
   {
     CONSTANT_RECONSTRUCTION = 0,  ///< the cell's value (first order)
-    LIMITED_RECONSTRUCTION = 1,   ///< linear, limited: second order, no new extrema
+    LIMITED_RECONSTRUCTION = 1,   ///< linear, limited: second order, no new extrema in cells
     UNLIMITED_RECONSTRUCTION = 2  ///< linear: second order, exact for linear fields
   };
   enum MassMatrices
@@ -213,7 +213,7 @@ public:
    * order). LIMITED_RECONSTRUCTION: a linear function with the cell's mean,
    * its gradient fitted to the neighbouring cells' values and limited so
    * that no value leaves the range of the cell and its neighbours (second
-   * order, no new extrema). UNLIMITED_RECONSTRUCTION: the same without the
+   * order; to cells, no new extrema). UNLIMITED_RECONSTRUCTION: the same without the
    * limiter (second order, exact for linear fields). Integrals are kept in
    * every mode; extensive arrays are reconstructed as densities.
    */
