@@ -541,7 +541,7 @@ void LinearReconstruction::Reconstruct(const double* values, int components, con
 }
 
 template <int M>
-void LinearReconstruction::Stencil(Index p, const char* defined, bool aroundPoints, Scratch& scratch) const
+void LinearReconstruction::Stencil(Index p, const char* defined, int ring, Scratch& scratch) const
 {
   using Vector = Eigen::Matrix<double, M, 1>;
   using Matrix = Eigen::Matrix<double, M, M>;
@@ -549,13 +549,27 @@ void LinearReconstruction::Stencil(Index p, const char* defined, bool aroundPoin
   const double* cp = this->CentroidAt(p);
   const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
   std::vector<Index>& candidates = scratch.Neighbors;
-  if (aroundPoints)
+  if (ring == 0)
   {
-    this->SlotNeighbors(p, candidates);
+    candidates.assign(this->Faces.begin() + this->FaceStart[p], this->Faces.begin() + this->FaceStart[p + 1]);
   }
   else
   {
-    candidates.assign(this->Faces.begin() + this->FaceStart[p], this->Faces.begin() + this->FaceStart[p + 1]);
+    this->SlotNeighbors(p, candidates);
+  }
+  if (ring == 2)
+  {
+    // And the cells around those.
+    std::vector<Index> first(candidates);
+    std::vector<Index> around;
+    for (Index q : first)
+    {
+      this->SlotNeighbors(q, around);
+      candidates.insert(candidates.end(), around.begin(), around.end());
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    candidates.erase(std::remove(candidates.begin(), candidates.end(), p), candidates.end());
   }
   // The neighbours with values; w d, d their offsets in the cell's frame,
   // w = 1 / |c_N - c_P|^2; A = sum w d d^T.
@@ -606,12 +620,17 @@ void LinearReconstruction::FitGradients(Index p, const double* values, int compo
   const double* u = values + p * components;
   const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
   // The face neighbours, or where they do not span the cell's directions
-  // (a corner, a hole, a strip) all the cells around it.
-  this->Stencil<M>(p, defined, false, scratch);
+  // (a corner, a hole, a strip) all the cells around it, or those and the
+  // cells around them (a corner cell with one neighbour).
+  this->Stencil<M>(p, defined, 0, scratch);
   const bool faces = SpansWell<M>(Eigen::Map<Matrix>(scratch.Normal), 1e-2);
   if (!faces)
   {
-    this->Stencil<M>(p, defined, true, scratch);
+    this->Stencil<M>(p, defined, 1, scratch);
+  }
+  if (!faces && !SpansWell<M>(Eigen::Map<Matrix>(scratch.Normal), 1e-2))
+  {
+    this->Stencil<M>(p, defined, 2, scratch);
   }
   const Matrix a = Eigen::Map<Matrix>(scratch.Normal);
   const std::vector<Index>& used = scratch.Used;

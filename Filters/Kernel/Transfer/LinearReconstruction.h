@@ -24,8 +24,10 @@
  * cells. Where the face neighbours with values do not span the cell's
  * directions well (a corner of the mesh, a cell next to a hole of missing
  * values, a thin strip), the fit takes every cell that shares a point with
- * P instead; where even those leave a direction open (a cell alone, a row
- * of cells), the least-norm gradient: zero in that direction. On surfaces
+ * P instead, and where those do not either (a corner cell with a single
+ * neighbour), the cells around those too; where even they leave a
+ * direction open (a cell alone, a row of cells), the least-norm gradient:
+ * zero in that direction. On surfaces
  * and curves the gradient lies in the cell's own plane (line): the
  * neighbours' offsets are taken in a frame of the cell.
  *
@@ -126,10 +128,11 @@ private:
     double Normal[9];               ///< the normal matrix A = sum w d d^T (M x M, column-major)
   };
   // The steps of Reconstruct, per parent p.
-  /// The neighbours of p with values, face neighbours (or all the cells
-  /// around it), with their weighted offsets and normal matrix, in `scratch`.
+  /// The neighbours of p with values (ring 0: across its faces; 1: all the
+  /// cells around it; 2: and the cells around those), with their weighted
+  /// offsets and normal matrix, in `scratch`.
   template <int M>
-  void Stencil(Index p, const char* defined, bool aroundPoints, Scratch& scratch) const;
+  void Stencil(Index p, const char* defined, int ring, Scratch& scratch) const;
   template <int M>
   void FitGradients(Index p, const double* values, int components, const char* defined, Scratch& scratch) const;
   void Limit(Index p, const double* u, int components, const double* ranges, Scratch& scratch) const;

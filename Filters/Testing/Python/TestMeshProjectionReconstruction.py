@@ -6,7 +6,8 @@ each cell, from the cell's own simplices (a degree-2 rule on each).
     a. mode 2 (linear) reproduces a linear field's cell averages exactly, to
        cells and to points, on every cell type: Gmsh pairs (triangles, quads,
        mixed 2D; hexahedra, tetrahedra, wedges, mixed 3D), image data,
-       hexahedra split into wedges and pyramids, a tilted planar surface, a
+       hexahedra split into wedges and pyramids, polyhedra, non-convex
+       polygons, a tilted planar surface, a
        curve in space, a trace (a plane in tetrahedra), a composite Source
        (which, its blocks cut apart, gives the uncut Source's result);
     b. the observed order on a smooth field, modes 1 and 2, 2D, 3D and a
@@ -29,8 +30,9 @@ import os
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_DOUBLE, vtkPoints
-from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_LINE, VTK_PYRAMID, VTK_TETRA,
+from vtkmodules.vtkCommonCore import VTK_DOUBLE, vtkIdList, vtkPoints
+from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_LINE, VTK_POLYGON, VTK_POLYHEDRON,
+                                           VTK_PYRAMID, VTK_TETRA,
                                            VTK_TRIANGLE, VTK_WEDGE, vtkImageData,
                                            vtkMultiBlockDataSet, vtkUnstructuredGrid)
 from vtkmodules.vtkCommonCore import vtkIdTypeArray, vtkDoubleArray
@@ -232,6 +234,52 @@ tets = as_grid(meshes.grid(*meshes.tetrahedra(6, (0, 0, 0), (1.2, 1.2, 1.2), 5, 
 for kind in ("hex", "wedge", "pyramid"):
     check_linear(stripped(tets), box_cells(4, kind), "tetrahedra <- sheared %ss" % kind)
     check_linear(box_cells(5, kind), stripped(tets), "sheared %ss <- tetrahedra" % kind)
+
+
+def polyhedra(n):
+    """The sheared box's hexahedra as polyhedra (face streams)."""
+    hexes = box_cells(n, "hex")
+    out = vtkUnstructuredGrid()
+    out.SetPoints(hexes.GetPoints())
+    faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    for c in range(hexes.GetNumberOfCells()):
+        ids = hexes.GetCell(c).GetPointIds()
+        stream = vtkIdList()
+        stream.InsertNextId(len(faces))
+        for f in faces:
+            stream.InsertNextId(len(f))
+            for k in f:
+                stream.InsertNextId(ids.GetId(k))
+        out.InsertNextCell(VTK_POLYHEDRON, stream)
+    return out
+
+
+def polygons(n):
+    """A sheared grid's squares, three of each four merged into an L-shaped
+    (non-convex) octagon, the fourth a square, all as polygons."""
+    x = meshes.structured(n, (0, 0), (1, 1), 2, 0, jitter=0.0) @ np.array([[1, 0.2, 0], [0.1, 1, 0], [0, 0, 1.0]])
+    at = lambda i, j: i * (n + 1) + j  # noqa: E731
+    cells = []
+    for i in range(0, n - 1, 2):
+        for j in range(0, n - 1, 2):
+            cells.append([at(i, j), at(i + 1, j), at(i + 2, j), at(i + 2, j + 1), at(i + 1, j + 1),
+                          at(i + 1, j + 2), at(i, j + 2), at(i, j + 1)])
+            cells.append([at(i + 1, j + 1), at(i + 2, j + 1), at(i + 2, j + 2), at(i + 1, j + 2)])
+    g = vtkUnstructuredGrid()
+    p = vtkPoints()
+    p.SetData(numpy_to_vtk(x, deep=True))
+    g.SetPoints(p)
+    for c in cells:
+        stream = vtkIdList()
+        for k in c:
+            stream.InsertNextId(k)
+        g.InsertNextCell(VTK_POLYGON, stream)
+    return g
+
+
+check_linear(stripped(tets), polyhedra(4), "tetrahedra <- polyhedra")
+check_linear(as_grid(meshes.grid(*meshes.triangles(17, (0.05, 0.05), (1.1, 1.1), 19), VTK_TRIANGLE)),
+             polygons(8), "triangles <- L-shaped polygons")
 
 
 def tilted(grid):
