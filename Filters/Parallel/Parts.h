@@ -82,8 +82,8 @@ public:
    * in the order of those ids, which it carries as GlobalIds. Only the
    * fields (ArraySelection.h) that every process's Source has are kept.
    * With `neighborLayer`, also every cell that shares a point with such a
-   * cell (the neighbours a reconstruction of cell data fits its gradients
-   * to: CellReconstruction.h).
+   * cell, and the cells around those (the neighbours a reconstruction of
+   * cell data fits its gradients to: CellReconstruction.h).
    */
   virtual vtkSmartPointer<vtkDataSet> GatherSource(vtkDataSet* source, vtkDataObject* input,
     double reach, bool neighborLayer, std::string& error) = 0;

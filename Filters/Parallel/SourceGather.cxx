@@ -437,11 +437,14 @@ Box GrownBy(Box b, double margin)
 }
 
 /**
- * The neighbour layer's reach: per process r, the largest size (SizeOf)
- * of the Source cells, on any process, whose boxes meet r's Cover (0 when
- * there is no layer; collective). A cell N sharing a point x with such a
- * cell C has x within C's box, whose distance to the Cover is at most C's
- * size per axis: N's box grown by the margin meets the Cover, so N is sent.
+ * The neighbour layer's reach, two rings deep (a reconstruction may fit a
+ * corner cell's gradient to the cells around its neighbours): per process
+ * r, the margin m1 + m2, m1 the largest size (SizeOf) of the Source cells,
+ * on any process, whose boxes meet r's Cover, m2 the largest size of those
+ * meeting the Cover grown by m1 (0 when there is no layer; collective). A
+ * cell N sharing a point x with such a cell C has x within C's box, whose
+ * distance to the Cover is at most C's size per axis: N's box grown by m1
+ * meets the Cover; a cell sharing a point with N lies within m1 + m2 of it.
  */
 std::vector<double> LayerMargins(
   MPIParts& parts, vtkDataSet* source, const std::vector<Cover>& covers, bool layer)
@@ -451,21 +454,25 @@ std::vector<double> LayerMargins(
   {
     return margins;
   }
-  std::vector<double> mine(covers.size(), 0.0);
-  ForEachCellBox(source, [&](vtkIdType, const Box& b) {
+  for (int ring = 0; ring < 2; ++ring)
+  {
+    std::vector<double> mine(covers.size(), 0.0);
+    ForEachCellBox(source, [&](vtkIdType, const Box& b) {
+      for (size_t r = 0; r < covers.size(); ++r)
+      {
+        if (covers[r].Meets(margins[r] > 0.0 ? GrownBy(b, margins[r]) : b))
+        {
+          mine[r] = std::max(mine[r], SizeOf(b));
+        }
+      }
+    });
+    std::vector<double> largest(covers.size(), 0.0);
+    parts.Controller()->AllReduce(
+      mine.data(), largest.data(), static_cast<vtkIdType>(mine.size()), vtkCommunicator::MAX_OP);
     for (size_t r = 0; r < covers.size(); ++r)
     {
-      if (covers[r].Meets(b))
-      {
-        mine[r] = std::max(mine[r], SizeOf(b));
-      }
+      margins[r] += largest[r] * (1 + 1e-9); // (cells that touch meet after rounding)
     }
-  });
-  parts.Controller()->AllReduce(
-    mine.data(), margins.data(), static_cast<vtkIdType>(mine.size()), vtkCommunicator::MAX_OP);
-  for (double& m : margins)
-  {
-    m += 1e-9 * m; // cells that touch meet after rounding
   }
   return margins;
 }

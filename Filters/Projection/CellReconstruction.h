@@ -15,8 +15,8 @@
  * its own copy of each point between two parts: the kernel joins copies at
  * the same coordinates. On several processes
  * each process's gathered Source holds, besides the cells its part needs,
- * the cells around them (SourceGather.cxx, the neighbour layer), so each
- * gradient is the serial one.
+ * two rings of cells around them (SourceGather.cxx, the neighbour layer),
+ * so each gradient is the serial one.
  */
 #ifndef MeshProjection_Projection_CellReconstruction_h
 #define MeshProjection_Projection_CellReconstruction_h
