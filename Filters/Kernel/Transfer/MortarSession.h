@@ -243,24 +243,12 @@ struct MortarOperator::Session
       }
       op.CoveredMeasure += a.CoveredSum;
       op.OvercoveredCells += a.Overcovered;
-      // (Without Met, another session of the search sums the cover: copied after.)
-      if (!this->Met.empty() && k == 0)
-      {
-        op.SourceCovered.swap(this->Met[0]);
-      }
-      else if (!this->Met.empty())
-      {
-        const double* met = this->Met[k].data();
-        double* covered = op.SourceCovered.data();
-        runner.ForRanges(static_cast<Index>(op.SourceCovered.size()), [=](Index begin, Index end) {
-          for (Index c = begin; c < end; ++c)
-          {
-            covered[c] += met[c];
-          }
-          return 0;
-        }, Index(1) << 16);
-      }
       op.Statistics.Pieces += a.Count;
+    }
+    // (Without Met, another session of the search sums the cover: copied after.)
+    if (!this->Met.empty())
+    {
+      SumTasks(this->Met, runner, op.SourceCovered);
     }
     SumTasks(this->FunctionMet, runner, op.SourceFunctionCovered);
     std::vector<Assembler>().swap(this->Assemblers);
