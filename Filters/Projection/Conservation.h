@@ -8,7 +8,8 @@
  * Source the operator's pieces cover: per Source function a weight (P1: a
  * third (a half, a quarter) of the covered measure of each simplex around
  * the point; P0: the cell's covered measure; DP1, reconstructed cell data:
- * its own integral over the covered part), NaN groups' cells not covered. For surfaces and curves the pieces, projected along each target
+ * its own integral over the covered part), NaN groups' cells not covered.
+ * For surfaces and curves the pieces, projected along each target
  * facet's own normal, cover a Source cell only up to O(h^2): a cell
  * covered to 90% or more counts whole, so that a Source covered whole gives
  * its own integral exactly. On several processes each process has its part
