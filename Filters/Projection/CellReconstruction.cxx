@@ -16,18 +16,17 @@ namespace mpvtk
 {
 namespace
 {
-/// Per Source cell (parent), whether a NaN group's arrays have values there.
-std::vector<char> DefinedCells(const mp::MeshView& source, const NaNGroup& group)
+/// `block`'s values as DP1 functions (`defined`: per Source cell, or null for all).
+void Reconstruct(const mp::LinearReconstruction& reconstruction, const mp::MeshView& source,
+  const char* defined, mp::Reconstruction mode, FieldBlock& block)
 {
-  std::vector<char> defined(static_cast<size_t>(source.Parents()), 1);
-  for (mp::Index c = 0; c < source.NumberOfCells; ++c)
+  block.Corners.resize(static_cast<size_t>(source.NumberOfCells) * source.CornersPerCell() * block.Components);
+  if (block.Components > 0)
   {
-    if (group.Excluded[static_cast<size_t>(c)])
-    {
-      defined[static_cast<size_t>(source.ParentOf(c))] = 0;
-    }
+    reconstruction.Reconstruct(
+      block.Values.data(), block.Components, defined, mode, SMPTaskRunner(), block.Corners.data());
   }
-  return defined;
+  block.Reconstructed = true;
 }
 } // namespace
 
@@ -61,22 +60,16 @@ void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
     kept.SourcePrint = sourcePrint;
   }
   const mp::LinearReconstruction& reconstruction = *kept.Geometry;
-  const size_t corners = static_cast<size_t>(source.NumberOfCells) * source.CornersPerCell();
-  cells.Corners.resize(corners * cells.Components);
-  if (cells.Components > 0)
-  {
-    reconstruction.Reconstruct(
-      cells.Values.data(), cells.Components, nullptr, mode, runner, cells.Corners.data());
-  }
-  cells.Reconstructed = true;
+  Reconstruct(reconstruction, source, nullptr, mode, cells);
   cells.Key += "/reconstruction " + std::to_string(settings.CellDataReconstruction);
   for (NaNGroup& group : cells.Groups)
   {
-    const std::vector<char> defined = DefinedCells(source, group);
-    group.Corners.resize(corners * group.Components);
-    reconstruction.Reconstruct(
-      group.Values.data(), group.Components, defined.data(), mode, runner, group.Corners.data());
-    group.Reconstructed = true;
+    std::vector<char> defined = LeftOutCells(source, group);
+    for (char& d : defined)
+    {
+      d = !d;
+    }
+    Reconstruct(reconstruction, source, defined.data(), mode, group);
   }
   if (!settings.CacheOperator)
   {

@@ -165,11 +165,7 @@ void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::s
     return;
   }
   // The dataset's cells left out (a split cell counts once).
-  std::vector<char> parents(static_cast<size_t>(view.Parents()), 0);
-  for (mp::Index c = 0; c < view.NumberOfCells; ++c)
-  {
-    parents[view.ParentOf(c)] |= group.Excluded[c];
-  }
+  const std::vector<char> parents = LeftOutCells(view, group);
   const vtkIdType cells = std::count(parents.begin(), parents.end(), 1);
   messages.Warn("Source " + std::string(kind) + " array '" + label + "' has " +
     std::to_string(values) + " NaN or infinite values: the " + std::to_string(cells) +
@@ -249,6 +245,16 @@ void FindNaNGroups(const SimplexMesh& mesh, int association, Messages& messages,
   SplitOffGroups(g, functions);
 }
 } // namespace
+
+std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group)
+{
+  std::vector<char> parents(static_cast<size_t>(view.Parents()), 0);
+  for (mp::Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    parents[view.ParentOf(c)] |= group.Excluded[c];
+  }
+  return parents;
+}
 
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,

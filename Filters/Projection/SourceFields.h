@@ -20,6 +20,7 @@
 #define MeshProjection_Projection_SourceFields_h
 
 #include "Mesh/LargeArray.h"
+#include "Mesh/MeshView.h"
 
 #include <cstdint>
 #include <string>
@@ -42,14 +43,11 @@ enum Association
   CellArrays = 1   ///< P0 functions (the dataset's cells)
 };
 
-/// Arrays with NaN or infinite values that leave out the same Source cells.
-struct NaNGroup
+/// Arrays' values side by side, as the operators read them.
+struct FieldBlock
 {
-  std::vector<int> Arrays;        ///< indices into GatheredFields::Arrays
-  std::vector<char> Excluded;     ///< per kernel Source cell
-  std::uint64_t Print = 0;        ///< of Excluded
   int Components = 0;
-  mp::LargeVector<double> Values; ///< functions x Components, non-finite values as 0
+  mp::LargeVector<double> Values; ///< functions x Components
   /// With CellDataReconstruction: Values as DP1 functions (CellReconstruction.h).
   mp::LargeVector<double> Corners;
   bool Reconstructed = false;
@@ -57,21 +55,27 @@ struct NaNGroup
   const mp::LargeVector<double>& Functions() const { return this->Reconstructed ? this->Corners : this->Values; }
 };
 
-/// The Source arrays of one association, gathered side by side.
-struct GatheredFields
+/// Arrays with NaN or infinite values that leave out the same Source cells
+/// (their Values: non-finite values as 0).
+struct NaNGroup : FieldBlock
+{
+  std::vector<int> Arrays;        ///< indices into GatheredFields::Arrays
+  std::vector<char> Excluded;     ///< per kernel Source cell
+  std::uint64_t Print = 0;        ///< of Excluded
+};
+
+/// The Source arrays of one association, gathered side by side (NaN groups'
+/// columns of Values as 0).
+struct GatheredFields : FieldBlock
 {
   std::vector<vtkDataArray*> Arrays;
   std::vector<int> Offsets; ///< each array's first column
-  int Components = 0;
-  mp::LargeVector<double> Values; ///< functions x Components (NaN groups' columns as 0)
   std::string Key;                ///< names and components: which solution a warm start may reuse
   std::vector<NaNGroup> Groups;   ///< the arrays with non-finite values
-  /// With CellDataReconstruction: Values as DP1 functions (CellReconstruction.h).
-  mp::LargeVector<double> Corners;
-  bool Reconstructed = false;
-  /// What the operators read: Corners when reconstructed, else Values.
-  const mp::LargeVector<double>& Functions() const { return this->Reconstructed ? this->Corners : this->Values; }
 };
+
+/// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
+std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group);
 
 /**
  * The fields of `source` (wrapped as `mesh`) that `selections` (points,
