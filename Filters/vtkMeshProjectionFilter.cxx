@@ -316,6 +316,8 @@ mpvtk::Settings vtkMeshProjectionFilter::CurrentSettings() const
   s.OutputIntersections = this->OutputIntersections;
   s.FillWithNaN = this->FillWithNaN;
   s.FillValue = this->FillValue;
+  s.Extrapolation = this->Extrapolation;
+  s.FringeThreshold = this->FringeThreshold;
   s.PointDataTarget = this->PointDataTarget;
   s.CellDataTarget = this->CellDataTarget;
   s.Extensive = this->CellDataQuantity == EXTENSIVE;
@@ -628,6 +630,8 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputIntersections: " << (this->OutputIntersections ? "On" : "Off") << "\n";
   os << indent << "FillWithNaN: " << (this->FillWithNaN ? "On" : "Off") << "\n";
   os << indent << "FillValue: " << this->FillValue << "\n";
+  os << indent << "Extrapolation: " << this->Extrapolation << "\n";
+  os << indent << "FringeThreshold: " << this->FringeThreshold << "\n";
   os << indent << "PointDataTarget: " << this->PointDataTarget << "\n";
   os << indent << "CellDataTarget: " << this->CellDataTarget << "\n";
   os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";

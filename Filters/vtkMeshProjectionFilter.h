@@ -153,6 +153,33 @@ public:
 
   ///@{
   /**
+   * What target points and cells the Source does not reach receive instead
+   * of the fill value: NO_EXTRAPOLATION (default), SMOOTH_EXTRAPOLATION (the
+   * harmonic extension of the valid values over Input's point graph, or
+   * cell graph for cell data: within their range, no new extrema) or
+   * NEAREST_EXTRAPOLATION (the value of the nearest valid point or cell
+   * along Input's graph). vtkExtrapolatedPointMask and
+   * vtkExtrapolatedCellMask mark them; parts of Input connected to no valid
+   * point keep the fill value.
+   */
+  enum Extrapolations { NO_EXTRAPOLATION = 0, SMOOTH_EXTRAPOLATION = 1, NEAREST_EXTRAPOLATION = 2 };
+  vtkSetClampMacro(Extrapolation, int, NO_EXTRAPOLATION, NEAREST_EXTRAPOLATION);
+  vtkGetMacro(Extrapolation, int);
+  ///@}
+
+  ///@{
+  /**
+   * A well-posed fringe: point functions whose covered part of their
+   * support is below this fraction (default 0.25) take the affine
+   * extension of well-covered points nearby instead of being fitted to a
+   * sliver (docs/method.md); 0 turns it off.
+   */
+  vtkSetClampMacro(FringeThreshold, double, 0.0, 0.9);
+  vtkGetMacro(FringeThreshold, double);
+  ///@}
+
+  ///@{
+  /**
    * Which Source point and cell arrays are projected. Arrays not listed
    * are enabled (all arrays by default); disable them by name, e.g.
    * GetPointDataArraySelection()->DisableArray("p"). The filter lists
@@ -433,6 +460,8 @@ protected:
   bool OutputIntersections = false;
   bool FillWithNaN = true;
   double FillValue = 0;
+  int Extrapolation = NO_EXTRAPOLATION;
+  double FringeThreshold = 0.25;
   int PointDataTarget = TO_POINTS;
   int CellDataTarget = TO_CELLS;
   int CellDataQuantity = INTENSIVE;

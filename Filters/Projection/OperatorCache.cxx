@@ -76,6 +76,8 @@ std::uint64_t LeafFingerprint(
   print.Add(sourcePrint);
   print.Add(static_cast<std::uint64_t>(settings.SearchMethod));
   print.Add(static_cast<std::uint64_t>(settings.OutputIntersections));
+  const double fringe = settings.Fringe(); // the aggregation is kept with the operator
+  print.Add(&fringe, sizeof fringe);
   if (!trace && (target.View().IsSurfaceMesh() || target.View().IsCurveMesh()))
   {
     const double contact[3] = { settings.SurfaceReach, settings.MaximumNormalAngle,

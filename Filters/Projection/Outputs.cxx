@@ -262,9 +262,10 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
 }
 
 /**
- * Valid points whose cells are all covered only in slivers: their values
- * are extrapolated from a sliver (an ill-conditioned row) and can be far
- * off. On several processes a point on a partition boundary has cells on
+ * Valid points whose cells are all covered only in slivers and that the
+ * fringe's aggregation left free (FringeThreshold 0, or shared by several
+ * processes, or no stencil): their values are extrapolated from a sliver
+ * (an ill-conditioned row) and can be far off. On several processes a point on a partition boundary has cells on
  * each: it is such a point only when the cells of every process around it
  * are slivers (the hooks complete the cover across processes; alone they
  * do nothing). Counted once (by its owner), the total said once (by
@@ -285,6 +286,7 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
   {
     shared.Exchange(covered.data(), 1);
   }
+  const std::vector<char>& fringe = onPoints.GetFringe().Aggregated;
   // (A count: the same in any order.)
   double total = mpvtk::SMPTaskRunner().ForRanges(
     static_cast<mp::Index>(most.size()), [&](mp::Index begin, mp::Index end) {
@@ -292,7 +294,9 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
       for (mp::Index i = begin; i < end; ++i)
       {
         const bool counted = !shared.Counted || static_cast<size_t>(i) >= rows || shared.Counted[i];
-        count += onPoints.GetValid()[i] && covered[i] == 0.0 && counted ? 1.0 : 0.0;
+        // (An aggregated point's value is the extension of well-covered ones.)
+        const bool aggregated = !fringe.empty() && fringe[i];
+        count += onPoints.GetValid()[i] && !aggregated && covered[i] == 0.0 && counted ? 1.0 : 0.0;
       }
       return count;
     });

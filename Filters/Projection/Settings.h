@@ -21,6 +21,8 @@ struct Settings
   bool OutputIntersections = false;
   bool FillWithNaN = true;
   double FillValue = 0;
+  int Extrapolation = 0;        ///< vtkMeshProjectionFilter::Extrapolations
+  double FringeThreshold = 0.25; ///< aggregate point functions covered less than this
   int PointDataTarget = 1;     ///< vtkMeshProjectionFilter::Targets (bits: 1 points, 2 cells)
   int CellDataTarget = 2;
   bool Extensive = false;      ///< CellDataQuantity is EXTENSIVE
@@ -34,6 +36,9 @@ struct Settings
   bool CacheOperator = true;
   int Renumbering = 0;         ///< AUTOMATIC_RENUMBERING, ALWAYS_RENUMBER, NEVER_RENUMBER
   bool AssembleNext = false;   ///< GetMatrix asked for M_ts
+
+  /// The fringe's threshold in effect (lumped values are means: nothing to aggregate).
+  double Fringe() const { return this->Lumped ? 0.0 : this->FringeThreshold; }
 
   /// The value of target functions that the Source does not reach.
   double Fill() const

@@ -178,6 +178,16 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
       return 0.0;
     });
   }
+  // A fringe aggregated (AggregateFringe): the right-hand sides P^T b,
+  // before the shared rows are completed (an aggregated function is held
+  // by one part, which alone adds its row to its stencil's).
+  const bool aggregated = this->Fringe.Count > 0 && options.Mass == MassType::Consistent;
+  if (aggregated)
+  {
+    LargeVector<double> restricted(static_cast<size_t>(n) * components);
+    RestrictToFree(this->Fringe, product.empty() ? rhs : product.data(), restricted.data(), components);
+    product.swap(restricted);
+  }
   if (hooks.Exchange)
   {
     hooks.Exchange(product.data(), components);
@@ -193,7 +203,7 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     // 0 * NaN would spread it through the products. Their solution is 0.
     for (Index i = 0; i < n; ++i)
     {
-      if (!this->Valid[i])
+      if (!this->Valid[i] || (aggregated && this->Fringe.Aggregated[i]))
       {
         std::fill(targetValues + i * components, targetValues + (i + 1) * components, 0.0);
       }
@@ -215,6 +225,11 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
         targetValues[i * components + k] = sums[i] > 0.0 ? rhs[i * components + k] / sums[i] : 0.0;
       }
     }
+  }
+  else if (aggregated)
+  {
+    ok = this->FringeSolver->Solve(rhs, targetValues, components, solve, hooks);
+    ExtendFromFree(this->Fringe, targetValues, components);
   }
   else
   {

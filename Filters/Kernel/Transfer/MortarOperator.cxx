@@ -222,9 +222,84 @@ void MortarOperator::ShareValidity(const SolverHooks& hooks)
   }
 }
 
+Index MortarOperator::AggregateFringe(
+  const MeshView& target, double threshold, const SolverHooks& hooks)
+{
+  if (this->FringeDone || this->Options.TargetSpace != SpaceType::P1 || !(threshold > 0.0) ||
+    !this->Solver)
+  {
+    return this->Fringe.Count;
+  }
+  this->FringeDone = true;
+  const auto start = std::chrono::steady_clock::now();
+  const Index n = this->TargetMass.Rows;
+  // The covered fraction of each function's support; on a distributed
+  // system both integrals summed over the parts, and the shared functions
+  // found (a count of the parts holding each) to be left free.
+  std::vector<double> covered(this->RowSums);
+  LargeVector<double> whole = SupportIntegrals(target);
+  whole.resize(static_cast<size_t>(n), 0.0);
+  std::vector<char> shared;
+  if (hooks.Exchange)
+  {
+    std::vector<double> parts(static_cast<size_t>(n), 1.0);
+    hooks.Exchange(covered.data(), 1);
+    hooks.Exchange(whole.data(), 1);
+    hooks.Exchange(parts.data(), 1);
+    shared.resize(static_cast<size_t>(n));
+    for (Index i = 0; i < n; ++i)
+    {
+      shared[i] = parts[i] > 1.5;
+    }
+  }
+  std::vector<double> fraction(static_cast<size_t>(n), 0.0);
+  for (Index i = 0; i < n; ++i)
+  {
+    fraction[i] = whole[i] > 0.0 ? covered[i] / whole[i] : 0.0;
+  }
+  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction,
+    hooks.Exchange ? &shared : nullptr);
+  if (this->Fringe.Count > 0)
+  {
+    this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
+    this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
+    this->DropFringe();
+  }
+  else
+  {
+    this->Fringe = FringeExtension();
+  }
+  this->Timings.Assembly += SecondsSince(start);
+  return this->Fringe.Count;
+}
+
+void MortarOperator::DropFringe()
+{
+  // A dropped function's covered integral goes to its stencil by its
+  // weights (P^T on the row sums): sum_i RowSums_i u_i over the valid
+  // functions stays the integral of u = P u_free over the covered part.
+  const CsrMatrix& P = this->Fringe.P;
+  for (Index i = 0; i < P.Rows; ++i)
+  {
+    if (!this->Fringe.Dropped[i])
+    {
+      continue;
+    }
+    for (Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
+    {
+      this->RowSums[P.ColumnIndex[q]] += P.Values[q] * this->RowSums[i];
+    }
+    this->RowSums[i] = 0.0;
+    this->Valid[i] = 0;
+    --this->NumberOfValid;
+  }
+}
+
 void MortarOperator::ReleaseMatrices()
 {
   this->Solver.reset();
+  this->FringeSolver.reset();
+  this->FringeMass = CsrMatrix();
   for (CsrMatrix* m : { &this->TargetMass, &this->MixedMass })
   {
     CsrMatrix empty;
@@ -241,7 +316,7 @@ size_t MortarOperator::MemoryBytes() const
     return m.RowStart.capacity() * sizeof(Index) + m.ColumnIndex.capacity() * sizeof(Column) +
       m.Values.capacity() * sizeof(double);
   };
-  return csr(this->TargetMass) + csr(this->MixedMass) + this->Rhs.capacity() * sizeof(double) +
+  return csr(this->TargetMass) + csr(this->MixedMass) + csr(this->FringeMass) + csr(this->Fringe.P) + this->Rhs.capacity() * sizeof(double) +
     this->Valid.capacity() + this->RowSums.capacity() * sizeof(double) +
     this->CoveredFraction.capacity() * sizeof(double) + this->PointCover.capacity() * sizeof(double) +
     this->Pieces.MemoryBytes();

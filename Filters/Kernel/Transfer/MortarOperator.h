@@ -46,6 +46,7 @@
 #include "Search/SearchStatistics.h"
 #include "Transfer/BlockCG.h"
 #include "Transfer/CsrMatrix.h"
+#include "Transfer/FringeAggregation.h"
 #include "Transfer/MassMatrix.h"
 #include "Transfer/Space.h"
 
@@ -210,6 +211,24 @@ public:
    */
   void ShareValidity(const SolverHooks& hooks);
 
+  /**
+   * A well-posed fringe (FringeAggregation.h), P1 target functions of a
+   * volume mesh only: the valid functions whose covered fraction of their
+   * support is below `threshold` take the affine extension of well-covered
+   * ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
+   * After CompleteTargetMass (and ShareValidity): a distributed system
+   * sums the covered and whole integrals over the parts (hooks.Exchange)
+   * and leaves shared functions free. Functions covered less than
+   * FringeDropFraction become invalid (their share of the covered
+   * integral goes to their stencil, GetCoveredIntegrals). Collective; once
+   * per operator (a kept operator keeps its aggregation); not for lumped
+   * Applies (their values are means already). Returns the aggregated
+   * functions.
+   */
+  Index AggregateFringe(const MeshView& target, double threshold, const SolverHooks& hooks);
+  /// The fringe's extension (empty P when nothing is aggregated).
+  const FringeExtension& GetFringe() const { return this->Fringe; }
+
   /// Bytes held by the operator's matrices, right-hand sides and pieces.
   size_t MemoryBytes() const;
   /// Per target function: int phi_i over the covered part (the row sums of M_tt).
@@ -267,6 +286,8 @@ public:
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
   struct Session;
+  /// The dropped functions of the fringe made invalid, their covered integrals given to their stencils.
+  void DropFringe();
   /// The checks of the meshes and options (Options set): false, with Error set, on unusable input.
   bool Check(const MeshView& target, const MeshView& source, CandidateLocator* locator);
   template <class Intersector>
@@ -281,6 +302,10 @@ private:
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
+  bool FringeDone = false;
+  FringeExtension Fringe;
+  CsrMatrix FringeMass; ///< P^T M_tt P (when some function is aggregated)
+  std::unique_ptr<BlockCG> FringeSolver;
   std::vector<char> Valid;
   std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;
