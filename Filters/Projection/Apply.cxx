@@ -119,7 +119,9 @@ void AggregateFringes(LeafContext& ctx, const OperatorSet& ops, const mp::Solver
   {
     hooks.Reduce(volume, 2); // volume when every process says so
   }
-  const double threshold = volume[0] == volume[1] ? ctx.Options.Fringe() : 0.0;
+  const double threshold = volume[0] == volume[1] ? ctx.Options.FringeThreshold : 0.0;
+  // (Lumped values are means: nothing to aggregate; a later consistent run aggregates then.)
+  const double used = ctx.Options.Lumped ? 0.0 : threshold;
   for (Transfer t : AllTransfers)
   {
     if (!ops.Operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
@@ -137,7 +139,7 @@ void AggregateFringes(LeafContext& ctx, const OperatorSet& ops, const mp::Solver
     for (const mp::MortarOperator* op : all)
     {
       const double before = op->GetTimings().Assembly;
-      const_cast<mp::MortarOperator*>(op)->AggregateFringe(view, threshold, hooks);
+      const_cast<mp::MortarOperator*>(op)->AggregateFringe(view, used, hooks);
       ctx.Stats.Assembly += op->GetTimings().Assembly - before;
     }
   }

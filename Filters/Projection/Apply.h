@@ -26,6 +26,8 @@ struct KeptLeaf;
 struct LeafSolutions
 {
   mp::LargeVector<double> Values[NumberOfTransfers];
+  /// Per transfer: the functions whose values were extrapolated (its operator's; Extrapolation).
+  std::vector<char> Extrapolated[NumberOfTransfers];
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators

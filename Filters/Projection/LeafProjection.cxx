@@ -6,6 +6,7 @@
 #include "Projection/Agreement.h"
 #include "Projection/Apply.h"
 #include "Projection/Conservation.h"
+#include "Projection/Extrapolation.h"
 #include "Projection/Messages.h"
 #include "Projection/OperatorBuild.h"
 #include "Projection/OperatorCache.h"
@@ -172,15 +173,25 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   const bool haveCover = PrepareSolves(ctx, ops, weights, cover);
   mp::SolverHooks hooks[2]; // P1, P0 target functions
   ShareSystems(ctx, ops, hooks);
-  if (haveCover)
+  // (The extrapolation reads the target's cells after the solves.)
+  const bool extrapolate = run.Options.Extrapolation != 0;
+  if (haveCover && !extrapolate)
   {
     targetMesh.ReleaseGeometry();
   }
   LeafSolutions solutions;
   result.Outcome = ApplyOperators(ctx, kept, ops, hooks, solutions);
+  if (result.Outcome.Ok())
+  {
+    result.Outcome = ExtrapolateLeaf(ctx, ops, hooks, solutions);
+  }
   if (!result.Outcome.Ok())
   {
     return result;
+  }
+  if (haveCover && extrapolate)
+  {
+    targetMesh.ReleaseGeometry();
   }
   KeepOperators(ctx, kept, plan, ops);
   // On several processes the outputs are written in step (sums over them):

@@ -76,8 +76,7 @@ std::uint64_t LeafFingerprint(
   print.Add(sourcePrint);
   print.Add(static_cast<std::uint64_t>(settings.SearchMethod));
   print.Add(static_cast<std::uint64_t>(settings.OutputIntersections));
-  const double fringe = settings.Fringe(); // the aggregation is kept with the operator
-  print.Add(&fringe, sizeof fringe);
+  print.Add(&settings.FringeThreshold, sizeof settings.FringeThreshold); // kept with the operator
   if (!trace && (target.View().IsSurfaceMesh() || target.View().IsCurveMesh()))
   {
     const double contact[3] = { settings.SurfaceReach, settings.MaximumNormalAngle,

@@ -364,6 +364,42 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   CopyInThreads(fraction.data(), fraction.size(), covered->GetPointer(0));
   output->GetCellData()->AddArray(covered);
 }
+/**
+ * vtkExtrapolatedPointMask and vtkExtrapolatedCellMask (with Extrapolation):
+ * where the masks' operators (those of vtkValidPointMask and
+ * vtkValidCellMask) had their values extrapolated.
+ */
+void WriteExtrapolatedMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
+  const LeafSolutions& solutions)
+{
+  if (ctx.Options.Extrapolation == 0)
+  {
+    return;
+  }
+  using F = vtkMeshProjectionFilter;
+  const Transfer toPoints = ops.Operators[F::POINTS_TO_POINTS] ? F::POINTS_TO_POINTS : F::CELLS_TO_POINTS;
+  const Transfer toCells = ops.Operators[F::POINTS_TO_CELLS] ? F::POINTS_TO_CELLS : F::CELLS_TO_CELLS;
+  for (const Transfer t : { toPoints, toCells })
+  {
+    const std::vector<char>& from = solutions.Extrapolated[t];
+    if (!ops.Operators[t] || from.empty())
+    {
+      continue;
+    }
+    const bool points = t == toPoints;
+    vtkNew<vtkCharArray> mask;
+    mask->SetName(points ? "vtkExtrapolatedPointMask" : "vtkExtrapolatedCellMask");
+    mask->SetNumberOfValues(
+      points ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells());
+    mask->FillValue(0);
+    for (size_t f = 0; f < from.size(); ++f)
+    {
+      mask->SetValue(points ? ctx.Target.DataSetPoint(static_cast<mp::Index>(f)) : static_cast<vtkIdType>(f), from[f]);
+    }
+    (points ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
+            : static_cast<vtkDataSetAttributes*>(output->GetCellData()))->AddArray(mask);
+  }
+}
 } // namespace
 
 void PassInput(vtkDataObject* input, vtkDataObject* output, vtkPolyData* polygons,
@@ -437,6 +473,7 @@ void WriteLeafOutputs(LeafContext& ctx, vtkDataSet* output, const OperatorSet& o
   }
   MakeActiveScalars(output, written);
   WriteMasks(ctx, output, ops, pointCover, pointHooks, numbering, written);
+  WriteExtrapolatedMasks(ctx, output, ops, solutions);
 }
 
 vtkSmartPointer<vtkDataObject> LeafPieces(const LeafContext& ctx, const OperatorSet& ops)

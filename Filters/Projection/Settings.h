@@ -37,9 +37,6 @@ struct Settings
   int Renumbering = 0;         ///< AUTOMATIC_RENUMBERING, ALWAYS_RENUMBER, NEVER_RENUMBER
   bool AssembleNext = false;   ///< GetMatrix asked for M_ts
 
-  /// The fringe's threshold in effect (lumped values are means: nothing to aggregate).
-  double Fringe() const { return this->Lumped ? 0.0 : this->FringeThreshold; }
-
   /// The value of target functions that the Source does not reach.
   double Fill() const
   {

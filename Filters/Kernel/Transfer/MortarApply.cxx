@@ -182,6 +182,8 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   // before the shared rows are completed (an aggregated function is held
   // by one part, which alone adds its row to its stencil's).
   const bool aggregated = this->Fringe.Count > 0 && options.Mass == MassType::Consistent;
+  this->LastAggregated = aggregated;
+  const std::vector<char>& valid = this->GetValid();
   if (aggregated)
   {
     LargeVector<double> restricted(static_cast<size_t>(n) * components);
@@ -241,12 +243,12 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     {
       return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
     }
-    ClipToLocalBounds(this->MixedMass, this->Valid, this->RowSums, n, sourceValues, components, rhs,
-      targetValues, hooks);
+    ClipToLocalBounds(this->MixedMass, valid, this->GetCoveredIntegrals(), n, sourceValues,
+      components, rhs, targetValues, hooks);
   }
   for (Index i = 0; i < n; ++i)
   {
-    if (!this->Valid[i])
+    if (!valid[i])
     {
       std::fill(targetValues + i * components, targetValues + (i + 1) * components, fill);
     }

@@ -279,6 +279,9 @@ void MortarOperator::DropFringe()
   // weights (P^T on the row sums): sum_i RowSums_i u_i over the valid
   // functions stays the integral of u = P u_free over the covered part.
   const CsrMatrix& P = this->Fringe.P;
+  this->FringeValid = this->Valid;
+  this->FringeRowSums = this->RowSums;
+  this->FringeDropped = 0;
   for (Index i = 0; i < P.Rows; ++i)
   {
     if (!this->Fringe.Dropped[i])
@@ -287,11 +290,11 @@ void MortarOperator::DropFringe()
     }
     for (Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
     {
-      this->RowSums[P.ColumnIndex[q]] += P.Values[q] * this->RowSums[i];
+      this->FringeRowSums[P.ColumnIndex[q]] += P.Values[q] * this->RowSums[i];
     }
-    this->RowSums[i] = 0.0;
-    this->Valid[i] = 0;
-    --this->NumberOfValid;
+    this->FringeRowSums[i] = 0.0;
+    this->FringeValid[i] = 0;
+    ++this->FringeDropped;
   }
 }
 

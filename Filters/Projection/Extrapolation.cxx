@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Projection/Extrapolation.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+
+#include "Projection/Messages.h"
+#include "Projection/Settings.h"
+#include "Projection/SourceSide.h"
+#include "Adapter/SimplexMesh.h"
+#include "Adapter/Threads.h"
+
+#include "Transfer/Extrapolation.h"
+
+#include <algorithm>
+#include <string>
+
+namespace mpvtk
+{
+namespace
+{
+/// One transfer: its arrays extended one by one (each with its own operator's validity).
+Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t,
+  const mp::SolverHooks& hook, const mp::FunctionGraph& graph, LeafSolutions& solutions)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
+  mp::LargeVector<double>& values = solutions.Values[t];
+  double left = 0.0;
+  for (size_t a = 0; a < g.Arrays.size(); ++a)
+  {
+    const mp::MortarOperator& op = *ops.ByArray[t][a];
+    std::vector<char> extrapolated;
+    bool ok = true;
+    const mp::Index unreached = mp::Extrapolate(graph, op.GetValid(), values.data(), g.Components,
+      g.Offsets[a], g.Arrays[a]->GetNumberOfComponents(), mode, SMPTaskRunner(), hook, extrapolated, ok);
+    if (!ok)
+    {
+      return Verdict::Fail(std::string("The extrapolation of ") + TransferName(t) +
+        " failed: the harmonic extension could not be solved.");
+    }
+    left = std::max(left, static_cast<double>(unreached));
+    if (&op == ops.Operators[t])
+    {
+      solutions.Extrapolated[t].swap(extrapolated);
+    }
+  }
+  if (left > 0.0 && ctx.Processes.Rank() == 0)
+  {
+    const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
+    ctx.Say.WarnOnce("extrapolation/" + ctx.Role + (points ? "/points" : "/cells"),
+      std::to_string(static_cast<long long>(left)) + " " + ctx.Role + (points ? " points" : " cells") +
+        " are connected to no " + (points ? "point" : "cell") +
+        " the Source reaches: Extrapolation leaves them the fill value.");
+  }
+  return Verdict();
+}
+} // namespace
+
+Verdict ExtrapolateLeaf(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks hooks[2],
+  LeafSolutions& solutions)
+{
+  if (ctx.Options.Extrapolation == 0)
+  {
+    return Verdict();
+  }
+  const mp::MeshView& view = ctx.Target.View();
+  mp::FunctionGraph graphs[2];
+  for (Transfer t : AllTransfers)
+  {
+    if (!ops.Operators[t] || ctx.Source.Fields[SourceAssociation(t)].Components == 0)
+    {
+      continue;
+    }
+    const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
+    mp::FunctionGraph& graph = graphs[points ? 0 : 1];
+    if (graph.Size() == 0)
+    {
+      graph = points ? mp::PointGraph(view) : mp::CellGraph(view);
+    }
+    // Cells are not shared between processes: each extends over its own.
+    const Verdict done =
+      ExtrapolateTransfer(ctx, ops, t, points ? hooks[0] : mp::SolverHooks(), graph, solutions);
+    if (!done.Ok())
+    {
+      return done;
+    }
+  }
+  return Verdict();
+}
+} // namespace mpvtk
