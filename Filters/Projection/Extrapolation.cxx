@@ -13,12 +13,49 @@
 #include "Transfer/Extrapolation.h"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 namespace mpvtk
 {
 namespace
 {
+/**
+ * The fringe's aggregated values of array `a` kept within the range of the
+ * Source values (those this process gathered: on one process the field's
+ * range), so that the extension, bounded by the valid values, is too. (An
+ * aggregated value is an extrapolation from well-covered points and may
+ * pass the Source's extremes where the field goes on growing beyond it.)
+ */
+void ClipFringe(const GatheredFields& g, size_t a, const mp::MortarOperator& op, mp::LargeVector<double>& values)
+{
+  const std::vector<char>& aggregated = op.GetFringe().Aggregated;
+  const std::vector<char>& valid = op.GetValid();
+  const int nc = g.Arrays[a]->GetNumberOfComponents();
+  const size_t width = static_cast<size_t>(g.Components);
+  const size_t sources = width > 0 ? g.Values.size() / width : 0;
+  for (int k = 0; k < nc && !aggregated.empty(); ++k)
+  {
+    const size_t column = static_cast<size_t>(g.Offsets[a] + k);
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    for (size_t j = 0; j < sources; ++j)
+    {
+      const double v = g.Values[j * width + column];
+      low = v < low ? v : low; // (NaN compares false: left out)
+      high = v > high ? v : high;
+    }
+    for (size_t f = 0; f < aggregated.size() && low <= high; ++f)
+    {
+      if (aggregated[f] && valid[f])
+      {
+        double& v = values[f * width + column];
+        v = std::min(high, std::max(low, v));
+      }
+    }
+  }
+}
+
 /// One transfer: its arrays extended one by one (each with its own operator's validity).
 Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t,
   const mp::SolverHooks& hook, const mp::FunctionGraph& graph, LeafSolutions& solutions)
@@ -30,6 +67,7 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t
   for (size_t a = 0; a < g.Arrays.size(); ++a)
   {
     const mp::MortarOperator& op = *ops.ByArray[t][a];
+    ClipFringe(g, a, op, values);
     std::vector<char> extrapolated;
     bool ok = true;
     const mp::Index unreached = mp::Extrapolate(graph, op.GetValid(), values.data(), g.Components,

@@ -228,8 +228,7 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
 }
 
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop,
-  const std::vector<char>* frozen)
+  const std::vector<double>& fraction, double threshold, double drop)
 {
   FringeExtension ext;
   const Index n = static_cast<Index>(valid.size());
@@ -241,7 +240,7 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   {
     const bool wellCovered = fraction[i] >= threshold;
     usable[i] = valid[i] && wellCovered;
-    if (valid[i] && !wellCovered && !(frozen && (*frozen)[i]))
+    if (valid[i] && !wellCovered)
     {
       ill.push_back(i);
     }

@@ -63,15 +63,11 @@ constexpr double FringeDropFraction = 0.01;
 /**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
- * rings around it (`frozen` points, when given, are not aggregated: e.g.
- * points shared with other parts of a distributed system, whose other
- * parts could not know the same stencil). A function with no well-spread
- * free points within a few rings stays free. Those below `drop` are
- * marked Dropped too.
+ * rings around it. A function with no well-spread free points within a few
+ * rings stays free. Those below `drop` are marked Dropped too.
  */
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop,
-  const std::vector<char>* frozen);
+  const std::vector<double>& fraction, double threshold, double drop);
 
 /**
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:

@@ -179,8 +179,8 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     });
   }
   // A fringe aggregated (AggregateFringe): the right-hand sides P^T b,
-  // before the shared rows are completed (an aggregated function is held
-  // by one part, which alone adds its row to its stencil's).
+  // before the shared rows are completed (each part gives its own share of
+  // an aggregated row to its own stencil).
   const bool aggregated = this->Fringe.Count > 0 && options.Mass == MassType::Consistent;
   this->LastAggregated = aggregated;
   const std::vector<char>& valid = this->GetValid();

@@ -233,32 +233,27 @@ Index MortarOperator::AggregateFringe(
   this->FringeDone = true;
   const auto start = std::chrono::steady_clock::now();
   const Index n = this->TargetMass.Rows;
-  // The covered fraction of each function's support; on a distributed
-  // system both integrals summed over the parts, and the shared functions
-  // found (a count of the parts holding each) to be left free.
+  // The covered fraction of each function's support (on a distributed
+  // system both integrals summed over the parts, so that every part decides
+  // alike). Each part extends from its own points: a function shared by
+  // several parts takes on each the extension of that part's side (the
+  // sum of the parts' P^T M P is still symmetric, positive definite on the
+  // free functions, exact for linear fields, and its integral is the sum of
+  // the parts' own).
   std::vector<double> covered(this->RowSums);
   LargeVector<double> whole = SupportIntegrals(target);
   whole.resize(static_cast<size_t>(n), 0.0);
-  std::vector<char> shared;
   if (hooks.Exchange)
   {
-    std::vector<double> parts(static_cast<size_t>(n), 1.0);
     hooks.Exchange(covered.data(), 1);
     hooks.Exchange(whole.data(), 1);
-    hooks.Exchange(parts.data(), 1);
-    shared.resize(static_cast<size_t>(n));
-    for (Index i = 0; i < n; ++i)
-    {
-      shared[i] = parts[i] > 1.5;
-    }
   }
   std::vector<double> fraction(static_cast<size_t>(n), 0.0);
   for (Index i = 0; i < n; ++i)
   {
     fraction[i] = whole[i] > 0.0 ? covered[i] / whole[i] : 0.0;
   }
-  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction,
-    hooks.Exchange ? &shared : nullptr);
+  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction);
   if (this->Fringe.Count > 0)
   {
     this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);

@@ -217,8 +217,9 @@ public:
    * support is below `threshold` take the affine extension of well-covered
    * ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
    * After CompleteTargetMass (and ShareValidity): a distributed system
-   * sums the covered and whole integrals over the parts (hooks.Exchange)
-   * and leaves shared functions free. Functions covered less than
+   * sums the covered and whole integrals over the parts (hooks.Exchange);
+   * each part extends from its own points (a shared function's value is
+   * its part's side's extension). Functions covered less than
    * FringeDropFraction become invalid after such an Apply (their share of
    * the covered integral goes to their stencil, GetCoveredIntegrals).
    * Collective; once per operator with a positive threshold (a kept
