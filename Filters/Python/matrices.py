@@ -5,6 +5,10 @@ scipy.sparse CSR matrices, and Matrix Market files.
     from meshprojection import operator_matrices
     M_tt, M_ts, valid = operator_matrices(f)            # point data -> points
     u_t = scipy.sparse.linalg.spsolve(M_tt, M_ts @ u_s)  # = the filter's result on valid rows
+                                                         # with FringeThreshold 0
+With the fringe's aggregation (FringeThreshold, the default) the filter's
+result differs at the points the Source covers in part: these matrices are
+those of the plain projection.
 """
 import numpy as np
 

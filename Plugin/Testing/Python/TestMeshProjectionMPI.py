@@ -138,9 +138,10 @@ def redistributed(g):
 # ---- the comparison ---------------------------------------------------------
 def run(filter_class, target, source, **props):
     f = filter_class()
-    # The fringe's aggregation leaves points shared by processes free, so
-    # it is compared to the serial one elsewhere (Python.FringeMPI2); here
-    # the partitionings are compared on the projection itself.
+    # The fringe's stencils are each process's own (where the fringe crosses
+    # a partition boundary they differ from the serial ones): compared with
+    # the serial filter in Python.FringeMPI2; here the partitionings are
+    # compared on the projection itself, bit for bit.
     f.SetFringeThreshold(0)
     texts = []
 
