@@ -82,12 +82,13 @@ std::vector<double> FitWeights(
 {
   const int d = mesh.SpaceDimension;
   const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
-  const Index m = static_cast<Index>(points.size());
+  const double* xi = mesh.Point(i);
+  const size_t keep = points.size();
+  const Index m = static_cast<Index>(keep);
   if (m < (degree == 1 ? terms : 3 * terms / 2))
   {
     return {};
   }
-  const double* xi = mesh.Point(i);
   double h = 0.0;
   for (Index k : points)
   {
@@ -183,13 +184,17 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     }
     if (affine.empty())
     {
-      affine = FitWeights(mesh, i, points, 1);
-      affinePoints = affine.empty() ? std::vector<Index>() : points;
+      affinePoints = points;
+      affine = FitWeights(mesh, i, affinePoints, 1);
     }
     ring.swap(next);
   }
   points.swap(affinePoints);
   weights.swap(affine);
+  if (weights.empty())
+  {
+    points.clear(); // no stable fit: the function stays free
+  }
 }
 
 /// Appends row `x` of M times P to `row` (pairs of column and value, unsorted).
@@ -324,10 +329,16 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
   std::vector<double> values;
   columns.reserve(static_cast<size_t>(mass.NonZeros()));
   values.reserve(static_cast<size_t>(mass.NonZeros()));
+  // Each row's terms summed into a dense accumulator (its touched columns
+  // listed, then sorted: a row's distinct columns are few).
   std::vector<std::pair<Column, double>> row;
+  std::vector<double> sum(static_cast<size_t>(n), 0.0);
+  std::vector<char> touched(static_cast<size_t>(n), 0);
+  std::vector<Column> used;
   for (Index j = 0; j < n; ++j)
   {
     row.clear();
+    used.clear();
     if (ext.Aggregated[static_cast<size_t>(j)])
     {
       row.emplace_back(static_cast<Column>(j), 1.0); // decoupled: its value comes from P
@@ -340,21 +351,23 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
       {
         AddRowTimesP(mass, r.first, r.second, ext, row);
       }
-      std::sort(row.begin(), row.end(),
-        [](const std::pair<Column, double>& x, const std::pair<Column, double>& y) { return x.first < y.first; });
     }
-    for (size_t p = 0; p < row.size(); ++p)
+    for (const auto& term : row)
     {
-      if (!columns.empty() && static_cast<Index>(columns.size()) > out.RowStart[j] &&
-        columns.back() == row[p].first)
+      if (!touched[static_cast<size_t>(term.first)])
       {
-        values.back() += row[p].second;
+        touched[static_cast<size_t>(term.first)] = 1;
+        used.push_back(term.first);
       }
-      else
-      {
-        columns.push_back(row[p].first);
-        values.push_back(row[p].second);
-      }
+      sum[static_cast<size_t>(term.first)] += term.second;
+    }
+    std::sort(used.begin(), used.end());
+    for (const Column k : used)
+    {
+      columns.push_back(k);
+      values.push_back(sum[static_cast<size_t>(k)]);
+      sum[static_cast<size_t>(k)] = 0.0;
+      touched[static_cast<size_t>(k)] = 0;
     }
     out.RowStart[j + 1] = static_cast<Index>(columns.size());
   }

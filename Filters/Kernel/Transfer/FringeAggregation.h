@@ -8,7 +8,7 @@
  * its row of M_tt is tiny and nearly a combination of its neighbours': the
  * L2 projection then fits the function's value to the sliver and can put
  * it far off (the value is extrapolated from a sliver). Aggregated finite
- * elements (Jomo et al. 2019, Badia, Verdugo and Martin 2018) remove these
+ * elements (Badia, Verdugo and Martin 2018) remove these
  * functions from the unknowns: an ill-posed function i (its covered
  * fraction, int_covered phi_i / int phi_i, below a threshold) takes the
  * value of the affine extension of free (well-covered) functions nearby,
@@ -25,9 +25,11 @@
  * covered part and the integral is conserved; P^T M_tt P is symmetric
  * positive definite on the free functions.
  *
- * The weights are the minimum-norm affine ones over the free points of the
- * rings around i (the points sharing a cell with i, then theirs), taken
- * ring by ring until they span the space well.
+ * The weights are those of the weighted least-squares quadratic fit (else
+ * affine) through the free points of the rings around i (the points
+ * sharing a cell with i, then theirs), evaluated at i: ring by ring until
+ * the points allow a stable fit. Quadratic: the extension's error is of
+ * third order, below the projection's second.
  */
 #ifndef MeshProjection_Kernel_FringeAggregation_h
 #define MeshProjection_Kernel_FringeAggregation_h
