@@ -309,16 +309,28 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
 CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
 {
   const Index n = mass.Rows;
-  // Which aggregated rows refer to each free function (P^T's rows).
-  std::vector<std::vector<std::pair<Index, double>>> referrers(static_cast<size_t>(n));
+  // Which aggregated rows refer to each free function (P^T's rows), as
+  // compressed rows; and which rows change at all (those and the rows with
+  // an aggregated column).
+  std::vector<Index> start(static_cast<size_t>(n) + 1, 0);
   for (Index a = 0; a < n; ++a)
   {
-    if (ext.Aggregated[static_cast<size_t>(a)])
+    for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
     {
-      for (Index q = ext.P.RowStart[a]; q < ext.P.RowStart[a + 1]; ++q)
-      {
-        referrers[static_cast<size_t>(ext.P.ColumnIndex[q])].emplace_back(a, ext.P.Values[q]);
-      }
+      ++start[static_cast<size_t>(ext.P.ColumnIndex[q]) + 1];
+    }
+  }
+  for (Index j = 0; j < n; ++j)
+  {
+    start[j + 1] += start[j];
+  }
+  std::vector<std::pair<Index, double>> referrers(static_cast<size_t>(start.back()));
+  std::vector<Index> next(start.begin(), start.end() - 1);
+  for (Index a = 0; a < n; ++a)
+  {
+    for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+    {
+      referrers[static_cast<size_t>(next[ext.P.ColumnIndex[q]]++)] = { a, ext.P.Values[q] };
     }
   }
   CsrMatrix out;
@@ -329,14 +341,27 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
   std::vector<double> values;
   columns.reserve(static_cast<size_t>(mass.NonZeros()));
   values.reserve(static_cast<size_t>(mass.NonZeros()));
-  // Each row's terms summed into a dense accumulator (its touched columns
-  // listed, then sorted: a row's distinct columns are few).
+  // A changed row's terms summed into a dense accumulator (its touched
+  // columns listed, then sorted: a row's distinct columns are few).
   std::vector<std::pair<Column, double>> row;
   std::vector<double> sum(static_cast<size_t>(n), 0.0);
   std::vector<char> touched(static_cast<size_t>(n), 0);
   std::vector<Column> used;
   for (Index j = 0; j < n; ++j)
   {
+    bool changes = ext.Aggregated[j] || start[j + 1] > start[j];
+    for (Index p = mass.RowStart[j]; p < mass.RowStart[j + 1] && !changes; ++p)
+    {
+      changes = ext.Aggregated[mass.ColumnIndex[p]] != 0;
+    }
+    if (!changes)
+    {
+      columns.insert(columns.end(), mass.ColumnIndex.begin() + mass.RowStart[j],
+        mass.ColumnIndex.begin() + mass.RowStart[j + 1]);
+      values.insert(values.end(), mass.Values.begin() + mass.RowStart[j], mass.Values.begin() + mass.RowStart[j + 1]);
+      out.RowStart[j + 1] = static_cast<Index>(columns.size());
+      continue;
+    }
     row.clear();
     used.clear();
     if (ext.Aggregated[static_cast<size_t>(j)])
@@ -347,9 +372,9 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
     {
       // Row j of P^T M P = (M P)_j + sum over the rows a aggregated onto j of w_aj (M P)_a.
       AddRowTimesP(mass, j, 1.0, ext, row);
-      for (const auto& r : referrers[static_cast<size_t>(j)])
+      for (Index r = start[j]; r < start[j + 1]; ++r)
       {
-        AddRowTimesP(mass, r.first, r.second, ext, row);
+        AddRowTimesP(mass, referrers[static_cast<size_t>(r)].first, referrers[static_cast<size_t>(r)].second, ext, row);
       }
     }
     for (const auto& term : row)
