@@ -58,8 +58,12 @@ void ClipFringe(const GatheredFields& g, size_t a, const mp::MortarOperator& op,
 
 /// One transfer: its arrays extended one by one (each with its own operator's validity).
 Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t,
-  const mp::SolverHooks& hook, const mp::FunctionGraph& graph, LeafSolutions& solutions)
+  const mp::SolverHooks& hook, LeafSolutions& solutions)
 {
+  const mp::MeshView& view = ctx.Target.View();
+  const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
+  mp::FunctionGraph graph;
+  const mp::MortarOperator* graphOf = nullptr;
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
   mp::LargeVector<double>& values = solutions.Values[t];
@@ -69,14 +73,19 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t
     const mp::MortarOperator& op = *ops.ByArray[t][a];
     ClipFringe(g, a, op, values);
     std::vector<char> extrapolated;
-    bool ok = true;
-    const mp::Index unreached = mp::Extrapolate(graph, op.GetValid(), values.data(), g.Components,
-      g.Offsets[a], g.Arrays[a]->GetNumberOfComponents(), mode, SMPTaskRunner(), hook, extrapolated, ok);
-    if (!ok)
+    if (graph.Size() == 0 || &op != graphOf)
     {
-      return Verdict::Fail(std::string("The extrapolation of ") + TransferName(t) +
-        " failed: the harmonic extension could not be solved.");
+      // Rows for the functions this operator leaves invalid.
+      std::vector<char> want(op.GetValid().size());
+      for (size_t f = 0; f < want.size(); ++f)
+      {
+        want[f] = !op.GetValid()[f];
+      }
+      graph = points ? mp::PointGraph(view, want) : mp::CellGraph(view, want);
+      graphOf = &op;
     }
+    const mp::Index unreached = mp::Extrapolate(graph, op.GetValid(), values.data(), g.Components,
+      g.Offsets[a], g.Arrays[a]->GetNumberOfComponents(), mode, hook, extrapolated);
     left = std::max(left, static_cast<double>(unreached));
     if (&op == ops.Operators[t])
     {
@@ -85,7 +94,6 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t
   }
   if (left > 0.0 && ctx.Processes.Rank() == 0)
   {
-    const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
     ctx.Say.WarnOnce("extrapolation/" + ctx.Role + (points ? "/points" : "/cells"),
       std::to_string(static_cast<long long>(left)) + " " + ctx.Role + (points ? " points" : " cells") +
         " are connected to no " + (points ? "point" : "cell") +
@@ -102,8 +110,6 @@ Verdict ExtrapolateLeaf(LeafContext& ctx, const OperatorSet& ops, const mp::Solv
   {
     return Verdict();
   }
-  const mp::MeshView& view = ctx.Target.View();
-  mp::FunctionGraph graphs[2];
   for (Transfer t : AllTransfers)
   {
     if (!ops.Operators[t] || ctx.Source.Fields[SourceAssociation(t)].Components == 0)
@@ -111,14 +117,8 @@ Verdict ExtrapolateLeaf(LeafContext& ctx, const OperatorSet& ops, const mp::Solv
       continue;
     }
     const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
-    mp::FunctionGraph& graph = graphs[points ? 0 : 1];
-    if (graph.Size() == 0)
-    {
-      graph = points ? mp::PointGraph(view) : mp::CellGraph(view);
-    }
     // Cells are not shared between processes: each extends over its own.
-    const Verdict done =
-      ExtrapolateTransfer(ctx, ops, t, points ? hooks[0] : mp::SolverHooks(), graph, solutions);
+    const Verdict done = ExtrapolateTransfer(ctx, ops, t, points ? hooks[0] : mp::SolverHooks(), solutions);
     if (!done.Ok())
     {
       return done;

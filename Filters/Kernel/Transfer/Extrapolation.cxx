@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Extrapolation beyond the source (Extrapolation.h): the target's graphs,
-// which functions a valid one reaches, the harmonic and the nearest
-// extension.
+// Extrapolation beyond the source (Extrapolation.h): the target's graphs
+// (rows for the functions to extend), the layers away from the valid
+// functions, the creep fill and the nearest values.
 #include "Transfer/Extrapolation.h"
 
 #include <algorithm>
@@ -15,178 +15,254 @@ namespace mp
 {
 namespace
 {
-/// Edges (both directions, with their weights) into compressed rows, duplicates summed.
-void Compress(Index n, std::vector<std::pair<Index, Index>>& edges, FunctionGraph& graph)
+/// Compressed rows: per item, the entries listed by `visit(item, add)`.
+template <class Visit>
+void Incidence(Index items, Index targets, Visit visit, std::vector<Index>& start, std::vector<Index>& entries)
 {
-  std::sort(edges.begin(), edges.end());
-  graph.Start.assign(static_cast<size_t>(n) + 1, 0);
-  graph.Neighbors.clear();
-  graph.Weights.clear();
-  for (size_t e = 0; e < edges.size(); ++e)
+  start.assign(static_cast<size_t>(targets) + 1, 0);
+  for (Index c = 0; c < items; ++c)
   {
-    if (e > 0 && edges[e] == edges[e - 1])
-    {
-      graph.Weights.back() += 1.0; // one more cell holds this edge
-      continue;
-    }
-    graph.Neighbors.push_back(edges[e].second);
-    graph.Weights.push_back(1.0);
-    ++graph.Start[static_cast<size_t>(edges[e].first) + 1];
+    visit(c, [&](Index t) { ++start[static_cast<size_t>(t) + 1]; });
   }
-  for (Index i = 0; i < n; ++i)
+  for (Index t = 0; t < targets; ++t)
   {
-    graph.Start[i + 1] += graph.Start[i];
+    start[t + 1] += start[t];
+  }
+  entries.resize(static_cast<size_t>(start.back()));
+  std::vector<Index> next(start.begin(), start.end() - 1);
+  for (Index c = 0; c < items; ++c)
+  {
+    visit(c, [&](Index t) { entries[static_cast<size_t>(next[static_cast<size_t>(t)]++)] = c; });
   }
 }
 
-/// Which functions the valid ones reach over the graph (valid ones included);
-/// on a distributed graph, rounds of local searches until no part reaches more.
-std::vector<char> Reached(const FunctionGraph& graph, const std::vector<char>& valid,
-  const SolverHooks& hooks)
+/// The rows of `want`: neighbours(i, add) adds (neighbour, weight) terms, summed per neighbour.
+template <class Neighbours>
+void Rows(const std::vector<char>& want, Neighbours neighbours, FunctionGraph& graph)
 {
-  const Index n = graph.Size();
-  std::vector<char> reached(valid.begin(), valid.end());
-  std::vector<Index> stack;
+  const Index n = static_cast<Index>(want.size());
+  graph.Row.assign(static_cast<size_t>(n), -1);
+  std::vector<double> sum(static_cast<size_t>(n), 0.0);
+  std::vector<Index> used;
   for (Index i = 0; i < n; ++i)
   {
-    if (reached[i])
+    if (!want[i])
     {
-      stack.push_back(i);
+      continue;
     }
+    graph.Row[i] = static_cast<Index>(graph.Start.size()) - 1;
+    used.clear();
+    neighbours(i, [&](Index k, double w) {
+      if (k == i)
+      {
+        return;
+      }
+      if (sum[k] == 0.0)
+      {
+        used.push_back(k);
+      }
+      sum[k] += w;
+    });
+    for (Index k : used)
+    {
+      graph.Neighbors.push_back(k);
+      graph.Weights.push_back(sum[k]);
+      sum[k] = 0.0;
+    }
+    graph.Start.push_back(static_cast<Index>(graph.Neighbors.size()));
+  }
+}
+
+/**
+ * Per function, its layer: 0 valid, L the graph distance from the valid
+ * ones, -1 not reached. On a distributed graph, rounds of local searches
+ * with the smallest layers completed across parts until none changes.
+ */
+std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& valid, const SolverHooks& hooks)
+{
+  const Index n = graph.Size();
+  const double none = std::numeric_limits<double>::infinity();
+  std::vector<double> layer(static_cast<size_t>(n), none);
+  for (Index i = 0; i < n; ++i)
+  {
+    layer[i] = valid[i] ? 0.0 : none;
   }
   for (;;)
   {
-    while (!stack.empty())
+    // A search from the rows next to a known layer (unit steps, smallest first).
+    using Entry = std::pair<double, Index>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> front;
+    for (Index i = 0; i < n; ++i)
     {
-      const Index i = stack.back();
-      stack.pop_back();
-      for (Index q = graph.Start[i]; q < graph.Start[i + 1]; ++q)
+      const Index r = graph.Row[i];
+      for (Index q = r < 0 ? 0 : graph.Start[r]; r >= 0 && q < graph.Start[r + 1]; ++q)
       {
-        const Index k = graph.Neighbors[static_cast<size_t>(q)];
-        if (!reached[k])
+        layer[i] = std::min(layer[i], layer[graph.Neighbors[q]] + 1.0);
+      }
+      if (r >= 0 && layer[i] < none)
+      {
+        front.emplace(layer[i], i);
+      }
+    }
+    while (!front.empty())
+    {
+      const Entry top = front.top();
+      front.pop();
+      const Index i = top.second;
+      if (top.first > layer[i])
+      {
+        continue;
+      }
+      const Index r = graph.Row[i];
+      for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
+      {
+        const Index k = graph.Neighbors[q];
+        if (graph.Row[k] >= 0 && layer[i] + 1.0 < layer[k])
         {
-          reached[k] = 1;
-          stack.push_back(k);
+          layer[k] = layer[i] + 1.0;
+          front.emplace(layer[k], k);
         }
       }
     }
-    if (!hooks.Exchange)
+    if (!hooks.ExchangeMinimum)
     {
-      return reached;
+      break;
     }
-    std::vector<double> any(reached.begin(), reached.end());
-    hooks.Exchange(any.data(), 1);
+    std::vector<double> before(layer);
+    hooks.ExchangeMinimum(layer.data(), 1);
     double more = 0.0;
     for (Index i = 0; i < n; ++i)
     {
-      if (any[i] > 0.0 && !reached[i])
-      {
-        reached[i] = 1;
-        stack.push_back(i);
-        more += 1.0;
-      }
+      more += layer[i] < before[i] ? 1.0 : 0.0;
     }
     hooks.Reduce(&more, 1);
     if (more == 0.0)
     {
-      return reached;
+      break;
+    }
+  }
+  std::vector<Index> out(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
+  {
+    out[i] = layer[i] == none ? -1 : static_cast<Index>(layer[i]);
+  }
+  return out;
+}
+
+/// Row i's weighted sums of its neighbours' values where use(k) (numerators, then the weight).
+template <class Use>
+void NeighbourSums(const FunctionGraph& graph, Index i, const double* values, int width, int offset, int nc,
+  Use use, double* sums)
+{
+  std::fill(sums, sums + nc + 1, 0.0);
+  const Index r = graph.Row[i];
+  for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
+  {
+    const Index k = graph.Neighbors[q];
+    if (use(k))
+    {
+      const double w = graph.Weights[q];
+      for (int m = 0; m < nc; ++m)
+      {
+        sums[m] += w * values[k * width + offset + m];
+      }
+      sums[nc] += w;
     }
   }
 }
 
-/// The harmonic extension of columns [offset, offset + nc) into the `todo` functions.
-bool Harmonic(const FunctionGraph& graph, const std::vector<char>& todo, double* values, int width,
-  int offset, int nc, const TaskRunner& runner, const SolverHooks& hooks)
+/// Functions where `pick` holds take their completed neighbour means.
+template <class Pick, class Use>
+void MeanStep(const FunctionGraph& graph, const std::vector<char>& todo, Pick pick, Use use, double* values,
+  int width, int offset, int nc, const SolverHooks& hooks)
 {
   const Index n = graph.Size();
-  // L_uu on the rows to do (the others decoupled by a 1), -L_ub x_b on the right.
-  CsrMatrix L;
-  L.Rows = L.Columns = n;
-  L.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  std::vector<Column> columns;
-  std::vector<double> entries;
-  std::vector<double> B(static_cast<size_t>(n) * nc, 0.0);
+  std::vector<double> sums(static_cast<size_t>(n) * (nc + 1), 0.0);
   for (Index i = 0; i < n; ++i)
   {
-    if (!todo[i])
+    if (todo[i] && pick(i))
     {
-      columns.push_back(static_cast<Column>(i));
-      entries.push_back(1.0);
-      L.RowStart[i + 1] = static_cast<Index>(columns.size());
-      continue;
+      NeighbourSums(graph, i, values, width, offset, nc, use, &sums[static_cast<size_t>(i) * (nc + 1)]);
     }
-    std::vector<std::pair<Column, double>> row;
-    double degree = 0.0;
-    for (Index q = graph.Start[i]; q < graph.Start[i + 1]; ++q)
-    {
-      const Index k = graph.Neighbors[static_cast<size_t>(q)];
-      const double w = graph.Weights[static_cast<size_t>(q)];
-      degree += w;
-      if (todo[k])
-      {
-        row.emplace_back(static_cast<Column>(k), -w);
-      }
-      else
-      {
-        for (int m = 0; m < nc; ++m)
-        {
-          B[i * nc + m] += w * values[k * width + offset + m];
-        }
-      }
-    }
-    row.emplace_back(static_cast<Column>(i), degree);
-    std::sort(row.begin(), row.end());
-    for (const auto& entry : row)
-    {
-      columns.push_back(entry.first);
-      entries.push_back(entry.second);
-    }
-    L.RowStart[i + 1] = static_cast<Index>(columns.size());
   }
-  L.ColumnIndex.assign(columns.begin(), columns.end());
-  L.Values.assign(entries.begin(), entries.end());
   if (hooks.Exchange)
   {
-    hooks.Exchange(B.data(), nc);
-  }
-  std::vector<double> X(static_cast<size_t>(n) * nc, 0.0);
-  BlockCG solver(L, runner);
-  SolveOptions options;
-  options.Tolerance = 1e-13;
-  options.MaxIterations = 2000;
-  if (!solver.Solve(B.data(), X.data(), nc, options, hooks))
-  {
-    return false;
+    hooks.Exchange(sums.data(), nc + 1);
   }
   for (Index i = 0; i < n; ++i)
   {
-    for (int m = 0; todo[i] && m < nc; ++m)
+    const double* s = &sums[static_cast<size_t>(i) * (nc + 1)];
+    for (int m = 0; todo[i] && pick(i) && s[nc] > 0.0 && m < nc; ++m)
     {
-      values[i * width + offset + m] = X[i * nc + m];
+      values[i * width + offset + m] = s[m] / s[nc];
     }
   }
-  return true;
+}
+
+/// The creep fill: layer by layer, then sweeps of neighbour means.
+void CreepFill(const FunctionGraph& graph, const std::vector<Index>& layer, const std::vector<char>& todo,
+  double* values, int width, int offset, int nc, const SolverHooks& hooks)
+{
+  for (Index L = 1;; ++L)
+  {
+    double count = 0.0;
+    for (Index i = 0; i < graph.Size(); ++i)
+    {
+      count += layer[i] == L && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
+    }
+    if (hooks.Reduce)
+    {
+      hooks.Reduce(&count, 1);
+    }
+    if (count == 0.0)
+    {
+      break;
+    }
+    MeanStep(graph, todo, [&](Index i) { return layer[i] == L; },
+      [&](Index k) { return layer[k] >= 0 && layer[k] < L; }, values, width, offset, nc, hooks);
+  }
+  // Jacobi sweeps over all neighbours reached (the valid ones held):
+  // towards the harmonic extension, each value still a mean of valid ones.
+  for (int sweep = 0; sweep < 20; ++sweep)
+  {
+    MeanStep(graph, todo, [](Index) { return true; }, [&](Index k) { return layer[k] >= 0; }, values, width,
+      offset, nc, hooks);
+  }
 }
 
 /// The value of the nearest valid function along the graph (Dijkstra from all valid ones).
-void Nearest(const FunctionGraph& graph, const std::vector<char>& valid,
-  const std::vector<char>& todo, double* values, int width, int offset, int nc)
+void Nearest(const FunctionGraph& graph, const std::vector<char>& valid, const std::vector<char>& todo,
+  double* values, int width, int offset, int nc)
 {
   const Index n = graph.Size();
   std::vector<double> distance(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
   std::vector<Index> from(static_cast<size_t>(n), -1);
   using Entry = std::pair<double, Index>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> front;
+  const double* x = graph.Positions.data();
+  auto length = [x](Index a, Index b) {
+    return std::sqrt((x[3 * a] - x[3 * b]) * (x[3 * a] - x[3 * b]) +
+      (x[3 * a + 1] - x[3 * b + 1]) * (x[3 * a + 1] - x[3 * b + 1]) +
+      (x[3 * a + 2] - x[3 * b + 2]) * (x[3 * a + 2] - x[3 * b + 2]));
+  };
+  // Seeds: the functions to fill next to valid ones (rows exist for those to fill only).
   for (Index i = 0; i < n; ++i)
   {
-    if (valid[i])
+    const Index r = graph.Row[i];
+    for (Index q = todo[i] ? graph.Start[r] : 0; todo[i] && q < graph.Start[r + 1]; ++q)
     {
-      distance[i] = 0.0;
-      from[i] = i;
-      front.emplace(0.0, i);
+      const Index k = graph.Neighbors[q];
+      if (valid[k] && length(i, k) < distance[i])
+      {
+        distance[i] = length(i, k);
+        from[i] = k;
+      }
+    }
+    if (from[i] >= 0)
+    {
+      front.emplace(distance[i], i);
     }
   }
-  const double* x = graph.Positions.data();
   while (!front.empty())
   {
     const Entry top = front.top();
@@ -196,15 +272,13 @@ void Nearest(const FunctionGraph& graph, const std::vector<char>& valid,
     {
       continue;
     }
-    for (Index q = graph.Start[i]; q < graph.Start[i + 1]; ++q)
+    const Index r = graph.Row[i];
+    for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
     {
-      const Index k = graph.Neighbors[static_cast<size_t>(q)];
-      const double step = std::sqrt((x[3 * k] - x[3 * i]) * (x[3 * k] - x[3 * i]) +
-        (x[3 * k + 1] - x[3 * i + 1]) * (x[3 * k + 1] - x[3 * i + 1]) +
-        (x[3 * k + 2] - x[3 * i + 2]) * (x[3 * k + 2] - x[3 * i + 2]));
-      if (distance[i] + step < distance[k])
+      const Index k = graph.Neighbors[q];
+      if (todo[k] && distance[i] + length(i, k) < distance[k])
       {
-        distance[k] = distance[i] + step;
+        distance[k] = distance[i] + length(i, k);
         from[k] = from[i];
         front.emplace(distance[k], k);
       }
@@ -212,7 +286,7 @@ void Nearest(const FunctionGraph& graph, const std::vector<char>& valid,
   }
   for (Index i = 0; i < n; ++i)
   {
-    for (int m = 0; todo[i] && m < nc; ++m)
+    for (int m = 0; todo[i] && from[i] >= 0 && m < nc; ++m)
     {
       values[i * width + offset + m] = values[from[i] * width + offset + m];
     }
@@ -220,39 +294,59 @@ void Nearest(const FunctionGraph& graph, const std::vector<char>& valid,
 }
 } // namespace
 
-FunctionGraph PointGraph(const MeshView& mesh)
+FunctionGraph PointGraph(const MeshView& mesh, const std::vector<char>& want)
 {
   FunctionGraph graph;
   const int corners = mesh.CornersPerCell();
-  std::vector<std::pair<Index, Index>> edges;
-  edges.reserve(static_cast<size_t>(mesh.NumberOfCells) * corners * (corners - 1));
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-  {
+  std::vector<Index> start, cells;
+  Incidence(mesh.NumberOfCells, mesh.NumberOfPoints, [&](Index c, auto add) {
     const CellCorners cell = mesh.Cell(c);
     for (int a = 0; a < corners; ++a)
     {
-      for (int b = 0; b < corners; ++b)
+      add(cell[a]);
+    }
+  }, start, cells);
+  Rows(want, [&](Index i, auto add) {
+    for (Index q = start[i]; q < start[i + 1]; ++q)
+    {
+      const CellCorners cell = mesh.Cell(cells[static_cast<size_t>(q)]);
+      for (int a = 0; a < corners; ++a)
       {
-        if (a != b)
-        {
-          edges.emplace_back(cell[a], cell[b]);
-        }
+        add(cell[a], 1.0); // one more cell holds the edge
       }
     }
-  }
-  Compress(mesh.NumberOfPoints, edges, graph);
+  }, graph);
   graph.Positions.assign(mesh.Points, mesh.Points + 3 * mesh.NumberOfPoints);
   return graph;
 }
 
-FunctionGraph CellGraph(const MeshView& mesh)
+FunctionGraph CellGraph(const MeshView& mesh, const std::vector<char>& want)
 {
   FunctionGraph graph;
   const Index parents = mesh.Parents();
   const int corners = mesh.CornersPerCell();
-  // Per point, the parents around it; every two of them are joined.
-  std::vector<std::pair<Index, Index>> around;
-  around.reserve(static_cast<size_t>(mesh.NumberOfCells) * corners);
+  std::vector<Index> pointStart, aroundPoint, parentStart, children;
+  Incidence(mesh.NumberOfCells, mesh.NumberOfPoints, [&](Index c, auto add) {
+    const CellCorners cell = mesh.Cell(c);
+    for (int a = 0; a < corners; ++a)
+    {
+      add(cell[a]);
+    }
+  }, pointStart, aroundPoint);
+  Incidence(mesh.NumberOfCells, parents, [&](Index c, auto add) { add(mesh.ParentOf(c)); }, parentStart, children);
+  Rows(want, [&](Index p, auto add) {
+    for (Index q = parentStart[p]; q < parentStart[p + 1]; ++q)
+    {
+      const CellCorners cell = mesh.Cell(children[static_cast<size_t>(q)]);
+      for (int a = 0; a < corners; ++a)
+      {
+        for (Index r = pointStart[cell[a]]; r < pointStart[cell[a] + 1]; ++r)
+        {
+          add(mesh.ParentOf(aroundPoint[static_cast<size_t>(r)]), 1.0);
+        }
+      }
+    }
+  }, graph);
   graph.Positions.assign(3 * static_cast<size_t>(parents), 0.0);
   std::vector<double> count(static_cast<size_t>(parents), 0.0);
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
@@ -261,7 +355,6 @@ FunctionGraph CellGraph(const MeshView& mesh)
     const Index parent = mesh.ParentOf(c);
     for (int a = 0; a < corners; ++a)
     {
-      around.emplace_back(cell[a], parent);
       for (int d = 0; d < 3; ++d)
       {
         graph.Positions[3 * parent + d] += mesh.Point(cell[a])[d];
@@ -276,49 +369,25 @@ FunctionGraph CellGraph(const MeshView& mesh)
       graph.Positions[3 * p + d] /= count[p];
     }
   }
-  std::sort(around.begin(), around.end());
-  around.erase(std::unique(around.begin(), around.end()), around.end());
-  std::vector<std::pair<Index, Index>> edges;
-  for (size_t a = 0; a < around.size();)
-  {
-    size_t b = a;
-    while (b < around.size() && around[b].first == around[a].first)
-    {
-      ++b;
-    }
-    for (size_t i = a; i < b; ++i)
-    {
-      for (size_t j = a; j < b; ++j)
-      {
-        if (i != j)
-        {
-          edges.emplace_back(around[i].second, around[j].second);
-        }
-      }
-    }
-    a = b;
-  }
-  Compress(parents, edges, graph);
   return graph;
 }
 
 Index Extrapolate(const FunctionGraph& graph, const std::vector<char>& valid, double* values,
-  int width, int offset, int nc, ExtrapolationMode mode, const TaskRunner& runner,
-  const SolverHooks& hooks, std::vector<char>& extrapolated, bool& ok)
+  int width, int offset, int nc, ExtrapolationMode mode, const SolverHooks& hooks,
+  std::vector<char>& extrapolated)
 {
-  ok = true;
   const Index n = graph.Size();
   extrapolated.assign(static_cast<size_t>(n), 0);
   if (mode == ExtrapolationMode::None)
   {
     return 0;
   }
-  const std::vector<char> reached = Reached(graph, valid, hooks);
+  const std::vector<Index> layer = Layers(graph, valid, hooks);
   double left = 0.0;
   for (Index i = 0; i < n; ++i)
   {
-    extrapolated[i] = reached[i] && !valid[i];
-    left += !reached[i] && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
+    extrapolated[i] = layer[i] > 0;
+    left += layer[i] < 0 && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
   }
   if (hooks.Reduce)
   {
@@ -326,7 +395,7 @@ Index Extrapolate(const FunctionGraph& graph, const std::vector<char>& valid, do
   }
   if (mode == ExtrapolationMode::Smooth)
   {
-    ok = Harmonic(graph, extrapolated, values, width, offset, nc, runner, hooks);
+    CreepFill(graph, layer, extrapolated, values, width, offset, nc, hooks);
   }
   else
   {
