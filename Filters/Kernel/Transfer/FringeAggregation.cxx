@@ -4,8 +4,6 @@
 // products with P and P^T.
 #include "Transfer/FringeAggregation.h"
 
-#include "Geometry/Measures.h"
-
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -222,13 +220,29 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
 {
   LargeVector<double> support(static_cast<size_t>(mesh.NumberOfPoints), 0.0);
   const int corners = mesh.CornersPerCell();
-  ForEachCellMeasure(mesh, [&](Index c, double measure) {
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    // The simplex's measure from its edge vectors (area or volume).
     const CellCorners cell = mesh.Cell(c);
-    for (int a = 0; a < corners; ++a)
+    const double* a = mesh.Point(cell[0]);
+    double e[3][3];
+    for (int k = 1; k < corners; ++k)
     {
-      support[static_cast<size_t>(cell[a])] += measure / corners; // int of a hat over a simplex
+      for (int d = 0; d < 3; ++d)
+      {
+        e[k - 1][d] = mesh.Point(cell[k])[d] - a[d];
+      }
     }
-  });
+    const double measure = corners == 3
+      ? 0.5 * std::abs(e[0][0] * e[1][1] - e[0][1] * e[1][0])
+      : std::abs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+          e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+          e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6.0;
+    for (int k = 0; k < corners; ++k)
+    {
+      support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
+    }
+  }
   return support;
 }
 
@@ -337,10 +351,11 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
   out.Rows = mass.Rows;
   out.Columns = mass.Columns;
   out.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  std::vector<Column> columns;
-  std::vector<double> values;
-  columns.reserve(static_cast<size_t>(mass.NonZeros()));
-  values.reserve(static_cast<size_t>(mass.NonZeros()));
+  // (Written in place: a copy of M's arrays is most of the cost.)
+  auto& columns = out.ColumnIndex;
+  auto& values = out.Values;
+  columns.reserve(static_cast<size_t>(mass.NonZeros()) * 11 / 10);
+  values.reserve(static_cast<size_t>(mass.NonZeros()) * 11 / 10);
   // A changed row's terms summed into a dense accumulator (its touched
   // columns listed, then sorted: a row's distinct columns are few).
   std::vector<std::pair<Column, double>> row;
@@ -396,8 +411,6 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
     }
     out.RowStart[j + 1] = static_cast<Index>(columns.size());
   }
-  out.ColumnIndex.assign(columns.begin(), columns.end());
-  out.Values.assign(values.begin(), values.end());
   return out;
 }
 

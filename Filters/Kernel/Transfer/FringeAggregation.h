@@ -42,7 +42,7 @@
 
 namespace mp
 {
-/// Per point of a volume mesh (triangles in 2D, tetrahedra in 3D): int phi_i over its whole support.
+/// Per point of a volume mesh (triangles in the x-y plane in 2D, tetrahedra in 3D): int phi_i over its whole support.
 LargeVector<double> SupportIntegrals(const MeshView& mesh);
 
 /// The affine extension of a fringe: P (functions x functions) and which rows it aggregates.
