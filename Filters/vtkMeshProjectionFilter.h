@@ -169,10 +169,10 @@ public:
 
   ///@{
   /**
-   * A well-posed fringe: point functions whose covered part of their
-   * support is below this fraction (default 0.25) take the affine
-   * extension of well-covered points nearby instead of being fitted to a
-   * sliver (docs/method.md); 0 turns it off.
+   * A well-posed fringe: point values whose support the Source covers less
+   * than this fraction (default 0.25) take the quadratic extension of
+   * well-covered points nearby instead of being fitted to a sliver; those
+   * covered less than 1% become invalid (docs/method.md); 0 turns it off.
    */
   vtkSetClampMacro(FringeThreshold, double, 0.0, 0.9);
   vtkGetMacro(FringeThreshold, double);

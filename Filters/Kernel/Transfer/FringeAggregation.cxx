@@ -14,6 +14,7 @@ namespace mp
 {
 namespace
 {
+
 /// Per point, the cells around it (compressed rows).
 struct CellsAroundPoints
 {
@@ -76,20 +77,20 @@ int Monomials(const double* y, int d, int degree, double* into)
  * either reproduces affine functions and sums to 1.
  */
 std::vector<double> FitWeights(
-  const MeshView& mesh, Index i, const std::vector<Index>& points, int degree)
+  const MeshView& mesh, Index i, const std::vector<Index>& points, size_t keep, int degree)
 {
   const int d = mesh.SpaceDimension;
   const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
   const double* xi = mesh.Point(i);
-  const size_t keep = points.size();
   const Index m = static_cast<Index>(keep);
   if (m < (degree == 1 ? terms : 3 * terms / 2))
   {
     return {};
   }
   double h = 0.0;
-  for (Index k : points)
+  for (size_t r = 0; r < keep; ++r)
   {
+    const Index k = points[r];
     for (int a = 0; a < d; ++a)
     {
       h = std::max(h, std::abs(mesh.Point(k)[a] - xi[a]));
@@ -136,6 +137,49 @@ std::vector<double> FitWeights(
   return std::vector<double>(w.data(), w.data() + m);
 }
 
+/**
+ * The fit of `degree` through the nearest points of `points` (sorted by
+ * their distance to i on return): the nearest 2 x terms first, then 4 x,
+ * then all, until one is stable. Few points keep P^T M P sparse (an
+ * aggregated function couples all of its stencil); `points` is cut to the
+ * ones used.
+ */
+std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>& points, int degree)
+{
+  const int d = mesh.SpaceDimension;
+  const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
+  const double* xi = mesh.Point(i);
+  std::vector<std::pair<double, Index>> byDistance;
+  for (Index k : points)
+  {
+    double r2 = 0.0;
+    for (int a = 0; a < d; ++a)
+    {
+      r2 += (mesh.Point(k)[a] - xi[a]) * (mesh.Point(k)[a] - xi[a]);
+    }
+    byDistance.emplace_back(r2, k);
+  }
+  std::sort(byDistance.begin(), byDistance.end());
+  for (size_t r = 0; r < points.size(); ++r)
+  {
+    points[r] = byDistance[r].second;
+  }
+  for (const size_t keep : { size_t(2 * terms), size_t(4 * terms), points.size() })
+  {
+    std::vector<double> w = FitWeights(mesh, i, points, std::min(keep, points.size()), degree);
+    if (!w.empty())
+    {
+      points.resize(w.size());
+      return w;
+    }
+    if (keep >= points.size())
+    {
+      break;
+    }
+  }
+  return {};
+}
+
 /// The ill-posed function i's stencil and weights: free points ring by ring (at most 3 rings).
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& points,
@@ -146,6 +190,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   std::vector<Index> next;
   std::vector<Index> affinePoints;
   std::vector<double> affine;
+  std::vector<Index> found;
   points.clear();
   weights.clear();
   stamp[static_cast<size_t>(i)] = i;
@@ -166,7 +211,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
             next.push_back(k);
             if (usable[static_cast<size_t>(k)])
             {
-              points.push_back(k);
+              found.push_back(k);
             }
           }
         }
@@ -174,16 +219,17 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     }
     // A quadratic fit where the rings so far allow one (its extrapolation
     // error is of third order), else an affine one from the first ring
-    // that allows it (keeping the rings' points found so far).
-    weights = FitWeights(mesh, i, points, 2);
+    // that allows it.
+    points = found;
+    weights = NearestFit(mesh, i, points, 2);
     if (!weights.empty())
     {
       return;
     }
     if (affine.empty())
     {
-      affinePoints = points;
-      affine = FitWeights(mesh, i, affinePoints, 1);
+      affinePoints = found;
+      affine = NearestFit(mesh, i, affinePoints, 1);
     }
     ring.swap(next);
   }
