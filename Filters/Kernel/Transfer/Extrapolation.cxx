@@ -171,28 +171,39 @@ void NeighbourSums(const FunctionGraph& graph, Index i, const double* values, in
   }
 }
 
-/// Functions where `pick` holds take their completed neighbour means.
-template <class Pick, class Use>
-void MeanStep(const FunctionGraph& graph, const std::vector<char>& todo, Pick pick, Use use, double* values,
-  int width, int offset, int nc, const SolverHooks& hooks)
+/**
+ * The functions `which` take their neighbours' mean over those where
+ * use(k). Alone, in place, in the order given; on a distributed graph the
+ * sums go through full-length vectors, completed across parts first.
+ */
+template <class Use>
+void MeanStep(const FunctionGraph& graph, const std::vector<Index>& which, Use use, double* values, int width,
+  int offset, int nc, const SolverHooks& hooks)
 {
-  const Index n = graph.Size();
-  std::vector<double> sums(static_cast<size_t>(n) * (nc + 1), 0.0);
-  for (Index i = 0; i < n; ++i)
+  std::vector<double> sums(static_cast<size_t>(nc) + 1);
+  if (!hooks.Exchange)
   {
-    if (todo[i] && pick(i))
+    for (Index i : which)
     {
-      NeighbourSums(graph, i, values, width, offset, nc, use, &sums[static_cast<size_t>(i) * (nc + 1)]);
+      NeighbourSums(graph, i, values, width, offset, nc, use, sums.data());
+      for (int m = 0; sums[nc] > 0.0 && m < nc; ++m)
+      {
+        values[i * width + offset + m] = sums[m] / sums[nc];
+      }
     }
+    return;
   }
-  if (hooks.Exchange)
+  const Index n = graph.Size();
+  std::vector<double> all(static_cast<size_t>(n) * (nc + 1), 0.0);
+  for (Index i : which)
   {
-    hooks.Exchange(sums.data(), nc + 1);
+    NeighbourSums(graph, i, values, width, offset, nc, use, &all[static_cast<size_t>(i) * (nc + 1)]);
   }
-  for (Index i = 0; i < n; ++i)
+  hooks.Exchange(all.data(), nc + 1);
+  for (Index i : which)
   {
-    const double* s = &sums[static_cast<size_t>(i) * (nc + 1)];
-    for (int m = 0; todo[i] && pick(i) && s[nc] > 0.0 && m < nc; ++m)
+    const double* s = &all[static_cast<size_t>(i) * (nc + 1)];
+    for (int m = 0; s[nc] > 0.0 && m < nc; ++m)
     {
       values[i * width + offset + m] = s[m] / s[nc];
     }
@@ -203,30 +214,46 @@ void MeanStep(const FunctionGraph& graph, const std::vector<char>& todo, Pick pi
 void CreepFill(const FunctionGraph& graph, const std::vector<Index>& layer, const std::vector<char>& todo,
   double* values, int width, int offset, int nc, const SolverHooks& hooks)
 {
-  for (Index L = 1;; ++L)
+  // The functions of each layer (1, 2, ...); the number of layers is the
+  // largest over the parts (a count of the functions beyond each, summed).
+  std::vector<std::vector<Index>> layers;
+  for (Index i = 0; i < graph.Size(); ++i)
   {
-    double count = 0.0;
-    for (Index i = 0; i < graph.Size(); ++i)
+    if (todo[i])
     {
-      count += layer[i] == L && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
+      layers.resize(std::max(layers.size(), static_cast<size_t>(layer[i])));
+      layers[static_cast<size_t>(layer[i]) - 1].push_back(i);
     }
-    if (hooks.Reduce)
+  }
+  double count = static_cast<double>(layers.size());
+  for (size_t L = 1; hooks.Reduce; ++L)
+  {
+    // (Sum of "this part has layer L" over the parts: 0 once no part has.)
+    double has = L <= layers.size() ? 1.0 : 0.0;
+    hooks.Reduce(&has, 1);
+    if (has == 0.0)
     {
-      hooks.Reduce(&count, 1);
-    }
-    if (count == 0.0)
-    {
+      count = static_cast<double>(L - 1);
       break;
     }
-    MeanStep(graph, todo, [&](Index i) { return layer[i] == L; },
-      [&](Index k) { return layer[k] >= 0 && layer[k] < L; }, values, width, offset, nc, hooks);
   }
-  // Jacobi sweeps over all neighbours reached (the valid ones held):
-  // towards the harmonic extension, each value still a mean of valid ones.
+  layers.resize(static_cast<size_t>(count));
+  for (size_t L = 0; L < layers.size(); ++L)
+  {
+    const Index before = static_cast<Index>(L) + 1;
+    MeanStep(graph, layers[L], [&](Index k) { return layer[k] >= 0 && layer[k] < before; }, values, width,
+      offset, nc, hooks);
+  }
+  // Sweeps of neighbour means over all neighbours reached (the valid ones
+  // held): towards the harmonic extension, each value still a mean of valid ones.
+  std::vector<Index> all;
+  for (const auto& ones : layers)
+  {
+    all.insert(all.end(), ones.begin(), ones.end());
+  }
   for (int sweep = 0; sweep < 20; ++sweep)
   {
-    MeanStep(graph, todo, [](Index) { return true; }, [&](Index k) { return layer[k] >= 0; }, values, width,
-      offset, nc, hooks);
+    MeanStep(graph, all, [&](Index k) { return layer[k] >= 0; }, values, width, offset, nc, hooks);
   }
 }
 
