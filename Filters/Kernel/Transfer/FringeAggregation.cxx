@@ -159,7 +159,18 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
     }
     byDistance.emplace_back(r2, k);
   }
-  std::sort(byDistance.begin(), byDistance.end());
+  // Ties (regular meshes have many) broken by the coordinates, not the
+  // ids: the stencil must not depend on the numbering.
+  std::sort(byDistance.begin(), byDistance.end(),
+    [&](const std::pair<double, Index>& a, const std::pair<double, Index>& b) {
+      if (a.first != b.first)
+      {
+        return a.first < b.first;
+      }
+      const double* p = mesh.Point(a.second);
+      const double* q = mesh.Point(b.second);
+      return std::lexicographical_compare(p, p + 3, q, q + 3);
+    });
   for (size_t r = 0; r < points.size(); ++r)
   {
     points[r] = byDistance[r].second;
