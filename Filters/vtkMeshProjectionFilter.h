@@ -20,7 +20,10 @@
  * are split on their own points. Point data is a P1 field, cell data P0;
  * PointDataTarget and CellDataTarget say where each goes, CellDataQuantity
  * whether cell values are intensive or extensive, MassMatrix and
- * PreserveBounds how the projection is bounded.
+ * PreserveBounds how the projection is bounded. Where Input reaches beyond
+ * Source, point values covered in slivers take the extension of
+ * well-covered ones (FringeThreshold), and Extrapolation fills the values
+ * beyond (vtkExtrapolatedPointMask / vtkExtrapolatedCellMask).
  *
  * Output 0: Input with a double array per projected Source array, the
  * masks vtkValidPointMask / vtkValidCellMask (and per-array masks when

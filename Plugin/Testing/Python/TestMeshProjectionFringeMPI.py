@@ -10,7 +10,7 @@ other property holds as in serial. Checked on every process, for its points:
    (the interior measured by the serial run), the linear field exact;
  - the difference to the serial values within twice the serial interior
    error (it is about that error where the fringe crosses a partition
-   boundary, and at rounding level elsewhere);
+   boundary, and smaller elsewhere);
  - the masks: vtkValidPointMask as serial away from shared points,
    vtkExtrapolatedPointMask exactly where not valid (Extrapolation 1), and
    every point then finite and within the Source field's range;
