@@ -595,8 +595,9 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                   << " is kept: run the filter with CacheOperator on and that transfer in use.");
     return -1;
   }
-  return mpvtk::ExportMatrix(
-    *cache.FirstLeaf(t), t, matrix == MIXED_MASS, rowStart, columns, values);
+  return mpvtk::ExportMatrix(*cache.FirstLeaf(t), t,
+    matrix == FRINGE_EXTENSION && mpvtk::TargetSpaceOf(t) == mp::SpaceType::P1 ? 2 : matrix == MIXED_MASS,
+    rowStart, columns, values);
 }
 
 bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transfer, int matrix)
@@ -609,7 +610,8 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
   {
     return false;
   }
-  const std::string title = std::string(matrix == MIXED_MASS ? "M_ts" : "M_tt") + ", " +
+  const std::string title =
+    std::string(matrix == MIXED_MASS ? "M_ts" : matrix == FRINGE_EXTENSION ? "P" : "M_tt") + ", " +
     mpvtk::TransferName(static_cast<Transfers>(transfer));
   const std::string error = mpvtk::WriteMatrixMarketFile(
     fileName ? fileName : "", title, ncolumns, rowStart, columns, values);

@@ -106,7 +106,8 @@ public:
   enum Matrices
   {
     TARGET_MASS = 0, ///< M_tt (target functions x target functions)
-    MIXED_MASS = 1   ///< M_ts (target functions x source functions)
+    MIXED_MASS = 1,  ///< M_ts (target functions x source functions)
+    FRINGE_EXTENSION = 2 ///< P, point functions x point functions (FringeThreshold): u = P u_free
   };
 
   ///@{
@@ -390,7 +391,10 @@ public:
    * Input: the first block's; a composite Source's columns number the
    * points or cells of its blocks one block after the other). M_tt is
    * integrated over the covered part; rows of invalid target functions hold
-   * a 1 on the diagonal. When the last execution was a one-off run (M_ts
+   * a 1 on the diagonal. FRINGE_EXTENSION (P1 targets) is the fringe's
+   * extension P: the consistent result is u = P x with
+   * (P^T M_tt P) x = P^T M_ts u_s on P's nonzero columns (the identity
+   * without an aggregated fringe). When the last execution was a one-off run (M_ts
    * not formed), the filter executes once more, assembling it. Returns the
    * number of columns, or -1 (with an error) when no such operator can be
    * had: CacheOperator off, no inputs, or the transfer not in use.

@@ -10,6 +10,7 @@ The fringe (FringeThreshold, default 0.25):
  - a linear field exact at every valid point (1e-8 of its range);
  - integrals conserved over the covered part (TargetIntegral_ equals
    the sum of M_ts u_s, the exported mixed matrix);
+ - the exported matrices with the fringe's extension P reproduce the result;
  - no point whose support is covered 2% or more is dropped to invalid.
 Extrapolation (1 smooth, 2 nearest):
  - every point and cell gets a finite value within the Source field's range
@@ -21,9 +22,10 @@ Extrapolation (1 smooth, 2 nearest):
  - a second execution reusing the operators gives the same values.
 """
 import numpy as np
+import scipy.sparse.linalg
 
 import meshprojection
-from meshprojection import operator_matrices
+from meshprojection import fringe_extension, operator_matrices
 from mpsupport import gmshmeshes
 from mpsupport.testing import check, finish, mortar
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -122,6 +124,17 @@ for name, target, source_mesh in pairs:
     ti = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
     check(abs(ti - exact.sum()) <= 1e-12 * np.abs(exact).sum(),
           "%s: integral conserved (%.15g vs %.15g)" % (name, ti, exact.sum()))
+    # The exported operator reproduces the result: u = P x, (P^T M_tt P) x = P^T M_ts u_s.
+    m_tt, m_ts, _ = operator_matrices(f)
+    P = fringe_extension(f)
+    free = P.getnnz(axis=0) > 0
+    A = (P.T @ m_tt @ P).tocsc()[free][:, free]
+    b = (P.T @ (m_ts @ array(source, "s")))[free]
+    u = P[:, free] @ scipy.sparse.linalg.spsolve(A.tocsc(), b)
+    error = np.max(np.abs(u[valid] - array(out, "s")[valid]))
+    check(P.shape[0] > free.sum() and error < 1e-10,
+          "%s: the exported operator with P gives the result (%d aggregated, %.2g)"
+          % (name, P.shape[0] - free.sum(), error))
     # Points dropped to invalid: their support is covered less than 2% (the
     # covered integrals of the hat functions, the row sums of M_tt, over
     # their whole integrals, the row sums of the mass matrix of Input on itself).
