@@ -21,20 +21,20 @@ namespace mpvtk
 namespace
 {
 /**
- * The fringe's aggregated values of array `a` kept within the range of the
- * Source values (those this process gathered: on one process the field's
- * range), so that the extension, bounded by the valid values, is too. (An
- * aggregated value is an extrapolation from well-covered points and may
- * pass the Source's extremes where the field goes on growing beyond it.)
+ * The valid values of array `a` kept within the range of the Source values
+ * (those this process gathered: on one process the field's range), so that
+ * the extension, bounded by the valid values, is too. (The fringe's values
+ * are extrapolations from well-covered points and may pass the Source's
+ * extremes where the field goes on growing beyond it; so may the L2
+ * projection next to an extreme on the Source's boundary.)
  */
-void ClipFringe(const GatheredFields& g, size_t a, const mp::MortarOperator& op, mp::LargeVector<double>& values)
+void ClipToSource(const GatheredFields& g, size_t a, const mp::MortarOperator& op, mp::LargeVector<double>& values)
 {
-  const std::vector<char>& aggregated = op.GetFringe().Aggregated;
   const std::vector<char>& valid = op.GetValid();
   const int nc = g.Arrays[a]->GetNumberOfComponents();
   const size_t width = static_cast<size_t>(g.Components);
   const size_t sources = width > 0 ? g.Values.size() / width : 0;
-  for (int k = 0; k < nc && !aggregated.empty(); ++k)
+  for (int k = 0; k < nc; ++k)
   {
     const size_t column = static_cast<size_t>(g.Offsets[a] + k);
     double low = std::numeric_limits<double>::infinity();
@@ -45,9 +45,9 @@ void ClipFringe(const GatheredFields& g, size_t a, const mp::MortarOperator& op,
       low = v < low ? v : low; // (NaN compares false: left out)
       high = v > high ? v : high;
     }
-    for (size_t f = 0; f < aggregated.size() && low <= high; ++f)
+    for (size_t f = 0; f < valid.size() && low <= high; ++f)
     {
-      if (aggregated[f] && valid[f])
+      if (valid[f])
       {
         double& v = values[f * width + column];
         v = std::min(high, std::max(low, v));
@@ -71,7 +71,7 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t
   for (size_t a = 0; a < g.Arrays.size(); ++a)
   {
     const mp::MortarOperator& op = *ops.ByArray[t][a];
-    ClipFringe(g, a, op, values);
+    ClipToSource(g, a, op, values);
     std::vector<char> extrapolated;
     if (graph.Size() == 0 || &op != graphOf)
     {

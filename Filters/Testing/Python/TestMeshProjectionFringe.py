@@ -14,7 +14,7 @@ The fringe (FringeThreshold, default 0.25):
  - no point whose support is covered 2% or more is dropped to invalid.
 Extrapolation (1 smooth, 2 nearest):
  - every point and cell gets a finite value within the Source field's range
-   (the fringe's values are kept within it), vtkValidPointMask is unchanged,
+   (the valid values are kept within it), vtkValidPointMask is unchanged,
    vtkExtrapolatedPointMask/CellMask mark exactly the others;
  - smooth is linear in the data (2f + 3 gives 2u + 3);
  - a part of Input connected to no valid point keeps the fill value, said
@@ -166,7 +166,7 @@ for (name, target, source_mesh), mode in ((pairs[0], 1), (pairs[0], 2), (pairs[2
         extrapolated = array(out, mask, cells)
         check(np.array_equal(extrapolated.astype(bool), ~valid.astype(bool)),
               "Extrapolation %d: %s marks exactly the values not valid" % (mode, mask))
-        # Valid values unchanged (but for the fringe's kept within the Source's range).
+        # Valid values unchanged (but kept within the Source's range).
         same = np.clip(array(plain, "s", cells), low, high)[valid.astype(bool)]
         check(np.array_equal(u[valid.astype(bool)], same), "%s, Extrapolation %d: valid values unchanged" % (name, mode))
 
