@@ -317,6 +317,8 @@ mpvtk::Settings vtkMeshProjectionFilter::CurrentSettings() const
   s.OutputIntersections = this->OutputIntersections;
   s.FillWithNaN = this->FillWithNaN;
   s.FillValue = this->FillValue;
+  s.Extrapolation = this->Extrapolation;
+  s.FringeThreshold = this->FringeThreshold;
   s.PointDataTarget = this->PointDataTarget;
   s.CellDataTarget = this->CellDataTarget;
   s.Extensive = this->CellDataQuantity == EXTENSIVE;
@@ -605,8 +607,9 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                      "Constant.");
     return -1;
   }
-  return mpvtk::ExportMatrix(
-    *cache.FirstLeaf(t), t, matrix == MIXED_MASS, rowStart, columns, values);
+  return mpvtk::ExportMatrix(*cache.FirstLeaf(t), t,
+    matrix == FRINGE_EXTENSION && mpvtk::TargetSpaceOf(t) == mp::SpaceType::P1 ? 2 : matrix == MIXED_MASS,
+    rowStart, columns, values);
 }
 
 bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transfer, int matrix)
@@ -619,7 +622,8 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
   {
     return false;
   }
-  const std::string title = std::string(matrix == MIXED_MASS ? "M_ts" : "M_tt") + ", " +
+  const std::string title =
+    std::string(matrix == MIXED_MASS ? "M_ts" : matrix == FRINGE_EXTENSION ? "P" : "M_tt") + ", " +
     mpvtk::TransferName(static_cast<Transfers>(transfer));
   const std::string error = mpvtk::WriteMatrixMarketFile(
     fileName ? fileName : "", title, ncolumns, rowStart, columns, values);
@@ -640,6 +644,8 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputIntersections: " << (this->OutputIntersections ? "On" : "Off") << "\n";
   os << indent << "FillWithNaN: " << (this->FillWithNaN ? "On" : "Off") << "\n";
   os << indent << "FillValue: " << this->FillValue << "\n";
+  os << indent << "Extrapolation: " << this->Extrapolation << "\n";
+  os << indent << "FringeThreshold: " << this->FringeThreshold << "\n";
   os << indent << "PointDataTarget: " << this->PointDataTarget << "\n";
   os << indent << "CellDataTarget: " << this->CellDataTarget << "\n";
   os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";

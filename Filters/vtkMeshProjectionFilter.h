@@ -20,7 +20,10 @@
  * are split on their own points. Point data is a P1 field, cell data P0;
  * PointDataTarget and CellDataTarget say where each goes, CellDataQuantity
  * whether cell values are intensive or extensive, MassMatrix and
- * PreserveBounds how the projection is bounded.
+ * PreserveBounds how the projection is bounded. Where Input reaches beyond
+ * Source, point values covered in slivers take the extension of
+ * well-covered ones (FringeThreshold), and Extrapolation fills the values
+ * beyond (vtkExtrapolatedPointMask / vtkExtrapolatedCellMask).
  *
  * Output 0: Input with a double array per projected Source array, the
  * masks vtkValidPointMask / vtkValidCellMask (and per-array masks when
@@ -110,7 +113,8 @@ public:
   enum Matrices
   {
     TARGET_MASS = 0, ///< M_tt (target functions x target functions)
-    MIXED_MASS = 1   ///< M_ts (target functions x source functions)
+    MIXED_MASS = 1,  ///< M_ts (target functions x source functions)
+    FRINGE_EXTENSION = 2 ///< P, point functions x point functions (FringeThreshold): u = P u_free
   };
 
   ///@{
@@ -156,6 +160,33 @@ public:
   vtkBooleanMacro(FillWithNaN, bool);
   vtkSetMacro(FillValue, double);
   vtkGetMacro(FillValue, double);
+  ///@}
+
+  ///@{
+  /**
+   * What target points and cells the Source does not reach receive instead
+   * of the fill value: NO_EXTRAPOLATION (default), SMOOTH_EXTRAPOLATION (the
+   * harmonic extension of the valid values over Input's point graph, or
+   * cell graph for cell data: within their range, no new extrema) or
+   * NEAREST_EXTRAPOLATION (the value of the nearest valid point or cell
+   * along Input's graph). vtkExtrapolatedPointMask and
+   * vtkExtrapolatedCellMask mark them; parts of Input connected to no valid
+   * point keep the fill value.
+   */
+  enum Extrapolations { NO_EXTRAPOLATION = 0, SMOOTH_EXTRAPOLATION = 1, NEAREST_EXTRAPOLATION = 2 };
+  vtkSetClampMacro(Extrapolation, int, NO_EXTRAPOLATION, NEAREST_EXTRAPOLATION);
+  vtkGetMacro(Extrapolation, int);
+  ///@}
+
+  ///@{
+  /**
+   * A well-posed fringe: point values whose support the Source covers less
+   * than this fraction (default 0.25) take the quadratic extension of
+   * well-covered points nearby instead of being fitted to a sliver; those
+   * covered less than 1% become invalid (docs/method.md); 0 turns it off.
+   */
+  vtkSetClampMacro(FringeThreshold, double, 0.0, 0.9);
+  vtkGetMacro(FringeThreshold, double);
   ///@}
 
   ///@{
@@ -382,7 +413,10 @@ public:
    * Input: the first block's; a composite Source's columns number the
    * points or cells of its blocks one block after the other). M_tt is
    * integrated over the covered part; rows of invalid target functions hold
-   * a 1 on the diagonal. When the last execution was a one-off run (M_ts
+   * a 1 on the diagonal. FRINGE_EXTENSION (P1 targets) is the fringe's
+   * extension P: the consistent result is u = P x with
+   * (P^T M_tt P) x = P^T M_ts u_s on P's nonzero columns (the identity
+   * without an aggregated fringe). When the last execution was a one-off run (M_ts
    * not formed), the filter executes once more, assembling it. Returns the
    * number of columns, or -1 (with an error) when no such operator can be
    * had: CacheOperator off, no inputs, or the transfer not in use.
@@ -455,6 +489,8 @@ protected:
   bool OutputIntersections = false;
   bool FillWithNaN = true;
   double FillValue = 0;
+  int Extrapolation = NO_EXTRAPOLATION;
+  double FringeThreshold = 0.25;
   int PointDataTarget = TO_POINTS;
   int CellDataTarget = TO_CELLS;
   int CellDataQuantity = INTENSIVE;

@@ -9,6 +9,9 @@
 #include "Projection/SourceSide.h"
 #include "Adapter/SimplexMesh.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace mpvtk
 {
 namespace
@@ -102,6 +105,45 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
   }
   return ApplyGroups(ctx, kept, ops, t, apply, hook, values);
 }
+/**
+ * The fringe of every P1 operator in use aggregated (MortarOperator::
+ * AggregateFringe), on volume targets (a surface's or curve's points do not
+ * span their space: an affine fit there is not defined). Collective: every
+ * process decides alike and calls it for the same operators.
+ */
+void AggregateFringes(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks& hooks)
+{
+  const mp::MeshView& view = ctx.Target.View();
+  double volume[2] = { !ctx.Shape.Trace && view.IsVolumeMesh() ? 1.0 : 0.0, 1.0 };
+  if (hooks.Reduce)
+  {
+    hooks.Reduce(volume, 2); // volume when every process says so
+  }
+  const double threshold = volume[0] == volume[1] ? ctx.Options.FringeThreshold : 0.0;
+  // (Lumped values are means: nothing to aggregate; a later consistent run aggregates then.)
+  const double used = ctx.Options.Lumped ? 0.0 : threshold;
+  for (Transfer t : AllTransfers)
+  {
+    if (!ops.Operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
+    {
+      continue;
+    }
+    std::vector<const mp::MortarOperator*> all{ ops.Operators[t] };
+    for (const mp::MortarOperator* op : ops.ByArray[t])
+    {
+      if (std::find(all.begin(), all.end(), op) == all.end())
+      {
+        all.push_back(op);
+      }
+    }
+    for (const mp::MortarOperator* op : all)
+    {
+      const double before = op->GetTimings().Assembly;
+      const_cast<mp::MortarOperator*>(op)->AggregateFringe(view, used, hooks);
+      ctx.Stats.Assembly += op->GetTimings().Assembly - before;
+    }
+  }
+}
 } // namespace
 
 void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2])
@@ -125,6 +167,7 @@ void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hook
       }
     }
   }
+  AggregateFringes(ctx, ops, hooks[0]);
 }
 
 Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,

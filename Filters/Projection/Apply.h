@@ -26,9 +26,12 @@ struct KeptLeaf;
 struct LeafSolutions
 {
   mp::LargeVector<double> Values[NumberOfTransfers];
+  /// Per transfer: the functions whose values were extrapolated (its operator's; Extrapolation).
+  std::vector<char> Extrapolated[NumberOfTransfers];
 };
 
-/// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators share their validity.
+/// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators
+/// share their validity, then aggregate their fringe (FringeThreshold).
 void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2]);
 
 /// Applies every operator in use to its fields (and NaN groups' operators to theirs).

@@ -22,7 +22,8 @@ vtkDataSetAttributes* AttributesOf(vtkDataSet* data, int association)
 
 bool IsMask(const std::string& name)
 {
-  return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0;
+  return name.rfind("vtkValidPointMask", 0) == 0 || name.rfind("vtkValidCellMask", 0) == 0 ||
+    name.rfind("vtkExtrapolatedPointMask", 0) == 0 || name.rfind("vtkExtrapolatedCellMask", 0) == 0;
 }
 
 namespace

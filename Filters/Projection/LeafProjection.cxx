@@ -6,6 +6,7 @@
 #include "Projection/Agreement.h"
 #include "Projection/Apply.h"
 #include "Projection/Conservation.h"
+#include "Projection/Extrapolation.h"
 #include "Projection/Messages.h"
 #include "Projection/OperatorBuild.h"
 #include "Projection/OperatorCache.h"
@@ -73,9 +74,10 @@ void WarnShape(LeafContext& ctx)
  * last leaf's meshes are read again by the outputs only: what those take
  * from them (the Source weights, the target's point cover) is taken now,
  * and the meshes' own arrays (a renumbered copy, neighbours, the Source's
- * locator) go. (Not with the intersection pieces, which read both meshes,
- * nor on several processes, whose Source weights are collective.) Then
- * M_tt of the operators built here, on the target alone.
+ * locator) go; the target's own after the fringe's aggregation, which
+ * reads it (ProjectLeaf). (Not with the intersection pieces, which read
+ * both meshes, nor on several processes, whose Source weights are
+ * collective.) Then M_tt of the operators built here, on the target alone.
  */
 bool PrepareSolves(
   LeafContext& ctx, OperatorSet& ops, SourceWeights& weights, mp::LargeVector<double>& cover)
@@ -119,8 +121,7 @@ bool PrepareSolves(
   if (release && ctx.Target.OwnsGeometry())
   {
     cover = PointCover(ctx.Target, ops);
-    ctx.Target.ReleaseGeometry();
-    return true;
+    return true; // the target's geometry goes once the fringe is aggregated
   }
   return false;
 }
@@ -172,11 +173,25 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   const bool haveCover = PrepareSolves(ctx, ops, weights, cover);
   mp::SolverHooks hooks[2]; // P1, P0 target functions
   ShareSystems(ctx, ops, hooks);
+  // (The extrapolation reads the target's cells after the solves.)
+  const bool extrapolate = run.Options.Extrapolation != 0;
+  if (haveCover && !extrapolate)
+  {
+    targetMesh.ReleaseGeometry();
+  }
   LeafSolutions solutions;
   result.Outcome = ApplyOperators(ctx, kept, ops, hooks, solutions);
+  if (result.Outcome.Ok())
+  {
+    result.Outcome = ExtrapolateLeaf(ctx, ops, hooks, solutions);
+  }
   if (!result.Outcome.Ok())
   {
     return result;
+  }
+  if (haveCover && extrapolate)
+  {
+    targetMesh.ReleaseGeometry();
   }
   KeepOperators(ctx, kept, plan, ops);
   // On several processes the outputs are written in step (sums over them):

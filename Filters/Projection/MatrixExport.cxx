@@ -13,11 +13,41 @@
 
 namespace mpvtk
 {
-vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, bool mixed,
+namespace
+{
+/// The identity of `n` functions (a P1 operator without an aggregated fringe: P = I).
+mp::CsrMatrix Identity(mp::Index n)
+{
+  mp::CsrMatrix m;
+  m.Rows = m.Columns = n;
+  m.RowStart.resize(static_cast<size_t>(n) + 1);
+  m.ColumnIndex.resize(static_cast<size_t>(n));
+  m.Values.assign(static_cast<size_t>(n), 1.0);
+  for (mp::Index i = 0; i <= n; ++i)
+  {
+    m.RowStart[i] = i;
+    if (i < n)
+    {
+      m.ColumnIndex[i] = static_cast<mp::Column>(i);
+    }
+  }
+  return m;
+}
+} // namespace
+
+vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, int matrix,
   vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values)
 {
   const mp::MortarOperator& op = *leaf.Operators[transfer].Operator;
-  const mp::CsrMatrix& m = mixed ? op.GetMixedMass() : op.GetTargetMass();
+  const bool mixed = matrix == 1;
+  mp::CsrMatrix identity;
+  if (matrix == 2 && op.GetFringe().P.Rows == 0)
+  {
+    identity = Identity(op.GetNumberOfTargetFunctions());
+  }
+  const mp::CsrMatrix& m = mixed ? op.GetMixedMass()
+    : matrix == 2                ? (identity.Rows ? identity : op.GetFringe().P)
+                                 : op.GetTargetMass();
   // P0 rows and columns are numbered as the datasets' cells, P1 ones as
   // their points (the kernel's points of a renumbered mesh mapped back).
   const std::vector<mp::Index>* rowOrder =

@@ -24,8 +24,8 @@ namespace mpvtk
 {
 struct KeptLeaf;
 
-/// M_ts (`mixed`) or M_tt of `leaf`'s operator of `transfer`; returns the number of columns.
-vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, bool mixed,
+/// M_tt (`matrix` 0), M_ts (1) or the fringe's extension P (2) of `leaf`'s operator of `transfer`; returns the number of columns.
+vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, int matrix,
   vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values);
 
 /// Writes compressed rows as a Matrix Market coordinate file; an error text, or empty.

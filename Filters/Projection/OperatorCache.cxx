@@ -88,6 +88,7 @@ std::uint64_t LeafFingerprint(
   {
     print.Add(std::uint64_t(0xD1)); // cell data read as DP1: other operators
   }
+  print.Add(&settings.FringeThreshold, sizeof settings.FringeThreshold); // kept with the operator
   if (!trace && (target.View().IsSurfaceMesh() || target.View().IsCurveMesh()))
   {
     const double contact[3] = { settings.SurfaceReach, settings.MaximumNormalAngle,

@@ -262,9 +262,10 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
 }
 
 /**
- * Valid points whose cells are all covered only in slivers: their values
- * are extrapolated from a sliver (an ill-conditioned row) and can be far
- * off. On several processes a point on a partition boundary has cells on
+ * Valid points whose cells are all covered only in slivers and that the
+ * fringe's aggregation left free (FringeThreshold 0, or shared by several
+ * processes, or no stencil): their values are extrapolated from a sliver
+ * (an ill-conditioned row) and can be far off. On several processes a point on a partition boundary has cells on
  * each: it is such a point only when the cells of every process around it
  * are slivers (the hooks complete the cover across processes; alone they
  * do nothing). Counted once (by its owner), the total said once (by
@@ -285,6 +286,7 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
   {
     shared.Exchange(covered.data(), 1);
   }
+  const std::vector<char>& fringe = onPoints.GetFringe().Aggregated;
   // (A count: the same in any order.)
   double total = mpvtk::SMPTaskRunner().ForRanges(
     static_cast<mp::Index>(most.size()), [&](mp::Index begin, mp::Index end) {
@@ -292,7 +294,9 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
       for (mp::Index i = begin; i < end; ++i)
       {
         const bool counted = !shared.Counted || static_cast<size_t>(i) >= rows || shared.Counted[i];
-        count += onPoints.GetValid()[i] && covered[i] == 0.0 && counted ? 1.0 : 0.0;
+        // (An aggregated point's value is the extension of well-covered ones.)
+        const bool aggregated = !fringe.empty() && fringe[i];
+        count += onPoints.GetValid()[i] && !aggregated && covered[i] == 0.0 && counted ? 1.0 : 0.0;
       }
       return count;
     });
@@ -359,6 +363,42 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   covered->SetNumberOfValues(ntc);
   CopyInThreads(fraction.data(), fraction.size(), covered->GetPointer(0));
   output->GetCellData()->AddArray(covered);
+}
+/**
+ * vtkExtrapolatedPointMask and vtkExtrapolatedCellMask (with Extrapolation):
+ * where the masks' operators (those of vtkValidPointMask and
+ * vtkValidCellMask) had their values extrapolated.
+ */
+void WriteExtrapolatedMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
+  const LeafSolutions& solutions)
+{
+  if (ctx.Options.Extrapolation == 0)
+  {
+    return;
+  }
+  using F = vtkMeshProjectionFilter;
+  const Transfer toPoints = ops.Operators[F::POINTS_TO_POINTS] ? F::POINTS_TO_POINTS : F::CELLS_TO_POINTS;
+  const Transfer toCells = ops.Operators[F::POINTS_TO_CELLS] ? F::POINTS_TO_CELLS : F::CELLS_TO_CELLS;
+  for (const Transfer t : { toPoints, toCells })
+  {
+    const std::vector<char>& from = solutions.Extrapolated[t];
+    if (!ops.Operators[t] || from.empty())
+    {
+      continue;
+    }
+    const bool points = t == toPoints;
+    vtkNew<vtkCharArray> mask;
+    mask->SetName(points ? "vtkExtrapolatedPointMask" : "vtkExtrapolatedCellMask");
+    mask->SetNumberOfValues(
+      points ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells());
+    mask->FillValue(0);
+    for (size_t f = 0; f < from.size(); ++f)
+    {
+      mask->SetValue(points ? ctx.Target.DataSetPoint(static_cast<mp::Index>(f)) : static_cast<vtkIdType>(f), from[f]);
+    }
+    (points ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
+            : static_cast<vtkDataSetAttributes*>(output->GetCellData()))->AddArray(mask);
+  }
 }
 } // namespace
 
@@ -433,6 +473,7 @@ void WriteLeafOutputs(LeafContext& ctx, vtkDataSet* output, const OperatorSet& o
   }
   MakeActiveScalars(output, written);
   WriteMasks(ctx, output, ops, pointCover, pointHooks, numbering, written);
+  WriteExtrapolatedMasks(ctx, output, ops, solutions);
 }
 
 vtkSmartPointer<vtkDataObject> LeafPieces(const LeafContext& ctx, const OperatorSet& ops)

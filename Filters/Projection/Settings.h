@@ -21,6 +21,8 @@ struct Settings
   bool OutputIntersections = false;
   bool FillWithNaN = true;
   double FillValue = 0;
+  int Extrapolation = 0;        ///< vtkMeshProjectionFilter::Extrapolations
+  double FringeThreshold = 0.25; ///< aggregate point functions covered less than this
   int PointDataTarget = 1;     ///< vtkMeshProjectionFilter::Targets (bits: 1 points, 2 cells)
   int CellDataTarget = 2;
   bool Extensive = false;      ///< CellDataQuantity is EXTENSIVE

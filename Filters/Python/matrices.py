@@ -5,6 +5,13 @@ scipy.sparse CSR matrices, and Matrix Market files.
     from meshprojection import operator_matrices
     M_tt, M_ts, valid = operator_matrices(f)            # point data -> points
     u_t = scipy.sparse.linalg.spsolve(M_tt, M_ts @ u_s)  # = the filter's result on valid rows
+                                                         # with FringeThreshold 0 or no fringe
+With the fringe's aggregation (FringeThreshold, the default) the filter
+solves the projection on the aggregated functions: with P = fringe_extension(f),
+
+    free = P.getnnz(axis=0) > 0                        # columns P uses
+    A, b = P.T @ M_tt @ P, P.T @ (M_ts @ u_s)
+    u_t = P[:, free] @ spsolve(A[free][:, free], b[free])  # the filter's result on valid rows
 """
 import numpy as np
 
@@ -42,6 +49,17 @@ def operator_matrices(filter_, transfer="points_to_points"):
     # Invalid functions have empty M_ts rows (no piece touches their support).
     valid = np.diff(m_ts.indptr) > 0
     return m_tt, m_ts, valid
+
+
+def fringe_extension(filter_, transfer="points_to_points"):
+    """P, the fringe's extension of a transfer to points (FringeThreshold):
+    point functions x point functions, the identity on the free functions
+    and the extension weights on the aggregated ones (no nonzero column for
+    those); the identity when nothing is aggregated."""
+    if hasattr(filter_, "GetClientSideObject"):
+        filter_ = filter_.GetClientSideObject()
+    t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
+    return _csr(filter_, t, 2)
 
 
 def write_matrix_market(filter_, path, transfer="points_to_points", matrix="mixed"):

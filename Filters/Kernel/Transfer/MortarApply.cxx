@@ -178,6 +178,18 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
       return 0.0;
     });
   }
+  // A fringe aggregated (AggregateFringe): the right-hand sides P^T b,
+  // before the shared rows are completed (each part gives its own share of
+  // an aggregated row to its own stencil).
+  const bool aggregated = this->Fringe.Count > 0 && options.Mass == MassType::Consistent;
+  this->LastAggregated = aggregated;
+  const std::vector<char>& valid = this->GetValid();
+  if (aggregated)
+  {
+    LargeVector<double> restricted(static_cast<size_t>(n) * components);
+    RestrictToFree(this->Fringe, product.empty() ? rhs : product.data(), restricted.data(), components);
+    product.swap(restricted);
+  }
   if (hooks.Exchange)
   {
     hooks.Exchange(product.data(), components);
@@ -193,7 +205,7 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     // 0 * NaN would spread it through the products. Their solution is 0.
     for (Index i = 0; i < n; ++i)
     {
-      if (!this->Valid[i])
+      if (!this->Valid[i] || (aggregated && this->Fringe.Aggregated[i]))
       {
         std::fill(targetValues + i * components, targetValues + (i + 1) * components, 0.0);
       }
@@ -216,6 +228,11 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
       }
     }
   }
+  else if (aggregated)
+  {
+    ok = this->FringeSolver->Solve(rhs, targetValues, components, solve, hooks);
+    ExtendFromFree(this->Fringe, targetValues, components);
+  }
   else
   {
     ok = this->Solver->Solve(rhs, targetValues, components, solve, hooks);
@@ -226,12 +243,12 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
     {
       return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
     }
-    ClipToLocalBounds(this->MixedMass, this->Valid, this->RowSums, n, sourceValues, components, rhs,
-      targetValues, hooks);
+    ClipToLocalBounds(this->MixedMass, valid, this->GetCoveredIntegrals(), n, sourceValues,
+      components, rhs, targetValues, hooks);
   }
   for (Index i = 0; i < n; ++i)
   {
-    if (!this->Valid[i])
+    if (!valid[i])
     {
       std::fill(targetValues + i * components, targetValues + (i + 1) * components, fill);
     }

@@ -227,9 +227,82 @@ void MortarOperator::ShareValidity(const SolverHooks& hooks)
   }
 }
 
+Index MortarOperator::AggregateFringe(
+  const MeshView& target, double threshold, const SolverHooks& hooks)
+{
+  if (this->FringeDone || this->Options.TargetSpace != SpaceType::P1 || !(threshold > 0.0) ||
+    !this->Solver)
+  {
+    return this->Fringe.Count;
+  }
+  this->FringeDone = true;
+  const auto start = std::chrono::steady_clock::now();
+  const Index n = this->TargetMass.Rows;
+  // The covered fraction of each function's support (on a distributed
+  // system both integrals summed over the parts, so that every part decides
+  // alike). Each part extends from its own points: a function shared by
+  // several parts takes on each the extension of that part's side (the
+  // sum of the parts' P^T M P is still symmetric, positive definite on the
+  // free functions, exact for linear fields, and its integral is the sum of
+  // the parts' own).
+  std::vector<double> covered(this->RowSums);
+  LargeVector<double> whole = SupportIntegrals(target);
+  whole.resize(static_cast<size_t>(n), 0.0);
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(covered.data(), 1);
+    hooks.Exchange(whole.data(), 1);
+  }
+  std::vector<double> fraction(static_cast<size_t>(n), 0.0);
+  for (Index i = 0; i < n; ++i)
+  {
+    fraction[i] = whole[i] > 0.0 ? covered[i] / whole[i] : 0.0;
+  }
+  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction);
+  if (this->Fringe.Count > 0)
+  {
+    this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
+    this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
+    this->DropFringe();
+  }
+  else
+  {
+    this->Fringe = FringeExtension();
+  }
+  this->Timings.Assembly += SecondsSince(start);
+  return this->Fringe.Count;
+}
+
+void MortarOperator::DropFringe()
+{
+  // A dropped function's covered integral goes to its stencil by its
+  // weights (P^T on the row sums): sum_i RowSums_i u_i over the valid
+  // functions stays the integral of u = P u_free over the covered part.
+  const CsrMatrix& P = this->Fringe.P;
+  this->FringeValid = this->Valid;
+  this->FringeRowSums = this->RowSums;
+  this->FringeDropped = 0;
+  for (Index i = 0; i < P.Rows; ++i)
+  {
+    if (!this->Fringe.Dropped[i])
+    {
+      continue;
+    }
+    for (Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
+    {
+      this->FringeRowSums[P.ColumnIndex[q]] += P.Values[q] * this->RowSums[i];
+    }
+    this->FringeRowSums[i] = 0.0;
+    this->FringeValid[i] = 0;
+    ++this->FringeDropped;
+  }
+}
+
 void MortarOperator::ReleaseMatrices()
 {
   this->Solver.reset();
+  this->FringeSolver.reset();
+  this->FringeMass = CsrMatrix();
   for (CsrMatrix* m : { &this->TargetMass, &this->MixedMass })
   {
     CsrMatrix empty;
@@ -246,7 +319,7 @@ size_t MortarOperator::MemoryBytes() const
     return m.RowStart.capacity() * sizeof(Index) + m.ColumnIndex.capacity() * sizeof(Column) +
       m.Values.capacity() * sizeof(double);
   };
-  return csr(this->TargetMass) + csr(this->MixedMass) + this->Rhs.capacity() * sizeof(double) +
+  return csr(this->TargetMass) + csr(this->MixedMass) + csr(this->FringeMass) + csr(this->Fringe.P) + this->Rhs.capacity() * sizeof(double) +
     this->Valid.capacity() + this->RowSums.capacity() * sizeof(double) +
     this->CoveredFraction.capacity() * sizeof(double) + this->PointCover.capacity() * sizeof(double) +
     this->Pieces.MemoryBytes();

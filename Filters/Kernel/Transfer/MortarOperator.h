@@ -46,6 +46,7 @@
 #include "Search/SearchStatistics.h"
 #include "Transfer/BlockCG.h"
 #include "Transfer/CsrMatrix.h"
+#include "Transfer/FringeAggregation.h"
 #include "Transfer/MassMatrix.h"
 #include "Transfer/Space.h"
 
@@ -210,10 +211,37 @@ public:
    */
   void ShareValidity(const SolverHooks& hooks);
 
+  /**
+   * A well-posed fringe (FringeAggregation.h), P1 target functions of a
+   * volume mesh only: the valid functions whose covered fraction of their
+   * support is below `threshold` take the affine extension of well-covered
+   * ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
+   * After CompleteTargetMass (and ShareValidity): a distributed system
+   * sums the covered and whole integrals over the parts (hooks.Exchange);
+   * each part extends from its own points (a shared function's value is
+   * its part's side's extension). Functions covered less than
+   * FringeDropFraction become invalid after such an Apply (their share of
+   * the covered integral goes to their stencil, GetCoveredIntegrals).
+   * Collective; once per operator with a positive threshold (a kept
+   * operator keeps its aggregation); lumped Applies do not use it (their
+   * values are means already). Returns the aggregated functions.
+   */
+  Index AggregateFringe(const MeshView& target, double threshold, const SolverHooks& hooks);
+  /// The fringe's extension (empty P when nothing is aggregated).
+  const FringeExtension& GetFringe() const { return this->Fringe; }
+
   /// Bytes held by the operator's matrices, right-hand sides and pieces.
   size_t MemoryBytes() const;
-  /// Per target function: int phi_i over the covered part (the row sums of M_tt).
-  const std::vector<double>& GetCoveredIntegrals() const { return this->RowSums; }
+  /**
+   * Per target function: int phi_i over the covered part (the row sums of
+   * M_tt). After a consistent Apply with an aggregated fringe, the dropped
+   * functions' shares given to their stencils (then sum_i over the valid
+   * functions of these times u_i is the integral of u over the covered part).
+   */
+  const std::vector<double>& GetCoveredIntegrals() const
+  {
+    return this->LastAggregated ? this->FringeRowSums : this->RowSums;
+  }
 
   /// M_tt over the covered part (rows of invalid functions: 1 on the diagonal).
   const CsrMatrix& GetTargetMass() const { return this->TargetMass; }
@@ -233,9 +261,18 @@ public:
   Index GetNumberOfTargetFunctions() const { return this->TargetMass.Rows; }
   Index GetNumberOfSourceFunctions() const { return this->SourceFunctions; }
 
-  /// Per target function: 1 if its support meets the source, else 0.
-  const std::vector<char>& GetValid() const { return this->Valid; }
-  Index GetNumberOfValid() const { return this->NumberOfValid; }
+  /**
+   * Per target function: 1 if its support meets the source, else 0 (after
+   * a consistent Apply with an aggregated fringe, the dropped functions 0).
+   */
+  const std::vector<char>& GetValid() const
+  {
+    return this->LastAggregated ? this->FringeValid : this->Valid;
+  }
+  Index GetNumberOfValid() const
+  {
+    return this->NumberOfValid - (this->LastAggregated ? this->FringeDropped : 0);
+  }
   /// Per target cell: the covered fraction of its measure (per original
   /// cell when the target's simplices have parents, once M_tt is there:
   /// CompleteTargetMass; 0 for a parent without any).
@@ -271,6 +308,8 @@ public:
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
   struct Session;
+  /// FringeValid and FringeRowSums: the dropped functions invalid, their covered integrals given to their stencils.
+  void DropFringe();
   /// The checks of the meshes and options (Options set): false, with Error set, on unusable input.
   bool Check(const MeshView& target, const MeshView& source, CandidateLocator* locator);
   template <class Intersector>
@@ -285,6 +324,14 @@ private:
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
+  bool FringeDone = false;
+  FringeExtension Fringe;
+  std::vector<char> FringeValid;     ///< Valid without the dropped functions
+  std::vector<double> FringeRowSums; ///< RowSums with the dropped ones' given to their stencils
+  Index FringeDropped = 0;
+  mutable bool LastAggregated = false; ///< the last Apply solved the aggregated system
+  CsrMatrix FringeMass; ///< P^T M_tt P (when some function is aggregated)
+  std::unique_ptr<BlockCG> FringeSolver;
   std::vector<char> Valid;
   std::vector<double> RowSums; ///< of M_tt, valid rows (invalid: 0)
   Index NumberOfValid = 0;

@@ -34,6 +34,7 @@ check(set(projection.ListProperties()) == {
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
     "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
+    "Extrapolation", "FringeThreshold",
     "NormalOrientation"},
       "properties %r" % projection.ListProperties())
 check(projection.SurfaceReach == 0.5 and projection.MaximumNormalAngle == 45 and
@@ -45,6 +46,8 @@ check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "C
 check(projection.CellDataReconstruction == "Constant",
       "reconstruction default %r" % projection.CellDataReconstruction)
 check(projection.PreserveBounds == 0 and projection.CacheOperator == 1, "bounds and cache defaults")
+check(projection.Extrapolation == "None" and projection.FringeThreshold == 0.25,
+      "fringe defaults %r %r" % (projection.Extrapolation, projection.FringeThreshold))
 check(projection.MaximumIterations == 500, "iterations default %r" % projection.MaximumIterations)
 check(projection.NumberOfThreads == 0 and projection.Renumbering == "Automatic",
       "threads and renumbering defaults %r %r" % (projection.NumberOfThreads, projection.Renumbering))

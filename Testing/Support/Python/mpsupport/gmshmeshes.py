@@ -77,7 +77,7 @@ def _generate(name, dim, build, h, options=()):
                 continue
             types, _, nodes = gmsh.model.mesh.getElements(dim, tag)
             for etype, enodes in zip(types, nodes):
-                corners = {1: 2, 2: 3, 3: 4, 4: 4}[int(etype)]
+                corners = {1: 2, 2: 3, 3: 4, 4: 4, 6: 6}[int(etype)]
                 block = np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, corners)
                 if tag in reverse:
                     block = block[:, ::-1]
@@ -200,4 +200,54 @@ def volume(shape, h):
         grid.SetPoints(points)
         grid.SetCells(VTK_TETRA, array)
         _cache[key] = grid
+    return _cache[key]
+
+
+def _grid(x, cells, cell_type):
+    """vtkUnstructuredGrid of `cells` (all of one VTK type) on the nodes `x`."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkUnstructuredGrid
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(x), deep=True))
+    connectivity = np.asarray(cells, dtype=np.int64)
+    corners = connectivity.shape[1]
+    connectivity = connectivity.ravel()
+    offsets = np.arange(0, len(connectivity) + 1, corners, dtype=np.int64)
+    array = vtkCellArray()
+    array.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True), numpy_to_vtkIdTypeArray(connectivity, deep=True))
+    grid = vtkUnstructuredGrid()
+    grid.SetPoints(points)
+    grid.SetCells(cell_type, array)
+    return grid
+
+
+def planar(h, quads=False, algorithm=6):
+    """The unit square in the plane z = 0 meshed by Gmsh with size `h`:
+    triangles, or quads (recombined), as a vtkPolyData (a 2D mesh)."""
+    return surface("patch0", h, algorithm, quads)
+
+
+def wedges(h, height=1.0):
+    """The unit square meshed by Gmsh with size `h`, extruded along z over
+    `height` in layers of about `h`: a vtkUnstructuredGrid of wedges."""
+    key = ("wedges", h, height)
+    if key not in _cache:
+        from vtkmodules.vtkCommonDataModel import VTK_WEDGE
+
+        def build():
+            import gmsh
+            occ = gmsh.model.occ
+            occ.addRectangle(0, 0, 0, 1, 1)
+            occ.extrude([(2, 1)], 0, 0, height, numElements=[max(1, int(round(height / h)))], recombine=True)
+            occ.synchronize()
+            return [], []
+        x, cells = _generate("wedges", 3, build, h)
+        cells = np.asarray(cells, dtype=np.int64)
+        # VTK's wedge: the triangle (0, 1, 2) turns away from (3, 4, 5).
+        a, b, c = x[cells[:, 0]], x[cells[:, 1]], x[cells[:, 2]]
+        up = x[cells[:, 3:]].mean(axis=1) - x[cells[:, :3]].mean(axis=1)
+        toward = np.einsum("ij,ij->i", np.cross(b - a, c - a), up) > 0
+        cells[toward] = cells[toward][:, [0, 2, 1, 3, 5, 4]]
+        _cache[key] = _grid(x, cells, VTK_WEDGE)
     return _cache[key]

@@ -1,0 +1,516 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The fringe's aggregation (FringeAggregation.h): support integrals, the
+// affine extension weights of the ill-posed functions, P^T M P, and the
+// products with P and P^T.
+#include "Transfer/FringeAggregation.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace mp
+{
+namespace
+{
+
+/// Per point, the cells around it (compressed rows).
+struct CellsAroundPoints
+{
+  std::vector<Index> Start;
+  std::vector<Index> Cells;
+
+  explicit CellsAroundPoints(const MeshView& mesh)
+  {
+    const int corners = mesh.CornersPerCell();
+    this->Start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
+    for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    {
+      const CellCorners cell = mesh.Cell(c);
+      for (int a = 0; a < corners; ++a)
+      {
+        ++this->Start[static_cast<size_t>(cell[a]) + 1];
+      }
+    }
+    for (size_t p = 1; p < this->Start.size(); ++p)
+    {
+      this->Start[p] += this->Start[p - 1];
+    }
+    this->Cells.resize(static_cast<size_t>(this->Start.back()));
+    std::vector<Index> next(this->Start.begin(), this->Start.end() - 1);
+    for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    {
+      const CellCorners cell = mesh.Cell(c);
+      for (int a = 0; a < corners; ++a)
+      {
+        this->Cells[static_cast<size_t>(next[static_cast<size_t>(cell[a])]++)] = c;
+      }
+    }
+  }
+};
+
+/// The monomials of degree <= `degree` (1 or 2) at y (d coordinates): 1, y_a, y_a y_b.
+int Monomials(const double* y, int d, int degree, double* into)
+{
+  int m = 0;
+  into[m++] = 1.0;
+  for (int a = 0; a < d; ++a)
+  {
+    into[m++] = y[a];
+  }
+  for (int a = 0; degree > 1 && a < d; ++a)
+  {
+    for (int b = a; b < d; ++b)
+    {
+      into[m++] = y[a] * y[b];
+    }
+  }
+  return m;
+}
+
+/**
+ * The weights of `points` that give, at point i, the value of the
+ * least-squares polynomial fit of degree `degree` through them (the
+ * minimum-norm weights reproducing those polynomials at i), or empty when
+ * the points do not spread well enough to fit one stably. Degree 1 or 2:
+ * either reproduces affine functions and sums to 1.
+ */
+std::vector<double> FitWeights(
+  const MeshView& mesh, Index i, const std::vector<Index>& points, size_t keep, int degree)
+{
+  const int d = mesh.SpaceDimension;
+  const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
+  const double* xi = mesh.Point(i);
+  const Index m = static_cast<Index>(keep);
+  if (m < (degree == 1 ? terms : 3 * terms / 2))
+  {
+    return {};
+  }
+  double h = 0.0;
+  for (size_t r = 0; r < keep; ++r)
+  {
+    const Index k = points[r];
+    for (int a = 0; a < d; ++a)
+    {
+      h = std::max(h, std::abs(mesh.Point(k)[a] - xi[a]));
+    }
+  }
+  if (!(h > 0.0))
+  {
+    return {};
+  }
+  // Monomials of (x_k - x_i) / h: coordinates of order 1 about i; each
+  // point weighed by the square root of omega_k, larger near i (the fit is
+  // evaluated at i: near points tell most about it).
+  Eigen::MatrixXd X(m, terms);
+  Eigen::VectorXd omega(m);
+  for (Index r = 0; r < m; ++r)
+  {
+    double y[3];
+    double distance2 = 0.0;
+    for (int a = 0; a < d; ++a)
+    {
+      y[a] = (mesh.Point(points[static_cast<size_t>(r)])[a] - xi[a]) / h;
+      distance2 += y[a] * y[a];
+    }
+    omega(r) = 1.0 / ((distance2 + 0.25) * (distance2 + 0.25));
+    double row[10];
+    Monomials(y, d, degree, row);
+    for (int t = 0; t < terms; ++t)
+    {
+      X(r, t) = std::sqrt(omega(r)) * row[t];
+    }
+  }
+  const Eigen::MatrixXd G = X.transpose() * X / omega.sum();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> spectrum(G);
+  // Points nearly on a line or a plane (or a conic) would give huge weights.
+  if (spectrum.eigenvalues().minCoeff() < (degree == 1 ? 1e-2 : 1e-4))
+  {
+    return {};
+  }
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(terms);
+  e(0) = 1.0; // the fit's value at i (the origin of the coordinates)
+  // The weighted fit's value at i: w = Omega^(1/2) X G^-1 e (with X scaled by Omega^(1/2)).
+  const Eigen::VectorXd w =
+    omega.cwiseSqrt().cwiseProduct(X * G.ldlt().solve(e)) / omega.sum();
+  return std::vector<double>(w.data(), w.data() + m);
+}
+
+/**
+ * The fit of `degree` through the nearest points of `points` (sorted by
+ * their distance to i on return): the nearest 2 x terms first, then 4 x,
+ * then all, until one is stable. Few points keep P^T M P sparse (an
+ * aggregated function couples all of its stencil); `points` is cut to the
+ * ones used.
+ */
+std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>& points, int degree)
+{
+  const int d = mesh.SpaceDimension;
+  const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
+  const double* xi = mesh.Point(i);
+  std::vector<std::pair<double, Index>> byDistance;
+  for (Index k : points)
+  {
+    double r2 = 0.0;
+    for (int a = 0; a < d; ++a)
+    {
+      r2 += (mesh.Point(k)[a] - xi[a]) * (mesh.Point(k)[a] - xi[a]);
+    }
+    byDistance.emplace_back(r2, k);
+  }
+  // Ties (regular meshes have many) broken by the coordinates, not the
+  // ids: the stencil must not depend on the numbering.
+  std::sort(byDistance.begin(), byDistance.end(),
+    [&](const std::pair<double, Index>& a, const std::pair<double, Index>& b) {
+      if (a.first != b.first)
+      {
+        return a.first < b.first;
+      }
+      const double* p = mesh.Point(a.second);
+      const double* q = mesh.Point(b.second);
+      return std::lexicographical_compare(p, p + 3, q, q + 3);
+    });
+  for (size_t r = 0; r < points.size(); ++r)
+  {
+    points[r] = byDistance[r].second;
+  }
+  for (const size_t keep : { size_t(2 * terms), size_t(4 * terms), points.size() })
+  {
+    std::vector<double> w = FitWeights(mesh, i, points, std::min(keep, points.size()), degree);
+    if (!w.empty())
+    {
+      points.resize(w.size());
+      return w;
+    }
+    if (keep >= points.size())
+    {
+      break;
+    }
+  }
+  return {};
+}
+
+/// The ill-posed function i's stencil and weights: free points ring by ring (at most 3 rings).
+void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
+  const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& points,
+  std::vector<double>& weights)
+{
+  const int corners = mesh.CornersPerCell();
+  std::vector<Index> ring{ i };
+  std::vector<Index> next;
+  std::vector<Index> affinePoints;
+  std::vector<double> affine;
+  std::vector<Index> found;
+  points.clear();
+  weights.clear();
+  stamp[static_cast<size_t>(i)] = i;
+  for (int r = 0; r < 3 && !ring.empty(); ++r)
+  {
+    next.clear();
+    for (Index p : ring)
+    {
+      for (Index q = around.Start[static_cast<size_t>(p)]; q < around.Start[static_cast<size_t>(p) + 1]; ++q)
+      {
+        const CellCorners cell = mesh.Cell(around.Cells[static_cast<size_t>(q)]);
+        for (int a = 0; a < corners; ++a)
+        {
+          const Index k = cell[a];
+          if (stamp[static_cast<size_t>(k)] != i)
+          {
+            stamp[static_cast<size_t>(k)] = i;
+            next.push_back(k);
+            if (usable[static_cast<size_t>(k)])
+            {
+              found.push_back(k);
+            }
+          }
+        }
+      }
+    }
+    // A quadratic fit where the rings so far allow one (its extrapolation
+    // error is of third order), else an affine one from the first ring
+    // that allows it.
+    points = found;
+    weights = NearestFit(mesh, i, points, 2);
+    if (!weights.empty())
+    {
+      return;
+    }
+    if (affine.empty())
+    {
+      affinePoints = found;
+      affine = NearestFit(mesh, i, affinePoints, 1);
+    }
+    ring.swap(next);
+  }
+  points.swap(affinePoints);
+  weights.swap(affine);
+  if (weights.empty())
+  {
+    points.clear(); // no stable fit: the function stays free
+  }
+}
+
+/// Appends row `x` of M times P to `row` (pairs of column and value, unsorted).
+void AddRowTimesP(const CsrMatrix& mass, Index x, double scale, const FringeExtension& ext,
+  std::vector<std::pair<Column, double>>& row)
+{
+  for (Index p = mass.RowStart[x]; p < mass.RowStart[x + 1]; ++p)
+  {
+    const Column b = mass.ColumnIndex[p];
+    const double v = scale * mass.Values[p];
+    if (!ext.Aggregated[static_cast<size_t>(b)])
+    {
+      row.emplace_back(b, v);
+      continue;
+    }
+    for (Index q = ext.P.RowStart[b]; q < ext.P.RowStart[b + 1]; ++q)
+    {
+      row.emplace_back(ext.P.ColumnIndex[q], v * ext.P.Values[q]);
+    }
+  }
+}
+} // namespace
+
+LargeVector<double> SupportIntegrals(const MeshView& mesh)
+{
+  LargeVector<double> support(static_cast<size_t>(mesh.NumberOfPoints), 0.0);
+  const int corners = mesh.CornersPerCell();
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    // The simplex's measure from its edge vectors (area or volume).
+    const CellCorners cell = mesh.Cell(c);
+    const double* a = mesh.Point(cell[0]);
+    double e[3][3];
+    for (int k = 1; k < corners; ++k)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        e[k - 1][d] = mesh.Point(cell[k])[d] - a[d];
+      }
+    }
+    const double measure = corners == 3
+      ? 0.5 * std::abs(e[0][0] * e[1][1] - e[0][1] * e[1][0])
+      : std::abs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+          e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+          e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6.0;
+    for (int k = 0; k < corners; ++k)
+    {
+      support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
+    }
+  }
+  return support;
+}
+
+FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
+  const std::vector<double>& fraction, double threshold, double drop)
+{
+  FringeExtension ext;
+  const Index n = static_cast<Index>(valid.size());
+  ext.Aggregated.assign(static_cast<size_t>(n), 0);
+  ext.Dropped.assign(static_cast<size_t>(n), 0);
+  std::vector<char> usable(static_cast<size_t>(n), 0);
+  std::vector<Index> ill;
+  for (Index i = 0; i < n; ++i)
+  {
+    const bool wellCovered = fraction[i] >= threshold;
+    usable[i] = valid[i] && wellCovered;
+    if (valid[i] && !wellCovered)
+    {
+      ill.push_back(i);
+    }
+  }
+  if (ill.empty())
+  {
+    return ext;
+  }
+  const CellsAroundPoints around(mesh);
+  std::vector<Index> stamp(static_cast<size_t>(n), -1);
+  std::vector<std::vector<Index>> stencils(ill.size());
+  std::vector<std::vector<double>> weights(ill.size());
+  for (size_t a = 0; a < ill.size(); ++a)
+  {
+    StencilOf(mesh, around, ill[a], usable, stamp, stencils[a], weights[a]);
+    ext.Aggregated[static_cast<size_t>(ill[a])] = !stencils[a].empty();
+    ext.Dropped[static_cast<size_t>(ill[a])] = !stencils[a].empty() && fraction[ill[a]] < drop;
+    ext.Count += !stencils[a].empty();
+  }
+  // P: identity rows, the aggregated ones with their weights.
+  CsrMatrix& P = ext.P;
+  P.Rows = P.Columns = n;
+  P.RowStart.assign(static_cast<size_t>(n) + 1, 0);
+  for (Index i = 0; i < n; ++i)
+  {
+    P.RowStart[i + 1] = 1;
+  }
+  for (size_t a = 0; a < ill.size(); ++a)
+  {
+    P.RowStart[ill[a] + 1] = std::max<Index>(1, static_cast<Index>(stencils[a].size()));
+  }
+  for (Index i = 0; i < n; ++i)
+  {
+    P.RowStart[i + 1] += P.RowStart[i];
+  }
+  P.ColumnIndex.resize(static_cast<size_t>(P.NonZeros()));
+  P.Values.resize(static_cast<size_t>(P.NonZeros()));
+  for (Index i = 0; i < n; ++i)
+  {
+    P.ColumnIndex[P.RowStart[i]] = static_cast<Column>(i);
+    P.Values[P.RowStart[i]] = 1.0;
+  }
+  for (size_t a = 0; a < ill.size(); ++a)
+  {
+    std::vector<std::pair<Column, double>> row;
+    for (size_t k = 0; k < stencils[a].size(); ++k)
+    {
+      row.emplace_back(static_cast<Column>(stencils[a][k]), weights[a][k]);
+    }
+    std::sort(row.begin(), row.end());
+    Index at = P.RowStart[ill[a]];
+    for (const auto& entry : row)
+    {
+      P.ColumnIndex[at] = entry.first;
+      P.Values[at++] = entry.second;
+    }
+  }
+  return ext;
+}
+
+CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
+{
+  const Index n = mass.Rows;
+  // Which aggregated rows refer to each free function (P^T's rows), as
+  // compressed rows; and which rows change at all (those and the rows with
+  // an aggregated column).
+  std::vector<Index> start(static_cast<size_t>(n) + 1, 0);
+  for (Index a = 0; a < n; ++a)
+  {
+    for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+    {
+      ++start[static_cast<size_t>(ext.P.ColumnIndex[q]) + 1];
+    }
+  }
+  for (Index j = 0; j < n; ++j)
+  {
+    start[j + 1] += start[j];
+  }
+  std::vector<std::pair<Index, double>> referrers(static_cast<size_t>(start.back()));
+  std::vector<Index> next(start.begin(), start.end() - 1);
+  for (Index a = 0; a < n; ++a)
+  {
+    for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+    {
+      referrers[static_cast<size_t>(next[ext.P.ColumnIndex[q]]++)] = { a, ext.P.Values[q] };
+    }
+  }
+  CsrMatrix out;
+  out.Rows = mass.Rows;
+  out.Columns = mass.Columns;
+  out.RowStart.assign(static_cast<size_t>(n) + 1, 0);
+  // (Written in place: a copy of M's arrays is most of the cost.)
+  auto& columns = out.ColumnIndex;
+  auto& values = out.Values;
+  columns.reserve(static_cast<size_t>(mass.NonZeros()) * 11 / 10);
+  values.reserve(static_cast<size_t>(mass.NonZeros()) * 11 / 10);
+  // A changed row's terms summed into a dense accumulator (its touched
+  // columns listed, then sorted: a row's distinct columns are few).
+  std::vector<std::pair<Column, double>> row;
+  std::vector<double> sum(static_cast<size_t>(n), 0.0);
+  std::vector<char> touched(static_cast<size_t>(n), 0);
+  std::vector<Column> used;
+  for (Index j = 0; j < n; ++j)
+  {
+    bool changes = ext.Aggregated[j] || start[j + 1] > start[j];
+    for (Index p = mass.RowStart[j]; p < mass.RowStart[j + 1] && !changes; ++p)
+    {
+      changes = ext.Aggregated[mass.ColumnIndex[p]] != 0;
+    }
+    if (!changes)
+    {
+      columns.insert(columns.end(), mass.ColumnIndex.begin() + mass.RowStart[j],
+        mass.ColumnIndex.begin() + mass.RowStart[j + 1]);
+      values.insert(values.end(), mass.Values.begin() + mass.RowStart[j], mass.Values.begin() + mass.RowStart[j + 1]);
+      out.RowStart[j + 1] = static_cast<Index>(columns.size());
+      continue;
+    }
+    row.clear();
+    used.clear();
+    if (ext.Aggregated[static_cast<size_t>(j)])
+    {
+      row.emplace_back(static_cast<Column>(j), 1.0); // decoupled: its value comes from P
+    }
+    else
+    {
+      // Row j of P^T M P = (M P)_j + sum over the rows a aggregated onto j of w_aj (M P)_a.
+      AddRowTimesP(mass, j, 1.0, ext, row);
+      for (Index r = start[j]; r < start[j + 1]; ++r)
+      {
+        AddRowTimesP(mass, referrers[static_cast<size_t>(r)].first, referrers[static_cast<size_t>(r)].second, ext, row);
+      }
+    }
+    for (const auto& term : row)
+    {
+      if (!touched[static_cast<size_t>(term.first)])
+      {
+        touched[static_cast<size_t>(term.first)] = 1;
+        used.push_back(term.first);
+      }
+      sum[static_cast<size_t>(term.first)] += term.second;
+    }
+    std::sort(used.begin(), used.end());
+    for (const Column k : used)
+    {
+      columns.push_back(k);
+      values.push_back(sum[static_cast<size_t>(k)]);
+      sum[static_cast<size_t>(k)] = 0.0;
+      touched[static_cast<size_t>(k)] = 0;
+    }
+    out.RowStart[j + 1] = static_cast<Index>(columns.size());
+  }
+  return out;
+}
+
+void RestrictToFree(const FringeExtension& ext, const double* x, double* y, int c)
+{
+  const Index n = ext.P.Rows;
+  std::copy(x, x + n * c, y);
+  for (Index a = 0; a < n; ++a)
+  {
+    if (!ext.Aggregated[static_cast<size_t>(a)])
+    {
+      continue;
+    }
+    for (Index q = ext.P.RowStart[a]; q < ext.P.RowStart[a + 1]; ++q)
+    {
+      const Index k = ext.P.ColumnIndex[q];
+      for (int m = 0; m < c; ++m)
+      {
+        y[k * c + m] += ext.P.Values[q] * x[a * c + m];
+      }
+    }
+    std::fill(y + a * c, y + (a + 1) * c, 0.0);
+  }
+}
+
+void ExtendFromFree(const FringeExtension& ext, double* x, int c)
+{
+  const Index n = ext.P.Rows;
+  for (Index a = 0; a < n; ++a)
+  {
+    if (!ext.Aggregated[static_cast<size_t>(a)])
+    {
+      continue;
+    }
+    std::fill(x + a * c, x + (a + 1) * c, 0.0);
+    for (Index q = ext.P.RowStart[a]; q < ext.P.RowStart[a + 1]; ++q)
+    {
+      const Index k = ext.P.ColumnIndex[q];
+      for (int m = 0; m < c; ++m)
+      {
+        x[a * c + m] += ext.P.Values[q] * x[k * c + m];
+      }
+    }
+  }
+}
+} // namespace mp

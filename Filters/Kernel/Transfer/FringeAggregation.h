@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file FringeAggregation.h
+ * @brief A well-posed fringe: P1 target functions whose support the source
+ *        covers too little are aggregated to well-covered neighbours.
+ *
+ * Where the source covers only a sliver of a target function's support,
+ * its row of M_tt is tiny and nearly a combination of its neighbours': the
+ * L2 projection then fits the function's value to the sliver and can put
+ * it far off (the value is extrapolated from a sliver). Aggregated finite
+ * elements (Badia, Verdugo and Martin 2018) remove these
+ * functions from the unknowns: an ill-posed function i (its covered
+ * fraction, int_covered phi_i / int phi_i, below a threshold) takes the
+ * value of the affine extension of free (well-covered) functions nearby,
+ *
+ *     u_i = sum_k w_ik u_k,   sum_k w_ik = 1,   sum_k w_ik x_k = x_i,
+ *
+ * so u = P u_free with P the identity on free functions. The projection is
+ * the Galerkin one on the span of the aggregated basis P^T phi:
+ *
+ *     P^T M_tt P u_free = P^T M_ts u_s.
+ *
+ * Since P reproduces affine functions, linear fields stay exact; since
+ * every row of P sums to 1, the aggregated basis still sums to 1 on the
+ * covered part and the integral is conserved; P^T M_tt P is symmetric
+ * positive definite on the free functions.
+ *
+ * The weights are those of the weighted least-squares quadratic fit (else
+ * affine) through the free points of the rings around i (the points
+ * sharing a cell with i, then theirs), evaluated at i: ring by ring until
+ * the points allow a stable fit. Quadratic: the extension's error is of
+ * third order, below the projection's second.
+ */
+#ifndef MeshProjection_Kernel_FringeAggregation_h
+#define MeshProjection_Kernel_FringeAggregation_h
+
+#include "Mesh/LargeArray.h"
+#include "Mesh/MeshView.h"
+#include "Transfer/CsrMatrix.h"
+
+#include <vector>
+
+namespace mp
+{
+/// Per point of a volume mesh (triangles in the x-y plane in 2D, tetrahedra in 3D): int phi_i over its whole support.
+LargeVector<double> SupportIntegrals(const MeshView& mesh);
+
+/// The affine extension of a fringe: P (functions x functions) and which rows it aggregates.
+struct FringeExtension
+{
+  CsrMatrix P;                ///< identity rows for free functions, weights for aggregated ones
+  std::vector<char> Aggregated; ///< per function: 1 when its value comes from others
+  std::vector<char> Dropped;    ///< per function: aggregated and covered below the drop fraction
+  Index Count = 0;            ///< aggregated functions
+};
+
+/**
+ * Functions covered less than this fraction of their support are
+ * aggregated and, in the output, invalid: their support holds no more than
+ * a corner of the source, so their value would be an extrapolation over
+ * about a cell (their share of the covered integral goes to their stencil).
+ */
+constexpr double FringeDropFraction = 0.01;
+
+/**
+ * The extension of the functions of `mesh`'s points that are valid but
+ * whose `fraction` is below `threshold`, each onto the free points of the
+ * rings around it. A function with no well-spread free points within a few
+ * rings stays free. Those below `drop` are marked Dropped too.
+ */
+FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
+  const std::vector<double>& fraction, double threshold, double drop);
+
+/**
+ * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:
+ * its unknown is decoupled, its right-hand side P^T b is 0).
+ */
+CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& extension);
+
+/// y = P^T x (functions x c); aggregated rows of y are 0.
+void RestrictToFree(const FringeExtension& extension, const double* x, double* y, int c);
+
+/// x = P x in place (functions x c): aggregated rows from the free ones.
+void ExtendFromFree(const FringeExtension& extension, double* x, int c);
+} // namespace mp
+
+#endif

@@ -1,0 +1,221 @@
+"""The fringe and beyond it, on Gmsh pairs that overlap in part: Input is
+the Source's mesher's domain moved so that it reaches beyond the Source
+(2D triangles and quads, 3D tetrahedra at two shifts, wedges).
+
+The fringe (FringeThreshold, default 0.25):
+ - the smooth field sin(2x)cos(3y)+z^2, point data and cell data to points:
+   the worst error at a valid point is within 5x the worst at interior
+   points (points whose cells are all covered); without the fringe's
+   aggregation (FringeThreshold 0) it is not (the pairs show the problem);
+ - a linear field exact at every valid point (1e-8 of its range);
+ - integrals conserved over the covered part (TargetIntegral_ equals
+   the sum of M_ts u_s, the exported mixed matrix);
+ - the exported matrices with the fringe's extension P reproduce the result;
+ - no point whose support is covered 2% or more is dropped to invalid.
+Extrapolation (1 smooth, 2 nearest):
+ - every point and cell gets a finite value within the Source field's range
+   (the valid values are kept within it), vtkValidPointMask is unchanged,
+   vtkExtrapolatedPointMask/CellMask mark exactly the others;
+ - smooth is linear in the data (2f + 3 gives 2u + 3);
+ - a part of Input connected to no valid point keeps the fill value, said
+   in one warning;
+ - a second execution reusing the operators gives the same values.
+"""
+import numpy as np
+import scipy.sparse.linalg
+
+import meshprojection
+from meshprojection import fringe_extension, operator_matrices
+from mpsupport import gmshmeshes
+from mpsupport.testing import check, finish, mortar
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkFiltersCore import vtkAppendFilter, vtkCellCenters
+
+
+def smooth(x):
+    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
+
+
+def linear(x):
+    return 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]
+
+
+def with_fields(mesh):
+    """A copy of mesh with point arrays s (smooth), l (linear), cell array c (smooth at centroids)."""
+    g = mesh.NewInstance()
+    g.DeepCopy(mesh)
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    for name, f in (("s", smooth), ("l", linear)):
+        a = numpy_to_vtk(f(x), deep=True)
+        a.SetName(name)
+        g.GetPointData().AddArray(a)
+    centres = vtkCellCenters()
+    centres.SetInputData(g)
+    centres.Update()
+    a = numpy_to_vtk(smooth(vtk_to_numpy(centres.GetOutput().GetPoints().GetData())), deep=True)
+    a.SetName("c")
+    g.GetCellData().AddArray(a)
+    return g
+
+
+def array(out, name, cells=False):
+    data = out.GetCellData() if cells else out.GetPointData()
+    return vtk_to_numpy(data.GetArray(name))
+
+
+def point_cells(out):
+    ids = vtkIdList()
+    around = []
+    for p in range(out.GetNumberOfPoints()):
+        out.GetPointCells(p, ids)
+        around.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+    return around
+
+
+def ratios(out, around):
+    """Worst error at a valid point over the worst at interior points, for s and c (cells to points)."""
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    covered = array(out, "CoveredFraction", cells=True)
+    interior = valid & np.array([min(covered[c] for c in cells) > 1 - 1e-9 for cells in around])
+    result = []
+    for name in ("s", "c"):
+        error = np.abs(array(out, name) - smooth(x))
+        result.append(np.max(error[valid]) / np.max(error[interior]))
+    return result
+
+
+# ---- the fringe ---------------------------------------------------------------
+pairs = [
+    ("2D triangles", gmshmeshes.moved(gmshmeshes.planar(0.05), translate=(0.31, 0.17, 0)),
+     gmshmeshes.planar(0.065)),
+    ("2D quads", gmshmeshes.moved(gmshmeshes.planar(0.05, quads=True), translate=(0.31, 0.17, 0)),
+     gmshmeshes.planar(0.065, quads=True)),
+    ("3D tetrahedra, shift 1", gmshmeshes.moved(gmshmeshes.volume("box", 0.08), translate=(0.27, 0.13, 0.21)),
+     gmshmeshes.volume("box", 0.104)),
+    ("3D tetrahedra, shift 2", gmshmeshes.moved(gmshmeshes.volume("box", 0.08), translate=(-0.33, 0.41, 0.07)),
+     gmshmeshes.volume("box", 0.104)),
+    ("3D wedges", gmshmeshes.moved(gmshmeshes.wedges(0.08), translate=(0.27, 0.13, 0.21)),
+     gmshmeshes.wedges(0.104)),
+]
+worst_before = 0.0
+for name, target, source_mesh in pairs:
+    source = with_fields(source_mesh)
+    around = point_cells(target)
+    before = mortar(target, source, pieces=False, CellDataTarget=1, FringeThreshold=0).GetOutput()
+    f = mortar(target, source, pieces=False, CellDataTarget=1, CacheOperator=True)
+    out = f.GetOutput()
+    r0, r = ratios(before, around), ratios(out, around)
+    worst_before = max(worst_before, *r0)
+    print("%-24s worst/interior error: point data %6.1f -> %4.2f, cell data to points %6.1f -> %4.2f"
+          % (name, r0[0], r[0], r0[1], r[1]))
+    check(r[0] <= 5 and r[1] <= 5, "%s: fringe errors within 5x the interior's (%.2f, %.2f)" % (name, r[0], r[1]))
+    # Linear exact at every valid point.
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    exact = linear(x)
+    error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
+    check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
+    # Conserved over the covered part: the integral of u_t there (the
+    # filter's TargetIntegral_, over the valid points) is that of u_s,
+    # sum_i (M_ts u_s)_i (the exported M_ts, point data to points).
+    exact = operator_matrices(f)[1] @ array(source, "s")
+    ti = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(ti - exact.sum()) <= 1e-12 * np.abs(exact).sum(),
+          "%s: integral conserved (%.15g vs %.15g)" % (name, ti, exact.sum()))
+    # The exported operator reproduces the result: u = P x, (P^T M_tt P) x = P^T M_ts u_s.
+    m_tt, m_ts, _ = operator_matrices(f)
+    P = fringe_extension(f)
+    free = P.getnnz(axis=0) > 0
+    A = (P.T @ m_tt @ P).tocsc()[free][:, free]
+    b = (P.T @ (m_ts @ array(source, "s")))[free]
+    u = P[:, free] @ scipy.sparse.linalg.spsolve(A.tocsc(), b)
+    error = np.max(np.abs(u[valid] - array(out, "s")[valid]))
+    check(P.shape[0] > free.sum() and error < 1e-10,
+          "%s: the exported operator with P gives the result (%d aggregated, %.2g)"
+          % (name, P.shape[0] - free.sum(), error))
+    # Points dropped to invalid: their support is covered less than 2% (the
+    # covered integrals of the hat functions, the row sums of M_tt, over
+    # their whole integrals, the row sums of the mass matrix of Input on itself).
+    reached = array(before, "vtkValidPointMask").astype(bool)
+    covered = np.asarray(operator_matrices(f)[0].sum(axis=1)).ravel()
+    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
+    fraction = covered / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
+    dropped = reached & ~valid
+    check(not (dropped & (fraction >= 0.02)).any(),
+          "%s: no point covered 2%% or more dropped (%d dropped, largest fraction %.3g)"
+          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+check(worst_before > 20, "the pairs show the fringe problem without the aggregation (worst ratio %.1f)" % worst_before)
+
+# ---- extrapolation --------------------------------------------------------------
+both_ways = dict(pieces=False, PointDataTarget=3, CellDataTarget=3)
+for (name, target, source_mesh), mode in ((pairs[0], 1), (pairs[0], 2), (pairs[2], 1), (pairs[4], 2)):
+    source = with_fields(source_mesh)
+    low, high = array(source, "s").min(), array(source, "s").max()
+    plain = mortar(target, source, **both_ways).GetOutput()
+    out = mortar(target, source, Extrapolation=mode, **both_ways).GetOutput()
+    for cells, mask, valid_mask in ((False, "vtkExtrapolatedPointMask", "vtkValidPointMask"),
+                                    (True, "vtkExtrapolatedCellMask", "vtkValidCellMask")):
+        u = array(out, "s", cells)
+        check(np.isfinite(u).all(), "%s, Extrapolation %d: every %s finite" % (name, mode, "cell" if cells else "point"))
+        check(u.min() >= low - 1e-12 and u.max() <= high + 1e-12,
+              "%s, Extrapolation %d: within the Source's range [%g, %g] (%g, %g)" % (name, mode, low, high, u.min(), u.max()))
+        valid = array(out, valid_mask, cells)
+        check(np.array_equal(valid, array(plain, valid_mask, cells)), "Extrapolation %d: %s unchanged" % (mode, valid_mask))
+        extrapolated = array(out, mask, cells)
+        check(np.array_equal(extrapolated.astype(bool), ~valid.astype(bool)),
+              "Extrapolation %d: %s marks exactly the values not valid" % (mode, mask))
+        # Valid values unchanged (but kept within the Source's range).
+        same = np.clip(array(plain, "s", cells), low, high)[valid.astype(bool)]
+        check(np.array_equal(u[valid.astype(bool)], same), "%s, Extrapolation %d: valid values unchanged" % (name, mode))
+
+# Smooth extrapolation is linear in the data.
+name, target, source_mesh = pairs[0]
+source = with_fields(source_mesh)
+scaled = with_fields(source_mesh)
+s = array(scaled, "s")
+s[:] = 2 * s + 3
+scaled.GetPointData().GetArray("s").Modified()
+u1 = array(mortar(target, source, pieces=False, Extrapolation=1).GetOutput(), "s")
+u2 = array(mortar(target, scaled, pieces=False, Extrapolation=1).GetOutput(), "s")
+error = np.max(np.abs(u2 - (2 * u1 + 3)))
+check(error < 1e-9, "smooth extrapolation linear in the data (%g)" % error)
+
+# A part of Input connected to no valid point keeps the fill value, with one warning.
+far = gmshmeshes.moved(gmshmeshes.planar(0.1), translate=(3, 0, 0))
+both = vtkAppendFilter()
+both.AddInputData(target)
+both.AddInputData(far)
+both.Update()
+texts = []
+f = meshprojection.vtkMeshProjectionFilter()
+f.AddObserver("WarningEvent", lambda obj, event: texts.append(1))
+f.SetInputData(both.GetOutput())
+f.SetSourceData(source)
+f.SetExtrapolation(1)
+f.SetCacheOperator(True)
+f.Update()
+out = f.GetOutput()
+u = array(out, "s")
+x = vtk_to_numpy(out.GetPoints().GetData())
+check(np.isnan(u[x[:, 0] > 2]).all(), "a part connected to no valid point keeps NaN")
+check(np.isfinite(u[x[:, 0] < 2]).all(), "the connected part is extrapolated")
+check(not array(out, "vtkExtrapolatedPointMask")[x[:, 0] > 2].any(), "the unconnected part is not marked extrapolated")
+check(len(texts) >= 1, "the unconnected part is said")
+# Reused operators (a time step): the same extrapolated values, one warning only.
+first = np.array(u)
+said = len(texts)
+# (Inputs given as data are not time series: the second execution keeps an
+# assembled operator, the third reuses it.)
+for step in (2, 3):
+    source.GetPointData().GetArray("s").Modified()
+    f.Modified()
+    f.Update()
+check(f.GetOperatorReused(), "the third execution reuses the operator")
+again = array(f.GetOutput(), "s")
+check(np.array_equal(np.isnan(again), np.isnan(first)) and np.allclose(again[~np.isnan(first)], first[~np.isnan(first)], atol=1e-12),
+      "reused operators: the same extrapolated values")
+check(len(texts) == said, "the unconnected part is said once per filter")
+
+finish()

@@ -1,0 +1,161 @@
+"""The fringe and extrapolation on several MPI processes (run under mpiexec
+with pvbatch --mpi --symmetric), on Gmsh pairs that overlap in part (2D
+triangles, 3D tetrahedra): Input split in blocks along x, Source at random.
+
+The fringe's stencils are each process's own (a point shared by processes
+is left free), so the values near the fringe where it crosses a partition
+boundary differ from the serial ones by about the projection's error; every
+other property holds as in serial. Checked on every process, for its points:
+ - the worst error at a valid point within 5x the worst at interior points
+   (the interior measured by the serial run), the linear field exact;
+ - the difference to the serial values within twice the serial interior
+   error (it is about that error where the fringe crosses a partition
+   boundary, and smaller elsewhere);
+ - the masks: vtkValidPointMask as serial away from shared points,
+   vtkExtrapolatedPointMask exactly where not valid (Extrapolation 1), and
+   every point then finite and within the Source field's range;
+ - shared points away from the fringe: the same value on every process
+   (bit for bit; at the fringe each process has its own side's extension);
+ - the integral over the covered part (a total over the processes) equals
+   the serial one.
+"""
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkFiltersCore import vtkCellCenters
+
+from mpsupport import gmshmeshes, meshes, mpi
+
+controller, made_here = mpi.start()
+rank = controller.GetLocalProcessId()
+size = controller.GetNumberOfProcesses()
+
+import meshprojection  # noqa: E402  (after MPI is up)
+
+check = mpi.Checks(controller, made_here)
+
+
+def smooth(x):
+    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
+
+
+def linear(x):
+    return 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]
+
+
+def add(data, name, values):
+    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
+    a.SetName(name)
+    data.AddArray(a)
+
+
+def grid(mesh, numbered=True):
+    """mesh as a vtkUnstructuredGrid, with origId on its points when numbered."""
+    g = meshes.extract(mesh, np.ones(mesh.GetNumberOfCells(), bool))
+    if not numbered:
+        return g
+    a = numpy_to_vtkIdTypeArray(np.arange(g.GetNumberOfPoints(), dtype=np.int64), deep=True)
+    a.SetName("origId")
+    g.GetPointData().AddArray(a)
+    return g
+
+
+def with_fields(g):
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    add(g.GetPointData(), "s", smooth(x))
+    add(g.GetPointData(), "l", linear(x))
+    return g
+
+
+def run(filter_class, target, source, **props):
+    f = filter_class()
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetCacheOperator(False)
+    for k, v in props.items():
+        getattr(f, "Set" + k)(v)
+    f.Update()
+    return f.GetOutput()
+
+
+def array(out, name):
+    return vtk_to_numpy(out.GetPointData().GetArray(name))
+
+
+def interior_points(out):
+    covered = vtk_to_numpy(out.GetCellData().GetArray("CoveredFraction"))
+    ids = vtkIdList()
+    inside = np.ones(out.GetNumberOfPoints(), bool)
+    for p in range(out.GetNumberOfPoints()):
+        out.GetPointCells(p, ids)
+        inside[p] = min(covered[ids.GetId(k)] for k in range(ids.GetNumberOfIds())) > 1 - 1e-9
+    return inside
+
+
+pairs = [
+    ("2D triangles", grid(gmshmeshes.moved(gmshmeshes.planar(0.05), translate=(0.31, 0.17, 0))),
+     with_fields(grid(gmshmeshes.planar(0.065), False))),
+    ("3D tetrahedra", grid(gmshmeshes.moved(gmshmeshes.volume("box", 0.1), translate=(0.27, 0.13, 0.21))),
+     with_fields(grid(gmshmeshes.volume("box", 0.13), False))),
+]
+for name, target, source in pairs:
+    serial = run(meshprojection.vtkMeshProjectionFilter, target, source)
+    x = vtk_to_numpy(serial.GetPoints().GetData())
+    serial_valid = array(serial, "vtkValidPointMask").astype(bool)
+    inside = interior_points(serial) & serial_valid
+    interior_error = np.max(np.abs(array(serial, "s") - smooth(x))[inside])
+    # This process's part: Input in blocks along x, Source at random.
+    centres = vtkCellCenters()
+    centres.SetInputData(target)
+    centres.Update()
+    cx = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())[:, 0]
+    n = target.GetNumberOfCells()
+    owner = np.minimum((np.argsort(np.argsort(cx)) * size) // n, size - 1)
+    part = meshes.extract(target, owner == rank)
+    keep = np.random.default_rng(8).integers(0, size, source.GetNumberOfCells()) == rank
+    local_source = meshes.extract(source, keep)
+    for mode in (0, 1):
+        out = run(meshprojection.vtkPMeshProjectionFilter, part, local_source, Extrapolation=mode)
+        ids = array(out, "origId")
+        # Points on several processes (by their original ids).
+        counts = np.zeros(target.GetNumberOfPoints())
+        for r, theirs in enumerate(mpi.allgather(controller, ids.astype(np.float64))):
+            counts[np.asarray(theirs, dtype=np.int64)] += 1
+        shared = counts[ids] > 1
+        valid = array(out, "vtkValidPointMask").astype(bool)
+        u = array(out, "s")
+        error = np.abs(u - smooth(x[ids]))
+        worst = np.max(error[valid], initial=0.0) / interior_error
+        check(worst <= 5, "%s: fringe error %.2f x the interior's" % (name, worst))
+        exact = linear(x[ids])
+        lin = np.max(np.abs(array(out, "l") - exact)[valid], initial=0.0) / np.ptp(linear(x))
+        check(lin < 1e-8, "%s: linear exact (%.2g of its range)" % (name, lin))
+        both_valid = valid & serial_valid[ids]
+        off = np.max(np.abs(u - array(serial, "s")[ids])[both_valid], initial=0.0) / interior_error
+        check(off <= 2, "%s: within twice the interior error of serial (%.2g of it)" % (name, off))
+        check(np.array_equal(valid[~shared], serial_valid[ids][~shared]), "%s: valid mask as serial" % name)
+        # Shared points away from the fringe (never aggregated): one value on every process.
+        mine = np.full(target.GetNumberOfPoints(), -np.inf)
+        mine[ids] = u
+        for theirs_ids, theirs_u in zip(mpi.allgather(controller, ids.astype(np.float64)),
+                                        mpi.allgather(controller, u)):
+            t_ids = np.asarray(theirs_ids, dtype=np.int64)
+            both = np.isin(t_ids, ids) & inside[t_ids]
+            same = np.asarray(theirs_u)[both]
+            here = mine[t_ids[both]]
+            check(np.array_equal(np.isnan(same), np.isnan(here)) and np.array_equal(same[~np.isnan(same)], here[~np.isnan(here)]),
+                  "%s: shared points have one value" % name)
+        if mode == 1:
+            low, high = array(source, "s").min(), array(source, "s").max()
+            check(np.isfinite(u).all() and u.min() >= low - 1e-12 and u.max() <= high + 1e-12,
+                  "%s: extrapolated within the Source's range [%g, %g]: %d not finite, %g..%g, at shared %s"
+                  % (name, low, high, np.count_nonzero(~np.isfinite(u)), np.nanmin(u), np.nanmax(u), shared[~np.isfinite(u)].all()))
+            check(np.array_equal(array(out, "vtkExtrapolatedPointMask").astype(bool), ~valid),
+                  "%s: vtkExtrapolatedPointMask marks the values not valid" % name)
+        else:
+            total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+            reference = serial.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+            check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
+                  "%s: integral %.15g, serial %.15g" % (name, total, reference))
+
+check.finish("%d processes, fringe" % size)
