@@ -17,8 +17,8 @@
 
 namespace mpvtk
 {
-bool MPIParts::SolveGathered(const mp::CsrMatrix& A, const double* B, double* X, int c,
-  const std::vector<char>& converged)
+bool MPIParts::SolveGathered(const RowSharing& shared, const mp::CsrMatrix& A, const double* B,
+  double* X, int c, const std::vector<char>& converged)
 {
   // The rare case of iterations that did not converge (targets covered
   // only in slivers): the whole matrix on process 0. Each process sends,
@@ -42,8 +42,8 @@ bool MPIParts::SolveGathered(const mp::CsrMatrix& A, const double* B, double* X,
   mine.push_back(static_cast<double>(rows));
   for (mp::Index f = 0; f < rows; ++f)
   {
-    mine.push_back(static_cast<double>(this->RowGlobal[f]));
-    mine.push_back(this->Counted[f] ? 1.0 : 0.0);
+    mine.push_back(static_cast<double>(shared.RowGlobal[f]));
+    mine.push_back(shared.Counted[f] ? 1.0 : 0.0);
     for (int k : open)
     {
       mine.push_back(B[f * c + k]);
@@ -54,8 +54,8 @@ bool MPIParts::SolveGathered(const mp::CsrMatrix& A, const double* B, double* X,
   {
     for (mp::Index e = A.RowStart[f]; e < A.RowStart[f + 1]; ++e)
     {
-      mine.push_back(static_cast<double>(this->RowGlobal[f]));
-      mine.push_back(static_cast<double>(this->RowGlobal[static_cast<size_t>(A.ColumnIndex[e])]));
+      mine.push_back(static_cast<double>(shared.RowGlobal[f]));
+      mine.push_back(static_cast<double>(shared.RowGlobal[static_cast<size_t>(A.ColumnIndex[e])]));
       mine.push_back(A.Values[e]);
     }
   }

@@ -78,10 +78,28 @@ public:
   vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
   mp::SolverHooks Hooks(bool points, mp::Index rows,
     const std::function<vtkIdType(mp::Index)>& dataSetPoint) override;
+  /// The fringe's halo of the last shared dataset (TargetHalo.cxx): see Parts::Halo.
+  mp::FringeHalo Halo(const mp::MeshView& target) override;
+
+  /**
+   * The rows of a distributed system as its hooks see them: which rows
+   * this process shares with which others, which it counts, and each row's
+   * global id. One for the target's points (Hooks), one for the fringe's
+   * extended rows (Halo).
+   */
+  struct RowSharing
+  {
+    std::vector<int> Neighbours; ///< ascending ranks
+    std::vector<std::vector<mp::Index>> Rows; ///< per neighbour, the rows shared with it, in an order both agree on
+    std::vector<mp::Index> SharedRows; ///< distinct, ascending
+    std::vector<std::vector<mp::Index>> Copies; ///< rows of one point, ascending, first the rows' representative
+    std::vector<char> Counted;
+    std::vector<long long> RowGlobal;
+  };
   /// The hooks' Exchange: completes the shared rows of v (rows x width) with
   /// the parts' sum, in the order of their processes (the same value
   /// everywhere, bit for bit), or with their minimum.
-  void Complete(double* v, int width, bool minimum);
+  void Complete(const RowSharing& rows, double* v, int width, bool minimum);
 
 private:
   // ShareTarget's steps (SharedPoints.cxx).
@@ -105,8 +123,20 @@ private:
 
   /// The hooks' Direct: the system's parts gathered on process 0, solved
   /// there, each process's rows sent back (GatheredSolve.cxx).
-  bool SolveGathered(const mp::CsrMatrix& A, const double* B, double* X, int c,
-    const std::vector<char>& converged);
+  bool SolveGathered(const RowSharing& rows, const mp::CsrMatrix& A, const double* B, double* X,
+    int c, const std::vector<char>& converged);
+  /// The hooks (sums, exchanges, the direct fallback) over `rows`.
+  mp::SolverHooks HooksOver(const RowSharing& rows);
+  // The halo's steps (TargetHalo.cxx).
+  /// The other processes' cells within `reach` of this part's box, with
+  /// their points, as ghost cells and points of `halo` (`boxes`: every
+  /// process's box of its points); per ghost point, its global id.
+  std::vector<long long> ReceiveHaloCells(const mp::MeshView& target,
+    const std::vector<Box>& boxes, double reach, mp::FringeHalo& halo);
+  /// HaloRows: the extended rows' sharing, found by global ids among the
+  /// rows inside each other process's box grown by `reach`.
+  void ShareHaloRows(const mp::MeshView& target, const mp::FringeHalo& halo,
+    const std::vector<long long>& ghostIds, const std::vector<Box>& boxes, double reach);
 
   vtkMultiProcessController* C;
   vtkMPICommunicator* Mpi;
@@ -119,19 +149,17 @@ private:
   std::vector<int> Neighbours;
   std::vector<std::vector<vtkIdType>> SharedPoints;
   std::vector<int> Owner;
-  // The hooks' state (kernel rows).
-  std::vector<std::vector<mp::Index>> Rows;
-  std::vector<char> Counted;
-  std::vector<mp::Index> SharedRows; ///< distinct, ascending
+  // The hooks' state (kernel rows): the target's points, the fringe's extended rows.
+  RowSharing PointRows;
+  RowSharing HaloRows;
   /// Points of one process at one place (or with one global id, as a
   /// ghost cells generator may leave them) are one point: each point's
-  /// first copy (Representative), and the rows of those with copies.
+  /// first copy (Representative); RowSharing::Copies holds the rows of
+  /// those with copies.
   std::vector<vtkIdType> Representative;
-  std::vector<std::vector<mp::Index>> Copies; ///< rows of one point, ascending, first the rows' representative
   /// Per point of the last shared target: its global identity (its
-  /// GlobalIds value, given or made); per row of the hooks: its point's.
+  /// GlobalIds value, given or made).
   std::vector<long long> GlobalOf;
-  std::vector<long long> RowGlobal;
 };
 } // namespace mpvtk
 

@@ -20,6 +20,7 @@
 #define MeshProjection_Parallel_Parts_h
 
 #include "Transfer/BlockCG.h" // SolverHooks
+#include "Transfer/MortarOperator.h" // FringeHalo
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -126,6 +127,14 @@ public:
    */
   virtual mp::SolverHooks Hooks(
     bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint) = 0;
+  /**
+   * The fringe's halo (MortarOperator::AggregateFringe) of the last shared
+   * dataset, once its point hooks are made (Hooks): `target` is its kernel
+   * mesh (rows as Hooks numbered them). The cells of other processes' parts
+   * within three rings of this part's points, with their points, and the
+   * hooks over the extended rows. Serial: no halo (no hooks).
+   */
+  virtual mp::FringeHalo Halo(const mp::MeshView& target) = 0;
   /// Bytes this process sent (Source cells, shared rows) since it was made.
   virtual double SentBytes() const = 0;
 };
@@ -155,6 +164,7 @@ public:
   {
     return mp::SolverHooks();
   }
+  mp::FringeHalo Halo(const mp::MeshView&) override { return mp::FringeHalo(); }
   double SentBytes() const override { return 0; }
 };
 } // namespace mpvtk

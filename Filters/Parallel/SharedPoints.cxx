@@ -235,44 +235,44 @@ vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target)
   return copy;
 }
 
-void MPIParts::Complete(double* v, int width, bool minimum)
+void MPIParts::Complete(const RowSharing& rows, double* v, int width, bool minimum)
 {
   auto combine = [minimum](double& into, double value) {
     into = minimum ? std::min(into, value) : into + value;
   };
   // Copies of one point here: combined into its first copy (in row order).
-  for (const std::vector<mp::Index>& rows : this->Copies)
+  for (const std::vector<mp::Index>& copies : rows.Copies)
   {
-    for (size_t j = 1; j < rows.size(); ++j)
+    for (size_t j = 1; j < copies.size(); ++j)
     {
       for (int c = 0; c < width; ++c)
       {
-        combine(v[rows[0] * width + c], v[rows[j] * width + c]);
+        combine(v[copies[0] * width + c], v[copies[j] * width + c]);
       }
     }
   }
-  const size_t k = this->Neighbours.size();
+  const size_t k = rows.Neighbours.size();
   std::vector<std::vector<double>> send(k), recv(k);
   for (size_t i = 0; i < k; ++i)
   {
-    send[i].reserve(this->Rows[i].size() * width);
-    for (mp::Index f : this->Rows[i])
+    send[i].reserve(rows.Rows[i].size() * width);
+    for (mp::Index f : rows.Rows[i])
     {
       send[i].insert(send[i].end(), v + f * width, v + (f + 1) * width);
     }
     recv[i].resize(send[i].size());
   }
-  this->Swap(this->Neighbours, send, recv);
+  this->Swap(rows.Neighbours, send, recv);
   // Each shared row: the parts combined in the order of their processes,
   // from 0, on every process alike (the same value everywhere, bit for bit).
   std::unordered_map<mp::Index, size_t> slot;
-  slot.reserve(this->SharedRows.size());
-  std::vector<double> own(this->SharedRows.size() * width);
+  slot.reserve(rows.SharedRows.size());
+  std::vector<double> own(rows.SharedRows.size() * width);
   std::vector<double> sum(own.size(), minimum ? std::numeric_limits<double>::infinity() : 0.0);
-  for (size_t s = 0; s < this->SharedRows.size(); ++s)
+  for (size_t s = 0; s < rows.SharedRows.size(); ++s)
   {
-    slot[this->SharedRows[s]] = s;
-    std::copy(v + this->SharedRows[s] * width, v + (this->SharedRows[s] + 1) * width,
+    slot[rows.SharedRows[s]] = s;
+    std::copy(v + rows.SharedRows[s] * width, v + (rows.SharedRows[s] + 1) * width,
       own.begin() + s * width);
   }
   bool mineAdded = false;
@@ -285,13 +285,13 @@ void MPIParts::Complete(double* v, int width, bool minimum)
   };
   for (size_t i = 0; i < k; ++i)
   {
-    if (!mineAdded && this->Neighbours[i] > this->Me)
+    if (!mineAdded && rows.Neighbours[i] > this->Me)
     {
       addOwn();
     }
-    for (size_t j = 0; j < this->Rows[i].size(); ++j)
+    for (size_t j = 0; j < rows.Rows[i].size(); ++j)
     {
-      const size_t s = slot[this->Rows[i][j]];
+      const size_t s = slot[rows.Rows[i][j]];
       for (int c = 0; c < width; ++c)
       {
         combine(sum[s * width + c], recv[i][j * width + c]);
@@ -302,16 +302,16 @@ void MPIParts::Complete(double* v, int width, bool minimum)
   {
     addOwn();
   }
-  for (size_t s = 0; s < this->SharedRows.size(); ++s)
+  for (size_t s = 0; s < rows.SharedRows.size(); ++s)
   {
     std::copy(sum.begin() + s * width, sum.begin() + (s + 1) * width,
-      v + this->SharedRows[s] * width);
+      v + rows.SharedRows[s] * width);
   }
-  for (const std::vector<mp::Index>& rows : this->Copies)
+  for (const std::vector<mp::Index>& copies : rows.Copies)
   {
-    for (size_t j = 1; j < rows.size(); ++j)
+    for (size_t j = 1; j < copies.size(); ++j)
     {
-      std::copy(v + rows[0] * width, v + (rows[0] + 1) * width, v + rows[j] * width);
+      std::copy(v + copies[0] * width, v + (copies[0] + 1) * width, v + copies[j] * width);
     }
   }
 }
@@ -319,25 +319,26 @@ void MPIParts::Complete(double* v, int width, bool minimum)
 mp::SolverHooks MPIParts::Hooks(
   bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint)
 {
-  mp::SolverHooks hooks;
-  hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
   if (!points)
   {
     // Cells: no row is shared (BlockCG factors each part's own rows).
+    mp::SolverHooks hooks;
+    hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
     return hooks;
   }
+  RowSharing& state = this->PointRows;
   std::vector<mp::Index> rowOf(static_cast<size_t>(rows));
-  this->Counted.assign(static_cast<size_t>(rows), 0);
-  this->RowGlobal.resize(static_cast<size_t>(rows));
+  state.Counted.assign(static_cast<size_t>(rows), 0);
+  state.RowGlobal.resize(static_cast<size_t>(rows));
   for (mp::Index f = 0; f < rows; ++f)
   {
     const vtkIdType p = dataSetPoint(f);
     rowOf[static_cast<size_t>(p)] = f;
-    this->RowGlobal[f] = this->GlobalOf[static_cast<size_t>(p)];
-    this->Counted[f] =
+    state.RowGlobal[f] = this->GlobalOf[static_cast<size_t>(p)];
+    state.Counted[f] =
       this->Owner[static_cast<size_t>(p)] == this->Me && this->Representative[static_cast<size_t>(p)] == p;
   }
-  this->Copies.clear();
+  state.Copies.clear();
   {
     std::map<vtkIdType, std::vector<mp::Index>> groups;
     for (mp::Index f = 0; f < rows; ++f)
@@ -353,28 +354,37 @@ mp::SolverHooks MPIParts::Hooks(
       std::vector<mp::Index> rowsOf(1, rowOf[static_cast<size_t>(g.first)]);
       std::sort(g.second.begin(), g.second.end());
       rowsOf.insert(rowsOf.end(), g.second.begin(), g.second.end());
-      this->Copies.push_back(rowsOf);
+      state.Copies.push_back(rowsOf);
     }
   }
-  this->Rows.assign(this->Neighbours.size(), std::vector<mp::Index>());
-  this->SharedRows.clear();
+  state.Neighbours = this->Neighbours;
+  state.Rows.assign(this->Neighbours.size(), std::vector<mp::Index>());
+  state.SharedRows.clear();
   for (size_t i = 0; i < this->Neighbours.size(); ++i)
   {
     for (vtkIdType p : this->SharedPoints[i])
     {
-      this->Rows[i].push_back(rowOf[static_cast<size_t>(p)]);
+      state.Rows[i].push_back(rowOf[static_cast<size_t>(p)]);
     }
-    this->SharedRows.insert(this->SharedRows.end(), this->Rows[i].begin(), this->Rows[i].end());
+    state.SharedRows.insert(state.SharedRows.end(), state.Rows[i].begin(), state.Rows[i].end());
   }
-  std::sort(this->SharedRows.begin(), this->SharedRows.end());
-  this->SharedRows.erase(
-    std::unique(this->SharedRows.begin(), this->SharedRows.end()), this->SharedRows.end());
-  hooks.Counted = this->Counted.data();
-  hooks.Exchange = [this](double* v, int width) { this->Complete(v, width, false); };
-  hooks.ExchangeMinimum = [this](double* v, int width) { this->Complete(v, width, true); };
-  hooks.Direct = [this](const mp::CsrMatrix& A, const double* B, double* X, int c,
+  std::sort(state.SharedRows.begin(), state.SharedRows.end());
+  state.SharedRows.erase(
+    std::unique(state.SharedRows.begin(), state.SharedRows.end()), state.SharedRows.end());
+  return this->HooksOver(state);
+}
+
+mp::SolverHooks MPIParts::HooksOver(const RowSharing& rows)
+{
+  mp::SolverHooks hooks;
+  hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
+  hooks.Counted = rows.Counted.data();
+  const RowSharing* state = &rows;
+  hooks.Exchange = [this, state](double* v, int width) { this->Complete(*state, v, width, false); };
+  hooks.ExchangeMinimum = [this, state](double* v, int width) { this->Complete(*state, v, width, true); };
+  hooks.Direct = [this, state](const mp::CsrMatrix& A, const double* B, double* X, int c,
                    const std::vector<char>& converged) {
-    return this->SolveGathered(A, B, X, c, converged);
+    return this->SolveGathered(*state, A, B, X, c, converged);
   };
   return hooks;
 }

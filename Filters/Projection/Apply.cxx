@@ -65,7 +65,7 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
 
 /// One transfer: its fields' solution (warm started when it may), then the NaN groups'.
 Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::SolverHooks& hook, mp::LargeVector<double>& values)
+  const mp::SolverHooks& hook, const mp::FringeHalo& halo, mp::LargeVector<double>& values)
 {
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const mp::MortarOperator& op = *ops.Operators[t];
@@ -75,6 +75,8 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
   apply.Bounded = ctx.Options.PreserveBounds;
   apply.Solve.MaxIterations = ctx.Options.MaximumIterations;
+  apply.FringeHooks =
+    halo.Hooks.Exchange && TargetSpaceOf(t) == mp::SpaceType::P1 ? &halo.Hooks : nullptr;
   if (ctx.Processes.Whole())
   {
     // Progress and a stop inside the solve too (one process: several
@@ -108,10 +110,13 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
 /**
  * The fringe of every P1 operator in use aggregated (MortarOperator::
  * AggregateFringe), on volume targets (a surface's or curve's points do not
- * span their space: an affine fit there is not defined). Collective: every
- * process decides alike and calls it for the same operators.
+ * span their space: an affine fit there is not defined). On several
+ * processes first the target's halo (Parts::Halo), so that every process
+ * extends as the serial run does. Collective: every process decides alike
+ * and calls it for the same operators.
  */
-void AggregateFringes(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks& hooks)
+void AggregateFringes(
+  LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks& hooks, mp::FringeHalo& halo)
 {
   const mp::MeshView& view = ctx.Target.View();
   double volume[2] = { !ctx.Shape.Trace && view.IsVolumeMesh() ? 1.0 : 0.0, 1.0 };
@@ -122,6 +127,16 @@ void AggregateFringes(LeafContext& ctx, const OperatorSet& ops, const mp::Solver
   const double threshold = volume[0] == volume[1] ? ctx.Options.FringeThreshold : 0.0;
   // (Lumped values are means: nothing to aggregate; a later consistent run aggregates then.)
   const double used = ctx.Options.Lumped ? 0.0 : threshold;
+  bool anyP1 = false;
+  for (Transfer t : AllTransfers)
+  {
+    anyP1 = anyP1 || (ops.Operators[t] && TargetSpaceOf(t) == mp::SpaceType::P1);
+  }
+  if (used > 0.0 && anyP1)
+  {
+    // (Kept operators need it too: their aggregated systems have its rows.)
+    halo = ctx.Processes.Halo(view);
+  }
   for (Transfer t : AllTransfers)
   {
     if (!ops.Operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
@@ -139,14 +154,15 @@ void AggregateFringes(LeafContext& ctx, const OperatorSet& ops, const mp::Solver
     for (const mp::MortarOperator* op : all)
     {
       const double before = op->GetTimings().Assembly;
-      const_cast<mp::MortarOperator*>(op)->AggregateFringe(view, used, hooks);
+      const_cast<mp::MortarOperator*>(op)->AggregateFringe(view, used, hooks, &halo);
       ctx.Stats.Assembly += op->GetTimings().Assembly - before;
     }
   }
 }
 } // namespace
 
-void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2])
+void ShareSystems(
+  LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo)
 {
   const SimplexMesh& target = ctx.Target;
   hooks[0] = ctx.Processes.Hooks(true, static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),
@@ -167,11 +183,11 @@ void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hook
       }
     }
   }
-  AggregateFringes(ctx, ops, hooks[0]);
+  AggregateFringes(ctx, ops, hooks[0], halo);
 }
 
 Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
-  const mp::SolverHooks hooks[2], LeafSolutions& solutions)
+  const mp::SolverHooks hooks[2], const mp::FringeHalo& halo, LeafSolutions& solutions)
 {
   for (Transfer t : AllTransfers)
   {
@@ -180,7 +196,7 @@ Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
       continue;
     }
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
-    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, solutions.Values[t]);
+    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, halo, solutions.Values[t]);
     if (!applied.Ok())
     {
       return applied;

@@ -17,6 +17,7 @@
 
 #include "Mesh/LargeArray.h"
 #include "Transfer/BlockCG.h"
+#include "Transfer/MortarOperator.h"
 
 namespace mpvtk
 {
@@ -31,12 +32,14 @@ struct LeafSolutions
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators
-/// share their validity, then aggregate their fringe (FringeThreshold).
-void ShareSystems(LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2]);
+/// share their validity, then aggregate their fringe (FringeThreshold; on
+/// several processes with the target's `halo`, made here).
+void ShareSystems(
+  LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo);
 
 /// Applies every operator in use to its fields (and NaN groups' operators to theirs).
 Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
-  const mp::SolverHooks hooks[2], LeafSolutions& solutions);
+  const mp::SolverHooks hooks[2], const mp::FringeHalo& halo, LeafSolutions& solutions);
 
 /**
  * Keeps the operators built here for the next execution (and GetMatrix)

@@ -172,7 +172,8 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   mp::LargeVector<double> cover;
   const bool haveCover = PrepareSolves(ctx, ops, weights, cover);
   mp::SolverHooks hooks[2]; // P1, P0 target functions
-  ShareSystems(ctx, ops, hooks);
+  mp::FringeHalo halo;      // several processes: the fringe's ghost layer
+  ShareSystems(ctx, ops, hooks, halo);
   // (The extrapolation reads the target's cells after the solves.)
   const bool extrapolate = run.Options.Extrapolation != 0;
   if (haveCover && !extrapolate)
@@ -180,7 +181,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     targetMesh.ReleaseGeometry();
   }
   LeafSolutions solutions;
-  result.Outcome = ApplyOperators(ctx, kept, ops, hooks, solutions);
+  result.Outcome = ApplyOperators(ctx, kept, ops, hooks, halo, solutions);
   if (result.Outcome.Ok())
   {
     result.Outcome = ExtrapolateLeaf(ctx, ops, hooks, solutions);

@@ -143,6 +143,31 @@ void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& valid,
 }
 } // namespace
 
+bool MortarOperator::SolveWithHalo(const double* rhs, double* targetValues, int components,
+  const SolveOptions& solve, const SolverHooks& haloHooks) const
+{
+  const Index n = this->TargetMass.Rows;
+  const Index rows = this->FringeMass.Rows;
+  LargeVector<double> x(static_cast<size_t>(rows) * components, 0.0);
+  if (solve.StartFromX)
+  {
+    // A ghost row starts from its owner's value (the only one counted).
+    for (Index i = 0; i < n; ++i)
+    {
+      if (!haloHooks.Counted || haloHooks.Counted[i])
+      {
+        std::copy(targetValues + i * components, targetValues + (i + 1) * components,
+          x.begin() + i * components);
+      }
+    }
+    haloHooks.Exchange(x.data(), components);
+  }
+  const bool ok = this->FringeSolver->Solve(rhs, x.data(), components, solve, haloHooks);
+  ExtendFromFree(this->Fringe, x.data(), components);
+  std::copy(x.begin(), x.begin() + n * components, targetValues);
+  return ok;
+}
+
 bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
   double fill, const ApplyOptions& options, const SolverHooks& hooks) const
 {
@@ -181,18 +206,35 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   // A fringe aggregated (AggregateFringe): the right-hand sides P^T b,
   // before the shared rows are completed (each part gives its own share of
   // an aggregated row to its own stencil).
-  const bool aggregated = this->Fringe.Count > 0 && options.Mass == MassType::Consistent;
+  // With a halo the aggregated system has the extended rows (this part's,
+  // then its ghosts'), completed by the halo's hooks.
+  const bool aggregated = this->FringeSystem && options.Mass == MassType::Consistent;
+  const bool halo = aggregated && this->HaloPoints >= 0;
+  if (halo && !options.FringeHooks)
+  {
+    return false; // (every part alike: the options are the same everywhere)
+  }
+  const SolverHooks& rowHooks = halo ? *options.FringeHooks : hooks;
   this->LastAggregated = aggregated;
   const std::vector<char>& valid = this->GetValid();
   if (aggregated)
   {
-    LargeVector<double> restricted(static_cast<size_t>(n) * components);
-    RestrictToFree(this->Fringe, product.empty() ? rhs : product.data(), restricted.data(), components);
+    const Index rows = this->FringeMass.Rows;
+    const double* b = product.empty() ? rhs : product.data();
+    LargeVector<double> padded;
+    if (rows > n)
+    {
+      padded.assign(static_cast<size_t>(rows) * components, 0.0);
+      std::copy(b, b + n * components, padded.begin());
+      b = padded.data();
+    }
+    LargeVector<double> restricted(static_cast<size_t>(rows) * components);
+    RestrictToFree(this->Fringe, b, restricted.data(), components);
     product.swap(restricted);
   }
-  if (hooks.Exchange)
+  if (rowHooks.Exchange)
   {
-    hooks.Exchange(product.data(), components);
+    rowHooks.Exchange(product.data(), components);
   }
   if (!product.empty())
   {
@@ -227,6 +269,10 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
         targetValues[i * components + k] = sums[i] > 0.0 ? rhs[i * components + k] / sums[i] : 0.0;
       }
     }
+  }
+  else if (halo)
+  {
+    ok = this->SolveWithHalo(rhs, targetValues, components, solve, rowHooks);
   }
   else if (aggregated)
   {

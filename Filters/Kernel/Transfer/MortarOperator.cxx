@@ -228,7 +228,7 @@ void MortarOperator::ShareValidity(const SolverHooks& hooks)
 }
 
 Index MortarOperator::AggregateFringe(
-  const MeshView& target, double threshold, const SolverHooks& hooks)
+  const MeshView& target, double threshold, const SolverHooks& hooks, const FringeHalo* halo)
 {
   if (this->FringeDone || this->Options.TargetSpace != SpaceType::P1 || !(threshold > 0.0) ||
     !this->Solver)
@@ -240,11 +240,7 @@ Index MortarOperator::AggregateFringe(
   const Index n = this->TargetMass.Rows;
   // The covered fraction of each function's support (on a distributed
   // system both integrals summed over the parts, so that every part decides
-  // alike). Each part extends from its own points: a function shared by
-  // several parts takes on each the extension of that part's side (the
-  // sum of the parts' P^T M P is still symmetric, positive definite on the
-  // free functions, exact for linear fields, and its integral is the sum of
-  // the parts' own).
+  // alike).
   std::vector<double> covered(this->RowSums);
   LargeVector<double> whole = SupportIntegrals(target);
   whole.resize(static_cast<size_t>(n), 0.0);
@@ -258,31 +254,132 @@ Index MortarOperator::AggregateFringe(
   {
     fraction[i] = whole[i] > 0.0 ? covered[i] / whole[i] : 0.0;
   }
-  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction);
-  if (this->Fringe.Count > 0)
+  if (halo && halo->Hooks.Exchange)
   {
-    this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
-    this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
-    this->DropFringe();
+    this->AggregateWithHalo(target, fraction, threshold, *halo);
   }
   else
   {
-    this->Fringe = FringeExtension();
+    // One part (or a distributed system without a halo: each part then
+    // extends from its own points, a shared function taking on each part
+    // that part's side's extension; the sum of the parts' P^T M P is still
+    // symmetric, positive definite on the free functions and exact for
+    // linear fields).
+    this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction);
+    if (this->Fringe.Count > 0)
+    {
+      this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
+      this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
+      this->DropFringe(nullptr);
+      this->FringeSystem = true;
+    }
+    else
+    {
+      this->Fringe = FringeExtension();
+    }
   }
   this->Timings.Assembly += SecondsSince(start);
   return this->Fringe.Count;
 }
 
-void MortarOperator::DropFringe()
+MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo,
+  std::vector<double>& points, std::vector<Index>& cells)
+{
+  const int corners = target.CornersPerCell();
+  points.assign(target.Points, target.Points + 3 * target.NumberOfPoints);
+  points.insert(points.end(), halo.Points.begin(), halo.Points.end());
+  cells.clear();
+  cells.reserve(static_cast<size_t>(target.NumberOfCells * corners) + halo.Cells.size());
+  for (Index c = 0; c < target.NumberOfCells; ++c)
+  {
+    const CellCorners cell = target.Cell(c);
+    for (int a = 0; a < corners; ++a)
+    {
+      cells.push_back(cell[a]);
+    }
+  }
+  cells.insert(cells.end(), halo.Cells.begin(), halo.Cells.end());
+  MeshView whole;
+  whole.CellDimension = target.CellDimension;
+  whole.SpaceDimension = target.SpaceDimension;
+  whole.Points = points.data();
+  whole.NumberOfPoints = static_cast<Index>(points.size() / 3);
+  whole.Connectivity = cells.data();
+  whole.NumberOfCells = static_cast<Index>(cells.size()) / corners;
+  return whole;
+}
+
+void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector<double>& fraction,
+  double threshold, const FringeHalo& halo)
+{
+  // The serial stencil of a point depends only on the three rings around
+  // it in the whole target: their coordinates and which of their points
+  // are usable (valid and well covered, the same on every part once the
+  // integrals are summed). The halo holds the other parts' cells within
+  // those rings, so P's rows here are the serial ones, and the same on
+  // every part that has the point; a stencil may then hold ghost points,
+  // and P^T M P rows of them (the halo's hooks sum these with the parts
+  // that have the points).
+  const Index n = this->TargetMass.Rows;
+  const Index ghosts = halo.NumberOfPoints();
+  const Index rows = n + ghosts;
+  const SolverHooks& extended = halo.Hooks;
+  // A ghost point's usable flag: its owner's (the only one counted).
+  std::vector<double> usable(static_cast<size_t>(rows), 0.0);
+  for (Index i = 0; i < n; ++i)
+  {
+    const bool counted = !extended.Counted || extended.Counted[i];
+    usable[i] = counted && this->Valid[i] && fraction[i] >= threshold ? 1.0 : 0.0;
+  }
+  extended.Exchange(usable.data(), 1);
+  std::vector<char> valid(this->Valid);
+  std::vector<double> extendedFraction(fraction);
+  valid.resize(static_cast<size_t>(rows), 0);
+  extendedFraction.resize(static_cast<size_t>(rows), 0.0);
+  for (Index g = n; g < rows; ++g)
+  {
+    // Usable ghosts as well covered, the others invalid: none is aggregated here.
+    valid[g] = usable[g] > 0.0;
+    extendedFraction[g] = valid[g] ? std::numeric_limits<double>::infinity() : 0.0;
+  }
+  std::vector<double> points;
+  std::vector<Index> cells;
+  const MeshView whole = WithHalo(target, halo, points, cells);
+  this->Fringe = ExtendFringe(whole, valid, extendedFraction, threshold, FringeDropFraction);
+  // One system for all parts: aggregated when any part aggregates.
+  double count = static_cast<double>(this->Fringe.Count);
+  extended.Reduce(&count, 1);
+  if (!(count > 0.0))
+  {
+    this->Fringe = FringeExtension();
+    return;
+  }
+  // M_tt with empty rows for the ghosts (only the stencils reach them).
+  CsrMatrix padded(this->TargetMass);
+  padded.Rows = padded.Columns = rows;
+  padded.RowStart.resize(static_cast<size_t>(rows) + 1, padded.RowStart.back());
+  this->FringeMass = AggregatedMass(padded, this->Fringe);
+  this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
+  this->HaloPoints = ghosts;
+  this->FringeSystem = true;
+  this->DropFringe(&extended);
+}
+
+void MortarOperator::DropFringe(const SolverHooks* haloHooks)
 {
   // A dropped function's covered integral goes to its stencil by its
   // weights (P^T on the row sums): sum_i RowSums_i u_i over the valid
   // functions stays the integral of u = P u_free over the covered part.
+  // With a halo, the shares are summed over the extended rows and each
+  // point's total added on the part that counts it (the row sums are each
+  // part's own share of a shared row: their sum over the parts counts).
   const CsrMatrix& P = this->Fringe.P;
+  const Index n = this->TargetMass.Rows;
   this->FringeValid = this->Valid;
   this->FringeRowSums = this->RowSums;
   this->FringeDropped = 0;
-  for (Index i = 0; i < P.Rows; ++i)
+  std::vector<double> shares(haloHooks ? static_cast<size_t>(P.Rows) : 0, 0.0);
+  for (Index i = 0; i < n; ++i)
   {
     if (!this->Fringe.Dropped[i])
     {
@@ -290,11 +387,23 @@ void MortarOperator::DropFringe()
     }
     for (Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
     {
-      this->FringeRowSums[P.ColumnIndex[q]] += P.Values[q] * this->RowSums[i];
+      (haloHooks ? shares[P.ColumnIndex[q]] : this->FringeRowSums[P.ColumnIndex[q]]) +=
+        P.Values[q] * this->RowSums[i];
     }
     this->FringeRowSums[i] = 0.0;
     this->FringeValid[i] = 0;
     ++this->FringeDropped;
+  }
+  if (haloHooks)
+  {
+    haloHooks->Exchange(shares.data(), 1);
+    for (Index i = 0; i < n; ++i)
+    {
+      if (!haloHooks->Counted || haloHooks->Counted[i])
+      {
+        this->FringeRowSums[i] += shares[i];
+      }
+    }
   }
 }
 

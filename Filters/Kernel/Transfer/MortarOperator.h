@@ -118,6 +118,22 @@ enum class MassType
   Lumped = 1
 };
 
+/**
+ * A distributed target's ghost layer for the fringe (AggregateFringe): the
+ * cells of the other parts near this part's points, so that each part
+ * finds the stencils the whole target gives. Its points are rows n, n + 1,
+ * ... after this part's n target functions (the extended rows); Hooks work
+ * on the extended rows: a ghost row is shared with the parts that have its
+ * point (as theirs or as a ghost), summed like a shared row, never counted.
+ */
+struct FringeHalo
+{
+  std::vector<double> Points; ///< 3 coordinates per ghost point
+  std::vector<Index> Cells;   ///< the target's corners per cell, in the extended rows
+  SolverHooks Hooks;
+  Index NumberOfPoints() const { return static_cast<Index>(this->Points.size() / 3); }
+};
+
 struct ApplyOptions
 {
   MassType Mass = MassType::Consistent;
@@ -133,6 +149,9 @@ struct ApplyOptions
    */
   bool Bounded = false;
   SolveOptions Solve;
+  /// A distributed system whose fringe was aggregated with a FringeHalo:
+  /// that halo's Hooks, for the aggregated solve (its extended rows).
+  const SolverHooks* FringeHooks = nullptr;
 };
 
 /// Wall-clock seconds of the stages of Build() and of the last Apply().
@@ -217,16 +236,22 @@ public:
    * support is below `threshold` take the affine extension of well-covered
    * ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
    * After CompleteTargetMass (and ShareValidity): a distributed system
-   * sums the covered and whole integrals over the parts (hooks.Exchange);
-   * each part extends from its own points (a shared function's value is
-   * its part's side's extension). Functions covered less than
+   * sums the covered and whole integrals over the parts (hooks.Exchange)
+   * and, given its `halo` (the cells of the other parts within three rings
+   * of this part's points), extends each function as the whole target
+   * would: its stencil may hold ghost points, whose rows the aggregated
+   * system then has too (the halo's hooks complete them; Apply needs them
+   * as ApplyOptions::FringeHooks; every part solves it when any part
+   * aggregates). Without a halo each part extends from its own points.
+   * Functions covered less than
    * FringeDropFraction become invalid after such an Apply (their share of
    * the covered integral goes to their stencil, GetCoveredIntegrals).
    * Collective; once per operator with a positive threshold (a kept
    * operator keeps its aggregation); lumped Applies do not use it (their
    * values are means already). Returns the aggregated functions.
    */
-  Index AggregateFringe(const MeshView& target, double threshold, const SolverHooks& hooks);
+  Index AggregateFringe(const MeshView& target, double threshold, const SolverHooks& hooks,
+    const FringeHalo* halo = nullptr);
   /// The fringe's extension (empty P when nothing is aggregated).
   const FringeExtension& GetFringe() const { return this->Fringe; }
 
@@ -308,8 +333,18 @@ public:
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
   struct Session;
-  /// FringeValid and FringeRowSums: the dropped functions invalid, their covered integrals given to their stencils.
-  void DropFringe();
+  /// FringeValid and FringeRowSums: the dropped functions invalid, their
+  /// covered integrals given to their stencils (with a halo, through its hooks).
+  void DropFringe(const SolverHooks* haloHooks);
+  /// AggregateFringe on a distributed system with a halo: P over the extended rows.
+  void AggregateWithHalo(const MeshView& target, const std::vector<double>& fraction,
+    double threshold, const FringeHalo& halo);
+  /// The target and its halo as one mesh (extended rows), in `points` and `cells`.
+  static MeshView WithHalo(const MeshView& target, const FringeHalo& halo,
+    std::vector<double>& points, std::vector<Index>& cells);
+  /// The aggregated solve on a distributed system with a halo (extended rows).
+  bool SolveWithHalo(const double* rhs, double* targetValues, int components,
+    const SolveOptions& solve, const SolverHooks& haloHooks) const;
   /// The checks of the meshes and options (Options set): false, with Error set, on unusable input.
   bool Check(const MeshView& target, const MeshView& source, CandidateLocator* locator);
   template <class Intersector>
@@ -325,7 +360,9 @@ private:
   Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
   bool FringeDone = false;
-  FringeExtension Fringe;
+  bool FringeSystem = false; ///< consistent Applies solve P^T M P (with a halo: on every part alike)
+  FringeExtension Fringe;    ///< with a halo: over the extended rows
+  Index HaloPoints = -1;     ///< the halo's ghost rows in Fringe and FringeMass (-1: no halo)
   std::vector<char> FringeValid;     ///< Valid without the dropped functions
   std::vector<double> FringeRowSums; ///< RowSums with the dropped ones' given to their stencils
   Index FringeDropped = 0;
