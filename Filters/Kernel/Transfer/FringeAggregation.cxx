@@ -304,7 +304,7 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
 }
 
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop)
+  const std::vector<double>& fraction, double threshold, double drop, bool stencilOrder)
 {
   FringeExtension ext;
   const Index n = static_cast<Index>(valid.size());
@@ -366,7 +366,10 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
     {
       row.emplace_back(static_cast<Column>(stencils[a][k]), weights[a][k]);
     }
-    std::sort(row.begin(), row.end());
+    if (!stencilOrder)
+    {
+      std::sort(row.begin(), row.end());
+    }
     Index at = P.RowStart[ill[a]];
     for (const auto& entry : row)
     {

@@ -66,10 +66,14 @@ constexpr double FringeDropFraction = 0.01;
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
  * rings around it. A function with no well-spread free points within a few
- * rings stays free. Those below `drop` are marked Dropped too.
+ * rings stays free. Those below `drop` are marked Dropped too. P's rows
+ * hold their columns in ascending order, or, with `stencilOrder`, nearest
+ * first as the stencil found them (an order that does not depend on the
+ * numbering: parts of a distributed target that number a point's stencil
+ * differently then extend it to the same bits).
  */
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop);
+  const std::vector<double>& fraction, double threshold, double drop, bool stencilOrder = false);
 
 /**
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:

@@ -345,7 +345,10 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   std::vector<double> points;
   std::vector<Index> cells;
   const MeshView whole = WithHalo(target, halo, points, cells);
-  this->Fringe = ExtendFringe(whole, valid, extendedFraction, threshold, FringeDropFraction);
+  // (P's rows nearest first: a point's extension, summed in that order,
+  // is then the same bits on every part that has it.)
+  this->Fringe =
+    ExtendFringe(whole, valid, extendedFraction, threshold, FringeDropFraction, true);
   // One system for all parts: aggregated when any part aggregates.
   double count = static_cast<double>(this->Fringe.Count);
   extended.Reduce(&count, 1);
@@ -353,6 +356,22 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   {
     this->Fringe = FringeExtension();
     return;
+  }
+  if (this->Fringe.P.Rows == 0)
+  {
+    // Nothing aggregated in this part: P is the identity (ExtendFringe
+    // leaves it empty), its share of the system M_tt's.
+    CsrMatrix& P = this->Fringe.P;
+    P.Rows = P.Columns = rows;
+    P.RowStart.resize(static_cast<size_t>(rows) + 1);
+    P.ColumnIndex.resize(static_cast<size_t>(rows));
+    P.Values.resize(static_cast<size_t>(rows));
+    for (Index i = 0; i < rows; ++i)
+    {
+      P.RowStart[i + 1] = i + 1;
+      P.ColumnIndex[i] = static_cast<Column>(i);
+      P.Values[i] = 1.0;
+    }
   }
   // M_tt with empty rows for the ghosts (only the stencils reach them).
   CsrMatrix padded(this->TargetMass);

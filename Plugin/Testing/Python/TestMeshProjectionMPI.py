@@ -129,11 +129,6 @@ def redistributed(g):
 # ---- the comparison ---------------------------------------------------------
 def run(filter_class, target, source, **props):
     f = filter_class()
-    # The fringe's stencils are each process's own (where the fringe crosses
-    # a partition boundary they differ from the serial ones): compared with
-    # the serial filter in Python.FringeMPI2; here the partitionings are
-    # compared on the projection itself, bit for bit.
-    f.SetFringeThreshold(0)
     texts = []
 
     @calldata_type(VTK_STRING)
@@ -475,7 +470,6 @@ if out.GetNumberOfPoints():
 # process, and the result is the serial one for the new field.
 lt, ls = split(mpi.numbered(t2), "random", "input"), split(s2, "random", "source")
 f = meshprojection.vtkPMeshProjectionFilter()
-f.SetFringeThreshold(0)
 f.SetInputData(lt)
 f.SetSourceData(ls)
 f.Update()
@@ -510,7 +504,6 @@ for role in ("Source", "Input"):
             c[0] = bad_id(spoiled.GetNumberOfPoints())
             spoiled.GetCells().GetConnectivityArray().Modified()
         spoilt = meshprojection.vtkPMeshProjectionFilter()
-        spoilt.SetFringeThreshold(0)
         errors = []
 
         @calldata_type(VTK_STRING)
@@ -541,7 +534,6 @@ for b, keep in enumerate((y < 0.3, (y >= 0.3) & (y < 0.7), y >= 0.7)):
     blocks.SetBlock(b, extract(lt, keep) if lt.GetNumberOfCells() else vtkUnstructuredGrid())
 for at in (0.01, 0.06, 0.2, 0.36, 0.5, 0.62, 0.9, 0.97):
     stopped = meshprojection.vtkPMeshProjectionFilter()
-    stopped.SetFringeThreshold(0)
 
     def stop(obj, event, at=at):
         if rank == size - 1 and obj.GetProgress() >= at:

@@ -67,11 +67,6 @@ def with_masks(g):
 
 def run(filter_class, target, source):
     f = filter_class()
-    # The fringe's stencils are each process's own (where the fringe crosses
-    # a partition boundary they differ from the serial ones): compared with
-    # the serial filter in Python.FringeMPI2; here the partitionings are
-    # compared on the projection itself, bit for bit.
-    f.SetFringeThreshold(0)
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetCacheOperator(False)
