@@ -40,6 +40,10 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, int matrix,
 {
   const mp::MortarOperator& op = *leaf.Operators[transfer].Operator;
   const bool mixed = matrix == 1;
+  if (matrix == 2 && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
+  {
+    return -1; // a process's P reaches its halo's points, which its numbering does not hold
+  }
   mp::CsrMatrix identity;
   if (matrix == 2 && op.GetFringe().P.Rows == 0)
   {

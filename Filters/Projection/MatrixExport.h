@@ -24,7 +24,8 @@ namespace mpvtk
 {
 struct KeptLeaf;
 
-/// M_tt (`matrix` 0), M_ts (1) or the fringe's extension P (2) of `leaf`'s operator of `transfer`; returns the number of columns.
+/// M_tt (`matrix` 0), M_ts (1) or the fringe's extension P (2) of `leaf`'s operator of `transfer`; returns the number of columns
+/// (-1 for P on several processes whose stencils reach the halo).
 vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, int matrix,
   vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values);
 
