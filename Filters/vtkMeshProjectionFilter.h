@@ -166,13 +166,16 @@ public:
   ///@{
   /**
    * What target points and cells the Source does not reach receive instead
-   * of the fill value: NO_EXTRAPOLATION (default), SMOOTH_EXTRAPOLATION (the
-   * harmonic extension of the valid values over Input's point graph, or
-   * cell graph for cell data: within their range, no new extrema) or
+   * of the fill value: NO_EXTRAPOLATION (default), SMOOTH_EXTRAPOLATION (a
+   * creep fill: layer by layer over Input's point graph, or cell graph for
+   * cell data, each the weighted mean of its neighbours already reached:
+   * within the valid values' range, no new extrema) or
    * NEAREST_EXTRAPOLATION (the value of the nearest valid point or cell
    * along Input's graph). vtkExtrapolatedPointMask and
    * vtkExtrapolatedCellMask mark them; parts of Input connected to no valid
-   * point keep the fill value.
+   * point keep the fill value. The valid values are then kept within the
+   * Source field's range (a clip and assured sum: the integral stays;
+   * intensive data). Both extensions are linear: GetMatrix EXTRAPOLATION.
    */
   enum Extrapolations { NO_EXTRAPOLATION = 0, SMOOTH_EXTRAPOLATION = 1, NEAREST_EXTRAPOLATION = 2 };
   vtkSetClampMacro(Extrapolation, int, NO_EXTRAPOLATION, NEAREST_EXTRAPOLATION);
