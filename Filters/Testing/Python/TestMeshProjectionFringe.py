@@ -243,5 +243,16 @@ again = array(f.GetOutput(), "s")
 check(np.array_equal(np.isnan(again), np.isnan(first)) and np.allclose(again[~np.isnan(first)], first[~np.isnan(first)], atol=1e-12),
       "reused operators: the same extrapolated values")
 check(len(texts) == said, "the unconnected part is said once per filter")
+# New values through the reused operator and its kept extension.
+s = array(source, "s")
+s[:] = 2 * s + 3
+source.GetPointData().GetArray("s").Modified()
+f.Modified()
+f.Update()
+check(f.GetOperatorReused(), "the fourth execution reuses the operator")
+moved = array(f.GetOutput(), "s")
+finite = ~np.isnan(first)
+check(np.allclose(moved[finite], 2 * first[finite] + 3, atol=1e-9) and np.isnan(moved[~finite]).all(),
+      "reused operators: new values extended alike (%.2g)" % np.max(np.abs(moved[finite] - 2 * first[finite] - 3)))
 
 finish()
