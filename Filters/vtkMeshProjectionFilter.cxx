@@ -581,6 +581,12 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
   vtkIdTypeArray* columns, vtkDoubleArray* values)
 {
   const bool known = transfer >= 0 && transfer <= 3;
+  if (matrix < TARGET_MASS || matrix > EXTRAPOLATION)
+  {
+    vtkErrorMacro(<< "No matrix number " << matrix << ": TARGET_MASS (0), MIXED_MASS (1), "
+                     "FRINGE_EXTENSION (2) or EXTRAPOLATION (3).");
+    return -1;
+  }
   const Transfers t = known ? static_cast<Transfers>(transfer) : POINTS_TO_POINTS;
   mpvtk::OperatorCache& cache = this->Internal->Cache;
   if (known && !cache.FirstOperator(t) && this->CacheOperator &&
@@ -607,9 +613,17 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                      "Constant.");
     return -1;
   }
-  return mpvtk::ExportMatrix(*cache.FirstLeaf(t), t,
-    matrix == FRINGE_EXTENSION && mpvtk::TargetSpaceOf(t) == mp::SpaceType::P1 ? 2 : matrix == MIXED_MASS,
-    rowStart, columns, values);
+  const mp::MortarOperator& op = *cache.FirstOperator(t);
+  if (matrix == FRINGE_EXTENSION && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
+  {
+    vtkErrorMacro(<< "The fringe's extension of " << mpvtk::TransferName(t)
+                  << " on this process reaches points of the other processes (its stencils are "
+                     "the serial ones), which this process's numbering does not hold: export it "
+                     "from one process.");
+    return -1;
+  }
+  return mpvtk::ExportMatrix(
+    *cache.FirstLeaf(t), t, static_cast<mpvtk::Exported>(matrix), rowStart, columns, values);
 }
 
 bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transfer, int matrix)
@@ -623,7 +637,10 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
     return false;
   }
   const std::string title =
-    std::string(matrix == MIXED_MASS ? "M_ts" : matrix == FRINGE_EXTENSION ? "P" : "M_tt") + ", " +
+    std::string(matrix == MIXED_MASS ? "M_ts"
+        : matrix == FRINGE_EXTENSION ? "P"
+        : matrix == EXTRAPOLATION    ? "E"
+                                     : "M_tt") + ", " +
     mpvtk::TransferName(static_cast<Transfers>(transfer));
   const std::string error = mpvtk::WriteMatrixMarketFile(
     fileName ? fileName : "", title, ncolumns, rowStart, columns, values);

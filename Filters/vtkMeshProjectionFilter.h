@@ -114,7 +114,8 @@ public:
   {
     TARGET_MASS = 0, ///< M_tt (target functions x target functions)
     MIXED_MASS = 1,  ///< M_ts (target functions x source functions)
-    FRINGE_EXTENSION = 2 ///< P, point functions x point functions (FringeThreshold): u = P u_free
+    FRINGE_EXTENSION = 2, ///< P, target functions x target functions (FringeThreshold): u = P u_free
+    EXTRAPOLATION = 3     ///< E, target functions x target functions (Extrapolation): output = E u
   };
 
   ///@{
@@ -165,13 +166,16 @@ public:
   ///@{
   /**
    * What target points and cells the Source does not reach receive instead
-   * of the fill value: NO_EXTRAPOLATION (default), SMOOTH_EXTRAPOLATION (the
-   * harmonic extension of the valid values over Input's point graph, or
-   * cell graph for cell data: within their range, no new extrema) or
+   * of the fill value: NO_EXTRAPOLATION (default), SMOOTH_EXTRAPOLATION (a
+   * creep fill: layer by layer over Input's point graph, or cell graph for
+   * cell data, each the weighted mean of its neighbours already reached:
+   * within the valid values' range, no new extrema) or
    * NEAREST_EXTRAPOLATION (the value of the nearest valid point or cell
    * along Input's graph). vtkExtrapolatedPointMask and
    * vtkExtrapolatedCellMask mark them; parts of Input connected to no valid
-   * point keep the fill value.
+   * point keep the fill value. The valid values are then kept within the
+   * Source field's range (a clip and assured sum: the integral stays;
+   * intensive data). Both extensions are linear: GetMatrix EXTRAPOLATION.
    */
   enum Extrapolations { NO_EXTRAPOLATION = 0, SMOOTH_EXTRAPOLATION = 1, NEAREST_EXTRAPOLATION = 2 };
   vtkSetClampMacro(Extrapolation, int, NO_EXTRAPOLATION, NEAREST_EXTRAPOLATION);
@@ -413,10 +417,17 @@ public:
    * Input: the first block's; a composite Source's columns number the
    * points or cells of its blocks one block after the other). M_tt is
    * integrated over the covered part; rows of invalid target functions hold
-   * a 1 on the diagonal. FRINGE_EXTENSION (P1 targets) is the fringe's
+   * a 1 on the diagonal. FRINGE_EXTENSION is the fringe's
    * extension P: the consistent result is u = P x with
    * (P^T M_tt P) x = P^T M_ts u_s on P's nonzero columns (the identity
-   * without an aggregated fringe). When the last execution was a one-off run (M_ts
+   * without an aggregated fringe, and for cells). EXTRAPOLATION is the
+   * extension E of the valid values (Extrapolation): the output is E u on
+   * rows that are not empty, the fill value on empty ones (without
+   * Extrapolation: the identity on valid rows); one process's rows.
+   * With Extrapolation the valid values are also kept within the Source
+   * field's range (clip and assured sum), which no matrix holds: the
+   * matrices reproduce the output where that range is not reached (a
+   * linear field, for one). When the last execution was a one-off run (M_ts
    * not formed), the filter executes once more, assembling it. Returns the
    * number of columns, or -1 (with an error) when no such operator can be
    * had: CacheOperator off, no inputs, or the transfer not in use.

@@ -1,11 +1,12 @@
 """The picture of docs/user-guide.md's "The fringe and beyond the Source":
-a 2D pair made by Gmsh that overlaps in part (Input moved beyond the
-Source, whose outline is drawn), the field sin(2x)cos(3y) projected to the
-points. Left: the error |u - f| without the fringe's aggregation
-(FringeThreshold 0); middle: with it (the default); right: the projected
-field with Extrapolation Smooth beyond the Source.
+a pair made by Gmsh that overlaps in part (a square of triangles, Input,
+half beyond a disk, the Source, whose boundary is drawn), the field
+sin(2x) cos(3y) projected to the points. Left: the error |u - f| without
+the fringe's aggregation (FringeThreshold 0); middle: with it (the
+default), on the same scale; right: the projected field with Extrapolation
+Smooth beyond the Source.
 
-    xvfb-run -a /usr/bin/python3 Scripts/fringe_picture.py OUT.png
+    xvfb-run -a /usr/bin/python3 Scripts/fringe_picture.py docs/images/fringe.png
 (with PYTHONPATH=<build>/lib/python3/dist-packages)
 """
 import sys
@@ -15,10 +16,9 @@ import numpy as np
 import meshprojection
 from mpsupport import gmshmeshes
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonColor import vtkNamedColors
 from vtkmodules.vtkCommonCore import vtkLookupTable
-from vtkmodules.vtkFiltersSources import vtkCubeSource
 from vtkmodules.vtkFiltersCore import vtkFeatureEdges
+from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkDataSetMapper, vtkPolyDataMapper, vtkRenderer,
@@ -31,10 +31,8 @@ def field(x):
     return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1])
 
 
-target = gmshmeshes.moved(gmshmeshes.planar(0.04), translate=(0.37, 0.23, 0))
-source = gmshmeshes.planar(0.052)
-source.GetPointData().AddArray(numpy_to_vtk(field(vtk_to_numpy(source.GetPoints().GetData())), deep=True))
-source.GetPointData().GetArray(0).SetName("f")
+target = gmshmeshes.moved(gmshmeshes.planar(0.06), translate=(0.25, -0.45, 0))
+source = gmshmeshes.with_point_field(gmshmeshes.surface("disk", 0.075), "f", lambda x, y, z: field(np.c_[x, y, z]))
 
 
 def project(**properties):
@@ -53,31 +51,41 @@ def project(**properties):
     return out
 
 
-panels = [(project(FringeThreshold=0), "error", "error without the fringe's aggregation"),
-          (project(), "error", "error with it (default)"),
-          (project(Extrapolation=1), "f", "field, Extrapolation Smooth")]
-worst = max(np.nanmax(vtk_to_numpy(panels[0][0].GetPointData().GetArray("error"))), 1e-3)
+before, after = project(FringeThreshold=0), project()
+worst = np.nanmax(vtk_to_numpy(before.GetPointData().GetArray("error")))
+panels = [(before, "error", (0, worst), "error, FringeThreshold 0 (plain L2)"),
+          (after, "error", (0, worst), "error, FringeThreshold 0.25 (default)"),
+          (project(Extrapolation=1), "f", (-1, 1), "field, Extrapolation Smooth")]
+for data, name, _, title in panels[:2]:
+    e = vtk_to_numpy(data.GetPointData().GetArray("error"))
+    print("%s: worst error %.3g" % (title, np.nanmax(e)))
 
+boundary = vtkFeatureEdges()
+boundary.SetInputData(source)
+boundary.BoundaryEdgesOn()
+boundary.FeatureEdgesOff()
+boundary.ManifoldEdgesOff()
+boundary.NonManifoldEdgesOff()
+
+width, height = 1500, 600
 window = vtkRenderWindow()
 window.SetOffScreenRendering(1)
-window.SetSize(1500, 560)
-outline = vtkCubeSource()
-outline.SetBounds(0, 1, 0, 1, 0, 0)
-edges = vtkFeatureEdges()
-edges.SetInputConnection(outline.GetOutputPort())
-for k, (data, name, title) in enumerate(panels):
+window.SetSize(width, height)
+window.SetNumberOfLayers(2)
+for k, (data, name, scalar_range, title) in enumerate(panels):
+    # The title and the colour bar on a white panel; the meshes above it,
+    # in the band between (the Source's boundary clipped to it).
+    panel = vtkRenderer()
+    panel.SetViewport(k / 3.0, 0, (k + 1) / 3.0, 1)
+    panel.SetBackground(1, 1, 1)
+    window.AddRenderer(panel)
     renderer = vtkRenderer()
-    renderer.SetViewport(k / 3.0, 0, (k + 1) / 3.0, 1)
-    renderer.SetBackground(1, 1, 1)
+    renderer.SetLayer(1)
+    renderer.SetViewport(k / 3.0 + 0.005, 0.16, (k + 1) / 3.0 - 0.005, 0.93)
     table = vtkLookupTable()
-    table.SetNanColor(0.85, 0.85, 0.85, 1)
-    if name == "error":
-        table.SetScaleToLog10()
-        table.SetTableRange(1e-4, worst)
-        table.SetHueRange(0.66, 0.0)
-    else:
-        table.SetTableRange(-1, 1)
-        table.SetHueRange(0.66, 0.0)
+    table.SetNanColor(0.8, 0.8, 0.8, 1)
+    table.SetTableRange(*scalar_range)
+    table.SetHueRange(0.66, 0.0)
     table.Build()
     data.GetPointData().SetActiveScalars(name)
     mapper = vtkDataSetMapper()
@@ -87,38 +95,39 @@ for k, (data, name, title) in enumerate(panels):
     actor = vtkActor()
     actor.SetMapper(mapper)
     actor.GetProperty().EdgeVisibilityOn()
-    actor.GetProperty().SetEdgeColor(0.3, 0.3, 0.3)
-    actor.GetProperty().SetLineWidth(0.5)
+    actor.GetProperty().SetEdgeColor(0.35, 0.35, 0.35)
     renderer.AddActor(actor)
-    border_mapper = vtkPolyDataMapper()
-    border_mapper.SetInputConnection(edges.GetOutputPort())
-    border_mapper.ScalarVisibilityOff()
-    border = vtkActor()
-    border.SetMapper(border_mapper)
-    border.GetProperty().SetColor(vtkNamedColors().GetColor3d("Black"))
-    border.GetProperty().SetLineWidth(3)
-    renderer.AddActor(border)
+    edges = vtkPolyDataMapper()
+    edges.SetInputConnection(boundary.GetOutputPort())
+    edges.ScalarVisibilityOff()
+    outline = vtkActor()
+    outline.SetMapper(edges)
+    outline.GetProperty().SetColor(0, 0, 0)
+    outline.GetProperty().SetLineWidth(3)
+    outline.SetPosition(0, 0, 0.01)
+    renderer.AddActor(outline)
     bar = vtkScalarBarActor()
     bar.SetLookupTable(table)
+    bar.SetOrientationToHorizontal()
     bar.SetNumberOfLabels(3)
-    bar.SetWidth(0.1)
-    bar.SetHeight(0.6)
-    bar.SetPosition(0.86, 0.15)
-    bar.GetLabelTextProperty().SetColor(0, 0, 0)
-    bar.SetTitle(name)
+    bar.SetLabelFormat("%.2g")
+    bar.SetPosition(0.1, 0.02)
+    bar.SetWidth(0.8)
+    bar.SetHeight(0.12)
     bar.UnconstrainedFontSizeOn()
-    bar.GetTitleTextProperty().SetFontSize(16)
-    bar.GetLabelTextProperty().SetFontSize(14)
-    bar.GetTitleTextProperty().SetColor(0, 0, 0)
-    renderer.AddActor2D(bar)
+    bar.GetLabelTextProperty().SetFontSize(15)
+    bar.GetLabelTextProperty().SetColor(0, 0, 0)
+    bar.GetLabelTextProperty().ShadowOff()
+    bar.GetLabelTextProperty().ItalicOff()
+    panel.AddActor2D(bar)
     text = vtkTextActor()
     text.SetInput(title)
     text.GetTextProperty().SetColor(0, 0, 0)
-    text.GetTextProperty().SetFontSize(18)
-    text.SetPosition(10, 520)
-    renderer.AddActor2D(text)
-    renderer.ResetCamera(-0.05, 1.6, -0.05, 1.3, 0, 0)
-    renderer.GetActiveCamera().Zoom(1.35)
+    text.GetTextProperty().SetFontSize(19)
+    text.SetPosition(12, height - 32)
+    panel.AddActor2D(text)
+    renderer.ResetCamera(0.25, 1.25, -0.45, 0.55, 0, 0)
+    renderer.GetActiveCamera().Zoom(1.45)
     window.AddRenderer(renderer)
 window.Render()
 grab = vtkWindowToImageFilter()

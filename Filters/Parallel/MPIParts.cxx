@@ -76,6 +76,16 @@ void MPIParts::Sum(double* values, int count)
   this->C->AllReduce(mine.data(), values, count, vtkCommunicator::SUM_OP);
 }
 
+void MPIParts::Minimum(double* values, int count)
+{
+  if (count <= 0)
+  {
+    return;
+  }
+  std::vector<double> mine(values, values + count);
+  this->C->AllReduce(mine.data(), values, count, vtkCommunicator::MIN_OP);
+}
+
 std::vector<unsigned int> MPIParts::Union(const std::vector<unsigned int>& values)
 {
   std::vector<std::vector<char>> out(static_cast<size_t>(this->N));

@@ -56,6 +56,7 @@ public:
   Verdict Agree(const Verdict& mine, bool* flag = nullptr) override;
   void Or(std::vector<char>& flags) override;
   void Sum(double* values, int count) override;
+  void Minimum(double* values, int count) override;
   std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override;
   /// Each entry is summed on the process its key hashes to, which answers
   /// every entry: the sums are the same, bit for bit, on any run.

@@ -99,6 +99,8 @@ public:
   virtual void Or(std::vector<char>& flags) = 0;
   /// Sums over the processes, in place.
   virtual void Sum(double* values, int count) = 0;
+  /// Smallest values over the processes, in place.
+  virtual void Minimum(double* values, int count) = 0;
   /// The union over the processes (sorted, without repeats).
   virtual std::vector<unsigned int> Union(const std::vector<unsigned int>& values) = 0;
   /**
@@ -150,6 +152,7 @@ public:
   Verdict Agree(const Verdict& mine, bool*) override { return mine; }
   void Or(std::vector<char>&) override {}
   void Sum(double*, int) override {}
+  void Minimum(double*, int) override {}
   std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override
   {
     std::vector<unsigned int> all(values);

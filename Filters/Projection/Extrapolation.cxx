@@ -5,6 +5,7 @@
 #include "vtkDataSet.h"
 
 #include "Projection/Messages.h"
+#include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
 #include "Adapter/SimplexMesh.h"
@@ -21,75 +22,63 @@ namespace mpvtk
 namespace
 {
 /**
- * The valid values of array `a` kept within the range of the Source values
- * (those this process gathered: on one process the field's range), so that
- * the extension, bounded by the valid values, is too. (The fringe's values
- * are extrapolations from well-covered points and may pass the Source's
- * extremes where the field goes on growing beyond it; so may the L2
- * projection next to an extreme on the Source's boundary.)
+ * The extension over `op`'s invalid functions: the kept one where it is
+ * this operator's (a reused operator, the same mode), else built.
  */
-void ClipToSource(const GatheredFields& g, size_t a, const mp::MortarOperator& op, mp::LargeVector<double>& values)
+const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op, bool points,
+  const mp::SolverHooks& hook, KeptOperator* kept, mp::Extension& own)
 {
+  const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
+  mp::Extension& ext = kept ? kept->Extension : own;
   const std::vector<char>& valid = op.GetValid();
-  const int nc = g.Arrays[a]->GetNumberOfComponents();
-  const size_t width = static_cast<size_t>(g.Components);
-  const size_t sources = width > 0 ? g.Values.size() / width : 0;
-  for (int k = 0; k < nc; ++k)
+  if (kept && kept->Operator.get() == &op && kept->ExtensionFor == &op && ext.Mode == mode &&
+    ext.Extended.size() == valid.size())
   {
-    const size_t column = static_cast<size_t>(g.Offsets[a] + k);
-    double low = std::numeric_limits<double>::infinity();
-    double high = -low;
-    for (size_t j = 0; j < sources; ++j)
-    {
-      const double v = g.Values[j * width + column];
-      low = v < low ? v : low; // (NaN compares false: left out)
-      high = v > high ? v : high;
-    }
-    for (size_t f = 0; f < valid.size() && low <= high; ++f)
-    {
-      if (valid[f])
-      {
-        double& v = values[f * width + column];
-        v = std::min(high, std::max(low, v));
-      }
-    }
+    return ext;
   }
+  // Rows for the functions this operator leaves invalid.
+  std::vector<char> want(valid.size());
+  for (size_t f = 0; f < want.size(); ++f)
+  {
+    want[f] = !valid[f];
+  }
+  const mp::MeshView& view = ctx.Target.View();
+  const mp::FunctionGraph graph = points ? mp::PointGraph(view, want) : mp::CellGraph(view, want);
+  ext = mp::ExtendOver(graph, valid, mode, hook);
+  if (kept)
+  {
+    kept->ExtensionFor = &op;
+  }
+  return ext;
 }
 
 /// One transfer: its arrays extended one by one (each with its own operator's validity).
-Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t,
+Verdict ExtrapolateTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
   const mp::SolverHooks& hook, LeafSolutions& solutions)
 {
-  const mp::MeshView& view = ctx.Target.View();
   const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
-  mp::FunctionGraph graph;
-  const mp::MortarOperator* graphOf = nullptr;
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
-  const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
   mp::LargeVector<double>& values = solutions.Values[t];
   double left = 0.0;
+  const mp::MortarOperator* builtFor = nullptr;
+  mp::Extension own;
+  const mp::Extension* ext = nullptr;
   for (size_t a = 0; a < g.Arrays.size(); ++a)
   {
     const mp::MortarOperator& op = *ops.ByArray[t][a];
-    ClipToSource(g, a, op, values);
-    std::vector<char> extrapolated;
-    if (graph.Size() == 0 || &op != graphOf)
+    if (&op != builtFor)
     {
-      // Rows for the functions this operator leaves invalid.
-      std::vector<char> want(op.GetValid().size());
-      for (size_t f = 0; f < want.size(); ++f)
-      {
-        want[f] = !op.GetValid()[f];
-      }
-      graph = points ? mp::PointGraph(view, want) : mp::CellGraph(view, want);
-      graphOf = &op;
+      // The transfer's own operator keeps its extension (GetMatrix, later steps).
+      const bool main = &op == ops.Operators[t] && ctx.Options.CacheOperator;
+      ext = &ExtensionOf(ctx, op, points, hook, main ? &kept.Operators[t] : nullptr, own);
+      builtFor = &op;
+      left = std::max(left, static_cast<double>(ext->Unreached));
     }
-    const mp::Index unreached = mp::Extrapolate(graph, op.GetValid(), values.data(), g.Components,
-      g.Offsets[a], g.Arrays[a]->GetNumberOfComponents(), mode, hook, extrapolated);
-    left = std::max(left, static_cast<double>(unreached));
+    mp::ApplyExtension(*ext, values.data(), g.Components, g.Offsets[a],
+      g.Arrays[a]->GetNumberOfComponents(), hook);
     if (&op == ops.Operators[t])
     {
-      solutions.Extrapolated[t].swap(extrapolated);
+      solutions.Extrapolated[t] = ext->Extended;
     }
   }
   if (left > 0.0 && ctx.Processes.Rank() == 0)
@@ -103,7 +92,7 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const OperatorSet& ops, Transfer t
 }
 } // namespace
 
-Verdict ExtrapolateLeaf(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks hooks[2],
+Verdict ExtrapolateLeaf(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, const mp::SolverHooks hooks[2],
   LeafSolutions& solutions)
 {
   if (ctx.Options.Extrapolation == 0)
@@ -118,7 +107,7 @@ Verdict ExtrapolateLeaf(LeafContext& ctx, const OperatorSet& ops, const mp::Solv
     }
     const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
     // Cells are not shared between processes: each extends over its own.
-    const Verdict done = ExtrapolateTransfer(ctx, ops, t, points ? hooks[0] : mp::SolverHooks(), solutions);
+    const Verdict done = ExtrapolateTransfer(ctx, kept, ops, t, points ? hooks[0] : mp::SolverHooks(), solutions);
     if (!done.Ok())
     {
       return done;

@@ -18,8 +18,12 @@
 
 namespace mpvtk
 {
-/// Extends every transfer's arrays (Settings::Extrapolation); a failure is a stop or an error.
-Verdict ExtrapolateLeaf(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks hooks[2],
+/**
+ * Extends every transfer's arrays (Settings::Extrapolation); a failure is a
+ * stop or an error. With CacheOperator the transfer's extension is kept
+ * with its operator (reused with it; GetMatrix EXTRAPOLATION).
+ */
+Verdict ExtrapolateLeaf(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, const mp::SolverHooks hooks[2],
   LeafSolutions& solutions);
 } // namespace mpvtk
 

@@ -184,7 +184,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   result.Outcome = ApplyOperators(ctx, kept, ops, hooks, halo, solutions);
   if (result.Outcome.Ok())
   {
-    result.Outcome = ExtrapolateLeaf(ctx, ops, hooks, solutions);
+    result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
   }
   if (!result.Outcome.Ok())
   {

@@ -35,23 +35,27 @@ mp::CsrMatrix Identity(mp::Index n)
 }
 } // namespace
 
-vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, int matrix,
+vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values)
 {
-  const mp::MortarOperator& op = *leaf.Operators[transfer].Operator;
-  const bool mixed = matrix == 1;
-  if (matrix == 2 && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
+  const KeptOperator& kept = leaf.Operators[transfer];
+  const mp::MortarOperator& op = *kept.Operator;
+  const bool mixed = matrix == Exported::MixedMass;
+  mp::CsrMatrix made;
+  if (matrix == Exported::FringeExtension && op.GetFringe().P.Rows == 0)
   {
-    return -1; // a process's P reaches its halo's points, which its numbering does not hold
+    made = Identity(op.GetNumberOfTargetFunctions());
   }
-  mp::CsrMatrix identity;
-  if (matrix == 2 && op.GetFringe().P.Rows == 0)
+  else if (matrix == Exported::Extrapolation)
   {
-    identity = Identity(op.GetNumberOfTargetFunctions());
+    // Without an extension of this operator: the identity on the valid functions.
+    made = mp::ComposedExtension(
+      kept.ExtensionFor == &op ? kept.Extension : mp::Extension(), op.GetValid());
   }
-  const mp::CsrMatrix& m = mixed ? op.GetMixedMass()
-    : matrix == 2                ? (identity.Rows ? identity : op.GetFringe().P)
-                                 : op.GetTargetMass();
+  const mp::CsrMatrix& m = made.Rows ? made
+    : mixed                          ? op.GetMixedMass()
+    : matrix == Exported::FringeExtension ? op.GetFringe().P
+                                     : op.GetTargetMass();
   // P0 rows and columns are numbered as the datasets' cells, P1 ones as
   // their points (the kernel's points of a renumbered mesh mapped back).
   const std::vector<mp::Index>* rowOrder =

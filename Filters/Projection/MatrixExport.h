@@ -4,8 +4,8 @@
  * @brief The kept operators' matrices as the user sees them: compressed
  *        sparse rows in the datasets' numbering, and Matrix Market files.
  *
- * Rows are Input's points (P1) or cells (P0); columns Input's (M_tt) or
- * Source's (M_ts) points or cells. A renumbered mesh's kernel points are
+ * Rows are Input's points (P1) or cells (P0); columns Input's (M_tt, P, E)
+ * or Source's (M_ts) points or cells. A renumbered mesh's kernel points are
  * mapped back to the dataset's points (each row's columns then sorted).
  */
 #ifndef MeshProjection_Projection_MatrixExport_h
@@ -24,9 +24,17 @@ namespace mpvtk
 {
 struct KeptLeaf;
 
-/// M_tt (`matrix` 0), M_ts (1) or the fringe's extension P (2) of `leaf`'s operator of `transfer`; returns the number of columns
-/// (-1 for P on several processes whose stencils reach the halo).
-vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, int matrix,
+/// The matrices of a kept operator (vtkMeshProjectionFilter::Matrices).
+enum class Exported
+{
+  TargetMass,      ///< M_tt
+  MixedMass,       ///< M_ts
+  FringeExtension, ///< P (the identity where nothing is aggregated, P0 targets too)
+  Extrapolation    ///< E over the valid functions (their identity, empty invalid rows, without Extrapolation)
+};
+
+/// `matrix` of `leaf`'s operator of `transfer`; returns the number of columns.
+vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values);
 
 /// Writes compressed rows as a Matrix Market coordinate file; an error text, or empty.

@@ -19,6 +19,7 @@
 #include "Projection/Transfers.h"
 
 #include "Mesh/LargeArray.h"
+#include "Transfer/Extrapolation.h"
 #include "Transfer/LinearReconstruction.h"
 #include "Transfer/MortarOperator.h"
 
@@ -40,6 +41,9 @@ struct KeptOperator
   std::unique_ptr<mp::MortarOperator> Operator;
   std::string SolutionKey;          ///< GatheredFields::Key of the solution
   mp::LargeVector<double> Solution; ///< the last projection (warm start)
+  /// Extrapolation's extension over the operator's invalid functions (Projection/Extrapolation.h).
+  mp::Extension Extension;
+  const mp::MortarOperator* ExtensionFor = nullptr; ///< the operator it was built for
 };
 
 /// What the filter keeps for one leaf of Input.

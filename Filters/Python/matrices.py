@@ -12,6 +12,11 @@ solves the projection on the aggregated functions: with P = fringe_extension(f),
     free = P.getnnz(axis=0) > 0                        # columns P uses
     A, b = P.T @ M_tt @ P, P.T @ (M_ts @ u_s)
     u_t = P[:, free] @ spsolve(A[free][:, free], b[free])  # the filter's result on valid rows
+
+With Extrapolation, E = extrapolation_matrix(f) extends the valid values:
+the output is E @ u_t on E's nonempty rows (the fill value on the others),
+where the Source field's range is not reached (the filter also keeps the
+valid values within it, which no matrix holds).
 """
 import numpy as np
 
@@ -60,6 +65,18 @@ def fringe_extension(filter_, transfer="points_to_points"):
         filter_ = filter_.GetClientSideObject()
     t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
     return _csr(filter_, t, 2)
+
+
+def extrapolation_matrix(filter_, transfer="points_to_points"):
+    """E, the extension of a transfer's valid values beyond the Source
+    (Extrapolation): target functions x target functions, the identity on
+    the valid ones, each extended one's weights over valid ones, empty rows
+    for those left the fill value (without Extrapolation: the identity on
+    the valid functions). One process's filter."""
+    if hasattr(filter_, "GetClientSideObject"):
+        filter_ = filter_.GetClientSideObject()
+    t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
+    return _csr(filter_, t, 3)
 
 
 def write_matrix_market(filter_, path, transfer="points_to_points", matrix="mixed"):

@@ -149,118 +149,78 @@ std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& v
   return out;
 }
 
-/// Row i's weighted sums of its neighbours' values where use(k) (numerators, then the weight).
-template <class Use>
-void NeighbourSums(const FunctionGraph& graph, Index i, const double* values, int width, int offset, int nc,
-  Use use, double* sums)
+/// Compressed rows over `n` functions from per-function lists of (column, weight).
+CsrMatrix Compressed(Index n, const std::vector<std::vector<std::pair<Column, double>>>& rows)
 {
-  std::fill(sums, sums + nc + 1, 0.0);
-  const Index r = graph.Row[i];
-  for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
+  CsrMatrix m;
+  m.Rows = m.Columns = n;
+  m.RowStart.assign(static_cast<size_t>(n) + 1, 0);
+  for (Index i = 0; i < n; ++i)
   {
-    const Index k = graph.Neighbors[q];
-    if (use(k))
+    m.RowStart[i + 1] = m.RowStart[i] + static_cast<Index>(rows[i].size());
+  }
+  m.ColumnIndex.resize(static_cast<size_t>(m.NonZeros()));
+  m.Values.resize(static_cast<size_t>(m.NonZeros()));
+  for (Index i = 0; i < n; ++i)
+  {
+    Index at = m.RowStart[i];
+    for (const auto& entry : rows[i])
     {
-      const double w = graph.Weights[q];
-      for (int m = 0; m < nc; ++m)
-      {
-        sums[m] += w * values[k * width + offset + m];
-      }
-      sums[nc] += w;
+      m.ColumnIndex[at] = entry.first;
+      m.Values[at++] = entry.second;
     }
   }
+  return m;
 }
 
 /**
- * The functions `which` take their neighbours' mean over those where
- * use(k). Alone, in place, in the order given; on a distributed graph the
- * sums go through full-length vectors, completed across parts first.
+ * The creep fill's steps: one per layer (as many on every part: the
+ * largest over the parts), each function reading its neighbours of lower
+ * layers with the graph's weights.
  */
-template <class Use>
-void MeanStep(const FunctionGraph& graph, const std::vector<Index>& which, Use use, double* values, int width,
-  int offset, int nc, const SolverHooks& hooks)
+void CreepSteps(const FunctionGraph& graph, const std::vector<Index>& layer, const SolverHooks& hooks,
+  Extension& ext)
 {
-  std::vector<double> sums(static_cast<size_t>(nc) + 1);
-  if (!hooks.Exchange)
-  {
-    for (Index i : which)
-    {
-      NeighbourSums(graph, i, values, width, offset, nc, use, sums.data());
-      for (int m = 0; sums[nc] > 0.0 && m < nc; ++m)
-      {
-        values[i * width + offset + m] = sums[m] / sums[nc];
-      }
-    }
-    return;
-  }
   const Index n = graph.Size();
-  std::vector<double> all(static_cast<size_t>(n) * (nc + 1), 0.0);
-  for (Index i : which)
+  for (Index i = 0; i < n; ++i)
   {
-    NeighbourSums(graph, i, values, width, offset, nc, use, &all[static_cast<size_t>(i) * (nc + 1)]);
-  }
-  hooks.Exchange(all.data(), nc + 1);
-  for (Index i : which)
-  {
-    const double* s = &all[static_cast<size_t>(i) * (nc + 1)];
-    for (int m = 0; s[nc] > 0.0 && m < nc; ++m)
+    if (layer[i] > 0)
     {
-      values[i * width + offset + m] = s[m] / s[nc];
+      ext.Steps.resize(std::max(ext.Steps.size(), static_cast<size_t>(layer[i])));
+      ext.Steps[static_cast<size_t>(layer[i]) - 1].push_back(i);
     }
   }
-}
-
-/// The creep fill: layer by layer, then sweeps of neighbour means.
-void CreepFill(const FunctionGraph& graph, const std::vector<Index>& layer, const std::vector<char>& todo,
-  double* values, int width, int offset, int nc, const SolverHooks& hooks)
-{
-  // The functions of each layer (1, 2, ...); the number of layers is the
-  // largest over the parts (a count of the functions beyond each, summed).
-  std::vector<std::vector<Index>> layers;
-  for (Index i = 0; i < graph.Size(); ++i)
-  {
-    if (todo[i])
-    {
-      layers.resize(std::max(layers.size(), static_cast<size_t>(layer[i])));
-      layers[static_cast<size_t>(layer[i]) - 1].push_back(i);
-    }
-  }
-  double count = static_cast<double>(layers.size());
   for (size_t L = 1; hooks.Reduce; ++L)
   {
     // (Sum of "this part has layer L" over the parts: 0 once no part has.)
-    double has = L <= layers.size() ? 1.0 : 0.0;
+    double has = L <= ext.Steps.size() ? 1.0 : 0.0;
     hooks.Reduce(&has, 1);
     if (has == 0.0)
     {
-      count = static_cast<double>(L - 1);
+      ext.Steps.resize(L - 1);
       break;
     }
   }
-  layers.resize(static_cast<size_t>(count));
-  for (size_t L = 0; L < layers.size(); ++L)
+  std::vector<std::vector<std::pair<Column, double>>> reads(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
   {
-    const Index before = static_cast<Index>(L) + 1;
-    MeanStep(graph, layers[L], [&](Index k) { return layer[k] >= 0 && layer[k] < before; }, values, width,
-      offset, nc, hooks);
+    const Index r = graph.Row[i];
+    for (Index q = layer[i] > 0 ? graph.Start[r] : 0; layer[i] > 0 && q < graph.Start[r + 1]; ++q)
+    {
+      const Index k = graph.Neighbors[q];
+      if (layer[k] >= 0 && layer[k] < layer[i])
+      {
+        reads[i].emplace_back(static_cast<Column>(k), graph.Weights[q]);
+      }
+    }
   }
-  // Sweeps of neighbour means over all neighbours reached (the valid ones
-  // held): towards the harmonic extension, each value still a mean of valid ones.
-  std::vector<Index> all;
-  for (const auto& ones : layers)
-  {
-    all.insert(all.end(), ones.begin(), ones.end());
-  }
-  for (int sweep = 0; sweep < 20; ++sweep)
-  {
-    MeanStep(graph, all, [&](Index k) { return layer[k] >= 0; }, values, width, offset, nc, hooks);
-  }
+  ext.Reads = Compressed(n, reads);
 }
 
-/// The value of the nearest valid function along the graph (Dijkstra from all valid ones).
-void Nearest(const FunctionGraph& graph, const std::vector<char>& valid, const std::vector<char>& todo,
-  double* values, int width, int offset, int nc)
+/// Nearest's step: each reached function reads the nearest valid one along the graph (Dijkstra from all valid ones).
+void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Extension& ext)
 {
+  const std::vector<char>& todo = ext.Extended;
   const Index n = graph.Size();
   std::vector<double> distance(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
   std::vector<Index> from(static_cast<size_t>(n), -1);
@@ -311,12 +271,32 @@ void Nearest(const FunctionGraph& graph, const std::vector<char>& valid, const s
       }
     }
   }
+  std::vector<std::vector<std::pair<Column, double>>> reads(static_cast<size_t>(n));
+  ext.Steps.assign(1, {});
   for (Index i = 0; i < n; ++i)
   {
-    for (int m = 0; todo[i] && from[i] >= 0 && m < nc; ++m)
+    if (todo[i] && from[i] >= 0)
     {
-      values[i * width + offset + m] = values[from[i] * width + offset + m];
+      reads[i].emplace_back(static_cast<Column>(from[i]), 1.0);
+      ext.Steps[0].push_back(i);
     }
+  }
+  ext.Reads = Compressed(n, reads);
+}
+
+/// Row i's weighted sums of what it reads (numerators, then the weight).
+void ReadSums(const CsrMatrix& reads, Index i, const double* values, int width, int offset, int nc, double* sums)
+{
+  std::fill(sums, sums + nc + 1, 0.0);
+  for (Index q = reads.RowStart[i]; q < reads.RowStart[i + 1]; ++q)
+  {
+    const Index k = reads.ColumnIndex[q];
+    const double w = reads.Values[q];
+    for (int m = 0; m < nc; ++m)
+    {
+      sums[m] += w * values[k * width + offset + m];
+    }
+    sums[nc] += w;
   }
 }
 } // namespace
@@ -399,35 +379,118 @@ FunctionGraph CellGraph(const MeshView& mesh, const std::vector<char>& want)
   return graph;
 }
 
-Index Extrapolate(const FunctionGraph& graph, const std::vector<char>& valid, double* values,
-  int width, int offset, int nc, ExtrapolationMode mode, const SolverHooks& hooks,
-  std::vector<char>& extrapolated)
+Extension ExtendOver(const FunctionGraph& graph, const std::vector<char>& valid,
+  ExtrapolationMode mode, const SolverHooks& hooks)
 {
+  Extension ext;
+  ext.Mode = mode;
   const Index n = graph.Size();
-  extrapolated.assign(static_cast<size_t>(n), 0);
+  ext.Extended.assign(static_cast<size_t>(n), 0);
   if (mode == ExtrapolationMode::None)
   {
-    return 0;
+    return ext;
   }
   const std::vector<Index> layer = Layers(graph, valid, hooks);
   double left = 0.0;
   for (Index i = 0; i < n; ++i)
   {
-    extrapolated[i] = layer[i] > 0;
+    ext.Extended[i] = layer[i] > 0;
     left += layer[i] < 0 && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
   }
   if (hooks.Reduce)
   {
     hooks.Reduce(&left, 1);
   }
+  ext.Unreached = static_cast<Index>(left);
   if (mode == ExtrapolationMode::Smooth)
   {
-    CreepFill(graph, layer, extrapolated, values, width, offset, nc, hooks);
+    CreepSteps(graph, layer, hooks, ext);
   }
   else
   {
-    Nearest(graph, valid, extrapolated, values, width, offset, nc);
+    NearestStep(graph, valid, ext);
   }
-  return static_cast<Index>(left);
+  return ext;
+}
+
+void ApplyExtension(const Extension& ext, double* values, int width, int offset, int nc,
+  const SolverHooks& hooks)
+{
+  std::vector<double> sums(static_cast<size_t>(nc) + 1);
+  std::vector<double> all;
+  for (const std::vector<Index>& step : ext.Steps)
+  {
+    if (!hooks.Exchange)
+    {
+      // (In place: a step reads only valid functions and earlier steps.)
+      for (Index i : step)
+      {
+        ReadSums(ext.Reads, i, values, width, offset, nc, sums.data());
+        for (int m = 0; sums[nc] > 0.0 && m < nc; ++m)
+        {
+          values[i * width + offset + m] = sums[m] / sums[nc];
+        }
+      }
+      continue;
+    }
+    all.assign(static_cast<size_t>(ext.Reads.Rows) * (nc + 1), 0.0);
+    for (Index i : step)
+    {
+      ReadSums(ext.Reads, i, values, width, offset, nc, &all[static_cast<size_t>(i) * (nc + 1)]);
+    }
+    hooks.Exchange(all.data(), nc + 1);
+    for (Index i = 0; i < ext.Reads.Rows; ++i)
+    {
+      const double* s = &all[static_cast<size_t>(i) * (nc + 1)];
+      for (int m = 0; s[nc] > 0.0 && m < nc; ++m)
+      {
+        values[i * width + offset + m] = s[m] / s[nc];
+      }
+    }
+  }
+}
+
+CsrMatrix ComposedExtension(const Extension& ext, const std::vector<char>& valid)
+{
+  const Index n = static_cast<Index>(valid.size());
+  std::vector<std::vector<std::pair<Column, double>>> rows(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
+  {
+    if (valid[i])
+    {
+      rows[i].emplace_back(static_cast<Column>(i), 1.0);
+    }
+  }
+  // Each extended row the weighted mean of the (composed) rows it reads,
+  // summed in a dense accumulator.
+  std::vector<double> sum(static_cast<size_t>(n), 0.0);
+  std::vector<Column> used;
+  for (const std::vector<Index>& step : ext.Steps)
+  {
+    for (Index i : step)
+    {
+      double total = 0.0;
+      used.clear();
+      for (Index q = ext.Reads.RowStart[i]; q < ext.Reads.RowStart[i + 1]; ++q)
+      {
+        total += ext.Reads.Values[q];
+        for (const auto& entry : rows[ext.Reads.ColumnIndex[q]])
+        {
+          if (sum[entry.first] == 0.0)
+          {
+            used.push_back(entry.first);
+          }
+          sum[entry.first] += ext.Reads.Values[q] * entry.second;
+        }
+      }
+      std::sort(used.begin(), used.end());
+      for (const Column k : used)
+      {
+        rows[i].emplace_back(k, sum[k] / total);
+        sum[k] = 0.0;
+      }
+    }
+  }
+  return Compressed(n, rows);
 }
 } // namespace mp

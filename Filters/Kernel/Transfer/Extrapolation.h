@@ -9,11 +9,12 @@
  *
  * - Smooth ("creep fill"): layer by layer away from the valid functions,
  *   each function takes the weighted mean of its neighbours in the layers
- *   before it; then sweeps of neighbour means (Jacobi, towards the
- *   harmonic extension) smooth the layers' traces. The edge weights are
- *   the number of cells holding both ends (a sum over cells, so that the
- *   parts of a distributed target add up to the whole one). Every value is
- *   a weighted mean of valid ones: within their range, no new extrema.
+ *   before it. The edge weights are the number of cells holding both ends
+ *   (a sum over cells, so that the parts of a distributed target add up to
+ *   the whole one). Every value is a weighted mean of valid ones: within
+ *   their range, no new extrema. (No smoothing sweeps after the layers:
+ *   a layer reads only earlier ones, so the extension is one pass, the
+ *   same on one process as on several, and exported as one matrix.)
  * - Nearest: the value of the nearest valid function along the graph
  *   (edge lengths between the functions' positions).
  *
@@ -26,6 +27,7 @@
 
 #include "Mesh/MeshView.h"
 #include "Transfer/BlockCG.h"
+#include "Transfer/CsrMatrix.h"
 
 #include <vector>
 
@@ -55,18 +57,48 @@ enum class ExtrapolationMode
 };
 
 /**
- * Extends columns [offset, offset + nc) of `values` (functions x width)
- * from the functions with valid[f] to the others that the graph connects
- * to one (the graph must have rows for the functions not valid).
- * `extrapolated` (resized) says which got a value. `hooks`: a distributed
- * graph (Exchange sums shared rows, ExchangeMinimum completes layers,
- * Reduce sums counts); the smooth extension is then the whole graph's, the
- * nearest the nearest within each part. Returns the functions left without
- * a value (counted once: hooks.Counted).
+ * A linear extension of the valid functions' values to the others that the
+ * graph connects to one: steps in order, each function of a step the
+ * weighted mean of functions it reads, which are valid or in earlier steps
+ * (so the extension is a product of sparse means: linear in the data, every
+ * value within the valid values' range).
  */
-Index Extrapolate(const FunctionGraph& graph, const std::vector<char>& valid, double* values,
-  int width, int offset, int nc, ExtrapolationMode mode, const SolverHooks& hooks,
-  std::vector<char>& extrapolated);
+struct Extension
+{
+  ExtrapolationMode Mode = ExtrapolationMode::None;
+  std::vector<char> Extended;            ///< per function: given a value
+  std::vector<std::vector<Index>> Steps; ///< the functions of each step (as many on every part)
+  CsrMatrix Reads;   ///< per function, what its mean reads, with weights (this part's share)
+  Index Unreached = 0; ///< functions connected to no valid one (counted once over the parts)
+};
+
+/**
+ * The extension of `mode` from the functions with valid[f] (the graph must
+ * have rows for the others). Smooth: step L holds the functions L edges
+ * from the valid ones, each reading its neighbours of earlier steps with
+ * the graph's weights. Nearest: one step, each function reading the
+ * nearest valid one along the graph. `hooks`: a distributed graph
+ * (ExchangeMinimum completes the layers, Reduce counts): the steps are
+ * then the whole graph's, the nearest the nearest within each part.
+ */
+Extension ExtendOver(const FunctionGraph& graph, const std::vector<char>& valid,
+  ExtrapolationMode mode, const SolverHooks& hooks);
+
+/**
+ * Columns [offset, offset + nc) of `values` (functions x width): the
+ * extended functions' values, step by step. On a distributed graph each
+ * step's sums are completed across the parts (hooks.Exchange): a shared
+ * function's mean is over all its neighbours, the same on every part.
+ */
+void ApplyExtension(const Extension& extension, double* values, int width, int offset, int nc,
+  const SolverHooks& hooks);
+
+/**
+ * The extension as one matrix E (functions x functions) over the valid
+ * functions: E u is the extended field of valid values u (valid rows the
+ * identity, unreached rows empty). One process's graph.
+ */
+CsrMatrix ComposedExtension(const Extension& extension, const std::vector<char>& valid);
 } // namespace mp
 
 #endif

@@ -148,6 +148,14 @@ struct ApplyOptions
    * the assembled M_ts.
    */
   bool Bounded = false;
+  /**
+   * Per component, a range every valid value is kept within, by the same
+   * clip and assured sum with every row's bounds the range (the integral
+   * stays the source's; a field within the range, e.g. a linear one, is
+   * unchanged). Not with Bounded, whose bounds lie within. Empty: none; a
+   * component whose low is not <= its high: none for it.
+   */
+  std::vector<double> RangeLow, RangeHigh;
   SolveOptions Solve;
   /// A distributed system whose fringe was aggregated with a FringeHalo:
   /// that halo's Hooks, for the aggregated solve (its extended rows).

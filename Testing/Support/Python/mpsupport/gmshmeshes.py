@@ -33,6 +33,8 @@ def _occ(shape):
         # A quarter of the side of a cylinder of radius r (arc<r>): two of
         # them make a curved gap.
         occ.addCylinder(0, 0, 0, 0, 0, 1, float(shape[3:]), 1, np.pi / 2)
+    elif shape == "disk":
+        occ.addDisk(0, 0, 0, 1.0, 1.0)
     elif shape.startswith("patch"):
         # A flat square at height z (patch<z>): two patches make a gap.
         z = float(shape[5:])
