@@ -70,11 +70,23 @@ int Monomials(const double* y, int d, int degree, double* into)
 }
 
 /**
+ * The largest sum of |w_ik| a quadratic extension may have: the factor by
+ * which it can amplify an oscillation of the free values. A one-sided
+ * quadratic extrapolation easily reaches 7 or more (three points on a line:
+ * 3, -3, 1); such weights couple the stencil's functions with alternating
+ * signs in P^T M P and widen its spectrum (the conjugate gradients then
+ * need up to three times the iterations). Beyond this, the affine fit.
+ */
+constexpr double QuadraticAmplification = 4.0;
+
+/**
  * The weights of `points` that give, at point i, the value of the
  * least-squares polynomial fit of degree `degree` through them (the
  * minimum-norm weights reproducing those polynomials at i), or empty when
- * the points do not spread well enough to fit one stably. Degree 1 or 2:
- * either reproduces affine functions and sums to 1.
+ * the points do not allow a stable fit: when they do not spread well
+ * (nearly on a line, a plane or a conic), or, quadratic, when the weights
+ * amplify more than QuadraticAmplification. Degree 1 or 2: either
+ * reproduces affine functions and sums to 1.
  */
 std::vector<double> FitWeights(
   const MeshView& mesh, Index i, const std::vector<Index>& points, size_t keep, int degree)
@@ -102,7 +114,9 @@ std::vector<double> FitWeights(
   }
   // Monomials of (x_k - x_i) / h: coordinates of order 1 about i; each
   // point weighed by the square root of omega_k, larger near i (the fit is
-  // evaluated at i: near points tell most about it).
+  // evaluated at i: near points tell most about it). At most 10 terms:
+  // G on the stack.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10>;
   Eigen::MatrixXd X(m, terms);
   Eigen::VectorXd omega(m);
   for (Index r = 0; r < m; ++r)
@@ -122,18 +136,27 @@ std::vector<double> FitWeights(
       X(r, t) = std::sqrt(omega(r)) * row[t];
     }
   }
-  const Eigen::MatrixXd G = X.transpose() * X / omega.sum();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> spectrum(G);
-  // Points nearly on a line or a plane (or a conic) would give huge weights.
-  if (spectrum.eigenvalues().minCoeff() < (degree == 1 ? 1e-2 : 1e-4))
-  {
-    return {};
-  }
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(terms);
+  const Small G = X.transpose() * X / omega.sum();
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1> e = Eigen::VectorXd::Zero(terms);
   e(0) = 1.0; // the fit's value at i (the origin of the coordinates)
   // The weighted fit's value at i: w = Omega^(1/2) X G^-1 e (with X scaled by Omega^(1/2)).
   const Eigen::VectorXd w =
     omega.cwiseSqrt().cwiseProduct(X * G.ldlt().solve(e)) / omega.sum();
+  // (Not "> bound": a singular G gives NaN weights, rejected too.) Most
+  // one-sided quadratic fits stop here, before the spectrum's cost.
+  if (degree == 2 && !(w.cwiseAbs().sum() <= QuadraticAmplification))
+  {
+    return {};
+  }
+  // Points nearly on a line or a plane (or a conic) do not determine the
+  // fit, whatever its weights (on a Gmsh wedge pair, quadratic fits
+  // accepted on their amplification alone gave 17 times the interior's
+  // error).
+  if (Eigen::SelfAdjointEigenSolver<Small>(G, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() <
+    (degree == 1 ? 1e-2 : 1e-4))
+  {
+    return {};
+  }
   return std::vector<double>(w.data(), w.data() + m);
 }
 
