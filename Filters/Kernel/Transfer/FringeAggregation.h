@@ -36,6 +36,7 @@
 
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
 #include "Transfer/CsrMatrix.h"
 
 #include <vector>
@@ -66,10 +67,11 @@ constexpr double FringeDropFraction = 0.01;
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
  * rings around it. A function with no well-spread free points within a few
- * rings stays free. Those below `drop` are marked Dropped too.
+ * rings stays free. Those below `drop` are marked Dropped too. The
+ * stencils are fitted in `runner`'s tasks (the same whatever their number).
  */
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop);
+  const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner);
 
 /**
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:

@@ -258,7 +258,7 @@ Index MortarOperator::AggregateFringe(
   {
     fraction[i] = whole[i] > 0.0 ? covered[i] / whole[i] : 0.0;
   }
-  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction);
+  this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
   if (this->Fringe.Count > 0)
   {
     this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
