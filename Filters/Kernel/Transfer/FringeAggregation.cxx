@@ -70,11 +70,23 @@ int Monomials(const double* y, int d, int degree, double* into)
 }
 
 /**
+ * The largest sum of |w_ik| a quadratic extension may have: the factor by
+ * which it can amplify an oscillation of the free values. A one-sided
+ * quadratic extrapolation easily reaches 7 or more (three points on a line:
+ * 3, -3, 1); such weights couple the stencil's functions with alternating
+ * signs in P^T M P and widen its spectrum (the conjugate gradients then
+ * need up to three times the iterations). Beyond this, the affine fit.
+ */
+constexpr double QuadraticAmplification = 4.0;
+
+/**
  * The weights of `points` that give, at point i, the value of the
  * least-squares polynomial fit of degree `degree` through them (the
  * minimum-norm weights reproducing those polynomials at i), or empty when
- * the points do not spread well enough to fit one stably. Degree 1 or 2:
- * either reproduces affine functions and sums to 1.
+ * the points do not allow a stable fit: when they do not spread well
+ * (nearly on a line, a plane or a conic), or, quadratic, when the weights
+ * amplify more than QuadraticAmplification. Degree 1 or 2: either
+ * reproduces affine functions and sums to 1.
  */
 std::vector<double> FitWeights(
   const MeshView& mesh, Index i, const std::vector<Index>& points, size_t keep, int degree)
@@ -101,12 +113,14 @@ std::vector<double> FitWeights(
     return {};
   }
   // Monomials of (x_k - x_i) / h: coordinates of order 1 about i; each
-  // point weighed by the square root of omega_k, larger near i (the fit is
-  // evaluated at i: near points tell most about it).
-  Eigen::MatrixXd X(m, terms);
-  Eigen::VectorXd omega(m);
-  for (Index r = 0; r < m; ++r)
-  {
+  // point weighed by omega_k, larger near i (the fit is evaluated at i:
+  // near points tell most about it). The normal matrix G = sum_k omega_k
+  // v_k v_k^T (v_k the monomials at k) summed row by row, at most 10 x 10
+  // on the stack; the monomials made again for the weights rather than
+  // kept (no matrix of points x terms to allocate per fit).
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>;
+  auto monomialsAt = [&](Index r, double& omega, SmallVector& v) {
     double y[3];
     double distance2 = 0.0;
     for (int a = 0; a < d; ++a)
@@ -114,27 +128,50 @@ std::vector<double> FitWeights(
       y[a] = (mesh.Point(points[static_cast<size_t>(r)])[a] - xi[a]) / h;
       distance2 += y[a] * y[a];
     }
-    omega(r) = 1.0 / ((distance2 + 0.25) * (distance2 + 0.25));
-    double row[10];
-    Monomials(y, d, degree, row);
-    for (int t = 0; t < terms; ++t)
-    {
-      X(r, t) = std::sqrt(omega(r)) * row[t];
-    }
+    omega = 1.0 / ((distance2 + 0.25) * (distance2 + 0.25));
+    Monomials(y, d, degree, v.data());
+  };
+  Small G = Small::Zero(terms, terms);
+  SmallVector v(terms);
+  double omegaSum = 0.0;
+  for (Index r = 0; r < m; ++r)
+  {
+    double omega;
+    monomialsAt(r, omega, v);
+    G.selfadjointView<Eigen::Lower>().rankUpdate(v, omega);
+    omegaSum += omega;
   }
-  const Eigen::MatrixXd G = X.transpose() * X / omega.sum();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> spectrum(G);
-  // Points nearly on a line or a plane (or a conic) would give huge weights.
-  if (spectrum.eigenvalues().minCoeff() < (degree == 1 ? 1e-2 : 1e-4))
+  G = G.selfadjointView<Eigen::Lower>();
+  G /= omegaSum;
+  SmallVector e = SmallVector::Zero(terms);
+  e(0) = 1.0; // the fit's value at i (the origin of the coordinates)
+  // The weighted fit's value at i: w_k = omega_k v_k . G^-1 e / sum omega.
+  const SmallVector c = G.ldlt().solve(e);
+  std::vector<double> w(static_cast<size_t>(m));
+  double amplification = 0.0;
+  for (Index r = 0; r < m; ++r)
+  {
+    double omega;
+    monomialsAt(r, omega, v);
+    w[static_cast<size_t>(r)] = omega * v.dot(c) / omegaSum;
+    amplification += std::abs(w[static_cast<size_t>(r)]);
+  }
+  // (Not "> bound": a singular G gives NaN weights, rejected too.) Most
+  // one-sided quadratic fits stop here, before the spectrum's cost.
+  if (degree == 2 && !(amplification <= QuadraticAmplification))
   {
     return {};
   }
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(terms);
-  e(0) = 1.0; // the fit's value at i (the origin of the coordinates)
-  // The weighted fit's value at i: w = Omega^(1/2) X G^-1 e (with X scaled by Omega^(1/2)).
-  const Eigen::VectorXd w =
-    omega.cwiseSqrt().cwiseProduct(X * G.ldlt().solve(e)) / omega.sum();
-  return std::vector<double>(w.data(), w.data() + m);
+  // Points nearly on a line or a plane (or a conic) do not determine the
+  // fit, whatever its weights (on a Gmsh wedge pair, quadratic fits
+  // accepted on their amplification alone gave 17 times the interior's
+  // error).
+  if (Eigen::SelfAdjointEigenSolver<Small>(G, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() <
+    (degree == 1 ? 1e-2 : 1e-4))
+  {
+    return {};
+  }
+  return w;
 }
 
 /**
@@ -142,9 +179,12 @@ std::vector<double> FitWeights(
  * their distance to i on return): the nearest 2 x terms first, then 4 x,
  * then all, until one is stable. Few points keep P^T M P sparse (an
  * aggregated function couples all of its stencil); `points` is cut to the
- * ones used.
+ * ones used. `rejected`, when given, holds the sorted points of an earlier
+ * call that found no fit: a set of nearest points it already tried is not
+ * fitted again (the next ring's nearest points are often the same).
  */
-std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>& points, int degree)
+std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>& points,
+  int degree, const std::vector<Index>* rejected = nullptr)
 {
   const int d = mesh.SpaceDimension;
   const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
@@ -177,7 +217,11 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
   }
   for (const size_t keep : { size_t(2 * terms), size_t(4 * terms), points.size() })
   {
-    std::vector<double> w = FitWeights(mesh, i, points, std::min(keep, points.size()), degree);
+    const size_t used = std::min(keep, points.size());
+    const bool tried = rejected && used <= rejected->size() &&
+      std::min(keep, rejected->size()) == used &&
+      std::equal(points.begin(), points.begin() + used, rejected->begin());
+    std::vector<double> w = tried ? std::vector<double>() : FitWeights(mesh, i, points, used, degree);
     if (!w.empty())
     {
       points.resize(w.size());
@@ -202,6 +246,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   std::vector<Index> affinePoints;
   std::vector<double> affine;
   std::vector<Index> found;
+  std::vector<Index> rejected; // the last ring's points, sorted: no quadratic fit
   points.clear();
   weights.clear();
   stamp[static_cast<size_t>(i)] = i;
@@ -232,11 +277,12 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     // error is of third order), else an affine one from the first ring
     // that allows it.
     points = found;
-    weights = NearestFit(mesh, i, points, 2);
+    weights = NearestFit(mesh, i, points, 2, &rejected);
     if (!weights.empty())
     {
       return;
     }
+    rejected = points;
     if (affine.empty())
     {
       affinePoints = found;
@@ -304,7 +350,8 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
 }
 
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop, bool stencilOrder)
+  const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner,
+  bool stencilOrder)
 {
   FringeExtension ext;
   const Index n = static_cast<Index>(valid.size());
@@ -326,12 +373,22 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
     return ext;
   }
   const CellsAroundPoints around(mesh);
-  std::vector<Index> stamp(static_cast<size_t>(n), -1);
   std::vector<std::vector<Index>> stencils(ill.size());
   std::vector<std::vector<double>> weights(ill.size());
+  // Each stencil on its own (a task marks the points it has met in its
+  // own array): the tasks' ranges of ill-posed functions give the same
+  // stencils as one loop.
+  runner.ForRanges(static_cast<Index>(ill.size()), [&](Index begin, Index end) {
+    std::vector<Index> stamp(static_cast<size_t>(n), -1);
+    for (Index a = begin; a < end; ++a)
+    {
+      StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, stencils[static_cast<size_t>(a)],
+        weights[static_cast<size_t>(a)]);
+    }
+    return 0;
+  }, 256);
   for (size_t a = 0; a < ill.size(); ++a)
   {
-    StencilOf(mesh, around, ill[a], usable, stamp, stencils[a], weights[a]);
     ext.Aggregated[static_cast<size_t>(ill[a])] = !stencils[a].empty();
     ext.Dropped[static_cast<size_t>(ill[a])] = !stencils[a].empty() && fraction[ill[a]] < drop;
     ext.Count += !stencils[a].empty();

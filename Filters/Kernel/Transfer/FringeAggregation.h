@@ -36,6 +36,7 @@
 
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/Tasks.h"
 #include "Transfer/CsrMatrix.h"
 
 #include <vector>
@@ -66,14 +67,16 @@ constexpr double FringeDropFraction = 0.01;
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
  * rings around it. A function with no well-spread free points within a few
- * rings stays free. Those below `drop` are marked Dropped too. P's rows
- * hold their columns in ascending order, or, with `stencilOrder`, nearest
- * first as the stencil found them (an order that does not depend on the
- * numbering: parts of a distributed target that number a point's stencil
- * differently then extend it to the same bits).
+ * rings stays free. Those below `drop` are marked Dropped too. The
+ * stencils are fitted in `runner`'s tasks (the same whatever their number).
+ * P's rows hold their columns in ascending order, or, with `stencilOrder`,
+ * nearest first as the stencil found them (an order that does not depend
+ * on the numbering: parts of a distributed target that number a point's
+ * stencil differently then extend it to the same bits).
  */
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
-  const std::vector<double>& fraction, double threshold, double drop, bool stencilOrder = false);
+  const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner,
+  bool stencilOrder = false);
 
 /**
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:

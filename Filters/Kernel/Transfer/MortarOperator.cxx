@@ -265,7 +265,8 @@ Index MortarOperator::AggregateFringe(
     // that part's side's extension; the sum of the parts' P^T M P is still
     // symmetric, positive definite on the free functions and exact for
     // linear fields).
-    this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction);
+    this->Fringe =
+      ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
     if (this->Fringe.Count > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
@@ -347,8 +348,8 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   const MeshView whole = WithHalo(target, halo, points, cells);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
-  this->Fringe =
-    ExtendFringe(whole, valid, extendedFraction, threshold, FringeDropFraction, true);
+  this->Fringe = ExtendFringe(
+    whole, valid, extendedFraction, threshold, FringeDropFraction, this->Options.Runner, true);
   // One system for all parts: aggregated when any part aggregates.
   double count = static_cast<double>(this->Fringe.Count);
   extended.Reduce(&count, 1);
