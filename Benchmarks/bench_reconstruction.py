@@ -25,7 +25,7 @@ import argparse
 import time
 
 import numpy as np
-from mpbench import cube_mesh, shifted_pair, square_mesh, timed_run, to_grid
+from mpbench import cube_mesh, shifted_pair, shuffled, square_mesh, timed_run, to_grid
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 from mpsupport import meshes
@@ -35,16 +35,6 @@ MODES = ((0, "constant"), (1, "limited"), (2, "linear"))
 
 def smooth(x):
     return np.sin(2 * x[..., 0]) * np.cos(3 * x[..., 1]) + x[..., 2] ** 2 + 0.5 * x[..., 0]
-
-
-def shuffled(mesh, seed):
-    """The same mesh with its points and cells numbered at random."""
-    points, cells, kind = mesh
-    rng = np.random.default_rng(seed)
-    order = rng.permutation(len(points))
-    new_id = np.empty_like(order)
-    new_id[order] = np.arange(len(order))
-    return points[order], new_id[cells][rng.permutation(len(cells))], kind
 
 
 def with_means(mesh):

@@ -50,6 +50,16 @@ def shifted_pair(dim, cells):
     return t, shifted
 
 
+def shuffled(mesh, seed):
+    """The same (points, cells, kind) mesh with its points and cells numbered at random."""
+    points, cells, kind = mesh
+    rng = np.random.default_rng(seed)
+    order = rng.permutation(len(points))
+    new_id = np.empty_like(order)
+    new_id[order] = np.arange(len(order))
+    return points[order], new_id[cells][rng.permutation(len(cells))], kind
+
+
 def timed_run(target, source, threads, **properties):
     """One fresh run of the filter on `threads` threads (CacheOperator off:
     search, assembly and solve each run), with any other property by name
