@@ -309,7 +309,8 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
       std::to_string(slivers) + " " + ctx.Role +
         " points are valid through slivers only (every cell around them is covered less than "
         "0.1%): their values are extrapolated from the sliver and can be far off. Where Input "
-        "reaches beyond Source, leave out points whose cells' CoveredFraction is that small.");
+        "reaches beyond Source, keep FringeThreshold at its default (volume meshes), or leave out "
+        "points whose cells' CoveredFraction is that small.");
   }
 }
 

@@ -205,92 +205,70 @@ bool MortarOperator::SolveWithHalo(const double* rhs, double* targetValues, int 
   return ok;
 }
 
-bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
-  double fill, const ApplyOptions& options, const SolverHooks& hooks) const
+bool MortarOperator::RightHandSides(const double* sourceValues, int components,
+  LargeVector<double>& product, bool copy, const double*& rhs) const
 {
-  const SolveOptions& solve = options.Solve;
-  const auto start = std::chrono::steady_clock::now();
-  const Index n = this->TargetMass.Rows;
-  // A part without rows of a distributed system still takes part in its sums.
-  if (!this->Solver || components <= 0 || (n == 0 && !hooks.Reduce && !hooks.Exchange))
-  {
-    this->Timings.Solve = SecondsSince(start);
-    return this->Solver != nullptr || components <= 0;
-  }
-  // The right-hand sides: summed during the search for the build's fields,
-  // else M_ts u_s (completed across parts by the Exchange hook).
-  LargeVector<double> product;
-  const double* rhs = this->Rhs.data();
   if (this->Options.Fields)
   {
     if (sourceValues != this->Options.Fields || components != this->Options.FieldComponents)
     {
       return false; // built for other fields: M_ts was not stored
     }
-    if (hooks.Exchange)
+    if (!copy)
     {
-      product.assign(this->Rhs.begin(), this->Rhs.end());
+      rhs = this->Rhs.data();
+      return true;
     }
-  }
-  else
-  {
-    product.resize(static_cast<size_t>(n) * components);
-    this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
-      this->MixedMass.MultiplyRows(sourceValues, product.data(), components, begin, end);
-      return 0.0;
-    });
-  }
-  // A fringe aggregated (AggregateFringe): the right-hand sides P^T b,
-  // before the shared rows are completed (each part gives its own share of
-  // an aggregated row to its own stencil).
-  // With a halo the aggregated system has the extended rows (this part's,
-  // then its ghosts'), completed by the halo's hooks.
-  const bool aggregated = this->FringeSystem && options.Mass == MassType::Consistent;
-  const bool halo = aggregated && this->HaloPoints >= 0;
-  if (halo && !options.FringeHooks)
-  {
-    return false; // (every part alike: the options are the same everywhere)
-  }
-  const SolverHooks& rowHooks = halo ? *options.FringeHooks : hooks;
-  this->LastAggregated = aggregated;
-  const std::vector<char>& valid = this->GetValid();
-  if (aggregated)
-  {
-    const Index rows = this->FringeMass.Rows;
-    const double* b = product.empty() ? rhs : product.data();
-    LargeVector<double> padded;
-    if (rows > n)
-    {
-      padded.assign(static_cast<size_t>(rows) * components, 0.0);
-      std::copy(b, b + n * components, padded.begin());
-      b = padded.data();
-    }
-    LargeVector<double> restricted(static_cast<size_t>(rows) * components);
-    RestrictToFree(this->Fringe, b, restricted.data(), components);
-    product.swap(restricted);
-  }
-  if (rowHooks.Exchange)
-  {
-    rowHooks.Exchange(product.data(), components);
-  }
-  if (!product.empty())
-  {
+    product.assign(this->Rhs.begin(), this->Rhs.end());
     rhs = product.data();
+    return true;
   }
-  if (solve.StartFromX)
+  const Index n = this->TargetMass.Rows;
+  product.resize(static_cast<size_t>(n) * components);
+  this->Options.Runner.ForRanges(n, [&](Index begin, Index end) {
+    this->MixedMass.MultiplyRows(sourceValues, product.data(), components, begin, end);
+    return 0.0;
+  });
+  rhs = product.data();
+  return true;
+}
+
+void MortarOperator::RestrictRightHandSides(
+  const double* b, int components, LargeVector<double>& product) const
+{
+  // With a halo the aggregated system has the extended rows (this part's,
+  // then its ghosts', which start at 0).
+  const Index n = this->TargetMass.Rows;
+  const Index rows = this->FringeMass.Rows;
+  LargeVector<double> padded;
+  if (rows > n)
+  {
+    padded.assign(static_cast<size_t>(rows) * components, 0.0);
+    std::copy(b, b + n * components, padded.begin());
+    b = padded.data();
+  }
+  LargeVector<double> restricted(static_cast<size_t>(rows) * components);
+  RestrictToFree(this->Fringe, b, restricted.data(), components);
+  product.swap(restricted);
+}
+
+bool MortarOperator::Solve(const ApplyOptions& options, const double* rhs, double* targetValues,
+  int components, const SolverHooks& hooks, const SolverHooks& rowHooks) const
+{
+  const Index n = this->TargetMass.Rows;
+  if (options.Solve.StartFromX)
   {
     // Invalid functions hold the fill value of a previous Apply (NaN, say):
     // their rows and columns of M_tt are zero but for the diagonal, yet
     // 0 * NaN would spread it through the products. Their solution is 0.
     for (Index i = 0; i < n; ++i)
     {
-      if (!this->Valid[i] || (aggregated && this->Fringe.Aggregated[i]))
+      if (!this->Valid[i] || (this->LastAggregated && this->Fringe.Aggregated[i]))
       {
         std::fill(targetValues + i * components, targetValues + (i + 1) * components, 0.0);
       }
     }
   }
-  bool ok = true;
   if (options.Mass == MassType::Lumped)
   {
     // Row sums of M_tt completed across parts like the right-hand sides.
@@ -306,33 +284,90 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
         targetValues[i * components + k] = sums[i] > 0.0 ? rhs[i * components + k] / sums[i] : 0.0;
       }
     }
+    return true;
   }
-  else if (halo)
+  if (this->LastAggregated && this->HaloPoints >= 0)
   {
-    ok = this->SolveWithHalo(rhs, targetValues, components, solve, rowHooks);
+    return this->SolveWithHalo(rhs, targetValues, components, options.Solve, rowHooks);
   }
-  else if (aggregated)
+  if (this->LastAggregated)
   {
-    ok = this->FringeSolver->Solve(rhs, targetValues, components, solve, hooks);
+    const bool ok = this->FringeSolver->Solve(rhs, targetValues, components, options.Solve, hooks);
     ExtendFromFree(this->Fringe, targetValues, components);
+    return ok;
   }
-  else
+  return this->Solver->Solve(rhs, targetValues, components, options.Solve, hooks);
+}
+
+bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const double* sourceValues,
+  int components, const double* rhs, double* targetValues, const SolverHooks& hooks) const
+{
+  if (options.Mass != MassType::Consistent)
   {
-    ok = this->Solver->Solve(rhs, targetValues, components, solve, hooks);
+    return true; // lumped values are means of source values: within every bound
   }
-  if (ok && options.Bounded && options.Mass == MassType::Consistent)
+  const Index n = this->TargetMass.Rows;
+  if (options.Bounded)
   {
     if (!this->HasMixedMass() || (hooks.Exchange && !hooks.ExchangeMinimum))
     {
       return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
     }
-    ClipToLocalBounds(this->MixedMass, valid, this->GetCoveredIntegrals(), n, sourceValues,
-      components, rhs, targetValues, hooks);
+    ClipToLocalBounds(this->MixedMass, this->GetValid(), this->GetCoveredIntegrals(), n,
+      sourceValues, components, rhs, targetValues, hooks);
   }
-  else if (ok && !options.RangeLow.empty() && options.Mass == MassType::Consistent)
+  else if (!options.RangeLow.empty())
   {
-    ClipToRange(options, valid, this->GetCoveredIntegrals(), n, components, rhs, targetValues, hooks);
+    ClipToRange(options, this->GetValid(), this->GetCoveredIntegrals(), n, components, rhs,
+      targetValues, hooks);
   }
+  return true;
+}
+
+bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const ApplyOptions& options, const SolverHooks& hooks) const
+{
+  const auto start = std::chrono::steady_clock::now();
+  const Index n = this->TargetMass.Rows;
+  // A part without rows of a distributed system still takes part in its sums.
+  if (!this->Solver || components <= 0 || (n == 0 && !hooks.Reduce && !hooks.Exchange))
+  {
+    this->Timings.Solve = SecondsSince(start);
+    return this->Solver != nullptr || components <= 0;
+  }
+  // A fringe aggregated (AggregateFringe) and a consistent solve: the
+  // system P^T M_tt P (with a halo: over the extended rows, completed by
+  // the halo's hooks, on every part alike as the options are).
+  const bool aggregated = this->FringeSystem && options.Mass == MassType::Consistent;
+  const bool halo = aggregated && this->HaloPoints >= 0;
+  if (halo && !options.FringeHooks)
+  {
+    return false;
+  }
+  const SolverHooks& rowHooks = halo ? *options.FringeHooks : hooks;
+  this->LastAggregated = aggregated;
+  // The right-hand sides: summed during the search for the build's fields,
+  // else M_ts u_s; P^T b when aggregated (before the shared rows are
+  // completed: each part gives its share of an aggregated row to the
+  // stencil); then completed across parts.
+  LargeVector<double> product;
+  const double* rhs = nullptr;
+  if (!this->RightHandSides(sourceValues, components, product, hooks.Exchange != nullptr, rhs))
+  {
+    return false;
+  }
+  if (aggregated)
+  {
+    this->RestrictRightHandSides(rhs, components, product);
+    rhs = product.data();
+  }
+  if (rowHooks.Exchange)
+  {
+    rowHooks.Exchange(product.data(), components);
+  }
+  const bool ok = this->Solve(options, rhs, targetValues, components, hooks, rowHooks) &&
+    this->KeepWithinBounds(options, sourceValues, components, rhs, targetValues, hooks);
+  const std::vector<char>& valid = this->GetValid();
   for (Index i = 0; i < n; ++i)
   {
     if (!valid[i])

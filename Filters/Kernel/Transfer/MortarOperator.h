@@ -350,6 +350,22 @@ private:
   /// The target and its halo as one mesh (extended rows), in `points` and `cells`.
   static MeshView WithHalo(const MeshView& target, const FringeHalo& halo,
     std::vector<double>& points, std::vector<Index>& cells);
+  // Apply's steps (MortarApply.cxx).
+  /**
+   * `rhs`: M_ts u_s, or the right-hand sides summed during the search (in
+   * `product` when `copy`, else this->Rhs); false when built for other
+   * fields.
+   */
+  bool RightHandSides(const double* sourceValues, int components, LargeVector<double>& product,
+    bool copy, const double*& rhs) const;
+  /// `product` = P^T b (over the extended rows with a halo).
+  void RestrictRightHandSides(const double* b, int components, LargeVector<double>& product) const;
+  /// The solve of one Apply: lumped, aggregated (with or without a halo) or plain.
+  bool Solve(const ApplyOptions& options, const double* rhs, double* targetValues, int components,
+    const SolverHooks& hooks, const SolverHooks& rowHooks) const;
+  /// ApplyOptions::Bounded or RangeLow/RangeHigh after a consistent solve; false without M_ts where needed.
+  bool KeepWithinBounds(const ApplyOptions& options, const double* sourceValues, int components,
+    const double* rhs, double* targetValues, const SolverHooks& hooks) const;
   /// The aggregated solve on a distributed system with a halo (extended rows).
   bool SolveWithHalo(const double* rhs, double* targetValues, int components,
     const SolveOptions& solve, const SolverHooks& haloHooks) const;
