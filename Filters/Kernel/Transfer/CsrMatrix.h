@@ -76,6 +76,34 @@ struct CsrMatrix
     return p < this->RowStart[i + 1] && this->ColumnIndex[p] == k ? this->Values[p] : 0.0;
   }
   /**
+   * Rows longer than this (a mass matrix's have a few dozen entries at
+   * most; P^T M P's rows at a fringe's stencils have hundreds) are summed
+   * by SumLongRow.
+   */
+  static constexpr Index LongRow = 48;
+  /**
+   * Row entries [a, b) times X (one vector) in four running sums, added
+   * ((s0 + s1) + (s2 + s3)) at the end: a long row's single chain of
+   * dependent additions would be latency bound.
+   */
+  static double SumLongRow(const double* values, const Column* columns, const double* X, Index a, Index b)
+  {
+    double s[4] = { 0.0, 0.0, 0.0, 0.0 };
+    Index j = a;
+    for (; j + 3 < b; j += 4)
+    {
+      s[0] += values[j] * X[columns[j]];
+      s[1] += values[j + 1] * X[columns[j + 1]];
+      s[2] += values[j + 2] * X[columns[j + 2]];
+      s[3] += values[j + 3] * X[columns[j + 3]];
+    }
+    for (int k = 0; j < b; ++j, ++k)
+    {
+      s[k] += values[j] * X[columns[j]];
+    }
+    return (s[0] + s[1]) + (s[2] + s[3]);
+  }
+  /**
    * Y = A X on rows [begin, end) for `c` vectors stored side by side (row i
    * of X holds entries i*c .. i*c + c-1): the matrix is read once for all.
    */
@@ -100,6 +128,12 @@ struct CsrMatrix
         const Index b1 = start[i + 2];
         const Index n0 = b0 - a0;
         const Index n1 = b1 - b0;
+        if (n0 > LongRow || n1 > LongRow)
+        {
+          Y[i] = SumLongRow(values, columns, X, a0, b0);
+          Y[i + 1] = SumLongRow(values, columns, X, b0, b1);
+          continue;
+        }
         const Index both = n0 < n1 ? n0 : n1;
         double s0 = 0.0;
         double s1 = 0.0;

@@ -237,10 +237,11 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
 
 /// The ill-posed function i's stencil and weights: free points ring by ring (at most 3 rings).
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
-  const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& points,
-  std::vector<double>& weights)
+  const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
+  std::vector<Index>& points, std::vector<double>& weights)
 {
   const int corners = mesh.CornersPerCell();
+  const bool quadratic = mesh.SpaceDimension == 2;
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   std::vector<Index> affinePoints;
@@ -257,7 +258,14 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     {
       for (Index q = around.Start[static_cast<size_t>(p)]; q < around.Start[static_cast<size_t>(p) + 1]; ++q)
       {
-        const CellCorners cell = mesh.Cell(around.Cells[static_cast<size_t>(q)]);
+        // (A cell met from an earlier point of the rings has its corners stamped.)
+        const Index c = around.Cells[static_cast<size_t>(q)];
+        if (cellStamp[static_cast<size_t>(c)] == i)
+        {
+          continue;
+        }
+        cellStamp[static_cast<size_t>(c)] = i;
+        const CellCorners cell = mesh.Cell(c);
         for (int a = 0; a < corners; ++a)
         {
           const Index k = cell[a];
@@ -275,18 +283,27 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     }
     // A quadratic fit where the rings so far allow one (its extrapolation
     // error is of third order), else an affine one from the first ring
-    // that allows it.
-    points = found;
-    weights = NearestFit(mesh, i, points, 2, &rejected);
-    if (!weights.empty())
+    // that allows it. In 3D a quadratic fit through points on one side of
+    // i nearly never keeps its weights within QuadraticAmplification: the
+    // affine fit of the first ring that allows one, without walking on.
+    if (quadratic)
     {
-      return;
+      points = found;
+      weights = NearestFit(mesh, i, points, 2, &rejected);
+      if (!weights.empty())
+      {
+        return;
+      }
+      rejected = points;
     }
-    rejected = points;
     if (affine.empty())
     {
       affinePoints = found;
       affine = NearestFit(mesh, i, affinePoints, 1);
+    }
+    if (!quadratic && !affine.empty())
+    {
+      break;
     }
     ring.swap(next);
   }
@@ -317,6 +334,93 @@ void AddRowTimesP(const CsrMatrix& mass, Index x, double scale, const FringeExte
     }
   }
 }
+
+/// P^T's rows: per free function, the aggregated functions whose stencils hold it, with their weights.
+struct Referrers
+{
+  std::vector<Index> Start;
+  std::vector<std::pair<Index, double>> Rows;
+
+  Referrers(const FringeExtension& ext, Index n)
+  {
+    this->Start.assign(static_cast<size_t>(n) + 1, 0);
+    for (Index a = 0; a < n; ++a)
+    {
+      for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+      {
+        ++this->Start[static_cast<size_t>(ext.P.ColumnIndex[q]) + 1];
+      }
+    }
+    for (Index j = 0; j < n; ++j)
+    {
+      this->Start[j + 1] += this->Start[j];
+    }
+    this->Rows.resize(static_cast<size_t>(this->Start.back()));
+    std::vector<Index> next(this->Start.begin(), this->Start.end() - 1);
+    for (Index a = 0; a < n; ++a)
+    {
+      for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+      {
+        this->Rows[static_cast<size_t>(next[ext.P.ColumnIndex[q]]++)] = { a, ext.P.Values[q] };
+      }
+    }
+  }
+};
+
+/**
+ * Rows of P^T M P that differ from M's, one at a time: its terms summed in
+ * a dense accumulator (its touched columns listed, then sorted: a row's
+ * distinct columns are few).
+ */
+struct ChangedRows
+{
+  std::vector<double> Sum;
+  std::vector<char> Touched;
+  std::vector<Column> Used;
+  std::vector<std::pair<Column, double>> Terms;
+
+  explicit ChangedRows(Index n)
+    : Sum(static_cast<size_t>(n), 0.0)
+    , Touched(static_cast<size_t>(n), 0)
+  {
+  }
+
+  void Row(const CsrMatrix& mass, const FringeExtension& ext, const Referrers& refs, Index j,
+    std::vector<std::pair<Column, double>>& out)
+  {
+    this->Terms.clear();
+    this->Used.clear();
+    if (ext.Aggregated[static_cast<size_t>(j)])
+    {
+      out.emplace_back(static_cast<Column>(j), 1.0); // decoupled: its value comes from P
+      return;
+    }
+    // Row j of P^T M P = (M P)_j + sum over the rows a aggregated onto j of w_aj (M P)_a.
+    AddRowTimesP(mass, j, 1.0, ext, this->Terms);
+    for (Index r = refs.Start[j]; r < refs.Start[j + 1]; ++r)
+    {
+      AddRowTimesP(mass, refs.Rows[static_cast<size_t>(r)].first, refs.Rows[static_cast<size_t>(r)].second, ext,
+        this->Terms);
+    }
+    for (const auto& term : this->Terms)
+    {
+      if (!this->Touched[static_cast<size_t>(term.first)])
+      {
+        this->Touched[static_cast<size_t>(term.first)] = 1;
+        this->Used.push_back(term.first);
+      }
+      this->Sum[static_cast<size_t>(term.first)] += term.second;
+    }
+    std::sort(this->Used.begin(), this->Used.end());
+    out.reserve(this->Used.size());
+    for (const Column k : this->Used)
+    {
+      out.emplace_back(k, this->Sum[static_cast<size_t>(k)]);
+      this->Sum[static_cast<size_t>(k)] = 0.0;
+      this->Touched[static_cast<size_t>(k)] = 0;
+    }
+  }
+};
 } // namespace
 
 LargeVector<double> SupportIntegrals(const MeshView& mesh)
@@ -380,9 +484,10 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   // stencils as one loop.
   runner.ForRanges(static_cast<Index>(ill.size()), [&](Index begin, Index end) {
     std::vector<Index> stamp(static_cast<size_t>(n), -1);
+    std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
     for (Index a = begin; a < end; ++a)
     {
-      StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, stencils[static_cast<size_t>(a)],
+      StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, cellStamp, stencils[static_cast<size_t>(a)],
         weights[static_cast<size_t>(a)]);
     }
     return 0;
@@ -437,97 +542,78 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   return ext;
 }
 
-CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext)
+CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext, const TaskRunner& runner)
 {
   const Index n = mass.Rows;
-  // Which aggregated rows refer to each free function (P^T's rows), as
-  // compressed rows; and which rows change at all (those and the rows with
-  // an aggregated column).
-  std::vector<Index> start(static_cast<size_t>(n) + 1, 0);
-  for (Index a = 0; a < n; ++a)
-  {
-    for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+  const Referrers refs(ext, n);
+  // Which rows change: the aggregated ones, those referred to, those with
+  // an aggregated column; the others are M's.
+  std::vector<Index> slot(static_cast<size_t>(n), -1);
+  runner.ForRanges(n, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j)
     {
-      ++start[static_cast<size_t>(ext.P.ColumnIndex[q]) + 1];
+      bool changes = ext.Aggregated[j] || refs.Start[j + 1] > refs.Start[j];
+      for (Index p = mass.RowStart[j]; p < mass.RowStart[j + 1] && !changes; ++p)
+      {
+        changes = ext.Aggregated[mass.ColumnIndex[p]] != 0;
+      }
+      slot[static_cast<size_t>(j)] = changes ? 0 : -1;
     }
-  }
+    return 0;
+  });
+  std::vector<Index> changed;
   for (Index j = 0; j < n; ++j)
   {
-    start[j + 1] += start[j];
-  }
-  std::vector<std::pair<Index, double>> referrers(static_cast<size_t>(start.back()));
-  std::vector<Index> next(start.begin(), start.end() - 1);
-  for (Index a = 0; a < n; ++a)
-  {
-    for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+    if (slot[static_cast<size_t>(j)] >= 0)
     {
-      referrers[static_cast<size_t>(next[ext.P.ColumnIndex[q]]++)] = { a, ext.P.Values[q] };
+      slot[static_cast<size_t>(j)] = static_cast<Index>(changed.size());
+      changed.push_back(j);
     }
   }
+  // The changed rows, each on its own (the same terms in the same order
+  // whatever the tasks).
+  std::vector<std::vector<std::pair<Column, double>>> rows(changed.size());
+  runner.ForRanges(static_cast<Index>(changed.size()), [&](Index begin, Index end) {
+    ChangedRows scratch(n);
+    for (Index r = begin; r < end; ++r)
+    {
+      scratch.Row(mass, ext, refs, changed[static_cast<size_t>(r)], rows[static_cast<size_t>(r)]);
+    }
+    return 0;
+  }, 256);
   CsrMatrix out;
   out.Rows = mass.Rows;
   out.Columns = mass.Columns;
   out.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  // (Written in place: a copy of M's arrays is most of the cost.)
-  auto& columns = out.ColumnIndex;
-  auto& values = out.Values;
-  columns.reserve(static_cast<size_t>(mass.NonZeros()) * 11 / 10);
-  values.reserve(static_cast<size_t>(mass.NonZeros()) * 11 / 10);
-  // A changed row's terms summed into a dense accumulator (its touched
-  // columns listed, then sorted: a row's distinct columns are few).
-  std::vector<std::pair<Column, double>> row;
-  std::vector<double> sum(static_cast<size_t>(n), 0.0);
-  std::vector<char> touched(static_cast<size_t>(n), 0);
-  std::vector<Column> used;
   for (Index j = 0; j < n; ++j)
   {
-    bool changes = ext.Aggregated[j] || start[j + 1] > start[j];
-    for (Index p = mass.RowStart[j]; p < mass.RowStart[j + 1] && !changes; ++p)
-    {
-      changes = ext.Aggregated[mass.ColumnIndex[p]] != 0;
-    }
-    if (!changes)
-    {
-      columns.insert(columns.end(), mass.ColumnIndex.begin() + mass.RowStart[j],
-        mass.ColumnIndex.begin() + mass.RowStart[j + 1]);
-      values.insert(values.end(), mass.Values.begin() + mass.RowStart[j], mass.Values.begin() + mass.RowStart[j + 1]);
-      out.RowStart[j + 1] = static_cast<Index>(columns.size());
-      continue;
-    }
-    row.clear();
-    used.clear();
-    if (ext.Aggregated[static_cast<size_t>(j)])
-    {
-      row.emplace_back(static_cast<Column>(j), 1.0); // decoupled: its value comes from P
-    }
-    else
-    {
-      // Row j of P^T M P = (M P)_j + sum over the rows a aggregated onto j of w_aj (M P)_a.
-      AddRowTimesP(mass, j, 1.0, ext, row);
-      for (Index r = start[j]; r < start[j + 1]; ++r)
-      {
-        AddRowTimesP(mass, referrers[static_cast<size_t>(r)].first, referrers[static_cast<size_t>(r)].second, ext, row);
-      }
-    }
-    for (const auto& term : row)
-    {
-      if (!touched[static_cast<size_t>(term.first)])
-      {
-        touched[static_cast<size_t>(term.first)] = 1;
-        used.push_back(term.first);
-      }
-      sum[static_cast<size_t>(term.first)] += term.second;
-    }
-    std::sort(used.begin(), used.end());
-    for (const Column k : used)
-    {
-      columns.push_back(k);
-      values.push_back(sum[static_cast<size_t>(k)]);
-      sum[static_cast<size_t>(k)] = 0.0;
-      touched[static_cast<size_t>(k)] = 0;
-    }
-    out.RowStart[j + 1] = static_cast<Index>(columns.size());
+    const Index r = slot[static_cast<size_t>(j)];
+    out.RowStart[j + 1] = out.RowStart[j] +
+      (r < 0 ? mass.RowStart[j + 1] - mass.RowStart[j] : static_cast<Index>(rows[static_cast<size_t>(r)].size()));
   }
+  out.ColumnIndex.resize(static_cast<size_t>(out.NonZeros()));
+  out.Values.resize(static_cast<size_t>(out.NonZeros()));
+  runner.ForRanges(n, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j)
+    {
+      const Index r = slot[static_cast<size_t>(j)];
+      Index at = out.RowStart[j];
+      if (r < 0)
+      {
+        std::copy(mass.ColumnIndex.begin() + mass.RowStart[j], mass.ColumnIndex.begin() + mass.RowStart[j + 1],
+          out.ColumnIndex.begin() + at);
+        std::copy(mass.Values.begin() + mass.RowStart[j], mass.Values.begin() + mass.RowStart[j + 1],
+          out.Values.begin() + at);
+        continue;
+      }
+      for (const auto& entry : rows[static_cast<size_t>(r)])
+      {
+        out.ColumnIndex[at] = entry.first;
+        out.Values[at++] = entry.second;
+      }
+    }
+    return 0;
+  });
   return out;
 }
 

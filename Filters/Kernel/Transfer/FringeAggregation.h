@@ -82,7 +82,7 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:
  * its unknown is decoupled, its right-hand side P^T b is 0).
  */
-CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& extension);
+CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& extension, const TaskRunner& runner);
 
 /// y = P^T x (functions x c); aggregated rows of y are 0.
 void RestrictToFree(const FringeExtension& extension, const double* x, double* y, int c);

@@ -269,7 +269,7 @@ Index MortarOperator::AggregateFringe(
       ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
     if (this->Fringe.Count > 0)
     {
-      this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe);
+      this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
       this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
       this->DropFringe(nullptr);
       this->FringeSystem = true;
@@ -378,7 +378,7 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   CsrMatrix padded(this->TargetMass);
   padded.Rows = padded.Columns = rows;
   padded.RowStart.resize(static_cast<size_t>(rows) + 1, padded.RowStart.back());
-  this->FringeMass = AggregatedMass(padded, this->Fringe);
+  this->FringeMass = AggregatedMass(padded, this->Fringe, this->Options.Runner);
   this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
   this->HaloPoints = ghosts;
   this->FringeSystem = true;
