@@ -593,24 +593,32 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext, cons
   }
   out.ColumnIndex.resize(static_cast<size_t>(out.NonZeros()));
   out.Values.resize(static_cast<size_t>(out.NonZeros()));
+  // Unchanged rows in runs (a run is one block in both matrices), changed
+  // ones from their lists.
   runner.ForRanges(n, [&](Index begin, Index end) {
-    for (Index j = begin; j < end; ++j)
+    for (Index j = begin; j < end;)
     {
-      const Index r = slot[static_cast<size_t>(j)];
-      Index at = out.RowStart[j];
-      if (r < 0)
+      Index last = j;
+      while (last < end && slot[static_cast<size_t>(last)] < 0)
       {
-        std::copy(mass.ColumnIndex.begin() + mass.RowStart[j], mass.ColumnIndex.begin() + mass.RowStart[j + 1],
-          out.ColumnIndex.begin() + at);
-        std::copy(mass.Values.begin() + mass.RowStart[j], mass.Values.begin() + mass.RowStart[j + 1],
-          out.Values.begin() + at);
+        ++last;
+      }
+      if (last > j)
+      {
+        std::copy(mass.ColumnIndex.data() + mass.RowStart[j], mass.ColumnIndex.data() + mass.RowStart[last],
+          out.ColumnIndex.data() + out.RowStart[j]);
+        std::copy(mass.Values.data() + mass.RowStart[j], mass.Values.data() + mass.RowStart[last],
+          out.Values.data() + out.RowStart[j]);
+        j = last;
         continue;
       }
-      for (const auto& entry : rows[static_cast<size_t>(r)])
+      Index at = out.RowStart[j];
+      for (const auto& entry : rows[static_cast<size_t>(slot[static_cast<size_t>(j)])])
       {
         out.ColumnIndex[at] = entry.first;
         out.Values[at++] = entry.second;
       }
+      ++j;
     }
     return 0;
   });
