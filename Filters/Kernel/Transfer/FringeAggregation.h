@@ -25,11 +25,13 @@
  * covered part and the integral is conserved; P^T M_tt P is symmetric
  * positive definite on the free functions.
  *
- * The weights are those of the weighted least-squares quadratic fit (else
- * affine) through the free points of the rings around i (the points
- * sharing a cell with i, then theirs), evaluated at i: ring by ring until
- * the points allow a stable fit. Quadratic: the extension's error is of
- * third order, below the projection's second.
+ * The weights are those of a weighted least-squares fit through the free
+ * points of the rings around i (the points sharing a cell with i, then
+ * theirs), evaluated at i, ring by ring until the points allow a stable
+ * fit: in 2D quadratic where its weights stay bounded (the extension's
+ * error is then of third order, below the projection's second), else
+ * affine; in 3D affine (one-sided quadratic fits nearly never stay
+ * bounded there).
  */
 #ifndef MeshProjection_Kernel_FringeAggregation_h
 #define MeshProjection_Kernel_FringeAggregation_h
