@@ -187,7 +187,7 @@ public:
    * A well-posed fringe: point values whose support the Source covers less
    * than this fraction (default 0.25) take the least-squares extension of
    * well-covered points nearby instead of being fitted to a sliver; those
-   * covered less than 1% become invalid (docs/method.md); 0 turns it off.
+   * covered less than 2% become invalid (docs/method.md); 0 turns it off.
    */
   vtkSetClampMacro(FringeThreshold, double, 0.0, 0.9);
   vtkGetMacro(FringeThreshold, double);

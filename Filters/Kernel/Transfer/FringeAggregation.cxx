@@ -71,13 +71,16 @@ int Monomials(const double* y, int d, int degree, double* into)
 
 /**
  * The largest sum of |w_ik| a quadratic extension may have: the factor by
- * which it can amplify an oscillation of the free values. A one-sided
- * quadratic extrapolation easily reaches 7 or more (three points on a line:
- * 3, -3, 1); such weights couple the stencil's functions with alternating
- * signs in P^T M P and widen its spectrum (the conjugate gradients then
- * need up to three times the iterations). Beyond this, the affine fit.
+ * which it can amplify an oscillation of the free values. One-sided
+ * quadratic extrapolations reach a dozen and more (three points on a line:
+ * 3, -3, 1 already 7); such weights couple the stencil's functions with
+ * alternating signs in P^T M P and widen its spectrum (the conjugate
+ * gradients then need up to three times the iterations). The affine fit,
+ * taken beyond this, is of second order only: at a curved boundary it
+ * leaves the fringe's error several times the interior's, so the bound
+ * keeps what quadratic fits it can.
  */
-constexpr double QuadraticAmplification = 4.0;
+constexpr double QuadraticAmplification = 8.0;
 
 /**
  * The weights of `points` that give, at point i, the value of the

@@ -63,7 +63,7 @@ struct FringeExtension
  * a corner of the source, so their value would be an extrapolation over
  * about a cell (their share of the covered integral goes to their stencil).
  */
-constexpr double FringeDropFraction = 0.01;
+constexpr double FringeDropFraction = 0.02;
 
 /**
  * The extension of the functions of `mesh`'s points that are valid but
