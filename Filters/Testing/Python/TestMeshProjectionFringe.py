@@ -1,6 +1,7 @@
 """The fringe and beyond it, on Gmsh pairs that overlap in part: Input is
 the Source's mesher's domain moved so that it reaches beyond the Source
-(2D triangles and quads, 3D tetrahedra at two shifts, wedges).
+(2D triangles and quads, a disk's curved boundary at two shifts, 3D
+tetrahedra at two shifts, wedges).
 
 The fringe (FringeThreshold, default 0.25):
  - the smooth field sin(2x)cos(3y)+z^2, point data and cell data to points:
@@ -92,6 +93,11 @@ pairs = [
      gmshmeshes.planar(0.065)),
     ("2D quads", gmshmeshes.moved(gmshmeshes.planar(0.05, quads=True), translate=(0.31, 0.17, 0)),
      gmshmeshes.planar(0.065, quads=True)),
+    # A curved boundary: the Source a Gmsh disk.
+    ("2D disk, shift 1", gmshmeshes.moved(gmshmeshes.planar(0.06), translate=(0.25, -0.45, 0)),
+     gmshmeshes.surface("disk", 0.075)),
+    ("2D disk, shift 2", gmshmeshes.moved(gmshmeshes.planar(0.05), translate=(0.4, 0.1, 0)),
+     gmshmeshes.surface("disk", 0.065)),
     ("3D tetrahedra, shift 1", gmshmeshes.moved(gmshmeshes.volume("box", 0.08), translate=(0.27, 0.13, 0.21)),
      gmshmeshes.volume("box", 0.104)),
     ("3D tetrahedra, shift 2", gmshmeshes.moved(gmshmeshes.volume("box", 0.08), translate=(-0.33, 0.41, 0.07)),
@@ -150,7 +156,7 @@ check(worst_before > 20, "the pairs show the fringe problem without the aggregat
 
 # ---- extrapolation --------------------------------------------------------------
 both_ways = dict(pieces=False, PointDataTarget=3, CellDataTarget=3)
-for (name, target, source_mesh), mode in ((pairs[0], 1), (pairs[0], 2), (pairs[2], 1), (pairs[4], 2)):
+for (name, target, source_mesh), mode in ((pairs[0], 1), (pairs[0], 2), (pairs[4], 1), (pairs[6], 2)):
     source = with_fields(source_mesh)
     low, high = array(source, "s").min(), array(source, "s").max()
     plain = mortar(target, source, **both_ways).GetOutput()
