@@ -614,7 +614,7 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
     return -1;
   }
   const mp::MortarOperator& op = *cache.FirstOperator(t);
-  if (matrix == FRINGE_EXTENSION && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
+  if (matrix == FRINGE_EXTENSION && mpvtk::FringeReachesHalo(op))
   {
     vtkErrorMacro(<< "The fringe's extension of " << mpvtk::TransferName(t)
                   << " on this process reaches points of the other processes (its stencils are "

@@ -281,6 +281,13 @@ void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, O
     {
       fresh->ReleaseMatrices(); // solved and not kept: room for the outputs
     }
+    KeptOperator& k = kept.Operators[t];
+    if (k.ExtensionFor != k.Operator.get())
+    {
+      // Extrapolation's extension of an operator that is not kept.
+      k.Extension = mp::Extension();
+      k.ExtensionFor = nullptr;
+    }
   }
   if (!builtHere)
   {

@@ -23,7 +23,10 @@ namespace
 {
 /**
  * The extension over `op`'s invalid functions: the kept one where it is
- * this operator's (a reused operator, the same mode), else built.
+ * this operator's (a reused operator, the same mode, the same valid
+ * functions: those of an aggregated solve drop the fringe's least covered
+ * ones, a lumped one's do not), else built. Whether to reuse is agreed:
+ * the build is collective.
  */
 const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op, bool points,
   const mp::SolverHooks& hook, KeptOperator* kept, mp::Extension& own)
@@ -31,10 +34,15 @@ const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op,
   const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
   mp::Extension& ext = kept ? kept->Extension : own;
   const std::vector<char>& valid = op.GetValid();
-  if (kept && kept->Operator.get() == &op && kept->ExtensionFor == &op && ext.Mode == mode &&
-    ext.Extended.size() == valid.size())
+  if (kept)
   {
-    return ext;
+    bool reuse = kept->Operator.get() == &op && kept->ExtensionFor == &op && ext.Mode == mode &&
+      ext.Valid == valid;
+    ctx.Processes.Agree(Verdict(), &reuse);
+    if (reuse)
+    {
+      return ext;
+    }
   }
   // Rows for the functions this operator leaves invalid.
   std::vector<char> want(valid.size());

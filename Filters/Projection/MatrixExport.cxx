@@ -33,7 +33,58 @@ mp::CsrMatrix Identity(mp::Index n)
   }
   return m;
 }
+/**
+ * P's rows of this process's functions, their columns ascending (with a
+ * halo P holds the ghost points' rows too, and its columns in the
+ * stencils' order).
+ */
+mp::CsrMatrix OwnRows(const mp::CsrMatrix& P, mp::Index n)
+{
+  mp::CsrMatrix m;
+  m.Rows = m.Columns = n;
+  m.RowStart.assign(static_cast<size_t>(n) + 1, 0);
+  for (mp::Index i = 0; i < n; ++i)
+  {
+    m.RowStart[i + 1] = m.RowStart[i] + (P.RowStart[i + 1] - P.RowStart[i]);
+  }
+  m.ColumnIndex.resize(static_cast<size_t>(m.NonZeros()));
+  m.Values.resize(static_cast<size_t>(m.NonZeros()));
+  std::vector<std::pair<mp::Column, double>> row;
+  for (mp::Index i = 0; i < n; ++i)
+  {
+    row.clear();
+    for (mp::Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
+    {
+      row.emplace_back(P.ColumnIndex[q], P.Values[q]);
+    }
+    std::sort(row.begin(), row.end());
+    mp::Index at = m.RowStart[i];
+    for (const auto& entry : row)
+    {
+      m.ColumnIndex[at] = entry.first;
+      m.Values[at++] = entry.second;
+    }
+  }
+  return m;
+}
 } // namespace
+
+bool FringeReachesHalo(const mp::MortarOperator& op)
+{
+  const mp::CsrMatrix& P = op.GetFringe().P;
+  const mp::Index n = op.GetNumberOfTargetFunctions();
+  for (mp::Index i = 0; P.Rows > n && i < n; ++i)
+  {
+    for (mp::Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
+    {
+      if (P.ColumnIndex[q] >= n)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
 
 vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   vtkIdTypeArray* rowStart, vtkIdTypeArray* columns, vtkDoubleArray* values)
@@ -46,11 +97,15 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   {
     made = Identity(op.GetNumberOfTargetFunctions());
   }
+  else if (matrix == Exported::FringeExtension && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
+  {
+    made = OwnRows(op.GetFringe().P, op.GetNumberOfTargetFunctions()); // (FringeReachesHalo is false)
+  }
   else if (matrix == Exported::Extrapolation)
   {
     // Without an extension of this operator: the identity on the valid functions.
-    made = mp::ComposedExtension(
-      kept.ExtensionFor == &op ? kept.Extension : mp::Extension(), op.GetValid());
+    const bool own = kept.ExtensionFor == &op;
+    made = mp::ComposedExtension(own ? kept.Extension : mp::Extension(), own ? kept.Extension.Valid : op.GetValid());
   }
   const mp::CsrMatrix& m = made.Rows ? made
     : mixed                          ? op.GetMixedMass()

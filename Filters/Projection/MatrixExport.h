@@ -20,6 +20,11 @@
 class vtkDoubleArray;
 class vtkIdTypeArray;
 
+namespace mp
+{
+class MortarOperator;
+}
+
 namespace mpvtk
 {
 struct KeptLeaf;
@@ -32,6 +37,13 @@ enum class Exported
   FringeExtension, ///< P (the identity where nothing is aggregated, P0 targets too)
   Extrapolation    ///< E over the valid functions (their identity, empty invalid rows, without Extrapolation)
 };
+
+/**
+ * Whether `op`'s fringe extension reaches its halo (on several processes: a
+ * row of this process's functions with a column of a ghost point), which
+ * this process's numbering cannot write.
+ */
+bool FringeReachesHalo(const mp::MortarOperator& op);
 
 /// `matrix` of `leaf`'s operator of `transfer`; returns the number of columns.
 vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,

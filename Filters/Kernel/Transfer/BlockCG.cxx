@@ -173,7 +173,9 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   this->Runner.ForRanges(n, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i)
     {
-      inverseDiagonal[i] = this->A.Values[this->A.Find(i, i)];
+      // (A row of a distributed system may be empty on this part: 0, the
+      // other parts complete it.)
+      inverseDiagonal[i] = this->A.Entry(i, i);
       if (!options.StartFromX && !given)
       {
         double rowSum = 0.0;

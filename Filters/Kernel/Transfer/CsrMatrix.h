@@ -82,10 +82,20 @@ struct CsrMatrix
    */
   static constexpr Index LongRow = 48;
   /**
-   * Row entries [a, b) times X (one vector) in four running sums, added
+   * Row entries [a, b) times X (one vector): SumRow in one running sum (in
+   * the order of the pair loop below), SumLongRow in four, added
    * ((s0 + s1) + (s2 + s3)) at the end: a long row's single chain of
    * dependent additions would be latency bound.
    */
+  static double SumRow(const double* values, const Column* columns, const double* X, Index a, Index b)
+  {
+    double s = 0.0;
+    for (Index j = a; j < b; ++j)
+    {
+      s += values[j] * X[columns[j]];
+    }
+    return s;
+  }
   static double SumLongRow(const double* values, const Column* columns, const double* X, Index a, Index b)
   {
     double s[4] = { 0.0, 0.0, 0.0, 0.0 };
@@ -130,8 +140,10 @@ struct CsrMatrix
         const Index n1 = b1 - b0;
         if (n0 > LongRow || n1 > LongRow)
         {
-          Y[i] = SumLongRow(values, columns, X, a0, b0);
-          Y[i + 1] = SumLongRow(values, columns, X, b0, b1);
+          // (Each row by its own length's rule: its sum does not depend on
+          // the row it is paired with.)
+          Y[i] = n0 > LongRow ? SumLongRow(values, columns, X, a0, b0) : SumRow(values, columns, X, a0, b0);
+          Y[i + 1] = n1 > LongRow ? SumLongRow(values, columns, X, b0, b1) : SumRow(values, columns, X, b0, b1);
           continue;
         }
         const Index both = n0 < n1 ? n0 : n1;
@@ -157,6 +169,14 @@ struct CsrMatrix
     for (; i < end; ++i)
     {
       double* y = Y + i * c;
+      if constexpr (FixedC == 1)
+      {
+        if (start[i + 1] - start[i] > LongRow)
+        {
+          y[0] = SumLongRow(values, columns, X, start[i], start[i + 1]);
+          continue;
+        }
+      }
       if constexpr (FixedC > 0)
       {
         // The row's sums in registers, stored once (through y, which the

@@ -384,6 +384,7 @@ Extension ExtendOver(const FunctionGraph& graph, const std::vector<char>& valid,
 {
   Extension ext;
   ext.Mode = mode;
+  ext.Valid = valid;
   const Index n = graph.Size();
   ext.Extended.assign(static_cast<size_t>(n), 0);
   if (mode == ExtrapolationMode::None)

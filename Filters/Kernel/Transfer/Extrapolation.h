@@ -66,6 +66,7 @@ enum class ExtrapolationMode
 struct Extension
 {
   ExtrapolationMode Mode = ExtrapolationMode::None;
+  std::vector<char> Valid;               ///< per function: valid, what the extension reads
   std::vector<char> Extended;            ///< per function: given a value
   std::vector<std::vector<Index>> Steps; ///< the functions of each step (as many on every part)
   CsrMatrix Reads;   ///< per function, what its mean reads, with weights (this part's share)

@@ -11,7 +11,8 @@
  * elements (Badia, Verdugo and Martin 2018) remove these
  * functions from the unknowns: an ill-posed function i (its covered
  * fraction, int_covered phi_i / int phi_i, below a threshold) takes the
- * value of the affine extension of free (well-covered) functions nearby,
+ * value of an extension of free (well-covered) functions nearby that
+ * reproduces affine functions,
  *
  *     u_i = sum_k w_ik u_k,   sum_k w_ik = 1,   sum_k w_ik x_k = x_i,
  *
@@ -48,7 +49,7 @@ namespace mp
 /// Per point of a volume mesh (triangles in the x-y plane in 2D, tetrahedra in 3D): int phi_i over its whole support.
 LargeVector<double> SupportIntegrals(const MeshView& mesh);
 
-/// The affine extension of a fringe: P (functions x functions) and which rows it aggregates.
+/// The extension of a fringe: P (functions x functions) and which rows it aggregates.
 struct FringeExtension
 {
   CsrMatrix P;                ///< identity rows for free functions, weights for aggregated ones

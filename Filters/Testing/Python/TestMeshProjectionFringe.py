@@ -214,6 +214,27 @@ for mode in (1, 2):
               "Extrapolation %d, %s: the exported E gives the output (%.2g, %d rows extended)"
               % (mode, transfer, error, rows.sum() - valid.sum()))
 
+# A kept operator solved lumped, then consistent, then lumped (the valid
+# points differ: an aggregated solve drops the least covered ones): each
+# execution extends from its own valid points, as a fresh filter does.
+name, target, source_mesh = pairs[4]
+source = with_fields(source_mesh)
+f = mortar(target, source, pieces=False, CacheOperator=True, Extrapolation=1, MassMatrix=1)
+f.Modified()
+f.Update()  # (the second execution keeps an assembled operator: the next ones reuse it)
+for lumped in (0, 1):
+    f.SetMassMatrix(lumped)
+    f.Update()
+    out = f.GetOutput()
+    fresh = mortar(target, source, pieces=False, Extrapolation=1, MassMatrix=lumped).GetOutput()
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    check(f.GetOperatorReused(), "MassMatrix %d after the other: the operator reused" % lumped)
+    check(np.array_equal(array(out, "vtkExtrapolatedPointMask").astype(bool), ~valid)
+          and np.array_equal(valid, array(fresh, "vtkValidPointMask").astype(bool))
+          and np.allclose(array(out, "s"), array(fresh, "s"), atol=1e-9, rtol=0),
+          "MassMatrix %d after the other on a kept operator: the masks and values of a fresh filter (%d valid of %d)"
+          % (lumped, valid.sum(), array(fresh, "vtkValidPointMask").sum()))
+
 # A part of Input connected to no valid point keeps the fill value, with one warning.
 far = gmshmeshes.moved(gmshmeshes.planar(0.1), translate=(3, 0, 0))
 both = vtkAppendFilter()
