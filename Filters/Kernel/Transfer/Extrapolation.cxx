@@ -89,9 +89,18 @@ std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& v
   }
   for (;;)
   {
-    // A search from the rows next to a known layer (unit steps, smallest first).
-    using Entry = std::pair<double, Index>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> front;
+    // A search from the rows next to a known layer: unit steps, so the
+    // rows wait in buckets by layer, smallest first (an entry whose layer
+    // has dropped since is stale).
+    std::vector<std::vector<Index>> buckets;
+    auto push = [&buckets, &layer](Index i) {
+      const size_t b = static_cast<size_t>(layer[i]);
+      if (buckets.size() <= b)
+      {
+        buckets.resize(b + 1);
+      }
+      buckets[b].push_back(i);
+    };
     for (Index i = 0; i < n; ++i)
     {
       const Index r = graph.Row[i];
@@ -101,26 +110,27 @@ std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& v
       }
       if (r >= 0 && layer[i] < none)
       {
-        front.emplace(layer[i], i);
+        push(i);
       }
     }
-    while (!front.empty())
+    for (size_t b = 0; b < buckets.size(); ++b)
     {
-      const Entry top = front.top();
-      front.pop();
-      const Index i = top.second;
-      if (top.first > layer[i])
+      for (size_t t = 0; t < buckets[b].size(); ++t)
       {
-        continue;
-      }
-      const Index r = graph.Row[i];
-      for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
-      {
-        const Index k = graph.Neighbors[q];
-        if (graph.Row[k] >= 0 && layer[i] + 1.0 < layer[k])
+        const Index i = buckets[b][t];
+        if (static_cast<size_t>(layer[i]) != b)
         {
-          layer[k] = layer[i] + 1.0;
-          front.emplace(layer[k], k);
+          continue;
+        }
+        const Index r = graph.Row[i];
+        for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
+        {
+          const Index k = graph.Neighbors[q];
+          if (graph.Row[k] >= 0 && layer[i] + 1.0 < layer[k])
+          {
+            layer[k] = layer[i] + 1.0;
+            push(k); // (into bucket b + 1: the loops read by index)
+          }
         }
       }
     }
@@ -201,20 +211,41 @@ void CreepSteps(const FunctionGraph& graph, const std::vector<Index>& layer, con
       break;
     }
   }
-  std::vector<std::vector<std::pair<Column, double>>> reads(static_cast<size_t>(n));
-  for (Index i = 0; i < n; ++i)
+  // Each function of layer L reads its neighbours of lower layers: counted,
+  // then written.
+  CsrMatrix& reads = ext.Reads;
+  reads.Rows = reads.Columns = n;
+  reads.RowStart.assign(static_cast<size_t>(n) + 1, 0);
+  for (int pass = 0; pass < 2; ++pass)
   {
-    const Index r = graph.Row[i];
-    for (Index q = layer[i] > 0 ? graph.Start[r] : 0; layer[i] > 0 && q < graph.Start[r + 1]; ++q)
+    for (Index i = 0; i < n; ++i)
     {
-      const Index k = graph.Neighbors[q];
-      if (layer[k] >= 0 && layer[k] < layer[i])
+      const Index r = graph.Row[i];
+      Index at = reads.RowStart[i];
+      for (Index q = layer[i] > 0 ? graph.Start[r] : 0; layer[i] > 0 && q < graph.Start[r + 1]; ++q)
       {
-        reads[i].emplace_back(static_cast<Column>(k), graph.Weights[q]);
+        const Index k = graph.Neighbors[q];
+        if (layer[k] >= 0 && layer[k] < layer[i])
+        {
+          if (pass == 1)
+          {
+            reads.ColumnIndex[at] = static_cast<Column>(k);
+            reads.Values[at] = graph.Weights[q];
+          }
+          ++at;
+        }
+      }
+      if (pass == 0)
+      {
+        reads.RowStart[i + 1] = reads.RowStart[i] + (at - reads.RowStart[i]);
       }
     }
+    if (pass == 0)
+    {
+      reads.ColumnIndex.resize(static_cast<size_t>(reads.NonZeros()));
+      reads.Values.resize(static_cast<size_t>(reads.NonZeros()));
+    }
   }
-  ext.Reads = Compressed(n, reads);
 }
 
 /// Nearest's step: each reached function reads the nearest valid one along the graph (Dijkstra from all valid ones).
@@ -271,17 +302,22 @@ void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Ext
       }
     }
   }
-  std::vector<std::vector<std::pair<Column, double>>> reads(static_cast<size_t>(n));
+  // Each reached function reads its nearest valid one, with weight 1.
+  CsrMatrix& reads = ext.Reads;
+  reads.Rows = reads.Columns = n;
+  reads.RowStart.assign(static_cast<size_t>(n) + 1, 0);
   ext.Steps.assign(1, {});
   for (Index i = 0; i < n; ++i)
   {
-    if (todo[i] && from[i] >= 0)
+    const bool reached = todo[i] && from[i] >= 0;
+    reads.RowStart[i + 1] = reads.RowStart[i] + (reached ? 1 : 0);
+    if (reached)
     {
-      reads[i].emplace_back(static_cast<Column>(from[i]), 1.0);
+      reads.ColumnIndex.push_back(static_cast<Column>(from[i]));
+      reads.Values.push_back(1.0);
       ext.Steps[0].push_back(i);
     }
   }
-  ext.Reads = Compressed(n, reads);
 }
 
 /// Row i's weighted sums of what it reads (numerators, then the weight).
