@@ -4,6 +4,8 @@
 // functions, the creep fill and the nearest values.
 #include "Transfer/Extrapolation.h"
 
+#include "Mesh/CellNeighbors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -15,7 +17,8 @@ namespace mp
 {
 namespace
 {
-/// Compressed rows: per item, the entries listed by `visit(item, add)`.
+/// Compressed rows: per item, the entries listed by `visit(item, add)` (the
+/// cells around points: BuildPointCells).
 template <class Visit>
 void Incidence(Index items, Index targets, Visit visit, std::vector<Index>& start, std::vector<Index>& entries)
 {
@@ -342,13 +345,7 @@ FunctionGraph PointGraph(const MeshView& mesh, const std::vector<char>& want)
   FunctionGraph graph;
   const int corners = mesh.CornersPerCell();
   std::vector<Index> start, cells;
-  Incidence(mesh.NumberOfCells, mesh.NumberOfPoints, [&](Index c, auto add) {
-    const CellCorners cell = mesh.Cell(c);
-    for (int a = 0; a < corners; ++a)
-    {
-      add(cell[a]);
-    }
-  }, start, cells);
+  BuildPointCells(mesh, start, cells);
   Rows(want, [&](Index i, auto add) {
     for (Index q = start[i]; q < start[i + 1]; ++q)
     {
@@ -369,13 +366,7 @@ FunctionGraph CellGraph(const MeshView& mesh, const std::vector<char>& want)
   const Index parents = mesh.Parents();
   const int corners = mesh.CornersPerCell();
   std::vector<Index> pointStart, aroundPoint, parentStart, children;
-  Incidence(mesh.NumberOfCells, mesh.NumberOfPoints, [&](Index c, auto add) {
-    const CellCorners cell = mesh.Cell(c);
-    for (int a = 0; a < corners; ++a)
-    {
-      add(cell[a]);
-    }
-  }, pointStart, aroundPoint);
+  BuildPointCells(mesh, pointStart, aroundPoint);
   Incidence(mesh.NumberOfCells, parents, [&](Index c, auto add) { add(mesh.ParentOf(c)); }, parentStart, children);
   Rows(want, [&](Index p, auto add) {
     for (Index q = parentStart[p]; q < parentStart[p + 1]; ++q)

@@ -4,6 +4,8 @@
 // products with P and P^T.
 #include "Transfer/FringeAggregation.h"
 
+#include "Mesh/CellNeighbors.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -15,38 +17,15 @@ namespace mp
 namespace
 {
 
-/// Per point, the cells around it (compressed rows).
+/// Per point, the cells around it (compressed rows, BuildPointCells').
 struct CellsAroundPoints
 {
   std::vector<Index> Start;
   std::vector<Index> Cells;
 
-  explicit CellsAroundPoints(const MeshView& mesh)
+  CellsAroundPoints(const MeshView& mesh, const TaskRunner& runner)
   {
-    const int corners = mesh.CornersPerCell();
-    this->Start.assign(static_cast<size_t>(mesh.NumberOfPoints) + 1, 0);
-    for (Index c = 0; c < mesh.NumberOfCells; ++c)
-    {
-      const CellCorners cell = mesh.Cell(c);
-      for (int a = 0; a < corners; ++a)
-      {
-        ++this->Start[static_cast<size_t>(cell[a]) + 1];
-      }
-    }
-    for (size_t p = 1; p < this->Start.size(); ++p)
-    {
-      this->Start[p] += this->Start[p - 1];
-    }
-    this->Cells.resize(static_cast<size_t>(this->Start.back()));
-    std::vector<Index> next(this->Start.begin(), this->Start.end() - 1);
-    for (Index c = 0; c < mesh.NumberOfCells; ++c)
-    {
-      const CellCorners cell = mesh.Cell(c);
-      for (int a = 0; a < corners; ++a)
-      {
-        this->Cells[static_cast<size_t>(next[static_cast<size_t>(cell[a])]++)] = c;
-      }
-    }
+    BuildPointCells(mesh, this->Start, this->Cells, runner);
   }
 };
 
@@ -479,7 +458,7 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   {
     return ext;
   }
-  const CellsAroundPoints around(mesh);
+  const CellsAroundPoints around(mesh, runner);
   std::vector<std::vector<Index>> stencils(ill.size());
   std::vector<std::vector<double>> weights(ill.size());
   // Each stencil on its own (a task marks the points it has met in its
