@@ -15,24 +15,6 @@ namespace mpvtk
 {
 namespace
 {
-/// The identity of `n` functions (a P1 operator without an aggregated fringe: P = I).
-mp::CsrMatrix Identity(mp::Index n)
-{
-  mp::CsrMatrix m;
-  m.Rows = m.Columns = n;
-  m.RowStart.resize(static_cast<size_t>(n) + 1);
-  m.ColumnIndex.resize(static_cast<size_t>(n));
-  m.Values.assign(static_cast<size_t>(n), 1.0);
-  for (mp::Index i = 0; i <= n; ++i)
-  {
-    m.RowStart[i] = i;
-    if (i < n)
-    {
-      m.ColumnIndex[i] = static_cast<mp::Column>(i);
-    }
-  }
-  return m;
-}
 /**
  * P's rows of this process's functions, their columns ascending (with a
  * halo P holds the ghost points' rows too, and its columns in the
@@ -95,7 +77,8 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   mp::CsrMatrix made;
   if (matrix == Exported::FringeExtension && op.GetFringe().P.Rows == 0)
   {
-    made = Identity(op.GetNumberOfTargetFunctions());
+    // (A P1 operator without an aggregated fringe, or a P0 one: P = I.)
+    made = mp::CsrMatrix::Identity(op.GetNumberOfTargetFunctions());
   }
   else if (matrix == Exported::FringeExtension && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
   {

@@ -31,6 +31,23 @@ struct CsrMatrix
   UninitializedLargeVector<double> Values;
 
   Index NonZeros() const { return this->RowStart.empty() ? 0 : this->RowStart.back(); }
+  /// The identity of `n` rows.
+  static CsrMatrix Identity(Index n)
+  {
+    CsrMatrix m;
+    m.Rows = m.Columns = n;
+    m.RowStart.resize(static_cast<size_t>(n) + 1);
+    m.ColumnIndex.resize(static_cast<size_t>(n));
+    m.Values.resize(static_cast<size_t>(n));
+    m.RowStart[0] = 0;
+    for (Index i = 0; i < n; ++i)
+    {
+      m.RowStart[i + 1] = i + 1;
+      m.ColumnIndex[i] = static_cast<Column>(i);
+      m.Values[i] = 1.0;
+    }
+    return m;
+  }
   /// Position of entry (i, k) in Values; when absent, where it would go in the row.
   Index Find(Index i, Index k) const
   {

@@ -362,17 +362,7 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   {
     // Nothing aggregated in this part: P is the identity (ExtendFringe
     // leaves it empty), its share of the system M_tt's.
-    CsrMatrix& P = this->Fringe.P;
-    P.Rows = P.Columns = rows;
-    P.RowStart.resize(static_cast<size_t>(rows) + 1);
-    P.ColumnIndex.resize(static_cast<size_t>(rows));
-    P.Values.resize(static_cast<size_t>(rows));
-    for (Index i = 0; i < rows; ++i)
-    {
-      P.RowStart[i + 1] = i + 1;
-      P.ColumnIndex[i] = static_cast<Column>(i);
-      P.Values[i] = 1.0;
-    }
+    this->Fringe.P = CsrMatrix::Identity(rows);
   }
   // M_tt with empty rows for the ghosts (only the stencils reach them).
   CsrMatrix padded(this->TargetMass);
