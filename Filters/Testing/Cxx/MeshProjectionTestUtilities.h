@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Shared helpers of the VTK-level tests: reading the sample meshes, a
-// triangulated unit square, exact integrals of P1 fields, and a check macro that reports and counts failures.
+// triangulated unit square, exact integrals of P1 fields, a check macro that reports and counts
+// failures, and one that runs a test's named case and reports it when it fails.
 #ifndef MeshProjectionTestUtilities_h
 #define MeshProjectionTestUtilities_h
 
@@ -34,6 +35,18 @@
     if (!(condition))                                                                              \
     {                                                                                              \
       std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;     \
+      ++failures;                                                                                  \
+    }                                                                                              \
+  } while (false)
+
+/// Runs one named case of a test: `call` returns true when every check in it passed; a failed
+/// case is reported by name and counted in `failures` (the test's cases all run, in order).
+#define MP_CASE(call)                                                                              \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(call))                                                                                   \
+    {                                                                                              \
+      std::cerr << "case failed: " #call << std::endl;                                             \
       ++failures;                                                                                  \
     }                                                                                              \
   } while (false)
