@@ -83,12 +83,33 @@ double Sum(vtkDataArray* u)
   return sum;
 }
 
-int Fields(const char* targetFile, const char* sourceFile)
+/**
+ * One sample pair and the filter run on it, shared by the cases of CheckFields in
+ * turn (each case puts back the properties it changed): Source with the cell fields
+ * One (a constant), Density (a step) and Mass (density x measure, totals) and the
+ * point field Step (for the bounds), in place of its own cell data.
+ */
+struct FieldsRun
 {
-  int failures = 0;
-  const bool is3D = std::string(targetFile).find("3d") != std::string::npos;
-  auto target = mptest::ReadSample(targetFile);
-  auto source = mptest::ReadSample(sourceFile);
+  FieldsRun(const char* targetFile, const char* sourceFile);
+  const char* TargetFile;
+  bool Is3D;
+  vtkSmartPointer<vtkUnstructuredGrid> Target;
+  vtkSmartPointer<vtkUnstructuredGrid> Source;
+  vtkNew<vtkDoubleArray> Step;
+  vtkNew<vtkMeshProjectionFilter> Filter;
+  vtkNew<vtkTest::ErrorObserver> Observer;
+  vtkUnstructuredGrid* Out = nullptr; // the filter's output, from CheckCellTransfers on
+};
+
+FieldsRun::FieldsRun(const char* targetFile, const char* sourceFile)
+  : TargetFile(targetFile)
+  , Is3D(std::string(targetFile).find("3d") != std::string::npos)
+  , Target(mptest::ReadSample(targetFile))
+  , Source(mptest::ReadSample(sourceFile))
+{
+  vtkUnstructuredGrid* source = this->Source;
+  vtkDoubleArray* step = this->Step;
   source->GetCellData()->Initialize();
   // Cell fields: a constant, a step (a density) and totals (mass = density x measure).
   source->GetCellData()->AddArray(CellArray(source, "One", [](vtkIdType) { return 1.0; }));
@@ -100,7 +121,6 @@ int Fields(const char* targetFile, const char* sourceFile)
     return density(c) * CellMeasure(source, c, &ids, &n);
   }));
   // A point step for the bounds.
-  vtkNew<vtkDoubleArray> step;
   step->SetName("Step");
   step->SetNumberOfValues(source->GetNumberOfPoints());
   for (vtkIdType p = 0; p < source->GetNumberOfPoints(); ++p)
@@ -108,13 +128,24 @@ int Fields(const char* targetFile, const char* sourceFile)
     step->SetValue(p, source->GetPoint(p)[0] > 0.8 ? 2.0 : -1.0);
   }
   source->GetPointData()->AddArray(step);
+}
+
+/// The sample pairs cover the same domain; cell -> cell (intensive), point -> cell and
+/// cell -> point on the first run (all four operators built).
+bool CheckCellTransfers(FieldsRun& run)
+{
+  int failures = 0;
+  vtkUnstructuredGrid* target = run.Target;
+  vtkUnstructuredGrid* source = run.Source;
+  const char* targetFile = run.TargetFile;
+  const bool is3D = run.Is3D;
+  vtkMeshProjectionFilter* filter = run.Filter;
+  vtkTest::ErrorObserver* observer = run.Observer;
   const double sourceMeasure = mptest::Measure(source);
   const double targetMeasure = mptest::Measure(target);
   // The sample pairs cover the same domain.
   MP_CHECK(std::fabs(sourceMeasure - targetMeasure) < 1e-12 * sourceMeasure);
 
-  vtkNew<vtkMeshProjectionFilter> filter;
-  vtkNew<vtkTest::ErrorObserver> observer;
   filter->AddObserver(vtkCommand::ErrorEvent, observer);
   filter->AddObserver(vtkCommand::WarningEvent, observer);
   filter->SetInputData(target);
@@ -154,8 +185,17 @@ int Fields(const char* targetFile, const char* sourceFile)
     std::fabs(onePoints->GetRange()[1] - 1) < 1e-12);
   vtkDataArray* densPoints = pd->GetArray("Density");
   MP_CHECK(densPoints && std::fabs(mptest::Integral(out, densPoints) - sourceDensity) < 1e-12 * sourceDensity);
+  run.Out = out;
+  return failures == 0;
+}
 
-  // Extensive: totals kept (the meshes cover the same domain).
+/// Extensive: totals kept (the meshes cover the same domain).
+bool CheckExtensive(FieldsRun& run)
+{
+  int failures = 0;
+  vtkMeshProjectionFilter* filter = run.Filter;
+  vtkUnstructuredGrid* source = run.Source;
+  const char* targetFile = run.TargetFile;
   filter->SetCellDataQuantity(vtkMeshProjectionFilter::EXTENSIVE);
   filter->Update();
   // The first execution was a one-off (right-hand sides summed in the
@@ -170,8 +210,18 @@ int Fields(const char* targetFile, const char* sourceFile)
   vtkDataArray* massDensity = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Mass");
   MP_CHECK(massDensity && std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), massDensity) - totalMass) < 1e-12 * totalMass);
   filter->SetCellDataQuantity(vtkMeshProjectionFilter::INTENSIVE);
+  return failures == 0;
+}
 
-  // The matrices: M_tt u_t = M_ts u_s for the projected point field.
+/// The matrices: M_tt u_t = M_ts u_s for the projected point field.
+bool CheckMatrices(FieldsRun& run)
+{
+  int failures = 0;
+  vtkMeshProjectionFilter* filter = run.Filter;
+  vtkUnstructuredGrid* target = run.Target;
+  vtkUnstructuredGrid* source = run.Source;
+  const char* targetFile = run.TargetFile;
+  vtkTest::ErrorObserver* observer = run.Observer;
   filter->SetPointDataTarget(vtkMeshProjectionFilter::TO_POINTS);
   filter->SetCellDataTarget(vtkMeshProjectionFilter::TO_CELLS);
   filter->Update();
@@ -220,8 +270,14 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(filter->GetMatrix(vtkMeshProjectionFilter::CELLS_TO_POINTS, 0, rowStart, columns, values) == -1);
   MP_CHECK(observer->GetError());
   observer->Clear();
+  return failures == 0;
+}
 
-  // Array selection: disabled arrays are not projected, the others are.
+/// Array selection: disabled arrays are not projected, the others are.
+bool CheckArraySelection(FieldsRun& run)
+{
+  int failures = 0;
+  vtkMeshProjectionFilter* filter = run.Filter;
   filter->GetPointDataArraySelection()->DisableArray("Smooth");
   filter->GetCellDataArraySelection()->DisableArray("Mass");
   filter->Update();
@@ -232,8 +288,16 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(filter->GetOperatorReused());
   filter->GetPointDataArraySelection()->EnableArray("Smooth");
   filter->GetCellDataArraySelection()->EnableArray("Mass");
+  return failures == 0;
+}
 
-  // Lumped: within the source's range, conservative, constants exact.
+/// Lumped: within the source's range, conservative, constants exact.
+bool CheckLumped(FieldsRun& run)
+{
+  int failures = 0;
+  vtkMeshProjectionFilter* filter = run.Filter;
+  vtkUnstructuredGrid* source = run.Source;
+  vtkDoubleArray* step = run.Step;
   filter->SetMassMatrix(vtkMeshProjectionFilter::LUMPED_MASS);
   filter->Update();
   MP_CHECK(filter->GetOperatorReused());
@@ -243,9 +307,21 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(lumpedStep &&
     std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), lumpedStep) - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
   filter->SetMassMatrix(vtkMeshProjectionFilter::CONSISTENT_MASS);
+  return failures == 0;
+}
 
-  // Bounds: the consistent projection of a step overshoots; with bounds it
-  // does not, the integral stays, and linear fields stay exact.
+/// Bounds: the consistent projection of a step overshoots; with bounds it
+/// does not, the integral stays, and linear fields stay exact.
+bool CheckBounds(FieldsRun& run)
+{
+  int failures = 0;
+  vtkMeshProjectionFilter* filter = run.Filter;
+  vtkUnstructuredGrid* source = run.Source;
+  const char* targetFile = run.TargetFile;
+  const bool is3D = run.Is3D;
+  vtkUnstructuredGrid* out = run.Out;
+  const double stepIntegral = mptest::Integral(source, run.Step);
+  double worst = 0;
   filter->Update();
   vtkDataArray* consistent = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Step");
   const double overshoot = std::max(consistent->GetRange()[1] - 2, -1 - consistent->GetRange()[0]);
@@ -269,9 +345,19 @@ int Fields(const char* targetFile, const char* sourceFile)
   }
   MP_CHECK(worst < 1e-12);
   filter->SetPreserveBounds(false);
+  return failures == 0;
+}
 
-  // Reuse: a Source with the same geometry in new arrays is a hit (and a
-  // new field), moved points a miss; with the cache off nothing is kept.
+/// Reuse: a Source with the same geometry in new arrays is a hit (and a
+/// new field), moved points a miss; with the cache off nothing is kept.
+bool CheckReuse(FieldsRun& run)
+{
+  int failures = 0;
+  vtkMeshProjectionFilter* filter = run.Filter;
+  vtkUnstructuredGrid* target = run.Target;
+  vtkUnstructuredGrid* source = run.Source;
+  const char* targetFile = run.TargetFile;
+  double worst = 0;
   vtkNew<vtkUnstructuredGrid> copy;
   copy->DeepCopy(source);
   filter->SetSourceData(copy);
@@ -303,7 +389,15 @@ int Fields(const char* targetFile, const char* sourceFile)
   }
   std::cout << targetFile << ": reused (warm start) vs single-use " << worst << "\n";
   MP_CHECK(single && reused->GetNumberOfTuples() == single->GetNumberOfTuples() && worst < 1e-12);
+  return failures == 0;
+}
 
+/// Aborting from a progress observer, and the progress a whole run reports.
+bool CheckAbort(FieldsRun& run)
+{
+  int failures = 0;
+  vtkUnstructuredGrid* target = run.Target;
+  vtkUnstructuredGrid* source = run.Source;
   // A run watched by a progress observer that stops it once the progress
   // is in (from, to): the progress it saw, and whether it said "Aborted".
   struct Watch
@@ -362,56 +456,80 @@ int Fields(const char* targetFile, const char* sourceFile)
   MP_CHECK(!stoppedInSolve.first->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
   // (Stopped at the solve's first report: nothing of the outputs' stage after it.)
   MP_CHECK(std::none_of(inSolve.Seen.begin(), inSolve.Seen.end(), [&](double f) { return f >= solveTo && f < 1.0; }));
-
-  // Id arrays (GlobalIds, vtkOriginalCellIds from Redistribute DataSet or
-  // Extract Cells, ...) are not fields: never projected, never offered in
-  // the array lists.
-  {
-    vtkNew<vtkUnstructuredGrid> withIds;
-    withIds->ShallowCopy(source);
-    for (int association = 0; association < 2; ++association)
-    {
-      vtkDataSetAttributes* data = association == 0
-        ? static_cast<vtkDataSetAttributes*>(withIds->GetPointData())
-        : static_cast<vtkDataSetAttributes*>(withIds->GetCellData());
-      const vtkIdType n = association == 0 ? withIds->GetNumberOfPoints() : withIds->GetNumberOfCells();
-      for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
-      {
-        vtkNew<vtkIdTypeArray> ids;
-        ids->SetName(name);
-        ids->SetNumberOfValues(n);
-        for (vtkIdType i = 0; i < n; ++i)
-        {
-          ids->SetValue(i, i);
-        }
-        if (std::string(name) == "Gids")
-        {
-          data->SetGlobalIds(ids);
-        }
-        else
-        {
-          data->AddArray(ids);
-        }
-      }
-    }
-    vtkNew<vtkMeshProjectionFilter> lister;
-    lister->SetInputData(target);
-    lister->SetSourceData(withIds);
-    lister->Update();
-    for (vtkDataArraySelection* list :
-      { lister->GetPointDataArraySelection(), lister->GetCellDataArraySelection() })
-    {
-      MP_CHECK(list->GetNumberOfArrays() > 0);
-      for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
-      {
-        MP_CHECK(!list->ArrayExists(name));
-      }
-    }
-    MP_CHECK(lister->GetPointDataArraySelection()->ArrayExists("Smooth"));
-    MP_CHECK(!lister->GetUnstructuredGridOutput()->GetCellData()->GetArray("vtkOriginalCellIds"));
-  }
-  return failures;
+  return failures == 0;
 }
+
+/// Id arrays (GlobalIds, vtkOriginalCellIds from Redistribute DataSet or
+/// Extract Cells, ...) are not fields: never projected, never offered in
+/// the array lists.
+bool CheckIdArraysNotFields(FieldsRun& run)
+{
+  int failures = 0;
+  vtkUnstructuredGrid* target = run.Target;
+  vtkUnstructuredGrid* source = run.Source;
+  vtkNew<vtkUnstructuredGrid> withIds;
+  withIds->ShallowCopy(source);
+  for (int association = 0; association < 2; ++association)
+  {
+    vtkDataSetAttributes* data = association == 0
+      ? static_cast<vtkDataSetAttributes*>(withIds->GetPointData())
+      : static_cast<vtkDataSetAttributes*>(withIds->GetCellData());
+    const vtkIdType n = association == 0 ? withIds->GetNumberOfPoints() : withIds->GetNumberOfCells();
+    for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
+    {
+      vtkNew<vtkIdTypeArray> ids;
+      ids->SetName(name);
+      ids->SetNumberOfValues(n);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        ids->SetValue(i, i);
+      }
+      if (std::string(name) == "Gids")
+      {
+        data->SetGlobalIds(ids);
+      }
+      else
+      {
+        data->AddArray(ids);
+      }
+    }
+  }
+  vtkNew<vtkMeshProjectionFilter> lister;
+  lister->SetInputData(target);
+  lister->SetSourceData(withIds);
+  lister->Update();
+  for (vtkDataArraySelection* list :
+    { lister->GetPointDataArraySelection(), lister->GetCellDataArraySelection() })
+  {
+    MP_CHECK(list->GetNumberOfArrays() > 0);
+    for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
+    {
+      MP_CHECK(!list->ArrayExists(name));
+    }
+  }
+  MP_CHECK(lister->GetPointDataArraySelection()->ArrayExists("Smooth"));
+  MP_CHECK(!lister->GetUnstructuredGridOutput()->GetCellData()->GetArray("vtkOriginalCellIds"));
+  return failures == 0;
+}
+
+/// Every case of the filter's fields on the sample pair `targetFile`, `sourceFile` (a pair
+/// with "3d" in its name is 3D: its Linear is 1 + 2x - 3y + z/2), in turn on one filter.
+bool CheckFields(const char* targetFile, const char* sourceFile)
+{
+  int failures = 0;
+  FieldsRun run(targetFile, sourceFile);
+  MP_CASE(CheckCellTransfers(run));
+  MP_CASE(CheckExtensive(run));
+  MP_CASE(CheckMatrices(run));
+  MP_CASE(CheckArraySelection(run));
+  MP_CASE(CheckLumped(run));
+  MP_CASE(CheckBounds(run));
+  MP_CASE(CheckReuse(run));
+  MP_CASE(CheckAbort(run));
+  MP_CASE(CheckIdArraysNotFields(run));
+  return failures == 0;
+}
+
 /**
  * With two threads the search's tasks run on VTK's thread pool, none on the
  * thread that runs the pipeline, where the GUI takes progress events: the
@@ -420,7 +538,7 @@ int Fields(const char* targetFile, const char* sourceFile)
  * stages' own values around it (0.14 before the search, 0.86 after it: the
  * search's share of the bar, 0.1 to 0.9, within the leaf's, 0.05 to 0.95).
  */
-int ThreadedProgress()
+bool CheckThreadedProgress()
 {
   int failures = 0;
   vtkNew<vtkMeshProjectionFilter> filter;
@@ -478,14 +596,15 @@ int ThreadedProgress()
   MP_CHECK(both->GetNumberOfOperatorsBuilt() == 2);
   MP_CHECK(std::is_sorted(twice.Amounts.begin(), twice.Amounts.end()) && !twice.Amounts.empty() &&
     twice.Amounts.back() == 1.0);
-  return failures;
+  return failures == 0;
 }
 } // namespace
 
 int TestMeshProjectionFilterFields(int, char*[])
 {
-  int failures = Fields("lshape_target.vtu", "lshape_source.vtu");
-  failures += Fields("lshape3d_target.vtu", "lshape3d_source.vtu");
-  failures += ThreadedProgress();
+  int failures = 0;
+  MP_CASE(CheckFields("lshape_target.vtu", "lshape_source.vtu"));
+  MP_CASE(CheckFields("lshape3d_target.vtu", "lshape3d_source.vtu"));
+  MP_CASE(CheckThreadedProgress());
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
