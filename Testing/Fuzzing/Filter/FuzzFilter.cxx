@@ -302,6 +302,168 @@ vtkSmartPointer<vtkDataSet> MakeMesh(Bytes& in)
   AddArrays(in, data);
   return data;
 }
+
+/// Sets the filter's properties from the input's first four bytes (search,
+/// targets, mass matrix, bounds, quantity, intersections, cache, fill, and
+/// whether array a0 is projected).
+void Configure(vtkMeshProjectionFilter* filter, const uint8_t properties[4])
+{
+  filter->SetSearchMethod(properties[0] & 1);
+  filter->SetPointDataTarget(1 + (properties[0] >> 1) % 3);
+  filter->SetCellDataTarget(1 + (properties[0] >> 3) % 3);
+  filter->SetMassMatrix((properties[1] & 1) ? vtkMeshProjectionFilter::LUMPED_MASS
+                                            : vtkMeshProjectionFilter::CONSISTENT_MASS);
+  filter->SetPreserveBounds((properties[1] >> 1) & 1);
+  filter->SetCellDataQuantity((properties[1] >> 2) & 1);
+  filter->SetOutputIntersections((properties[1] >> 3) & 1);
+  filter->SetCacheOperator((properties[1] >> 4) & 1);
+  filter->SetFillWithNaN((properties[1] >> 5) & 1);
+  filter->SetFillValue(-7.0);
+  if (properties[2] & 1)
+  {
+    filter->GetPointDataArraySelection()->DisableArray("a0");
+  }
+}
+
+/// Runs the filter again with the same data (kept operators), then with
+/// the first value of Source's arrays a0 changed (to a value read from `in`).
+void RunAgain(vtkMeshProjectionFilter* filter, vtkDataSet* source, Bytes& in)
+{
+  filter->Modified();
+  filter->Update();
+  for (int association = 0; association < 2; ++association)
+  {
+    vtkDataArray* a = source->GetAttributes(association == 0 ? vtkDataObject::POINT
+                                                             : vtkDataObject::CELL)
+                        ->GetArray("a0");
+    if (a && a->GetNumberOfTuples() > 0)
+    {
+      a->SetComponent(0, 0, in.Real());
+      a->Modified();
+    }
+  }
+  source->Modified();
+  filter->Update();
+}
+
+/// With MP_FUZZ_STATS set: how many inputs were projected, at exit (to see
+/// that the decoder reaches the projection, not only the checks), and each
+/// input's sizes. Counts this run (`projected`: it covered something).
+void CountRun(vtkDataSet* target, vtkDataSet* source, vtkMeshProjectionFilter* filter, int errors,
+  bool projected)
+{
+  static int runs = 0;
+  static int projectedRuns = 0;
+  static bool stats = std::getenv("MP_FUZZ_STATS") &&
+    std::atexit([] { std::fprintf(stderr, "FuzzFilter: %d of %d inputs projected\n", projectedRuns, runs); }) == 0;
+  ++runs;
+  if (stats)
+  {
+    std::fprintf(stderr, "FuzzFilter: %lld/%lld target and %lld/%lld source points/cells, covered %g, %d errors\n",
+      (long long)target->GetNumberOfPoints(), (long long)target->GetNumberOfCells(),
+      (long long)source->GetNumberOfPoints(), (long long)source->GetNumberOfCells(),
+      filter->GetCoveredMeasure(), errors);
+  }
+  projectedRuns += projected;
+}
+
+/// A mask array holds only 0 and 1.
+void CheckMask(vtkAbstractArray* array, vtkIdType n)
+{
+  vtkCharArray* m = vtkCharArray::SafeDownCast(array);
+  for (vtkIdType i = 0; m && i < n; ++i)
+  {
+    if (m->GetValue(i) != 0 && m->GetValue(i) != 1)
+    {
+      Fail("a mask value other than 0 and 1");
+    }
+  }
+}
+
+/// CoveredFraction lies in [0, 1].
+void CheckCoveredFraction(vtkAbstractArray* array, vtkIdType n)
+{
+  vtkDataArray* f = vtkDataArray::SafeDownCast(array);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double v = f->GetComponent(i, 0);
+    if (!(v >= 0.0 && v <= 1.0))
+    {
+      Fail("a covered fraction outside [0, 1]");
+    }
+  }
+}
+
+/// A projected point array `name` where no value or coordinate was extreme:
+/// valid points (in its own mask, else in `mask`) finite, invalid ones the
+/// fill value.
+void CheckProjectedPointValues(vtkDataSet* output, vtkAbstractArray* array, const std::string& name,
+  vtkCharArray* mask, vtkMeshProjectionFilter* filter)
+{
+  const vtkIdType n = output->GetNumberOfPoints();
+  vtkCharArray* own = vtkCharArray::SafeDownCast(
+    output->GetPointData()->GetArray(("vtkValidPointMask_" + name).c_str()));
+  vtkCharArray* m = own ? own : mask;
+  vtkDataArray* u = vtkDataArray::SafeDownCast(array);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int k = 0; k < u->GetNumberOfComponents(); ++k)
+    {
+      const double v = u->GetComponent(i, k);
+      if (m->GetValue(i) ? !std::isfinite(v)
+                         : !(filter->GetFillWithNaN() ? std::isnan(v) : v == -7.0))
+      {
+        Fail(m->GetValue(i) ? "a valid projected value is not finite"
+                            : "an invalid projected value is not the fill value");
+      }
+    }
+  }
+}
+
+/**
+ * Every array of the output's point (association 0) or cell data that the
+ * filter made has a tuple per point (cell), masks are 0 or 1, covered
+ * fractions in [0, 1], and, when no input value was extreme (`wild` false),
+ * projected point values are finite where valid and the fill value elsewhere.
+ * Input's own arrays, passed through, are not looked at.
+ */
+void CheckOutputArrays(vtkDataSet* output, vtkDataSet* target, int association, vtkCharArray* mask,
+  bool wild, vtkMeshProjectionFilter* filter)
+{
+  vtkDataSetAttributes* attributes = output->GetAttributes(
+    association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
+  const vtkIdType n = association == 0 ? output->GetNumberOfPoints() : output->GetNumberOfCells();
+  for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = attributes->GetAbstractArray(a);
+    const std::string name = array->GetName() ? array->GetName() : "";
+    const bool isMask = name.rfind("vtkValid", 0) == 0;
+    const bool projected = vtkDoubleArray::SafeDownCast(array) && !isMask &&
+      name != "CoveredFraction" && !target->GetAttributes(association == 0 ? vtkDataObject::POINT
+                                                                           : vtkDataObject::CELL)
+                                      ->GetAbstractArray(name.c_str());
+    if (!projected && !isMask && name != "CoveredFraction")
+    {
+      continue; // Input's own arrays, passed through as they were
+    }
+    if (array->GetNumberOfTuples() != n)
+    {
+      Fail("an output array does not have a tuple per point or cell");
+    }
+    if (isMask)
+    {
+      CheckMask(array, n);
+    }
+    else if (name == "CoveredFraction")
+    {
+      CheckCoveredFraction(array, n);
+    }
+    else if (association == 0 && !wild)
+    {
+      CheckProjectedPointValues(output, array, name, mask, filter);
+    }
+  }
+}
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
@@ -323,40 +485,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   filter->AddObserver(vtkCommand::ErrorEvent, errors);
   filter->SetInputData(target);
   filter->SetSourceData(source);
-  filter->SetSearchMethod(properties[0] & 1);
-  filter->SetPointDataTarget(1 + (properties[0] >> 1) % 3);
-  filter->SetCellDataTarget(1 + (properties[0] >> 3) % 3);
-  filter->SetMassMatrix((properties[1] & 1) ? vtkMeshProjectionFilter::LUMPED_MASS
-                                            : vtkMeshProjectionFilter::CONSISTENT_MASS);
-  filter->SetPreserveBounds((properties[1] >> 1) & 1);
-  filter->SetCellDataQuantity((properties[1] >> 2) & 1);
-  filter->SetOutputIntersections((properties[1] >> 3) & 1);
-  filter->SetCacheOperator((properties[1] >> 4) & 1);
-  filter->SetFillWithNaN((properties[1] >> 5) & 1);
-  filter->SetFillValue(-7.0);
-  if (properties[2] & 1)
-  {
-    filter->GetPointDataArraySelection()->DisableArray("a0");
-  }
+  Configure(filter, properties);
   filter->Update();
   if (properties[3] & 1)
   {
-    // Again with the same data (kept operators), then with changed values.
-    filter->Modified();
-    filter->Update();
-    for (int association = 0; association < 2; ++association)
-    {
-      vtkDataArray* a = source->GetAttributes(association == 0 ? vtkDataObject::POINT
-                                                               : vtkDataObject::CELL)
-                          ->GetArray("a0");
-      if (a && a->GetNumberOfTuples() > 0)
-      {
-        a->SetComponent(0, 0, in.Real());
-        a->Modified();
-      }
-    }
-    source->Modified();
-    filter->Update();
+    RunAgain(filter, source, in);
   }
 
   vtkDataSet* output = vtkDataSet::SafeDownCast(filter->GetOutput());
@@ -366,95 +499,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     Fail("the output is not Input's shape");
   }
   vtkCharArray* mask = vtkCharArray::SafeDownCast(output->GetPointData()->GetArray("vtkValidPointMask"));
-  // With MP_FUZZ_STATS set: how many inputs were projected, at exit (to see
-  // that the decoder reaches the projection, not only the checks).
-  static int runs = 0;
-  static int projectedRuns = 0;
-  static bool stats = std::getenv("MP_FUZZ_STATS") &&
-    std::atexit([] { std::fprintf(stderr, "FuzzFilter: %d of %d inputs projected\n", projectedRuns, runs); }) == 0;
-  (void)stats;
-  ++runs;
-  if (stats)
-  {
-    std::fprintf(stderr, "FuzzFilter: %lld/%lld target and %lld/%lld source points/cells, covered %g, %d errors\n",
-      (long long)target->GetNumberOfPoints(), (long long)target->GetNumberOfCells(),
-      (long long)source->GetNumberOfPoints(), (long long)source->GetNumberOfCells(),
-      filter->GetCoveredMeasure(), errors->Errors);
-  }
+  CountRun(target, source, filter, errors->Errors, mask && filter->GetCoveredMeasure() > 0);
   if (!mask)
   {
     return 0; // Input passed through (an error, or nothing to project with)
   }
-  projectedRuns += filter->GetCoveredMeasure() > 0;
-  // Every array of the output has a tuple per point (cell), masks are 0 or 1.
   for (int association = 0; association < 2; ++association)
   {
-    vtkDataSetAttributes* attributes = output->GetAttributes(
-      association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
-    const vtkIdType n = association == 0 ? output->GetNumberOfPoints() : output->GetNumberOfCells();
-    for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
-    {
-      vtkAbstractArray* array = attributes->GetAbstractArray(a);
-      const std::string name = array->GetName() ? array->GetName() : "";
-      const bool isMask = name.rfind("vtkValid", 0) == 0;
-      const bool projected = vtkDoubleArray::SafeDownCast(array) && !isMask &&
-        name != "CoveredFraction" && !target->GetAttributes(association == 0 ? vtkDataObject::POINT
-                                                                             : vtkDataObject::CELL)
-                                        ->GetAbstractArray(name.c_str());
-      if (!projected && !isMask && name != "CoveredFraction")
-      {
-        continue; // Input's own arrays, passed through as they were
-      }
-      if (array->GetNumberOfTuples() != n)
-      {
-        Fail("an output array does not have a tuple per point or cell");
-      }
-      if (isMask)
-      {
-        vtkCharArray* m = vtkCharArray::SafeDownCast(array);
-        for (vtkIdType i = 0; m && i < n; ++i)
-        {
-          if (m->GetValue(i) != 0 && m->GetValue(i) != 1)
-          {
-            Fail("a mask value other than 0 and 1");
-          }
-        }
-      }
-      else if (name == "CoveredFraction")
-      {
-        vtkDataArray* f = vtkDataArray::SafeDownCast(array);
-        for (vtkIdType i = 0; i < n; ++i)
-        {
-          const double v = f->GetComponent(i, 0);
-          if (!(v >= 0.0 && v <= 1.0))
-          {
-            Fail("a covered fraction outside [0, 1]");
-          }
-        }
-      }
-      else if (association == 0 && !in.Wild)
-      {
-        // A projected point array where no value or coordinate was extreme:
-        // valid points finite, invalid ones the fill value.
-        vtkCharArray* own = vtkCharArray::SafeDownCast(
-          output->GetPointData()->GetArray(("vtkValidPointMask_" + name).c_str()));
-        vtkCharArray* m = own ? own : mask;
-        vtkDataArray* u = vtkDataArray::SafeDownCast(array);
-        for (vtkIdType i = 0; i < n; ++i)
-        {
-          for (int k = 0; k < u->GetNumberOfComponents(); ++k)
-          {
-            const double v = u->GetComponent(i, k);
-            if (m->GetValue(i) ? !std::isfinite(v)
-                               : !(filter->GetFillWithNaN() ? std::isnan(v) : v == -7.0))
-            {
-              Fail(m->GetValue(i) ? "a valid projected value is not finite"
-                                  : "an invalid projected value is not the fill value");
-            }
-          }
-        }
-      }
-    }
+    CheckOutputArrays(output, target, association, mask, in.Wild, filter);
   }
   return 0;
 }
