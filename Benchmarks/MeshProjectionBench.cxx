@@ -29,36 +29,24 @@
 // Timings are wall-clock seconds, the best of three runs for the kernel's
 // stages and the filter's, one run for the others; ratios, not absolute
 // seconds, carry the comparison.
-#include "Mesh/SpatialOrder.h"
+#include "MeshProjectionBench.h"
+#include "BenchPeer.h"
+
 #include "Search/PairSearch.h"
 #include "Transfer/MortarAssembler.h"
 #include "Transfer/MortarOperator.h"
-#include "GeneratedMeshes.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 
-#include "vtkCellArray.h"
-#include "vtkCellType.h"
-#include "vtkDoubleArray.h"
 #include "vtkIdList.h"
-#include "vtkIdTypeArray.h"
 #include "vtkMeshProjectionFilter.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkResampleWithDataSet.h"
 #include "vtkSMPTools.h"
-#include "vtkSmartPointer.h"
 #include "vtkStaticCellLocator.h"
-#include "vtkUnstructuredGrid.h"
-#include "vtkXMLUnstructuredGridReader.h"
 
-#include <array>
-#include <numeric>
-#include <random>
-
+#include <algorithm>
 #include <chrono>
-#include <dlfcn.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -67,22 +55,25 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+// The command line's settings the other files read (MeshProjectionBench.h).
+namespace mpbench
+{
+std::string Order = "asis";
+std::string TargetFile;
+std::string SourceFile;
+int FilterThreads = 1;
+int FilterThreads2 = 0;
+int FilterRuns = 1;
+} // namespace mpbench
+
+using namespace mpbench;
+
 namespace
 {
-using mp::Index;
-using mptest::TestMesh;
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point t)
-{
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
 /// A memory figure of /proc/self/status in MiB: VmHWM (peak resident memory
 /// since the last ResetPeakMemory()) or VmRSS (current).
 double StatusMiB(const char* key)
@@ -108,241 +99,6 @@ double InputMemory(const TestMesh& m)
 {
   return (m.Points.size() * sizeof(double) + m.Cells.size() * sizeof(Index)) / 1048576.0;
 }
-
-/// --order: how the cells and points of both meshes are numbered.
-std::string Order = "asis";
-
-/**
- * Renumbers `m`'s cells and points. "asis": unchanged (the generator's or
- * the file's numbering); "shuffled": cells and points in a random order;
- * "sorted": cells sorted into bands of about four cells' width along y,
- * by x inside a band, and points in the order the cells first use them
- * (the locality of a sweeping mesher).
- */
-void MakeGeneratedPair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source);
-
-void Renumber(TestMesh& m, const std::string& order, unsigned seed)
-{
-  const int corners = m.Dimension + 1;
-  const Index cells = m.NumberOfCells();
-  const Index points = m.NumberOfPoints();
-  if (order == "asis" || cells == 0)
-  {
-    return;
-  }
-  std::vector<Index> cellOrder(static_cast<size_t>(cells)); // new -> old
-  std::iota(cellOrder.begin(), cellOrder.end(), Index(0));
-  std::vector<double> x(m.Points.size());
-  std::vector<Index> ids(m.Cells.size());
-  if (order == "shuffled")
-  {
-    std::vector<Index> pointOrder(static_cast<size_t>(points)); // new -> old
-    std::iota(pointOrder.begin(), pointOrder.end(), Index(0));
-    std::mt19937_64 random(seed);
-    std::shuffle(cellOrder.begin(), cellOrder.end(), random);
-    std::shuffle(pointOrder.begin(), pointOrder.end(), random);
-    std::vector<Index> newId(static_cast<size_t>(points));
-    for (Index p = 0; p < points; ++p)
-    {
-      newId[pointOrder[p]] = p;
-      std::copy_n(&m.Points[3 * pointOrder[p]], 3, &x[3 * p]);
-    }
-    for (Index c = 0; c < cells; ++c)
-    {
-      for (int k = 0; k < corners; ++k)
-      {
-        ids[corners * c + k] = newId[m.Cells[corners * cellOrder[c] + k]];
-      }
-    }
-  }
-  else
-  {
-    double lo[3] = { 1e300, 1e300, 1e300 };
-    double hi[3] = { -1e300, -1e300, -1e300 };
-    for (Index p = 0; p < points; ++p)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        lo[a] = std::min(lo[a], m.Points[3 * p + a]);
-        hi[a] = std::max(hi[a], m.Points[3 * p + a]);
-      }
-    }
-    double volume = 1;
-    for (int a = 0; a < m.Dimension; ++a)
-    {
-      volume *= std::max(1e-300, hi[a] - lo[a]);
-    }
-    const double band = 4 * std::pow(volume / double(cells), 1.0 / m.Dimension);
-    std::vector<std::array<double, 3>> key(static_cast<size_t>(cells));
-    for (Index c = 0; c < cells; ++c)
-    {
-      double centre[3] = {};
-      for (int k = 0; k < corners; ++k)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          centre[a] += m.Points[3 * m.Cells[corners * c + k] + a] / corners;
-        }
-      }
-      // 2D: bands along y, x inside; 3D: slabs along z, bands along y, x inside.
-      key[c] = m.Dimension == 2
-        ? std::array<double, 3>{ std::floor((centre[1] - lo[1]) / band), centre[0], 0.0 }
-        : std::array<double, 3>{ std::floor((centre[2] - lo[2]) / band),
-            std::floor((centre[1] - lo[1]) / band), centre[0] };
-    }
-    std::sort(cellOrder.begin(), cellOrder.end(),
-      [&](Index a, Index b) { return key[a] < key[b]; });
-    // Points in the order the sorted cells first use them: the kernel's
-    // renumbering, given this cell order.
-    mp::SpatialOrder sorted;
-    sorted.Cells.assign(cellOrder.begin(), cellOrder.end());
-    mp::RenumberMesh(m.View(false), sorted, x.data(), ids.data(), sorted.Cells.data());
-  }
-  m.Points.swap(x);
-  m.Cells.swap(ids);
-  m.Neighbors.clear();
-}
-
-/// --target/--source: meshes read from files instead of generated.
-std::string TargetFile;
-std::string SourceFile;
-
-/// The tetrahedra of a .vtu file, or its triangles when it has no tetrahedra.
-bool ReadMesh(const std::string& name, TestMesh& m)
-{
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  reader->SetFileName(name.c_str());
-  reader->Update();
-  vtkUnstructuredGrid* grid = reader->GetOutput();
-  const vtkIdType n = grid->GetNumberOfPoints();
-  m.Points.resize(static_cast<size_t>(3 * n));
-  for (vtkIdType p = 0; p < n; ++p)
-  {
-    grid->GetPoint(p, &m.Points[3 * p]);
-  }
-  for (int type : { VTK_TETRA, VTK_TRIANGLE })
-  {
-    m.Dimension = type == VTK_TETRA ? 3 : 2;
-    m.Cells.clear();
-    for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
-    {
-      if (grid->GetCellType(c) == type)
-      {
-        vtkIdType count;
-        const vtkIdType* ids;
-        grid->GetCellPoints(c, count, ids);
-        m.Cells.insert(m.Cells.end(), ids, ids + count);
-      }
-    }
-    if (!m.Cells.empty())
-    {
-      return true;
-    }
-  }
-  std::fprintf(stderr, "no triangles or tetrahedra in %s\n", name.c_str());
-  return false;
-}
-
-/// A pair of non-matching meshes with about n target cells.
-void MakePair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source)
-{
-  if (!TargetFile.empty())
-  {
-    if (!ReadMesh(TargetFile, target) || !ReadMesh(SourceFile, source))
-    {
-      std::exit(1);
-    }
-  }
-  else
-  {
-    MakeGeneratedPair(dim, n, seed, target, source);
-  }
-  if (target.Dimension != source.Dimension)
-  {
-    std::fprintf(stderr, "the target has %d-dimensional cells, the source %d-dimensional ones\n",
-      target.Dimension, source.Dimension);
-    std::exit(1);
-  }
-  Renumber(target, Order, seed);
-  Renumber(source, Order, seed + 17);
-}
-
-/// A pair of non-matching jittered grids with about n target cells.
-void MakeGeneratedPair(int dim, double n, unsigned seed, TestMesh& target, TestMesh& source)
-{
-  if (dim == 2)
-  {
-    const int k = std::max(2, int(std::lround(std::sqrt(n / 2))));
-    target = mptest::GridMesh(k, k, 0.25, seed);
-    source = mptest::GridMesh(k + 3, k - 1, 0.25, seed + 1);
-  }
-  else
-  {
-    const int k = std::max(2, int(std::lround(std::cbrt(n / 6))));
-    target = mptest::CubeMesh(k, k, k, 0.15, seed);
-    source = mptest::CubeMesh(k + 1, k, k - 1, 0.15, seed + 1);
-  }
-}
-
-vtkSmartPointer<vtkUnstructuredGrid> ToVTK(const TestMesh& m, const std::vector<double>* field)
-{
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  vtkNew<vtkDoubleArray> coords;
-  coords->SetNumberOfComponents(3);
-  coords->SetNumberOfTuples(m.NumberOfPoints());
-  std::copy(m.Points.begin(), m.Points.end(), coords->GetPointer(0));
-  vtkNew<vtkPoints> points;
-  points->SetData(coords);
-  grid->SetPoints(points);
-  const int corners = m.Dimension + 1;
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(m.NumberOfCells() + 1);
-  for (Index c = 0; c <= m.NumberOfCells(); ++c)
-  {
-    offsets->SetValue(c, corners * c);
-  }
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(m.Cells.size()));
-  std::copy(m.Cells.begin(), m.Cells.end(), connectivity->GetPointer(0));
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
-  grid->SetCells(m.Dimension == 2 ? VTK_TRIANGLE : VTK_TETRA, cells);
-  if (field)
-  {
-    vtkNew<vtkDoubleArray> u;
-    u->SetName("u");
-    u->SetNumberOfValues(m.NumberOfPoints());
-    std::copy(field->begin(), field->end(), u->GetPointer(0));
-    grid->GetPointData()->AddArray(u);
-  }
-  return grid;
-}
-
-struct Row
-{
-  int Dim;
-  Index TargetCells;
-  Index SourceCells;
-  double Neighbors, Seeding, Search, Assembly, Solve, Total;
-  Index Pairs;
-  double PeakBeyondInputs, InputSize;
-  double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
-  double Peer = -1;        ///< --peer: libsupermesh's intersections, seconds
-  double PeerMeasure = 0;  ///< --peer: the summed measure of its pieces
-  Index PeerCandidates = 0, PeerPieces = 0;
-  double FilterPeak = -1;  ///< --filter-only: the filter's peak memory beyond its inputs, MiB
-  double VTKInputs = 0;    ///< --filter-only: the two vtkUnstructuredGrids, MiB
-  double KernelOnPairs = -1; ///< intersection kernel alone on the true pairs
-  Index Tests = 0;   ///< --filter-only: intersection tests
-  Index Queries = 0; ///< --filter-only: locator queries
-  /// The VTK filter's own stages (vtkMeshProjectionFilter::Get*Time) on 1
-  /// and 2 threads: input, neighbours, locator, search, assembly, solve, output.
-  double FilterStages[2][7] = {};
-  double CheckTime[2] = {}; ///< of the filter's input stage: the id and offset checks
-  double RenumberTime[2] = {}; ///< of the filter's input stage: renumbering along space
-  int Renumbered = 0;          ///< meshes the filter renumbered
-};
-
 /// Pairs found by asking vtkStaticCellLocator for the candidates of every
 /// target cell, then intersecting each candidate: the usual alternative to
 /// the advancing front.
@@ -460,160 +216,10 @@ double Field(const double* x)
 {
   return std::sin(3 * x[0]) * std::cos(2 * x[1]) + x[2];
 }
-
-
-/**
- * --peer LIB: libsupermesh (https://github.com/firedrakeproject/libsupermesh),
- * loaded at run time from its shared library through its C API, on the same
- * meshes: its tree intersection finder (candidate source cells of every
- * target cell from a quadtree/octree of bounding boxes), then its
- * triangle/tetrahedron clipper on every candidate, summing the measure of
- * the pieces (the check that both found the same overlap). That is the
- * intersection part of a supermesh projection only: no neighbours of ours,
- * no integrals, no assembly, no solve.
- */
-struct Peer
-{
-  using SetInput = void (*)(long*, int*, long*, int*, long*, int*, long*, int*, double*, long*,
-    double*, long*);
-  using QueryOutput = void (*)(long*);
-  using GetOutput = void (*)(long*, long*, long*, long*);
-  using Intersect = void (*)(double*, double*, double*, int*);
-  SetInput TreeSetInput = nullptr;
-  QueryOutput TreeQuery = nullptr;
-  GetOutput TreeGet = nullptr;
-  Intersect Tris = nullptr;
-  Intersect Tets = nullptr;
-
-  bool Load(const std::string& library)
-  {
-    void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle)
-    {
-      std::fprintf(stderr, "--peer: cannot load %s: %s\n", library.c_str(), dlerror());
-      return false;
-    }
-    this->TreeSetInput =
-      reinterpret_cast<SetInput>(dlsym(handle, "libsupermesh_tree_intersection_finder_set_input"));
-    this->TreeQuery = reinterpret_cast<QueryOutput>(
-      dlsym(handle, "libsupermesh_tree_intersection_finder_query_output"));
-    this->TreeGet =
-      reinterpret_cast<GetOutput>(dlsym(handle, "libsupermesh_tree_intersection_finder_get_output"));
-    this->Tris = reinterpret_cast<Intersect>(dlsym(handle, "libsupermesh_intersect_tris_real"));
-    this->Tets = reinterpret_cast<Intersect>(dlsym(handle, "libsupermesh_intersect_tets_real"));
-    if (!this->TreeSetInput || !this->TreeQuery || !this->TreeGet || !this->Tris || !this->Tets)
-    {
-      std::fprintf(stderr, "--peer: %s lacks libsupermesh's C API\n", library.c_str());
-      return false;
-    }
-    return true;
-  }
-
-  /// Seconds for all intersections of target x source (one run); `measure`
-  /// gets the summed measure of the pieces (inside the clock: a few flops
-  /// per piece), `candidates` the finder's pairs, `pieces` the pairs whose
-  /// intersection is not empty.
-  double Run(const TestMesh& target, const TestMesh& source, double& measure, Index& candidates,
-    Index& pieces) const
-  {
-    const int dim = target.Dimension;
-    const int corners = dim + 1;
-    auto positions = [dim](const TestMesh& m) {
-      std::vector<double> x(static_cast<size_t>(dim * m.NumberOfPoints()));
-      for (Index p = 0; p < m.NumberOfPoints(); ++p)
-      {
-        std::copy_n(&m.Points[3 * p], dim, &x[dim * p]);
-      }
-      return x;
-    };
-    auto elements = [](const TestMesh& m) { return std::vector<long>(m.Cells.begin(), m.Cells.end()); };
-    // Its input layout (coordinates without the z of 2D meshes, element
-    // lists as C longs; its C API numbers from 0) is prepared outside the clock.
-    std::vector<double> xa = positions(target);
-    std::vector<double> xb = positions(source);
-    std::vector<long> ea = elements(target);
-    std::vector<long> eb = elements(source);
-    long na = target.NumberOfPoints();
-    long nb = source.NumberOfPoints();
-    long ca = target.NumberOfCells();
-    long cb = source.NumberOfCells();
-    int da = dim;
-    int db = dim;
-    int la = corners;
-    int lb = corners;
-    const auto t0 = Clock::now();
-    this->TreeSetInput(&na, &da, &ca, &la, &nb, &db, &cb, &lb, xa.data(), ea.data(), xb.data(),
-      eb.data());
-    long total = 0;
-    this->TreeQuery(&total);
-    std::vector<long> indices(static_cast<size_t>(std::max(1L, total)));
-    std::vector<long> start(static_cast<size_t>(ca + 1));
-    this->TreeGet(&ca, &total, indices.data(), start.data());
-    // Its clipper's output buffers: at most 22 triangles or 81 tetrahedra.
-    std::vector<double> out(static_cast<size_t>(dim == 2 ? 22 * 6 : 81 * 12));
-    double a[12];
-    double b[12];
-    double sum = 0;
-    pieces = 0;
-    for (long c = 0; c < ca; ++c)
-    {
-      for (int k = 0; k < corners; ++k)
-      {
-        std::copy_n(&xa[dim * target.Cells[corners * c + k]], dim, &a[dim * k]);
-      }
-      for (long i = start[c]; i < start[c + 1]; ++i)
-      {
-        const long s = indices[i];
-        for (int k = 0; k < corners; ++k)
-        {
-          std::copy_n(&xb[dim * source.Cells[corners * s + k]], dim, &b[dim * k]);
-        }
-        int n = 0;
-        (dim == 2 ? this->Tris : this->Tets)(a, b, out.data(), &n);
-        pieces += n > 0 ? 1 : 0;
-        for (int j = 0; j < n; ++j)
-        {
-          const double* x = &out[static_cast<size_t>(j) * corners * dim];
-          if (dim == 2)
-          {
-            sum += 0.5 * std::abs((x[2] - x[0]) * (x[5] - x[1]) - (x[4] - x[0]) * (x[3] - x[1]));
-          }
-          else
-          {
-            double e[3][3];
-            for (int r = 0; r < 3; ++r)
-            {
-              for (int q = 0; q < 3; ++q)
-              {
-                e[r][q] = x[3 * (r + 1) + q] - x[q];
-              }
-            }
-            sum += std::abs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
-              6.0;
-          }
-        }
-      }
-    }
-    const double seconds = Since(t0);
-    measure = sum;
-    candidates = total;
-    return seconds;
-  }
-};
-
 /// --peer: the loaded peer, if any.
 Peer ThePeer;
 bool HavePeer = false;
 
-/// --threads N[,M]: the threads of the filter in --filter-only runs (and
-/// of the runs alternating with them; 0: none).
-int FilterThreads = 1;
-int FilterThreads2 = 0;
-/// --runs: --filter-only times the filter and the peer this many times
-/// each and keeps the best of each (the peak memory: the first run's).
-int FilterRuns = 1;
 /// --renumber auto|always|never: the filter's Renumbering.
 int Renumbering = vtkMeshProjectionFilter::AUTOMATIC_RENUMBERING;
 
@@ -824,108 +430,6 @@ std::vector<double> ParseList(const char* text)
   }
   return values;
 }
-
-const char* const FilterStageNames[7] = { "reading the inputs", "neighbours",
-  "seeding (boundary-cell bins)", "search + intersections + integrals", "assembly", "solve",
-  "writing the outputs" };
-
-/// --peer: libsupermesh's time on the same meshes, against the filter's.
-void PrintPeer(const Row& r, double filter)
-{
-  if (r.Peer < 0)
-  {
-    return;
-  }
-  std::printf("  %-34s %10.4f  (%lld candidates, %lld pairs with a piece, measure %.12g)\n",
-    "libsupermesh intersections only", r.Peer, static_cast<long long>(r.PeerCandidates),
-    static_cast<long long>(r.PeerPieces), r.PeerMeasure);
-  std::printf("  %-34s %10.2fx\n", "VTK filter / libsupermesh", filter / r.Peer);
-}
-
-/// --filter-only: the VTK filter on the calling thread, stage by stage.
-void PrintFilter(const Row& r)
-{
-  std::printf("\n%dD  target %lld cells, source %lld cells, %lld intersecting pairs\n", r.Dim,
-    static_cast<long long>(r.TargetCells), static_cast<long long>(r.SourceCells),
-    static_cast<long long>(r.Pairs));
-  const std::string runs =
-    FilterRuns > 1 ? "VTK filter (best of " + std::to_string(FilterRuns) + ")" : "VTK filter (one run)";
-  std::printf("  %-34s %10.4f  (%.2f tests per pair, %lld locator queries)\n", runs.c_str(),
-    r.Filter1, double(r.Tests) / std::max<Index>(1, r.Pairs), static_cast<long long>(r.Queries));
-  for (int k = 0; k < 7; ++k)
-  {
-    std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[0][k]);
-    if (k == 0)
-    {
-      std::printf("      %-30s %10.4f\n", "of which id/offset checks", r.CheckTime[0]);
-      std::printf("      %-30s %10.4f  (%d of 2 meshes)\n", "of which renumbering", r.RenumberTime[0],
-        r.Renumbered);
-    }
-  }
-  std::printf("  %-34s %10.1f MiB (inputs %.1f MiB, ratio %.2f)\n", "filter's peak memory beyond inputs",
-    r.FilterPeak, r.VTKInputs, r.FilterPeak / r.VTKInputs);
-  if (FilterThreads2 > 0)
-  {
-    // The runs alternating with those above, on the other number of threads.
-    const std::string other = "VTK filter on " + std::to_string(FilterThreads2) + " threads";
-    std::printf("  %-34s %10.4f  (%d against %d threads: %.2fx)\n", other.c_str(), r.Filter2,
-      FilterThreads2, FilterThreads, r.Filter1 / r.Filter2);
-    for (int k = 0; k < 7; ++k)
-    {
-      std::printf("    %-32s %10.4f\n", FilterStageNames[k], r.FilterStages[1][k]);
-    }
-  }
-  PrintPeer(r, r.Filter1);
-}
-
-void Print(const Row& r)
-{
-  const double cells = static_cast<double>(r.TargetCells);
-  std::printf("\n%dD  target %lld cells, source %lld cells, %lld intersecting pairs\n", r.Dim,
-    static_cast<long long>(r.TargetCells), static_cast<long long>(r.SourceCells),
-    static_cast<long long>(r.Pairs));
-  std::printf("  %-34s %10s %12s\n", "stage (kernel, 1 thread)", "seconds", "us per cell");
-  const std::pair<const char*, double> stages[] = { { "neighbours", r.Neighbors },
-    { "seeding (locator build)", r.Seeding }, { "search + intersections + integrals", r.Search },
-    { "assembly", r.Assembly },
-    { "solve", r.Solve }, { "total", r.Total } };
-  for (const auto& s : stages)
-  {
-    std::printf("  %-34s %10.4f %12.3f\n", s.first, s.second, 1e6 * s.second / cells);
-  }
-  std::printf("  pairs per second (search)          %10.3g\n", r.Pairs / r.Search);
-  std::printf("  intersection kernel on true pairs  %10.4f  (search overhead %.0f%% of the search)\n",
-    r.KernelOnPairs, 100.0 * (r.Search - r.KernelOnPairs) / r.Search);
-  std::printf("  peak memory beyond inputs          %10.1f MiB (inputs %.1f MiB, ratio %.2f)\n",
-    r.PeakBeyondInputs, r.InputSize, r.PeakBeyondInputs / r.InputSize);
-  std::printf("  %-34s %10s %12s\n", "comparison", "seconds", "ratio");
-  if (r.Brute >= 0)
-  {
-    std::printf("  %-34s %10.4f %11.1fx\n", "brute force / advancing front", r.Brute,
-      r.Brute / (r.Search + r.Assembly));
-  }
-  std::printf("  %-34s %10.4f %11.2fx\n", "locator search / front search", r.Locator,
-    r.Locator / r.Search);
-  std::printf("  %-34s %10.4f\n", "VTK filter, 1 thread", r.Filter1);
-  std::printf("  %-34s %10.4f %11.2fx\n", "VTK filter, 2 threads (speed-up)", r.Filter2,
-    r.Filter1 / r.Filter2);
-  std::printf("    %-32s %10s %10s\n", "VTK filter stages", "1 thread", "2 threads");
-  for (int k = 0; k < 7; ++k)
-  {
-    std::printf("    %-32s %10.4f %10.4f\n", FilterStageNames[k], r.FilterStages[0][k],
-      r.FilterStages[1][k]);
-    if (k == 0)
-    {
-      std::printf("      %-30s %10.4f %10.4f\n", "of which id/offset checks", r.CheckTime[0],
-        r.CheckTime[1]);
-      std::printf("      %-30s %10.4f %10.4f  (%d of 2 meshes)\n", "of which renumbering",
-        r.RenumberTime[0], r.RenumberTime[1], r.Renumbered);
-    }
-  }
-  std::printf("  %-34s %10.4f %11.2fx\n", "Resample With Dataset / filter", r.Resample,
-    r.Resample / r.Filter1);
-  PrintPeer(r, r.Filter1);
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -1018,24 +522,7 @@ int main(int argc, char* argv[])
   }
   if (!csv.empty())
   {
-    std::ofstream out(csv);
-    out << "dim,target_cells,source_cells,pairs,neighbours,seeding,search,assembly,"
-           "solve,total,peak_beyond_inputs_mib,input_mib,brute,locator,"
-           "filter_1_thread,filter_2_threads,resample,kernel_on_true_pairs,filter_input,filter_neighbours,"
-           "filter_locator,filter_search,filter_assembly,filter_solve,filter_output\n";
-    for (const Row& r : rows)
-    {
-      out << r.Dim << ',' << r.TargetCells << ',' << r.SourceCells << ',' << r.Pairs << ','
-          << r.Neighbors << ',' << r.Seeding << ',' << r.Search << ',' << r.Assembly << ','
-          << r.Solve << ',' << r.Total << ',' << r.PeakBeyondInputs
-          << ',' << r.InputSize << ',' << r.Brute << ',' << r.Locator << ',' << r.Filter1 << ','
-          << r.Filter2 << ',' << r.Resample << ',' << r.KernelOnPairs;
-      for (int k = 0; k < 7; ++k)
-      {
-        out << ',' << r.FilterStages[0][k];
-      }
-      out << '\n';
-    }
+    WriteCsv(csv, rows);
   }
   return 0;
 }
