@@ -84,10 +84,11 @@ double Sum(vtkDataArray* u)
 }
 
 /**
- * One sample pair and the filter run on it, shared by the cases of CheckFields in
- * turn (each case puts back the properties it changed): Source with the cell fields
- * One (a constant), Density (a step) and Mass (density x measure, totals) and the
- * point field Step (for the bounds), in place of its own cell data.
+ * One sample pair and the filter run on it, shared by the cases of CheckFields: they
+ * run in order on the one filter, each from the properties and kept operators the
+ * cases before it left. Source has the cell fields One (a constant), Density (a
+ * step) and Mass (density x measure, totals) in place of its own cell data, and
+ * the point field Step (for the bounds).
  */
 struct FieldsRun
 {
