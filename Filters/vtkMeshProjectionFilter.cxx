@@ -27,6 +27,7 @@
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
 #include "Parallel/Parts.h"
 #include "Projection/ArraySelection.h"
@@ -46,6 +47,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkMeshProjectionFilter);
@@ -57,12 +59,101 @@ struct vtkMeshProjectionFilter::Internals
   std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
   bool AssembleNext = false;    ///< GetMatrix asked for M_ts
   mpvtk::OperatorCache Cache;
+
+  /**
+   * The one list of the properties with their fields of mpvtk::Settings:
+   * each(property, field) for every pair. Read one way it gives a new
+   * filter the defaults (a default mpvtk::Settings, the one place they are
+   * written), the other way an execution's settings. A property and its
+   * field hold the same value (the static_asserts below): CellDataQuantity
+   * and MassMatrix are 0 or 1 (clamped), false or true.
+   */
+  template <typename Filter, typename Fields, typename Each>
+  static void ForEachProperty(Filter& f, Fields& s, Each each)
+  {
+    each(f.SearchMethod, s.SearchMethod);
+    each(f.OutputIntersections, s.OutputIntersections);
+    each(f.FillWithNaN, s.FillWithNaN);
+    each(f.FillValue, s.FillValue);
+    each(f.Extrapolation, s.Extrapolation);
+    each(f.FringeThreshold, s.FringeThreshold);
+    each(f.PointDataTarget, s.PointDataTarget);
+    each(f.CellDataTarget, s.CellDataTarget);
+    each(f.CellDataQuantity, s.Extensive);
+    each(f.CellDataReconstruction, s.CellDataReconstruction);
+    each(f.MassMatrix, s.Lumped);
+    each(f.PreserveBounds, s.PreserveBounds);
+    each(f.MaximumIterations, s.MaximumIterations);
+    each(f.SurfaceReach, s.SurfaceReach);
+    each(f.MaximumNormalAngle, s.MaximumNormalAngle);
+    each(f.NormalOrientation, s.NormalOrientation);
+    each(f.ConserveSourceIntegral, s.ConserveSourceIntegral);
+    each(f.CacheOperator, s.CacheOperator);
+    each(f.NumberOfThreads, s.NumberOfThreads);
+    each(f.Renumbering, s.Renumbering);
+  }
+
+  /// The properties as one value (and whether GetMatrix asked for M_ts).
+  static mpvtk::Settings Read(const vtkMeshProjectionFilter& filter)
+  {
+    mpvtk::Settings s;
+    ForEachProperty(filter, s, [](const auto& property, auto& field) {
+      field = static_cast<std::decay_t<decltype(field)>>(property);
+    });
+    s.AssembleNext = filter.Internal->AssembleNext;
+    return s;
+  }
+  /// The defaults: those of a default mpvtk::Settings.
+  static void SetDefaults(vtkMeshProjectionFilter& filter)
+  {
+    const mpvtk::Settings defaults;
+    ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
+      property = static_cast<std::decay_t<decltype(property)>>(field);
+    });
+  }
 };
+
+// The public constants are the values of the typed settings (Settings.h):
+// the casts in ForEachProperty are exact.
+namespace
+{
+using F = vtkMeshProjectionFilter;
+template <typename Enum>
+constexpr bool Same(int constant, Enum value)
+{
+  return constant == static_cast<int>(value);
+}
+static_assert(Same(F::ADVANCING_FRONT, mp::SearchMethod::AdvancingFront) &&
+    Same(F::BRUTE_FORCE, mp::SearchMethod::BruteForce),
+  "SearchMethods are mp::SearchMethod's values");
+static_assert(Same(F::NO_EXTRAPOLATION, mp::ExtrapolationMode::None) &&
+    Same(F::SMOOTH_EXTRAPOLATION, mp::ExtrapolationMode::Smooth) &&
+    Same(F::NEAREST_EXTRAPOLATION, mp::ExtrapolationMode::Nearest),
+  "Extrapolations are mp::ExtrapolationMode's values");
+static_assert(Same(F::CONSTANT_RECONSTRUCTION, mp::Reconstruction::Constant) &&
+    Same(F::LIMITED_RECONSTRUCTION, mp::Reconstruction::Limited) &&
+    Same(F::UNLIMITED_RECONSTRUCTION, mp::Reconstruction::Unlimited),
+  "Reconstructions are mp::Reconstruction's values");
+static_assert(F::TO_POINTS == mpvtk::ToPointsBit && F::TO_CELLS == mpvtk::ToCellsBit &&
+    F::TO_POINTS_AND_CELLS == (mpvtk::ToPointsBit | mpvtk::ToCellsBit),
+  "Targets are mpvtk::TargetBits");
+static_assert(F::INTENSIVE == 0 && F::EXTENSIVE == 1, "CellDataQuantity is Settings::Extensive");
+static_assert(F::CONSISTENT_MASS == 0 && F::LUMPED_MASS == 1, "MassMatrix is Settings::Lumped");
+static_assert(F::SAME_ORIENTATION == mpvtk::SameOrientation &&
+    F::OPPOSITE_ORIENTATION == mpvtk::OppositeOrientation &&
+    F::ANY_ORIENTATION == mpvtk::AnyOrientation,
+  "NormalOrientation is mp::MeshView::SurfaceOrientation");
+static_assert(F::AUTOMATIC_RENUMBERING == mpvtk::SimplexMesh::AUTOMATIC &&
+    F::ALWAYS_RENUMBER == mpvtk::SimplexMesh::ALWAYS &&
+    F::NEVER_RENUMBER == mpvtk::SimplexMesh::NEVER,
+  "Renumbering is mpvtk::SimplexMesh::Ordering");
+} // namespace
 
 //------------------------------------------------------------------------------
 vtkMeshProjectionFilter::vtkMeshProjectionFilter()
   : Internal(new Internals)
 {
+  Internals::SetDefaults(*this);
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
   // The test suite runs once more with every mesh renumbered (and once
@@ -310,32 +401,6 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
 
 
 //------------------------------------------------------------------------------
-mpvtk::Settings vtkMeshProjectionFilter::CurrentSettings() const
-{
-  mpvtk::Settings s;
-  s.SearchMethod = this->SearchMethod;
-  s.OutputIntersections = this->OutputIntersections;
-  s.FillWithNaN = this->FillWithNaN;
-  s.FillValue = this->FillValue;
-  s.Extrapolation = this->Extrapolation;
-  s.FringeThreshold = this->FringeThreshold;
-  s.PointDataTarget = this->PointDataTarget;
-  s.CellDataTarget = this->CellDataTarget;
-  s.Extensive = this->CellDataQuantity == EXTENSIVE;
-  s.CellDataReconstruction = this->CellDataReconstruction;
-  s.Lumped = this->MassMatrix == LUMPED_MASS;
-  s.PreserveBounds = this->PreserveBounds;
-  s.MaximumIterations = this->MaximumIterations;
-  s.SurfaceReach = this->SurfaceReach;
-  s.MaximumNormalAngle = this->MaximumNormalAngle;
-  s.NormalOrientation = this->NormalOrientation;
-  s.ConserveSourceIntegral = this->ConserveSourceIntegral;
-  s.CacheOperator = this->CacheOperator;
-  s.Renumbering = this->Renumbering;
-  s.AssembleNext = this->Internal->AssembleNext;
-  return s;
-}
-
 void vtkMeshProjectionFilter::Publish(const mpvtk::Statistics& stats, double seconds)
 {
   this->NumberOfIntersections = stats.Intersections;
@@ -462,7 +527,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
   vtkDataObject* sourceObject = vtkDataObject::GetData(inputVector[1], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   Internals& in = *this->Internal;
-  const mpvtk::Settings settings = this->CurrentSettings();
+  const mpvtk::Settings settings = Internals::Read(*this);
   mpvtk::Messages say(this, in.Warned);
   mpvtk::Progress progress(this);
 

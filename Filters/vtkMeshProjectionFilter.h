@@ -496,26 +496,29 @@ protected:
   /// RequestData inside the filter's own vtkSMPTools scope (NumberOfThreads).
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
-  int SearchMethod = ADVANCING_FRONT;
-  bool OutputIntersections = false;
-  bool FillWithNaN = true;
-  double FillValue = 0;
-  int Extrapolation = NO_EXTRAPOLATION;
-  double FringeThreshold = 0.25;
-  int PointDataTarget = TO_POINTS;
-  int CellDataTarget = TO_CELLS;
-  int CellDataQuantity = INTENSIVE;
-  int CellDataReconstruction = CONSTANT_RECONSTRUCTION;
-  int MassMatrix = CONSISTENT_MASS;
-  bool PreserveBounds = false;
-  int MaximumIterations = 500;
-  double SurfaceReach = 0.5;
-  double MaximumNormalAngle = 45.0;
-  int NormalOrientation = SAME_ORIENTATION;
-  bool ConserveSourceIntegral = false;
-  bool CacheOperator = true;
-  int NumberOfThreads = 0;
-  int Renumbering = AUTOMATIC_RENUMBERING;
+  // The properties. Their defaults (stated above) are written once, in
+  // Projection/Settings.h; the constructor sets them from there.
+  int SearchMethod;
+  bool OutputIntersections;
+  bool FillWithNaN;
+  double FillValue;
+  int Extrapolation;
+  double FringeThreshold;
+  int PointDataTarget;
+  int CellDataTarget;
+  int CellDataQuantity;
+  int CellDataReconstruction;
+  int MassMatrix;
+  bool PreserveBounds;
+  int MaximumIterations;
+  double SurfaceReach;
+  double MaximumNormalAngle;
+  int NormalOrientation;
+  bool ConserveSourceIntegral;
+  bool CacheOperator;
+  int NumberOfThreads;
+  int Renumbering;
+
   bool OperatorReused = false;
   int NumberOfOperatorsBuilt = 0;
 
@@ -545,7 +548,6 @@ private:
   vtkMeshProjectionFilter(const vtkMeshProjectionFilter&) = delete;
   void SelectionModified();
   void ListSource(vtkDataObject* source);
-  mpvtk::Settings CurrentSettings() const;
   mpvtk::Verdict Project(vtkInformationVector** inputVector, vtkInformationVector* outputVector,
     mpvtk::Parts& parts, mpvtk::StageClock& clock, mpvtk::Statistics& stats);
   void ReportSkipped(const std::vector<std::string>& skipped, size_t leaves, int projected,

@@ -44,9 +44,7 @@ mp::OperatorOptions BaseOptions(const LeafContext& ctx)
 {
   mp::OperatorOptions options;
   options.KeepPieces = ctx.Options.OutputIntersections;
-  options.Method = ctx.Options.SearchMethod == vtkMeshProjectionFilter::BRUTE_FORCE
-    ? mp::SearchMethod::BruteForce
-    : mp::SearchMethod::AdvancingFront;
+  options.Method = ctx.Options.SearchMethod;
   // One range of target cells per thread of the filter's vtkSMPTools scope.
   options.Runner = mpvtk::SMPTaskRunner();
   return options;

@@ -373,7 +373,7 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
 void WriteExtrapolatedMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions)
 {
-  if (ctx.Options.Extrapolation == 0)
+  if (ctx.Options.Extrapolation == mp::ExtrapolationMode::None)
   {
     return;
   }
