@@ -113,15 +113,18 @@ struct vtkMeshProjectionFilter::Internals
   }
 };
 
-// The public constants are the values of the typed settings (Settings.h):
-// the casts in ForEachProperty are exact.
+// The public constants are the values of Projection's own (Settings.h,
+// Transfers.h, MatrixExport.h) and the kernel's, which Projection uses
+// without seeing this header: the casts here (ForEachProperty, GetMatrix)
+// are exact.
 namespace
 {
 using F = vtkMeshProjectionFilter;
-template <typename Enum>
-constexpr bool Same(int constant, Enum value)
+/// A public constant and the internal value it stands for (two enumerations, compared as ints).
+template <typename Public, typename Internal>
+constexpr bool Same(Public constant, Internal value)
 {
-  return constant == static_cast<int>(value);
+  return static_cast<int>(constant) == static_cast<int>(value);
 }
 static_assert(Same(F::ADVANCING_FRONT, mp::SearchMethod::AdvancingFront) &&
     Same(F::BRUTE_FORCE, mp::SearchMethod::BruteForce),
@@ -134,19 +137,31 @@ static_assert(Same(F::CONSTANT_RECONSTRUCTION, mp::Reconstruction::Constant) &&
     Same(F::LIMITED_RECONSTRUCTION, mp::Reconstruction::Limited) &&
     Same(F::UNLIMITED_RECONSTRUCTION, mp::Reconstruction::Unlimited),
   "Reconstructions are mp::Reconstruction's values");
-static_assert(F::TO_POINTS == mpvtk::ToPointsBit && F::TO_CELLS == mpvtk::ToCellsBit &&
-    F::TO_POINTS_AND_CELLS == (mpvtk::ToPointsBit | mpvtk::ToCellsBit),
+static_assert(Same(F::TO_POINTS, mpvtk::ToPointsBit) && Same(F::TO_CELLS, mpvtk::ToCellsBit) &&
+    Same(F::TO_POINTS_AND_CELLS, mpvtk::ToPointsBit | mpvtk::ToCellsBit),
   "Targets are mpvtk::TargetBits");
-static_assert(F::INTENSIVE == 0 && F::EXTENSIVE == 1, "CellDataQuantity is Settings::Extensive");
-static_assert(F::CONSISTENT_MASS == 0 && F::LUMPED_MASS == 1, "MassMatrix is Settings::Lumped");
-static_assert(F::SAME_ORIENTATION == mpvtk::SameOrientation &&
-    F::OPPOSITE_ORIENTATION == mpvtk::OppositeOrientation &&
-    F::ANY_ORIENTATION == mpvtk::AnyOrientation,
+static_assert(Same(F::INTENSIVE, false) && Same(F::EXTENSIVE, true),
+  "CellDataQuantity is Settings::Extensive");
+static_assert(Same(F::CONSISTENT_MASS, false) && Same(F::LUMPED_MASS, true),
+  "MassMatrix is Settings::Lumped");
+static_assert(Same(F::SAME_ORIENTATION, mpvtk::SameOrientation) &&
+    Same(F::OPPOSITE_ORIENTATION, mpvtk::OppositeOrientation) &&
+    Same(F::ANY_ORIENTATION, mpvtk::AnyOrientation),
   "NormalOrientation is mp::MeshView::SurfaceOrientation");
-static_assert(F::AUTOMATIC_RENUMBERING == mpvtk::SimplexMesh::AUTOMATIC &&
-    F::ALWAYS_RENUMBER == mpvtk::SimplexMesh::ALWAYS &&
-    F::NEVER_RENUMBER == mpvtk::SimplexMesh::NEVER,
+static_assert(Same(F::AUTOMATIC_RENUMBERING, mpvtk::SimplexMesh::AUTOMATIC) &&
+    Same(F::ALWAYS_RENUMBER, mpvtk::SimplexMesh::ALWAYS) &&
+    Same(F::NEVER_RENUMBER, mpvtk::SimplexMesh::NEVER),
   "Renumbering is mpvtk::SimplexMesh::Ordering");
+static_assert(Same(F::POINTS_TO_POINTS, mpvtk::PointsToPoints) &&
+    Same(F::POINTS_TO_CELLS, mpvtk::PointsToCells) &&
+    Same(F::CELLS_TO_CELLS, mpvtk::CellsToCells) &&
+    Same(F::CELLS_TO_POINTS, mpvtk::CellsToPoints),
+  "Transfers are mpvtk::Transfer");
+static_assert(Same(F::TARGET_MASS, mpvtk::Exported::TargetMass) &&
+    Same(F::MIXED_MASS, mpvtk::Exported::MixedMass) &&
+    Same(F::FRINGE_EXTENSION, mpvtk::Exported::FringeExtension) &&
+    Same(F::EXTRAPOLATION, mpvtk::Exported::Extrapolation),
+  "Matrices are mpvtk::Exported");
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -652,7 +667,7 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                      "FRINGE_EXTENSION (2) or EXTRAPOLATION (3).");
     return -1;
   }
-  const Transfers t = known ? static_cast<Transfers>(transfer) : POINTS_TO_POINTS;
+  const mpvtk::Transfer t = known ? static_cast<mpvtk::Transfer>(transfer) : mpvtk::PointsToPoints;
   mpvtk::OperatorCache& cache = this->Internal->Cache;
   if (known && !cache.FirstOperator(t) && this->CacheOperator &&
     this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
@@ -706,7 +721,7 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
         : matrix == FRINGE_EXTENSION ? "P"
         : matrix == EXTRAPOLATION    ? "E"
                                      : "M_tt") + ", " +
-    mpvtk::TransferName(static_cast<Transfers>(transfer));
+    mpvtk::TransferName(static_cast<mpvtk::Transfer>(transfer));
   const std::string error = mpvtk::WriteMatrixMarketFile(
     fileName ? fileName : "", title, ncolumns, rowStart, columns, values);
   if (!error.empty())
