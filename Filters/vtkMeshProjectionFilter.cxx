@@ -9,6 +9,7 @@
  *   Kernel/      the VTK-free geometry, search and transfer
  */
 #include "vtkMeshProjectionFilter.h"
+#include "vtkMeshProjectionFilterInternals.h"
 
 #include "vtkCellData.h"
 #include "vtkCommand.h"
@@ -52,70 +53,56 @@
 
 vtkStandardNewMacro(vtkMeshProjectionFilter);
 
-/// What the filter keeps between executions.
-struct vtkMeshProjectionFilter::Internals
+//------------------------------------------------------------------------------
+// The properties and mpvtk::Settings. A property and its field hold the same
+// value (the static_asserts below): CellDataQuantity and MassMatrix are 0 or
+// 1 (clamped), false or true.
+template <typename Filter, typename Fields, typename Each>
+void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, Each each)
 {
-  mpvtk::SourceArrayLists Arrays;
-  std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
-  bool AssembleNext = false;    ///< GetMatrix asked for M_ts
-  mpvtk::OperatorCache Cache;
+  each(f.SearchMethod, s.SearchMethod);
+  each(f.OutputIntersections, s.OutputIntersections);
+  each(f.FillWithNaN, s.FillWithNaN);
+  each(f.FillValue, s.FillValue);
+  each(f.Extrapolation, s.Extrapolation);
+  each(f.FringeThreshold, s.FringeThreshold);
+  each(f.PointDataTarget, s.PointDataTarget);
+  each(f.CellDataTarget, s.CellDataTarget);
+  each(f.CellDataQuantity, s.Extensive);
+  each(f.CellDataReconstruction, s.CellDataReconstruction);
+  each(f.MassMatrix, s.Lumped);
+  each(f.PreserveBounds, s.PreserveBounds);
+  each(f.MaximumIterations, s.MaximumIterations);
+  each(f.SurfaceReach, s.SurfaceReach);
+  each(f.MaximumNormalAngle, s.MaximumNormalAngle);
+  each(f.NormalOrientation, s.NormalOrientation);
+  each(f.ConserveSourceIntegral, s.ConserveSourceIntegral);
+  each(f.CacheOperator, s.CacheOperator);
+  each(f.NumberOfThreads, s.NumberOfThreads);
+  each(f.Renumbering, s.Renumbering);
+}
 
-  /**
-   * The one list of the properties with their fields of mpvtk::Settings:
-   * each(property, field) for every pair. Read one way it gives a new
-   * filter the defaults (a default mpvtk::Settings, the one place they are
-   * written), the other way an execution's settings. A property and its
-   * field hold the same value (the static_asserts below): CellDataQuantity
-   * and MassMatrix are 0 or 1 (clamped), false or true.
-   */
-  template <typename Filter, typename Fields, typename Each>
-  static void ForEachProperty(Filter& f, Fields& s, Each each)
-  {
-    each(f.SearchMethod, s.SearchMethod);
-    each(f.OutputIntersections, s.OutputIntersections);
-    each(f.FillWithNaN, s.FillWithNaN);
-    each(f.FillValue, s.FillValue);
-    each(f.Extrapolation, s.Extrapolation);
-    each(f.FringeThreshold, s.FringeThreshold);
-    each(f.PointDataTarget, s.PointDataTarget);
-    each(f.CellDataTarget, s.CellDataTarget);
-    each(f.CellDataQuantity, s.Extensive);
-    each(f.CellDataReconstruction, s.CellDataReconstruction);
-    each(f.MassMatrix, s.Lumped);
-    each(f.PreserveBounds, s.PreserveBounds);
-    each(f.MaximumIterations, s.MaximumIterations);
-    each(f.SurfaceReach, s.SurfaceReach);
-    each(f.MaximumNormalAngle, s.MaximumNormalAngle);
-    each(f.NormalOrientation, s.NormalOrientation);
-    each(f.ConserveSourceIntegral, s.ConserveSourceIntegral);
-    each(f.CacheOperator, s.CacheOperator);
-    each(f.NumberOfThreads, s.NumberOfThreads);
-    each(f.Renumbering, s.Renumbering);
-  }
+mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjectionFilter& filter)
+{
+  mpvtk::Settings s;
+  ForEachProperty(filter, s, [](const auto& property, auto& field) {
+    field = static_cast<std::decay_t<decltype(field)>>(property);
+  });
+  s.AssembleNext = filter.Internal->AssembleNext;
+  return s;
+}
 
-  /// The properties as one value (and whether GetMatrix asked for M_ts).
-  static mpvtk::Settings Read(const vtkMeshProjectionFilter& filter)
-  {
-    mpvtk::Settings s;
-    ForEachProperty(filter, s, [](const auto& property, auto& field) {
-      field = static_cast<std::decay_t<decltype(field)>>(property);
-    });
-    s.AssembleNext = filter.Internal->AssembleNext;
-    return s;
-  }
-  /// The defaults: those of a default mpvtk::Settings.
-  static void SetDefaults(vtkMeshProjectionFilter& filter)
-  {
-    const mpvtk::Settings defaults;
-    ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
-      property = static_cast<std::decay_t<decltype(property)>>(field);
-    });
-  }
-};
+void vtkMeshProjectionFilter::Internals::SetDefaults(vtkMeshProjectionFilter& filter)
+{
+  const mpvtk::Settings defaults;
+  ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
+    property = static_cast<std::decay_t<decltype(property)>>(field);
+  });
+}
 
 // The public constants are the values of Projection's own (Settings.h,
 // Transfers.h, MatrixExport.h) and the kernel's, which Projection uses
-// without seeing this header: the casts here (ForEachProperty, GetMatrix)
+// without seeing the public header: the casts here (ForEachProperty, GetMatrix)
 // are exact.
 namespace
 {
@@ -416,24 +403,25 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
 
 
 //------------------------------------------------------------------------------
-void vtkMeshProjectionFilter::Publish(const mpvtk::Statistics& stats, double seconds)
+void vtkMeshProjectionFilter::Internals::Publish(
+  vtkMeshProjectionFilter& filter, const mpvtk::Statistics& stats, double seconds)
 {
-  this->NumberOfIntersections = stats.Intersections;
-  this->NumberOfIntersectionTests = stats.IntersectionTests;
-  this->NumberOfLocatorQueries = stats.LocatorQueries;
-  this->CoveredMeasure = stats.CoveredMeasure;
-  this->NumberOfOperatorsBuilt = stats.OperatorsBuilt;
-  this->NumberOfRenumberedMeshes = std::max(stats.RenumberedMeshes, 0);
-  this->InputTime = stats.Input;
-  this->CheckTime = stats.Check;
-  this->RenumberTime = stats.Renumber;
-  this->NeighborsTime = stats.Neighbors;
-  this->LocatorTime = stats.Locator;
-  this->SearchTime = stats.Search;
-  this->AssemblyTime = stats.Assembly;
-  this->SolveTime = stats.Solve;
-  this->OutputTime = stats.Output;
-  this->ExecutionTime = seconds;
+  filter.NumberOfIntersections = stats.Intersections;
+  filter.NumberOfIntersectionTests = stats.IntersectionTests;
+  filter.NumberOfLocatorQueries = stats.LocatorQueries;
+  filter.CoveredMeasure = stats.CoveredMeasure;
+  filter.NumberOfOperatorsBuilt = stats.OperatorsBuilt;
+  filter.NumberOfRenumberedMeshes = std::max(stats.RenumberedMeshes, 0);
+  filter.InputTime = stats.Input;
+  filter.CheckTime = stats.Check;
+  filter.RenumberTime = stats.Renumber;
+  filter.NeighborsTime = stats.Neighbors;
+  filter.LocatorTime = stats.Locator;
+  filter.SearchTime = stats.Search;
+  filter.AssemblyTime = stats.Assembly;
+  filter.SolveTime = stats.Solve;
+  filter.OutputTime = stats.Output;
+  filter.ExecutionTime = seconds;
 }
 
 int vtkMeshProjectionFilter::RequestData(
@@ -469,7 +457,7 @@ int vtkMeshProjectionFilter::Execute(
   vtkPolyData* polygons = vtkPolyData::GetData(outputVector, 1);
   vtkUnstructuredGrid* polyhedra = vtkUnstructuredGrid::GetData(outputVector, 2);
   this->OperatorReused = false;
-  this->Publish(stats, 0.0); // no figures of an earlier execution while this one runs
+  Internals::Publish(*this, stats, 0.0); // no figures of an earlier execution while this one runs
   // The output is Input as it came, whatever happens next.
   mpvtk::PassInput(input, output, polygons, polyhedra);
   mpvtk::Verdict outcome;
@@ -481,8 +469,8 @@ int vtkMeshProjectionFilter::Execute(
   {
     // The seam: one process, unless vtkPMeshProjectionFilter installed its own.
     mpvtk::SerialParts alone;
-    mpvtk::Parts& parts = this->Parts ? *this->Parts : alone;
-    outcome = this->Project(inputVector, outputVector, parts, clock, stats);
+    mpvtk::Parts& parts = this->Internal->Parts ? *this->Internal->Parts : alone;
+    outcome = Internals::Project(*this, inputVector, outputVector, parts, clock, stats);
   }
   switch (outcome.What)
   {
@@ -502,7 +490,7 @@ int vtkMeshProjectionFilter::Execute(
       break;
   }
   // (The execution's time only when it went through.)
-  this->Publish(stats, input && outcome.Ok() ? clock.Total() : 0.0);
+  Internals::Publish(*this, stats, input && outcome.Ok() ? clock.Total() : 0.0);
   return 1;
 }
 
@@ -534,17 +522,17 @@ void MarkPiecesBlock(vtkDataObject* pieces, unsigned int flatIndex)
 }
 } // namespace
 
-mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector, mpvtk::Parts& parts, mpvtk::StageClock& clock,
-  mpvtk::Statistics& stats)
+mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilter& filter,
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, mpvtk::Parts& parts,
+  mpvtk::StageClock& clock, mpvtk::Statistics& stats)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* sourceObject = vtkDataObject::GetData(inputVector[1], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
-  Internals& in = *this->Internal;
-  const mpvtk::Settings settings = Internals::Read(*this);
-  mpvtk::Messages say(this, in.Warned);
-  mpvtk::Progress progress(this);
+  Internals& in = *filter.Internal;
+  const mpvtk::Settings settings = Read(filter);
+  mpvtk::Messages say(&filter, in.Warned);
+  mpvtk::Progress progress(&filter);
 
   // 1. Source as one mesh, then its fields.
   mpvtk::SourceSide source;
@@ -554,7 +542,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
   {
     return verdict;
   }
-  this->ListSource(sourceObject);
+  filter.ListSource(sourceObject);
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
     source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
@@ -590,7 +578,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
     const mpvtk::InputLeaf& leaf = leaves.Leaves[i];
     if (composite && leaf.EmptyEverywhere)
     {
-      vtkDebugMacro(<< leaf.Name << " is empty: skipped.");
+      vtkDebugWithObjectMacro(&filter, << leaf.Name << " is empty: skipped.");
       continue;
     }
     const mpvtk::LeafJob job{ leaf.Target, leaf.Output,
@@ -623,16 +611,16 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
       pieces.push_back(result.Pieces);
     }
   }
-  this->ReportSkipped(skipped, n, projected, say);
+  ReportSkipped(skipped, n, projected, say);
 
   // 3. Optionally, the intersection pieces of every leaf.
   mpvtk::WritePieces(pieces, vtkPolyData::GetData(outputVector, 1),
     vtkUnstructuredGrid::GetData(outputVector, 2));
-  this->OperatorReused = projected > 0 && stats.OperatorsBuilt == 0;
+  filter.OperatorReused = projected > 0 && stats.OperatorsBuilt == 0;
   return mpvtk::Verdict();
 }
 
-void vtkMeshProjectionFilter::ReportSkipped(
+void vtkMeshProjectionFilter::Internals::ReportSkipped(
   const std::vector<std::string>& skipped, size_t leaves, int projected, mpvtk::Messages& say)
 {
   if (skipped.empty())
