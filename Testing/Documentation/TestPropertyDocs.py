@@ -1,5 +1,5 @@
 """Every property of the filter has the same name and default in the C++
-header, in the plugin's XML and in the user guide's property table.
+code, in the plugin's XML and in the user guide's property table.
 
     python3 TestPropertyDocs.py SOURCE_DIR
 
@@ -210,7 +210,7 @@ def main():
                             % (name, xml_groups.get(name), guide_groups.get(name)))
     if "docs/user-guide.md" not in comment:
         problems.append("header: the class comment does not point at docs/user-guide.md")
-    sources = {"header": header, "XML": xml, "user guide": guide}
+    sources = {"code": header, "XML": xml, "user guide": guide}
     names = set(header) | set(xml) | set(guide)
     for name in sorted(names):
         seen = {where: props[name] for where, props in sources.items() if name in props}
@@ -225,7 +225,8 @@ def main():
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1
-    print("every property has one name and one default in the header, the XML and the user guide")
+    print("every property has one name and one default in the code (the header's setters, Settings.h), "
+          "the XML and the user guide")
     return 0
 
 
