@@ -9,6 +9,7 @@
  *   Kernel/      the VTK-free geometry, search and transfer
  */
 #include "vtkMeshProjectionFilter.h"
+#include "vtkMeshProjectionFilterInternals.h"
 
 #include "vtkCellData.h"
 #include "vtkCommand.h"
@@ -27,6 +28,7 @@
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
 #include "Parallel/Parts.h"
 #include "Projection/ArraySelection.h"
@@ -46,23 +48,114 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkMeshProjectionFilter);
 
-/// What the filter keeps between executions.
-struct vtkMeshProjectionFilter::Internals
+//------------------------------------------------------------------------------
+// The properties and mpvtk::Settings. A property and its field hold the same
+// value (the static_asserts below): CellDataQuantity and MassMatrix are 0 or
+// 1 (clamped), false or true.
+template <typename Filter, typename Fields, typename Each>
+void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, Each each)
 {
-  mpvtk::SourceArrayLists Arrays;
-  std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
-  bool AssembleNext = false;    ///< GetMatrix asked for M_ts
-  mpvtk::OperatorCache Cache;
-};
+  each(f.SearchMethod, s.SearchMethod);
+  each(f.OutputIntersections, s.OutputIntersections);
+  each(f.FillWithNaN, s.FillWithNaN);
+  each(f.FillValue, s.FillValue);
+  each(f.Extrapolation, s.Extrapolation);
+  each(f.FringeThreshold, s.FringeThreshold);
+  each(f.PointDataTarget, s.PointDataTarget);
+  each(f.CellDataTarget, s.CellDataTarget);
+  each(f.CellDataQuantity, s.Extensive);
+  each(f.CellDataReconstruction, s.CellDataReconstruction);
+  each(f.MassMatrix, s.Lumped);
+  each(f.PreserveBounds, s.PreserveBounds);
+  each(f.MaximumIterations, s.MaximumIterations);
+  each(f.SurfaceReach, s.SurfaceReach);
+  each(f.MaximumNormalAngle, s.MaximumNormalAngle);
+  each(f.NormalOrientation, s.NormalOrientation);
+  each(f.ConserveSourceIntegral, s.ConserveSourceIntegral);
+  each(f.CacheOperator, s.CacheOperator);
+  each(f.NumberOfThreads, s.NumberOfThreads);
+  each(f.Renumbering, s.Renumbering);
+}
+
+mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjectionFilter& filter)
+{
+  mpvtk::Settings s;
+  ForEachProperty(filter, s, [](const auto& property, auto& field) {
+    field = static_cast<std::decay_t<decltype(field)>>(property);
+  });
+  s.AssembleNext = filter.Internal->AssembleNext;
+  return s;
+}
+
+void vtkMeshProjectionFilter::Internals::SetDefaults(vtkMeshProjectionFilter& filter)
+{
+  const mpvtk::Settings defaults;
+  ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
+    property = static_cast<std::decay_t<decltype(property)>>(field);
+  });
+}
+
+// The public constants are the values of Projection's own (Settings.h,
+// Transfers.h, MatrixExport.h) and the kernel's, which Projection uses
+// without seeing the public header: the casts here (ForEachProperty, GetMatrix)
+// are exact.
+namespace
+{
+using F = vtkMeshProjectionFilter;
+/// A public constant and the internal value it stands for (two enumerations, compared as ints).
+template <typename Public, typename Internal>
+constexpr bool Same(Public constant, Internal value)
+{
+  return static_cast<int>(constant) == static_cast<int>(value);
+}
+static_assert(Same(F::ADVANCING_FRONT, mp::SearchMethod::AdvancingFront) &&
+    Same(F::BRUTE_FORCE, mp::SearchMethod::BruteForce),
+  "SearchMethods are mp::SearchMethod's values");
+static_assert(Same(F::NO_EXTRAPOLATION, mp::ExtrapolationMode::None) &&
+    Same(F::SMOOTH_EXTRAPOLATION, mp::ExtrapolationMode::Smooth) &&
+    Same(F::NEAREST_EXTRAPOLATION, mp::ExtrapolationMode::Nearest),
+  "Extrapolations are mp::ExtrapolationMode's values");
+static_assert(Same(F::CONSTANT_RECONSTRUCTION, mp::Reconstruction::Constant) &&
+    Same(F::LIMITED_RECONSTRUCTION, mp::Reconstruction::Limited) &&
+    Same(F::UNLIMITED_RECONSTRUCTION, mp::Reconstruction::Unlimited),
+  "Reconstructions are mp::Reconstruction's values");
+static_assert(Same(F::TO_POINTS, mpvtk::ToPointsBit) && Same(F::TO_CELLS, mpvtk::ToCellsBit) &&
+    Same(F::TO_POINTS_AND_CELLS, mpvtk::ToPointsBit | mpvtk::ToCellsBit),
+  "Targets are mpvtk::TargetBits");
+static_assert(Same(F::INTENSIVE, false) && Same(F::EXTENSIVE, true),
+  "CellDataQuantity is Settings::Extensive");
+static_assert(Same(F::CONSISTENT_MASS, false) && Same(F::LUMPED_MASS, true),
+  "MassMatrix is Settings::Lumped");
+static_assert(Same(F::SAME_ORIENTATION, mpvtk::SameOrientation) &&
+    Same(F::OPPOSITE_ORIENTATION, mpvtk::OppositeOrientation) &&
+    Same(F::ANY_ORIENTATION, mpvtk::AnyOrientation),
+  "NormalOrientation is mp::MeshView::SurfaceOrientation");
+static_assert(Same(F::AUTOMATIC_RENUMBERING, mpvtk::SimplexMesh::AUTOMATIC) &&
+    Same(F::ALWAYS_RENUMBER, mpvtk::SimplexMesh::ALWAYS) &&
+    Same(F::NEVER_RENUMBER, mpvtk::SimplexMesh::NEVER),
+  "Renumbering is mpvtk::SimplexMesh::Ordering");
+static_assert(Same(F::POINTS_TO_POINTS, mpvtk::PointsToPoints) &&
+    Same(F::POINTS_TO_CELLS, mpvtk::PointsToCells) &&
+    Same(F::CELLS_TO_CELLS, mpvtk::CellsToCells) &&
+    Same(F::CELLS_TO_POINTS, mpvtk::CellsToPoints),
+  "Transfers are mpvtk::Transfer");
+static_assert(Same(F::TARGET_MASS, mpvtk::Exported::TargetMass) &&
+    Same(F::MIXED_MASS, mpvtk::Exported::MixedMass) &&
+    Same(F::FRINGE_EXTENSION, mpvtk::Exported::FringeExtension) &&
+    Same(F::EXTRAPOLATION, mpvtk::Exported::Extrapolation),
+  "Matrices are mpvtk::Exported");
+} // namespace
 
 //------------------------------------------------------------------------------
 vtkMeshProjectionFilter::vtkMeshProjectionFilter()
   : Internal(new Internals)
 {
+  Internals::SetDefaults(*this);
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
   // The test suite runs once more with every mesh renumbered (and once
@@ -310,50 +403,25 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
 
 
 //------------------------------------------------------------------------------
-mpvtk::Settings vtkMeshProjectionFilter::CurrentSettings() const
+void vtkMeshProjectionFilter::Internals::Publish(
+  vtkMeshProjectionFilter& filter, const mpvtk::Statistics& stats, double seconds)
 {
-  mpvtk::Settings s;
-  s.SearchMethod = this->SearchMethod;
-  s.OutputIntersections = this->OutputIntersections;
-  s.FillWithNaN = this->FillWithNaN;
-  s.FillValue = this->FillValue;
-  s.Extrapolation = this->Extrapolation;
-  s.FringeThreshold = this->FringeThreshold;
-  s.PointDataTarget = this->PointDataTarget;
-  s.CellDataTarget = this->CellDataTarget;
-  s.Extensive = this->CellDataQuantity == EXTENSIVE;
-  s.CellDataReconstruction = this->CellDataReconstruction;
-  s.Lumped = this->MassMatrix == LUMPED_MASS;
-  s.PreserveBounds = this->PreserveBounds;
-  s.MaximumIterations = this->MaximumIterations;
-  s.SurfaceReach = this->SurfaceReach;
-  s.MaximumNormalAngle = this->MaximumNormalAngle;
-  s.NormalOrientation = this->NormalOrientation;
-  s.ConserveSourceIntegral = this->ConserveSourceIntegral;
-  s.CacheOperator = this->CacheOperator;
-  s.Renumbering = this->Renumbering;
-  s.AssembleNext = this->Internal->AssembleNext;
-  return s;
-}
-
-void vtkMeshProjectionFilter::Publish(const mpvtk::Statistics& stats, double seconds)
-{
-  this->NumberOfIntersections = stats.Intersections;
-  this->NumberOfIntersectionTests = stats.IntersectionTests;
-  this->NumberOfLocatorQueries = stats.LocatorQueries;
-  this->CoveredMeasure = stats.CoveredMeasure;
-  this->NumberOfOperatorsBuilt = stats.OperatorsBuilt;
-  this->NumberOfRenumberedMeshes = std::max(stats.RenumberedMeshes, 0);
-  this->InputTime = stats.Input;
-  this->CheckTime = stats.Check;
-  this->RenumberTime = stats.Renumber;
-  this->NeighborsTime = stats.Neighbors;
-  this->LocatorTime = stats.Locator;
-  this->SearchTime = stats.Search;
-  this->AssemblyTime = stats.Assembly;
-  this->SolveTime = stats.Solve;
-  this->OutputTime = stats.Output;
-  this->ExecutionTime = seconds;
+  filter.NumberOfIntersections = stats.Intersections;
+  filter.NumberOfIntersectionTests = stats.IntersectionTests;
+  filter.NumberOfLocatorQueries = stats.LocatorQueries;
+  filter.CoveredMeasure = stats.CoveredMeasure;
+  filter.NumberOfOperatorsBuilt = stats.OperatorsBuilt;
+  filter.NumberOfRenumberedMeshes = std::max(stats.RenumberedMeshes, 0);
+  filter.InputTime = stats.Input;
+  filter.CheckTime = stats.Check;
+  filter.RenumberTime = stats.Renumber;
+  filter.NeighborsTime = stats.Neighbors;
+  filter.LocatorTime = stats.Locator;
+  filter.SearchTime = stats.Search;
+  filter.AssemblyTime = stats.Assembly;
+  filter.SolveTime = stats.Solve;
+  filter.OutputTime = stats.Output;
+  filter.ExecutionTime = seconds;
 }
 
 int vtkMeshProjectionFilter::RequestData(
@@ -389,7 +457,7 @@ int vtkMeshProjectionFilter::Execute(
   vtkPolyData* polygons = vtkPolyData::GetData(outputVector, 1);
   vtkUnstructuredGrid* polyhedra = vtkUnstructuredGrid::GetData(outputVector, 2);
   this->OperatorReused = false;
-  this->Publish(stats, 0.0); // no figures of an earlier execution while this one runs
+  Internals::Publish(*this, stats, 0.0); // no figures of an earlier execution while this one runs
   // The output is Input as it came, whatever happens next.
   mpvtk::PassInput(input, output, polygons, polyhedra);
   mpvtk::Verdict outcome;
@@ -401,8 +469,8 @@ int vtkMeshProjectionFilter::Execute(
   {
     // The seam: one process, unless vtkPMeshProjectionFilter installed its own.
     mpvtk::SerialParts alone;
-    mpvtk::Parts& parts = this->Parts ? *this->Parts : alone;
-    outcome = this->Project(inputVector, outputVector, parts, clock, stats);
+    mpvtk::Parts& parts = this->Internal->Parts ? *this->Internal->Parts : alone;
+    outcome = Internals::Project(*this, inputVector, outputVector, parts, clock, stats);
   }
   switch (outcome.What)
   {
@@ -422,7 +490,7 @@ int vtkMeshProjectionFilter::Execute(
       break;
   }
   // (The execution's time only when it went through.)
-  this->Publish(stats, input && outcome.Ok() ? clock.Total() : 0.0);
+  Internals::Publish(*this, stats, input && outcome.Ok() ? clock.Total() : 0.0);
   return 1;
 }
 
@@ -454,17 +522,17 @@ void MarkPiecesBlock(vtkDataObject* pieces, unsigned int flatIndex)
 }
 } // namespace
 
-mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector, mpvtk::Parts& parts, mpvtk::StageClock& clock,
-  mpvtk::Statistics& stats)
+mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilter& filter,
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, mpvtk::Parts& parts,
+  mpvtk::StageClock& clock, mpvtk::Statistics& stats)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* sourceObject = vtkDataObject::GetData(inputVector[1], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
-  Internals& in = *this->Internal;
-  const mpvtk::Settings settings = this->CurrentSettings();
-  mpvtk::Messages say(this, in.Warned);
-  mpvtk::Progress progress(this);
+  Internals& in = *filter.Internal;
+  const mpvtk::Settings settings = Read(filter);
+  mpvtk::Messages say(&filter, in.Warned);
+  mpvtk::Progress progress(&filter);
 
   // 1. Source as one mesh, then its fields.
   mpvtk::SourceSide source;
@@ -474,7 +542,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
   {
     return verdict;
   }
-  this->ListSource(sourceObject);
+  filter.ListSource(sourceObject);
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
     source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
@@ -510,7 +578,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
     const mpvtk::InputLeaf& leaf = leaves.Leaves[i];
     if (composite && leaf.EmptyEverywhere)
     {
-      vtkDebugMacro(<< leaf.Name << " is empty: skipped.");
+      vtkDebugWithObjectMacro(&filter, << leaf.Name << " is empty: skipped.");
       continue;
     }
     const mpvtk::LeafJob job{ leaf.Target, leaf.Output,
@@ -543,16 +611,16 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
       pieces.push_back(result.Pieces);
     }
   }
-  this->ReportSkipped(skipped, n, projected, say);
+  ReportSkipped(skipped, n, projected, say);
 
   // 3. Optionally, the intersection pieces of every leaf.
   mpvtk::WritePieces(pieces, vtkPolyData::GetData(outputVector, 1),
     vtkUnstructuredGrid::GetData(outputVector, 2));
-  this->OperatorReused = projected > 0 && stats.OperatorsBuilt == 0;
+  filter.OperatorReused = projected > 0 && stats.OperatorsBuilt == 0;
   return mpvtk::Verdict();
 }
 
-void vtkMeshProjectionFilter::ReportSkipped(
+void vtkMeshProjectionFilter::Internals::ReportSkipped(
   const std::vector<std::string>& skipped, size_t leaves, int projected, mpvtk::Messages& say)
 {
   if (skipped.empty())
@@ -587,7 +655,7 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
                      "FRINGE_EXTENSION (2) or EXTRAPOLATION (3).");
     return -1;
   }
-  const Transfers t = known ? static_cast<Transfers>(transfer) : POINTS_TO_POINTS;
+  const mpvtk::Transfer t = known ? static_cast<mpvtk::Transfer>(transfer) : mpvtk::PointsToPoints;
   mpvtk::OperatorCache& cache = this->Internal->Cache;
   if (known && !cache.FirstOperator(t) && this->CacheOperator &&
     this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
@@ -641,7 +709,7 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
         : matrix == FRINGE_EXTENSION ? "P"
         : matrix == EXTRAPOLATION    ? "E"
                                      : "M_tt") + ", " +
-    mpvtk::TransferName(static_cast<Transfers>(transfer));
+    mpvtk::TransferName(static_cast<mpvtk::Transfer>(transfer));
   const std::string error = mpvtk::WriteMatrixMarketFile(
     fileName ? fileName : "", title, ncolumns, rowStart, columns, values);
   if (!error.empty())

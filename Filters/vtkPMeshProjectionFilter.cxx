@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPMeshProjectionFilter.h"
 
+#include "vtkMeshProjectionFilterInternals.h"
+
 #include "Parallel/MPIParts.h"
 
 #include "vtkCommunicator.h"
@@ -71,9 +73,9 @@ int vtkPMeshProjectionFilter::RequestData(
     return 0;
   }
   mpvtk::MPIParts parts(controller);
-  this->Parts = &parts;
+  this->Internal->Parts = &parts;
   const int done = this->Superclass::RequestData(request, inputVector, outputVector);
-  this->Parts = nullptr;
+  this->Internal->Parts = nullptr;
   this->ReceivedSourceCells = parts.Received;
   this->SentBytes = parts.SentBytes();
   double totals[4] = { static_cast<double>(this->NumberOfIntersections), this->CoveredMeasure,

@@ -24,10 +24,10 @@
 #include "Parallel/MPIParts.h"
 
 #include "Parallel/CellCopier.h"
-#include "Adapter/Ghosts.h"
-#include "Projection/ArraySelection.h"
-#include "Projection/Composite.h"
+#include "Adapter/CompositeLeaves.h"
 #include "Adapter/DataSetChecks.h"
+#include "Adapter/FieldArrays.h"
+#include "Adapter/Ghosts.h"
 
 #include "vtkCellData.h"
 #include "vtkCellType.h"

@@ -38,7 +38,7 @@ Verdict ApplyFailed(const mp::MortarOperator& applied, Transfer t, KeptLeaf& kep
  */
 void KeepWithinSourceRange(LeafContext& ctx, const GatheredFields& g, bool cells, mp::ApplyOptions& apply)
 {
-  const bool wanted = ctx.Options.Extrapolation != 0 && !ctx.Options.PreserveBounds &&
+  const bool wanted = ctx.Options.Extrapolation != mp::ExtrapolationMode::None && !ctx.Options.PreserveBounds &&
     !(cells && ctx.Options.Extensive) && g.Components > 0;
   if (!wanted)
   {

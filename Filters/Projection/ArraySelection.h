@@ -1,16 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file ArraySelection.h
- * @brief Which Source arrays are fields to project: the one rule, used by
- *        the serial filter and by the gathering of Source on several
- *        processes.
- *
- * A field is any array of the point or cell data except the ghost array,
- * the filter's own masks (vtkValidPointMask..., vtkValidCellMask..., left
- * by an earlier projection) and id arrays (GlobalIds, PedigreeIds, and
- * arrays named like them: numbering, not values). Whether a field is then
- * projected is the user's selection and its type (numeric, long enough),
- * decided by the filter where it gathers the fields.
+ * @brief The user's selection of Source arrays and the filter's listing of
+ *        Source's fields in it (what a field is: Adapter/FieldArrays.h).
  */
 #ifndef MeshProjection_Projection_ArraySelection_h
 #define MeshProjection_Projection_ArraySelection_h
@@ -21,24 +13,12 @@
 #include <set>
 #include <string>
 
-class vtkAbstractArray;
 class vtkAlgorithm;
 class vtkDataArraySelection;
 class vtkDataObject;
-class vtkDataSet;
-class vtkDataSetAttributes;
 
 namespace mpvtk
 {
-/// The point (association 0) or cell (1) data of `data`.
-vtkDataSetAttributes* AttributesOf(vtkDataSet* data, int association);
-
-/// The filter's own masks (of an earlier projection): not fields.
-bool IsMask(const std::string& name);
-
-/// Whether `array` of `data` is a field (see the file's comment).
-bool IsField(vtkDataSetAttributes* data, vtkAbstractArray* array);
-
 /**
  * The user's choice of Source arrays (vtkDataArraySelection per
  * association: 0 points, 1 cells) and the filter's listing of Source's

@@ -40,7 +40,7 @@ void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
     kept = KeptReconstruction(); // (held for nothing)
     return;
   }
-  const auto mode = static_cast<mp::Reconstruction>(settings.CellDataReconstruction);
+  const mp::Reconstruction mode = settings.CellDataReconstruction;
   const mp::TaskRunner runner = SMPTaskRunner();
   // The geometry: kept from the last execution while Source is the same.
   if (kept.Geometry && kept.SourcePrint == sourcePrint)
@@ -61,7 +61,7 @@ void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
   }
   const mp::LinearReconstruction& reconstruction = *kept.Geometry;
   Reconstruct(reconstruction, source, nullptr, mode, cells);
-  cells.Key += "/reconstruction " + std::to_string(settings.CellDataReconstruction);
+  cells.Key += "/reconstruction " + std::to_string(static_cast<int>(settings.CellDataReconstruction));
   for (NaNGroup& group : cells.Groups)
   {
     std::vector<char> defined = LeftOutCells(source, group);

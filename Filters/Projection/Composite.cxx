@@ -11,9 +11,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "Adapter/CompositeLeaves.h"
 #include "Adapter/DataSetChecks.h"
+#include "Adapter/FieldArrays.h"
 #include "Parallel/Parts.h"
-#include "Projection/ArraySelection.h"
 #include "Projection/Messages.h"
 
 #include <algorithm>
@@ -22,51 +23,6 @@
 
 namespace mpvtk
 {
-void ForEachLeaf(vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit)
-{
-  vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(data);
-  if (!composite)
-  {
-    return;
-  }
-  vtkSmartPointer<vtkCompositeDataIterator> iter;
-  iter.TakeReference(composite->NewIterator());
-  iter->SkipEmptyNodesOn();
-  for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
-  {
-    visit(iter);
-  }
-}
-
-std::vector<vtkDataSet*> DataSetsOf(vtkDataObject* data)
-{
-  std::vector<vtkDataSet*> all;
-  if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))
-  {
-    all.push_back(one);
-  }
-  ForEachLeaf(data, [&](vtkCompositeDataIterator* at) {
-    if (vtkDataSet* leaf = vtkDataSet::SafeDownCast(at->GetCurrentDataObject()))
-    {
-      all.push_back(leaf);
-    }
-  });
-  return all;
-}
-
-std::string BlockName(unsigned int flat, const char* name)
-{
-  return name ? std::string("block '") + name + "' (flat index " + std::to_string(flat) + ")"
-              : "block of flat index " + std::to_string(flat);
-}
-
-std::string BlockName(vtkCompositeDataIterator* at)
-{
-  const char* name =
-    at->HasCurrentMetaData() ? at->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME()) : nullptr;
-  return BlockName(at->GetCurrentFlatIndex(), name);
-}
-
 vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& note, std::string& error)
 {
   if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))

@@ -1,23 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Composite.h
- * @brief Walking composite datasets: the one loop over leaves that the
- *        filter's stages use (Input's blocks, Source's blocks, the checks
- *        and the gathering on several processes).
- *
- * Leaves are visited in the composite's own order (flat indices
- * increasing), empty nodes skipped. A plain dataset is its own single leaf.
+ * @brief Composite inputs as the projection sees them: Source's blocks
+ *        appended into one dataset, Input's leaves with their output copies
+ *        (the walk over leaves itself: Adapter/CompositeLeaves.h).
  */
 #ifndef MeshProjection_Projection_Composite_h
 #define MeshProjection_Projection_Composite_h
 
 #include "vtkSmartPointer.h"
 
-#include <functional>
 #include <string>
 #include <vector>
 
-class vtkCompositeDataIterator;
 class vtkDataObject;
 class vtkDataSet;
 
@@ -25,12 +20,6 @@ namespace mpvtk
 {
 class Messages;
 class Parts;
-
-/// visit(at) for every non-empty leaf of `data` (a composite dataset; nothing otherwise).
-void ForEachLeaf(vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit);
-
-/// The datasets of `data`: itself, or a composite's dataset leaves.
-std::vector<vtkDataSet*> DataSetsOf(vtkDataObject* data);
 
 /**
  * Source as one dataset: itself, or all the dataset leaves of a composite
@@ -69,10 +58,6 @@ struct InputLeaves
  * leaf empty everywhere is marked so.
  */
 InputLeaves LeavesOf(vtkDataObject* input, vtkDataObject* output, Parts& parts, Messages& say);
-
-/// How a leaf is named in messages: "block 'name' (flat index k)" or "block of flat index k".
-std::string BlockName(unsigned int flat, const char* name);
-std::string BlockName(vtkCompositeDataIterator* at);
 } // namespace mpvtk
 
 #endif

@@ -31,7 +31,7 @@ namespace
 const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op, bool points,
   const mp::SolverHooks& hook, KeptOperator* kept, mp::Extension& own)
 {
-  const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
+  const mp::ExtrapolationMode mode = ctx.Options.Extrapolation;
   mp::Extension& ext = kept ? kept->Extension : own;
   const std::vector<char>& valid = op.GetValid();
   if (kept)
@@ -103,7 +103,7 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet&
 Verdict ExtrapolateLeaf(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, const mp::SolverHooks hooks[2],
   LeafSolutions& solutions)
 {
-  if (ctx.Options.Extrapolation == 0)
+  if (ctx.Options.Extrapolation == mp::ExtrapolationMode::None)
   {
     return Verdict();
   }

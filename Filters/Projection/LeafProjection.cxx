@@ -175,7 +175,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   mp::FringeHalo halo;      // several processes: the fringe's ghost layer
   ShareSystems(ctx, ops, hooks, halo);
   // (The extrapolation reads the target's cells after the solves.)
-  const bool extrapolate = run.Options.Extrapolation != 0;
+  const bool extrapolate = run.Options.Extrapolation != mp::ExtrapolationMode::None;
   if (haveCover && !extrapolate)
   {
     targetMesh.ReleaseGeometry();

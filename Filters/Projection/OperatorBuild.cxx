@@ -6,7 +6,6 @@
 #include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
-#include "vtkMeshProjectionFilter.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/SourceLocator.h"
 #include "Adapter/Threads.h"
@@ -44,9 +43,7 @@ mp::OperatorOptions BaseOptions(const LeafContext& ctx)
 {
   mp::OperatorOptions options;
   options.KeepPieces = ctx.Options.OutputIntersections;
-  options.Method = ctx.Options.SearchMethod == vtkMeshProjectionFilter::BRUTE_FORCE
-    ? mp::SearchMethod::BruteForce
-    : mp::SearchMethod::AdvancingFront;
+  options.Method = ctx.Options.SearchMethod;
   // One range of target cells per thread of the filter's vtkSMPTools scope.
   options.Runner = mpvtk::SMPTaskRunner();
   return options;
@@ -120,7 +117,7 @@ void LeafSearch::WarnMisoriented()
 {
   LeafContext& ctx = this->Ctx;
   if (ctx.Shape.Trace || !ctx.Target.View().IsSurfaceMesh() ||
-    ctx.Options.NormalOrientation == vtkMeshProjectionFilter::ANY_ORIENTATION)
+    ctx.Options.NormalOrientation == AnyOrientation)
   {
     return;
   }
@@ -362,14 +359,14 @@ Verdict PlanOperators(
   kept.GeometryFingerprint = print;
   const bool points = ctx.Source.Fields[PointArrays].Components > 0;
   const bool cells = ctx.Source.Fields[CellArrays].Components > 0;
-  plan.Used[vtkMeshProjectionFilter::POINTS_TO_POINTS] = points && (s.PointDataTarget & vtkMeshProjectionFilter::TO_POINTS);
-  plan.Used[vtkMeshProjectionFilter::POINTS_TO_CELLS] = points && (s.PointDataTarget & vtkMeshProjectionFilter::TO_CELLS);
-  plan.Used[vtkMeshProjectionFilter::CELLS_TO_CELLS] = cells && (s.CellDataTarget & vtkMeshProjectionFilter::TO_CELLS);
-  plan.Used[vtkMeshProjectionFilter::CELLS_TO_POINTS] = cells && (s.CellDataTarget & vtkMeshProjectionFilter::TO_POINTS);
+  plan.Used[PointsToPoints] = points && (s.PointDataTarget & ToPointsBit);
+  plan.Used[PointsToCells] = points && (s.PointDataTarget & ToCellsBit);
+  plan.Used[CellsToCells] = cells && (s.CellDataTarget & ToCellsBit);
+  plan.Used[CellsToPoints] = cells && (s.CellDataTarget & ToPointsBit);
   // The operator that gives the mask and coverage when nothing is projected.
   if (std::none_of(std::begin(plan.Used), std::end(plan.Used), [](bool u) { return u; }))
   {
-    plan.Used[vtkMeshProjectionFilter::POINTS_TO_POINTS] = true;
+    plan.Used[PointsToPoints] = true;
   }
   plan.Assembled = s.PreserveBounds ||
     (s.CacheOperator && (ctx.Source.TimeVarying || plan.SameGeometry || s.AssembleNext));

@@ -15,12 +15,12 @@
 #include "vtkPolyData.h"
 #include "vtkUnstructuredGrid.h"
 
-#include "Projection/ArraySelection.h"
-#include "Projection/Composite.h"
 #include "Projection/Conservation.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
+#include "Adapter/CompositeLeaves.h"
+#include "Adapter/FieldArrays.h"
 #include "Adapter/IntersectionOutput.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
@@ -131,7 +131,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const bool trace = ctx.Shape.Trace;
   // Densities back to totals; on a trace they stay the Source's densities
   // (per unit of its volume or area: a surface holds no part of a total).
-  const bool totals = t == vtkMeshProjectionFilter::CELLS_TO_CELLS && ctx.Options.Extensive && !trace;
+  const bool totals = t == CellsToCells && ctx.Options.Extensive && !trace;
   vtkDataSetAttributes* sourceData =
     AttributesOf(ctx.Source.Data, SourceAssociation(t));
   vtkDataSetAttributes* outData =
@@ -325,9 +325,9 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
   // The mask of the points' own transfer, else of the cells' transfer to points.
-  const mp::MortarOperator* onPoints = ops.Operators[vtkMeshProjectionFilter::POINTS_TO_POINTS]
-    ? ops.Operators[vtkMeshProjectionFilter::POINTS_TO_POINTS]
-    : ops.Operators[vtkMeshProjectionFilter::CELLS_TO_POINTS];
+  const mp::MortarOperator* onPoints = ops.Operators[PointsToPoints]
+    ? ops.Operators[PointsToPoints]
+    : ops.Operators[CellsToPoints];
   if (onPoints)
   {
     const std::vector<char>& valid = *numbering.InDataSet(onPoints->GetValid());
@@ -347,9 +347,9 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     });
   }
   AddValidMasks(mask, written.PointValid, output->GetPointData());
-  const mp::MortarOperator* onCells = ops.Operators[vtkMeshProjectionFilter::POINTS_TO_CELLS]
-    ? ops.Operators[vtkMeshProjectionFilter::POINTS_TO_CELLS]
-    : ops.Operators[vtkMeshProjectionFilter::CELLS_TO_CELLS];
+  const mp::MortarOperator* onCells = ops.Operators[PointsToCells]
+    ? ops.Operators[PointsToCells]
+    : ops.Operators[CellsToCells];
   if (onCells)
   {
     vtkNew<vtkCharArray> cellMask;
@@ -373,13 +373,12 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
 void WriteExtrapolatedMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions)
 {
-  if (ctx.Options.Extrapolation == 0)
+  if (ctx.Options.Extrapolation == mp::ExtrapolationMode::None)
   {
     return;
   }
-  using F = vtkMeshProjectionFilter;
-  const Transfer toPoints = ops.Operators[F::POINTS_TO_POINTS] ? F::POINTS_TO_POINTS : F::CELLS_TO_POINTS;
-  const Transfer toCells = ops.Operators[F::POINTS_TO_CELLS] ? F::POINTS_TO_CELLS : F::CELLS_TO_CELLS;
+  const Transfer toPoints = ops.Operators[PointsToPoints] ? PointsToPoints : CellsToPoints;
+  const Transfer toCells = ops.Operators[PointsToCells] ? PointsToCells : CellsToCells;
   for (const Transfer t : { toPoints, toCells })
   {
     const std::vector<char>& from = solutions.Extrapolated[t];

@@ -1,45 +1,74 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Settings.h
- * @brief The filter's properties as one value, read once per execution, so
- *        that the stages take what they need as an argument instead of
- *        reaching into the filter.
+ * @brief The filter's properties as one typed value, read once per
+ *        execution, so that the stages take what they need as an argument
+ *        instead of reaching into the filter.
  *
- * The meaning and defaults of each are the filter's (vtkMeshProjectionFilter.h
- * and docs/user-guide.md); the enumerations are the filter's too.
+ * This struct is the one place the defaults are written: a default
+ * Settings is what a new vtkMeshProjectionFilter starts from (its
+ * constructor copies it), and the documentation test
+ * (Testing/Documentation/TestPropertyDocs.py) reads these initializers. A
+ * property with a kernel counterpart has the kernel's type; the filter's
+ * .cxx maps its public constants onto these, in one place, where
+ * static_asserts tie the values together. The meaning of each property:
+ * vtkMeshProjectionFilter.h and docs/user-guide.md.
  */
 #ifndef MeshProjection_Projection_Settings_h
 #define MeshProjection_Projection_Settings_h
+
+#include "Search/SearchStatistics.h"       // mp::SearchMethod
+#include "Transfer/Extrapolation.h"        // mp::ExtrapolationMode
+#include "Transfer/LinearReconstruction.h" // mp::Reconstruction
 
 #include <limits>
 
 namespace mpvtk
 {
+/// Where one association's Source arrays go (PointDataTarget, CellDataTarget): bits.
+enum TargetBits : int
+{
+  ToPointsBit = 1,
+  ToCellsBit = 2
+};
+
+/// How two surfaces' normals are compared (NormalOrientation; mp::MeshView::SurfaceOrientation).
+enum SurfaceOrientation : int
+{
+  SameOrientation = 0,
+  OppositeOrientation = 1,
+  AnyOrientation = 2
+};
+
 struct Settings
 {
-  int SearchMethod = 0;        ///< vtkMeshProjectionFilter::SearchMethods
+  mp::SearchMethod SearchMethod = mp::SearchMethod::AdvancingFront;
   bool OutputIntersections = false;
   bool FillWithNaN = true;
   double FillValue = 0;
-  int Extrapolation = 0;        ///< vtkMeshProjectionFilter::Extrapolations
-  double FringeThreshold = 0.25; ///< aggregate point functions covered less than this
-  int PointDataTarget = 1;     ///< vtkMeshProjectionFilter::Targets (bits: 1 points, 2 cells)
-  int CellDataTarget = 2;
-  bool Extensive = false;      ///< CellDataQuantity is EXTENSIVE
-  int CellDataReconstruction = 0; ///< vtkMeshProjectionFilter::Reconstructions
-  bool Lumped = false;         ///< MassMatrix is LUMPED_MASS
+  mp::ExtrapolationMode Extrapolation = mp::ExtrapolationMode::None;
+  double FringeThreshold = 0.25;     ///< aggregate point functions covered less than this
+  int PointDataTarget = ToPointsBit; ///< TargetBits
+  int CellDataTarget = ToCellsBit;   ///< TargetBits
+  bool Extensive = false;            ///< CellDataQuantity is EXTENSIVE
+  mp::Reconstruction CellDataReconstruction = mp::Reconstruction::Constant;
+  bool Lumped = false; ///< MassMatrix is LUMPED_MASS
   bool PreserveBounds = false;
   int MaximumIterations = 500;
   double SurfaceReach = 0.5;
   double MaximumNormalAngle = 45.0;
-  int NormalOrientation = 0;   ///< SAME_, OPPOSITE_ or ANY_ORIENTATION
+  int NormalOrientation = SameOrientation; ///< SurfaceOrientation
   bool ConserveSourceIntegral = false;
   bool CacheOperator = true;
-  int Renumbering = 0;         ///< AUTOMATIC_RENUMBERING, ALWAYS_RENUMBER, NEVER_RENUMBER
-  bool AssembleNext = false;   ///< GetMatrix asked for M_ts
+  int NumberOfThreads = 0;   ///< 0: every core (the filter's RequestData)
+  int Renumbering = 0;       ///< SimplexMesh::Ordering (AUTOMATIC)
+  bool AssembleNext = false; ///< not a property: GetMatrix asked for M_ts
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
-  bool ReconstructsCellData() const { return this->CellDataReconstruction != 0 && this->CellDataTarget != 0; }
+  bool ReconstructsCellData() const
+  {
+    return this->CellDataReconstruction != mp::Reconstruction::Constant && this->CellDataTarget != 0;
+  }
   /// The value of target functions that the Source does not reach.
   double Fill() const
   {

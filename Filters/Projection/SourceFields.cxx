@@ -8,9 +8,9 @@
 #include "vtkDataSetAttributes.h"
 
 #include "Parallel/Parts.h"
-#include "Projection/ArraySelection.h"
 #include "Projection/Fingerprint.h"
 #include "Projection/Messages.h"
+#include "Adapter/FieldArrays.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
 

@@ -1,46 +1,49 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Transfers.h
- * @brief The four transfers (vtkMeshProjectionFilter::Transfers) and what
- *        each means: the space of the Source functions it reads (P1 point
- *        arrays or P0 cell arrays), the space of the target functions it
- *        writes, and the order in which their arrays are written.
+ * @brief The four transfers and what each means: the space of the Source
+ *        functions it reads (P1 point arrays or P0 cell arrays), the space
+ *        of the target functions it writes, and the order in which their
+ *        arrays are written.
+ *
+ * The values are those of vtkMeshProjectionFilter::Transfers (GetMatrix's
+ * argument), as the filter's .cxx asserts: Projection does not include the
+ * public header.
  */
 #ifndef MeshProjection_Projection_Transfers_h
 #define MeshProjection_Projection_Transfers_h
-
-#include "vtkMeshProjectionFilter.h"
 
 #include "Transfer/Space.h"
 
 namespace mpvtk
 {
-using Transfer = vtkMeshProjectionFilter::Transfers;
+/// Source association to target association; the index of a leaf's operators.
+enum Transfer : int
+{
+  PointsToPoints = 0,
+  PointsToCells = 1,
+  CellsToCells = 2,
+  CellsToPoints = 3
+};
 constexpr int NumberOfTransfers = 4;
-constexpr Transfer AllTransfers[NumberOfTransfers] = { vtkMeshProjectionFilter::POINTS_TO_POINTS,
-  vtkMeshProjectionFilter::POINTS_TO_CELLS, vtkMeshProjectionFilter::CELLS_TO_CELLS,
-  vtkMeshProjectionFilter::CELLS_TO_POINTS };
+constexpr Transfer AllTransfers[NumberOfTransfers] = { PointsToPoints, PointsToCells,
+  CellsToCells, CellsToPoints };
 /**
  * The order the outputs are written in: each association's own transfer
  * first (points to points, cells to cells), so that an array going to the
  * other association is the one renamed when the names clash.
  */
-constexpr Transfer OutputOrder[NumberOfTransfers] = { vtkMeshProjectionFilter::POINTS_TO_POINTS,
-  vtkMeshProjectionFilter::CELLS_TO_CELLS, vtkMeshProjectionFilter::POINTS_TO_CELLS,
-  vtkMeshProjectionFilter::CELLS_TO_POINTS };
+constexpr Transfer OutputOrder[NumberOfTransfers] = { PointsToPoints, CellsToCells,
+  PointsToCells, CellsToPoints };
 
 /// Which Source fields a transfer reads: 0 point arrays (P1), 1 cell arrays (P0) (SourceFields.h's Association).
 inline int SourceAssociation(Transfer t)
 {
-  return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
-      t == vtkMeshProjectionFilter::POINTS_TO_CELLS
-    ? 0
-    : 1;
+  return t == PointsToPoints || t == PointsToCells ? 0 : 1;
 }
 inline bool ToPoints(Transfer t)
 {
-  return t == vtkMeshProjectionFilter::POINTS_TO_POINTS ||
-    t == vtkMeshProjectionFilter::CELLS_TO_POINTS;
+  return t == PointsToPoints || t == CellsToPoints;
 }
 /// The space of the Source functions transfer t reads: cell arrays are DP1 when reconstructed
 /// (Settings::ReconstructsCellData).

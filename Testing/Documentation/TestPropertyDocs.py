@@ -1,13 +1,16 @@
 """Every property of the filter has the same name and default in the C++
-header, in the plugin's XML and in the user guide's property table.
+code, in the plugin's XML and in the user guide's property table.
 
     python3 TestPropertyDocs.py SOURCE_DIR
 
-* Header (Filters/vtkMeshProjectionFilter.h): the properties are the
-  vtkSet...Macro names, their defaults the default member initializers
-  (`int MassMatrix = CONSISTENT_MASS;`, enum names resolved), plus the two
-  array selections (GetPointDataArraySelection, GetCellDataArraySelection),
-  whose default is "all".
+* Code: the properties are the vtkSet...Macro names of the header
+  (Filters/vtkMeshProjectionFilter.h), plus the two array selections
+  (GetPointDataArraySelection, GetCellDataArraySelection), whose default is
+  "all"; their defaults are the initializers of the fields of the same
+  names in Filters/Projection/Settings.h, the one place they are written
+  (`mp::ExtrapolationMode Extrapolation = mp::ExtrapolationMode::None;`,
+  enumerators resolved from the headers under Filters/). CellDataQuantity
+  and MassMatrix are the bools Extensive and Lumped there (0 or 1).
 * XML (Plugin/MeshProjection.xml): the proxy's Int/Double/StringVector
   properties (not information-only), their command (Set<Name>) and
   default_values; a "Default: X" in a property's help must agree too.
@@ -30,31 +33,73 @@ def number(text):
     return float(text)
 
 
-def header_properties(path):
+# Properties whose field in Settings.h has another name: a bool, true for the constant 1.
+BOOL_FIELDS = {"CellDataQuantity": "Extensive", "MassMatrix": "Lumped"}
+
+
+def enumerators(root):
+    """Enum::Name -> value for every enum with explicit values in the headers under Filters/."""
+    values = {}
+    for folder, _, files in os.walk(os.path.join(root, "Filters")):
+        for f in files:
+            if not f.endswith(".h"):
+                continue
+            src = open(os.path.join(folder, f), encoding="utf-8").read()
+            for enum, body in re.findall(r"\benum\s+(?:class\s+)?(\w+)[^{;]*\{([^}]*)\}", src):
+                for name, value in re.findall(r"\b(\w+)\s*=\s*(-?\d+)", body):
+                    values["%s::%s" % (enum, name)] = int(value)
+    return values
+
+
+def settings_defaults(root):
+    """The initializers of Settings.h's struct Settings: field -> number (or the text if not one)."""
+    src = open(os.path.join(root, "Filters", "Projection", "Settings.h"), encoding="utf-8").read()
+    body = re.search(r"\bstruct\s+Settings\s*\{(.*?)\n\};", src, re.S)
+    if not body:
+        raise SystemExit("Settings.h: no struct Settings")
+    # Settings.h's own unscoped enumerators, bare; any header's as Enum::Name.
+    own = {}
+    for enum_body in re.findall(r"\benum\b[^{;]*\{([^}]*)\}", src):
+        for name, value in re.findall(r"\b(\w+)\s*=\s*(-?\d+)", enum_body):
+            own[name] = int(value)
+    scoped = enumerators(root)
+    defaults = {}
+    for name, value in re.findall(
+            r"^\s*[\w:]+\s+(\w+)\s*=\s*([^;]+);", body.group(1), re.M):
+        value = value.strip()
+        qualified = "::".join(value.split("::")[-2:])
+        if value in ("true", "false"):
+            defaults[name] = 1.0 if value == "true" else 0.0
+        elif value in own:
+            defaults[name] = float(own[value])
+        elif qualified in scoped:
+            defaults[name] = float(scoped[qualified])
+        else:
+            try:
+                defaults[name] = number(value.rstrip("fF"))
+            except ValueError:
+                defaults[name] = value  # reported below if a property's
+    return defaults
+
+
+def header_properties(path, root):
     src = open(path, encoding="utf-8").read()
     enums = {}
     for body in re.findall(r"\benum\b[^{;]*\{([^}]*)\}", src):
         for name, value in re.findall(r"\b([A-Z][A-Z0-9_]*)\s*=\s*(-?\d+)", body):
             enums[name] = int(value)
     names = re.findall(r"\bvtkSet(?:Clamp)?Macro\(\s*(\w+)\s*,", src)
-    defaults = {}
-    for name, value in re.findall(
-            r"^\s*(?:bool|int|double|float|vtkIdType)\s+(\w+)\s*=\s*([^;]+);", src, re.M):
-        value = value.strip()
-        if value in ("true", "false"):
-            defaults[name] = 1.0 if value == "true" else 0.0
-        elif value in enums:
-            defaults[name] = float(enums[value])
-        else:
-            try:
-                defaults[name] = number(value.rstrip("fF"))
-            except ValueError:
-                defaults[name] = value  # not a property's, or reported below
+    defaults = settings_defaults(root)
     props = {}
     for name in names:
-        if name not in defaults:
-            raise SystemExit("header: %s has a vtkSet macro but no default member initializer" % name)
-        props[name] = defaults[name]
+        field = BOOL_FIELDS.get(name, name)
+        if field not in defaults:
+            raise SystemExit("Settings.h: %s has a vtkSet macro in the header but no field %s "
+                             "with an initializer" % (name, field))
+        if not isinstance(defaults[field], float):
+            raise SystemExit("Settings.h: %s's initializer %r is not a number, bool or enumerator"
+                             % (field, defaults[field]))
+        props[name] = defaults[field]
     if "GetPointDataArraySelection" in src:
         props["PointDataArrays"] = ALL
     if "GetCellDataArraySelection" in src:
@@ -155,7 +200,8 @@ def guide_properties(path, problems, enums):
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
     problems = []
-    header, comment, enums = header_properties(os.path.join(root, "Filters", "vtkMeshProjectionFilter.h"))
+    header, comment, enums = header_properties(
+        os.path.join(root, "Filters", "vtkMeshProjectionFilter.h"), root)
     xml, xml_groups = xml_properties(os.path.join(root, "Plugin", "MeshProjection.xml"), problems)
     guide, guide_groups = guide_properties(os.path.join(root, "docs", "user-guide.md"), problems, enums)
     for name in sorted(set(xml_groups) | set(guide_groups)):
@@ -164,7 +210,7 @@ def main():
                             % (name, xml_groups.get(name), guide_groups.get(name)))
     if "docs/user-guide.md" not in comment:
         problems.append("header: the class comment does not point at docs/user-guide.md")
-    sources = {"header": header, "XML": xml, "user guide": guide}
+    sources = {"code": header, "XML": xml, "user guide": guide}
     names = set(header) | set(xml) | set(guide)
     for name in sorted(names):
         seen = {where: props[name] for where, props in sources.items() if name in props}
@@ -179,7 +225,8 @@ def main():
     if problems:
         print("FAILED:\n  " + "\n  ".join(problems))
         return 1
-    print("every property has one name and one default in the header, the XML and the user guide")
+    print("every property has one name and one default in the code (the header's setters, Settings.h), "
+          "the XML and the user guide")
     return 0
 
 
