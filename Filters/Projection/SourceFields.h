@@ -14,7 +14,9 @@
  * same cells form a NaN group, projected by an operator of its own with
  * those cells as a hole, so that the rest of the covered part stays
  * conservative. On several processes every array with such values on any
- * process has a group of its own (the solves are collective).
+ * process has a group of its own (the solves are collective). An array
+ * that some of Source's pieces (processes) or blocks lack comes with NaN
+ * there (Adapter/PieceArrays.h): those cells are its hole, the same way.
  */
 #ifndef MeshProjection_Projection_SourceFields_h
 #define MeshProjection_Projection_SourceFields_h
@@ -23,6 +25,7 @@
 #include "Mesh/MeshView.h"
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -72,6 +75,9 @@ struct GatheredFields : FieldBlock
   std::vector<int> Offsets; ///< each array's first column
   std::string Key;                ///< names and components: which solution a warm start may reuse
   std::vector<NaNGroup> Groups;   ///< the arrays with non-finite values
+  /// Names of the arrays that some Source pieces or blocks lack, NaN there
+  /// (Adapter/PieceArrays.h): their hole is said by that rule's warning.
+  std::set<std::string> Holes;
 };
 
 /// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
