@@ -17,7 +17,8 @@ silently (Adapter/PieceArrays.h states the rule):
  - corrupt cell ids on the Source piece or the Input piece of one process:
    the same error on every process;
  - an empty Input piece, an Input piece without an array or with other
-   components of it: the fields are projected on the others as in serial.
+   components of it: the fields are projected on the others as in serial;
+ - no Source on one process: the same error on every process.
 """
 import sys
 
@@ -260,5 +261,14 @@ for what in ("empty", "without an array", "other components"):
     check(everywhere(not errors), "Input piece %s: an error on some process: %s" % (what, errors))
     if rank != bad or what != "empty":
         compare(out, serial, ("f", "p", "v", "c"), "Input piece %s" % what)
+
+# 7. No Source on the bad process (its Source port left empty): the same
+# error on every process, no wait in the gathering.
+out, warnings, errors = run(meshprojection.vtkPMeshProjectionFilter, lt,
+                            None if rank == bad else source_piece())
+check(everywhere(len(errors) > 0), "no Source on one process: no error on some process")
+first = errors[0].strip().split(" (on process")[0] if errors else ""
+check("No Source" in first, "no Source on one process: the error %r" % first)
+check(same_everywhere(first), "no Source on one process: errors differ")
 
 check.finish("%d processes, spoiled pieces" % size)
