@@ -4,8 +4,8 @@ differs from the others' or is spoiled, on the Source or on the Input. Every
 run ends on every process (no hang), alike on all, and no array is dropped
 silently (Adapter/PieceArrays.h states the rule):
 
- - a Source point and a cell array missing on the last process's piece are
-   projected where present: the output equals the serial projection of the
+ - Source point arrays (one of doubles, one of integers) and a cell array
+   missing on the last process's piece are projected where present: the output equals the serial projection of the
    whole Source with NaN where that piece alone has them (1e-10 of the
    range), and every process warns once, naming each, with the same text;
  - an array with 3 components on the last piece and 1 on the others is not
@@ -108,6 +108,9 @@ add(whole.GetPointData(), "f", np.sin(3 * x[:, 0]) + x[:, 1] ** 2)
 add(whole.GetPointData(), "p", 1 + 2 * x[:, 0] - x[:, 1])
 add(whole.GetPointData(), "v", x[:, 0] * x[:, 1])
 add(whole.GetCellData(), "c", np.cos(2 * centres(whole)[:, 0]))
+n = numpy_to_vtk((10 * x[:, 1]).astype(np.int32), deep=True)  # integers: joined as double
+n.SetName("n")
+whole.GetPointData().AddArray(n)
 # Source pieces: slabs along x by cell centre; Input pieces: random.
 cx = centres(whole)[:, 0]
 lo, hi = cx.min(), cx.max() + 1e-9
@@ -115,7 +118,7 @@ slab = np.floor((cx - lo) / (hi - lo) * size).astype(int)
 mine = slab == rank
 lt = meshes.extract(target, np.random.default_rng(7).integers(0, size, target.GetNumberOfCells()) == rank)
 
-ranges = {"f": 2.0, "p": 3.0, "c": 2.0}
+ranges = {"f": 2.0, "p": 3.0, "c": 2.0, "n": 10.0}
 
 
 def compare(out, serial, fields, what):
@@ -155,6 +158,7 @@ def source_piece(spoil=None):
 # 1. Point array 'p' and cell array 'c' missing on the bad process's piece.
 def drop(piece):
     piece.GetPointData().RemoveArray("p")
+    piece.GetPointData().RemoveArray("n")
     piece.GetCellData().RemoveArray("c")
 
 
@@ -163,12 +167,13 @@ holed = copy(whole)
 present = np.zeros(whole.GetNumberOfPoints(), bool)
 present[vtk_to_numpy(whole.GetCells().GetConnectivityArray()).reshape(-1, 3)[~(slab == bad)].ravel()] = True
 vtk_to_numpy(holed.GetPointData().GetArray("p"))[~present] = np.nan
+add(holed.GetPointData(), "n", np.where(present, vtk_to_numpy(n), np.nan))
 vtk_to_numpy(holed.GetCellData().GetArray("c"))[slab == bad] = np.nan
 check(np.isnan(vtk_to_numpy(holed.GetPointData().GetArray("p"))).any(), "the reference has a hole")
 serial, _, _ = run(meshprojection.vtkMeshProjectionFilter, target, holed)
 check(not errors, "missing arrays: errors %s" % errors)
-compare(out, serial, ("f", "p", "v", "c"), "missing arrays")
-for name in ("'p'", "'c'"):
+compare(out, serial, ("f", "p", "n", "v", "c"), "missing arrays")
+for name in ("'p'", "'n'", "'c'"):
     said = [w for w in warnings if name in w and "missing on process %d" % bad in w]
     check(len(said) == 1, "missing arrays: one warning naming %s, got %s" % (name, warnings))
     check(same_everywhere(said[0] if said else ""), "missing arrays: the warning on %s differs" % name)
