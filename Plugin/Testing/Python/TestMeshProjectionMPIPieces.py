@@ -14,8 +14,8 @@ silently (Adapter/PieceArrays.h states the rule):
  - an empty Source piece makes no array missing: no warning, the fields
    equal the serial projection of the other pieces;
  - a Source piece with a NaN point value: projected, no error;
- - corrupt cell ids on the Source piece or the Input piece of one process:
-   the same error on every process;
+ - corrupt cell ids or a NaN coordinate on the Source piece or the Input
+   piece of one process: the same error on every process;
  - an empty Input piece, an Input piece without an array or with other
    components of it: the fields are projected on the others as in serial;
  - no Source on one process: the same error on every process.
@@ -224,8 +224,8 @@ check(out.GetPointData().GetNumberOfTuples() == 0 or out.GetPointData().GetArray
       "NaN point: 'f' dropped")
 
 
-# 5. Corrupt cell ids on the bad process's Source piece, then Input piece:
-# the same error on every process.
+# 5. Corrupt cell ids, then a NaN coordinate, on the bad process's Source
+# piece, then Input piece: the same error on every process.
 def corrupt(g):
     conn = vtk_to_numpy(g.GetCells().GetConnectivityArray())
     if len(conn):
@@ -233,16 +233,25 @@ def corrupt(g):
         g.GetCells().Modified()
 
 
-for where in ("Source", "Input"):
-    s = source_piece(corrupt if where == "Source" else None)
-    t = copy(lt)
-    if where == "Input" and rank == bad:
-        corrupt(t)
-    out, warnings, errors = run(meshprojection.vtkPMeshProjectionFilter, t, s)
-    check(everywhere(len(errors) > 0), "corrupt %s piece: no error on some process" % where)
-    first = errors[0] if errors else ""
-    check(where in first, "corrupt %s piece: the error does not name it: %s" % (where, first))
-    check(same_everywhere(first.strip().split(" (on process")[0]), "corrupt %s piece: errors differ: %r" % (where, first))
+def nan_coordinate(g):
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    if len(x):
+        x[len(x) // 2, 1] = np.nan
+        g.GetPoints().Modified()
+
+
+for spoil, how in ((corrupt, "corrupt"), (nan_coordinate, "NaN coordinate in a")):
+    for where in ("Source", "Input"):
+        s = source_piece(spoil if where == "Source" else None)
+        t = copy(lt)
+        if where == "Input" and rank == bad:
+            spoil(t)
+        out, warnings, errors = run(meshprojection.vtkPMeshProjectionFilter, t, s)
+        what = "%s %s piece" % (how, where)
+        check(everywhere(len(errors) > 0), "%s: no error on some process" % what)
+        first = errors[0] if errors else ""
+        check(where in first, "%s: the error does not name it: %s" % (what, first))
+        check(same_everywhere(first.strip().split(" (on process")[0]), "%s: errors differ: %r" % (what, first))
 
 
 # 6. Input pieces: empty, without an array, with other components of it on
