@@ -90,7 +90,7 @@ JoinedFields JoinPieceFields(const std::vector<std::vector<PieceField>>& pieces,
           }
           how.push_back(Kind(v.first.first, v.first.second) + " on " + Listed(on));
         }
-        joined.Warnings.push_back(label + name + "' is not projected: it differs between the Source " +
+        joined.Warnings[association][name] = (label + name + "' is not projected: it differs between the Source " +
           whole + " (" + Listed(how) + "). Make it alike on all of them (or rename one).");
         continue;
       }
@@ -116,7 +116,7 @@ JoinedFields JoinPieceFields(const std::vector<std::vector<PieceField>>& pieces,
         }
         without.push_back(names[i]);
       }
-      joined.Warnings.push_back(label + name + "' is missing on " + Listed(without) + ": it is projected from the Source " +
+      joined.Warnings[association][name] = (label + name + "' is missing on " + Listed(without) + ": it is projected from the Source " +
         whole + " that have it, the Source cells without it " +
         "being a hole in Source for it, as NaN values are (its values there are NaN" +
         (real ? "" : "; it is joined as double") + "). Input points and cells left without " +

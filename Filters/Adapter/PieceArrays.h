@@ -47,8 +47,8 @@ struct JoinedFields
   std::map<std::string, PieceField> Kept[2];
   /// Per association, the names of those kept with a hole (NaN where missing).
   std::set<std::string> Holes[2];
-  /// One warning per field with a hole or refused, in association then name order.
-  std::vector<std::string> Warnings;
+  /// Per association, the warning on each field with a hole or refused, by name.
+  std::map<std::string, std::string> Warnings[2];
 };
 
 /// The fields (numeric, FieldArrays.h) of a dataset's points and cells.

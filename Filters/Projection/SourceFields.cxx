@@ -263,6 +263,14 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
 {
   for (int association = 0; association < 2; ++association)
   {
+    // Arrays that differ between Source's pieces or blocks (Adapter/PieceArrays.h).
+    for (const auto& warning : fields[association].PieceWarnings)
+    {
+      if (selections[association]->ArrayIsEnabled(warning.first.c_str()))
+      {
+        messages.WarnOnce("pieces/" + warning.second, warning.second); // once, not at every step
+      }
+    }
     SelectArrays(source, association, selections[association], messages, fields[association]);
   }
   fields[1].Key += extensive ? "extensive" : "intensive";

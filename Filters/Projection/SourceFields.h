@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkDataArray;
@@ -78,6 +79,9 @@ struct GatheredFields : FieldBlock
   /// Names of the arrays that some Source pieces or blocks lack, NaN there
   /// (Adapter/PieceArrays.h): their hole is said by that rule's warning.
   std::set<std::string> Holes;
+  /// That rule's warnings (name, text), on arrays with a hole or refused:
+  /// said when the array is selected.
+  std::vector<std::pair<std::string, std::string>> PieceWarnings;
 };
 
 /// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
@@ -86,7 +90,9 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group);
 /**
  * The fields of `source` (wrapped as `mesh`) that `selections` (points,
  * cells) enable; warns of arrays skipped (not numeric, too short) or
- * projected as real values (integers), and of NaN groups.
+ * projected as real values (integers), of NaN groups, and says the
+ * PieceWarnings of the arrays enabled (`fields` comes with Holes and
+ * PieceWarnings set).
  */
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,

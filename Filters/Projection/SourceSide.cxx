@@ -22,19 +22,19 @@ bool SourceSide::AnyTransfer(const Settings& settings) const
 
 namespace
 {
-/// Says the warnings of PieceArrays.h's rule (once per text, not at every
-/// step) and marks the fields with a hole, whose NaN values that warning
-/// already explains.
-void SayJoined(const JoinedFields& joined, Messages& messages, SourceSide& side)
+/// Hands PieceArrays.h's decision to the fields' stage, which says its
+/// warnings for the arrays selected (SourceFields.h): the fields with a
+/// hole, the warnings by name (the blocks' first, then the processes').
+void KeepJoined(const JoinedFields& joined, SourceSide& side)
 {
-  for (const std::string& warning : joined.Warnings)
-  {
-    messages.WarnOnce("pieces/" + warning, warning);
-  }
   for (int association = 0; association < 2; ++association)
   {
-    side.Fields[association].Holes.insert(
-      joined.Holes[association].begin(), joined.Holes[association].end());
+    GatheredFields& g = side.Fields[association];
+    g.Holes.insert(joined.Holes[association].begin(), joined.Holes[association].end());
+    for (const auto& warning : joined.Warnings[association])
+    {
+      g.PieceWarnings.push_back(warning);
+    }
   }
 }
 } // namespace
@@ -60,8 +60,8 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   // (With a reconstruction of cell data, and the cells around them.)
   JoinedFields pieces; // fields that differ between the processes' pieces
   source = parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed, pieces);
-  SayJoined(blocks, messages, side);
-  SayJoined(pieces, messages, side);
+  KeepJoined(blocks, side);
+  KeepJoined(pieces, side);
   if (!failed.empty())
   {
     return Verdict::Fail(failed);

@@ -9,7 +9,8 @@ process), by the rule the processes' pieces follow (Adapter/PieceArrays.h):
  - 'v', with 1 component on the first block and 3 on the second, is not
    projected, and a warning names it and says how the blocks differ;
  - an empty block holding none of these arrays makes none missing;
- - 'f', on every block, equals the uncut mesh's projection.
+ - 'f', on every block, equals the uncut mesh's projection;
+ - deselected, 'v' and 'p' get no warning (they are not wanted).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -25,8 +26,10 @@ def add(data, name, values):
     data.AddArray(a)
 
 
-def run(target, source):
+def run(target, source, disabled=()):
     f, texts = observed_filter("WarningEvent", "ErrorEvent")
+    for name in disabled:
+        f.GetPointDataArraySelection().DisableArray(name)
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetCacheOperator(False)
@@ -93,4 +96,8 @@ for data, rdata in ((out.GetPointData(), ref.GetPointData()), (out.GetCellData()
 mask = out.GetPointData().GetArray("vtkValidPointMask_p")
 valid = vtk_to_numpy(mask).astype(bool) if mask is not None else np.zeros(0, bool)
 check(valid.any() and not valid.all(), "'p' valid at some points, not all (%d of %d)" % (valid.sum(), len(valid)))
+# Deselected, 'v' and 'p' are not projected anyway: no warning on them.
+_, texts = run(target, source, disabled=("v", "p"))
+check(not [t for t in texts if "'v'" in t or "'p'" in t], "warnings on deselected arrays: %s" % texts)
+check(len([t for t in texts if "'c' is missing" in t]) == 1, "the warning on 'c' when 'p' is deselected: %s" % texts)
 finish()
