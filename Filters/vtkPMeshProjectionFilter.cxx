@@ -4,6 +4,7 @@
 #include "vtkMeshProjectionFilterInternals.h"
 
 #include "Parallel/MPIParts.h"
+#include "Projection/Outputs.h"
 
 #include "vtkCommunicator.h"
 #include "vtkInformation.h"
@@ -11,7 +12,9 @@
 #include "vtkMPICommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnstructuredGrid.h"
 
 vtkStandardNewMacro(vtkPMeshProjectionFilter);
 vtkCxxSetObjectMacro(vtkPMeshProjectionFilter, Controller, vtkMultiProcessController);
@@ -73,7 +76,31 @@ int vtkPMeshProjectionFilter::RequestData(
     return 0;
   }
   mpvtk::MPIParts parts(controller);
+<<<<<<< HEAD
   this->Internal->Parts = &parts;
+=======
+  // Whether there is anything to project is agreed before any collective:
+  // a process without Input or Source ends every process with its error
+  // (the serial filter decides it per process, where a process that stops
+  // would leave the others waiting in the gathering).
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  const mpvtk::Verdict present = parts.Agree(!input
+      ? mpvtk::Verdict::Fail("No Input on this process (input port 0): nothing to project.")
+      : !vtkDataObject::GetData(inputVector[1], 0)
+      ? mpvtk::Verdict::Fail("No Source is connected (input port 1): nothing to project.")
+      : mpvtk::Verdict());
+  if (!present.Ok())
+  {
+    if (input)
+    {
+      mpvtk::PassInput(input, vtkDataObject::GetData(outputVector, 0),
+        vtkPolyData::GetData(outputVector, 1), vtkUnstructuredGrid::GetData(outputVector, 2));
+    }
+    vtkErrorMacro(<< present.Why);
+    return 1;
+  }
+  this->Parts = &parts;
+>>>>>>> mpiarrays
   const int done = this->Superclass::RequestData(request, inputVector, outputVector);
   this->Internal->Parts = nullptr;
   this->ReceivedSourceCells = parts.Received;

@@ -73,7 +73,7 @@ public:
 
   /// See Parts::GatherSource (SourceGather.cxx).
   vtkSmartPointer<vtkDataSet> GatherSource(vtkDataSet* source, vtkDataObject* input, double reach,
-    bool neighborLayer, std::string& error) override;
+    bool neighborLayer, std::string& error, JoinedFields& joined) override;
 
   // The shared points (SharedPoints.cxx).
   vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;

@@ -8,7 +8,7 @@
 namespace mpvtk
 {
 vtkSmartPointer<vtkDataSet> SerialParts::GatherSource(
-  vtkDataSet* source, vtkDataObject*, double, bool, std::string& error)
+  vtkDataSet* source, vtkDataObject*, double, bool, std::string& error, JoinedFields&)
 {
   return error.empty() ? source : nullptr;
 }

@@ -19,6 +19,7 @@
 #ifndef MeshProjection_Parallel_Parts_h
 #define MeshProjection_Parallel_Parts_h
 
+#include "Adapter/PieceArrays.h" // JoinedFields
 #include "Transfer/BlockCG.h" // SolverHooks
 #include "Transfer/MortarOperator.h" // FringeHalo
 
@@ -80,14 +81,17 @@ public:
    * Input cells grown by `reach` times the cell's size (surfaces meet within
    * a reach), merged by their points' global ids (the Source's GlobalIds, or
    * ids made from each process's numbering) into one grid whose points are
-   * in the order of those ids, which it carries as GlobalIds. Only the
-   * fields (ArraySelection.h) that every process's Source has are kept.
+   * in the order of those ids, which it carries as GlobalIds. The fields
+   * follow PieceArrays.h's rule over the processes with Source cells (one
+   * missing on some processes is kept, NaN there; one that differs is
+   * left out): `joined` says which, with the warnings (the same on every
+   * process; serial: nothing).
    * With `neighborLayer`, also every cell that shares a point with such a
    * cell, and the cells around those (the neighbours a reconstruction of
    * cell data fits its gradients to: CellReconstruction.h).
    */
   virtual vtkSmartPointer<vtkDataSet> GatherSource(vtkDataSet* source, vtkDataObject* input,
-    double reach, bool neighborLayer, std::string& error) = 0;
+    double reach, bool neighborLayer, std::string& error, JoinedFields& joined) = 0;
 
   /**
    * The verdict of the lowest process whose verdict is not Done (its own
@@ -148,7 +152,7 @@ public:
   int Rank() const override { return 0; }
   int Size() const override { return 1; }
   vtkSmartPointer<vtkDataSet> GatherSource(
-    vtkDataSet* source, vtkDataObject*, double, bool, std::string& error) override;
+    vtkDataSet* source, vtkDataObject*, double, bool, std::string& error, JoinedFields&) override;
   Verdict Agree(const Verdict& mine, bool*) override { return mine; }
   void Or(std::vector<char>&) override {}
   void Sum(double*, int) override {}

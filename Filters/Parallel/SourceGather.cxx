@@ -13,8 +13,10 @@
  *     it (finer than one bounding box, so that an L-shaped part does not
  *     ask for the Source cells in its notch);
  *  2. every process's Cover goes to every process;
- *  3. the processes agree on the fields every Source has, and on global
- *     ids for the Source's points;
+ *  3. the processes agree on the fields they project (PieceArrays.h's
+ *     rule over the processes with Source cells: one missing on some is
+ *     kept with NaN there, one that differs is left out, each said), and
+ *     on global ids for the Source's points;
  *  4. each Source cell goes, as a small grid of its own (a piece), to
  *     every process whose Cover it meets (with the neighbour layer, also
  *     to those whose Cover it meets grown by the LayerMargins);
@@ -28,6 +30,7 @@
 #include "Adapter/DataSetChecks.h"
 #include "Adapter/FieldArrays.h"
 #include "Adapter/Ghosts.h"
+#include "Adapter/PieceArrays.h"
 
 #include "vtkCellData.h"
 #include "vtkCellType.h"
@@ -48,6 +51,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -110,37 +114,14 @@ private:
   vtkNew<vtkIdList> Ids;
 };
 
-/// The arrays of a dataset's points or cells that take part: numeric, named
-/// fields (Projection/ArraySelection.h).
-std::vector<vtkDataArray*> ArraysOf(vtkDataSetAttributes* data)
-{
-  std::vector<vtkDataArray*> arrays;
-  for (int i = 0; i < data->GetNumberOfArrays(); ++i)
-  {
-    vtkDataArray* a = data->GetArray(i);
-    if (!a || !a->GetName() || !mpvtk::IsField(data, a))
-    {
-      continue;
-    }
-    arrays.push_back(a);
-  }
-  return arrays;
-}
-
-std::string Signature(vtkDataArray* a)
-{
-  return std::string(a->GetName()) + "\t" + std::to_string(a->GetDataType()) + "\t" +
-    std::to_string(a->GetNumberOfComponents());
-}
-
-/// The fields of Source that the processes agreed on, and its points' ids.
+/// The fields of Source the processes agreed on (PieceArrays.h), and its points' ids.
 struct SourceFields
 {
-  /// This process's arrays of Source's points (0) and cells (1) that every
-  /// process's Source (with cells) has, in the Source's order.
+  /// This process's arrays of Source's points (0) and cells (1) that are
+  /// kept, in the Source's order.
   std::vector<vtkDataArray*> Arrays[2];
-  /// Their signatures (Signature: name, type, components), sorted.
-  std::vector<std::string> Common[2];
+  /// The rule's decision over the processes with Source cells.
+  JoinedFields Joined;
   /// Per Source point, its global id.
   std::vector<long long> Key;
 };
@@ -301,9 +282,9 @@ std::vector<Cover> ShareCovers(MPIParts& parts, const Cover& mine)
 // 3. ---------------------------------------------------------------------------
 /// What this process tells the others of its Source: whether it has cells,
 /// whether its GlobalIds are usable (or it has no cells: then it does not
-/// stand in the way), then one line per field ("0" points, "1" cells, then
-/// its Signature).
-std::string FieldsText(vtkDataSet* source, const std::vector<vtkDataArray*> (&arrays)[2])
+/// stand in the way), then one line per field (FieldsOfPiece: association,
+/// type, components, name).
+std::string FieldsText(vtkDataSet* source)
 {
   vtkDataArray* global = source->GetPointData()->GetGlobalIds();
   const bool has = source->GetNumberOfCells() > 0;
@@ -311,62 +292,67 @@ std::string FieldsText(vtkDataSet* source, const std::vector<vtkDataArray*> (&ar
     global->GetNumberOfTuples() >= source->GetNumberOfPoints();
   std::string text = has ? "1" : "0";
   text += usable || !has ? "1\n" : "0\n";
-  for (int a = 0; a < 2; ++a)
+  for (const PieceField& f : FieldsOfPiece(source))
   {
-    for (vtkDataArray* array : arrays[a])
-    {
-      text += std::to_string(a) + "\t" + Signature(array) + "\n";
-    }
+    text += std::to_string(f.Association) + "\t" + std::to_string(f.Type) + "\t" +
+      std::to_string(f.Components) + "\t" + f.Name + "\n";
   }
   return text;
 }
 
-/// From every process's FieldsText: the fields that every Source with cells
-/// has (into `common`), and whether all their GlobalIds are usable.
-bool ReadFieldsTexts(const std::vector<std::vector<char>>& texts, std::vector<std::string> (&common)[2])
+/// The fields of one FieldsText.
+std::vector<PieceField> ReadFields(const std::string& t)
+{
+  std::vector<PieceField> fields;
+  size_t at = t.find('\n') + 1;
+  while (at > 0 && at < t.size())
+  {
+    const size_t end = t.find('\n', at);
+    const std::string line = t.substr(at, end - at);
+    const size_t a = line.find('\t');
+    const size_t b = line.find('\t', a + 1);
+    const size_t c = line.find('\t', b + 1);
+    fields.push_back({ std::stoi(line.substr(0, a)), line.substr(c + 1),
+      std::stoi(line.substr(a + 1, b - a - 1)), std::stoi(line.substr(b + 1, c - b - 1)) });
+    at = end + 1;
+  }
+  return fields;
+}
+
+/// From every process's FieldsText: the rule (PieceArrays.h) over the
+/// processes with Source cells (into `joined`), and whether all their
+/// GlobalIds are usable.
+bool ReadFieldsTexts(const std::vector<std::vector<char>>& texts, JoinedFields& joined)
 {
   bool ownIds = true;
-  std::map<std::string, int> seen;
-  int sources = 0;
-  for (const std::vector<char>& in : texts)
+  std::vector<std::vector<PieceField>> pieces;
+  std::vector<std::string> names;
+  for (size_t r = 0; r < texts.size(); ++r)
   {
-    const std::string t(in.begin(), in.end());
+    const std::string t(texts[r].begin(), texts[r].end());
     if (t.size() < 2 || t[0] != '1')
     {
       ownIds = ownIds && (t.size() < 2 || t[1] == '1');
       continue;
     }
     ownIds = ownIds && t[1] == '1';
-    ++sources;
-    size_t at = t.find('\n') + 1;
-    while (at < t.size())
-    {
-      const size_t end = t.find('\n', at);
-      ++seen[t.substr(at, end - at)];
-      at = end + 1;
-    }
+    pieces.push_back(ReadFields(t));
+    names.push_back("process " + std::to_string(r));
   }
-  for (const auto& s : seen)
-  {
-    if (s.second == sources)
-    {
-      common[s.first[0] - '0'].push_back(s.first.substr(2));
-    }
-  }
+  joined = JoinPieceFields(pieces, names, "pieces");
   return ownIds;
 }
 
-/// The fields every process's Source has (those with cells); global ids of
-/// the Source's points: its own when every process has them, else each
-/// process's numbering after those of the processes before it.
+/// The fields kept over the processes' Source (those with cells:
+/// PieceArrays.h's rule); global ids of the Source's points: its own when
+/// every process has them, else each process's numbering after those of
+/// the processes before it.
 SourceFields AgreeOnFields(MPIParts& parts, vtkDataSet* source)
 {
   const int n = parts.Size();
   const vtkIdType np = source->GetNumberOfPoints();
   SourceFields fields;
-  fields.Arrays[0] = ArraysOf(source->GetPointData());
-  fields.Arrays[1] = ArraysOf(source->GetCellData());
-  const std::string text = FieldsText(source, fields.Arrays);
+  const std::string text = FieldsText(source);
   std::vector<std::vector<char>> out(static_cast<size_t>(n));
   for (int r = 0; r < n; ++r)
   {
@@ -380,7 +366,7 @@ SourceFields AgreeOnFields(MPIParts& parts, vtkDataSet* source)
   {
     offset += counts[r];
   }
-  const bool ownIds = ReadFieldsTexts(parts.AllToAll(out), fields.Common);
+  const bool ownIds = ReadFieldsTexts(parts.AllToAll(out), fields.Joined);
   fields.Key.resize(static_cast<size_t>(np));
   vtkDataArray* global = source->GetPointData()->GetGlobalIds();
   for (vtkIdType p = 0; p < np; ++p)
@@ -389,16 +375,16 @@ SourceFields AgreeOnFields(MPIParts& parts, vtkDataSet* source)
   }
   for (int a = 0; a < 2; ++a)
   {
-    std::vector<vtkDataArray*> kept;
-    for (vtkDataArray* array : fields.Arrays[a])
+    vtkDataSetAttributes* attributes = AttributesOf(source, a);
+    for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
     {
-      if (std::find(fields.Common[a].begin(), fields.Common[a].end(), Signature(array)) !=
-        fields.Common[a].end())
+      vtkDataArray* array = attributes->GetArray(i);
+      if (array && array->GetName() && IsField(attributes, array) &&
+        fields.Joined.Kept[a].count(array->GetName()))
       {
-        kept.push_back(array);
+        fields.Arrays[a].push_back(array);
       }
     }
-    fields.Arrays[a].swap(kept);
   }
   return fields;
 }
@@ -712,44 +698,38 @@ void MergeCells(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces,
   copier.Finish();
 }
 
-/// The merged array of one agreed field (a = 0: points, 1: cells; its
-/// Signature), null when a piece came without it.
+/// The merged array of one kept field (a = 0: points, 1: cells), in its
+/// joined type; NaN where a piece came without it when it has a `hole`,
+/// else null when one did.
 vtkSmartPointer<vtkDataArray> MergedArray(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces,
-  const Merged& merged, int a, const std::string& signature)
+  const Merged& merged, int a, const PieceField& field, bool hole)
 {
-  const size_t tab = signature.find('\t');
-  const std::string name = signature.substr(0, tab);
-  const int type = std::stoi(signature.substr(tab + 1));
-  const int nc = std::stoi(signature.substr(signature.rfind('\t') + 1));
+  const char* name = field.Name.c_str();
   vtkSmartPointer<vtkDataArray> array;
-  array.TakeReference(vtkDataArray::CreateDataArray(type));
-  array->SetName(name.c_str());
-  array->SetNumberOfComponents(nc);
+  array.TakeReference(vtkDataArray::CreateDataArray(field.Type));
+  array->SetName(name);
+  array->SetNumberOfComponents(field.Components);
   array->SetNumberOfTuples(a == 0 ? merged.Points : merged.Cells);
+  if (hole)
+  {
+    // A point shared with a piece that has the field takes its value (the
+    // pieces without it leave theirs as NaN).
+    array->Fill(std::numeric_limits<double>::quiet_NaN());
+  }
   vtkIdType at = 0;
   for (size_t i = 0; i < pieces.size(); ++i)
   {
-    vtkDataArray* from = mpvtk::AttributesOf(pieces[i], a)
-                           ->GetArray(name.c_str());
-    if (!from)
+    vtkDataArray* from = mpvtk::AttributesOf(pieces[i], a)->GetArray(name);
+    const vtkIdType count = a == 0 ? pieces[i]->GetNumberOfPoints() : pieces[i]->GetNumberOfCells();
+    if (!from && !hole)
     {
       return nullptr;
     }
-    if (a == 0)
+    for (vtkIdType k = 0; from && k < count; ++k)
     {
-      for (vtkIdType p = 0; p < pieces[i]->GetNumberOfPoints(); ++p)
-      {
-        array->SetTuple(merged.NewId[i][p], p, from);
-      }
+      array->SetTuple(a == 0 ? merged.NewId[i][k] : at + k, k, from);
     }
-    else
-    {
-      for (vtkIdType c = 0; c < pieces[i]->GetNumberOfCells(); ++c)
-      {
-        array->SetTuple(at + c, c, from);
-      }
-      at += pieces[i]->GetNumberOfCells();
-    }
+    at += a == 0 ? 0 : count;
   }
   return array;
 }
@@ -780,21 +760,21 @@ void AddLikeSource(vtkDataSetAttributes* to, vtkDataArray* array, vtkDataSetAttr
   }
 }
 
-/// The agreed fields on the merged grid, in the Source's own types and
-/// order; `error` when a piece came without one.
+/// The kept fields on the merged grid, in their joined types, by name;
+/// `error` when a piece came without one that has no hole.
 void MergeFields(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces, vtkDataSet* source,
   const SourceFields& fields, Merged& merged, std::string& error)
 {
   for (int a = 0; a < 2; ++a)
   {
     const int association = a == 0 ? vtkDataObject::POINT : vtkDataObject::CELL;
-    for (const std::string& signature : fields.Common[a])
+    for (const auto& kept : fields.Joined.Kept[a])
     {
-      vtkSmartPointer<vtkDataArray> array = MergedArray(pieces, merged, a, signature);
+      vtkSmartPointer<vtkDataArray> array =
+        MergedArray(pieces, merged, a, kept.second, fields.Joined.Holes[a].count(kept.first) > 0);
       if (!array)
       {
-        error = "Source array '" + signature.substr(0, signature.find('\t')) +
-          "' is missing from the cells of a process";
+        error = "Source array '" + kept.first + "' is missing from the cells of a process";
         return;
       }
       AddLikeSource(
@@ -806,10 +786,11 @@ void MergeFields(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces
 /// Steps 1 to 5: the gathered Source (null with `error` on this process's
 /// failure; the caller agrees on it).
 vtkSmartPointer<vtkDataSet> Gather(MPIParts& parts, vtkDataSet* source, vtkDataObject* input,
-  double reach, bool layer, std::string& error)
+  double reach, bool layer, std::string& error, JoinedFields& joined)
 {
   const std::vector<Cover> covers = ShareCovers(parts, CoverOf(GrownCellBoxes(input, reach)));
   const SourceFields fields = AgreeOnFields(parts, source);
+  joined = fields.Joined;
   const std::vector<double> margins = LayerMargins(parts, source, covers, layer);
   const std::vector<vtkSmartPointer<vtkUnstructuredGrid>> pieces =
     ExchangePieces(parts, source, CellsFor(source, covers, margins), fields, error);
@@ -834,7 +815,7 @@ vtkSmartPointer<vtkDataSet> Gather(MPIParts& parts, vtkDataSet* source, vtkDataO
 } // namespace
 
 vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(vtkDataSet* source, vtkDataObject* input,
-  double reach, bool neighborLayer, std::string& error)
+  double reach, bool neighborLayer, std::string& error, JoinedFields& joined)
 {
   // The checks run before any cell is read, and all processes learn of a
   // failure on any of them before the gathering's exchanges start.
@@ -848,7 +829,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(vtkDataSet* source, vtkDataOb
     error = all.Why;
     return nullptr;
   }
-  vtkSmartPointer<vtkDataSet> gathered = Gather(*this, source, input, reach, neighborLayer, error);
+  vtkSmartPointer<vtkDataSet> gathered = Gather(*this, source, input, reach, neighborLayer, error, joined);
   all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
   if (!all.Ok())
   {

@@ -6,8 +6,12 @@
  *
  * On several processes every process takes part in each round, in order:
  * Shape (whether the leaf is a surface: any process's parts out of one
- * plane), Build (whether every process can reuse its kept operators) and
- * Solve (whether every process built its operators). A process that fails
+ * plane), Build (whether every process can reuse its kept operators),
+ * Solve (whether every process built its operators) and Solved (whether
+ * every process's solves and extrapolation went through, before the
+ * outputs' sums: a solve's sums are collective, so a failed solve fails
+ * alike everywhere, and this round makes that an agreement with the same
+ * reason on every process rather than a coincidence). A process that fails
  * or stops before a round still takes part in the rounds left, with its
  * verdict, and then acts on what the first of them agreed: the same on
  * every process (a stop here and a failure on a lower process in the same
@@ -29,7 +33,8 @@ public:
     Shape = 0,
     Build = 1,
     Solve = 2,
-    Rounds = 3
+    Solved = 3,
+    Rounds = 4
   };
 
   explicit LeafAgreement(Parts& parts)

@@ -4,6 +4,7 @@
 #include "vtkAppendFilter.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkInformation.h"
 #include "vtkDataSetAttributes.h"
@@ -14,16 +15,151 @@
 #include "Adapter/CompositeLeaves.h"
 #include "Adapter/DataSetChecks.h"
 #include "Adapter/FieldArrays.h"
+#include "Adapter/PieceArrays.h"
 #include "Parallel/Parts.h"
 #include "Projection/Messages.h"
 
 #include <algorithm>
+#include <limits>
 
 #include <set>
 
 namespace mpvtk
 {
-vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& note, std::string& error)
+namespace
+{
+/// `leaf` without its arrays that have fewer tuples than points (cells):
+/// a copy when it has any (said in `note`), else itself.
+vtkSmartPointer<vtkDataSet> WithoutShortArrays(
+  vtkDataSet* leaf, const std::string& block, std::string& note)
+{
+  vtkSmartPointer<vtkDataSet> whole = leaf;
+  for (int association = 0; association < 2; ++association)
+  {
+    const vtkIdType needed = association == 0 ? leaf->GetNumberOfPoints() : leaf->GetNumberOfCells();
+    vtkDataSetAttributes* attributes = AttributesOf(whole, association);
+    for (int a = attributes->GetNumberOfArrays() - 1; a >= 0; --a)
+    {
+      vtkAbstractArray* array = attributes->GetAbstractArray(a);
+      if (array->GetNumberOfTuples() >= needed)
+      {
+        continue;
+      }
+      note += std::string(note.empty() ? "" : " ") + block + ": " +
+        (association == 0 ? "point" : "cell") + " array '" +
+        (array->GetName() ? array->GetName() : "(unnamed)") + "' has " +
+        std::to_string(array->GetNumberOfTuples()) + " tuples for " + std::to_string(needed) +
+        ": left out.";
+      if (whole == leaf)
+      {
+        whole.TakeReference(leaf->NewInstance());
+        whole->ShallowCopy(leaf);
+        attributes = AttributesOf(whole, association);
+      }
+      attributes->RemoveArray(a);
+    }
+  }
+  return whole;
+}
+
+/**
+ * `block` made to join the others by PieceArrays.h's rule: its fields
+ * that are refused removed, those kept with a hole in their joined type
+ * (an integer one as double), or all NaN where it lacks them. A copy
+ * when anything changes, else itself.
+ */
+vtkSmartPointer<vtkDataSet> Joinable(vtkDataSet* block, const JoinedFields& joined)
+{
+  vtkSmartPointer<vtkDataSet> out = block;
+  auto own = [&]() {
+    if (out == block)
+    {
+      out.TakeReference(block->NewInstance());
+      out->ShallowCopy(block);
+    }
+  };
+  for (int association = 0; association < 2; ++association)
+  {
+    const vtkIdType tuples = association == 0 ? block->GetNumberOfPoints() : block->GetNumberOfCells();
+    for (const PieceField& f : FieldsOfPiece(block))
+    {
+      if (f.Association == association && !joined.Kept[association].count(f.Name))
+      {
+        own();
+        AttributesOf(out, association)->RemoveArray(f.Name.c_str());
+      }
+    }
+    for (const std::string& name : joined.Holes[association])
+    {
+      const PieceField& kept = joined.Kept[association].at(name);
+      vtkDataArray* has = AttributesOf(out, association)->GetArray(name.c_str());
+      if (has && has->GetDataType() == kept.Type)
+      {
+        continue;
+      }
+      vtkSmartPointer<vtkDataArray> array;
+      array.TakeReference(vtkDataArray::CreateDataArray(kept.Type));
+      array->SetName(name.c_str());
+      array->SetNumberOfComponents(kept.Components);
+      array->SetNumberOfTuples(tuples);
+      if (has)
+      {
+        array->DeepCopy(has); // (an integer field as double)
+      }
+      else
+      {
+        array->Fill(std::numeric_limits<double>::quiet_NaN());
+      }
+      own();
+      AttributesOf(out, association)->AddArray(array); // (replaces one of the same name)
+    }
+  }
+  return out;
+}
+
+/// The names of arrays of the appended blocks that the append left out
+/// (vtkAppendFilter keeps those every block has alike): said, not dropped silently.
+std::string LeftOutByAppend(vtkAppendFilter* append, vtkDataSet* merged)
+{
+  std::set<std::string> missing[2];
+  for (int i = 0; i < append->GetNumberOfInputConnections(0); ++i)
+  {
+    vtkDataSet* leaf = vtkDataSet::SafeDownCast(append->GetInputDataObject(0, i));
+    for (int association = 0; association < 2; ++association)
+    {
+      vtkDataSetAttributes* attributes = AttributesOf(leaf, association);
+      for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
+      {
+        const char* name = attributes->GetArrayName(a);
+        if (name && !AttributesOf(merged, association)->GetAbstractArray(name) &&
+          std::string(name) != vtkDataSetAttributes::GhostArrayName())
+        {
+          missing[association].insert(name);
+        }
+      }
+    }
+  }
+  std::string note;
+  for (int association = 0; association < 2; ++association)
+  {
+    if (!missing[association].empty())
+    {
+      note += std::string(note.empty() ? "" : " ") + "Source " +
+        (association == 0 ? "point" : "cell") + " arrays not in every block of Source (or " +
+        "not alike in all) are not projected:";
+      for (const std::string& name : missing[association])
+      {
+        note += " '" + name + "'";
+      }
+      note += ".";
+    }
+  }
+  return note;
+}
+} // namespace
+
+vtkSmartPointer<vtkDataSet> AppendedSource(
+  vtkDataObject* data, std::string& note, std::string& error, JoinedFields& joined)
 {
   if (vtkDataSet* one = vtkDataSet::SafeDownCast(data))
   {
@@ -34,12 +170,8 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
   {
     return nullptr;
   }
-  vtkNew<vtkAppendFilter> append;
-  append->MergePointsOff();
-  // Image and rectilinear blocks have no points of their own: computed in
-  // double, not in vtkAppendFilter's default (float for such inputs).
-  append->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  int leaves = 0;
+  std::vector<vtkSmartPointer<vtkDataSet>> blocks;
+  std::vector<std::string> names;
   int skipped = 0;
   ForEachLeaf(composite, [&](vtkCompositeDataIterator* at) {
     vtkDataSet* leaf = vtkDataSet::SafeDownCast(at->GetCurrentDataObject());
@@ -59,35 +191,8 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
     {
       return;
     }
-    // Arrays with fewer tuples than points (cells) are left out of a copy.
-    vtkSmartPointer<vtkDataSet> whole = leaf;
-    for (int association = 0; association < 2; ++association)
-    {
-      const vtkIdType needed = association == 0 ? leaf->GetNumberOfPoints() : leaf->GetNumberOfCells();
-      vtkDataSetAttributes* attributes = AttributesOf(whole, association);
-      for (int a = attributes->GetNumberOfArrays() - 1; a >= 0; --a)
-      {
-        vtkAbstractArray* array = attributes->GetAbstractArray(a);
-        if (array->GetNumberOfTuples() >= needed)
-        {
-          continue;
-        }
-        note += std::string(note.empty() ? "" : " ") + block + ": " +
-          (association == 0 ? "point" : "cell") + " array '" +
-          (array->GetName() ? array->GetName() : "(unnamed)") + "' has " +
-          std::to_string(array->GetNumberOfTuples()) + " tuples for " + std::to_string(needed) +
-          ": left out.";
-        if (whole == leaf)
-        {
-          whole.TakeReference(leaf->NewInstance());
-          whole->ShallowCopy(leaf);
-          attributes = AttributesOf(whole, association);
-        }
-        attributes->RemoveArray(a);
-      }
-    }
-    append->AddInputData(whole);
-    ++leaves;
+    blocks.push_back(WithoutShortArrays(leaf, block, note));
+    names.push_back(BlockName(at));
   });
   if (!error.empty())
   {
@@ -97,45 +202,30 @@ vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& not
   {
     note = std::to_string(skipped) + " Source blocks that are not datasets were skipped.";
   }
-  if (leaves == 0)
+  if (blocks.empty())
   {
     return vtkSmartPointer<vtkUnstructuredGrid>::New();
   }
+  // Fields that differ between the blocks: PieceArrays.h's rule.
+  std::vector<std::vector<PieceField>> fields;
+  for (const auto& block : blocks)
+  {
+    fields.push_back(FieldsOfPiece(block));
+  }
+  joined = JoinPieceFields(fields, names, "blocks");
+  vtkNew<vtkAppendFilter> append;
+  append->MergePointsOff();
+  // Image and rectilinear blocks have no points of their own: computed in
+  // double, not in vtkAppendFilter's default (float for such inputs).
+  append->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  for (const auto& block : blocks)
+  {
+    append->AddInputData(Joinable(block, joined));
+  }
   append->Update();
   vtkDataSet* merged = append->GetOutput();
-  // Arrays some blocks lack are not projected: say which.
-  std::set<std::string> missing[2];
-  for (int i = 0; i < append->GetNumberOfInputConnections(0); ++i)
-  {
-    vtkDataSet* leaf = vtkDataSet::SafeDownCast(append->GetInputDataObject(0, i));
-    for (int association = 0; association < 2; ++association)
-    {
-      vtkDataSetAttributes* attributes = AttributesOf(leaf, association);
-      for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
-      {
-        const char* name = attributes->GetArrayName(a);
-        if (name && !AttributesOf(merged, association)->GetAbstractArray(name) &&
-          std::string(name) != vtkDataSetAttributes::GhostArrayName())
-        {
-          missing[association].insert(name);
-        }
-      }
-    }
-  }
-  for (int association = 0; association < 2; ++association)
-  {
-    if (!missing[association].empty())
-    {
-      note += std::string(note.empty() ? "" : " ") + "Source " +
-        (association == 0 ? "point" : "cell") + " arrays not in every block of Source (or " +
-        "not alike in all) are not projected:";
-      for (const std::string& name : missing[association])
-      {
-        note += " '" + name + "'";
-      }
-      note += ".";
-    }
-  }
+  const std::string lost = LeftOutByAppend(append, merged);
+  note += std::string(note.empty() || lost.empty() ? "" : " ") + lost;
   return vtkSmartPointer<vtkDataSet>(merged);
 }
 

@@ -18,6 +18,7 @@ class vtkDataSet;
 
 namespace mpvtk
 {
+struct JoinedFields;
 class Messages;
 class Parts;
 
@@ -26,11 +27,15 @@ class Parts;
  * Source appended (points not merged: cells of different blocks meeting at
  * an interface see each other through the locator, and a field continuous
  * across it gives the merged mesh's result). Each block is checked first
- * (CheckDataSet: an error names it); arrays some blocks lack or hold too
- * few tuples of are left out and said in `note`. Null for a data object
- * that is neither.
+ * (CheckDataSet: an error names it); arrays with too few tuples are left
+ * out and said in `note`. Fields that differ between the blocks (those
+ * with cells) follow PieceArrays.h's rule, the same as between processes:
+ * one some blocks lack is kept, NaN on those (a hole), one with other
+ * types or components on some is left out; `joined` says which, with the
+ * warnings. Null for a data object that is neither.
  */
-vtkSmartPointer<vtkDataSet> AppendedSource(vtkDataObject* data, std::string& note, std::string& error);
+vtkSmartPointer<vtkDataSet> AppendedSource(
+  vtkDataObject* data, std::string& note, std::string& error, JoinedFields& joined);
 
 /// One dataset of Input to project, and its copy in the output.
 struct InputLeaf

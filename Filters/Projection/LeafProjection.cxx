@@ -166,6 +166,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
                                 : agreement.End(Verdict::Stop());
   if (!result.Outcome.Ok())
   {
+    result.Outcome = agreement.End(result.Outcome, true); // (the rounds left)
     return result;
   }
   SourceWeights weights(run.Source.Mesh, run.Source.Data, run.Processes);
@@ -186,6 +187,8 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   {
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
   }
+  result.Outcome = result.Outcome.Ok() ? agreement.At(LeafAgreement::Solved)
+                                       : agreement.End(result.Outcome);
   if (!result.Outcome.Ok())
   {
     return result;

@@ -154,13 +154,14 @@ std::vector<char> CellsUsing(const mp::MeshView& view, const std::vector<char>& 
   return excluded;
 }
 
-/// Says once per array how many values and cells are left out.
+/// Says once per array how many values and cells are left out (not for an
+/// array with a hole where pieces lack it: PieceArrays.h's warning said it).
 void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::string& label,
-  int association, vtkIdType values, Messages& messages)
+  int association, vtkIdType values, Messages& messages, bool hole)
 {
   const char* kind = association == 0 ? "point" : "cell";
   const std::string key = std::string("nonfinite/") + kind + "/" + label;
-  if (values == 0 || !messages.First(key))
+  if (values == 0 || hole || !messages.First(key))
   {
     return;
   }
@@ -240,7 +241,7 @@ void FindNaNGroups(const SimplexMesh& mesh, int association, Messages& messages,
     group->Arrays.push_back(a);
     group->Components += g.Arrays[a]->GetNumberOfComponents();
     const std::string label = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
-    WarnNonFinite(view, *group, label, association, values, messages);
+    WarnNonFinite(view, *group, label, association, values, messages, g.Holes.count(label) > 0);
   }
   SplitOffGroups(g, functions);
 }
@@ -262,6 +263,14 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
 {
   for (int association = 0; association < 2; ++association)
   {
+    // Arrays that differ between Source's pieces or blocks (Adapter/PieceArrays.h).
+    for (const auto& warning : fields[association].PieceWarnings)
+    {
+      if (selections[association]->ArrayIsEnabled(warning.first.c_str()))
+      {
+        messages.WarnOnce("pieces/" + warning.second, warning.second); // once, not at every step
+      }
+    }
     SelectArrays(source, association, selections[association], messages, fields[association]);
   }
   fields[1].Key += extensive ? "extensive" : "intensive";

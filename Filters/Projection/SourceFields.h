@@ -14,7 +14,9 @@
  * same cells form a NaN group, projected by an operator of its own with
  * those cells as a hole, so that the rest of the covered part stays
  * conservative. On several processes every array with such values on any
- * process has a group of its own (the solves are collective).
+ * process has a group of its own (the solves are collective). An array
+ * that some of Source's pieces (processes) or blocks lack comes with NaN
+ * there (Adapter/PieceArrays.h): those cells are its hole, the same way.
  */
 #ifndef MeshProjection_Projection_SourceFields_h
 #define MeshProjection_Projection_SourceFields_h
@@ -23,7 +25,9 @@
 #include "Mesh/MeshView.h"
 
 #include <cstdint>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkDataArray;
@@ -72,6 +76,12 @@ struct GatheredFields : FieldBlock
   std::vector<int> Offsets; ///< each array's first column
   std::string Key;                ///< names and components: which solution a warm start may reuse
   std::vector<NaNGroup> Groups;   ///< the arrays with non-finite values
+  /// Names of the arrays that some Source pieces or blocks lack, NaN there
+  /// (Adapter/PieceArrays.h): their hole is said by that rule's warning.
+  std::set<std::string> Holes;
+  /// That rule's warnings (name, text), on arrays with a hole or refused:
+  /// said when the array is selected.
+  std::vector<std::pair<std::string, std::string>> PieceWarnings;
 };
 
 /// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
@@ -80,7 +90,9 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group);
 /**
  * The fields of `source` (wrapped as `mesh`) that `selections` (points,
  * cells) enable; warns of arrays skipped (not numeric, too short) or
- * projected as real values (integers), and of NaN groups.
+ * projected as real values (integers), of NaN groups, and says the
+ * PieceWarnings of the arrays enabled (`fields` comes with Holes and
+ * PieceWarnings set).
  */
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,

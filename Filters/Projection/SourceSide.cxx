@@ -20,12 +20,32 @@ bool SourceSide::AnyTransfer(const Settings& settings) const
     (this->Fields[CellArrays].Components > 0 && settings.CellDataTarget != 0);
 }
 
+namespace
+{
+/// Hands PieceArrays.h's decision to the fields' stage, which says its
+/// warnings for the arrays selected (SourceFields.h): the fields with a
+/// hole, the warnings by name (the blocks' first, then the processes').
+void KeepJoined(const JoinedFields& joined, SourceSide& side)
+{
+  for (int association = 0; association < 2; ++association)
+  {
+    GatheredFields& g = side.Fields[association];
+    g.Holes.insert(joined.Holes[association].begin(), joined.Holes[association].end());
+    for (const auto& warning : joined.Warnings[association])
+    {
+      g.PieceWarnings.push_back(warning);
+    }
+  }
+}
+} // namespace
+
 Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   const Settings& settings, Parts& parts, Messages& messages, Statistics& stats, SourceSide& side)
 {
   std::string note;
   std::string failed;
-  vtkSmartPointer<vtkDataSet> source = AppendedSource(sourceObject, note, failed);
+  JoinedFields blocks; // fields that differ between a composite's blocks
+  vtkSmartPointer<vtkDataSet> source = AppendedSource(sourceObject, note, failed, blocks);
   if (!note.empty())
   {
     messages.WarnOnce("note/" + note, note); // once, not at every step
@@ -38,7 +58,10 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   // Each process gets the Source cells its part of Input needs, from all.
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
   // (With a reconstruction of cell data, and the cells around them.)
-  source = parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed);
+  JoinedFields pieces; // fields that differ between the processes' pieces
+  source = parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed, pieces);
+  KeepJoined(blocks, side);
+  KeepJoined(pieces, side);
   if (!failed.empty())
   {
     return Verdict::Fail(failed);
