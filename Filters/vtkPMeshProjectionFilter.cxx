@@ -76,9 +76,6 @@ int vtkPMeshProjectionFilter::RequestData(
     return 0;
   }
   mpvtk::MPIParts parts(controller);
-<<<<<<< HEAD
-  this->Internal->Parts = &parts;
-=======
   // Whether there is anything to project is agreed before any collective:
   // a process without Input or Source ends every process with its error
   // (the serial filter decides it per process, where a process that stops
@@ -99,8 +96,7 @@ int vtkPMeshProjectionFilter::RequestData(
     vtkErrorMacro(<< present.Why);
     return 1;
   }
-  this->Parts = &parts;
->>>>>>> mpiarrays
+  this->Internal->Parts = &parts;
   const int done = this->Superclass::RequestData(request, inputVector, outputVector);
   this->Internal->Parts = nullptr;
   this->ReceivedSourceCells = parts.Received;
