@@ -18,9 +18,9 @@ namespace mpvtk
 namespace
 {
 /// Why an Apply failed: a stop, or a system it could not solve.
-Verdict ApplyFailed(const mp::MortarOperator& applied, Transfer t, KeptLeaf& kept)
+Verdict ApplyFailed(const mp::ApplyResult& applied, Transfer t, KeptLeaf& kept)
 {
-  if (applied.SolveWasStopped())
+  if (applied.Stopped)
   {
     return Verdict::Stop();
   }
@@ -70,9 +70,10 @@ void KeepWithinSourceRange(LeafContext& ctx, const GatheredFields& g, bool cells
   }
 }
 
-/// The NaN groups' arrays: their own operators, their columns of `values`.
+/// The NaN groups' arrays: their own operators, their columns of `values`, their systems.
 Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values)
+  const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values,
+  std::vector<mp::ProjectedSystem>& systems)
 {
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const double fill = ctx.Options.Fill();
@@ -97,14 +98,17 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
         }
       }
     }
-    if (!op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook))
+    const mp::ApplyResult applied =
+      op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook);
+    if (!applied)
     {
-      return ApplyFailed(op, t, kept);
+      return ApplyFailed(applied, t, kept);
     }
-    ctx.Stats.Solve += op.GetTimings().Solve;
+    ctx.Stats.Solve += applied.Seconds;
     int column = 0;
     for (int a : group.Arrays)
     {
+      systems[static_cast<size_t>(a)] = applied.System;
       const int nc = g.Arrays[a]->GetNumberOfComponents();
       for (size_t f = 0; f < rows; ++f)
       {
@@ -121,8 +125,9 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
 
 /// One transfer: its fields' solution (warm started when it may), then the NaN groups'.
 Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::SolverHooks& hook, const mp::FringeHalo& halo, mp::LargeVector<double>& values)
+  const mp::SolverHooks& hook, const mp::FringeHalo& halo, LeafSolutions& solutions)
 {
+  mp::LargeVector<double>& values = solutions.Values[t];
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const mp::MortarOperator& op = *ops.Operators[t];
   KeptOperator& k = kept.Operators[t];
@@ -152,17 +157,21 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
   {
     values.resize(size);
   }
-  if (!op.Apply(g.Functions().data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook))
+  const mp::ApplyResult applied =
+    op.Apply(g.Functions().data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook);
+  if (!applied)
   {
-    return ApplyFailed(op, t, kept);
+    return ApplyFailed(applied, t, kept);
   }
-  ctx.Stats.Solve += op.GetTimings().Solve;
+  ctx.Stats.Solve += applied.Seconds;
+  solutions.System[t] = applied.System;
+  solutions.ByArray[t].assign(g.Arrays.size(), applied.System);
   if (ctx.Options.CacheOperator)
   {
     k.SolutionKey = g.Key;
     k.Solution.assign(values.begin(), values.end());
   }
-  return ApplyGroups(ctx, kept, ops, t, apply, hook, values);
+  return ApplyGroups(ctx, kept, ops, t, apply, hook, values, solutions.ByArray[t]);
 }
 /**
  * The fringe of every P1 operator in use aggregated (MortarOperator::
@@ -248,12 +257,16 @@ Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
 {
   for (Transfer t : AllTransfers)
   {
+    if (ops.Operators[t])
+    {
+      solutions.System[t] = ops.Operators[t]->GetAssembledSystem(); // (until applied)
+    }
     if (!ops.Operators[t] || ctx.Source.Fields[SourceAssociation(t)].Components == 0)
     {
       continue;
     }
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
-    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, halo, solutions.Values[t]);
+    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, halo, solutions);
     if (!applied.Ok())
     {
       return applied;
@@ -262,7 +275,8 @@ Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
   return Verdict();
 }
 
-void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops)
+void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops,
+  const LeafSolutions& solutions)
 {
   const bool builtHere = ops.BuiltAny();
   const bool cache = ctx.Options.CacheOperator;
@@ -282,6 +296,10 @@ void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, O
       fresh->ReleaseMatrices(); // solved and not kept: room for the outputs
     }
     KeptOperator& k = kept.Operators[t];
+    if (k.Operator && k.Operator.get() == ops.Operators[t])
+    {
+      k.System = solutions.System[t];
+    }
     if (k.ExtensionFor != k.Operator.get())
     {
       // Extrapolation's extension of an operator that is not kept.

@@ -27,6 +27,14 @@ struct KeptLeaf;
 struct LeafSolutions
 {
   mp::LargeVector<double> Values[NumberOfTransfers];
+  /**
+   * Per transfer in use: the system its own operator's values were solved
+   * in (mp::ApplyResult::System; M_tt's when nothing was applied), which
+   * the masks, extrapolation and outputs read.
+   */
+  mp::ProjectedSystem System[NumberOfTransfers];
+  /// Per transfer and Source array: the system of its operator's Apply (its NaN group's, or System[t]).
+  std::vector<mp::ProjectedSystem> ByArray[NumberOfTransfers];
   /// Per transfer: the functions whose values were extrapolated (its operator's; Extrapolation).
   std::vector<char> Extrapolated[NumberOfTransfers];
 };
@@ -46,7 +54,8 @@ Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
  * when they hold M_ts and CacheOperator is on, drops the others and those
  * not in use; the ones not kept give back their matrices now.
  */
-void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops);
+void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops,
+  const LeafSolutions& solutions);
 } // namespace mpvtk
 
 #endif

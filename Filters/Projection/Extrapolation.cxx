@@ -28,12 +28,12 @@ namespace
  * ones, a lumped one's do not), else built. Whether to reuse is agreed:
  * the build is collective.
  */
-const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op, bool points,
-  const mp::SolverHooks& hook, KeptOperator* kept, mp::Extension& own)
+const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op,
+  const std::vector<char>& valid, bool points, const mp::SolverHooks& hook, KeptOperator* kept,
+  mp::Extension& own)
 {
   const auto mode = static_cast<mp::ExtrapolationMode>(ctx.Options.Extrapolation);
   mp::Extension& ext = kept ? kept->Extension : own;
-  const std::vector<char>& valid = op.GetValid();
   if (kept)
   {
     bool reuse = kept->Operator.get() == &op && kept->ExtensionFor == &op && ext.Mode == mode &&
@@ -78,7 +78,8 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet&
     {
       // The transfer's own operator keeps its extension (GetMatrix, later steps).
       const bool main = &op == ops.Operators[t] && ctx.Options.CacheOperator;
-      ext = &ExtensionOf(ctx, op, points, hook, main ? &kept.Operators[t] : nullptr, own);
+      ext = &ExtensionOf(ctx, op, *solutions.ByArray[t][a].Valid, points, hook,
+        main ? &kept.Operators[t] : nullptr, own);
       builtFor = &op;
       left = std::max(left, static_cast<double>(ext->Unreached));
     }

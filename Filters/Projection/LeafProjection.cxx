@@ -194,7 +194,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   {
     targetMesh.ReleaseGeometry();
   }
-  KeepOperators(ctx, kept, plan, ops);
+  KeepOperators(ctx, kept, plan, ops, solutions);
   // On several processes the outputs are written in step (sums over them):
   // a stop now (after the last agreement) waits for the next leaf's.
   if (!ctx.Bar(0.95) && run.Processes.Whole())

@@ -88,7 +88,8 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   {
     // Without an extension of this operator: the identity on the valid functions.
     const bool own = kept.ExtensionFor == &op;
-    made = mp::ComposedExtension(own ? kept.Extension : mp::Extension(), own ? kept.Extension.Valid : op.GetValid());
+    made = mp::ComposedExtension(own ? kept.Extension : mp::Extension(),
+      own ? kept.Extension.Valid : (kept.System.Valid ? *kept.System.Valid : op.GetValid()));
   }
   const mp::CsrMatrix& m = made.Rows ? made
     : mixed                          ? op.GetMixedMass()

@@ -41,6 +41,8 @@ struct KeptOperator
   std::unique_ptr<mp::MortarOperator> Operator;
   std::string SolutionKey;          ///< GatheredFields::Key of the solution
   mp::LargeVector<double> Solution; ///< the last projection (warm start)
+  /// The system of its last Apply (GetMatrix EXTRAPOLATION without an extension: the identity on its valid functions).
+  mp::ProjectedSystem System;
   /// Extrapolation's extension over the operator's invalid functions (Projection/Extrapolation.h).
   mp::Extension Extension;
   const mp::MortarOperator* ExtensionFor = nullptr; ///< the operator it was built for

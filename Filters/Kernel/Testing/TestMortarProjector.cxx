@@ -762,8 +762,13 @@ TEST(MortarProjector, SolveProgressAndStop)
   mp::MortarOperator projector;
   ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator));
   std::vector<double> plain(static_cast<size_t>(target.NumberOfPoints()));
-  ASSERT_TRUE(projector.Apply(us.data(), 1, plain.data(), std::nan("")));
-  EXPECT_FALSE(projector.SolveWasStopped());
+  const mp::ApplyResult first = projector.Apply(us.data(), 1, plain.data(), std::nan(""));
+  ASSERT_TRUE(first);
+  EXPECT_FALSE(first.Stopped);
+  EXPECT_FALSE(first.System.Aggregated);
+  EXPECT_EQ(first.System.Valid, &projector.GetValid());
+  EXPECT_EQ(first.System.CoveredIntegrals, &projector.GetCoveredIntegrals());
+  EXPECT_EQ(first.System.NumberOfValid, projector.GetNumberOfValid());
   std::vector<double> reported;
   mp::SolveOptions watched;
   watched.Progress = [&reported](double done) {
@@ -785,12 +790,14 @@ TEST(MortarProjector, SolveProgressAndStop)
   mp::SolveOptions stopping;
   stopping.Progress = [&calls](double) { return ++calls < 3; };
   std::vector<double> stopped(plain.size());
-  EXPECT_FALSE(projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping));
-  EXPECT_TRUE(projector.SolveWasStopped());
+  const mp::ApplyResult halted = projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping);
+  EXPECT_FALSE(halted);
+  EXPECT_TRUE(halted.Stopped);
   EXPECT_EQ(calls, 3);
   // And the next solve is not taken for stopped.
-  ASSERT_TRUE(projector.Apply(us.data(), 1, again.data(), std::nan("")));
-  EXPECT_FALSE(projector.SolveWasStopped());
+  const mp::ApplyResult next = projector.Apply(us.data(), 1, again.data(), std::nan(""));
+  ASSERT_TRUE(next);
+  EXPECT_FALSE(next.Stopped);
 }
 
 // M_tt is assembled after the search, from the target alone: with
