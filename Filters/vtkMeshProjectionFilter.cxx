@@ -24,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTimeStamp.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -55,8 +56,8 @@ struct vtkMeshProjectionFilter::Internals
 {
   mpvtk::SourceArrayLists Arrays;
   std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
-  bool AssembleNext = false;    ///< GetMatrix asked for M_ts
   mpvtk::OperatorCache Cache;
+  vtkTimeStamp Executed; ///< the end of the last execution (GetMatrix reads the cache as of it)
 };
 
 //------------------------------------------------------------------------------
@@ -332,7 +333,7 @@ mpvtk::Settings vtkMeshProjectionFilter::CurrentSettings() const
   s.ConserveSourceIntegral = this->ConserveSourceIntegral;
   s.CacheOperator = this->CacheOperator;
   s.Renumbering = this->Renumbering;
-  s.AssembleNext = this->Internal->AssembleNext;
+  s.AssembleNext = this->KeepMatrices;
   return s;
 }
 
@@ -376,6 +377,7 @@ int vtkMeshProjectionFilter::RequestData(
     mpvtk::WorkerScope workers(vtkSMPTools::GetEstimatedNumberOfThreads());
     result = this->Execute(inputVector, outputVector);
   });
+  this->Internal->Executed.Modified();
   return result;
 }
 
@@ -588,21 +590,30 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
     return -1;
   }
   const Transfers t = known ? static_cast<Transfers>(transfer) : POINTS_TO_POINTS;
-  mpvtk::OperatorCache& cache = this->Internal->Cache;
-  if (known && !cache.FirstOperator(t) && this->CacheOperator &&
-    this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
+  // A getter: it reads what the last execution kept and never executes
+  // (on several processes an execution is collective). A filter changed
+  // since (a property, an input's data) would give another execution's
+  // matrices: the caller updates first.
+  const vtkMTimeType executed = this->Internal->Executed.GetMTime();
+  bool changed = executed == 0 || this->GetMTime() > executed;
+  for (int port = 0; port < 2; ++port)
   {
-    // The last execution summed its right-hand sides without forming M_ts
-    // (a one-off run): execute again, assembling it.
-    this->Internal->AssembleNext = true;
-    this->Modified();
-    this->Update();
-    this->Internal->AssembleNext = false;
+    vtkDataObject* in = this->GetNumberOfInputConnections(port) ? this->GetInputDataObject(port, 0) : nullptr;
+    changed = changed || (in && in->GetMTime() > executed);
   }
+  if (changed)
+  {
+    vtkErrorMacro(<< "GetMatrix reads the operators of the last execution, and the filter "
+                  << (executed == 0 ? "has not executed" : "or its inputs changed since it executed")
+                  << ": set KeepMatrices on and call Update() first.");
+    return -1;
+  }
+  const mpvtk::OperatorCache& cache = this->Internal->Cache;
   if (!rowStart || !columns || !values || !known || !cache.FirstOperator(t))
   {
     vtkErrorMacro(<< "No operator of " << (known ? mpvtk::TransferName(t) : "that number")
-                  << " is kept: run the filter with CacheOperator on and that transfer in use.");
+                  << " is kept: execute the filter with CacheOperator and KeepMatrices on and "
+                     "that transfer in use (a one-off execution keeps no operator).");
     return -1;
   }
   if (matrix == MIXED_MASS && cache.FirstOperator(t)->GetSourceSpace() == mp::SpaceType::DP1)
@@ -675,6 +686,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";
   os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
+  os << indent << "KeepMatrices: " << (this->KeepMatrices ? "On" : "Off") << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";

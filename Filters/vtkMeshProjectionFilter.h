@@ -400,6 +400,21 @@ public:
 
   ///@{
   /**
+   * Makes every execution form M_ts and, with CacheOperator, keep the
+   * operators, so that GetMatrix can read them. Default: false: an
+   * execution that is not part of a time series (nor a repeat on the same
+   * meshes, nor with PreserveBounds) sums its fields' right-hand sides
+   * during the search instead, which saves M_ts's time and memory, and
+   * keeps no operator. Set it before the Update whose matrices you want
+   * (the Python helpers meshprojection.operator_matrices and the others do).
+   */
+  vtkSetMacro(KeepMatrices, bool);
+  vtkGetMacro(KeepMatrices, bool);
+  vtkBooleanMacro(KeepMatrices, bool);
+  ///@}
+
+  ///@{
+  /**
    * Whether the last execution reused the kept operators (no search, no
    * assembly), how many operators it built, and the bytes the kept
    * operators hold.
@@ -427,10 +442,16 @@ public:
    * With Extrapolation the valid values are also kept within the Source
    * field's range (clip and assured sum), which no matrix holds: the
    * matrices reproduce the output where that range is not reached (a
-   * linear field, for one). When the last execution was a one-off run (M_ts
-   * not formed), the filter executes once more, assembling it. Returns the
-   * number of columns, or -1 (with an error) when no such operator can be
-   * had: CacheOperator off, no inputs, or the transfer not in use.
+   * linear field, for one).
+   *
+   * GetMatrix reads what the last execution kept; it never executes the
+   * filter. Returns the number of columns, or -1 (with an error) when no
+   * such operator can be had: the filter has not executed, or it or its
+   * inputs changed since (call Update() first), or nothing was kept
+   * (CacheOperator off, KeepMatrices off on a one-off execution, the
+   * transfer not in use). So: SetKeepMatrices(true), Update(), GetMatrix().
+   * On several processes (vtkPMeshProjectionFilter) it is not collective:
+   * each process reads its own rows, and may call it alone.
    */
   vtkIdType GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
     vtkIdTypeArray* columns, vtkDoubleArray* values);
@@ -514,6 +535,7 @@ protected:
   int NormalOrientation = SAME_ORIENTATION;
   bool ConserveSourceIntegral = false;
   bool CacheOperator = true;
+  bool KeepMatrices = false;
   int NumberOfThreads = 0;
   int Renumbering = AUTOMATIC_RENUMBERING;
   bool OperatorReused = false;
