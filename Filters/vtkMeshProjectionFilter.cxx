@@ -500,7 +500,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Project(vtkInformationVector** inputVect
 
   // 2. Each dataset of Input: its own projection (one system per leaf).
   const mpvtk::InputLeaves leaves = mpvtk::LeavesOf(input, output, parts, say);
-  in.Cache.KeepOnly(leaves.FlatIndices(), settings.CacheOperator);
+  in.Cache.KeepOnly(leaves.FlatIndices(), settings);
   const mpvtk::ExecutionShare share{ settings, parts, say, clock, source };
   const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
   const size_t n = leaves.Leaves.size();

@@ -17,14 +17,13 @@ namespace mpvtk
 {
 namespace
 {
-/// Why an Apply failed: a stop, or a system it could not solve.
-Verdict ApplyFailed(const mp::ApplyResult& applied, Transfer t, KeptLeaf& kept)
+/// Why an Apply failed: a stop, or a system it could not solve (the execution then drops the leaf's cache).
+Verdict ApplyFailed(const mp::ApplyResult& applied, Transfer t)
 {
   if (applied.Stopped)
   {
     return Verdict::Stop();
   }
-  kept.Clear();
   return Verdict::Fail(std::string("The projection of ") + TransferName(t) +
     " failed: the mass matrix of the covered target part could not be solved.");
 }
@@ -71,7 +70,7 @@ void KeepWithinSourceRange(LeafContext& ctx, const GatheredFields& g, bool cells
 }
 
 /// The NaN groups' arrays: their own operators, their columns of `values`, their systems.
-Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
+Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
   const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values,
   std::vector<mp::ProjectedSystem>& systems)
 {
@@ -102,7 +101,7 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
       op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook);
     if (!applied)
     {
-      return ApplyFailed(applied, t, kept);
+      return ApplyFailed(applied, t);
     }
     ctx.Stats.Solve += applied.Seconds;
     int column = 0;
@@ -124,13 +123,13 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
 }
 
 /// One transfer: its fields' solution (warm started when it may), then the NaN groups'.
-Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::SolverHooks& hook, const mp::FringeHalo& halo, LeafSolutions& solutions)
+Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
+  const OperatorSet& ops, Transfer t, const mp::SolverHooks& hook, const mp::FringeHalo& halo,
+  LeafSolutions& solutions)
 {
   mp::LargeVector<double>& values = solutions.Values[t];
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const mp::MortarOperator& op = *ops.Operators[t];
-  KeptOperator& k = kept.Operators[t];
   const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
@@ -146,11 +145,12 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
     const ProgressShare bar = ctx.Bar;
     apply.Solve.Progress = [bar](double done) { return bar(0.9 + 0.05 * done); };
   }
-  bool warm = !ops.Fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
+  const mp::LargeVector<double>* start = ops.Fresh[t] ? nullptr : kept.WarmStart(t, g.Key, size);
+  bool warm = start != nullptr;
   ctx.Processes.Agree(Verdict(), &warm); // all processes start alike
   if (warm)
   {
-    values.assign(k.Solution.begin(), k.Solution.end());
+    values.assign(start->begin(), start->end());
     apply.Solve.StartFromX = true;
   }
   else
@@ -161,17 +161,18 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
     op.Apply(g.Functions().data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook);
   if (!applied)
   {
-    return ApplyFailed(applied, t, kept);
+    return ApplyFailed(applied, t);
   }
   ctx.Stats.Solve += applied.Seconds;
   solutions.System[t] = applied.System;
   solutions.ByArray[t].assign(g.Arrays.size(), applied.System);
-  if (ctx.Options.CacheOperator)
+  if (plan.Cache.Keep)
   {
-    k.SolutionKey = g.Key;
-    k.Solution.assign(values.begin(), values.end());
+    solutions.Aside[t] = true;
+    solutions.SolvedKey[t] = g.Key;
+    solutions.Solved[t].assign(values.begin(), values.end());
   }
-  return ApplyGroups(ctx, kept, ops, t, apply, hook, values, solutions.ByArray[t]);
+  return ApplyGroups(ctx, ops, t, apply, hook, values, solutions.ByArray[t]);
 }
 /**
  * The fringe of every P1 operator in use aggregated (MortarOperator::
@@ -252,8 +253,9 @@ void ShareSystems(
   AggregateFringes(ctx, ops, hooks[0], halo);
 }
 
-Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
-  const mp::SolverHooks hooks[2], const mp::FringeHalo& halo, LeafSolutions& solutions)
+Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
+  const OperatorSet& ops, const mp::SolverHooks hooks[2], const mp::FringeHalo& halo,
+  LeafSolutions& solutions)
 {
   for (Transfer t : AllTransfers)
   {
@@ -266,61 +268,12 @@ Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
       continue;
     }
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
-    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, halo, solutions);
+    const Verdict applied = ApplyTransfer(ctx, kept, plan, ops, t, hook, halo, solutions);
     if (!applied.Ok())
     {
       return applied;
     }
   }
   return Verdict();
-}
-
-void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops,
-  const LeafSolutions& solutions)
-{
-  const bool builtHere = ops.BuiltAny();
-  const bool cache = ctx.Options.CacheOperator;
-  for (Transfer t : AllTransfers)
-  {
-    std::unique_ptr<mp::MortarOperator>& fresh = ops.Fresh[t];
-    if (fresh && cache && fresh->HasMixedMass())
-    {
-      kept.Operators[t].Operator = std::move(fresh);
-    }
-    else if (!plan.Used[t] || !cache)
-    {
-      kept.Operators[t] = KeptOperator();
-    }
-    if (fresh)
-    {
-      fresh->ReleaseMatrices(); // solved and not kept: room for the outputs
-    }
-    KeptOperator& k = kept.Operators[t];
-    if (k.Operator && k.Operator.get() == ops.Operators[t])
-    {
-      k.System = solutions.System[t];
-    }
-    if (k.ExtensionFor != k.Operator.get())
-    {
-      // Extrapolation's extension of an operator that is not kept.
-      k.Extension = mp::Extension();
-      k.ExtensionFor = nullptr;
-    }
-  }
-  if (!builtHere)
-  {
-    return;
-  }
-  // The meshes' point orders, for GetMatrix (only kept operators are read).
-  const bool anyKept = kept.KeepsAny();
-  auto keep = [anyKept](const SimplexMesh& mesh, std::vector<mp::Index>& order) {
-    std::vector<mp::Index>().swap(order);
-    if (mesh.Ordered() && anyKept)
-    {
-      order.assign(mesh.PointOrderData(), mesh.PointOrderData() + mesh.View().NumberOfPoints);
-    }
-  };
-  keep(ctx.Target, kept.TargetPoints);
-  keep(ctx.Source.Mesh, kept.SourcePoints);
 }
 } // namespace mpvtk

@@ -79,8 +79,8 @@ void WarnShape(LeafContext& ctx)
  * both meshes, nor on several processes, whose Source weights are
  * collective.) Then M_tt of the operators built here, on the target alone.
  */
-bool PrepareSolves(
-  LeafContext& ctx, OperatorSet& ops, SourceWeights& weights, mp::LargeVector<double>& cover)
+bool PrepareSolves(LeafContext& ctx, const OperatorPlan& plan, OperatorSet& ops,
+  SourceWeights& weights, mp::LargeVector<double>& cover)
 {
   const bool release =
     ctx.LastReaderOfSource && !ctx.Options.OutputIntersections && ctx.Processes.Whole();
@@ -105,7 +105,7 @@ bool PrepareSolves(
     bool keeps = false;
     for (const mp::MortarOperator* op : ops.Deferred)
     {
-      keeps = keeps || (ctx.Options.CacheOperator && op->HasMixedMass());
+      keeps = keeps || plan.Cache.Keeps(*op);
     }
     if (!keeps)
     {
@@ -170,7 +170,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   }
   SourceWeights weights(run.Source.Mesh, run.Source.Data, run.Processes);
   mp::LargeVector<double> cover;
-  const bool haveCover = PrepareSolves(ctx, ops, weights, cover);
+  const bool haveCover = PrepareSolves(ctx, plan, ops, weights, cover);
   mp::SolverHooks hooks[2]; // P1, P0 target functions
   mp::FringeHalo halo;      // several processes: the fringe's ghost layer
   ShareSystems(ctx, ops, hooks, halo);
@@ -181,7 +181,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     targetMesh.ReleaseGeometry();
   }
   LeafSolutions solutions;
-  result.Outcome = ApplyOperators(ctx, kept, ops, hooks, halo, solutions);
+  result.Outcome = ApplyOperators(ctx, kept, plan, ops, hooks, halo, solutions);
   if (result.Outcome.Ok())
   {
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
@@ -194,7 +194,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   {
     targetMesh.ReleaseGeometry();
   }
-  KeepOperators(ctx, kept, plan, ops, solutions);
+  kept.Store(plan.Cache, plan, ops, solutions, targetMesh, run.Source.Mesh);
   // On several processes the outputs are written in step (sums over them):
   // a stop now (after the last agreement) waits for the next leaf's.
   if (!ctx.Bar(0.95) && run.Processes.Whole())
