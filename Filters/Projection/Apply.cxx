@@ -202,7 +202,9 @@ void AggregateFringes(
   if (used > 0.0 && anyP1)
   {
     // (Kept operators need it too: their aggregated systems have its rows.)
-    halo = ctx.Processes.Halo(view);
+    const SimplexMesh& target = ctx.Target;
+    halo = ctx.Processes.Halo(
+      ctx.Shared, view, [&target](mp::Index f) { return target.DataSetPoint(f); });
   }
   for (Transfer t : AllTransfers)
   {
@@ -232,9 +234,10 @@ void ShareSystems(
   LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo)
 {
   const SimplexMesh& target = ctx.Target;
-  hooks[0] = ctx.Processes.Hooks(true, static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),
+  hooks[0] = ctx.Processes.Hooks(ctx.Shared, true,
+    static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),
     [&target](mp::Index f) { return target.DataSetPoint(f); });
-  hooks[1] = ctx.Processes.Hooks(false, 0, nullptr);
+  hooks[1] = ctx.Processes.Hooks(ctx.Shared, false, 0, nullptr);
   for (Transfer t : AllTransfers)
   {
     if (!ops.Operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)

@@ -133,7 +133,8 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   LeafAgreement agreement(run.Processes);
   // On several processes the dataset first learns the points it shares
   // with others (and gets global point ids).
-  vtkSmartPointer<vtkDataSet> target = run.Processes.ShareTarget(job.Target);
+  const SharedTarget shared = run.Processes.ShareTarget(job.Target);
+  vtkDataSet* target = shared.Data;
   SimplexMesh targetMesh;
   result.Outcome = WrapTarget(run, target, job.Role, targetMesh, result.Stats, agreement);
   if (!result.Outcome.Ok())
@@ -141,7 +142,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     return result;
   }
   LeafContext ctx{ run.Options, run.Processes, run.Say, job.Bar, run.Clock, result.Stats,
-    run.Source, targetMesh, target, job.Role, LeafShape(), job.LastReaderOfSource };
+    run.Source, targetMesh, target, shared, job.Role, LeafShape(), job.LastReaderOfSource };
   OperatorPlan plan;
   OperatorSet ops;
   result.Outcome = DecideShape(ctx, agreement);
