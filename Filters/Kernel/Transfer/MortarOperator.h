@@ -171,7 +171,8 @@ struct ApplyOptions
  * Apply after AggregateFringe, the aggregated system P^T M_tt P's: the
  * functions covered less than FringeDropFraction invalid, their covered
  * integrals given to their stencils. The vectors are the operator's: they
- * live as long as it does and stay the same until its next AggregateFringe.
+ * live as long as it does and change only with its ShareValidity or
+ * AggregateFringe.
  */
 struct ProjectedSystem
 {
