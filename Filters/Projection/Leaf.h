@@ -78,7 +78,7 @@ struct OperatorSet
   /// Per transfer, the operator of each Source array (its NaN group's, or the transfer's).
   std::vector<const mp::MortarOperator*> ByArray[NumberOfTransfers];
   /// NaN groups' operators built here, by transfer and fingerprint of the cells left out (KeptLeaf::Groups).
-  std::vector<std::pair<std::pair<int, std::uint64_t>, std::unique_ptr<mp::MortarOperator>>> GroupFresh;
+  std::vector<std::pair<GroupKey, std::unique_ptr<mp::MortarOperator>>> GroupFresh;
   /// The operators built here, whose M_tt comes once the Source is released.
   std::vector<mp::MortarOperator*> Deferred;
 

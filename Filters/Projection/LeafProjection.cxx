@@ -195,7 +195,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   {
     targetMesh.ReleaseGeometry();
   }
-  kept.Store(plan.Cache, plan, ops, solutions, targetMesh, run.Source.Mesh);
+  kept.Store(plan, ops, solutions, targetMesh, run.Source.Mesh);
   // On several processes the outputs are written in step (sums over them):
   // a stop now (after the last agreement) waits for the next leaf's.
   if (!ctx.Bar(0.95) && run.Processes.Whole())

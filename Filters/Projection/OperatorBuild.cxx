@@ -263,7 +263,7 @@ Verdict GroupOperator(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   const NaNGroup& group, LeafAgreement& agreement, LeafSearch& search, OperatorSet& ops,
   const mp::MortarOperator*& op)
 {
-  const auto key = std::make_pair(static_cast<int>(t), group.Print);
+  const GroupKey key(static_cast<int>(t), group.Print);
   op = kept.Group(t, group.Print);
   if (op)
   {
@@ -300,7 +300,7 @@ Verdict GroupOperator(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
 Verdict BuildGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
   LeafAgreement& agreement, LeafSearch& search, OperatorSet& ops)
 {
-  std::vector<std::pair<int, std::uint64_t>> used;
+  std::vector<GroupKey> used;
   for (Transfer t : AllTransfers)
   {
     const GatheredFields& g = FieldsOf(ctx, t);

@@ -65,7 +65,7 @@ const mp::MortarOperator* KeptLeaf::Group(Transfer transfer, std::uint64_t cells
   return found != this->Groups.end() ? found->second.get() : nullptr;
 }
 
-void KeptLeaf::KeepOnlyGroups(const std::vector<std::pair<int, std::uint64_t>>& used)
+void KeptLeaf::KeepOnlyGroups(const std::vector<GroupKey>& used)
 {
   for (auto it = this->Groups.begin(); it != this->Groups.end();)
   {
@@ -87,9 +87,10 @@ const mp::Extension* KeptLeaf::Extension(Transfer transfer, std::uint64_t key) c
   return k.Operator && key != 0 && k.ExtensionKey == key ? &k.Extension : nullptr;
 }
 
-void KeptLeaf::Store(const CachePlan& plan, const OperatorPlan& used, OperatorSet& ops,
-  LeafSolutions& solutions, const SimplexMesh& target, const SimplexMesh& source)
+void KeptLeaf::Store(const OperatorPlan& used, OperatorSet& ops, LeafSolutions& solutions,
+  const SimplexMesh& target, const SimplexMesh& source)
 {
+  const CachePlan& plan = used.Cache;
   const bool builtHere = ops.BuiltAny();
   for (Transfer t : AllTransfers)
   {

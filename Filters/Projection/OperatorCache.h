@@ -81,6 +81,9 @@ struct KeptOperator
  */
 std::uint64_t ExtensionKey(int mode, const std::vector<char>& valid);
 
+/// A NaN group's operator: its transfer and the fingerprint of the Source cells it leaves out.
+using GroupKey = std::pair<int, std::uint64_t>;
+
 /// What the filter keeps for one leaf of Input.
 struct KeptLeaf
 {
@@ -92,7 +95,7 @@ struct KeptLeaf
   /// datasets' points).
   std::vector<mp::Index> TargetPoints, SourcePoints;
   /// NaN groups' operators, by transfer and fingerprint of the cells left out.
-  std::map<std::pair<int, std::uint64_t>, std::unique_ptr<mp::MortarOperator>> Groups;
+  std::map<GroupKey, std::unique_ptr<mp::MortarOperator>> Groups;
 
   void Clear();
   bool KeepsAny() const;
@@ -112,19 +115,20 @@ struct KeptLeaf
   /// The kept operator of a NaN group (null: none).
   const mp::MortarOperator* Group(Transfer transfer, std::uint64_t cellsLeftOut) const;
   /// Drops the kept NaN groups' operators that this leaf does not use.
-  void KeepOnlyGroups(const std::vector<std::pair<int, std::uint64_t>>& used);
+  void KeepOnlyGroups(const std::vector<GroupKey>& used);
   /// The kept solution of `transfer`'s operator for the fields `key` (`size` values), the next solve's start; null: none.
   const mp::LargeVector<double>* WarmStart(Transfer transfer, const std::string& key, size_t size) const;
   /// The kept extension of `transfer` with the key `key` (ExtensionKey); null: none.
   const mp::Extension* Extension(Transfer transfer, std::uint64_t key) const;
   /**
-   * At the leaf's end: keeps what `plan` says (the operators built with
+   * At the leaf's end: keeps what plan.Cache says (the operators built with
    * M_ts, with their solutions, systems and extensions, the NaN groups'
-   * operators, the meshes' point orders) and drops the rest; the operators
-   * built here and not kept give back their matrices.
+   * operators, the meshes' point orders) and drops the rest (and the
+   * operators of transfers not in use); the operators built here and not
+   * kept give back their matrices.
    */
-  void Store(const CachePlan& plan, const OperatorPlan& used, OperatorSet& ops,
-    LeafSolutions& solutions, const SimplexMesh& target, const SimplexMesh& source);
+  void Store(const OperatorPlan& plan, OperatorSet& ops, LeafSolutions& solutions,
+    const SimplexMesh& target, const SimplexMesh& source);
 };
 
 /// The geometry of the Source's cell reconstruction (CellReconstruction.h), while Source is the same.
