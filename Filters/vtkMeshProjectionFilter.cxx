@@ -78,6 +78,7 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.NormalOrientation, s.NormalOrientation);
   each(f.ConserveSourceIntegral, s.ConserveSourceIntegral);
   each(f.CacheOperator, s.CacheOperator);
+  each(f.KeepMatrices, s.KeepMatrices);
   each(f.NumberOfThreads, s.NumberOfThreads);
   each(f.Renumbering, s.Renumbering);
 }
@@ -88,7 +89,6 @@ mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjection
   ForEachProperty(filter, s, [](const auto& property, auto& field) {
     field = static_cast<std::decay_t<decltype(field)>>(property);
   });
-  s.AssembleNext = filter.Internal->AssembleNext;
   return s;
 }
 
@@ -444,6 +444,7 @@ int vtkMeshProjectionFilter::RequestData(
     mpvtk::WorkerScope workers(vtkSMPTools::GetEstimatedNumberOfThreads());
     result = this->Execute(inputVector, outputVector);
   });
+  this->Internal->Executed.Modified();
   return result;
 }
 
@@ -566,7 +567,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
 
   // 2. Each dataset of Input: its own projection (one system per leaf).
   const mpvtk::InputLeaves leaves = mpvtk::LeavesOf(input, output, parts, say);
-  in.Cache.KeepOnly(leaves.FlatIndices(), settings.CacheOperator);
+  in.Cache.KeepOnly(leaves.FlatIndices(), settings);
   const mpvtk::ExecutionShare share{ settings, parts, say, clock, source };
   const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
   const size_t n = leaves.Leaves.size();
@@ -656,21 +657,30 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
     return -1;
   }
   const mpvtk::Transfer t = known ? static_cast<mpvtk::Transfer>(transfer) : mpvtk::PointsToPoints;
-  mpvtk::OperatorCache& cache = this->Internal->Cache;
-  if (known && !cache.FirstOperator(t) && this->CacheOperator &&
-    this->GetNumberOfInputConnections(0) > 0 && this->GetSource())
+  // A getter: it reads what the last execution kept and never executes
+  // (on several processes an execution is collective). A filter changed
+  // since (a property, an input's data) would give another execution's
+  // matrices: the caller updates first.
+  const vtkMTimeType executed = this->Internal->Executed.GetMTime();
+  bool changed = executed == 0 || this->GetMTime() > executed;
+  for (int port = 0; port < 2; ++port)
   {
-    // The last execution summed its right-hand sides without forming M_ts
-    // (a one-off run): execute again, assembling it.
-    this->Internal->AssembleNext = true;
-    this->Modified();
-    this->Update();
-    this->Internal->AssembleNext = false;
+    vtkDataObject* in = this->GetNumberOfInputConnections(port) ? this->GetInputDataObject(port, 0) : nullptr;
+    changed = changed || (in && in->GetMTime() > executed);
   }
+  if (changed)
+  {
+    vtkErrorMacro(<< "GetMatrix reads the operators of the last execution, and the filter "
+                  << (executed == 0 ? "has not executed" : "or its inputs changed since it executed")
+                  << ": set KeepMatrices on and call Update() first.");
+    return -1;
+  }
+  const mpvtk::OperatorCache& cache = this->Internal->Cache;
   if (!rowStart || !columns || !values || !known || !cache.FirstOperator(t))
   {
     vtkErrorMacro(<< "No operator of " << (known ? mpvtk::TransferName(t) : "that number")
-                  << " is kept: run the filter with CacheOperator on and that transfer in use.");
+                  << " is kept: execute the filter with CacheOperator and KeepMatrices on and "
+                     "that transfer in use (a one-off execution keeps no operator).");
     return -1;
   }
   if (matrix == MIXED_MASS && cache.FirstOperator(t)->GetSourceSpace() == mp::SpaceType::DP1)
@@ -743,6 +753,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";
   os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
+  os << indent << "KeepMatrices: " << (this->KeepMatrices ? "On" : "Off") << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";

@@ -327,6 +327,21 @@ public:
 
   ///@{
   /**
+   * Makes every execution form M_ts and, with CacheOperator, keep the
+   * operators, so that GetMatrix can read them. Default: false: an
+   * execution that is not part of a time series (nor a repeat on the same
+   * meshes, nor with PreserveBounds) sums its fields' right-hand sides
+   * during the search instead, which saves M_ts's time and memory, and
+   * keeps no operator. Set it before the Update whose matrices you want
+   * (the Python helpers meshprojection.operator_matrices and the others do).
+   */
+  vtkSetMacro(KeepMatrices, bool);
+  vtkGetMacro(KeepMatrices, bool);
+  vtkBooleanMacro(KeepMatrices, bool);
+  ///@}
+
+  ///@{
+  /**
    * Whether the last execution reused the kept operators (no search, no
    * assembly), how many operators it built, and the bytes the kept
    * operators hold.
@@ -343,11 +358,14 @@ public:
    * FRINGE_EXTENSION, EXTRAPOLATION) or Source's (MIXED_MASS), in VTK ids
    * (a composite Input: its first block; a composite Source: its blocks
    * one after the other). What each matrix holds, and how they give the
-   * output: docs/user-guide.md, "The operator in your hands". When the last
-   * execution did not form M_ts, the filter executes once more, assembling
-   * it. Returns the number of columns, or -1 (with an error) when no such
-   * operator can be had: CacheOperator off, no inputs, or the transfer not
-   * in use.
+   * output: docs/user-guide.md, "The operator in your hands". GetMatrix reads
+   * what the last execution kept and never executes the filter: it returns
+   * the number of columns, or -1 (with an error) when the filter has not
+   * executed, it or its inputs changed since (call Update() first), or
+   * nothing was kept (CacheOperator off, KeepMatrices off on a one-off
+   * execution, the transfer not in use). So: SetKeepMatrices(true),
+   * Update(), GetMatrix(). On several processes it is not collective: each
+   * process reads its own rows.
    */
   vtkIdType GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
     vtkIdTypeArray* columns, vtkDoubleArray* values);
@@ -423,6 +441,7 @@ protected:
   int NormalOrientation;
   bool ConserveSourceIntegral;
   bool CacheOperator;
+  bool KeepMatrices;
   int NumberOfThreads;
   int Renumbering;
 

@@ -19,6 +19,8 @@
 #include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
 
+#include "vtkTimeStamp.h"
+
 #include <set>
 #include <string>
 #include <vector>
@@ -36,7 +38,7 @@ struct vtkMeshProjectionFilter::Internals
 {
   mpvtk::SourceArrayLists Arrays;
   std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
-  bool AssembleNext = false;    ///< GetMatrix asked for M_ts
+  vtkTimeStamp Executed; ///< the end of the last execution (GetMatrix reads the cache as of it)
   mpvtk::OperatorCache Cache;
   /// The processes' seam (Parallel/Parts.h): vtkPMeshProjectionFilter installs
   /// its own while it runs on several processes; null, one process

@@ -257,4 +257,64 @@ void MPIParts::Swap(const std::vector<int>& ranks, std::vector<std::vector<doubl
     this->Mpi->WaitAll(static_cast<int>(k), requests.data());
   }
 }
+
+std::vector<Box> MPIParts::GatherBoxes(const Box& mine)
+{
+  std::vector<double> gathered(static_cast<size_t>(6 * this->N));
+  this->C->AllGather(mine.data(), gathered.data(), 6);
+  std::vector<Box> boxes(static_cast<size_t>(this->N));
+  for (int r = 0; r < this->N; ++r)
+  {
+    std::copy(gathered.begin() + 6 * r, gathered.begin() + 6 * r + 6, boxes[r].begin());
+  }
+  return boxes;
+}
+
+std::vector<std::vector<mp::Index>> MPIParts::MatchRows(size_t keyBytes,
+  const std::function<std::vector<mp::Index>(int)>& asks,
+  const std::function<void(mp::Index, char*)>& key,
+  const std::function<mp::Index(const char*)>& find)
+{
+  const int n = this->N;
+  // To each higher process, the keys of the rows this one may share with it.
+  std::vector<std::vector<mp::Index>> asked(static_cast<size_t>(n));
+  std::vector<std::vector<char>> out(static_cast<size_t>(n));
+  for (int r = this->Me + 1; r < n; ++r)
+  {
+    asked[r] = asks(r);
+    out[r].resize(asked[r].size() * keyBytes);
+    for (size_t i = 0; i < asked[r].size(); ++i)
+    {
+      key(asked[r][i], out[r].data() + i * keyBytes);
+    }
+  }
+  std::vector<std::vector<char>> in = this->AllToAll(out);
+  // From each lower process: which of its keys this one has.
+  std::vector<std::vector<mp::Index>> shared(static_cast<size_t>(n));
+  std::vector<std::vector<char>> answers(static_cast<size_t>(n));
+  for (int s = 0; s < this->Me; ++s)
+  {
+    for (size_t at = 0; at + keyBytes <= in[s].size(); at += keyBytes)
+    {
+      const mp::Index row = find(in[s].data() + at);
+      answers[s].push_back(row >= 0);
+      if (row >= 0)
+      {
+        shared[s].push_back(row);
+      }
+    }
+  }
+  std::vector<std::vector<char>> replies = this->AllToAll(answers);
+  for (int r = this->Me + 1; r < n; ++r)
+  {
+    for (size_t i = 0; i < replies[r].size() && i < asked[r].size(); ++i)
+    {
+      if (replies[r][i])
+      {
+        shared[r].push_back(asked[r][i]);
+      }
+    }
+  }
+  return shared;
+}
 } // namespace mpvtk

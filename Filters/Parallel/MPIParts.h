@@ -31,6 +31,8 @@
 
 #include "Transfer/CsrMatrix.h"
 
+#include <functional>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -40,6 +42,24 @@ class vtkMultiProcessController;
 
 namespace mpvtk
 {
+/**
+ * What ShareTarget learnt of a dataset's points (SharedTarget::Points):
+ * per neighbour (ascending ranks) the points shared with it, in an order
+ * both agree on; per point the lowest process that has it (Owner), its
+ * first copy here (Representative: points of one process at one place, or
+ * with one global id, as a ghost cells generator may leave them, are one
+ * point; RowSharing::Copies holds the rows of those with copies) and its
+ * global identity (its GlobalIds value, given or made).
+ */
+struct PointSharing
+{
+  std::vector<int> Neighbours;
+  std::vector<std::vector<vtkIdType>> Shared;
+  std::vector<int> Owner;
+  std::vector<vtkIdType> Representative;
+  std::vector<long long> GlobalOf;
+};
+
 class MPIParts final : public Parts
 {
 public:
@@ -70,17 +90,32 @@ public:
   /// between neighbours only, each pair calling it alike.
   void Swap(const std::vector<int>& ranks, std::vector<std::vector<double>>& send,
     std::vector<std::vector<double>>& recv);
+  /// Every process's box (`mine` here), by rank.
+  std::vector<Box> GatherBoxes(const Box& mine);
+  /**
+   * Which rows this process shares with each other process, in an order
+   * both agree on (the lower process asks): to each higher process r this
+   * process sends the keys (`keyBytes` each, written by `key`) of the rows
+   * `asks(r)` lists (rows it may share with r: e.g. inside r's box); r
+   * answers which it has (`find`: its row of a key, or -1). Returns, per
+   * process, the rows shared with it, in the order asked.
+   */
+  std::vector<std::vector<mp::Index>> MatchRows(size_t keyBytes,
+    const std::function<std::vector<mp::Index>(int)>& asks,
+    const std::function<void(mp::Index, char*)>& key,
+    const std::function<mp::Index(const char*)>& find);
 
   /// See Parts::GatherSource (SourceGather.cxx).
   vtkSmartPointer<vtkDataSet> GatherSource(vtkDataSet* source, vtkDataObject* input, double reach,
     bool neighborLayer, std::string& error, JoinedFields& joined) override;
 
   // The shared points (SharedPoints.cxx).
-  vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
-  mp::SolverHooks Hooks(bool points, mp::Index rows,
+  SharedTarget ShareTarget(vtkDataSet* target) override;
+  mp::SolverHooks Hooks(const SharedTarget& shared, bool points, mp::Index rows,
     const std::function<vtkIdType(mp::Index)>& dataSetPoint) override;
-  /// The fringe's halo of the last shared dataset (TargetHalo.cxx): see Parts::Halo.
-  mp::FringeHalo Halo(const mp::MeshView& target) override;
+  /// The fringe's halo of a shared dataset (TargetHalo.cxx): see Parts::Halo.
+  mp::FringeHalo Halo(const SharedTarget& shared, const mp::MeshView& target,
+    const std::function<vtkIdType(mp::Index)>& dataSetPoint) override;
 
   /**
    * The rows of a distributed system as its hooks see them: which rows
@@ -105,62 +140,51 @@ public:
 private:
   // ShareTarget's steps (SharedPoints.cxx).
   /// Each point's identity (its global id, or its coordinates x) and its
-  /// Representative: the first point of this process with that identity.
-  /// (`index`: each identity's first point.)
+  /// Representative in `points`: the first point of this process with that
+  /// identity. (`index`: each identity's first point.)
   using PointIndex = std::unordered_map<PointKey, vtkIdType, PointKeyHash>;
-  std::vector<PointKey> KeyPoints(
-    vtkDataSet* target, const std::vector<double>& x, bool useIds, PointIndex& index);
+  static std::vector<PointKey> KeyPoints(vtkDataSet* target, const std::vector<double>& x,
+    bool useIds, PointIndex& index, PointSharing& points);
   /// Per process, the points this process shares with it, in an order
-  /// both agree on: a lower process sends the keys of its points inside
-  /// the higher one's bounds, which answers which it has.
+  /// both agree on (MatchRows among the points inside the other's bounds).
   std::vector<std::vector<vtkIdType>> FindShared(const std::vector<double>& x, const Box& bounds,
-    const std::vector<PointKey>& keys, const PointIndex& index, size_t width);
-  /// Neighbours, SharedPoints and Owner from the points shared per process.
-  void SetNeighbours(const std::vector<std::vector<vtkIdType>>& shared, vtkIdType points);
+    const std::vector<PointKey>& keys, const PointIndex& index, size_t width,
+    const PointSharing& points);
+  /// Neighbours, Shared and Owner of `points` from the points shared per process.
+  void SetNeighbours(
+    const std::vector<std::vector<vtkIdType>>& shared, vtkIdType count, PointSharing& points);
   /// Global ids made (no usable GlobalIds on some process): each process
   /// numbers the points it owns after those of the processes before it;
   /// the others learn them from their owner. Returns `target` with them.
-  vtkSmartPointer<vtkDataSet> NumberPoints(vtkDataSet* target);
+  vtkSmartPointer<vtkDataSet> NumberPoints(vtkDataSet* target, PointSharing& points);
+  /// The rows of the system over a shared dataset's points (row f: point dataSetPoint(f)).
+  std::shared_ptr<RowSharing> PointRows(const PointSharing& points, mp::Index rows,
+    const std::function<vtkIdType(mp::Index)>& dataSetPoint) const;
 
   /// The hooks' Direct: the system's parts gathered on process 0, solved
   /// there, each process's rows sent back (GatheredSolve.cxx).
   bool SolveGathered(const RowSharing& rows, const mp::CsrMatrix& A, const double* B, double* X,
     int c, const std::vector<char>& converged);
-  /// The hooks (sums, exchanges, the direct fallback) over `rows`.
-  mp::SolverHooks HooksOver(const RowSharing& rows);
+  /// The hooks (sums, exchanges, the direct fallback) over `rows`, which they hold.
+  mp::SolverHooks HooksOver(std::shared_ptr<const RowSharing> rows);
   // The halo's steps (TargetHalo.cxx).
   /// The other processes' cells within `reach` of this part's box, with
   /// their points, as ghost cells and points of `halo` (`boxes`: every
-  /// process's box of its points); per ghost point, its global id.
-  std::vector<long long> ReceiveHaloCells(const mp::MeshView& target,
+  /// process's box of its points; `points`: this part's rows); per ghost
+  /// point, its global id.
+  std::vector<long long> ReceiveHaloCells(const mp::MeshView& target, const RowSharing& points,
     const std::vector<Box>& boxes, double reach, mp::FringeHalo& halo);
-  /// HaloRows: the extended rows' sharing, found by global ids among the
-  /// rows inside each other process's box grown by `reach`.
-  void ShareHaloRows(const mp::MeshView& target, const mp::FringeHalo& halo,
-    const std::vector<long long>& ghostIds, const std::vector<Box>& boxes, double reach);
+  /// The extended rows' sharing, found by global ids among the rows
+  /// inside each other process's box grown by `reach`.
+  std::shared_ptr<RowSharing> ShareHaloRows(const mp::MeshView& target, const RowSharing& points,
+    const mp::FringeHalo& halo, const std::vector<long long>& ghostIds,
+    const std::vector<Box>& boxes, double reach);
 
   vtkMultiProcessController* C;
   vtkMPICommunicator* Mpi;
   int Me;
   int N;
   double Sent = 0;
-  // The last shared target: per neighbour (ascending ranks), the points
-  // shared with it, in an order both agree on; per point, the lowest
-  // process that has it.
-  std::vector<int> Neighbours;
-  std::vector<std::vector<vtkIdType>> SharedPoints;
-  std::vector<int> Owner;
-  // The hooks' state (kernel rows): the target's points, the fringe's extended rows.
-  RowSharing PointRows;
-  RowSharing HaloRows;
-  /// Points of one process at one place (or with one global id, as a
-  /// ghost cells generator may leave them) are one point: each point's
-  /// first copy (Representative); RowSharing::Copies holds the rows of
-  /// those with copies.
-  std::vector<vtkIdType> Representative;
-  /// Per point of the last shared target: its global identity (its
-  /// GlobalIds value, given or made).
-  std::vector<long long> GlobalOf;
 };
 } // namespace mpvtk
 

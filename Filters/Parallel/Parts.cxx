@@ -13,9 +13,11 @@ vtkSmartPointer<vtkDataSet> SerialParts::GatherSource(
   return error.empty() ? source : nullptr;
 }
 
-vtkSmartPointer<vtkDataSet> SerialParts::ShareTarget(vtkDataSet* target)
+SharedTarget SerialParts::ShareTarget(vtkDataSet* target)
 {
-  return target;
+  SharedTarget shared;
+  shared.Data = target;
+  return shared;
 }
 
 std::vector<double> SerialParts::SumByKey(

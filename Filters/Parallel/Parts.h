@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,22 @@ struct Verdict
   static Verdict Fail(const std::string& why) { return { Outcome::Failed, why }; }
   static Verdict Stop() { return { Outcome::Stopped, "stopped" }; }
   bool Ok() const { return this->What == Outcome::Done; }
+};
+
+struct PointSharing;
+
+/**
+ * A dataset of Input as the processes share it (Parts::ShareTarget): the
+ * dataset, with global point ids on several processes, and what the
+ * processes learnt of its points (which this process shares with which
+ * others, who owns each; MPIParts reads it). The leaf's hooks and its halo
+ * are made from this value (Parts::Hooks, Parts::Halo). Serial: the
+ * dataset alone.
+ */
+struct SharedTarget
+{
+  vtkSmartPointer<vtkDataSet> Data;
+  std::shared_ptr<const PointSharing> Points; ///< null on one process
 };
 
 class Parts
@@ -123,24 +140,25 @@ public:
    * own, or made: each point numbered by the lowest process that has it).
    * Serial: `target` itself.
    */
-  virtual vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) = 0;
+  virtual SharedTarget ShareTarget(vtkDataSet* target) = 0;
   /**
-   * The solver's hooks for the last shared dataset: for its points (P1; row
-   * f of the system is point dataSetPoint(f)): shared rows summed over the
-   * processes, each row counted by the lowest process that has it; for its
-   * cells (P0): sums only. They stay valid until the next ShareTarget.
-   * Serial: no hooks (the solver's own sums).
+   * The solver's hooks for the shared dataset `shared`: for its points (P1;
+   * row f of the system is point dataSetPoint(f)): shared rows summed over
+   * the processes, each row counted by the lowest process that has it; for
+   * its cells (P0): sums only. The hooks hold what they need (copies share
+   * it). Serial: no hooks (the solver's own sums).
    */
-  virtual mp::SolverHooks Hooks(
-    bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint) = 0;
+  virtual mp::SolverHooks Hooks(const SharedTarget& shared, bool points, mp::Index rows,
+    const std::function<vtkIdType(mp::Index)>& dataSetPoint) = 0;
   /**
-   * The fringe's halo (MortarOperator::AggregateFringe) of the last shared
-   * dataset, once its point hooks are made (Hooks): `target` is its kernel
-   * mesh (rows as Hooks numbered them). The cells of other processes' parts
-   * within three rings of this part's points, with their points, and the
-   * hooks over the extended rows. Serial: no halo (no hooks).
+   * The fringe's halo (MortarOperator::AggregateFringe) of the shared
+   * dataset `shared`: `target` is its kernel mesh, its rows numbered as
+   * for Hooks (row f is point dataSetPoint(f)). The cells of other
+   * processes' parts within three rings of this part's points, with their
+   * points, and the hooks over the extended rows. Serial: no halo (no hooks).
    */
-  virtual mp::FringeHalo Halo(const mp::MeshView& target) = 0;
+  virtual mp::FringeHalo Halo(const SharedTarget& shared, const mp::MeshView& target,
+    const std::function<vtkIdType(mp::Index)>& dataSetPoint) = 0;
   /// Bytes this process sent (Source cells, shared rows) since it was made.
   virtual double SentBytes() const = 0;
 };
@@ -166,12 +184,17 @@ public:
   }
   std::vector<double> SumByKey(
     const std::vector<long long>& keys, int width, const std::vector<double>& values) override;
-  vtkSmartPointer<vtkDataSet> ShareTarget(vtkDataSet* target) override;
-  mp::SolverHooks Hooks(bool, mp::Index, const std::function<vtkIdType(mp::Index)>&) override
+  SharedTarget ShareTarget(vtkDataSet* target) override;
+  mp::SolverHooks Hooks(const SharedTarget&, bool, mp::Index,
+    const std::function<vtkIdType(mp::Index)>&) override
   {
     return mp::SolverHooks();
   }
-  mp::FringeHalo Halo(const mp::MeshView&) override { return mp::FringeHalo(); }
+  mp::FringeHalo Halo(const SharedTarget&, const mp::MeshView&,
+    const std::function<vtkIdType(mp::Index)>&) override
+  {
+    return mp::FringeHalo();
+  }
   double SentBytes() const override { return 0; }
 };
 } // namespace mpvtk

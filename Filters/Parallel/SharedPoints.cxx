@@ -21,13 +21,14 @@
 #include "vtkPointData.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <unordered_map>
 
 namespace mpvtk
 {
-vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
+SharedTarget MPIParts::ShareTarget(vtkDataSet* target)
 {
   const vtkIdType np = target->GetNumberOfPoints();
   vtkDataArray* global = target->GetPointData()->GetGlobalIds();
@@ -41,25 +42,32 @@ vtkSmartPointer<vtkDataSet> MPIParts::ShareTarget(vtkDataSet* target)
     target->GetPoint(p, &x[3 * p]);
     Grow(bounds, &x[3 * p]);
   }
+  std::shared_ptr<PointSharing> points = std::make_shared<PointSharing>();
   PointIndex index;
-  const std::vector<PointKey> keys = this->KeyPoints(target, x, useIds, index);
+  const std::vector<PointKey> keys = KeyPoints(target, x, useIds, index, *points);
   // Sent as the key's first `width` numbers.
   const size_t width = useIds ? 1 : 3;
-  this->SetNeighbours(this->FindShared(x, bounds, keys, index, width), np);
+  this->SetNeighbours(this->FindShared(x, bounds, keys, index, width, *points), np, *points);
+  SharedTarget shared;
   if (useIds)
   {
-    this->GlobalOf.resize(static_cast<size_t>(np));
+    points->GlobalOf.resize(static_cast<size_t>(np));
     for (vtkIdType p = 0; p < np; ++p)
     {
-      this->GlobalOf[p] = static_cast<long long>(global->GetTuple1(this->Representative[p]));
+      points->GlobalOf[p] = static_cast<long long>(global->GetTuple1(points->Representative[p]));
     }
-    return target;
+    shared.Data = target;
   }
-  return this->NumberPoints(target);
+  else
+  {
+    shared.Data = this->NumberPoints(target, *points);
+  }
+  shared.Points = points;
+  return shared;
 }
 
-std::vector<PointKey> MPIParts::KeyPoints(
-  vtkDataSet* target, const std::vector<double>& x, bool useIds, PointIndex& index)
+std::vector<PointKey> MPIParts::KeyPoints(vtkDataSet* target, const std::vector<double>& x,
+  bool useIds, PointIndex& index, PointSharing& points)
 {
   // Each point's identity: its global id (then the key's first number), or
   // its coordinates.
@@ -68,7 +76,7 @@ std::vector<PointKey> MPIParts::KeyPoints(
   std::vector<PointKey> keys(static_cast<size_t>(np));
   index.clear();
   index.reserve(static_cast<size_t>(np));
-  this->Representative.resize(static_cast<size_t>(np));
+  points.Representative.resize(static_cast<size_t>(np));
   for (vtkIdType p = 0; p < np; ++p)
   {
     if (useIds)
@@ -80,107 +88,82 @@ std::vector<PointKey> MPIParts::KeyPoints(
     {
       keys[p] = KeyOf(&x[3 * p]);
     }
-    this->Representative[p] = index.emplace(keys[p], p).first->second;
+    points.Representative[p] = index.emplace(keys[p], p).first->second;
   }
   return keys;
 }
 
 std::vector<std::vector<vtkIdType>> MPIParts::FindShared(const std::vector<double>& x,
-  const Box& bounds, const std::vector<PointKey>& keys, const PointIndex& index, size_t width)
+  const Box& bounds, const std::vector<PointKey>& keys, const PointIndex& index, size_t width,
+  const PointSharing& points)
 {
-  const int n = this->N;
+  const std::vector<Box> boxes = this->GatherBoxes(bounds);
   const vtkIdType np = static_cast<vtkIdType>(keys.size());
-  std::vector<double> boxes(static_cast<size_t>(6 * n));
-  this->C->AllGather(bounds.data(), boxes.data(), 6);
-  auto boxOf = [&](int r) {
-    Box b;
-    std::copy(boxes.begin() + 6 * r, boxes.begin() + 6 * r + 6, b.begin());
-    return b;
-  };
   // Candidates to each higher process: the points inside its box (their
   // ids, or coordinates); it answers which it has.
-  std::vector<std::vector<vtkIdType>> candidates(static_cast<size_t>(n));
-  std::vector<std::vector<char>> out(static_cast<size_t>(n));
-  for (int r = this->Me + 1; r < n; ++r)
-  {
-    const Box b = boxOf(r);
-    if (!Meet(b, bounds))
+  auto asks = [&](int r) {
+    std::vector<mp::Index> candidates;
+    if (Meet(boxes[r], bounds))
     {
-      continue;
-    }
-    for (vtkIdType p = 0; p < np; ++p)
-    {
-      if (this->Representative[p] == p && Inside(b, &x[3 * p]))
+      for (vtkIdType p = 0; p < np; ++p)
       {
-        candidates[r].push_back(p);
-        Append(out[r], keys[p].X, width);
+        if (points.Representative[p] == p && Inside(boxes[r], &x[3 * p]))
+        {
+          candidates.push_back(p);
+        }
       }
     }
-  }
-  std::vector<std::vector<char>> in = this->AllToAll(out);
-  std::vector<std::vector<vtkIdType>> shared(static_cast<size_t>(n));
-  std::vector<std::vector<char>> answers(static_cast<size_t>(n));
-  for (int s = 0; s < this->Me; ++s)
+    return candidates;
+  };
+  auto key = [&](mp::Index p, char* to) { std::memcpy(to, keys[p].X, width * sizeof(double)); };
+  auto find = [&](const char* from) -> mp::Index {
+    PointKey k{ { 0.0, 0.0, 0.0 } };
+    std::memcpy(k.X, from, width * sizeof(double));
+    auto found = index.find(k);
+    return found != index.end() ? found->second : -1;
+  };
+  const std::vector<std::vector<mp::Index>> rows =
+    this->MatchRows(width * sizeof(double), asks, key, find);
+  std::vector<std::vector<vtkIdType>> shared(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r)
   {
-    const std::vector<double> v = Read<double>(in[s]);
-    for (size_t at = 0; at + width <= v.size(); at += width)
-    {
-      PointKey k{ { 0.0, 0.0, 0.0 } };
-      std::copy(v.begin() + at, v.begin() + at + width, k.X);
-      auto found = index.find(k);
-      const char yes = found != index.end();
-      answers[s].push_back(yes);
-      if (yes)
-      {
-        shared[s].push_back(found->second);
-      }
-    }
-  }
-  std::vector<std::vector<char>> replies = this->AllToAll(answers);
-  for (int r = this->Me + 1; r < n; ++r)
-  {
-    for (size_t i = 0; i < replies[r].size() && i < candidates[r].size(); ++i)
-    {
-      if (replies[r][i])
-      {
-        shared[r].push_back(candidates[r][i]);
-      }
-    }
+    shared[r].assign(rows[r].begin(), rows[r].end());
   }
   return shared;
 }
 
-void MPIParts::SetNeighbours(const std::vector<std::vector<vtkIdType>>& shared, vtkIdType np)
+void MPIParts::SetNeighbours(
+  const std::vector<std::vector<vtkIdType>>& shared, vtkIdType np, PointSharing& points)
 {
-  this->Neighbours.clear();
-  this->SharedPoints.clear();
-  this->Owner.assign(static_cast<size_t>(np), this->Me);
+  points.Neighbours.clear();
+  points.Shared.clear();
+  points.Owner.assign(static_cast<size_t>(np), this->Me);
   for (int r = 0; r < this->N; ++r)
   {
     if (!shared[r].empty())
     {
-      this->Neighbours.push_back(r);
+      points.Neighbours.push_back(r);
       for (vtkIdType p : shared[r])
       {
-        this->Owner[p] = std::min(this->Owner[p], r);
+        points.Owner[p] = std::min(points.Owner[p], r);
       }
-      this->SharedPoints.push_back(shared[r]);
+      points.Shared.push_back(shared[r]);
     }
   }
   for (vtkIdType p = 0; p < np; ++p)
   {
-    this->Owner[p] = this->Owner[this->Representative[p]];
+    points.Owner[p] = points.Owner[points.Representative[p]];
   }
 }
 
-vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target)
+vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target, PointSharing& points)
 {
   const int n = this->N;
   const vtkIdType np = target->GetNumberOfPoints();
   long long owned = 0;
   for (vtkIdType p = 0; p < np; ++p)
   {
-    owned += this->Owner[p] == this->Me && this->Representative[p] == p;
+    owned += points.Owner[p] == this->Me && points.Representative[p] == p;
   }
   std::vector<long long> counts(static_cast<size_t>(n));
   this->C->AllGather(&owned, counts.data(), 1);
@@ -195,38 +178,38 @@ vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target)
   for (vtkIdType p = 0; p < np; ++p)
   {
     ids->SetValue(p,
-      this->Owner[p] == this->Me && this->Representative[p] == p ? static_cast<vtkIdType>(next++) : -1);
+      points.Owner[p] == this->Me && points.Representative[p] == p ? static_cast<vtkIdType>(next++) : -1);
   }
-  std::vector<std::vector<double>> send(this->Neighbours.size()), recv(this->Neighbours.size());
-  for (size_t i = 0; i < this->Neighbours.size(); ++i)
+  std::vector<std::vector<double>> send(points.Neighbours.size()), recv(points.Neighbours.size());
+  for (size_t i = 0; i < points.Neighbours.size(); ++i)
   {
-    for (vtkIdType p : this->SharedPoints[i])
+    for (vtkIdType p : points.Shared[i])
     {
       send[i].push_back(static_cast<double>(ids->GetValue(p)));
     }
-    recv[i].resize(this->SharedPoints[i].size());
+    recv[i].resize(points.Shared[i].size());
   }
-  this->Swap(this->Neighbours, send, recv);
-  for (size_t i = 0; i < this->Neighbours.size(); ++i)
+  this->Swap(points.Neighbours, send, recv);
+  for (size_t i = 0; i < points.Neighbours.size(); ++i)
   {
-    if (this->Neighbours[i] > this->Me)
+    if (points.Neighbours[i] > this->Me)
     {
       continue;
     }
-    for (size_t k = 0; k < this->SharedPoints[i].size(); ++k)
+    for (size_t k = 0; k < points.Shared[i].size(); ++k)
     {
-      const vtkIdType p = this->SharedPoints[i][k];
-      if (this->Owner[p] == this->Neighbours[i])
+      const vtkIdType p = points.Shared[i][k];
+      if (points.Owner[p] == points.Neighbours[i])
       {
         ids->SetValue(p, static_cast<vtkIdType>(recv[i][k]));
       }
     }
   }
-  this->GlobalOf.resize(static_cast<size_t>(np));
+  points.GlobalOf.resize(static_cast<size_t>(np));
   for (vtkIdType p = 0; p < np; ++p)
   {
-    ids->SetValue(p, ids->GetValue(this->Representative[p]));
-    this->GlobalOf[p] = static_cast<long long>(ids->GetValue(p));
+    ids->SetValue(p, ids->GetValue(points.Representative[p]));
+    points.GlobalOf[p] = static_cast<long long>(ids->GetValue(p));
   }
   vtkSmartPointer<vtkDataSet> copy;
   copy.TakeReference(target->NewInstance());
@@ -316,8 +299,8 @@ void MPIParts::Complete(const RowSharing& rows, double* v, int width, bool minim
   }
 }
 
-mp::SolverHooks MPIParts::Hooks(
-  bool points, mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint)
+mp::SolverHooks MPIParts::Hooks(const SharedTarget& shared, bool points, mp::Index rows,
+  const std::function<vtkIdType(mp::Index)>& dataSetPoint)
 {
   if (!points)
   {
@@ -326,7 +309,14 @@ mp::SolverHooks MPIParts::Hooks(
     hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
     return hooks;
   }
-  RowSharing& state = this->PointRows;
+  return this->HooksOver(this->PointRows(*shared.Points, rows, dataSetPoint));
+}
+
+std::shared_ptr<MPIParts::RowSharing> MPIParts::PointRows(const PointSharing& points,
+  mp::Index rows, const std::function<vtkIdType(mp::Index)>& dataSetPoint) const
+{
+  std::shared_ptr<RowSharing> made = std::make_shared<RowSharing>();
+  RowSharing& state = *made;
   std::vector<mp::Index> rowOf(static_cast<size_t>(rows));
   state.Counted.assign(static_cast<size_t>(rows), 0);
   state.RowGlobal.resize(static_cast<size_t>(rows));
@@ -334,9 +324,9 @@ mp::SolverHooks MPIParts::Hooks(
   {
     const vtkIdType p = dataSetPoint(f);
     rowOf[static_cast<size_t>(p)] = f;
-    state.RowGlobal[f] = this->GlobalOf[static_cast<size_t>(p)];
+    state.RowGlobal[f] = points.GlobalOf[static_cast<size_t>(p)];
     state.Counted[f] =
-      this->Owner[static_cast<size_t>(p)] == this->Me && this->Representative[static_cast<size_t>(p)] == p;
+      points.Owner[static_cast<size_t>(p)] == this->Me && points.Representative[static_cast<size_t>(p)] == p;
   }
   state.Copies.clear();
   {
@@ -344,9 +334,9 @@ mp::SolverHooks MPIParts::Hooks(
     for (mp::Index f = 0; f < rows; ++f)
     {
       const vtkIdType p = dataSetPoint(f);
-      if (this->Representative[static_cast<size_t>(p)] != p)
+      if (points.Representative[static_cast<size_t>(p)] != p)
       {
-        groups[this->Representative[static_cast<size_t>(p)]].push_back(f);
+        groups[points.Representative[static_cast<size_t>(p)]].push_back(f);
       }
     }
     for (auto& g : groups)
@@ -357,12 +347,12 @@ mp::SolverHooks MPIParts::Hooks(
       state.Copies.push_back(rowsOf);
     }
   }
-  state.Neighbours = this->Neighbours;
-  state.Rows.assign(this->Neighbours.size(), std::vector<mp::Index>());
+  state.Neighbours = points.Neighbours;
+  state.Rows.assign(points.Neighbours.size(), std::vector<mp::Index>());
   state.SharedRows.clear();
-  for (size_t i = 0; i < this->Neighbours.size(); ++i)
+  for (size_t i = 0; i < points.Neighbours.size(); ++i)
   {
-    for (vtkIdType p : this->SharedPoints[i])
+    for (vtkIdType p : points.Shared[i])
     {
       state.Rows[i].push_back(rowOf[static_cast<size_t>(p)]);
     }
@@ -371,15 +361,15 @@ mp::SolverHooks MPIParts::Hooks(
   std::sort(state.SharedRows.begin(), state.SharedRows.end());
   state.SharedRows.erase(
     std::unique(state.SharedRows.begin(), state.SharedRows.end()), state.SharedRows.end());
-  return this->HooksOver(state);
+  return made;
 }
 
-mp::SolverHooks MPIParts::HooksOver(const RowSharing& rows)
+mp::SolverHooks MPIParts::HooksOver(std::shared_ptr<const RowSharing> rows)
 {
   mp::SolverHooks hooks;
   hooks.Reduce = [this](double* values, int count) { this->Sum(values, count); };
-  hooks.Counted = rows.Counted.data();
-  const RowSharing* state = &rows;
+  hooks.Counted = rows->Counted.data();
+  std::shared_ptr<const RowSharing> state = std::move(rows); // (held by the hooks)
   hooks.Exchange = [this, state](double* v, int width) { this->Complete(*state, v, width, false); };
   hooks.ExchangeMinimum = [this, state](double* v, int width) { this->Complete(*state, v, width, true); };
   hooks.Direct = [this, state](const mp::CsrMatrix& A, const double* B, double* X, int c,

@@ -86,7 +86,8 @@ double FromBits(long long b)
 }
 } // namespace
 
-mp::FringeHalo MPIParts::Halo(const mp::MeshView& target)
+mp::FringeHalo MPIParts::Halo(const SharedTarget& shared, const mp::MeshView& target,
+  const std::function<vtkIdType(mp::Index)>& dataSetPoint)
 {
   // The reach: three of the longest edges of any process (a little more,
   // so that rounding in the box tests never leaves a cell out).
@@ -99,26 +100,23 @@ mp::FringeHalo MPIParts::Halo(const mp::MeshView& target)
   {
     Grow(mine, target.Point(p));
   }
-  std::vector<double> gathered(static_cast<size_t>(6 * this->N));
-  this->C->AllGather(mine.data(), gathered.data(), 6);
-  std::vector<Box> boxes(static_cast<size_t>(this->N));
-  for (int r = 0; r < this->N; ++r)
-  {
-    std::copy(gathered.begin() + 6 * r, gathered.begin() + 6 * r + 6, boxes[r].begin());
-  }
+  const std::vector<Box> boxes = this->GatherBoxes(mine);
+  // This part's rows, as its point hooks have them (Hooks).
+  const std::shared_ptr<RowSharing> points =
+    this->PointRows(*shared.Points, target.NumberOfPoints, dataSetPoint);
   mp::FringeHalo halo;
-  const std::vector<long long> ghostIds = this->ReceiveHaloCells(target, boxes, reach, halo);
+  const std::vector<long long> ghostIds = this->ReceiveHaloCells(target, *points, boxes, reach, halo);
   // A ghost point lies within a longest edge of the box its cell met.
-  this->ShareHaloRows(target, halo, ghostIds, boxes, reach + all * (1.0 + 1e-6));
-  halo.Hooks = this->HooksOver(this->HaloRows);
+  halo.Hooks = this->HooksOver(
+    this->ShareHaloRows(target, *points, halo, ghostIds, boxes, reach + all * (1.0 + 1e-6)));
   return halo;
 }
 
-std::vector<long long> MPIParts::ReceiveHaloCells(
-  const mp::MeshView& target, const std::vector<Box>& boxes, double reach, mp::FringeHalo& halo)
+std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
+  const RowSharing& points, const std::vector<Box>& boxes, double reach, mp::FringeHalo& halo)
 {
   const int corners = target.CornersPerCell();
-  const std::vector<long long>& global = this->PointRows.RowGlobal;
+  const std::vector<long long>& global = points.RowGlobal;
   // To each process, the cells meeting its grown box: their points (global
   // id, coordinates' bits) then their corners as positions in that list.
   std::vector<std::vector<char>> out(static_cast<size_t>(this->N));
@@ -177,7 +175,7 @@ std::vector<long long> MPIParts::ReceiveHaloCells(
   const mp::Index n = target.NumberOfPoints;
   std::unordered_map<long long, mp::Index> rowOf;
   rowOf.reserve(static_cast<size_t>(n));
-  for (const std::vector<mp::Index>& copies : this->PointRows.Copies)
+  for (const std::vector<mp::Index>& copies : points.Copies)
   {
     rowOf.emplace(global[copies[0]], copies[0]);
   }
@@ -218,14 +216,14 @@ std::vector<long long> MPIParts::ReceiveHaloCells(
   return ghostIds;
 }
 
-void MPIParts::ShareHaloRows(const mp::MeshView& target, const mp::FringeHalo& halo,
-  const std::vector<long long>& ghostIds, const std::vector<Box>& boxes, double reach)
+std::shared_ptr<MPIParts::RowSharing> MPIParts::ShareHaloRows(const mp::MeshView& target,
+  const RowSharing& points, const mp::FringeHalo& halo, const std::vector<long long>& ghostIds,
+  const std::vector<Box>& boxes, double reach)
 {
-  const RowSharing& points = this->PointRows;
   const mp::Index n = target.NumberOfPoints;
   const mp::Index rows = n + halo.NumberOfPoints();
-  RowSharing& state = this->HaloRows;
-  state = RowSharing();
+  std::shared_ptr<RowSharing> made = std::make_shared<RowSharing>();
+  RowSharing& state = *made;
   state.Copies = points.Copies;
   state.Counted = points.Counted;
   state.Counted.resize(static_cast<size_t>(rows), 0); // a ghost row is never counted
@@ -252,54 +250,29 @@ void MPIParts::ShareHaloRows(const mp::MeshView& target, const mp::FringeHalo& h
   auto pointOf = [&](mp::Index f) {
     return f < n ? target.Point(f) : halo.Points.data() + 3 * (f - n);
   };
-  // Every row of a process lies in its box grown by `reach`: a lower
-  // process sends the global ids of its rows in there, the higher one
-  // answers which it has; both then list them in that order.
-  std::vector<std::vector<char>> out(static_cast<size_t>(this->N));
-  std::vector<std::vector<mp::Index>> asked(static_cast<size_t>(this->N));
-  Box mine = Widened(boxes[this->Me], reach);
-  for (int r = this->Me + 1; r < this->N; ++r)
-  {
+  // Every row of a process lies in its box grown by `reach`: the rows
+  // matched by their global ids among those in there (MatchRows).
+  const Box mine = Widened(boxes[this->Me], reach);
+  auto asks = [&](int r) {
+    std::vector<mp::Index> candidates;
     const Box reached = Widened(boxes[r], reach);
-    if (!Meet(reached, mine))
-    {
-      continue;
-    }
-    for (mp::Index f = 0; f < rows; ++f)
+    for (mp::Index f = 0; f < rows && Meet(reached, mine); ++f)
     {
       if ((f >= n || !second[f]) && Inside(reached, pointOf(f)))
       {
-        asked[r].push_back(f);
-        Append(out[r], &state.RowGlobal[f], 1);
+        candidates.push_back(f);
       }
     }
-  }
-  std::vector<std::vector<char>> in = this->AllToAll(out);
-  std::vector<std::vector<mp::Index>> shared(static_cast<size_t>(this->N));
-  std::vector<std::vector<char>> answers(static_cast<size_t>(this->N));
-  for (int s = 0; s < this->Me; ++s)
-  {
-    for (long long id : Read<long long>(in[s]))
-    {
-      auto found = rowOf.find(id);
-      answers[s].push_back(found != rowOf.end());
-      if (found != rowOf.end())
-      {
-        shared[s].push_back(found->second);
-      }
-    }
-  }
-  std::vector<std::vector<char>> replies = this->AllToAll(answers);
-  for (int r = this->Me + 1; r < this->N; ++r)
-  {
-    for (size_t i = 0; i < replies[r].size() && i < asked[r].size(); ++i)
-    {
-      if (replies[r][i])
-      {
-        shared[r].push_back(asked[r][i]);
-      }
-    }
-  }
+    return candidates;
+  };
+  auto key = [&](mp::Index f, char* to) { std::memcpy(to, &state.RowGlobal[f], sizeof(long long)); };
+  auto find = [&](const char* from) -> mp::Index {
+    long long id;
+    std::memcpy(&id, from, sizeof id);
+    auto found = rowOf.find(id);
+    return found != rowOf.end() ? found->second : -1;
+  };
+  const std::vector<std::vector<mp::Index>> shared = this->MatchRows(sizeof(long long), asks, key, find);
   for (int r = 0; r < this->N; ++r)
   {
     if (!shared[r].empty())
@@ -312,5 +285,6 @@ void MPIParts::ShareHaloRows(const mp::MeshView& target, const mp::FringeHalo& h
   std::sort(state.SharedRows.begin(), state.SharedRows.end());
   state.SharedRows.erase(
     std::unique(state.SharedRows.begin(), state.SharedRows.end()), state.SharedRows.end());
+  return made;
 }
 } // namespace mpvtk

@@ -17,14 +17,13 @@ namespace mpvtk
 {
 namespace
 {
-/// Why an Apply failed: a stop, or a system it could not solve.
-Verdict ApplyFailed(const mp::MortarOperator& applied, Transfer t, KeptLeaf& kept)
+/// Why an Apply failed: a stop, or a system it could not solve (the execution then drops the leaf's cache).
+Verdict ApplyFailed(const mp::ApplyResult& applied, Transfer t)
 {
-  if (applied.SolveWasStopped())
+  if (applied.Stopped)
   {
     return Verdict::Stop();
   }
-  kept.Clear();
   return Verdict::Fail(std::string("The projection of ") + TransferName(t) +
     " failed: the mass matrix of the covered target part could not be solved.");
 }
@@ -70,9 +69,10 @@ void KeepWithinSourceRange(LeafContext& ctx, const GatheredFields& g, bool cells
   }
 }
 
-/// The NaN groups' arrays: their own operators, their columns of `values`.
-Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values)
+/// The NaN groups' arrays: their own operators, their columns of `values`, their systems.
+Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
+  const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values,
+  std::vector<mp::ProjectedSystem>& systems)
 {
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const double fill = ctx.Options.Fill();
@@ -97,14 +97,17 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
         }
       }
     }
-    if (!op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook))
+    const mp::ApplyResult applied =
+      op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook);
+    if (!applied)
     {
-      return ApplyFailed(op, t, kept);
+      return ApplyFailed(applied, t);
     }
-    ctx.Stats.Solve += op.GetTimings().Solve;
+    ctx.Stats.Solve += applied.Seconds;
     int column = 0;
     for (int a : group.Arrays)
     {
+      systems[static_cast<size_t>(a)] = applied.System;
       const int nc = g.Arrays[a]->GetNumberOfComponents();
       for (size_t f = 0; f < rows; ++f)
       {
@@ -120,12 +123,13 @@ Verdict ApplyGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Tr
 }
 
 /// One transfer: its fields' solution (warm started when it may), then the NaN groups'.
-Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::SolverHooks& hook, const mp::FringeHalo& halo, mp::LargeVector<double>& values)
+Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
+  const OperatorSet& ops, Transfer t, const mp::SolverHooks& hook, const mp::FringeHalo& halo,
+  LeafSolutions& solutions)
 {
+  mp::LargeVector<double>& values = solutions.Values[t];
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const mp::MortarOperator& op = *ops.Operators[t];
-  KeptOperator& k = kept.Operators[t];
   const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
@@ -141,28 +145,34 @@ Verdict ApplyTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, 
     const ProgressShare bar = ctx.Bar;
     apply.Solve.Progress = [bar](double done) { return bar(0.9 + 0.05 * done); };
   }
-  bool warm = !ops.Fresh[t] && k.SolutionKey == g.Key && k.Solution.size() == size;
+  const mp::LargeVector<double>* start = ops.Fresh[t] ? nullptr : kept.WarmStart(t, g.Key, size);
+  bool warm = start != nullptr;
   ctx.Processes.Agree(Verdict(), &warm); // all processes start alike
   if (warm)
   {
-    values.assign(k.Solution.begin(), k.Solution.end());
+    values.assign(start->begin(), start->end());
     apply.Solve.StartFromX = true;
   }
   else
   {
     values.resize(size);
   }
-  if (!op.Apply(g.Functions().data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook))
+  const mp::ApplyResult applied =
+    op.Apply(g.Functions().data(), g.Components, values.data(), ctx.Options.Fill(), apply, hook);
+  if (!applied)
   {
-    return ApplyFailed(op, t, kept);
+    return ApplyFailed(applied, t);
   }
-  ctx.Stats.Solve += op.GetTimings().Solve;
-  if (ctx.Options.CacheOperator)
+  ctx.Stats.Solve += applied.Seconds;
+  solutions.System[t] = applied.System;
+  solutions.ByArray[t].assign(g.Arrays.size(), applied.System);
+  if (plan.Cache.Keep)
   {
-    k.SolutionKey = g.Key;
-    k.Solution.assign(values.begin(), values.end());
+    solutions.Aside[t] = true;
+    solutions.SolvedKey[t] = g.Key;
+    solutions.Solved[t].assign(values.begin(), values.end());
   }
-  return ApplyGroups(ctx, kept, ops, t, apply, hook, values);
+  return ApplyGroups(ctx, ops, t, apply, hook, values, solutions.ByArray[t]);
 }
 /**
  * The fringe of every P1 operator in use aggregated (MortarOperator::
@@ -192,7 +202,9 @@ void AggregateFringes(
   if (used > 0.0 && anyP1)
   {
     // (Kept operators need it too: their aggregated systems have its rows.)
-    halo = ctx.Processes.Halo(view);
+    const SimplexMesh& target = ctx.Target;
+    halo = ctx.Processes.Halo(
+      ctx.Shared, view, [&target](mp::Index f) { return target.DataSetPoint(f); });
   }
   for (Transfer t : AllTransfers)
   {
@@ -222,9 +234,10 @@ void ShareSystems(
   LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo)
 {
   const SimplexMesh& target = ctx.Target;
-  hooks[0] = ctx.Processes.Hooks(true, static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),
+  hooks[0] = ctx.Processes.Hooks(ctx.Shared, true,
+    static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),
     [&target](mp::Index f) { return target.DataSetPoint(f); });
-  hooks[1] = ctx.Processes.Hooks(false, 0, nullptr);
+  hooks[1] = ctx.Processes.Hooks(ctx.Shared, false, 0, nullptr);
   for (Transfer t : AllTransfers)
   {
     if (!ops.Operators[t] || TargetSpaceOf(t) != mp::SpaceType::P1)
@@ -243,66 +256,27 @@ void ShareSystems(
   AggregateFringes(ctx, ops, hooks[0], halo);
 }
 
-Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
-  const mp::SolverHooks hooks[2], const mp::FringeHalo& halo, LeafSolutions& solutions)
+Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
+  const OperatorSet& ops, const mp::SolverHooks hooks[2], const mp::FringeHalo& halo,
+  LeafSolutions& solutions)
 {
   for (Transfer t : AllTransfers)
   {
+    if (ops.Operators[t])
+    {
+      solutions.System[t] = ops.Operators[t]->GetAssembledSystem(); // (until applied)
+    }
     if (!ops.Operators[t] || ctx.Source.Fields[SourceAssociation(t)].Components == 0)
     {
       continue;
     }
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
-    const Verdict applied = ApplyTransfer(ctx, kept, ops, t, hook, halo, solutions.Values[t]);
+    const Verdict applied = ApplyTransfer(ctx, kept, plan, ops, t, hook, halo, solutions);
     if (!applied.Ok())
     {
       return applied;
     }
   }
   return Verdict();
-}
-
-void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops)
-{
-  const bool builtHere = ops.BuiltAny();
-  const bool cache = ctx.Options.CacheOperator;
-  for (Transfer t : AllTransfers)
-  {
-    std::unique_ptr<mp::MortarOperator>& fresh = ops.Fresh[t];
-    if (fresh && cache && fresh->HasMixedMass())
-    {
-      kept.Operators[t].Operator = std::move(fresh);
-    }
-    else if (!plan.Used[t] || !cache)
-    {
-      kept.Operators[t] = KeptOperator();
-    }
-    if (fresh)
-    {
-      fresh->ReleaseMatrices(); // solved and not kept: room for the outputs
-    }
-    KeptOperator& k = kept.Operators[t];
-    if (k.ExtensionFor != k.Operator.get())
-    {
-      // Extrapolation's extension of an operator that is not kept.
-      k.Extension = mp::Extension();
-      k.ExtensionFor = nullptr;
-    }
-  }
-  if (!builtHere)
-  {
-    return;
-  }
-  // The meshes' point orders, for GetMatrix (only kept operators are read).
-  const bool anyKept = kept.KeepsAny();
-  auto keep = [anyKept](const SimplexMesh& mesh, std::vector<mp::Index>& order) {
-    std::vector<mp::Index>().swap(order);
-    if (mesh.Ordered() && anyKept)
-    {
-      order.assign(mesh.PointOrderData(), mesh.PointOrderData() + mesh.View().NumberOfPoints);
-    }
-  };
-  keep(ctx.Target, kept.TargetPoints);
-  keep(ctx.Source.Mesh, kept.SourcePoints);
 }
 } // namespace mpvtk

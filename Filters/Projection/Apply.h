@@ -4,7 +4,7 @@
  * @brief Applying one leaf's operators: M_ts u_s, then M_tt (consistent,
  *        from the previous step's solution when the same arrays meet the
  *        same operator) or its row sums (lumped), with bounds when asked;
- *        then which operators are kept for the next execution.
+ *        each Apply's system kept with its values (LeafSolutions).
  *
  * On several processes the systems are one global system each: the rows
  * shared with other processes are completed in every product (the hooks),
@@ -17,7 +17,12 @@
 
 #include "Mesh/LargeArray.h"
 #include "Transfer/BlockCG.h"
+#include "Transfer/Extrapolation.h"
 #include "Transfer/MortarOperator.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
 
 namespace mpvtk
 {
@@ -27,8 +32,27 @@ struct KeptLeaf;
 struct LeafSolutions
 {
   mp::LargeVector<double> Values[NumberOfTransfers];
+  /**
+   * Per transfer in use: the system its own operator's values were solved
+   * in (mp::ApplyResult::System; M_tt's when nothing was applied), which
+   * the masks, extrapolation and outputs read.
+   */
+  mp::ProjectedSystem System[NumberOfTransfers];
+  /// Per transfer and Source array: the system of its operator's Apply (its NaN group's, or System[t]).
+  std::vector<mp::ProjectedSystem> ByArray[NumberOfTransfers];
   /// Per transfer: the functions whose values were extrapolated (its operator's; Extrapolation).
   std::vector<char> Extrapolated[NumberOfTransfers];
+  /// With CachePlan::Keep, per transfer: its operator's solution (before
+  /// the NaN groups' columns and the extrapolation) and its fields' key,
+  /// the next execution's start (KeptLeaf::Store).
+  mp::LargeVector<double> Solved[NumberOfTransfers];
+  std::string SolvedKey[NumberOfTransfers];
+  bool Aside[NumberOfTransfers] = {}; ///< Solved and SolvedKey set
+  /// Per transfer: the key of the extension its operator's arrays took
+  /// (ExtensionKey; 0: none) and, when built here (Built), the extension.
+  std::uint64_t ExtensionKey[NumberOfTransfers] = {};
+  bool Built[NumberOfTransfers] = {};
+  mp::Extension Extension[NumberOfTransfers];
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators
@@ -37,16 +61,14 @@ struct LeafSolutions
 void ShareSystems(
   LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo);
 
-/// Applies every operator in use to its fields (and NaN groups' operators to theirs).
-Verdict ApplyOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops,
-  const mp::SolverHooks hooks[2], const mp::FringeHalo& halo, LeafSolutions& solutions);
-
 /**
- * Keeps the operators built here for the next execution (and GetMatrix)
- * when they hold M_ts and CacheOperator is on, drops the others and those
- * not in use; the ones not kept give back their matrices now.
+ * Applies every operator in use to its fields (and NaN groups' operators to
+ * theirs), warm started from the kept solution where `kept` has one for the
+ * same fields; with plan.Cache.Keep each solution is put aside to be kept.
  */
-void KeepOperators(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, OperatorSet& ops);
+Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
+  const OperatorSet& ops, const mp::SolverHooks hooks[2], const mp::FringeHalo& halo,
+  LeafSolutions& solutions);
 } // namespace mpvtk
 
 #endif

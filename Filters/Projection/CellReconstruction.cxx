@@ -71,9 +71,6 @@ void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
     }
     Reconstruct(reconstruction, source, defined.data(), mode, group);
   }
-  if (!settings.CacheOperator)
-  {
-    kept = KeptReconstruction();
-  }
+  kept.Store(settings);
 }
 } // namespace mpvtk

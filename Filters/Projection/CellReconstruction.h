@@ -35,7 +35,7 @@ class SimplexMesh;
 /**
  * Fills `cells`' Corners (and each NaN group's) when the settings ask for a
  * reconstruction (Settings::ReconstructsCellData). The reconstruction's
- * geometry is kept in `kept` (with CacheOperator) and serves again while
+ * geometry is kept in `kept` (as the cache decides: KeptReconstruction::Store) and serves again while
  * Source's fingerprint `sourcePrint` is the same; made, it uses the
  * Source's face neighbours (built here, for the search too).
  */

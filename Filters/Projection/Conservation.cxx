@@ -198,8 +198,8 @@ ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const
   const std::vector<double>& w = array.Weights;
   result.Source = mp::SumInBlocks(static_cast<vtkIdType>(w.size()), nc, mpvtk::SMPTaskRunner(),
     [&](vtkIdType j, int k) { return w[j] * array.Source[j * width + offset + k]; });
-  const std::vector<char>& valid = array.Operator.GetValid();
-  const std::vector<double>& covered = array.Operator.GetCoveredIntegrals();
+  const std::vector<char>& valid = *array.System.Valid;
+  const std::vector<double>& covered = *array.System.CoveredIntegrals;
   // (An invalid function's value, the fill, may be NaN: left out.)
   result.Target = mp::SumInBlocks(array.TargetFunctions, nc, mpvtk::SMPTaskRunner(), [&](vtkIdType f, int k) {
     return valid[f] ? covered[f] * array.Result[f * width + offset + k] : 0.0;

@@ -79,7 +79,7 @@ struct ArrayIntegrals
 /// What Integrate reads of one projected array.
 struct ProjectedArray
 {
-  const mp::MortarOperator& Operator;
+  const mp::ProjectedSystem& System;      ///< the system the result was solved in (its valid functions, covered integrals)
   const std::vector<double>& Weights;     ///< SourceWeights::Of
   const mp::LargeVector<double>& Source;  ///< the Source functions' values, `Width` per row
   const mp::LargeVector<double>& Result;  ///< the target functions' values, `Width` per row

@@ -21,29 +21,11 @@ namespace mpvtk
 {
 namespace
 {
-/**
- * The extension over `op`'s invalid functions: the kept one where it is
- * this operator's (a reused operator, the same mode, the same valid
- * functions: those of an aggregated solve drop the fringe's least covered
- * ones, a lumped one's do not), else built. Whether to reuse is agreed:
- * the build is collective.
- */
-const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op, bool points,
-  const mp::SolverHooks& hook, KeptOperator* kept, mp::Extension& own)
+/// The extension from `valid` over the target's point or cell graph, built.
+mp::Extension BuildExtension(
+  LeafContext& ctx, const std::vector<char>& valid, bool points, const mp::SolverHooks& hook)
 {
   const mp::ExtrapolationMode mode = ctx.Options.Extrapolation;
-  mp::Extension& ext = kept ? kept->Extension : own;
-  const std::vector<char>& valid = op.GetValid();
-  if (kept)
-  {
-    bool reuse = kept->Operator.get() == &op && kept->ExtensionFor == &op && ext.Mode == mode &&
-      ext.Valid == valid;
-    ctx.Processes.Agree(Verdict(), &reuse);
-    if (reuse)
-    {
-      return ext;
-    }
-  }
   // Rows for the functions this operator leaves invalid.
   std::vector<char> want(valid.size());
   for (size_t f = 0; f < want.size(); ++f)
@@ -52,33 +34,60 @@ const mp::Extension& ExtensionOf(LeafContext& ctx, const mp::MortarOperator& op,
   }
   const mp::MeshView& view = ctx.Target.View();
   const mp::FunctionGraph graph = points ? mp::PointGraph(view, want) : mp::CellGraph(view, want);
-  ext = mp::ExtendOver(graph, valid, mode, hook);
-  if (kept)
+  return mp::ExtendOver(graph, valid, mode, hook);
+}
+
+/**
+ * The extension of transfer t's own operator: the kept one where the cache
+ * has one for the same mode and valid functions (those of an aggregated
+ * solve drop the fringe's least covered ones, a lumped one's do not), else
+ * built into `solutions` (the cache keeps it at the leaf's end). Whether to
+ * reuse is agreed: the build is collective.
+ */
+const mp::Extension& OwnExtension(LeafContext& ctx, const KeptLeaf& kept, Transfer t,
+  const std::vector<char>& valid, const mp::SolverHooks& hook, LeafSolutions& solutions)
+{
+  const std::uint64_t key = ExtensionKey(ctx.Options.Extrapolation, valid);
+  const mp::Extension* found = kept.Extension(t, key);
+  bool reuse = found != nullptr;
+  ctx.Processes.Agree(Verdict(), &reuse);
+  solutions.ExtensionKey[t] = key;
+  if (reuse)
   {
-    kept->ExtensionFor = &op;
+    return *found;
   }
-  return ext;
+  solutions.Extension[t] = BuildExtension(ctx, valid, TargetSpaceOf(t) == mp::SpaceType::P1, hook);
+  solutions.Built[t] = true;
+  return solutions.Extension[t];
 }
 
 /// One transfer: its arrays extended one by one (each with its own operator's validity).
-Verdict ExtrapolateTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, Transfer t,
-  const mp::SolverHooks& hook, LeafSolutions& solutions)
+Verdict ExtrapolateTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorSet& ops,
+  Transfer t, const mp::SolverHooks& hook, LeafSolutions& solutions)
 {
   const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   mp::LargeVector<double>& values = solutions.Values[t];
   double left = 0.0;
   const mp::MortarOperator* builtFor = nullptr;
-  mp::Extension own;
+  mp::Extension group;
   const mp::Extension* ext = nullptr;
   for (size_t a = 0; a < g.Arrays.size(); ++a)
   {
     const mp::MortarOperator& op = *ops.ByArray[t][a];
     if (&op != builtFor)
     {
-      // The transfer's own operator keeps its extension (GetMatrix, later steps).
-      const bool main = &op == ops.Operators[t] && ctx.Options.CacheOperator;
-      ext = &ExtensionOf(ctx, op, points, hook, main ? &kept.Operators[t] : nullptr, own);
+      // The transfer's own operator's extension may be kept (GetMatrix, later steps); a NaN group's is its own.
+      const std::vector<char>& valid = *solutions.ByArray[t][a].Valid;
+      if (&op == ops.Operators[t])
+      {
+        ext = &OwnExtension(ctx, kept, t, valid, hook, solutions);
+      }
+      else
+      {
+        group = BuildExtension(ctx, valid, points, hook);
+        ext = &group;
+      }
       builtFor = &op;
       left = std::max(left, static_cast<double>(ext->Unreached));
     }
@@ -100,8 +109,8 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, KeptLeaf& kept, const OperatorSet&
 }
 } // namespace
 
-Verdict ExtrapolateLeaf(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, const mp::SolverHooks hooks[2],
-  LeafSolutions& solutions)
+Verdict ExtrapolateLeaf(LeafContext& ctx, const KeptLeaf& kept, const OperatorSet& ops,
+  const mp::SolverHooks hooks[2], LeafSolutions& solutions)
 {
   if (ctx.Options.Extrapolation == mp::ExtrapolationMode::None)
   {

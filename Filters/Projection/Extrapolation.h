@@ -20,11 +20,13 @@ namespace mpvtk
 {
 /**
  * Extends every transfer's arrays (Settings::Extrapolation); a failure is a
- * stop or an error. With CacheOperator the transfer's extension is kept
- * with its operator (reused with it; GetMatrix EXTRAPOLATION).
+ * stop or an error. The transfer's own operator takes the extension `kept`
+ * has for the same mode and valid functions (ExtensionKey), else one built
+ * here into `solutions`, which the cache keeps with the operator at the
+ * leaf's end (later steps, GetMatrix EXTRAPOLATION).
  */
-Verdict ExtrapolateLeaf(LeafContext& ctx, KeptLeaf& kept, const OperatorSet& ops, const mp::SolverHooks hooks[2],
-  LeafSolutions& solutions);
+Verdict ExtrapolateLeaf(LeafContext& ctx, const KeptLeaf& kept, const OperatorSet& ops,
+  const mp::SolverHooks hooks[2], LeafSolutions& solutions);
 } // namespace mpvtk
 
 #endif

@@ -16,6 +16,7 @@
 #define MeshProjection_Projection_Leaf_h
 
 #include "Parallel/Parts.h"
+#include "Projection/OperatorCache.h"
 #include "Projection/Progress.h"
 #include "Projection/Shape.h"
 #include "Projection/Statistics.h"
@@ -51,6 +52,7 @@ struct LeafContext
   SourceSide& Source;
   SimplexMesh& Target;
   vtkDataSet* TargetData; ///< Input's dataset (with global point ids on several processes)
+  const SharedTarget& Shared; ///< it as the processes share it (Parts::ShareTarget): the hooks and the halo are made from it
   std::string Role;       ///< "Input" or "Input block ..." in messages
   LeafShape Shape;
   bool LastReaderOfSource; ///< no later leaf reads the Source mesh
@@ -60,9 +62,10 @@ struct LeafContext
 struct OperatorPlan
 {
   bool Used[NumberOfTransfers] = {};
-  bool SameGeometry = false; ///< the kept operators may serve (on every process)
+  /// What the operator cache keeps and lets serve (Cache.SameGeometry: on every process).
+  CachePlan Cache;
   /// M_ts formed (bounds need it; kept operators with time steps, meshes
-  /// that came again, or GetMatrix); else the fields' right-hand sides are
+  /// that came again, or KeepMatrices); else the fields' right-hand sides are
   /// summed during the search and M_ts is never formed.
   bool Assembled = false;
 };
@@ -74,8 +77,8 @@ struct OperatorSet
   const mp::MortarOperator* Operators[NumberOfTransfers] = {};
   /// Per transfer, the operator of each Source array (its NaN group's, or the transfer's).
   std::vector<const mp::MortarOperator*> ByArray[NumberOfTransfers];
-  /// NaN groups' operators built here and not kept.
-  std::vector<std::unique_ptr<mp::MortarOperator>> GroupFresh;
+  /// NaN groups' operators built here, by transfer and fingerprint of the cells left out (KeptLeaf::Groups).
+  std::vector<std::pair<GroupKey, std::unique_ptr<mp::MortarOperator>>> GroupFresh;
   /// The operators built here, whose M_tt comes once the Source is released.
   std::vector<mp::MortarOperator*> Deferred;
 

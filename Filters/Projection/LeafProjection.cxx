@@ -79,8 +79,8 @@ void WarnShape(LeafContext& ctx)
  * both meshes, nor on several processes, whose Source weights are
  * collective.) Then M_tt of the operators built here, on the target alone.
  */
-bool PrepareSolves(
-  LeafContext& ctx, OperatorSet& ops, SourceWeights& weights, mp::LargeVector<double>& cover)
+bool PrepareSolves(LeafContext& ctx, const OperatorPlan& plan, OperatorSet& ops,
+  SourceWeights& weights, mp::LargeVector<double>& cover)
 {
   const bool release =
     ctx.LastReaderOfSource && !ctx.Options.OutputIntersections && ctx.Processes.Whole();
@@ -105,7 +105,7 @@ bool PrepareSolves(
     bool keeps = false;
     for (const mp::MortarOperator* op : ops.Deferred)
     {
-      keeps = keeps || (ctx.Options.CacheOperator && op->HasMixedMass());
+      keeps = keeps || plan.Cache.Keeps(*op);
     }
     if (!keeps)
     {
@@ -133,7 +133,8 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   LeafAgreement agreement(run.Processes);
   // On several processes the dataset first learns the points it shares
   // with others (and gets global point ids).
-  vtkSmartPointer<vtkDataSet> target = run.Processes.ShareTarget(job.Target);
+  const SharedTarget shared = run.Processes.ShareTarget(job.Target);
+  vtkDataSet* target = shared.Data;
   SimplexMesh targetMesh;
   result.Outcome = WrapTarget(run, target, job.Role, targetMesh, result.Stats, agreement);
   if (!result.Outcome.Ok())
@@ -141,7 +142,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     return result;
   }
   LeafContext ctx{ run.Options, run.Processes, run.Say, job.Bar, run.Clock, result.Stats,
-    run.Source, targetMesh, target, job.Role, LeafShape(), job.LastReaderOfSource };
+    run.Source, targetMesh, target, shared, job.Role, LeafShape(), job.LastReaderOfSource };
   OperatorPlan plan;
   OperatorSet ops;
   result.Outcome = DecideShape(ctx, agreement);
@@ -171,7 +172,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   }
   SourceWeights weights(run.Source.Mesh, run.Source.Data, run.Processes);
   mp::LargeVector<double> cover;
-  const bool haveCover = PrepareSolves(ctx, ops, weights, cover);
+  const bool haveCover = PrepareSolves(ctx, plan, ops, weights, cover);
   mp::SolverHooks hooks[2]; // P1, P0 target functions
   mp::FringeHalo halo;      // several processes: the fringe's ghost layer
   ShareSystems(ctx, ops, hooks, halo);
@@ -182,7 +183,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     targetMesh.ReleaseGeometry();
   }
   LeafSolutions solutions;
-  result.Outcome = ApplyOperators(ctx, kept, ops, hooks, halo, solutions);
+  result.Outcome = ApplyOperators(ctx, kept, plan, ops, hooks, halo, solutions);
   if (result.Outcome.Ok())
   {
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
@@ -197,7 +198,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   {
     targetMesh.ReleaseGeometry();
   }
-  KeepOperators(ctx, kept, plan, ops);
+  kept.Store(plan, ops, solutions, targetMesh, run.Source.Mesh);
   // On several processes the outputs are written in step (sums over them):
   // a stop now (after the last agreement) waits for the next leaf's.
   if (!ctx.Bar(0.95) && run.Processes.Whole())

@@ -4,13 +4,15 @@
  * @brief One leaf of Input projected: the stages in order.
  *
  * 1. The target as the kernel's mesh (on several processes first sharing
- *    its points with the other processes).
+ *    its points with the other processes: a SharedTarget, Parts.h).
  * 2. Its shape with the Source (Shape.h): dimension, trace, frames.
- * 3. The operators: kept or built (OperatorBuild.h).
+ * 3. The operators: the cache looked up (OperatorCache.h: a CachePlan),
+ *    kept ones or built (OperatorBuild.h).
  * 4. What the solves do not need goes (the search structures; for the last
  *    leaf the meshes' geometry, once what the outputs take from it is
  *    taken), and M_tt is completed.
- * 5. The solves (Apply.h), then the operators kept for the next execution.
+ * 5. The solves (Apply.h) and the extrapolation (Extrapolation.h), then
+ *    what the cache keeps stored (KeptLeaf::Store).
  * 6. The outputs (Outputs.h).
  * On several processes the processes agree at three named rounds
  * (Agreement.h), so that all go on or end together.

@@ -86,9 +86,11 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
   }
   else if (matrix == Exported::Extrapolation)
   {
-    // Without an extension of this operator: the identity on the valid functions.
-    const bool own = kept.ExtensionFor == &op;
-    made = mp::ComposedExtension(own ? kept.Extension : mp::Extension(), own ? kept.Extension.Valid : op.GetValid());
+    // Without an extension (the last execution did not extrapolate): the
+    // identity on the valid functions of the operator's last solve.
+    const bool extended = kept.ExtensionKey != 0;
+    made = mp::ComposedExtension(extended ? kept.Extension : mp::Extension(),
+      extended ? kept.Extension.Valid : (kept.System.Valid ? *kept.System.Valid : op.GetValid()));
   }
   const mp::CsrMatrix& m = made.Rows ? made
     : mixed                          ? op.GetMixedMass()

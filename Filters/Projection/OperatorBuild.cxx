@@ -14,7 +14,6 @@
 #include "Search/ParallelSearch.h"
 
 #include <algorithm>
-#include <set>
 
 namespace mpvtk
 {
@@ -153,9 +152,9 @@ Verdict BuildMissing(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
     {
       continue;
     }
-    if (kept.Operators[t].Operator)
+    if (kept.Operator(t))
     {
-      ops.Operators[t] = kept.Operators[t].Operator.get();
+      ops.Operators[t] = kept.Operator(t);
       continue;
     }
     const GatheredFields& g = FieldsOf(ctx, t);
@@ -257,15 +256,14 @@ void ReportSearch(LeafContext& ctx, const OperatorSet& ops)
 }
 
 /// The operator of one NaN group for transfer t: kept, or built now.
-Verdict GroupOperator(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan, Transfer t,
+Verdict GroupOperator(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan, Transfer t,
   const NaNGroup& group, LeafAgreement& agreement, LeafSearch& search, OperatorSet& ops,
   const mp::MortarOperator*& op)
 {
-  const auto key = std::make_pair(static_cast<int>(t), group.Print);
-  auto found = kept.Groups.find(key);
-  if (found != kept.Groups.end())
+  const GroupKey key(static_cast<int>(t), group.Print);
+  op = kept.Group(t, group.Print);
+  if (op)
   {
-    op = found->second.get();
     return Verdict();
   }
   search.Prepare();
@@ -291,14 +289,7 @@ Verdict GroupOperator(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan
   ++ctx.Stats.OperatorsBuilt;
   op = made.get();
   ops.Deferred.push_back(made.get());
-  if (ctx.Options.CacheOperator && made->HasMixedMass())
-  {
-    kept.Groups[key] = std::move(made);
-  }
-  else
-  {
-    ops.GroupFresh.push_back(std::move(made));
-  }
+  ops.GroupFresh.emplace_back(key, std::move(made)); // (kept or not at the leaf's end: KeptLeaf::Store)
   return Verdict();
 }
 
@@ -306,7 +297,7 @@ Verdict GroupOperator(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan
 Verdict BuildGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
   LeafAgreement& agreement, LeafSearch& search, OperatorSet& ops)
 {
-  std::set<std::pair<int, std::uint64_t>> used;
+  std::vector<GroupKey> used;
   for (Transfer t : AllTransfers)
   {
     const GatheredFields& g = FieldsOf(ctx, t);
@@ -317,7 +308,7 @@ Verdict BuildGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
     ops.ByArray[t].assign(g.Arrays.size(), ops.Operators[t]);
     for (const NaNGroup& group : g.Groups)
     {
-      used.insert(std::make_pair(static_cast<int>(t), group.Print));
+      used.emplace_back(static_cast<int>(t), group.Print);
       const mp::MortarOperator* op = nullptr;
       const Verdict made = GroupOperator(ctx, kept, plan, t, group, agreement, search, ops, op);
       if (!made.Ok())
@@ -330,10 +321,7 @@ Verdict BuildGroups(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
       }
     }
   }
-  for (auto it = kept.Groups.begin(); it != kept.Groups.end();)
-  {
-    it = used.count(it->first) ? std::next(it) : kept.Groups.erase(it);
-  }
+  kept.KeepOnlyGroups(used);
   return Verdict();
 }
 } // namespace
@@ -342,21 +330,14 @@ Verdict PlanOperators(
   LeafContext& ctx, KeptLeaf& kept, LeafAgreement& agreement, OperatorPlan& plan)
 {
   const Settings& s = ctx.Options;
-  const std::uint64_t print =
-    LeafFingerprint(ctx.Target, ctx.Source.Print, s, ctx.Shape.Trace);
-  plan.SameGeometry = s.CacheOperator && kept.HasFingerprint && kept.GeometryFingerprint == print;
+  plan.Cache = kept.LookUp(ctx.Target, ctx.Source.Print, s, ctx.Shape.Trace, ctx.Source.TimeVarying);
   // Kept operators are reused only where every process can keep its own.
-  const Verdict elsewhere = agreement.At(LeafAgreement::Build, &plan.SameGeometry);
+  const Verdict elsewhere = agreement.At(LeafAgreement::Build, &plan.Cache.SameGeometry);
   if (!elsewhere.Ok())
   {
     return agreement.End(elsewhere, true);
   }
-  if (!plan.SameGeometry)
-  {
-    kept.Clear();
-  }
-  kept.HasFingerprint = s.CacheOperator;
-  kept.GeometryFingerprint = print;
+  kept.Begin(plan.Cache);
   const bool points = ctx.Source.Fields[PointArrays].Components > 0;
   const bool cells = ctx.Source.Fields[CellArrays].Components > 0;
   plan.Used[PointsToPoints] = points && (s.PointDataTarget & ToPointsBit);
@@ -368,8 +349,7 @@ Verdict PlanOperators(
   {
     plan.Used[PointsToPoints] = true;
   }
-  plan.Assembled = s.PreserveBounds ||
-    (s.CacheOperator && (ctx.Source.TimeVarying || plan.SameGeometry || s.AssembleNext));
+  plan.Assembled = s.PreserveBounds || plan.Cache.Assembles();
   return Verdict();
 }
 

@@ -24,9 +24,10 @@ class LeafAgreement;
 struct KeptLeaf;
 
 /**
- * Which transfers run and how (takes part in the Build round: kept
- * operators serve only where every process can keep its own); clears
- * `kept` when the meshes changed.
+ * Which transfers run and how: the cache looked up (KeptLeaf::LookUp; takes
+ * part in the Build round: kept operators serve only where every process
+ * can keep its own), then begun (KeptLeaf::Begin: cleared when the meshes
+ * changed).
  */
 Verdict PlanOperators(
   LeafContext& ctx, KeptLeaf& kept, LeafAgreement& agreement, OperatorPlan& plan);

@@ -147,9 +147,10 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     const std::string name = OutputName(array, a, t, names);
     names.push_back(name);
     const mp::MortarOperator& op = *ops.ByArray[t][a];
+    const mp::ProjectedSystem& system = solutions.ByArray[t][static_cast<size_t>(a)];
     (toPoints ? written.PointValid : written.CellValid)
-      .emplace_back(name, toPoints ? numbering.InDataSet(op.GetValid()) : &op.GetValid());
-    const ProjectedArray projected{ op, weights.Of(op), g.Functions(), values,
+      .emplace_back(name, toPoints ? numbering.InDataSet(*system.Valid) : system.Valid);
+    const ProjectedArray projected{ system, weights.Of(op), g.Functions(), values,
       g.Components, offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);
@@ -165,8 +166,8 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     }
     out->SetNumberOfTuples(n);
     double* to = out->GetPointer(0);
-    const std::vector<double>& covered = op.GetCoveredIntegrals();
-    const std::vector<char>& valid = op.GetValid();
+    const std::vector<double>& covered = *system.CoveredIntegrals;
+    const std::vector<char>& valid = *system.Valid;
     const int width = g.Components;
     const SimplexMesh& target = ctx.Target;
     mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
@@ -272,7 +273,7 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
  * process 0), as one process would.
  */
 void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
-  const mp::LargeVector<double>& most, const mp::SolverHooks& shared)
+  const std::vector<char>& valid, const mp::LargeVector<double>& most, const mp::SolverHooks& shared)
 {
   const size_t rows = static_cast<size_t>(ctx.TargetData->GetNumberOfPoints());
   mp::UninitializedLargeVector<double> covered(std::max(most.size(), rows));
@@ -296,7 +297,7 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
         const bool counted = !shared.Counted || static_cast<size_t>(i) >= rows || shared.Counted[i];
         // (An aggregated point's value is the extension of well-covered ones.)
         const bool aggregated = !fringe.empty() && fringe[i];
-        count += onPoints.GetValid()[i] && !aggregated && covered[i] == 0.0 && counted ? 1.0 : 0.0;
+        count += valid[i] && !aggregated && covered[i] == 0.0 && counted ? 1.0 : 0.0;
       }
       return count;
     });
@@ -316,7 +317,7 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
 
 /// vtkValidPointMask, vtkValidCellMask (when arrays go to cells) and CoveredFraction.
 void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
-  const mp::LargeVector<double>& most, const mp::SolverHooks& pointHooks,
+  const LeafSolutions& solutions, const mp::LargeVector<double>& most, const mp::SolverHooks& pointHooks,
   PointNumbering& numbering, const Written& written)
 {
   const vtkIdType nt = ctx.TargetData->GetNumberOfPoints();
@@ -325,14 +326,14 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfValues(nt);
   // The mask of the points' own transfer, else of the cells' transfer to points.
-  const mp::MortarOperator* onPoints = ops.Operators[PointsToPoints]
-    ? ops.Operators[PointsToPoints]
-    : ops.Operators[CellsToPoints];
+  const Transfer toPoints = ops.Operators[PointsToPoints] ? PointsToPoints : CellsToPoints;
+  const mp::MortarOperator* onPoints = ops.Operators[toPoints];
   if (onPoints)
   {
-    const std::vector<char>& valid = *numbering.InDataSet(onPoints->GetValid());
+    const std::vector<char>& pointsValid = *solutions.System[toPoints].Valid;
+    const std::vector<char>& valid = *numbering.InDataSet(pointsValid);
     CopyInThreads(valid.data(), valid.size(), mask->GetPointer(0));
-    WarnSliverPoints(ctx, *onPoints, most, pointHooks);
+    WarnSliverPoints(ctx, *onPoints, pointsValid, most, pointHooks);
   }
   else
   {
@@ -347,15 +348,14 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     });
   }
   AddValidMasks(mask, written.PointValid, output->GetPointData());
-  const mp::MortarOperator* onCells = ops.Operators[PointsToCells]
-    ? ops.Operators[PointsToCells]
-    : ops.Operators[CellsToCells];
-  if (onCells)
+  const Transfer toCells = ops.Operators[PointsToCells] ? PointsToCells : CellsToCells;
+  if (ops.Operators[toCells])
   {
+    const std::vector<char>& cellsValid = *solutions.System[toCells].Valid;
     vtkNew<vtkCharArray> cellMask;
     cellMask->SetName("vtkValidCellMask");
     cellMask->SetNumberOfValues(ntc);
-    CopyInThreads(onCells->GetValid().data(), onCells->GetValid().size(), cellMask->GetPointer(0));
+    CopyInThreads(cellsValid.data(), cellsValid.size(), cellMask->GetPointer(0));
     AddValidMasks(cellMask, written.CellValid, output->GetCellData());
   }
   const mp::LargeVector<double>& fraction = ops.First()->GetCoveredFraction();
@@ -472,7 +472,7 @@ void WriteLeafOutputs(LeafContext& ctx, vtkDataSet* output, const OperatorSet& o
     }
   }
   MakeActiveScalars(output, written);
-  WriteMasks(ctx, output, ops, pointCover, pointHooks, numbering, written);
+  WriteMasks(ctx, output, ops, solutions, pointCover, pointHooks, numbering, written);
   WriteExtrapolatedMasks(ctx, output, ops, solutions);
 }
 

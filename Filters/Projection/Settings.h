@@ -62,7 +62,7 @@ struct Settings
   bool CacheOperator = true;
   int NumberOfThreads = 0;   ///< 0: every core (the filter's RequestData)
   int Renumbering = 0;       ///< SimplexMesh::Ordering (AUTOMATIC)
-  bool AssembleNext = false; ///< not a property: GetMatrix asked for M_ts
+  bool KeepMatrices = false;
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const

@@ -2,6 +2,13 @@
 vtkMeshProjectionFilter keeps (CacheOperator on, after an execution), as
 scipy.sparse CSR matrices, and Matrix Market files.
 
+GetMatrix reads what the last execution kept and never executes the filter.
+The helpers here ask for the matrices explicitly: they turn the filter's
+KeepMatrices on and call its Update(), which executes it once more if it
+had not kept its operators (a one-off execution sums its right-hand sides
+without forming M_ts) and does nothing if it is up to date. KeepMatrices
+stays on afterwards.
+
     from meshprojection import operator_matrices
     M_tt, M_ts, valid = operator_matrices(f)            # point data -> points
     u_t = scipy.sparse.linalg.spsolve(M_tt, M_ts @ u_s)  # = the filter's result on valid rows
@@ -21,6 +28,16 @@ valid values within it, which no matrix holds).
 import numpy as np
 
 TRANSFERS = {"points_to_points": 0, "points_to_cells": 1, "cells_to_cells": 2, "cells_to_points": 3}
+
+
+def _updated(filter_):
+    """The VTK filter (a ParaView proxy's client-side object: builtin
+    sessions), with KeepMatrices on and up to date."""
+    if hasattr(filter_, "GetClientSideObject"):
+        filter_ = filter_.GetClientSideObject()
+    filter_.SetKeepMatrices(True)
+    filter_.Update()
+    return filter_
 
 
 def _csr(filter_, transfer, matrix):
@@ -45,9 +62,9 @@ def operator_matrices(filter_, transfer="points_to_points"):
     the mixed matrix, and the boolean mask of valid target functions (their
     diagonal of the covered mass is positive). Rows and columns are VTK
     point or cell ids. `filter_` is a vtkMeshProjectionFilter, or a ParaView
-    proxy of one (its client-side object is used: builtin sessions)."""
-    if hasattr(filter_, "GetClientSideObject"):
-        filter_ = filter_.GetClientSideObject()
+    proxy of one (its client-side object is used: builtin sessions); its
+    KeepMatrices is turned on and it is updated (see above)."""
+    filter_ = _updated(filter_)
     t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
     m_tt = _csr(filter_, t, 0)
     m_ts = _csr(filter_, t, 1)
@@ -61,8 +78,7 @@ def fringe_extension(filter_, transfer="points_to_points"):
     point functions x point functions, the identity on the free functions
     and the extension weights on the aggregated ones (no nonzero column for
     those); the identity when nothing is aggregated."""
-    if hasattr(filter_, "GetClientSideObject"):
-        filter_ = filter_.GetClientSideObject()
+    filter_ = _updated(filter_)
     t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
     return _csr(filter_, t, 2)
 
@@ -73,16 +89,14 @@ def extrapolation_matrix(filter_, transfer="points_to_points"):
     the valid ones, each extended one's weights over valid ones, empty rows
     for those left the fill value (without Extrapolation: the identity on
     the valid functions). One process's filter."""
-    if hasattr(filter_, "GetClientSideObject"):
-        filter_ = filter_.GetClientSideObject()
+    filter_ = _updated(filter_)
     t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
     return _csr(filter_, t, 3)
 
 
 def write_matrix_market(filter_, path, transfer="points_to_points", matrix="mixed"):
     """Writes M_ts (matrix="mixed") or M_tt ("target") as a Matrix Market file."""
-    if hasattr(filter_, "GetClientSideObject"):
-        filter_ = filter_.GetClientSideObject()
+    filter_ = _updated(filter_)
     t = TRANSFERS[transfer] if isinstance(transfer, str) else int(transfer)
     if not filter_.WriteMatrixMarket(path, t, 1 if matrix == "mixed" else 0):
         raise RuntimeError("could not write " + path)

@@ -762,8 +762,13 @@ TEST(MortarProjector, SolveProgressAndStop)
   mp::MortarOperator projector;
   ASSERT_TRUE(projector.Build(target.View(), source.View(), &locator));
   std::vector<double> plain(static_cast<size_t>(target.NumberOfPoints()));
-  ASSERT_TRUE(projector.Apply(us.data(), 1, plain.data(), std::nan("")));
-  EXPECT_FALSE(projector.SolveWasStopped());
+  const mp::ApplyResult first = projector.Apply(us.data(), 1, plain.data(), std::nan(""));
+  ASSERT_TRUE(first);
+  EXPECT_FALSE(first.Stopped);
+  EXPECT_FALSE(first.System.Aggregated);
+  EXPECT_EQ(first.System.Valid, &projector.GetValid());
+  EXPECT_EQ(first.System.CoveredIntegrals, &projector.GetCoveredIntegrals());
+  EXPECT_EQ(first.System.NumberOfValid, projector.GetNumberOfValid());
   std::vector<double> reported;
   mp::SolveOptions watched;
   watched.Progress = [&reported](double done) {
@@ -785,12 +790,82 @@ TEST(MortarProjector, SolveProgressAndStop)
   mp::SolveOptions stopping;
   stopping.Progress = [&calls](double) { return ++calls < 3; };
   std::vector<double> stopped(plain.size());
-  EXPECT_FALSE(projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping));
-  EXPECT_TRUE(projector.SolveWasStopped());
+  const mp::ApplyResult halted = projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping);
+  EXPECT_FALSE(halted);
+  EXPECT_TRUE(halted.Stopped);
   EXPECT_EQ(calls, 3);
   // And the next solve is not taken for stopped.
-  ASSERT_TRUE(projector.Apply(us.data(), 1, again.data(), std::nan("")));
-  EXPECT_FALSE(projector.SolveWasStopped());
+  const mp::ApplyResult next = projector.Apply(us.data(), 1, again.data(), std::nan(""));
+  ASSERT_TRUE(next);
+  EXPECT_FALSE(next.Stopped);
+}
+
+// Each Apply says which system it solved: after AggregateFringe a
+// consistent Apply solves the aggregated one (the fringe's least covered
+// functions invalid and filled, their covered integrals given to their
+// stencils: the same total), a lumped Apply M_tt's; the operator's getters
+// stay M_tt's whatever the last Apply solved.
+TEST(MortarProjector, ApplyResultNamesTheSystemItSolved)
+{
+  const TestMesh target = mptest::CubeMesh(7, 6, 5, 0.2, 151);
+  TestMesh source = mptest::CubeMesh(6, 5, 7, 0.2, 152);
+  for (size_t i = 0; i < source.Points.size(); ++i)
+  {
+    source.Points[i] = 0.9 * source.Points[i] + 0.17 * static_cast<double>(i % 3 + 1) - 0.2;
+  }
+  source.Finish();
+  const std::vector<double> us = mptest::Sample(source, Smooth);
+  mp::BoxGridLocator locator(source.View());
+  mp::MortarOperator op;
+  ASSERT_TRUE(op.Build(target.View(), source.View(), &locator));
+  const mp::ProjectedSystem assembled = op.GetAssembledSystem();
+  EXPECT_FALSE(assembled.Aggregated);
+  EXPECT_EQ(assembled.Valid, &op.GetValid());
+  EXPECT_EQ(assembled.NumberOfValid, op.GetNumberOfValid());
+  ASSERT_GT(op.AggregateFringe(target.View(), 0.25, mp::SolverHooks()), 0);
+  const double fill = -7.0;
+  std::vector<double> consistent(static_cast<size_t>(target.NumberOfPoints()));
+  const mp::ApplyResult solved = op.Apply(us.data(), 1, consistent.data(), fill);
+  ASSERT_TRUE(solved);
+  EXPECT_FALSE(solved.Stopped);
+  ASSERT_TRUE(solved.System.Aggregated);
+  const std::vector<char>& valid = *solved.System.Valid;
+  ASSERT_EQ(valid.size(), consistent.size());
+  Index count = 0, dropped = 0;
+  for (size_t i = 0; i < valid.size(); ++i)
+  {
+    count += valid[i];
+    dropped += op.GetValid()[i] && !valid[i];
+    EXPECT_TRUE(!valid[i] || op.GetValid()[i]) << i; // dropping only
+    if (!valid[i])
+    {
+      EXPECT_EQ(consistent[i], fill) << i;
+    }
+  }
+  EXPECT_EQ(count, solved.System.NumberOfValid);
+  EXPECT_GT(dropped, 0);
+  EXPECT_EQ(op.GetNumberOfValid(), count + dropped); // the getters: M_tt's
+  auto total = [](const std::vector<double>& v) {
+    double t = 0.0;
+    for (double x : v)
+    {
+      t += x;
+    }
+    return t;
+  };
+  const double whole = total(op.GetCoveredIntegrals());
+  EXPECT_NEAR(total(*solved.System.CoveredIntegrals), whole, 1e-12 * whole);
+  mp::ApplyOptions lumped;
+  lumped.Mass = mp::MassType::Lumped;
+  std::vector<double> means(consistent.size());
+  const mp::ApplyResult averaged = op.Apply(us.data(), 1, means.data(), fill, lumped);
+  ASSERT_TRUE(averaged);
+  EXPECT_FALSE(averaged.System.Aggregated);
+  EXPECT_EQ(averaged.System.Valid, &op.GetValid());
+  EXPECT_EQ(averaged.System.NumberOfValid, op.GetNumberOfValid());
+  // The first result still names its own system.
+  EXPECT_TRUE(solved.System.Aggregated);
+  EXPECT_EQ(solved.System.Valid, op.GetSystem(mp::MassType::Consistent).Valid);
 }
 
 // M_tt is assembled after the search, from the target alone: with

@@ -13,8 +13,8 @@
 
 namespace mp
 {
-bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
-  double fill, const SolveOptions& solve, const SolverHooks& hooks) const
+ApplyResult MortarOperator::Apply(const double* sourceValues, int components,
+  double* targetValues, double fill, const SolveOptions& solve, const SolverHooks& hooks) const
 {
   ApplyOptions options;
   options.Solve = solve;
@@ -252,10 +252,34 @@ void MortarOperator::RestrictRightHandSides(
   product.swap(restricted);
 }
 
+ProjectedSystem MortarOperator::GetAssembledSystem() const
+{
+  ProjectedSystem system;
+  system.Valid = &this->Valid;
+  system.CoveredIntegrals = &this->RowSums;
+  system.NumberOfValid = this->NumberOfValid;
+  return system;
+}
+
+ProjectedSystem MortarOperator::GetSystem(MassType mass) const
+{
+  if (!this->FringeSystem || mass != MassType::Consistent)
+  {
+    return this->GetAssembledSystem();
+  }
+  ProjectedSystem system;
+  system.Aggregated = true;
+  system.Valid = &this->FringeValid;
+  system.CoveredIntegrals = &this->FringeRowSums;
+  system.NumberOfValid = this->NumberOfValid - this->FringeDropped;
+  return system;
+}
+
 bool MortarOperator::Solve(const ApplyOptions& options, const double* rhs, double* targetValues,
-  int components, const SolverHooks& hooks, const SolverHooks& rowHooks) const
+  int components, const SolverHooks& hooks, const SolverHooks& rowHooks, ApplyResult& result) const
 {
   const Index n = this->TargetMass.Rows;
+  const bool aggregated = result.System.Aggregated;
   if (options.Solve.StartFromX)
   {
     // Invalid functions hold the fill value of a previous Apply (NaN, say):
@@ -263,7 +287,7 @@ bool MortarOperator::Solve(const ApplyOptions& options, const double* rhs, doubl
     // 0 * NaN would spread it through the products. Their solution is 0.
     for (Index i = 0; i < n; ++i)
     {
-      if (!this->Valid[i] || (this->LastAggregated && this->Fringe.Aggregated[i]))
+      if (!this->Valid[i] || (aggregated && this->Fringe.Aggregated[i]))
       {
         std::fill(targetValues + i * components, targetValues + (i + 1) * components, 0.0);
       }
@@ -286,21 +310,27 @@ bool MortarOperator::Solve(const ApplyOptions& options, const double* rhs, doubl
     }
     return true;
   }
-  if (this->LastAggregated && this->HaloPoints >= 0)
+  bool ok = false;
+  if (aggregated && this->HaloPoints >= 0)
   {
-    return this->SolveWithHalo(rhs, targetValues, components, options.Solve, rowHooks);
+    ok = this->SolveWithHalo(rhs, targetValues, components, options.Solve, rowHooks);
   }
-  if (this->LastAggregated)
+  else if (aggregated)
   {
-    const bool ok = this->FringeSolver->Solve(rhs, targetValues, components, options.Solve, hooks);
+    ok = this->FringeSolver->Solve(rhs, targetValues, components, options.Solve, hooks);
     ExtendFromFree(this->Fringe, targetValues, components);
-    return ok;
   }
-  return this->Solver->Solve(rhs, targetValues, components, options.Solve, hooks);
+  else
+  {
+    ok = this->Solver->Solve(rhs, targetValues, components, options.Solve, hooks);
+  }
+  result.Stopped = (aggregated ? this->FringeSolver : this->Solver)->WasStopped();
+  return ok;
 }
 
-bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const double* sourceValues,
-  int components, const double* rhs, double* targetValues, const SolverHooks& hooks) const
+bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const ProjectedSystem& system,
+  const double* sourceValues, int components, const double* rhs, double* targetValues,
+  const SolverHooks& hooks) const
 {
   if (options.Mass != MassType::Consistent)
   {
@@ -313,39 +343,44 @@ bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const double*
     {
       return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
     }
-    ClipToLocalBounds(this->MixedMass, this->GetValid(), this->GetCoveredIntegrals(), n,
+    ClipToLocalBounds(this->MixedMass, *system.Valid, *system.CoveredIntegrals, n,
       sourceValues, components, rhs, targetValues, hooks);
   }
   else if (!options.RangeLow.empty())
   {
-    ClipToRange(options, this->GetValid(), this->GetCoveredIntegrals(), n, components, rhs,
+    ClipToRange(options, *system.Valid, *system.CoveredIntegrals, n, components, rhs,
       targetValues, hooks);
   }
   return true;
 }
 
-bool MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
-  double fill, const ApplyOptions& options, const SolverHooks& hooks) const
+ApplyResult MortarOperator::Apply(const double* sourceValues, int components,
+  double* targetValues, double fill, const ApplyOptions& options, const SolverHooks& hooks) const
 {
   const auto start = std::chrono::steady_clock::now();
   const Index n = this->TargetMass.Rows;
-  // A part without rows of a distributed system still takes part in its sums.
-  if (!this->Solver || components <= 0 || (n == 0 && !hooks.Reduce && !hooks.Exchange))
-  {
-    this->Timings.Solve = SecondsSince(start);
-    return this->Solver != nullptr || components <= 0;
-  }
   // A fringe aggregated (AggregateFringe) and a consistent solve: the
   // system P^T M_tt P (with a halo: over the extended rows, completed by
   // the halo's hooks, on every part alike as the options are).
-  const bool aggregated = this->FringeSystem && options.Mass == MassType::Consistent;
+  ApplyResult result;
+  result.System = this->GetSystem(options.Mass);
+  auto done = [&](bool ok) {
+    result.Ok = ok;
+    result.Seconds = this->Timings.Solve = SecondsSince(start);
+    return result;
+  };
+  // A part without rows of a distributed system still takes part in its sums.
+  if (!this->Solver || components <= 0 || (n == 0 && !hooks.Reduce && !hooks.Exchange))
+  {
+    return done(this->Solver != nullptr || components <= 0);
+  }
+  const bool aggregated = result.System.Aggregated;
   const bool halo = aggregated && this->HaloPoints >= 0;
   if (halo && !options.FringeHooks)
   {
-    return false;
+    return done(false);
   }
   const SolverHooks& rowHooks = halo ? *options.FringeHooks : hooks;
-  this->LastAggregated = aggregated;
   // The right-hand sides: summed during the search for the build's fields,
   // else M_ts u_s; P^T b when aggregated (before the shared rows are
   // completed: each part gives its share of an aggregated row to the
@@ -354,7 +389,7 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   const double* rhs = nullptr;
   if (!this->RightHandSides(sourceValues, components, product, hooks.Exchange != nullptr, rhs))
   {
-    return false;
+    return done(false);
   }
   if (aggregated)
   {
@@ -365,9 +400,9 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
   {
     rowHooks.Exchange(product.data(), components);
   }
-  const bool ok = this->Solve(options, rhs, targetValues, components, hooks, rowHooks) &&
-    this->KeepWithinBounds(options, sourceValues, components, rhs, targetValues, hooks);
-  const std::vector<char>& valid = this->GetValid();
+  const bool ok = this->Solve(options, rhs, targetValues, components, hooks, rowHooks, result) &&
+    this->KeepWithinBounds(options, result.System, sourceValues, components, rhs, targetValues, hooks);
+  const std::vector<char>& valid = *result.System.Valid;
   for (Index i = 0; i < n; ++i)
   {
     if (!valid[i])
@@ -375,7 +410,6 @@ bool MortarOperator::Apply(const double* sourceValues, int components, double* t
       std::fill(targetValues + i * components, targetValues + (i + 1) * components, fill);
     }
   }
-  this->Timings.Solve = SecondsSince(start);
-  return ok;
+  return done(ok);
 }
 } // namespace mp

@@ -162,6 +162,39 @@ struct ApplyOptions
   const SolverHooks* FringeHooks = nullptr;
 };
 
+/**
+ * The system whose solution an Apply() wrote, and what a result is read
+ * with: its valid functions (the others got the fill value), their covered
+ * integrals (sum_i over the valid functions of CoveredIntegrals_i u_i is
+ * the integral of u over the covered part) and how many are valid. Either
+ * M_tt's own (MortarOperator::GetAssembledSystem), or, for a consistent
+ * Apply after AggregateFringe, the aggregated system P^T M_tt P's: the
+ * functions covered less than FringeDropFraction invalid, their covered
+ * integrals given to their stencils. The vectors are the operator's: they
+ * live as long as it does and change only with its ShareValidity or
+ * AggregateFringe.
+ */
+struct ProjectedSystem
+{
+  bool Aggregated = false; ///< P^T M_tt P (the fringe's aggregation), else M_tt
+  const std::vector<char>* Valid = nullptr;               ///< per target function: 1 if valid
+  const std::vector<double>* CoveredIntegrals = nullptr; ///< per target function
+  Index NumberOfValid = 0;
+};
+
+/// What one Apply() did: whether it succeeded, whether its solve was stopped, and its system.
+struct ApplyResult
+{
+  /// False when the system could not be solved (or the solve was stopped),
+  /// when the operator was built for other fields (OperatorOptions::Fields)
+  /// or, for bounds, lacks M_ts.
+  bool Ok = false;
+  bool Stopped = false; ///< the solve was stopped (SolveOptions::Progress)
+  ProjectedSystem System;
+  double Seconds = 0; ///< wall clock: M_ts u_s, the solve and the bounds
+  explicit operator bool() const { return this->Ok; }
+};
+
 /// Wall-clock seconds of the stages of Build() and of the last Apply().
 struct OperatorTimings
 {
@@ -218,13 +251,16 @@ public:
    * onto the target functions (target functions x components, row-major).
    * Invalid target functions get `fill`. With solve.StartFromX the solve
    * starts from the values in targetValues (e.g. the previous step's).
-   * False when the system could not be solved, or when the operator was
-   * built for other fields (OperatorOptions::Fields).
+   * Returns what it did (ApplyResult): Ok false when the system could not
+   * be solved, or when the operator was built for other fields
+   * (OperatorOptions::Fields); the system solved, whose valid functions and
+   * covered integrals the values are read with (an aggregated fringe's
+   * after AggregateFringe, else M_tt's).
    */
-  bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
+  ApplyResult Apply(const double* sourceValues, int components, double* targetValues, double fill,
     const SolveOptions& solve = SolveOptions(), const SolverHooks& hooks = SolverHooks()) const;
   /// The same with a choice of mass matrix and bounds (ApplyOptions).
-  bool Apply(const double* sourceValues, int components, double* targetValues, double fill,
+  ApplyResult Apply(const double* sourceValues, int components, double* targetValues, double fill,
     const ApplyOptions& options, const SolverHooks& hooks = SolverHooks()) const;
 
   /**
@@ -252,8 +288,8 @@ public:
    * as ApplyOptions::FringeHooks; every part solves it when any part
    * aggregates). Without a halo each part extends from its own points.
    * Functions covered less than
-   * FringeDropFraction become invalid after such an Apply (their share of
-   * the covered integral goes to their stencil, GetCoveredIntegrals).
+   * FringeDropFraction are invalid in such an Apply's system (their share of
+   * the covered integral goes to their stencil: ApplyResult::System).
    * Collective; once per operator with a positive threshold (a kept
    * operator keeps its aggregation); lumped Applies do not use it (their
    * values are means already). Returns the aggregated functions.
@@ -267,14 +303,10 @@ public:
   size_t MemoryBytes() const;
   /**
    * Per target function: int phi_i over the covered part (the row sums of
-   * M_tt). After a consistent Apply with an aggregated fringe, the dropped
-   * functions' shares given to their stencils (then sum_i over the valid
-   * functions of these times u_i is the integral of u over the covered part).
+   * M_tt; invalid functions: 0). M_tt's system's, whatever the last Apply
+   * solved: an aggregated solve's are in its ApplyResult::System.
    */
-  const std::vector<double>& GetCoveredIntegrals() const
-  {
-    return this->LastAggregated ? this->FringeRowSums : this->RowSums;
-  }
+  const std::vector<double>& GetCoveredIntegrals() const { return this->RowSums; }
 
   /// M_tt over the covered part (rows of invalid functions: 1 on the diagonal).
   const CsrMatrix& GetTargetMass() const { return this->TargetMass; }
@@ -295,17 +327,20 @@ public:
   Index GetNumberOfSourceFunctions() const { return this->SourceFunctions; }
 
   /**
-   * Per target function: 1 if its support meets the source, else 0 (after
-   * a consistent Apply with an aggregated fringe, the dropped functions 0).
+   * Per target function: 1 if its support meets the source, else 0 (M_tt's
+   * system, after ShareValidity; an aggregated solve's valid functions are
+   * in its ApplyResult::System).
    */
-  const std::vector<char>& GetValid() const
-  {
-    return this->LastAggregated ? this->FringeValid : this->Valid;
-  }
-  Index GetNumberOfValid() const
-  {
-    return this->NumberOfValid - (this->LastAggregated ? this->FringeDropped : 0);
-  }
+  const std::vector<char>& GetValid() const { return this->Valid; }
+  Index GetNumberOfValid() const { return this->NumberOfValid; }
+  /// M_tt's system: GetValid, GetCoveredIntegrals and GetNumberOfValid as one value.
+  ProjectedSystem GetAssembledSystem() const;
+  /**
+   * The system an Apply with `mass` solves: the aggregated one for a
+   * consistent Apply after AggregateFringe aggregated any function, else
+   * GetAssembledSystem().
+   */
+  ProjectedSystem GetSystem(MassType mass) const;
   /// Per target cell: the covered fraction of its measure (per original
   /// cell when the target's simplices have parents, once M_tt is there:
   /// CompleteTargetMass; 0 for a parent without any).
@@ -335,8 +370,6 @@ public:
   const OperatorTimings& GetTimings() const { return this->Timings; }
   const IntersectionPieces& GetPieces() const { return this->Pieces; }
   const std::string& GetError() const { return this->Error; }
-  /// Whether the last Apply's solve was stopped (SolveOptions::Progress).
-  bool SolveWasStopped() const { return this->Solver && this->Solver->WasStopped(); }
 
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
@@ -360,12 +393,13 @@ private:
     bool copy, const double*& rhs) const;
   /// `product` = P^T b (over the extended rows with a halo).
   void RestrictRightHandSides(const double* b, int components, LargeVector<double>& product) const;
-  /// The solve of one Apply: lumped, aggregated (with or without a halo) or plain.
+  /// The solve of one Apply: lumped, aggregated (with or without a halo) or plain; sets result.Stopped.
   bool Solve(const ApplyOptions& options, const double* rhs, double* targetValues, int components,
-    const SolverHooks& hooks, const SolverHooks& rowHooks) const;
-  /// ApplyOptions::Bounded or RangeLow/RangeHigh after a consistent solve; false without M_ts where needed.
-  bool KeepWithinBounds(const ApplyOptions& options, const double* sourceValues, int components,
-    const double* rhs, double* targetValues, const SolverHooks& hooks) const;
+    const SolverHooks& hooks, const SolverHooks& rowHooks, ApplyResult& result) const;
+  /// ApplyOptions::Bounded or RangeLow/RangeHigh after a consistent solve of `system`; false without M_ts where needed.
+  bool KeepWithinBounds(const ApplyOptions& options, const ProjectedSystem& system,
+    const double* sourceValues, int components, const double* rhs, double* targetValues,
+    const SolverHooks& hooks) const;
   /// The aggregated solve on a distributed system with a halo (extended rows).
   bool SolveWithHalo(const double* rhs, double* targetValues, int components,
     const SolveOptions& solve, const SolverHooks& haloHooks) const;
@@ -390,7 +424,6 @@ private:
   std::vector<char> FringeValid;     ///< Valid without the dropped functions
   std::vector<double> FringeRowSums; ///< RowSums with the dropped ones' given to their stencils
   Index FringeDropped = 0;
-  mutable bool LastAggregated = false; ///< the last Apply solved the aggregated system
   CsrMatrix FringeMass; ///< P^T M_tt P (when some function is aggregated)
   std::unique_ptr<BlockCG> FringeSolver;
   std::vector<char> Valid;

@@ -271,6 +271,34 @@ bool CheckMatrices(FieldsRun& run)
   MP_CHECK(filter->GetMatrix(vtkMeshProjectionFilter::CELLS_TO_POINTS, 0, rowStart, columns, values) == -1);
   MP_CHECK(observer->GetError());
   observer->Clear();
+  // GetMatrix never executes the filter: it refuses before an execution,
+  // after a one-off one (which keeps nothing) and after a change; with
+  // KeepMatrices and an Update it gives the matrix.
+  {
+    using F = vtkMeshProjectionFilter;
+    vtkNew<F> asked;
+    vtkNew<vtkTest::ErrorObserver> said;
+    asked->AddObserver(vtkCommand::ErrorEvent, said);
+    asked->SetInputData(target);
+    asked->SetSourceData(source);
+    auto matrix = [&]() { return asked->GetMatrix(F::POINTS_TO_POINTS, F::TARGET_MASS, rowStart, columns, values); };
+    auto refused = [&](const char* why) {
+      const bool is = said->GetError() && said->GetErrorMessage().find(why) != std::string::npos;
+      said->Clear();
+      return is;
+    };
+    MP_CHECK(matrix() == -1 && refused("has not executed"));
+    asked->Update();
+    const vtkMTimeType executed = asked->GetOutputDataObject(0)->GetMTime();
+    MP_CHECK(matrix() == -1 && refused("is kept")); // a one-off execution keeps nothing
+    MP_CHECK(asked->GetOutputDataObject(0)->GetMTime() == executed); // and GetMatrix did not execute
+    asked->SetKeepMatrices(true);
+    MP_CHECK(matrix() == -1 && refused("changed since"));
+    asked->Update();
+    MP_CHECK(matrix() == nt && !said->GetError() && rowStart->GetNumberOfTuples() == nt + 1);
+    asked->SetFillValue(7);
+    MP_CHECK(matrix() == -1 && refused("changed since"));
+  }
   return failures == 0;
 }
 

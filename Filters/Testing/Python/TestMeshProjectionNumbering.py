@@ -165,6 +165,10 @@ def pieces(f, dim):
 
 
 def matrix(f, transfer, which):
+    """f's matrix, asked for as the meshprojection helpers do: KeepMatrices
+    on and f updated (which executes it again after a one-off execution)."""
+    f.SetKeepMatrices(True)
+    f.Update()
     rows, cols, vals = vtkIdTypeArray(), vtkIdTypeArray(), vtkDoubleArray()
     ncols = f.GetMatrix(transfer, which, rows, cols, vals)
     start = vtk_to_numpy(rows)
@@ -327,7 +331,7 @@ for threads, expected in ((1, 0), (2, 2)):
 
 
 # f. Operators assembled and kept at the first execution (PreserveBounds
-# needs M_ts at once, so GetMatrix asks for no second one): their matrices
+# needs M_ts at once, so no second execution is needed): their matrices
 # are read out in the datasets' numbering at the first execution, and again
 # after Input changes to the same mesh in another numbering (a mutation that
 # forgets the new point order fails both).

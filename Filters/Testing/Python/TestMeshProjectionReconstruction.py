@@ -511,6 +511,7 @@ constant = cell_result(f.GetOutput())
 diff = np.max(np.abs(constant - cell_result(project(target, source, CONSTANT).GetOutput()))[cells])
 check(diff <= 1e-9, "back to constant: the constant result (%.3g)" % diff)
 f.SetCellDataReconstruction(LINEAR)
+f.SetKeepMatrices(True)  # (GetMatrix reads the operators an execution kept)
 f.Update()
 rows, columns, values = vtkIdTypeArray(), vtkIdTypeArray(), vtkDoubleArray()
 check(f.GetMatrix(vtkMeshProjectionFilter.CELLS_TO_CELLS, vtkMeshProjectionFilter.MIXED_MASS,

@@ -32,7 +32,7 @@ check(projection.FillWithNaN == 1 and projection.FillValue == 0, "fill defaults"
 check(set(projection.ListProperties()) == {
     "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
-    "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "PointDataArrayInfo", "CellDataArrayInfo",
+    "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "KeepMatrices", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "Extrapolation", "FringeThreshold",
     "NormalOrientation"},
@@ -45,7 +45,8 @@ check(projection.CellDataQuantity == "Intensive" and projection.MassMatrix == "C
       "quantity and mass defaults")
 check(projection.CellDataReconstruction == "Constant",
       "reconstruction default %r" % projection.CellDataReconstruction)
-check(projection.PreserveBounds == 0 and projection.CacheOperator == 1, "bounds and cache defaults")
+check(projection.PreserveBounds == 0 and projection.CacheOperator == 1 and projection.KeepMatrices == 0,
+      "bounds, cache and matrices defaults")
 check(projection.Extrapolation == "None" and projection.FringeThreshold == 0.25,
       "fringe defaults %r %r" % (projection.Extrapolation, projection.FringeThreshold))
 check(projection.MaximumIterations == 500, "iterations default %r" % projection.MaximumIterations)
