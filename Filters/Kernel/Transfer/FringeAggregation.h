@@ -59,6 +59,15 @@ struct FringeExtension
 };
 
 /**
+ * The rings around an ill-posed function (the points sharing a cell with
+ * it, then theirs, ...) its stencil is sought in: a function with no
+ * stable fit within them stays free. A distributed target's halo holds
+ * this many of the longest edges around each part (every process then
+ * finds the stencils the serial run does).
+ */
+constexpr int FringeRings = 3;
+
+/**
  * Functions covered less than this fraction of their support are
  * aggregated and, in the output, invalid: their support holds no more than
  * a corner of the source, so their value would be an extrapolation over
