@@ -94,7 +94,7 @@ mp::FringeHalo MPIParts::Halo(const SharedTarget& shared, const mp::MeshView& ta
   double longest = LongestEdge(target);
   double all = 0.0;
   this->C->AllReduce(&longest, &all, 1, vtkCommunicator::MAX_OP);
-  const double reach = 3.0 * all * (1.0 + 1e-6) + 1e-300;
+  const double reach = mp::FringeRings * all * (1.0 + 1e-6) + 1e-300;
   Box mine = EmptyBox();
   for (mp::Index p = 0; p < target.NumberOfPoints; ++p)
   {

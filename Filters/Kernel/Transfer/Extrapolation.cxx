@@ -4,7 +4,9 @@
 // functions, the creep fill and the nearest values.
 #include "Transfer/Extrapolation.h"
 
+#include "Geometry/CellGeometry.h"
 #include "Mesh/CellNeighbors.h"
+#include "Transfer/CsrBuilder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,36 +19,14 @@ namespace mp
 {
 namespace
 {
-/// Compressed rows: per item, the entries listed by `visit(item, add)` (the
-/// cells around points: BuildPointCells).
-template <class Visit>
-void Incidence(Index items, Index targets, Visit visit, std::vector<Index>& start, std::vector<Index>& entries)
-{
-  start.assign(static_cast<size_t>(targets) + 1, 0);
-  for (Index c = 0; c < items; ++c)
-  {
-    visit(c, [&](Index t) { ++start[static_cast<size_t>(t) + 1]; });
-  }
-  for (Index t = 0; t < targets; ++t)
-  {
-    start[t + 1] += start[t];
-  }
-  entries.resize(static_cast<size_t>(start.back()));
-  std::vector<Index> next(start.begin(), start.end() - 1);
-  for (Index c = 0; c < items; ++c)
-  {
-    visit(c, [&](Index t) { entries[static_cast<size_t>(next[static_cast<size_t>(t)]++)] = c; });
-  }
-}
-
-/// The rows of `want`: neighbours(i, add) adds (neighbour, weight) terms, summed per neighbour.
+/// The rows of `want`: neighbours(i, add) adds (neighbour, weight) terms,
+/// summed per neighbour (the neighbours in the order first met).
 template <class Neighbours>
 void Rows(const std::vector<char>& want, Neighbours neighbours, FunctionGraph& graph)
 {
   const Index n = static_cast<Index>(want.size());
   graph.Row.assign(static_cast<size_t>(n), -1);
-  std::vector<double> sum(static_cast<size_t>(n), 0.0);
-  std::vector<Index> used;
+  RowAccumulator sum(n);
   for (Index i = 0; i < n; ++i)
   {
     if (!want[i])
@@ -54,25 +34,72 @@ void Rows(const std::vector<char>& want, Neighbours neighbours, FunctionGraph& g
       continue;
     }
     graph.Row[i] = static_cast<Index>(graph.Start.size()) - 1;
-    used.clear();
     neighbours(i, [&](Index k, double w) {
-      if (k == i)
+      if (k != i)
       {
-        return;
+        sum.Add(k, w);
       }
-      if (sum[k] == 0.0)
-      {
-        used.push_back(k);
-      }
-      sum[k] += w;
     });
-    for (Index k : used)
-    {
+    sum.Take(false, [&graph](Column k, double w) {
       graph.Neighbors.push_back(k);
-      graph.Weights.push_back(sum[k]);
-      sum[k] = 0.0;
-    }
+      graph.Weights.push_back(w);
+    });
     graph.Start.push_back(static_cast<Index>(graph.Neighbors.size()));
+  }
+}
+
+/**
+ * One part's search: each row's layer lowered from the rows next to a
+ * known layer (0 valid, infinity unknown).
+ */
+void SearchLayers(const FunctionGraph& graph, std::vector<double>& layer)
+{
+  const Index n = graph.Size();
+  const double none = std::numeric_limits<double>::infinity();
+  // A search from the rows next to a known layer: unit steps, so the
+  // rows wait in buckets by layer, smallest first (an entry whose layer
+  // has dropped since is stale).
+  std::vector<std::vector<Index>> buckets;
+  auto push = [&buckets, &layer](Index i) {
+    const size_t b = static_cast<size_t>(layer[i]);
+    if (buckets.size() <= b)
+    {
+      buckets.resize(b + 1);
+    }
+    buckets[b].push_back(i);
+  };
+  for (Index i = 0; i < n; ++i)
+  {
+    const Index r = graph.Row[i];
+    for (Index q = r < 0 ? 0 : graph.Start[r]; r >= 0 && q < graph.Start[r + 1]; ++q)
+    {
+      layer[i] = std::min(layer[i], layer[graph.Neighbors[q]] + 1.0);
+    }
+    if (r >= 0 && layer[i] < none)
+    {
+      push(i);
+    }
+  }
+  for (size_t b = 0; b < buckets.size(); ++b)
+  {
+    for (size_t t = 0; t < buckets[b].size(); ++t)
+    {
+      const Index i = buckets[b][t];
+      if (static_cast<size_t>(layer[i]) != b)
+      {
+        continue;
+      }
+      const Index r = graph.Row[i];
+      for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
+      {
+        const Index k = graph.Neighbors[q];
+        if (graph.Row[k] >= 0 && layer[i] + 1.0 < layer[k])
+        {
+          layer[k] = layer[i] + 1.0;
+          push(k); // (into bucket b + 1: the loops read by index)
+        }
+      }
+    }
   }
 }
 
@@ -92,51 +119,7 @@ std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& v
   }
   for (;;)
   {
-    // A search from the rows next to a known layer: unit steps, so the
-    // rows wait in buckets by layer, smallest first (an entry whose layer
-    // has dropped since is stale).
-    std::vector<std::vector<Index>> buckets;
-    auto push = [&buckets, &layer](Index i) {
-      const size_t b = static_cast<size_t>(layer[i]);
-      if (buckets.size() <= b)
-      {
-        buckets.resize(b + 1);
-      }
-      buckets[b].push_back(i);
-    };
-    for (Index i = 0; i < n; ++i)
-    {
-      const Index r = graph.Row[i];
-      for (Index q = r < 0 ? 0 : graph.Start[r]; r >= 0 && q < graph.Start[r + 1]; ++q)
-      {
-        layer[i] = std::min(layer[i], layer[graph.Neighbors[q]] + 1.0);
-      }
-      if (r >= 0 && layer[i] < none)
-      {
-        push(i);
-      }
-    }
-    for (size_t b = 0; b < buckets.size(); ++b)
-    {
-      for (size_t t = 0; t < buckets[b].size(); ++t)
-      {
-        const Index i = buckets[b][t];
-        if (static_cast<size_t>(layer[i]) != b)
-        {
-          continue;
-        }
-        const Index r = graph.Row[i];
-        for (Index q = graph.Start[r]; q < graph.Start[r + 1]; ++q)
-        {
-          const Index k = graph.Neighbors[q];
-          if (graph.Row[k] >= 0 && layer[i] + 1.0 < layer[k])
-          {
-            layer[k] = layer[i] + 1.0;
-            push(k); // (into bucket b + 1: the loops read by index)
-          }
-        }
-      }
-    }
+    SearchLayers(graph, layer);
     if (!hooks.ExchangeMinimum)
     {
       break;
@@ -162,99 +145,72 @@ std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& v
   return out;
 }
 
-/// Compressed rows over `n` functions from per-function lists of (column, weight).
-CsrMatrix Compressed(Index n, const std::vector<std::vector<std::pair<Column, double>>>& rows)
-{
-  CsrMatrix m;
-  m.Rows = m.Columns = n;
-  m.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  for (Index i = 0; i < n; ++i)
-  {
-    m.RowStart[i + 1] = m.RowStart[i] + static_cast<Index>(rows[i].size());
-  }
-  m.ColumnIndex.resize(static_cast<size_t>(m.NonZeros()));
-  m.Values.resize(static_cast<size_t>(m.NonZeros()));
-  for (Index i = 0; i < n; ++i)
-  {
-    Index at = m.RowStart[i];
-    for (const auto& entry : rows[i])
-    {
-      m.ColumnIndex[at] = entry.first;
-      m.Values[at++] = entry.second;
-    }
-  }
-  return m;
-}
-
 /**
  * The creep fill's steps: one per layer (as many on every part: the
- * largest over the parts), each function reading its neighbours of lower
- * layers with the graph's weights.
+ * largest over the parts), each the functions of its layer.
  */
-void CreepSteps(const FunctionGraph& graph, const std::vector<Index>& layer, const SolverHooks& hooks,
-  Extension& ext)
+std::vector<std::vector<Index>> CreepSteps(const std::vector<Index>& layer, const SolverHooks& hooks)
 {
-  const Index n = graph.Size();
-  for (Index i = 0; i < n; ++i)
+  std::vector<std::vector<Index>> steps;
+  for (Index i = 0; i < static_cast<Index>(layer.size()); ++i)
   {
     if (layer[i] > 0)
     {
-      ext.Steps.resize(std::max(ext.Steps.size(), static_cast<size_t>(layer[i])));
-      ext.Steps[static_cast<size_t>(layer[i]) - 1].push_back(i);
+      steps.resize(std::max(steps.size(), static_cast<size_t>(layer[i])));
+      steps[static_cast<size_t>(layer[i]) - 1].push_back(i);
     }
   }
   for (size_t L = 1; hooks.Reduce; ++L)
   {
     // (Sum of "this part has layer L" over the parts: 0 once no part has.)
-    double has = L <= ext.Steps.size() ? 1.0 : 0.0;
+    double has = L <= steps.size() ? 1.0 : 0.0;
     hooks.Reduce(&has, 1);
     if (has == 0.0)
     {
-      ext.Steps.resize(L - 1);
+      steps.resize(L - 1);
       break;
     }
   }
-  // Each function of layer L reads its neighbours of lower layers: counted,
-  // then written.
-  CsrMatrix& reads = ext.Reads;
-  reads.Rows = reads.Columns = n;
-  reads.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    for (Index i = 0; i < n; ++i)
-    {
-      const Index r = graph.Row[i];
-      Index at = reads.RowStart[i];
-      for (Index q = layer[i] > 0 ? graph.Start[r] : 0; layer[i] > 0 && q < graph.Start[r + 1]; ++q)
-      {
-        const Index k = graph.Neighbors[q];
-        if (layer[k] >= 0 && layer[k] < layer[i])
-        {
-          if (pass == 1)
-          {
-            reads.ColumnIndex[at] = static_cast<Column>(k);
-            reads.Values[at] = graph.Weights[q];
-          }
-          ++at;
-        }
-      }
-      if (pass == 0)
-      {
-        reads.RowStart[i + 1] = reads.RowStart[i] + (at - reads.RowStart[i]);
-      }
-    }
-    if (pass == 0)
-    {
-      reads.ColumnIndex.resize(static_cast<size_t>(reads.NonZeros()));
-      reads.Values.resize(static_cast<size_t>(reads.NonZeros()));
-    }
-  }
+  return steps;
 }
 
-/// Nearest's step: each reached function reads the nearest valid one along the graph (Dijkstra from all valid ones).
-void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Extension& ext)
+/// The creep fill's reads: each function of layer L > 0 its neighbours of lower layers, with the graph's weights.
+CsrMatrix CreepReads(const FunctionGraph& graph, const std::vector<Index>& layer)
 {
-  const std::vector<char>& todo = ext.Extended;
+  // Calls read(k, weight) for i's neighbours of lower layers, in the graph's order.
+  auto lower = [&](Index i, auto read) {
+    const Index r = graph.Row[i];
+    for (Index q = layer[i] > 0 ? graph.Start[r] : 0; layer[i] > 0 && q < graph.Start[r + 1]; ++q)
+    {
+      const Index k = graph.Neighbors[q];
+      if (layer[k] >= 0 && layer[k] < layer[i])
+      {
+        read(k, graph.Weights[q]);
+      }
+    }
+  };
+  const Index n = graph.Size();
+  return BuildCsr(n, n,
+    [&](Index i) {
+      Index count = 0;
+      lower(i, [&count](Index, double) { ++count; });
+      return count;
+    },
+    [&](Index i, Column* column, double* value) {
+      lower(i, [&](Index k, double w) {
+        *column++ = static_cast<Column>(k);
+        *value++ = w;
+      });
+    });
+}
+
+/**
+ * Per function to fill, the nearest valid function along the graph (edge
+ * lengths between the functions' positions; Dijkstra from all valid ones),
+ * or -1 where none is connected.
+ */
+std::vector<Index> NearestValid(const FunctionGraph& graph, const std::vector<char>& valid, const std::vector<char>& todo)
+{
   const Index n = graph.Size();
   std::vector<double> distance(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
   std::vector<Index> from(static_cast<size_t>(n), -1);
@@ -305,19 +261,29 @@ void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Ext
       }
     }
   }
-  // Each reached function reads its nearest valid one, with weight 1.
-  CsrMatrix& reads = ext.Reads;
-  reads.Rows = reads.Columns = n;
-  reads.RowStart.assign(static_cast<size_t>(n) + 1, 0);
+  return from;
+}
+
+/// Nearest's step: each reached function reads its nearest valid one (NearestValid), with weight 1.
+void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Extension& ext)
+{
+  const std::vector<char>& todo = ext.Extended;
+  const std::vector<Index> from = NearestValid(graph, valid, todo);
+  const Index n = graph.Size();
+  auto reached = [&](Index i) { return todo[i] && from[i] >= 0; };
+  ext.Reads = BuildCsr(n, n, [&](Index i) -> Index { return reached(i) ? 1 : 0; },
+    [&](Index i, Column* column, double* value) {
+      if (reached(i))
+      {
+        *column = static_cast<Column>(from[i]);
+        *value = 1.0;
+      }
+    });
   ext.Steps.assign(1, {});
   for (Index i = 0; i < n; ++i)
   {
-    const bool reached = todo[i] && from[i] >= 0;
-    reads.RowStart[i + 1] = reads.RowStart[i] + (reached ? 1 : 0);
-    if (reached)
+    if (reached(i))
     {
-      reads.ColumnIndex.push_back(static_cast<Column>(from[i]));
-      reads.Values.push_back(1.0);
       ext.Steps[0].push_back(i);
     }
   }
@@ -367,7 +333,13 @@ FunctionGraph CellGraph(const MeshView& mesh, const std::vector<char>& want)
   const int corners = mesh.CornersPerCell();
   std::vector<Index> pointStart, aroundPoint, parentStart, children;
   BuildPointCells(mesh, pointStart, aroundPoint);
-  Incidence(mesh.NumberOfCells, parents, [&](Index c, auto add) { add(mesh.ParentOf(c)); }, parentStart, children);
+  // Each parent's cells, in increasing ids.
+  GroupInRows(parents, [&](auto put) {
+    for (Index c = 0; c < mesh.NumberOfCells; ++c)
+    {
+      put(mesh.ParentOf(c), c);
+    }
+  }, parentStart, children);
   Rows(want, [&](Index p, auto add) {
     for (Index q = parentStart[p]; q < parentStart[p + 1]; ++q)
     {
@@ -381,27 +353,10 @@ FunctionGraph CellGraph(const MeshView& mesh, const std::vector<char>& want)
       }
     }
   }, graph);
-  graph.Positions.assign(3 * static_cast<size_t>(parents), 0.0);
-  std::vector<double> count(static_cast<size_t>(parents), 0.0);
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-  {
-    const CellCorners cell = mesh.Cell(c);
-    const Index parent = mesh.ParentOf(c);
-    for (int a = 0; a < corners; ++a)
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        graph.Positions[3 * parent + d] += mesh.Point(cell[a])[d];
-      }
-      count[parent] += 1.0;
-    }
-  }
+  graph.Positions.resize(3 * static_cast<size_t>(parents));
   for (Index p = 0; p < parents; ++p)
   {
-    for (int d = 0; count[p] > 0.0 && d < 3; ++d)
-    {
-      graph.Positions[3 * p + d] /= count[p];
-    }
+    CornerMean(mesh, children.data() + parentStart[p], parentStart[p + 1] - parentStart[p], &graph.Positions[3 * p]);
   }
   return graph;
 }
@@ -432,7 +387,8 @@ Extension ExtendOver(const FunctionGraph& graph, const std::vector<char>& valid,
   ext.Unreached = static_cast<Index>(left);
   if (mode == ExtrapolationMode::Smooth)
   {
-    CreepSteps(graph, layer, hooks, ext);
+    ext.Steps = CreepSteps(layer, hooks);
+    ext.Reads = CreepReads(graph, layer);
   }
   else
   {
@@ -481,7 +437,7 @@ void ApplyExtension(const Extension& ext, double* values, int width, int offset,
 CsrMatrix ComposedExtension(const Extension& ext, const std::vector<char>& valid)
 {
   const Index n = static_cast<Index>(valid.size());
-  std::vector<std::vector<std::pair<Column, double>>> rows(static_cast<size_t>(n));
+  std::vector<RowList> rows(static_cast<size_t>(n));
   for (Index i = 0; i < n; ++i)
   {
     if (valid[i])
@@ -489,36 +445,24 @@ CsrMatrix ComposedExtension(const Extension& ext, const std::vector<char>& valid
       rows[i].emplace_back(static_cast<Column>(i), 1.0);
     }
   }
-  // Each extended row the weighted mean of the (composed) rows it reads,
-  // summed in a dense accumulator.
-  std::vector<double> sum(static_cast<size_t>(n), 0.0);
-  std::vector<Column> used;
+  // Each extended row the weighted mean of the (composed) rows it reads.
+  RowAccumulator sum(n);
   for (const std::vector<Index>& step : ext.Steps)
   {
     for (Index i : step)
     {
       double total = 0.0;
-      used.clear();
       for (Index q = ext.Reads.RowStart[i]; q < ext.Reads.RowStart[i + 1]; ++q)
       {
         total += ext.Reads.Values[q];
         for (const auto& entry : rows[ext.Reads.ColumnIndex[q]])
         {
-          if (sum[entry.first] == 0.0)
-          {
-            used.push_back(entry.first);
-          }
-          sum[entry.first] += ext.Reads.Values[q] * entry.second;
+          sum.Add(entry.first, ext.Reads.Values[q] * entry.second);
         }
       }
-      std::sort(used.begin(), used.end());
-      for (const Column k : used)
-      {
-        rows[i].emplace_back(k, sum[k] / total);
-        sum[k] = 0.0;
-      }
+      sum.Take(true, [&](Column k, double s) { rows[i].emplace_back(k, s / total); });
     }
   }
-  return Compressed(n, rows);
+  return CsrFromRowLists(n, rows);
 }
 } // namespace mp

@@ -4,7 +4,9 @@
 // products with P and P^T.
 #include "Transfer/FringeAggregation.h"
 
+#include "Geometry/CellGeometry.h"
 #include "Mesh/CellNeighbors.h"
+#include "Transfer/CsrBuilder.h"
 
 #include <Eigen/Dense>
 
@@ -217,7 +219,7 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
   return {};
 }
 
-/// The ill-posed function i's stencil and weights: free points ring by ring (at most 3 rings).
+/// The ill-posed function i's stencil and weights: free points ring by ring (at most FringeRings rings).
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
@@ -233,7 +235,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   points.clear();
   weights.clear();
   stamp[static_cast<size_t>(i)] = i;
-  for (int r = 0; r < 3 && !ring.empty(); ++r)
+  for (int r = 0; r < FringeRings && !ring.empty(); ++r)
   {
     next.clear();
     for (Index p : ring)
@@ -325,84 +327,141 @@ struct Referrers
 
   Referrers(const FringeExtension& ext, Index n)
   {
-    this->Start.assign(static_cast<size_t>(n) + 1, 0);
-    for (Index a = 0; a < n; ++a)
-    {
-      for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+    GroupInRows(n, [&](auto put) {
+      for (Index a = 0; a < n; ++a)
       {
-        ++this->Start[static_cast<size_t>(ext.P.ColumnIndex[q]) + 1];
+        for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+        {
+          put(ext.P.ColumnIndex[q], std::pair<Index, double>(a, ext.P.Values[q]));
+        }
       }
-    }
-    for (Index j = 0; j < n; ++j)
-    {
-      this->Start[j + 1] += this->Start[j];
-    }
-    this->Rows.resize(static_cast<size_t>(this->Start.back()));
-    std::vector<Index> next(this->Start.begin(), this->Start.end() - 1);
-    for (Index a = 0; a < n; ++a)
-    {
-      for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
-      {
-        this->Rows[static_cast<size_t>(next[ext.P.ColumnIndex[q]]++)] = { a, ext.P.Values[q] };
-      }
-    }
+    }, this->Start, this->Rows);
   }
 };
+
+/// Row j of P^T M P (its columns ascending) when it differs from M's, summed in `sum`.
+void ChangedRow(const CsrMatrix& mass, const FringeExtension& ext, const Referrers& refs, Index j,
+  RowAccumulator& sum, RowList& terms, RowList& out)
+{
+  if (ext.Aggregated[static_cast<size_t>(j)])
+  {
+    out.emplace_back(static_cast<Column>(j), 1.0); // decoupled: its value comes from P
+    return;
+  }
+  // Row j of P^T M P = (M P)_j + sum over the rows a aggregated onto j of w_aj (M P)_a.
+  terms.clear();
+  AddRowTimesP(mass, j, 1.0, ext, terms);
+  for (Index r = refs.Start[j]; r < refs.Start[j + 1]; ++r)
+  {
+    AddRowTimesP(mass, refs.Rows[static_cast<size_t>(r)].first, refs.Rows[static_cast<size_t>(r)].second, ext, terms);
+  }
+  for (const auto& term : terms)
+  {
+    sum.Add(term.first, term.second);
+  }
+  sum.TakeInto(true, out);
+}
 
 /**
- * Rows of P^T M P that differ from M's, one at a time: its terms summed in
- * a dense accumulator (its touched columns listed, then sorted: a row's
- * distinct columns are few).
+ * Per row of M, its place among the rows of P^T M P that differ from M's
+ * (the aggregated ones, those referred to, those with an aggregated
+ * column), or -1; `changed` lists them.
  */
-struct ChangedRows
+std::vector<Index> ChangedRows(const CsrMatrix& mass, const FringeExtension& ext, const Referrers& refs,
+  const TaskRunner& runner, std::vector<Index>& changed)
 {
-  std::vector<double> Sum;
-  std::vector<char> Touched;
-  std::vector<Column> Used;
-  std::vector<std::pair<Column, double>> Terms;
-
-  explicit ChangedRows(Index n)
-    : Sum(static_cast<size_t>(n), 0.0)
-    , Touched(static_cast<size_t>(n), 0)
-  {
-  }
-
-  void Row(const CsrMatrix& mass, const FringeExtension& ext, const Referrers& refs, Index j,
-    std::vector<std::pair<Column, double>>& out)
-  {
-    this->Terms.clear();
-    this->Used.clear();
-    if (ext.Aggregated[static_cast<size_t>(j)])
+  const Index n = mass.Rows;
+  std::vector<Index> slot(static_cast<size_t>(n), -1);
+  runner.ForRanges(n, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j)
     {
-      out.emplace_back(static_cast<Column>(j), 1.0); // decoupled: its value comes from P
-      return;
-    }
-    // Row j of P^T M P = (M P)_j + sum over the rows a aggregated onto j of w_aj (M P)_a.
-    AddRowTimesP(mass, j, 1.0, ext, this->Terms);
-    for (Index r = refs.Start[j]; r < refs.Start[j + 1]; ++r)
-    {
-      AddRowTimesP(mass, refs.Rows[static_cast<size_t>(r)].first, refs.Rows[static_cast<size_t>(r)].second, ext,
-        this->Terms);
-    }
-    for (const auto& term : this->Terms)
-    {
-      if (!this->Touched[static_cast<size_t>(term.first)])
+      bool changes = ext.Aggregated[j] || refs.Start[j + 1] > refs.Start[j];
+      for (Index p = mass.RowStart[j]; p < mass.RowStart[j + 1] && !changes; ++p)
       {
-        this->Touched[static_cast<size_t>(term.first)] = 1;
-        this->Used.push_back(term.first);
+        changes = ext.Aggregated[mass.ColumnIndex[p]] != 0;
       }
-      this->Sum[static_cast<size_t>(term.first)] += term.second;
+      slot[static_cast<size_t>(j)] = changes ? 0 : -1;
     }
-    std::sort(this->Used.begin(), this->Used.end());
-    out.reserve(this->Used.size());
-    for (const Column k : this->Used)
+    return 0;
+  });
+  changed.clear();
+  for (Index j = 0; j < n; ++j)
+  {
+    if (slot[static_cast<size_t>(j)] >= 0)
     {
-      out.emplace_back(k, this->Sum[static_cast<size_t>(k)]);
-      this->Sum[static_cast<size_t>(k)] = 0.0;
-      this->Touched[static_cast<size_t>(k)] = 0;
+      slot[static_cast<size_t>(j)] = static_cast<Index>(changed.size());
+      changed.push_back(j);
     }
   }
-};
+  return slot;
+}
+
+/**
+ * The ill-posed functions' stencils and weights (StencilOf), each on its
+ * own (a task marks the points it has met in its own array): the tasks'
+ * ranges of ill-posed functions give the same stencils as one loop.
+ */
+void Stencils(const MeshView& mesh, const std::vector<Index>& ill, const std::vector<char>& usable,
+  const TaskRunner& runner, std::vector<std::vector<Index>>& stencils, std::vector<std::vector<double>>& weights)
+{
+  const CellsAroundPoints around(mesh, runner);
+  const Index n = static_cast<Index>(usable.size());
+  stencils.assign(ill.size(), {});
+  weights.assign(ill.size(), {});
+  runner.ForRanges(static_cast<Index>(ill.size()), [&](Index begin, Index end) {
+    std::vector<Index> stamp(static_cast<size_t>(n), -1);
+    std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
+    for (Index a = begin; a < end; ++a)
+    {
+      StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, cellStamp, stencils[static_cast<size_t>(a)],
+        weights[static_cast<size_t>(a)]);
+    }
+    return 0;
+  }, 256);
+}
+
+/**
+ * P over `n` functions: identity rows, the rows of ill[a] with a stencil
+ * its weights (columns ascending, or in the stencil's order).
+ */
+CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill, const std::vector<std::vector<Index>>& stencils,
+  const std::vector<std::vector<double>>& weights, bool stencilOrder)
+{
+  std::vector<Index> of(static_cast<size_t>(n), -1); // per function: its a, when aggregated
+  for (size_t a = 0; a < ill.size(); ++a)
+  {
+    of[static_cast<size_t>(ill[a])] = stencils[a].empty() ? -1 : static_cast<Index>(a);
+  }
+  RowList row;
+  return BuildCsr(n, n,
+    [&](Index i) {
+      const Index a = of[static_cast<size_t>(i)];
+      return a < 0 ? Index(1) : static_cast<Index>(stencils[static_cast<size_t>(a)].size());
+    },
+    [&](Index i, Column* column, double* value) {
+      const Index a = of[static_cast<size_t>(i)];
+      if (a < 0)
+      {
+        *column = static_cast<Column>(i);
+        *value = 1.0;
+        return;
+      }
+      row.clear();
+      for (size_t k = 0; k < stencils[static_cast<size_t>(a)].size(); ++k)
+      {
+        row.emplace_back(static_cast<Column>(stencils[static_cast<size_t>(a)][k]), weights[static_cast<size_t>(a)][k]);
+      }
+      if (!stencilOrder)
+      {
+        std::sort(row.begin(), row.end());
+      }
+      for (const auto& entry : row)
+      {
+        *column++ = entry.first;
+        *value++ = entry.second;
+      }
+    });
+}
 } // namespace
 
 LargeVector<double> SupportIntegrals(const MeshView& mesh)
@@ -411,22 +470,8 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
   const int corners = mesh.CornersPerCell();
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
-    // The simplex's measure from its edge vectors (area or volume).
     const CellCorners cell = mesh.Cell(c);
-    const double* a = mesh.Point(cell[0]);
-    double e[3][3];
-    for (int k = 1; k < corners; ++k)
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        e[k - 1][d] = mesh.Point(cell[k])[d] - a[d];
-      }
-    }
-    const double measure = corners == 3
-      ? 0.5 * std::abs(e[0][0] * e[1][1] - e[0][1] * e[1][0])
-      : std::abs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-          e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-          e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6.0;
+    const double measure = SimplexGramMeasure(mesh, c);
     for (int k = 0; k < corners; ++k)
     {
       support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
@@ -458,69 +503,16 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   {
     return ext;
   }
-  const CellsAroundPoints around(mesh, runner);
-  std::vector<std::vector<Index>> stencils(ill.size());
-  std::vector<std::vector<double>> weights(ill.size());
-  // Each stencil on its own (a task marks the points it has met in its
-  // own array): the tasks' ranges of ill-posed functions give the same
-  // stencils as one loop.
-  runner.ForRanges(static_cast<Index>(ill.size()), [&](Index begin, Index end) {
-    std::vector<Index> stamp(static_cast<size_t>(n), -1);
-    std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
-    for (Index a = begin; a < end; ++a)
-    {
-      StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, cellStamp, stencils[static_cast<size_t>(a)],
-        weights[static_cast<size_t>(a)]);
-    }
-    return 0;
-  }, 256);
+  std::vector<std::vector<Index>> stencils;
+  std::vector<std::vector<double>> weights;
+  Stencils(mesh, ill, usable, runner, stencils, weights);
   for (size_t a = 0; a < ill.size(); ++a)
   {
     ext.Aggregated[static_cast<size_t>(ill[a])] = !stencils[a].empty();
     ext.Dropped[static_cast<size_t>(ill[a])] = !stencils[a].empty() && fraction[ill[a]] < drop;
     ext.Count += !stencils[a].empty();
   }
-  // P: identity rows, the aggregated ones with their weights.
-  CsrMatrix& P = ext.P;
-  P.Rows = P.Columns = n;
-  P.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  for (Index i = 0; i < n; ++i)
-  {
-    P.RowStart[i + 1] = 1;
-  }
-  for (size_t a = 0; a < ill.size(); ++a)
-  {
-    P.RowStart[ill[a] + 1] = std::max<Index>(1, static_cast<Index>(stencils[a].size()));
-  }
-  for (Index i = 0; i < n; ++i)
-  {
-    P.RowStart[i + 1] += P.RowStart[i];
-  }
-  P.ColumnIndex.resize(static_cast<size_t>(P.NonZeros()));
-  P.Values.resize(static_cast<size_t>(P.NonZeros()));
-  for (Index i = 0; i < n; ++i)
-  {
-    P.ColumnIndex[P.RowStart[i]] = static_cast<Column>(i);
-    P.Values[P.RowStart[i]] = 1.0;
-  }
-  for (size_t a = 0; a < ill.size(); ++a)
-  {
-    std::vector<std::pair<Column, double>> row;
-    for (size_t k = 0; k < stencils[a].size(); ++k)
-    {
-      row.emplace_back(static_cast<Column>(stencils[a][k]), weights[a][k]);
-    }
-    if (!stencilOrder)
-    {
-      std::sort(row.begin(), row.end());
-    }
-    Index at = P.RowStart[ill[a]];
-    for (const auto& entry : row)
-    {
-      P.ColumnIndex[at] = entry.first;
-      P.Values[at++] = entry.second;
-    }
-  }
+  ext.P = ExtensionMatrix(n, ill, stencils, weights, stencilOrder);
   return ext;
 }
 
@@ -528,82 +520,40 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext, cons
 {
   const Index n = mass.Rows;
   const Referrers refs(ext, n);
-  // Which rows change: the aggregated ones, those referred to, those with
-  // an aggregated column; the others are M's.
-  std::vector<Index> slot(static_cast<size_t>(n), -1);
-  runner.ForRanges(n, [&](Index begin, Index end) {
-    for (Index j = begin; j < end; ++j)
-    {
-      bool changes = ext.Aggregated[j] || refs.Start[j + 1] > refs.Start[j];
-      for (Index p = mass.RowStart[j]; p < mass.RowStart[j + 1] && !changes; ++p)
-      {
-        changes = ext.Aggregated[mass.ColumnIndex[p]] != 0;
-      }
-      slot[static_cast<size_t>(j)] = changes ? 0 : -1;
-    }
-    return 0;
-  });
   std::vector<Index> changed;
-  for (Index j = 0; j < n; ++j)
-  {
-    if (slot[static_cast<size_t>(j)] >= 0)
-    {
-      slot[static_cast<size_t>(j)] = static_cast<Index>(changed.size());
-      changed.push_back(j);
-    }
-  }
+  const std::vector<Index> slot = ChangedRows(mass, ext, refs, runner, changed);
   // The changed rows, each on its own (the same terms in the same order
-  // whatever the tasks).
-  std::vector<std::vector<std::pair<Column, double>>> rows(changed.size());
+  // whatever the tasks); the others are M's.
+  std::vector<RowList> rows(changed.size());
   runner.ForRanges(static_cast<Index>(changed.size()), [&](Index begin, Index end) {
-    ChangedRows scratch(n);
+    RowAccumulator sum(n);
+    RowList terms;
     for (Index r = begin; r < end; ++r)
     {
-      scratch.Row(mass, ext, refs, changed[static_cast<size_t>(r)], rows[static_cast<size_t>(r)]);
+      ChangedRow(mass, ext, refs, changed[static_cast<size_t>(r)], sum, terms, rows[static_cast<size_t>(r)]);
     }
     return 0;
   }, 256);
-  CsrMatrix out;
-  out.Rows = mass.Rows;
-  out.Columns = mass.Columns;
-  out.RowStart.assign(static_cast<size_t>(n) + 1, 0);
-  for (Index j = 0; j < n; ++j)
-  {
-    const Index r = slot[static_cast<size_t>(j)];
-    out.RowStart[j + 1] = out.RowStart[j] +
-      (r < 0 ? mass.RowStart[j + 1] - mass.RowStart[j] : static_cast<Index>(rows[static_cast<size_t>(r)].size()));
-  }
-  out.ColumnIndex.resize(static_cast<size_t>(out.NonZeros()));
-  out.Values.resize(static_cast<size_t>(out.NonZeros()));
-  // Unchanged rows in runs (a run is one block in both matrices), changed
-  // ones from their lists.
-  runner.ForRanges(n, [&](Index begin, Index end) {
-    for (Index j = begin; j < end;)
-    {
-      Index last = j;
-      while (last < end && slot[static_cast<size_t>(last)] < 0)
+  CsrMatrix out = BuildCsr(n, mass.Columns,
+    [&](Index j) {
+      const Index r = slot[static_cast<size_t>(j)];
+      return r < 0 ? mass.RowStart[j + 1] - mass.RowStart[j] : static_cast<Index>(rows[static_cast<size_t>(r)].size());
+    },
+    [&](Index j, Column* column, double* value) {
+      const Index r = slot[static_cast<size_t>(j)];
+      if (r < 0)
       {
-        ++last;
+        std::copy(mass.ColumnIndex.data() + mass.RowStart[j], mass.ColumnIndex.data() + mass.RowStart[j + 1], column);
+        std::copy(mass.Values.data() + mass.RowStart[j], mass.Values.data() + mass.RowStart[j + 1], value);
+        return;
       }
-      if (last > j)
+      for (const auto& entry : rows[static_cast<size_t>(r)])
       {
-        std::copy(mass.ColumnIndex.data() + mass.RowStart[j], mass.ColumnIndex.data() + mass.RowStart[last],
-          out.ColumnIndex.data() + out.RowStart[j]);
-        std::copy(mass.Values.data() + mass.RowStart[j], mass.Values.data() + mass.RowStart[last],
-          out.Values.data() + out.RowStart[j]);
-        j = last;
-        continue;
+        *column++ = entry.first;
+        *value++ = entry.second;
       }
-      Index at = out.RowStart[j];
-      for (const auto& entry : rows[static_cast<size_t>(slot[static_cast<size_t>(j)])])
-      {
-        out.ColumnIndex[at] = entry.first;
-        out.Values[at++] = entry.second;
-      }
-      ++j;
-    }
-    return 0;
-  });
+    },
+    &runner);
   return out;
 }
 

@@ -59,6 +59,15 @@ struct FringeExtension
 };
 
 /**
+ * The rings around an ill-posed function (the points sharing a cell with
+ * it, then theirs, ...) its stencil is sought in: a function with no
+ * stable fit within them stays free. A distributed target's halo reaches
+ * this many of the longest edges beyond each part (Parts::Halo), so that
+ * every process finds the stencils the serial run does.
+ */
+constexpr int FringeRings = 3;
+
+/**
  * Functions covered less than this fraction of their support are
  * aggregated and, in the output, invalid: their support holds no more than
  * a corner of the source, so their value would be an extrapolation over
@@ -69,8 +78,8 @@ constexpr double FringeDropFraction = 0.02;
 /**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
- * rings around it. A function with no well-spread free points within a few
- * rings stays free. Those below `drop` are marked Dropped too. The
+ * rings around it. A function with no well-spread free points within
+ * FringeRings rings stays free. Those below `drop` are marked Dropped too. The
  * stencils are fitted in `runner`'s tasks (the same whatever their number).
  * P's rows hold their columns in ascending order, or, with `stencilOrder`,
  * nearest first as the stencil found them (an order that does not depend

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// CellGeometry (Geometry/CellGeometry.h): on volume meshes the simplex
+// measure is, bit for bit, the intersectors' (Measures.h) and the mass
+// matrix's; on surfaces and curves it is the area and length in space; a
+// cell's centroid is the measure-weighted one (the corners' mean of its
+// simplices' means for a cell of no measure), its corner mean the mean of
+// its simplices' corners.
+#include "Geometry/CellGeometry.h"
+
+#include "GeneratedMeshes.h"
+#include "Geometry/Measures.h"
+#include "Transfer/MassMatrix.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+using mp::Index;
+using mptest::TestMesh;
+} // namespace
+
+TEST(CellGeometry, VolumeMeasureIsTheIntersectorsAndTheMassMatrixs)
+{
+  for (const TestMesh& m : { mptest::GridMesh(17, 13, 0.35, 1), mptest::CubeMesh(6, 5, 7, 0.3, 2) })
+  {
+    const mp::MeshView view = m.View(false);
+    std::vector<double> intersectors(static_cast<size_t>(view.NumberOfCells), -1.0);
+    mp::ForEachCellMeasure(view, [&](Index c, double measure) { intersectors[c] = measure; });
+    for (Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      const double measure = mp::SimplexGramMeasure(view, c);
+      EXPECT_EQ(measure, intersectors[c]) << "cell " << c;
+      EXPECT_EQ(measure, mp::SimplexMeasure(view, c)) << "cell " << c;
+      EXPECT_NEAR(measure, m.CellArea(c), 1e-15) << "cell " << c;
+    }
+  }
+}
+
+TEST(CellGeometry, SurfaceAndCurveMeasuresAreInSpace)
+{
+  TestMesh sphere = mptest::Icosphere(2);
+  const mp::MeshView view = sphere.View(false);
+  ASSERT_EQ(view.SpaceDimension, 3);
+  double total = 0.0;
+  for (Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    const double area = mp::SimplexGramMeasure(view, c);
+    EXPECT_NEAR(area, mp::SimplexMeasure(view, c), 1e-14 * area) << "cell " << c;
+    total += area;
+  }
+  EXPECT_GT(total, 0.9 * 4.0 * M_PI); // an inscribed polyhedron: a little less than the sphere
+  EXPECT_LT(total, 4.0 * M_PI);
+  // A segment in space: its length.
+  TestMesh curve;
+  curve.Dimension = 1;
+  curve.Surface = true;
+  curve.Points = { 1.0, 2.0, 3.0, 4.0, 6.0, 15.0 };
+  curve.Cells = { 0, 1 };
+  EXPECT_DOUBLE_EQ(mp::SimplexGramMeasure(curve.View(false), 0), 13.0);
+  // A degenerate triangle in space: 0, not NaN.
+  TestMesh flat;
+  flat.Surface = true;
+  flat.Points = { 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0 };
+  flat.Cells = { 0, 1, 2 };
+  EXPECT_EQ(mp::SimplexGramMeasure(flat.View(false), 0), 0.0);
+}
+
+TEST(CellGeometry, CentroidIsMeasureWeightedAndCornerMeanIsNot)
+{
+  // A quad of two unequal triangles: (0,0) (3,0) (3,1) and (0,0) (3,1) (0,3).
+  TestMesh quad;
+  quad.Points = { 0, 0, 0, 3, 0, 0, 3, 1, 0, 0, 3, 0 };
+  quad.Cells = { 0, 1, 2, 0, 2, 3 };
+  const mp::MeshView view = quad.View(false);
+  const Index both[2] = { 0, 1 };
+  double centroid[3];
+  const double measure = mp::CellCentroid(view, both, 2, centroid);
+  EXPECT_DOUBLE_EQ(measure, 1.5 + 4.5);
+  // (1.5 (2, 1/3) + 4.5 (1, 4/3)) / 6
+  EXPECT_NEAR(centroid[0], (1.5 * 2.0 + 4.5 * 1.0) / 6.0, 1e-15);
+  EXPECT_NEAR(centroid[1], (1.5 / 3.0 + 4.5 * 4.0 / 3.0) / 6.0, 1e-15);
+  EXPECT_EQ(centroid[2], 0.0);
+  double mean[3];
+  mp::CornerMean(view, both, 2, mean);
+  EXPECT_NEAR(mean[0], (0 + 3 + 3 + 0 + 3 + 0) / 6.0, 1e-15);
+  EXPECT_NEAR(mean[1], (0 + 0 + 1 + 0 + 1 + 3) / 6.0, 1e-15);
+  EXPECT_GT(std::fabs(mean[1] - centroid[1]), 0.1); // two notions
+  // One triangle: both its centroid.
+  mp::CellCentroid(view, both + 1, 1, centroid);
+  mp::CornerMean(view, both + 1, 1, mean);
+  EXPECT_NEAR(centroid[0], 1.0, 1e-15);
+  EXPECT_NEAR(mean[0], 1.0, 1e-15);
+  EXPECT_NEAR(centroid[1], 4.0 / 3.0, 1e-15);
+  EXPECT_NEAR(mean[1], 4.0 / 3.0, 1e-15);
+  // No simplex: 0.
+  mp::CellCentroid(view, both, 0, centroid);
+  mp::CornerMean(view, both, 0, mean);
+  EXPECT_EQ(centroid[0], 0.0);
+  EXPECT_EQ(mean[1], 0.0);
+}
+
+TEST(CellGeometry, CentroidOfACellOfNoMeasureIsItsSimplicesMean)
+{
+  // Two flat triangles on a line: (0,0) (1,0) (2,0) and (2,0) (4,0) (6,0).
+  TestMesh line;
+  line.Points = { 0, 0, 0, 1, 0, 0, 2, 0, 0, 4, 0, 0, 6, 0, 0 };
+  line.Cells = { 0, 1, 2, 2, 3, 4 };
+  const mp::MeshView view = line.View(false);
+  const Index both[2] = { 0, 1 };
+  double centroid[3];
+  EXPECT_EQ(mp::CellCentroid(view, both, 2, centroid), 0.0);
+  EXPECT_NEAR(centroid[0], (1.0 + 4.0) / 2.0, 1e-15);
+  EXPECT_EQ(centroid[1], 0.0);
+}

@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// FringeAggregation (Transfer/FringeAggregation.h): on a 2D and a 3D mesh
+// whose points beyond a line are ill-posed, P reproduces affine functions
+// at the aggregated points from the free values, its aggregated rows sum to
+// 1 and read free functions only, P^T M P is the dense product, and the
+// support integrals add up to the mesh's measure.
+#include "Transfer/FringeAggregation.h"
+
+#include "GeneratedMeshes.h"
+#include "Threads.h"
+#include "Transfer/MassMatrix.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace
+{
+using mp::Index;
+using mptest::TestMesh;
+
+double Affine(const double* x)
+{
+  return 0.3 + 1.7 * x[0] - 0.6 * x[1] + 0.9 * x[2];
+}
+
+struct Fringe
+{
+  std::vector<char> Valid;
+  std::vector<double> Fraction;
+  mp::FringeExtension Extension;
+};
+
+/// Every point valid; those with x > `edge` covered 5 % (ill-posed at a threshold of 10 %), 1 % beyond `drop`.
+Fringe FringeOf(const TestMesh& m, double edge, double drop, int tasks)
+{
+  Fringe f;
+  const mp::MeshView view = m.View(false);
+  f.Valid.assign(static_cast<size_t>(view.NumberOfPoints), 1);
+  f.Fraction.assign(static_cast<size_t>(view.NumberOfPoints), 1.0);
+  for (Index i = 0; i < view.NumberOfPoints; ++i)
+  {
+    const double x = view.Point(i)[0];
+    f.Fraction[i] = x > drop ? 0.01 : (x > edge ? 0.05 : 1.0);
+  }
+  f.Extension = mp::ExtendFringe(view, f.Valid, f.Fraction, 0.1, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
+  return f;
+}
+
+/// P's rows: identity on free functions; on aggregated ones weights that sum to 1 over free functions and reproduce an affine field.
+void ExpectAffineExtension(const TestMesh& m, const Fringe& f, const char* what)
+{
+  const mp::MeshView view = m.View(false);
+  const mp::FringeExtension& e = f.Extension;
+  const Index n = view.NumberOfPoints;
+  ASSERT_EQ(e.P.Rows, n) << what;
+  Index aggregated = 0;
+  Index ill = 0;
+  for (Index i = 0; i < n; ++i)
+  {
+    ill += f.Fraction[i] < 0.1;
+    if (!e.Aggregated[i])
+    {
+      ASSERT_EQ(e.P.RowStart[i + 1] - e.P.RowStart[i], 1) << what << ", free " << i;
+      EXPECT_EQ(e.P.ColumnIndex[e.P.RowStart[i]], i) << what;
+      EXPECT_EQ(e.P.Values[e.P.RowStart[i]], 1.0) << what;
+      continue;
+    }
+    ++aggregated;
+    EXPECT_LT(f.Fraction[i], 0.1) << what << ": a well-covered point aggregated";
+    EXPECT_EQ(e.Dropped[i], f.Fraction[i] < mp::FringeDropFraction) << what << ", point " << i;
+    double sum = 0.0;
+    double value = 0.0;
+    for (Index q = e.P.RowStart[i]; q < e.P.RowStart[i + 1]; ++q)
+    {
+      const Index k = e.P.ColumnIndex[q];
+      EXPECT_FALSE(e.Aggregated[k]) << what << ": row " << i << " reads an aggregated function";
+      EXPECT_GE(f.Fraction[k], 0.1) << what;
+      sum += e.P.Values[q];
+      value += e.P.Values[q] * Affine(view.Point(k));
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12) << what << ", row " << i;
+    EXPECT_NEAR(value, Affine(view.Point(i)), 1e-11) << what << ", row " << i;
+  }
+  EXPECT_EQ(aggregated, e.Count) << what;
+  // (Ill-posed points without a stable fit within FringeRings rings stay free.)
+  EXPECT_LE(aggregated, ill) << what;
+  EXPECT_GT(aggregated, ill / 3) << what;
+  EXPECT_GT(aggregated, 10) << what;
+  // ExtendFromFree: the affine field's free values give it at the aggregated points.
+  std::vector<double> u(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
+  {
+    u[i] = e.Aggregated[i] ? 1e3 : Affine(view.Point(i));
+  }
+  mp::ExtendFromFree(e, u.data(), 1);
+  for (Index i = 0; i < n; ++i)
+  {
+    EXPECT_NEAR(u[i], Affine(view.Point(i)), 1e-11) << what << ", point " << i;
+  }
+}
+} // namespace
+
+TEST(FringeAggregation, ReproducesAffineFunctionsIn2D)
+{
+  const TestMesh m = mptest::GridMesh(14, 12, 0.25, 3);
+  for (int tasks : { 1, 3 })
+  {
+    const Fringe f = FringeOf(m, 0.75, 0.9, tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "2D" : "2D, 3 tasks");
+  }
+}
+
+TEST(FringeAggregation, ReproducesAffineFunctionsIn3D)
+{
+  const TestMesh m = mptest::CubeMesh(6, 5, 6, 0.2, 4);
+  for (int tasks : { 1, 3 })
+  {
+    const Fringe f = FringeOf(m, 0.7, 0.9, tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "3D" : "3D, 3 tasks");
+  }
+}
+
+TEST(FringeAggregation, AggregatedMassIsPTransposedMP)
+{
+  // P^T M P on a random M of the mass matrix's pattern against the dense
+  // product; aggregated rows: 1 on the diagonal.
+  const TestMesh m = mptest::GridMesh(8, 7, 0.2, 5);
+  const mp::MeshView view = m.View(false);
+  const Fringe f = FringeOf(m, 0.7, 2.0, 1);
+  const mp::FringeExtension& e = f.Extension;
+  ASSERT_GT(e.Count, 0);
+  mp::CsrMatrix mass;
+  mp::MassPattern(mp::SpaceType::P1, view, mp::TaskRunner(), mass);
+  std::mt19937 rng(9);
+  for (auto& v : mass.Values)
+  {
+    v = std::uniform_real_distribution<double>(0.1, 1.0)(rng);
+  }
+  const Index n = mass.Rows;
+  auto dense = [n](const mp::CsrMatrix& a) {
+    std::vector<double> d(static_cast<size_t>(n * n), 0.0);
+    for (Index i = 0; i < a.Rows; ++i)
+    {
+      for (Index q = a.RowStart[i]; q < a.RowStart[i + 1]; ++q)
+      {
+        d[i * n + a.ColumnIndex[q]] += a.Values[q];
+      }
+    }
+    return d;
+  };
+  const std::vector<double> M = dense(mass);
+  const std::vector<double> P = dense(e.P);
+  std::vector<double> MP(static_cast<size_t>(n * n), 0.0);
+  for (Index i = 0; i < n; ++i)
+    for (Index k = 0; k < n; ++k)
+      for (Index j = 0; j < n; ++j)
+        MP[i * n + j] += M[i * n + k] * P[k * n + j];
+  const mp::CsrMatrix A = mp::AggregatedMass(mass, e, mptest::ThreadRunner(2));
+  const std::vector<double> got = dense(A);
+  for (Index i = 0; i < n; ++i)
+  {
+    EXPECT_TRUE(std::is_sorted(A.ColumnIndex.begin() + A.RowStart[i], A.ColumnIndex.begin() + A.RowStart[i + 1]));
+    for (Index j = 0; j < n; ++j)
+    {
+      double expected = 0.0;
+      for (Index k = 0; k < n; ++k)
+      {
+        expected += P[k * n + i] * MP[k * n + j];
+      }
+      if (e.Aggregated[i])
+      {
+        expected = i == j ? 1.0 : 0.0;
+      }
+      EXPECT_NEAR(got[i * n + j], expected, 1e-12) << "(" << i << ", " << j << ")";
+    }
+  }
+}
+
+TEST(FringeAggregation, SupportIntegralsAddUpToTheMeasure)
+{
+  for (const TestMesh& m : { mptest::GridMesh(9, 8, 0.3, 6), mptest::CubeMesh(4, 5, 3, 0.2, 7) })
+  {
+    const mp::MeshView view = m.View(false);
+    const auto support = mp::SupportIntegrals(view);
+    double total = 0.0;
+    for (Index c = 0; c < m.NumberOfCells(); ++c)
+    {
+      total += m.CellArea(c);
+    }
+    double sum = 0.0;
+    for (double s : support)
+    {
+      EXPECT_GT(s, 0.0);
+      sum += s;
+    }
+    EXPECT_NEAR(sum, total, 1e-12 * total);
+    EXPECT_NEAR(total, 1.0, 1e-12); // the unit square or cube
+  }
+}
