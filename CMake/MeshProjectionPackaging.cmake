@@ -1,6 +1,7 @@
 # The Debian package meshprojection_<version>_amd64.deb (CPack's DEB
-# generator; Scripts/package.sh configures with CMAKE_INSTALL_PREFIX=/usr and
-# runs cpack). Included by the top CMakeLists.txt after every install() rule.
+# generator; Scripts/package.sh configures with MESHPROJECTION_DEB_PACKAGE=ON
+# and CMAKE_INSTALL_PREFIX=/usr and runs cpack). Included by the top
+# CMakeLists.txt after the install() rules of the filter and the plugin.
 #
 # What the package holds is what `cmake --install` installs, plus, from
 # Packaging/debian: the copyright file and the changelog (both in
@@ -64,15 +65,8 @@ function (mp_exact_versions out packages)
   list(JOIN relations ", " relations)
   set("${out}" "${relations}" PARENT_SCOPE)
 endfunction ()
-find_program(MESHPROJECTION_DPKG_QUERY dpkg-query)
-if (MESHPROJECTION_DPKG_QUERY)
-  mp_exact_versions(mp_deb_depends "${MESHPROJECTION_DEB_PARAVIEW_PACKAGES}")
-  mp_exact_versions(mp_deb_suggests "${MESHPROJECTION_DEB_PARAVIEW_SUGGESTS}")
-else ()
-  # Not a Debian system: `cpack -G DEB` is not for it; the other generators work.
-  set(mp_deb_depends "")
-  set(mp_deb_suggests "")
-endif ()
+mp_exact_versions(mp_deb_depends "${MESHPROJECTION_DEB_PARAVIEW_PACKAGES}")
+mp_exact_versions(mp_deb_suggests "${MESHPROJECTION_DEB_PARAVIEW_SUGGESTS}")
 
 # ---- The maintainer scripts, with this build's installed paths --------------
 set(mp_deb_plugin_xml "${CMAKE_INSTALL_FULL_LIBDIR}/paraview-5.11/plugins/MeshProjection.plugins.xml")
@@ -95,9 +89,7 @@ endif ()
 string(REGEX REPLACE "^([0-9]+)\\.([0-9]+)$" "\\2" mp_python_minor "${mp_python_version}")
 math(EXPR mp_python_next_minor "${mp_python_minor} + 1")
 set(mp_deb_python_depends "python3 (>= ${mp_python_version}~), python3 (<< 3.${mp_python_next_minor})")
-if (mp_deb_depends)
-  string(APPEND mp_deb_depends ", ${mp_deb_python_depends}")
-endif ()
+string(APPEND mp_deb_depends ", ${mp_deb_python_depends}")
 
 # ---- CPack --------------------------------------------------------------------
 set(CPACK_GENERATOR "DEB")

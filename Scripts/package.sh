@@ -32,6 +32,7 @@ cmake -S "$root" -B "$build" -G Ninja \
   -DMESHPROJECTION_PYTHON_DESTINATION=lib/python3/dist-packages \
   -DMESHPROJECTION_BUILD_TESTING=OFF \
   -DMESHPROJECTION_BUILD_BENCHMARKS=OFF \
+  -DMESHPROJECTION_DEB_PACKAGE=ON \
   -DParaView_DIR=/usr/lib/x86_64-linux-gnu/cmake/paraview-5.11 \
   "${launcher[@]}" >&2
 cmake --build "$build" --parallel "$(nproc)" >&2
