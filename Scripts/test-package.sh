@@ -11,7 +11,8 @@
 #    builds and runs; no file of the package names the build tree;
 # 2. installed with `apt-get install ./meshprojection_<version>_amd64.deb`:
 #    the same checks with no environment variable at all, the GUI's plugin
-#    list (Tools > Manage Plugins), then `apt-get remove` leaves no file of
+#    list (Tools > Manage Plugins) and its Auto Load ticked there (the
+#    plugin loaded at the next start), then `apt-get remove` leaves no file of
 #    the package (dpkg -L before removal) and /usr/bin/paraview.conf as it
 #    was; `apt-get purge` then forgets it.
 #
@@ -118,6 +119,33 @@ with open("${work}/gui-plugins.txt", "w") as out:
     out.write("\n".join(names) + "\n")
 EOF
 
+# The GUI's Auto Load: recorded Qt events that open Tools > Manage Plugins,
+# load MeshProjection, tick its Auto Load (the sixth row under it) and quit
+# with File > Exit (the settings are saved); the next start must have it
+# loaded before any script runs.
+cat >"${work}/autoload.xml" <<'EOF_XML'
+<?xml version="1.0" ?>
+<pqevents>
+  <pqevent object="pqClientMainWindow/menubar" command="activate" arguments="menuTools" />
+  <pqevent object="pqClientMainWindow/menubar/menuTools" command="activate" arguments="actionManage_Plugins" />
+  <pqevent object="pqClientMainWindow/PluginManagerDialog/splitter/localGroup/localPlugins" command="setCurrent" arguments="MeshProjection" />
+  <pqevent object="pqClientMainWindow/PluginManagerDialog/splitter/localGroup/loadSelected_Local" command="activate" arguments="" />
+  <pqevent object="pqClientMainWindow/PluginManagerDialog/splitter/localGroup/localPlugins" command="expand" arguments="1.0" />
+  <pqevent object="pqClientMainWindow/PluginManagerDialog/splitter/localGroup/localPlugins" command="setCheckState" arguments="1.0.5.1,2" />
+  <pqevent object="pqClientMainWindow/PluginManagerDialog/buttonBox/1QPushButton0" command="activate" arguments="" />
+  <pqevent object="pqClientMainWindow/menubar" command="activate" arguments="menu_File" />
+  <pqevent object="pqClientMainWindow/menubar/menu_File" command="activate" arguments="actionFileExit" />
+</pqevents>
+EOF_XML
+echo "print('no-op')" >"${work}/noop.py"
+cat >"${work}/check_autoload.py" <<EOF
+from paraview import servermanager
+info = servermanager.vtkSMProxyManager.GetProxyManager().GetPluginManager().GetLocalInformation()
+with open("${work}/gui-autoload.txt", "w") as out:
+    for i in range(info.GetNumberOfPlugins()):
+        out.write("%s loaded=%d auto_load=%d\n" % (info.GetPluginName(i), info.GetPluginLoaded(i), info.GetAutoLoad(i)))
+EOF
+
 # Run a command with only the given environment (and a fresh HOME, so that
 # no ParaView settings of the user's take part).
 clean_env() {
@@ -184,6 +212,14 @@ if "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y "${deb}" >
     bash -c 'clean_env() { env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME="$1/home" "${@:2}"; }
       clean_env "$1" timeout 300 xvfb-run -a -s "-screen 0 1280x1024x24" paraview --script="$1/check_gui.py" --exit
       cat "$1/gui-plugins.txt"; grep -qx MeshProjection "$1/gui-plugins.txt"' _ "${work}"
+  rm -rf "${work}/gui-autoload.txt" "${work}/home" && mkdir "${work}/home"
+  check "installed: GUI Auto Load ticked in Manage Plugins loads it at the next start" \
+    bash -c 'clean_env() { env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME="$1/home" "${@:2}"; }
+      clean_env "$1" timeout 300 xvfb-run -a -s "-screen 0 1280x1024x24" \
+        paraview --script="$1/noop.py" --test-script="$1/autoload.xml"
+      clean_env "$1" timeout 300 xvfb-run -a -s "-screen 0 1280x1024x24" \
+        paraview --script="$1/check_autoload.py" --exit
+      cat "$1/gui-autoload.txt"; grep -qx "MeshProjection loaded=1 auto_load=1" "$1/gui-autoload.txt"' _ "${work}"
   dpkg -L meshprojection >"${work}/files.txt"
   if "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get remove -y meshprojection >"${work}/apt-remove.log" 2>&1; then
     installed_by_us=0
