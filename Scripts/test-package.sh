@@ -43,7 +43,7 @@ check() {
   local log="${work}/log-${name//[^A-Za-z0-9]/_}.txt"
   if "$@" >"${log}" 2>&1; then
     echo "PASS ${name}"
-    grep "^projected" "${log}" | tail -n 1 | sed 's/^/    /'
+    grep -a "^projected" "${log}" | tail -n 1 | sed 's/^/    /'
     passed=$((passed + 1))
   else
     echo "FAIL ${name}"
