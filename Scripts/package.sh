@@ -25,10 +25,15 @@ fi
 
 # Debian's hardening link flags (read-only relocations, immediate binding).
 export LDFLAGS="${LDFLAGS:-$(DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get LDFLAGS)}"
+# Source and build paths (__FILE__ in VTK's error messages) written relative
+# to the clone and the build directory: the package names neither.
+prefix_maps="-ffile-prefix-map=${root}/= -ffile-prefix-map=${build}/="
 
 cmake -S "$root" -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_INSTALL_PREFIX=/usr \
+  "-DCMAKE_C_FLAGS=${CFLAGS:-} ${prefix_maps}" \
+  "-DCMAKE_CXX_FLAGS=${CXXFLAGS:-} ${prefix_maps}" \
   -DMESHPROJECTION_PYTHON_DESTINATION=lib/python3/dist-packages \
   -DMESHPROJECTION_BUILD_TESTING=OFF \
   -DMESHPROJECTION_BUILD_BENCHMARKS=OFF \

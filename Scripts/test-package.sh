@@ -185,10 +185,10 @@ run_checks "extracted" "${libdir}/paraview-5.11/plugins/MeshProjection" "${faker
   "PV_PLUGIN_CONFIG_FILE=${libdir}/paraview-5.11/plugins/MeshProjection.plugins.xml" \
   "PYTHONPATH=${fakeroot}/usr/lib/python3/dist-packages" \
   "CMAKE_PREFIX_PATH=${fakeroot}/usr"
-# No text file (CMake package, plugin XML, Python) names the build tree or
-# the clone, and the libraries find each other through \$ORIGIN only.
+# No file (CMake package, plugin XML, Python, libraries) names the build
+# tree or the clone, and the libraries find each other through \$ORIGIN only.
 check "extracted: no path into the build tree or the clone" bash -c '
-  if grep -rlIF -e "$1" -e "$2" "$3"; then exit 1; fi
+  if grep -rlF -e "$1" -e "$2" "$3"; then exit 1; fi
   bad=$(find "$3" -name "*.so*" -type f -exec readelf -d {} + \
         | sed -n "s/.*R\(UN\)\?PATH.*\[\(.*\)\]/\2/p" | tr ":" "\n" | grep -v "^\\\$ORIGIN")
   [[ -z $bad ]] || { echo "run paths: $bad"; exit 1; }' _ "${build_dir}" "${root}" "${fakeroot}"
