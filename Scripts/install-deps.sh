@@ -70,6 +70,11 @@ PACKAGES=(
   xvfb                       # X server for rendering tests (Debian's VTK/ParaView is GLX-only:
   xauth                      #   no EGL/OSMesa, pvbatch/pvpython need an X display); xvfb-run needs xauth
   libgl1-mesa-dri            # llvmpipe/swrast GL driver used under Xvfb
+
+  # --- the Debian package (Scripts/package.sh, Scripts/test-package.sh) ---
+  dpkg-dev                   # dpkg-shlibdeps (CPack's Depends) and dpkg-buildflags
+  file                       # CPack's DEB generator finds the shared libraries with it
+  lintian                    # the package's policy check (no errors)
 )
 
 if [[ ${EUID} -eq 0 ]]; then

@@ -6,7 +6,8 @@
 # again with clang's AddressSanitizer and UBSan (Scripts/build-sanitized.sh),
 # running the kernel and VTK C++ tests and the whole-filter fuzzer there,
 # and the VTK C++ tests and the fuzzer's corpus once more with every mesh
-# renumbered.
+# renumbered; last, the Debian package built, installed, checked and removed
+# (Scripts/test-package.sh).
 # Rendering tests run under one virtual X server started with -noreset (see
 # Scripts/test.sh).
 set -euo pipefail
@@ -32,3 +33,7 @@ ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 MESHPROJECTION_RENUMBERING=always ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   timeout 1200 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
   ctest --output-on-failure --parallel 2 -R "FiltersCxx|Sanitize\.FilterCorpus"
+
+# The Debian package: built, checked extracted into a throwaway root and
+# installed with apt, then removed (Scripts/test-package.sh).
+timeout 1800 bash "$root/Scripts/test-package.sh"
