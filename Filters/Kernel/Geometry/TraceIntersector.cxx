@@ -29,37 +29,34 @@ inline double Extent(const double box[6])
 // A generic direction: a segment lying in a face's plane belongs to the cell
 // this direction points into from it.
 constexpr double Generic[3] = { 0.5772156649015329, 0.3183098861837907, 0.7071067811865476 };
-} // namespace
 
-void SurfaceTraceIntersector::Bounds(const Cell& cell, double box[6])
+/**
+ * A tetrahedron's corners against a target facet's plane: each one's image
+ * in the facet's frame and height over the plane (zero within the
+ * tolerance), and which side counts as above.
+ */
+struct CornerHeights
 {
-  WidenBox(cell.Box3, HeightTolerance * Extent(cell.Box3), box);
-}
+  double UV[4][2];
+  double H[4];
+  bool Above[4];
+  int Zeros = 0; ///< corners on the plane
+  int Up = 0;    ///< corners above it
+};
 
-bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, Piece& piece)
+/// Every corner's image and height, from the mesh's own point: one value
+/// per point and target facet, whichever tetrahedron asks.
+inline void MeasureHeights(const SurfaceTraceIntersector::Cell& t,
+  const SurfaceTraceIntersector::SourceCellType& s, double tolerance, CornerHeights& c)
 {
-  piece.NumberOfParts = 0;
-  piece.TouchedFaces = 0;
-  piece.SourceFaces = 0;
-  piece.Target = &t;
-  const double tolerance = HeightTolerance * Extent(t.Box3);
-  if (!BoxesWithinReach(t.Box3, s.Box, tolerance))
-  {
-    return false;
-  }
-  // Every corner's image and height, from the mesh's own point: one value
-  // per point and target facet, whichever tetrahedron asks.
-  double uv[4][2];
-  double h[4];
-  int zeros = 0;
   int apex = 0;
   for (int k = 0; k < 4; ++k)
   {
-    SurfaceIntersector::ToFrame(t, s.X[k], uv[k], h[k]);
-    if (std::fabs(h[k]) <= tolerance)
+    SurfaceIntersector::ToFrame(t, s.X[k], c.UV[k], c.H[k]);
+    if (std::fabs(c.H[k]) <= tolerance)
     {
-      h[k] = 0.0;
-      ++zeros;
+      c.H[k] = 0.0;
+      ++c.Zeros;
     }
     else
     {
@@ -68,61 +65,75 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
   }
   // Zero counts as below the plane; but a face on the plane that is on the
   // source's boundary, with its tetrahedron below, is taken from below.
-  const bool zeroAbove = zeros == 3 && h[apex] < 0.0 && ((s.Boundary >> apex) & 1u);
-  bool above[4];
-  int n = 0;
+  const bool zeroAbove = c.Zeros == 3 && c.H[apex] < 0.0 && ((s.Boundary >> apex) & 1u);
   for (int k = 0; k < 4; ++k)
   {
-    above[k] = h[k] > 0.0 || (zeroAbove && h[k] == 0.0);
-    n += above[k];
+    c.Above[k] = c.H[k] > 0.0 || (zeroAbove && c.H[k] == 0.0);
+    c.Up += c.Above[k];
   }
-  // A tetrahedron that only touches the plane (in a vertex, an edge or a
-  // face on the other side) meets the target when those points' box meets
-  // the target's: the front must pass through it, to all its neighbours,
-  // for the cells around an edge lying on the plane to be reached.
-  auto touching = [&]() {
-    double box[4] = { 0.0, -1.0, 0.0, -1.0 };
-    for (int k = 0; k < 4; ++k)
-    {
-      if (h[k] != 0.0)
-      {
-        continue;
-      }
-      const bool first = box[1] < box[0];
-      box[0] = first ? uv[k][0] : std::min(box[0], uv[k][0]);
-      box[1] = first ? uv[k][0] : std::max(box[1], uv[k][0]);
-      box[2] = first ? uv[k][1] : std::min(box[2], uv[k][1]);
-      box[3] = first ? uv[k][1] : std::max(box[3], uv[k][1]);
-    }
-    if (box[1] < box[0] || box[1] < t.Box[0] || t.Box[1] < box[0] || box[3] < t.Box[2] ||
-      t.Box[3] < box[2])
-    {
-      return false;
-    }
-    piece.SourceFaces = 15u;
-    return true;
-  };
-  if (n == 0 || n == 4)
+}
+
+/**
+ * A tetrahedron that only touches the plane (in a vertex, an edge or a
+ * face on the other side) meets the target when those points' box meets
+ * the target's: the front must pass through it, to all its neighbours,
+ * for the cells around an edge lying on the plane to be reached.
+ */
+inline bool Touches(const SurfaceTraceIntersector::Cell& t, const CornerHeights& c,
+  SurfaceTraceIntersector::Piece& piece)
+{
+  double box[4] = { 0.0, -1.0, 0.0, -1.0 };
+  for (int k = 0; k < 4; ++k)
   {
-    return zeros > 0 && touching();
+    if (c.H[k] != 0.0)
+    {
+      continue;
+    }
+    const bool first = box[1] < box[0];
+    box[0] = first ? c.UV[k][0] : std::min(box[0], c.UV[k][0]);
+    box[1] = first ? c.UV[k][0] : std::max(box[1], c.UV[k][0]);
+    box[2] = first ? c.UV[k][1] : std::min(box[2], c.UV[k][1]);
+    box[3] = first ? c.UV[k][1] : std::max(box[3], c.UV[k][1]);
   }
-  // The crossed edges (above, below) in cyclic order around the cross-section.
-  int edge[4][2];
-  int m = 0;
+  if (box[1] < box[0] || box[1] < t.Box[0] || t.Box[1] < box[0] || box[3] < t.Box[2] ||
+    t.Box[3] < box[2])
+  {
+    return false;
+  }
+  piece.SourceFaces = 15u;
+  return true;
+}
+
+/// A tetrahedron's cross-section with the plane: the crossed edges (above,
+/// below) in cyclic order, where each crosses, and the face each side of
+/// the cross-section lies in.
+struct CrossSection
+{
+  int M = 0; ///< 3 or 4 crossings
+  int Edge[4][2];
+  double C[4][2];
+  int CycleFace[4];
+};
+
+/// The crossed edges (above, below) in cyclic order around the cross-section.
+inline void CrossedEdges(const CornerHeights& c, CrossSection& x)
+{
+  const int n = c.Up;
   int up[3];
   int down[3];
   int nu = 0;
   int nd = 0;
   for (int k = 0; k < 4; ++k)
   {
-    (above[k] ? up[nu++] : down[nd++]) = k;
+    (c.Above[k] ? up[nu++] : down[nd++]) = k;
   }
+  int m = 0;
   if (n == 1 || n == 3)
   {
     for (int k = 0; k < 3; ++k)
     {
-      edge[m][0] = n == 1 ? up[0] : up[k];
-      edge[m][1] = n == 1 ? down[k] : down[0];
+      x.Edge[m][0] = n == 1 ? up[0] : up[k];
+      x.Edge[m][1] = n == 1 ? down[k] : down[0];
       ++m;
     }
   }
@@ -132,53 +143,69 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
       { up[1], down[0] } };
     for (m = 0; m < 4; ++m)
     {
-      edge[m][0] = cycle[m][0];
-      edge[m][1] = cycle[m][1];
+      x.Edge[m][0] = cycle[m][0];
+      x.Edge[m][1] = cycle[m][1];
     }
   }
-  double c[4][2];
-  int cycleFace[4];
+  x.M = m;
+}
+
+/// Where each crossed edge meets the plane (the same bits in every
+/// tetrahedron around the edge), and the face of each side.
+inline void Crossings(
+  const SurfaceTraceIntersector::SourceCellType& s, const CornerHeights& c, CrossSection& x)
+{
+  const int m = x.M;
   for (int e = 0; e < m; ++e)
   {
-    const int i = edge[e][0];
-    const int j = edge[e][1];
-    if (h[j] == 0.0 && !above[j])
+    const int i = x.Edge[e][0];
+    const int j = x.Edge[e][1];
+    if (c.H[j] == 0.0 && !c.Above[j])
     {
-      c[e][0] = uv[j][0];
-      c[e][1] = uv[j][1];
+      x.C[e][0] = c.UV[j][0];
+      x.C[e][1] = c.UV[j][1];
     }
-    else if (h[i] == 0.0)
+    else if (c.H[i] == 0.0)
     {
-      c[e][0] = uv[i][0];
-      c[e][1] = uv[i][1];
+      x.C[e][0] = c.UV[i][0];
+      x.C[e][1] = c.UV[i][1];
     }
     else
     {
       // From the ends in the order of their ids: the same bits in every cell.
       const int a = s.Points[i] < s.Points[j] ? i : j;
       const int b = a == i ? j : i;
-      const double r = h[a] / (h[a] - h[b]);
-      c[e][0] = uv[a][0] + r * (uv[b][0] - uv[a][0]);
-      c[e][1] = uv[a][1] + r * (uv[b][1] - uv[a][1]);
+      const double r = c.H[a] / (c.H[a] - c.H[b]);
+      x.C[e][0] = c.UV[a][0] + r * (c.UV[b][0] - c.UV[a][0]);
+      x.C[e][1] = c.UV[a][1] + r * (c.UV[b][1] - c.UV[a][1]);
     }
     // The side from this crossing to the next lies in the face opposite the
     // corner that neither edge has.
     const int next = (e + 1) % m;
-    const unsigned used = (1u << edge[e][0]) | (1u << edge[e][1]) | (1u << edge[next][0]) |
-      (1u << edge[next][1]);
+    const unsigned used = (1u << x.Edge[e][0]) | (1u << x.Edge[e][1]) | (1u << x.Edge[next][0]) |
+      (1u << x.Edge[next][1]);
     int missing = 0;
     while ((used >> missing) & 1u)
     {
       ++missing;
     }
-    cycleFace[e] = missing;
+    x.CycleFace[e] = missing;
   }
-  // The cross-section as one or two triangles, each cut out of the target.
-  // Each side of a triangle carries the tetrahedron's faces it lies on: a
-  // side of the cross-section its face, the diagonal none; but where one
-  // triangle has no area (a crossing repeated where a corner lies on the
-  // plane, or rounding), the other's diagonal stands for its two sides.
+}
+
+/**
+ * The cross-section as one or two triangles, each cut out of the target.
+ * Each side of a triangle carries the tetrahedron's faces it lies on: a
+ * side of the cross-section its face, the diagonal none; but where one
+ * triangle has no area (a crossing repeated where a corner lies on the
+ * plane, or rounding), the other's diagonal stands for its two sides.
+ */
+inline void CutByCrossSection(const SurfaceTraceIntersector::Cell& t,
+  const SurfaceTraceIntersector::SourceCellType& s, const CrossSection& x,
+  SurfaceTraceIntersector::Piece& piece)
+{
   const int parts[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
+  const int m = x.M;
   const int count = m == 4 ? 2 : 1;
   TriangleIntersector::Cell sub[2];
   bool area[2] = { false, false };
@@ -189,13 +216,13 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
     for (int k = 0; k < 3; ++k)
     {
       const int v = parts[p][k];
-      sub[p].X[k][0] = c[v][0];
-      sub[p].X[k][1] = c[v][1];
+      sub[p].X[k][0] = x.C[v][0];
+      sub[p].X[k][1] = x.C[v][1];
       sub[p].Points[k] = s.Points[k];
       sub[p].Face[k] = k; // PrepareCorners reorders: Face then names the corner as set here
       const int from = parts[p][(k + 1) % 3];
       const int to = parts[p][(k + 2) % 3];
-      sides[p][k] = to == (from + 1) % m ? 1u << cycleFace[from] : 0u;
+      sides[p][k] = to == (from + 1) % m ? 1u << x.CycleFace[from] : 0u;
     }
     area[p] = TriangleIntersector::PrepareCorners(sub[p]);
   }
@@ -229,21 +256,13 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
       }
     }
   }
-  if (piece.NumberOfParts == 0)
-  {
-    // A cross-section without area: the tetrahedron touches the plane.
-    return zeros > 0 && touching();
-  }
-  if (Measure(piece) < SliverFraction * t.Measure)
-  {
-    // A sliver of rounding size (where the facet and the tetrahedron only
-    // touch): no measure, as for the tetrahedra (TetrahedronIntersector),
-    // but the front passes on through its faces.
-    piece.NumberOfParts = 0;
-    return true;
-  }
-  // The tetrahedron's barycentric coordinates on the target's plane.
-  AffineCell<4, 2>& f = piece.Source;
+}
+
+/// The tetrahedron's barycentric coordinates on the target's plane (the
+/// source's functions on the piece).
+inline void PlaneCoordinates(const SurfaceTraceIntersector::Cell& t,
+  const SurfaceTraceIntersector::SourceCellType& s, AffineCell<4, 2>& f)
+{
   f.Id = s.Id;
   const double d0[3] = { t.Origin[0] - s.X[0][0], t.Origin[1] - s.X[0][1], t.Origin[2] - s.X[0][2] };
   for (int k = 0; k < 3; ++k)
@@ -262,6 +281,49 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
     }
   }
   std::copy(s.Points, s.Points + 4, f.Points);
+}
+} // namespace
+
+void SurfaceTraceIntersector::Bounds(const Cell& cell, double box[6])
+{
+  WidenBox(cell.Box3, HeightTolerance * Extent(cell.Box3), box);
+}
+
+bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, Piece& piece)
+{
+  piece.NumberOfParts = 0;
+  piece.TouchedFaces = 0;
+  piece.SourceFaces = 0;
+  piece.Target = &t;
+  const double tolerance = HeightTolerance * Extent(t.Box3);
+  if (!BoxesWithinReach(t.Box3, s.Box, tolerance))
+  {
+    return false;
+  }
+  CornerHeights c;
+  MeasureHeights(t, s, tolerance, c);
+  if (c.Up == 0 || c.Up == 4)
+  {
+    return c.Zeros > 0 && Touches(t, c, piece);
+  }
+  CrossSection x;
+  CrossedEdges(c, x);
+  Crossings(s, c, x);
+  CutByCrossSection(t, s, x, piece);
+  if (piece.NumberOfParts == 0)
+  {
+    // A cross-section without area: the tetrahedron touches the plane.
+    return c.Zeros > 0 && Touches(t, c, piece);
+  }
+  if (Measure(piece) < SliverFraction * t.Measure)
+  {
+    // A sliver of rounding size (where the facet and the tetrahedron only
+    // touch): no measure, as for the tetrahedra (TetrahedronIntersector),
+    // but the front passes on through its faces.
+    piece.NumberOfParts = 0;
+    return true;
+  }
+  PlaneCoordinates(t, s, piece.Source);
   return true;
 }
 
