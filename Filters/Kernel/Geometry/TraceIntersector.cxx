@@ -282,6 +282,186 @@ inline void PlaneCoordinates(const SurfaceTraceIntersector::Cell& t,
   }
   std::copy(s.Points, s.Points + 4, f.Points);
 }
+
+/**
+ * A target segment clipped by a source cell's faces, one face at a time:
+ * the interval [Lo, Hi] of its axis left inside, where each face cuts it,
+ * and the faces whose plane holds it.
+ */
+template <int N>
+struct SegmentClip
+{
+  double Lo = 0.0;
+  double Hi = 0.0;
+  double Cut[N];
+  bool Cuts[N];
+  unsigned On = 0;      ///< faces whose plane holds the segment
+  unsigned GenericSide = 0; ///< of those, the ones the generic direction points into the cell from
+};
+
+/// Face k's plane (line): a normal from its corners in the order of their
+/// ids, the first corner, and the orientation of the face with corner k
+/// (0: a flat cell).
+template <int D, int N, class SourceCell>
+inline double FacePlane(const SourceCell& s, int k, double normal[3], const double*& v0)
+{
+  // Face k (opposite corner k), its corners in the order of their ids.
+  int f[D];
+  int nf = 0;
+  for (int j = 0; j < N; ++j)
+  {
+    if (j != k)
+    {
+      f[nf++] = j;
+    }
+  }
+  std::sort(f, f + D, [&s](int a, int b) { return s.Points[a] < s.Points[b]; });
+  v0 = s.X[f[0]];
+  if constexpr (D == 3)
+  {
+    const double* v1 = s.X[f[1]];
+    const double* v2 = s.X[f[2]];
+    double e1[3];
+    double e2[3];
+    Sub(v1, v0, e1);
+    Sub(v2, v0, e2);
+    Cross(e1, e2, normal);
+    return Orient3D(v0, v1, v2, s.X[k]);
+  }
+  else
+  {
+    const double* v1 = s.X[f[1]];
+    normal[0] = -(v1[1] - v0[1]);
+    normal[1] = v1[0] - v0[0];
+    return Orient2D(v0, v1, s.X[k]);
+  }
+}
+
+/// Clips the segment by face k's half-space; false when the segment lies
+/// wholly outside it (or the cell is flat).
+template <int D, int N, class SourceCell>
+inline bool ClipByFace(
+  const SegmentIntersector::Cell& t, const SourceCell& s, int k, double length, SegmentClip<N>& clip)
+{
+  clip.Cuts[k] = false;
+  double normal[3] = { 0.0, 0.0, 0.0 };
+  const double* v0 = nullptr;
+  const double side = FacePlane<D, N>(s, k, normal, v0);
+  if (!(side != 0.0))
+  {
+    return false;
+  }
+  double ga = 0.0;
+  double gb = 0.0;
+  double toward = 0.0;
+  double nn = 0.0;
+  for (int d = 0; d < D; ++d)
+  {
+    ga += normal[d] * (t.Corner[0][d] - v0[d]);
+    gb += normal[d] * (t.Corner[1][d] - v0[d]);
+    toward += normal[d] * Generic[d];
+    nn += normal[d] * normal[d];
+  }
+  // An end within 1e-10 of the segment's and the face's size from the
+  // face's plane lies on it (decided once per face: the same in both cells).
+  nn = std::sqrt(nn);
+  const double size = length + (D == 3 ? std::sqrt(nn) : nn);
+  const double snap = HeightTolerance * size * nn;
+  ga = std::fabs(ga) <= snap ? 0.0 : ga;
+  gb = std::fabs(gb) <= snap ? 0.0 : gb;
+  const double sign = side > 0.0 ? 1.0 : -1.0;
+  const double ia = sign * ga; // >= 0: end a on the cell's side
+  const double ib = sign * gb;
+  if (ia >= 0.0 && ib >= 0.0)
+  {
+    if (ia == 0.0 && ib == 0.0)
+    {
+      clip.On |= 1u << k;
+      clip.GenericSide |= unsigned(sign * toward > 0.0) << k;
+    }
+    return true;
+  }
+  if (ia < 0.0 && ib < 0.0)
+  {
+    return false;
+  }
+  // Where the segment crosses the face's plane: from the face's own
+  // values, the same in both cells that share it.
+  const double u = length * (ga / (ga - gb));
+  clip.Cuts[k] = true;
+  clip.Cut[k] = u;
+  if (ia >= 0.0)
+  {
+    clip.Hi = std::min(clip.Hi, u);
+  }
+  else
+  {
+    clip.Lo = std::max(clip.Lo, u);
+  }
+  return true;
+}
+
+/**
+ * Whether the cell owns a segment lying in the planes of some of its faces
+ * (`on`; none: it owns its interval). A segment in the planes of some faces
+ * (on a face, or along an edge) belongs to one of the cells holding it: on
+ * a face, to the one the generic direction points into, or the only one on
+ * the boundary; along an edge, where no cell knows whether the edge is on
+ * the boundary (the generic direction may point out of the mesh there),
+ * every cell around it claims it (Tied: piece.Edge set) and the assembler
+ * keeps one. The others touch it (a piece without length): the front
+ * passes on.
+ */
+template <int D, int N, class SourceCell, class Piece>
+inline bool OwnsSegment(const SourceCell& s, unsigned on, unsigned generic, Piece& piece)
+{
+  const int planes = ((on & 1u) != 0) + ((on & 2u) != 0) + ((on & 4u) != 0) + ((on & 8u) != 0);
+  const bool boundary = (on & s.Boundary) != 0;
+  piece.Tied = D == 3 && planes >= 2;
+  const bool owned = planes == 0 || piece.Tied || generic == on || boundary;
+  if (piece.Tied)
+  {
+    // The edge: the corners not opposite the two faces.
+    int e = 0;
+    for (int k = 0; k < N && e < 2; ++k)
+    {
+      if (!((on >> k) & 1u) || planes > 2)
+      {
+        piece.Edge[e++] = s.Points[k];
+      }
+    }
+    if (piece.Edge[0] > piece.Edge[1])
+    {
+      std::swap(piece.Edge[0], piece.Edge[1]);
+    }
+  }
+  return owned;
+}
+
+/// The cell's barycentric coordinates along the target's axis (the
+/// source's functions on the piece).
+template <int D, int N, class SourceCell>
+inline void AxisCoordinates(const SegmentIntersector::Cell& t, const SourceCell& s, AffineCell<N, 1>& a)
+{
+  a.Id = s.Id;
+  std::copy(s.Points, s.Points + N, a.Points);
+  a.Affine[0][0] = 1.0;
+  a.Affine[0][1] = 0.0;
+  for (int r = 0; r < D; ++r)
+  {
+    double constant = 0.0;
+    double slope = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      constant += s.Inverse[r][d] * (t.Origin[d] - s.X[0][d]);
+      slope += s.Inverse[r][d] * t.Axis[d];
+    }
+    a.Affine[r + 1][0] = constant;
+    a.Affine[r + 1][1] = slope;
+    a.Affine[0][0] -= constant;
+    a.Affine[0][1] -= slope;
+  }
+}
 } // namespace
 
 void SurfaceTraceIntersector::Bounds(const Cell& cell, double box[6])
@@ -407,99 +587,17 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
     }
   }
   const double length = t.X[1][0];
-  double lo = 0.0;
-  double hi = length;
-  double cut[N];
-  bool cuts[N];
-  unsigned on = 0;       // faces whose plane holds the segment
-  unsigned generic = 0;  // of those, the ones the generic direction points into the cell from
+  SegmentClip<N> clip;
+  clip.Hi = length;
   for (int k = 0; k < N; ++k)
   {
-    cuts[k] = false;
-    // Face k (opposite corner k), its corners in the order of their ids.
-    int f[D];
-    int nf = 0;
-    for (int j = 0; j < N; ++j)
-    {
-      if (j != k)
-      {
-        f[nf++] = j;
-      }
-    }
-    std::sort(f, f + D, [&s](int a, int b) { return s.Points[a] < s.Points[b]; });
-    const double* v0 = s.X[f[0]];
-    double normal[3] = { 0.0, 0.0, 0.0 };
-    double side;
-    if constexpr (D == 3)
-    {
-      const double* v1 = s.X[f[1]];
-      const double* v2 = s.X[f[2]];
-      double e1[3];
-      double e2[3];
-      Sub(v1, v0, e1);
-      Sub(v2, v0, e2);
-      Cross(e1, e2, normal);
-      side = Orient3D(v0, v1, v2, s.X[k]);
-    }
-    else
-    {
-      const double* v1 = s.X[f[1]];
-      normal[0] = -(v1[1] - v0[1]);
-      normal[1] = v1[0] - v0[0];
-      side = Orient2D(v0, v1, s.X[k]);
-    }
-    if (!(side != 0.0))
+    if (!ClipByFace<D, N>(t, s, k, length, clip))
     {
       return false;
-    }
-    double ga = 0.0;
-    double gb = 0.0;
-    double toward = 0.0;
-    double nn = 0.0;
-    for (int d = 0; d < D; ++d)
-    {
-      ga += normal[d] * (t.Corner[0][d] - v0[d]);
-      gb += normal[d] * (t.Corner[1][d] - v0[d]);
-      toward += normal[d] * Generic[d];
-      nn += normal[d] * normal[d];
-    }
-    // An end within 1e-10 of the segment's and the face's size from the
-    // face's plane lies on it (decided once per face: the same in both cells).
-    nn = std::sqrt(nn);
-    const double size = length + (D == 3 ? std::sqrt(nn) : nn);
-    const double snap = HeightTolerance * size * nn;
-    ga = std::fabs(ga) <= snap ? 0.0 : ga;
-    gb = std::fabs(gb) <= snap ? 0.0 : gb;
-    const double sign = side > 0.0 ? 1.0 : -1.0;
-    const double ia = sign * ga; // >= 0: end a on the cell's side
-    const double ib = sign * gb;
-    if (ia >= 0.0 && ib >= 0.0)
-    {
-      if (ia == 0.0 && ib == 0.0)
-      {
-        on |= 1u << k;
-        generic |= unsigned(sign * toward > 0.0) << k;
-      }
-      continue;
-    }
-    if (ia < 0.0 && ib < 0.0)
-    {
-      return false;
-    }
-    // Where the segment crosses the face's plane: from the face's own
-    // values, the same in both cells that share it.
-    const double u = length * (ga / (ga - gb));
-    cuts[k] = true;
-    cut[k] = u;
-    if (ia >= 0.0)
-    {
-      hi = std::min(hi, u);
-    }
-    else
-    {
-      lo = std::max(lo, u);
     }
   }
+  double lo = clip.Lo;
+  double hi = clip.Hi;
   // Cuts through one vertex or edge of the cell come from different faces,
   // so they differ by rounding: within `tolerance` the cell touches the
   // segment there (a piece without length), and the front passes on to the
@@ -508,34 +606,7 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   {
     return false;
   }
-  // A segment in the planes of some faces (on a face, or along an edge)
-  // belongs to one of the cells holding it: on a face, to the one the
-  // generic direction points into, or the only one on the boundary; along
-  // an edge, where no cell knows whether the edge is on the boundary (the
-  // generic direction may point out of the mesh there), every cell around
-  // it claims it (Tied) and the assembler keeps one. The others touch it (a
-  // piece without length): the front passes on.
-  const int planes = ((on & 1u) != 0) + ((on & 2u) != 0) + ((on & 4u) != 0) + ((on & 8u) != 0);
-  const bool boundary = (on & s.Boundary) != 0;
-  piece.Tied = D == 3 && planes >= 2;
-  const bool owned = planes == 0 || piece.Tied || generic == on || boundary;
-  if (piece.Tied)
-  {
-    // The edge: the corners not opposite the two faces.
-    int e = 0;
-    for (int k = 0; k < N && e < 2; ++k)
-    {
-      if (!((on >> k) & 1u) || planes > 2)
-      {
-        piece.Edge[e++] = s.Points[k];
-      }
-    }
-    if (piece.Edge[0] > piece.Edge[1])
-    {
-      std::swap(piece.Edge[0], piece.Edge[1]);
-    }
-  }
-  if (!owned)
+  if (!OwnsSegment<D, N>(s, clip.On, clip.GenericSide, piece))
   {
     hi = lo;
   }
@@ -545,34 +616,16 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   piece.X[1][0] = std::max(lo, hi);
   // Face k of the target is its corner 1 - k.
   piece.TouchedFaces = (hi >= length - tolerance ? 1u : 0u) | (lo <= tolerance ? 2u : 0u);
-  piece.SourceFaces = on;
+  piece.SourceFaces = clip.On;
   for (int k = 0; k < N; ++k)
   {
-    if (cuts[k] && (std::fabs(cut[k] - lo) <= tolerance || std::fabs(cut[k] - hi) <= tolerance))
+    if (clip.Cuts[k] &&
+      (std::fabs(clip.Cut[k] - lo) <= tolerance || std::fabs(clip.Cut[k] - hi) <= tolerance))
     {
       piece.SourceFaces |= 1u << k;
     }
   }
-  // The cell's barycentric coordinates along the target's axis.
-  AffineCell<N, 1>& a = piece.Source;
-  a.Id = s.Id;
-  std::copy(s.Points, s.Points + N, a.Points);
-  a.Affine[0][0] = 1.0;
-  a.Affine[0][1] = 0.0;
-  for (int r = 0; r < D; ++r)
-  {
-    double constant = 0.0;
-    double slope = 0.0;
-    for (int d = 0; d < D; ++d)
-    {
-      constant += s.Inverse[r][d] * (t.Origin[d] - s.X[0][d]);
-      slope += s.Inverse[r][d] * t.Axis[d];
-    }
-    a.Affine[r + 1][0] = constant;
-    a.Affine[r + 1][1] = slope;
-    a.Affine[0][0] -= constant;
-    a.Affine[0][1] -= slope;
-  }
+  AxisCoordinates<D, N>(t, s, piece.Source);
   return true;
 }
 
