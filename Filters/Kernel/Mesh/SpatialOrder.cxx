@@ -83,20 +83,13 @@ constexpr Index Ahead = 16;
 
 } // namespace
 
-void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner& runner)
+namespace
 {
-  const Index n = mesh.NumberOfCells;
-  const Index np = mesh.NumberOfPoints;
-  order.Cells.resize(static_cast<size_t>(n));
-  if (n < 2 || n > Index(0xffffffff))
-  {
-    std::iota(order.Cells.begin(), order.Cells.end(), Index(0));
-    return; // keys carry the cell id in 32 bits
-  }
-  // The box of the points (in storage order: no random access), leaving out
-  // those no valid mesh has (NaN, infinite, beyond 1e100), and its axes of
-  // positive extent.
-  const Box box = runner.ForRanges(np, [&](Index begin, Index end) {
+/// The box of the points (in storage order: no random access), leaving out
+/// those no valid mesh has (NaN, infinite, beyond 1e100).
+Box PointBox(const MeshView& mesh, const TaskRunner& runner)
+{
+  return runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     Box b;
     for (Index p = begin; p < end; ++p)
     {
@@ -112,52 +105,78 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     }
     return b;
   });
-  int axes[3];
-  int dimension = 0;
-  double scale[3] = {};
-  for (int a = 0; a < 3; ++a)
+}
+
+/// The grid a point's position on the curve is read in: the box's axes of
+/// positive extent, each cut into just below 2^bits steps.
+struct CurveGrid
+{
+  int Axes[3];
+  int Dimension = 0;
+  double Scale[3] = {};
+  double Top = 0; ///< the largest step
+  const double* Lo;
+
+  explicit CurveGrid(const Box& box)
+    : Lo(box.Lo)
   {
-    if (box.Hi[a] > box.Lo[a])
+    for (int a = 0; a < 3; ++a)
     {
-      axes[dimension++] = a;
+      if (box.Hi[a] > box.Lo[a])
+      {
+        this->Axes[this->Dimension++] = a;
+      }
     }
+    // A 32-bit position: 16 bits per axis in 2D, 10 in 3D (finer than any
+    // mesh's cells along an axis; ties keep the old order).
+    const int dimension = this->Dimension;
+    const int bits = dimension == 3 ? 10 : (dimension == 2 ? 16 : 32);
+    for (int k = 0; k < dimension; ++k)
+    {
+      const int a = this->Axes[k];
+      // Just below 2^bits steps, so that the largest point stays inside.
+      this->Scale[k] = (std::ldexp(1.0, bits) - 1.0) / (box.Hi[a] - box.Lo[a]);
+    }
+    this->Top = std::ldexp(1.0, bits) - 1.0;
   }
-  // A 32-bit position: 16 bits per axis in 2D, 10 in 3D (finer than any
-  // mesh's cells along an axis; ties keep the old order).
-  const int bits = dimension == 3 ? 10 : (dimension == 2 ? 16 : 32);
-  for (int k = 0; k < dimension; ++k)
+
+  /// Point x's position on the curve.
+  std::uint32_t Position(const double* x) const
   {
-    const int a = axes[k];
-    // Just below 2^bits steps, so that the largest point stays inside.
-    scale[k] = (std::ldexp(1.0, bits) - 1.0) / (box.Hi[a] - box.Lo[a]);
+    std::uint32_t q[3] = {};
+    for (int k = 0; k < this->Dimension; ++k)
+    {
+      const double s = (x[this->Axes[k]] - this->Lo[this->Axes[k]]) * this->Scale[k];
+      // NaN and beyond the box (non-finite points) clamped: any key will do.
+      q[k] = s > 0 ? static_cast<std::uint32_t>(std::min(s, this->Top)) : 0u;
+    }
+    return static_cast<std::uint32_t>(MortonIndex(q, this->Dimension));
   }
-  const double top = std::ldexp(1.0, bits) - 1.0;
-  // Each point's position on the curve (in storage order: no random
-  // access), then each cell's key: the lowest of its corners' positions in
-  // the high 32 bits, the cell id in the low ones. (A key from the cell's
-  // centre read every corner's three coordinates in the old numbering,
-  // mostly cache misses, for each cell; the corners'
-  // positions are a sixth of the points' bytes, and the order they give
-  // keeps the front's search as fast.)
-  // (pointKeys, keys and other are written whole by tasks: not zeroed first.)
-  UninitializedLargeVector<std::uint32_t> pointKeys(static_cast<size_t>(np));
-  runner.ForRanges(np, [&](Index begin, Index end) {
+};
+
+/**
+ * Each point's position on the curve (in storage order: no random
+ * access), then each cell's key: the lowest of its corners' positions in
+ * the high 32 bits, the cell id in the low ones. (A key from the cell's
+ * centre read every corner's three coordinates in the old numbering,
+ * mostly cache misses, for each cell; the corners'
+ * positions are a sixth of the points' bytes, and the order they give
+ * keeps the front's search as fast.)
+ */
+void CellKeys(const MeshView& mesh, const CurveGrid& grid, const TaskRunner& runner,
+  UninitializedLargeVector<std::uint64_t>& keys)
+{
+  // (pointKeys and keys are written whole by tasks: not zeroed first.)
+  UninitializedLargeVector<std::uint32_t> pointKeys(static_cast<size_t>(mesh.NumberOfPoints));
+  runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
     {
-      const double* x = mesh.Point(p);
-      std::uint32_t q[3] = {};
-      for (int k = 0; k < dimension; ++k)
-      {
-        const double s = (x[axes[k]] - box.Lo[axes[k]]) * scale[k];
-        // NaN and beyond the box (non-finite points) clamped: any key will do.
-        q[k] = s > 0 ? static_cast<std::uint32_t>(std::min(s, top)) : 0u;
-      }
-      pointKeys[p] = static_cast<std::uint32_t>(MortonIndex(q, dimension));
+      pointKeys[p] = grid.Position(mesh.Point(p));
     }
     return 0;
   });
-  UninitializedLargeVector<std::uint64_t> keys(static_cast<size_t>(n));
-  runner.ForRanges(n, [&](Index begin, Index end) {
+  keys.resize(static_cast<size_t>(mesh.NumberOfCells));
+  runner.ForRanges(mesh.NumberOfCells, [&](Index begin, Index end) {
     const int corners = mesh.CornersPerCell();
     for (Index c = begin; c < end; ++c)
     {
@@ -179,16 +198,23 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     }
     return 0;
   });
-  UninitializedLargeVector<std::uint32_t>().swap(pointKeys);
-  // Least-significant-digit radix sort on the key's 32 bits in three digits
-  // of 11, 11 and 10 bits: stable, so equal keys stay in id order. Each
-  // task counts and then moves its own range of keys; the buckets' starts
-  // are laid out bucket by bucket and, within a bucket, task by task, so
-  // that the result is the same for any number of tasks.
+}
+
+/**
+ * Least-significant-digit radix sort on the keys' high 32 bits in three
+ * digits of 11, 11 and 10 bits: stable, so equal keys stay in id order.
+ * Each task counts and then moves its own range of keys; the buckets'
+ * starts are laid out bucket by bucket and, within a bucket, task by task,
+ * so that the result is the same for any number of tasks.
+ */
+void SortKeys(UninitializedLargeVector<std::uint64_t>& keys, const TaskRunner& runner)
+{
+  const Index n = static_cast<Index>(keys.size());
   constexpr int Shifts[3] = { 32, 43, 54 };
   constexpr size_t Buckets = 2048;
   const int tasks = runner.TasksFor(n, 16384);
   std::vector<size_t> count(static_cast<size_t>(tasks) * Buckets);
+  // (Written whole by the moves: not zeroed first.)
   UninitializedLargeVector<std::uint64_t> other(keys.size());
   for (int d = 0; d < 3; ++d)
   {
@@ -232,6 +258,23 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     });
     keys.swap(other);
   }
+}
+} // namespace
+
+void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner& runner)
+{
+  const Index n = mesh.NumberOfCells;
+  order.Cells.resize(static_cast<size_t>(n));
+  if (n < 2 || n > Index(0xffffffff))
+  {
+    std::iota(order.Cells.begin(), order.Cells.end(), Index(0));
+    return; // keys carry the cell id in 32 bits
+  }
+  const Box box = PointBox(mesh, runner);
+  const CurveGrid grid(box);
+  UninitializedLargeVector<std::uint64_t> keys;
+  CellKeys(mesh, grid, runner, keys);
+  SortKeys(keys, runner);
   runner.ForRanges(n, [&](Index begin, Index end) {
     for (Index c = begin; c < end; ++c)
     {
