@@ -118,8 +118,8 @@ struct MeetsInVolume<Intersector, std::enable_if_t<Intersector::MeetsInVolume>> 
  * The advancing front's state over target cells [begin, end): the outer
  * front (a heap of target cells with their seeds), the inner front of the
  * target cell treated, and what walks and queries have cost so far (see
- * the file comment). AdvancingFrontSearch runs one; each step below is one
- * paragraph of the file comment.
+ * the file comment, which the steps below follow). AdvancingFrontSearch
+ * runs one per range.
  */
 template <class Intersector, class Visitor>
 class AdvancingFront
