@@ -13,6 +13,245 @@ namespace mp
 {
 using namespace clipping;
 
+namespace
+{
+using TetCell = TetrahedronIntersector::Cell;
+using TetPiece = TetrahedronIntersector::Piece;
+constexpr int MaxTetrahedra = TetrahedronIntersector::MaxTetrahedra;
+
+/**
+ * The two cells' face planes against each other's corners: exact[k][v] the
+ * side of source corner v w.r.t. target face plane k (positive inside),
+ * with an exact sign, so that corners shared by the meshes land exactly on
+ * the planes; exactS the reverse (target corners, source planes); their
+ * sign bits, and the planes each cell reaches beyond.
+ */
+struct FacePlaneSides
+{
+  double Exact[4][4];
+  double ExactS[4][4];
+  SideBits Bits;  ///< of Exact
+  SideBits BitsS; ///< of ExactS
+  unsigned Beyond = 0;  ///< target planes the source reaches beyond
+  unsigned BeyondS = 0; ///< source planes the target reaches beyond
+};
+
+/// Separating face planes (of either cell): cheap early rejection. Any
+/// target face plane with all source corners on or outside it (or the
+/// reverse) separates the cells: true then (at most a shared face, edge or
+/// vertex: no volume).
+inline bool Separated(const TetCell& t, const TetCell& s, FacePlaneSides& p)
+{
+  FaceSides(t, s, p.Exact);
+  FaceSides(s, t, p.ExactS);
+  GetSideBits(p.Exact, p.Bits);
+  GetSideBits(p.ExactS, p.BitsS);
+  bool apart = false;
+  for (int k = 0; k < 4; ++k)
+  {
+    p.Beyond |= (p.Bits.Negative[k] != 0 ? 1u : 0u) << k;
+    p.BeyondS |= (p.BitsS.Negative[k] != 0 ? 1u : 0u) << k;
+    apart |= (p.Bits.NotPositive[k] == 15u) | (p.BitsS.NotPositive[k] == 15u);
+  }
+  return apart;
+}
+
+/**
+ * The planes that cut, in the order of how many of the clipped cell's
+ * corners they cut off, most first: the graphs the later clips work on
+ * are then smallest (less time per pair than in face order; fewest
+ * first takes the most).
+ * Sorted without branches (as a loop over the counts, their branches
+ * depend on the data and were often mispredicted): key (corners
+ * outside) * 4 + 3 - p, sorted down by a network of five
+ * compare-exchanges; ties keep face order. The cutting planes (1-3 corners
+ * outside: 4 would have separated the cells) come first, with keys of 4
+ * and more; the others (keys below 4) after them are not used.
+ */
+inline void CuttingOrder(const unsigned (&negative)[4], int planes[4])
+{
+  unsigned key[4];
+  for (int p = 0; p < 4; ++p)
+  {
+    key[p] = (CountBits4(negative[p]) << 2) | (3u - static_cast<unsigned>(p));
+  }
+  auto order = [&key](int a, int b) {
+    // By masks: std::max compiled to a branch on the data, often mispredicted.
+    const unsigned swap = (key[a] ^ key[b]) & (0u - static_cast<unsigned>(key[a] < key[b]));
+    key[a] ^= swap;
+    key[b] ^= swap;
+  };
+  order(0, 1);
+  order(2, 3);
+  order(0, 2);
+  order(1, 3);
+  order(1, 2);
+  for (int i = 0; i < 4; ++i)
+  {
+    planes[i] = 3 - static_cast<int>(key[i] & 3u);
+  }
+}
+
+/// One cell clipped by the other's planes.
+struct Clip
+{
+  const TetCell& Clipped;
+  const TetCell& Clipping;
+  const double (&Sides)[4][4]; ///< the clipping planes against the clipped cell's corners
+  unsigned Cut;                ///< the clipping planes that cut the clipped cell
+  int TargetShift;             ///< 4 when the target is clipped (its faces in bits 4-7)
+  double MinArea2;
+};
+
+/**
+ * The clipped cell kept as a polyhedron (a vertex graph) while the planes
+ * cut it, in `planes` order (the first two from the tables of cuts when
+ * no vertex lies on them: the same graph as clipping, with less work; a
+ * corner on the first plane leaves both to Clip), then cut into
+ * tetrahedra. False when rounding left the graph inconsistent (or
+ * `asGraph` is false): the splitting clipper takes over.
+ */
+inline bool ClipAsGraph(const Clip& c, const int (&planes)[4], bool asGraph, TetPiece& piece)
+{
+  VertexGraph graph;
+  const int cutting = static_cast<int>(CountBits4(c.Cut));
+  int i = 0;
+  const unsigned first =
+    asGraph && i < cutting ? graph.SetClippedTetrahedron(c.Clipped, c.Sides, planes[0]) : 0u;
+  if (first)
+  {
+    ++i;
+  }
+  else
+  {
+    graph.SetTetrahedron(c.Clipped, c.Sides);
+  }
+  bool second = first != 0;
+  bool clippedAsGraph = asGraph;
+  for (; i < cutting && graph.NumberOfVertices > 0 && clippedAsGraph; ++i)
+  {
+    const int k = planes[i];
+    const double* normal = c.Clipping.Normal[k];
+    const double* origin = c.Clipping.X[(k + 1) % 4];
+    if (!second || !graph.ClipSecond(first, normal, origin, 1u << k, c.Sides[k]))
+    {
+      clippedAsGraph = graph.Clip(normal, origin, 1u << k, c.Sides[k]);
+    }
+    second = false;
+  }
+  return clippedAsGraph && graph.Decompose(c.TargetShift, c.MinArea2, piece);
+}
+
+/// The split tetrahedra as the piece (four points each), with the target
+/// faces they have a face of positive area on.
+inline void PieceFromSplits(const Clip& clip, const ClipTet* tets, int n, TetPiece& piece)
+{
+  // Faces of the piece of positive area lying on a target plane.
+  for (int i = 0; i < n; ++i)
+  {
+    const ClipTet& c = tets[i];
+    std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.Points[4 * i][0]);
+    for (int k = 0; k < 4; ++k)
+    {
+      piece.Corner[i][k] = 4 * i + k;
+    }
+    piece.Volume[i] = c.Volume / 6.0;
+    for (int f = 0; f < 4; ++f)
+    {
+      const int a = (f + 1) % 4;
+      const int b = (f + 2) % 4;
+      const int d = (f + 3) % 4;
+      const unsigned common =
+        ((c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d]) >> clip.TargetShift) & 15u;
+      if (common & ~piece.TouchedFaces)
+      {
+        Vec u, v, w;
+        Sub(c.X[b], c.X[a], u);
+        Sub(c.X[d], c.X[a], v);
+        Cross(u, v, w);
+        if (Dot(w, w) > clip.MinArea2)
+        {
+          piece.TouchedFaces |= common;
+        }
+      }
+    }
+  }
+  piece.NumberOfTetrahedra = n;
+  unsigned any = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    any |= tets[i].OnPlane[0] | tets[i].OnPlane[1] | tets[i].OnPlane[2] | tets[i].OnPlane[3];
+  }
+  piece.SourceFaces = (any >> (4 - clip.TargetShift)) & 15u;
+}
+
+/// The reference clipper: every plane splits every tetrahedron of the
+/// piece into at most three. Slower, with no capacity limit. (The piece's
+/// moments are left to the caller.)
+inline void ClipBySplitting(const Clip& clip, TetPiece& piece)
+{
+  ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
+  ClipTet* current = buffers[0];
+  ClipTet* next = buffers[1];
+  int n = 1;
+  for (int v = 0; v < 4; ++v)
+  {
+    std::copy(clip.Clipped.X[v], clip.Clipped.X[v] + 3, current[0].X[v]);
+    current[0].OnPlane[v] = (15u & ~(1u << v)) << 4;
+    current[0].Original[v] = v;
+    for (int k = 0; k < 4; ++k) // corners exactly on planes
+    {
+      current[0].OnPlane[v] |= (clip.Sides[k][v] == 0.0 ? 1u : 0u) << k;
+    }
+  }
+  current[0].Volume = 6.0 * clip.Clipped.Measure;
+  for (int k = 0; k < 4 && n > 0; ++k)
+  {
+    if (!(clip.Cut & (1u << k)))
+    {
+      continue; // the whole cell is inside this plane
+    }
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+    {
+      ClipByPlane(current[i], clip.Clipping.Normal[k], clip.Clipping.X[(k + 1) % 4], 1u << k,
+        clip.Sides[k], next, m);
+    }
+    std::swap(current, next);
+    n = m;
+  }
+  PieceFromSplits(clip, current, n, piece);
+}
+
+/**
+ * Which source cell starts the target neighbour across each touched face.
+ * Touched faces the source does not reach beyond (bits: a loop over
+ * them, not a mispredicted test per face): the cap lies in a face of the
+ * source, the one whose three corners are on the plane (the source is on
+ * the inner side of it); else no face of positive area after all.
+ */
+inline void SetSeedFaces(const FacePlaneSides& p, TetPiece& piece)
+{
+  const unsigned (&onPlane)[4] = p.Bits.Zero; // per target plane: source corners on it
+  for (int k = 0; k < 4; ++k)
+  {
+    piece.SeedFace[k] = -1;
+  }
+  for (unsigned lying = piece.TouchedFaces & ~p.Beyond & 15u; lying != 0; lying &= lying - 1)
+  {
+    const int k = __builtin_ctz(lying);
+    if (CountBits4(onPlane[k]) == 3)
+    {
+      piece.SeedFace[k] = __builtin_ctz(15u & ~onPlane[k]);
+    }
+    else
+    {
+      piece.TouchedFaces &= ~(1u << k);
+    }
+  }
+}
+} // namespace
+
 void TetrahedronIntersector::Center(const Cell& cell, double q[3])
 {
   for (int d = 0; d < 3; ++d)
@@ -183,209 +422,32 @@ bool TetrahedronIntersector::IntersectCells(
       return false;
     }
   }
-  // Separating face planes (of either cell): cheap early rejection. Also
-  // note which target planes the source reaches beyond.
-  // exact[k][v]: the side of source corner v w.r.t. target face plane k
-  // (positive inside), with an exact sign, so that corners shared by the
-  // meshes land exactly on the planes. Any target face plane with all
-  // source corners on or outside it (or the reverse) separates the cells.
-  double exact[4][4];
-  double exactS[4][4]; // the reverse: target corner v w.r.t. source face plane k
-  FaceSides(t, s, exact);
-  FaceSides(s, t, exactS);
-  SideBits bits;  // of exact
-  SideBits bitsS; // of exactS
-  GetSideBits(exact, bits);
-  GetSideBits(exactS, bitsS);
-  unsigned beyond = 0;
-  unsigned beyondS = 0;
-  const unsigned (&onPlane)[4] = bits.Zero; // per target plane: source corners on it
-  bool apart = false;
-  for (int k = 0; k < 4; ++k)
-  {
-    beyond |= (bits.Negative[k] != 0 ? 1u : 0u) << k;
-    beyondS |= (bitsS.Negative[k] != 0 ? 1u : 0u) << k;
-    apart |= (bits.NotPositive[k] == 15u) | (bitsS.NotPositive[k] == 15u);
-  }
-  if (apart)
+  FacePlaneSides p;
+  if (Separated(t, s, p))
   {
     return false; // at most a shared face, edge or vertex: no volume
   }
-
   // The intersection is the source clipped by the target planes it reaches
   // beyond, or the target clipped by the source planes: clip the cell that
   // fewer planes cut (the work grows fast with the number of planes).
   // Vertex bits 0-3: the clipping cell's planes the vertex lies on; bits
   // 4-7: the clipped cell's own faces (face k opposite corner k).
-  const bool clipTarget = CountBits4(beyondS) < CountBits4(beyond);
-  const Cell& clipped = clipTarget ? t : s;
-  const Cell& clipping = clipTarget ? s : t;
-  const double(&sides)[4][4] = clipTarget ? exactS : exact;
-  const unsigned cut = clipTarget ? beyondS : beyond;
-  const unsigned(&negative)[4] = clipTarget ? bitsS.Negative : bits.Negative;
-
-  const int targetShift = clipTarget ? 4 : 0;
+  const bool clipTarget = CountBits4(p.BeyondS) < CountBits4(p.Beyond);
   // A face of the piece "has positive area" above 1e-12 of the smaller
   // cell's typical face (like the 1e-13 for volumes below): rounding leaves
   // caps of ~1e-32 where the cells only touch, e.g. at a shared corner.
   // (Compared as the squared norm of twice the area vector.)
   const double minArea = 2e-12 * std::min(t.FaceScale, s.FaceScale);
-  const double minArea2 = minArea * minArea;
-  VertexGraph graph;
-  // The planes that cut, in the order of how many of the clipped cell's
-  // corners they cut off, most first: the graphs the later clips work on
-  // are then smallest (less time per pair than in face order; fewest
-  // first takes the most). The first two from the
-  // tables of cuts when no vertex lies on them (the same graph as
-  // clipping, with less work; a corner on the first plane leaves both to
-  // Clip).
-  // Sorted without branches (as a loop over the counts, their branches
-  // depend on the data and were often mispredicted): key (corners
-  // outside) * 4 + 3 - p, sorted down by a network of five
-  // compare-exchanges; ties keep face order. The cutting planes (1-3 corners outside: 4 would have separated
-  // the cells) come first, with keys of 4 and more; the others (keys below
-  // 4) after them are not used.
-  unsigned key[4];
-  for (int p = 0; p < 4; ++p)
-  {
-    key[p] = (CountBits4(negative[p]) << 2) | (3u - static_cast<unsigned>(p));
-  }
-  auto order = [&key](int a, int b) {
-    // By masks: std::max compiled to a branch on the data, often mispredicted.
-    const unsigned swap = (key[a] ^ key[b]) & (0u - static_cast<unsigned>(key[a] < key[b]));
-    key[a] ^= swap;
-    key[b] ^= swap;
-  };
-  order(0, 1);
-  order(2, 3);
-  order(0, 2);
-  order(1, 3);
-  order(1, 2);
-  const int cutting = static_cast<int>(CountBits4(cut));
+  const Clip clip{ clipTarget ? t : s, clipTarget ? s : t, clipTarget ? p.ExactS : p.Exact,
+    clipTarget ? p.BeyondS : p.Beyond, clipTarget ? 4 : 0, minArea * minArea };
   int planes[4];
-  for (int i = 0; i < 4; ++i)
+  CuttingOrder(clipTarget ? p.BitsS.Negative : p.Bits.Negative, planes);
+  if (!ClipAsGraph(clip, planes, asGraph, piece))
   {
-    planes[i] = 3 - static_cast<int>(key[i] & 3u);
-  }
-  int i = 0;
-  const unsigned first = asGraph && i < cutting ? graph.SetClippedTetrahedron(clipped, sides, planes[0]) : 0u;
-  if (first)
-  {
-    ++i;
-  }
-  else
-  {
-    graph.SetTetrahedron(clipped, sides);
-  }
-  bool second = first != 0;
-  bool clippedAsGraph = asGraph;
-  for (; i < cutting && graph.NumberOfVertices > 0 && clippedAsGraph; ++i)
-  {
-    const int k = planes[i];
-    const double* normal = clipping.Normal[k];
-    const double* origin = clipping.X[(k + 1) % 4];
-    if (!second || !graph.ClipSecond(first, normal, origin, 1u << k, sides[k]))
-    {
-      clippedAsGraph = graph.Clip(normal, origin, 1u << k, sides[k]);
-    }
-    second = false;
-  }
-  clippedAsGraph = clippedAsGraph && graph.Decompose(targetShift, minArea2, piece);
-  if (!clippedAsGraph)
-  {
-    // The reference clipper: every plane splits every tetrahedron of the
-    // piece into at most three. Slower, with no capacity limit.
-    ClipTet buffers[2][MaxTetrahedra]; // ~18 kB on the stack, no allocation
-    ClipTet* current = buffers[0];
-    ClipTet* next = buffers[1];
-    int n = 1;
-    for (int v = 0; v < 4; ++v)
-    {
-      std::copy(clipped.X[v], clipped.X[v] + 3, current[0].X[v]);
-      current[0].OnPlane[v] = (15u & ~(1u << v)) << 4;
-      current[0].Original[v] = v;
-      for (int k = 0; k < 4; ++k) // corners exactly on planes
-      {
-        current[0].OnPlane[v] |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
-      }
-    }
-    current[0].Volume = 6.0 * clipped.Measure;
-    for (int k = 0; k < 4 && n > 0; ++k)
-    {
-      if (!(cut & (1u << k)))
-      {
-        continue; // the whole cell is inside this plane
-      }
-      int m = 0;
-      for (int i = 0; i < n; ++i)
-      {
-        ClipByPlane(
-          current[i], clipping.Normal[k], clipping.X[(k + 1) % 4], 1u << k, sides[k], next, m);
-      }
-      std::swap(current, next);
-      n = m;
-    }
-
-    // Faces of the piece of positive area lying on a target plane.
-    for (int i = 0; i < n; ++i)
-    {
-      const ClipTet& c = current[i];
-      std::copy(&c.X[0][0], &c.X[0][0] + 12, &piece.Points[4 * i][0]);
-      for (int k = 0; k < 4; ++k)
-      {
-        piece.Corner[i][k] = 4 * i + k;
-      }
-      piece.Volume[i] = c.Volume / 6.0;
-      for (int f = 0; f < 4; ++f)
-      {
-        const int a = (f + 1) % 4;
-        const int b = (f + 2) % 4;
-        const int d = (f + 3) % 4;
-        const unsigned common =
-          ((c.OnPlane[a] & c.OnPlane[b] & c.OnPlane[d]) >> targetShift) & 15u;
-        if (common & ~piece.TouchedFaces)
-        {
-          Vec u, v, w;
-          Sub(c.X[b], c.X[a], u);
-          Sub(c.X[d], c.X[a], v);
-          Cross(u, v, w);
-          if (Dot(w, w) > minArea2)
-          {
-            piece.TouchedFaces |= common;
-          }
-        }
-      }
-    }
-    piece.NumberOfTetrahedra = n;
+    ClipBySplitting(clip, piece);
     SumMoments(piece);
-    unsigned any = 0;
-    for (int i = 0; i < n; ++i)
-    {
-      any |= current[i].OnPlane[0] | current[i].OnPlane[1] | current[i].OnPlane[2] |
-        current[i].OnPlane[3];
-    }
-    piece.SourceFaces = (any >> (4 - targetShift)) & 15u;
   }
-  for (int k = 0; k < 4; ++k)
-  {
-    piece.SeedFace[k] = -1;
-  }
-  // Touched faces the source does not reach beyond (bits: a loop over
-  // them, not a mispredicted test per face): the cap lies in a face of the
-  // source, the one whose three corners are on the plane (the source is on
-  // the inner side of it); else no face of positive area after all.
-  for (unsigned lying = piece.TouchedFaces & ~beyond & 15u; lying != 0; lying &= lying - 1)
-  {
-    const int k = __builtin_ctz(lying);
-    if (CountBits4(onPlane[k]) == 3)
-    {
-      piece.SeedFace[k] = __builtin_ctz(15u & ~onPlane[k]);
-    }
-    else
-    {
-      piece.TouchedFaces &= ~(1u << k);
-    }
-  }
+  SetSeedFaces(p, piece);
   // Rounding in the clipping can leave slivers of relative size ~1e-16
   // where the cells only touch; below 1e-13 of the smaller cell a piece is
   // taken as touching (its contribution would be below the tolerances of

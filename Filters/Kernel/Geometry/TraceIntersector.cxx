@@ -29,37 +29,34 @@ inline double Extent(const double box[6])
 // A generic direction: a segment lying in a face's plane belongs to the cell
 // this direction points into from it.
 constexpr double Generic[3] = { 0.5772156649015329, 0.3183098861837907, 0.7071067811865476 };
-} // namespace
 
-void SurfaceTraceIntersector::Bounds(const Cell& cell, double box[6])
+/**
+ * A tetrahedron's corners against a target facet's plane: each one's image
+ * in the facet's frame and height over the plane (zero within the
+ * tolerance), and which side counts as above.
+ */
+struct CornerHeights
 {
-  WidenBox(cell.Box3, HeightTolerance * Extent(cell.Box3), box);
-}
+  double UV[4][2];
+  double H[4];
+  bool Above[4];
+  int Zeros = 0; ///< corners on the plane
+  int Up = 0;    ///< corners above it
+};
 
-bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, Piece& piece)
+/// Every corner's image and height, from the mesh's own point: one value
+/// per point and target facet, whichever tetrahedron asks.
+inline void MeasureHeights(const SurfaceTraceIntersector::Cell& t,
+  const SurfaceTraceIntersector::SourceCellType& s, double tolerance, CornerHeights& c)
 {
-  piece.NumberOfParts = 0;
-  piece.TouchedFaces = 0;
-  piece.SourceFaces = 0;
-  piece.Target = &t;
-  const double tolerance = HeightTolerance * Extent(t.Box3);
-  if (!BoxesWithinReach(t.Box3, s.Box, tolerance))
-  {
-    return false;
-  }
-  // Every corner's image and height, from the mesh's own point: one value
-  // per point and target facet, whichever tetrahedron asks.
-  double uv[4][2];
-  double h[4];
-  int zeros = 0;
   int apex = 0;
   for (int k = 0; k < 4; ++k)
   {
-    SurfaceIntersector::ToFrame(t, s.X[k], uv[k], h[k]);
-    if (std::fabs(h[k]) <= tolerance)
+    SurfaceIntersector::ToFrame(t, s.X[k], c.UV[k], c.H[k]);
+    if (std::fabs(c.H[k]) <= tolerance)
     {
-      h[k] = 0.0;
-      ++zeros;
+      c.H[k] = 0.0;
+      ++c.Zeros;
     }
     else
     {
@@ -68,61 +65,75 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
   }
   // Zero counts as below the plane; but a face on the plane that is on the
   // source's boundary, with its tetrahedron below, is taken from below.
-  const bool zeroAbove = zeros == 3 && h[apex] < 0.0 && ((s.Boundary >> apex) & 1u);
-  bool above[4];
-  int n = 0;
+  const bool zeroAbove = c.Zeros == 3 && c.H[apex] < 0.0 && ((s.Boundary >> apex) & 1u);
   for (int k = 0; k < 4; ++k)
   {
-    above[k] = h[k] > 0.0 || (zeroAbove && h[k] == 0.0);
-    n += above[k];
+    c.Above[k] = c.H[k] > 0.0 || (zeroAbove && c.H[k] == 0.0);
+    c.Up += c.Above[k];
   }
-  // A tetrahedron that only touches the plane (in a vertex, an edge or a
-  // face on the other side) meets the target when those points' box meets
-  // the target's: the front must pass through it, to all its neighbours,
-  // for the cells around an edge lying on the plane to be reached.
-  auto touching = [&]() {
-    double box[4] = { 0.0, -1.0, 0.0, -1.0 };
-    for (int k = 0; k < 4; ++k)
-    {
-      if (h[k] != 0.0)
-      {
-        continue;
-      }
-      const bool first = box[1] < box[0];
-      box[0] = first ? uv[k][0] : std::min(box[0], uv[k][0]);
-      box[1] = first ? uv[k][0] : std::max(box[1], uv[k][0]);
-      box[2] = first ? uv[k][1] : std::min(box[2], uv[k][1]);
-      box[3] = first ? uv[k][1] : std::max(box[3], uv[k][1]);
-    }
-    if (box[1] < box[0] || box[1] < t.Box[0] || t.Box[1] < box[0] || box[3] < t.Box[2] ||
-      t.Box[3] < box[2])
-    {
-      return false;
-    }
-    piece.SourceFaces = 15u;
-    return true;
-  };
-  if (n == 0 || n == 4)
+}
+
+/**
+ * A tetrahedron that only touches the plane (in a vertex, an edge or a
+ * face on the other side) meets the target when those points' box meets
+ * the target's: the front must pass through it, to all its neighbours,
+ * for the cells around an edge lying on the plane to be reached.
+ */
+inline bool Touches(const SurfaceTraceIntersector::Cell& t, const CornerHeights& c,
+  SurfaceTraceIntersector::Piece& piece)
+{
+  double box[4] = { 0.0, -1.0, 0.0, -1.0 };
+  for (int k = 0; k < 4; ++k)
   {
-    return zeros > 0 && touching();
+    if (c.H[k] != 0.0)
+    {
+      continue;
+    }
+    const bool first = box[1] < box[0];
+    box[0] = first ? c.UV[k][0] : std::min(box[0], c.UV[k][0]);
+    box[1] = first ? c.UV[k][0] : std::max(box[1], c.UV[k][0]);
+    box[2] = first ? c.UV[k][1] : std::min(box[2], c.UV[k][1]);
+    box[3] = first ? c.UV[k][1] : std::max(box[3], c.UV[k][1]);
   }
-  // The crossed edges (above, below) in cyclic order around the cross-section.
-  int edge[4][2];
-  int m = 0;
+  if (box[1] < box[0] || box[1] < t.Box[0] || t.Box[1] < box[0] || box[3] < t.Box[2] ||
+    t.Box[3] < box[2])
+  {
+    return false;
+  }
+  piece.SourceFaces = 15u;
+  return true;
+}
+
+/// A tetrahedron's cross-section with the plane: the crossed edges (above,
+/// below) in cyclic order, where each crosses, and the face each side of
+/// the cross-section lies in.
+struct CrossSection
+{
+  int M = 0; ///< 3 or 4 crossings
+  int Edge[4][2];
+  double C[4][2];
+  int CycleFace[4];
+};
+
+/// The crossed edges (above, below) in cyclic order around the cross-section.
+inline void CrossedEdges(const CornerHeights& c, CrossSection& x)
+{
+  const int n = c.Up;
   int up[3];
   int down[3];
   int nu = 0;
   int nd = 0;
   for (int k = 0; k < 4; ++k)
   {
-    (above[k] ? up[nu++] : down[nd++]) = k;
+    (c.Above[k] ? up[nu++] : down[nd++]) = k;
   }
+  int m = 0;
   if (n == 1 || n == 3)
   {
     for (int k = 0; k < 3; ++k)
     {
-      edge[m][0] = n == 1 ? up[0] : up[k];
-      edge[m][1] = n == 1 ? down[k] : down[0];
+      x.Edge[m][0] = n == 1 ? up[0] : up[k];
+      x.Edge[m][1] = n == 1 ? down[k] : down[0];
       ++m;
     }
   }
@@ -132,53 +143,69 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
       { up[1], down[0] } };
     for (m = 0; m < 4; ++m)
     {
-      edge[m][0] = cycle[m][0];
-      edge[m][1] = cycle[m][1];
+      x.Edge[m][0] = cycle[m][0];
+      x.Edge[m][1] = cycle[m][1];
     }
   }
-  double c[4][2];
-  int cycleFace[4];
+  x.M = m;
+}
+
+/// Where each crossed edge meets the plane (the same bits in every
+/// tetrahedron around the edge), and the face of each side.
+inline void Crossings(
+  const SurfaceTraceIntersector::SourceCellType& s, const CornerHeights& c, CrossSection& x)
+{
+  const int m = x.M;
   for (int e = 0; e < m; ++e)
   {
-    const int i = edge[e][0];
-    const int j = edge[e][1];
-    if (h[j] == 0.0 && !above[j])
+    const int i = x.Edge[e][0];
+    const int j = x.Edge[e][1];
+    if (c.H[j] == 0.0 && !c.Above[j])
     {
-      c[e][0] = uv[j][0];
-      c[e][1] = uv[j][1];
+      x.C[e][0] = c.UV[j][0];
+      x.C[e][1] = c.UV[j][1];
     }
-    else if (h[i] == 0.0)
+    else if (c.H[i] == 0.0)
     {
-      c[e][0] = uv[i][0];
-      c[e][1] = uv[i][1];
+      x.C[e][0] = c.UV[i][0];
+      x.C[e][1] = c.UV[i][1];
     }
     else
     {
       // From the ends in the order of their ids: the same bits in every cell.
       const int a = s.Points[i] < s.Points[j] ? i : j;
       const int b = a == i ? j : i;
-      const double r = h[a] / (h[a] - h[b]);
-      c[e][0] = uv[a][0] + r * (uv[b][0] - uv[a][0]);
-      c[e][1] = uv[a][1] + r * (uv[b][1] - uv[a][1]);
+      const double r = c.H[a] / (c.H[a] - c.H[b]);
+      x.C[e][0] = c.UV[a][0] + r * (c.UV[b][0] - c.UV[a][0]);
+      x.C[e][1] = c.UV[a][1] + r * (c.UV[b][1] - c.UV[a][1]);
     }
     // The side from this crossing to the next lies in the face opposite the
     // corner that neither edge has.
     const int next = (e + 1) % m;
-    const unsigned used = (1u << edge[e][0]) | (1u << edge[e][1]) | (1u << edge[next][0]) |
-      (1u << edge[next][1]);
+    const unsigned used = (1u << x.Edge[e][0]) | (1u << x.Edge[e][1]) | (1u << x.Edge[next][0]) |
+      (1u << x.Edge[next][1]);
     int missing = 0;
     while ((used >> missing) & 1u)
     {
       ++missing;
     }
-    cycleFace[e] = missing;
+    x.CycleFace[e] = missing;
   }
-  // The cross-section as one or two triangles, each cut out of the target.
-  // Each side of a triangle carries the tetrahedron's faces it lies on: a
-  // side of the cross-section its face, the diagonal none; but where one
-  // triangle has no area (a crossing repeated where a corner lies on the
-  // plane, or rounding), the other's diagonal stands for its two sides.
+}
+
+/**
+ * The cross-section as one or two triangles, each cut out of the target.
+ * Each side of a triangle carries the tetrahedron's faces it lies on: a
+ * side of the cross-section its face, the diagonal none; but where one
+ * triangle has no area (a crossing repeated where a corner lies on the
+ * plane, or rounding), the other's diagonal stands for its two sides.
+ */
+inline void CutByCrossSection(const SurfaceTraceIntersector::Cell& t,
+  const SurfaceTraceIntersector::SourceCellType& s, const CrossSection& x,
+  SurfaceTraceIntersector::Piece& piece)
+{
   const int parts[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
+  const int m = x.M;
   const int count = m == 4 ? 2 : 1;
   TriangleIntersector::Cell sub[2];
   bool area[2] = { false, false };
@@ -189,13 +216,13 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
     for (int k = 0; k < 3; ++k)
     {
       const int v = parts[p][k];
-      sub[p].X[k][0] = c[v][0];
-      sub[p].X[k][1] = c[v][1];
+      sub[p].X[k][0] = x.C[v][0];
+      sub[p].X[k][1] = x.C[v][1];
       sub[p].Points[k] = s.Points[k];
       sub[p].Face[k] = k; // PrepareCorners reorders: Face then names the corner as set here
       const int from = parts[p][(k + 1) % 3];
       const int to = parts[p][(k + 2) % 3];
-      sides[p][k] = to == (from + 1) % m ? 1u << cycleFace[from] : 0u;
+      sides[p][k] = to == (from + 1) % m ? 1u << x.CycleFace[from] : 0u;
     }
     area[p] = TriangleIntersector::PrepareCorners(sub[p]);
   }
@@ -229,21 +256,13 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
       }
     }
   }
-  if (piece.NumberOfParts == 0)
-  {
-    // A cross-section without area: the tetrahedron touches the plane.
-    return zeros > 0 && touching();
-  }
-  if (Measure(piece) < SliverFraction * t.Measure)
-  {
-    // A sliver of rounding size (where the facet and the tetrahedron only
-    // touch): no measure, as for the tetrahedra (TetrahedronIntersector),
-    // but the front passes on through its faces.
-    piece.NumberOfParts = 0;
-    return true;
-  }
-  // The tetrahedron's barycentric coordinates on the target's plane.
-  AffineCell<4, 2>& f = piece.Source;
+}
+
+/// The tetrahedron's barycentric coordinates on the target's plane (the
+/// source's functions on the piece).
+inline void PlaneCoordinates(const SurfaceTraceIntersector::Cell& t,
+  const SurfaceTraceIntersector::SourceCellType& s, AffineCell<4, 2>& f)
+{
   f.Id = s.Id;
   const double d0[3] = { t.Origin[0] - s.X[0][0], t.Origin[1] - s.X[0][1], t.Origin[2] - s.X[0][2] };
   for (int k = 0; k < 3; ++k)
@@ -262,6 +281,229 @@ bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, 
     }
   }
   std::copy(s.Points, s.Points + 4, f.Points);
+}
+
+/**
+ * A target segment clipped by a source cell's faces, one face at a time:
+ * the interval [Lo, Hi] of its axis left inside, where each face cuts it,
+ * and the faces whose plane holds it.
+ */
+template <int N>
+struct SegmentClip
+{
+  double Lo = 0.0;
+  double Hi = 0.0;
+  double Cut[N];
+  bool Cuts[N];
+  unsigned On = 0;      ///< faces whose plane holds the segment
+  unsigned GenericSide = 0; ///< of those, the ones the generic direction points into the cell from
+};
+
+/// Face k's plane (line): a normal from its corners in the order of their
+/// ids, the first corner, and the orientation of the face with corner k
+/// (0: a flat cell).
+template <int D, int N, class SourceCell>
+inline double FacePlane(const SourceCell& s, int k, double normal[3], const double*& v0)
+{
+  // Face k (opposite corner k), its corners in the order of their ids.
+  int f[D];
+  int nf = 0;
+  for (int j = 0; j < N; ++j)
+  {
+    if (j != k)
+    {
+      f[nf++] = j;
+    }
+  }
+  std::sort(f, f + D, [&s](int a, int b) { return s.Points[a] < s.Points[b]; });
+  v0 = s.X[f[0]];
+  if constexpr (D == 3)
+  {
+    const double* v1 = s.X[f[1]];
+    const double* v2 = s.X[f[2]];
+    double e1[3];
+    double e2[3];
+    Sub(v1, v0, e1);
+    Sub(v2, v0, e2);
+    Cross(e1, e2, normal);
+    return Orient3D(v0, v1, v2, s.X[k]);
+  }
+  else
+  {
+    const double* v1 = s.X[f[1]];
+    normal[0] = -(v1[1] - v0[1]);
+    normal[1] = v1[0] - v0[0];
+    return Orient2D(v0, v1, s.X[k]);
+  }
+}
+
+/// Clips the segment by face k's half-space; false when the segment lies
+/// wholly outside it (or the cell is flat).
+template <int D, int N, class SourceCell>
+inline bool ClipByFace(
+  const SegmentIntersector::Cell& t, const SourceCell& s, int k, double length, SegmentClip<N>& clip)
+{
+  clip.Cuts[k] = false;
+  double normal[3] = { 0.0, 0.0, 0.0 };
+  const double* v0 = nullptr;
+  const double side = FacePlane<D, N>(s, k, normal, v0);
+  if (!(side != 0.0))
+  {
+    return false;
+  }
+  double ga = 0.0;
+  double gb = 0.0;
+  double toward = 0.0;
+  double nn = 0.0;
+  for (int d = 0; d < D; ++d)
+  {
+    ga += normal[d] * (t.Corner[0][d] - v0[d]);
+    gb += normal[d] * (t.Corner[1][d] - v0[d]);
+    toward += normal[d] * Generic[d];
+    nn += normal[d] * normal[d];
+  }
+  // An end within 1e-10 of the segment's and the face's size from the
+  // face's plane lies on it (decided once per face: the same in both cells).
+  nn = std::sqrt(nn);
+  const double size = length + (D == 3 ? std::sqrt(nn) : nn);
+  const double snap = HeightTolerance * size * nn;
+  ga = std::fabs(ga) <= snap ? 0.0 : ga;
+  gb = std::fabs(gb) <= snap ? 0.0 : gb;
+  const double sign = side > 0.0 ? 1.0 : -1.0;
+  const double ia = sign * ga; // >= 0: end a on the cell's side
+  const double ib = sign * gb;
+  if (ia >= 0.0 && ib >= 0.0)
+  {
+    if (ia == 0.0 && ib == 0.0)
+    {
+      clip.On |= 1u << k;
+      clip.GenericSide |= unsigned(sign * toward > 0.0) << k;
+    }
+    return true;
+  }
+  if (ia < 0.0 && ib < 0.0)
+  {
+    return false;
+  }
+  // Where the segment crosses the face's plane: from the face's own
+  // values, the same in both cells that share it.
+  const double u = length * (ga / (ga - gb));
+  clip.Cuts[k] = true;
+  clip.Cut[k] = u;
+  if (ia >= 0.0)
+  {
+    clip.Hi = std::min(clip.Hi, u);
+  }
+  else
+  {
+    clip.Lo = std::max(clip.Lo, u);
+  }
+  return true;
+}
+
+/**
+ * Whether the cell owns a segment lying in the planes of some of its faces
+ * (`on`; none: it owns its interval). A segment in the planes of some faces
+ * (on a face, or along an edge) belongs to one of the cells holding it: on
+ * a face, to the one the generic direction points into, or the only one on
+ * the boundary; along an edge, where no cell knows whether the edge is on
+ * the boundary (the generic direction may point out of the mesh there),
+ * every cell around it claims it (Tied: piece.Edge set) and the assembler
+ * keeps one. The others touch it (a piece without length): the front
+ * passes on.
+ */
+template <int D, int N, class SourceCell, class Piece>
+inline bool OwnsSegment(const SourceCell& s, unsigned on, unsigned generic, Piece& piece)
+{
+  const int planes = ((on & 1u) != 0) + ((on & 2u) != 0) + ((on & 4u) != 0) + ((on & 8u) != 0);
+  const bool boundary = (on & s.Boundary) != 0;
+  piece.Tied = D == 3 && planes >= 2;
+  const bool owned = planes == 0 || piece.Tied || generic == on || boundary;
+  if (piece.Tied)
+  {
+    // The edge: the corners not opposite the two faces.
+    int e = 0;
+    for (int k = 0; k < N && e < 2; ++k)
+    {
+      if (!((on >> k) & 1u) || planes > 2)
+      {
+        piece.Edge[e++] = s.Points[k];
+      }
+    }
+    if (piece.Edge[0] > piece.Edge[1])
+    {
+      std::swap(piece.Edge[0], piece.Edge[1]);
+    }
+  }
+  return owned;
+}
+
+/// The cell's barycentric coordinates along the target's axis (the
+/// source's functions on the piece).
+template <int D, int N, class SourceCell>
+inline void AxisCoordinates(const SegmentIntersector::Cell& t, const SourceCell& s, AffineCell<N, 1>& a)
+{
+  a.Id = s.Id;
+  std::copy(s.Points, s.Points + N, a.Points);
+  a.Affine[0][0] = 1.0;
+  a.Affine[0][1] = 0.0;
+  for (int r = 0; r < D; ++r)
+  {
+    double constant = 0.0;
+    double slope = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      constant += s.Inverse[r][d] * (t.Origin[d] - s.X[0][d]);
+      slope += s.Inverse[r][d] * t.Axis[d];
+    }
+    a.Affine[r + 1][0] = constant;
+    a.Affine[r + 1][1] = slope;
+    a.Affine[0][0] -= constant;
+    a.Affine[0][1] -= slope;
+  }
+}
+} // namespace
+
+void SurfaceTraceIntersector::Bounds(const Cell& cell, double box[6])
+{
+  WidenBox(cell.Box3, HeightTolerance * Extent(cell.Box3), box);
+}
+
+bool SurfaceTraceIntersector::Intersect(const Cell& t, const SourceCellType& s, Piece& piece)
+{
+  piece.NumberOfParts = 0;
+  piece.TouchedFaces = 0;
+  piece.SourceFaces = 0;
+  piece.Target = &t;
+  const double tolerance = HeightTolerance * Extent(t.Box3);
+  if (!BoxesWithinReach(t.Box3, s.Box, tolerance))
+  {
+    return false;
+  }
+  CornerHeights c;
+  MeasureHeights(t, s, tolerance, c);
+  if (c.Up == 0 || c.Up == 4)
+  {
+    return c.Zeros > 0 && Touches(t, c, piece);
+  }
+  CrossSection x;
+  CrossedEdges(c, x);
+  Crossings(s, c, x);
+  CutByCrossSection(t, s, x, piece);
+  if (piece.NumberOfParts == 0)
+  {
+    // A cross-section without area: the tetrahedron touches the plane.
+    return c.Zeros > 0 && Touches(t, c, piece);
+  }
+  if (Measure(piece) < SliverFraction * t.Measure)
+  {
+    // A sliver of rounding size (where the facet and the tetrahedron only
+    // touch): no measure, as for the tetrahedra (TetrahedronIntersector),
+    // but the front passes on through its faces.
+    piece.NumberOfParts = 0;
+    return true;
+  }
+  PlaneCoordinates(t, s, piece.Source);
   return true;
 }
 
@@ -345,99 +587,17 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
     }
   }
   const double length = t.X[1][0];
-  double lo = 0.0;
-  double hi = length;
-  double cut[N];
-  bool cuts[N];
-  unsigned on = 0;       // faces whose plane holds the segment
-  unsigned generic = 0;  // of those, the ones the generic direction points into the cell from
+  SegmentClip<N> clip;
+  clip.Hi = length;
   for (int k = 0; k < N; ++k)
   {
-    cuts[k] = false;
-    // Face k (opposite corner k), its corners in the order of their ids.
-    int f[D];
-    int nf = 0;
-    for (int j = 0; j < N; ++j)
-    {
-      if (j != k)
-      {
-        f[nf++] = j;
-      }
-    }
-    std::sort(f, f + D, [&s](int a, int b) { return s.Points[a] < s.Points[b]; });
-    const double* v0 = s.X[f[0]];
-    double normal[3] = { 0.0, 0.0, 0.0 };
-    double side;
-    if constexpr (D == 3)
-    {
-      const double* v1 = s.X[f[1]];
-      const double* v2 = s.X[f[2]];
-      double e1[3];
-      double e2[3];
-      Sub(v1, v0, e1);
-      Sub(v2, v0, e2);
-      Cross(e1, e2, normal);
-      side = Orient3D(v0, v1, v2, s.X[k]);
-    }
-    else
-    {
-      const double* v1 = s.X[f[1]];
-      normal[0] = -(v1[1] - v0[1]);
-      normal[1] = v1[0] - v0[0];
-      side = Orient2D(v0, v1, s.X[k]);
-    }
-    if (!(side != 0.0))
+    if (!ClipByFace<D, N>(t, s, k, length, clip))
     {
       return false;
-    }
-    double ga = 0.0;
-    double gb = 0.0;
-    double toward = 0.0;
-    double nn = 0.0;
-    for (int d = 0; d < D; ++d)
-    {
-      ga += normal[d] * (t.Corner[0][d] - v0[d]);
-      gb += normal[d] * (t.Corner[1][d] - v0[d]);
-      toward += normal[d] * Generic[d];
-      nn += normal[d] * normal[d];
-    }
-    // An end within 1e-10 of the segment's and the face's size from the
-    // face's plane lies on it (decided once per face: the same in both cells).
-    nn = std::sqrt(nn);
-    const double size = length + (D == 3 ? std::sqrt(nn) : nn);
-    const double snap = HeightTolerance * size * nn;
-    ga = std::fabs(ga) <= snap ? 0.0 : ga;
-    gb = std::fabs(gb) <= snap ? 0.0 : gb;
-    const double sign = side > 0.0 ? 1.0 : -1.0;
-    const double ia = sign * ga; // >= 0: end a on the cell's side
-    const double ib = sign * gb;
-    if (ia >= 0.0 && ib >= 0.0)
-    {
-      if (ia == 0.0 && ib == 0.0)
-      {
-        on |= 1u << k;
-        generic |= unsigned(sign * toward > 0.0) << k;
-      }
-      continue;
-    }
-    if (ia < 0.0 && ib < 0.0)
-    {
-      return false;
-    }
-    // Where the segment crosses the face's plane: from the face's own
-    // values, the same in both cells that share it.
-    const double u = length * (ga / (ga - gb));
-    cuts[k] = true;
-    cut[k] = u;
-    if (ia >= 0.0)
-    {
-      hi = std::min(hi, u);
-    }
-    else
-    {
-      lo = std::max(lo, u);
     }
   }
+  double lo = clip.Lo;
+  double hi = clip.Hi;
   // Cuts through one vertex or edge of the cell come from different faces,
   // so they differ by rounding: within `tolerance` the cell touches the
   // segment there (a piece without length), and the front passes on to the
@@ -446,34 +606,7 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   {
     return false;
   }
-  // A segment in the planes of some faces (on a face, or along an edge)
-  // belongs to one of the cells holding it: on a face, to the one the
-  // generic direction points into, or the only one on the boundary; along
-  // an edge, where no cell knows whether the edge is on the boundary (the
-  // generic direction may point out of the mesh there), every cell around
-  // it claims it (Tied) and the assembler keeps one. The others touch it (a
-  // piece without length): the front passes on.
-  const int planes = ((on & 1u) != 0) + ((on & 2u) != 0) + ((on & 4u) != 0) + ((on & 8u) != 0);
-  const bool boundary = (on & s.Boundary) != 0;
-  piece.Tied = D == 3 && planes >= 2;
-  const bool owned = planes == 0 || piece.Tied || generic == on || boundary;
-  if (piece.Tied)
-  {
-    // The edge: the corners not opposite the two faces.
-    int e = 0;
-    for (int k = 0; k < N && e < 2; ++k)
-    {
-      if (!((on >> k) & 1u) || planes > 2)
-      {
-        piece.Edge[e++] = s.Points[k];
-      }
-    }
-    if (piece.Edge[0] > piece.Edge[1])
-    {
-      std::swap(piece.Edge[0], piece.Edge[1]);
-    }
-  }
-  if (!owned)
+  if (!OwnsSegment<D, N>(s, clip.On, clip.GenericSide, piece))
   {
     hi = lo;
   }
@@ -483,34 +616,16 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   piece.X[1][0] = std::max(lo, hi);
   // Face k of the target is its corner 1 - k.
   piece.TouchedFaces = (hi >= length - tolerance ? 1u : 0u) | (lo <= tolerance ? 2u : 0u);
-  piece.SourceFaces = on;
+  piece.SourceFaces = clip.On;
   for (int k = 0; k < N; ++k)
   {
-    if (cuts[k] && (std::fabs(cut[k] - lo) <= tolerance || std::fabs(cut[k] - hi) <= tolerance))
+    if (clip.Cuts[k] &&
+      (std::fabs(clip.Cut[k] - lo) <= tolerance || std::fabs(clip.Cut[k] - hi) <= tolerance))
     {
       piece.SourceFaces |= 1u << k;
     }
   }
-  // The cell's barycentric coordinates along the target's axis.
-  AffineCell<N, 1>& a = piece.Source;
-  a.Id = s.Id;
-  std::copy(s.Points, s.Points + N, a.Points);
-  a.Affine[0][0] = 1.0;
-  a.Affine[0][1] = 0.0;
-  for (int r = 0; r < D; ++r)
-  {
-    double constant = 0.0;
-    double slope = 0.0;
-    for (int d = 0; d < D; ++d)
-    {
-      constant += s.Inverse[r][d] * (t.Origin[d] - s.X[0][d]);
-      slope += s.Inverse[r][d] * t.Axis[d];
-    }
-    a.Affine[r + 1][0] = constant;
-    a.Affine[r + 1][1] = slope;
-    a.Affine[0][0] -= constant;
-    a.Affine[0][1] -= slope;
-  }
+  AxisCoordinates<D, N>(t, s, piece.Source);
   return true;
 }
 

@@ -9,26 +9,28 @@
 
 namespace mp
 {
-bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, const TaskRunner& runner)
+namespace
 {
-  *this = PlaneFrame();
-  deviation = 0.0;
-  size = 0.0;
-  const int corners = mesh.CornersPerCell();
-  const Index uses = mesh.NumberOfCells * corners;
-  if (uses == 0)
-  {
-    return true;
-  }
-  double lo[3];
-  double hi[3];
+/// The corners' box and the sum of their coordinates (for the mean).
+struct CornerBox
+{
+  double Lo[3];
+  double Hi[3];
+  double Sum[3] = { 0, 0, 0 };
+};
+
+/**
+ * The box and the sum of the `uses` corners of `mesh`, in one pass: per
+ * block of corners its box and sum (in tasks), then the blocks' in block
+ * order (the same sum for any number of tasks).
+ */
+void ReadCorners(const MeshView& mesh, Index uses, const TaskRunner& runner, CornerBox& box)
+{
   for (int d = 0; d < 3; ++d)
   {
-    lo[d] = std::numeric_limits<double>::infinity();
-    hi[d] = -lo[d];
+    box.Lo[d] = std::numeric_limits<double>::infinity();
+    box.Hi[d] = -box.Lo[d];
   }
-  // The box and the mean of the corners, in one pass: per block of
-  // corners its box and sum (in tasks), then the blocks' in block order.
   constexpr Index Block = Index(1) << 15;
   const Index blocks = (uses + Block - 1) / Block;
   std::vector<double> partial(static_cast<size_t>(9 * blocks));
@@ -56,60 +58,47 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, cons
           sum[d] += x[d];
         }
       }
-      double* box = &partial[static_cast<size_t>(9 * b)];
-      std::copy(low, low + 3, box);
-      std::copy(high, high + 3, box + 3);
-      std::copy(sum, sum + 3, box + 6);
+      double* part = &partial[static_cast<size_t>(9 * b)];
+      std::copy(low, low + 3, part);
+      std::copy(high, high + 3, part + 3);
+      std::copy(sum, sum + 3, part + 6);
     }
     return 0;
   }, 4);
-  double mean[3] = { 0, 0, 0 };
   for (Index b = 0; b < blocks; ++b)
   {
-    const double* box = &partial[static_cast<size_t>(9 * b)];
+    const double* part = &partial[static_cast<size_t>(9 * b)];
     for (int d = 0; d < 3; ++d)
     {
-      lo[d] = std::min(lo[d], box[d]);
-      hi[d] = std::max(hi[d], box[3 + d]);
-      mean[d] += box[6 + d];
+      box.Lo[d] = std::min(box.Lo[d], part[d]);
+      box.Hi[d] = std::max(box.Hi[d], part[3 + d]);
+      box.Sum[d] += part[6 + d];
     }
   }
-  for (int d = 0; d < 3; ++d)
+}
+
+/// Whether some cell of a mesh lying in a plane z = constant has area.
+bool SomeCellHasArea(const MeshView& mesh)
+{
+  const int corners = mesh.CornersPerCell();
+  bool area = false;
+  for (Index c = 0; c < mesh.NumberOfCells && !area; ++c)
   {
-    size = std::max(size, hi[d] - lo[d]);
+    const CellCorners ids = mesh.Cell(c);
+    const double* a = mesh.Point(ids[0]);
+    const double* b = mesh.Point(ids[1]);
+    const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
+    area = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) != 0.0;
   }
-  // Every corner at one finite z, and a cell of positive area: the plane
-  // z = constant is the one the general fit below finds (every normal along
-  // z; the aligned frame, at distance 0 from every corner), without its
-  // four passes and the normals' array. The common 2D mesh.
-  if (lo[2] == hi[2] && std::isfinite(lo[2]))
-  {
-    bool area = false;
-    for (Index c = 0; c < mesh.NumberOfCells && !area; ++c)
-    {
-      const CellCorners ids = mesh.Cell(c);
-      const double* a = mesh.Point(ids[0]);
-      const double* b = mesh.Point(ids[1]);
-      const double* p = mesh.Point(ids[corners > 2 ? 2 : 1]);
-      area = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) != 0.0;
-    }
-    if (area)
-    {
-      std::fill(this->Normal, this->Normal + 3, 0.0);
-      this->Normal[2] = 1.0;
-      for (int d = 0; d < 3; ++d)
-      {
-        this->Origin[d] = mean[d] / static_cast<double>(uses);
-      }
-      this->Origin[2] = 0.5 * (lo[2] + hi[2]);
-      this->SetAxes();
-      this->PlaneOffset = this->Origin[2];
-      this->PlaneTolerance = 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
-      return true;
-    }
-  }
-  // The normal: the cells' normals summed, each turned to agree with the
-  // largest one (a mesh's triangles may come in either orientation).
+  return area;
+}
+
+/// The normal: the cells' normals summed, each turned to agree with the
+/// largest one (a mesh's triangles may come in either orientation); left
+/// as it is when they sum to zero.
+void SummedNormal(const MeshView& mesh, double normal[3])
+{
+  const int corners = mesh.CornersPerCell();
   double reference[3] = { 0, 0, 0 };
   double largest = 0.0;
   std::vector<double> normals(static_cast<size_t>(3 * mesh.NumberOfCells));
@@ -147,36 +136,86 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, cons
   {
     for (int d = 0; d < 3; ++d)
     {
-      this->Normal[d] = sum[d] / length;
+      normal[d] = sum[d] / length;
     }
   }
-  // One sign for every mesh of the plane: its largest component positive
-  // (else two meshes wound the other way would get mirrored offsets).
+}
+
+/// One sign for every mesh of the plane: its largest component positive
+/// (else two meshes wound the other way would get mirrored offsets).
+/// Returns that component's axis.
+int TurnToDominantAxis(double normal[3])
+{
   int axis = 0;
   for (int d = 1; d < 3; ++d)
   {
-    axis = std::fabs(this->Normal[d]) > std::fabs(this->Normal[axis]) ? d : axis;
+    axis = std::fabs(normal[d]) > std::fabs(normal[axis]) ? d : axis;
   }
-  if (this->Normal[axis] < 0.0)
+  if (normal[axis] < 0.0)
   {
-    for (double& n : this->Normal)
+    for (int d = 0; d < 3; ++d)
     {
-      n = -n;
+      normal[d] = -normal[d];
     }
   }
+  return axis;
+}
+
+/// The largest distance of the `uses` corners of `mesh` from `frame`'s plane.
+double LargestDistance(const MeshView& mesh, Index uses, const PlaneFrame& frame)
+{
+  double largest = 0.0;
+  for (Index i = 0; i < uses; ++i)
+  {
+    largest = std::max(largest, std::fabs(frame.Distance(mesh.Point(mesh.Corner(i)))));
+  }
+  return largest;
+}
+} // namespace
+
+bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, const TaskRunner& runner)
+{
+  *this = PlaneFrame();
+  deviation = 0.0;
+  size = 0.0;
+  const Index uses = mesh.NumberOfCells * mesh.CornersPerCell();
+  if (uses == 0)
+  {
+    return true;
+  }
+  CornerBox box;
+  ReadCorners(mesh, uses, runner, box);
+  const double* lo = box.Lo;
+  const double* hi = box.Hi;
+  for (int d = 0; d < 3; ++d)
+  {
+    size = std::max(size, hi[d] - lo[d]);
+  }
+  // Every corner at one finite z, and a cell of positive area: the plane
+  // z = constant is the one the general fit below finds (every normal along
+  // z; the aligned frame, at distance 0 from every corner), without its
+  // four passes and the normals' array. The common 2D mesh.
+  if (lo[2] == hi[2] && std::isfinite(lo[2]) && SomeCellHasArea(mesh))
+  {
+    std::fill(this->Normal, this->Normal + 3, 0.0);
+    this->Normal[2] = 1.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Origin[d] = box.Sum[d] / static_cast<double>(uses);
+    }
+    this->Origin[2] = 0.5 * (lo[2] + hi[2]);
+    this->SetAxes();
+    this->PlaneOffset = this->Origin[2];
+    this->PlaneTolerance = 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
+    return true;
+  }
+  SummedNormal(mesh, this->Normal);
+  const int axis = TurnToDominantAxis(this->Normal);
   // The plane through the mean of the corners.
   for (int d = 0; d < 3; ++d)
   {
-    this->Origin[d] = mean[d] / static_cast<double>(uses);
+    this->Origin[d] = box.Sum[d] / static_cast<double>(uses);
   }
-  auto largestDistance = [&](const PlaneFrame& frame) {
-    double largest = 0.0;
-    for (Index i = 0; i < uses; ++i)
-    {
-      largest = std::max(largest, std::fabs(frame.Distance(mesh.Point(mesh.Corner(i)))));
-    }
-    return largest;
-  };
   // The axis plane through the middle of the box along the dominant axis,
   // when the points lie in it within the tolerance (exact 2D coordinates);
   // else the fitted plane.
@@ -186,7 +225,7 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, cons
   aligned.Origin[axis] = 0.5 * (lo[axis] + hi[axis]);
   aligned.SetAxes();
   aligned.PlaneOffset = aligned.Origin[axis];
-  const double alignedDeviation = largestDistance(aligned);
+  const double alignedDeviation = LargestDistance(mesh, uses, aligned);
   aligned.PlaneTolerance = 1e-9 * std::max(size, std::fabs(aligned.PlaneOffset));
   if (alignedDeviation <= aligned.PlaneTolerance)
   {
@@ -196,7 +235,7 @@ bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, cons
   }
   this->SetAxes();
   this->PlaneOffset = Dot(this->Origin, this->Normal);
-  deviation = largestDistance(*this);
+  deviation = LargestDistance(mesh, uses, *this);
   this->PlaneTolerance = 1e-9 * std::max(size, std::fabs(this->PlaneOffset));
   return deviation <= this->PlaneTolerance;
 }

@@ -83,20 +83,13 @@ constexpr Index Ahead = 16;
 
 } // namespace
 
-void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner& runner)
+namespace
 {
-  const Index n = mesh.NumberOfCells;
-  const Index np = mesh.NumberOfPoints;
-  order.Cells.resize(static_cast<size_t>(n));
-  if (n < 2 || n > Index(0xffffffff))
-  {
-    std::iota(order.Cells.begin(), order.Cells.end(), Index(0));
-    return; // keys carry the cell id in 32 bits
-  }
-  // The box of the points (in storage order: no random access), leaving out
-  // those no valid mesh has (NaN, infinite, beyond 1e100), and its axes of
-  // positive extent.
-  const Box box = runner.ForRanges(np, [&](Index begin, Index end) {
+/// The box of the points (in storage order: no random access), leaving out
+/// those no valid mesh has (NaN, infinite, beyond 1e100).
+Box PointBox(const MeshView& mesh, const TaskRunner& runner)
+{
+  return runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     Box b;
     for (Index p = begin; p < end; ++p)
     {
@@ -112,52 +105,78 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     }
     return b;
   });
-  int axes[3];
-  int dimension = 0;
-  double scale[3] = {};
-  for (int a = 0; a < 3; ++a)
+}
+
+/// The grid a point's position on the curve is read in: the box's axes of
+/// positive extent, each cut into just below 2^bits steps.
+struct CurveGrid
+{
+  int Axes[3];
+  int Dimension = 0;
+  double Scale[3] = {};
+  double Top = 0; ///< the largest step
+  const double* Lo;
+
+  explicit CurveGrid(const Box& box)
+    : Lo(box.Lo)
   {
-    if (box.Hi[a] > box.Lo[a])
+    for (int a = 0; a < 3; ++a)
     {
-      axes[dimension++] = a;
+      if (box.Hi[a] > box.Lo[a])
+      {
+        this->Axes[this->Dimension++] = a;
+      }
     }
+    // A 32-bit position: 16 bits per axis in 2D, 10 in 3D (finer than any
+    // mesh's cells along an axis; ties keep the old order).
+    const int dimension = this->Dimension;
+    const int bits = dimension == 3 ? 10 : (dimension == 2 ? 16 : 32);
+    for (int k = 0; k < dimension; ++k)
+    {
+      const int a = this->Axes[k];
+      // Just below 2^bits steps, so that the largest point stays inside.
+      this->Scale[k] = (std::ldexp(1.0, bits) - 1.0) / (box.Hi[a] - box.Lo[a]);
+    }
+    this->Top = std::ldexp(1.0, bits) - 1.0;
   }
-  // A 32-bit position: 16 bits per axis in 2D, 10 in 3D (finer than any
-  // mesh's cells along an axis; ties keep the old order).
-  const int bits = dimension == 3 ? 10 : (dimension == 2 ? 16 : 32);
-  for (int k = 0; k < dimension; ++k)
+
+  /// Point x's position on the curve.
+  std::uint32_t Position(const double* x) const
   {
-    const int a = axes[k];
-    // Just below 2^bits steps, so that the largest point stays inside.
-    scale[k] = (std::ldexp(1.0, bits) - 1.0) / (box.Hi[a] - box.Lo[a]);
+    std::uint32_t q[3] = {};
+    for (int k = 0; k < this->Dimension; ++k)
+    {
+      const double s = (x[this->Axes[k]] - this->Lo[this->Axes[k]]) * this->Scale[k];
+      // NaN and beyond the box (non-finite points) clamped: any key will do.
+      q[k] = s > 0 ? static_cast<std::uint32_t>(std::min(s, this->Top)) : 0u;
+    }
+    return static_cast<std::uint32_t>(MortonIndex(q, this->Dimension));
   }
-  const double top = std::ldexp(1.0, bits) - 1.0;
-  // Each point's position on the curve (in storage order: no random
-  // access), then each cell's key: the lowest of its corners' positions in
-  // the high 32 bits, the cell id in the low ones. (A key from the cell's
-  // centre read every corner's three coordinates in the old numbering,
-  // mostly cache misses, for each cell; the corners'
-  // positions are a sixth of the points' bytes, and the order they give
-  // keeps the front's search as fast.)
-  // (pointKeys, keys and other are written whole by tasks: not zeroed first.)
-  UninitializedLargeVector<std::uint32_t> pointKeys(static_cast<size_t>(np));
-  runner.ForRanges(np, [&](Index begin, Index end) {
+};
+
+/**
+ * Each point's position on the curve (in storage order: no random
+ * access), then each cell's key: the lowest of its corners' positions in
+ * the high 32 bits, the cell id in the low ones. (A key from the cell's
+ * centre read every corner's three coordinates in the old numbering,
+ * mostly cache misses, for each cell; the corners'
+ * positions are a sixth of the points' bytes, and the order they give
+ * keeps the front's search as fast.)
+ */
+void CellKeys(const MeshView& mesh, const CurveGrid& grid, const TaskRunner& runner,
+  UninitializedLargeVector<std::uint64_t>& keys)
+{
+  // (pointKeys and keys are written whole by tasks: not zeroed first.)
+  UninitializedLargeVector<std::uint32_t> pointKeys(static_cast<size_t>(mesh.NumberOfPoints));
+  runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
     {
-      const double* x = mesh.Point(p);
-      std::uint32_t q[3] = {};
-      for (int k = 0; k < dimension; ++k)
-      {
-        const double s = (x[axes[k]] - box.Lo[axes[k]]) * scale[k];
-        // NaN and beyond the box (non-finite points) clamped: any key will do.
-        q[k] = s > 0 ? static_cast<std::uint32_t>(std::min(s, top)) : 0u;
-      }
-      pointKeys[p] = static_cast<std::uint32_t>(MortonIndex(q, dimension));
+      pointKeys[p] = grid.Position(mesh.Point(p));
     }
     return 0;
   });
-  UninitializedLargeVector<std::uint64_t> keys(static_cast<size_t>(n));
-  runner.ForRanges(n, [&](Index begin, Index end) {
+  keys.resize(static_cast<size_t>(mesh.NumberOfCells));
+  runner.ForRanges(mesh.NumberOfCells, [&](Index begin, Index end) {
     const int corners = mesh.CornersPerCell();
     for (Index c = begin; c < end; ++c)
     {
@@ -179,16 +198,23 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     }
     return 0;
   });
-  UninitializedLargeVector<std::uint32_t>().swap(pointKeys);
-  // Least-significant-digit radix sort on the key's 32 bits in three digits
-  // of 11, 11 and 10 bits: stable, so equal keys stay in id order. Each
-  // task counts and then moves its own range of keys; the buckets' starts
-  // are laid out bucket by bucket and, within a bucket, task by task, so
-  // that the result is the same for any number of tasks.
+}
+
+/**
+ * Least-significant-digit radix sort on the keys' high 32 bits in three
+ * digits of 11, 11 and 10 bits: stable, so equal keys stay in id order.
+ * Each task counts and then moves its own range of keys; the buckets'
+ * starts are laid out bucket by bucket and, within a bucket, task by task,
+ * so that the result is the same for any number of tasks.
+ */
+void SortKeys(UninitializedLargeVector<std::uint64_t>& keys, const TaskRunner& runner)
+{
+  const Index n = static_cast<Index>(keys.size());
   constexpr int Shifts[3] = { 32, 43, 54 };
   constexpr size_t Buckets = 2048;
   const int tasks = runner.TasksFor(n, 16384);
   std::vector<size_t> count(static_cast<size_t>(tasks) * Buckets);
+  // (Written whole by the moves: not zeroed first.)
   UninitializedLargeVector<std::uint64_t> other(keys.size());
   for (int d = 0; d < 3; ++d)
   {
@@ -232,6 +258,23 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
     });
     keys.swap(other);
   }
+}
+} // namespace
+
+void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner& runner)
+{
+  const Index n = mesh.NumberOfCells;
+  order.Cells.resize(static_cast<size_t>(n));
+  if (n < 2 || n > Index(0xffffffff))
+  {
+    std::iota(order.Cells.begin(), order.Cells.end(), Index(0));
+    return; // keys carry the cell id in 32 bits
+  }
+  const Box box = PointBox(mesh, runner);
+  const CurveGrid grid(box);
+  UninitializedLargeVector<std::uint64_t> keys;
+  CellKeys(mesh, grid, runner, keys);
+  SortKeys(keys, runner);
   runner.ForRanges(n, [&](Index begin, Index end) {
     for (Index c = begin; c < end; ++c)
     {
@@ -320,36 +363,78 @@ double ChainedFraction(const MeshView& mesh)
 
 namespace
 {
+/**
+ * `mesh` renumbered by order.Cells into `out` (connectivity) and `parent`
+ * (RenumberMesh). Points are numbered in the order the ordered cells first
+ * use them. With one task, in one pass: a point's slot in NewPoint is its
+ * new id from its first use on. With several, the ordered cells are split
+ * into ranges, one per task, and each task lists the points its cells use
+ * in their first use there, a point seen once set in a bit array of the
+ * task's own (an eighth of a byte a point, mostly in the core's cache:
+ * the tasks share no memory in this pass; slots in one array claimed by
+ * atomic exchanges, as first written here, made that pass on a Gmsh mesh
+ * of 10^6 cells as long on two threads as on one). A point then belongs to
+ * the first range using it: the bits of the ranges before a task's are
+ * cleared from its own, its list keeps the points whose bits remain, and
+ * the lists, one range after the other, are exactly the serial first-use
+ * order; meanwhile `out` holds the old ids (32 bits are enough).
+ */
 template <class Id>
-void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out,
-  Index* parent, const TaskRunner& runner)
+class Renumbering
 {
-  const Index n = mesh.NumberOfCells;
-  const Index np = mesh.NumberOfPoints;
-  const int corners = mesh.CornersPerCell();
-  // Points are numbered in the order the ordered cells first use them.
-  // With one task, in one pass: a point's slot in NewPoint is its new id
-  // from its first use on. With several, the ordered cells are split into
-  // ranges, one per task, and each task lists the points its cells use in
-  // their first use there, a point seen once set in a bit array of the
-  // task's own (an eighth of a byte a point, mostly in the core's cache:
-  // the tasks share no memory in this pass; slots in one array claimed by
-  // atomic exchanges, as first written here, made that pass on a Gmsh mesh
-  // of 10^6 cells as long on two threads as on one). A point then belongs to
-  // the first range using it: the bits of the ranges before a task's are
-  // cleared from its own, its list keeps the points whose bits remain, and
-  // the lists, one range after the other, are exactly the serial first-use
-  // order; meanwhile `out` holds the old ids (32 bits are enough).
-  constexpr Index Unclaimed = std::numeric_limits<Index>::max();
-  // (At most 64 tasks: their bits take no more room than NewPoint.)
-  const int tasks = static_cast<int>(std::min<Index>(runner.TasksFor(n, 16384), 64));
-  order.NewPoint.resize(static_cast<size_t>(np));
-  Index* newId = order.NewPoint.data();
-  order.Points.resize(static_cast<size_t>(np));
-  Index next = 0;
-  if (tasks == 1)
+public:
+  static constexpr Index Unclaimed = std::numeric_limits<Index>::max();
+
+  Renumbering(const MeshView& mesh, SpatialOrder& order, Id* out, Index* parent,
+    const TaskRunner& runner)
+    : Mesh(mesh)
+    , Order(order)
+    , Out(out)
+    , Parent(parent)
+    , Runner(runner)
+    , N(mesh.NumberOfCells)
+    , NP(mesh.NumberOfPoints)
+    , Corners(mesh.CornersPerCell())
   {
-    runner.Fill(newId, np, Unclaimed);
+  }
+
+  /// Numbers the points and writes the cells; then the points no cell
+  /// uses, last in their old order.
+  void Run()
+  {
+    // (At most 64 tasks: their bits take no more room than NewPoint.)
+    const int tasks = static_cast<int>(std::min<Index>(this->Runner.TasksFor(this->N, 16384), 64));
+    this->Order.NewPoint.resize(static_cast<size_t>(this->NP));
+    this->NewId = this->Order.NewPoint.data();
+    this->Order.Points.resize(static_cast<size_t>(this->NP));
+    Index next = tasks == 1 ? this->NumberInOneTask() : this->NumberInTasks(tasks);
+    // Points no cell uses: last, in their old order.
+    for (Index p = 0; p < this->NP && next < this->NP; ++p)
+    {
+      Index& id = this->Order.NewPoint[p];
+      if (id == Unclaimed)
+      {
+        id = next;
+        this->Order.Points[next++] = p;
+      }
+    }
+  }
+
+private:
+  using Word = std::uint64_t;
+
+  /// The serial pass: returns the number of points used.
+  Index NumberInOneTask()
+  {
+    const MeshView& mesh = this->Mesh;
+    SpatialOrder& order = this->Order;
+    const Index n = this->N;
+    const int corners = this->Corners;
+    Index* newId = this->NewId;
+    Id* out = this->Out;
+    Index* parent = this->Parent;
+    Index next = 0;
+    this->Runner.Fill(newId, this->NP, Unclaimed);
     for (Index c = 0; c < n; ++c)
     {
       // Two stages of prefetching: the connectivity of the cell 2 * Ahead
@@ -384,22 +469,43 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
       }
       parent[c] = mesh.ParentOf(old);
     }
+    return next;
   }
-  else
+
+  /// The passes by ranges of cells (see the class comment): returns the
+  /// number of points used.
+  Index NumberInTasks(int tasks)
   {
-    using Word = std::uint64_t;
-    const size_t words = static_cast<size_t>(np / 64 + 1);
-    std::vector<UninitializedLargeVector<Word>> seen(static_cast<size_t>(tasks));
-    std::vector<LargeVector<Index>> used(static_cast<size_t>(tasks));
-    runner.RunAll(tasks, [&](int t) {
-      UninitializedLargeVector<Word>& bits = seen[t];
-      bits.resize(words);
+    this->Tasks = tasks;
+    this->Words = static_cast<size_t>(this->NP / 64 + 1);
+    this->Seen.resize(static_cast<size_t>(tasks));
+    this->Used.resize(static_cast<size_t>(tasks));
+    this->ListFirstUses();
+    this->ClearEarlierRanges();
+    const Index next = this->KeepFirstUses();
+    this->PlaceFirstUses();
+    return next;
+  }
+
+  /// Each task's list of the points its range of cells uses, in their
+  /// first use there, and the cells with old point ids.
+  void ListFirstUses()
+  {
+    const MeshView& mesh = this->Mesh;
+    const SpatialOrder& order = this->Order;
+    const int tasks = this->Tasks;
+    const int corners = this->Corners;
+    Id* out = this->Out;
+    Index* parent = this->Parent;
+    this->Runner.RunAll(tasks, [&](int t) {
+      UninitializedLargeVector<Word>& bits = this->Seen[t];
+      bits.resize(this->Words);
       std::fill(bits.begin(), bits.end(), Word(0));
       Word* mine = bits.data();
-      LargeVector<Index>& list = used[t];
-      list.reserve(static_cast<size_t>((np / tasks) + (np / tasks) / 8 + 16));
-      const Index first = RangeBegin(n, t, tasks);
-      const Index last = RangeBegin(n, t + 1, tasks);
+      LargeVector<Index>& list = this->Used[t];
+      list.reserve(static_cast<size_t>((this->NP / tasks) + (this->NP / tasks) / 8 + 16));
+      const Index first = RangeBegin(this->N, t, tasks);
+      const Index last = RangeBegin(this->N, t + 1, tasks);
       for (Index c = first; c < last; ++c)
       {
         if (c + Ahead < last)
@@ -427,16 +533,23 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
         parent[c] = mesh.ParentOf(old);
       }
     });
-    // Each word of the bits, across the tasks in order: the bits of the
-    // ranges before each task's cleared from its own (in ranges of words);
-    // points in no task's set (no cell uses them) marked unclaimed.
-    runner.ForRanges(static_cast<Index>(words), [&](Index begin, Index end) {
+  }
+
+  /// Each word of the bits, across the tasks in order: the bits of the
+  /// ranges before each task's cleared from its own (in ranges of words);
+  /// points in no task's set (no cell uses them) marked unclaimed.
+  void ClearEarlierRanges()
+  {
+    const int tasks = this->Tasks;
+    const Index np = this->NP;
+    Index* newId = this->NewId;
+    this->Runner.ForRanges(static_cast<Index>(this->Words), [&](Index begin, Index end) {
       for (Index w = begin; w < end; ++w)
       {
         Word before = 0;
         for (int t = 0; t < tasks; ++t)
         {
-          Word& bits = seen[t][w];
+          Word& bits = this->Seen[t][w];
           const Word own = bits;
           bits = own & ~before;
           before |= own;
@@ -451,12 +564,18 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
       }
       return 0;
     }, 4096);
-    // Each task keeps the points whose bits remain, in order; they get
-    // consecutive new ids after those of the tasks before it.
-    std::vector<Index> offset(static_cast<size_t>(tasks) + 1, 0);
-    runner.RunAll(tasks, [&](int t) {
-      const Word* bits = seen[t].data();
-      LargeVector<Index>& list = used[t];
+  }
+
+  /// Each task keeps the points whose bits remain, in order; they get
+  /// consecutive new ids after those of the tasks before it (Offset).
+  /// Returns the number of points used.
+  Index KeepFirstUses()
+  {
+    const int tasks = this->Tasks;
+    this->Offset.assign(static_cast<size_t>(tasks) + 1, 0);
+    this->Runner.RunAll(tasks, [&](int t) {
+      const Word* bits = this->Seen[t].data();
+      LargeVector<Index>& list = this->Used[t];
       Index kept = 0;
       for (const Index p : list)
       {
@@ -464,44 +583,67 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
         kept += (bits[p >> 6] >> (p & 63)) & 1;
       }
       list.resize(static_cast<size_t>(kept));
-      UninitializedLargeVector<Word>().swap(seen[t]);
-      offset[t + 1] = kept;
+      UninitializedLargeVector<Word>().swap(this->Seen[t]);
+      this->Offset[t + 1] = kept;
     });
     for (int t = 0; t < tasks; ++t)
     {
-      offset[t + 1] += offset[t];
+      this->Offset[t + 1] += this->Offset[t];
     }
-    next = offset[tasks];
-    // Each task copies its list into place and writes its points' new ids;
-    // then the cells' old ids are replaced by their points' new ids.
-    runner.RunAll(tasks, [&](int t) {
-      const LargeVector<Index>& list = used[t];
-      std::copy(list.begin(), list.end(), order.Points.begin() + offset[t]);
+    return this->Offset[tasks];
+  }
+
+  /// Each task copies its list into place and writes its points' new ids;
+  /// then the cells' old ids are replaced by their points' new ids.
+  void PlaceFirstUses()
+  {
+    const int tasks = this->Tasks;
+    Index* newId = this->NewId;
+    this->Runner.RunAll(tasks, [&](int t) {
+      const LargeVector<Index>& list = this->Used[t];
+      std::copy(list.begin(), list.end(), this->Order.Points.begin() + this->Offset[t]);
       for (size_t i = 0; i < list.size(); ++i)
       {
-        newId[list[i]] = offset[t] + static_cast<Index>(i);
+        newId[list[i]] = this->Offset[t] + static_cast<Index>(i);
       }
     });
-    std::vector<LargeVector<Index>>().swap(used);
-    runner.RunAll(tasks, [&](int t) {
-      const Index end = corners * RangeBegin(n, t + 1, tasks);
-      for (Index i = corners * RangeBegin(n, t, tasks); i < end; ++i)
+    std::vector<LargeVector<Index>>().swap(this->Used);
+    const int corners = this->Corners;
+    Id* out = this->Out;
+    this->Runner.RunAll(tasks, [&](int t) {
+      const Index end = corners * RangeBegin(this->N, t + 1, tasks);
+      for (Index i = corners * RangeBegin(this->N, t, tasks); i < end; ++i)
       {
         out[i] = static_cast<Id>(newId[static_cast<Index>(out[i])]);
       }
     });
   }
-  // Points no cell uses: last, in their old order.
-  for (Index p = 0; p < np && next < np; ++p)
-  {
-    Index& id = order.NewPoint[p];
-    if (id == Unclaimed)
-    {
-      id = next;
-      order.Points[next++] = p;
-    }
-  }
-  runner.ForRanges(np, [&](Index begin, Index end) {
+
+  const MeshView& Mesh;
+  SpatialOrder& Order;
+  Id* Out;
+  Index* Parent;
+  const TaskRunner& Runner;
+  const Index N;
+  const Index NP;
+  const int Corners;
+  Index* NewId = nullptr;
+  // The passes by ranges: per task its bits of the points seen and its list.
+  int Tasks = 1;
+  size_t Words = 0;
+  std::vector<UninitializedLargeVector<Word>> Seen;
+  std::vector<LargeVector<Index>> Used;
+  std::vector<Index> Offset;
+};
+
+/// The renumbered mesh: its cells and points (Renumbering), then the
+/// points' coordinates copied in their new order.
+template <class Id>
+void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out,
+  Index* parent, const TaskRunner& runner)
+{
+  Renumbering<Id>(mesh, order, out, parent, runner).Run();
+  runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
     {
       if (p + Ahead < end)

@@ -75,6 +75,7 @@
 #include "Mesh/MeshView.h"
 #include "Mesh/Tasks.h"
 #include "Search/SearchStatistics.h"
+#include "Search/SourceWalk.h"
 
 #include <algorithm>
 #include <functional>
@@ -114,154 +115,405 @@ struct MeetsInVolume<Intersector, std::enable_if_t<Intersector::MeetsInVolume>> 
 };
 
 /**
- * A small direct-mapped cache of prepared source cells. The front visits the
- * source cells around a region many times in a row (each about as often as
- * it meets target cells), so a few thousand slots avoid most re-preparations
- * at a fixed, small memory cost.
+ * The advancing front's state over target cells [begin, end): the outer
+ * front (a heap of target cells with their seeds), the inner front of the
+ * target cell treated, and what walks and queries have cost so far (see
+ * the file comment, which the steps below follow). AdvancingFrontSearch
+ * runs one per range.
  */
-template <class Intersector>
-class PreparedCells
+template <class Intersector, class Visitor>
+class AdvancingFront
 {
 public:
-  static constexpr Index Slots = 4096; // a power of two
-  /// `degenerate`, when given, collects the ids of cells of zero measure
-  /// met (with repeats).
-  explicit PreparedCells(const MeshView& mesh, std::vector<Index>* degenerate = nullptr)
-    : Mesh(mesh)
-    , Degenerate(degenerate)
-    , Ids(Slots, -1)
-    , Valid(Slots, 0)
-    , Cells(Slots)
+  AdvancingFront(const MeshView& target, const MeshView& source, CandidateLocator& locator,
+    Visitor& visit, SearchStatistics& stats, Index begin, Index end,
+    std::vector<Index>* degenerateSources)
+    : Target(target)
+    , Source(source)
+    , Locator(locator)
+    , Visit(visit)
+    , Stats(stats)
+    , Begin(begin)
+    , End(end)
+    , Queued(static_cast<size_t>(std::max<Index>(0, end - begin)), 0)
+    , Stamp(static_cast<std::size_t>(source.NumberOfCells), -1)
+    , Prepared(source, degenerateSources)
+    , Starts(source)
+    , StartSamples(WalkStarts::Samples(source.NumberOfCells))
   {
-  }
-  /// The prepared cell, or null for a cell of zero measure.
-  const typename Intersector::Cell* Get(Index id)
-  {
-    const Index slot = id & (Slots - 1);
-    if (this->Ids[slot] != id)
+    // Where walks start: the last source cell met, at first the source cell
+    // at the same relative position as the range (meshes stored with some
+    // locality then need short walks).
+    if (source.NumberOfCells > 0 && target.NumberOfCells > 0)
     {
-      this->Ids[slot] = id;
-      this->Valid[slot] = Intersector::Prepare(this->Mesh, id, this->Cells[slot]);
-      if (!this->Valid[slot] && this->Degenerate)
-      {
-        this->Degenerate->push_back(id);
-      }
+      this->LastMet = static_cast<Index>(static_cast<double>(begin) / target.NumberOfCells *
+        static_cast<double>(source.NumberOfCells));
+      this->LastMet = std::min(std::max<Index>(this->LastMet, 0), source.NumberOfCells - 1);
     }
-    return this->Valid[slot] ? &this->Cells[slot] : nullptr;
+    // A straight walk crosses about n^(1/d) cells of a mesh of n cells.
+    this->MaxWalk = 100 +
+      4 * static_cast<Index>(std::pow(
+            static_cast<double>(source.NumberOfCells), 1.0 / Sources::Dimension));
   }
 
-private:
-  const MeshView& Mesh;
-  std::vector<Index>* Degenerate;
-  std::vector<Index> Ids;
-  std::vector<char> Valid;
-  std::vector<typename Intersector::Cell> Cells;
-};
-
-/**
- * Other starts for walks: about 2 sqrt(n) source cells at a regular stride of
- * ids, with their centres, gathered on the first question. A walk from the
- * last source cell met stops where a hole or a bay of the source lies on its
- * way; one from the sampled cell nearest the point is short, so it seldom
- * meets one, and saves the query among all source cells (and the index over
- * all of them that it builds). Ids spread the samples over the mesh for any
- * numbering that is not adversarial; the start is a heuristic, the search's
- * result does not depend on it.
- */
-class WalkStarts
-{
-public:
-  explicit WalkStarts(const MeshView& mesh)
-    : Mesh(mesh)
+  /// Treats every target cell of the range once: those the outer front
+  /// reached first, smallest id first, then the next one not reached yet.
+  /// Returns early when `poll` says so.
+  void Run(const std::function<bool(Index done)>& poll)
   {
-  }
-  /// How many cells are sampled: about 2 sqrt(n).
-  static Index Samples(Index n)
-  {
-    return std::min<Index>(n, 2 * static_cast<Index>(std::sqrt(static_cast<double>(n))) + 1);
-  }
-  /// The sampled cell whose centre is nearest q (the mesh's first
-  /// SpaceDimension coordinates), or -1 for a mesh without cells. Costs
-  /// Samples() steps.
-  Index Nearest(const double* q)
-  {
-    const MeshView& m = this->Mesh;
-    const int dims = m.SpaceDimension;
-    if (this->Ids.empty() && m.NumberOfCells > 0)
+    Index scan = this->Begin;
+    for (Index done = 0;; ++done)
     {
-      const Index n = m.NumberOfCells;
-      const Index samples = Samples(n);
-      const int corners = m.CornersPerCell();
-      for (Index i = 0; i < samples; ++i)
+      // Progress, and a way out, every ProgressChunk target cells.
+      if (poll && done > 0 && done % ProgressChunk == 0 && !poll(done))
       {
-        const Index c = static_cast<Index>((2 * i + 1) * n / (2 * samples));
-        const CellCorners ids = m.Cell(c);
-        double centre[3] = { 0.0, 0.0, 0.0 };
-        for (int k = 0; k < corners; ++k)
+        return;
+      }
+      if (this->Outer.empty())
+      {
+        while (scan < this->End && this->Queued[scan - this->Begin])
         {
-          for (int d = 0; d < dims; ++d)
-          {
-            centre[d] += m.Point(ids[k])[d] / corners;
-          }
+          ++scan;
         }
-        this->Ids.push_back(c);
-        this->Centres.insert(this->Centres.end(), centre, centre + dims);
+        if (scan == this->End)
+        {
+          break;
+        }
+        this->Queued[scan - this->Begin] = 1;
+        this->Treat(scan, -1);
+        continue;
       }
+      std::pop_heap(this->Outer.begin(), this->Outer.end(), Later);
+      const Seed next = this->Outer.back();
+      this->Outer.pop_back();
+      this->Treat(next.Target, next.Source);
     }
-    Index best = -1;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < this->Ids.size(); ++i)
-    {
-      double d2 = 0.0;
-      for (int d = 0; d < dims; ++d)
-      {
-        const double e = this->Centres[i * dims + d] - q[d];
-        d2 += e * e;
-      }
-      if (d2 < nearest)
-      {
-        nearest = d2;
-        best = this->Ids[i];
-      }
-    }
-    return best;
   }
 
 private:
-  const MeshView& Mesh;
-  std::vector<Index> Ids;
-  std::vector<double> Centres; ///< SpaceDimension coordinates per sample
-};
+  using Cell = typename Intersector::Cell;
+  using Piece = typename Intersector::Piece;
+  static constexpr int Faces = Intersector::Faces;
+  // The source cells' own geometry (a volume's, for traces: SourceSide.h).
+  using Sources = typename SourceSideOf<Intersector>::type;
+  using SourceCell = typename Sources::Cell;
+  static constexpr int SourceFaces = Sources::Faces;
 
-/**
- * Walks from source cell `start` toward point q (see the file comment): the
- * source cell whose closure holds q, or -1 when the walk reaches the
- * boundary, a cell of zero measure or `maxSteps`. The face tried first turns
- * from step to step, so that a walk cannot circle for long in a mesh that is
- * not Delaunay.
- */
-template <class Intersector>
-Index WalkToward(const MeshView& source, PreparedCells<Intersector>& cells, Index start,
-  const double* q, Index maxSteps, Index& steps)
-{
-  Index current = start;
-  for (Index step = 0; step < maxSteps && current >= 0; ++step)
+  struct Seed
   {
-    ++steps;
-    const typename Intersector::Cell* c = cells.Get(current);
-    if (!c)
+    Index Target;
+    Index Source;
+  };
+  /// The heap's order: the smallest target id on top.
+  static bool Later(const Seed& a, const Seed& b) { return a.Target > b.Target; }
+
+  /// What the inner front of the target cell treated has found so far.
+  struct InnerState
+  {
+    Index FaceSeed[Faces]; ///< per target face, a source cell meeting it (-1: none yet)
+    bool Walked = false;   ///< a walk was tried for this cell
+    /// What the inner front started from: 0 the seed, 1 also the boundary
+    /// cells nearby, 2 all source cells nearby.
+    int Level = 0;
+    bool Blocked = false; ///< the inner front met the source boundary
+    /// A surface's source facet near the cell was screened out (normals,
+    /// reach): the facets meeting the cell may not be connected through
+    /// each other, so only a query among all source cells nearby is sure.
+    bool Screened = false;
+    bool Met = false;
+    InnerState()
+    {
+      for (auto& f : this->FaceSeed)
+      {
+        f = -1;
+      }
+    }
+    /// Nothing can be missing: all cells asked, or the boundary cells asked
+    /// after something was met, or met without the boundary.
+    bool Complete() const
+    {
+      return this->Level == 2 ||
+        (this->Met && !this->Screened && (this->Level == 1 || !this->Blocked));
+    }
+  };
+
+  /// Walks are for the few cells that start a front. Where there are many
+  /// (a target of many disconnected pieces, e.g. cells that share no
+  /// points), their steps stay within this budget, then the locator takes
+  /// over: the search stays linear.
+  Index WalkBudget() const { return 16 * this->Treated + 64 * this->MaxWalk; }
+
+  /// Source cell n joins target cell tId's inner front, unless it was tried already.
+  void Reach(Index tId, Index n)
+  {
+    if (this->Stamp[n] != tId)
+    {
+      this->Stamp[n] = tId;
+      this->Inner.push_back(n);
+    }
+  }
+
+  /// One target cell: its seed (or the locator), its inner front until
+  /// nothing can be missing, then its neighbours onto the outer front.
+  void Treat(Index tId, Index seed)
+  {
+    if (!Intersector::Prepare(this->Target, tId, this->T))
+    {
+      ++this->Stats.DegenerateTargetCells; // zero measure: meets nothing
+      return;
+    }
+    InnerState state;
+    this->Inner.clear();
+    ++this->Treated;
+    if (seed < 0)
+    {
+      seed = this->Walk(state, this->LastMet);
+    }
+    if (seed >= 0)
+    {
+      this->Stamp[seed] = static_cast<NeighborId>(tId);
+      this->Inner.push_back(seed);
+    }
+    else
+    {
+      state.Level = this->AskedAll ? 2 : 1;
+      this->Ask(tId, state.Level == 2);
+    }
+    for (;;)
+    {
+      this->Advance(tId, state);
+      if (state.Complete())
+      {
+        break;
+      }
+      // A seed from the front that does not meet the cell (3D seeds rest on
+      // face contacts above a rounding threshold) is near it: a short walk
+      // from it finds a cell that does, without a query.
+      if (!state.Met && state.Level == 0 && !state.Walked)
+      {
+        const Index found = this->Walk(state, seed);
+        if (found >= 0 && this->Stamp[found] != tId)
+        {
+          this->Stamp[found] = tId;
+          this->Inner.push_back(found);
+          continue;
+        }
+      }
+      // The seed failed, or the walk ran into the source boundary: ask for
+      // the boundary cells nearby; if still nothing meets the cell, for all.
+      state.Level = (state.Met || (state.Level == 0 && !this->AskedAll)) && !state.Screened ? 1 : 2;
+      this->Ask(tId, state.Level == 2);
+    }
+    this->QueueNeighbours(tId, state);
+  }
+
+  /// A walk toward the treated cell's center, from `from`: a source cell
+  /// holding it, or -1 (also when walks are off: after a query among all
+  /// cells, or beyond their budget).
+  Index Walk(InnerState& state, Index from)
+  {
+    state.Walked = true;
+    SearchStatistics& stats = this->Stats;
+    if (this->AskedAll || from < 0 || stats.WalkSteps >= this->WalkBudget())
     {
       return -1;
     }
-    const int k = Intersector::Locate(*c, q, static_cast<int>(step % Intersector::Faces));
-    if (k < 0)
+    double q[3] = { 0.0, 0.0, 0.0 };
+    Intersector::Center(this->T, q);
+    ++stats.SeedWalks;
+    const Index found =
+      WalkToward<Sources>(this->Source, this->Prepared, from, q, this->MaxWalk, stats.WalkSteps);
+    // Stopped on the way (a hole of the source, a cell of zero measure): once more,
+    // from the sampled cell nearest the center. Each look-up scans the
+    // samples: allowed while they add up to at most 16 per treated cell
+    // and 64 scans, so that the search stays linear.
+    const Index scans = this->Restarts + 1;
+    if (found >= 0 || stats.WalkSteps >= this->WalkBudget() ||
+      scans * this->StartSamples > 16 * this->Treated + 64 * this->StartSamples)
     {
-      return current;
+      return found;
     }
-    current = source.Neighbor(current, c->Face[k]);
+    this->Restarts = scans;
+    const Index near = this->Starts.Nearest(q);
+    if (near < 0 || near == from)
+    {
+      return -1;
+    }
+    ++stats.WalkRestarts;
+    return WalkToward<Sources>(this->Source, this->Prepared, near, q, this->MaxWalk, stats.WalkSteps);
   }
-  return -1;
-}
+
+  /// Adds the locator's candidates (boundary cells, or all cells) to the inner front.
+  void Ask(Index tId, bool all)
+  {
+    Intersector::Bounds(this->T, this->Box);
+    if (all)
+    {
+      this->Locator.FindCandidates(this->Box, this->Candidates);
+      ++this->Stats.FullLocatorQueries;
+      this->AskedAll = true;
+    }
+    else
+    {
+      this->Locator.FindBoundaryCandidates(this->Box, this->Candidates);
+    }
+    ++this->Stats.LocatorQueries;
+    for (Index c : this->Candidates)
+    {
+      if (this->Stamp[c] != static_cast<NeighborId>(tId))
+      {
+        this->Stamp[c] = static_cast<NeighborId>(tId);
+        // Most candidates miss: a cheap screen first where the geometry
+        // has one (tetrahedra), counted as the test it settles.
+        if constexpr (HasApart<Intersector, Sources>::value)
+        {
+          const SourceCell* cell = this->Prepared.Get(c);
+          if (cell && Intersector::Apart(this->T, *cell))
+          {
+            ++this->Stats.IntersectionTests;
+            continue;
+          }
+        }
+        this->Inner.push_back(c);
+      }
+    }
+  }
+
+  /// Runs the inner front until it is empty: every source cell on it is
+  /// intersected with the treated cell, and those that meet it pass the
+  /// front on.
+  void Advance(Index tId, InnerState& state)
+  {
+    while (!this->Inner.empty())
+    {
+      const Index sId = this->Inner.back();
+      this->Inner.pop_back();
+      const SourceCell* prepared = this->Prepared.Get(sId);
+      if (!prepared)
+      {
+        // Zero measure: meets nothing, but must not cut the walk off from
+        // the cells beyond it.
+        for (int k = 0; k < SourceFaces; ++k)
+        {
+          const Index n = this->Source.Neighbor(sId, k);
+          if (n < 0)
+          {
+            state.Blocked = true;
+          }
+          else
+          {
+            this->Reach(tId, n);
+          }
+        }
+        continue;
+      }
+      const SourceCell& s = *prepared;
+      ++this->Stats.IntersectionTests;
+      if (!Intersector::Intersect(this->T, s, this->P))
+      {
+        state.Screened = state.Screened || Intersector::Screened(this->P);
+        continue;
+      }
+      this->Meet(tId, sId, s, state);
+    }
+  }
+
+  /// Source cell sId meets the treated cell: the pair is visited, the
+  /// source cells met across the target's faces become those neighbours'
+  /// seeds, and the front goes on across the source faces the piece reaches.
+  void Meet(Index tId, Index sId, const SourceCell& s, InnerState& state)
+  {
+    Piece& piece = this->P;
+    state.Met = true;
+    this->LastMet = sId;
+    ++this->Stats.TouchingPairs;
+    this->Visit(this->T, s, piece);
+    // The faces' bits visited lowest first (a test per face depends on
+    // the data and was often mispredicted): the same order.
+    for (unsigned touched = piece.TouchedFaces & ((1u << Faces) - 1u); touched != 0; touched &= touched - 1)
+    {
+      const int k = __builtin_ctz(touched);
+      const Index next = Intersector::FaceSeed(piece, k, s, this->Source);
+      if (next >= 0)
+      {
+        state.FaceSeed[k] = next;
+      }
+    }
+    // Its boundary faces that support the source are trusted (no query)
+    // only when the piece is far above rounding: a sliver where the
+    // cells nearly only touch can have faces that its neighbours,
+    // tested on their own, do not confirm.
+    bool trusted = false;
+    if constexpr (MeetsInVolume<Intersector>::value)
+    {
+      trusted = Intersector::Substantial(this->T, s, piece);
+    }
+    // Only across the faces of s that the target reaches: any other
+    // source cell meeting the target is reached through cells meeting it.
+    for (unsigned reached = piece.SourceFaces & ((1u << SourceFaces) - 1u); reached != 0; reached &= reached - 1)
+    {
+      const int k = __builtin_ctz(reached);
+      const Index n = this->Source.Neighbor(sId, s.Face[k]);
+      if (n < 0)
+      {
+        // A boundary face with the whole source on the cell's side
+        // bounds the cover without cutting it apart: no query for it.
+        state.Blocked = state.Blocked || !trusted || !this->Locator.Supports(sId, s.Face[k]);
+      }
+      else
+      {
+        this->Reach(tId, n);
+      }
+    }
+  }
+
+  /// The treated cell's neighbours in the range, not queued yet, join the
+  /// outer front with the seeds its faces found.
+  void QueueNeighbours(Index tId, const InnerState& state)
+  {
+    for (int k = 0; k < Faces; ++k)
+    {
+      if (state.FaceSeed[k] < 0)
+      {
+        continue;
+      }
+      const Index n = this->Target.Neighbor(tId, this->T.Face[k]);
+      if (n >= this->Begin && n < this->End && !this->Queued[n - this->Begin])
+      {
+        this->Queued[n - this->Begin] = 1;
+        this->Outer.push_back({ n, state.FaceSeed[k] });
+        std::push_heap(this->Outer.begin(), this->Outer.end(), Later);
+      }
+    }
+  }
+
+  const MeshView& Target;
+  const MeshView& Source;
+  CandidateLocator& Locator;
+  Visitor& Visit;
+  SearchStatistics& Stats;
+  const Index Begin;
+  const Index End;
+  LargeVector<char> Queued; ///< of cell Begin + i
+  // Stamp[s] == t: source cell s was already tried for target cell t. A
+  // stamp instead of the paper's per-cell flag vector keeps the work linear.
+  // (32 bits: the front's meshes have fewer than 2^31 cells, MeshView.h.)
+  LargeVector<NeighborId> Stamp;
+  std::vector<Seed> Outer; ///< a binary heap: the smallest target id first
+  std::vector<Index> Inner;
+  std::vector<Index> Candidates;
+  Cell T; ///< the target cell treated
+  PreparedCells<Sources> Prepared;
+  Piece P;
+  double Box[6];
+  Index LastMet = -1;
+  Index MaxWalk = 0;
+  WalkStarts Starts;
+  const Index StartSamples;
+  Index Restarts = 0;    ///< walks started again from a sample
+  bool AskedAll = false; ///< a query among all source cells was made: no more walks
+  Index Treated = 0;
+};
 
 /**
  * The advancing front over target cells [begin, end) (all by default).
@@ -279,304 +531,9 @@ void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
   {
     end = target.NumberOfCells;
   }
-  using Cell = typename Intersector::Cell;
-  using Piece = typename Intersector::Piece;
-  constexpr int Faces = Intersector::Faces;
-  // The source cells' own geometry (a volume's, for traces: SourceSide.h).
-  using Sources = typename SourceSideOf<Intersector>::type;
-  using SourceCell = typename Sources::Cell;
-  constexpr int SourceFaces = Sources::Faces;
-
-  struct Seed
-  {
-    Index Target;
-    Index Source;
-  };
-  LargeVector<char> queued(static_cast<size_t>(std::max<Index>(0, end - begin)), 0); // of cell begin + i
-  // stamp[s] == t: source cell s was already tried for target cell t. A
-  // stamp instead of the paper's per-cell flag vector keeps the work linear.
-  // (32 bits: the front's meshes have fewer than 2^31 cells, MeshView.h.)
-  LargeVector<NeighborId> stamp(static_cast<std::size_t>(source.NumberOfCells), -1);
-  std::vector<Seed> outer; // a binary heap: the smallest target id first
-  auto later = [](const Seed& a, const Seed& b) { return a.Target > b.Target; };
-  std::vector<Index> inner;
-  std::vector<Index> candidates;
-  Cell t;
-  PreparedCells<Sources> sources(source, degenerateSources);
-  Piece piece;
-  double box[6];
-  // Where walks start: the last source cell met, at first the source cell
-  // at the same relative position as the range (meshes stored with some
-  // locality then need short walks).
-  Index lastMet = -1;
-  if (source.NumberOfCells > 0 && target.NumberOfCells > 0)
-  {
-    lastMet = static_cast<Index>(static_cast<double>(begin) / target.NumberOfCells *
-      static_cast<double>(source.NumberOfCells));
-    lastMet = std::min(std::max<Index>(lastMet, 0), source.NumberOfCells - 1);
-  }
-  // A straight walk crosses about n^(1/d) cells of a mesh of n cells.
-  const Index maxWalk = 100 +
-    4 * static_cast<Index>(std::pow(
-          static_cast<double>(source.NumberOfCells), 1.0 / Sources::Dimension));
-  WalkStarts starts(source);
-  const Index startSamples = WalkStarts::Samples(source.NumberOfCells);
-  Index restarts = 0; // walks started again from a sample
-  bool askedAll = false; // a query among all source cells was made: no more walks
-  // Walks are for the few cells that start a front. Where there are many
-  // (a target of many disconnected pieces, e.g. cells that share no
-  // points), their steps stay within this budget, then the locator takes
-  // over: the search stays linear.
-  Index treated = 0;
-  auto walkBudget = [&] { return 16 * treated + 64 * maxWalk; };
-
-  // Adds the locator's candidates (boundary cells, or all cells) to the inner front.
-  auto ask = [&](Index tId, bool all) {
-    Intersector::Bounds(t, box);
-    if (all)
-    {
-      locator.FindCandidates(box, candidates);
-      ++stats.FullLocatorQueries;
-      askedAll = true;
-    }
-    else
-    {
-      locator.FindBoundaryCandidates(box, candidates);
-    }
-    ++stats.LocatorQueries;
-    for (Index c : candidates)
-    {
-      if (stamp[c] != static_cast<NeighborId>(tId))
-      {
-        stamp[c] = static_cast<NeighborId>(tId);
-        // Most candidates miss: a cheap screen first where the geometry
-        // has one (tetrahedra), counted as the test it settles.
-        if constexpr (HasApart<Intersector, Sources>::value)
-        {
-          const SourceCell* cell = sources.Get(c);
-          if (cell && Intersector::Apart(t, *cell))
-          {
-            ++stats.IntersectionTests;
-            continue;
-          }
-        }
-        inner.push_back(c);
-      }
-    }
-  };
-
-  auto treat = [&](Index tId, Index seed) {
-    if (!Intersector::Prepare(target, tId, t))
-    {
-      ++stats.DegenerateTargetCells; // zero measure: meets nothing
-      return;
-    }
-    Index faceSeed[Faces];
-    for (auto& f : faceSeed)
-    {
-      f = -1;
-    }
-    inner.clear();
-    ++treated;
-    // A walk toward the cell's center, from `from`: a source cell holding
-    // it, or -1 (also when walks are off: after a query among all cells, or
-    // beyond their budget).
-    bool walked = false;
-    auto walk = [&](Index from) -> Index {
-      walked = true;
-      if (askedAll || from < 0 || stats.WalkSteps >= walkBudget())
-      {
-        return -1;
-      }
-      double q[3] = { 0.0, 0.0, 0.0 };
-      Intersector::Center(t, q);
-      ++stats.SeedWalks;
-      const Index found = WalkToward<Sources>(source, sources, from, q, maxWalk, stats.WalkSteps);
-      // Stopped on the way (a hole of the source, a cell of zero measure): once more,
-      // from the sampled cell nearest the center. Each look-up scans the
-      // samples: allowed while they add up to at most 16 per treated cell
-      // and 64 scans, so that the search stays linear.
-      const Index scans = restarts + 1;
-      if (found >= 0 || stats.WalkSteps >= walkBudget() ||
-        scans * startSamples > 16 * treated + 64 * startSamples)
-      {
-        return found;
-      }
-      restarts = scans;
-      const Index near = starts.Nearest(q);
-      if (near < 0 || near == from)
-      {
-        return -1;
-      }
-      ++stats.WalkRestarts;
-      return WalkToward<Sources>(source, sources, near, q, maxWalk, stats.WalkSteps);
-    };
-    if (seed < 0)
-    {
-      seed = walk(lastMet);
-    }
-    // What the inner front started from: 0 the seed, 1 also the boundary
-    // cells nearby, 2 all source cells nearby.
-    int level = 0;
-    if (seed >= 0)
-    {
-      stamp[seed] = static_cast<NeighborId>(tId);
-      inner.push_back(seed);
-    }
-    else
-    {
-      level = askedAll ? 2 : 1;
-      ask(tId, level == 2);
-    }
-    bool blocked = false; // the inner front met the source boundary
-    // A surface's source facet near the cell was screened out (normals,
-    // reach): the facets meeting the cell may not be connected through
-    // each other, so only a query among all source cells nearby is sure.
-    bool screened = false;
-    bool met = false;
-    for (;;)
-    {
-      while (!inner.empty())
-      {
-        const Index sId = inner.back();
-        inner.pop_back();
-        const SourceCell* prepared = sources.Get(sId);
-        if (!prepared)
-        {
-          // Zero measure: meets nothing, but must not cut the walk off from
-          // the cells beyond it.
-          for (int k = 0; k < SourceFaces; ++k)
-          {
-            const Index n = source.Neighbor(sId, k);
-            if (n < 0)
-            {
-              blocked = true;
-            }
-            else if (stamp[n] != tId)
-            {
-              stamp[n] = tId;
-              inner.push_back(n);
-            }
-          }
-          continue;
-        }
-        const SourceCell& s = *prepared;
-        ++stats.IntersectionTests;
-        if (!Intersector::Intersect(t, s, piece))
-        {
-          screened = screened || Intersector::Screened(piece);
-          continue;
-        }
-        met = true;
-        lastMet = sId;
-        ++stats.TouchingPairs;
-        visit(t, s, piece);
-        // The faces' bits visited lowest first (a test per face depends on
-        // the data and was often mispredicted): the same order.
-        for (unsigned touched = piece.TouchedFaces & ((1u << Faces) - 1u); touched != 0; touched &= touched - 1)
-        {
-          const int k = __builtin_ctz(touched);
-          const Index next = Intersector::FaceSeed(piece, k, s, source);
-          if (next >= 0)
-          {
-            faceSeed[k] = next;
-          }
-        }
-        // Its boundary faces that support the source are trusted (no query)
-        // only when the piece is far above rounding: a sliver where the
-        // cells nearly only touch can have faces that its neighbours,
-        // tested on their own, do not confirm.
-        bool trusted = false;
-        if constexpr (MeetsInVolume<Intersector>::value)
-        {
-          trusted = Intersector::Substantial(t, s, piece);
-        }
-        // Only across the faces of s that the target reaches: any other
-        // source cell meeting the target is reached through cells meeting it.
-        for (unsigned reached = piece.SourceFaces & ((1u << SourceFaces) - 1u); reached != 0; reached &= reached - 1)
-        {
-          const int k = __builtin_ctz(reached);
-          const Index n = source.Neighbor(sId, s.Face[k]);
-          if (n < 0)
-          {
-            // A boundary face with the whole source on the cell's side
-            // bounds the cover without cutting it apart: no query for it.
-            blocked = blocked || !trusted || !locator.Supports(sId, s.Face[k]);
-          }
-          else if (stamp[n] != tId)
-          {
-            stamp[n] = tId;
-            inner.push_back(n);
-          }
-        }
-      }
-      // Done when nothing can be missing: all cells asked, or the boundary
-      // cells asked after something was met, or met without the boundary.
-      if (level == 2 || (met && !screened && (level == 1 || !blocked)))
-      {
-        break;
-      }
-      // A seed from the front that does not meet the cell (3D seeds rest on
-      // face contacts above a rounding threshold) is near it: a short walk
-      // from it finds a cell that does, without a query.
-      if (!met && level == 0 && !walked)
-      {
-        const Index found = walk(seed);
-        if (found >= 0 && stamp[found] != tId)
-        {
-          stamp[found] = tId;
-          inner.push_back(found);
-          continue;
-        }
-      }
-      // The seed failed, or the walk ran into the source boundary: ask for
-      // the boundary cells nearby; if still nothing meets the cell, for all.
-      level = (met || (level == 0 && !askedAll)) && !screened ? 1 : 2;
-      ask(tId, level == 2);
-    }
-    for (int k = 0; k < Faces; ++k)
-    {
-      if (faceSeed[k] < 0)
-      {
-        continue;
-      }
-      const Index n = target.Neighbor(tId, t.Face[k]);
-      if (n >= begin && n < end && !queued[n - begin])
-      {
-        queued[n - begin] = 1;
-        outer.push_back({ n, faceSeed[k] });
-        std::push_heap(outer.begin(), outer.end(), later);
-      }
-    }
-  };
-
-  Index scan = begin;
-  for (Index done = 0;; ++done)
-  {
-    // Progress, and a way out, every ProgressChunk target cells.
-    if (poll && done > 0 && done % ProgressChunk == 0 && !poll(done))
-    {
-      return;
-    }
-    if (outer.empty())
-    {
-      while (scan < end && queued[scan - begin])
-      {
-        ++scan;
-      }
-      if (scan == end)
-      {
-        break;
-      }
-      queued[scan - begin] = 1;
-      treat(scan, -1);
-      continue;
-    }
-    std::pop_heap(outer.begin(), outer.end(), later);
-    const Seed next = outer.back();
-    outer.pop_back();
-    treat(next.Target, next.Source);
-  }
+  AdvancingFront<Intersector, Visitor> front(
+    target, source, locator, visit, stats, begin, end, degenerateSources);
+  front.Run(poll);
 }
 
 /// Every target cell of [begin, end) against every source cell; counts as

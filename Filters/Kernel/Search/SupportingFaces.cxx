@@ -206,33 +206,23 @@ private:
   std::vector<Node> Nodes;
 };
 
-Index Root(std::vector<Index>& parent, Index i)
+/// A face without neighbour: face K of cell Cell.
+struct BoundaryFace
 {
-  while (parent[static_cast<size_t>(i)] != i)
-  {
-    Index& p = parent[static_cast<size_t>(i)];
-    p = parent[static_cast<size_t>(p)];
-    i = p;
-  }
-  return i;
-}
-} // namespace
+  Index Cell;
+  int K;
+};
 
-std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vector<Index>& cells)
+/// Corner j (0..2) of face f.
+inline Index FaceCorner(const MeshView& mesh, const BoundaryFace& f, int j)
 {
-  std::vector<unsigned char> flags;
-  if (mesh.CellDimension != 3 || mesh.SpaceDimension != 3 || !mesh.Neighbors)
-  {
-    return flags;
-  }
-  flags.assign(static_cast<size_t>(mesh.NumberOfCells), 0);
-  // The faces without neighbour: (cell, face).
-  struct Face
-  {
-    Index Cell;
-    int K;
-  };
-  std::vector<Face> faces;
+  return mesh.Cell(f.Cell)[(f.K + 1 + j) % 4];
+}
+
+/// The faces without neighbour of `cells`.
+std::vector<BoundaryFace> FacesWithoutNeighbour(const MeshView& mesh, const std::vector<Index>& cells)
+{
+  std::vector<BoundaryFace> faces;
   for (const Index c : cells)
   {
     for (int k = 0; k < 4; ++k)
@@ -243,77 +233,98 @@ std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vect
       }
     }
   }
-  auto corner = [&](const Face& f, int j) { return mesh.Cell(f.Cell)[(f.K + 1 + j) % 4]; };
-  auto opposite = [&](const Face& f) { return mesh.Cell(f.Cell)[f.K]; };
+  return faces;
+}
 
-  // Their corners, all finite (else no face supports the mesh): the cells
-  // of positive volume lie in the hull of those (the source's extreme
-  // points are on its boundary, which those faces cover).
-  std::vector<Index> ids;
+/// The questions asked of a boundary face: its points, the side of its
+/// plane a point is on, and whether the plane supports the mesh (every
+/// boundary corner in `tree` on its cell's side).
+class FaceTests
+{
+public:
+  FaceTests(const MeshView& mesh, const PointTree& tree)
+    : Mesh(mesh)
+    , Tree(tree)
   {
-    std::vector<char> used(static_cast<size_t>(mesh.NumberOfPoints), 0);
-    for (const Face& f : faces)
+  }
+  Index Corner(const BoundaryFace& f, int j) const { return FaceCorner(this->Mesh, f, j); }
+  /// The corner of f's cell off f.
+  Index Opposite(const BoundaryFace& f) const { return this->Mesh.Cell(f.Cell)[f.K]; }
+  /// Which side of face f's plane point p is on (0: on it).
+  int SideOf(const BoundaryFace& f, Index p) const
+  {
+    const MeshView& mesh = this->Mesh;
+    const double o = Orient3D(mesh.Point(this->Corner(f, 0)), mesh.Point(this->Corner(f, 1)),
+      mesh.Point(this->Corner(f, 2)), mesh.Point(p));
+    return o > 0.0 ? 1 : (o < 0.0 ? -1 : 0);
+  }
+  /// 1 supports, 0 does not, -1 undecided within `budget` (AllOnSide).
+  int Supports(const BoundaryFace& f, Index budget) const
+  {
+    const MeshView& mesh = this->Mesh;
+    const int inner = this->SideOf(f, this->Opposite(f));
+    return inner == 0 ? 0
+                      : this->Tree.AllOnSide(mesh.Point(this->Corner(f, 0)),
+                          mesh.Point(this->Corner(f, 1)), mesh.Point(this->Corner(f, 2)), inner,
+                          budget);
+  }
+
+private:
+  const MeshView& Mesh;
+  const PointTree& Tree;
+};
+
+/**
+ * The faces' corners, all finite (else false: no face supports the mesh):
+ * the cells of positive volume lie in the hull of those (the source's
+ * extreme points are on its boundary, which those faces cover).
+ */
+bool BoundaryCorners(
+  const MeshView& mesh, const std::vector<BoundaryFace>& faces, std::vector<Index>& ids)
+{
+  std::vector<char> used(static_cast<size_t>(mesh.NumberOfPoints), 0);
+  for (const BoundaryFace& f : faces)
+  {
+    for (int j = 0; j < 3; ++j)
     {
-      for (int j = 0; j < 3; ++j)
+      const Index p = FaceCorner(mesh, f, j);
+      if (p < 0 || p >= mesh.NumberOfPoints)
       {
-        const Index p = corner(f, j);
-        if (p < 0 || p >= mesh.NumberOfPoints)
+        return false;
+      }
+      if (!used[static_cast<size_t>(p)])
+      {
+        used[static_cast<size_t>(p)] = 1;
+        const double* x = mesh.Point(p);
+        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
         {
-          return flags;
+          return false;
         }
-        if (!used[static_cast<size_t>(p)])
-        {
-          used[static_cast<size_t>(p)] = 1;
-          const double* x = mesh.Point(p);
-          if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
-          {
-            return flags;
-          }
-          ids.push_back(p);
-        }
+        ids.push_back(p);
       }
     }
   }
-  const PointTree tree(mesh.Points, std::move(ids));
-  // Which side of face f's plane point p is on (0: on it).
-  auto sideOf = [&](const Face& f, Index p) {
-    const double o = Orient3D(mesh.Point(corner(f, 0)), mesh.Point(corner(f, 1)),
-      mesh.Point(corner(f, 2)), mesh.Point(p));
-    return o > 0.0 ? 1 : (o < 0.0 ? -1 : 0);
-  };
-  // 1 supports, 0 does not, -1 undecided within `budget` (AllOnSide).
-  auto test = [&](const Face& f, Index budget) {
-    const int inner = sideOf(f, opposite(f));
-    return inner == 0 ? 0
-                      : tree.AllOnSide(mesh.Point(corner(f, 0)), mesh.Point(corner(f, 1)),
-                          mesh.Point(corner(f, 2)), inner, budget);
-  };
-  auto mark = [&](const Face& f) {
-    flags[static_cast<size_t>(f.Cell)] |= static_cast<unsigned char>(1u << f.K);
-  };
+  return true;
+}
 
-  // Each face on its own first (on a curved boundary a few dozen visits
-  // tell); those with many points on or near their plane then together
-  // with the faces of the same plane.
-  std::vector<Face> crowded;
-  for (const Face& f : faces)
+Index Root(std::vector<Index>& parent, Index i)
+{
+  while (parent[static_cast<size_t>(i)] != i)
   {
-    const int supports = test(f, 256);
-    if (supports == 1)
-    {
-      mark(f);
-    }
-    else if (supports < 0)
-    {
-      crowded.push_back(f);
-    }
+    Index& p = parent[static_cast<size_t>(i)];
+    p = parent[static_cast<size_t>(p)];
+    i = p;
   }
-  if (crowded.empty())
-  {
-    return flags;
-  }
-  // Planes: faces that share an edge, lie exactly in one plane and have
-  // their cells on one side of it are one (union-find).
+  return i;
+}
+
+/**
+ * Planes: faces that share an edge, lie exactly in one plane and have
+ * their cells on one side of it are one (union-find): per face of
+ * `crowded`, a link toward its plane's root (Root).
+ */
+std::vector<Index> CoplanarFaces(const FaceTests& tests, const std::vector<BoundaryFace>& crowded)
+{
   struct Edge
   {
     Index Low;
@@ -331,8 +342,8 @@ std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vect
   {
     for (int j = 0; j < 3; ++j)
     {
-      const Index p = corner(crowded[f], j);
-      const Index q = corner(crowded[f], (j + 1) % 3);
+      const Index p = tests.Corner(crowded[f], j);
+      const Index q = tests.Corner(crowded[f], (j + 1) % 3);
       edges.push_back({ std::min(p, q), std::max(p, q), static_cast<Index>(f) });
     }
   }
@@ -350,20 +361,66 @@ std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vect
     {
       continue;
     }
-    const Face& fa = crowded[static_cast<size_t>(edges[e].Face)];
-    const Face& fb = crowded[static_cast<size_t>(edges[e + 1].Face)];
+    const BoundaryFace& fa = crowded[static_cast<size_t>(edges[e].Face)];
+    const BoundaryFace& fb = crowded[static_cast<size_t>(edges[e + 1].Face)];
     Index apex = -1; // fb's corner off the edge
     for (int j = 0; j < 3; ++j)
     {
-      const Index p = corner(fb, j);
+      const Index p = tests.Corner(fb, j);
       apex = (p != edges[e].Low && p != edges[e].High) ? p : apex;
     }
-    const int inner = sideOf(fa, opposite(fa));
-    if (apex >= 0 && inner != 0 && sideOf(fa, apex) == 0 && sideOf(fa, opposite(fb)) == inner)
+    const int inner = tests.SideOf(fa, tests.Opposite(fa));
+    if (apex >= 0 && inner != 0 && tests.SideOf(fa, apex) == 0 &&
+      tests.SideOf(fa, tests.Opposite(fb)) == inner)
     {
       plane[static_cast<size_t>(Root(plane, edges[e].Face))] = Root(plane, edges[e + 1].Face);
     }
   }
+  return plane;
+}
+} // namespace
+
+std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vector<Index>& cells)
+{
+  std::vector<unsigned char> flags;
+  if (mesh.CellDimension != 3 || mesh.SpaceDimension != 3 || !mesh.Neighbors)
+  {
+    return flags;
+  }
+  flags.assign(static_cast<size_t>(mesh.NumberOfCells), 0);
+  const std::vector<BoundaryFace> faces = FacesWithoutNeighbour(mesh, cells);
+  std::vector<Index> ids;
+  if (!BoundaryCorners(mesh, faces, ids))
+  {
+    return flags;
+  }
+  const PointTree tree(mesh.Points, std::move(ids));
+  const FaceTests tests(mesh, tree);
+  auto mark = [&](const BoundaryFace& f) {
+    flags[static_cast<size_t>(f.Cell)] |= static_cast<unsigned char>(1u << f.K);
+  };
+
+  // Each face on its own first (on a curved boundary a few dozen visits
+  // tell); those with many points on or near their plane then together
+  // with the faces of the same plane.
+  std::vector<BoundaryFace> crowded;
+  for (const BoundaryFace& f : faces)
+  {
+    const int supports = tests.Supports(f, 256);
+    if (supports == 1)
+    {
+      mark(f);
+    }
+    else if (supports < 0)
+    {
+      crowded.push_back(f);
+    }
+  }
+  if (crowded.empty())
+  {
+    return flags;
+  }
+  std::vector<Index> plane = CoplanarFaces(tests, crowded);
   std::vector<Index> facesOnPlane(crowded.size(), 0);
   for (size_t f = 0; f < crowded.size(); ++f)
   {
@@ -375,7 +432,7 @@ std::vector<unsigned char> SupportingFaces(const MeshView& mesh, const std::vect
     const size_t root = static_cast<size_t>(Root(plane, static_cast<Index>(f)));
     if (supports[root] < 0)
     {
-      supports[root] = test(crowded[root], 512 + 32 * facesOnPlane[root]) == 1;
+      supports[root] = tests.Supports(crowded[root], 512 + 32 * facesOnPlane[root]) == 1;
     }
     if (supports[root] == 1)
     {

@@ -101,6 +101,386 @@ struct LocalValues
     }
   }
 };
+
+/**
+ * One run of BlockCG::Iterate's iterations on `c` columns (FixedC of them
+ * known at compile time, 0: at run time only): the vectors and per-column
+ * scalars of Jacobi-preconditioned CG, each step one or two passes over the
+ * row ranges (in the runner's tasks), each global sum through the hooks.
+ */
+template <int FixedC>
+class CGIterations
+{
+public:
+  CGIterations(const CsrMatrix& a, const TaskRunner& runner, const double* givenRowSums,
+    const double* b, double* x, int c, const SolveOptions& options, std::vector<char>& converged,
+    const SolverHooks& hooks)
+    : A(a)
+    , Runner(runner)
+    , B(b)
+    , X(x)
+    , C(c)
+    , N(a.Rows)
+    , Options(options)
+    , Converged(converged)
+    , Hooks(hooks)
+    , Counted(hooks.Counted)
+    // Written whole by the row ranges' tasks below before they are read (not
+    // zeroed first: each task is the first to touch its pages).
+    , R(static_cast<size_t>(a.Rows) * c)
+    , P(static_cast<size_t>(a.Rows) * c)
+    , Q(static_cast<size_t>(a.Rows) * c)
+    , InverseDiagonal(static_cast<size_t>(a.Rows))
+    // The row sums for the lumped start: given (a serial system's), or summed
+    // here (a distributed one's are completed across the parts in place).
+    , Given(givenRowSums && !hooks.Exchange)
+    , RowSums(options.StartFromX || this->Given ? 0 : static_cast<size_t>(a.Rows))
+    , SumOf(this->Given ? givenRowSums : this->RowSums.data())
+  {
+    converged.assign(static_cast<size_t>(c), 0);
+  }
+
+  /// The start: the preconditioner, the lumped (or given) X, its residuals
+  /// and first directions, and the columns converged already.
+  void Start()
+  {
+    this->ReadDiagonal();
+    this->StartX();
+    this->FirstResiduals();
+  }
+
+  /// The columns not converged yet.
+  int Open() const { return this->Opened; }
+
+  /// How far the solve has come (SolveOptions::Progress): for the column
+  /// furthest from its goal, log(r0 / r) / log(r0 / goal).
+  double Progress() const
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    double done = 1.0;
+    for (int k = 0; k < c; ++k)
+    {
+      // log(r0 / r) / log(r0 / goal), the squares' ratios alike.
+      if (!this->Converged[k] && this->Initial[k] > this->Goal[k] && this->Residuals.Values[k] > 0.0)
+      {
+        const double f = std::log(this->Initial[k] / this->Residuals.Values[k]) /
+          std::log(this->Initial[k] / this->Goal[k]);
+        done = std::min(done, std::max(0.0, f));
+      }
+    }
+    return std::min(1.0, done);
+  }
+
+  /// One iteration up to the new residuals: the step lengths along the
+  /// directions, X and r moved, the columns that reach their goal marked.
+  /// True when none is left open (then no new directions are needed).
+  bool Step()
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    Sums pq = this->DirectionProducts();
+    this->Reduce(pq);
+    for (int k = 0; k < c; ++k)
+    {
+      this->Alpha[k] = this->Converged[k] ? 0.0 : this->Rz[k] / pq.Values[k];
+    }
+    this->MoveAlong();
+    this->Reduce(this->Residuals);
+    for (int k = 0; k < c; ++k)
+    {
+      if (this->Converged[k])
+      {
+        continue; // its direction is zeroed below
+      }
+      if (this->Residuals.Values[k] <= this->Goal[k])
+      {
+        this->Converged[k] = 1;
+        --this->Opened;
+        continue;
+      }
+      this->Beta[k] = this->Residuals.Values[c + k] / this->Rz[k];
+      this->Rz[k] = this->Residuals.Values[c + k];
+    }
+    return this->Opened == 0;
+  }
+
+  /// The next directions p = z + beta p (zero for converged columns).
+  void NextDirections()
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    const double* inverseDiagonal = this->InverseDiagonal.data();
+    const double* r = this->R.data();
+    double* p = this->P.data();
+    this->Runner.ForRanges(this->N, [&](Index begin, Index end) {
+      const LocalValues<FixedC, double> factor(this->Beta);
+      const LocalValues<FixedC, char> done(this->Converged);
+      for (Index i = begin; i < end; ++i)
+      {
+        for (int k = 0; k < c; ++k)
+        {
+          const Index e = i * c + k;
+          const double z = inverseDiagonal[i] * r[e];
+          p[e] = done[k] ? 0.0 : z + factor[k] * p[e];
+        }
+      }
+      return 0.0;
+    });
+  }
+
+private:
+  void Reduce(Sums& s) const
+  {
+    if (this->Hooks.Reduce)
+    {
+      this->Hooks.Reduce(s.Values.data(), static_cast<int>(s.Values.size()));
+    }
+  }
+  void Exchange(double* v, int width) const
+  {
+    if (this->Hooks.Exchange)
+    {
+      this->Hooks.Exchange(v, width);
+    }
+  }
+
+  /// The diagonal (inverted in StartX) and, for the lumped start, the row
+  /// sums, completed across the parts.
+  void ReadDiagonal()
+  {
+    const bool sum = !this->Options.StartFromX && !this->Given;
+    double* inverseDiagonal = this->InverseDiagonal.data();
+    double* rowSums = this->RowSums.data();
+    this->Runner.ForRanges(this->N, [&](Index begin, Index end) {
+      for (Index i = begin; i < end; ++i)
+      {
+        // (A row of a distributed system may be empty on this part: 0, the
+        // other parts complete it.)
+        inverseDiagonal[i] = this->A.Entry(i, i);
+        if (sum)
+        {
+          double rowSum = 0.0;
+          for (Index k = this->A.RowStart[i]; k < this->A.RowStart[i + 1]; ++k)
+          {
+            rowSum += this->A.Values[k];
+          }
+          rowSums[i] = rowSum;
+        }
+      }
+      return 0.0;
+    });
+    this->Exchange(this->InverseDiagonal.data(), 1);
+    if (sum)
+    {
+      this->Exchange(this->RowSums.data(), 1);
+    }
+  }
+
+  /// Started from the lumped-mass solution x_i = b_i / sum_k A_ik (already
+  /// second-order accurate for smooth fields: fewer iterations), or from X;
+  /// each column's goal from |b|^2.
+  void StartX()
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    const double* B = this->B;
+    double* X = this->X;
+    const char* counted = this->Counted;
+    const double* sumOf = this->SumOf;
+    const bool startFromX = this->Options.StartFromX;
+    double* inverseDiagonal = this->InverseDiagonal.data();
+    this->Bb = this->Runner.ForRanges(this->N, [&](Index begin, Index end) {
+      Sums part(c);
+      LocalSums<FixedC, 1> sum(part);
+      for (Index i = begin; i < end; ++i)
+      {
+        inverseDiagonal[i] = 1.0 / inverseDiagonal[i];
+        for (int k = 0; k < c; ++k)
+        {
+          const double b = B[i * c + k];
+          if (!startFromX)
+          {
+            X[i * c + k] = sumOf[i] > 0.0 ? b / sumOf[i] : 0.0;
+          }
+          if (!counted || counted[i])
+          {
+            sum[k] += b * b;
+          }
+        }
+      }
+      return sum.Done();
+    });
+    this->Reduce(this->Bb);
+    UninitializedLargeVector<double>().swap(this->RowSums); // only the start needed them
+    this->Goal.resize(static_cast<size_t>(c));
+    for (int k = 0; k < c; ++k)
+    {
+      this->Goal[k] = this->Options.Tolerance * this->Options.Tolerance * this->Bb.Values[k];
+    }
+  }
+
+  /// Residuals, and the first directions; per column |r|^2 and r.z, and
+  /// which columns are converged at the start.
+  void FirstResiduals()
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    const Index n = this->N;
+    const double* B = this->B;
+    double* X = this->X;
+    const char* counted = this->Counted;
+    double* r = this->R.data();
+    double* p = this->P.data();
+    double* q = this->Q.data();
+    const double* inverseDiagonal = this->InverseDiagonal.data();
+    this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      this->A.template Multiply<FixedC>(X, q, c, begin, end);
+      return 0.0;
+    });
+    this->Exchange(q, c);
+    this->Residuals = this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      Sums part(2 * c);
+      LocalSums<FixedC, 2> sum(part);
+      for (Index i = begin; i < end; ++i)
+      {
+        const bool count = !counted || counted[i];
+        for (int k = 0; k < c; ++k)
+        {
+          const Index e = i * c + k;
+          r[e] = B[e] - q[e];
+          const double z = inverseDiagonal[i] * r[e];
+          p[e] = z;
+          if (count)
+          {
+            sum[k] += r[e] * r[e];
+            sum[c + k] += r[e] * z;
+          }
+        }
+      }
+      return sum.Done();
+    });
+    this->Reduce(this->Residuals);
+    this->Rz.resize(static_cast<size_t>(c));
+    this->Alpha.resize(static_cast<size_t>(c));
+    this->Beta.resize(static_cast<size_t>(c));
+    for (int k = 0; k < c; ++k)
+    {
+      // A zero field is converged at its start, at zero (a restart may have
+      // started it elsewhere).
+      if (this->Bb.Values[k] == 0.0)
+      {
+        for (Index i = 0; i < n; ++i)
+        {
+          X[i * c + k] = 0.0;
+        }
+      }
+      this->Converged[k] = this->Bb.Values[k] == 0.0 || this->Residuals.Values[k] <= this->Goal[k];
+      this->Opened += !this->Converged[k];
+      this->Rz[k] = this->Residuals.Values[c + k];
+    }
+    // Each column's squared residual at the start, for the progress.
+    this->Initial.assign(this->Residuals.Values.begin(), this->Residuals.Values.begin() + c);
+  }
+
+  /// q = A p and p.q: in one pass over each range (q still in cache)
+  /// unless shared rows must be completed in between.
+  Sums DirectionProducts()
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    const Index n = this->N;
+    const char* counted = this->Counted;
+    const double* p = this->P.data();
+    double* q = this->Q.data();
+    auto dot = [&](Index begin, Index end) {
+      Sums part(c);
+      LocalSums<FixedC, 1> sum(part);
+      for (Index i = begin; i < end; ++i)
+      {
+        if (counted && !counted[i])
+        {
+          continue;
+        }
+        for (int k = 0; k < c; ++k)
+        {
+          sum[k] += p[i * c + k] * q[i * c + k];
+        }
+      }
+      return sum.Done();
+    };
+    if (this->Hooks.Exchange)
+    {
+      this->Runner.ForRanges(n, [&](Index begin, Index end) {
+        this->A.template Multiply<FixedC>(p, q, c, begin, end);
+        return 0.0;
+      });
+      this->Exchange(q, c);
+      return this->Runner.ForRanges(n, dot);
+    }
+    return this->Runner.ForRanges(n, [&](Index begin, Index end) {
+      this->A.template Multiply<FixedC>(p, q, c, begin, end);
+      return dot(begin, end);
+    });
+  }
+
+  /// x, r and z in one pass, with |r|^2 and r.z (into Residuals).
+  void MoveAlong()
+  {
+    const int c = FixedC > 0 ? FixedC : this->C;
+    double* X = this->X;
+    const char* counted = this->Counted;
+    double* r = this->R.data();
+    const double* p = this->P.data();
+    const double* q = this->Q.data();
+    const double* inverseDiagonal = this->InverseDiagonal.data();
+    this->Residuals = this->Runner.ForRanges(this->N, [&](Index begin, Index end) {
+      Sums part(2 * c);
+      LocalSums<FixedC, 2> sum(part);
+      const LocalValues<FixedC, double> step(this->Alpha);
+      for (Index i = begin; i < end; ++i)
+      {
+        const bool count = !counted || counted[i];
+        for (int k = 0; k < c; ++k)
+        {
+          const Index e = i * c + k;
+          X[e] += step[k] * p[e];
+          r[e] -= step[k] * q[e];
+          if (count)
+          {
+            sum[k] += r[e] * r[e];
+            sum[c + k] += r[e] * (inverseDiagonal[i] * r[e]);
+          }
+        }
+      }
+      return sum.Done();
+    });
+  }
+
+  const CsrMatrix& A;
+  const TaskRunner& Runner;
+  const double* B;
+  double* X;
+  // (Each step reads `FixedC > 0 ? FixedC : this->C`: a constant expression
+  // where FixedC is given, which the passes' loops over columns unroll.)
+  const int C;
+  const Index N;
+  const SolveOptions& Options;
+  std::vector<char>& Converged;
+  const SolverHooks& Hooks;
+  const char* Counted; ///< rows this part counts in dot products (null: all)
+  // The preconditioned residual z = D^-1 r is never stored: it is formed
+  // where it is used (one vector less to hold and to stream).
+  UninitializedLargeVector<double> R;
+  UninitializedLargeVector<double> P;
+  UninitializedLargeVector<double> Q;
+  UninitializedLargeVector<double> InverseDiagonal;
+  const bool Given; ///< the row sums are the solver's own (BlockCG's rowSums)
+  UninitializedLargeVector<double> RowSums;
+  const double* SumOf;
+  Sums Bb;        ///< per column |b|^2
+  Sums Residuals; ///< per column |r|^2, then r.z
+  std::vector<double> Goal;
+  std::vector<double> Rz;
+  std::vector<double> Alpha;
+  std::vector<double> Beta;
+  std::vector<double> Initial; ///< each column's |r|^2 at the start
+  int Opened = 0;
+};
 } // namespace
 
 struct BlockCG::Direct
@@ -141,256 +521,24 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   std::vector<char>& converged, const SolverHooks& hooks) const
 {
   const int c = FixedC > 0 ? FixedC : dynamicC;
-  const Index n = this->A.Rows;
-  const size_t size = static_cast<size_t>(n) * c;
-  const char* counted = hooks.Counted;
-  auto reduce = [&hooks](Sums& s) {
-    if (hooks.Reduce)
-    {
-      hooks.Reduce(s.Values.data(), static_cast<int>(s.Values.size()));
-    }
-  };
-  auto exchange = [&hooks](double* v, int width) {
-    if (hooks.Exchange)
-    {
-      hooks.Exchange(v, width);
-    }
-  };
-  // The preconditioned residual z = D^-1 r is never stored: it is formed
-  // where it is used (one vector less to hold and to stream).
-  // Written whole by the row ranges' tasks below before they are read (not
-  // zeroed first: each task is the first to touch its pages).
-  UninitializedLargeVector<double> r(size);
-  UninitializedLargeVector<double> p(size);
-  UninitializedLargeVector<double> q(size);
-  UninitializedLargeVector<double> inverseDiagonal(static_cast<size_t>(n));
-  // The row sums for the lumped start: given (a serial system's), or summed
-  // here (a distributed one's are completed across the parts in place).
-  const bool given = this->RowSums && !hooks.Exchange;
-  UninitializedLargeVector<double> rowSums(options.StartFromX || given ? 0 : static_cast<size_t>(n));
-  const double* sumOf = given ? this->RowSums : rowSums.data();
-  converged.assign(static_cast<size_t>(c), 0);
-  this->Runner.ForRanges(n, [&](Index begin, Index end) {
-    for (Index i = begin; i < end; ++i)
-    {
-      // (A row of a distributed system may be empty on this part: 0, the
-      // other parts complete it.)
-      inverseDiagonal[i] = this->A.Entry(i, i);
-      if (!options.StartFromX && !given)
-      {
-        double rowSum = 0.0;
-        for (Index k = this->A.RowStart[i]; k < this->A.RowStart[i + 1]; ++k)
-        {
-          rowSum += this->A.Values[k];
-        }
-        rowSums[i] = rowSum;
-      }
-    }
-    return 0.0;
-  });
-  exchange(inverseDiagonal.data(), 1);
-  if (!options.StartFromX && !given)
-  {
-    exchange(rowSums.data(), 1);
-  }
-  // Started from the lumped-mass solution x_i = b_i / sum_k A_ik (already
-  // second-order accurate for smooth fields: fewer iterations), or from X.
-  Sums bb = this->Runner.ForRanges(n, [&](Index begin, Index end) {
-    Sums part(c);
-    LocalSums<FixedC, 1> sum(part);
-    for (Index i = begin; i < end; ++i)
-    {
-      inverseDiagonal[i] = 1.0 / inverseDiagonal[i];
-      for (int k = 0; k < c; ++k)
-      {
-        const double b = B[i * c + k];
-        if (!options.StartFromX)
-        {
-          X[i * c + k] = sumOf[i] > 0.0 ? b / sumOf[i] : 0.0;
-        }
-        if (!counted || counted[i])
-        {
-          sum[k] += b * b;
-        }
-      }
-    }
-    return sum.Done();
-  });
-  reduce(bb);
-  UninitializedLargeVector<double>().swap(rowSums); // only the start needed them
-  std::vector<double> goal(static_cast<size_t>(c));
-  for (int k = 0; k < c; ++k)
-  {
-    goal[k] = options.Tolerance * options.Tolerance * bb.Values[k];
-  }
-  this->Runner.ForRanges(n, [&](Index begin, Index end) {
-    this->A.Multiply<FixedC>(X, q.data(), c, begin, end);
-    return 0.0;
-  });
-  exchange(q.data(), c);
-  // Residuals, and the first direction; per column |r|^2 and r.z.
-  Sums sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
-    Sums part(2 * c);
-    LocalSums<FixedC, 2> sum(part);
-    for (Index i = begin; i < end; ++i)
-    {
-      const bool count = !counted || counted[i];
-      for (int k = 0; k < c; ++k)
-      {
-        const Index e = i * c + k;
-        r[e] = B[e] - q[e];
-        const double z = inverseDiagonal[i] * r[e];
-        p[e] = z;
-        if (count)
-        {
-          sum[k] += r[e] * r[e];
-          sum[c + k] += r[e] * z;
-        }
-      }
-    }
-    return sum.Done();
-  });
-  reduce(sums);
-  std::vector<double> rz(static_cast<size_t>(c));
-  std::vector<double> alpha(static_cast<size_t>(c));
-  std::vector<double> beta(static_cast<size_t>(c));
-  int open = 0;
-  for (int k = 0; k < c; ++k)
-  {
-    // A zero field is converged at its start, at zero (a restart may have
-    // started it elsewhere).
-    if (bb.Values[k] == 0.0)
-    {
-      for (Index i = 0; i < n; ++i)
-      {
-        X[i * c + k] = 0.0;
-      }
-    }
-    converged[k] = bb.Values[k] == 0.0 || sums.Values[k] <= goal[k];
-    open += !converged[k];
-    rz[k] = sums.Values[c + k];
-  }
-  // Each column's squared residual at the start, for the progress.
-  const std::vector<double> start(sums.Values.begin(), sums.Values.begin() + c);
+  CGIterations<FixedC> cg(
+    this->A, this->Runner, this->RowSums, B, X, c, options, converged, hooks);
+  cg.Start();
   this->Stopped = false;
   int iteration = 0;
-  for (; iteration < options.MaxIterations && open > 0; ++iteration)
+  for (; iteration < options.MaxIterations && cg.Open() > 0; ++iteration)
   {
-    if (options.Progress && iteration > 0)
+    if (options.Progress && iteration > 0 && !options.Progress(cg.Progress()))
     {
-      double done = 1.0;
-      for (int k = 0; k < c; ++k)
-      {
-        // log(r0 / r) / log(r0 / goal), the squares' ratios alike.
-        if (!converged[k] && start[k] > goal[k] && sums.Values[k] > 0.0)
-        {
-          const double f = std::log(start[k] / sums.Values[k]) / std::log(start[k] / goal[k]);
-          done = std::min(done, std::max(0.0, f));
-        }
-      }
-      if (!options.Progress(std::min(1.0, done)))
-      {
-        this->Stopped = true;
-        break;
-      }
+      this->Stopped = true;
+      break;
     }
-    // q = A p and p.q: in one pass over each range (q still in cache)
-    // unless shared rows must be completed in between.
-    auto dot = [&](Index begin, Index end) {
-      Sums part(c);
-      LocalSums<FixedC, 1> sum(part);
-      for (Index i = begin; i < end; ++i)
-      {
-        if (counted && !counted[i])
-        {
-          continue;
-        }
-        for (int k = 0; k < c; ++k)
-        {
-          sum[k] += p[i * c + k] * q[i * c + k];
-        }
-      }
-      return sum.Done();
-    };
-    Sums pq;
-    if (hooks.Exchange)
-    {
-      this->Runner.ForRanges(n, [&](Index begin, Index end) {
-        this->A.Multiply<FixedC>(p.data(), q.data(), c, begin, end);
-        return 0.0;
-      });
-      exchange(q.data(), c);
-      pq = this->Runner.ForRanges(n, dot);
-    }
-    else
-    {
-      pq = this->Runner.ForRanges(n, [&](Index begin, Index end) {
-        this->A.Multiply<FixedC>(p.data(), q.data(), c, begin, end);
-        return dot(begin, end);
-      });
-    }
-    reduce(pq);
-    for (int k = 0; k < c; ++k)
-    {
-      alpha[k] = converged[k] ? 0.0 : rz[k] / pq.Values[k];
-    }
-    // x, r and z in one pass, with |r|^2 and r.z.
-    sums = this->Runner.ForRanges(n, [&](Index begin, Index end) {
-      Sums part(2 * c);
-      LocalSums<FixedC, 2> sum(part);
-      const LocalValues<FixedC, double> step(alpha);
-      for (Index i = begin; i < end; ++i)
-      {
-        const bool count = !counted || counted[i];
-        for (int k = 0; k < c; ++k)
-        {
-          const Index e = i * c + k;
-          X[e] += step[k] * p[e];
-          r[e] -= step[k] * q[e];
-          if (count)
-          {
-            sum[k] += r[e] * r[e];
-            sum[c + k] += r[e] * (inverseDiagonal[i] * r[e]);
-          }
-        }
-      }
-      return sum.Done();
-    });
-    reduce(sums);
-    for (int k = 0; k < c; ++k)
-    {
-      if (converged[k])
-      {
-        continue; // its direction is zeroed below
-      }
-      if (sums.Values[k] <= goal[k])
-      {
-        converged[k] = 1;
-        --open;
-        continue;
-      }
-      beta[k] = sums.Values[c + k] / rz[k];
-      rz[k] = sums.Values[c + k];
-    }
-    if (open == 0)
+    if (cg.Step())
     {
       ++iteration;
       break;
     }
-    this->Runner.ForRanges(n, [&](Index begin, Index end) {
-      const LocalValues<FixedC, double> factor(beta);
-      const LocalValues<FixedC, char> done(converged);
-      for (Index i = begin; i < end; ++i)
-      {
-        for (int k = 0; k < c; ++k)
-        {
-          const Index e = i * c + k;
-          const double z = inverseDiagonal[i] * r[e];
-          p[e] = done[k] ? 0.0 : z + factor[k] * p[e];
-        }
-      }
-      return 0.0;
-    });
+    cg.NextDirections();
   }
   return iteration;
 }
