@@ -1,4 +1,4 @@
-"""Every code block a user would copy from README.md, docs/user-guide.md and docs/mpi.md runs.
+"""Every code block a user would copy from README.md, docs/user-guide.md, docs/mpi.md and docs/operator.md runs.
 
     python3 TestDocSnippets.py --source-dir SRC --build-dir BUILD --python PY
         --pvpython PVPYTHON --pvbatch PVBATCH --mpiexec MPIEXEC --plugin SO
@@ -31,7 +31,7 @@ import shutil
 import subprocess
 import sys
 
-PAGES = ["README.md", "docs/user-guide.md", "docs/mpi.md"]
+PAGES = ["README.md", "docs/user-guide.md", "docs/mpi.md", "docs/operator.md"]
 NOT_RUN = "<!-- not-run -->"
 
 
