@@ -133,8 +133,9 @@ public:
    * each value a weighted mean of neighbours already reached: no new
    * extrema) or NEAREST_EXTRAPOLATION (the nearest valid value along the
    * graph). vtkExtrapolatedPointMask and vtkExtrapolatedCellMask mark
-   * them; the valid values are then kept within the Source field's range,
-   * integrals unchanged. GetMatrix EXTRAPOLATION gives the extension.
+   * them; the valid values are those without extrapolation, bit for bit
+   * (PreserveBounds is the switch that bounds them). GetMatrix
+   * EXTRAPOLATION gives the extension.
    */
   enum Extrapolations { NO_EXTRAPOLATION = 0, SMOOTH_EXTRAPOLATION = 1, NEAREST_EXTRAPOLATION = 2 };
   vtkSetClampMacro(Extrapolation, int, NO_EXTRAPOLATION, NEAREST_EXTRAPOLATION);

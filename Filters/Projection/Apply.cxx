@@ -10,7 +10,6 @@
 #include "Adapter/SimplexMesh.h"
 
 #include <algorithm>
-#include <limits>
 #include <vector>
 
 namespace mpvtk
@@ -28,47 +27,6 @@ Verdict ApplyFailed(const mp::ApplyResult& applied, Transfer t)
     " failed: the mass matrix of the covered target part could not be solved.");
 }
 
-/**
- * With Extrapolation, the range each column of `g` is kept within
- * (ApplyOptions::RangeLow/High): the finite range of its Source array over
- * the processes, so that every output value, valid or extended, lies in
- * it. Not for extensive cell data (its output is per cell, not a value of
- * the field's) nor with PreserveBounds (whose local bounds lie within).
- */
-void KeepWithinSourceRange(LeafContext& ctx, const GatheredFields& g, bool cells, mp::ApplyOptions& apply)
-{
-  const bool wanted = ctx.Options.Extrapolation != mp::ExtrapolationMode::None && !ctx.Options.PreserveBounds &&
-    !(cells && ctx.Options.Extensive) && g.Components > 0;
-  if (!wanted)
-  {
-    return;
-  }
-  // Lows and negated highs, smallest over the processes.
-  std::vector<double> extremes(2 * static_cast<size_t>(g.Components), std::numeric_limits<double>::infinity());
-  for (size_t a = 0; a < g.Arrays.size(); ++a)
-  {
-    for (int k = 0; k < g.Arrays[a]->GetNumberOfComponents(); ++k)
-    {
-      double range[2];
-      g.Arrays[a]->GetFiniteRange(range, k);
-      const size_t column = static_cast<size_t>(g.Offsets[a] + k);
-      if (range[0] <= range[1])
-      {
-        extremes[2 * column] = range[0];
-        extremes[2 * column + 1] = -range[1];
-      }
-    }
-  }
-  ctx.Processes.Minimum(extremes.data(), static_cast<int>(extremes.size()));
-  apply.RangeLow.resize(static_cast<size_t>(g.Components));
-  apply.RangeHigh.resize(static_cast<size_t>(g.Components));
-  for (size_t column = 0; column < apply.RangeLow.size(); ++column)
-  {
-    apply.RangeLow[column] = extremes[2 * column]; // (no finite value: +inf > -inf, no range)
-    apply.RangeHigh[column] = -extremes[2 * column + 1];
-  }
-}
-
 /// The NaN groups' arrays: their own operators, their columns of `values`, their systems.
 Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
   const mp::ApplyOptions& apply, const mp::SolverHooks& hook, mp::LargeVector<double>& values,
@@ -83,20 +41,6 @@ Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
     mp::LargeVector<double> own(rows * group.Components);
     mp::ApplyOptions groupApply = apply;
     groupApply.Solve.StartFromX = false;
-    if (!apply.RangeLow.empty())
-    {
-      // The group's columns are its arrays' columns of g, packed.
-      groupApply.RangeLow.clear();
-      groupApply.RangeHigh.clear();
-      for (int a : group.Arrays)
-      {
-        for (int c = 0; c < g.Arrays[a]->GetNumberOfComponents(); ++c)
-        {
-          groupApply.RangeLow.push_back(apply.RangeLow[static_cast<size_t>(g.Offsets[a] + c)]);
-          groupApply.RangeHigh.push_back(apply.RangeHigh[static_cast<size_t>(g.Offsets[a] + c)]);
-        }
-      }
-    }
     const mp::ApplyResult applied =
       op.Apply(group.Functions().data(), group.Components, own.data(), fill, groupApply, hook);
     if (!applied)
@@ -134,7 +78,6 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
   apply.Bounded = ctx.Options.PreserveBounds;
-  KeepWithinSourceRange(ctx, g, SourceAssociation(t) == CellArrays, apply);
   apply.Solve.MaxIterations = ctx.Options.MaximumIterations;
   apply.FringeHooks =
     halo.Hooks.Exchange && TargetSpaceOf(t) == mp::SpaceType::P1 ? &halo.Hooks : nullptr;

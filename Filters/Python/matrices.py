@@ -21,9 +21,7 @@ solves the projection on the aggregated functions: with P = fringe_extension(f),
     u_t = P[:, free] @ spsolve(A[free][:, free], b[free])  # the filter's result on valid rows
 
 With Extrapolation, E = extrapolation_matrix(f) extends the valid values:
-the output is E @ u_t on E's nonempty rows (the fill value on the others),
-where the Source field's range is not reached (the filter also keeps the
-valid values within it, which no matrix holds).
+the output is E @ u_t on E's nonempty rows (the fill value on the others).
 """
 import numpy as np
 

@@ -141,43 +141,6 @@ void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& valid,
     ClipAndAssuredSum(targetValues, components, k, weights, valid, low, high, total, hooks);
   }
 }
-/**
- * ApplyOptions::RangeLow/RangeHigh after a consistent solve: the same
- * clip and assured sum as ClipToLocalBounds, with every row's bounds the
- * component's range.
- */
-void ClipToRange(const ApplyOptions& options, const std::vector<char>& valid,
-  const std::vector<double>& rowSums, Index n, int components, const double* rhs,
-  double* targetValues, const SolverHooks& hooks)
-{
-  std::vector<double> weights(rowSums);
-  if (hooks.Exchange)
-  {
-    hooks.Exchange(weights.data(), 1);
-  }
-  for (int k = 0; k < components && k < static_cast<int>(options.RangeLow.size()); ++k)
-  {
-    if (!(options.RangeLow[k] <= options.RangeHigh[k]))
-    {
-      continue; // no range (no value, or all NaN)
-    }
-    double total = 0.0;
-    for (Index i = 0; i < n; ++i)
-    {
-      if (valid[i] && (!hooks.Counted || hooks.Counted[i]))
-      {
-        total += rhs[i * components + k];
-      }
-    }
-    if (hooks.Reduce)
-    {
-      hooks.Reduce(&total, 1);
-    }
-    const std::vector<double> low(static_cast<size_t>(n), options.RangeLow[k]);
-    const std::vector<double> high(static_cast<size_t>(n), options.RangeHigh[k]);
-    ClipAndAssuredSum(targetValues, components, k, weights, valid, low, high, total, hooks);
-  }
-}
 } // namespace
 
 bool MortarOperator::SolveWithHalo(const double* rhs, double* targetValues, int components,
@@ -345,11 +308,6 @@ bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const Project
     }
     ClipToLocalBounds(this->MixedMass, *system.Valid, *system.CoveredIntegrals, n,
       sourceValues, components, rhs, targetValues, hooks);
-  }
-  else if (!options.RangeLow.empty())
-  {
-    ClipToRange(options, *system.Valid, *system.CoveredIntegrals, n, components, rhs,
-      targetValues, hooks);
   }
   return true;
 }

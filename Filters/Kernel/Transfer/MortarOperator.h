@@ -148,14 +148,6 @@ struct ApplyOptions
    * the assembled M_ts.
    */
   bool Bounded = false;
-  /**
-   * Per component, a range every valid value is kept within, by the same
-   * clip and assured sum with every row's bounds the range (the integral
-   * stays the source's; a field within the range, e.g. a linear one, is
-   * unchanged). Not with Bounded, whose bounds lie within. Empty: none; a
-   * component whose low is not <= its high: none for it.
-   */
-  std::vector<double> RangeLow, RangeHigh;
   SolveOptions Solve;
   /// A distributed system whose fringe was aggregated with a FringeHalo:
   /// that halo's Hooks, for the aggregated solve (its extended rows).
@@ -396,7 +388,7 @@ private:
   /// The solve of one Apply: lumped, aggregated (with or without a halo) or plain; sets result.Stopped.
   bool Solve(const ApplyOptions& options, const double* rhs, double* targetValues, int components,
     const SolverHooks& hooks, const SolverHooks& rowHooks, ApplyResult& result) const;
-  /// ApplyOptions::Bounded or RangeLow/RangeHigh after a consistent solve of `system`; false without M_ts where needed.
+  /// ApplyOptions::Bounded after a consistent solve of `system`; false without M_ts where needed.
   bool KeepWithinBounds(const ApplyOptions& options, const ProjectedSystem& system,
     const double* sourceValues, int components, const double* rhs, double* targetValues,
     const SolverHooks& hooks) const;
