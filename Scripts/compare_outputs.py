@@ -120,7 +120,14 @@ def dump(args):
 
 
 # ---------------------------------------------------------------- worker ----
-def worker(args):
+def _load_vtk():
+    """The names the worker's functions use, imported in the worker only (`compare`
+    needs numpy alone, `dump` nothing)."""
+    global np, meshprojection, gmshmeshes, meshes, GMSH, cut
+    global calldata_type, numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy, VTK_STRING, vtkStringArray
+    global VTK_HEXAHEDRON, VTK_QUAD, VTK_TETRA, VTK_TRIANGLE, vtkCellArray, vtkCompositeDataSet
+    global vtkDataObjectTreeIterator, vtkDataSet, vtkImageData, vtkMultiBlockDataSet, vtkPolyData
+    global vtkUnstructuredGrid, vtkTransform, vtkCellCenters, vtkTransformFilter, vtkXMLUnstructuredGridReader
     import numpy as np
     from vtkmodules.util.misc import calldata_type
     from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -132,271 +139,293 @@ def worker(args):
     from vtkmodules.vtkFiltersCore import vtkCellCenters
     from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
-
-    rank, size, controller = 0, 1, None
-    if args.mpi:
-        from mpsupport import mpi
-        controller, _ = mpi.start()
-        rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
     import meshprojection
     from mpsupport import gmshmeshes, meshes
     from mpsupport.testing import GMSH, cut
 
-    # ---- meshes and fields ----
-    def read(name):
-        reader = vtkXMLUnstructuredGridReader()
-        reader.SetFileName(os.path.join(GMSH, name))
-        reader.Update()
-        return reader.GetOutput()
 
-    def bare(ds):
-        """A deep copy of ds without point and cell arrays."""
-        copy = ds.NewInstance()
-        copy.DeepCopy(ds)
-        for data in (copy.GetPointData(), copy.GetCellData()):
-            while data.GetNumberOfArrays():
-                data.RemoveArray(0)
-        return copy
+# ---- meshes and fields ----
+def read(name):
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(os.path.join(GMSH, name))
+    reader.Update()
+    return reader.GetOutput()
 
-    def smooth(x):
-        return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
+def bare(ds):
+    """A deep copy of ds without point and cell arrays."""
+    copy = ds.NewInstance()
+    copy.DeepCopy(ds)
+    for data in (copy.GetPointData(), copy.GetCellData()):
+        while data.GetNumberOfArrays():
+            data.RemoveArray(0)
+    return copy
 
-    def linear(x):
-        return np.stack([1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2], x[:, 0] - x[:, 2]], 1)
+def smooth(x):
+    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
 
-    def add(data, name, values):
-        a = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
-        a.SetName(name)
-        data.AddArray(a)
+def linear(x):
+    return np.stack([1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2], x[:, 0] - x[:, 2]], 1)
 
-    def points_of(ds):
-        return np.array([ds.GetPoint(i) for i in range(ds.GetNumberOfPoints())]) if isinstance(ds, vtkImageData) \
-            else vtk_to_numpy(ds.GetPoints().GetData())
+def add(data, name, values):
+    a = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
+    a.SetName(name)
+    data.AddArray(a)
 
-    def centres_of(ds):
-        c = vtkCellCenters()
-        c.SetInputData(ds)
-        c.Update()
-        return vtk_to_numpy(c.GetOutput().GetPoints().GetData())
+def points_of(ds):
+    return np.array([ds.GetPoint(i) for i in range(ds.GetNumberOfPoints())]) if isinstance(ds, vtkImageData) \
+        else vtk_to_numpy(ds.GetPoints().GetData())
 
-    def with_fields(ds, nan=False, extensive=False):
-        """ds (bare) with point arrays s (smooth) and lin (2 components),
-        cell array c (smooth at centres); NaN holes in s and c; an
-        extensive cell array `mass` (the smooth field times a cell's share)."""
-        ds = bare(ds)
-        x, c = points_of(ds), centres_of(ds)
-        s, cs = smooth(x), smooth(c)
-        if nan:
-            s[(x[:, 0] < 0.35) & (x[:, 1] < 0.3)] = np.nan
-            cs[(c[:, 0] > 0.6) & (c[:, 1] > 0.55)] = np.nan
-        add(ds.GetPointData(), "s", s)
-        add(ds.GetPointData(), "lin", linear(x))
-        add(ds.GetCellData(), "c", cs)
-        if extensive:
-            add(ds.GetCellData(), "mass", (2 + cs) / ds.GetNumberOfCells())
+def centres_of(ds):
+    c = vtkCellCenters()
+    c.SetInputData(ds)
+    c.Update()
+    return vtk_to_numpy(c.GetOutput().GetPoints().GetData())
+
+def with_fields(ds, nan=False, extensive=False):
+    """ds (bare) with point arrays s (smooth) and lin (2 components),
+    cell array c (smooth at centres); NaN holes in s and c; an
+    extensive cell array `mass` (the smooth field times a cell's share)."""
+    ds = bare(ds)
+    x, c = points_of(ds), centres_of(ds)
+    s, cs = smooth(x), smooth(c)
+    if nan:
+        s[(x[:, 0] < 0.35) & (x[:, 1] < 0.3)] = np.nan
+        cs[(c[:, 0] > 0.6) & (c[:, 1] > 0.55)] = np.nan
+    add(ds.GetPointData(), "s", s)
+    add(ds.GetPointData(), "lin", linear(x))
+    add(ds.GetCellData(), "c", cs)
+    if extensive:
+        add(ds.GetCellData(), "mass", (2 + cs) / ds.GetNumberOfCells())
+    return ds
+
+def grid(points_cells, cell_type):
+    return meshes.grid(*points_cells, cell_type)
+
+def transformed(ds, angle, axis, translate=(0, 0, 0)):
+    t = vtkTransform()
+    t.Translate(*translate)
+    t.RotateWXYZ(angle, *axis)
+    f = vtkTransformFilter()
+    f.SetTransform(t)
+    f.SetInputData(ds)
+    f.Update()
+    out = f.GetOutput().NewInstance()
+    out.ShallowCopy(f.GetOutput())
+    return out
+
+def image(n, lo, hi):
+    im = vtkImageData()
+    im.SetDimensions(n + 1, n + 1, n + 1)
+    im.SetOrigin(lo, lo, lo)
+    im.SetSpacing(*((hi - lo) / n,) * 3)
+    return im
+
+def multiblock(blocks):
+    mb = vtkMultiBlockDataSet()
+    for i, b in enumerate(blocks):
+        mb.SetBlock(i, b)
+    return mb
+
+
+unit = ((0, 0, 0), (1, 1, 1))
+big = ((-0.05, -0.05, -0.05), (1.05, 1.05, 1.05))
+
+
+# ---- the cases ----
+def c_tri2d():
+    return (bare(grid(meshes.triangles(14, *unit, seed=1), VTK_TRIANGLE)),
+            with_fields(grid(meshes.triangles(17, *unit, seed=2), VTK_TRIANGLE)),
+            {"PointDataTarget": 3, "CellDataTarget": 3})
+
+def c_quad2d():
+    return (bare(grid(meshes.quads(12, *unit, seed=3), VTK_QUAD)),
+            with_fields(grid(meshes.quads(15, *big, seed=4), VTK_QUAD)), {})
+
+def c_tilted2d():
+    t = grid(meshes.triangles(13, *unit, seed=5), VTK_TRIANGLE)
+    s = with_fields(grid(meshes.quads(11, *unit, seed=6), VTK_QUAD))
+    return (bare(transformed(t, 35, (1, 1, 0), (0.2, 0, 0.1))), transformed(s, 35, (1, 1, 0), (0.2, 0, 0.1)),
+            {"CellDataTarget": 3})
+
+def c_tets3d():
+    return (bare(grid(meshes.tetrahedra(5, *unit, seed=7), VTK_TETRA)), with_fields(read("tets_box.vtu")),
+            {"PointDataTarget": 3, "CellDataTarget": 3})
+
+def c_mixed3d():
+    return bare(read("mixed_box.vtu")), with_fields(read("hexes_box.vtu")), {"CellDataTarget": 3}
+
+def c_image():
+    return image(8, -0.02, 1.02), with_fields(grid(meshes.hexahedra(6, *unit, seed=8), VTK_HEXAHEDRON)), \
+        {"CellDataTarget": 3}
+
+def c_sphere():
+    return (bare(gmshmeshes.surface("sphere", 0.25)), with_fields(gmshmeshes.surface("sphere", 0.3, algorithm=5)),
+            {"CellDataTarget": 3})
+
+def c_curve():
+    return bare(gmshmeshes.curve("circle", 0.1)), with_fields(gmshmeshes.curve("circle", 0.137)), \
+        {"CellDataTarget": 3}
+
+def c_trace():
+    return bare(gmshmeshes.surface("patch0.37", 0.1)), with_fields(gmshmeshes.volume("box", 0.2)), \
+        {"CellDataTarget": 3}
+
+def c_composite():
+    t = grid(meshes.triangles(12, *unit, seed=9), VTK_TRIANGLE)
+    s = with_fields(grid(meshes.quads(14, *big, seed=10), VTK_QUAD))
+    return (multiblock([bare(cut(t, lambda c: c[:, 0] < 0.5)), bare(cut(t, lambda c: c[:, 0] >= 0.5))]),
+            multiblock([cut(s, lambda c: c[:, 1] < 0.4), cut(s, lambda c: c[:, 1] >= 0.4)]),
+            {"CellDataTarget": 3})
+
+def c_fringe2d():
+    return (bare(transformed(read("tris_disk.vtu"), 0, (0, 0, 1), (0.3, 0.2, 0))),
+            with_fields(read("quads_disk.vtu")), {"PointDataTarget": 3, "CellDataTarget": 3})
+
+def c_fringe3d():
+    return (bare(transformed(read("wedges_cylinder.vtu"), 0, (0, 0, 1), (0.27, 0.13, 0.21))),
+            with_fields(read("hexes_box.vtu")), {"CellDataTarget": 3})
+
+def c_nan():
+    return (bare(grid(meshes.quads(12, *unit, seed=11), VTK_QUAD)),
+            with_fields(grid(meshes.triangles(15, *unit, seed=12), VTK_TRIANGLE), nan=True),
+            {"CellDataTarget": 3})
+
+def c_extensive():
+    return (bare(grid(meshes.quads(13, *unit, seed=13), VTK_QUAD)),
+            with_fields(grid(meshes.triangles(11, *big, seed=14), VTK_TRIANGLE), extensive=True),
+            {"CellDataTarget": 3, "CellDataQuantity": 1})
+
+def c_big2d():
+    return (bare(grid(meshes.triangles(60, *unit, seed=15), VTK_TRIANGLE)),
+            with_fields(grid(meshes.quads(50, *big, seed=16), VTK_QUAD)), {"CellDataTarget": 3})
+
+def c_big3d():
+    return (bare(grid(meshes.tetrahedra(13, *unit, seed=17, jitter=0.15), VTK_TETRA)),
+            with_fields(grid(meshes.hexahedra(12, *big, seed=18), VTK_HEXAHEDRON)),
+            {"PointDataTarget": 3, "CellDataTarget": 3})
+
+
+# ---- numberings and partitions ----
+def leaves(obj):
+    """[(index, dataset)] of a dataset or the leaves of a composite one."""
+    if isinstance(obj, vtkDataSet):
+        return [("", obj)]
+    it = vtkDataObjectTreeIterator()
+    it.SetDataSet(obj)
+    it.InitTraversal()
+    found = []
+    while not it.IsDoneWithTraversal():
+        found.append(("b%d." % it.GetCurrentFlatIndex(), it.GetCurrentDataObject()))
+        it.GoToNextItem()
+    return found
+
+def map_leaves(obj, fn):
+    if isinstance(obj, vtkDataSet):
+        return fn(obj)
+    mb = vtkMultiBlockDataSet()
+    for i in range(obj.GetNumberOfBlocks()):
+        mb.SetBlock(i, fn(obj.GetBlock(i)))
+    return mb
+
+def cell_arrays(ds):
+    cells = ds.GetCells() if isinstance(ds, vtkUnstructuredGrid) else \
+        (ds.GetPolys() if ds.GetNumberOfPolys() else ds.GetLines())
+    return vtk_to_numpy(cells.GetOffsetsArray()), vtk_to_numpy(cells.GetConnectivityArray())
+
+def renumbered(ds, p, q):
+    """ds with new point k = old point p[k] and new cell k = old cell q[k]."""
+    offsets, conn = cell_arrays(ds)
+    inv = np.empty(len(p), dtype=np.int64)
+    inv[p] = np.arange(len(p))
+    sizes = np.diff(offsets)[q]
+    new_offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    take = np.repeat(offsets[:-1][q] - new_offsets[:-1], sizes) + np.arange(new_offsets[-1])
+    ca = vtkCellArray()
+    ca.SetData(numpy_to_vtkIdTypeArray(new_offsets, deep=True),
+               numpy_to_vtkIdTypeArray(np.ascontiguousarray(inv[conn[take]]), deep=True))
+    out = ds.NewInstance()
+    pts = ds.GetPoints().NewInstance()
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(ds.GetPoints().GetData())[p]), deep=True))
+    out.SetPoints(pts)
+    if isinstance(ds, vtkUnstructuredGrid):
+        out.SetCells(numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(ds.GetCellTypesArray())[q]), deep=True,
+                                  array_type=ds.GetCellTypesArray().GetDataType()), ca)
+    elif ds.GetNumberOfPolys():
+        out.SetPolys(ca)
+    else:
+        out.SetLines(ca)
+    for src, dst, perm in ((ds.GetPointData(), out.GetPointData(), p), (ds.GetCellData(), out.GetCellData(), q)):
+        for i in range(src.GetNumberOfArrays()):
+            a = src.GetArray(i)
+            b = numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(a)[perm]), deep=True, array_type=a.GetDataType())
+            b.SetName(a.GetName())
+            dst.AddArray(b)
+    return out
+
+def shuffled(ds, seed):
+    if isinstance(ds, vtkImageData):
         return ds
+    rng = np.random.default_rng(seed)
+    return renumbered(ds, rng.permutation(ds.GetNumberOfPoints()), rng.permutation(ds.GetNumberOfCells()))
 
-    def grid(points_cells, cell_type):
-        return meshes.grid(*points_cells, cell_type)
+def part(ds, seed, origin, rank, size):
+    """Process `rank`'s cells of ds (a random owner per cell among `size` processes),
+    with origId arrays on the Input."""
+    if isinstance(ds, vtkImageData):
+        ug = vtkUnstructuredGrid()
+        from vtkmodules.vtkFiltersCore import vtkAppendFilter
+        a = vtkAppendFilter()
+        a.AddInputData(ds)
+        a.Update()
+        ug.ShallowCopy(a.GetOutput())
+        ds = ug
+    if origin:
+        copy = ds.NewInstance()
+        copy.ShallowCopy(ds)
+        for data, n in ((copy.GetPointData(), copy.GetNumberOfPoints()),
+                        (copy.GetCellData(), copy.GetNumberOfCells())):
+            a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
+            a.SetName("origId")
+            data.AddArray(a)
+        ds = copy
+    owner = np.random.default_rng(seed).integers(0, size, ds.GetNumberOfCells())
+    return meshes.extract(ds, owner == rank)
 
-    def transformed(ds, angle, axis, translate=(0, 0, 0)):
-        t = vtkTransform()
-        t.Translate(*translate)
-        t.RotateWXYZ(angle, *axis)
-        f = vtkTransformFilter()
-        f.SetTransform(t)
-        f.SetInputData(ds)
-        f.Update()
-        out = f.GetOutput().NewInstance()
-        out.ShallowCopy(f.GetOutput())
-        return out
 
-    def image(n, lo, hi):
-        im = vtkImageData()
-        im.SetDimensions(n + 1, n + 1, n + 1)
-        im.SetOrigin(lo, lo, lo)
-        im.SetSpacing(*((hi - lo) / n,) * 3)
-        return im
+# ---- the runs ----
+def changed(source):
+    """A copy of the Source with every field's values changed (2u + 1)."""
+    copy = source.NewInstance()
+    copy.DeepCopy(source)
+    for _, ds in leaves(copy):
+        for data in (ds.GetPointData(), ds.GetCellData()):
+            for i in range(data.GetNumberOfArrays()):
+                u = vtk_to_numpy(data.GetArray(i))
+                u *= 2
+                u += 1
+                data.GetArray(i).Modified()
+    return copy
 
-    def multiblock(blocks):
-        mb = vtkMultiBlockDataSet()
-        for i, b in enumerate(blocks):
-            mb.SetBlock(i, b)
-        return mb
 
-    unit = ((0, 0, 0), (1, 1, 1))
-    big = ((-0.05, -0.05, -0.05), (1.05, 1.05, 1.05))
+def cleaned(text):
+    """A message without what changes from run to run or with a refactoring: the object's
+    address and the source file and line of the macro."""
+    text = re.sub(r"^\w+: In [^\n]*, line \d+\n", "", str(text))
+    return re.sub(r"\(0x[0-9a-fA-F]+\)", "", text).strip()
 
-    def c_tri2d():
-        return (bare(grid(meshes.triangles(14, *unit, seed=1), VTK_TRIANGLE)),
-                with_fields(grid(meshes.triangles(17, *unit, seed=2), VTK_TRIANGLE)),
-                {"PointDataTarget": 3, "CellDataTarget": 3})
 
-    def c_quad2d():
-        return (bare(grid(meshes.quads(12, *unit, seed=3), VTK_QUAD)),
-                with_fields(grid(meshes.quads(15, *big, seed=4), VTK_QUAD)), {})
+class Runs:
+    """The runs of one process and everything they output, by key."""
 
-    def c_tilted2d():
-        t = grid(meshes.triangles(13, *unit, seed=5), VTK_TRIANGLE)
-        s = with_fields(grid(meshes.quads(11, *unit, seed=6), VTK_QUAD))
-        return (bare(transformed(t, 35, (1, 1, 0), (0.2, 0, 0.1))), transformed(s, 35, (1, 1, 0), (0.2, 0, 0.1)),
-                {"CellDataTarget": 3})
+    def __init__(self, mpi, rank):
+        self.mpi = mpi
+        self.rank = rank
+        self.record = {}
 
-    def c_tets3d():
-        return (bare(grid(meshes.tetrahedra(5, *unit, seed=7), VTK_TETRA)), with_fields(read("tets_box.vtu")),
-                {"PointDataTarget": 3, "CellDataTarget": 3})
+    def put(self, key, value):
+        self.record[key] = np.asarray(value)
 
-    def c_mixed3d():
-        return bare(read("mixed_box.vtu")), with_fields(read("hexes_box.vtu")), {"CellDataTarget": 3}
-
-    def c_image():
-        return image(8, -0.02, 1.02), with_fields(grid(meshes.hexahedra(6, *unit, seed=8), VTK_HEXAHEDRON)), \
-            {"CellDataTarget": 3}
-
-    def c_sphere():
-        return (bare(gmshmeshes.surface("sphere", 0.25)), with_fields(gmshmeshes.surface("sphere", 0.3, algorithm=5)),
-                {"CellDataTarget": 3})
-
-    def c_curve():
-        return bare(gmshmeshes.curve("circle", 0.1)), with_fields(gmshmeshes.curve("circle", 0.137)), \
-            {"CellDataTarget": 3}
-
-    def c_trace():
-        return bare(gmshmeshes.surface("patch0.37", 0.1)), with_fields(gmshmeshes.volume("box", 0.2)), \
-            {"CellDataTarget": 3}
-
-    def c_composite():
-        t = grid(meshes.triangles(12, *unit, seed=9), VTK_TRIANGLE)
-        s = with_fields(grid(meshes.quads(14, *big, seed=10), VTK_QUAD))
-        return (multiblock([bare(cut(t, lambda c: c[:, 0] < 0.5)), bare(cut(t, lambda c: c[:, 0] >= 0.5))]),
-                multiblock([cut(s, lambda c: c[:, 1] < 0.4), cut(s, lambda c: c[:, 1] >= 0.4)]),
-                {"CellDataTarget": 3})
-
-    def c_fringe2d():
-        return (bare(transformed(read("tris_disk.vtu"), 0, (0, 0, 1), (0.3, 0.2, 0))),
-                with_fields(read("quads_disk.vtu")), {"PointDataTarget": 3, "CellDataTarget": 3})
-
-    def c_fringe3d():
-        return (bare(transformed(read("wedges_cylinder.vtu"), 0, (0, 0, 1), (0.27, 0.13, 0.21))),
-                with_fields(read("hexes_box.vtu")), {"CellDataTarget": 3})
-
-    def c_nan():
-        return (bare(grid(meshes.quads(12, *unit, seed=11), VTK_QUAD)),
-                with_fields(grid(meshes.triangles(15, *unit, seed=12), VTK_TRIANGLE), nan=True),
-                {"CellDataTarget": 3})
-
-    def c_extensive():
-        return (bare(grid(meshes.quads(13, *unit, seed=13), VTK_QUAD)),
-                with_fields(grid(meshes.triangles(11, *big, seed=14), VTK_TRIANGLE), extensive=True),
-                {"CellDataTarget": 3, "CellDataQuantity": 1})
-
-    def c_big2d():
-        return (bare(grid(meshes.triangles(60, *unit, seed=15), VTK_TRIANGLE)),
-                with_fields(grid(meshes.quads(50, *big, seed=16), VTK_QUAD)), {"CellDataTarget": 3})
-
-    def c_big3d():
-        return (bare(grid(meshes.tetrahedra(13, *unit, seed=17, jitter=0.15), VTK_TETRA)),
-                with_fields(grid(meshes.hexahedra(12, *big, seed=18), VTK_HEXAHEDRON)),
-                {"PointDataTarget": 3, "CellDataTarget": 3})
-
-    cases = [("tri2d", c_tri2d), ("quad2d", c_quad2d), ("tilted2d", c_tilted2d), ("tets3d", c_tets3d),
-             ("mixed3d", c_mixed3d), ("image", c_image), ("sphere", c_sphere), ("curve", c_curve),
-             ("trace", c_trace), ("composite", c_composite), ("fringe2d", c_fringe2d), ("fringe3d", c_fringe3d),
-             ("nan", c_nan), ("extensive", c_extensive),
-             ("big2d", c_big2d), ("big3d", c_big3d)]
-
-    # ---- numberings and partitions ----
-    def leaves(obj):
-        """[(index, dataset)] of a dataset or the leaves of a composite one."""
-        if isinstance(obj, vtkDataSet):
-            return [("", obj)]
-        it = vtkDataObjectTreeIterator()
-        it.SetDataSet(obj)
-        it.InitTraversal()
-        found = []
-        while not it.IsDoneWithTraversal():
-            found.append(("b%d." % it.GetCurrentFlatIndex(), it.GetCurrentDataObject()))
-            it.GoToNextItem()
-        return found
-
-    def map_leaves(obj, fn):
-        if isinstance(obj, vtkDataSet):
-            return fn(obj)
-        mb = vtkMultiBlockDataSet()
-        for i in range(obj.GetNumberOfBlocks()):
-            mb.SetBlock(i, fn(obj.GetBlock(i)))
-        return mb
-
-    def cell_arrays(ds):
-        cells = ds.GetCells() if isinstance(ds, vtkUnstructuredGrid) else \
-            (ds.GetPolys() if ds.GetNumberOfPolys() else ds.GetLines())
-        return vtk_to_numpy(cells.GetOffsetsArray()), vtk_to_numpy(cells.GetConnectivityArray())
-
-    def renumbered(ds, p, q):
-        """ds with new point k = old point p[k] and new cell k = old cell q[k]."""
-        offsets, conn = cell_arrays(ds)
-        inv = np.empty(len(p), dtype=np.int64)
-        inv[p] = np.arange(len(p))
-        sizes = np.diff(offsets)[q]
-        new_offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-        take = np.repeat(offsets[:-1][q] - new_offsets[:-1], sizes) + np.arange(new_offsets[-1])
-        ca = vtkCellArray()
-        ca.SetData(numpy_to_vtkIdTypeArray(new_offsets, deep=True),
-                   numpy_to_vtkIdTypeArray(np.ascontiguousarray(inv[conn[take]]), deep=True))
-        out = ds.NewInstance()
-        pts = ds.GetPoints().NewInstance()
-        pts.SetData(numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(ds.GetPoints().GetData())[p]), deep=True))
-        out.SetPoints(pts)
-        if isinstance(ds, vtkUnstructuredGrid):
-            out.SetCells(numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(ds.GetCellTypesArray())[q]), deep=True,
-                                      array_type=ds.GetCellTypesArray().GetDataType()), ca)
-        elif ds.GetNumberOfPolys():
-            out.SetPolys(ca)
-        else:
-            out.SetLines(ca)
-        for src, dst, perm in ((ds.GetPointData(), out.GetPointData(), p), (ds.GetCellData(), out.GetCellData(), q)):
-            for i in range(src.GetNumberOfArrays()):
-                a = src.GetArray(i)
-                b = numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(a)[perm]), deep=True, array_type=a.GetDataType())
-                b.SetName(a.GetName())
-                dst.AddArray(b)
-        return out
-
-    def shuffled(ds, seed):
-        if isinstance(ds, vtkImageData):
-            return ds
-        rng = np.random.default_rng(seed)
-        return renumbered(ds, rng.permutation(ds.GetNumberOfPoints()), rng.permutation(ds.GetNumberOfCells()))
-
-    def part(ds, seed, origin):
-        """This process's cells of ds (a random owner per cell), with origId arrays on the Input."""
-        if isinstance(ds, vtkImageData):
-            ug = vtkUnstructuredGrid()
-            from vtkmodules.vtkFiltersCore import vtkAppendFilter
-            a = vtkAppendFilter()
-            a.AddInputData(ds)
-            a.Update()
-            ug.ShallowCopy(a.GetOutput())
-            ds = ug
-        if origin:
-            copy = ds.NewInstance()
-            copy.ShallowCopy(ds)
-            for data, n in ((copy.GetPointData(), copy.GetNumberOfPoints()),
-                            (copy.GetCellData(), copy.GetNumberOfCells())):
-                a = numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True)
-                a.SetName("origId")
-                data.AddArray(a)
-            ds = copy
-        owner = np.random.default_rng(seed).integers(0, size, ds.GetNumberOfCells())
-        return meshes.extract(ds, owner == rank)
-
-    # ---- the runs ----
-    record = {}
-
-    def put(key, value):
-        record[key] = np.asarray(value)
-
-    def harvest(prefix, f, ports):
+    def harvest(self, prefix, f, ports):
         for port in ports:
             out = f.GetOutputDataObject(port)
             for index, ds in leaves(out):
@@ -404,55 +433,36 @@ def worker(args):
                 if port > 0:
                     pts = ds.GetPoints()
                     if pts is not None:
-                        put(head + "points", vtk_to_numpy(pts.GetData()).copy())
+                        self.put(head + "points", vtk_to_numpy(pts.GetData()).copy())
                 for kind, data in (("point", ds.GetPointData()), ("cell", ds.GetCellData()),
                                    ("field", ds.GetFieldData())):
                     for i in range(data.GetNumberOfArrays()):
                         a = data.GetAbstractArray(i)
                         name = "%s%s.%s" % (head, kind, a.GetName())
                         if isinstance(a, vtkStringArray):
-                            put(name, np.array([a.GetValue(k) for k in range(a.GetNumberOfValues())], dtype=str))
+                            self.put(name, np.array([a.GetValue(k) for k in range(a.GetNumberOfValues())], dtype=str))
                         else:
-                            put(name, vtk_to_numpy(a).copy())
+                            self.put(name, vtk_to_numpy(a).copy())
         for s in STATISTICS:
             if hasattr(f, "Get" + s):
-                put(prefix + "stat." + s, getattr(f, "Get" + s)())
+                self.put(prefix + "stat." + s, getattr(f, "Get" + s)())
 
-    def matrices(prefix, f):
+    def matrices(self, prefix, f):
         for t in meshprojection.matrices.TRANSFERS:
             for what, get in (("M", meshprojection.operator_matrices), ("P", meshprojection.fringe_extension),
                               ("E", meshprojection.extrapolation_matrix)):
                 try:
                     m = get(f, t)
                 except RuntimeError as e:
-                    put("%smatrix.%s.%s.error" % (prefix, t, what), str(e))
+                    self.put("%smatrix.%s.%s.error" % (prefix, t, what), str(e))
                     continue
                 for label, mat in ((("tt", m[0]), ("ts", m[1])) if what == "M" else ((what, m),)):
                     for part_name in ("indptr", "indices", "data"):
-                        put("%smatrix.%s.%s.%s" % (prefix, t, label, part_name), getattr(mat, part_name))
-                    put("%smatrix.%s.%s.shape" % (prefix, t, label), np.array(mat.shape))
+                        self.put("%smatrix.%s.%s.%s" % (prefix, t, label, part_name), getattr(mat, part_name))
+                    self.put("%smatrix.%s.%s.shape" % (prefix, t, label), np.array(mat.shape))
 
-    def changed(source):
-        """A copy of the Source with every field's values changed (2u + 1)."""
-        copy = source.NewInstance()
-        copy.DeepCopy(source)
-        for _, ds in leaves(copy):
-            for data in (ds.GetPointData(), ds.GetCellData()):
-                for i in range(data.GetNumberOfArrays()):
-                    u = vtk_to_numpy(data.GetArray(i))
-                    u *= 2
-                    u += 1
-                    data.GetArray(i).Modified()
-        return copy
-
-    def cleaned(text):
-        """A message without what changes from run to run or with a refactoring: the object's
-        address and the source file and line of the macro."""
-        text = re.sub(r"^\w+: In [^\n]*, line \d+\n", "", str(text))
-        return re.sub(r"\(0x[0-9a-fA-F]+\)", "", text).strip()
-
-    def run(key, target, source, props, setting):
-        f = (meshprojection.vtkPMeshProjectionFilter if args.mpi else meshprojection.vtkMeshProjectionFilter)()
+    def run(self, key, target, source, props, setting):
+        f = (meshprojection.vtkPMeshProjectionFilter if self.mpi else meshprojection.vtkMeshProjectionFilter)()
         texts = []
 
         @calldata_type(VTK_STRING)
@@ -471,18 +481,39 @@ def worker(args):
             for name in dir(f):
                 if re.match(r"^Set(Keep\w*Matri\w*)$", name):
                     getattr(f, name)(True)
-        prefix = key + ("r%d." % rank if args.mpi else "")
+        prefix = key + ("r%d." % self.rank if self.mpi else "")
         f.Update()
         # The intersection pieces on the small cases only (the large ones' tetrahedra would fill the file).
         pieces = setting == "default" and not key.startswith("big")
-        harvest(prefix + ("step0." if setting == "time" else ""), f, (0, 1, 2) if pieces else (0,))
+        self.harvest(prefix + ("step0." if setting == "time" else ""), f, (0, 1, 2) if pieces else (0,))
         if setting == "time":
             f.SetSourceData(changed(source))
             f.Update()
-            harvest(prefix + "step1.", f, (0,))
+            self.harvest(prefix + "step1.", f, (0,))
         if setting == "matrices":
-            matrices(prefix, f)
-        put(prefix + "messages", "\n".join(texts))
+            self.matrices(prefix, f)
+        self.put(prefix + "messages", "\n".join(texts))
+
+
+def all_cases():
+    """[(name, make)]: make() gives (Input, Source, the case's properties)."""
+    return [("tri2d", c_tri2d), ("quad2d", c_quad2d), ("tilted2d", c_tilted2d), ("tets3d", c_tets3d),
+            ("mixed3d", c_mixed3d), ("image", c_image), ("sphere", c_sphere), ("curve", c_curve),
+            ("trace", c_trace), ("composite", c_composite), ("fringe2d", c_fringe2d), ("fringe3d", c_fringe3d),
+            ("nan", c_nan), ("extensive", c_extensive), ("big2d", c_big2d), ("big3d", c_big3d)]
+
+
+def worker(args):
+    _load_vtk()
+    rank, size, controller = 0, 1, None
+    if args.mpi:
+        from mpsupport import mpi
+        controller, _ = mpi.start()
+        rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+    runs = Runs(args.mpi, rank)
+    record = runs.record
+    run = runs.run
+    cases = all_cases()
 
     only = re.compile(args.only) if args.only else None
     numberings = MPI_NUMBERINGS if args.mpi else NUMBERINGS
@@ -496,8 +527,8 @@ def worker(args):
             else:
                 target, source = target0, source0
             if args.mpi:
-                target = map_leaves(target, lambda d: part(d, 7, True))
-                source = map_leaves(source, lambda d: part(d, 8, False))
+                target = map_leaves(target, lambda d: part(d, 7, True, rank, size))
+                source = map_leaves(source, lambda d: part(d, 8, False, rank, size))
             for setting in SETTINGS:
                 if setting == "matrices" and (case not in MATRIX_CASES or numbering != "gen"):
                     continue
@@ -520,18 +551,22 @@ def worker(args):
     if not args.mpi:
         np.savez(args.out, **record)
         return
-    mine = "%s.rank%d.npz" % (args.out, rank)
-    np.savez(mine, **record)
+    np.savez("%s.rank%d.npz" % (args.out, rank), **record)
     controller.Barrier()
     if rank == 0:
-        merged = {}
-        for r in range(size):
-            part_file = "%s.rank%d.npz" % (args.out, r)
-            with np.load(part_file) as z:
-                merged.update({k: z[k] for k in z.files})
-            os.remove(part_file)
-        np.savez(args.out, **merged)
+        merge_ranks(args.out, size)
     controller.Barrier()
+
+
+def merge_ranks(out, size):
+    """The processes' files OUT.rank<r>.npz merged into OUT (and removed)."""
+    merged = {}
+    for r in range(size):
+        part_file = "%s.rank%d.npz" % (out, r)
+        with np.load(part_file) as z:
+            merged.update({k: z[k] for k in z.files})
+        os.remove(part_file)
+    np.savez(out, **merged)
 
 
 # --------------------------------------------------------------- compare ----
