@@ -35,10 +35,12 @@ ROOT = os.path.dirname(HERE)
 SIZE = [1400, 620]
 
 
-def integral(proxy, array):
-    """Exact integral of a P1 point array, and the area or volume, via IntegrateVariables."""
+def integral(proxy, array, association="POINTS"):
+    """Exact integral of a P1 point array (or a P0 cell array; its first
+    component), and the area or volume, via IntegrateVariables."""
     integrated = servermanager.Fetch(IntegrateVariables(Input=proxy))
-    value = integrated.GetPointData().GetArray(array).GetValue(0)
+    data = integrated.GetPointData() if association == "POINTS" else integrated.GetCellData()
+    value = data.GetArray(array).GetValue(0)
     cd = integrated.GetCellData()
     measure = cd.GetArray("Volume") if cd.GetArray("Volume") and cd.GetArray("Volume").GetValue(0) else cd.GetArray("Area")
     return value, measure.GetValue(0)
@@ -58,7 +60,7 @@ def describe(proxy):
 
 
 def picture(source, projection, array, title_source, title_target, path, slice_z=None, tilt=None,
-            slice_projection=True):
+            slice_projection=True, association="POINTS"):
     """Source (left) and projection (right), same colour map; 3D: slices z = slice_z
     (of the source only unless `slice_projection`); a surface: seen from above,
     tilted by `tilt` degrees towards -y."""
@@ -94,14 +96,15 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
         display = Show(proxy, view)
         display.SetRepresentationType("Surface With Edges")
         display.EdgeColor = [0.25, 0.25, 0.25]
-        ColorBy(display, ("POINTS", array))
+        ColorBy(display, (association, array))
         title = Show(Text(Text=label), view)
         title.WindowLocation = "Any Location"
         title.Position = [max(0.01, x), 0.92]
         title.FontSize = 20
         title.Color = [0, 0, 0]
     lut = GetColorTransferFunction(array)
-    lut.RescaleTransferFunction(*source.PointData[array].GetRange())
+    data = source.PointData if association == "POINTS" else source.CellData
+    lut.RescaleTransferFunction(*data[array].GetRange())
     display.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lut, view)
     bar.Title = array
@@ -127,11 +130,62 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
     Delete(view)  # release the GL context before the interpreter exits
 
 
-def run_case(name, source_file, target_file, array, out_dir):
+def first_array(data, wanted):
+    """(name, "POINTS" or "CELLS") of the Source array to show: `wanted`, else
+    the first point array, else the first cell array (the filter's own masks
+    left out); (None, reason) when there is none."""
+    own = ("vtkValidPointMask", "vtkValidCellMask", "vtkGhostType", "vtkOriginalPointIds", "vtkOriginalCellIds")
+    found = []
+    for association, attributes in (("POINTS", data.GetPointData()), ("CELLS", data.GetCellData())):
+        for i in range(attributes.GetNumberOfArrays()):
+            a = attributes.GetArray(i)
+            if a is not None and a.GetName() and a.GetName() not in own:
+                found.append((a.GetName(), association))
+    if wanted:
+        chosen = [f for f in found if f[0] == wanted]
+        if not chosen:
+            return None, "the Source has no array %r (it has: %s)" % (
+                wanted, ", ".join(n for n, _ in found) or "none")
+        return chosen[0]
+    if not found:
+        return None, "the Source has no point or cell array to project"
+    return found[0]
+
+
+def cell_dimension(data):
+    """The dimension of a dataset's cells (that of its first cell; -1 without cells)."""
+    return data.GetCell(0).GetCellDimension() if data.GetNumberOfCells() else -1
+
+
+def valid_count(output):
+    """How many target points and cells the projection reached (its masks)."""
+    count = 0
+    for attributes, mask in ((output.GetPointData(), "vtkValidPointMask"),
+                             (output.GetCellData(), "vtkValidCellMask")):
+        if attributes.GetArray(mask) is not None:
+            count += int(vtk_to_numpy(attributes.GetArray(mask)).astype(bool).sum())
+    return count
+
+
+def bounds_text(info):
+    b = info.GetBounds()
+    return "[%s]" % ", ".join("%.3g..%.3g" % (b[2 * k], b[2 * k + 1]) for k in range(3))
+
+
+def run_case(name, source_file, target_file, array, out_dir, sample):
+    """Projects Source onto Target and writes NAME-projected.vtu, the
+    pieces and NAME.png; prints a summary. `array` is the Source array shown
+    (None: the first); a sample also checks its conservation. False, with one
+    line said, when there is nothing to project (no array, no overlap)."""
     source = OpenDataFile(source_file)
     target = OpenDataFile(target_file)
     source.UpdatePipeline()
     target.UpdatePipeline()
+    source_data = servermanager.Fetch(source)
+    array, association = first_array(source_data, array)
+    if array is None:
+        print("%s: nothing projected: %s (%s)." % (name, association, source_file))
+        return False
 
     projection = MeshProjection(Input=target, Source=source)  # noqa: F821 (from the plugin)
     projection.OutputIntersections = 1
@@ -141,10 +195,17 @@ def run_case(name, source_file, target_file, array, out_dir):
 
     s_info = source.GetDataInformation()
     t_info = target.GetDataInformation()
-    three_d = projection.GetDataInformation(2).GetNumberOfCells() > 0
+    output = servermanager.Fetch(projection)
+    if valid_count(output) == 0:
+        print("%s: nothing projected: Source %s %s and Target %s %s do not overlap." %
+              (name, os.path.basename(source_file), bounds_text(s_info),
+               os.path.basename(target_file), bounds_text(t_info)))
+        return False
+    t_dim = cell_dimension(servermanager.Fetch(target))
+    three_d = t_dim == 3
     pieces_port = 2 if three_d else 1
     # A trace: a 3D source, a target of lower dimension inside it.
-    trace = not three_d and servermanager.Fetch(source).GetCell(0).GetCellDimension() == 3
+    trace = not three_d and cell_dimension(source_data) == 3
     # A surface in 3D: 2D cells whose points span three dimensions.
     extent = [b - a for a, b in zip(t_info.GetBounds()[::2], t_info.GetBounds()[1::2])]
     surface = not three_d and not trace and min(extent) > 1e-6 * max(extent)
@@ -156,23 +217,22 @@ def run_case(name, source_file, target_file, array, out_dir):
     SaveData(projected_file, proxy=OutputPort(projection, 0), DataMode="Binary")
     SaveData(pieces_file, proxy=OutputPort(projection, pieces_port), DataMode="Binary")
 
-    s_int, s_measure = integral(source, array)
-    t_int, t_measure = integral(projection, array)
+    s_int, s_measure = integral(source, array, association)
+    t_int, t_measure = integral(projection, array, association)
     conservation = abs(t_int - s_int) / max(abs(s_int), 1e-300)
-    if surface:
-        # The filter's own integrals (field data): over the target's covered
-        # part, the projection's (that of the projected source field), and
-        # over the whole source, the source field's. They differ as the two
-        # facetizations' areas do (ConserveSourceIntegral would equalize them).
-        field = servermanager.Fetch(projection).GetFieldData()
-        t_own = field.GetArray("TargetIntegral_" + array).GetValue(0)
-        s_own = field.GetArray("SourceIntegral_" + array).GetValue(0)
-    if trace:
-        # The projection's integral over the sheet (the filter's field data:
-        # a surface holds no part of the volume's), and the linear field,
-        # which a trace reproduces exactly.
-        output = servermanager.Fetch(projection)
-        t_own = output.GetFieldData().GetArray("TargetIntegral_" + array).GetValue(0)
+    # The filter's own integrals (field data): over the target's covered
+    # part, the projection's (that of the projected source field), and over
+    # the part of the source it covers, the source field's (Conservation.h:
+    # point data weighed by the covered measure of the cells around each
+    # point). For a surface they differ as the two facetizations' areas do
+    # (ConserveSourceIntegral would equalize them).
+    field = output.GetFieldData()
+    suffix = " (cell data)" if association == "CELLS" else ""
+    if not trace:
+        s_own = field.GetArray("SourceIntegral_" + array + suffix).GetValue(0)
+    t_own = field.GetArray("TargetIntegral_" + array + suffix).GetValue(0)
+    if trace and sample:
+        # The linear field, which a trace reproduces exactly.
         x = vtk_to_numpy(output.GetPoints().GetData())
         linear_error = float(abs(vtk_to_numpy(output.GetPointData().GetArray("Linear")) -
                                  (1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2])).max())
@@ -197,13 +257,20 @@ def run_case(name, source_file, target_file, array, out_dir):
         print("  volume, area  source %.15g, target %.15g" % (s_measure, t_measure))
     else:
         print("  %s        source %.15g, target %.15g" % ("volume" if three_d else "area  ", s_measure, t_measure))
+    if not sample:
+        arrays = [a for a in ([output.GetPointData().GetArrayName(i)
+                               for i in range(output.GetPointData().GetNumberOfArrays())] +
+                              [output.GetCellData().GetArrayName(i)
+                               for i in range(output.GetCellData().GetNumberOfArrays())])
+                  if not a.startswith("vtk") and a != "CoveredFraction"]
+        print("  projected     %s" % ", ".join(arrays))
     if trace:
         print("  integral of %s over the sheet %.15g (the projected volume field's)" % (array, t_own))
-        print("  Linear        exact on the sheet to %.1e (a trace of a linear field is exact)" % linear_error)
-    elif surface:
-        print("  integral of %s: over the source %.15g, over the target %.15g (the projected" % (array, s_own, t_own))
-        print("                source field's, conserved); they differ by %.2e as the facetizations' areas do" %
-              (abs(t_own - s_own) / max(abs(s_own), 1e-300)))
+        if sample:
+            print("  Linear        exact on the sheet to %.1e (a trace of a linear field is exact)" % linear_error)
+    elif surface or not sample:
+        print("  integral of %s (SourceIntegral_, TargetIntegral_): source %.15g, target %.15g, relative "
+              "difference %.2e" % (array, s_own, t_own, abs(t_own - s_own) / max(abs(s_own), 1e-300)))
     else:
         print("  integral of %s: source %.15g, projected %.15g, relative error %.2e" %
               (array, s_int, t_int, conservation))
@@ -217,8 +284,10 @@ def run_case(name, source_file, target_file, array, out_dir):
             "Source: %s%s" % (s_cells, "" if z is None else ", slice z = %.2f" % z),
             ("Projected onto a sheet inside it: %s" if trace else "Projected onto target: %s") % t_cells, png, z,
             tilt=35 if surface or trace else None,
-            slice_projection=not trace)
+            slice_projection=not trace, association=association)
     print("  wrote         %s, %s, %s" % (projected_file, pieces_file, png))
+    if not sample:
+        return True
     if trace:
         return linear_error < 1e-10 and mask[0] == 1
     if surface:
@@ -232,7 +301,8 @@ def main():
     parser.add_argument("--source", help="source mesh (.vtu); default: the samples in Data/")
     parser.add_argument("--target", help="target mesh (.vtu)")
     parser.add_argument("--name", default="custom", help="output name for --source/--target")
-    parser.add_argument("--array", default="Smooth", help="point array shown in the picture")
+    parser.add_argument("--array", help="Source array shown in the picture (default: Smooth for the samples, "
+                        "the first point array, else cell array, for --source/--target)")
     parser.add_argument("--out-dir", default=os.path.join(ROOT, "build", "main"))
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
@@ -242,14 +312,16 @@ def main():
     if args.source or args.target:
         if not (args.source and args.target):
             parser.error("--source and --target go together")
-        cases = [(args.name, args.source, args.target)]
+        cases = [(args.name, args.source, args.target, False)]
     else:
         cases = [("lshape2d", os.path.join(data, "lshape_source.vtu"), os.path.join(data, "lshape_target.vtu")),
                  ("lshape3d", os.path.join(data, "lshape3d_source.vtu"),
                   os.path.join(data, "lshape3d_target.vtu")),
                  ("sphere", os.path.join(data, "sphere_source.vtu"), os.path.join(data, "sphere_target.vtu")),
                  ("trace", os.path.join(data, "lshape3d_source.vtu"), os.path.join(data, "lshape3d_sheet.vtu"))]
-    ok = all([run_case(name, s, t, args.array, args.out_dir) for name, s, t in cases])
+        cases = [case + (True,) for case in cases]
+    ok = all([run_case(name, s, t, args.array or ("Smooth" if sample else None), args.out_dir, sample)
+              for name, s, t, sample in cases])
     return 0 if ok else 1
 
 

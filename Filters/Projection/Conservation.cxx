@@ -196,8 +196,10 @@ ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const
   const int offset = array.Offset;
   ArrayIntegrals result;
   const std::vector<double>& w = array.Weights;
+  const int sourceWidth = array.SourceWidth;
+  const int sourceOffset = array.SourceOffset;
   result.Source = mp::SumInBlocks(static_cast<vtkIdType>(w.size()), nc, mpvtk::SMPTaskRunner(),
-    [&](vtkIdType j, int k) { return w[j] * array.Source[j * width + offset + k]; });
+    [&](vtkIdType j, int k) { return w[j] * array.Source[j * sourceWidth + sourceOffset + k]; });
   const std::vector<char>& valid = *array.System.Valid;
   const std::vector<double>& covered = *array.System.CoveredIntegrals;
   // (An invalid function's value, the fill, may be NaN: left out.)

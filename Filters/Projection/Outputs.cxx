@@ -120,6 +120,31 @@ void WriteIntegrals(vtkFieldData* data, const std::string& name, bool fromCells,
   }
 }
 
+/// Where the Source values of array a are: its NaN group's block, or the gathered one.
+struct SourceColumns
+{
+  const FieldBlock* Block;
+  int Width;
+  int Offset;
+};
+
+SourceColumns SourceColumnsOf(const GatheredFields& g, int a)
+{
+  for (const NaNGroup& group : g.Groups)
+  {
+    int column = 0;
+    for (int member : group.Arrays)
+    {
+      if (member == a)
+      {
+        return { &group, group.Components, column };
+      }
+      column += g.Arrays[member]->GetNumberOfComponents();
+    }
+  }
+  return { &g, g.Components, g.Offsets[a] };
+}
+
 /// The arrays of transfer t (with their integrals for the fields' own association).
 void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions, SourceWeights& weights, Transfer t, PointNumbering& numbering,
@@ -150,8 +175,9 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     const mp::ProjectedSystem& system = solutions.ByArray[t][static_cast<size_t>(a)];
     (toPoints ? written.PointValid : written.CellValid)
       .emplace_back(name, toPoints ? numbering.InDataSet(*system.Valid) : system.Valid);
-    const ProjectedArray projected{ system, weights.Of(op), g.Functions(), values,
-      g.Components, offset, nc, n };
+    const SourceColumns source = SourceColumnsOf(g, a);
+    const ProjectedArray projected{ system, weights.Of(op), source.Block->Functions(), source.Width,
+      source.Offset, values, g.Components, offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);
     vtkNew<vtkDoubleArray> out;

@@ -3,11 +3,11 @@ python directory on PYTHONPATH): numbers on the sample L-shape with a hole."""
 import math
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid
 
 from meshprojection import vtkMeshProjectionFilter
-from mpsupport.testing import check, finish, integral, read
+from mpsupport.testing import _cells, cell_measures, check, finish, integral, read
 
 source = read("lshape_source.vtu")
 target = read("lshape_target.vtu")
@@ -76,4 +76,32 @@ exact = np.sin(3 * x[:, 0]) * np.cos(2 * x[:, 1]) + 0.5 * x[:, 0]
 check(np.max(np.abs(smooth - exact)) < 0.05, "projection close to the analytic field")
 check(math.isclose(integral(out, "Smooth")[0] / 2.91, integral(source, "Smooth")[0] / 2.91, rel_tol=1e-13),
       "mean value kept")
+
+# NaN holes: SourceIntegral_ is the integral over the Source's finite part
+# (the cells without a NaN corner; the cells with a NaN value), computed
+# here with numpy; the projection conserves it (TargetIntegral_).
+holed = vtkUnstructuredGrid()
+holed.DeepCopy(source)
+xs = vtk_to_numpy(holed.GetPoints().GetData())
+u = vtk_to_numpy(holed.GetPointData().GetArray("Smooth"))  # (a view: written in place)
+u[(xs[:, 0] > 1.2) & (xs[:, 1] < 0.6)] = np.nan
+cells = _cells(holed)
+area = cell_measures(holed)
+mean = np.cos(xs[cells].mean(axis=1)[:, 0]) + 2.0
+mean[np.arange(len(mean)) % 7 == 3] = np.inf
+holed.GetCellData().AddArray(numpy_to_vtk(mean, deep=True))
+holed.GetCellData().GetArray(holed.GetCellData().GetNumberOfArrays() - 1).SetName("Mean")
+finite = np.isfinite(u[cells]).all(axis=1)
+expected = {"Smooth": float(np.sum(area[finite] * u[cells[finite]].mean(axis=1))),
+            "Mean (cell data)": float(np.sum(area[np.isfinite(mean)] * mean[np.isfinite(mean)]))}
+g = vtkMeshProjectionFilter()
+g.SetInputData(target)
+g.SetSourceData(holed)
+g.Update()
+field = g.GetOutput().GetFieldData()
+for name, value in expected.items():
+    got = field.GetArray("SourceIntegral_" + name).GetValue(0)
+    kept = field.GetArray("TargetIntegral_" + name).GetValue(0)
+    check(abs(got - value) <= 1e-13 * abs(value), "NaN hole: SourceIntegral_%s %r, the finite part's %r" % (name, got, value))
+    check(abs(kept - value) <= 1e-12 * abs(value), "NaN hole: TargetIntegral_%s %r, the finite part's %r" % (name, kept, value))
 finish()
