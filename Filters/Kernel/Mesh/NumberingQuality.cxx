@@ -45,6 +45,31 @@ std::vector<std::uint64_t> MarkSampledPoints(const MeshView& mesh, Index samples
   return marked;
 }
 
+/// (point, cell) for the marked points of cells [begin, end), `ids` the connectivity.
+template <class Id>
+void FindMarked(const Id* ids, int corners, Index begin, Index end,
+  const std::vector<std::uint64_t>& marked, std::vector<std::pair<Index, Index>>& found)
+{
+  const std::uint64_t* bits = marked.data();
+  auto isMarked = [bits](Index p) { return (bits[p >> 6] >> (p & 63)) & 1; };
+  for (Index c = begin; c < end; ++c)
+  {
+    const Id* cell = ids + c * corners;
+    std::uint64_t any = 0;
+    for (int k = 0; k < corners; ++k)
+    {
+      any |= isMarked(static_cast<Index>(cell[k]));
+    }
+    for (int k = 0; any && k < corners; ++k)
+    {
+      if (isMarked(static_cast<Index>(cell[k])))
+      {
+        found.emplace_back(static_cast<Index>(cell[k]), c);
+      }
+    }
+  }
+}
+
 /**
  * (point, cell) for every marked point of every cell, sorted: the cells
  * around each marked point. One pass over the connectivity, each task
@@ -58,17 +83,15 @@ std::vector<std::pair<Index, Index>> CellsAroundMarked(const MeshView& mesh,
   const int tasks = runner.TasksFor(n, 16384);
   std::vector<std::vector<std::pair<Index, Index>>> found(static_cast<size_t>(tasks));
   runner.RunAll(tasks, [&](int t) {
+    const Index begin = RangeBegin(n, t, tasks);
     const Index end = RangeBegin(n, t + 1, tasks);
-    for (Index c = RangeBegin(n, t, tasks); c < end; ++c)
+    if (mesh.Connectivity32)
     {
-      const CellCorners ids = mesh.Cell(c);
-      for (int k = 0; k < corners; ++k)
-      {
-        if ((marked[static_cast<size_t>(ids[k] >> 6)] >> (ids[k] & 63)) & 1)
-        {
-          found[t].emplace_back(ids[k], c);
-        }
-      }
+      FindMarked(mesh.Connectivity32, corners, begin, end, marked, found[t]);
+    }
+    else
+    {
+      FindMarked(mesh.Connectivity, corners, begin, end, marked, found[t]);
     }
   });
   std::vector<std::pair<Index, Index>> around;
