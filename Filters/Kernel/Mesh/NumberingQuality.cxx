@@ -180,9 +180,13 @@ NumberingQuality MeasureNumbering(const MeshView& mesh, const TaskRunner& runner
     spread[s] = high - low;
   }
   quality.PointSpread = Quantile(spread, 0.5) / std::pow(static_cast<double>(np), layer);
-  std::vector<Index> distances =
+  const std::vector<Index> distances =
     NeighbourDistances(mesh, samples, CellsAroundMarked(mesh, MarkSampledPoints(mesh, samples), runner));
-  quality.NeighbourDistance = Quantile(distances, 0.9) / std::pow(static_cast<double>(n), layer);
+  const double far = NumberingQuality::FarDistance * std::pow(static_cast<double>(n), layer);
+  const auto count = std::count_if(
+    distances.begin(), distances.end(), [far](Index d) { return static_cast<double>(d) > far; });
+  quality.FarNeighbours =
+    distances.empty() ? 0.0 : static_cast<double>(count) / static_cast<double>(distances.size());
   return quality;
 }
 

@@ -16,18 +16,22 @@
  * while about a third of their face neighbours are anywhere in the list;
  * meshes whose cells are listed by kind or block (all lower triangles of
  * a grid, then all upper ones) put every pair of face neighbours half the
- * list apart. So two numbers are measured, both in units of n^((d-1)/d)
- * for n points or cells of dimension d, the id distance across one layer
- * of a sweep (a row in 2D, a plane in 3D), which is about 1 for a mesh
- * numbered along a sweep or a Z-order curve and grows as n^(1/d) when the
- * numbering does not follow space:
+ * list apart. So two numbers are measured, with distances in units of
+ * n^((d-1)/d) for n points or cells of dimension d, the id distance across
+ * one layer of a sweep (a row in 2D, a plane in 3D):
  *  - PointSpread: the median, over the sampled cells, of the largest
- *    distance between the ids of a cell's points;
- *  - NeighbourDistance: the 90th percentile, over the face neighbours of
- *    the sampled cells, of the distance between their ids. A percentile,
- *    not the median: most of a Qhull mesh's neighbours are made together
- *    and close, the third that are not is what costs; a Z-order curve's
- *    few long jumps (between quadrants) stay below it.
+ *    distance between the ids of a cell's points: about 1 for a mesh
+ *    numbered along a sweep or a Z-order curve, growing as n^(1/d) when the
+ *    points are numbered without order;
+ *  - FarNeighbours: the fraction of the sampled cells' face neighbours more
+ *    than FarDistance layers away in the list. Sweeps, and meshers that
+ *    sweep bands a few cells wide, put neighbours at most a few layers
+ *    apart: none is that far. A Z-order curve's jumps between quadrants
+ *    leave 1-2% that far; Qhull's order 6-20% of a 3D mesh's neighbours
+ *    (10^4 to 10^5 cells) and a third of a 2D mesh's; shuffled or block-listed
+ *    meshes nearly all. A fraction, not a percentile of the distances:
+ *    what costs is how many steps leave the cache, however far they go,
+ *    and a band's few-layer steps do not.
  *
  * The face neighbours of the sampled cells are found without the mesh's
  * point -> cell map (the filter builds it only after this decision): the
@@ -47,19 +51,21 @@ namespace mp
 /// How far a mesh's numbering is from following space (see the file's comment).
 struct NumberingQuality
 {
-  double PointSpread = 0.0;       ///< median point id spread of a cell / np^((d-1)/d)
-  double NeighbourDistance = 0.0; ///< 90th percentile of face neighbours' id distance / n^((d-1)/d)
+  double PointSpread = 0.0;  ///< median point id spread of a cell / np^((d-1)/d)
+  double FarNeighbours = 0.0; ///< fraction of face neighbours more than FarDistance layers apart
 
-  /**
-   * The largest value of either measure that still counts as following
-   * space: a sweep's is about 1 (1.4 for a 2D grid's triangles, 1.8 for a
-   * 3D grid's six tetrahedra per cube), a Z-order curve's well below 1; a
-   * Qhull-ordered Delaunay mesh's cells give 5 and more, a shuffled or
-   * block-interleaved mesh n^(1/d) times more.
-   */
-  static constexpr double TidyLimit = 3.0;
+  /// In layers (n^((d-1)/d) ids): beyond any sweep's or band's neighbours.
+  static constexpr double FarDistance = 8.0;
+  /// The largest PointSpread that follows space (a sweep's is about 1).
+  static constexpr double PointSpreadLimit = 4.0;
+  /// The largest FarNeighbours that follows space (a Z-order curve's is at
+  /// most 0.02, a Qhull-ordered mesh's 0.06 and more).
+  static constexpr double FarNeighboursLimit = 0.04;
   /// Whether both numberings follow space.
-  bool Tidy() const { return this->PointSpread <= TidyLimit && this->NeighbourDistance <= TidyLimit; }
+  bool Tidy() const
+  {
+    return this->PointSpread <= PointSpreadLimit && this->FarNeighbours <= FarNeighboursLimit;
+  }
 };
 
 /**

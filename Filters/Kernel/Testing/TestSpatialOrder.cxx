@@ -60,7 +60,8 @@ mp::NumberingQuality Quality(const TestMesh& m)
 {
   return mp::MeasureNumbering(m.View(false));
 }
-constexpr double TidyLimit = mp::NumberingQuality::TidyLimit;
+constexpr double PointSpreadLimit = mp::NumberingQuality::PointSpreadLimit;
+constexpr double FarNeighboursLimit = mp::NumberingQuality::FarNeighboursLimit;
 
 bool IsPermutation(const mp::UninitializedLargeVector<Index>& order)
 {
@@ -213,8 +214,8 @@ TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
                                          : mptest::CubeMesh(12, 11, 10, 0.15, 3);
     const TestMesh shuffled = Shuffled(grid, 11);
     EXPECT_TRUE(Quality(grid).Tidy()) << dimension << "D grid";
-    EXPECT_GT(Quality(shuffled).PointSpread, TidyLimit) << dimension << "D shuffled";
-    EXPECT_GT(Quality(shuffled).NeighbourDistance, TidyLimit) << dimension << "D shuffled";
+    EXPECT_GT(Quality(shuffled).PointSpread, PointSpreadLimit) << dimension << "D shuffled";
+    EXPECT_GT(Quality(shuffled).FarNeighbours, 5 * FarNeighboursLimit) << dimension << "D shuffled";
 
     const Renumbered r(shuffled);
     ASSERT_TRUE(IsPermutation(r.Order.Cells));
@@ -382,8 +383,8 @@ TEST(SpatialOrder, InterleavedSweepsAreNotTidyUntilRenumbered)
   for (const TestMesh* m : { &two, &kinds })
   {
     // Tidy ids and points: only the cells across faces tell.
-    EXPECT_LE(Quality(*m).PointSpread, TidyLimit) << m->Dimension << "D interleaved";
-    EXPECT_GT(Quality(*m).NeighbourDistance, 3 * TidyLimit) << m->Dimension << "D interleaved";
+    EXPECT_LE(Quality(*m).PointSpread, PointSpreadLimit) << m->Dimension << "D interleaved";
+    EXPECT_GT(Quality(*m).FarNeighbours, 5 * FarNeighboursLimit) << m->Dimension << "D interleaved";
     const Renumbered r(*m);
     EXPECT_TRUE(Quality(r.Mesh).Tidy()) << m->Dimension << "D renumbered";
   }
@@ -422,23 +423,23 @@ TEST(SpatialOrder, CellsListedOutOfOrderAreNotTidyUntilRenumbered)
     const TestMesh qhullLike = CellsInRandomRuns(grid, 8, 13);
     // The points and each cell's point ids are the grid's: only the cells
     // across faces tell.
-    EXPECT_LE(Quality(qhullLike).PointSpread, TidyLimit) << dimension << "D";
-    EXPECT_GT(Quality(qhullLike).NeighbourDistance, 2 * TidyLimit) << dimension << "D";
+    EXPECT_LE(Quality(qhullLike).PointSpread, PointSpreadLimit) << dimension << "D";
+    EXPECT_GT(Quality(qhullLike).FarNeighbours, 5 * FarNeighboursLimit) << dimension << "D";
     EXPECT_FALSE(Quality(qhullLike).Tidy()) << dimension << "D";
     // The generated grid (a sweep) and the Morton-renumbered copy are tidy.
     const mp::NumberingQuality sweep = Quality(grid);
     EXPECT_LT(sweep.PointSpread, 1.5) << dimension << "D grid";
-    EXPECT_LT(sweep.NeighbourDistance, 2.0) << dimension << "D grid";
+    EXPECT_EQ(sweep.FarNeighbours, 0.0) << dimension << "D grid";
     const Renumbered r(qhullLike);
     EXPECT_LT(Quality(r.Mesh).PointSpread, 1.0) << dimension << "D renumbered";
-    EXPECT_LT(Quality(r.Mesh).NeighbourDistance, 1.0) << dimension << "D renumbered";
+    EXPECT_LT(Quality(r.Mesh).FarNeighbours, FarNeighboursLimit) << dimension << "D renumbered";
     // Threads find the same neighbours.
     for (int tasks : { 2, 3 })
     {
       const mp::NumberingQuality threaded =
         mp::MeasureNumbering(qhullLike.View(false), Tasks(tasks, RunMode::Threads));
       EXPECT_EQ(threaded.PointSpread, Quality(qhullLike).PointSpread) << tasks << " tasks";
-      EXPECT_EQ(threaded.NeighbourDistance, Quality(qhullLike).NeighbourDistance) << tasks << " tasks";
+      EXPECT_EQ(threaded.FarNeighbours, Quality(qhullLike).FarNeighbours) << tasks << " tasks";
     }
   }
 }
