@@ -56,10 +56,7 @@ TestMesh Shuffled(const TestMesh& m, unsigned seed)
   return s;
 }
 
-mp::NumberingQuality Quality(const TestMesh& m)
-{
-  return mp::MeasureNumbering(m.View(false));
-}
+mp::NumberingQuality Quality(const TestMesh& m) { return mp::MeasureNumbering(m.View(false)); }
 constexpr double PointSpreadLimit = mp::NumberingQuality::PointSpreadLimit;
 constexpr double FarNeighboursLimit = mp::NumberingQuality::FarNeighboursLimit;
 
@@ -400,15 +397,12 @@ TestMesh CellsInRandomRuns(const TestMesh& m, Index run, unsigned seed)
   const Index n = m.NumberOfCells();
   std::vector<Index> runs(static_cast<size_t>((n + run - 1) / run));
   std::iota(runs.begin(), runs.end(), Index(0));
-  std::mt19937 random(seed);
-  std::shuffle(runs.begin(), runs.end(), random);
-  TestMesh s;
-  s.Dimension = m.Dimension;
-  s.Points = m.Points;
+  std::shuffle(runs.begin(), runs.end(), std::mt19937(seed));
+  TestMesh s = m;
+  s.Cells.clear();
   for (Index r : runs)
   {
-    const Index end = std::min(n, (r + 1) * run);
-    s.Cells.insert(s.Cells.end(), &m.Cells[0] + corners * r * run, &m.Cells[0] + corners * end);
+    s.Cells.insert(s.Cells.end(), &m.Cells[0] + corners * r * run, &m.Cells[0] + corners * std::min(n, r * run + run));
   }
   s.Finish();
   return s;
@@ -421,8 +415,7 @@ TEST(SpatialOrder, CellsListedOutOfOrderAreNotTidyUntilRenumbered)
     const TestMesh grid = dimension == 2 ? mptest::GridMesh(150, 140, 0.25, 7)
                                          : mptest::CubeMesh(26, 25, 24, 0.15, 7);
     const TestMesh qhullLike = CellsInRandomRuns(grid, 8, 13);
-    // The points and each cell's point ids are the grid's: only the cells
-    // across faces tell.
+    // The grid's points and cells: only the cells across faces tell.
     EXPECT_LE(Quality(qhullLike).PointSpread, PointSpreadLimit) << dimension << "D";
     EXPECT_GT(Quality(qhullLike).FarNeighbours, 5 * FarNeighboursLimit) << dimension << "D";
     EXPECT_FALSE(Quality(qhullLike).Tidy()) << dimension << "D";
@@ -433,11 +426,9 @@ TEST(SpatialOrder, CellsListedOutOfOrderAreNotTidyUntilRenumbered)
     const Renumbered r(qhullLike);
     EXPECT_LT(Quality(r.Mesh).PointSpread, 1.0) << dimension << "D renumbered";
     EXPECT_LT(Quality(r.Mesh).FarNeighbours, FarNeighboursLimit) << dimension << "D renumbered";
-    // Threads find the same neighbours.
-    for (int tasks : { 2, 3 })
+    for (int tasks : { 2, 3 }) // threads find the same neighbours
     {
-      const mp::NumberingQuality threaded =
-        mp::MeasureNumbering(qhullLike.View(false), Tasks(tasks, RunMode::Threads));
+      const auto threaded = mp::MeasureNumbering(qhullLike.View(false), Tasks(tasks, RunMode::Threads));
       EXPECT_EQ(threaded.PointSpread, Quality(qhullLike).PointSpread) << tasks << " tasks";
       EXPECT_EQ(threaded.FarNeighbours, Quality(qhullLike).FarNeighbours) << tasks << " tasks";
     }
