@@ -5,6 +5,7 @@
 #include "Adapter/Ghosts.h"
 #include "Adapter/Threads.h"
 #include "Mesh/CellNeighbors.h"
+#include "Mesh/NumberingQuality.h"
 #include "Mesh/SpatialOrder.h"
 
 #include "vtkCellArray.h"
@@ -14,7 +15,6 @@
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkPoints.h"
-#include "vtkSMPTools.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
@@ -345,15 +345,9 @@ void SimplexMesh::OrderInSpace()
 {
   const mp::Index n = this->Kernel.NumberOfCells;
   const mp::Index np = this->Kernel.NumberOfPoints;
-  // Automatic: ids that do not follow space, or (with threads) ranges of
-  // ids that are not regions of space (interleaved sweeps: harmless to one
-  // front, but each thread's front could never step to a neighbour).
-  auto tidy = [&] {
-    return mp::NumberingSpread(this->Kernel) <=
-      4.0 * std::pow(static_cast<double>(np), -1.0 / this->Dimension()) &&
-      (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1 ||
-        mp::ChainedFraction(this->Kernel) >= 0.5);
-  };
+  // Automatic: point ids or the ids of cells across a face that do not
+  // follow space (NumberingQuality.h), measured only when it would decide.
+  auto tidy = [&] { return mp::MeasureNumbering(this->Kernel, SMPTaskRunner()).Tidy(); };
   if (this->OrderingMode == NEVER || n == 0 ||
     (this->OrderingMode == AUTOMATIC && (n < MinimumOrderedCells || tidy())))
   {

@@ -71,9 +71,9 @@ public:
   /**
    * Whether Wrap() renumbers the kernel's simplices and points along space
    * (SpatialOrder.h), in a copy: AUTOMATIC when the dataset's numbering is
-   * far from following space (mp::NumberingSpread above 4 n^(-1/d), n points, for
-   * at least MinimumOrderedCells simplices; with more than one thread also
-   * when mp::ChainedFraction is below 1/2), ALWAYS or NEVER.
+   * far from following space (mp::NumberingQuality not Tidy(): the ids of a
+   * cell's points or of the cells across its faces far apart, for at least
+   * MinimumOrderedCells simplices), ALWAYS or NEVER.
    */
   enum Ordering
   {

@@ -61,26 +61,6 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order,
   const TaskRunner& runner = TaskRunner());
 
 /**
- * How far `mesh`'s numbering is from following space, from a sample of its
- * cells: the median, over the sampled cells, of the largest distance
- * between the ids of a cell's points, and of the distance between the
- * lowest point ids of two consecutive cells, the larger of the two divided
- * by the number of points. About n^(-1/d) for a mesh numbered along a sweep
- * or a curve, about 1/2 for a shuffled one.
- */
-double NumberingSpread(const MeshView& mesh);
-
-/**
- * The fraction of a sample of `mesh`'s cells that share a face with a cell
- * at most 4 ids away: nearly 1 for a mesh numbered along a sweep or a curve,
- * where a range of ids is a region of space that a front can cross from
- * cell to cell. Interleaved sweeps (all lower triangles of a grid, then all
- * upper ones) look tidy to NumberingSpread but give about 0: every range of
- * ids, such as a thread's, is then spread over the whole mesh.
- */
-double ChainedFraction(const MeshView& mesh);
-
-/**
  * `mesh` renumbered by order.Cells, into the caller's arrays: `points` (3
  * per point), `connectivity` (corners per cell, in new point ids) and
  * `parent` (per new cell, mesh.ParentOf of its old cell). The points are

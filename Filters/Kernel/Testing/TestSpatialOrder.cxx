@@ -2,7 +2,9 @@
 // Renumbering along space (Mesh/SpatialOrder.h): the Morton key interleaves
 // the coordinates' bits, the orders are permutations, the renumbered mesh
 // has the same cells, its numbering follows space whatever the input's, and
-// the projection between renumbered meshes is the same projection.
+// the projection between renumbered meshes is the same projection; the
+// numbering's quality (Mesh/NumberingQuality.h) tells which meshes need it.
+#include "Mesh/NumberingQuality.h"
 #include "Mesh/SpatialOrder.h"
 #include "Search/CandidateLocator.h"
 #include "Transfer/MortarOperator.h"
@@ -53,6 +55,10 @@ TestMesh Shuffled(const TestMesh& m, unsigned seed)
   s.Finish();
   return s;
 }
+
+mp::NumberingQuality Quality(const TestMesh& m) { return mp::MeasureNumbering(m.View(false)); }
+constexpr double PointSpreadLimit = mp::NumberingQuality::PointSpreadLimit;
+constexpr double FarNeighboursLimit = mp::NumberingQuality::FarNeighboursLimit;
 
 bool IsPermutation(const mp::UninitializedLargeVector<Index>& order)
 {
@@ -204,15 +210,14 @@ TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
     const TestMesh grid = dimension == 2 ? mptest::GridMesh(60, 50, 0.25, 3)
                                          : mptest::CubeMesh(12, 11, 10, 0.15, 3);
     const TestMesh shuffled = Shuffled(grid, 11);
-    const double d = dimension;
-    const double tidy = 4.0 * std::pow(static_cast<double>(grid.NumberOfPoints()), -1.0 / d);
-    EXPECT_LT(mp::NumberingSpread(grid.View(false)), tidy) << dimension << "D grid";
-    EXPECT_GT(mp::NumberingSpread(shuffled.View(false)), 0.1) << dimension << "D shuffled";
+    EXPECT_TRUE(Quality(grid).Tidy()) << dimension << "D grid";
+    EXPECT_GT(Quality(shuffled).PointSpread, PointSpreadLimit) << dimension << "D shuffled";
+    EXPECT_GT(Quality(shuffled).FarNeighbours, 5 * FarNeighboursLimit) << dimension << "D shuffled";
 
     const Renumbered r(shuffled);
     ASSERT_TRUE(IsPermutation(r.Order.Cells));
     ASSERT_TRUE(IsPermutation(r.Order.Points));
-    EXPECT_LT(mp::NumberingSpread(r.Mesh.View(false)), tidy) << dimension << "D renumbered";
+    EXPECT_TRUE(Quality(r.Mesh).Tidy()) << dimension << "D renumbered";
     const int corners = dimension + 1;
     Index next = 0;
     for (Index c = 0; c < r.Mesh.NumberOfCells(); ++c)
@@ -329,7 +334,7 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
   }
 }
 
-TEST(SpatialOrder, InterleavedSweepsAreNotChainedUntilRenumbered)
+TEST(SpatialOrder, InterleavedSweepsAreNotTidyUntilRenumbered)
 {
   // 2D: all lower triangles of a grid, then all upper ones (ids and points
   // tidy, but no cell has a face neighbour among the cells numbered next to
@@ -372,19 +377,61 @@ TEST(SpatialOrder, InterleavedSweepsAreNotChainedUntilRenumbered)
     }
   }
   kinds.Finish();
-  const TestMesh grid = mptest::GridMesh(60, 50, 0.25, 3);
-  EXPECT_GT(mp::ChainedFraction(grid.View(false)), 0.9) << "2D grid";
-  EXPECT_GT(mp::ChainedFraction(cubes.View(false)), 0.9) << "3D grid";
   for (const TestMesh* m : { &two, &kinds })
   {
-    const double tidy =
-      4.0 * std::pow(static_cast<double>(m->NumberOfPoints()), -1.0 / m->Dimension);
-    // Tidy ids and points: only the chained cells tell.
-    EXPECT_LT(mp::NumberingSpread(m->View(false)), tidy) << m->Dimension << "D interleaved";
-    EXPECT_LT(mp::ChainedFraction(m->View(false)), 0.1) << m->Dimension << "D interleaved";
+    // Tidy ids and points: only the cells across faces tell.
+    EXPECT_LE(Quality(*m).PointSpread, PointSpreadLimit) << m->Dimension << "D interleaved";
+    EXPECT_GT(Quality(*m).FarNeighbours, 5 * FarNeighboursLimit) << m->Dimension << "D interleaved";
     const Renumbered r(*m);
-    EXPECT_LT(mp::NumberingSpread(r.Mesh.View(false)), tidy) << m->Dimension << "D renumbered";
-    EXPECT_GT(mp::ChainedFraction(r.Mesh.View(false)), 0.9) << m->Dimension << "D renumbered";
+    EXPECT_TRUE(Quality(r.Mesh).Tidy()) << m->Dimension << "D renumbered";
+  }
+}
+
+/// `m` with its points as they are and its cells in runs of `run` (as
+/// numbered), the runs in a random order: how Qhull lists a Delaunay mesh
+/// (points as given, a point's new cells together when it is inserted, the
+/// points inserted in no spatial order).
+TestMesh CellsInRandomRuns(const TestMesh& m, Index run, unsigned seed)
+{
+  const int corners = m.Dimension + 1;
+  const Index n = m.NumberOfCells();
+  std::vector<Index> runs(static_cast<size_t>((n + run - 1) / run));
+  std::iota(runs.begin(), runs.end(), Index(0));
+  std::shuffle(runs.begin(), runs.end(), std::mt19937(seed));
+  TestMesh s = m;
+  s.Cells.clear();
+  for (Index r : runs)
+  {
+    s.Cells.insert(s.Cells.end(), &m.Cells[0] + corners * r * run, &m.Cells[0] + corners * std::min(n, r * run + run));
+  }
+  s.Finish();
+  return s;
+}
+
+TEST(SpatialOrder, CellsListedOutOfOrderAreNotTidyUntilRenumbered)
+{
+  for (int dimension : { 2, 3 })
+  {
+    const TestMesh grid = dimension == 2 ? mptest::GridMesh(150, 140, 0.25, 7)
+                                         : mptest::CubeMesh(26, 25, 24, 0.15, 7);
+    const TestMesh qhullLike = CellsInRandomRuns(grid, 8, 13);
+    // The grid's points and cells: only the cells across faces tell.
+    EXPECT_LE(Quality(qhullLike).PointSpread, PointSpreadLimit) << dimension << "D";
+    EXPECT_GT(Quality(qhullLike).FarNeighbours, 5 * FarNeighboursLimit) << dimension << "D";
+    EXPECT_FALSE(Quality(qhullLike).Tidy()) << dimension << "D";
+    // The generated grid (a sweep) and the Morton-renumbered copy are tidy.
+    const mp::NumberingQuality sweep = Quality(grid);
+    EXPECT_LT(sweep.PointSpread, 1.5) << dimension << "D grid";
+    EXPECT_EQ(sweep.FarNeighbours, 0.0) << dimension << "D grid";
+    const Renumbered r(qhullLike);
+    EXPECT_LT(Quality(r.Mesh).PointSpread, 1.0) << dimension << "D renumbered";
+    EXPECT_LT(Quality(r.Mesh).FarNeighbours, FarNeighboursLimit) << dimension << "D renumbered";
+    for (int tasks : { 2, 3 }) // threads find the same neighbours
+    {
+      const auto threaded = mp::MeasureNumbering(qhullLike.View(false), Tasks(tasks, RunMode::Threads));
+      EXPECT_EQ(threaded.PointSpread, Quality(qhullLike).PointSpread) << tasks << " tasks";
+      EXPECT_EQ(threaded.FarNeighbours, Quality(qhullLike).FarNeighbours) << tasks << " tasks";
+    }
   }
 }
 
@@ -402,8 +449,7 @@ TEST(SpatialOrder, UnusedAndNonFinitePointsComeLastAndDoNotSpoilTheOrder)
   ASSERT_TRUE(IsPermutation(r.Order.Points));
   EXPECT_EQ(r.Order.Points[used], 0);
   EXPECT_EQ(r.Order.Points[used + 1], used + 1);
-  EXPECT_LT(mp::NumberingSpread(r.Mesh.View(false)),
-    4.0 * std::pow(static_cast<double>(used), -0.5));
+  EXPECT_TRUE(Quality(r.Mesh).Tidy());
 }
 
 TEST(SpatialOrder, TheProjectionBetweenRenumberedMeshesIsTheSame)

@@ -20,9 +20,9 @@ user sees must be the same:
        application's SMP backend is left as it was;
     e. interleaved sweeps (the triangles 2-coloured so that no two of a
        colour share an edge, one colour after the other, each in sweep
-       order): Automatic leaves them alone on one thread and renumbers them
-       on two (each thread takes a range of ids), with the result of the
-       meshes as generated;
+       order): Automatic renumbers them on one thread and on two (the
+       cells across a face are half the list apart), with the result of
+       the meshes as generated;
     f. operators kept at the first execution: their matrices in the
        datasets' numbering, also after Input changed numbering;
     g. without OutputIntersections (the meshes give their geometry back
@@ -322,7 +322,7 @@ it, ct = interleaved(t2)
 is_, cs = interleaved(s2)
 plain = project(t2, s2, NEVER, threads=1)
 same_t, same_s = np.arange(t2.GetNumberOfPoints()), np.arange(s2.GetNumberOfPoints())
-for threads, expected in ((1, 0), (2, 2)):
+for threads, expected in ((1, 2), (2, 2)):
     f = project(it, is_, AUTOMATIC, threads=threads)
     check(f.GetNumberOfRenumberedMeshes() == expected,
           "interleaved sweeps, %d thread(s): Automatic renumbered %d meshes (expected %d)"
