@@ -102,8 +102,8 @@ void Renumber(TestMesh& m, const std::string& order, unsigned seed)
         : std::array<double, 3>{ std::floor((centre[2] - lo[2]) / band),
             std::floor((centre[1] - lo[1]) / band), centre[0] };
     }
-    std::sort(cellOrder.begin(), cellOrder.end(),
-      [&](Index a, Index b) { return key[a] < key[b]; });
+    std::sort(
+      cellOrder.begin(), cellOrder.end(), [&](Index a, Index b) { return key[a] < key[b]; });
     // Points in the order the sorted cells first use them: the kernel's
     // renumbering, given this cell order.
     mp::SpatialOrder sorted;

@@ -28,8 +28,8 @@ namespace mpbench
  */
 struct Peer
 {
-  using SetInput = void (*)(long*, int*, long*, int*, long*, int*, long*, int*, double*, long*,
-    double*, long*);
+  using SetInput = void (*)(
+    long*, int*, long*, int*, long*, int*, long*, int*, double*, long*, double*, long*);
   using QueryOutput = void (*)(long*);
   using GetOutput = void (*)(long*, long*, long*, long*);
   using Intersect = void (*)(double*, double*, double*, int*);
@@ -51,8 +51,8 @@ struct Peer
       reinterpret_cast<SetInput>(dlsym(handle, "libsupermesh_tree_intersection_finder_set_input"));
     this->TreeQuery = reinterpret_cast<QueryOutput>(
       dlsym(handle, "libsupermesh_tree_intersection_finder_query_output"));
-    this->TreeGet =
-      reinterpret_cast<GetOutput>(dlsym(handle, "libsupermesh_tree_intersection_finder_get_output"));
+    this->TreeGet = reinterpret_cast<GetOutput>(
+      dlsym(handle, "libsupermesh_tree_intersection_finder_get_output"));
     this->Tris = reinterpret_cast<Intersect>(dlsym(handle, "libsupermesh_intersect_tris_real"));
     this->Tets = reinterpret_cast<Intersect>(dlsym(handle, "libsupermesh_intersect_tets_real"));
     if (!this->TreeSetInput || !this->TreeQuery || !this->TreeGet || !this->Tris || !this->Tets)
@@ -80,7 +80,9 @@ struct Peer
       }
       return x;
     };
-    auto elements = [](const TestMesh& m) { return std::vector<long>(m.Cells.begin(), m.Cells.end()); };
+    auto elements = [](const TestMesh& m) {
+      return std::vector<long>(m.Cells.begin(), m.Cells.end());
+    };
     // Its input layout (coordinates without the z of 2D meshes, element
     // lists as C longs; its C API numbers from 0) is prepared outside the clock.
     std::vector<double> xa = positions(target);
@@ -96,8 +98,8 @@ struct Peer
     int la = corners;
     int lb = corners;
     const auto t0 = Clock::now();
-    this->TreeSetInput(&na, &da, &ca, &la, &nb, &db, &cb, &lb, xa.data(), ea.data(), xb.data(),
-      eb.data());
+    this->TreeSetInput(
+      &na, &da, &ca, &la, &nb, &db, &cb, &lb, xa.data(), ea.data(), xb.data(), eb.data());
     long total = 0;
     this->TreeQuery(&total);
     std::vector<long> indices(static_cast<size_t>(std::max(1L, total)));

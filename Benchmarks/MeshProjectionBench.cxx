@@ -322,7 +322,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
       }
       if (HavePeer)
       {
-        const double seconds = ThePeer.Run(target, source, r.PeerMeasure, r.PeerCandidates, r.PeerPieces);
+        const double seconds =
+          ThePeer.Run(target, source, r.PeerMeasure, r.PeerCandidates, r.PeerPieces);
         r.Peer = run == 0 ? seconds : std::min(r.Peer, seconds);
       }
     }
@@ -349,7 +350,8 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     mp::BoxGridLocator locator(source.View());
     k.Seeding = Since(t0);
     mp::MortarOperator projector;
-    mp::OperatorOptions single; // the field's right-hand side summed in the search, as the filter does
+    mp::OperatorOptions
+      single; // the field's right-hand side summed in the search, as the filter does
     single.Fields = u.data();
     single.FieldComponents = 1;
     projector.Build(target.View(), source.View(), &locator, single);
@@ -488,7 +490,8 @@ int main(int argc, char* argv[])
       std::fprintf(stderr,
         "usage: %s [--dim 2|3|23] [--sizes 1e3,1e4,...] [--brute-max N] [--csv FILE] "
         "[--filter-only [--threads N] [--runs N]] [--order asis|sorted|shuffled] "
-        "[--renumber auto|always|never] [--target FILE.vtu --source FILE.vtu] [--peer LIBSUPERMESH.so]\n",
+        "[--renumber auto|always|never] [--target FILE.vtu --source FILE.vtu] [--peer "
+        "LIBSUPERMESH.so]\n",
         argv[0]);
       return 2;
     }

@@ -51,18 +51,18 @@ struct Row
   Index Pairs;
   double PeakBeyondInputs, InputSize;
   double Brute = -1, Locator = -1, Filter1 = -1, Filter2 = -1, Resample = -1;
-  double Peer = -1;        ///< --peer: libsupermesh's intersections, seconds
-  double PeerMeasure = 0;  ///< --peer: the summed measure of its pieces
+  double Peer = -1;       ///< --peer: libsupermesh's intersections, seconds
+  double PeerMeasure = 0; ///< --peer: the summed measure of its pieces
   Index PeerCandidates = 0, PeerPieces = 0;
-  double FilterPeak = -1;  ///< --filter-only: the filter's peak memory beyond its inputs, MiB
-  double VTKInputs = 0;    ///< --filter-only: the two vtkUnstructuredGrids, MiB
+  double FilterPeak = -1;    ///< --filter-only: the filter's peak memory beyond its inputs, MiB
+  double VTKInputs = 0;      ///< --filter-only: the two vtkUnstructuredGrids, MiB
   double KernelOnPairs = -1; ///< intersection kernel alone on the true pairs
-  Index Tests = 0;   ///< --filter-only: intersection tests
-  Index Queries = 0; ///< --filter-only: locator queries
+  Index Tests = 0;           ///< --filter-only: intersection tests
+  Index Queries = 0;         ///< --filter-only: locator queries
   /// The VTK filter's own stages (vtkMeshProjectionFilter::Get*Time) on 1
   /// and 2 threads: input, neighbours, locator, search, assembly, solve, output.
   double FilterStages[2][7] = {};
-  double CheckTime[2] = {}; ///< of the filter's input stage: the id and offset checks
+  double CheckTime[2] = {};    ///< of the filter's input stage: the id and offset checks
   double RenumberTime[2] = {}; ///< of the filter's input stage: renumbering along space
   int Renumbered = 0;          ///< meshes the filter renumbered
 };

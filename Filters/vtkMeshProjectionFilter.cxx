@@ -127,10 +127,10 @@ static_assert(Same(F::CONSTANT_RECONSTRUCTION, mp::Reconstruction::Constant) &&
 static_assert(Same(F::TO_POINTS, mpvtk::ToPointsBit) && Same(F::TO_CELLS, mpvtk::ToCellsBit) &&
     Same(F::TO_POINTS_AND_CELLS, mpvtk::ToPointsBit | mpvtk::ToCellsBit),
   "Targets are mpvtk::TargetBits");
-static_assert(Same(F::INTENSIVE, false) && Same(F::EXTENSIVE, true),
-  "CellDataQuantity is Settings::Extensive");
-static_assert(Same(F::CONSISTENT_MASS, false) && Same(F::LUMPED_MASS, true),
-  "MassMatrix is Settings::Lumped");
+static_assert(
+  Same(F::INTENSIVE, false) && Same(F::EXTENSIVE, true), "CellDataQuantity is Settings::Extensive");
+static_assert(
+  Same(F::CONSISTENT_MASS, false) && Same(F::LUMPED_MASS, true), "MassMatrix is Settings::Lumped");
 static_assert(Same(F::SAME_ORIENTATION, mpvtk::SameOrientation) &&
     Same(F::OPPOSITE_ORIENTATION, mpvtk::OppositeOrientation) &&
     Same(F::ANY_ORIENTATION, mpvtk::AnyOrientation),
@@ -141,8 +141,7 @@ static_assert(Same(F::AUTOMATIC_RENUMBERING, mpvtk::SimplexMesh::AUTOMATIC) &&
   "Renumbering is mpvtk::SimplexMesh::Ordering");
 static_assert(Same(F::POINTS_TO_POINTS, mpvtk::PointsToPoints) &&
     Same(F::POINTS_TO_CELLS, mpvtk::PointsToCells) &&
-    Same(F::CELLS_TO_CELLS, mpvtk::CellsToCells) &&
-    Same(F::CELLS_TO_POINTS, mpvtk::CellsToPoints),
+    Same(F::CELLS_TO_CELLS, mpvtk::CellsToCells) && Same(F::CELLS_TO_POINTS, mpvtk::CellsToPoints),
   "Transfers are mpvtk::Transfer");
 static_assert(Same(F::TARGET_MASS, mpvtk::Exported::TargetMass) &&
     Same(F::MIXED_MASS, mpvtk::Exported::MixedMass) &&
@@ -401,7 +400,6 @@ int vtkMeshProjectionFilter::RequestUpdateExtent(
   return 1;
 }
 
-
 //------------------------------------------------------------------------------
 void vtkMeshProjectionFilter::Internals::Publish(
   vtkMeshProjectionFilter& filter, const mpvtk::Statistics& stats, double seconds)
@@ -505,8 +503,8 @@ bool InputsVaryInTime(vtkInformationVector** inputVector)
   for (int port = 0; port < 2; ++port)
   {
     vtkInformation* info = inputVector[port]->GetInformationObject(0);
-    varying = varying ||
-      (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
+    varying =
+      varying || (info && info->Has(SDDP::TIME_STEPS()) && info->Length(SDDP::TIME_STEPS()) > 1);
   }
   return varying;
 }
@@ -615,8 +613,8 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
   ReportSkipped(skipped, n, projected, say);
 
   // 3. Optionally, the intersection pieces of every leaf.
-  mpvtk::WritePieces(pieces, vtkPolyData::GetData(outputVector, 1),
-    vtkUnstructuredGrid::GetData(outputVector, 2));
+  mpvtk::WritePieces(
+    pieces, vtkPolyData::GetData(outputVector, 1), vtkUnstructuredGrid::GetData(outputVector, 2));
   filter.OperatorReused = projected > 0 && stats.OperatorsBuilt == 0;
   return mpvtk::Verdict();
 }
@@ -652,7 +650,8 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
   const bool known = transfer >= 0 && transfer <= 3;
   if (matrix < TARGET_MASS || matrix > EXTRAPOLATION)
   {
-    vtkErrorMacro(<< "No matrix number " << matrix << ": TARGET_MASS (0), MIXED_MASS (1), "
+    vtkErrorMacro(<< "No matrix number " << matrix
+                  << ": TARGET_MASS (0), MIXED_MASS (1), "
                      "FRINGE_EXTENSION (2) or EXTRAPOLATION (3).");
     return -1;
   }
@@ -665,13 +664,15 @@ vtkIdType vtkMeshProjectionFilter::GetMatrix(int transfer, int matrix, vtkIdType
   bool changed = executed == 0 || this->GetMTime() > executed;
   for (int port = 0; port < 2; ++port)
   {
-    vtkDataObject* in = this->GetNumberOfInputConnections(port) ? this->GetInputDataObject(port, 0) : nullptr;
+    vtkDataObject* in =
+      this->GetNumberOfInputConnections(port) ? this->GetInputDataObject(port, 0) : nullptr;
     changed = changed || (in && in->GetMTime() > executed);
   }
   if (changed)
   {
     vtkErrorMacro(<< "GetMatrix reads the operators of the last execution, and the filter "
-                  << (executed == 0 ? "has not executed" : "or its inputs changed since it executed")
+                  << (executed == 0 ? "has not executed"
+                                    : "or its inputs changed since it executed")
                   << ": set KeepMatrices on and call Update() first.");
     return -1;
   }
@@ -714,12 +715,11 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
   {
     return false;
   }
-  const std::string title =
-    std::string(matrix == MIXED_MASS ? "M_ts"
-        : matrix == FRINGE_EXTENSION ? "P"
-        : matrix == EXTRAPOLATION    ? "E"
-                                     : "M_tt") + ", " +
-    mpvtk::TransferName(static_cast<mpvtk::Transfer>(transfer));
+  const std::string title = std::string(matrix == MIXED_MASS ? "M_ts"
+                                : matrix == FRINGE_EXTENSION ? "P"
+                                : matrix == EXTRAPOLATION    ? "E"
+                                                             : "M_tt") +
+    ", " + mpvtk::TransferName(static_cast<mpvtk::Transfer>(transfer));
   const std::string error = mpvtk::WriteMatrixMarketFile(
     fileName ? fileName : "", title, ncolumns, rowStart, columns, values);
   if (!error.empty())
@@ -734,8 +734,9 @@ bool vtkMeshProjectionFilter::WriteMatrixMarket(const char* fileName, int transf
 void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SearchMethod: "
-     << (this->SearchMethod == BRUTE_FORCE ? "BruteForce" : "AdvancingFront") << "\n";
+  os << indent
+     << "SearchMethod: " << (this->SearchMethod == BRUTE_FORCE ? "BruteForce" : "AdvancingFront")
+     << "\n";
   os << indent << "OutputIntersections: " << (this->OutputIntersections ? "On" : "Off") << "\n";
   os << indent << "FillWithNaN: " << (this->FillWithNaN ? "On" : "Off") << "\n";
   os << indent << "FillValue: " << this->FillValue << "\n";
@@ -743,13 +744,17 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FringeThreshold: " << this->FringeThreshold << "\n";
   os << indent << "PointDataTarget: " << this->PointDataTarget << "\n";
   os << indent << "CellDataTarget: " << this->CellDataTarget << "\n";
-  os << indent << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive") << "\n";
+  os << indent
+     << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive")
+     << "\n";
   os << indent << "CellDataReconstruction: " << this->CellDataReconstruction << "\n";
-  os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent") << "\n";
+  os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent")
+     << "\n";
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
   os << indent << "SurfaceReach: " << this->SurfaceReach << "\n";
-  os << indent << "ConserveSourceIntegral: " << (this->ConserveSourceIntegral ? "On" : "Off") << "\n";
+  os << indent << "ConserveSourceIntegral: " << (this->ConserveSourceIntegral ? "On" : "Off")
+     << "\n";
   os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";
   os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";

@@ -62,9 +62,9 @@ public:
   /// How cell arrays are seen on each Source cell (CellDataReconstruction).
   enum Reconstructions
   {
-    CONSTANT_RECONSTRUCTION = 0,  ///< the cell's value (first order)
-    LIMITED_RECONSTRUCTION = 1,   ///< linear, limited: second order, no new extrema in cells
-    UNLIMITED_RECONSTRUCTION = 2  ///< linear: second order, exact for linear fields
+    CONSTANT_RECONSTRUCTION = 0, ///< the cell's value (first order)
+    LIMITED_RECONSTRUCTION = 1,  ///< linear, limited: second order, no new extrema in cells
+    UNLIMITED_RECONSTRUCTION = 2 ///< linear: second order, exact for linear fields
   };
   enum MassMatrices
   {
@@ -83,8 +83,9 @@ public:
   {
     TARGET_MASS = 0, ///< M_tt (target functions x target functions)
     MIXED_MASS = 1,  ///< M_ts (target functions x source functions)
-    FRINGE_EXTENSION = 2, ///< P, target functions x target functions (FringeThreshold): u = P u_free
-    EXTRAPOLATION = 3     ///< E, target functions x target functions (Extrapolation): output = E u
+    FRINGE_EXTENSION =
+      2,              ///< P, target functions x target functions (FringeThreshold): u = P u_free
+    EXTRAPOLATION = 3 ///< E, target functions x target functions (Extrapolation): output = E u
   };
 
   ///@{
@@ -137,7 +138,12 @@ public:
    * (PreserveBounds is the switch that bounds them). GetMatrix
    * EXTRAPOLATION gives the extension.
    */
-  enum Extrapolations { NO_EXTRAPOLATION = 0, SMOOTH_EXTRAPOLATION = 1, NEAREST_EXTRAPOLATION = 2 };
+  enum Extrapolations
+  {
+    NO_EXTRAPOLATION = 0,
+    SMOOTH_EXTRAPOLATION = 1,
+    NEAREST_EXTRAPOLATION = 2
+  };
   vtkSetClampMacro(Extrapolation, int, NO_EXTRAPOLATION, NEAREST_EXTRAPOLATION);
   vtkGetMacro(Extrapolation, int);
   ///@}
@@ -368,8 +374,8 @@ public:
    * Update(), GetMatrix(). On several processes it is not collective: each
    * process reads its own rows.
    */
-  vtkIdType GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart,
-    vtkIdTypeArray* columns, vtkDoubleArray* values);
+  vtkIdType GetMatrix(int transfer, int matrix, vtkIdTypeArray* rowStart, vtkIdTypeArray* columns,
+    vtkDoubleArray* values);
   /// Writes GetMatrix()'s matrix as a Matrix Market coordinate file (1-based); false on failure.
   bool WriteMatrixMarket(const char* fileName, int transfer, int matrix);
 

@@ -32,7 +32,7 @@ class Parts;
 class StageClock;
 struct Statistics;
 struct Verdict;
-}
+} // namespace mpvtk
 
 struct vtkMeshProjectionFilter::Internals
 {
@@ -63,10 +63,11 @@ struct vtkMeshProjectionFilter::Internals
     vtkInformationVector* outputVector, mpvtk::Parts& parts, mpvtk::StageClock& clock,
     mpvtk::Statistics& stats);
   /// The Input blocks that could not be projected: an error if none was, else a warning once.
-  static void ReportSkipped(const std::vector<std::string>& skipped, size_t leaves, int projected,
-    mpvtk::Messages& say);
+  static void ReportSkipped(
+    const std::vector<std::string>& skipped, size_t leaves, int projected, mpvtk::Messages& say);
   /// The statistics getters' values.
-  static void Publish(vtkMeshProjectionFilter& filter, const mpvtk::Statistics& stats, double seconds);
+  static void Publish(
+    vtkMeshProjectionFilter& filter, const mpvtk::Statistics& stats, double seconds);
 };
 
 #endif

@@ -9,7 +9,8 @@
 
 namespace mpvtk
 {
-void ForEachLeaf(vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit)
+void ForEachLeaf(
+  vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit)
 {
   vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(data);
   if (!composite)

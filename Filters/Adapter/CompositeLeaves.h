@@ -23,7 +23,8 @@ class vtkDataSet;
 namespace mpvtk
 {
 /// visit(at) for every non-empty leaf of `data` (a composite dataset; nothing otherwise).
-void ForEachLeaf(vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit);
+void ForEachLeaf(
+  vtkDataObject* data, const std::function<void(vtkCompositeDataIterator* at)>& visit);
 
 /// The datasets of `data`: itself, or a composite's dataset leaves.
 std::vector<vtkDataSet*> DataSetsOf(vtkDataObject* data);

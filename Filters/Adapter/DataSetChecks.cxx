@@ -34,24 +34,42 @@ int PointsOfType(int type)
 {
   switch (type)
   {
-    case VTK_VERTEX: return 1;
-    case VTK_POLY_VERTEX: return -1;
-    case VTK_LINE: return 2;
-    case VTK_POLY_LINE: return -2;
-    case VTK_TRIANGLE: return 3;
-    case VTK_TRIANGLE_STRIP: return -3;
-    case VTK_POLYGON: return -3;
-    case VTK_PIXEL: return 4;
-    case VTK_QUAD: return 4;
-    case VTK_TETRA: return 4;
-    case VTK_VOXEL: return 8;
-    case VTK_HEXAHEDRON: return 8;
-    case VTK_WEDGE: return 6;
-    case VTK_PYRAMID: return 5;
-    case VTK_PENTAGONAL_PRISM: return 10;
-    case VTK_HEXAGONAL_PRISM: return 12;
-    case VTK_POLYHEDRON: return -4;
-    default: return 0;
+    case VTK_VERTEX:
+      return 1;
+    case VTK_POLY_VERTEX:
+      return -1;
+    case VTK_LINE:
+      return 2;
+    case VTK_POLY_LINE:
+      return -2;
+    case VTK_TRIANGLE:
+      return 3;
+    case VTK_TRIANGLE_STRIP:
+      return -3;
+    case VTK_POLYGON:
+      return -3;
+    case VTK_PIXEL:
+      return 4;
+    case VTK_QUAD:
+      return 4;
+    case VTK_TETRA:
+      return 4;
+    case VTK_VOXEL:
+      return 8;
+    case VTK_HEXAHEDRON:
+      return 8;
+    case VTK_WEDGE:
+      return 6;
+    case VTK_PYRAMID:
+      return 5;
+    case VTK_PENTAGONAL_PRISM:
+      return 10;
+    case VTK_HEXAGONAL_PRISM:
+      return 12;
+    case VTK_POLYHEDRON:
+      return -4;
+    default:
+      return 0;
   }
 }
 
@@ -105,8 +123,8 @@ std::string CheckCells(const T* offsets, vtkIdType numberOfOffsets, const T* ids
   }
   else if ((count > 0 && to - from != count) || (count < 0 && to - from < -count))
   {
-    why << " has " << to - from << " points where its type needs "
-        << (count < 0 ? "at least " : "") << std::abs(count) << '.';
+    why << " has " << to - from << " points where its type needs " << (count < 0 ? "at least " : "")
+        << std::abs(count) << '.';
   }
   else
   {
@@ -179,8 +197,8 @@ std::string CheckFaceStream(vtkUnstructuredGrid* grid, vtkIdType c, const std::s
     {
       why << role << " cell " << c << " is a polyhedron whose face " << k << " has "
           << (count < 0 ? std::string("no place in the faces array")
-                        : std::to_string(count) + " points"
-                            + (count < 3 ? " (a face needs 3)" : ", past the end of the faces array"))
+                        : std::to_string(count) + " points" +
+                   (count < 3 ? " (a face needs 3)" : ", past the end of the faces array"))
           << '.';
       return why.str();
     }
@@ -188,8 +206,8 @@ std::string CheckFaceStream(vtkUnstructuredGrid* grid, vtkIdType c, const std::s
     {
       if (f[at] < 0 || f[at] >= np)
       {
-        why << role << " cell " << c << " is a polyhedron whose face " << k
-            << " refers to point " << f[at] << ", which does not exist (" << np << " points).";
+        why << role << " cell " << c << " is a polyhedron whose face " << k << " refers to point "
+            << f[at] << ", which does not exist (" << np << " points).";
         return why.str();
       }
     }
@@ -220,8 +238,8 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
     if (n > 0 && (!types || types->GetNumberOfValues() != n || types->GetNumberOfComponents() != 1))
     {
       return role + " has " + std::to_string(n) + " cells but " +
-        (types ? std::to_string(types->GetNumberOfValues()) : std::string("no")) +
-        " cell types." + advice;
+        (types ? std::to_string(types->GetNumberOfValues()) : std::string("no")) + " cell types." +
+        advice;
     }
     const unsigned char* t = n > 0 ? types->GetPointer(0) : nullptr;
     // The types VTK knows, once (not a name lookup per cell).
@@ -257,8 +275,8 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
     for (int k = 0; k < 4 && why.empty(); ++k)
     {
       const int count = least[k];
-      why = CheckCellArray(arrays[k], np, first, role + "'s " + names[k],
-        [count](vtkIdType) { return count; });
+      why = CheckCellArray(
+        arrays[k], np, first, role + "'s " + names[k], [count](vtkIdType) { return count; });
       first += arrays[k] ? std::max<vtkIdType>(arrays[k]->GetNumberOfOffsets() - 1, 0) : 0;
     }
   }
@@ -298,8 +316,9 @@ std::string CheckDataSet(vtkDataSet* data, const std::string& role)
   // The ghost array (read here) has a value per cell; other arrays are
   // checked where they are read (Source's fields, a composite's blocks).
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
-  if (ghosts && (ghosts->GetNumberOfComponents() != 1 ||
-                  ghosts->GetNumberOfTuples() < data->GetNumberOfCells()))
+  if (ghosts &&
+    (ghosts->GetNumberOfComponents() != 1 ||
+      ghosts->GetNumberOfTuples() < data->GetNumberOfCells()))
   {
     return role + "'s cell ghost array has " + std::to_string(ghosts->GetNumberOfTuples()) +
       " tuples of " + std::to_string(ghosts->GetNumberOfComponents()) + " components for " +

@@ -80,15 +80,15 @@ vtkSmartPointer<DataSet> MakePieces(const mp::IntersectionPieces& pieces, const 
 }
 } // namespace
 
-vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source)
+vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(
+  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source)
 {
   return MakePieces<vtkPolyData>(pieces, target, source, "Area",
     [](vtkPolyData* p, vtkCellArray* cells) { p->SetPolys(cells); });
 }
 
-vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source)
+vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(
+  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source)
 {
   return MakePieces<vtkPolyData>(pieces, target, source, "Length",
     [](vtkPolyData* p, vtkCellArray* cells) { p->SetLines(cells); });

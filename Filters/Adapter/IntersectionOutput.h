@@ -27,12 +27,12 @@ namespace mpvtk
 {
 /// 2D: one polygon per intersecting pair in the target's plane, with
 /// SourceCellId, TargetCellId (VTK ids) and Area.
-vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source);
+vtkSmartPointer<vtkPolyData> MakeIntersectionPolygons(
+  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source);
 /// Curves: one segment per intersecting pair on the target's segment, with
 /// SourceCellId, TargetCellId and Length.
-vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(const mp::IntersectionPieces& pieces,
-  const SimplexMesh& target, const SimplexMesh& source);
+vtkSmartPointer<vtkPolyData> MakeIntersectionSegments(
+  const mp::IntersectionPieces& pieces, const SimplexMesh& target, const SimplexMesh& source);
 /// 3D: the tetrahedra decomposing each intersection polyhedron, with
 /// SourceCellId, TargetCellId and Volume.
 vtkSmartPointer<vtkUnstructuredGrid> MakeIntersectionPolyhedra(

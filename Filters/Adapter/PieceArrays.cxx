@@ -24,7 +24,8 @@ std::vector<PieceField> FieldsOfPiece(vtkDataSet* data)
       vtkDataArray* a = attributes->GetArray(i);
       if (a && a->GetName() && IsField(attributes, a))
       {
-        fields.push_back({ association, a->GetName(), a->GetDataType(), a->GetNumberOfComponents() });
+        fields.push_back(
+          { association, a->GetName(), a->GetDataType(), a->GetNumberOfComponents() });
       }
     }
   }
@@ -90,8 +91,9 @@ JoinedFields JoinPieceFields(const std::vector<std::vector<PieceField>>& pieces,
           }
           how.push_back(Kind(v.first.first, v.first.second) + " on " + Listed(on));
         }
-        joined.Warnings[association][name] = (label + name + "' is not projected: it differs between the Source " +
-          whole + " (" + Listed(how) + "). Make it alike on all of them (or rename one).");
+        joined.Warnings[association][name] =
+          (label + name + "' is not projected: it differs between the Source " + whole + " (" +
+            Listed(how) + "). Make it alike on all of them (or rename one).");
         continue;
       }
       const int type = variants.begin()->first.first;
@@ -116,8 +118,9 @@ JoinedFields JoinPieceFields(const std::vector<std::vector<PieceField>>& pieces,
         }
         without.push_back(names[i]);
       }
-      joined.Warnings[association][name] = (label + name + "' is missing on " + Listed(without) + ": it is projected from the Source " +
-        whole + " that have it, the Source cells without it " +
+      joined.Warnings[association][name] = (label + name + "' is missing on " + Listed(without) +
+        ": it is projected from the Source " + whole +
+        " that have it, the Source cells without it " +
         "being a hole in Source for it, as NaN values are (its values there are NaN" +
         (real ? "" : "; it is joined as double") + "). Input points and cells left without " +
         "data for it get the fill value and are marked invalid (in vtkValidPointMask and " +

@@ -144,7 +144,8 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
   return this->WrapSimplices(this->SplitGrid, role, numberOfCells);
 }
 
-std::string SimplexMesh::WrapSimplices(vtkUnstructuredGrid* grid, const char* role, vtkIdType parents)
+std::string SimplexMesh::WrapSimplices(
+  vtkUnstructuredGrid* grid, const char* role, vtkIdType parents)
 {
   this->SimplexGrid = grid;
   const vtkIdType numberOfCells = grid->GetNumberOfCells();
@@ -368,11 +369,13 @@ void SimplexMesh::OrderInSpace()
   mp::LargeBuffer<std::int32_t> connectivity32(narrow ? corners * static_cast<size_t>(n) : 0);
   if (narrow)
   {
-    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity32.data(), order.Cells.data(), runner);
+    mp::RenumberMesh(
+      this->Kernel, order, coordinates.data(), connectivity32.data(), order.Cells.data(), runner);
   }
   else
   {
-    mp::RenumberMesh(this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
+    mp::RenumberMesh(
+      this->Kernel, order, coordinates.data(), connectivity.data(), order.Cells.data(), runner);
   }
   // The kernel sees the copy; P0 functions and the pieces' ids still name
   // the dataset's cells (through Parent), P1 ones name kernel points
@@ -397,8 +400,7 @@ void SimplexMesh::OrderInSpace()
   mp::LargeVector<mp::Index>().swap(this->AllConnectivityCopy);
   mp::LargeVector<double>().swap(this->PointCopy);
   this->AllConnectivity = nullptr;
-  this->OrderTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->OrderTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void SimplexMesh::UseAsSurface()
@@ -478,8 +480,8 @@ void SimplexMesh::BuildNeighbors(bool keepPointCells)
   {
     this->Around.reset(new mp::PointCells);
   }
-  this->NonManifold =
-    mp::BuildFaceNeighbors(this->Kernel, this->Neighbors.data(), SMPTaskRunner(), this->Around.get());
+  this->NonManifold = mp::BuildFaceNeighbors(
+    this->Kernel, this->Neighbors.data(), SMPTaskRunner(), this->Around.get());
   if (this->Around && this->Around->Fit(this->Kernel))
   {
     this->Kernel.Around = this->Around.get();

@@ -86,9 +86,15 @@ public:
   /// Whether the kernel's numbering is a renumbered copy (see SetOrdering).
   bool Ordered() const { return !this->PointOrder.empty(); }
   /// The dataset's point of kernel point p.
-  vtkIdType DataSetPoint(mp::Index p) const { return this->PointOrder.empty() ? p : this->PointOrder[p]; }
+  vtkIdType DataSetPoint(mp::Index p) const
+  {
+    return this->PointOrder.empty() ? p : this->PointOrder[p];
+  }
   /// Kernel point -> dataset point, or null when they are the same.
-  const mp::Index* PointOrderData() const { return this->PointOrder.empty() ? nullptr : this->PointOrder.data(); }
+  const mp::Index* PointOrderData() const
+  {
+    return this->PointOrder.empty() ? nullptr : this->PointOrder.data();
+  }
   /// Seconds Wrap() spent renumbering (0 when it did not).
   double OrderSeconds() const { return this->OrderTime; }
   /// The simplices, before any renumbering: the dataset itself, or its split.
@@ -125,9 +131,9 @@ public:
   bool OwnsGeometry() const
   {
     return !this->OrderedPoints.empty() || !this->OrderedConnectivity.empty() ||
-      !this->OrderedConnectivity32.empty() ||
-      !this->PointCopy.empty() || !this->ConnectivityCopy.empty() ||
-      !this->AllConnectivityCopy.empty() || !this->FramePoints.empty();
+      !this->OrderedConnectivity32.empty() || !this->PointCopy.empty() ||
+      !this->ConnectivityCopy.empty() || !this->AllConnectivityCopy.empty() ||
+      !this->FramePoints.empty();
   }
   /**
    * Gives back the kernel's points, cells and neighbours (copies, or the
@@ -218,16 +224,17 @@ private:
   void SeeInPlaneOrSpace();
 
   vtkUnstructuredGrid* SimplexGrid = nullptr;
-  vtkSmartPointer<vtkUnstructuredGrid> SplitGrid; ///< when the dataset was split
-  mp::UninitializedLargeVector<mp::Index> ParentIds;              ///< the dataset's cell of each kernel simplex
-  const double* OriginalPoints = nullptr;        ///< the points before any plane frame
+  vtkSmartPointer<vtkUnstructuredGrid> SplitGrid;    ///< when the dataset was split
+  mp::UninitializedLargeVector<mp::Index> ParentIds; ///< the dataset's cell of each kernel simplex
+  const double* OriginalPoints = nullptr;            ///< the points before any plane frame
   vtkIdType LowerDimensional = 0;
   vtkIdType Flat = 0;
   vtkIdType SplitCount = 0;
   double CheckTime = 0;
   double OrderTime = 0;
   int OrderingMode = AUTOMATIC;
-  mp::UninitializedLargeVector<mp::Index> PointOrder;            ///< kernel point -> dataset point (empty: same)
+  mp::UninitializedLargeVector<mp::Index>
+    PointOrder;                                   ///< kernel point -> dataset point (empty: same)
   mp::LargeBuffer<double> OrderedPoints;          ///< the renumbered points, when Ordered()
   mp::LargeBuffer<mp::Index> OrderedConnectivity; ///< and simplices
   mp::LargeBuffer<std::int32_t> OrderedConnectivity32; ///< or these, below 2^31 points

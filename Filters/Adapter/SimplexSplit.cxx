@@ -36,13 +36,26 @@ bool StandardShape(int type, mp::CellShape& shape)
 {
   switch (type)
   {
-    case VTK_HEXAHEDRON: shape = mp::CellShape::Hexahedron; return true;
-    case VTK_VOXEL: shape = mp::CellShape::Voxel; return true;
-    case VTK_WEDGE: shape = mp::CellShape::Wedge; return true;
-    case VTK_PYRAMID: shape = mp::CellShape::Pyramid; return true;
-    case VTK_PENTAGONAL_PRISM: shape = mp::CellShape::PentagonalPrism; return true;
-    case VTK_HEXAGONAL_PRISM: shape = mp::CellShape::HexagonalPrism; return true;
-    default: return false;
+    case VTK_HEXAHEDRON:
+      shape = mp::CellShape::Hexahedron;
+      return true;
+    case VTK_VOXEL:
+      shape = mp::CellShape::Voxel;
+      return true;
+    case VTK_WEDGE:
+      shape = mp::CellShape::Wedge;
+      return true;
+    case VTK_PYRAMID:
+      shape = mp::CellShape::Pyramid;
+      return true;
+    case VTK_PENTAGONAL_PRISM:
+      shape = mp::CellShape::PentagonalPrism;
+      return true;
+    case VTK_HEXAGONAL_PRISM:
+      shape = mp::CellShape::HexagonalPrism;
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -117,8 +130,7 @@ public:
     , Grid(vtkUnstructuredGrid::SafeDownCast(data))
     , X(x)
     , Key(key)
-  {
-  }
+  {}
 
   /// Appends cell c's simplices (of type `type`) to `simplices`.
   mp::SplitStatus Split(vtkIdType c, int type, std::vector<mp::Index>& simplices)
@@ -143,7 +155,8 @@ public:
         VTK_FALLTHROUGH;
       case VTK_QUAD:
       case VTK_POLYGON:
-        return mp::SplitPolygon(this->X, ids.data(), static_cast<int>(ids.size()), simplices, this->Key)
+        return mp::SplitPolygon(
+                 this->X, ids.data(), static_cast<int>(ids.size()), simplices, this->Key)
           ? mp::SplitStatus::Split
           : mp::SplitStatus::NotStarShaped;
       case VTK_TRIANGLE_STRIP:
@@ -185,7 +198,8 @@ private:
         // Every other triangle of a strip runs the other way round: as
         // VTK orients them, all alike (it matters on surfaces).
         const bool odd = k % 2 == 1;
-        simplices.insert(simplices.end(), { ids[odd ? k + 1 : k], ids[odd ? k : k + 1], ids[k + 2] });
+        simplices.insert(
+          simplices.end(), { ids[odd ? k + 1 : k], ids[odd ? k : k + 1], ids[k + 2] });
       }
     }
   }
@@ -289,7 +303,8 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
     const int type = data->GetCellType(c);
-    if (type == VTK_EMPTY_CELL || vtkCellTypes::GetDimension(static_cast<unsigned char>(type)) < dimension)
+    if (type == VTK_EMPTY_CELL ||
+      vtkCellTypes::GetDimension(static_cast<unsigned char>(type)) < dimension)
     {
       this->LowerDimensional += type != VTK_EMPTY_CELL;
       continue;

@@ -25,8 +25,7 @@ SourceLocator::SourceLocator(
   : Mesh(mesh)
   , Bins(std::move(bins))
   , Flat(flat)
-{
-}
+{}
 
 std::unique_ptr<mp::CandidateLocator> SourceLocator::NewForThread() const
 {

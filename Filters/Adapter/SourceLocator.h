@@ -34,7 +34,10 @@ public:
   void FindCandidates(const double box[6], std::vector<mp::Index>& cells) override;
   void FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells) override;
   /// The bins' answer (faces in space: a 3D mesh's own).
-  bool Supports(mp::Index cell, int face) const override { return this->Bins->Supports(cell, face); }
+  bool Supports(mp::Index cell, int face) const override
+  {
+    return this->Bins->Supports(cell, face);
+  }
   /// Shares the bins (read only, the lazy one built once); no locks.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
 

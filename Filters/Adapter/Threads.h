@@ -119,8 +119,7 @@ vtkIdType FirstWhere(vtkIdType n, const Wrong& wrong)
       {
         vtkIdType seen = first;
         while (i < seen && !first.compare_exchange_weak(seen, i))
-        {
-        }
+        {}
         return;
       }
     }

@@ -68,7 +68,8 @@ bool MPIParts::SolveGathered(const RowSharing& shared, const mp::CsrMatrix& A, c
   {
     std::unordered_map<long long, mp::Index> index;
     auto id = [&index](double g) {
-      return index.emplace(static_cast<long long>(g), static_cast<mp::Index>(index.size())).first->second;
+      return index.emplace(static_cast<long long>(g), static_cast<mp::Index>(index.size()))
+        .first->second;
     };
     std::vector<std::vector<double>> parts(static_cast<size_t>(this->N));
     std::vector<mp::Index> row, column;
@@ -102,8 +103,8 @@ bool MPIParts::SolveGathered(const RowSharing& shared, const mp::CsrMatrix& A, c
     const mp::Index total = static_cast<mp::Index>(index.size());
     b.resize(static_cast<size_t>(total) * width, 0.0);
     std::vector<double> x(b.size(), 0.0);
-    const bool solved = mp::BlockCG::SolveEntries(total, row, column, value, b.data(), x.data(),
-      static_cast<int>(width));
+    const bool solved = mp::BlockCG::SolveEntries(
+      total, row, column, value, b.data(), x.data(), static_cast<int>(width));
     for (int r = 0; r < this->N; ++r)
     {
       const std::vector<double>& v = parts[r];

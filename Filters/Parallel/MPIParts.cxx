@@ -18,8 +18,7 @@ MPIParts::MPIParts(vtkMultiProcessController* controller)
   , Mpi(vtkMPICommunicator::SafeDownCast(controller->GetCommunicator()))
   , Me(controller->GetLocalProcessId())
   , N(controller->GetNumberOfProcesses())
-{
-}
+{}
 
 Verdict MPIParts::Agree(const Verdict& verdict, bool* flag)
 {
@@ -57,8 +56,8 @@ void MPIParts::Or(std::vector<char>& flags)
   std::vector<int> mine(flags.begin(), flags.end()), all(flags.size());
   if (!flags.empty())
   {
-    this->C->AllReduce(mine.data(), all.data(), static_cast<vtkIdType>(mine.size()),
-      vtkCommunicator::MAX_OP);
+    this->C->AllReduce(
+      mine.data(), all.data(), static_cast<vtkIdType>(mine.size()), vtkCommunicator::MAX_OP);
   }
   for (size_t i = 0; i < flags.size(); ++i)
   {
@@ -135,12 +134,15 @@ std::vector<double> MPIParts::SumByKey(
       order.emplace_back(r, j);
     }
   }
-  auto keyOf = [&](const std::pair<int, size_t>& e) { return got[e.first].data() + (w + 1) * e.second; };
-  std::sort(order.begin(), order.end(), [&](const std::pair<int, size_t>& a, const std::pair<int, size_t>& b) {
-    const long long* x = keyOf(a);
-    const long long* y = keyOf(b);
-    return std::lexicographical_compare(x, x + w, y, y + w) || (std::equal(x, x + w, y) && a < b);
-  });
+  auto keyOf = [&](const std::pair<int, size_t>& e) {
+    return got[e.first].data() + (w + 1) * e.second;
+  };
+  std::sort(order.begin(), order.end(),
+    [&](const std::pair<int, size_t>& a, const std::pair<int, size_t>& b) {
+      const long long* x = keyOf(a);
+      const long long* y = keyOf(b);
+      return std::lexicographical_compare(x, x + w, y, y + w) || (std::equal(x, x + w, y) && a < b);
+    });
   std::vector<std::vector<double>> answer(static_cast<size_t>(n));
   for (int r = 0; r < n; ++r)
   {
@@ -150,7 +152,8 @@ std::vector<double> MPIParts::SumByKey(
   {
     size_t b = a;
     double total = 0.0;
-    for (; b < order.size() && std::equal(keyOf(order[a]), keyOf(order[a]) + w, keyOf(order[b])); ++b)
+    for (; b < order.size() && std::equal(keyOf(order[a]), keyOf(order[a]) + w, keyOf(order[b]));
+         ++b)
     {
       double v;
       std::memcpy(&v, keyOf(order[b]) + w, sizeof(v));

@@ -126,9 +126,11 @@ public:
   struct RowSharing
   {
     std::vector<int> Neighbours; ///< ascending ranks
-    std::vector<std::vector<mp::Index>> Rows; ///< per neighbour, the rows shared with it, in an order both agree on
+    std::vector<std::vector<mp::Index>>
+      Rows; ///< per neighbour, the rows shared with it, in an order both agree on
     std::vector<mp::Index> SharedRows; ///< distinct, ascending
-    std::vector<std::vector<mp::Index>> Copies; ///< rows of one point, ascending, first the rows' representative
+    std::vector<std::vector<mp::Index>>
+      Copies; ///< rows of one point, ascending, first the rows' representative
     std::vector<char> Counted;
     std::vector<long long> RowGlobal;
   };

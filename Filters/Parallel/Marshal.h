@@ -34,7 +34,10 @@ struct PointKey
 /// Hashes a point key (for unordered maps of points): FNV-1a over its bytes. (for unordered maps of points).
 struct PointKeyHash
 {
-  size_t operator()(const PointKey& k) const { return static_cast<size_t>(mp::Fnv1a64(k.X, sizeof k.X)); }
+  size_t operator()(const PointKey& k) const
+  {
+    return static_cast<size_t>(mp::Fnv1a64(k.X, sizeof k.X));
+  }
 };
 
 /// The key of a point known by its coordinates.

@@ -19,8 +19,8 @@
 #ifndef MeshProjection_Parallel_Parts_h
 #define MeshProjection_Parallel_Parts_h
 
-#include "Adapter/PieceArrays.h" // JoinedFields
-#include "Transfer/BlockCG.h" // SolverHooks
+#include "Adapter/PieceArrays.h"     // JoinedFields
+#include "Transfer/BlockCG.h"        // SolverHooks
 #include "Transfer/MortarOperator.h" // FringeHalo
 
 #include "vtkSmartPointer.h"
@@ -40,9 +40,9 @@ namespace mpvtk
 /// How a step of an execution ended, on this process or, once agreed, on all.
 enum class Outcome
 {
-  Done,    ///< went through
-  Failed,  ///< an error: the reason says why
-  Stopped  ///< the user's abort: the output is Input as it came
+  Done,   ///< went through
+  Failed, ///< an error: the reason says why
+  Stopped ///< the user's abort: the output is Input as it came
 };
 
 /// An outcome with its reason (empty when Done).
@@ -185,13 +185,13 @@ public:
   std::vector<double> SumByKey(
     const std::vector<long long>& keys, int width, const std::vector<double>& values) override;
   SharedTarget ShareTarget(vtkDataSet* target) override;
-  mp::SolverHooks Hooks(const SharedTarget&, bool, mp::Index,
-    const std::function<vtkIdType(mp::Index)>&) override
+  mp::SolverHooks Hooks(
+    const SharedTarget&, bool, mp::Index, const std::function<vtkIdType(mp::Index)>&) override
   {
     return mp::SolverHooks();
   }
-  mp::FringeHalo Halo(const SharedTarget&, const mp::MeshView&,
-    const std::function<vtkIdType(mp::Index)>&) override
+  mp::FringeHalo Halo(
+    const SharedTarget&, const mp::MeshView&, const std::function<vtkIdType(mp::Index)>&) override
   {
     return mp::FringeHalo();
   }

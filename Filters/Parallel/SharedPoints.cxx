@@ -178,7 +178,8 @@ vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target, PointShar
   for (vtkIdType p = 0; p < np; ++p)
   {
     ids->SetValue(p,
-      points.Owner[p] == this->Me && points.Representative[p] == p ? static_cast<vtkIdType>(next++) : -1);
+      points.Owner[p] == this->Me && points.Representative[p] == p ? static_cast<vtkIdType>(next++)
+                                                                   : -1);
   }
   std::vector<std::vector<double>> send(points.Neighbours.size()), recv(points.Neighbours.size());
   for (size_t i = 0; i < points.Neighbours.size(); ++i)
@@ -287,8 +288,8 @@ void MPIParts::Complete(const RowSharing& rows, double* v, int width, bool minim
   }
   for (size_t s = 0; s < rows.SharedRows.size(); ++s)
   {
-    std::copy(sum.begin() + s * width, sum.begin() + (s + 1) * width,
-      v + rows.SharedRows[s] * width);
+    std::copy(
+      sum.begin() + s * width, sum.begin() + (s + 1) * width, v + rows.SharedRows[s] * width);
   }
   for (const std::vector<mp::Index>& copies : rows.Copies)
   {
@@ -325,8 +326,8 @@ std::shared_ptr<MPIParts::RowSharing> MPIParts::PointRows(const PointSharing& po
     const vtkIdType p = dataSetPoint(f);
     rowOf[static_cast<size_t>(p)] = f;
     state.RowGlobal[f] = points.GlobalOf[static_cast<size_t>(p)];
-    state.Counted[f] =
-      points.Owner[static_cast<size_t>(p)] == this->Me && points.Representative[static_cast<size_t>(p)] == p;
+    state.Counted[f] = points.Owner[static_cast<size_t>(p)] == this->Me &&
+      points.Representative[static_cast<size_t>(p)] == p;
   }
   state.Copies.clear();
   {
@@ -371,7 +372,8 @@ mp::SolverHooks MPIParts::HooksOver(std::shared_ptr<const RowSharing> rows)
   hooks.Counted = rows->Counted.data();
   std::shared_ptr<const RowSharing> state = std::move(rows); // (held by the hooks)
   hooks.Exchange = [this, state](double* v, int width) { this->Complete(*state, v, width, false); };
-  hooks.ExchangeMinimum = [this, state](double* v, int width) { this->Complete(*state, v, width, true); };
+  hooks.ExchangeMinimum = [this, state](
+                            double* v, int width) { this->Complete(*state, v, width, true); };
   hooks.Direct = [this, state](const mp::CsrMatrix& A, const double* B, double* X, int c,
                    const std::vector<char>& converged) {
     return this->SolveGathered(*state, A, B, X, c, converged);

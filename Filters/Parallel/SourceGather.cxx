@@ -88,7 +88,8 @@ public:
   {
     vtkPoints* points = this->Grid ? this->Grid->GetPoints() : nullptr;
     vtkDoubleArray* x = points ? vtkDoubleArray::SafeDownCast(points->GetData()) : nullptr;
-    this->X = x && x->GetNumberOfComponents() == 3 && this->Grid->GetCells() ? x->GetPointer(0) : nullptr;
+    this->X =
+      x && x->GetNumberOfComponents() == 3 && this->Grid->GetCells() ? x->GetPointer(0) : nullptr;
   }
   Box operator()(vtkIdType c)
   {
@@ -203,8 +204,8 @@ void AddToBins(Cover& cover, const Box& b)
           if (cover.Bins[d] > 1)
           {
             part[2 * d] = std::max(part[2 * d], at[d] == 0 ? -HUGE_VAL : a + w * at[d]);
-            part[2 * d + 1] =
-              std::min(part[2 * d + 1], at[d] == cover.Bins[d] - 1 ? HUGE_VAL : a + w * (at[d] + 1));
+            part[2 * d + 1] = std::min(
+              part[2 * d + 1], at[d] == cover.Bins[d] - 1 ? HUGE_VAL : a + w * (at[d] + 1));
           }
         }
         Unite(cover.Boxes[(k * cover.Bins[1] + j) * cover.Bins[0] + i], part);
@@ -230,7 +231,8 @@ Cover CoverOf(const std::vector<Box>& cells)
   {
     cover.Bins[d] = cover.Bounds[2 * d + 1] > cover.Bounds[2 * d] ? 16 : 1;
   }
-  cover.Boxes.assign(static_cast<size_t>(cover.Bins[0]) * cover.Bins[1] * cover.Bins[2], EmptyBox());
+  cover.Boxes.assign(
+    static_cast<size_t>(cover.Bins[0]) * cover.Bins[1] * cover.Bins[2], EmptyBox());
   for (const Box& b : cells)
   {
     AddToBins(cover, b);
@@ -660,7 +662,8 @@ bool MergePoints(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces
       firstOf.push_back(all[k].second);
       globalIds->InsertNextValue(static_cast<vtkIdType>(all[k].first));
     }
-    merged.NewId[all[k].second.first][all[k].second.second] = static_cast<vtkIdType>(firstOf.size() - 1);
+    merged.NewId[all[k].second.first][all[k].second.second] =
+      static_cast<vtkIdType>(firstOf.size() - 1);
   }
   xyz->SetNumberOfPoints(static_cast<vtkIdType>(firstOf.size()));
   for (size_t p = 0; p < firstOf.size(); ++p)
@@ -701,8 +704,9 @@ void MergeCells(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces,
 /// The merged array of one kept field (a = 0: points, 1: cells), in its
 /// joined type; NaN where a piece came without it when it has a `hole`,
 /// else null when one did.
-vtkSmartPointer<vtkDataArray> MergedArray(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces,
-  const Merged& merged, int a, const PieceField& field, bool hole)
+vtkSmartPointer<vtkDataArray> MergedArray(
+  const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces, const Merged& merged, int a,
+  const PieceField& field, bool hole)
 {
   const char* name = field.Name.c_str();
   vtkSmartPointer<vtkDataArray> array;
@@ -741,7 +745,8 @@ void AddLikeSource(vtkDataSetAttributes* to, vtkDataArray* array, vtkDataSetAttr
   const std::string name = array->GetName();
   if (vtkDataArray* original = own->GetArray(name.c_str()))
   {
-    for (int k = 0; k < array->GetNumberOfComponents() && k < original->GetNumberOfComponents(); ++k)
+    for (int k = 0; k < array->GetNumberOfComponents() && k < original->GetNumberOfComponents();
+         ++k)
     {
       if (original->GetComponentName(k))
       {
@@ -762,8 +767,8 @@ void AddLikeSource(vtkDataSetAttributes* to, vtkDataArray* array, vtkDataSetAttr
 
 /// The kept fields on the merged grid, in their joined types, by name;
 /// `error` when a piece came without one that has no hole.
-void MergeFields(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces, vtkDataSet* source,
-  const SourceFields& fields, Merged& merged, std::string& error)
+void MergeFields(const std::vector<vtkSmartPointer<vtkUnstructuredGrid>>& pieces,
+  vtkDataSet* source, const SourceFields& fields, Merged& merged, std::string& error)
 {
   for (int a = 0; a < 2; ++a)
   {
@@ -829,7 +834,8 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(vtkDataSet* source, vtkDataOb
     error = all.Why;
     return nullptr;
   }
-  vtkSmartPointer<vtkDataSet> gathered = Gather(*this, source, input, reach, neighborLayer, error, joined);
+  vtkSmartPointer<vtkDataSet> gathered =
+    Gather(*this, source, input, reach, neighborLayer, error, joined);
   all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
   if (!all.Ok())
   {

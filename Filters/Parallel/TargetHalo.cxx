@@ -105,7 +105,8 @@ mp::FringeHalo MPIParts::Halo(const SharedTarget& shared, const mp::MeshView& ta
   const std::shared_ptr<RowSharing> points =
     this->PointRows(*shared.Points, target.NumberOfPoints, dataSetPoint);
   mp::FringeHalo halo;
-  const std::vector<long long> ghostIds = this->ReceiveHaloCells(target, *points, boxes, reach, halo);
+  const std::vector<long long> ghostIds =
+    this->ReceiveHaloCells(target, *points, boxes, reach, halo);
   // A ghost point lies within a longest edge of the box its cell met.
   halo.Hooks = this->HooksOver(
     this->ShareHaloRows(target, *points, halo, ghostIds, boxes, reach + all * (1.0 + 1e-6)));
@@ -265,14 +266,16 @@ std::shared_ptr<MPIParts::RowSharing> MPIParts::ShareHaloRows(const mp::MeshView
     }
     return candidates;
   };
-  auto key = [&](mp::Index f, char* to) { std::memcpy(to, &state.RowGlobal[f], sizeof(long long)); };
+  auto key = [&](
+               mp::Index f, char* to) { std::memcpy(to, &state.RowGlobal[f], sizeof(long long)); };
   auto find = [&](const char* from) -> mp::Index {
     long long id;
     std::memcpy(&id, from, sizeof id);
     auto found = rowOf.find(id);
     return found != rowOf.end() ? found->second : -1;
   };
-  const std::vector<std::vector<mp::Index>> shared = this->MatchRows(sizeof(long long), asks, key, find);
+  const std::vector<std::vector<mp::Index>> shared =
+    this->MatchRows(sizeof(long long), asks, key, find);
   for (int r = 0; r < this->N; ++r)
   {
     if (!shared[r].empty())

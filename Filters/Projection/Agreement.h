@@ -39,8 +39,7 @@ public:
 
   explicit LeafAgreement(Parts& parts)
     : P(parts)
-  {
-  }
+  {}
 
   /// Round `round` (the next one): this process goes on; `flag` is ANDed over the processes.
   Verdict At(Round round, bool* flag = nullptr)

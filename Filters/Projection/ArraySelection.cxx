@@ -114,8 +114,8 @@ void SourceArrayLists::SetStatus(int association, const char* name, int status)
   selection->SetArraySetting(name, status);
   const std::set<std::string>& known = this->ListedAtList[association];
   const bool whole = !known.empty() &&
-    std::includes(this->Named[association].begin(), this->Named[association].end(), known.begin(),
-      known.end());
+    std::includes(
+      this->Named[association].begin(), this->Named[association].end(), known.begin(), known.end());
   selection->SetUnknownArraySetting(whole ? 1 : 0);
 }
 } // namespace mpvtk

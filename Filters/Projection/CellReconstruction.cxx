@@ -20,7 +20,8 @@ namespace
 void Reconstruct(const mp::LinearReconstruction& reconstruction, const mp::MeshView& source,
   const char* defined, mp::Reconstruction mode, FieldBlock& block)
 {
-  block.Corners.resize(static_cast<size_t>(source.NumberOfCells) * source.CornersPerCell() * block.Components);
+  block.Corners.resize(
+    static_cast<size_t>(source.NumberOfCells) * source.CornersPerCell() * block.Components);
   if (block.Components > 0)
   {
     reconstruction.Reconstruct(
@@ -61,7 +62,8 @@ void ReconstructCellFields(const Settings& settings, SimplexMesh& sourceMesh,
   }
   const mp::LinearReconstruction& reconstruction = *kept.Geometry;
   Reconstruct(reconstruction, source, nullptr, mode, cells);
-  cells.Key += "/reconstruction " + std::to_string(static_cast<int>(settings.CellDataReconstruction));
+  cells.Key +=
+    "/reconstruction " + std::to_string(static_cast<int>(settings.CellDataReconstruction));
   for (NaNGroup& group : cells.Groups)
   {
     std::vector<char> defined = LeftOutCells(source, group);

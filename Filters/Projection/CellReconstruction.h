@@ -39,8 +39,8 @@ class SimplexMesh;
  * Source's fingerprint `sourcePrint` is the same; made, it uses the
  * Source's face neighbours (built here, for the search too).
  */
-void ReconstructCellFields(const Settings& settings, SimplexMesh& source,
-  std::uint64_t sourcePrint, GatheredFields& cells, KeptReconstruction& kept);
+void ReconstructCellFields(const Settings& settings, SimplexMesh& source, std::uint64_t sourcePrint,
+  GatheredFields& cells, KeptReconstruction& kept);
 } // namespace mpvtk
 
 #endif

@@ -36,7 +36,8 @@ vtkSmartPointer<vtkDataSet> WithoutShortArrays(
   vtkSmartPointer<vtkDataSet> whole = leaf;
   for (int association = 0; association < 2; ++association)
   {
-    const vtkIdType needed = association == 0 ? leaf->GetNumberOfPoints() : leaf->GetNumberOfCells();
+    const vtkIdType needed =
+      association == 0 ? leaf->GetNumberOfPoints() : leaf->GetNumberOfCells();
     vtkDataSetAttributes* attributes = AttributesOf(whole, association);
     for (int a = attributes->GetNumberOfArrays() - 1; a >= 0; --a)
     {
@@ -80,7 +81,8 @@ vtkSmartPointer<vtkDataSet> Joinable(vtkDataSet* block, const JoinedFields& join
   };
   for (int association = 0; association < 2; ++association)
   {
-    const vtkIdType tuples = association == 0 ? block->GetNumberOfPoints() : block->GetNumberOfCells();
+    const vtkIdType tuples =
+      association == 0 ? block->GetNumberOfPoints() : block->GetNumberOfCells();
     for (const PieceField& f : FieldsOfPiece(block))
     {
       if (f.Association == association && !joined.Kept[association].count(f.Name))

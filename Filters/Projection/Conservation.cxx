@@ -60,8 +60,8 @@ std::vector<double> SourceWeights::CoveredTotals(const mp::MortarOperator& op, b
         long long key[4] = { -1, -1, -1, 0 };
         for (int k = 0; k < corners; ++k)
         {
-          key[k] = static_cast<long long>(
-            global->GetTuple1(this->Source.DataSetPoint(view.Cell(c)[k])));
+          key[k] =
+            static_cast<long long>(global->GetTuple1(this->Source.DataSetPoint(view.Cell(c)[k])));
         }
         for (int k = 0; k < corners; ++k)
         {
@@ -107,8 +107,8 @@ const std::vector<double>& SourceWeights::Make(
     mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
       std::fill(measures.begin() + begin, measures.begin() + end, 0.0);
       mp::ForEachCellMeasure(
-        view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; },
-        begin, end);
+        view, [&](mp::Index c, double whole) { measures[static_cast<size_t>(c)] = whole; }, begin,
+        end);
     });
     // The part of cell c counted (0: none).
     auto part = [&](mp::Index c) {
@@ -146,8 +146,8 @@ const std::vector<double>& SourceWeights::Make(
     else if (space == mp::SpaceType::P1)
     {
       // Summed in cell order, in the filter's threads.
-      mp::ForCellCornersInOrder(view, mpvtk::SMPTaskRunner(),
-        [&](mp::Index c) { return part(c) / corners; },
+      mp::ForCellCornersInOrder(
+        view, mpvtk::SMPTaskRunner(), [&](mp::Index c) { return part(c) / corners; },
         [&](mp::Index p, double share) { w[static_cast<size_t>(p)] += share; });
     }
     else
@@ -203,9 +203,10 @@ ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const
   const std::vector<char>& valid = *array.System.Valid;
   const std::vector<double>& covered = *array.System.CoveredIntegrals;
   // (An invalid function's value, the fill, may be NaN: left out.)
-  result.Target = mp::SumInBlocks(array.TargetFunctions, nc, mpvtk::SMPTaskRunner(), [&](vtkIdType f, int k) {
-    return valid[f] ? covered[f] * array.Result[f * width + offset + k] : 0.0;
-  });
+  result.Target =
+    mp::SumInBlocks(array.TargetFunctions, nc, mpvtk::SMPTaskRunner(), [&](vtkIdType f, int k) {
+      return valid[f] ? covered[f] * array.Result[f * width + offset + k] : 0.0;
+    });
   // Totals over the processes (their pieces do not overlap).
   std::vector<double> both(result.Source);
   both.insert(both.end(), result.Target.begin(), result.Target.end());

@@ -48,8 +48,7 @@ public:
     : Source(source)
     , SourceData(sourceData)
     , Processes(parts)
-  {
-  }
+  {}
   /**
    * The weights of `op`'s Source functions (its source space's: points,
    * cells, or the corners of each simplex). Collective on several
@@ -79,17 +78,18 @@ struct ArrayIntegrals
 /// What Integrate reads of one projected array.
 struct ProjectedArray
 {
-  const mp::ProjectedSystem& System;      ///< the system the result was solved in (its valid functions, covered integrals)
-  const std::vector<double>& Weights;     ///< SourceWeights::Of
+  const mp::ProjectedSystem&
+    System; ///< the system the result was solved in (its valid functions, covered integrals)
+  const std::vector<double>& Weights; ///< SourceWeights::Of
   /// The Source functions' values, `SourceWidth` per row, the array's from
   /// column `SourceOffset`: its NaN group's when it has one (non-finite values as
   /// 0 there, on cells the operator leaves out), since the gathered block holds 0.
   const mp::LargeVector<double>& Source;
   int SourceWidth;
   int SourceOffset;
-  const mp::LargeVector<double>& Result;  ///< the target functions' values, `Width` per row
+  const mp::LargeVector<double>& Result; ///< the target functions' values, `Width` per row
   int Width;
-  int Offset;     ///< the array's first column in Result
+  int Offset; ///< the array's first column in Result
   int Components;
   vtkIdType TargetFunctions;
 };

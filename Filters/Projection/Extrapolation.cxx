@@ -91,8 +91,8 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const KeptLeaf& kept, const Operat
       builtFor = &op;
       left = std::max(left, static_cast<double>(ext->Unreached));
     }
-    mp::ApplyExtension(*ext, values.data(), g.Components, g.Offsets[a],
-      g.Arrays[a]->GetNumberOfComponents(), hook);
+    mp::ApplyExtension(
+      *ext, values.data(), g.Components, g.Offsets[a], g.Arrays[a]->GetNumberOfComponents(), hook);
     if (&op == ops.Operators[t])
     {
       solutions.Extrapolated[t] = ext->Extended;
@@ -101,8 +101,8 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const KeptLeaf& kept, const Operat
   if (left > 0.0 && ctx.Processes.Rank() == 0)
   {
     ctx.Say.WarnOnce("extrapolation/" + ctx.Role + (points ? "/points" : "/cells"),
-      std::to_string(static_cast<long long>(left)) + " " + ctx.Role + (points ? " points" : " cells") +
-        " are connected to no " + (points ? "point" : "cell") +
+      std::to_string(static_cast<long long>(left)) + " " + ctx.Role +
+        (points ? " points" : " cells") + " are connected to no " + (points ? "point" : "cell") +
         " the Source reaches: Extrapolation leaves them the fill value.");
   }
   return Verdict();
@@ -124,7 +124,8 @@ Verdict ExtrapolateLeaf(LeafContext& ctx, const KeptLeaf& kept, const OperatorSe
     }
     const bool points = TargetSpaceOf(t) == mp::SpaceType::P1;
     // Cells are not shared between processes: each extends over its own.
-    const Verdict done = ExtrapolateTransfer(ctx, kept, ops, t, points ? hooks[0] : mp::SolverHooks(), solutions);
+    const Verdict done =
+      ExtrapolateTransfer(ctx, kept, ops, t, points ? hooks[0] : mp::SolverHooks(), solutions);
     if (!done.Ok())
     {
       return done;

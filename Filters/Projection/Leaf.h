@@ -52,8 +52,9 @@ struct LeafContext
   SourceSide& Source;
   SimplexMesh& Target;
   vtkDataSet* TargetData; ///< Input's dataset (with global point ids on several processes)
-  const SharedTarget& Shared; ///< it as the processes share it (Parts::ShareTarget): the hooks and the halo are made from it
-  std::string Role;       ///< "Input" or "Input block ..." in messages
+  const SharedTarget&
+    Shared; ///< it as the processes share it (Parts::ShareTarget): the hooks and the halo are made from it
+  std::string Role; ///< "Input" or "Input block ..." in messages
   LeafShape Shape;
   bool LastReaderOfSource; ///< no later leaf reads the Source mesh
 };

@@ -62,8 +62,8 @@ void WarnShape(LeafContext& ctx)
       std::string("extensive cell arrays are given as the Source's densities (per unit of its ") +
       (source.Dimension() == 3 ? "volume), " : "area), ");
     ctx.Say.WarnOnce("trace/" + ctx.Role,
-      ctx.Role + " lies inside the " + std::to_string(source.Dimension()) + "D Source (a trace): " +
-        (extensive ? densities : std::string()) +
+      ctx.Role + " lies inside the " + std::to_string(source.Dimension()) +
+        "D Source (a trace): " + (extensive ? densities : std::string()) +
         (conserve ? "ConserveSourceIntegral does nothing, " : "") +
         "since a surface or curve holds no part of the Source's integrals.");
   }
@@ -163,8 +163,8 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   // before the solves need their room (the Source's may serve other leaves).
   targetMesh.ReleaseNeighbors();
   run.Clock.Lap();
-  result.Outcome = ctx.Bar(0.9) ? agreement.At(LeafAgreement::Solve)
-                                : agreement.End(Verdict::Stop());
+  result.Outcome =
+    ctx.Bar(0.9) ? agreement.At(LeafAgreement::Solve) : agreement.End(Verdict::Stop());
   if (!result.Outcome.Ok())
   {
     result.Outcome = agreement.End(result.Outcome, true); // (the rounds left)
@@ -188,8 +188,8 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   {
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
   }
-  result.Outcome = result.Outcome.Ok() ? agreement.At(LeafAgreement::Solved)
-                                       : agreement.End(result.Outcome);
+  result.Outcome =
+    result.Outcome.Ok() ? agreement.At(LeafAgreement::Solved) : agreement.End(result.Outcome);
   if (!result.Outcome.Ok())
   {
     return result;

@@ -80,9 +80,11 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
     // (A P1 operator without an aggregated fringe, or a P0 one: P = I.)
     made = mp::CsrMatrix::Identity(op.GetNumberOfTargetFunctions());
   }
-  else if (matrix == Exported::FringeExtension && op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
+  else if (matrix == Exported::FringeExtension &&
+    op.GetFringe().P.Rows > op.GetNumberOfTargetFunctions())
   {
-    made = OwnRows(op.GetFringe().P, op.GetNumberOfTargetFunctions()); // (FringeReachesHalo is false)
+    made =
+      OwnRows(op.GetFringe().P, op.GetNumberOfTargetFunctions()); // (FringeReachesHalo is false)
   }
   else if (matrix == Exported::Extrapolation)
   {
@@ -92,10 +94,10 @@ vtkIdType ExportMatrix(const KeptLeaf& leaf, Transfer transfer, Exported matrix,
     made = mp::ComposedExtension(extended ? kept.Extension : mp::Extension(),
       extended ? kept.Extension.Valid : (kept.System.Valid ? *kept.System.Valid : op.GetValid()));
   }
-  const mp::CsrMatrix& m = made.Rows ? made
-    : mixed                          ? op.GetMixedMass()
+  const mp::CsrMatrix& m = made.Rows      ? made
+    : mixed                               ? op.GetMixedMass()
     : matrix == Exported::FringeExtension ? op.GetFringe().P
-                                     : op.GetTargetMass();
+                                          : op.GetTargetMass();
   // P0 rows and columns are numbered as the datasets' cells, P1 ones as
   // their points (the kernel's points of a renumbered mesh mapped back).
   const std::vector<mp::Index>* rowOrder =

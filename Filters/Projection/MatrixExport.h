@@ -35,7 +35,7 @@ enum class Exported
   TargetMass,      ///< M_tt
   MixedMass,       ///< M_ts
   FringeExtension, ///< P (the identity where nothing is aggregated, P0 targets too)
-  Extrapolation    ///< E over the valid functions (their identity, empty invalid rows, without Extrapolation)
+  Extrapolation ///< E over the valid functions (their identity, empty invalid rows, without Extrapolation)
 };
 
 /**

@@ -28,8 +28,7 @@ public:
   Messages(vtkObject* filter, std::set<std::string>& warned)
     : Filter(filter)
     , Warned(warned)
-  {
-  }
+  {}
   void Warn(const std::string& text) const;
   void Error(const std::string& text) const;
   /// Says `text` unless `key` was said by this filter before; returns whether it did.

@@ -55,8 +55,7 @@ public:
   LeafSearch(LeafContext& ctx, mp::SearchMethod method)
     : Ctx(ctx)
     , Method(method)
-  {
-  }
+  {}
   void Prepare();
 
 private:
@@ -85,8 +84,8 @@ void LeafSearch::Prepare()
     if (ctx.Target.NonManifoldFaces() || (!source.SearchReady && sourceMesh.NonManifoldFaces()))
     {
       ctx.Say.Warn("Faces shared by more than two cells (" + ctx.Role + ": " +
-        std::to_string(ctx.Target.NonManifoldFaces()) + ", Source: " +
-        std::to_string(sourceMesh.NonManifoldFaces()) +
+        std::to_string(ctx.Target.NonManifoldFaces()) +
+        ", Source: " + std::to_string(sourceMesh.NonManifoldFaces()) +
         ") are treated as boundaries; results stay correct but the search is slower.");
     }
     this->WarnMisoriented();
@@ -121,7 +120,8 @@ void LeafSearch::WarnMisoriented()
     return;
   }
   const mp::Index target = mp::MisorientedEdges(ctx.Target.View());
-  const mp::Index source = ctx.Source.SearchReady ? 0 : mp::MisorientedEdges(ctx.Source.Mesh.View());
+  const mp::Index source =
+    ctx.Source.SearchReady ? 0 : mp::MisorientedEdges(ctx.Source.Mesh.View());
   if (target > 0 || source > 0)
   {
     ctx.Say.WarnOnce("orientation/" + ctx.Role,
@@ -180,8 +180,8 @@ Verdict BuildMissing(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
   }
   bool ok = false;
   ctx.Bar.Bar->Watch([&]() {
-    ok = mp::MortarOperator::BuildTogether(making, makingOptions, ctx.Target.View(),
-      ctx.Source.Mesh.View(), ctx.Source.Locator.get());
+    ok = mp::MortarOperator::BuildTogether(
+      making, makingOptions, ctx.Target.View(), ctx.Source.Mesh.View(), ctx.Source.Locator.get());
   });
   if (!ok)
   {
@@ -224,7 +224,9 @@ void ReportSearch(LeafContext& ctx, const OperatorSet& ops)
   if (flatTarget > 0 || flatSource > 0)
   {
     ctx.Say.Warn(std::string("Cells of zero ") +
-      (trace ? "measure (length, area or volume)" : d == 1 ? "length" : (d == 2 ? "area" : "volume")) +
+      (trace       ? "measure (length, area or volume)"
+          : d == 1 ? "length"
+                   : (d == 2 ? "area" : "volume")) +
       " (" + ctx.Role + ": " + std::to_string(flatTarget) + ", Source: " +
       std::to_string(flatSource) + ") were ignored: they carry no part of the integrals.");
   }
@@ -233,11 +235,11 @@ void ReportSearch(LeafContext& ctx, const OperatorSet& ops)
   {
     ctx.Say.Warn("Source and " + ctx.Role + " do not overlap: every projected value is invalid." +
       (trace ? " A surface or curve takes values only where it lies inside the Source."
-        : ctx.Target.View().IsSurfaceMesh()
-        ? " Surfaces meet only within SurfaceReach and with normals within MaximumNormalAngle, "
-          "compared as NormalOrientation says: two surfaces facing each other (contact, "
-          "fluid-structure) need Opposite, meshes of unknown orientation Any."
-        : ""));
+          : ctx.Target.View().IsSurfaceMesh()
+          ? " Surfaces meet only within SurfaceReach and with normals within MaximumNormalAngle, "
+            "compared as NormalOrientation says: two surfaces facing each other (contact, "
+            "fluid-structure) need Opposite, meshes of unknown orientation Any."
+          : ""));
   }
   if (first->GetNumberOfOvercoveredCells() > 0)
   {
@@ -289,7 +291,8 @@ Verdict GroupOperator(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   ++ctx.Stats.OperatorsBuilt;
   op = made.get();
   ops.Deferred.push_back(made.get());
-  ops.GroupFresh.emplace_back(key, std::move(made)); // (kept or not at the leaf's end: KeptLeaf::Store)
+  ops.GroupFresh.emplace_back(
+    key, std::move(made)); // (kept or not at the leaf's end: KeptLeaf::Store)
   return Verdict();
 }
 
@@ -330,7 +333,8 @@ Verdict PlanOperators(
   LeafContext& ctx, KeptLeaf& kept, LeafAgreement& agreement, OperatorPlan& plan)
 {
   const Settings& s = ctx.Options;
-  plan.Cache = kept.LookUp(ctx.Target, ctx.Source.Print, s, ctx.Shape.Trace, ctx.Source.TimeVarying);
+  plan.Cache =
+    kept.LookUp(ctx.Target, ctx.Source.Print, s, ctx.Shape.Trace, ctx.Source.TimeVarying);
   // Kept operators are reused only where every process can keep its own.
   const Verdict elsewhere = agreement.At(LeafAgreement::Build, &plan.Cache.SameGeometry);
   if (!elsewhere.Ok())

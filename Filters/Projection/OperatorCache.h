@@ -52,9 +52,10 @@ struct OperatorSet;
 struct CachePlan
 {
   std::uint64_t Fingerprint = 0; ///< the leaf's (LeafFingerprint)
-  bool Keep = false;         ///< operators built with M_ts are kept at the leaf's end (KeptLeaf::Store)
-  bool SameGeometry = false; ///< the kept operators may serve (the caller agrees it over the processes)
-  bool Asked = false;        ///< M_ts asked for: the inputs vary in time, or KeepMatrices
+  bool Keep = false; ///< operators built with M_ts are kept at the leaf's end (KeptLeaf::Store)
+  bool SameGeometry =
+    false;            ///< the kept operators may serve (the caller agrees it over the processes)
+  bool Asked = false; ///< M_ts asked for: the inputs vary in time, or KeepMatrices
   /// M_ts formed so that the operators can be kept: time steps, meshes that came again, KeepMatrices.
   bool Assembles() const { return this->Keep && (this->Asked || this->SameGeometry); }
   /// Whether `op` (built here) will be kept at the leaf's end.
@@ -111,13 +112,17 @@ struct KeptLeaf
   /// Once `plan` is agreed: the kept operators dropped unless they may serve; the fingerprint noted.
   void Begin(const CachePlan& plan);
   /// The kept operator of `transfer` (null: none).
-  const mp::MortarOperator* Operator(Transfer transfer) const { return this->Operators[transfer].Operator.get(); }
+  const mp::MortarOperator* Operator(Transfer transfer) const
+  {
+    return this->Operators[transfer].Operator.get();
+  }
   /// The kept operator of a NaN group (null: none).
   const mp::MortarOperator* Group(Transfer transfer, std::uint64_t cellsLeftOut) const;
   /// Drops the kept NaN groups' operators that this leaf does not use.
   void KeepOnlyGroups(const std::vector<GroupKey>& used);
   /// The kept solution of `transfer`'s operator for the fields `key` (`size` values), the next solve's start; null: none.
-  const mp::LargeVector<double>* WarmStart(Transfer transfer, const std::string& key, size_t size) const;
+  const mp::LargeVector<double>* WarmStart(
+    Transfer transfer, const std::string& key, size_t size) const;
   /// The kept extension of `transfer` with the key `key` (ExtensionKey); null: none.
   const mp::Extension* Extension(Transfer transfer, std::uint64_t key) const;
   /**

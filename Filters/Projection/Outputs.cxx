@@ -42,9 +42,8 @@ using Validity = std::vector<std::pair<std::string, const std::vector<char>*>>;
 template <class T>
 void CopyInThreads(const T* from, size_t n, T* to)
 {
-  mpvtk::For(0, static_cast<vtkIdType>(n), 65536, [&](vtkIdType begin, vtkIdType end) {
-    std::copy(from + begin, from + end, to + begin);
-  });
+  mpvtk::For(0, static_cast<vtkIdType>(n), 65536,
+    [&](vtkIdType begin, vtkIdType end) { std::copy(from + begin, from + end, to + begin); });
 }
 
 /// P1 functions are the kernel's points: flags per function in the
@@ -55,8 +54,7 @@ class PointNumbering
 public:
   explicit PointNumbering(const SimplexMesh& target)
     : Target(target)
-  {
-  }
+  {}
   const std::vector<char>* InDataSet(const std::vector<char>& valid)
   {
     if (!this->Target.Ordered())
@@ -87,7 +85,8 @@ struct Written
 };
 
 /// The name of array a of transfer t in the output (renamed when it clashes).
-std::string OutputName(vtkDataArray* array, int a, Transfer t, const std::vector<std::string>& written)
+std::string OutputName(
+  vtkDataArray* array, int a, Transfer t, const std::vector<std::string>& written)
 {
   const bool fromCells = SourceAssociation(t) == 1;
   std::string name = array->GetName()
@@ -157,10 +156,8 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   // Densities back to totals; on a trace they stay the Source's densities
   // (per unit of its volume or area: a surface holds no part of a total).
   const bool totals = t == CellsToCells && ctx.Options.Extensive && !trace;
-  vtkDataSetAttributes* sourceData =
-    AttributesOf(ctx.Source.Data, SourceAssociation(t));
-  vtkDataSetAttributes* outData =
-    AttributesOf(output, toPoints ? PointArrays : CellArrays);
+  vtkDataSetAttributes* sourceData = AttributesOf(ctx.Source.Data, SourceAssociation(t));
+  vtkDataSetAttributes* outData = AttributesOf(output, toPoints ? PointArrays : CellArrays);
   std::vector<std::string>& names = toPoints ? written.PointNames : written.CellNames;
   const vtkIdType n =
     toPoints ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
@@ -299,7 +296,8 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
  * process 0), as one process would.
  */
 void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
-  const std::vector<char>& valid, const mp::LargeVector<double>& most, const mp::SolverHooks& shared)
+  const std::vector<char>& valid, const mp::LargeVector<double>& most,
+  const mp::SolverHooks& shared)
 {
   const size_t rows = static_cast<size_t>(ctx.TargetData->GetNumberOfPoints());
   mp::UninitializedLargeVector<double> covered(std::max(most.size(), rows));
@@ -343,8 +341,8 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
 
 /// vtkValidPointMask, vtkValidCellMask (when arrays go to cells) and CoveredFraction.
 void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
-  const LeafSolutions& solutions, const mp::LargeVector<double>& most, const mp::SolverHooks& pointHooks,
-  PointNumbering& numbering, const Written& written)
+  const LeafSolutions& solutions, const mp::LargeVector<double>& most,
+  const mp::SolverHooks& pointHooks, PointNumbering& numbering, const Written& written)
 {
   const vtkIdType nt = ctx.TargetData->GetNumberOfPoints();
   const vtkIdType ntc = ctx.TargetData->GetNumberOfCells();
@@ -396,8 +394,8 @@ void WriteMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
  * where the masks' operators (those of vtkValidPointMask and
  * vtkValidCellMask) had their values extrapolated.
  */
-void WriteExtrapolatedMasks(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
-  const LeafSolutions& solutions)
+void WriteExtrapolatedMasks(
+  LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops, const LeafSolutions& solutions)
 {
   if (ctx.Options.Extrapolation == mp::ExtrapolationMode::None)
   {
@@ -420,10 +418,13 @@ void WriteExtrapolatedMasks(LeafContext& ctx, vtkDataSet* output, const Operator
     mask->FillValue(0);
     for (size_t f = 0; f < from.size(); ++f)
     {
-      mask->SetValue(points ? ctx.Target.DataSetPoint(static_cast<mp::Index>(f)) : static_cast<vtkIdType>(f), from[f]);
+      mask->SetValue(
+        points ? ctx.Target.DataSetPoint(static_cast<mp::Index>(f)) : static_cast<vtkIdType>(f),
+        from[f]);
     }
     (points ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
-            : static_cast<vtkDataSetAttributes*>(output->GetCellData()))->AddArray(mask);
+            : static_cast<vtkDataSetAttributes*>(output->GetCellData()))
+      ->AddArray(mask);
   }
 }
 } // namespace

@@ -13,8 +13,7 @@ namespace mpvtk
 Progress::Progress(vtkAlgorithm* filter)
   : Filter(filter)
   , PipelineThread(std::this_thread::get_id())
-{
-}
+{}
 
 bool Progress::operator()(double amount)
 {

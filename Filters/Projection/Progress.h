@@ -52,7 +52,10 @@ struct ProgressShare
   double From = 0;
   double Span = 1;
   /// Reports `fraction` of this share; false when the user asked to stop.
-  bool operator()(double fraction) const { return (*this->Bar)(this->From + this->Span * fraction); }
+  bool operator()(double fraction) const
+  {
+    return (*this->Bar)(this->From + this->Span * fraction);
+  }
 };
 } // namespace mpvtk
 

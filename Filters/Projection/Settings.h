@@ -60,14 +60,15 @@ struct Settings
   int NormalOrientation = SameOrientation; ///< SurfaceOrientation
   bool ConserveSourceIntegral = false;
   bool CacheOperator = true;
-  int NumberOfThreads = 0;   ///< 0: every core (the filter's RequestData)
-  int Renumbering = 0;       ///< SimplexMesh::Ordering (AUTOMATIC)
+  int NumberOfThreads = 0; ///< 0: every core (the filter's RequestData)
+  int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
   bool KeepMatrices = false;
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const
   {
-    return this->CellDataReconstruction != mp::Reconstruction::Constant && this->CellDataTarget != 0;
+    return this->CellDataReconstruction != mp::Reconstruction::Constant &&
+      this->CellDataTarget != 0;
   }
   /// The value of target functions that the Source does not reach.
   double Fill() const

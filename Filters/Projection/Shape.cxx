@@ -25,7 +25,8 @@ namespace
 /// Input of a higher dimension than Source: refused (the same words on one process or several).
 std::string HigherDimensionError(const std::string& role, int target, int source)
 {
-  return role + " is a " + std::to_string(target) + "D mesh but Source is " + std::to_string(source) +
+  return role + " is a " + std::to_string(target) + "D mesh but Source is " +
+    std::to_string(source) +
     "D: values go to a mesh of the same dimension, or from a volume mesh (2D or 3D) to a surface "
     "or curve inside it (a trace), not to a mesh of a higher dimension.";
 }
@@ -56,8 +57,9 @@ std::string UseOnePlane(SimplexMesh& target, SimplexMesh& source, std::string& w
     {
       if (frame.IsIdentity())
       {
-        text << "Source lies in the plane z = " << source.OwnPlane().Offset() << ", Input in z = "
-             << target.OwnPlane().Offset() << "; the meshes are compared in x and y only.";
+        text << "Source lies in the plane z = " << source.OwnPlane().Offset()
+             << ", Input in z = " << target.OwnPlane().Offset()
+             << "; the meshes are compared in x and y only.";
       }
       else
       {
@@ -72,7 +74,6 @@ std::string UseOnePlane(SimplexMesh& target, SimplexMesh& source, std::string& w
   source.UseFrame(frame);
   return std::string();
 }
-
 
 /// What the serial filter decides from the whole meshes, decided from every process's parts.
 std::string AgreeOnShape(Parts& parts, SimplexMesh& target, SimplexMesh& source,
@@ -138,7 +139,8 @@ std::string AgreeOnShape(Parts& parts, SimplexMesh& target, SimplexMesh& source,
     if (target.View().NumberOfCells > 0 && source.View().NumberOfCells > 0)
     {
       return role + " and Source have cells of the same dimension on process " +
-        std::to_string(parts.Rank()) + " but not on others: each mesh's cells must be of one "
+        std::to_string(parts.Rank()) +
+        " but not on others: each mesh's cells must be of one "
         "dimension on every process.";
     }
     if (dimension[0] > dimension[1])
@@ -207,7 +209,8 @@ void DimensionOfEmpty(SimplexMesh& target, SimplexMesh& source, vtkDataSet* targ
 }
 
 /// Meshes of different dimensions: a surface or curve inside a volume (a trace), or an error.
-std::string TraceOrError(const SimplexMesh& target, const SimplexMesh& source, const std::string& role)
+std::string TraceOrError(
+  const SimplexMesh& target, const SimplexMesh& source, const std::string& role)
 {
   if (target.Dimension() > source.Dimension())
   {
@@ -215,8 +218,9 @@ std::string TraceOrError(const SimplexMesh& target, const SimplexMesh& source, c
   }
   if (source.Surface())
   {
-    return role + " is a curve but Source a surface in 3D: a curve takes values from curves, "
-                  "from a 2D mesh in its plane or from a 3D mesh, not from a curved surface.";
+    return role +
+      " is a curve but Source a surface in 3D: a curve takes values from curves, "
+      "from a 2D mesh in its plane or from a 3D mesh, not from a curved surface.";
   }
   return std::string();
 }
@@ -261,8 +265,8 @@ std::string UseSurfaces(SimplexMesh& target, SimplexMesh& source, const Settings
   if (!std::isfinite(settings.SurfaceReach) || !std::isfinite(settings.MaximumNormalAngle))
   {
     return "SurfaceReach and MaximumNormalAngle must be numbers (they are " +
-      std::to_string(settings.SurfaceReach) + " and " + std::to_string(settings.MaximumNormalAngle) +
-      ").";
+      std::to_string(settings.SurfaceReach) + " and " +
+      std::to_string(settings.MaximumNormalAngle) + ").";
   }
   target.UseAsSurface();
   source.UseAsSurface();
@@ -281,8 +285,9 @@ void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& mes
   }
   const int d = mesh.Dimension();
   messages.WarnOnce("lower/" + role, // once per filter, not per step
-    role + ": " + std::to_string(mesh.LowerDimensionalCells()) + " cells of lower dimension than its " +
-      std::to_string(d) + "D cells (vertices" + (d >= 2 ? ", lines" : "") + (d == 3 ? ", faces" : "") +
+    role + ": " + std::to_string(mesh.LowerDimensionalCells()) +
+      " cells of lower dimension than its " + std::to_string(d) + "D cells (vertices" +
+      (d >= 2 ? ", lines" : "") + (d == 3 ? ", faces" : "") +
       ") are left out of the projection (their cell values are invalid).");
 }
 
@@ -296,7 +301,8 @@ Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
   shape = LeafShape();
   if (targetCells == 0 || sourceCells == 0)
   {
-    DimensionOfEmpty(target, source, ctx.TargetData, ctx.Source.Data, ctx.Role, ctx.Processes, ctx.Say);
+    DimensionOfEmpty(
+      target, source, ctx.TargetData, ctx.Source.Data, ctx.Role, ctx.Processes, ctx.Say);
   }
   else if (target.Dimension() != source.Dimension())
   {
@@ -318,7 +324,8 @@ Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
   }
   // The rest of what one process sees in the whole meshes (every process
   // here passed the round above; on one process nothing changes).
-  std::string why = AgreeOnShape(ctx.Processes, target, source, ctx.Role, shape.Trace, shape.Planar);
+  std::string why =
+    AgreeOnShape(ctx.Processes, target, source, ctx.Role, shape.Trace, shape.Planar);
   if (why.empty() && shape.Trace)
   {
     why = UseTraceFrames(target, source, ctx.Role);

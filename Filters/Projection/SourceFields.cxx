@@ -31,7 +31,8 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
 {
   vtkDataSetAttributes* data = AttributesOf(source, association);
   const char* kind = association == 0 ? "point" : "cell";
-  const vtkIdType needed = association == 0 ? source->GetNumberOfPoints() : source->GetNumberOfCells();
+  const vtkIdType needed =
+    association == 0 ? source->GetNumberOfPoints() : source->GetNumberOfCells();
   for (int i = 0; i < data->GetNumberOfArrays(); ++i)
   {
     vtkAbstractArray* abstract = data->GetAbstractArray(i);
@@ -62,7 +63,8 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
         "Source " + std::string(kind) + " array '" + label + "' holds integers (" +
           array->GetClassName() +
           "): it is projected as real values (a 0/1 indicator becomes a covered fraction, but "
-          "labels and ids do not carry over: use Resample With Dataset for those, or deselect it).");
+          "labels and ids do not carry over: use Resample With Dataset for those, or deselect "
+          "it).");
     }
     g.Arrays.push_back(array);
     g.Offsets.push_back(g.Components);
@@ -72,11 +74,11 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
 }
 
 /// The arrays' values side by side, one row per kernel function.
-void CopyValues(vtkDataSet* source, const SimplexMesh& mesh, int association, bool extensive,
-  GatheredFields& g)
+void CopyValues(
+  vtkDataSet* source, const SimplexMesh& mesh, int association, bool extensive, GatheredFields& g)
 {
-  const mp::Index n = association == 0 ? source->GetNumberOfPoints()
-                                       : mp::SpaceSize(mp::SpaceType::P0, mesh.View());
+  const mp::Index n =
+    association == 0 ? source->GetNumberOfPoints() : mp::SpaceSize(mp::SpaceType::P0, mesh.View());
   g.Values.resize(std::max<size_t>(static_cast<size_t>(n) * g.Components, 1));
   std::vector<double> measure;
   if (association == 1 && extensive)
@@ -107,7 +109,8 @@ void CopyValues(vtkDataSet* source, const SimplexMesh& mesh, int association, bo
 }
 
 /// The kernel functions where a component of array a is NaN or infinite, and how many values.
-std::vector<char> NonFiniteFunctions(const GatheredFields& g, int a, mp::Index functions, vtkIdType& values)
+std::vector<char> NonFiniteFunctions(
+  const GatheredFields& g, int a, mp::Index functions, vtkIdType& values)
 {
   const int nc = g.Arrays[a]->GetNumberOfComponents();
   const int offset = g.Offsets[a];
@@ -132,7 +135,8 @@ std::vector<char> NonFiniteFunctions(const GatheredFields& g, int a, mp::Index f
 }
 
 /// The Source cells (kernel simplices) that use a bad function.
-std::vector<char> CellsUsing(const mp::MeshView& view, const std::vector<char>& bad, int association)
+std::vector<char> CellsUsing(
+  const mp::MeshView& view, const std::vector<char>& bad, int association)
 {
   std::vector<char> excluded(static_cast<size_t>(view.NumberOfCells), 0);
   const int corners = view.CornersPerCell();
@@ -205,8 +209,8 @@ void SplitOffGroups(GatheredFields& g, mp::Index functions)
 }
 
 /// The NaN groups of one association.
-void FindNaNGroups(const SimplexMesh& mesh, int association, Messages& messages, Parts& parts,
-  GatheredFields& g)
+void FindNaNGroups(
+  const SimplexMesh& mesh, int association, Messages& messages, Parts& parts, GatheredFields& g)
 {
   const mp::MeshView& view = mesh.View();
   const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
@@ -227,10 +231,10 @@ void FindNaNGroups(const SimplexMesh& mesh, int association, Messages& messages,
     print.Add(excluded.data(), excluded.size(), mpvtk::SMPTaskRunner());
     // One process: arrays leaving out the same cells share a group. Several:
     // each array a group of its own, alike on every process.
-    auto group = !parts.Whole() ? g.Groups.end()
-                                : std::find_if(g.Groups.begin(), g.Groups.end(), [&](const NaNGroup& h) {
-                                    return h.Print == print.Hash && h.Excluded == excluded;
-                                  });
+    auto group = !parts.Whole()
+      ? g.Groups.end()
+      : std::find_if(g.Groups.begin(), g.Groups.end(),
+          [&](const NaNGroup& h) { return h.Print == print.Hash && h.Excluded == excluded; });
     if (group == g.Groups.end())
     {
       g.Groups.emplace_back();

@@ -56,16 +56,19 @@ struct FieldBlock
   mp::LargeVector<double> Corners;
   bool Reconstructed = false;
   /// What the operators read: Corners when reconstructed, else Values.
-  const mp::LargeVector<double>& Functions() const { return this->Reconstructed ? this->Corners : this->Values; }
+  const mp::LargeVector<double>& Functions() const
+  {
+    return this->Reconstructed ? this->Corners : this->Values;
+  }
 };
 
 /// Arrays with NaN or infinite values that leave out the same Source cells
 /// (their Values: non-finite values as 0).
 struct NaNGroup : FieldBlock
 {
-  std::vector<int> Arrays;        ///< indices into GatheredFields::Arrays
-  std::vector<char> Excluded;     ///< per kernel Source cell
-  std::uint64_t Print = 0;        ///< of Excluded
+  std::vector<int> Arrays;    ///< indices into GatheredFields::Arrays
+  std::vector<char> Excluded; ///< per kernel Source cell
+  std::uint64_t Print = 0;    ///< of Excluded
 };
 
 /// The Source arrays of one association, gathered side by side (NaN groups'
@@ -73,9 +76,9 @@ struct NaNGroup : FieldBlock
 struct GatheredFields : FieldBlock
 {
   std::vector<vtkDataArray*> Arrays;
-  std::vector<int> Offsets; ///< each array's first column
-  std::string Key;                ///< names and components: which solution a warm start may reuse
-  std::vector<NaNGroup> Groups;   ///< the arrays with non-finite values
+  std::vector<int> Offsets;     ///< each array's first column
+  std::string Key;              ///< names and components: which solution a warm start may reuse
+  std::vector<NaNGroup> Groups; ///< the arrays with non-finite values
   /// Names of the arrays that some Source pieces or blocks lack, NaN there
   /// (Adapter/PieceArrays.h): their hole is said by that rule's warning.
   std::set<std::string> Holes;

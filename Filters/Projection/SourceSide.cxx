@@ -59,7 +59,8 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
   // (With a reconstruction of cell data, and the cells around them.)
   JoinedFields pieces; // fields that differ between the processes' pieces
-  source = parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed, pieces);
+  source =
+    parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed, pieces);
   KeepJoined(blocks, side);
   KeepJoined(pieces, side);
   if (!failed.empty())

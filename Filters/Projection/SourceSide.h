@@ -37,7 +37,7 @@ struct SourceSide
   vtkSmartPointer<vtkDataSet> Data;
   bool Composite = false; ///< Source came as a composite dataset (appended)
   SimplexMesh Mesh;
-  std::uint64_t Print = 0; ///< Fingerprint of Mesh
+  std::uint64_t Print = 0;  ///< Fingerprint of Mesh
   GatheredFields Fields[2]; ///< 0: point arrays (P1), 1: cell arrays (P0)
   bool TimeVarying = false; ///< an input advertises several time steps
   /// Neighbours and locator, built by the first leaf that searches.

@@ -26,15 +26,15 @@ enum Transfer : int
   CellsToPoints = 3
 };
 constexpr int NumberOfTransfers = 4;
-constexpr Transfer AllTransfers[NumberOfTransfers] = { PointsToPoints, PointsToCells,
-  CellsToCells, CellsToPoints };
+constexpr Transfer AllTransfers[NumberOfTransfers] = { PointsToPoints, PointsToCells, CellsToCells,
+  CellsToPoints };
 /**
  * The order the outputs are written in: each association's own transfer
  * first (points to points, cells to cells), so that an array going to the
  * other association is the one renamed when the names clash.
  */
-constexpr Transfer OutputOrder[NumberOfTransfers] = { PointsToPoints, CellsToCells,
-  PointsToCells, CellsToPoints };
+constexpr Transfer OutputOrder[NumberOfTransfers] = { PointsToPoints, CellsToCells, PointsToCells,
+  CellsToPoints };
 
 /// Which Source fields a transfer reads: 0 point arrays (P1), 1 cell arrays (P0) (SourceFields.h's Association).
 inline int SourceAssociation(Transfer t)

@@ -79,7 +79,8 @@ inline double SimplexGramMeasure(const MeshView& mesh, Index c)
       gram[a][b] = e[a][0] * e[b][0] + e[a][1] * e[b][1] + e[a][2] * e[b][2];
     }
   }
-  const double determinant = m == 2 ? gram[0][0] * gram[1][1] - gram[0][1] * gram[1][0] : gram[0][0];
+  const double determinant =
+    m == 2 ? gram[0][0] * gram[1][1] - gram[0][1] * gram[1][0] : gram[0][0];
   const double factorial = m == 2 ? 2.0 : 1.0;
   return std::sqrt(std::max(0.0, determinant)) / factorial;
 }

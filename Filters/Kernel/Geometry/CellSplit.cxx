@@ -286,8 +286,8 @@ SplitStatus SplitPolyhedron(const double* points, const Index* faces, int nfaces
   if (keys)
   {
     // Apexes tried in the order of their keys.
-    std::sort(corners.begin(), corners.end(),
-      [keys](Index a, Index b) { return keys[a] < keys[b]; });
+    std::sort(
+      corners.begin(), corners.end(), [keys](Index a, Index b) { return keys[a] < keys[b]; });
   }
   if (corners.empty())
   {

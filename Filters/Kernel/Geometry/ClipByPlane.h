@@ -74,8 +74,8 @@ struct Vertex
   int Original;
 };
 
-inline void Emit(ClipTet* out, int& n, const Vertex& a, const Vertex& b, const Vertex& c,
-  const Vertex& e)
+inline void Emit(
+  ClipTet* out, int& n, const Vertex& a, const Vertex& b, const Vertex& c, const Vertex& e)
 {
   const double six = SixVolume(a.X, b.X, c.X, e.X);
   if (six == 0.0)

@@ -41,7 +41,7 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
   const double w[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
   const double d = c.Normal[k][0] * w[0] + c.Normal[k][1] * w[1] + c.Normal[k][2] * w[2];
   const double size = std::max({ std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
-    if (std::fabs(d) > 64.0 * RoundingUnit * c.NormalScale[k] * size)
+  if (std::fabs(d) > 64.0 * RoundingUnit * c.NormalScale[k] * size)
   {
     return d;
   }
@@ -59,8 +59,8 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
  * signs and values are FaceSide's either way. (Looser still for cells of
  * very different sizes or shapes: more pairs then take that second pass.)
  */
-inline void FaceSides(const TetrahedronIntersector::Cell& c, const TetrahedronIntersector::Cell& other,
-  double (&sides)[4][4])
+inline void FaceSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, double (&sides)[4][4])
 {
   const double(&x)[4][3] = other.X;
   double size = 0.0;

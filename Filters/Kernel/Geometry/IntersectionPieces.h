@@ -25,7 +25,7 @@ struct IntersectionPieces
   std::vector<double> Points;      ///< x, y, z per vertex (z = 0 for 2D)
   std::vector<Index> TargetCell;
   std::vector<Index> SourceCell;
-  std::vector<double> Measure;     ///< area (2D) or volume (3D) of each cell
+  std::vector<double> Measure; ///< area (2D) or volume (3D) of each cell
   Index Size() const { return static_cast<Index>(this->TargetCell.size()); }
   std::size_t MemoryBytes() const
   {
@@ -43,8 +43,10 @@ struct IntersectionPieces
       this->Offsets.push_back(other.Offsets[i] + shift);
     }
     this->Points.insert(this->Points.end(), other.Points.begin(), other.Points.end());
-    this->TargetCell.insert(this->TargetCell.end(), other.TargetCell.begin(), other.TargetCell.end());
-    this->SourceCell.insert(this->SourceCell.end(), other.SourceCell.begin(), other.SourceCell.end());
+    this->TargetCell.insert(
+      this->TargetCell.end(), other.TargetCell.begin(), other.TargetCell.end());
+    this->SourceCell.insert(
+      this->SourceCell.end(), other.SourceCell.begin(), other.SourceCell.end());
     this->Measure.insert(this->Measure.end(), other.Measure.begin(), other.Measure.end());
   }
 };

@@ -53,8 +53,8 @@ inline std::vector<double> ParentMeasures(const MeshView& mesh)
 
 /// Per original cell, the covered fraction of its measure, from the
 /// covered fraction of each of its simplices.
-inline LargeVector<double> ParentFractions(
-  const MeshView& mesh, const LargeVector<double>& fraction, const TaskRunner& runner = TaskRunner())
+inline LargeVector<double> ParentFractions(const MeshView& mesh,
+  const LargeVector<double>& fraction, const TaskRunner& runner = TaskRunner())
 {
   if (mesh.Parent && mesh.OneCellPerParent)
   {
@@ -62,13 +62,17 @@ inline LargeVector<double> ParentFractions(
     // at most 1; 0 for a simplex of no measure, which the search skips),
     // moved in `runner`'s tasks (each parent written once).
     LargeVector<double> moved(static_cast<size_t>(mesh.Parents()), 0.0);
-    runner.ForRanges(mesh.NumberOfCells, [&](Index begin, Index end) {
-      for (Index c = begin; c < end; ++c)
-      {
-        moved[static_cast<size_t>(mesh.Parent[c])] = std::min(1.0, fraction[static_cast<size_t>(c)]);
-      }
-      return 0;
-    }, Index(1) << 16);
+    runner.ForRanges(
+      mesh.NumberOfCells,
+      [&](Index begin, Index end) {
+        for (Index c = begin; c < end; ++c)
+        {
+          moved[static_cast<size_t>(mesh.Parent[c])] =
+            std::min(1.0, fraction[static_cast<size_t>(c)]);
+        }
+        return 0;
+      },
+      Index(1) << 16);
     return moved;
   }
   std::vector<double> measure(static_cast<size_t>(mesh.Parents()), 0.0);

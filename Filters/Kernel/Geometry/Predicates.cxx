@@ -197,8 +197,7 @@ bool TriviallyCoplanar(const double* a, const double* b, const double* c, const 
       }
     }
   }
-  return OnAxisLine(a, b, c) || OnAxisLine(a, b, d) || OnAxisLine(a, c, d) ||
-    OnAxisLine(b, c, d);
+  return OnAxisLine(a, b, c) || OnAxisLine(a, b, d) || OnAxisLine(a, c, d) || OnAxisLine(b, c, d);
 }
 } // namespace
 
@@ -252,8 +251,8 @@ double Orient2DExact(const double* a, const double* b, const double* c)
 {
   // (ax - cx)(by - cy) - (ay - cy)(bx - cx) expanded into six products of
   // input coordinates (the cx*cy terms cancel), each split exactly in two.
-  const double factors[6][2] = { { a[0], b[1] }, { -a[0], c[1] }, { -c[0], b[1] },
-    { -a[1], b[0] }, { a[1], c[0] }, { c[1], b[0] } };
+  const double factors[6][2] = { { a[0], b[1] }, { -a[0], c[1] }, { -c[0], b[1] }, { -a[1], b[0] },
+    { a[1], c[0] }, { c[1], b[0] } };
   Expansion det;
   for (const auto& f : factors)
   {

@@ -205,8 +205,8 @@ void SegmentIntersector::AppendPiece(
   AppendInterval(*piece.Target, piece.NumberOfVertices, piece.X, target, source, pieces);
 }
 
-void SegmentIntersector::AppendInterval(const Cell& t, int n, const double (&X)[2][1],
-  Index target, Index source, IntersectionPieces& pieces)
+void SegmentIntersector::AppendInterval(const Cell& t, int n, const double (&X)[2][1], Index target,
+  Index source, IntersectionPieces& pieces)
 {
   for (int v = 0; v < n; ++v)
   {

@@ -45,13 +45,13 @@ public:
   struct Cell
   {
     Index Id = -1;
-    Index Points[2]; ///< in increasing X
-    int Face[2];     ///< mesh-local face index of face k (k opposite corner k)
-    double X[2][1];  ///< positions on the axis, X[0] < X[1]
-    double Measure;  ///< length
+    Index Points[2];      ///< in increasing X
+    int Face[2];          ///< mesh-local face index of face k (k opposite corner k)
+    double X[2][1];       ///< positions on the axis, X[0] < X[1]
+    double Measure;       ///< length
     double Inverse[1][1]; ///< 1 / length: the barycentric coordinate of corner 1
     double Origin[3];
-    double Axis[3];  ///< unit, toward corner 1
+    double Axis[3];      ///< unit, toward corner 1
     double Corner[2][3]; ///< the corners in space, in the order of Points
     double Box3[6];
     double Reach;     ///< as a target: the largest distance to a source segment that meets it
@@ -60,8 +60,8 @@ public:
 
   struct Piece
   {
-    int NumberOfVertices = 0; ///< 0: empty; 1: the segments touch at a point; 2: an interval
-    double X[2][1];           ///< the interval on the target's axis
+    int NumberOfVertices = 0;  ///< 0: empty; 1: the segments touch at a point; 2: an interval
+    double X[2][1];            ///< the interval on the target's axis
     unsigned TouchedFaces = 0; ///< bit k: face k (corner 1 - k) of the target lies on the source
     unsigned SourceFaces = 0;  ///< bit l: face l of the source (Cell order) lies on the target
     Cell Projected;            ///< the source segment on the target's axis (its functions)
@@ -85,9 +85,11 @@ public:
   /// Length M[0][0], first and second moments of x - origin (origin: the piece's start).
   static double Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2]);
   static double Measure(const Piece& piece);
-  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  static void AppendPiece(
+    const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
   /// The moments of the interval X[0]..X[1] (when n == 2; else 0) about its start.
-  static double IntervalMoments(int n, const double (&X)[2][1], double (&origin)[1], double (&M)[2][2]);
+  static double IntervalMoments(
+    int n, const double (&X)[2][1], double (&origin)[1], double (&M)[2][2]);
   /// Appends the interval of `frame`'s axis (n points) as a segment in space.
   static void AppendInterval(const Cell& frame, int n, const double (&X)[2][1], Index target,
     Index source, IntersectionPieces& pieces);

@@ -62,14 +62,14 @@ public:
    */
   struct Cell : TriangleIntersector::Cell
   {
-    double Origin[3];  ///< corner 0
-    double Axis[2][3]; ///< orthonormal axes of the plane
-    double Normal[3];  ///< unit normal, right-handed with the corners' order
+    double Origin[3];    ///< corner 0
+    double Axis[2][3];   ///< orthonormal axes of the plane
+    double Normal[3];    ///< unit normal, right-handed with the corners' order
     double Corner[3][3]; ///< the corners in 3D as given, in the order of Points
-    double Box3[6];    ///< xmin, xmax, ymin, ymax, zmin, zmax of the corners
-    double Reach;      ///< as a target: the largest distance to a source facet that meets it
-    double MinCosine;  ///< as a target: the smallest cosine of the normals' angle
-    int Orientation;   ///< as a target: MeshView::SurfaceOrientation
+    double Box3[6];      ///< xmin, xmax, ymin, ymax, zmin, zmax of the corners
+    double Reach;        ///< as a target: the largest distance to a source facet that meets it
+    double MinCosine;    ///< as a target: the smallest cosine of the normals' angle
+    int Orientation;     ///< as a target: MeshView::SurfaceOrientation
   };
 
   struct Piece : TriangleIntersector::Piece
@@ -112,7 +112,8 @@ public:
   }
   static double Measure(const Piece& piece) { return TriangleIntersector::Measure(piece); }
   /// Appends the piece as a polygon in 3D, on the target facet.
-  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  static void AppendPiece(
+    const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 
   /// Appends `polygon` (in `frame`'s plane) as a polygon in 3D.
   static void AppendPolygon(const Cell& frame, const TriangleIntersector::Piece& polygon,

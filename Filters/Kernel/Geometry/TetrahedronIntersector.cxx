@@ -30,8 +30,8 @@ struct FacePlaneSides
 {
   double Exact[4][4];
   double ExactS[4][4];
-  SideBits Bits;  ///< of Exact
-  SideBits BitsS; ///< of ExactS
+  SideBits Bits;        ///< of Exact
+  SideBits BitsS;       ///< of ExactS
   unsigned Beyond = 0;  ///< target planes the source reaches beyond
   unsigned BeyondS = 0; ///< source planes the target reaches beyond
 };
@@ -232,7 +232,7 @@ inline void ClipBySplitting(const Clip& clip, TetPiece& piece)
  */
 inline void SetSeedFaces(const FacePlaneSides& p, TetPiece& piece)
 {
-  const unsigned (&onPlane)[4] = p.Bits.Zero; // per target plane: source corners on it
+  const unsigned(&onPlane)[4] = p.Bits.Zero; // per target plane: source corners on it
   for (int k = 0; k < 4; ++k)
   {
     piece.SeedFace[k] = -1;
@@ -267,8 +267,7 @@ int TetrahedronIntersector::Locate(const Cell& cell, const double* q, int first)
     const int k = (first + i) % 4;
     // Corners k+1, k+2, k+3 turn so that corner k is on the positive side
     // for odd k and on the negative side for even k (the cell is positive).
-    const double side =
-      Orient3D(cell.X[(k + 1) % 4], cell.X[(k + 2) % 4], cell.X[(k + 3) % 4], q);
+    const double side = Orient3D(cell.X[(k + 1) % 4], cell.X[(k + 2) % 4], cell.X[(k + 3) % 4], q);
     if (k % 2 == 0 ? side > 0.0 : side < 0.0)
     {
       return k;

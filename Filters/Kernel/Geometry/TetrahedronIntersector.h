@@ -50,16 +50,16 @@ public:
   struct Cell
   {
     Index Id = -1;
-    Index Points[4];   ///< point ids, positively oriented
-    int Face[4];       ///< mesh-local face index of face k (k opposite corner k)
+    Index Points[4]; ///< point ids, positively oriented
+    int Face[4];     ///< mesh-local face index of face k (k opposite corner k)
     double X[4][3];
     /// X by coordinate (ByAxis[a][v] = X[v][a]): the four corners' distances
     /// from a plane are then one vector expression (FaceSides).
     double ByAxis[3][4];
-    double Box[6];     ///< xmin, xmax, ymin, ymax, zmin, zmax
-    double Measure;    ///< volume, > 0
-    double FaceScale;  ///< volume^(2/3): the area of a typical face
-    double Normal[4][3]; ///< inward normal of face k (not unit), through X[(k+1)%4]
+    double Box[6];         ///< xmin, xmax, ymin, ymax, zmin, zmax
+    double Measure;        ///< volume, > 0
+    double FaceScale;      ///< volume^(2/3): the area of a typical face
+    double Normal[4][3];   ///< inward normal of face k (not unit), through X[(k+1)%4]
     double NormalScale[4]; ///< |u|max |v|max of the two edges spanning face k (error bounds)
     /// The cell's affine map: x - X[0] to barycentric coordinates 1..3
     /// (geometry; the P1 space of Transfer/Space.h builds its basis from it).
@@ -181,7 +181,8 @@ public:
   static double Measure(const Piece& piece);
 
   /// Appends the piece's tetrahedra (with their own volumes) to `pieces`.
-  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  static void AppendPiece(
+    const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 
 private:
   /// Sums the moments of the piece's tetrahedra into its Origin and M.

@@ -264,7 +264,8 @@ inline void PlaneCoordinates(const SurfaceTraceIntersector::Cell& t,
   const SurfaceTraceIntersector::SourceCellType& s, AffineCell<4, 2>& f)
 {
   f.Id = s.Id;
-  const double d0[3] = { t.Origin[0] - s.X[0][0], t.Origin[1] - s.X[0][1], t.Origin[2] - s.X[0][2] };
+  const double d0[3] = { t.Origin[0] - s.X[0][0], t.Origin[1] - s.X[0][1],
+    t.Origin[2] - s.X[0][2] };
   for (int k = 0; k < 3; ++k)
   {
     f.Affine[0][k] = k == 0 ? 1.0 : 0.0;
@@ -295,7 +296,7 @@ struct SegmentClip
   double Hi = 0.0;
   double Cut[N];
   bool Cuts[N];
-  unsigned On = 0;      ///< faces whose plane holds the segment
+  unsigned On = 0;          ///< faces whose plane holds the segment
   unsigned GenericSide = 0; ///< of those, the ones the generic direction points into the cell from
 };
 
@@ -340,8 +341,8 @@ inline double FacePlane(const SourceCell& s, int k, double normal[3], const doub
 /// Clips the segment by face k's half-space; false when the segment lies
 /// wholly outside it (or the cell is flat).
 template <int D, int N, class SourceCell>
-inline bool ClipByFace(
-  const SegmentIntersector::Cell& t, const SourceCell& s, int k, double length, SegmentClip<N>& clip)
+inline bool ClipByFace(const SegmentIntersector::Cell& t, const SourceCell& s, int k, double length,
+  SegmentClip<N>& clip)
 {
   clip.Cuts[k] = false;
   double normal[3] = { 0.0, 0.0, 0.0 };
@@ -441,7 +442,8 @@ inline bool OwnsSegment(const SourceCell& s, unsigned on, unsigned generic, Piec
 /// The cell's barycentric coordinates along the target's axis (the
 /// source's functions on the piece).
 template <int D, int N, class SourceCell>
-inline void AxisCoordinates(const SegmentIntersector::Cell& t, const SourceCell& s, AffineCell<N, 1>& a)
+inline void AxisCoordinates(
+  const SegmentIntersector::Cell& t, const SourceCell& s, AffineCell<N, 1>& a)
 {
   a.Id = s.Id;
   std::copy(s.Points, s.Points + N, a.Points);
@@ -581,7 +583,8 @@ bool CurveTraceIntersector<Base>::Intersect(const Cell& t, const SourceCellType&
   const double tolerance = HeightTolerance * t.Measure;
   for (int d = 0; d < D; ++d)
   {
-    if (s.Box[2 * d] > t.Box3[2 * d + 1] + tolerance || s.Box[2 * d + 1] < t.Box3[2 * d] - tolerance)
+    if (s.Box[2 * d] > t.Box3[2 * d + 1] + tolerance ||
+      s.Box[2 * d + 1] < t.Box3[2 * d] - tolerance)
     {
       return false;
     }
@@ -636,7 +639,8 @@ double CurveTraceIntersector<Base>::Measure(const Piece& piece)
 }
 
 template <class Base>
-double CurveTraceIntersector<Base>::Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2])
+double CurveTraceIntersector<Base>::Moments(
+  const Piece& piece, double (&origin)[1], double (&M)[2][2])
 {
   return SegmentIntersector::IntervalMoments(piece.NumberOfVertices, piece.X, origin, M);
 }

@@ -84,7 +84,10 @@ public:
   {
     return SurfaceIntersector::Prepare(mesh, id, cell);
   }
-  static Index FaceSeed(const Piece&, int, const SourceCellType& s, const MeshView&) { return s.Id; }
+  static Index FaceSeed(const Piece&, int, const SourceCellType& s, const MeshView&)
+  {
+    return s.Id;
+  }
   /// The facet's box, widened by its height tolerance.
   static void Bounds(const Cell& cell, double box[6]);
   static void Center(const Cell& cell, double q[3]) { SurfaceIntersector::Center(cell, q); }
@@ -99,7 +102,8 @@ public:
   static double Moments(const Piece& piece, double (&origin)[2], double (&M)[3][3]);
   static double Measure(const Piece& piece);
   /// Appends each part as a polygon in 3D, on the target facet.
-  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  static void AppendPiece(
+    const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 };
 
 /// Base: TriangleIntersector (a curve in a 2D mesh) or TetrahedronIntersector.
@@ -131,7 +135,10 @@ public:
   };
 
   static bool Prepare(const MeshView& mesh, Index id, Cell& cell);
-  static Index FaceSeed(const Piece&, int, const SourceCellType& s, const MeshView&) { return s.Id; }
+  static Index FaceSeed(const Piece&, int, const SourceCellType& s, const MeshView&)
+  {
+    return s.Id;
+  }
   static void Bounds(const Cell& cell, double box[6]);
   static void Center(const Cell& cell, double q[3]) { SegmentIntersector::Center(cell, q); }
   static bool Intersect(const Cell& t, const SourceCellType& s, Piece& piece);
@@ -139,14 +146,18 @@ public:
   static double SourceScale(const SourceCellType&, const Piece&) { return 0.0; }
   /// Whether the piece is claimed by every source cell around an edge, and which edge.
   static bool Tied(const Piece& piece) { return piece.Tied; }
-  static std::pair<Index, Index> TieKey(const Piece& piece) { return { piece.Edge[0], piece.Edge[1] }; }
+  static std::pair<Index, Index> TieKey(const Piece& piece)
+  {
+    return { piece.Edge[0], piece.Edge[1] };
+  }
   static const AffineCell<Base::Corners, 1>& SourceCell(const SourceCellType&, const Piece& piece)
   {
     return piece.Source;
   }
   static double Moments(const Piece& piece, double (&origin)[1], double (&M)[2][2]);
   static double Measure(const Piece& piece);
-  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  static void AppendPiece(
+    const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 };
 
 extern template class CurveTraceIntersector<TriangleIntersector>;

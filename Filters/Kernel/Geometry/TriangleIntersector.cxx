@@ -31,7 +31,6 @@ inline double PseudoAngle(double dx, double dy)
   return dy < 0.0 ? 4.0 + p : p;
 }
 
-
 // Stores the n ordered points as the piece's vertices, each only when it
 // differs from the one before (and the last when it differs from the first).
 // A point left out equals the last one kept, so each is compared with its
@@ -216,7 +215,6 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
   }
 }
 
-
 /**
  * Bits 3k + j of pos, neg: o[k][j] > 0, < 0 (a NaN: neither). Entries 0-1
  * of a row as one vector, their signs by SSE2 movemask (generic code
@@ -263,8 +261,9 @@ inline void SignBits3x3(const double (&o)[3][3], unsigned& pos, unsigned& neg)
 inline void Crossing(const double* a, const double* b, double oa, double ob, const double* c,
   const double* d, double oc, double od, double limit, bool careful, double (&x)[2])
 {
-  if (careful && (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) <
-                   (d[0] - c[0]) * (d[0] - c[0]) + (d[1] - c[1]) * (d[1] - c[1]))
+  if (careful &&
+    (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) <
+      (d[0] - c[0]) * (d[0] - c[0]) + (d[1] - c[1]) * (d[1] - c[1]))
   {
     std::swap(a, c); // along the target edge a-b, across the line of c-d
     std::swap(b, d);
@@ -329,8 +328,9 @@ bool TriangleIntersector::PrepareCorners(Cell& cell)
   cell.Inverse[0][1] = -j01 * inverse;
   cell.Inverse[1][0] = -j10 * inverse;
   cell.Inverse[1][1] = j00 * inverse;
-  return cell.Measure > 0.0 && std::isfinite(cell.Inverse[0][0] + cell.Inverse[0][1] +
-                                 cell.Inverse[1][0] + cell.Inverse[1][1]);
+  return cell.Measure > 0.0 &&
+    std::isfinite(
+      cell.Inverse[0][0] + cell.Inverse[0][1] + cell.Inverse[1][0] + cell.Inverse[1][1]);
 }
 
 void TriangleIntersector::Bounds(const Cell& cell, double box[6])
@@ -473,7 +473,8 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   // most mispredicted branches of a 2D run's intersections).
   const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
     ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
-  for (unsigned crossings = straddleT & transposed & 0x1FFu; crossings != 0; crossings &= crossings - 1)
+  for (unsigned crossings = straddleT & transposed & 0x1FFu; crossings != 0;
+       crossings &= crossings - 1)
   {
     const int bit = __builtin_ctz(crossings);
     const int k = bit / 3;
@@ -483,7 +484,8 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     double x[2];
     const int ai = (k + 1) % 3;
     const int bi = (k + 2) % 3;
-    Crossing(t.X[ai], t.X[bi], os[l][ai], os[l][bi], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit, careful, x);
+    Crossing(t.X[ai], t.X[bi], os[l][ai], os[l][bi], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit,
+      careful, x);
     // Source edge l entering the target's side of edge k (c outside):
     // the piece arrives along target edge k and leaves along l; leaving
     // it, the other way round.

@@ -46,11 +46,11 @@ public:
   struct Cell
   {
     Index Id = -1;
-    Index Points[3];   ///< point ids, in counterclockwise order
-    int Face[3];       ///< mesh-local face index of face k (k opposite corner k)
-    double X[3][2];    ///< corner coordinates as given (exact predicates use them)
-    double Box[4];     ///< xmin, xmax, ymin, ymax
-    double Measure;    ///< area, > 0
+    Index Points[3]; ///< point ids, in counterclockwise order
+    int Face[3];     ///< mesh-local face index of face k (k opposite corner k)
+    double X[3][2];  ///< corner coordinates as given (exact predicates use them)
+    double Box[4];   ///< xmin, xmax, ymin, ymax
+    double Measure;  ///< area, > 0
     /// The cell's affine map: x - X[0] to barycentric coordinates 1 and 2
     /// (geometry; the P1 space of Transfer/Space.h builds its basis from it).
     double Inverse[2][2];
@@ -59,9 +59,9 @@ public:
   /// The intersection of a target and a source triangle.
   struct Piece
   {
-    int NumberOfVertices = 0;       ///< 0: empty; 1 or 2: the cells only touch
+    int NumberOfVertices = 0;        ///< 0: empty; 1 or 2: the cells only touch
     double X[MaxPolygonVertices][2]; ///< counterclockwise
-    unsigned TouchedFaces = 0;      ///< bit k: face k of the target meets the source
+    unsigned TouchedFaces = 0;       ///< bit k: face k of the target meets the source
     /// bit l: face l of the source (in Cell order) meets the target. Only
     /// neighbours across those can meet the target too (through the target).
     unsigned SourceFaces = 0;
@@ -122,12 +122,14 @@ public:
   static double Measure(const Piece& piece);
 
   /// Appends the piece (one polygon, with its area) to `pieces`.
-  static void AppendPiece(const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
+  static void AppendPiece(
+    const Piece& piece, Index target, Index source, IntersectionPieces& pieces);
 };
 /// (Always inlined, as ShiftMoments (Moments.h): the assembler reads M at
 /// once, and from a call its two-lane loads of entries stored one by one
 /// waited for the stores.)
-inline __attribute__((always_inline)) double TriangleIntersector::Moments(const Piece& p, double (&origin)[2], double (&M)[3][3])
+inline __attribute__((always_inline)) double TriangleIntersector::Moments(
+  const Piece& p, double (&origin)[2], double (&M)[3][3])
 {
   // Moments of the polygon (1, x, y, x^2, xy, y^2) relative to its first
   // vertex, edge by edge (Green's theorem): exact for any polygon. A local

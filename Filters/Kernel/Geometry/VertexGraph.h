@@ -31,8 +31,8 @@ template <int V>
 struct FaceCycles
 {
   int NumberOfFaces = 0;
-  signed char Size[V / 2 + 2];  ///< three links per vertex: V / 2 + 2 faces
-  signed char Vertex[3 * V];    ///< the cycles one after the other
+  signed char Size[V / 2 + 2]; ///< three links per vertex: V / 2 + 2 faces
+  signed char Vertex[3 * V];   ///< the cycles one after the other
 };
 
 /**
@@ -71,8 +71,10 @@ struct VertexGraph
   int Original[MaxVertices]; ///< corner of the clipped cell, or -1
 
   /// The links of a tetrahedron (0, 1, 2, 3), positively oriented.
-  static constexpr int TetrahedronNext[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
-  static constexpr int TetrahedronBack[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 }, { 2, 2, 1 } };
+  static constexpr int TetrahedronNext[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 },
+    { 0, 2, 1 } };
+  static constexpr int TetrahedronBack[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 },
+    { 2, 2, 1 } };
 
   /// The bits SetTetrahedron gives corner v: the cell's faces through it,
   /// and the clipping planes it lies on.
@@ -135,7 +137,8 @@ struct VertexGraph
    * corners outside (bit v: corner v), 0 with nothing set when a corner
    * lies on the plane (or its side is NaN) or none is clipped or kept.
    */
-  unsigned SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k);
+  unsigned SetClippedTetrahedron(
+    const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k);
 
   /// SecondCuts()[64 * first + pattern]: the cuts of the table of first
   /// cuts' graphs (`first` a pattern of TetrahedronCuts), for every pattern
@@ -149,7 +152,8 @@ struct VertexGraph
    * changed, when a vertex lies on the plane or its distance is NaN (then
    * Clip does it).
    */
-  bool ClipSecond(unsigned first, const double* normal, const double* origin, unsigned bit, const double sides[4]);
+  bool ClipSecond(unsigned first, const double* normal, const double* origin, unsigned bit,
+    const double sides[4]);
 
   /// Keeps the part on the inner side of plane `bit`; false when it cannot
   /// (capacity, or a face walk that does not come back): then the caller
@@ -184,7 +188,8 @@ struct VertexGraph
 
   /// Vertex v's distance from the plane as Clip takes it: a corner's exact
   /// side, 0 on the plane, else from the plane's normal.
-  double Distance(int v, const double* normal, const double* origin, unsigned bit, const double sides[4]) const
+  double Distance(
+    int v, const double* normal, const double* origin, unsigned bit, const double sides[4]) const
   {
     if (this->Original[v] >= 0)
     {
@@ -339,7 +344,7 @@ struct VertexGraph
     this->NumberOfVertices = m;
     return true;
   }
-  int Beyond[MaxVertices]; ///< per new vertex (index - n): the clipped end of its edge
+  int Beyond[MaxVertices];     ///< per new vertex (index - n): the clipped end of its edge
   int BeyondBack[MaxVertices]; ///< per new vertex: the slot of its kept end in Beyond
 
   // The faces (VertexGraphFaces.h).

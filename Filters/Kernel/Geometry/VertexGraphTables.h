@@ -30,7 +30,7 @@ struct VertexGraph::TableCut
 {
   bool Valid = false; ///< Cut made it, in at most 12 vertices (all do: at most 10; a guard)
   int NumberOfVertices = 0;
-  int NumberKept = 0; ///< the first ones are the kept vertices, the others crossings
+  int NumberKept = 0;           ///< the first ones are the kept vertices, the others crossings
   signed char From[12][2] = {}; ///< kept vertex, and clipped one (-1: the kept vertex itself)
   /// Links, all 12 rows (unused ones zero): copied whole, without a loop.
   signed char Next[12][3] = {};
@@ -52,7 +52,8 @@ inline TetrahedronIntersector::Cell VertexGraph::ReferenceTetrahedron()
   return c;
 }
 
-inline void VertexGraph::MakeCut(const VertexGraph& before, const double* d, unsigned bit, TableCut& cut)
+inline void VertexGraph::MakeCut(
+  const VertexGraph& before, const double* d, unsigned bit, TableCut& cut)
 {
   VertexGraph after = before;
   if (!after.Cut(d, bit) || after.NumberOfVertices > 12)

@@ -79,7 +79,9 @@ void ForCellCornersInOrder(
     serial(0, n);
     return;
   }
-  auto range = [&](int k) { return std::make_pair(RangeBegin(n, k, tasks), RangeBegin(n, k + 1, tasks)); };
+  auto range = [&](int k) {
+    return std::make_pair(RangeBegin(n, k, tasks), RangeBegin(n, k + 1, tasks));
+  };
   // Ids below first[k] may be used by the cells of an earlier range.
   std::vector<Index> first(static_cast<size_t>(tasks), 0);
   runner.RunAll(tasks, [&](int k) {

@@ -13,7 +13,8 @@ namespace mp
 namespace
 {
 template <class Id>
-Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner, PointCells* keep)
+Index FaceNeighbors(
+  const MeshView& mesh, NeighborId* neighbors, const TaskRunner& runner, PointCells* keep)
 {
   // (The cell lists are written whole by BuildPointCells' tasks: not zeroed first.)
   UninitializedLargeVector<Id> start;
@@ -25,26 +26,27 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
   std::atomic<bool> repeated(false);
   // MatchFacesAtPoints packs two point ids + 1 into 32 bits each.
   const bool packable = mesh.NumberOfPoints < (Index(1) << 32) - 1;
-  const Index nonManifold = !packable ? 0 : runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
-    Index count = 0;
-    switch (corners)
-    {
-      case 2:
-        count = MatchFacesAtPoints<2>(mesh, start.data(), around.data(), neighbors, begin, end);
-        break;
-      case 3:
-        count = MatchFacesAtPoints<3>(mesh, start.data(), around.data(), neighbors, begin, end);
-        break;
-      default:
-        count = MatchFacesAtPoints<4>(mesh, start.data(), around.data(), neighbors, begin, end);
-    }
-    if (count < 0)
-    {
-      repeated = true;
-      return Index(0);
-    }
-    return count;
-  });
+  const Index nonManifold =
+    !packable ? 0 : runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
+      Index count = 0;
+      switch (corners)
+      {
+        case 2:
+          count = MatchFacesAtPoints<2>(mesh, start.data(), around.data(), neighbors, begin, end);
+          break;
+        case 3:
+          count = MatchFacesAtPoints<3>(mesh, start.data(), around.data(), neighbors, begin, end);
+          break;
+        default:
+          count = MatchFacesAtPoints<4>(mesh, start.data(), around.data(), neighbors, begin, end);
+      }
+      if (count < 0)
+      {
+        repeated = true;
+        return Index(0);
+      }
+      return count;
+    });
   // (For the target mass matrix's pattern: the same lists.)
   auto kept = [&] {
     if constexpr (std::is_same<Id, std::int32_t>::value)
@@ -65,14 +67,14 @@ Index FaceNeighbors(const MeshView& mesh, NeighborId* neighbors, const TaskRunne
   // matcher's own rule, from the start.
   std::fill(neighbors, neighbors + size, NeighborId(-1));
   const Index matched = MatchFaces(
-           mesh,
-           [&](Index p, const auto& visit) {
-             for (Id i = start[p]; i < start[p + 1]; ++i)
-             {
-               visit(static_cast<Index>(around[i]));
-             }
-           },
-           neighbors, 0, mesh.NumberOfCells) /
+                          mesh,
+                          [&](Index p, const auto& visit) {
+                            for (Id i = start[p]; i < start[p + 1]; ++i)
+                            {
+                              visit(static_cast<Index>(around[i]));
+                            }
+                          },
+                          neighbors, 0, mesh.NumberOfCells) /
     2;
   kept();
   return matched;

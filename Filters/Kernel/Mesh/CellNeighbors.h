@@ -151,7 +151,8 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
     bool Same(const Face& o) const { return this->Key == o.Key; }
   };
   auto pack = [](Index key0, Index key1) {
-    return (static_cast<unsigned long long>(key0 + 1) << 32) | static_cast<unsigned long long>(key1 + 1);
+    return (static_cast<unsigned long long>(key0 + 1) << 32) |
+      static_cast<unsigned long long>(key1 + 1);
   };
   std::vector<Face> faces;
   Index nonManifold = 0;
@@ -299,7 +300,8 @@ struct PointCells
   /// Whether these are the lists of `mesh` (as many starts as its points, plus one).
   bool Fit(const MeshView& mesh) const
   {
-    return !this->Start.empty() && static_cast<Index>(this->Start.size()) == mesh.NumberOfPoints + 1;
+    return !this->Start.empty() &&
+      static_cast<Index>(this->Start.size()) == mesh.NumberOfPoints + 1;
   }
 };
 
@@ -334,8 +336,8 @@ void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells, const T
   const Index np = mesh.NumberOfPoints;
   const Index n = mesh.NumberOfCells;
   const Index uses = n * corners;
-  const int tasks = static_cast<int>(std::min<Index>(
-    runner.TasksFor(n, 65536), std::max<Index>(1, np > 0 ? uses / np : 1)));
+  const int tasks = static_cast<int>(
+    std::min<Index>(runner.TasksFor(n, 65536), std::max<Index>(1, np > 0 ? uses / np : 1)));
   start.assign(static_cast<std::size_t>(np) + 1, 0);
   // Per task: its uses of each point, then where they go in the point's list.
   std::vector<Vector> count(static_cast<std::size_t>(tasks));

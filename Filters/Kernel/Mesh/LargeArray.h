@@ -61,8 +61,7 @@ struct LargeAllocator
   LargeAllocator() = default;
   template <class U>
   LargeAllocator(const LargeAllocator<U>&) noexcept
-  {
-  }
+  {}
 
   T* allocate(std::size_t n)
   {
@@ -85,7 +84,8 @@ struct LargeAllocator
       throw std::bad_alloc();
     }
     char* begin = static_cast<char*>(raw);
-    char* aligned = begin + (HugePage - reinterpret_cast<std::uintptr_t>(begin) % HugePage) % HugePage;
+    char* aligned =
+      begin + (HugePage - reinterpret_cast<std::uintptr_t>(begin) % HugePage) % HugePage;
     if (aligned > begin)
     {
       munmap(begin, static_cast<std::size_t>(aligned - begin));
@@ -95,7 +95,8 @@ struct LargeAllocator
     // end that it holds (on average 1 MiB of every block, some 10% of a
     // projection's peak), so the block's end is on small pages.
     const std::size_t kept = Mapped(bytes);
-    const std::size_t tail = static_cast<std::size_t>(begin + rounded + HugePage - (aligned + kept));
+    const std::size_t tail =
+      static_cast<std::size_t>(begin + rounded + HugePage - (aligned + kept));
     if (tail > 0)
     {
       munmap(aligned + kept, tail);
@@ -170,8 +171,7 @@ struct UninitializedAllocator : LargeAllocator<T>
   UninitializedAllocator() = default;
   template <class U>
   UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
-  {
-  }
+  {}
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
   {
@@ -205,8 +205,7 @@ public:
   explicit LargeBuffer(std::size_t n)
     : Values(n > 0 ? LargeAllocator<T>().allocate(n) : nullptr)
     , Count(n)
-  {
-  }
+  {}
   LargeBuffer(const LargeBuffer&) = delete;
   LargeBuffer& operator=(const LargeBuffer&) = delete;
   LargeBuffer(LargeBuffer&& other) noexcept { this->swap(other); }

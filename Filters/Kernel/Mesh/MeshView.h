@@ -58,13 +58,13 @@ public:
   CellCorners(const Index* wide, const std::int32_t* narrow)
     : Wide(wide)
     , Narrow(narrow)
-  {
-  }
+  {}
   Index operator[](Index k) const { return this->Narrow ? Index(this->Narrow[k]) : this->Wide[k]; }
   /// Where the corners are stored (to prefetch them).
   const void* Address() const
   {
-    return this->Narrow ? static_cast<const void*>(this->Narrow) : static_cast<const void*>(this->Wide);
+    return this->Narrow ? static_cast<const void*>(this->Narrow)
+                        : static_cast<const void*>(this->Wide);
   }
 
 private:
@@ -74,9 +74,9 @@ private:
 
 struct MeshView
 {
-  int CellDimension = 2;               ///< 1: segments, 2: triangles, 3: tetrahedra
-  int SpaceDimension = 2;              ///< coordinates used: 2 (x, y) or 3 (x, y, z)
-  const double* Points = nullptr;      ///< 3 * NumberOfPoints coordinates
+  int CellDimension = 2;          ///< 1: segments, 2: triangles, 3: tetrahedra
+  int SpaceDimension = 2;         ///< coordinates used: 2 (x, y) or 3 (x, y, z)
+  const double* Points = nullptr; ///< 3 * NumberOfPoints coordinates
   Index NumberOfPoints = 0;
   const Index* Connectivity = nullptr; ///< (CellDimension + 1) * NumberOfCells point ids
   /// The same in 32 bits (half the memory: a renumbered copy of a mesh of
@@ -85,7 +85,7 @@ struct MeshView
   Index NumberOfCells = 0;
   /// The original cell of each simplex (null: each simplex is its own).
   const Index* Parent = nullptr;
-  Index NumberOfParents = 0;           ///< with Parent: how many original cells
+  Index NumberOfParents = 0; ///< with Parent: how many original cells
   /// With Parent: every original cell is exactly one simplex (Parent is a
   /// permutation: the cells were only renumbered), so per-parent sums are
   /// per-cell values moved.

@@ -75,8 +75,8 @@ void FindMarked(const Id* ids, int corners, Index begin, Index end,
  * around each marked point. One pass over the connectivity, each task
  * keeping its range's pairs, joined in range order.
  */
-std::vector<std::pair<Index, Index>> CellsAroundMarked(const MeshView& mesh,
-  const std::vector<std::uint64_t>& marked, const TaskRunner& runner)
+std::vector<std::pair<Index, Index>> CellsAroundMarked(
+  const MeshView& mesh, const std::vector<std::uint64_t>& marked, const TaskRunner& runner)
 {
   const Index n = mesh.NumberOfCells;
   const int corners = mesh.CornersPerCell();
@@ -121,8 +121,8 @@ int SharedCorners(const MeshView& mesh, Index a, Index b)
 }
 
 /// |c - o| for each cell o across a face of the sampled cells, each once.
-std::vector<Index> NeighbourDistances(const MeshView& mesh, Index samples,
-  const std::vector<std::pair<Index, Index>>& around)
+std::vector<Index> NeighbourDistances(
+  const MeshView& mesh, Index samples, const std::vector<std::pair<Index, Index>>& around)
 {
   const int corners = mesh.CornersPerCell();
   std::vector<Index> distances;
@@ -180,8 +180,8 @@ NumberingQuality MeasureNumbering(const MeshView& mesh, const TaskRunner& runner
     spread[s] = high - low;
   }
   quality.PointSpread = Quantile(spread, 0.5) / std::pow(static_cast<double>(np), layer);
-  const std::vector<Index> distances =
-    NeighbourDistances(mesh, samples, CellsAroundMarked(mesh, MarkSampledPoints(mesh, samples), runner));
+  const std::vector<Index> distances = NeighbourDistances(
+    mesh, samples, CellsAroundMarked(mesh, MarkSampledPoints(mesh, samples), runner));
   const double far = NumberingQuality::FarDistance * std::pow(static_cast<double>(n), layer);
   const auto count = std::count_if(
     distances.begin(), distances.end(), [far](Index d) { return static_cast<double>(d) > far; });

@@ -51,7 +51,7 @@ namespace mp
 /// How far a mesh's numbering is from following space (see the file's comment).
 struct NumberingQuality
 {
-  double PointSpread = 0.0;  ///< median point id spread of a cell / np^((d-1)/d)
+  double PointSpread = 0.0;   ///< median point id spread of a cell / np^((d-1)/d)
   double FarNeighbours = 0.0; ///< fraction of face neighbours more than FarDistance layers apart
 
   /// In layers (n^((d-1)/d) ids): beyond any sweep's or band's neighbours.
@@ -74,8 +74,8 @@ struct NumberingQuality
  * connectivity once, in `runner`'s tasks; the result does not depend on
  * their number.
  */
-NumberingQuality MeasureNumbering(const MeshView& mesh, const TaskRunner& runner = TaskRunner(),
-  Index samples = 1024);
+NumberingQuality MeasureNumbering(
+  const MeshView& mesh, const TaskRunner& runner = TaskRunner(), Index samples = 1024);
 
 } // namespace mp
 

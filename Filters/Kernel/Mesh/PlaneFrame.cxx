@@ -34,37 +34,40 @@ void ReadCorners(const MeshView& mesh, Index uses, const TaskRunner& runner, Cor
   constexpr Index Block = Index(1) << 15;
   const Index blocks = (uses + Block - 1) / Block;
   std::vector<double> partial(static_cast<size_t>(9 * blocks));
-  runner.ForRanges(blocks, [&](Index first, Index last) {
-    for (Index b = first; b < last; ++b)
-    {
-      // (In locals, kept in registers and written out once: a store
-      // through `partial` at each corner was memory traffic per corner.)
-      double low[3];
-      double high[3];
-      double sum[3] = { 0, 0, 0 };
-      for (int d = 0; d < 3; ++d)
+  runner.ForRanges(
+    blocks,
+    [&](Index first, Index last) {
+      for (Index b = first; b < last; ++b)
       {
-        low[d] = std::numeric_limits<double>::infinity();
-        high[d] = -low[d];
-      }
-      const Index end = std::min(uses, (b + 1) * Block);
-      for (Index i = b * Block; i < end; ++i)
-      {
-        const double* x = mesh.Point(mesh.Corner(i));
+        // (In locals, kept in registers and written out once: a store
+        // through `partial` at each corner was memory traffic per corner.)
+        double low[3];
+        double high[3];
+        double sum[3] = { 0, 0, 0 };
         for (int d = 0; d < 3; ++d)
         {
-          low[d] = std::min(low[d], x[d]);
-          high[d] = std::max(high[d], x[d]);
-          sum[d] += x[d];
+          low[d] = std::numeric_limits<double>::infinity();
+          high[d] = -low[d];
         }
+        const Index end = std::min(uses, (b + 1) * Block);
+        for (Index i = b * Block; i < end; ++i)
+        {
+          const double* x = mesh.Point(mesh.Corner(i));
+          for (int d = 0; d < 3; ++d)
+          {
+            low[d] = std::min(low[d], x[d]);
+            high[d] = std::max(high[d], x[d]);
+            sum[d] += x[d];
+          }
+        }
+        double* part = &partial[static_cast<size_t>(9 * b)];
+        std::copy(low, low + 3, part);
+        std::copy(high, high + 3, part + 3);
+        std::copy(sum, sum + 3, part + 6);
       }
-      double* part = &partial[static_cast<size_t>(9 * b)];
-      std::copy(low, low + 3, part);
-      std::copy(high, high + 3, part + 3);
-      std::copy(sum, sum + 3, part + 6);
-    }
-    return 0;
-  }, 4);
+      return 0;
+    },
+    4);
   for (Index b = 0; b < blocks; ++b)
   {
     const double* part = &partial[static_cast<size_t>(9 * b)];
@@ -173,7 +176,8 @@ double LargestDistance(const MeshView& mesh, Index uses, const PlaneFrame& frame
 }
 } // namespace
 
-bool PlaneFrame::Fit(const MeshView& mesh, double& deviation, double& size, const TaskRunner& runner)
+bool PlaneFrame::Fit(
+  const MeshView& mesh, double& deviation, double& size, const TaskRunner& runner)
 {
   *this = PlaneFrame();
   deviation = 0.0;

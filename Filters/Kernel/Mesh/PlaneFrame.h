@@ -37,8 +37,8 @@ public:
    * the mean summed in fixed blocks of corners, in block order: the same
    * plane for any number of tasks.
    */
-  bool Fit(const MeshView& mesh, double& deviation, double& size,
-    const TaskRunner& runner = TaskRunner());
+  bool Fit(
+    const MeshView& mesh, double& deviation, double& size, const TaskRunner& runner = TaskRunner());
 
   /// Signed distance of x from the plane.
   double Distance(const double* x) const;

@@ -308,8 +308,8 @@ class Renumbering
 public:
   static constexpr Index Unclaimed = std::numeric_limits<Index>::max();
 
-  Renumbering(const MeshView& mesh, SpatialOrder& order, Id* out, Index* parent,
-    const TaskRunner& runner)
+  Renumbering(
+    const MeshView& mesh, SpatialOrder& order, Id* out, Index* parent, const TaskRunner& runner)
     : Mesh(mesh)
     , Order(order)
     , Out(out)
@@ -318,8 +318,7 @@ public:
     , N(mesh.NumberOfCells)
     , NP(mesh.NumberOfPoints)
     , Corners(mesh.CornersPerCell())
-  {
-  }
+  {}
 
   /// Numbers the points and writes the cells; then the points no cell
   /// uses, last in their old order.
@@ -466,27 +465,30 @@ private:
     const int tasks = this->Tasks;
     const Index np = this->NP;
     Index* newId = this->NewId;
-    this->Runner.ForRanges(static_cast<Index>(this->Words), [&](Index begin, Index end) {
-      for (Index w = begin; w < end; ++w)
-      {
-        Word before = 0;
-        for (int t = 0; t < tasks; ++t)
+    this->Runner.ForRanges(
+      static_cast<Index>(this->Words),
+      [&](Index begin, Index end) {
+        for (Index w = begin; w < end; ++w)
         {
-          Word& bits = this->Seen[t][w];
-          const Word own = bits;
-          bits = own & ~before;
-          before |= own;
-        }
-        for (Index p = 64 * w; p < std::min(np, 64 * w + 64) && before != ~Word(0); ++p)
-        {
-          if (!((before >> (p & 63)) & 1))
+          Word before = 0;
+          for (int t = 0; t < tasks; ++t)
           {
-            newId[p] = Unclaimed;
+            Word& bits = this->Seen[t][w];
+            const Word own = bits;
+            bits = own & ~before;
+            before |= own;
+          }
+          for (Index p = 64 * w; p < std::min(np, 64 * w + 64) && before != ~Word(0); ++p)
+          {
+            if (!((before >> (p & 63)) & 1))
+            {
+              newId[p] = Unclaimed;
+            }
           }
         }
-      }
-      return 0;
-    }, 4096);
+        return 0;
+      },
+      4096);
   }
 
   /// Each task keeps the points whose bits remain, in order; they get
@@ -562,8 +564,8 @@ private:
 /// The renumbered mesh: its cells and points (Renumbering), then the
 /// points' coordinates copied in their new order.
 template <class Id>
-void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out,
-  Index* parent, const TaskRunner& runner)
+void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out, Index* parent,
+  const TaskRunner& runner)
 {
   Renumbering<Id>(mesh, order, out, parent, runner).Run();
   runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
@@ -580,8 +582,8 @@ void Renumber(const MeshView& mesh, SpatialOrder& order, double* points, Id* out
 }
 } // namespace
 
-void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
-  Index* connectivity, Index* parent, const TaskRunner& runner)
+void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points, Index* connectivity,
+  Index* parent, const TaskRunner& runner)
 {
   Renumber(mesh, order, points, connectivity, parent, runner);
 }

@@ -57,8 +57,8 @@ struct SpatialOrder
  * position of its corners (ties kept in the old order): order.Cells (the identity for meshes of
  * 2^32 cells or more). Keys are computed in `runner`'s tasks.
  */
-void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order,
-  const TaskRunner& runner = TaskRunner());
+void OrderAlongCurve(
+  const MeshView& mesh, SpatialOrder& order, const TaskRunner& runner = TaskRunner());
 
 /**
  * `mesh` renumbered by order.Cells, into the caller's arrays: `points` (3
@@ -70,8 +70,8 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order,
  * overwritten. The cells are copied in `runner`'s tasks, which give the
  * same numbering as one task.
  */
-void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
-  Index* connectivity, Index* parent, const TaskRunner& runner = TaskRunner());
+void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points, Index* connectivity,
+  Index* parent, const TaskRunner& runner = TaskRunner());
 /// The same with the new connectivity in 32 bits (a mesh of fewer than 2^31 points).
 void RenumberMesh(const MeshView& mesh, SpatialOrder& order, double* points,
   std::int32_t* connectivity, Index* parent, const TaskRunner& runner = TaskRunner());

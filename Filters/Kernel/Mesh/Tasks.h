@@ -83,7 +83,8 @@ struct TaskRunner
       return body(Index(0), n);
     }
     std::vector<Sum> partial(static_cast<size_t>(tasks));
-    this->RunAll(tasks, [&](int k) { partial[k] = body(RangeBegin(n, k, tasks), RangeBegin(n, k + 1, tasks)); });
+    this->RunAll(tasks,
+      [&](int k) { partial[k] = body(RangeBegin(n, k, tasks), RangeBegin(n, k + 1, tasks)); });
     Sum sum = partial[0];
     for (int k = 1; k < tasks; ++k)
     {
@@ -96,10 +97,13 @@ struct TaskRunner
   template <class T>
   void Fill(T* data, Index n, T value, Index grain = 4096) const
   {
-    this->ForRanges(n, [data, value](Index begin, Index end) {
-      std::fill(data + begin, data + end, value);
-      return 0;
-    }, grain);
+    this->ForRanges(
+      n,
+      [data, value](Index begin, Index end) {
+        std::fill(data + begin, data + end, value);
+        return 0;
+      },
+      grain);
   }
 };
 } // namespace mp

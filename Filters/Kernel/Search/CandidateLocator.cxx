@@ -79,8 +79,7 @@ void BinDivisions(const double lo[3], const double hi[3], int dimension, Index m
 
 BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared)
   : Grids(std::move(shared))
-{
-}
+{}
 
 std::unique_ptr<CandidateLocator> BoxGridLocator::NewForThread() const
 {
@@ -108,7 +107,8 @@ bool BoxGridLocator::Supports(Index cell, int face) const
   }
   // Tested on the first question (traces and fronts that never meet the
   // boundary never pay for it), by whichever thread asks first.
-  std::call_once(g.SupportingBuilt, [&g] { g.Supporting = SupportingFaces(g.Mesh, g.Boundary->Cells); });
+  std::call_once(
+    g.SupportingBuilt, [&g] { g.Supporting = SupportingFaces(g.Mesh, g.Boundary->Cells); });
   const std::vector<unsigned char>& supporting = g.Supporting;
   return !supporting.empty() && (supporting[static_cast<size_t>(cell)] >> face & 1u);
 }
@@ -180,7 +180,8 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
   }
 }
 
-const double* BoxGridLocator::Bins::BoxOf(const MeshView& mesh, Index position, double scratch[6]) const
+const double* BoxGridLocator::Bins::BoxOf(
+  const MeshView& mesh, Index position, double scratch[6]) const
 {
   if (!this->Boxes.empty())
   {

@@ -107,7 +107,10 @@ private:
     /// The box of the binned cell at `position`: stored, or computed into `scratch`.
     const double* BoxOf(const MeshView& mesh, Index position, double scratch[6]) const;
     /// The mesh's id of the binned cell at `position`.
-    Index CellOf(Index position) const { return this->Cells.empty() ? position : this->Cells[position]; }
+    Index CellOf(Index position) const
+    {
+      return this->Cells.empty() ? position : this->Cells[position];
+    }
     void Range(const double box[6], int lo[3], int hi[3]) const;
   };
   /// What the locators of all threads share.

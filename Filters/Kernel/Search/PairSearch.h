@@ -92,27 +92,23 @@ namespace mp
 /// (cells of one kind only).
 template <class Intersector, class Sources, class = void>
 struct HasApart : std::false_type
-{
-};
+{};
 template <class Intersector, class Sources>
 struct HasApart<Intersector, Sources,
   std::enable_if_t<std::is_same<typename Intersector::Cell, typename Sources::Cell>::value,
     decltype(void(Intersector::Apart(std::declval<const typename Intersector::Cell&>(),
       std::declval<const typename Intersector::Cell&>())))>> : std::true_type
-{
-};
+{};
 
 /// Whether the intersector's cells meet only in positive volume
 /// (tetrahedra), so that a boundary face supporting the source
 /// (CandidateLocator::Supports) cannot cut a target cell's cover apart.
 template <class Intersector, class = void>
 struct MeetsInVolume : std::false_type
-{
-};
+{};
 template <class Intersector>
 struct MeetsInVolume<Intersector, std::enable_if_t<Intersector::MeetsInVolume>> : std::true_type
-{
-};
+{};
 
 /**
  * The advancing front's state over target cells [begin, end): the outer
@@ -152,8 +148,9 @@ public:
     }
     // A straight walk crosses about n^(1/d) cells of a mesh of n cells.
     this->MaxWalk = 100 +
-      4 * static_cast<Index>(std::pow(
-            static_cast<double>(source.NumberOfCells), 1.0 / Sources::Dimension));
+      4 *
+        static_cast<Index>(
+          std::pow(static_cast<double>(source.NumberOfCells), 1.0 / Sources::Dimension));
   }
 
   /// Treats every target cell of the range once: those the outer front
@@ -340,7 +337,8 @@ private:
       return -1;
     }
     ++stats.WalkRestarts;
-    return WalkToward<Sources>(this->Source, this->Prepared, near, q, this->MaxWalk, stats.WalkSteps);
+    return WalkToward<Sources>(
+      this->Source, this->Prepared, near, q, this->MaxWalk, stats.WalkSteps);
   }
 
   /// Adds the locator's candidates (boundary cells, or all cells) to the inner front.
@@ -430,7 +428,8 @@ private:
     this->Visit(this->T, s, piece);
     // The faces' bits visited lowest first (a test per face depends on
     // the data and was often mispredicted): the same order.
-    for (unsigned touched = piece.TouchedFaces & ((1u << Faces) - 1u); touched != 0; touched &= touched - 1)
+    for (unsigned touched = piece.TouchedFaces & ((1u << Faces) - 1u); touched != 0;
+         touched &= touched - 1)
     {
       const int k = __builtin_ctz(touched);
       const Index next = Intersector::FaceSeed(piece, k, s, this->Source);
@@ -450,7 +449,8 @@ private:
     }
     // Only across the faces of s that the target reaches: any other
     // source cell meeting the target is reached through cells meeting it.
-    for (unsigned reached = piece.SourceFaces & ((1u << SourceFaces) - 1u); reached != 0; reached &= reached - 1)
+    for (unsigned reached = piece.SourceFaces & ((1u << SourceFaces) - 1u); reached != 0;
+         reached &= reached - 1)
     {
       const int k = __builtin_ctz(reached);
       const Index n = this->Source.Neighbor(sId, s.Face[k]);
@@ -522,9 +522,9 @@ private:
  * possibly repeated).
  */
 template <class Intersector, class Visitor>
-void AdvancingFrontSearch(const MeshView& target, const MeshView& source,
-  CandidateLocator& locator, Visitor& visit, SearchStatistics& stats, Index begin = 0,
-  Index end = -1, std::vector<Index>* degenerateSources = nullptr,
+void AdvancingFrontSearch(const MeshView& target, const MeshView& source, CandidateLocator& locator,
+  Visitor& visit, SearchStatistics& stats, Index begin = 0, Index end = -1,
+  std::vector<Index>* degenerateSources = nullptr,
   const std::function<bool(Index done)>& poll = nullptr)
 {
   if (end < 0)

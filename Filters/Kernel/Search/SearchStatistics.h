@@ -20,14 +20,14 @@ enum class SearchMethod
 /// Counters filled by a pair search; useful in tests, benchmarks and summaries.
 struct SearchStatistics
 {
-  Index IntersectionTests = 0; ///< calls of the cell-cell intersection
-  Index TouchingPairs = 0;     ///< pairs whose closed cells meet (possibly in a point or segment)
-  Index Pieces = 0;            ///< pairs whose intersection has positive measure
-  Index LocatorQueries = 0;    ///< candidate look-ups in the locator (seeds and re-seeds)
+  Index IntersectionTests = 0;  ///< calls of the cell-cell intersection
+  Index TouchingPairs = 0;      ///< pairs whose closed cells meet (possibly in a point or segment)
+  Index Pieces = 0;             ///< pairs whose intersection has positive measure
+  Index LocatorQueries = 0;     ///< candidate look-ups in the locator (seeds and re-seeds)
   Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
-  Index SeedWalks = 0;         ///< walks through the source toward an unseeded target cell
-  Index WalkRestarts = 0;      ///< of those stopped on the way, made again from a sampled source cell
-  Index WalkSteps = 0;         ///< source cells those walks (and their restarts) went through
+  Index SeedWalks = 0;          ///< walks through the source toward an unseeded target cell
+  Index WalkRestarts = 0; ///< of those stopped on the way, made again from a sampled source cell
+  Index WalkSteps = 0;    ///< source cells those walks (and their restarts) went through
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
   /// Source cells of zero measure, skipped: those the front met (all, for
   /// the brute force); unmet ones could not have mattered.

@@ -36,8 +36,7 @@ public:
     , Ids(Slots, -1)
     , Valid(Slots, 0)
     , Cells(Slots)
-  {
-  }
+  {}
   /// The prepared cell, or null for a cell of zero measure.
   const typename Intersector::Cell* Get(Index id)
   {
@@ -77,8 +76,7 @@ class WalkStarts
 public:
   explicit WalkStarts(const MeshView& mesh)
     : Mesh(mesh)
-  {
-  }
+  {}
   /// How many cells are sampled: about 2 sqrt(n).
   static Index Samples(Index n)
   {

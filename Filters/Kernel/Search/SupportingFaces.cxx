@@ -195,7 +195,8 @@ private:
 
   /// Whether x is on the plane or on the `side` of it, exactly (the
   /// plane's own corners without an exact evaluation of 0).
-  static bool OnSide(const double* a, const double* b, const double* c, const double* x, double side)
+  static bool OnSide(
+    const double* a, const double* b, const double* c, const double* x, double side)
   {
     auto same = [x](const double* p) { return x[0] == p[0] && x[1] == p[1] && x[2] == p[2]; };
     return same(a) || same(b) || same(c) || Orient3D(a, b, c, x) * side >= 0.0;
@@ -220,7 +221,8 @@ inline Index FaceCorner(const MeshView& mesh, const BoundaryFace& f, int j)
 }
 
 /// The faces without neighbour of `cells`.
-std::vector<BoundaryFace> FacesWithoutNeighbour(const MeshView& mesh, const std::vector<Index>& cells)
+std::vector<BoundaryFace> FacesWithoutNeighbour(
+  const MeshView& mesh, const std::vector<Index>& cells)
 {
   std::vector<BoundaryFace> faces;
   for (const Index c : cells)
@@ -245,8 +247,7 @@ public:
   FaceTests(const MeshView& mesh, const PointTree& tree)
     : Mesh(mesh)
     , Tree(tree)
-  {
-  }
+  {}
   Index Corner(const BoundaryFace& f, int j) const { return FaceCorner(this->Mesh, f, j); }
   /// The corner of f's cell off f.
   Index Opposite(const BoundaryFace& f) const { return this->Mesh.Cell(f.Cell)[f.K]; }
@@ -263,10 +264,10 @@ public:
   {
     const MeshView& mesh = this->Mesh;
     const int inner = this->SideOf(f, this->Opposite(f));
-    return inner == 0 ? 0
-                      : this->Tree.AllOnSide(mesh.Point(this->Corner(f, 0)),
-                          mesh.Point(this->Corner(f, 1)), mesh.Point(this->Corner(f, 2)), inner,
-                          budget);
+    return inner == 0
+      ? 0
+      : this->Tree.AllOnSide(mesh.Point(this->Corner(f, 0)), mesh.Point(this->Corner(f, 1)),
+          mesh.Point(this->Corner(f, 2)), inner, budget);
   }
 
 private:
@@ -332,8 +333,9 @@ std::vector<Index> CoplanarFaces(const FaceTests& tests, const std::vector<Bound
     Index Face;
     bool operator<(const Edge& o) const
     {
-      return this->Low != o.Low ? this->Low < o.Low
-                                : (this->High != o.High ? this->High < o.High : this->Face < o.Face);
+      return this->Low != o.Low
+        ? this->Low < o.Low
+        : (this->High != o.High ? this->High < o.High : this->Face < o.Face);
     }
   };
   std::vector<Edge> edges;

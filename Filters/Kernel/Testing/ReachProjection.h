@@ -49,7 +49,8 @@ struct ReachProjection
   }
   /// int u_t over the covered target (the row sums of M_tt times u_t) and
   /// sum of M_ts u_s, which conservation makes equal.
-  std::pair<double, double> Integrals(const std::vector<double>& us, const std::vector<double>& ut) const
+  std::pair<double, double> Integrals(
+    const std::vector<double>& us, const std::vector<double>& ut) const
   {
     double target = 0.0;
     for (size_t i = 0; i < ut.size(); ++i)
@@ -80,7 +81,8 @@ inline std::vector<double> SampleAtPoints(const TestMesh& m, double (*f)(const d
 }
 
 /// The largest |u - f| over the points of `m` (infinite when a value is not finite).
-inline double MaxPointError(const TestMesh& m, const std::vector<double>& u, double (*f)(const double*))
+inline double MaxPointError(
+  const TestMesh& m, const std::vector<double>& u, double (*f)(const double*))
 {
   double error = 0.0;
   for (Index p = 0; p < m.NumberOfPoints(); ++p)

@@ -24,8 +24,8 @@ struct PairRecorder
 {
   std::vector<std::tuple<Index, Index, double>> Pairs;
   template <class SourceCell> // Intersector::Cell, or a volume's for traces
-  void operator()(const typename Intersector::Cell& t, const SourceCell& s,
-    const typename Intersector::Piece& p)
+  void operator()(
+    const typename Intersector::Cell& t, const SourceCell& s, const typename Intersector::Piece& p)
   {
     this->Pairs.emplace_back(t.Id, s.Id, Intersector::Measure(p));
   }
@@ -62,7 +62,9 @@ struct SearchComparison
       for (auto* pairs : { &positive.Front.Pairs, &positive.Brute.Pairs })
       {
         pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
-                       [minimum](const std::tuple<Index, Index, double>& p) { return !(std::get<2>(p) > minimum); }),
+                       [minimum](const std::tuple<Index, Index, double>& p) {
+                         return !(std::get<2>(p) > minimum);
+                       }),
           pairs->end());
       }
       positive.ExpectSamePairs(what);

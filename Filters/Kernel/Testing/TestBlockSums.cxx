@@ -56,8 +56,8 @@ void ExpectSameBits(const std::vector<double>& a, const std::vector<double>& b, 
   ASSERT_EQ(a.size(), b.size()) << what;
   for (size_t k = 0; k < a.size(); ++k)
   {
-    EXPECT_EQ(std::memcmp(&a[k], &b[k], sizeof(double)), 0) << what << " component " << k << ": " << a[k]
-                                                             << " and " << b[k];
+    EXPECT_EQ(std::memcmp(&a[k], &b[k], sizeof(double)), 0)
+      << what << " component " << k << ": " << a[k] << " and " << b[k];
   }
 }
 } // namespace
@@ -75,7 +75,8 @@ TEST(BlockSums, TheSerialBlockSumsForAnyNumberOfTasks)
       ExpectSameBits(mp::SumInBlocks(n, nc, mp::TaskRunner(), term), expected, "serial");
       for (int tasks : { 1, 2, 3, 7 })
       {
-        ExpectSameBits(mp::SumInBlocks(n, nc, mptest::ThreadRunner(tasks), term), expected, "threads");
+        ExpectSameBits(
+          mp::SumInBlocks(n, nc, mptest::ThreadRunner(tasks), term), expected, "threads");
         mp::TaskRunner inTurn; // the tasks' ranges one after the other
         inTurn.Tasks = tasks;
         ExpectSameBits(mp::SumInBlocks(n, nc, inTurn, term), expected, "in turn");
@@ -103,5 +104,6 @@ TEST(BlockSums, NoTermsNoComponents)
 {
   EXPECT_EQ(mp::SumInBlocks(0, 2, mp::TaskRunner(), [](mp::Index, int) { return 1.0; }),
     std::vector<double>(2, 0.0));
-  EXPECT_TRUE(mp::SumInBlocks(100, 0, mp::TaskRunner(), [](mp::Index, int) { return 1.0; }).empty());
+  EXPECT_TRUE(
+    mp::SumInBlocks(100, 0, mp::TaskRunner(), [](mp::Index, int) { return 1.0; }).empty());
 }

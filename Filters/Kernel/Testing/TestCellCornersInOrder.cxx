@@ -47,7 +47,8 @@ struct Grid
       for (int i = 0; i < n; ++i)
       {
         const mp::Index a = mp::Index(j) * m + i;
-        this->Connectivity.insert(this->Connectivity.end(), { a, a + 1, a + m + 1, a, a + m + 1, a + m });
+        this->Connectivity.insert(
+          this->Connectivity.end(), { a, a + 1, a + m + 1, a, a + m + 1, a + m });
       }
     }
     this->NumberOfCells = static_cast<mp::Index>(this->Connectivity.size() / 3);
@@ -95,7 +96,9 @@ std::vector<double> Values(mp::Index cells, unsigned seed)
   std::vector<double> values(static_cast<size_t>(cells));
   for (size_t c = 0; c < values.size(); ++c)
   {
-    values[c] = c % 7 == 3 ? 0.0 : (c % 11 == 5 ? -value(random) : std::ldexp(value(random), int(c % 40) - 20));
+    values[c] = c % 7 == 3
+      ? 0.0
+      : (c % 11 == 5 ? -value(random) : std::ldexp(value(random), int(c % 40) - 20));
   }
   return values;
 }
@@ -156,10 +159,12 @@ void ExpectSerialOrder(const Grid& grid, bool narrow, int tasks)
       runner.Run = nullptr; // the tasks one after the other
     }
     Received received(view.NumberOfPoints);
-    mp::ForCellCornersInOrder(view, runner, value, [&](mp::Index p, double v) { received.Apply(p, v); });
+    mp::ForCellCornersInOrder(
+      view, runner, value, [&](mp::Index p, double v) { received.Apply(p, v); });
     EXPECT_EQ(received.Met.load(), 0) << tasks << " tasks";
     EXPECT_TRUE(received.Values == serial.Values) << tasks << " tasks, threads " << threads;
-    EXPECT_EQ(std::memcmp(received.Sums.data(), serial.Sums.data(), serial.Sums.size() * sizeof(double)), 0)
+    EXPECT_EQ(
+      std::memcmp(received.Sums.data(), serial.Sums.data(), serial.Sums.size() * sizeof(double)), 0)
       << tasks << " tasks, threads " << threads;
   }
 }

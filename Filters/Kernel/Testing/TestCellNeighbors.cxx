@@ -18,9 +18,9 @@
 
 namespace
 {
-using mptest::TestMesh;
 using mp::Index;
 using mp::NeighborId;
+using mptest::TestMesh;
 
 /// The reference: MatchFaces over the kernel's point-to-cell lists, one range.
 Index Reference(const mp::MeshView& mesh, std::vector<NeighborId>& neighbors)
@@ -108,8 +108,14 @@ TEST(CellNeighbors, SameAsFaceByFaceOnTrianglesTetrahedraAndCurves)
   ExpectSameNeighbours(mptest::GridMesh(23, 17, 0.3, 6), "small triangles");
   ExpectSameNeighbours(mptest::Icosphere(3), "closed surface");
   const std::vector<double> t = mptest::Uniform(40, 0.0, 1.0, 0.3, 9, false);
-  const TestMesh curve =
-    mptest::Polyline(t, [](double s, double* x) { x[0] = std::cos(3 * s); x[1] = std::sin(3 * s); x[2] = 0; }, false);
+  const TestMesh curve = mptest::Polyline(
+    t,
+    [](double s, double* x) {
+      x[0] = std::cos(3 * s);
+      x[1] = std::sin(3 * s);
+      x[2] = 0;
+    },
+    false);
   ExpectSameNeighbours(curve, "open curve");
   ExpectSameNeighbours(Shuffled(curve, 13), "shuffled curve");
 }
@@ -192,7 +198,7 @@ TEST(CellNeighbors, NonManifoldFacesGetNoNeighbour)
 TEST(CellNeighbors, CellsNamingAPointTwiceAreMatchedFaceByFace)
 {
   TestMesh grid = mptest::GridMesh(120, 110, 0.2, 7); // several tasks, one of them finds it
-  grid.Cells[3 * 10 + 2] = grid.Cells[3 * 10 + 1]; // a triangle (a, b, b)
+  grid.Cells[3 * 10 + 2] = grid.Cells[3 * 10 + 1];    // a triangle (a, b, b)
   ExpectSameNeighbours(grid, "a triangle naming a point twice");
   TestMesh cube = mptest::CubeMesh(3, 3, 3, 0.1, 4);
   cube.Cells[4 * 20 + 3] = cube.Cells[4 * 20 + 0];

@@ -100,9 +100,9 @@ struct HexGrid
       {
         for (int i = 0; i < n; ++i)
         {
-          this->Cells.push_back({ id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k),
-            id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
-            id(i, j + 1, k + 1) });
+          this->Cells.push_back(
+            { id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+              id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1) });
         }
       }
     }
@@ -112,9 +112,9 @@ struct HexGrid
 
 TEST(CellSplit, StandardFacesRunEachEdgeOnceEachWay)
 {
-  const std::pair<CellShape, int> shapes[] = { { CellShape::Hexahedron, 8 }, { CellShape::Voxel, 8 },
-    { CellShape::Wedge, 6 }, { CellShape::Pyramid, 5 }, { CellShape::PentagonalPrism, 10 },
-    { CellShape::HexagonalPrism, 12 } };
+  const std::pair<CellShape, int> shapes[] = { { CellShape::Hexahedron, 8 },
+    { CellShape::Voxel, 8 }, { CellShape::Wedge, 6 }, { CellShape::Pyramid, 5 },
+    { CellShape::PentagonalPrism, 10 }, { CellShape::HexagonalPrism, 12 } };
   for (const auto& shape : shapes)
   {
     std::vector<Index> corners(static_cast<size_t>(shape.second));
@@ -153,8 +153,8 @@ TEST(CellSplit, HexahedraOfAShuffledGridSplitConformingAndFillTheCube)
     {
       const size_t before = tets.size();
       const int nfaces = mp::StandardCellFaces(CellShape::Hexahedron, cell.data(), stream);
-      ASSERT_EQ(mp::SplitPolyhedron(grid.X.data(), stream.data(), nfaces, true, tets),
-        SplitStatus::Split);
+      ASSERT_EQ(
+        mp::SplitPolyhedron(grid.X.data(), stream.data(), nfaces, true, tets), SplitStatus::Split);
       EXPECT_EQ(tets.size() - before, 24u); // 6 tetrahedra
       double cellVolume = 0.0;
       for (size_t t = before; t < tets.size(); t += 4)
@@ -236,7 +236,8 @@ TEST(CellSplit, EveryShapeIsFilledWhateverItsNumbering)
       std::vector<Index> stream;
       std::vector<Index> tets;
       const int nfaces = mp::StandardCellFaces(c.Shape, ids.data(), stream);
-      ASSERT_EQ(mp::SplitPolyhedron(x.data(), stream.data(), nfaces, true, tets), SplitStatus::Split);
+      ASSERT_EQ(
+        mp::SplitPolyhedron(x.data(), stream.data(), nfaces, true, tets), SplitStatus::Split);
       double volume = 0.0;
       for (size_t t = 0; t < tets.size(); t += 4)
       {
@@ -257,8 +258,8 @@ TEST(CellSplit, PolyhedraFromFilesAreOrientedFirst)
   std::vector<Index> stream;
   const int nfaces = mp::StandardCellFaces(CellShape::Hexahedron, grid.Cells[0].data(), stream);
   std::vector<Index> reference;
-  ASSERT_EQ(mp::SplitPolyhedron(grid.X.data(), stream.data(), nfaces, true, reference),
-    SplitStatus::Split);
+  ASSERT_EQ(
+    mp::SplitPolyhedron(grid.X.data(), stream.data(), nfaces, true, reference), SplitStatus::Split);
   std::mt19937 random(11);
   for (int trial = 0; trial < 10; ++trial)
   {
@@ -272,8 +273,8 @@ TEST(CellSplit, PolyhedraFromFilesAreOrientedFirst)
       }
     }
     std::vector<Index> tets;
-    ASSERT_EQ(mp::SplitPolyhedron(grid.X.data(), shuffled.data(), nfaces, false, tets),
-      SplitStatus::Split);
+    ASSERT_EQ(
+      mp::SplitPolyhedron(grid.X.data(), shuffled.data(), nfaces, false, tets), SplitStatus::Split);
     EXPECT_EQ(tets.size(), reference.size());
     double volume = 0.0;
     for (size_t t = 0; t < tets.size(); t += 4)
@@ -285,7 +286,8 @@ TEST(CellSplit, PolyhedraFromFilesAreOrientedFirst)
   // One face missing: the faces do not close.
   std::vector<Index> open(stream.begin(), stream.begin() + 5 * 5);
   std::vector<Index> tets;
-  EXPECT_EQ(mp::SplitPolyhedron(grid.X.data(), open.data(), 5, false, tets), SplitStatus::OpenFaces);
+  EXPECT_EQ(
+    mp::SplitPolyhedron(grid.X.data(), open.data(), 5, false, tets), SplitStatus::OpenFaces);
   EXPECT_TRUE(tets.empty());
 }
 
@@ -365,7 +367,8 @@ TEST(CellSplit, NonConvexCellsAreConedFromACornerThatSeesThemOrRefused)
     stream.insert(stream.end(), { 4, k, l2, 8 + l2, 8 + k });
   }
   std::vector<Index> tets;
-  EXPECT_EQ(mp::SplitPolyhedron(x.data(), stream.data(), 10, true, tets), SplitStatus::NotStarShaped);
+  EXPECT_EQ(
+    mp::SplitPolyhedron(x.data(), stream.data(), 10, true, tets), SplitStatus::NotStarShaped);
   EXPECT_TRUE(tets.empty());
 }
 
@@ -419,7 +422,8 @@ TEST(CellSplit, PolygonsFanOrFallBackToEars)
   area = 0.0;
   for (size_t t = 0; t < triangles.size(); t += 3)
   {
-    const double o = mp::Orient2D(&z[3 * triangles[t]], &z[3 * triangles[t + 1]], &z[3 * triangles[t + 2]]);
+    const double o =
+      mp::Orient2D(&z[3 * triangles[t]], &z[3 * triangles[t + 1]], &z[3 * triangles[t + 2]]);
     EXPECT_GT(o * shoelace, 0.0); // every ear has the polygon's orientation
     area += TriangleArea(z, &triangles[t]);
   }
@@ -454,16 +458,16 @@ TEST(CellSplit, CoplanarSubfacesOfARefinementInterfaceAreTolerated)
   for (double lift : { 0.0, 1e-15, -1e-15, 3e-16 })
   {
     std::vector<double> x = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, // 0-3 bottom corners
-      0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1,                          // 4-7 top corners
-      0.5, 0, 0, 1, 0.5, 0, 0.5, 1, 0, 0, 0.5, 0,                  // 8-11 bottom edge midpoints
-      0.5, 0.5, lift };                                            // 12 bottom centre
+      0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1,                         // 4-7 top corners
+      0.5, 0, 0, 1, 0.5, 0, 0.5, 1, 0, 0, 0.5, 0,                 // 8-11 bottom edge midpoints
+      0.5, 0.5, lift };                                           // 12 bottom centre
     const std::vector<Index> stream = { 4, 0, 11, 12, 8, 4, 8, 12, 9, 1, 4, 12, 10, 2, 9, 4, 11, 3,
-      10, 12,                        // the bottom, four quadrilaterals
-      4, 4, 5, 6, 7,                 // the top
-      5, 0, 8, 1, 5, 4,              // y = 0, with the hanging midpoint 8
-      5, 1, 9, 2, 6, 5,              // x = 1
-      5, 2, 10, 3, 7, 6,             // y = 1
-      5, 3, 11, 0, 4, 7 };           // x = 0
+      10, 12,              // the bottom, four quadrilaterals
+      4, 4, 5, 6, 7,       // the top
+      5, 0, 8, 1, 5, 4,    // y = 0, with the hanging midpoint 8
+      5, 1, 9, 2, 6, 5,    // x = 1
+      5, 2, 10, 3, 7, 6,   // y = 1
+      5, 3, 11, 0, 4, 7 }; // x = 0
     std::vector<Index> tets;
     ASSERT_EQ(mp::SplitPolyhedron(x.data(), stream.data(), 9, false, tets), SplitStatus::Split)
       << "lift " << lift;

@@ -95,7 +95,8 @@ const size_t Lengths[] = { 0, 1, 7, 8, 9, 31, 32, 33, 39, 40, 63, 64, 65, 1000, 
 
 TEST(ContentHash, TheSameAsASerialReComputation)
 {
-  const std::vector<unsigned char> data = RandomBytes(Lengths[sizeof Lengths / sizeof *Lengths - 1], 7);
+  const std::vector<unsigned char> data =
+    RandomBytes(Lengths[sizeof Lengths / sizeof *Lengths - 1], 7);
   for (size_t bytes : Lengths)
   {
     mp::ContentHash hash;

@@ -46,7 +46,8 @@ std::vector<mp::RowList> RandomRows(Index rows, Index columns, unsigned seed)
     {
       if (rng() % 4 == 0)
       {
-        lists[i].emplace_back(static_cast<Column>(k), std::uniform_real_distribution<double>(-2.0, 2.0)(rng));
+        lists[i].emplace_back(
+          static_cast<Column>(k), std::uniform_real_distribution<double>(-2.0, 2.0)(rng));
       }
     }
   }
@@ -119,17 +120,22 @@ TEST(CsrBuilder, GroupInRowsIsAStableCountingSort)
   std::vector<Index> start;
   std::vector<Index> grouped;
   int visits = 0;
-  mp::GroupInRows(keys, [&](auto put) {
-    ++visits;
-    for (const auto& item : items)
-    {
-      put(item.first, item.second);
-    }
-  }, start, grouped);
+  mp::GroupInRows(
+    keys,
+    [&](auto put) {
+      ++visits;
+      for (const auto& item : items)
+      {
+        put(item.first, item.second);
+      }
+    },
+    start, grouped);
   EXPECT_EQ(visits, 2);
   std::vector<std::pair<Index, Index>> sorted(items);
   std::stable_sort(sorted.begin(), sorted.end(),
-    [](const std::pair<Index, Index>& a, const std::pair<Index, Index>& b) { return a.first < b.first; });
+    [](const std::pair<Index, Index>& a, const std::pair<Index, Index>& b) {
+      return a.first < b.first;
+    });
   ASSERT_EQ(start.size(), static_cast<size_t>(keys) + 1);
   ASSERT_EQ(grouped.size(), items.size());
   for (size_t j = 0; j < sorted.size(); ++j)
@@ -138,7 +144,8 @@ TEST(CsrBuilder, GroupInRowsIsAStableCountingSort)
   }
   for (Index k = 0; k < keys; ++k)
   {
-    const auto count = std::count_if(items.begin(), items.end(), [k](const std::pair<Index, Index>& item) { return item.first == k; });
+    const auto count = std::count_if(items.begin(), items.end(),
+      [k](const std::pair<Index, Index>& item) { return item.first == k; });
     EXPECT_EQ(start[k + 1] - start[k], count) << "key " << k;
   }
 }
@@ -161,7 +168,8 @@ TEST(CsrBuilder, TransposeMatchesTheDenseTranspose)
   // A^T's rows are sorted (A's rows in order), and (A^T)^T is A, entry for entry.
   for (Index k = 0; k < t.Rows; ++k)
   {
-    EXPECT_TRUE(std::is_sorted(t.ColumnIndex.begin() + t.RowStart[k], t.ColumnIndex.begin() + t.RowStart[k + 1]));
+    EXPECT_TRUE(std::is_sorted(
+      t.ColumnIndex.begin() + t.RowStart[k], t.ColumnIndex.begin() + t.RowStart[k + 1]));
   }
   const CsrMatrix back = mp::Transposed(t);
   EXPECT_EQ(std::vector<Index>(back.RowStart.begin(), back.RowStart.end()),
@@ -187,7 +195,8 @@ TEST(CsrBuilder, AccumulatedRowsMatchADenseSum)
     std::vector<std::pair<Column, double>> terms;
     for (int t = 0; t < row * 5; ++t)
     {
-      terms.emplace_back(static_cast<Column>(rng() % 9 * 3), std::uniform_real_distribution<double>(-1.0, 1.0)(rng));
+      terms.emplace_back(
+        static_cast<Column>(rng() % 9 * 3), std::uniform_real_distribution<double>(-1.0, 1.0)(rng));
     }
     std::vector<double> dense(static_cast<size_t>(columns), 0.0);
     std::vector<Column> order;

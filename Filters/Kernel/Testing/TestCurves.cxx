@@ -77,7 +77,10 @@ TEST(Curves, LinearFieldsExactOnStraightAndCorneredLines)
 {
   // A straight segment [0, 1] against a longer one; then an L (its corner a
   // point of both), the legs at 90 degrees are never matched.
-  auto line = [](double s, double* p) { p[0] = s; p[1] = 0.5 * s; };
+  auto line = [](double s, double* p) {
+    p[0] = s;
+    p[1] = 0.5 * s;
+  };
   auto ell = [](double s, double* p) {
     p[0] = std::min(s, 1.0);
     p[1] = std::max(s - 1.0, 0.0);
@@ -87,7 +90,8 @@ TEST(Curves, LinearFieldsExactOnStraightAndCorneredLines)
   {
     const auto& x = shape == 0 ? std::function<void(double, double*)>(line) : ell;
     std::vector<double> ts = Uniform(13, 0, 2, 0.3, 3, false);
-    std::vector<double> ss = Uniform(17, shape == 0 ? -0.1 : 0, shape == 0 ? 2.1 : 2, 0.3, 4, false);
+    std::vector<double> ss =
+      Uniform(17, shape == 0 ? -0.1 : 0, shape == 0 ? 2.1 : 2, 0.3, 4, false);
     if (shape == 1)
     {
       ts.push_back(1.0); // the corner in both
@@ -101,7 +105,9 @@ TEST(Curves, LinearFieldsExactOnStraightAndCorneredLines)
     search.ExpectSamePairs(shape == 0 ? "line" : "L");
     mptest::ReachProjection p(target, source);
     ASSERT_TRUE(p.Ok) << p.Op.GetError();
-    EXPECT_LT(mptest::MaxPointError(target, p.Apply(mptest::SampleAtPoints(source, Linear)), Linear), 1e-12) << shape;
+    EXPECT_LT(
+      mptest::MaxPointError(target, p.Apply(mptest::SampleAtPoints(source, Linear)), Linear), 1e-12)
+      << shape;
     for (const auto& c : p.Covered())
     {
       EXPECT_NEAR(c.second, Length(target, c.first), 1e-13) << shape << " " << c.first;
@@ -120,10 +126,11 @@ TEST(Curves, CircleAndHelixConvergeAtSecondOrder)
       const bool closed = curve == 0;
       const auto x = curve == 0 ? Circle : Helix;
       const double end = curve == 0 ? 2 * Pi : 4 * Pi;
-      const TestMesh target = Polyline(Uniform(20 * k, 0, end, 0.3, 5, closed), x, closed, 2 + curve);
-      const TestMesh source =
-        Polyline(Uniform(27 * k, curve == 0 ? 0.05 : -0.2, end + (curve == 0 ? 0.05 : 0.2), 0.3, 6, closed), x,
-          closed, 2 + curve);
+      const TestMesh target =
+        Polyline(Uniform(20 * k, 0, end, 0.3, 5, closed), x, closed, 2 + curve);
+      const TestMesh source = Polyline(
+        Uniform(27 * k, curve == 0 ? 0.05 : -0.2, end + (curve == 0 ? 0.05 : 0.2), 0.3, 6, closed),
+        x, closed, 2 + curve);
       mptest::ReachProjection p(target, source);
       ASSERT_TRUE(p.Ok) << p.Op.GetError();
       ASSERT_EQ(p.Op.GetNumberOfValid(), target.NumberOfPoints());
@@ -161,7 +168,10 @@ TEST(Curves, HelixFrontEqualsBruteForceAndConserves)
 TEST(Curves, ParallelLinesWithinAndBeyondReach)
 {
   auto low = [](double s, double* p) { p[0] = s; };
-  auto high = [](double s, double* p) { p[0] = s; p[1] = 0.01; };
+  auto high = [](double s, double* p) {
+    p[0] = s;
+    p[1] = 0.01;
+  };
   const TestMesh target = Polyline(Uniform(10, 0, 1, 0.3, 9, false), low, false);
   const TestMesh source = Polyline(Uniform(13, 0, 1, 0.3, 10, false), high, false);
   mptest::ReachProjection near(target, source, 0.5);
@@ -208,7 +218,10 @@ TEST(Curves, AZigzagOfScreenedSegmentsDoesNotStopTheFront)
     }
   }
   source.Finish();
-  auto line = [](double s, double* p) { p[0] = s; p[1] = 0.005; };
+  auto line = [](double s, double* p) {
+    p[0] = s;
+    p[1] = 0.005;
+  };
   const TestMesh target = Polyline({ 0.0, 0.3, 0.7, 1.0 }, line, false);
   mptest::SearchComparison<SegmentIntersector> search(target, source);
   search.ExpectSamePairs("zigzag");

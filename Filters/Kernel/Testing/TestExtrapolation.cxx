@@ -46,7 +46,8 @@ std::vector<char> Not(const std::vector<char>& valid)
 /// Per function, the graph distance (as NearestValid defines it: edge
 /// lengths between positions, paths through functions to fill only) to
 /// valid function v, by a plain Dijkstra over all nodes (O(n^2)).
-std::vector<double> DistancesFrom(const mp::FunctionGraph& g, const std::vector<char>& valid, Index v)
+std::vector<double> DistancesFrom(
+  const mp::FunctionGraph& g, const std::vector<char>& valid, Index v)
 {
   const Index n = g.Size();
   const double inf = std::numeric_limits<double>::infinity();
@@ -55,7 +56,8 @@ std::vector<double> DistancesFrom(const mp::FunctionGraph& g, const std::vector<
   auto length = [&](Index a, Index b) {
     const double* x = &g.Positions[3 * a];
     const double* y = &g.Positions[3 * b];
-    return std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
+    return std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+      (x[2] - y[2]) * (x[2] - y[2]));
   };
   // First steps: the functions to fill whose rows hold v.
   for (Index i = 0; i < n; ++i)
@@ -103,7 +105,8 @@ TEST(Extrapolation, CreepFillStaysWithinTheValidRange)
   const mp::MeshView view = m.View(false);
   const std::vector<char> valid = ValidLeft(view, 0);
   const mp::FunctionGraph graph = mp::PointGraph(view, Not(valid));
-  const mp::Extension e = mp::ExtendOver(graph, valid, mp::ExtrapolationMode::Smooth, mp::SolverHooks());
+  const mp::Extension e =
+    mp::ExtendOver(graph, valid, mp::ExtrapolationMode::Smooth, mp::SolverHooks());
   const Index n = view.NumberOfPoints;
   // Two fields of values on the valid points (the second a column beside the first).
   std::mt19937 rng(3);
@@ -114,7 +117,8 @@ TEST(Extrapolation, CreepFillStaysWithinTheValidRange)
   {
     for (int c = 0; c < 2; ++c)
     {
-      values[2 * i + c] = valid[i] ? std::uniform_real_distribution<double>(-3.0 + c, 5.0)(rng) : 1e9;
+      values[2 * i + c] =
+        valid[i] ? std::uniform_real_distribution<double>(-3.0 + c, 5.0)(rng) : 1e9;
       if (valid[i])
       {
         low[c] = std::min(low[c], values[2 * i + c]);
@@ -199,8 +203,10 @@ TEST(Extrapolation, NearestTakesTheNearestValidFunctionAlongTheGraph)
     {
       valid[i] = 1;
     }
-    const mp::FunctionGraph graph = points ? mp::PointGraph(v, Not(valid)) : mp::CellGraph(v, Not(valid));
-    const mp::Extension e = mp::ExtendOver(graph, valid, mp::ExtrapolationMode::Nearest, mp::SolverHooks());
+    const mp::FunctionGraph graph =
+      points ? mp::PointGraph(v, Not(valid)) : mp::CellGraph(v, Not(valid));
+    const mp::Extension e =
+      mp::ExtendOver(graph, valid, mp::ExtrapolationMode::Nearest, mp::SolverHooks());
     std::vector<std::vector<double>> distance(static_cast<size_t>(n));
     for (Index k = 0; k < n; ++k)
     {
@@ -247,7 +253,8 @@ TEST(Extrapolation, CellGraphPositionsAreCornerMeans)
   }
   view.Parent = parent.data();
   view.NumberOfParents = parent.back() + 1;
-  const mp::FunctionGraph graph = mp::CellGraph(view, std::vector<char>(static_cast<size_t>(view.Parents()), 1));
+  const mp::FunctionGraph graph =
+    mp::CellGraph(view, std::vector<char>(static_cast<size_t>(view.Parents()), 1));
   for (Index p = 0; p < view.Parents(); ++p)
   {
     for (int d = 0; d < 3; ++d)

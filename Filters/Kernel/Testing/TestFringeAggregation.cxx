@@ -45,7 +45,8 @@ Fringe FringeOf(const TestMesh& m, double edge, double drop, int tasks)
     const double x = view.Point(i)[0];
     f.Fraction[i] = x > drop ? 0.01 : (x > edge ? 0.05 : 1.0);
   }
-  f.Extension = mp::ExtendFringe(view, f.Valid, f.Fraction, 0.1, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
+  f.Extension = mp::ExtendFringe(
+    view, f.Valid, f.Fraction, 0.1, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
   return f;
 }
 
@@ -162,7 +163,8 @@ TEST(FringeAggregation, AggregatedMassIsPTransposedMP)
   const std::vector<double> got = dense(A);
   for (Index i = 0; i < n; ++i)
   {
-    EXPECT_TRUE(std::is_sorted(A.ColumnIndex.begin() + A.RowStart[i], A.ColumnIndex.begin() + A.RowStart[i + 1]));
+    EXPECT_TRUE(std::is_sorted(
+      A.ColumnIndex.begin() + A.RowStart[i], A.ColumnIndex.begin() + A.RowStart[i + 1]));
     for (Index j = 0; j < n; ++j)
     {
       double expected = 0.0;

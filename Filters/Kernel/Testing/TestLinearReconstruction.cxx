@@ -95,11 +95,13 @@ void ExpectLinearExact(const TestMesh& m, bool pairs, const char* what)
   const std::vector<double> u = Averages(r, view);
   for (int tasks : { 1, 2 })
   {
-    const std::vector<double> corners = Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited, tasks);
+    const std::vector<double> corners =
+      Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited, tasks);
     EXPECT_LT(LinearError(view, corners), 1e-12) << what << ", " << tasks << " tasks";
   }
   // The constant mode is not exact (the check can fail).
-  const std::vector<double> constant = Reconstructed(r, view, u, nullptr, mp::Reconstruction::Constant);
+  const std::vector<double> constant =
+    Reconstructed(r, view, u, nullptr, mp::Reconstruction::Constant);
   EXPECT_GT(LinearError(view, constant), 1e-3) << what;
 }
 } // namespace
@@ -126,7 +128,8 @@ TEST(LinearReconstruction, LinearFieldsExactOnSurfacesAndCurves)
   m.Surface = true;
   ExpectLinearExact(m, true, "tilted surface");
   // A straight curve in space.
-  TestMesh curve = mptest::Polyline(mptest::Uniform(20, 0.0, 1.0, 0.3, 4, false),
+  TestMesh curve = mptest::Polyline(
+    mptest::Uniform(20, 0.0, 1.0, 0.3, 4, false),
     [](double s, double* x) {
       x[0] = 0.8 * s;
       x[1] = 0.5 * s;
@@ -153,7 +156,8 @@ TEST(LinearReconstruction, HolesUseTheNeighboursLeft)
       u[p] = 1e30; // never read
     }
   }
-  const std::vector<double> corners = Reconstructed(r, view, u, defined.data(), mp::Reconstruction::Unlimited);
+  const std::vector<double> corners =
+    Reconstructed(r, view, u, defined.data(), mp::Reconstruction::Unlimited);
   double worst = 0.0;
   for (Index c = 0; c < view.NumberOfCells; ++c)
   {
@@ -186,8 +190,10 @@ TEST(LinearReconstruction, LimiterKeepsCornersWithinTheNeighbours)
   {
     v = unit(random);
   }
-  const std::vector<double> limited = Reconstructed(r, view, u, nullptr, mp::Reconstruction::Limited);
-  const std::vector<double> unlimited = Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited);
+  const std::vector<double> limited =
+    Reconstructed(r, view, u, nullptr, mp::Reconstruction::Limited);
+  const std::vector<double> unlimited =
+    Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited);
   bool overshoots = false;
   std::vector<Index> neighbors;
   for (Index p = 0; p < view.Parents(); ++p)
@@ -267,7 +273,8 @@ TEST(LinearReconstruction, CellsOfZeroMeasureAreNoNeighbours)
 {
   // A straight curve with a repeated point (a segment of zero length): its
   // neighbours' gradients as without it.
-  TestMesh curve = mptest::Polyline({ 0.0, 0.1, 0.25, 0.25, 0.4, 0.6, 0.7, 1.0 },
+  TestMesh curve = mptest::Polyline(
+    { 0.0, 0.1, 0.25, 0.25, 0.4, 0.6, 0.7, 1.0 },
     [](double s, double* x) {
       x[0] = 0.8 * s;
       x[1] = 0.5 * s;
@@ -279,7 +286,8 @@ TEST(LinearReconstruction, CellsOfZeroMeasureAreNoNeighbours)
   r.Prepare(view, mptest::ThreadRunner(1));
   std::vector<double> u = Averages(r, view);
   u[2] = 1e3; // the zero-length segment's value: read by no one
-  const std::vector<double> corners = Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited);
+  const std::vector<double> corners =
+    Reconstructed(r, view, u, nullptr, mp::Reconstruction::Unlimited);
   for (Index c = 0; c < view.NumberOfCells; ++c)
   {
     for (int k = 0; c != 2 && k < 2; ++k)

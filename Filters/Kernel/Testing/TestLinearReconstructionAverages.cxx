@@ -93,7 +93,8 @@ void ExpectExactFromAverages(const TestMesh& m, int group, const char* what)
   {
     for (int d = 0; d < view.SpaceDimension; ++d)
     {
-      EXPECT_NEAR(r.Centroid(p)[d], averages.Centroid[3 * p + d], 1e-13) << what << ", parent " << p;
+      EXPECT_NEAR(r.Centroid(p)[d], averages.Centroid[3 * p + d], 1e-13)
+        << what << ", parent " << p;
     }
   }
   const int corners = view.CornersPerCell();
@@ -116,10 +117,11 @@ void ExpectExactFromAverages(const TestMesh& m, int group, const char* what)
         const double error = std::fabs(values[c * corners + k] - Linear(point));
         // (The limiter may clip at the boundary, where a corner lies beyond
         // the centroids around it, and around parents of several cells.)
-        const bool inside = group == 1 && point[0] > 0.3 && point[0] < 0.7 && point[1] > 0.3 && point[1] < 0.7 &&
-          (m.Dimension == 2 || (point[2] > 0.3 && point[2] < 0.7));
+        const bool inside = group == 1 && point[0] > 0.3 && point[0] < 0.7 && point[1] > 0.3 &&
+          point[1] < 0.7 && (m.Dimension == 2 || (point[2] > 0.3 && point[2] < 0.7));
         worst = std::max(worst, mode == mp::Reconstruction::Unlimited ? error : 0.0);
-        limitedWorst = std::max(limitedWorst, mode == mp::Reconstruction::Limited && inside ? error : 0.0);
+        limitedWorst =
+          std::max(limitedWorst, mode == mp::Reconstruction::Limited && inside ? error : 0.0);
         cornerMean += values[c * corners + k] / corners;
       }
       mean[parent[c]] += v * cornerMean;
@@ -136,13 +138,15 @@ void ExpectExactFromAverages(const TestMesh& m, int group, const char* what)
   // Averages shifted by a bump in one parent: no longer linear, so the check above can fail.
   std::vector<double> bumped(averages.Value);
   bumped[view.NumberOfParents / 2] += 0.5;
-  r.Reconstruct(bumped.data(), 1, nullptr, mp::Reconstruction::Unlimited, mptest::ThreadRunner(1), values.data());
+  r.Reconstruct(bumped.data(), 1, nullptr, mp::Reconstruction::Unlimited, mptest::ThreadRunner(1),
+    values.data());
   double worst = 0.0;
   for (Index c = 0; c < view.NumberOfCells; ++c)
   {
     for (int k = 0; k < corners; ++k)
     {
-      worst = std::max(worst, std::fabs(values[c * corners + k] - Linear(view.Point(view.Cell(c)[k]))));
+      worst =
+        std::max(worst, std::fabs(values[c * corners + k] - Linear(view.Point(view.Cell(c)[k]))));
     }
   }
   EXPECT_GT(worst, 0.1) << what;

@@ -118,8 +118,10 @@ TEST(MortarProjector, LinearFieldsAreReproduced)
   for (int n = 0; n < 40; ++n)
   {
     const auto keep = n % 2 ? std::function<bool(double, double)>(LShapeWithHole) : nullptr;
-    const TestMesh target = mptest::GridMesh(4 * (1 + n % 5), 4 * (2 + n % 3), 0.25, rng(), 0, 0, 1, 1, keep);
-    const TestMesh source = mptest::GridMesh(4 * (1 + n % 7), 4 * (1 + n % 4), 0.25, rng(), 0, 0, 1, 1, keep);
+    const TestMesh target =
+      mptest::GridMesh(4 * (1 + n % 5), 4 * (2 + n % 3), 0.25, rng(), 0, 0, 1, 1, keep);
+    const TestMesh source =
+      mptest::GridMesh(4 * (1 + n % 7), 4 * (1 + n % 4), 0.25, rng(), 0, 0, 1, 1, keep);
     Projection p(target, source);
     ASSERT_TRUE(p.Ok);
     EXPECT_EQ(p.Projector.GetNumberOfValid(), target.NumberOfPoints());
@@ -159,8 +161,10 @@ TEST(MortarProjector, IntegralsAreConserved)
   for (int n = 0; n < 20; ++n)
   {
     const auto keep = n % 2 ? std::function<bool(double, double)>(LShapeWithHole) : nullptr;
-    const TestMesh target = mptest::GridMesh(4 * (1 + n % 3), 4 * (1 + n % 5), 0.25, rng(), 0, 0, 1, 1, keep);
-    const TestMesh source = mptest::GridMesh(4 * (2 + n % 4), 4 * (1 + n % 6), 0.25, rng(), 0, 0, 1, 1, keep);
+    const TestMesh target =
+      mptest::GridMesh(4 * (1 + n % 3), 4 * (1 + n % 5), 0.25, rng(), 0, 0, 1, 1, keep);
+    const TestMesh source =
+      mptest::GridMesh(4 * (2 + n % 4), 4 * (1 + n % 6), 0.25, rng(), 0, 0, 1, 1, keep);
     Projection p(target, source);
     ASSERT_TRUE(p.Ok);
     const auto us = mptest::Sample(source, Smooth);
@@ -179,8 +183,8 @@ TEST(MortarProjector, BruteForceGivesTheSameProjection)
   Projection brute(target, source, mp::SearchMethod::BruteForce, true);
   ASSERT_TRUE(front.Ok && brute.Ok);
   EXPECT_EQ(front.Projector.GetPieces().Size(), brute.Projector.GetPieces().Size());
-  EXPECT_EQ(front.Projector.GetStatistics().TouchingPairs,
-    brute.Projector.GetStatistics().TouchingPairs);
+  EXPECT_EQ(
+    front.Projector.GetStatistics().TouchingPairs, brute.Projector.GetStatistics().TouchingPairs);
   const auto us = mptest::Sample(source, Smooth);
   const auto a = front.Apply(us);
   const auto b = brute.Apply(us);
@@ -243,7 +247,8 @@ TEST(MortarProjector, PartialOverlapMarksUncoveredPoints)
   for (Index c = 0; c < target.NumberOfCells(); ++c)
   {
     const Index* ids = &target.Cells[3 * c];
-    const double cx = (target.Points[3 * ids[0]] + target.Points[3 * ids[1]] + target.Points[3 * ids[2]]) / 3;
+    const double cx =
+      (target.Points[3 * ids[0]] + target.Points[3 * ids[1]] + target.Points[3 * ids[2]]) / 3;
     EXPECT_NEAR(p.Projector.GetCoveredFraction()[c], cx < 0.5 ? 1.0 : 0.0, 1e-12);
   }
 }
@@ -453,7 +458,8 @@ namespace
  * tasks).
  */
 template <class Intersector>
-void ExpectTargetMassMatchesPieces(const TestMesh& target, const TestMesh& source, const std::string& what)
+void ExpectTargetMassMatchesPieces(
+  const TestMesh& target, const TestMesh& source, const std::string& what)
 {
   constexpr int N = Intersector::Corners;
   std::map<std::pair<Index, Index>, double> reference;
@@ -523,7 +529,8 @@ TEST(MortarProjector, TargetMassFromMomentsMatchesThePieces)
     }
     TestMesh source = mptest::GridMesh(6, 9 + n, 0.25, 80 + n);
     mptest::Move(source, 0.3 * n, 0.9, 0.05 * n, -0.03 * n);
-    ExpectTargetMassMatchesPieces<mp::TriangleIntersector>(target, source, "2D case " + std::to_string(n));
+    ExpectTargetMassMatchesPieces<mp::TriangleIntersector>(
+      target, source, "2D case " + std::to_string(n));
   }
   for (int n = 0; n < 4; ++n)
   {
@@ -534,7 +541,8 @@ TEST(MortarProjector, TargetMassFromMomentsMatchesThePieces)
     }
     TestMesh source = mptest::CubeMesh(2 + n, 3, 2, 0.15, 95 + n);
     mptest::Move3D(source, 0.2 * n, 0.1 * n, 0.9, 0.1 * n, 0.05, -0.05 * n);
-    ExpectTargetMassMatchesPieces<mp::TetrahedronIntersector>(target, source, "3D case " + std::to_string(n));
+    ExpectTargetMassMatchesPieces<mp::TetrahedronIntersector>(
+      target, source, "3D case " + std::to_string(n));
   }
 }
 
@@ -546,10 +554,10 @@ TEST(MortarProjector, ExcludedSourceCellsAreAHole)
 {
   for (int dimension : { 2, 3 })
   {
-    const TestMesh target = dimension == 2 ? mptest::GridMesh(9, 8, 0.2, 91)
-                                           : mptest::CubeMesh(6, 6, 3, 0.2, 92);
-    const TestMesh source = dimension == 2 ? mptest::GridMesh(11, 10, 0.25, 93)
-                                           : mptest::CubeMesh(8, 7, 3, 0.2, 94);
+    const TestMesh target =
+      dimension == 2 ? mptest::GridMesh(9, 8, 0.2, 91) : mptest::CubeMesh(6, 6, 3, 0.2, 92);
+    const TestMesh source =
+      dimension == 2 ? mptest::GridMesh(11, 10, 0.25, 93) : mptest::CubeMesh(8, 7, 3, 0.2, 94);
     const int corners = dimension + 1;
     // Excluded: a disc of cells in the middle, and a band along x = 0.
     std::vector<char> excluded(static_cast<size_t>(source.NumberOfCells()), 0);
@@ -570,7 +578,8 @@ TEST(MortarProjector, ExcludedSourceCellsAreAHole)
       excluded[c] = r < 0.35 || center[0] < 0.15;
       if (!excluded[c])
       {
-        holed.Cells.insert(holed.Cells.end(), &source.Cells[corners * c], &source.Cells[corners * (c + 1)]);
+        holed.Cells.insert(
+          holed.Cells.end(), &source.Cells[corners * c], &source.Cells[corners * (c + 1)]);
         kept.push_back(c);
       }
     }
@@ -594,7 +603,8 @@ TEST(MortarProjector, ExcludedSourceCellsAreAHole)
       ASSERT_TRUE(reference.Build(target.View(), holed.View(), nullptr, options));
       EXPECT_NEAR(withHole.GetCoveredMeasure(), reference.GetCoveredMeasure(), 1e-14);
       ASSERT_EQ(withHole.GetValid(), reference.GetValid());
-      EXPECT_LT(withHole.GetNumberOfValid(), withHole.GetNumberOfTargetFunctions()) << dimension << "D";
+      EXPECT_LT(withHole.GetNumberOfValid(), withHole.GetNumberOfTargetFunctions())
+        << dimension << "D";
       EXPECT_GT(withHole.GetNumberOfValid(), 0);
       for (size_t c = 0; c < withHole.GetCoveredFraction().size(); ++c)
       {
@@ -616,7 +626,8 @@ TEST(MortarProjector, ExcludedSourceCellsAreAHole)
       {
         for (Index j = 0; j < columns; ++j)
         {
-          ASSERT_NEAR(MixedMassEntry(withHole, i, p0 ? kept[j] : j), MixedMassEntry(reference, i, j), 1e-15);
+          ASSERT_NEAR(
+            MixedMassEntry(withHole, i, p0 ? kept[j] : j), MixedMassEntry(reference, i, j), 1e-15);
         }
         if (p0)
         {
@@ -641,16 +652,19 @@ TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
   TestMesh shiftedCube = mptest::CubeMesh(6, 5, 7, 0.2, 122);
   for (size_t i = 0; i < shiftedCube.Points.size(); ++i)
   {
-    shiftedCube.Points[i] = 0.9 * shiftedCube.Points[i] + 0.17 * static_cast<double>(i % 3 + 1) - 0.2;
+    shiftedCube.Points[i] =
+      0.9 * shiftedCube.Points[i] + 0.17 * static_cast<double>(i % 3 + 1) - 0.2;
   }
   shiftedCube.Finish();
   TestMesh sphere = mptest::Icosphere(5);
   TestMesh uv = mptest::UvSphere(12, 19);
   sphere.Finish();
   uv.Finish();
-  const MeshPair pairs[] = { { "2D", mptest::GridMesh(17, 15, 0.25, 111, 0, 0, 1, 1, LShapeWithHole),
-                           mptest::GridMesh(13, 19, 0.25, 112, -0.1, 0.05, 1, 1, LShapeWithHole) },
-    { "3D", mptest::CubeMesh(7, 6, 5, 0.2, 121), shiftedCube }, { "surface", sphere, uv } };
+  const MeshPair pairs[] = {
+    { "2D", mptest::GridMesh(17, 15, 0.25, 111, 0, 0, 1, 1, LShapeWithHole),
+      mptest::GridMesh(13, 19, 0.25, 112, -0.1, 0.05, 1, 1, LShapeWithHole) },
+    { "3D", mptest::CubeMesh(7, 6, 5, 0.2, 121), shiftedCube }, { "surface", sphere, uv }
+  };
   const mp::SpaceType spaces[4][2] = { { mp::SpaceType::P1, mp::SpaceType::P1 },
     { mp::SpaceType::P1, mp::SpaceType::P0 }, { mp::SpaceType::P0, mp::SpaceType::P1 },
     { mp::SpaceType::P0, mp::SpaceType::P0 } };
@@ -699,7 +713,8 @@ TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
         }
         mp::BoxGridLocator locator(source);
         ASSERT_TRUE(mp::MortarOperator::BuildTogether(
-          { &together[0], &together[1], &together[2], &together[3] }, options, target, source, &locator))
+          { &together[0], &together[1], &together[2], &together[3] }, options, target, source,
+          &locator))
           << together[0].GetError();
         for (int k = 0; k < 4; ++k)
         {
@@ -720,7 +735,8 @@ TEST(MortarProjector, BuildTogetherGivesEachOperatorItsOwnBuild)
           EXPECT_EQ(a.GetSourceCovered(), b.GetSourceCovered()) << what;
           EXPECT_EQ(a.GetCoveredMeasure(), b.GetCoveredMeasure()) << what;
           EXPECT_EQ(a.GetStatistics().Pieces, b.GetStatistics().Pieces) << what;
-          EXPECT_EQ(a.GetStatistics().IntersectionTests, b.GetStatistics().IntersectionTests) << what;
+          EXPECT_EQ(a.GetStatistics().IntersectionTests, b.GetStatistics().IntersectionTests)
+            << what;
           EXPECT_EQ(a.GetPieces().Size(), b.GetPieces().Size()) << what;
           EXPECT_EQ(a.GetPieces().Measure, b.GetPieces().Measure) << what;
           EXPECT_GT(a.GetNumberOfValid(), 0) << what;
@@ -790,7 +806,8 @@ TEST(MortarProjector, SolveProgressAndStop)
   mp::SolveOptions stopping;
   stopping.Progress = [&calls](double) { return ++calls < 3; };
   std::vector<double> stopped(plain.size());
-  const mp::ApplyResult halted = projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping);
+  const mp::ApplyResult halted =
+    projector.Apply(us.data(), 1, stopped.data(), std::nan(""), stopping);
   EXPECT_FALSE(halted);
   EXPECT_TRUE(halted.Stopped);
   EXPECT_EQ(calls, 3);
@@ -880,9 +897,11 @@ TEST(MortarProjector, TargetMassAfterTheSearch)
 {
   TestMesh shifted = mptest::CubeMesh(5, 6, 5, 0.2, 131);
   mptest::Move3D(shifted, 0.1, 0.05, 0.9, 0.1, 0.05, -0.05);
-  const MeshPair pairs[] = { { "2D", mptest::GridMesh(31, 27, 0.25, 141, 0, 0, 1, 1, LShapeWithHole),
-                           mptest::GridMesh(23, 29, 0.25, 142, -0.1, 0.05, 1, 1, LShapeWithHole) },
-    { "3D", mptest::CubeMesh(6, 5, 6, 0.2, 132), shifted } };
+  const MeshPair pairs[] = {
+    { "2D", mptest::GridMesh(31, 27, 0.25, 141, 0, 0, 1, 1, LShapeWithHole),
+      mptest::GridMesh(23, 29, 0.25, 142, -0.1, 0.05, 1, 1, LShapeWithHole) },
+    { "3D", mptest::CubeMesh(6, 5, 6, 0.2, 132), shifted }
+  };
   for (const MeshPair& pair : pairs)
   {
     const mp::MeshView target = pair.Target.View();
@@ -902,7 +921,8 @@ TEST(MortarProjector, TargetMassAfterTheSearch)
     }
     for (mp::SpaceType space : { mp::SpaceType::P1, mp::SpaceType::P0 })
     {
-      const std::string name = std::string(pair.Name) + (space == mp::SpaceType::P1 ? " P1" : " P0");
+      const std::string name =
+        std::string(pair.Name) + (space == mp::SpaceType::P1 ? " P1" : " P0");
       auto build = [&](const mp::MeshView& t, const mp::MeshView& s, int tasks, bool defer,
                      mp::MortarOperator& op) {
         mp::BoxGridLocator locator(s);
@@ -933,11 +953,16 @@ TEST(MortarProjector, TargetMassAfterTheSearch)
       }
       EXPECT_GT(partial, 5) << name;
       // tolerance 0: bit for bit.
-      auto same = [&](const mp::MortarOperator& op, const std::string& what, double tolerance = 0.0) {
+      auto same = [&](
+                    const mp::MortarOperator& op, const std::string& what, double tolerance = 0.0) {
         const mp::CsrMatrix& o = op.GetTargetMass();
         ASSERT_EQ(o.Rows, m.Rows) << name << what;
-        EXPECT_TRUE(std::equal(o.RowStart.begin(), o.RowStart.end(), m.RowStart.begin(), m.RowStart.end())) << name << what;
-        EXPECT_TRUE(std::equal(o.ColumnIndex.begin(), o.ColumnIndex.end(), m.ColumnIndex.begin(), m.ColumnIndex.end())) << name << what;
+        EXPECT_TRUE(
+          std::equal(o.RowStart.begin(), o.RowStart.end(), m.RowStart.begin(), m.RowStart.end()))
+          << name << what;
+        EXPECT_TRUE(std::equal(
+          o.ColumnIndex.begin(), o.ColumnIndex.end(), m.ColumnIndex.begin(), m.ColumnIndex.end()))
+          << name << what;
         ASSERT_EQ(o.Values.size(), m.Values.size()) << name << what;
         double scale = 0.0;
         for (double v : m.Values)
@@ -946,23 +971,29 @@ TEST(MortarProjector, TargetMassAfterTheSearch)
         }
         for (size_t i = 0; i < m.Values.size(); ++i)
         {
-          ASSERT_LE(std::fabs(o.Values[i] - m.Values[i]), tolerance * scale) << name << what << ", entry " << i;
+          ASSERT_LE(std::fabs(o.Values[i] - m.Values[i]), tolerance * scale)
+            << name << what << ", entry " << i;
         }
         EXPECT_EQ(op.GetValid(), plain.GetValid()) << name << what;
         for (size_t i = 0; i < expected.size(); ++i)
         {
-          ASSERT_LE(std::fabs(op.GetCoveredIntegrals()[i] - plain.GetCoveredIntegrals()[i]), tolerance * scale) << name << what;
+          ASSERT_LE(std::fabs(op.GetCoveredIntegrals()[i] - plain.GetCoveredIntegrals()[i]),
+            tolerance * scale)
+            << name << what;
         }
         for (size_t c = 0; c < plain.GetCoveredFraction().size(); ++c)
         {
-          ASSERT_LE(std::fabs(op.GetCoveredFraction()[c] - plain.GetCoveredFraction()[c]), tolerance) << name << what;
+          ASSERT_LE(
+            std::fabs(op.GetCoveredFraction()[c] - plain.GetCoveredFraction()[c]), tolerance)
+            << name << what;
         }
         std::vector<double> ut(expected.size());
         ASSERT_TRUE(op.Apply(us.data(), 1, ut.data(), -1.0)) << name << what;
         for (size_t i = 0; i < expected.size(); ++i)
         {
           // (The solve's own tolerance for a tolerance > 0.)
-          ASSERT_NEAR(ut[i], expected[i], tolerance > 0.0 ? 1e-10 : 0.0) << name << what << ", function " << i;
+          ASSERT_NEAR(ut[i], expected[i], tolerance > 0.0 ? 1e-10 : 0.0)
+            << name << what << ", function " << i;
         }
       };
       {
@@ -988,7 +1019,8 @@ TEST(MortarProjector, TargetMassAfterTheSearch)
       build(narrowViews[0], narrowViews[1], 1, false, narrowOp);
       same(narrowOp, " 32-bit connectivity");
       EXPECT_TRUE(std::equal(narrowOp.GetSourceCovered().begin(), narrowOp.GetSourceCovered().end(),
-        plain.GetSourceCovered().begin(), plain.GetSourceCovered().end())) << name;
+        plain.GetSourceCovered().begin(), plain.GetSourceCovered().end()))
+        << name;
     }
   }
 }

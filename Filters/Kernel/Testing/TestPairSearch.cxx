@@ -79,8 +79,8 @@ TEST(PairSearch, RandomNonMatchingMeshesOfTheSameDomain)
   for (int n = 0; n < 300; ++n)
   {
     const int mask = n % 3;
-    const auto keep = mask == 0 ? std::function<bool(double, double)>()
-                                : (mask == 1 ? LShape : LShapeWithHole);
+    const auto keep =
+      mask == 0 ? std::function<bool(double, double)>() : (mask == 1 ? LShape : LShapeWithHole);
     // Multiples of 4 align every grid with the cut-outs.
     const int na = 4 * size(rng);
     const int nb = 4 * size(rng);
@@ -203,7 +203,8 @@ TEST(PairSearch, TargetOfDisconnectedCellsInRandomOrder)
     {
       const Index p = grid.Cells[3 * c + k];
       soup.Cells.push_back(soup.NumberOfPoints());
-      soup.Points.insert(soup.Points.end(), grid.Points.begin() + 3 * p, grid.Points.begin() + 3 * p + 3);
+      soup.Points.insert(
+        soup.Points.end(), grid.Points.begin() + 3 * p, grid.Points.begin() + 3 * p + 3);
     }
   }
   soup.Finish();

@@ -46,8 +46,8 @@ mp::MeshView Surface(const TestMesh& m)
 
 /// ToPlane then ToSpace gives every point back; the frame is an isometry
 /// (the cells keep their areas).
-void ExpectRoundTrip(const mp::PlaneFrame& frame, const TestMesh& m, double tolerance,
-  const std::string& what)
+void ExpectRoundTrip(
+  const mp::PlaneFrame& frame, const TestMesh& m, double tolerance, const std::string& what)
 {
   std::vector<double> uv;
   frame.ToPlane(Surface(m), uv);

@@ -248,15 +248,15 @@ TEST(Spaces, HandComputedEntries2D)
   {
     Operator p(meshes.first, meshes.second, SpaceType::P1, SpaceType::P0);
     ASSERT_TRUE(p.Ok) << p.Op.GetError();
-    ExpectEntries(p.Op.GetMixedMass(), { { 1.0 / 12, 1.0 / 12 }, { 1.0 / 8, 1.0 / 24 }, { 1.0 / 24, 1.0 / 8 } },
-      tol, "P0->P1 M_ts");
+    ExpectEntries(p.Op.GetMixedMass(),
+      { { 1.0 / 12, 1.0 / 12 }, { 1.0 / 8, 1.0 / 24 }, { 1.0 / 24, 1.0 / 8 } }, tol, "P0->P1 M_ts");
     ExpectEntries(p.Op.GetTargetMass(), p1Mass, tol, "P0->P1 M_tt");
   }
   {
     Operator p(meshes.first, meshes.second, SpaceType::P0, SpaceType::P1);
     ASSERT_TRUE(p.Ok) << p.Op.GetError();
-    ExpectEntries(p.Op.GetMixedMass(), { { 1.0 / 6, 1.0 / 12, 1.0 / 12, 1.0 / 6 } }, tol,
-      "P1->P0 M_ts");
+    ExpectEntries(
+      p.Op.GetMixedMass(), { { 1.0 / 6, 1.0 / 12, 1.0 / 12, 1.0 / 6 } }, tol, "P1->P0 M_ts");
     ExpectEntries(p.Op.GetTargetMass(), p0Mass, tol, "P1->P0 M_tt");
   }
 }
@@ -421,7 +421,8 @@ TEST(Spaces, BuiltOnceAppliedManyTimes)
     p.Op.GetMixedMass().MultiplyRows(f.data(), rhs.data(), 1, 0, n);
     std::vector<char> converged;
     std::vector<double> cold(static_cast<size_t>(n), 0.0);
-    const int coldIterations = cg.Iterate(rhs.data(), cold.data(), 1, mp::SolveOptions(), converged);
+    const int coldIterations =
+      cg.Iterate(rhs.data(), cold.data(), 1, mp::SolveOptions(), converged);
     ASSERT_TRUE(converged[0]) << what;
     std::vector<double> restarted = a;
     const int warmIterations = cg.Iterate(rhs.data(), restarted.data(), 1, warm, converged);
@@ -500,8 +501,7 @@ TEST(Spaces, SolverHooksAreCalledAndChangeNothing)
     const auto f = Field(meshes.second, pair.Source, 0);
     const auto plain = p.Apply(f);
     std::vector<double> hooked(static_cast<size_t>(n));
-    ASSERT_TRUE(
-      p.Op.Apply(f.data(), 1, hooked.data(), std::nan(""), mp::SolveOptions(), hooks))
+    ASSERT_TRUE(p.Op.Apply(f.data(), 1, hooked.data(), std::nan(""), mp::SolveOptions(), hooks))
       << what;
     EXPECT_GT(reduces, 0) << what;
     EXPECT_GT(exchanges, 0) << what;
@@ -556,7 +556,8 @@ TEST(Spaces, MatricesReadOut)
       TestMesh moved = mptest::CubeMesh(4, 3, 3, 0.15, 124);
       mptest::Move3D(moved, 0, 0, 1, 0.25, -0.1, 0.2);
       moved.Finish();
-      cases.emplace_back(std::make_pair(mptest::CubeMesh(3, 4, 3, 0.15, 123), moved), 0.75 * 0.9 * 0.8);
+      cases.emplace_back(
+        std::make_pair(mptest::CubeMesh(3, 4, 3, 0.15, 123), moved), 0.75 * 0.9 * 0.8);
     }
     for (size_t c = 0; c < cases.size(); ++c)
     {
@@ -565,7 +566,8 @@ TEST(Spaces, MatricesReadOut)
       const double overlap = cases[c].second;
       for (const SpacePair& pair : Pairs)
       {
-        const std::string what = std::to_string(d) + "D case " + std::to_string(c) + " " + pair.Name;
+        const std::string what =
+          std::to_string(d) + "D case " + std::to_string(c) + " " + pair.Name;
         Operator p(target, source, pair.Target, pair.Source);
         ASSERT_TRUE(p.Ok) << what << ": " << p.Op.GetError();
         const mp::CsrMatrix& mts = p.Op.GetMixedMass();
@@ -725,7 +727,8 @@ TEST(Spaces, SingleUseFieldsGiveTheAssembledProjection)
         ASSERT_TRUE(single.Apply(fields.data(), 2, values.data(), -7.0)) << what;
         for (size_t k = 0; k < values.size(); ++k)
         {
-          ASSERT_NEAR(values[k], expected[k], 1e-12) << what << " tasks " << tasks << " entry " << k;
+          ASSERT_NEAR(values[k], expected[k], 1e-12)
+            << what << " tasks " << tasks << " entry " << k;
         }
         // Other fields cannot be projected without M_ts.
         EXPECT_FALSE(single.Apply(a.data(), 1, values.data(), -7.0)) << what;
@@ -742,8 +745,9 @@ TEST(Spaces, SingleUseFieldsGiveTheAssembledProjection)
 // points to be split into three ranges).
 TEST(MassPattern, IsThePointGraph)
 {
-  std::vector<TestMesh> meshes = { mptest::GridMesh(9, 7, 0.3, 5), mptest::CubeMesh(4, 3, 3, 0.2, 6),
-    mptest::GridMesh(130, 100, 0.3, 7), mptest::CubeMesh(25, 25, 25, 0.2, 8) };
+  std::vector<TestMesh> meshes = { mptest::GridMesh(9, 7, 0.3, 5),
+    mptest::CubeMesh(4, 3, 3, 0.2, 6), mptest::GridMesh(130, 100, 0.3, 7),
+    mptest::CubeMesh(25, 25, 25, 0.2, 8) };
   // A fan: the centre point 0 in 50 triangles, its rim points in 2 each,
   // and a last point no cell uses.
   TestMesh fan;
@@ -761,7 +765,7 @@ TEST(MassPattern, IsThePointGraph)
   fan.Points.insert(fan.Points.end(), { 5.0, 5.0, 0.0 });
   meshes.push_back(fan);
   int lengths[3] = {}; // rows of up to 8, up to 32, more columns
-  int split = 0;        // meshes of at least 3 x 4096 points (PointGraph's grain)
+  int split = 0;       // meshes of at least 3 x 4096 points (PointGraph's grain)
   for (const TestMesh& mesh : meshes)
   {
     split += mesh.NumberOfPoints() >= 3 * 4096;
@@ -801,10 +805,12 @@ TEST(MassPattern, IsThePointGraph)
       {
         mp::MeshView seen = view;
         mp::PointCells around;
-        std::vector<mp::NeighborId> neighbors(static_cast<size_t>(view.NumberOfCells * view.CornersPerCell()));
+        std::vector<mp::NeighborId> neighbors(
+          static_cast<size_t>(view.NumberOfCells * view.CornersPerCell()));
         mp::BuildFaceNeighbors(view, neighbors.data(), mptest::ThreadRunner(tasks), &around);
         ASSERT_TRUE(around.Fit(view));
-        ASSERT_EQ(around.Cells.size(), static_cast<size_t>(view.NumberOfCells * view.CornersPerCell()));
+        ASSERT_EQ(
+          around.Cells.size(), static_cast<size_t>(view.NumberOfCells * view.CornersPerCell()));
         seen.Around = lists == 1 ? &around : (lists == 2 ? &other : nullptr);
         mp::CsrMatrix m;
         mp::MassPattern(SpaceType::P1, seen, mptest::ThreadRunner(tasks), m);

@@ -56,7 +56,10 @@ TestMesh Shuffled(const TestMesh& m, unsigned seed)
   return s;
 }
 
-mp::NumberingQuality Quality(const TestMesh& m) { return mp::MeasureNumbering(m.View(false)); }
+mp::NumberingQuality Quality(const TestMesh& m)
+{
+  return mp::MeasureNumbering(m.View(false));
+}
 constexpr double PointSpreadLimit = mp::NumberingQuality::PointSpreadLimit;
 constexpr double FarNeighboursLimit = mp::NumberingQuality::FarNeighboursLimit;
 
@@ -144,8 +147,9 @@ struct Copy
 };
 
 /// `narrow`: the cells renumbered into 32-bit ids (then widened into c.Cells).
-Copy RenumberWith(const TestMesh& m, const mp::UninitializedLargeVector<Index>& cells, const mp::TaskRunner& runner,
-  const std::vector<Index>* parents = nullptr, bool inPlace = false, bool narrow = false)
+Copy RenumberWith(const TestMesh& m, const mp::UninitializedLargeVector<Index>& cells,
+  const mp::TaskRunner& runner, const std::vector<Index>* parents = nullptr, bool inPlace = false,
+  bool narrow = false)
 {
   Copy c;
   c.Order.Cells = cells;
@@ -207,8 +211,8 @@ TEST(SpatialOrder, ShuffledMeshesComeOutNumberedAlongSpaceWithTheSameCells)
 {
   for (int dimension : { 2, 3 })
   {
-    const TestMesh grid = dimension == 2 ? mptest::GridMesh(60, 50, 0.25, 3)
-                                         : mptest::CubeMesh(12, 11, 10, 0.15, 3);
+    const TestMesh grid =
+      dimension == 2 ? mptest::GridMesh(60, 50, 0.25, 3) : mptest::CubeMesh(12, 11, 10, 0.15, 3);
     const TestMesh shuffled = Shuffled(grid, 11);
     EXPECT_TRUE(Quality(grid).Tidy()) << dimension << "D grid";
     EXPECT_GT(Quality(shuffled).PointSpread, PointSpreadLimit) << dimension << "D shuffled";
@@ -253,8 +257,8 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
   // every point used by several tasks.
   for (int dimension : { 2, 3 })
   {
-    TestMesh m = Shuffled(dimension == 2 ? mptest::GridMesh(170, 160, 0.25, 3)
-                                         : mptest::CubeMesh(20, 20, 25, 0.15, 3),
+    TestMesh m = Shuffled(
+      dimension == 2 ? mptest::GridMesh(170, 160, 0.25, 3) : mptest::CubeMesh(20, 20, 25, 0.15, 3),
       5);
     m.Points.insert(m.Points.begin(), { 0.5, 0.5, 0.5 });
     for (Index& id : m.Cells)
@@ -271,7 +275,8 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
     for (const mp::UninitializedLargeVector<Index>* cells : { &serial.Cells, &random })
     {
       const Copy expected = RenumberWith(m, *cells, mp::TaskRunner());
-      EXPECT_EQ(RenumberWith(m, *cells, mp::TaskRunner(), nullptr, false, true).Cells, expected.Cells);
+      EXPECT_EQ(
+        RenumberWith(m, *cells, mp::TaskRunner(), nullptr, false, true).Cells, expected.Cells);
       // The serial copy: points in first-use order, unused ones last.
       Index next = 0;
       for (Index id : expected.Cells)
@@ -296,7 +301,8 @@ TEST(SpatialOrder, TasksGiveTheSerialOrderAndCopy)
       }
       for (int tasks : { 2, 3, 7 })
       {
-        for (RunMode mode : { RunMode::Sequential, RunMode::Threads, RunMode::Reversed, RunMode::Shuffled })
+        for (RunMode mode :
+          { RunMode::Sequential, RunMode::Threads, RunMode::Reversed, RunMode::Shuffled })
         {
           const mp::TaskRunner runner = Tasks(tasks, mode);
           const std::string what = std::to_string(dimension) + "D, " +
@@ -346,7 +352,8 @@ TEST(SpatialOrder, InterleavedSweepsAreNotTidyUntilRenumbered)
   {
     for (int i = 0; i <= n; ++i)
     {
-      const double wobble = (i > 0 && i < n && j > 0 && j < n) ? 0.2 * std::sin(7.0 * i + 3.0 * j) : 0.0;
+      const double wobble =
+        (i > 0 && i < n && j > 0 && j < n) ? 0.2 * std::sin(7.0 * i + 3.0 * j) : 0.0;
       two.Points.insert(two.Points.end(), { (i + wobble) / n, (j - wobble) / n, 0.0 });
     }
   }
@@ -402,7 +409,8 @@ TestMesh CellsInRandomRuns(const TestMesh& m, Index run, unsigned seed)
   s.Cells.clear();
   for (Index r : runs)
   {
-    s.Cells.insert(s.Cells.end(), &m.Cells[0] + corners * r * run, &m.Cells[0] + corners * std::min(n, r * run + run));
+    s.Cells.insert(s.Cells.end(), &m.Cells[0] + corners * r * run,
+      &m.Cells[0] + corners * std::min(n, r * run + run));
   }
   s.Finish();
   return s;
@@ -412,8 +420,8 @@ TEST(SpatialOrder, CellsListedOutOfOrderAreNotTidyUntilRenumbered)
 {
   for (int dimension : { 2, 3 })
   {
-    const TestMesh grid = dimension == 2 ? mptest::GridMesh(150, 140, 0.25, 7)
-                                         : mptest::CubeMesh(26, 25, 24, 0.15, 7);
+    const TestMesh grid =
+      dimension == 2 ? mptest::GridMesh(150, 140, 0.25, 7) : mptest::CubeMesh(26, 25, 24, 0.15, 7);
     const TestMesh qhullLike = CellsInRandomRuns(grid, 8, 13);
     // The grid's points and cells: only the cells across faces tell.
     EXPECT_LE(Quality(qhullLike).PointSpread, PointSpreadLimit) << dimension << "D";
@@ -428,7 +436,8 @@ TEST(SpatialOrder, CellsListedOutOfOrderAreNotTidyUntilRenumbered)
     EXPECT_LT(Quality(r.Mesh).FarNeighbours, FarNeighboursLimit) << dimension << "D renumbered";
     for (int tasks : { 2, 3 }) // threads find the same neighbours
     {
-      const auto threaded = mp::MeasureNumbering(qhullLike.View(false), Tasks(tasks, RunMode::Threads));
+      const auto threaded =
+        mp::MeasureNumbering(qhullLike.View(false), Tasks(tasks, RunMode::Threads));
       EXPECT_EQ(threaded.PointSpread, Quality(qhullLike).PointSpread) << tasks << " tasks";
       EXPECT_EQ(threaded.FarNeighbours, Quality(qhullLike).FarNeighbours) << tasks << " tasks";
     }
@@ -456,10 +465,10 @@ TEST(SpatialOrder, TheProjectionBetweenRenumberedMeshesIsTheSame)
 {
   for (int dimension : { 2, 3 })
   {
-    const TestMesh target = Shuffled(dimension == 2 ? mptest::GridMesh(40, 40, 0.25, 1)
-                                                    : mptest::CubeMesh(8, 8, 8, 0.15, 1), 4);
-    const TestMesh source = Shuffled(dimension == 2 ? mptest::GridMesh(43, 37, 0.25, 2)
-                                                    : mptest::CubeMesh(9, 8, 7, 0.15, 2), 5);
+    const TestMesh target = Shuffled(
+      dimension == 2 ? mptest::GridMesh(40, 40, 0.25, 1) : mptest::CubeMesh(8, 8, 8, 0.15, 1), 4);
+    const TestMesh source = Shuffled(
+      dimension == 2 ? mptest::GridMesh(43, 37, 0.25, 2) : mptest::CubeMesh(9, 8, 7, 0.15, 2), 5);
     const Renumbered t(target);
     const Renumbered s(source);
     auto project = [](const TestMesh& a, const TestMesh& b, const std::vector<double>& u) {
@@ -481,8 +490,8 @@ TEST(SpatialOrder, TheProjectionBetweenRenumberedMeshesIsTheSame)
     double largest = 0;
     for (size_t p = 0; p < plain.size(); ++p)
     {
-      largest = std::max(largest,
-        std::fabs(plain[static_cast<size_t>(t.Order.Points[p])] - renumbered[p]));
+      largest =
+        std::max(largest, std::fabs(plain[static_cast<size_t>(t.Order.Points[p])] - renumbered[p]));
     }
     EXPECT_LT(largest, 1e-12) << dimension << "D";
   }
@@ -499,12 +508,13 @@ struct PartlyCovered
   TestMesh Source;
   Renumbered Ordered;
   explicit PartlyCovered(int dimension)
-    : Target(Stretched(Shuffled(dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1)
-                                               : mptest::CubeMesh(7, 7, 7, 0.15, 1), 4)))
-    , Source(dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2) : mptest::CubeMesh(6, 8, 7, 0.15, 2))
+    : Target(Stretched(Shuffled(
+        dimension == 2 ? mptest::GridMesh(30, 30, 0.25, 1) : mptest::CubeMesh(7, 7, 7, 0.15, 1),
+        4)))
+    , Source(
+        dimension == 2 ? mptest::GridMesh(23, 29, 0.25, 2) : mptest::CubeMesh(6, 8, 7, 0.15, 2))
     , Ordered(Target)
-  {
-  }
+  {}
   static TestMesh Stretched(TestMesh m)
   {
     for (size_t p = 0; p < m.Points.size(); p += 3)
@@ -584,8 +594,9 @@ TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
   {
     const unsigned h = static_cast<unsigned>(c) * 2654435761u;
     const int kind = static_cast<int>(h >> 28) % 4; // whole (2 in 4), in part, none
-    masses.State[static_cast<size_t>(c)] =
-      kind == 3 ? mp::CellMasses::None : (kind == 2 ? mp::CellMasses::Part : 1e-13f * (kind - 0.5f));
+    masses.State[static_cast<size_t>(c)] = kind == 3
+      ? mp::CellMasses::None
+      : (kind == 2 ? mp::CellMasses::Part : 1e-13f * (kind - 0.5f));
     if (kind == 2)
     {
       const mp::CellCorners ids = view.Cell(c);
@@ -624,7 +635,9 @@ TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
           for (int k = 0; k < 3; ++k)
           {
             double& most = expected[static_cast<size_t>(ids[k])];
-            most = std::max(most, byParent ? perParent[static_cast<size_t>(view.Parent[c])] : perCell[static_cast<size_t>(c)]);
+            most = std::max(most,
+              byParent ? perParent[static_cast<size_t>(view.Parent[c])]
+                       : perCell[static_cast<size_t>(c)]);
           }
         }
         EXPECT_TRUE(std::equal(expected.begin(), expected.end(), cover.begin())) << byParent;
@@ -682,7 +695,8 @@ TEST(SpatialOrder, PointCoverIsTheLargestFractionAroundEachPoint)
         int partial = 0;
         for (size_t p = 0; p < expected.size(); ++p)
         {
-          ASSERT_EQ(cover[p], expected[p]) << dimension << "D, view " << &view - views << ", point " << p;
+          ASSERT_EQ(cover[p], expected[p])
+            << dimension << "D, view " << &view - views << ", point " << p;
           partial += expected[p] > 0.01 && expected[p] < 0.99;
         }
         EXPECT_GT(partial, 5) << dimension << "D";

@@ -120,8 +120,7 @@ struct TrustingLocator : mp::BoxGridLocator
   TrustingLocator(const mp::MeshView& mesh, bool trust)
     : mp::BoxGridLocator(mesh)
     , Trust(trust)
-  {
-  }
+  {}
   bool Supports(Index, int) const override { return this->Trust; }
   bool Trust;
 };
@@ -157,9 +156,9 @@ TEST(SupportingFaces, MatchTheExactOracle)
   TestMesh raised = slab;
   raised.Points[3 * ((2 * 25 + 20) * 25 + 7) + 2] += 1e-9; // a point of the top side
   cases.push_back({ "flat box, one point raised", raised, false });
-  cases.push_back({ "notched", WithoutCells(mptest::CubeMesh(8, 8, 8, 0.15, 3), [](const double* x) {
-    return x[0] > 0.5 && x[1] > 0.5;
-  }),
+  cases.push_back({ "notched",
+    WithoutCells(
+      mptest::CubeMesh(8, 8, 8, 0.15, 3), [](const double* x) { return x[0] > 0.5 && x[1] > 0.5; }),
     false });
   TestMesh rough = mptest::CubeMesh(6, 7, 8, 0.15, 4);
   Roughen(rough, 1e-3 / 8, 5);
@@ -311,12 +310,10 @@ TEST(SupportingFaces, OnlySubstantialPiecesAreTrusted)
   const double t[4][3] = { { 0, 0.80000000000000004, 0.5 }, { 0, 0.80000000000000004, 0.75 },
     { 0.16666666666666666, 1, 0.75 }, { 0, 1, 0.75 } };
   const double a[4][3] = { { 0, 0.90519492276591973, 0.50009609567510971 },
-    { 0, 0.78902439024390203, 0.49999999999999989 },
-    { 0, 0.85522054191364383, 0.3679200936970265 },
+    { 0, 0.78902439024390203, 0.49999999999999989 }, { 0, 0.85522054191364383, 0.3679200936970265 },
     { 0.16396897933529997, 0.82604532665850006, 0.36746206371251156 } };
   const double b[4][3] = { { 0, 0.78902439024390203, 0.49999999999999989 },
-    { 0, 0.90519492276591973, 0.50009609567510971 },
-    { 0, 0.86171324987264719, 0.6339257120304993 },
+    { 0, 0.90519492276591973, 0.50009609567510971 }, { 0, 0.86171324987264719, 0.6339257120304993 },
     { 0.17627975138032753, 0.83778337479834919, 0.56785762652698857 } };
   TestMesh m;
   m.Dimension = 3;
@@ -361,7 +358,8 @@ TEST(SupportingFaces, FrontEqualsBruteForceOnShuffledBoxes)
   {
     const double jitter = n % 3 == 0 ? 0.0 : 0.15;
     TestMesh source = shuffled(mptest::CubeMesh(2 + n % 4, 3 + n % 3, 2 + n % 5, jitter, rng()));
-    TestMesh target = shuffled(mptest::CubeMesh(3 + n % 5, 2 + n % 4, 3 + n % 3, n % 2 ? jitter : 0.0, rng()));
+    TestMesh target =
+      shuffled(mptest::CubeMesh(3 + n % 5, 2 + n % 4, 3 + n % 3, n % 2 ? jitter : 0.0, rng()));
     // Shifts and scales by powers of two keep the sides exactly flat.
     if (n % 4 == 1)
       mptest::Move3D(source, 0, 0, 0.75, 0.125, 0.125, 0.0);

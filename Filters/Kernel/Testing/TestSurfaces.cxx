@@ -67,7 +67,7 @@ TEST(Surfaces, GeneratedFacetsFaceOutward)
 
 TEST(Surfaces, SphereFrontEqualsBruteForceAndPiecesTileTheTarget)
 {
-  const TestMesh target = Finished(mptest::Icosphere(6));   // 720 triangles
+  const TestMesh target = Finished(mptest::Icosphere(6));     // 720 triangles
   const TestMesh source = Finished(mptest::UvSphere(14, 22)); // 572 triangles
   mptest::SearchComparison<SurfaceIntersector> search(target, source);
   search.ExpectSamePairs("sphere");
@@ -111,7 +111,8 @@ TEST(Surfaces, CubeSurfaceLinearFieldsAreExactAcrossItsSharpEdges)
     SurfaceIntersector::Cell t, s;
     SurfaceIntersector::Prepare(target.View(false), pieces.TargetCell[i], t);
     SurfaceIntersector::Prepare(source.View(false), pieces.SourceCell[i], s);
-    const double dot = t.Normal[0] * s.Normal[0] + t.Normal[1] * s.Normal[1] + t.Normal[2] * s.Normal[2];
+    const double dot =
+      t.Normal[0] * s.Normal[0] + t.Normal[1] * s.Normal[1] + t.Normal[2] * s.Normal[2];
     ASSERT_GT(dot, 0.999999) << i;
   }
 }
@@ -141,7 +142,8 @@ TEST(Surfaces, SphereConvergesAtSecondOrder)
     const double max = mptest::MaxPointError(target, ut, SmoothOnSphere);
     if (level > 0)
     {
-      EXPECT_GT(std::log2(previousRms / rms), 1.8) << "level " << level << ": rms " << previousRms << " -> " << rms;
+      EXPECT_GT(std::log2(previousRms / rms), 1.8)
+        << "level " << level << ": rms " << previousRms << " -> " << rms;
     }
     if (level == 3)
     {
@@ -178,7 +180,8 @@ TEST(Surfaces, NothingCrossesAThinShell)
   const Index targetOuter = target.NumberOfPoints();
   mptest::AppendMesh(target, mptest::UvSphere(14, 20, 0.98));
   // The inner target sphere must face inward too: reverse its cells.
-  for (size_t c = 3 * static_cast<size_t>(mptest::Icosphere(7).NumberOfCells()); c < target.Cells.size(); c += 3)
+  for (size_t c = 3 * static_cast<size_t>(mptest::Icosphere(7).NumberOfCells());
+       c < target.Cells.size(); c += 3)
   {
     std::swap(target.Cells[c + 1], target.Cells[c + 2]);
   }

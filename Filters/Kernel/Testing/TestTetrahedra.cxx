@@ -226,7 +226,8 @@ TEST(Tetrahedra, ApartOnlyForCellsThatDoNotMeet)
     }
     bool boxesMeet = true;
     for (int c = 0; c < 3; ++c)
-      boxesMeet = boxesMeet && !(a.Box[2 * c + 1] < b.Box[2 * c] || b.Box[2 * c + 1] < a.Box[2 * c]);
+      boxesMeet =
+        boxesMeet && !(a.Box[2 * c + 1] < b.Box[2 * c] || b.Box[2 * c + 1] < a.Box[2 * c]);
     if (!metAB && boxesMeet && n % 2)
     {
       ++missedWithBoxesMeeting;
@@ -281,8 +282,8 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
       if (graph.TouchedFaces & (1u << k))
         EXPECT_EQ(graph.SeedFace[k], split.SeedFace[k]) << n;
     const double scale = std::min(m.CellVolume(0), m.CellVolume(1));
-    EXPECT_NEAR(TetrahedronIntersector::Measure(graph), TetrahedronIntersector::Measure(split),
-      1e-12 * scale)
+    EXPECT_NEAR(
+      TetrahedronIntersector::Measure(graph), TetrahedronIntersector::Measure(split), 1e-12 * scale)
       << n;
     // The entries of flat cells are ill conditioned (barycentric gradients of
     // size 1/height, squared): compare them on well-shaped pairs.
@@ -522,7 +523,8 @@ TEST(Tetrahedra, NonFiniteDistancesGoToTheGeneralClip)
       EXPECT_EQ(second.On[v], clip.On[v]) << v;
     }
   }
-  const double t[4][3] = { { -8.8659615903853301e151, 1.3737351861116777e153, -6.2358063811403052e-11 },
+  const double t[4][3] = { { -8.8659615903853301e151, 1.3737351861116777e153,
+                             -6.2358063811403052e-11 },
     { 1.4933079294831653e153, 4.0822521445482421e153, -8.1515972878436932e-11 },
     { -4.342282072354494e153, -5.2625736710033753e153, -8.2984134185736339e-11 },
     { -7.1061873304633826e153, -8.584462237665525e152, 3.5913631141954964e-11 } };
@@ -750,13 +752,14 @@ TEST(Tetrahedra, NearlyCoplanarEdgesKeepTheExactVolume)
       ASSERT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1 - roles, b));
       TetrahedronIntersector::Piece piece;
       // Pieces below 1e-13 of the smaller cell count as touching: no volume.
-      const double volume =
-        TetrahedronIntersector::Intersect(a, b, piece) ? TetrahedronIntersector::Measure(piece) : 0.0;
+      const double volume = TetrahedronIntersector::Intersect(a, b, piece)
+        ? TetrahedronIntersector::Measure(piece)
+        : 0.0;
       const double error = expected < small && volume == 0.0
         ? 0.0
         : std::fabs(volume - expected) / (extent * extent * extent);
-      EXPECT_LE(error, 1e-13) << "pair " << n << (roles ? ", roles swapped" : "") << ": "
-                              << volume << " against " << expected;
+      EXPECT_LE(error, 1e-13) << "pair " << n << (roles ? ", roles swapped" : "") << ": " << volume
+                              << " against " << expected;
       ++checked;
     }
   }
@@ -875,7 +878,8 @@ TEST(Tetrahedra, SnappedVerticesRotatedAndScaled)
     {
       if (rng() % 2)
       {
-        std::copy(target.Points.begin() + i, target.Points.begin() + i + 3, source.Points.begin() + i);
+        std::copy(
+          target.Points.begin() + i, target.Points.begin() + i + 3, source.Points.begin() + i);
       }
     }
     for (Index c = 0; c < source.NumberOfCells(); ++c)
@@ -907,8 +911,8 @@ TEST(Tetrahedra, RotatedPartialOverlaps)
   {
     const TestMesh a = mptest::CubeMesh(2 + n % 3, 3, 2, 0.15, rng());
     TestMesh b = mptest::CubeMesh(3, 2 + n % 4, 2, 0.15, rng());
-    mptest::Move3D(b, 6.3 * u(rng), 3.1 * u(rng), 0.5 + u(rng), u(rng) - 0.5, u(rng) - 0.5,
-      u(rng) - 0.5);
+    mptest::Move3D(
+      b, 6.3 * u(rng), 3.1 * u(rng), 0.5 + u(rng), u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     Searches s(a, b);
     s.ExpectSamePairs("case " + std::to_string(n));
     if (HasFatalFailure())
@@ -958,8 +962,8 @@ TEST(Tetrahedra, TranslatedAndScaledMeshes)
   {
     const TestMesh a = mptest::CubeMesh(2 + n % 2, 3, 2, 0.15, rng());
     const TestMesh b = mptest::CubeMesh(3, 2, 2 + n % 3, 0.15, rng());
-    for (const auto& motion : { std::make_pair(1.0, 1e6), std::make_pair(1e-6, 0.0),
-           std::make_pair(1e6, 0.0) })
+    for (const auto& motion :
+      { std::make_pair(1.0, 1e6), std::make_pair(1e-6, 0.0), std::make_pair(1e6, 0.0) })
     {
       TestMesh t = a;
       TestMesh s = b;

@@ -78,8 +78,8 @@ std::vector<double> Measures(const TestMesh& m)
  * exact at the valid points, and the integral conserved.
  */
 template <class Intersector>
-void CheckTrace(const TestMesh& target, const TestMesh& source, const std::string& what,
-  bool whole = true)
+void CheckTrace(
+  const TestMesh& target, const TestMesh& source, const std::string& what, bool whole = true)
 {
   mptest::SearchComparison<Intersector> search(target, source);
   search.ExpectSamePairs(what, 1e-14); // the targets' cells are 0.01 to 0.3 long or wide
@@ -121,7 +121,8 @@ void CheckTrace(const TestMesh& target, const TestMesh& source, const std::strin
       // Where the target leaves the volume (the unit cube), away from its
       // boundary: a function barely covered is ill-conditioned.
       const double* x = &target.Points[3 * i];
-      const bool inner = whole || (std::min({ x[0], x[1], x[2] }) > 0.1 && std::max({ x[0], x[1], x[2] }) < 0.9);
+      const bool inner =
+        whole || (std::min({ x[0], x[1], x[2] }) > 0.1 && std::max({ x[0], x[1], x[2] }) < 0.9);
       if (p.Op.GetValid()[i] && inner)
       {
         worst = std::max(worst, std::fabs(ut[i] - Linear(&target.Points[3 * i])));
@@ -219,11 +220,14 @@ TEST(Traces, PlanesOnFacesAreCoveredOnceFromTheSideTheNormalsPointTo)
     for (const bool down : { false, true })
     {
       const std::string what = "plane z = " + std::to_string(z) + (down ? ", down" : ", up");
-      const TestMesh target = Sheet(5, 3, 0.2, 14, [z](double x, double y, double* p) {
-        p[0] = x;
-        p[1] = y;
-        p[2] = z;
-      }, down);
+      const TestMesh target = Sheet(
+        5, 3, 0.2, 14,
+        [z](double x, double y, double* p) {
+          p[0] = x;
+          p[1] = y;
+          p[2] = z;
+        },
+        down);
       CheckTrace<SurfaceTrace>(target, source, what);
       // Cell data: an inner plane takes the tetrahedra its normals point
       // to; a boundary plane, the ones there are.
@@ -233,7 +237,8 @@ TEST(Traces, PlanesOnFacesAreCoveredOnceFromTheSideTheNormalsPointTo)
       {
         ASSERT_TRUE(valid[c]) << what;
         const bool above = z == 0.0 || (z == 0.5 && !down);
-        ASSERT_TRUE(above ? values[c] > z : values[c] < z) << what << ", cell " << c << ": " << values[c];
+        ASSERT_TRUE(above ? values[c] > z : values[c] < z)
+          << what << ", cell " << c << ": " << values[c];
       }
     }
   }
@@ -272,22 +277,26 @@ TEST(Traces, SurfaceLeavingTheVolumeIsCoveredInside)
 TEST(Traces, CurvesInTriangles)
 {
   const TestMesh source = mptest::GridMesh(10, 9, 0.3, 18);
-  const TestMesh circle =
-    mptest::Polyline(mptest::Uniform(40, 0, 2 * Pi, 0.3, 19, true), [](double s, double* p) {
+  const TestMesh circle = mptest::Polyline(
+    mptest::Uniform(40, 0, 2 * Pi, 0.3, 19, true),
+    [](double s, double* p) {
       p[0] = 0.5 + 0.3 * std::cos(s);
       p[1] = 0.5 + 0.35 * std::sin(s);
-    }, true);
+    },
+    true);
   CheckTrace<CurveTrace2>(circle, source, "circle");
   // Along the lines of an unjittered grid, inside and on the boundary, both ways.
   const TestMesh grid = mptest::GridMesh(4, 4, 0.0, 20);
-  for (const auto& line : std::vector<std::array<double, 4>>{ { 0.5, 0, 0.5, 1 }, { 0.5, 1, 0.5, 0 },
-         { 0, 0, 1, 0 }, { 1, 0, 0, 0 }, { 0, 0, 1, 1 } })
+  for (const auto& line : std::vector<std::array<double, 4>>{
+         { 0.5, 0, 0.5, 1 }, { 0.5, 1, 0.5, 0 }, { 0, 0, 1, 0 }, { 1, 0, 0, 0 }, { 0, 0, 1, 1 } })
   {
-    const TestMesh target = mptest::Polyline(mptest::Uniform(7, 0, 1, 0.3, 21, false),
+    const TestMesh target = mptest::Polyline(
+      mptest::Uniform(7, 0, 1, 0.3, 21, false),
       [&line](double s, double* p) {
         p[0] = line[0] + s * (line[2] - line[0]);
         p[1] = line[1] + s * (line[3] - line[1]);
-      }, false);
+      },
+      false);
     CheckTrace<CurveTrace2>(target, grid,
       "line (" + std::to_string(line[0]) + ", " + std::to_string(line[1]) + ") to (" +
         std::to_string(line[2]) + ", " + std::to_string(line[3]) + ")");
@@ -297,27 +306,32 @@ TEST(Traces, CurvesInTriangles)
 TEST(Traces, CurvesInTetrahedra)
 {
   const TestMesh source = mptest::CubeMesh(5, 6, 5, 0.3, 22);
-  const TestMesh helix =
-    mptest::Polyline(mptest::Uniform(60, 0, 6, 0.3, 23, false), [](double s, double* p) {
+  const TestMesh helix = mptest::Polyline(
+    mptest::Uniform(60, 0, 6, 0.3, 23, false),
+    [](double s, double* p) {
       p[0] = 0.5 + 0.3 * std::cos(s);
       p[1] = 0.5 + 0.3 * std::sin(s);
       p[2] = 0.1 + 0.13 * s;
-    }, false, 3);
+    },
+    false, 3);
   CheckTrace<CurveTrace3>(helix, source, "helix");
   // Along edges and faces of an unjittered mesh, inside and on the boundary.
   const TestMesh grid = mptest::CubeMesh(3, 3, 3, 0.0, 24);
   const double third = 1.0 / 3.0;
-  for (const auto& line : std::vector<std::array<double, 6>>{ { 0, third, third, 1, third, third },
-         { 1, third, third, 0, third, third }, { 0, 0, 0.5, 1, 0, 0.5 }, { 0, 0, 0, 1, 0, 0 },
-         { 0, 1, 1, 1, 1, 1 }, { 1, 1, 0, 0, 1, 0 }, { 0, 0.5, 1, 1, 0.5, 1 }, { 0, 0, 0, 1, 1, 1 } })
+  for (const auto& line :
+    std::vector<std::array<double, 6>>{ { 0, third, third, 1, third, third },
+      { 1, third, third, 0, third, third }, { 0, 0, 0.5, 1, 0, 0.5 }, { 0, 0, 0, 1, 0, 0 },
+      { 0, 1, 1, 1, 1, 1 }, { 1, 1, 0, 0, 1, 0 }, { 0, 0.5, 1, 1, 0.5, 1 }, { 0, 0, 0, 1, 1, 1 } })
   {
-    const TestMesh target = mptest::Polyline(mptest::Uniform(5, 0, 1, 0.3, 25, false),
+    const TestMesh target = mptest::Polyline(
+      mptest::Uniform(5, 0, 1, 0.3, 25, false),
       [&line](double s, double* p) {
         for (int d = 0; d < 3; ++d)
         {
           p[d] = line[d] + s * (line[d + 3] - line[d]);
         }
-      }, false, 3);
+      },
+      false, 3);
     std::string what = "line";
     for (double v : line)
     {
@@ -332,10 +346,18 @@ TEST(Traces, PlanesThroughVerticesOfTheSource)
   // Planes through many vertices and edges of an unjittered mesh: cross-
   // sections with repeated corners (a vertex on the plane).
   const TestMesh source = mptest::CubeMesh(4, 4, 4, 0.0, 26);
-  const std::function<void(double, double, double*)> planes[] = {
-    [](double u, double v, double* p) { p[0] = u; p[1] = 0.5 * (1.0 - u); p[2] = v; },   // x + 2y = 1
-    [](double u, double v, double* p) { p[0] = u; p[1] = 1.0 - u; p[2] = v; },           // x + y = 1
-    [](double u, double v, double* p) {                                                  // x + y + z = 1.5
+  const std::function<void(double, double, double*)> planes[] = { [](
+                                                                    double u, double v, double* p) {
+                                                                   p[0] = u;
+                                                                   p[1] = 0.5 * (1.0 - u);
+                                                                   p[2] = v;
+                                                                 }, // x + 2y = 1
+    [](double u, double v, double* p) {
+      p[0] = u;
+      p[1] = 1.0 - u;
+      p[2] = v;
+    },                                  // x + y = 1
+    [](double u, double v, double* p) { // x + y + z = 1.5
       p[0] = 0.25 + 0.5 * u;
       p[1] = 0.25 + 0.5 * v;
       p[2] = 1.5 - p[0] - p[1];
@@ -344,7 +366,8 @@ TEST(Traces, PlanesThroughVerticesOfTheSource)
   for (const auto& plane : planes)
   {
     CheckTrace<SurfaceTrace>(Sheet(6, 5, 0.2, 27 + k, plane), source, "plane " + std::to_string(k));
-    CheckTrace<SurfaceTrace>(Sheet(4, 4, 0.0, 30 + k, plane), source, "unjittered plane " + std::to_string(k));
+    CheckTrace<SurfaceTrace>(
+      Sheet(4, 4, 0.0, 30 + k, plane), source, "unjittered plane " + std::to_string(k));
     ++k;
   }
 }
@@ -357,8 +380,10 @@ TEST(Traces, CurvesAlongEveryEdgeOfTheSource)
   for (const double jitter : { 0.0, 0.25 })
   {
     const TestMesh grid = mptest::GridMesh(5, 4, jitter, 32);
-    CheckTrace<CurveTrace2>(EdgesOf(grid), grid, "edges of a 2D grid, jitter " + std::to_string(jitter));
+    CheckTrace<CurveTrace2>(
+      EdgesOf(grid), grid, "edges of a 2D grid, jitter " + std::to_string(jitter));
     const TestMesh cube = mptest::CubeMesh(3, 3, 3, jitter, 33);
-    CheckTrace<CurveTrace3>(EdgesOf(cube), cube, "edges of a 3D grid, jitter " + std::to_string(jitter));
+    CheckTrace<CurveTrace3>(
+      EdgesOf(cube), cube, "edges of a 3D grid, jitter " + std::to_string(jitter));
   }
 }

@@ -50,7 +50,8 @@ R ClipAreaIn(const double t[3][2], const double s[3][2])
   using P = std::pair<R, R>;
   std::vector<P> poly = { { t[0][0], t[0][1] }, { t[1][0], t[1][1] }, { t[2][0], t[2][1] } };
   auto cross = [](P a, P b, P c) {
-    return (b.first - a.first) * (c.second - a.second) - (b.second - a.second) * (c.first - a.first);
+    return (b.first - a.first) * (c.second - a.second) -
+      (b.second - a.second) * (c.first - a.first);
   };
   P sp[3] = { { s[0][0], s[0][1] }, { s[1][0], s[1][1] }, { s[2][0], s[2][1] } };
   if (cross(sp[0], sp[1], sp[2]) < 0)
@@ -93,8 +94,9 @@ long double ClipArea(const double t[3][2], const double s[3][2])
 
 double TriangleArea(const double t[3][2])
 {
-  return 0.5 * std::fabs((t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) -
-                   (t[1][1] - t[0][1]) * (t[2][0] - t[0][0]));
+  return 0.5 *
+    std::fabs(
+      (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[1][1] - t[0][1]) * (t[2][0] - t[0][0]));
 }
 } // namespace
 
@@ -355,7 +357,6 @@ TEST(TriangleIntersector, NearlyCoincidentCrossings)
   EXPECT_EQ(checked, 3 * 8 * 2 * 2);
 }
 
-
 // Corners of the source put on lines of the target's edges (rounded there,
 // then moved a few ulps): edges nearly collinear with the target's, at
 // distances of about 1e-17 of their length, and crossings of those lines.
@@ -497,14 +498,16 @@ TEST(TriangleIntersector, TinyCellsAgainstHugeOnesKeepTheirArea)
       const double opening = 0.2 + 2.5 * unit(rng);
       huge[0][0] = cx, huge[0][1] = cy;
       huge[1][0] = cx + L * ux, huge[1][1] = cy + L * uy;
-      huge[2][0] = cx + L * std::cos(angle + opening), huge[2][1] = cy + L * std::sin(angle + opening);
+      huge[2][0] = cx + L * std::cos(angle + opening),
+      huge[2][1] = cy + L * std::sin(angle + opening);
     }
     for (auto& x : small)
       x[0] = h * (unit(rng) - 0.5), x[1] = h * (unit(rng) - 0.5);
     const double expected = static_cast<double>(ClipAreaIn<__float128>(small, huge));
     if (TriangleArea(small) < 1e-3 * h * h)
       continue;
-    met[n % 2] += expected > 1e-3 * h * h && expected < std::min(TriangleArea(small), TriangleArea(huge));
+    met[n % 2] +=
+      expected > 1e-3 * h * h && expected < std::min(TriangleArea(small), TriangleArea(huge));
     for (int roles = 0; roles < 2; ++roles)
     {
       Pair p = roles ? Pair(huge, small) : Pair(small, huge);

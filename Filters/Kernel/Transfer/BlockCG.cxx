@@ -23,8 +23,7 @@ struct Sums
   Sums() = default;
   explicit Sums(size_t n)
     : Values(n, 0.0)
-  {
-  }
+  {}
   Sums& operator+=(const Sums& o)
   {
     for (size_t k = 0; k < this->Values.size(); ++k)
@@ -44,12 +43,11 @@ struct Sums
 template <int FixedC, int PerColumn>
 struct LocalSums
 {
-  double Local[FixedC > 0 ? PerColumn * FixedC : 1] = {};
+  double Local[FixedC > 0 ? PerColumn* FixedC : 1] = {};
   Sums& Part;
   explicit LocalSums(Sums& part)
     : Part(part)
-  {
-  }
+  {}
   double& operator[](int k)
   {
     if constexpr (FixedC > 0)
@@ -161,7 +159,8 @@ public:
     for (int k = 0; k < c; ++k)
     {
       // log(r0 / r) / log(r0 / goal), the squares' ratios alike.
-      if (!this->Converged[k] && this->Initial[k] > this->Goal[k] && this->Residuals.Values[k] > 0.0)
+      if (!this->Converged[k] && this->Initial[k] > this->Goal[k] &&
+        this->Residuals.Values[k] > 0.0)
       {
         const double f = std::log(this->Initial[k] / this->Residuals.Values[k]) /
           std::log(this->Initial[k] / this->Goal[k]);
@@ -492,8 +491,7 @@ BlockCG::BlockCG(const CsrMatrix& matrix, const TaskRunner& runner, const double
   : A(matrix)
   , Runner(runner)
   , RowSums(rowSums)
-{
-}
+{}
 
 BlockCG::~BlockCG() = default;
 
@@ -521,8 +519,7 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   std::vector<char>& converged, const SolverHooks& hooks) const
 {
   const int c = FixedC > 0 ? FixedC : dynamicC;
-  CGIterations<FixedC> cg(
-    this->A, this->Runner, this->RowSums, B, X, c, options, converged, hooks);
+  CGIterations<FixedC> cg(this->A, this->Runner, this->RowSums, B, X, c, options, converged, hooks);
   cg.Start();
   this->Stopped = false;
   int iteration = 0;
@@ -543,8 +540,8 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   return iteration;
 }
 
-bool BlockCG::Solve(const double* B, double* X, int c, const SolveOptions& options,
-  const SolverHooks& hooks) const
+bool BlockCG::Solve(
+  const double* B, double* X, int c, const SolveOptions& options, const SolverHooks& hooks) const
 {
   const Index n = this->A.Rows;
   this->Stopped = false;

@@ -50,8 +50,8 @@ struct SolverHooks
    * fails. Used where rows are shared (Exchange set); null there: no direct
    * fallback. (Parts that share no row factor their own rows.)
    */
-  std::function<bool(const CsrMatrix& A, const double* B, double* X, int c,
-    const std::vector<char>& converged)>
+  std::function<bool(
+    const CsrMatrix& A, const double* B, double* X, int c, const std::vector<char>& converged)>
     Direct;
   /// Per row: 1 when this part counts it in dot products (null: every row).
   const char* Counted = nullptr;
@@ -59,8 +59,8 @@ struct SolverHooks
 
 struct SolveOptions
 {
-  double Tolerance = 1e-14;   ///< relative residual per column, |r| <= tolerance |b|
-  int MaxIterations = 500;    ///< before the direct solver takes over
+  double Tolerance = 1e-14; ///< relative residual per column, |r| <= tolerance |b|
+  int MaxIterations = 500;  ///< before the direct solver takes over
   /// Start from the X given (e.g. the previous time step's solution)
   /// rather than from the lumped solution x_i = b_i / sum_k A_ik.
   bool StartFromX = false;

@@ -78,7 +78,8 @@ void GroupInRows(Index rows, Visit visit, Starts& start, Entries& entries)
  * only its row).
  */
 template <class Length, class Fill>
-CsrMatrix BuildCsr(Index rows, Index columns, Length length, Fill fill, const TaskRunner* runner = nullptr)
+CsrMatrix BuildCsr(
+  Index rows, Index columns, Length length, Fill fill, const TaskRunner* runner = nullptr)
 {
   CsrMatrix m;
   m.Rows = rows;
@@ -114,7 +115,8 @@ using RowList = std::vector<std::pair<Column, double>>;
 /// The matrix of `lists.size()` rows x `columns` whose row i holds lists[i] as it is.
 inline CsrMatrix CsrFromRowLists(Index columns, const std::vector<RowList>& lists)
 {
-  return BuildCsr(static_cast<Index>(lists.size()), columns,
+  return BuildCsr(
+    static_cast<Index>(lists.size()), columns,
     [&](Index i) { return static_cast<Index>(lists[static_cast<std::size_t>(i)].size()); },
     [&](Index i, Column* column, double* value) {
       for (const auto& entry : lists[static_cast<std::size_t>(i)])
@@ -130,16 +132,20 @@ inline CsrMatrix Transposed(const CsrMatrix& a)
 {
   std::vector<Index> start;
   std::vector<std::pair<Column, double>> entries;
-  GroupInRows(a.Columns, [&](auto put) {
-    for (Index i = 0; i < a.Rows; ++i)
-    {
-      for (Index q = a.RowStart[i]; q < a.RowStart[i + 1]; ++q)
+  GroupInRows(
+    a.Columns,
+    [&](auto put) {
+      for (Index i = 0; i < a.Rows; ++i)
       {
-        put(a.ColumnIndex[q], std::pair<Column, double>(static_cast<Column>(i), a.Values[q]));
+        for (Index q = a.RowStart[i]; q < a.RowStart[i + 1]; ++q)
+        {
+          put(a.ColumnIndex[q], std::pair<Column, double>(static_cast<Column>(i), a.Values[q]));
+        }
       }
-    }
-  }, start, entries);
-  return BuildCsr(a.Columns, a.Rows, [&](Index k) { return start[k + 1] - start[k]; },
+    },
+    start, entries);
+  return BuildCsr(
+    a.Columns, a.Rows, [&](Index k) { return start[k + 1] - start[k]; },
     [&](Index k, Column* column, double* value) {
       for (Index q = start[k]; q < start[k + 1]; ++q)
       {
@@ -160,8 +166,7 @@ public:
   explicit RowAccumulator(Index columns)
     : Sum(static_cast<std::size_t>(columns), 0.0)
     , Touched(static_cast<std::size_t>(columns), 0)
-  {
-  }
+  {}
   /// Adds v to column k's sum.
   void Add(Index k, double v)
   {

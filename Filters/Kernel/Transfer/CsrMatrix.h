@@ -104,7 +104,8 @@ struct CsrMatrix
    * ((s0 + s1) + (s2 + s3)) at the end: a long row's single chain of
    * dependent additions would be latency bound.
    */
-  static double SumRow(const double* values, const Column* columns, const double* X, Index a, Index b)
+  static double SumRow(
+    const double* values, const Column* columns, const double* X, Index a, Index b)
   {
     double s = 0.0;
     for (Index j = a; j < b; ++j)
@@ -113,7 +114,8 @@ struct CsrMatrix
     }
     return s;
   }
-  static double SumLongRow(const double* values, const Column* columns, const double* X, Index a, Index b)
+  static double SumLongRow(
+    const double* values, const Column* columns, const double* X, Index a, Index b)
   {
     double s[4] = { 0.0, 0.0, 0.0, 0.0 };
     Index j = a;
@@ -159,8 +161,10 @@ struct CsrMatrix
         {
           // (Each row by its own length's rule: its sum does not depend on
           // the row it is paired with.)
-          Y[i] = n0 > LongRow ? SumLongRow(values, columns, X, a0, b0) : SumRow(values, columns, X, a0, b0);
-          Y[i + 1] = n1 > LongRow ? SumLongRow(values, columns, X, b0, b1) : SumRow(values, columns, X, b0, b1);
+          Y[i] = n0 > LongRow ? SumLongRow(values, columns, X, a0, b0)
+                              : SumRow(values, columns, X, a0, b0);
+          Y[i + 1] = n1 > LongRow ? SumLongRow(values, columns, X, b0, b1)
+                                  : SumRow(values, columns, X, b0, b1);
           continue;
         }
         const Index both = n0 < n1 ? n0 : n1;

@@ -108,7 +108,8 @@ void SearchLayers(const FunctionGraph& graph, std::vector<double>& layer)
  * ones, -1 not reached. On a distributed graph, rounds of local searches
  * with the smallest layers completed across parts until none changes.
  */
-std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& valid, const SolverHooks& hooks)
+std::vector<Index> Layers(
+  const FunctionGraph& graph, const std::vector<char>& valid, const SolverHooks& hooks)
 {
   const Index n = graph.Size();
   const double none = std::numeric_limits<double>::infinity();
@@ -149,7 +150,8 @@ std::vector<Index> Layers(const FunctionGraph& graph, const std::vector<char>& v
  * The creep fill's steps: one per layer (as many on every part: the
  * largest over the parts), each the functions of its layer.
  */
-std::vector<std::vector<Index>> CreepSteps(const std::vector<Index>& layer, const SolverHooks& hooks)
+std::vector<std::vector<Index>> CreepSteps(
+  const std::vector<Index>& layer, const SolverHooks& hooks)
 {
   std::vector<std::vector<Index>> steps;
   for (Index i = 0; i < static_cast<Index>(layer.size()); ++i)
@@ -190,7 +192,8 @@ CsrMatrix CreepReads(const FunctionGraph& graph, const std::vector<Index>& layer
     }
   };
   const Index n = graph.Size();
-  return BuildCsr(n, n,
+  return BuildCsr(
+    n, n,
     [&](Index i) {
       Index count = 0;
       lower(i, [&count](Index, double) { ++count; });
@@ -209,7 +212,8 @@ CsrMatrix CreepReads(const FunctionGraph& graph, const std::vector<Index>& layer
  * lengths between the functions' positions; Dijkstra from all valid ones),
  * or -1 where none is connected.
  */
-std::vector<Index> NearestValid(const FunctionGraph& graph, const std::vector<char>& valid, const std::vector<char>& todo)
+std::vector<Index> NearestValid(
+  const FunctionGraph& graph, const std::vector<char>& valid, const std::vector<char>& todo)
 {
   const Index n = graph.Size();
   std::vector<double> distance(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
@@ -271,7 +275,8 @@ void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Ext
   const std::vector<Index> from = NearestValid(graph, valid, todo);
   const Index n = graph.Size();
   auto reached = [&](Index i) { return todo[i] && from[i] >= 0; };
-  ext.Reads = BuildCsr(n, n, [&](Index i) -> Index { return reached(i) ? 1 : 0; },
+  ext.Reads = BuildCsr(
+    n, n, [&](Index i) -> Index { return reached(i) ? 1 : 0; },
     [&](Index i, Column* column, double* value) {
       if (reached(i))
       {
@@ -290,7 +295,8 @@ void NearestStep(const FunctionGraph& graph, const std::vector<char>& valid, Ext
 }
 
 /// Row i's weighted sums of what it reads (numerators, then the weight).
-void ReadSums(const CsrMatrix& reads, Index i, const double* values, int width, int offset, int nc, double* sums)
+void ReadSums(const CsrMatrix& reads, Index i, const double* values, int width, int offset, int nc,
+  double* sums)
 {
   std::fill(sums, sums + nc + 1, 0.0);
   for (Index q = reads.RowStart[i]; q < reads.RowStart[i + 1]; ++q)
@@ -312,16 +318,19 @@ FunctionGraph PointGraph(const MeshView& mesh, const std::vector<char>& want)
   const int corners = mesh.CornersPerCell();
   std::vector<Index> start, cells;
   BuildPointCells(mesh, start, cells);
-  Rows(want, [&](Index i, auto add) {
-    for (Index q = start[i]; q < start[i + 1]; ++q)
-    {
-      const CellCorners cell = mesh.Cell(cells[static_cast<size_t>(q)]);
-      for (int a = 0; a < corners; ++a)
+  Rows(
+    want,
+    [&](Index i, auto add) {
+      for (Index q = start[i]; q < start[i + 1]; ++q)
       {
-        add(cell[a], 1.0); // one more cell holds the edge
+        const CellCorners cell = mesh.Cell(cells[static_cast<size_t>(q)]);
+        for (int a = 0; a < corners; ++a)
+        {
+          add(cell[a], 1.0); // one more cell holds the edge
+        }
       }
-    }
-  }, graph);
+    },
+    graph);
   graph.Positions.assign(mesh.Points, mesh.Points + 3 * mesh.NumberOfPoints);
   return graph;
 }
@@ -334,29 +343,36 @@ FunctionGraph CellGraph(const MeshView& mesh, const std::vector<char>& want)
   std::vector<Index> pointStart, aroundPoint, parentStart, children;
   BuildPointCells(mesh, pointStart, aroundPoint);
   // Each parent's cells, in increasing ids.
-  GroupInRows(parents, [&](auto put) {
-    for (Index c = 0; c < mesh.NumberOfCells; ++c)
-    {
-      put(mesh.ParentOf(c), c);
-    }
-  }, parentStart, children);
-  Rows(want, [&](Index p, auto add) {
-    for (Index q = parentStart[p]; q < parentStart[p + 1]; ++q)
-    {
-      const CellCorners cell = mesh.Cell(children[static_cast<size_t>(q)]);
-      for (int a = 0; a < corners; ++a)
+  GroupInRows(
+    parents,
+    [&](auto put) {
+      for (Index c = 0; c < mesh.NumberOfCells; ++c)
       {
-        for (Index r = pointStart[cell[a]]; r < pointStart[cell[a] + 1]; ++r)
+        put(mesh.ParentOf(c), c);
+      }
+    },
+    parentStart, children);
+  Rows(
+    want,
+    [&](Index p, auto add) {
+      for (Index q = parentStart[p]; q < parentStart[p + 1]; ++q)
+      {
+        const CellCorners cell = mesh.Cell(children[static_cast<size_t>(q)]);
+        for (int a = 0; a < corners; ++a)
         {
-          add(mesh.ParentOf(aroundPoint[static_cast<size_t>(r)]), 1.0);
+          for (Index r = pointStart[cell[a]]; r < pointStart[cell[a] + 1]; ++r)
+          {
+            add(mesh.ParentOf(aroundPoint[static_cast<size_t>(r)]), 1.0);
+          }
         }
       }
-    }
-  }, graph);
+    },
+    graph);
   graph.Positions.resize(3 * static_cast<size_t>(parents));
   for (Index p = 0; p < parents; ++p)
   {
-    CornerMean(mesh, children.data() + parentStart[p], parentStart[p + 1] - parentStart[p], &graph.Positions[3 * p]);
+    CornerMean(mesh, children.data() + parentStart[p], parentStart[p + 1] - parentStart[p],
+      &graph.Positions[3 * p]);
   }
   return graph;
 }
@@ -397,8 +413,8 @@ Extension ExtendOver(const FunctionGraph& graph, const std::vector<char>& valid,
   return ext;
 }
 
-void ApplyExtension(const Extension& ext, double* values, int width, int offset, int nc,
-  const SolverHooks& hooks)
+void ApplyExtension(
+  const Extension& ext, double* values, int width, int offset, int nc, const SolverHooks& hooks)
 {
   std::vector<double> sums(static_cast<size_t>(nc) + 1);
   std::vector<double> all;

@@ -69,7 +69,7 @@ struct Extension
   std::vector<char> Valid;               ///< per function: valid, what the extension reads
   std::vector<char> Extended;            ///< per function: given a value
   std::vector<std::vector<Index>> Steps; ///< the functions of each step (as many on every part)
-  CsrMatrix Reads;   ///< per function, what its mean reads, with weights (this part's share)
+  CsrMatrix Reads;     ///< per function, what its mean reads, with weights (this part's share)
   Index Unreached = 0; ///< functions connected to no valid one (counted once over the parts)
 };
 

@@ -205,7 +205,8 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
     const bool tried = rejected && used <= rejected->size() &&
       std::min(keep, rejected->size()) == used &&
       std::equal(points.begin(), points.begin() + used, rejected->begin());
-    std::vector<double> w = tried ? std::vector<double>() : FitWeights(mesh, i, points, used, degree);
+    std::vector<double> w =
+      tried ? std::vector<double>() : FitWeights(mesh, i, points, used, degree);
     if (!w.empty())
     {
       points.resize(w.size());
@@ -240,7 +241,8 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     next.clear();
     for (Index p : ring)
     {
-      for (Index q = around.Start[static_cast<size_t>(p)]; q < around.Start[static_cast<size_t>(p) + 1]; ++q)
+      for (Index q = around.Start[static_cast<size_t>(p)];
+           q < around.Start[static_cast<size_t>(p) + 1]; ++q)
       {
         // (A cell met from an earlier point of the rings has its corners stamped.)
         const Index c = around.Cells[static_cast<size_t>(q)];
@@ -327,15 +329,19 @@ struct Referrers
 
   Referrers(const FringeExtension& ext, Index n)
   {
-    GroupInRows(n, [&](auto put) {
-      for (Index a = 0; a < n; ++a)
-      {
-        for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0; ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+    GroupInRows(
+      n,
+      [&](auto put) {
+        for (Index a = 0; a < n; ++a)
         {
-          put(ext.P.ColumnIndex[q], std::pair<Index, double>(a, ext.P.Values[q]));
+          for (Index q = ext.Aggregated[a] ? ext.P.RowStart[a] : 0;
+               ext.Aggregated[a] && q < ext.P.RowStart[a + 1]; ++q)
+          {
+            put(ext.P.ColumnIndex[q], std::pair<Index, double>(a, ext.P.Values[q]));
+          }
         }
-      }
-    }, this->Start, this->Rows);
+      },
+      this->Start, this->Rows);
   }
 };
 
@@ -353,7 +359,8 @@ void ChangedRow(const CsrMatrix& mass, const FringeExtension& ext, const Referre
   AddRowTimesP(mass, j, 1.0, ext, terms);
   for (Index r = refs.Start[j]; r < refs.Start[j + 1]; ++r)
   {
-    AddRowTimesP(mass, refs.Rows[static_cast<size_t>(r)].first, refs.Rows[static_cast<size_t>(r)].second, ext, terms);
+    AddRowTimesP(mass, refs.Rows[static_cast<size_t>(r)].first,
+      refs.Rows[static_cast<size_t>(r)].second, ext, terms);
   }
   for (const auto& term : terms)
   {
@@ -367,8 +374,8 @@ void ChangedRow(const CsrMatrix& mass, const FringeExtension& ext, const Referre
  * (the aggregated ones, those referred to, those with an aggregated
  * column), or -1; `changed` lists them.
  */
-std::vector<Index> ChangedRows(const CsrMatrix& mass, const FringeExtension& ext, const Referrers& refs,
-  const TaskRunner& runner, std::vector<Index>& changed)
+std::vector<Index> ChangedRows(const CsrMatrix& mass, const FringeExtension& ext,
+  const Referrers& refs, const TaskRunner& runner, std::vector<Index>& changed)
 {
   const Index n = mass.Rows;
   std::vector<Index> slot(static_cast<size_t>(n), -1);
@@ -402,30 +409,35 @@ std::vector<Index> ChangedRows(const CsrMatrix& mass, const FringeExtension& ext
  * ranges of ill-posed functions give the same stencils as one loop.
  */
 void Stencils(const MeshView& mesh, const std::vector<Index>& ill, const std::vector<char>& usable,
-  const TaskRunner& runner, std::vector<std::vector<Index>>& stencils, std::vector<std::vector<double>>& weights)
+  const TaskRunner& runner, std::vector<std::vector<Index>>& stencils,
+  std::vector<std::vector<double>>& weights)
 {
   const CellsAroundPoints around(mesh, runner);
   const Index n = static_cast<Index>(usable.size());
   stencils.assign(ill.size(), {});
   weights.assign(ill.size(), {});
-  runner.ForRanges(static_cast<Index>(ill.size()), [&](Index begin, Index end) {
-    std::vector<Index> stamp(static_cast<size_t>(n), -1);
-    std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
-    for (Index a = begin; a < end; ++a)
-    {
-      StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, cellStamp, stencils[static_cast<size_t>(a)],
-        weights[static_cast<size_t>(a)]);
-    }
-    return 0;
-  }, 256);
+  runner.ForRanges(
+    static_cast<Index>(ill.size()),
+    [&](Index begin, Index end) {
+      std::vector<Index> stamp(static_cast<size_t>(n), -1);
+      std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
+      for (Index a = begin; a < end; ++a)
+      {
+        StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, cellStamp,
+          stencils[static_cast<size_t>(a)], weights[static_cast<size_t>(a)]);
+      }
+      return 0;
+    },
+    256);
 }
 
 /**
  * P over `n` functions: identity rows, the rows of ill[a] with a stencil
  * its weights (columns ascending, or in the stencil's order).
  */
-CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill, const std::vector<std::vector<Index>>& stencils,
-  const std::vector<std::vector<double>>& weights, bool stencilOrder)
+CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill,
+  const std::vector<std::vector<Index>>& stencils, const std::vector<std::vector<double>>& weights,
+  bool stencilOrder)
 {
   std::vector<Index> of(static_cast<size_t>(n), -1); // per function: its a, when aggregated
   for (size_t a = 0; a < ill.size(); ++a)
@@ -433,7 +445,8 @@ CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill, const std::vec
     of[static_cast<size_t>(ill[a])] = stencils[a].empty() ? -1 : static_cast<Index>(a);
   }
   RowList row;
-  return BuildCsr(n, n,
+  return BuildCsr(
+    n, n,
     [&](Index i) {
       const Index a = of[static_cast<size_t>(i)];
       return a < 0 ? Index(1) : static_cast<Index>(stencils[static_cast<size_t>(a)].size());
@@ -449,7 +462,8 @@ CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill, const std::vec
       row.clear();
       for (size_t k = 0; k < stencils[static_cast<size_t>(a)].size(); ++k)
       {
-        row.emplace_back(static_cast<Column>(stencils[static_cast<size_t>(a)][k]), weights[static_cast<size_t>(a)][k]);
+        row.emplace_back(static_cast<Column>(stencils[static_cast<size_t>(a)][k]),
+          weights[static_cast<size_t>(a)][k]);
       }
       if (!stencilOrder)
       {
@@ -516,7 +530,8 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   return ext;
 }
 
-CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext, const TaskRunner& runner)
+CsrMatrix AggregatedMass(
+  const CsrMatrix& mass, const FringeExtension& ext, const TaskRunner& runner)
 {
   const Index n = mass.Rows;
   const Referrers refs(ext, n);
@@ -525,26 +540,34 @@ CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& ext, cons
   // The changed rows, each on its own (the same terms in the same order
   // whatever the tasks); the others are M's.
   std::vector<RowList> rows(changed.size());
-  runner.ForRanges(static_cast<Index>(changed.size()), [&](Index begin, Index end) {
-    RowAccumulator sum(n);
-    RowList terms;
-    for (Index r = begin; r < end; ++r)
-    {
-      ChangedRow(mass, ext, refs, changed[static_cast<size_t>(r)], sum, terms, rows[static_cast<size_t>(r)]);
-    }
-    return 0;
-  }, 256);
-  CsrMatrix out = BuildCsr(n, mass.Columns,
+  runner.ForRanges(
+    static_cast<Index>(changed.size()),
+    [&](Index begin, Index end) {
+      RowAccumulator sum(n);
+      RowList terms;
+      for (Index r = begin; r < end; ++r)
+      {
+        ChangedRow(mass, ext, refs, changed[static_cast<size_t>(r)], sum, terms,
+          rows[static_cast<size_t>(r)]);
+      }
+      return 0;
+    },
+    256);
+  CsrMatrix out = BuildCsr(
+    n, mass.Columns,
     [&](Index j) {
       const Index r = slot[static_cast<size_t>(j)];
-      return r < 0 ? mass.RowStart[j + 1] - mass.RowStart[j] : static_cast<Index>(rows[static_cast<size_t>(r)].size());
+      return r < 0 ? mass.RowStart[j + 1] - mass.RowStart[j]
+                   : static_cast<Index>(rows[static_cast<size_t>(r)].size());
     },
     [&](Index j, Column* column, double* value) {
       const Index r = slot[static_cast<size_t>(j)];
       if (r < 0)
       {
-        std::copy(mass.ColumnIndex.data() + mass.RowStart[j], mass.ColumnIndex.data() + mass.RowStart[j + 1], column);
-        std::copy(mass.Values.data() + mass.RowStart[j], mass.Values.data() + mass.RowStart[j + 1], value);
+        std::copy(mass.ColumnIndex.data() + mass.RowStart[j],
+          mass.ColumnIndex.data() + mass.RowStart[j + 1], column);
+        std::copy(
+          mass.Values.data() + mass.RowStart[j], mass.Values.data() + mass.RowStart[j + 1], value);
         return;
       }
       for (const auto& entry : rows[static_cast<size_t>(r)])

@@ -52,10 +52,10 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh);
 /// The extension of a fringe: P (functions x functions) and which rows it aggregates.
 struct FringeExtension
 {
-  CsrMatrix P;                ///< identity rows for free functions, weights for aggregated ones
+  CsrMatrix P;                  ///< identity rows for free functions, weights for aggregated ones
   std::vector<char> Aggregated; ///< per function: 1 when its value comes from others
   std::vector<char> Dropped;    ///< per function: aggregated and covered below the drop fraction
-  Index Count = 0;            ///< aggregated functions
+  Index Count = 0;              ///< aggregated functions
 };
 
 /**
@@ -94,7 +94,8 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:
  * its unknown is decoupled, its right-hand side P^T b is 0).
  */
-CsrMatrix AggregatedMass(const CsrMatrix& mass, const FringeExtension& extension, const TaskRunner& runner);
+CsrMatrix AggregatedMass(
+  const CsrMatrix& mass, const FringeExtension& extension, const TaskRunner& runner);
 
 /// y = P^T x (functions x c); aggregated rows of y are 0.
 void RestrictToFree(const FringeExtension& extension, const double* x, double* y, int c);

@@ -112,12 +112,15 @@ void LinearReconstruction::GroupSimplices()
   {
     this->SlotsAreParents = this->SlotOf[p] == p;
   }
-  GroupInRows(parents, [&](auto put) {
-    for (Index c = 0; c < cells; ++c)
-    {
-      put(this->SlotOf[mesh.ParentOf(c)], c);
-    }
-  }, this->SimplexStart, this->Simplices);
+  GroupInRows(
+    parents,
+    [&](auto put) {
+      for (Index c = 0; c < cells; ++c)
+      {
+        put(this->SlotOf[mesh.ParentOf(c)], c);
+      }
+    },
+    this->SimplexStart, this->Simplices);
 }
 
 void LinearReconstruction::MeasureParents(const TaskRunner& runner)
@@ -128,23 +131,27 @@ void LinearReconstruction::MeasureParents(const TaskRunner& runner)
   this->Centroids.assign(3 * static_cast<size_t>(parents), 0.0);
   this->Flat.assign(static_cast<size_t>(parents), 0);
   this->Frames.assign(framed ? 3 * static_cast<size_t>(mesh.CellDimension) * parents : 0, 0.0);
-  runner.ForRanges(parents, [&](Index begin, Index end) {
-    for (Index p = begin; p < end; ++p)
-    {
-      const Index* simplices = this->Simplices.data() + this->SimplexStart[p];
-      const Index count = this->SimplexStart[p + 1] - this->SimplexStart[p];
-      // (A parent of no measure is no part of any integral: a neighbour of
-      // none; its centroid serves its own, unread, gradient.)
-      this->Flat[p] = !(CellCentroid(mesh, simplices, count, &this->Centroids[3 * p]) > 0.0);
-      // The frame of its first simplex that has one.
-      bool hasFrame = !framed;
-      for (Index i = 0; i < count && !hasFrame; ++i)
+  runner.ForRanges(
+    parents,
+    [&](Index begin, Index end) {
+      for (Index p = begin; p < end; ++p)
       {
-        hasFrame = SimplexFrame(mesh, simplices[i], &this->Frames[3 * mesh.CellDimension * static_cast<size_t>(p)]);
+        const Index* simplices = this->Simplices.data() + this->SimplexStart[p];
+        const Index count = this->SimplexStart[p + 1] - this->SimplexStart[p];
+        // (A parent of no measure is no part of any integral: a neighbour of
+        // none; its centroid serves its own, unread, gradient.)
+        this->Flat[p] = !(CellCentroid(mesh, simplices, count, &this->Centroids[3 * p]) > 0.0);
+        // The frame of its first simplex that has one.
+        bool hasFrame = !framed;
+        for (Index i = 0; i < count && !hasFrame; ++i)
+        {
+          hasFrame = SimplexFrame(
+            mesh, simplices[i], &this->Frames[3 * mesh.CellDimension * static_cast<size_t>(p)]);
+        }
       }
-    }
-    return 0;
-  }, 1024);
+      return 0;
+    },
+    1024);
 }
 
 void LinearReconstruction::FindSites(const NeighborId* across)
@@ -198,7 +205,8 @@ void LinearReconstruction::FindSites(const NeighborId* across)
   }
 }
 
-void LinearReconstruction::MatchFacesOnSites(const TaskRunner& runner, std::vector<NeighborId>& across) const
+void LinearReconstruction::MatchFacesOnSites(
+  const TaskRunner& runner, std::vector<NeighborId>& across) const
 {
   const MeshView& mesh = *this->Mesh;
   const Index entries = mesh.NumberOfCells * mesh.CornersPerCell();
@@ -225,16 +233,20 @@ void LinearReconstruction::GatherAroundSites(const TaskRunner& runner)
   // simplices there).
   const MeshView& mesh = *this->Mesh;
   const Index entries = mesh.NumberOfCells * mesh.CornersPerCell();
-  GroupInRows(this->Sites, [&](auto put) {
-    for (Index i = 0; i < entries; ++i)
-    {
-      put(this->Site[mesh.Corner(i)], this->SlotOf[mesh.ParentOf(i / mesh.CornersPerCell())]);
-    }
-  }, this->AroundStart, this->Around);
+  GroupInRows(
+    this->Sites,
+    [&](auto put) {
+      for (Index i = 0; i < entries; ++i)
+      {
+        put(this->Site[mesh.Corner(i)], this->SlotOf[mesh.ParentOf(i / mesh.CornersPerCell())]);
+      }
+    },
+    this->AroundStart, this->Around);
   runner.ForRanges(this->Sites, [&](Index begin, Index end) {
     for (Index q = begin; q < end; ++q)
     {
-      std::sort(this->Around.begin() + this->AroundStart[q], this->Around.begin() + this->AroundStart[q + 1]);
+      std::sort(this->Around.begin() + this->AroundStart[q],
+        this->Around.begin() + this->AroundStart[q + 1]);
     }
     return 0;
   });
@@ -316,11 +328,10 @@ void LinearReconstruction::SlotNeighbors(Index p, std::vector<Index>& neighbors)
 
 std::size_t LinearReconstruction::MemoryBytes() const
 {
-  return (this->Centroids.capacity() + this->Frames.capacity()) *
-    sizeof(double) +
+  return (this->Centroids.capacity() + this->Frames.capacity()) * sizeof(double) +
     (this->SimplexStart.capacity() + this->Simplices.capacity() + this->SlotOf.capacity() +
-      this->ParentOfSlot.capacity() + this->AroundStart.capacity() +
-      this->Around.capacity() + this->Site.capacity() + this->FaceStart.capacity() + this->Faces.capacity()) *
+      this->ParentOfSlot.capacity() + this->AroundStart.capacity() + this->Around.capacity() +
+      this->Site.capacity() + this->FaceStart.capacity() + this->Faces.capacity()) *
     sizeof(Index) +
     this->Flat.capacity();
 }

@@ -61,9 +61,9 @@ namespace mp
 {
 enum class Reconstruction
 {
-  Constant = 0,  ///< P0 as it is (first order)
-  Limited = 1,   ///< linear, Barth-Jespersen limited (second order, no new extrema)
-  Unlimited = 2  ///< linear (second order, exact for linear fields)
+  Constant = 0, ///< P0 as it is (first order)
+  Limited = 1,  ///< linear, Barth-Jespersen limited (second order, no new extrema)
+  Unlimited = 2 ///< linear (second order, exact for linear fields)
 };
 
 /**
@@ -108,7 +108,10 @@ public:
   std::size_t MemoryBytes() const;
 
 private:
-  const double* CentroidAt(Index slot) const { return &this->Centroids[3 * static_cast<size_t>(slot)]; }
+  const double* CentroidAt(Index slot) const
+  {
+    return &this->Centroids[3 * static_cast<size_t>(slot)];
+  }
   /// The slots sharing a point with slot p (p excluded), ascending.
   void SlotNeighbors(Index p, std::vector<Index>& neighbors) const;
   // The steps of Prepare.
@@ -122,10 +125,10 @@ private:
   struct Scratch
   {
     std::vector<Index> Neighbors;
-    std::vector<Index> Used;        ///< the neighbours with values
-    std::vector<double> Weighted;   ///< M per used neighbour: w d
-    std::vector<double> Gradient;   ///< 3 per component, in space
-    double Normal[9];               ///< the normal matrix A = sum w d d^T (M x M, column-major)
+    std::vector<Index> Used;      ///< the neighbours with values
+    std::vector<double> Weighted; ///< M per used neighbour: w d
+    std::vector<double> Gradient; ///< 3 per component, in space
+    double Normal[9];             ///< the normal matrix A = sum w d d^T (M x M, column-major)
   };
   // The steps of Reconstruct, per parent p.
   /// The neighbours of p with values (ring 0: across its faces; 1: all the
@@ -134,8 +137,10 @@ private:
   template <int M>
   void Stencil(Index p, const char* defined, int ring, Scratch& scratch) const;
   template <int M>
-  void FitGradients(Index p, const double* values, int components, const char* defined, Scratch& scratch) const;
-  void Limit(Index p, const double* u, int components, const double* ranges, Scratch& scratch) const;
+  void FitGradients(
+    Index p, const double* values, int components, const char* defined, Scratch& scratch) const;
+  void Limit(
+    Index p, const double* u, int components, const double* ranges, Scratch& scratch) const;
   /// Per site and component, the least and greatest value of the cells around it with values.
   std::vector<double> SiteRanges(
     const double* values, int components, const char* defined, const TaskRunner& runner) const;
@@ -148,7 +153,8 @@ private:
     Reconstruction Mode;
     const double* Ranges;
   };
-  void WriteCorners(Index p, const double* u, int components, const Scratch& scratch, double* corners) const;
+  void WriteCorners(
+    Index p, const double* u, int components, const Scratch& scratch, double* corners) const;
   template <int M>
   void ReconstructRange(Index begin, Index end, const Input& in, double* corners) const;
 
@@ -171,9 +177,9 @@ private:
   /// around its site; sites not used have none).
   std::vector<Index> Site;
   Index Sites = 0;
-  std::vector<Index> AroundStart;  ///< the parents around site q: Around[AroundStart[q] ...]
+  std::vector<Index> AroundStart; ///< the parents around site q: Around[AroundStart[q] ...]
   std::vector<Index> Around;
-  std::vector<Index> FaceStart;    ///< parent p's face neighbours: Faces[FaceStart[p] ...]
+  std::vector<Index> FaceStart; ///< parent p's face neighbours: Faces[FaceStart[p] ...]
   std::vector<Index> Faces;
 };
 } // namespace mp

@@ -102,7 +102,8 @@ void LinearReconstruction::Reconstruct(const double* values, int components, con
       for (Index k = begin; k < end; ++k)
       {
         const Index p = this->ParentOfSlot[k];
-        std::copy(values + p * components, values + (p + 1) * components, &orderedValues[k * components]);
+        std::copy(
+          values + p * components, values + (p + 1) * components, &orderedValues[k * components]);
         if (defined)
         {
           orderedDefined[k] = defined[p];
@@ -117,20 +118,23 @@ void LinearReconstruction::Reconstruct(const double* values, int components, con
     ? this->SiteRanges(values, components, defined, runner)
     : std::vector<double>();
   const Input in{ values, components, defined, mode, ranges.data() };
-  runner.ForRanges(parents, [&](Index begin, Index end) {
-    switch (mesh.CellDimension)
-    {
-      case 1:
-        this->ReconstructRange<1>(begin, end, in, corners);
-        break;
-      case 2:
-        this->ReconstructRange<2>(begin, end, in, corners);
-        break;
-      default:
-        this->ReconstructRange<3>(begin, end, in, corners);
-    }
-    return 0;
-  }, 1024);
+  runner.ForRanges(
+    parents,
+    [&](Index begin, Index end) {
+      switch (mesh.CellDimension)
+      {
+        case 1:
+          this->ReconstructRange<1>(begin, end, in, corners);
+          break;
+        case 2:
+          this->ReconstructRange<2>(begin, end, in, corners);
+          break;
+        default:
+          this->ReconstructRange<3>(begin, end, in, corners);
+      }
+      return 0;
+    },
+    1024);
 }
 
 template <int M>
@@ -140,11 +144,13 @@ void LinearReconstruction::Stencil(Index p, const char* defined, int ring, Scrat
   using Matrix = Eigen::Matrix<double, M, M>;
   const int space = this->Mesh->SpaceDimension;
   const double* cp = this->CentroidAt(p);
-  const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
+  const double* frame =
+    this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
   std::vector<Index>& candidates = scratch.Neighbors;
   if (ring == 0)
   {
-    candidates.assign(this->Faces.begin() + this->FaceStart[p], this->Faces.begin() + this->FaceStart[p + 1]);
+    candidates.assign(
+      this->Faces.begin() + this->FaceStart[p], this->Faces.begin() + this->FaceStart[p + 1]);
   }
   else
   {
@@ -205,13 +211,14 @@ void LinearReconstruction::Stencil(Index p, const char* defined, int ring, Scrat
 }
 
 template <int M>
-void LinearReconstruction::FitGradients(Index p, const double* values, int components,
-  const char* defined, Scratch& scratch) const
+void LinearReconstruction::FitGradients(
+  Index p, const double* values, int components, const char* defined, Scratch& scratch) const
 {
   using Vector = Eigen::Matrix<double, M, 1>;
   using Matrix = Eigen::Matrix<double, M, M>;
   const double* u = values + p * components;
-  const double* frame = this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
+  const double* frame =
+    this->Frames.empty() ? nullptr : &this->Frames[3 * M * static_cast<size_t>(p)];
   // The face neighbours, or where they do not span the cell's directions
   // (a corner, a hole, a strip) all the cells around it, or those and the
   // cells around them (a corner cell with one neighbour).
@@ -357,7 +364,8 @@ void LinearReconstruction::WriteCorners(
 }
 
 template <int M>
-void LinearReconstruction::ReconstructRange(Index begin, Index end, const Input& in, double* corners) const
+void LinearReconstruction::ReconstructRange(
+  Index begin, Index end, const Input& in, double* corners) const
 {
   Scratch scratch;
   scratch.Gradient.resize(3 * static_cast<size_t>(in.Components));

@@ -50,8 +50,8 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   // at most as many tasks as uses of a point by cells, so that the marks
   // take no more memory than the point-cell lists.
   const Index uses = points > 0 ? mesh.NumberOfCells * n / points : 0;
-  const int tasks = static_cast<int>(
-    std::min<Index>(runner.TasksFor(points, 4096), std::max<Index>(1, uses)));
+  const int tasks =
+    static_cast<int>(std::min<Index>(runner.TasksFor(points, 4096), std::max<Index>(1, uses)));
   start.assign(static_cast<size_t>(points) + 1, 0);
   // The first task writes its rows straight into `columns`, reserved for
   // all rows at the usual count (pages of a reservation cost nothing until
@@ -135,21 +135,24 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
     // overlaps: the copy shared by every thread, not one block per task).
     columns.resize(static_cast<size_t>(start[points]));
     const Index moved = start[RangeBegin(points, 1, tasks)];
-    runner.ForRanges(start[points] - moved, [&](Index begin, Index end) {
-      for (int k = 1; k < tasks; ++k)
-      {
-        const Index from = start[RangeBegin(points, k, tasks)] - moved;
-        const Index to = start[RangeBegin(points, k + 1, tasks)] - moved;
-        const Index a = std::max(begin, from);
-        const Index b = std::min(end, to);
-        if (a < b)
+    runner.ForRanges(
+      start[points] - moved,
+      [&](Index begin, Index end) {
+        for (int k = 1; k < tasks; ++k)
         {
-          const Column* block = blocks[k].data();
-          std::copy(block + (a - from), block + (b - from), columns.data() + moved + a);
+          const Index from = start[RangeBegin(points, k, tasks)] - moved;
+          const Index to = start[RangeBegin(points, k + 1, tasks)] - moved;
+          const Index a = std::max(begin, from);
+          const Index b = std::min(end, to);
+          if (a < b)
+          {
+            const Column* block = blocks[k].data();
+            std::copy(block + (a - from), block + (b - from), columns.data() + moved + a);
+          }
         }
-      }
-      return 0;
-    }, Index(1) << 16);
+        return 0;
+      },
+      Index(1) << 16);
     std::vector<UninitializedLargeVector<Column>>().swap(blocks);
   }
 }
@@ -197,7 +200,8 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
   auto addRow = [=](const Index* dofs, int a, const double* row) {
     const Index begin = rowStart[dofs[a]];
     const Index length = rowStart[dofs[a] + 1] - begin;
-    const int width = length <= 8 && begin + 8 <= entries ? 8 : (length <= 16 && begin + 16 <= entries ? 16 : 0);
+    const int width =
+      length <= 8 && begin + 8 <= entries ? 8 : (length <= 16 && begin + 16 <= entries ? 16 : 0);
     for (int b = 0; b < n; ++b)
     {
       const auto q = static_cast<Column>(dofs[b]);
@@ -207,7 +211,8 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
         const __m128i want = _mm_set1_epi32(q);
         auto match = [&](int at) {
           const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(columns + begin + at));
-          return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, want)))) << at;
+          return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, want))))
+            << at;
         };
         unsigned mask = match(0) | match(4);
         if (width == 16)
@@ -350,7 +355,8 @@ void CellMasses::Gather(std::vector<PartialMasses>& tasks)
   {
     order[i] = static_cast<Index>(i);
   }
-  std::sort(order.begin(), order.end(), [&](Index x, Index y) { return all.Cells[x] < all.Cells[y]; });
+  std::sort(
+    order.begin(), order.end(), [&](Index x, Index y) { return all.Cells[x] < all.Cells[y]; });
   const size_t n = static_cast<size_t>(this->Dofs * (this->Dofs + 1) / 2);
   PartialMasses& sorted = this->Partial;
   sorted = PartialMasses();
@@ -359,7 +365,8 @@ void CellMasses::Gather(std::vector<PartialMasses>& tasks)
   for (Index i : order)
   {
     sorted.Cells.push_back(all.Cells[i]);
-    sorted.Blocks.insert(sorted.Blocks.end(), all.Blocks.begin() + i * n, all.Blocks.begin() + (i + 1) * n);
+    sorted.Blocks.insert(
+      sorted.Blocks.end(), all.Blocks.begin() + i * n, all.Blocks.begin() + (i + 1) * n);
   }
 }
 
@@ -371,7 +378,8 @@ const double* CellMasses::Find(Index c) const
 }
 
 void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses* masses,
-  const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue, LargeVector<double>* pointCover)
+  const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue,
+  LargeVector<double>* pointCover)
 {
   if (pointCover)
   {

@@ -92,8 +92,8 @@ struct CellMasses
   static constexpr float None = -std::numeric_limits<float>::infinity();
   static constexpr float Part = std::numeric_limits<float>::infinity();
   UninitializedLargeVector<float> State; ///< per kernel cell
-  int Dofs = 0;                           ///< functions per cell
-  PartialMasses Partial;                  ///< sorted by cell (Gather)
+  int Dofs = 0;                          ///< functions per cell
+  PartialMasses Partial;                 ///< sorted by cell (Gather)
 
   /// The covered measure of kernel cell c, covered whole per State.
   static double Covered(const MeshView& mesh, Index c, float state)
@@ -104,9 +104,8 @@ struct CellMasses
   static float StateOf(const MeshView& mesh, Index c, double covered)
   {
     const double whole = SimplexMeasure(mesh, c);
-    return std::fabs(covered - whole) <= 1e-12 * whole
-      ? static_cast<float>(covered / whole - 1.0)
-      : Part;
+    return std::fabs(covered - whole) <= 1e-12 * whole ? static_cast<float>(covered / whole - 1.0)
+                                                       : Part;
   }
   /// The tasks' blocks, appended in task order, then sorted by cell.
   void Gather(std::vector<PartialMasses>& tasks);
@@ -134,7 +133,8 @@ void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses*
   LargeVector<double>* pointCover = nullptr);
 
 /// The CSR pattern of M_tt for `space` on `mesh`, with zero values.
-void MassPattern(SpaceType space, const MeshView& mesh, const TaskRunner& runner, CsrMatrix& matrix);
+void MassPattern(
+  SpaceType space, const MeshView& mesh, const TaskRunner& runner, CsrMatrix& matrix);
 } // namespace mp
 
 #endif

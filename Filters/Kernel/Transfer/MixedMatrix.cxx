@@ -74,8 +74,8 @@ void AssembleMixedMatrix(std::vector<MixedBlocks>& blocks, Index rows, Index col
       {
         const Index block = refs[q] / per;
         const int i = static_cast<int>(refs[q] % per);
-        const size_t t = static_cast<size_t>(
-          std::upper_bound(base.begin(), base.end(), block) - base.begin() - 1);
+        const size_t t =
+          static_cast<size_t>(std::upper_bound(base.begin(), base.end(), block) - base.begin() - 1);
         const MixedBlocks& b = blocks[t];
         const Index local = block - base[t];
         for (Index p = b.Start[local]; p < b.Start[local + 1]; ++p)

@@ -25,8 +25,8 @@ namespace mp
 /// The blocks of one task (see the file comment).
 struct MixedBlocks
 {
-  int RowsPerBlock = 1;        ///< target functions per cell
-  LargeVector<Index> Rows;     ///< RowsPerBlock per block
+  int RowsPerBlock = 1;          ///< target functions per cell
+  LargeVector<Index> Rows;       ///< RowsPerBlock per block
   LargeVector<Index> Start{ 0 }; ///< block b's columns: [Start[b], Start[b + 1])
   LargeVector<Column> Columns;
   /// RowsPerBlock values per column: the value of row i, column p is

@@ -13,8 +13,8 @@
 
 namespace mp
 {
-ApplyResult MortarOperator::Apply(const double* sourceValues, int components,
-  double* targetValues, double fill, const SolveOptions& solve, const SolverHooks& hooks) const
+ApplyResult MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const SolveOptions& solve, const SolverHooks& hooks) const
 {
   ApplyOptions options;
   options.Solve = solve;
@@ -306,14 +306,14 @@ bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const Project
     {
       return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
     }
-    ClipToLocalBounds(this->MixedMass, *system.Valid, *system.CoveredIntegrals, n,
-      sourceValues, components, rhs, targetValues, hooks);
+    ClipToLocalBounds(this->MixedMass, *system.Valid, *system.CoveredIntegrals, n, sourceValues,
+      components, rhs, targetValues, hooks);
   }
   return true;
 }
 
-ApplyResult MortarOperator::Apply(const double* sourceValues, int components,
-  double* targetValues, double fill, const ApplyOptions& options, const SolverHooks& hooks) const
+ApplyResult MortarOperator::Apply(const double* sourceValues, int components, double* targetValues,
+  double fill, const ApplyOptions& options, const SolverHooks& hooks) const
 {
   const auto start = std::chrono::steady_clock::now();
   const Index n = this->TargetMass.Rows;
@@ -359,7 +359,8 @@ ApplyResult MortarOperator::Apply(const double* sourceValues, int components,
     rowHooks.Exchange(product.data(), components);
   }
   const bool ok = this->Solve(options, rhs, targetValues, components, hooks, rowHooks, result) &&
-    this->KeepWithinBounds(options, result.System, sourceValues, components, rhs, targetValues, hooks);
+    this->KeepWithinBounds(
+      options, result.System, sourceValues, components, rhs, targetValues, hooks);
   const std::vector<char>& valid = *result.System.Valid;
   for (Index i = 0; i < n; ++i)
   {

@@ -51,7 +51,8 @@ namespace mp
  */
 template <class Intersector, class TargetSpace, class SourceSpace>
 double AddPieceBlocks(const typename Intersector::Piece& piece, const typename Intersector::Cell& t,
-  const typename SourceSideOf<Intersector>::type::Cell& s, double (&Mts)[TargetSpace::Dofs][SourceSpace::Dofs],
+  const typename SourceSideOf<Intersector>::type::Cell& s,
+  double (&Mts)[TargetSpace::Dofs][SourceSpace::Dofs],
   double (&Mtt)[TargetSpace::Dofs][TargetSpace::Dofs])
 {
   constexpr int K = Intersector::Dimension + 1;
@@ -75,13 +76,11 @@ double AddPieceBlocks(const typename Intersector::Piece& piece, const typename I
 /// (I::Tied, I::TieKey: traces of curves along edges of the source).
 template <class I, class = void>
 struct HasTies : std::false_type
-{
-};
+{};
 template <class I>
 struct HasTies<I, std::void_t<decltype(I::TieKey(std::declval<const typename I::Piece&>()))>>
   : std::true_type
-{
-};
+{};
 
 template <class Intersector, class TargetSpace, class SourceSpace>
 struct MortarAssembler
@@ -100,14 +99,14 @@ struct MortarAssembler
   /// written when its last piece has come ...
   float* MassState = nullptr;
   PartialMasses* Partial = nullptr; ///< ... and the blocks of cells covered in part (this task's)
-  MixedBlocks* Blocks = nullptr; ///< this task's mixed blocks
+  MixedBlocks* Blocks = nullptr;    ///< this task's mixed blocks
   /// Per target kernel cell: the covered fraction of its measure, written
   /// when its last piece has come (each cell belongs to one task).
   double* CoveredFraction = nullptr;
   double CoveredSum = 0.0; ///< measure of all pieces of this task
   Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
   IntersectionPieces* Pieces = nullptr;
-  Index Count = 0;         ///< pieces of positive measure
+  Index Count = 0;                ///< pieces of positive measure
   const char* Excluded = nullptr; ///< per source cell: nonzero to leave its pieces out
   /// Per source cell: the measure of its part covered by pieces, on the
   /// source cell (this task's own array, or null).
@@ -128,9 +127,9 @@ struct MortarAssembler
   /// corner 0 (Components x K): its right-hand sides follow once per cell.
   std::vector<double> CellField;
 
-  Index Current = -1;  ///< the target cell whose pieces are coming
+  Index Current = -1; ///< the target cell whose pieces are coming
   Cell CurrentCell;
-  double Moments[K][K]; ///< of its pieces so far, about its corner 0
+  double Moments[K][K];             ///< of its pieces so far, about its corner 0
   std::vector<Column> BlockColumns; ///< source functions its pieces met
   std::vector<double> BlockValues;  ///< Nt per column
 
@@ -366,7 +365,8 @@ struct MortarAssembler
 
   /// Counts a piece of positive `measure`, and keeps it when asked.
   template <class SourceCell>
-  void Finish(const Cell& t, const SourceCell& s, const typename Intersector::Piece& piece, double measure)
+  void Finish(
+    const Cell& t, const SourceCell& s, const typename Intersector::Piece& piece, double measure)
   {
     ++this->Count;
     if (this->SourceCovered)

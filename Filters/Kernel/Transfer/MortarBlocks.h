@@ -91,8 +91,8 @@ void AddMixedBlock(const double (&lt)[Nt][K], const double (&ls)[Ns][K], const d
  * inlined into the assembler, as the moments it reads (Moments.h).
  */
 template <int Ns, int K>
-inline __attribute__((always_inline)) void AddFieldMoments(const double (&ls)[Ns][K], const double (&M)[K][K],
-  const double* const (&u)[Ns], int components, double* field)
+inline __attribute__((always_inline)) void AddFieldMoments(const double (&ls)[Ns][K],
+  const double (&M)[K][K], const double* const (&u)[Ns], int components, double* field)
 {
   for (int c = 0; c < components; ++c)
   {

@@ -54,15 +54,16 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.SourceFunctions = 0;
     op.Pieces.Dimension = target.CellDimension;
     const unsigned pair = 1u << (3 * (op.Options.TargetSpace == SpaceType::P1 ? 1 : 0) +
-      static_cast<int>(op.Options.SourceSpace));
+                            static_cast<int>(op.Options.SourceSpace));
     if (pairs & pair)
     {
       op.Error = "operators built together need pairs of spaces of their own";
       ok = false;
     }
     pairs |= pair;
-    if (i > 0 && (op.Options.Method != options[0].Method ||
-                   op.Options.ExcludedSourceCells != options[0].ExcludedSourceCells))
+    if (i > 0 &&
+      (op.Options.Method != options[0].Method ||
+        op.Options.ExcludedSourceCells != options[0].ExcludedSourceCells))
     {
       op.Error = "operators built together share their search: the same method and excluded cells";
       ok = false;
@@ -121,10 +122,7 @@ struct SharedVisitor
   template <class Cell, class SourceCell, class Piece>
   void operator()(const Cell& t, const SourceCell& s, const Piece& piece)
   {
-    std::apply(
-      [&](auto*... assembler) {
-        ((assembler ? (*assembler)(t, s, piece) : void()), ...);
-      },
+    std::apply([&](auto*... assembler) { ((assembler ? (*assembler)(t, s, piece) : void()), ...); },
       this->Each);
   }
 };
@@ -153,14 +151,14 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   using P0 = P0Space<D>;
   // The sessions by pair of spaces, target <- source: P1 <- P1, P1 <- P0,
   // P1 <- DP1, P0 <- P1, P0 <- P0, P0 <- DP1.
-  std::tuple<SessionSlot<Session<Intersector, P1, SourceP1>>, SessionSlot<Session<Intersector, P1, P0>>,
-    SessionSlot<Session<Intersector, P1, SourceDP1>>, SessionSlot<Session<Intersector, P0, SourceP1>>,
-    SessionSlot<Session<Intersector, P0, P0>>, SessionSlot<Session<Intersector, P0, SourceDP1>>>
+  std::tuple<SessionSlot<Session<Intersector, P1, SourceP1>>,
+    SessionSlot<Session<Intersector, P1, P0>>, SessionSlot<Session<Intersector, P1, SourceDP1>>,
+    SessionSlot<Session<Intersector, P0, SourceP1>>, SessionSlot<Session<Intersector, P0, P0>>,
+    SessionSlot<Session<Intersector, P0, SourceDP1>>>
     slots;
   // Calls f on each session made.
   auto forEachSession = [&](auto&& f) {
-    std::apply(
-      [&](auto&... slot) { ((slot.Session ? f(*slot.Session) : void()), ...); }, slots);
+    std::apply([&](auto&... slot) { ((slot.Session ? f(*slot.Session) : void()), ...); }, slots);
   };
   MortarOperator& lead = *operators[0];
   const TaskRunner& runner = lead.Options.Runner;

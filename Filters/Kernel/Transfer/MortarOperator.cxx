@@ -27,26 +27,31 @@ namespace
 template <class Id>
 Index CountOutside(const Id* ids, Index n, Index bound, const TaskRunner& runner)
 {
-  return runner.ForRanges(n, [=](Index begin, Index end) {
-    Index outside = 0;
-    for (Index i = begin; i < end; ++i)
-    {
-      // (A negative id is a huge unsigned one.)
-      outside += static_cast<std::uint64_t>(ids[i]) >= static_cast<std::uint64_t>(bound);
-    }
-    return outside;
-  }, Index(1) << 16);
+  return runner.ForRanges(
+    n,
+    [=](Index begin, Index end) {
+      Index outside = 0;
+      for (Index i = begin; i < end; ++i)
+      {
+        // (A negative id is a huge unsigned one.)
+        outside += static_cast<std::uint64_t>(ids[i]) >= static_cast<std::uint64_t>(bound);
+      }
+      return outside;
+    },
+    Index(1) << 16);
 }
 
 std::string CheckIds(const MeshView& mesh, const char* name, const TaskRunner& runner)
 {
   const Index uses = mesh.NumberOfCells * mesh.CornersPerCell();
-  if ((mesh.Connectivity32 ? CountOutside(mesh.Connectivity32, uses, mesh.NumberOfPoints, runner)
-                           : CountOutside(mesh.Connectivity, uses, mesh.NumberOfPoints, runner)) > 0)
+  if ((mesh.Connectivity32
+          ? CountOutside(mesh.Connectivity32, uses, mesh.NumberOfPoints, runner)
+          : CountOutside(mesh.Connectivity, uses, mesh.NumberOfPoints, runner)) > 0)
   {
     return std::string(name) + ": a cell refers to a point that does not exist";
   }
-  if (mesh.Parent && CountOutside(mesh.Parent, mesh.NumberOfCells, mesh.NumberOfParents, runner) > 0)
+  if (mesh.Parent &&
+    CountOutside(mesh.Parent, mesh.NumberOfCells, mesh.NumberOfParents, runner) > 0)
   {
     return std::string(name) + ": a cell's parent does not exist";
   }
@@ -67,7 +72,8 @@ bool MortarOperator::Check(
   const MeshView& target, const MeshView& source, CandidateLocator* locator)
 {
   const OperatorOptions& options = this->Options;
-  for (const auto& mesh : { std::make_pair(&target, "Input (target)"), std::make_pair(&source, "Source") })
+  for (const auto& mesh :
+    { std::make_pair(&target, "Input (target)"), std::make_pair(&source, "Source") })
   {
     const MeshView& m = *mesh.first;
     if (!(((m.CellDimension == 2 || m.CellDimension == 3) && m.IsVolumeMesh()) ||
@@ -170,30 +176,33 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
   CsrMatrix& mass = this->TargetMass;
   this->Valid.resize(static_cast<size_t>(rows));
   this->RowSums.resize(static_cast<size_t>(rows));
-  this->NumberOfValid += runner.ForRanges(rows, [&](Index begin, Index end) {
-    Index valid = 0;
-    for (Index i = begin; i < end; ++i)
-    {
-      double& diagonal = mass.Values[mass.Find(i, i)];
-      const bool isValid = diagonal > 0.0;
-      double sum = 0.0;
-      if (isValid)
+  this->NumberOfValid += runner.ForRanges(
+    rows,
+    [&](Index begin, Index end) {
+      Index valid = 0;
+      for (Index i = begin; i < end; ++i)
       {
-        ++valid;
-        for (Index p = mass.RowStart[i]; p < mass.RowStart[i + 1]; ++p)
+        double& diagonal = mass.Values[mass.Find(i, i)];
+        const bool isValid = diagonal > 0.0;
+        double sum = 0.0;
+        if (isValid)
         {
-          sum += mass.Values[p];
+          ++valid;
+          for (Index p = mass.RowStart[i]; p < mass.RowStart[i + 1]; ++p)
+          {
+            sum += mass.Values[p];
+          }
         }
+        else
+        {
+          diagonal = 1.0;
+        }
+        this->Valid[i] = isValid ? 1 : 0;
+        this->RowSums[i] = sum;
       }
-      else
-      {
-        diagonal = 1.0;
-      }
-      this->Valid[i] = isValid ? 1 : 0;
-      this->RowSums[i] = sum;
-    }
-    return valid;
-  }, 16384);
+      return valid;
+    },
+    16384);
   // (Its lumped start reads the valid rows' sums just made: an invalid
   // row's decoupling 1 is left out, but its right-hand side is 0.)
   this->Solver.reset(new BlockCG(this->TargetMass, runner, this->RowSums.data()));
@@ -265,8 +274,8 @@ Index MortarOperator::AggregateFringe(
     // that part's side's extension; the sum of the parts' P^T M P is still
     // symmetric, positive definite on the free functions and exact for
     // linear fields).
-    this->Fringe =
-      ExtendFringe(target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
+    this->Fringe = ExtendFringe(
+      target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
     if (this->Fringe.Count > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
@@ -438,9 +447,9 @@ size_t MortarOperator::MemoryBytes() const
     return m.RowStart.capacity() * sizeof(Index) + m.ColumnIndex.capacity() * sizeof(Column) +
       m.Values.capacity() * sizeof(double);
   };
-  return csr(this->TargetMass) + csr(this->MixedMass) + csr(this->FringeMass) + csr(this->Fringe.P) + this->Rhs.capacity() * sizeof(double) +
-    this->Valid.capacity() + this->RowSums.capacity() * sizeof(double) +
-    this->CoveredFraction.capacity() * sizeof(double) + this->PointCover.capacity() * sizeof(double) +
-    this->Pieces.MemoryBytes();
+  return csr(this->TargetMass) + csr(this->MixedMass) + csr(this->FringeMass) +
+    csr(this->Fringe.P) + this->Rhs.capacity() * sizeof(double) + this->Valid.capacity() +
+    this->RowSums.capacity() * sizeof(double) + this->CoveredFraction.capacity() * sizeof(double) +
+    this->PointCover.capacity() * sizeof(double) + this->Pieces.MemoryBytes();
 }
 } // namespace mp

@@ -168,8 +168,8 @@ struct ApplyOptions
  */
 struct ProjectedSystem
 {
-  bool Aggregated = false; ///< P^T M_tt P (the fringe's aggregation), else M_tt
-  const std::vector<char>* Valid = nullptr;               ///< per target function: 1 if valid
+  bool Aggregated = false;                  ///< P^T M_tt P (the fringe's aggregation), else M_tt
+  const std::vector<char>* Valid = nullptr; ///< per target function: 1 if valid
   const std::vector<double>* CoveredIntegrals = nullptr; ///< per target function
   Index NumberOfValid = 0;
 };
@@ -345,7 +345,11 @@ public:
    * with `into`, then empty here): nothing keeps it with the operator.
    * Empty for P0 target functions or once taken.
    */
-  void TakePointCover(LargeVector<double>& into) { into.swap(this->PointCover); LargeVector<double>().swap(this->PointCover); }
+  void TakePointCover(LargeVector<double>& into)
+  {
+    into.swap(this->PointCover);
+    LargeVector<double>().swap(this->PointCover);
+  }
   /// Per source cell (kernel numbering): the measure of its part the pieces
   /// cover, measured on the source cell (for surfaces and curves through
   /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
@@ -353,7 +357,10 @@ public:
   /// DP1 source functions (reconstructed cell data): per function, its
   /// integral over the covered part, on the source cell as GetSourceCovered
   /// measures it; empty for the other source spaces.
-  const LargeVector<double>& GetSourceFunctionCovered() const { return this->SourceFunctionCovered; }
+  const LargeVector<double>& GetSourceFunctionCovered() const
+  {
+    return this->SourceFunctionCovered;
+  }
   /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
   Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
   /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
@@ -403,16 +410,17 @@ private:
 
   OperatorOptions Options;
   CsrMatrix TargetMass;
-  CellMasses Masses; ///< from the search until M_tt is assembled
+  CellMasses Masses;        ///< from the search until M_tt is assembled
   bool MassPending = false; ///< the search is done, M_tt not assembled yet
   CsrMatrix MixedMass;
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;
   std::unique_ptr<BlockCG> Solver;
   bool FringeDone = false;
-  bool FringeSystem = false; ///< consistent Applies solve P^T M P (with a halo: on every part alike)
-  FringeExtension Fringe;    ///< with a halo: over the extended rows
-  Index HaloPoints = -1;     ///< the halo's ghost rows in Fringe and FringeMass (-1: no halo)
+  bool FringeSystem =
+    false;                ///< consistent Applies solve P^T M P (with a halo: on every part alike)
+  FringeExtension Fringe; ///< with a halo: over the extended rows
+  Index HaloPoints = -1;  ///< the halo's ghost rows in Fringe and FringeMass (-1: no halo)
   std::vector<char> FringeValid;     ///< Valid without the dropped functions
   std::vector<double> FringeRowSums; ///< RowSums with the dropped ones' given to their stencils
   Index FringeDropped = 0;

@@ -43,7 +43,8 @@ struct MortarOperator::Session
 {
   using Assembler = MortarAssembler<Intersector, TargetSpace, SourceSpace>;
   MortarOperator* Op = nullptr;
-  UninitializedLargeVector<std::uint64_t> Shared; ///< per target function a bit (MortarAssembler::Shared)
+  UninitializedLargeVector<std::uint64_t>
+    Shared; ///< per target function a bit (MortarAssembler::Shared)
   std::vector<Assembler> Assemblers;
   std::vector<MixedBlocks> Blocks;
   std::vector<IntersectionPieces> Pieces;
@@ -54,7 +55,8 @@ struct MortarOperator::Session
   std::vector<LargeVector<double>> FunctionMet;
 
   /// Sums the tasks' arrays (in task order) into `sum` (empty when there are none).
-  static void SumTasks(std::vector<LargeVector<double>>& parts, const TaskRunner& runner, LargeVector<double>& sum)
+  static void SumTasks(
+    std::vector<LargeVector<double>>& parts, const TaskRunner& runner, LargeVector<double>& sum)
   {
     sum.clear();
     if (parts.empty())
@@ -66,19 +68,23 @@ struct MortarOperator::Session
     {
       const double* part = parts[k].data();
       double* to = sum.data();
-      runner.ForRanges(static_cast<Index>(sum.size()), [=](Index begin, Index end) {
-        for (Index i = begin; i < end; ++i)
-        {
-          to[i] += part[i];
-        }
-        return 0;
-      }, Index(1) << 16);
+      runner.ForRanges(
+        static_cast<Index>(sum.size()),
+        [=](Index begin, Index end) {
+          for (Index i = begin; i < end; ++i)
+          {
+            to[i] += part[i];
+          }
+          return 0;
+        },
+        Index(1) << 16);
     }
   }
 
   /// `cover`: this session sums how much of each source cell the pieces
   /// cover (the same for every operator of a search: one session does).
-  void Prepare(MortarOperator& op, const MeshView& target, const MeshView& source, int tasks, bool cover)
+  void Prepare(
+    MortarOperator& op, const MeshView& target, const MeshView& source, int tasks, bool cover)
   {
     auto start = std::chrono::steady_clock::now();
     this->Op = &op;
@@ -135,21 +141,24 @@ struct MortarOperator::Session
             }
           }
         });
-        runner.ForRanges(words, [&](Index begin, Index end) {
-          for (Index w = begin; w < end; ++w)
-          {
-            Word before = seen[w];
-            Word twice = shared[w];
-            for (int i = 0; i < count; ++i)
+        runner.ForRanges(
+          words,
+          [&](Index begin, Index end) {
+            for (Index w = begin; w < end; ++w)
             {
-              twice |= before & bits[i][w];
-              before |= bits[i][w];
+              Word before = seen[w];
+              Word twice = shared[w];
+              for (int i = 0; i < count; ++i)
+              {
+                twice |= before & bits[i][w];
+                before |= bits[i][w];
+              }
+              seen[w] = before;
+              shared[w] = twice;
             }
-            seen[w] = before;
-            shared[w] = twice;
-          }
-          return 0;
-        }, Index(1) << 12);
+            return 0;
+          },
+          Index(1) << 12);
       }
     }
     if (single)
@@ -209,7 +218,8 @@ struct MortarOperator::Session
       // of an untouched reservation cost nothing, and the buffers never grow
       // by copying on ordinary meshes.
       const Index rangeCells = RangeBegin(cells, k + 1, tasks) - RangeBegin(cells, k, tasks);
-      const Index columnsPerCell = SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
+      const Index columnsPerCell =
+        SourceSpace::Dofs == 1 ? 8 : (Intersector::Dimension == 2 ? 12 : 40);
       b.Rows.reserve(static_cast<size_t>(rangeCells * TargetSpace::Dofs));
       b.Start.reserve(static_cast<size_t>(rangeCells + 1));
       b.Columns.reserve(static_cast<size_t>(rangeCells * columnsPerCell));
@@ -261,7 +271,8 @@ struct MortarOperator::Session
     const Index rows = op.TargetMass.Rows;
     if (op.Options.Fields == nullptr)
     {
-      AssembleMixedMatrix(this->Blocks, rows, SpaceSize(SourceSpace::Type, source), runner, op.MixedMass);
+      AssembleMixedMatrix(
+        this->Blocks, rows, SpaceSize(SourceSpace::Type, source), runner, op.MixedMass);
     }
     std::vector<MixedBlocks>().swap(this->Blocks);
     op.Masses.Gather(this->Partial);

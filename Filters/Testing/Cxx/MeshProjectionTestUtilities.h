@@ -34,7 +34,7 @@
   {                                                                                                \
     if (!(condition))                                                                              \
     {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;     \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;      \
       ++failures;                                                                                  \
     }                                                                                              \
   } while (false)
@@ -119,7 +119,8 @@ inline vtkSmartPointer<vtkUnstructuredGrid> Square(int nx, int ny, bool quads = 
 /// One hexahedron and one polyhedron (the unit cube twice, side by side).
 
 /// Area of a triangle or volume of a tetrahedron (cell c); its point ids in `ids`.
-inline double CellMeasure(vtkUnstructuredGrid* grid, vtkIdType c, const vtkIdType** ids, vtkIdType* n)
+inline double CellMeasure(
+  vtkUnstructuredGrid* grid, vtkIdType c, const vtkIdType** ids, vtkIdType* n)
 {
   grid->GetCells()->GetCellAtId(c, *n, *ids);
   double x[4][3];

@@ -107,7 +107,8 @@ int TestMeshProjectionFilter(int argc, char* argv[])
   MP_CHECK(brute->GetNumberOfIntersections() == filter->GetNumberOfIntersections());
   MP_CHECK(brute->GetNumberOfIntersectionTests() ==
     source->GetNumberOfCells() * target->GetNumberOfCells());
-  vtkDataArray* bruteSmooth = brute->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* bruteSmooth =
+    brute->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   for (vtkIdType i = 0; bruteSmooth && i < out->GetNumberOfPoints(); ++i)
   {
     MP_CHECK(std::fabs(bruteSmooth->GetComponent(i, 0) - smooth->GetComponent(i, 0)) < 1e-13);

@@ -44,7 +44,8 @@ int TestMeshProjectionFilter3D(int argc, char* argv[])
   {
     double x[3];
     out->GetPoint(i, x);
-    worst = std::max(worst, std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2])));
+    worst = std::max(
+      worst, std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2])));
     worst = std::max(worst, std::fabs(velocity->GetComponent(i, 0) + (x[1] - 1.5)));
     worst = std::max(worst, std::fabs(velocity->GetComponent(i, 2) - 0.3));
   }
@@ -111,7 +112,8 @@ int TestMeshProjectionFilter3D(int argc, char* argv[])
       brutePolyhedra->GetCellData()->GetArray("SourceCellId")->GetComponent(c, 0));
   }
   MP_CHECK(brutePairs == frontPairs);
-  vtkDataArray* bruteSmooth = brute->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
+  vtkDataArray* bruteSmooth =
+    brute->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   for (vtkIdType i = 0; bruteSmooth && i < out->GetNumberOfPoints(); ++i)
   {
     MP_CHECK(std::fabs(bruteSmooth->GetComponent(i, 0) - smooth->GetComponent(i, 0)) < 1e-13);

@@ -162,15 +162,18 @@ bool CheckCellTransfers(FieldsRun& run)
 
   // Cell -> cell, intensive: constants exact, the integral kept.
   vtkDataArray* one = cd->GetArray("One");
-  MP_CHECK(one && std::fabs(one->GetRange()[0] - 1) < 1e-13 && std::fabs(one->GetRange()[1] - 1) < 1e-13);
+  MP_CHECK(
+    one && std::fabs(one->GetRange()[0] - 1) < 1e-13 && std::fabs(one->GetRange()[1] - 1) < 1e-13);
   vtkDataArray* dens = cd->GetArray("Density");
   const double sourceDensity = CellIntegral(source, source->GetCellData()->GetArray("Density"));
   MP_CHECK(dens && std::fabs(CellIntegral(out, dens) - sourceDensity) < 1e-13 * sourceDensity);
   MP_CHECK(dens && dens->GetRange()[0] >= 1 - 1e-13 && dens->GetRange()[1] <= 3 + 1e-13);
-  MP_CHECK(cd->GetArray("vtkValidCellMask") && cd->GetArray("vtkValidCellMask")->GetRange()[0] == 1);
+  MP_CHECK(
+    cd->GetArray("vtkValidCellMask") && cd->GetArray("vtkValidCellMask")->GetRange()[0] == 1);
   // Point -> cell: a linear field's cell means are the values at the centroids.
-  vtkDataArray* linearCells = cd->GetArray("Linear (from points)") ? cd->GetArray("Linear (from points)")
-                                                                    : cd->GetArray("Linear");
+  vtkDataArray* linearCells = cd->GetArray("Linear (from points)")
+    ? cd->GetArray("Linear (from points)")
+    : cd->GetArray("Linear");
   double worst = 0;
   for (vtkIdType c = 0; linearCells && c < out->GetNumberOfCells(); ++c)
   {
@@ -185,7 +188,8 @@ bool CheckCellTransfers(FieldsRun& run)
   MP_CHECK(onePoints && std::fabs(onePoints->GetRange()[0] - 1) < 1e-12 &&
     std::fabs(onePoints->GetRange()[1] - 1) < 1e-12);
   vtkDataArray* densPoints = pd->GetArray("Density");
-  MP_CHECK(densPoints && std::fabs(mptest::Integral(out, densPoints) - sourceDensity) < 1e-12 * sourceDensity);
+  MP_CHECK(densPoints &&
+    std::fabs(mptest::Integral(out, densPoints) - sourceDensity) < 1e-12 * sourceDensity);
   run.Out = out;
   return failures == 0;
 }
@@ -205,11 +209,14 @@ bool CheckExtensive(FieldsRun& run)
   MP_CHECK(!filter->GetOperatorReused() && filter->GetNumberOfOperatorsBuilt() == 4);
   vtkDataArray* mass = filter->GetUnstructuredGridOutput()->GetCellData()->GetArray("Mass");
   const double totalMass = Sum(source->GetCellData()->GetArray("Mass"));
-  std::cout << targetFile << ": extensive total " << (mass ? Sum(mass) : -1) << " vs " << totalMass << "\n";
+  std::cout << targetFile << ": extensive total " << (mass ? Sum(mass) : -1) << " vs " << totalMass
+            << "\n";
   MP_CHECK(mass && std::fabs(Sum(mass) - totalMass) < 1e-12 * totalMass);
   // Its cell -> point transfer is the density.
   vtkDataArray* massDensity = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Mass");
-  MP_CHECK(massDensity && std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), massDensity) - totalMass) < 1e-12 * totalMass);
+  MP_CHECK(massDensity &&
+    std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), massDensity) - totalMass) <
+      1e-12 * totalMass);
   filter->SetCellDataQuantity(vtkMeshProjectionFilter::INTENSIVE);
   return failures == 0;
 }
@@ -229,10 +236,10 @@ bool CheckMatrices(FieldsRun& run)
   MP_CHECK(filter->GetOperatorReused());
   vtkNew<vtkIdTypeArray> rowStart, columns, rowStartS, columnsS;
   vtkNew<vtkDoubleArray> values, valuesS;
-  const vtkIdType nt = filter->GetMatrix(
-    vtkMeshProjectionFilter::POINTS_TO_POINTS, vtkMeshProjectionFilter::TARGET_MASS, rowStart, columns, values);
-  const vtkIdType ns = filter->GetMatrix(
-    vtkMeshProjectionFilter::POINTS_TO_POINTS, vtkMeshProjectionFilter::MIXED_MASS, rowStartS, columnsS, valuesS);
+  const vtkIdType nt = filter->GetMatrix(vtkMeshProjectionFilter::POINTS_TO_POINTS,
+    vtkMeshProjectionFilter::TARGET_MASS, rowStart, columns, values);
+  const vtkIdType ns = filter->GetMatrix(vtkMeshProjectionFilter::POINTS_TO_POINTS,
+    vtkMeshProjectionFilter::MIXED_MASS, rowStartS, columnsS, valuesS);
   MP_CHECK(nt == target->GetNumberOfPoints() && ns == source->GetNumberOfPoints());
   vtkDataArray* smooth = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Smooth");
   vtkDataArray* smoothS = source->GetPointData()->GetArray("Smooth");
@@ -254,8 +261,8 @@ bool CheckMatrices(FieldsRun& run)
   MP_CHECK(residual < 1e-12 * scale);
   // Matrix Market: the header and the entry count.
   const std::string mtx = std::string(targetFile) + ".mtx";
-  MP_CHECK(filter->WriteMatrixMarket(mtx.c_str(), vtkMeshProjectionFilter::POINTS_TO_POINTS,
-    vtkMeshProjectionFilter::MIXED_MASS));
+  MP_CHECK(filter->WriteMatrixMarket(
+    mtx.c_str(), vtkMeshProjectionFilter::POINTS_TO_POINTS, vtkMeshProjectionFilter::MIXED_MASS));
   {
     std::ifstream in(mtx);
     std::string header, comment;
@@ -268,7 +275,8 @@ bool CheckMatrices(FieldsRun& run)
   }
   std::remove(mtx.c_str());
   // An operator not in use is not kept: an error and -1.
-  MP_CHECK(filter->GetMatrix(vtkMeshProjectionFilter::CELLS_TO_POINTS, 0, rowStart, columns, values) == -1);
+  MP_CHECK(filter->GetMatrix(
+             vtkMeshProjectionFilter::CELLS_TO_POINTS, 0, rowStart, columns, values) == -1);
   MP_CHECK(observer->GetError());
   observer->Clear();
   // GetMatrix never executes the filter: it refuses before an execution,
@@ -281,7 +289,9 @@ bool CheckMatrices(FieldsRun& run)
     asked->AddObserver(vtkCommand::ErrorEvent, said);
     asked->SetInputData(target);
     asked->SetSourceData(source);
-    auto matrix = [&]() { return asked->GetMatrix(F::POINTS_TO_POINTS, F::TARGET_MASS, rowStart, columns, values); };
+    auto matrix = [&]() {
+      return asked->GetMatrix(F::POINTS_TO_POINTS, F::TARGET_MASS, rowStart, columns, values);
+    };
     auto refused = [&](const char* why) {
       const bool is = said->GetError() && said->GetErrorMessage().find(why) != std::string::npos;
       said->Clear();
@@ -291,7 +301,8 @@ bool CheckMatrices(FieldsRun& run)
     asked->Update();
     const vtkMTimeType executed = asked->GetOutputDataObject(0)->GetMTime();
     MP_CHECK(matrix() == -1 && refused("is kept")); // a one-off execution keeps nothing
-    MP_CHECK(asked->GetOutputDataObject(0)->GetMTime() == executed); // and GetMatrix did not execute
+    MP_CHECK(
+      asked->GetOutputDataObject(0)->GetMTime() == executed); // and GetMatrix did not execute
     asked->SetKeepMatrices(true);
     MP_CHECK(matrix() == -1 && refused("changed since"));
     asked->Update();
@@ -331,10 +342,12 @@ bool CheckLumped(FieldsRun& run)
   filter->Update();
   MP_CHECK(filter->GetOperatorReused());
   vtkDataArray* lumpedStep = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Step");
-  MP_CHECK(lumpedStep && lumpedStep->GetRange()[0] >= -1 - 1e-14 && lumpedStep->GetRange()[1] <= 2 + 1e-14);
+  MP_CHECK(lumpedStep && lumpedStep->GetRange()[0] >= -1 - 1e-14 &&
+    lumpedStep->GetRange()[1] <= 2 + 1e-14);
   const double stepIntegral = mptest::Integral(source, step);
   MP_CHECK(lumpedStep &&
-    std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), lumpedStep) - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
+    std::fabs(mptest::Integral(filter->GetUnstructuredGridOutput(), lumpedStep) - stepIntegral) <
+      1e-13 * std::fabs(stepIntegral) + 1e-14);
   filter->SetMassMatrix(vtkMeshProjectionFilter::CONSISTENT_MASS);
   return failures == 0;
 }
@@ -359,8 +372,8 @@ bool CheckBounds(FieldsRun& run)
   vtkDataArray* bounded = filter->GetUnstructuredGridOutput()->GetPointData()->GetArray("Step");
   const double boundedIntegral = mptest::Integral(filter->GetUnstructuredGridOutput(), bounded);
   std::cout << targetFile << ": step overshoot " << overshoot << " consistent, range ["
-            << bounded->GetRange()[0] << ", " << bounded->GetRange()[1] << "] bounded, integral error "
-            << std::fabs(boundedIntegral - stepIntegral) << "\n";
+            << bounded->GetRange()[0] << ", " << bounded->GetRange()[1]
+            << "] bounded, integral error " << std::fabs(boundedIntegral - stepIntegral) << "\n";
   MP_CHECK(overshoot > 0.01);
   MP_CHECK(bounded->GetRange()[0] >= -1 - 1e-13 && bounded->GetRange()[1] <= 2 + 1e-13);
   MP_CHECK(std::fabs(boundedIntegral - stepIntegral) < 1e-13 * std::fabs(stepIntegral) + 1e-14);
@@ -436,7 +449,8 @@ bool CheckAbort(FieldsRun& run)
     double From, To;
   };
   auto watchedRun = [&](double from, double to, Watch& watch) {
-    vtkSmartPointer<vtkMeshProjectionFilter> filter = vtkSmartPointer<vtkMeshProjectionFilter>::New();
+    vtkSmartPointer<vtkMeshProjectionFilter> filter =
+      vtkSmartPointer<vtkMeshProjectionFilter>::New();
     vtkNew<vtkTest::ErrorObserver> warnings;
     filter->AddObserver(vtkCommand::WarningEvent, warnings);
     filter->SetInputData(target);
@@ -455,7 +469,8 @@ bool CheckAbort(FieldsRun& run)
     });
     filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
     filter->Update();
-    const bool said = warnings->GetWarning() && warnings->GetWarningMessage().find("Aborted") != std::string::npos;
+    const bool said =
+      warnings->GetWarning() && warnings->GetWarningMessage().find("Aborted") != std::string::npos;
     return std::make_pair(filter, said);
   };
   // Abort from a progress observer: Input as it came, a warning.
@@ -478,13 +493,16 @@ bool CheckAbort(FieldsRun& run)
   // two, where nothing else reports), and stops there when asked.
   const double solveFrom = 0.05 + 0.9 * 0.9;
   const double solveTo = 0.05 + 0.9 * 0.95;
-  MP_CHECK(std::any_of(all.begin(), all.end(), [&](double f) { return f > solveFrom && f < solveTo; }));
+  MP_CHECK(
+    std::any_of(all.begin(), all.end(), [&](double f) { return f > solveFrom && f < solveTo; }));
   Watch inSolve;
   const auto stoppedInSolve = watchedRun(solveFrom, solveTo, inSolve);
   MP_CHECK(stoppedInSolve.second);
-  MP_CHECK(!stoppedInSolve.first->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask"));
+  MP_CHECK(!stoppedInSolve.first->GetUnstructuredGridOutput()->GetPointData()->GetArray(
+    "vtkValidPointMask"));
   // (Stopped at the solve's first report: nothing of the outputs' stage after it.)
-  MP_CHECK(std::none_of(inSolve.Seen.begin(), inSolve.Seen.end(), [&](double f) { return f >= solveTo && f < 1.0; }));
+  MP_CHECK(std::none_of(
+    inSolve.Seen.begin(), inSolve.Seen.end(), [&](double f) { return f >= solveTo && f < 1.0; }));
   return failures == 0;
 }
 
@@ -503,7 +521,8 @@ bool CheckIdArraysNotFields(FieldsRun& run)
     vtkDataSetAttributes* data = association == 0
       ? static_cast<vtkDataSetAttributes*>(withIds->GetPointData())
       : static_cast<vtkDataSetAttributes*>(withIds->GetCellData());
-    const vtkIdType n = association == 0 ? withIds->GetNumberOfPoints() : withIds->GetNumberOfCells();
+    const vtkIdType n =
+      association == 0 ? withIds->GetNumberOfPoints() : withIds->GetNumberOfCells();
     for (const char* name : { "vtkOriginalPointIds", "vtkOriginalCellIds", "Gids" })
     {
       vtkNew<vtkIdTypeArray> ids;
@@ -597,8 +616,8 @@ bool CheckThreadedProgress()
   });
   filter->AddObserver(vtkCommand::ProgressEvent, record);
   filter->Update();
-  const bool inSearch = std::any_of(seen.Amounts.begin(), seen.Amounts.end(),
-    [](double a) { return a > 0.15 && a < 0.85; });
+  const bool inSearch = std::any_of(
+    seen.Amounts.begin(), seen.Amounts.end(), [](double a) { return a > 0.15 && a < 0.85; });
   std::cout << "threaded progress:";
   for (double a : seen.Amounts)
   {

@@ -272,14 +272,16 @@ bool CheckCorruption(const Corruption& c, vtkUnstructuredGrid* target, vtkUnstru
 }
 
 /// A corrupt block of a composite Source is named before anything reads it.
-bool CheckCorruptBlock(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Corruption& corrupt)
+bool CheckCorruptBlock(
+  vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Corruption& corrupt)
 {
   int failures = 0;
   vtkNew<vtkMultiBlockDataSet> blocks;
   blocks->SetBlock(0, source);
   blocks->SetBlock(1, corrupt.Make());
   const Result r = Project(target, blocks);
-  MP_CHECK(Contains(r.Errors, "Source block of flat index 2: cell 5 refers to point 1000000000000"));
+  MP_CHECK(
+    Contains(r.Errors, "Source block of flat index 2: cell 5 refers to point 1000000000000"));
   return failures == 0;
 }
 
@@ -292,14 +294,16 @@ bool CheckShortArrays(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target)
   s->GetPointData()->GetArray("Other")->SetNumberOfTuples(10);
   vtkNew<vtkMultiBlockDataSet> blocks;
   blocks->SetBlock(0, s);
-  for (vtkDataObject* from : { static_cast<vtkDataObject*>(s), static_cast<vtkDataObject*>(blocks) })
+  for (vtkDataObject* from :
+    { static_cast<vtkDataObject*>(s), static_cast<vtkDataObject*>(blocks) })
   {
     const Result r = Project(target, from);
     MP_CHECK(r.Errors.empty());
     MP_CHECK(Contains(r.Warnings, "'Other' has 10 tuples for 575"));
     MP_CHECK(r.Output->GetPointData()->GetArray("Linear"));
     // (Input's own array, passed through)
-    MP_CHECK(r.Output->GetPointData()->GetArray("Other") == target->GetPointData()->GetArray("Other"));
+    MP_CHECK(
+      r.Output->GetPointData()->GetArray("Other") == target->GetPointData()->GetArray("Other"));
   }
   auto t = Copy(target);
   t->GetPointData()->GetArray("Other")->SetNumberOfTuples(10);
@@ -397,7 +401,8 @@ bool CheckNaNRegion(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target)
     {
       MP_CHECK(own->GetValue(i) == 0);
     }
-    MP_CHECK(own->GetValue(i) == std::isfinite(r.Output->GetPointData()->GetArray("Linear")->GetComponent(i, 0)));
+    MP_CHECK(own->GetValue(i) ==
+      std::isfinite(r.Output->GetPointData()->GetArray("Linear")->GetComponent(i, 0)));
   }
   std::cout << spoiled << " NaN Source points: " << invalid << " invalid Input points" << std::endl;
   MP_CHECK(invalid > 0 && invalid < 40);
@@ -407,8 +412,9 @@ bool CheckNaNRegion(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target)
   double d = 0;
   for (vtkIdType i = 0; i < r.Output->GetNumberOfPoints(); ++i)
   {
-    d = std::max(d, std::fabs(r.Output->GetPointData()->GetArray("Other")->GetComponent(i, 0) -
-                      clean.Output->GetPointData()->GetArray("Other")->GetComponent(i, 0)));
+    d = std::max(d,
+      std::fabs(r.Output->GetPointData()->GetArray("Other")->GetComponent(i, 0) -
+        clean.Output->GetPointData()->GetArray("Other")->GetComponent(i, 0)));
   }
   MP_CHECK(d == 0);
 
@@ -490,11 +496,12 @@ bool CheckNaNCellDensities()
     const Result r = Project(t, s, [extensive](vtkMeshProjectionFilter* f) {
       f->GetPointDataArraySelection()->DisableArray("Linear");
       f->GetPointDataArraySelection()->DisableArray("Other");
-      f->SetCellDataQuantity(extensive ? vtkMeshProjectionFilter::EXTENSIVE
-                                       : vtkMeshProjectionFilter::INTENSIVE);
+      f->SetCellDataQuantity(
+        extensive ? vtkMeshProjectionFilter::EXTENSIVE : vtkMeshProjectionFilter::INTENSIVE);
     });
     vtkDataArray* projected = r.Output->GetCellData()->GetArray("Density");
-    vtkCharArray* mask = vtkCharArray::SafeDownCast(r.Output->GetCellData()->GetArray("vtkValidCellMask"));
+    vtkCharArray* mask =
+      vtkCharArray::SafeDownCast(r.Output->GetCellData()->GetArray("vtkValidCellMask"));
     MP_CHECK(projected && mask);
     if (!projected || !mask)
     {
@@ -520,12 +527,12 @@ bool CheckNaNCellDensities()
       const double v = projected->GetComponent(c, 0);
       out += std::isfinite(v) ? (extensive ? v : v / 100) : 0;
     }
-    std::cout << (extensive ? "extensive" : "intensive") << ": " << in << " -> " << out << std::endl;
+    std::cout << (extensive ? "extensive" : "intensive") << ": " << in << " -> " << out
+              << std::endl;
     MP_CHECK(std::fabs(in - out) < 1e-12 * std::fabs(in));
   }
   return failures == 0;
 }
-
 
 } // namespace
 

@@ -45,10 +45,16 @@ struct Run
     this->Filter->Update();
   }
   vtkUnstructuredGrid* Output() { return this->Filter->GetUnstructuredGridOutput(); }
-  bool ErrorSays(const char* text) { return this->Observer->GetError() &&
-      this->Observer->GetErrorMessage().find(text) != std::string::npos; }
-  bool WarningSays(const char* text) { return this->Observer->GetWarning() &&
-      this->Observer->GetWarningMessage().find(text) != std::string::npos; }
+  bool ErrorSays(const char* text)
+  {
+    return this->Observer->GetError() &&
+      this->Observer->GetErrorMessage().find(text) != std::string::npos;
+  }
+  bool WarningSays(const char* text)
+  {
+    return this->Observer->GetWarning() &&
+      this->Observer->GetWarningMessage().find(text) != std::string::npos;
+  }
 };
 
 vtkSmartPointer<vtkUnstructuredGrid> Moved(vtkUnstructuredGrid* grid, double dx)
@@ -59,7 +65,8 @@ vtkSmartPointer<vtkUnstructuredGrid> Moved(vtkUnstructuredGrid* grid, double dx)
   move->SetTransform(shift);
   move->SetInputData(grid);
   move->Update();
-  vtkSmartPointer<vtkUnstructuredGrid> result = vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
+  vtkSmartPointer<vtkUnstructuredGrid> result =
+    vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
   return result;
 }
 
@@ -75,7 +82,8 @@ vtkSmartPointer<vtkUnstructuredGrid> Turned(
   move->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   move->SetInputData(grid);
   move->Update();
-  vtkSmartPointer<vtkUnstructuredGrid> result = vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
+  vtkSmartPointer<vtkUnstructuredGrid> result =
+    vtkUnstructuredGrid::SafeDownCast(move->GetOutput());
   return result;
 }
 
@@ -376,8 +384,7 @@ bool CheckInfiniteCoordinates(vtkUnstructuredGrid* source, vtkUnstructuredGrid* 
   farTets->DeepCopy(tets);
   farTets->GetPoints()->SetPoint(3, -inf, 0.1, 0.1);
   Run badSource3D(tetTarget, farTets);
-  MP_CHECK(
-    badSource3D.ErrorSays("Source has a point with a NaN or infinite coordinate (point 3)"));
+  MP_CHECK(badSource3D.ErrorSays("Source has a point with a NaN or infinite coordinate (point 3)"));
   MP_CHECK(Unchanged(badSource3D.Output(), tetTarget));
   return failures == 0;
 }
@@ -481,8 +488,8 @@ bool CheckEmptySource(vtkUnstructuredGrid* target)
   vtkDataArray* mask = run.Output()->GetPointData()->GetArray("vtkValidPointMask");
   MP_CHECK(mask && mask->GetNumberOfTuples() == target->GetNumberOfPoints());
   MP_CHECK(All(mask, [](double m) { return m == 0; }));
-  MP_CHECK(All(run.Output()->GetCellData()->GetArray("CoveredFraction"),
-    [](double f) { return f == 0; }));
+  MP_CHECK(
+    All(run.Output()->GetCellData()->GetArray("CoveredFraction"), [](double f) { return f == 0; }));
   // Input's own TargetId and the mask: nothing to project.
   MP_CHECK(run.Output()->GetPointData()->GetNumberOfArrays() == 2);
   MP_CHECK(run.Output()->GetPointData()->GetArray("TargetId") != nullptr);
@@ -535,8 +542,7 @@ bool CheckNonNumericArrays(vtkUnstructuredGrid* source, vtkUnstructuredGrid* tar
   ones->Fill(1);
   typed->GetPointData()->AddArray(ones);
   Run run(target, typed);
-  MP_CHECK(
-    run.WarningSays("Source point array 'Names' is not numeric (vtkStringArray): skipped."));
+  MP_CHECK(run.WarningSays("Source point array 'Names' is not numeric (vtkStringArray): skipped."));
   MP_CHECK(run.WarningSays("Source point array 'Ones' holds integers (vtkIntArray)"));
   MP_CHECK(run.Output()->GetPointData()->GetAbstractArray("Names") == nullptr);
   vtkDataArray* projected = run.Output()->GetPointData()->GetArray("Ones");
@@ -608,8 +614,8 @@ bool CheckIntegerArrays(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target
   }
   MP_CHECK(between > 0); // the projection mixes labels where they change
   vtkDataArray* projectedPair = pd->GetArray("Pair");
-  MP_CHECK(vtkDoubleArray::SafeDownCast(projectedPair) &&
-    projectedPair->GetNumberOfComponents() == 2);
+  MP_CHECK(
+    vtkDoubleArray::SafeDownCast(projectedPair) && projectedPair->GetNumberOfComponents() == 2);
   for (vtkIdType i = 0; projectedPair && i < projectedPair->GetNumberOfTuples(); ++i)
   {
     MP_CHECK(std::fabs(projectedPair->GetComponent(i, 0) - 3) < 1e-13);
@@ -636,15 +642,16 @@ bool CheckNoSource(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target)
   // The filter's own error, and Input passed through unchanged.
   MP_CHECK(observer->GetError());
   const std::string error = observer->GetErrorMessage();
-  MP_CHECK(error.find("No Source is connected (input port 1): nothing to project.") !=
-    std::string::npos);
+  MP_CHECK(
+    error.find("No Source is connected (input port 1): nothing to project.") != std::string::npos);
   MP_CHECK(Unchanged(filter->GetUnstructuredGridOutput(), target));
   // A Source removed after a good run: no stale projected arrays remain.
   vtkNew<vtkMeshProjectionFilter> again;
   again->SetInputData(target);
   again->SetSourceData(source);
   again->Update();
-  MP_CHECK(again->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask") != nullptr);
+  MP_CHECK(
+    again->GetUnstructuredGridOutput()->GetPointData()->GetArray("vtkValidPointMask") != nullptr);
   vtkNew<vtkTest::ErrorObserver> secondObserver;
   again->AddObserver(vtkCommand::ErrorEvent, secondObserver);
   again->RemoveAllInputConnections(1);

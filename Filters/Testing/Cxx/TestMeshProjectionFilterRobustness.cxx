@@ -116,8 +116,8 @@ double LinearError3D(const Result& r, vtkIdType* valid)
       double x[3];
       r.Output->GetPoint(i, x);
       ++*valid;
-      worst = std::max(worst,
-        std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2])));
+      worst = std::max(
+        worst, std::fabs(linear->GetComponent(i, 0) - (1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2])));
     }
   }
   return worst;
@@ -299,7 +299,8 @@ bool CheckTargetGhostRegion(vtkUnstructuredGrid* source, vtkUnstructuredGrid* ta
 
 /// Duplicate points: half of the cells use copies of their points, so the
 /// mesh falls apart topologically; the result must not change.
-bool CheckDuplicatePoints(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
+bool CheckDuplicatePoints(
+  vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
 {
   int failures = 0;
   auto split = SplitEveryOtherCell(source);
@@ -312,7 +313,8 @@ bool CheckDuplicatePoints(vtkUnstructuredGrid* source, vtkUnstructuredGrid* targ
 }
 
 /// Unused target points: invalid (NaN); the others unchanged.
-bool CheckUnusedTargetPoints(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
+bool CheckUnusedTargetPoints(
+  vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
 {
   int failures = 0;
   vtkNew<vtkUnstructuredGrid> extra;
@@ -342,7 +344,8 @@ bool CheckUnusedTargetPoints(vtkUnstructuredGrid* source, vtkUnstructuredGrid* t
 }
 
 /// A zero-area source cell is ignored with a warning.
-bool CheckZeroAreaCell(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
+bool CheckZeroAreaCell(
+  vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
 {
   int failures = 0;
   vtkNew<vtkUnstructuredGrid> flat;
@@ -369,7 +372,8 @@ bool CheckZeroAreaCell(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target,
 
 /// Inverted cells (every other source triangle listed clockwise) are the
 /// same geometry: nothing changes.
-bool CheckInvertedTriangles(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
+bool CheckInvertedTriangles(
+  vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const Result& plain)
 {
   int failures = 0;
   vtkNew<vtkUnstructuredGrid> flipped;
@@ -418,7 +422,8 @@ bool CheckSourceWithoutPointArrays(vtkUnstructuredGrid* source, vtkUnstructuredG
 /// A Source whose only point array is not projected (vtkGhostType, or a
 /// mask from an earlier projection): the same warning, no projected
 /// arrays, the mask computed.
-bool CheckOnlyArrayNotProjected(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const char* only)
+bool CheckOnlyArrayNotProjected(
+  vtkUnstructuredGrid* source, vtkUnstructuredGrid* target, const char* only)
 {
   int failures = 0;
   vtkNew<vtkUnstructuredGrid> bare;
@@ -608,8 +613,8 @@ bool CheckMovedMeshes(const char* pair)
     const Result r = Project(Mapped(t, scale), Mapped(s, scale));
     MP_CHECK(!r.Error && r.Pieces == base.Pieces);
     const double d = Difference(r, base, "Smooth");
-    std::cout << pair << " scaled by " << factor << ": " << r.Pieces << " pieces, max change "
-              << d << std::endl;
+    std::cout << pair << " scaled by " << factor << ": " << r.Pieces << " pieces, max change " << d
+              << std::endl;
     MP_CHECK(d >= 0 && d < 1e-12);
     MP_CHECK(std::fabs(Difference(r, base, "Linear")) < 1e-11);
   }

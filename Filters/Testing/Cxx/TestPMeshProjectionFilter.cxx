@@ -44,7 +44,8 @@ vtkSmartPointer<vtkUnstructuredGrid> Read(const std::string& name)
   return grid;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> Part(vtkUnstructuredGrid* grid, int rank, int size, bool strided)
+vtkSmartPointer<vtkUnstructuredGrid> Part(
+  vtkUnstructuredGrid* grid, int rank, int size, bool strided)
 {
   vtkNew<vtkIdList> keep;
   const vtkIdType n = grid->GetNumberOfCells();
@@ -141,7 +142,8 @@ int Compare(const char* what, const std::string& target, const std::string& sour
         !(std::fabs(pi->GetComponent(0, 0) - si->GetComponent(0, 0)) <=
           1e-10 * std::fabs(si->GetComponent(0, 0))))
       {
-        std::cerr << what << ": " << field << " is not the serial total on process " << rank << std::endl;
+        std::cerr << what << ": " << field << " is not the serial total on process " << rank
+                  << std::endl;
         ++failures;
       }
     }

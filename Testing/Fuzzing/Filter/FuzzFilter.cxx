@@ -97,11 +97,16 @@ struct Bytes
     this->Wild = true;
     switch (kind % 6)
     {
-      case 0: return std::numeric_limits<double>::quiet_NaN();
-      case 1: return (kind & 1 ? -1 : 1) * std::numeric_limits<double>::infinity();
-      case 2: return 1e300;
-      case 3: return 1e-300;
-      case 4: return -1e-12 * this->Byte();
+      case 0:
+        return std::numeric_limits<double>::quiet_NaN();
+      case 1:
+        return (kind & 1 ? -1 : 1) * std::numeric_limits<double>::infinity();
+      case 2:
+        return 1e300;
+      case 3:
+        return 1e-300;
+      case 4:
+        return -1e-12 * this->Byte();
       default:
       {
         uint64_t bits = 0;
@@ -124,10 +129,14 @@ struct Bytes
     }
     switch (kind % 4)
     {
-      case 0: return -1 - this->Byte();
-      case 1: return points + this->Byte();
-      case 2: return 1000000000000LL;
-      default: return std::numeric_limits<vtkIdType>::max();
+      case 0:
+        return -1 - this->Byte();
+      case 1:
+        return points + this->Byte();
+      case 2:
+        return 1000000000000LL;
+      default:
+        return std::numeric_limits<vtkIdType>::max();
     }
   }
 };
@@ -142,21 +151,33 @@ int CountOf(int type, Bytes& in)
 {
   switch (type)
   {
-    case VTK_TRIANGLE: return 3;
+    case VTK_TRIANGLE:
+      return 3;
     case VTK_QUAD:
     case VTK_TETRA:
-    case VTK_PIXEL: return 4;
+    case VTK_PIXEL:
+      return 4;
     case VTK_HEXAHEDRON:
-    case VTK_VOXEL: return 8;
-    case VTK_WEDGE: return 6;
-    case VTK_PYRAMID: return 5;
-    case VTK_VERTEX: return 1;
-    case VTK_LINE: return 2;
-    case VTK_QUADRATIC_TRIANGLE: return 6;
-    case VTK_PENTAGONAL_PRISM: return 10;
-    case VTK_HEXAGONAL_PRISM: return 12;
-    case VTK_EMPTY_CELL: return 0;
-    default: return 3 + in.Small(6);
+    case VTK_VOXEL:
+      return 8;
+    case VTK_WEDGE:
+      return 6;
+    case VTK_PYRAMID:
+      return 5;
+    case VTK_VERTEX:
+      return 1;
+    case VTK_LINE:
+      return 2;
+    case VTK_QUADRATIC_TRIANGLE:
+      return 6;
+    case VTK_PENTAGONAL_PRISM:
+      return 10;
+    case VTK_HEXAGONAL_PRISM:
+      return 12;
+    case VTK_EMPTY_CELL:
+      return 0;
+    default:
+      return 3 + in.Small(6);
   }
 }
 
@@ -268,7 +289,9 @@ vtkSmartPointer<vtkDataSet> MakeMesh(Bytes& in)
     data->SetPoints(points);
     const int kind = (2 + in.Small(4)) % 4; // polys, strips, verts, lines
     MakeCells(in, np, cells, false, offsets, connectivity, nullptr, nullptr, nullptr,
-      kind == 0 ? VTK_VERTEX : kind == 1 ? -2 : -3);
+      kind == 0     ? VTK_VERTEX
+        : kind == 1 ? -2
+                    : -3);
     vtkNew<vtkCellArray> array;
     array->SetData(offsets, connectivity);
     if (kind == 0)
@@ -333,9 +356,9 @@ void RunAgain(vtkMeshProjectionFilter* filter, vtkDataSet* source, Bytes& in)
   filter->Update();
   for (int association = 0; association < 2; ++association)
   {
-    vtkDataArray* a = source->GetAttributes(association == 0 ? vtkDataObject::POINT
-                                                             : vtkDataObject::CELL)
-                        ->GetArray("a0");
+    vtkDataArray* a =
+      source->GetAttributes(association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL)
+        ->GetArray("a0");
     if (a && a->GetNumberOfTuples() > 0)
     {
       a->SetComponent(0, 0, in.Real());
@@ -354,12 +377,14 @@ void CountRun(vtkDataSet* target, vtkDataSet* source, vtkMeshProjectionFilter* f
 {
   static int runs = 0;
   static int projectedRuns = 0;
-  static bool stats = std::getenv("MP_FUZZ_STATS") &&
-    std::atexit([] { std::fprintf(stderr, "FuzzFilter: %d of %d inputs projected\n", projectedRuns, runs); }) == 0;
+  static bool stats = std::getenv("MP_FUZZ_STATS") && std::atexit([] {
+    std::fprintf(stderr, "FuzzFilter: %d of %d inputs projected\n", projectedRuns, runs);
+  }) == 0;
   ++runs;
   if (stats)
   {
-    std::fprintf(stderr, "FuzzFilter: %lld/%lld target and %lld/%lld source points/cells, covered %g, %d errors\n",
+    std::fprintf(stderr,
+      "FuzzFilter: %lld/%lld target and %lld/%lld source points/cells, covered %g, %d errors\n",
       (long long)target->GetNumberOfPoints(), (long long)target->GetNumberOfCells(),
       (long long)source->GetNumberOfPoints(), (long long)source->GetNumberOfCells(),
       filter->GetCoveredMeasure(), errors);
@@ -430,8 +455,8 @@ void CheckProjectedPointValues(vtkDataSet* output, vtkAbstractArray* array, cons
 void CheckOutputArrays(vtkDataSet* output, vtkDataSet* target, int association, vtkCharArray* mask,
   bool wild, vtkMeshProjectionFilter* filter)
 {
-  vtkDataSetAttributes* attributes = output->GetAttributes(
-    association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
+  vtkDataSetAttributes* attributes =
+    output->GetAttributes(association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL);
   const vtkIdType n = association == 0 ? output->GetNumberOfPoints() : output->GetNumberOfCells();
   for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
   {
@@ -439,9 +464,9 @@ void CheckOutputArrays(vtkDataSet* output, vtkDataSet* target, int association, 
     const std::string name = array->GetName() ? array->GetName() : "";
     const bool isMask = name.rfind("vtkValid", 0) == 0;
     const bool projected = vtkDoubleArray::SafeDownCast(array) && !isMask &&
-      name != "CoveredFraction" && !target->GetAttributes(association == 0 ? vtkDataObject::POINT
-                                                                           : vtkDataObject::CELL)
-                                      ->GetAbstractArray(name.c_str());
+      name != "CoveredFraction" &&
+      !target->GetAttributes(association == 0 ? vtkDataObject::POINT : vtkDataObject::CELL)
+         ->GetAbstractArray(name.c_str());
     if (!projected && !isMask && name != "CoveredFraction")
     {
       continue; // Input's own arrays, passed through as they were
@@ -498,7 +523,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   {
     Fail("the output is not Input's shape");
   }
-  vtkCharArray* mask = vtkCharArray::SafeDownCast(output->GetPointData()->GetArray("vtkValidPointMask"));
+  vtkCharArray* mask =
+    vtkCharArray::SafeDownCast(output->GetPointData()->GetArray("vtkValidPointMask"));
   CountRun(target, source, filter, errors->Errors, mask && filter->GetCoveredMeasure() > 0);
   if (!mask)
   {

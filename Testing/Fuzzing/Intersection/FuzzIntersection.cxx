@@ -87,7 +87,8 @@ struct Pair
     this->View.NumberOfPoints = 2 * n;
     this->View.Connectivity = this->Cells.data();
     this->View.NumberOfCells = 2;
-    this->Ok = Intersector::Prepare(this->View, 0, this->A) && Intersector::Prepare(this->View, 1, this->B);
+    this->Ok =
+      Intersector::Prepare(this->View, 0, this->A) && Intersector::Prepare(this->View, 1, this->B);
   }
 };
 
@@ -153,7 +154,8 @@ void CheckPair(Reader& in)
     sizes = std::max(sizes, size);
     condition = std::max(condition, std::pow(size, Intersector::Dimension) / c->Measure);
   }
-  const double slack = 64 * mp::RoundingUnit * largest * std::pow(sizes, Intersector::Dimension - 1);
+  const double slack =
+    64 * mp::RoundingUnit * largest * std::pow(sizes, Intersector::Dimension - 1);
   typename Intersector::Piece ab;
   typename Intersector::Piece ba;
   const bool metAB = Intersector::Intersect(p.A, p.B, ab);
@@ -330,7 +332,8 @@ void CheckSearch3D(Reader& in)
                 e[r][a] = points[m][3 * corner[r + 1] + a] - x0[a];
             volume += std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
                         e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6.0;
+                        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+              6.0;
           }
     if (!(std::fabs(volume - 1.0) < 1e-9))
     {

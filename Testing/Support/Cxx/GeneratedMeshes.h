@@ -33,10 +33,7 @@ struct TestMesh
 
   Index NumberOfPoints() const { return Index(this->Points.size() / 3); }
   Index NumberOfCells() const { return Index(this->Cells.size() / (this->Dimension + 1)); }
-  void Finish()
-  {
-    mp::BuildFaceNeighbors(this->View(false), this->Neighbors);
-  }
+  void Finish() { mp::BuildFaceNeighbors(this->View(false), this->Neighbors); }
   mp::MeshView View(bool withNeighbors = true) const
   {
     mp::MeshView v;
@@ -105,9 +102,8 @@ struct TestMesh
  * inside the kept region move by up to `jitter` times the spacing; boundary
  * points stay, so the domain is exactly the union of the kept quads.
  */
-inline TestMesh GridMesh(int nx, int ny, double jitter, unsigned seed, double x0 = 0,
-  double y0 = 0, double x1 = 1, double y1 = 1,
-  const std::function<bool(double, double)>& keep = nullptr)
+inline TestMesh GridMesh(int nx, int ny, double jitter, unsigned seed, double x0 = 0, double y0 = 0,
+  double x1 = 1, double y1 = 1, const std::function<bool(double, double)>& keep = nullptr)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -211,8 +207,7 @@ inline TestMesh Refine(const TestMesh& in)
  * six Kuhn tetrahedra around its main diagonal (a conforming mesh). Points
  * strictly inside move by up to `jitter` times the spacing.
  */
-inline TestMesh CubeMesh(int nx, int ny, int nz, double jitter, unsigned seed,
-  double size = 1.0)
+inline TestMesh CubeMesh(int nx, int ny, int nz, double jitter, unsigned seed, double size = 1.0)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -263,8 +258,8 @@ inline TestMesh CubeMesh(int nx, int ny, int nz, double jitter, unsigned seed,
 }
 
 /// A polyline through the points x(s) for s in `params` (closed: back to the first).
-inline TestMesh Polyline(const std::vector<double>& params, const std::function<void(double, double*)>& x,
-  bool closed, int space = 2)
+inline TestMesh Polyline(const std::vector<double>& params,
+  const std::function<void(double, double*)>& x, bool closed, int space = 2)
 {
   TestMesh m;
   m.Dimension = 1;
@@ -285,7 +280,8 @@ inline TestMesh Polyline(const std::vector<double>& params, const std::function<
 }
 
 /// n + 1 (closed: n) parameters from `from` to `to`, inner ones jittered by up to `jitter` steps.
-inline std::vector<double> Uniform(int n, double from, double to, double jitter, unsigned seed, bool closed)
+inline std::vector<double> Uniform(
+  int n, double from, double to, double jitter, unsigned seed, bool closed)
 {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> d(-jitter, jitter);
@@ -302,8 +298,8 @@ inline std::vector<double> Uniform(int n, double from, double to, double jitter,
 
 /// Rotates about the z axis by `angle`, then about the x axis by `tilt`,
 /// scales and translates (by tx, ty, tz).
-inline void Move3D(TestMesh& m, double angle, double tilt, double scale, double tx, double ty,
-  double tz)
+inline void Move3D(
+  TestMesh& m, double angle, double tilt, double scale, double tx, double ty, double tz)
 {
   const double c = std::cos(angle);
   const double s = std::sin(angle);
@@ -478,9 +474,9 @@ inline TestMesh UvSphere(int rings, int sectors, double radius = 1.0)
     for (int k = 0; k < sectors; ++k)
     {
       const double phi = 2.0 * pi * (k + 0.37 * r) / sectors; // each ring turned by 0.37 sector
-      m.Points.insert(m.Points.end(), { radius * std::sin(theta) * std::cos(phi),
-                                        radius * std::sin(theta) * std::sin(phi),
-                                        radius * std::cos(theta) });
+      m.Points.insert(m.Points.end(),
+        { radius * std::sin(theta) * std::cos(phi), radius * std::sin(theta) * std::sin(phi),
+          radius * std::cos(theta) });
     }
   }
   m.Points.insert(m.Points.end(), { 0.0, 0.0, -radius });
@@ -520,7 +516,7 @@ inline TestMesh CubeSurface(int n, int diagonal)
   m.Dimension = 2;
   m.Surface = true;
   std::map<std::vector<long>, Index> ids;
-  auto point = [&](const long (&q)[3]) -> Index {
+  auto point = [&](const long(&q)[3]) -> Index {
     const std::vector<long> key(q, q + 3);
     auto found = ids.find(key);
     if (found != ids.end())
