@@ -65,6 +65,7 @@ PACKAGES=(
 
   # --- tests ---
   libgtest-dev               # GoogleTest for the kernel unit tests
+  clang-format               # the C++ format check (Style.ClangFormat, .clang-format)
   clang                      # the libFuzzer harness (Testing/Fuzzing/Intersection) is built with clang++
   libclang-rt-14-dev         #   libFuzzer, AddressSanitizer and UBSan runtimes
   xvfb                       # X server for rendering tests (Debian's VTK/ParaView is GLX-only:
