@@ -44,6 +44,8 @@ from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE, vtkCellArray, vtkUnstructuredGrid
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
+import mpbench
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 HOLE = (0.2, 0.1, 0.3)  # 2D: centre and radius of the hole in the unit disk
@@ -126,15 +128,6 @@ def pair(directory, dim, cells):
     return names
 
 
-def find_peer():
-    try:
-        out = subprocess.run(["python3", "-c", "import libsupermesh; print(libsupermesh.get_library())"],
-                             capture_output=True, text=True, check=True)
-        return out.stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return None
-
-
 def run(bench, target, source, order, threads, peer, runs):
     """`threads` "1,2": one and two threads in alternating runs (and the peer's)."""
     command = [bench, "--filter-only", "--threads", str(threads), "--runs", str(runs), "--order", order,
@@ -168,7 +161,7 @@ def main():
     parser.add_argument("--runs", type=int, default=5, help="runs per measurement, the best kept")
     parser.add_argument("--markdown", default=None, help="also write the table to this file")
     args = parser.parse_args()
-    peer = args.peer or find_peer()
+    peer = args.peer or mpbench.find_peer()
     if not peer:
         print("libsupermesh not found: the table has no peer column (see --peer)", file=sys.stderr)
     os.makedirs(args.meshes, exist_ok=True)

@@ -121,15 +121,6 @@ def pair(directory, dim, cells):
     return files
 
 
-def find_peer():
-    try:
-        out = subprocess.run(["python3", "-c", "import libsupermesh; print(libsupermesh.get_library())"],
-                             capture_output=True, text=True, check=True)
-        return out.stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return None
-
-
 def run(bench, target, source, renumber, peer, runs):
     """The filter on 1 and 2 threads (and the peer's intersections) in alternating runs."""
     command = [bench, "--filter-only", "--threads", "1,2", "--runs", str(runs), "--order", "asis",
@@ -160,7 +151,7 @@ def main():
     parser.add_argument("--runs", type=int, default=3, help="runs per measurement, the best kept")
     parser.add_argument("--markdown", default=None, help="also write the table to this file")
     args = parser.parse_args()
-    peer = args.peer or find_peer()
+    peer = args.peer or mpbench.find_peer()
     if not peer:
         print("libsupermesh not found: the table has no peer column (see --peer)", file=sys.stderr)
     os.makedirs(args.meshes, exist_ok=True)

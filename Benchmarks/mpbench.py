@@ -1,6 +1,7 @@
 """What the benchmark scripts share: the filter timed on a pair, as docs/performance.md
 reports it, and the jittered pairs of the unit square and cube (the meshes of
 mpsupport.meshes, shared with the tests) as numpy arrays and VTK grids."""
+import subprocess
 import time
 
 import numpy as np
@@ -96,3 +97,14 @@ def time_filter(target, source, threads=(1, 2), repeats=2):
     for count in threads:
         print("%d thread(s): %.3f s (input %.3f, neighbours %.3f, search %.3f, solve %.3f), %d pieces" %
               ((count,) + best_run(target, source, count, repeats)))
+
+
+def find_peer():
+    """The path of libsupermesh's library (pip install libsupermesh, into the
+    python3 on PATH), for mesh-projection-bench --peer; None without it."""
+    try:
+        out = subprocess.run(["python3", "-c", "import libsupermesh; print(libsupermesh.get_library())"],
+                             capture_output=True, text=True, check=True)
+        return out.stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return None
