@@ -1,20 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file CellGeometry.h
- * @brief One simplex's measure, and the two positions of a cell made of
+ * @brief The simplex measure, and the two positions of a cell made of
  *        simplices (an original cell: MeshView::ParentOf).
  *
- * SimplexGramMeasure is the measure of a simplex where no intersector is
- * prepared (the support of a hat function, the weights of a centroid):
- * |det E| / m! over its m edges E on a volume mesh, sqrt(det(E^T E)) / m!
- * on surfaces and curves (in space). On a volume mesh it is the number the
- * intersectors' Prepare gives (Measures.h: the same determinant in the
- * same operations) for every simplex whose orientation their
- * floating-point filter decides (near-degenerate ones, which they measure
- * exactly or drop, aside), and the mass matrix's SimplexMeasure
- * (MassMatrix.h, by cross products); on surfaces the three round
- * differently (the intersectors measure in the cell's frame, the mass
- * matrix by |e1 x e2|).
+ * SimplexMeasure is the one measure of a simplex where no intersector is
+ * prepared: the mass matrix's cells (MassMatrix.h), the support of a hat
+ * function (FringeAggregation.h), the weights of a centroid. On a volume
+ * mesh it is, bit for bit, the number the intersectors' Prepare gives
+ * (Measures.h: the same determinant in the same operations) for every
+ * simplex whose orientation their floating-point filter decides; they keep
+ * their own for the near-degenerate ones (measured exactly, or dropped)
+ * and for surfaces (measured in the cell's own frame, where they clip).
  *
  * A cell has two positions, for two uses:
  *
@@ -32,6 +29,7 @@
 #define MeshProjection_Kernel_CellGeometry_h
 
 #include "Mesh/MeshView.h"
+#include "Mesh/Vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,36 +51,29 @@ inline void SimplexEdges(const MeshView& mesh, Index c, double (&edges)[3][3])
   }
 }
 
-/// The measure (length, area, volume) of simplex c, 0 for a degenerate one.
-inline double SimplexGramMeasure(const MeshView& mesh, Index c)
+/**
+ * The measure (length, area, volume) of simplex c, without sign: |e_0| on
+ * a curve, |e_0 x e_1| / 2 on a triangle (in the plane or in space), and
+ * |e_0 . (e_1 x e_2)| / 6 on a tetrahedron, over its edges e_a. The cross
+ * product keeps a thin triangle in space accurate where the Gram
+ * determinant's difference of products would cancel.
+ */
+inline double SimplexMeasure(const MeshView& mesh, Index c)
 {
   double e[3][3];
   SimplexEdges(mesh, c, e);
-  const int m = mesh.CellDimension;
-  if (m == 2 && mesh.SpaceDimension == 2)
+  double n[3];
+  switch (mesh.CellDimension)
   {
-    return 0.5 * std::fabs(e[0][0] * e[1][1] - e[0][1] * e[1][0]);
+    case 1:
+      return std::sqrt(Dot(e[0], e[0]));
+    case 2:
+      Cross(e[0], e[1], n);
+      return 0.5 * std::sqrt(Dot(n, n));
+    default:
+      Cross(e[1], e[2], n);
+      return std::fabs(Dot(e[0], n)) / 6.0;
   }
-  if (m == 3)
-  {
-    return std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-             e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-             e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
-      6.0;
-  }
-  // det(E^T E) of m <= 2 edges.
-  double gram[2][2] = { { 0.0, 0.0 }, { 0.0, 0.0 } };
-  for (int a = 0; a < m; ++a)
-  {
-    for (int b = 0; b < m; ++b)
-    {
-      gram[a][b] = e[a][0] * e[b][0] + e[a][1] * e[b][1] + e[a][2] * e[b][2];
-    }
-  }
-  const double determinant =
-    m == 2 ? gram[0][0] * gram[1][1] - gram[0][1] * gram[1][0] : gram[0][0];
-  const double factorial = m == 2 ? 2.0 : 1.0;
-  return std::sqrt(std::max(0.0, determinant)) / factorial;
 }
 
 /**
@@ -102,7 +93,7 @@ inline double CellCentroid(const MeshView& mesh, const Index* cells, Index count
     std::fill(sum, sum + 3, 0.0);
     for (Index i = 0; i < count; ++i)
     {
-      const double w = measured ? SimplexGramMeasure(mesh, cells[i]) : 1.0;
+      const double w = measured ? SimplexMeasure(mesh, cells[i]) : 1.0;
       const CellCorners ids = mesh.Cell(cells[i]);
       for (int k = 0; k < corners; ++k)
       {

@@ -485,7 +485,7 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
     const CellCorners cell = mesh.Cell(c);
-    const double measure = SimplexGramMeasure(mesh, c);
+    const double measure = SimplexMeasure(mesh, c);
     for (int k = 0; k < corners; ++k)
     {
       support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex

@@ -313,33 +313,6 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
 
 } // namespace
 
-double SimplexMeasure(const MeshView& mesh, Index c)
-{
-  const CellCorners ids = mesh.Cell(c);
-  const double* a = mesh.Point(ids[0]);
-  double e[3][3];
-  for (int k = 0; k < mesh.CellDimension; ++k)
-  {
-    Sub(mesh.Point(ids[k + 1]), a, e[k]);
-    if (mesh.SpaceDimension == 2)
-    {
-      e[k][2] = 0.0; // (a planar mesh's z is constant only to its flatness)
-    }
-  }
-  double n[3];
-  switch (mesh.CellDimension)
-  {
-    case 1:
-      return std::sqrt(Dot(e[0], e[0]));
-    case 2:
-      Cross(e[0], e[1], n);
-      return 0.5 * std::sqrt(Dot(n, n));
-    default:
-      Cross(e[1], e[2], n);
-      return std::fabs(Dot(e[0], n)) / 6.0;
-  }
-}
-
 void CellMasses::Gather(std::vector<PartialMasses>& tasks)
 {
   PartialMasses all;

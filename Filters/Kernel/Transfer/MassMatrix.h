@@ -19,6 +19,7 @@
 #ifndef MeshProjection_Kernel_MassMatrix_h
 #define MeshProjection_Kernel_MassMatrix_h
 
+#include "Geometry/CellGeometry.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/Tasks.h"
 #include "Transfer/CsrMatrix.h"
@@ -30,10 +31,6 @@
 
 namespace mp
 {
-/// The simplex measure of kernel cell c (length, area or volume, from the
-/// coordinates the mesh's geometry uses), without sign.
-double SimplexMeasure(const MeshView& mesh, Index c);
-
 /**
  * One task's blocks of target cells covered in part (or more than whole):
  * per cell its id and the upper triangle of its symmetric block, row by
