@@ -242,8 +242,8 @@ Gap FringeInGap(int nx, int wall, double free, int tasks)
     const bool middle = 2 * column == nx && view.Point(i)[1] > 0.5;
     fraction[i] = away[i] == 0 ? 1.0 : (middle ? free : 0.05);
   }
-  const mp::FringeExtension e =
-    mp::ExtendFringe(view, valid, fraction, 0.2, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
+  const mp::FringeExtension e = mp::ExtendFringe(
+    view, valid, fraction, 0.2, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
   Gap gap;
   std::vector<double> u(static_cast<size_t>(n));
   for (Index i = 0; i < n; ++i)
