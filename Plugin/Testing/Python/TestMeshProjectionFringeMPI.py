@@ -3,7 +3,7 @@ with pvbatch --mpi --symmetric), on Gmsh pairs that overlap in part (2D
 triangles, 3D tetrahedra): Input split in blocks along x, Source at random.
 
 Each process finds the fringe's stencils in the target's halo (the other
-processes' cells within three rings of its points), as the serial run
+processes' cells within FringeSearchRings (6) rings of its points), as the serial run
 finds them in the whole target: the result is the serial one. Checked on
 every process, for its points:
  - the valid points' values equal the serial ones to 1e-10 of the field's
