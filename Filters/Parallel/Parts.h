@@ -154,7 +154,7 @@ public:
    * The fringe's halo (MortarOperator::AggregateFringe) of the shared
    * dataset `shared`: `target` is its kernel mesh, its rows numbered as
    * for Hooks (row f is point dataSetPoint(f)). The cells of other
-   * processes' parts within three rings of this part's points, with their
+   * processes' parts within FringeSearchRings rings of this part's points, with their
    * points, and the hooks over the extended rows. Serial: no halo (no hooks).
    */
   virtual mp::FringeHalo Halo(const SharedTarget& shared, const mp::MeshView& target,

@@ -5,14 +5,15 @@
  *        the target, and the hooks over its extended rows.
  *
  * The fringe's stencil of a point (FringeAggregation.h) is found in the
- * three rings of cells around it, among their points' coordinates and
- * usable flags; the serial run sees those rings whole. Here each process
- * receives the other processes' cells that can lie in those rings of its
- * own points: every cell within three longest edges of its points' box
- * (a point three rings away is at most three edges away, and so is every
- * point of a cell around a point two rings away). More cells do no harm:
- * a ring walk from a point of this part meets only cells of the whole
- * target, and all of those it meets within three rings are here.
+ * FringeSearchRings rings of cells around it, among their points'
+ * coordinates and usable flags; the serial run sees those rings whole.
+ * Here each process receives the other processes' cells that can lie in
+ * those rings of its own points: every cell within FringeSearchRings
+ * longest edges of its points' box (a point r rings away is at most r
+ * edges away, and so is every point of a cell around a point r - 1 rings
+ * away). More cells do no harm: a ring walk from a point of this part
+ * meets only cells of the whole target, and all of those it meets within
+ * FringeSearchRings rings are here.
  *
  * The ghost points become rows after this part's own (the extended rows):
  * a stencil may hold them, so P^T M P has rows there. Each extended row is
@@ -89,12 +90,12 @@ double FromBits(long long b)
 mp::FringeHalo MPIParts::Halo(const SharedTarget& shared, const mp::MeshView& target,
   const std::function<vtkIdType(mp::Index)>& dataSetPoint)
 {
-  // The reach: three of the longest edges of any process (a little more,
-  // so that rounding in the box tests never leaves a cell out).
+  // The reach: FringeSearchRings of the longest edges of any process (a
+  // little more, so that rounding in the box tests never leaves a cell out).
   double longest = LongestEdge(target);
   double all = 0.0;
   this->C->AllReduce(&longest, &all, 1, vtkCommunicator::MAX_OP);
-  const double reach = mp::FringeRings * all * (1.0 + 1e-6) + 1e-300;
+  const double reach = mp::FringeSearchRings * all * (1.0 + 1e-6) + 1e-300;
   Box mine = EmptyBox();
   for (mp::Index p = 0; p < target.NumberOfPoints; ++p)
   {

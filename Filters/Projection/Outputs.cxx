@@ -287,9 +287,13 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
 
 /**
  * Valid points whose cells are all covered only in slivers and that the
- * fringe's aggregation left free (FringeThreshold 0, or shared by several
- * processes, or no stencil): their values are extrapolated from a sliver
- * (an ill-conditioned row) and can be far off. On several processes a point on a partition boundary has cells on
+ * fringe's aggregation left free: their values are extrapolated from a
+ * sliver (an ill-conditioned row) and can be far off. On volume meshes
+ * only with the fringe off (FringeThreshold 0, or below the few percent
+ * such a point's support is covered at most): with it on, such a point is
+ * aggregated or, with no stencil, dropped (FringeStrandedDropFraction);
+ * surfaces, curves and traces are not aggregated. On several processes a
+ * point on a partition boundary has cells on
  * each: it is such a point only when the cells of every process around it
  * are slivers (the hooks complete the cover across processes; alone they
  * do nothing). Counted once (by its owner), the total said once (by

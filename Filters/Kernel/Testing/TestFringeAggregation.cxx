@@ -3,7 +3,8 @@
 // whose points beyond a line are ill-posed, P reproduces affine functions
 // at the aggregated points from the free values, its aggregated rows sum to
 // 1 and read free functions only, P^T M P is the dense product, and the
-// support integrals add up to the mesh's measure.
+// support integrals add up to the mesh's measure; the search beyond
+// FringeRings and the drop of functions with no stencil.
 #include "Transfer/FringeAggregation.h"
 
 #include "GeneratedMeshes.h"
@@ -86,7 +87,12 @@ void ExpectAffineExtension(const TestMesh& m, const Fringe& f, const char* what)
     EXPECT_NEAR(value, Affine(view.Point(i)), 1e-11) << what << ", row " << i;
   }
   EXPECT_EQ(aggregated, e.Count) << what;
-  // (Ill-posed points without a stable fit within FringeRings rings stay free.)
+  // (Ill-posed points without a stable fit within FringeSearchRings rings
+  // are not aggregated: dropped, covered 1 % or 5 % here.)
+  for (Index i = 0; i < n; ++i)
+  {
+    EXPECT_TRUE(e.Aggregated[i] || f.Fraction[i] >= 0.1 || e.Dropped[i]) << what << ", " << i;
+  }
   EXPECT_LE(aggregated, ill) << what;
   EXPECT_GT(aggregated, ill / 3) << what;
   EXPECT_GT(aggregated, 10) << what;
@@ -200,5 +206,85 @@ TEST(FringeAggregation, SupportIntegralsAddUpToTheMeasure)
     }
     EXPECT_NEAR(sum, total, 1e-12 * total);
     EXPECT_NEAR(total, 1.0, 1e-12); // the unit square or cube
+  }
+}
+
+namespace
+{
+/**
+ * A bar of nx x 3 x 3 cubes well covered within `wall` columns of points at
+ * each end, ill-posed between (5 % covered, `free` (15 %) in the middle
+ * column's upper half; threshold 20 %), a column one ring from the next:
+ * P with each kind of point counted, after checking the rules (ill-posed
+ * points only aggregated, onto stencils that reproduce affine functions and
+ * lie within FringeSearchRings columns; an ill-posed point not aggregated
+ * dropped exactly when covered less than FringeStrandedDropFraction).
+ */
+struct Gap
+{
+  Index Farther = 0;  ///< aggregated more than FringeRings columns from the wall
+  Index Stranded = 0; ///< not aggregated, dropped
+  Index Free = 0;     ///< ill-posed, neither aggregated nor dropped
+};
+
+Gap FringeInGap(int nx, int wall, double free, int tasks)
+{
+  const TestMesh m = mptest::CubeMesh(nx, 3, 3, 0.2, 11);
+  const mp::MeshView view = m.View(false);
+  const Index n = view.NumberOfPoints;
+  std::vector<char> valid(static_cast<size_t>(n), 1);
+  std::vector<double> fraction(static_cast<size_t>(n), 1.0);
+  std::vector<int> away(static_cast<size_t>(n)); // columns to the nearest well-covered one
+  for (Index i = 0; i < n; ++i)
+  {
+    const int column = static_cast<int>(std::lround(view.Point(i)[0] * nx));
+    away[i] = std::max(0, std::min(column - wall, nx - wall - column));
+    const bool middle = 2 * column == nx && view.Point(i)[1] > 0.5;
+    fraction[i] = away[i] == 0 ? 1.0 : (middle ? free : 0.05);
+  }
+  const mp::FringeExtension e = mp::ExtendFringe(
+    view, valid, fraction, 0.2, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
+  Gap gap;
+  std::vector<double> u(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
+  {
+    const bool ill = fraction[i] < 0.2;
+    EXPECT_TRUE(ill || !e.Aggregated[i]) << "point " << i;
+    EXPECT_TRUE(!e.Aggregated[i] || away[i] <= mp::FringeSearchRings) << "point " << i;
+    if (ill && !e.Aggregated[i])
+    {
+      EXPECT_EQ(e.Dropped[i], fraction[i] < mp::FringeStrandedDropFraction) << "point " << i;
+    }
+    gap.Farther += e.Aggregated[i] && away[i] > mp::FringeRings;
+    gap.Stranded += ill && !e.Aggregated[i] && e.Dropped[i];
+    gap.Free += ill && !e.Aggregated[i] && !e.Dropped[i];
+    u[i] = e.Aggregated[i] ? 1e3 : Affine(view.Point(i));
+  }
+  EXPECT_EQ(gap.Stranded, e.Stranded);
+  // The farther stencils reproduce affine functions too.
+  mp::ExtendFromFree(e, u.data(), 1);
+  for (Index i = 0; i < n; ++i)
+  {
+    EXPECT_NEAR(u[i], Affine(view.Point(i)), 1e-11) << "point " << i;
+  }
+  return gap;
+}
+} // namespace
+
+TEST(FringeAggregation, SeeksFartherRingsThenDropsWhatHasNoStencil)
+{
+  for (int tasks : { 1, 3 })
+  {
+    // A gap of 7 columns: its middle one is more than FringeRings rings
+    // from both walls, within FringeSearchRings: extended from both.
+    const Gap near = FringeInGap(14, 3, 0.05, tasks);
+    EXPECT_GT(near.Farther, 0) << tasks << " tasks";
+    EXPECT_EQ(near.Stranded, 0) << tasks << " tasks";
+    EXPECT_EQ(near.Free, 0) << tasks << " tasks";
+    // A gap of 17 columns: its middle column is beyond FringeSearchRings
+    // rings of both walls: dropped at 5 %, free (valid) at 15 %.
+    const Gap far = FringeInGap(24, 3, 0.15, tasks);
+    EXPECT_GT(far.Stranded, 0) << tasks << " tasks";
+    EXPECT_GT(far.Free, 0) << tasks << " tasks";
   }
 }

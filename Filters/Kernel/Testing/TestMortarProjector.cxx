@@ -885,6 +885,40 @@ TEST(MortarProjector, ApplyResultNamesTheSystemItSolved)
   EXPECT_EQ(solved.System.Valid, op.GetSystem(mp::MassType::Consistent).Valid);
 }
 
+// A source covering only a corner of a target cell: every function it
+// reaches is covered a sliver of its support and has no well-covered
+// point to be extended from (FringeExtension::Stranded). AggregateFringe
+// aggregates none but drops them all: a consistent Apply leaves no value
+// valid (each would be a fit to the sliver) and fills every one.
+TEST(MortarProjector, FringeDropsFunctionsWithNoStencil)
+{
+  const TestMesh target = mptest::CubeMesh(5, 5, 5, 0.2, 161);
+  TestMesh source = mptest::CubeMesh(2, 2, 2, 0.0, 162);
+  for (double& x : source.Points)
+  {
+    x = 0.1 * x - 0.08; // the box [-0.08, 0.02]^3
+  }
+  source.Finish();
+  const std::vector<double> us = mptest::Sample(source, Smooth);
+  mp::BoxGridLocator locator(source.View());
+  mp::MortarOperator op;
+  ASSERT_TRUE(op.Build(target.View(), source.View(), &locator));
+  ASSERT_GT(op.GetNumberOfValid(), 0);
+  EXPECT_EQ(op.AggregateFringe(target.View(), 0.25, mp::SolverHooks()), 0);
+  EXPECT_EQ(op.GetFringe().Stranded, op.GetNumberOfValid());
+  const double fill = -7.0;
+  std::vector<double> u(static_cast<size_t>(target.NumberOfPoints()));
+  const mp::ApplyResult solved = op.Apply(us.data(), 1, u.data(), fill);
+  ASSERT_TRUE(solved);
+  ASSERT_TRUE(solved.System.Aggregated);
+  EXPECT_EQ(solved.System.NumberOfValid, 0);
+  for (size_t i = 0; i < u.size(); ++i)
+  {
+    EXPECT_FALSE((*solved.System.Valid)[i]) << i;
+    EXPECT_EQ(u[i], fill) << i;
+  }
+}
+
 // M_tt is assembled after the search, from the target alone: with
 // DeferTargetMass the operator has no matrix, validity or solver until
 // CompleteTargetMass, which then gives the very matrix a plain Build does;

@@ -220,7 +220,11 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
   return {};
 }
 
-/// The ill-posed function i's stencil and weights: free points ring by ring (at most FringeRings rings).
+/**
+ * The ill-posed function i's stencil and weights: free points ring by ring,
+ * a quadratic (2D) or affine fit within FringeRings rings, else an affine
+ * one farther, up to FringeSearchRings; none when no ring allows one.
+ */
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
@@ -236,7 +240,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   points.clear();
   weights.clear();
   stamp[static_cast<size_t>(i)] = i;
-  for (int r = 0; r < FringeRings && !ring.empty(); ++r)
+  for (int r = 0; r < FringeSearchRings && !ring.empty(); ++r)
   {
     next.clear();
     for (Index p : ring)
@@ -272,7 +276,9 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     // that allows it. In 3D a quadratic fit through points on one side of
     // i nearly never keeps its weights within QuadraticAmplification: the
     // affine fit of the first ring that allows one, without walking on.
-    if (quadratic)
+    // Beyond FringeRings only the affine fit is sought.
+    const bool inner = r < FringeRings;
+    if (quadratic && inner)
     {
       points = found;
       weights = NearestFit(mesh, i, points, 2, &rejected);
@@ -287,7 +293,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
       affinePoints = found;
       affine = NearestFit(mesh, i, affinePoints, 1);
     }
-    if (!quadratic && !affine.empty())
+    if (!affine.empty() && !(quadratic && inner && r + 1 < FringeRings))
     {
       break;
     }
@@ -297,7 +303,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   weights.swap(affine);
   if (weights.empty())
   {
-    points.clear(); // no stable fit: the function stays free
+    points.clear(); // no stable fit: ExtendFringe frees or drops the function
   }
 }
 
@@ -522,9 +528,13 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   Stencils(mesh, ill, usable, runner, stencils, weights);
   for (size_t a = 0; a < ill.size(); ++a)
   {
-    ext.Aggregated[static_cast<size_t>(ill[a])] = !stencils[a].empty();
-    ext.Dropped[static_cast<size_t>(ill[a])] = !stencils[a].empty() && fraction[ill[a]] < drop;
-    ext.Count += !stencils[a].empty();
+    const bool extended = !stencils[a].empty();
+    // (Stranded: no stable stencil, and too little covered to keep its own fit.)
+    const bool stranded = !extended && fraction[ill[a]] < FringeStrandedDropFraction;
+    ext.Aggregated[static_cast<size_t>(ill[a])] = extended;
+    ext.Dropped[static_cast<size_t>(ill[a])] = (extended && fraction[ill[a]] < drop) || stranded;
+    ext.Count += extended;
+    ext.Stranded += stranded;
   }
   ext.P = ExtensionMatrix(n, ill, stencils, weights, stencilOrder);
   return ext;

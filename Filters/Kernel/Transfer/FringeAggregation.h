@@ -32,7 +32,15 @@
  * fit: in 2D quadratic where its weights stay bounded (the extension's
  * error is then of third order, below the projection's second), else
  * affine; in 3D affine (one-sided quadratic fits nearly never stay
- * bounded there).
+ * bounded there). A function with no stable fit within FringeRings rings
+ * (a corner of the target poking out of the source, its free neighbours
+ * all on one face) seeks an affine one farther, up to FringeSearchRings.
+ *
+ * Every valid value is then a stable one: a function that finds no stable
+ * fit even there is dropped to invalid when its support is covered less
+ * than FringeStrandedDropFraction (it would keep the plain projection's
+ * fit to its sliver), and stays free only above that (a tenth of its
+ * support covered determines its value).
  */
 #ifndef MeshProjection_Kernel_FringeAggregation_h
 #define MeshProjection_Kernel_FringeAggregation_h
@@ -54,18 +62,29 @@ struct FringeExtension
 {
   CsrMatrix P;                  ///< identity rows for free functions, weights for aggregated ones
   std::vector<char> Aggregated; ///< per function: 1 when its value comes from others
-  std::vector<char> Dropped;    ///< per function: aggregated and covered below the drop fraction
+  std::vector<char> Dropped;    ///< per function: invalid in the output (see ExtendFringe)
   Index Count = 0;              ///< aggregated functions
+  Index Stranded = 0;           ///< functions dropped with no stencil (not aggregated)
 };
 
 /**
  * The rings around an ill-posed function (the points sharing a cell with
- * it, then theirs, ...) its stencil is sought in: a function with no
- * stable fit within them stays free. A distributed target's halo reaches
- * this many of the longest edges beyond each part (Parts::Halo), so that
- * every process finds the stencils the serial run does.
+ * it, then theirs, ...) its stencil is sought in first: in 2D a quadratic
+ * fit through any of them, else the affine fit of the first ring that
+ * allows one.
  */
 constexpr int FringeRings = 3;
+
+/**
+ * The farthest ring an affine stencil is sought in when the first
+ * FringeRings rings hold none (their free points all on a face of a
+ * corner poking out of the source). The search stays bounded: a stencil
+ * six cells away still extends a function from the source's side, and a
+ * distributed target's halo reaches this many of the longest edges
+ * beyond each part (Parts::Halo), so that every process finds the stencils
+ * the serial run does.
+ */
+constexpr int FringeSearchRings = 6;
 
 /**
  * Functions covered less than this fraction of their support are
@@ -76,10 +95,27 @@ constexpr int FringeRings = 3;
 constexpr double FringeDropFraction = 0.02;
 
 /**
+ * A function with no stable stencil within FringeSearchRings rings and
+ * covered less than this fraction of its support is dropped to invalid
+ * too (Stranded): its value would be the plain projection's fit to its
+ * sliver. Its unknown stays in the system (the others' values, exact on
+ * affine fields, do not depend on it being dropped); with no stencil to
+ * hand it to, its share of the covered integral leaves the valid values'
+ * integral. A point whose every cell is covered less than 0.1% has its
+ * support covered at most (d + 1) x 0.1% x (a cell's measure over its
+ * smallest simplex's), about 2.4% for a hexahedron: below this fraction,
+ * so that no such point stays valid. Above it the function stays free: a
+ * tenth of its support determines its value.
+ */
+constexpr double FringeStrandedDropFraction = 0.1;
+
+/**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
- * rings around it. A function with no well-spread free points within
- * FringeRings rings stays free. Those below `drop` are marked Dropped too. The
+ * rings around it (FringeRings, then farther up to FringeSearchRings for
+ * an affine fit). Those below `drop` are marked Dropped too. A function
+ * with no stable fit stays free, Dropped (and Stranded) when below
+ * FringeStrandedDropFraction. The
  * stencils are fitted in `runner`'s tasks (the same whatever their number).
  * P's rows hold their columns in ascending order, or, with `stencilOrder`,
  * nearest first as the stencil found them (an order that does not depend

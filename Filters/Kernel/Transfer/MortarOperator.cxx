@@ -276,7 +276,7 @@ Index MortarOperator::AggregateFringe(
     // linear fields).
     this->Fringe = ExtendFringe(
       target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
-    if (this->Fringe.Count > 0)
+    if (this->Fringe.Count + this->Fringe.Stranded > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
       this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
@@ -322,12 +322,12 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
 void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector<double>& fraction,
   double threshold, const FringeHalo& halo)
 {
-  // The serial stencil of a point depends only on the three rings around
-  // it in the whole target: their coordinates and which of their points
-  // are usable (valid and well covered, the same on every part once the
-  // integrals are summed). The halo holds the other parts' cells within
-  // those rings, so P's rows here are the serial ones, and the same on
-  // every part that has the point; a stencil may then hold ghost points,
+  // The serial stencil of a point depends only on the rings around it in
+  // the whole target (FringeSearchRings of them): their coordinates and
+  // which of their points are usable (valid and well covered, the same on
+  // every part once the integrals are summed). The halo holds the other
+  // parts' cells within those rings, so P's rows here are the serial ones,
+  // and the same on every part that has the point; a stencil may then hold ghost points,
   // and P^T M P rows of them (the halo's hooks sum these with the parts
   // that have the points).
   const Index n = this->TargetMass.Rows;
@@ -360,7 +360,7 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   this->Fringe = ExtendFringe(
     whole, valid, extendedFraction, threshold, FringeDropFraction, this->Options.Runner, true);
   // One system for all parts: aggregated when any part aggregates.
-  double count = static_cast<double>(this->Fringe.Count);
+  double count = static_cast<double>(this->Fringe.Count + this->Fringe.Stranded);
   extended.Reduce(&count, 1);
   if (!(count > 0.0))
   {
@@ -388,7 +388,8 @@ void MortarOperator::DropFringe(const SolverHooks* haloHooks)
 {
   // A dropped function's covered integral goes to its stencil by its
   // weights (P^T on the row sums): sum_i RowSums_i u_i over the valid
-  // functions stays the integral of u = P u_free over the covered part.
+  // functions stays the integral of u = P u_free over the covered part. A
+  // stranded one (no stencil: its row of P is its own) hands on nothing.
   // With a halo, the shares are summed over the extended rows and each
   // point's total added on the part that counts it (the row sums are each
   // part's own share of a shared row: their sum over the parts counts).
@@ -404,7 +405,7 @@ void MortarOperator::DropFringe(const SolverHooks* haloHooks)
     {
       continue;
     }
-    for (Index q = P.RowStart[i]; q < P.RowStart[i + 1]; ++q)
+    for (Index q = P.RowStart[i]; this->Fringe.Aggregated[i] && q < P.RowStart[i + 1]; ++q)
     {
       (haloHooks ? shares[P.ColumnIndex[q]] : this->FringeRowSums[P.ColumnIndex[q]]) +=
         P.Values[q] * this->RowSums[i];

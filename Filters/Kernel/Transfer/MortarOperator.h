@@ -273,15 +273,17 @@ public:
    * ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
    * After CompleteTargetMass (and ShareValidity): a distributed system
    * sums the covered and whole integrals over the parts (hooks.Exchange)
-   * and, given its `halo` (the cells of the other parts within three rings
-   * of this part's points), extends each function as the whole target
+   * and, given its `halo` (the cells of the other parts within
+   * FringeSearchRings rings of this part's points), extends each function as the whole target
    * would: its stencil may hold ghost points, whose rows the aggregated
    * system then has too (the halo's hooks complete them; Apply needs them
    * as ApplyOptions::FringeHooks; every part solves it when any part
    * aggregates). Without a halo each part extends from its own points.
    * Functions covered less than
    * FringeDropFraction are invalid in such an Apply's system (their share of
-   * the covered integral goes to their stencil: ApplyResult::System).
+   * the covered integral goes to their stencil: ApplyResult::System), and so
+   * are those with no stable stencil covered less than
+   * FringeStrandedDropFraction (FringeExtension::Stranded).
    * Collective; once per operator with a positive threshold (a kept
    * operator keeps its aggregation); lumped Applies do not use it (their
    * values are means already). Returns the aggregated functions.

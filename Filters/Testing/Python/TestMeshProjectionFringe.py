@@ -13,6 +13,13 @@ The fringe (FringeThreshold, default 0.25):
    the sum of M_ts u_s, the exported mixed matrix);
  - the exported matrices with the fringe's extension P reproduce the result;
  - no point whose support is covered 2% or more is dropped to invalid.
+Corners of Input poking out of the Source (jittered Kuhn tetrahedra,
+Gmsh's unstructured hexahedra), where points find no stable stencil within FringeRings rings:
+ - no valid point whose every cell is covered less than 0.1%, and no
+   "valid through slivers only" warning;
+ - the worst error at a valid point within 5x the interior's;
+ - a linear field exact at every valid point;
+ - no point whose support is covered 10% or more invalid.
 Extrapolation (1 smooth, 2 nearest):
  - it fills and only fills: every point and cell gets a finite value, the
    valid values (and TargetIntegral_) are those without it bit for bit,
@@ -29,10 +36,11 @@ import scipy.sparse.linalg
 
 import meshprojection
 from meshprojection import fringe_extension, operator_matrices
-from mpsupport import gmshmeshes
-from mpsupport.testing import check, finish, mortar
+from mpsupport import gmshmeshes, meshes
+from mpsupport.testing import check, finish, mortar, observed_filter
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkCommonDataModel import VTK_TETRA
 from vtkmodules.vtkFiltersCore import vtkAppendFilter, vtkCellCenters
 
 
@@ -155,6 +163,57 @@ for name, target, source_mesh in pairs:
           "%s: no point covered 2%% or more dropped (%d dropped, largest fraction %.3g)"
           % (name, dropped.sum(), fraction[dropped].max(initial=0)))
 check(worst_before > 20, "the pairs show the fringe problem without the aggregation (worst ratio %.1f)" % worst_before)
+
+# ---- corners poking out of the Source -------------------------------------------
+# Pairs whose fringe has points with no stable stencil within FringeRings
+# rings (every cell around them covered less than 0.1%): each is extended
+# from farther well-covered points or dropped, never left valid with its
+# sliver's fit.
+def kuhn(n):
+    """The unit cube as a jittered n^3 grid of cubes, six tetrahedra each."""
+    return meshes.grid(*meshes.tetrahedra(n, (0.0, 0.0, 0.0), (1.0, 1.0, 1.0), n), VTK_TETRA)
+
+
+corners = [
+    # (Jittered grids of Kuhn tetrahedra: their points lie near planes, so
+    # the first rings of a corner's points often allow no stable fit.)
+    ("3D tetrahedra, corner", gmshmeshes.moved(kuhn(10), translate=(-0.2, 0.33, 0.11)), kuhn(8)),
+    ("3D hexahedra, corner", gmshmeshes.moved(gmshmeshes.hexahedra(0.15, structured=False), translate=(0.27, -0.19, 0.13)),
+     gmshmeshes.hexahedra(0.195, structured=False)),
+]
+for name, target, source_mesh in corners:
+    source = with_fields(source_mesh)
+    around = point_cells(target)
+    f, texts = observed_filter("WarningEvent")
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetOutputIntersections(False)
+    f.SetCacheOperator(True)
+    f.Update()
+    out = f.GetOutput()
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    cover = array(out, "CoveredFraction", cells=True)
+    slivers = valid & np.array([max(cover[c] for c in cells) < 1e-3 for cells in around])
+    check(not slivers.any(), "%s: no valid point whose every cell is covered less than 0.1%% (%d)" % (name, slivers.sum()))
+    interior = valid & np.array([min(cover[c] for c in cells) > 1 - 1e-9 for cells in around])
+    error = np.abs(array(out, "s") - smooth(x))
+    r = np.max(error[valid]) / np.max(error[interior])
+    print("%-24s worst/interior error: point data %4.2f" % (name, r))
+    check(r <= 5, "%s: fringe errors within 5x the interior's (%.2f)" % (name, r))
+    exact = linear(x)
+    error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
+    check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
+    # (M_tt's rows of the points the Source does not reach hold a 1: left out.)
+    m_tt, _, reached = operator_matrices(f)
+    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
+    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
+    dropped = reached & ~valid
+    check(not (dropped & (fraction >= 0.1)).any(),
+          "%s: no point covered 10%% or more invalid (%d dropped, largest fraction %.3g)"
+          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+    said = [t for t in texts if "valid through slivers only" in t]
+    check(not said, "%s: no 'valid through slivers only' warning (%s)" % (name, said[:1]))
 
 # ---- extrapolation --------------------------------------------------------------
 both_ways = dict(pieces=False, PointDataTarget=3, CellDataTarget=3)

@@ -1,10 +1,11 @@
 """The fringe and extrapolation on several MPI processes (run under mpiexec
-with pvbatch --mpi --symmetric), on Gmsh pairs that overlap in part (2D
-triangles, 3D tetrahedra): Input split in blocks along x, Source at random.
+with pvbatch --mpi --symmetric), on pairs that overlap in part (Gmsh's 2D
+triangles and 3D tetrahedra; jittered Kuhn tetrahedra with a corner poking
+out of the Source): Input split in blocks along x, Source at random.
 
 Each process finds the fringe's stencils in the target's halo (the other
-processes' cells within three rings of its points), as the serial run
-finds them in the whole target: the result is the serial one. Checked on
+processes' cells within FringeSearchRings (6) rings of its points), as the
+serial run finds them in the whole target: the result is the serial one. Checked on
 every process, for its points:
  - the valid points' values equal the serial ones to 1e-10 of the field's
    range, and the valid mask is the serial one;
@@ -23,6 +24,7 @@ every process, for its points:
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkCommonDataModel import VTK_TETRA
 from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
@@ -93,11 +95,20 @@ def interior_points(out):
     return inside
 
 
+def kuhn(n):
+    """The unit cube as a jittered n^3 grid of cubes, six tetrahedra each."""
+    return meshes.grid(*meshes.tetrahedra(n, (0.0, 0.0, 0.0), (1.0, 1.0, 1.0), n), VTK_TETRA)
+
+
 pairs = [
     ("2D triangles", grid(gmshmeshes.moved(gmshmeshes.planar(0.05), translate=(0.31, 0.17, 0))),
      with_fields(grid(gmshmeshes.planar(0.065), False))),
     ("3D tetrahedra", grid(gmshmeshes.moved(gmshmeshes.volume("box", 0.1), translate=(0.27, 0.13, 0.21))),
      with_fields(grid(gmshmeshes.volume("box", 0.13), False))),
+    # A corner whose points find stencils only beyond FringeRings rings:
+    # the halo reaches FringeSearchRings rings.
+    ("3D tetrahedra, corner", grid(gmshmeshes.moved(kuhn(10), translate=(-0.2, 0.33, 0.11))),
+     with_fields(grid(kuhn(8), False))),
 ]
 for name, target, source in pairs:
     serial = run(meshprojection.vtkMeshProjectionFilter, target, source)

@@ -79,7 +79,7 @@ def _generate(name, dim, build, h, options=()):
                 continue
             types, _, nodes = gmsh.model.mesh.getElements(dim, tag)
             for etype, enodes in zip(types, nodes):
-                corners = {1: 2, 2: 3, 3: 4, 4: 4, 6: 6}[int(etype)]
+                corners = {1: 2, 2: 3, 3: 4, 4: 4, 5: 8, 6: 6}[int(etype)]
                 block = np.vectorize(index.get)(np.asarray(enodes, dtype=np.int64)).reshape(-1, corners)
                 if tag in reverse:
                     block = block[:, ::-1]
@@ -252,4 +252,33 @@ def wedges(h, height=1.0):
         toward = np.einsum("ij,ij->i", np.cross(b - a, c - a), up) > 0
         cells[toward] = cells[toward][:, [0, 2, 1, 3, 5, 4]]
         _cache[key] = _grid(x, cells, VTK_WEDGE)
+    return _cache[key]
+
+
+def hexahedra(h, structured=True):
+    """The unit cube meshed by Gmsh into hexahedra of size about `h`, a
+    vtkUnstructuredGrid (Gmsh's hexahedron orders its corners as VTK's
+    does): structured (transfinite and recombined, round(1/h) cells per
+    edge), or not (Gmsh's tetrahedra of size `h` each split into four
+    hexahedra: Mesh.SubdivisionAlgorithm 2)."""
+    key = ("hexahedra", h, structured)
+    if key not in _cache:
+        from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON
+
+        def build():
+            import gmsh
+            gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+            gmsh.model.occ.synchronize()
+            mesh = gmsh.model.mesh
+            for _, tag in gmsh.model.getEntities(1) if structured else []:
+                mesh.setTransfiniteCurve(tag, int(round(1 / h)) + 1)
+            for _, tag in gmsh.model.getEntities(2) if structured else []:
+                mesh.setTransfiniteSurface(tag)
+                mesh.setRecombine(2, tag)
+            for _, tag in gmsh.model.getEntities(3) if structured else []:
+                mesh.setTransfiniteVolume(tag)
+            return [], []
+        options = [] if structured else [("Mesh.SubdivisionAlgorithm", 2)]
+        x, cells = _generate("hexahedra", 3, build, h, options)
+        _cache[key] = _grid(x, np.asarray(cells, dtype=np.int64), VTK_HEXAHEDRON)
     return _cache[key]
