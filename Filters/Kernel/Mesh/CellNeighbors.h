@@ -116,6 +116,44 @@ Index MatchFaces(
 }
 
 /**
+ * The corners of a simplex's face opposite corner k other than corner `at`
+ * (the face's point being matched), in increasing order: one for a
+ * triangle (key1 stays -1), two for a tetrahedron (from a table: a loop
+ * testing each corner was mispredicted).
+ */
+template <int Corners>
+inline void FaceOtherCorners(const CellCorners& ids, int k, int at, Index& key0, Index& key1)
+{
+  if constexpr (Corners == 3)
+  {
+    key0 = ids[3 - k - at];
+  }
+  else if constexpr (Corners == 4)
+  {
+    static constexpr signed char others[4][4][2] = {
+      { { -1, -1 }, { 2, 3 }, { 1, 3 }, { 1, 2 } },
+      { { 2, 3 }, { -1, -1 }, { 0, 3 }, { 0, 2 } },
+      { { 1, 3 }, { 0, 3 }, { -1, -1 }, { 0, 1 } },
+      { { 1, 2 }, { 0, 2 }, { 0, 1 }, { -1, -1 } },
+    };
+    key0 = ids[others[k][at][0]];
+    key1 = ids[others[k][at][1]];
+  }
+  if (key1 >= 0 && key1 < key0)
+  {
+    std::swap(key0, key1);
+  }
+}
+
+/// Two cells sharing a face (f and g: a cell and the side it has the face on) are each other's neighbours.
+template <int Corners, class Face>
+inline void PairFaces(const Face& f, const Face& g, NeighborId* neighbors)
+{
+  neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
+  neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
+}
+
+/**
  * Matches faces at their lowest point: for each point p of [begin, end),
  * the faces of the cells around p (start, around: BuildPointCells) whose
  * other corners all have higher ids, grouped by those corners. A group of
@@ -190,29 +228,9 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
         {
           continue;
         }
-        // The corners other than k and at, in increasing order (from a
-        // table for tetrahedra: a loop testing each was mispredicted).
         Index key0 = -1;
         Index key1 = -1;
-        if constexpr (Corners == 3)
-        {
-          key0 = ids[3 - k - at];
-        }
-        else if constexpr (Corners == 4)
-        {
-          static constexpr signed char others[4][4][2] = {
-            { { -1, -1 }, { 2, 3 }, { 1, 3 }, { 1, 2 } },
-            { { 2, 3 }, { -1, -1 }, { 0, 3 }, { 0, 2 } },
-            { { 1, 3 }, { 0, 3 }, { -1, -1 }, { 0, 1 } },
-            { { 1, 2 }, { 0, 2 }, { 0, 1 }, { -1, -1 } },
-          };
-          key0 = ids[others[k][at][0]];
-          key1 = ids[others[k][at][1]];
-        }
-        if (key1 >= 0 && key1 < key0)
-        {
-          std::swap(key0, key1);
-        }
+        FaceOtherCorners<Corners>(ids, k, at, key0, key1);
         // Written in any case, kept (count advanced) unless matched at a
         // lower point: no branch. (Room for all faces through p.)
         Face& f = faces[count];
@@ -247,10 +265,8 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
           }
           if (b - a == 2)
           {
-            const Face& f = faces[order[a] & 0xffffffffULL];
-            const Face& g = faces[order[a + 1] & 0xffffffffULL];
-            neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
-            neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
+            PairFaces<Corners>(
+              faces[order[a] & 0xffffffffULL], faces[order[a + 1] & 0xffffffffULL], neighbors);
           }
           else if (b - a > 2)
           {
@@ -273,10 +289,7 @@ Index MatchFacesAtPoints(const MeshView& mesh, const Id* start, const Id* around
       }
       if (b - a == 2)
       {
-        const Face& f = faces[a];
-        const Face& g = faces[a + 1];
-        neighbors[f.Cell * Corners + f.Side] = static_cast<NeighborId>(g.Cell);
-        neighbors[g.Cell * Corners + g.Side] = static_cast<NeighborId>(f.Cell);
+        PairFaces<Corners>(faces[a], faces[a + 1], neighbors);
       }
       else if (b - a > 2)
       {
