@@ -13,17 +13,11 @@ process), by the rule the processes' pieces follow (Adapter/PieceArrays.h):
  - deselected, 'v' and 'p' get no warning (they are not wanted).
 """
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_TETRA, vtkMultiBlockDataSet, vtkUnstructuredGrid
 
 from mpsupport import meshes
 from mpsupport.testing import check, finish, observed_filter
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
 
 
 def run(target, source, disabled=()):
@@ -41,10 +35,10 @@ def run(target, source, disabled=()):
 # cells (each block's cell has points off the cut: none is all interface).
 x, hexes = meshes.hexahedra(6, (-0.1, -0.05, -0.08), (1.05, 0.97, 1.02), 3)
 uncut = meshes.grid(x, hexes, VTK_HEXAHEDRON)
-add(uncut.GetPointData(), "f", np.sin(2 * x[:, 0]) + x[:, 1] * x[:, 2])
-add(uncut.GetPointData(), "p", 1 + x[:, 0] - 2 * x[:, 2])
-add(uncut.GetPointData(), "v", x[:, 1])
-add(uncut.GetCellData(), "c", x[hexes].mean(axis=1)[:, 1] ** 2)
+meshes.add_array(uncut.GetPointData(), "f", np.sin(2 * x[:, 0]) + x[:, 1] * x[:, 2])
+meshes.add_array(uncut.GetPointData(), "p", 1 + x[:, 0] - 2 * x[:, 2])
+meshes.add_array(uncut.GetPointData(), "v", x[:, 1])
+meshes.add_array(uncut.GetCellData(), "c", x[hexes].mean(axis=1)[:, 1] ** 2)
 first = x[hexes].mean(axis=1)[:, 0] < 0.4
 a = meshes.extract(uncut, first)
 b = meshes.extract(uncut, ~first)
@@ -52,7 +46,7 @@ b.GetPointData().RemoveArray("p")
 b.GetCellData().RemoveArray("c")
 v = vtk_to_numpy(b.GetPointData().GetArray("v"))
 b.GetPointData().RemoveArray("v")
-add(b.GetPointData(), "v", np.stack([v, v, v], 1))
+meshes.add_array(b.GetPointData(), "v", np.stack([v, v, v], 1))
 source = vtkMultiBlockDataSet()
 source.SetBlock(0, a)
 source.SetBlock(1, b)

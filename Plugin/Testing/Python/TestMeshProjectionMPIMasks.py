@@ -16,7 +16,6 @@ Checked on every process:
    same rule; a rule that kept the masks would send them, and name them to
    the others, which only the bytes show.)
 """
-import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -39,17 +38,11 @@ def add(data, name, values):
     data.AddArray(a)
 
 
-def centres(g):
-    x = vtk_to_numpy(g.GetPoints().GetData())
-    conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 3)
-    return x[conn].mean(axis=1)
-
-
 def with_fields(g):
     x = vtk_to_numpy(g.GetPoints().GetData())
     add(g.GetPointData(), "f", np.sin(3 * x[:, 0]) + x[:, 1] ** 2)
     add(g.GetPointData(), "linear", np.stack([1 + 2 * x[:, 0] - x[:, 1], x[:, 0]], 1))
-    c = centres(g)
+    c = meshes.triangle_centres(g)
     add(g.GetCellData(), "cellf", np.cos(2 * c[:, 0]) + c[:, 1])
     return g
 
@@ -61,7 +54,7 @@ def with_masks(g):
     x = vtk_to_numpy(m.GetPoints().GetData())
     add(m.GetPointData(), "vtkValidPointMask", (x[:, 0] < 0.7).astype(np.int8))
     add(m.GetPointData(), "vtkValidPointMask_p", (x[:, 1] > 0.2).astype(np.float64))
-    add(m.GetCellData(), "vtkValidCellMask", (centres(m)[:, 0] < 0.5).astype(np.uint8))
+    add(m.GetCellData(), "vtkValidCellMask", (meshes.triangle_centres(m)[:, 0] < 0.5).astype(np.uint8))
     return m
 
 

@@ -20,7 +20,6 @@ silently (Adapter/PieceArrays.h states the rule):
    components of it: the fields are projected on the others as in serial;
  - no Source on one process: the same error on every process.
 """
-import sys
 
 import numpy as np
 from vtkmodules.util.misc import calldata_type
@@ -38,18 +37,6 @@ bad = size - 1  # the process whose piece is spoiled
 import meshprojection  # noqa: E402  (after MPI is up)
 
 check = mpi.Checks(controller, made_here)
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
-
-
-def centres(g):
-    x = vtk_to_numpy(g.GetPoints().GetData())
-    conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 3)
-    return x[conn].mean(axis=1)
 
 
 def copy(g):
@@ -104,15 +91,15 @@ x = vtk_to_numpy(whole.GetPoints().GetData())
 ids = numpy_to_vtkIdTypeArray(np.arange(whole.GetNumberOfPoints(), dtype=np.int64), deep=True)
 ids.SetName("GlobalIds")
 whole.GetPointData().SetGlobalIds(ids)
-add(whole.GetPointData(), "f", np.sin(3 * x[:, 0]) + x[:, 1] ** 2)
-add(whole.GetPointData(), "p", 1 + 2 * x[:, 0] - x[:, 1])
-add(whole.GetPointData(), "v", x[:, 0] * x[:, 1])
-add(whole.GetCellData(), "c", np.cos(2 * centres(whole)[:, 0]))
+meshes.add_array(whole.GetPointData(), "f", np.sin(3 * x[:, 0]) + x[:, 1] ** 2)
+meshes.add_array(whole.GetPointData(), "p", 1 + 2 * x[:, 0] - x[:, 1])
+meshes.add_array(whole.GetPointData(), "v", x[:, 0] * x[:, 1])
+meshes.add_array(whole.GetCellData(), "c", np.cos(2 * meshes.triangle_centres(whole)[:, 0]))
 n = numpy_to_vtk((10 * x[:, 1]).astype(np.int32), deep=True)  # integers: joined as double
 n.SetName("n")
 whole.GetPointData().AddArray(n)
 # Source pieces: slabs along x by cell centre; Input pieces: random.
-cx = centres(whole)[:, 0]
+cx = meshes.triangle_centres(whole)[:, 0]
 lo, hi = cx.min(), cx.max() + 1e-9
 slab = np.floor((cx - lo) / (hi - lo) * size).astype(int)
 mine = slab == rank
@@ -167,7 +154,7 @@ holed = copy(whole)
 present = np.zeros(whole.GetNumberOfPoints(), bool)
 present[vtk_to_numpy(whole.GetCells().GetConnectivityArray()).reshape(-1, 3)[~(slab == bad)].ravel()] = True
 vtk_to_numpy(holed.GetPointData().GetArray("p"))[~present] = np.nan
-add(holed.GetPointData(), "n", np.where(present, vtk_to_numpy(n), np.nan))
+meshes.add_array(holed.GetPointData(), "n", np.where(present, vtk_to_numpy(n), np.nan))
 vtk_to_numpy(holed.GetCellData().GetArray("c"))[slab == bad] = np.nan
 check(np.isnan(vtk_to_numpy(holed.GetPointData().GetArray("p"))).any(), "the reference has a hole")
 serial, _, _ = run(meshprojection.vtkMeshProjectionFilter, target, holed)
@@ -186,7 +173,7 @@ check(not [w for w in warnings if "NaN or infinite" in w], "missing arrays: also
 def widen(piece):
     v = vtk_to_numpy(piece.GetPointData().GetArray("v"))
     piece.GetPointData().RemoveArray("v")
-    add(piece.GetPointData(), "v", np.stack([v, v, v], 1))
+    meshes.add_array(piece.GetPointData(), "v", np.stack([v, v, v], 1))
 
 
 out, warnings, errors = run(meshprojection.vtkPMeshProjectionFilter, lt, source_piece(widen))
@@ -262,7 +249,7 @@ for what in ("empty", "without an array", "other components"):
     serial, _, _ = run(meshprojection.vtkMeshProjectionFilter,
                        meshes.extract(target, parts != bad) if what == "empty" else target, whole)
     t = copy(lt)
-    add(t.GetPointData(), "w", np.ones(t.GetNumberOfPoints()))
+    meshes.add_array(t.GetPointData(), "w", np.ones(t.GetNumberOfPoints()))
     if rank == bad:
         if what == "empty":
             t = vtkUnstructuredGrid()
@@ -270,7 +257,7 @@ for what in ("empty", "without an array", "other components"):
             t.GetPointData().RemoveArray("w")
         else:
             t.GetPointData().RemoveArray("w")
-            add(t.GetPointData(), "w", np.ones((t.GetNumberOfPoints(), 3)))
+            meshes.add_array(t.GetPointData(), "w", np.ones((t.GetNumberOfPoints(), 3)))
     out, warnings, errors = run(meshprojection.vtkPMeshProjectionFilter, t, source_piece())
     check(everywhere(not errors), "Input piece %s: an error on some process: %s" % (what, errors))
     if rank != bad or what != "empty":

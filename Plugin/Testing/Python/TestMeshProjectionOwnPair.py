@@ -21,7 +21,7 @@ import subprocess
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_QUAD, VTK_TRIANGLE
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader, vtkXMLUnstructuredGridWriter
 
@@ -46,12 +46,6 @@ def write(name, grid):
     return path
 
 
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
-
-
 def target(shift=0.0):
     x, cells = meshes.triangles(10, (shift, 0, 0), (1 + shift, 1, 0), seed=1)
     return write("target%g" % shift, meshes.grid(x, cells, VTK_TRIANGLE))
@@ -61,9 +55,9 @@ def source(point_arrays):
     g = meshes.grid(*meshes.quads(12, (-0.1, -0.1, 0), (1.1, 1.1, 0), seed=2), VTK_QUAD)
     x = vtk_to_numpy(g.GetPoints().GetData())
     if point_arrays:
-        add(g.GetPointData(), "Temperature", linear(x))
-        add(g.GetPointData(), "Velocity", np.stack([x[:, 1], -x[:, 0], 0 * x[:, 0]], 1))
-    add(g.GetCellData(), "Pressure" if point_arrays else "Density", np.arange(g.GetNumberOfCells()) % 5 + 1.0)
+        meshes.add_array(g.GetPointData(), "Temperature", linear(x))
+        meshes.add_array(g.GetPointData(), "Velocity", np.stack([x[:, 1], -x[:, 0], 0 * x[:, 0]], 1))
+    meshes.add_array(g.GetCellData(), "Pressure" if point_arrays else "Density", np.arange(g.GetNumberOfCells()) % 5 + 1.0)
     return write("source_points" if point_arrays else "source_cells", g)
 
 

@@ -6,7 +6,7 @@ tetrahedra on them, and a vtkUnstructuredGrid from such arrays.
 Counts `n` are cells per side: an int (the same on every axis) or one per
 axis. Points are numbered with the first axis slowest."""
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkUnstructuredGrid
 from vtkmodules.vtkFiltersCore import vtkExtractCells
@@ -116,3 +116,18 @@ def simplex_means(corners, f):
         w[j] = a
         total = total + f(np.einsum("k,nkd->nd", w, p))
     return total / 4
+
+
+def add_array(data, name, values):
+    """`values` (numpy, converted to double) as the array `name` of `data`
+    (point or cell data), copied."""
+    a = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
+    a.SetName(name)
+    data.AddArray(a)
+
+
+def triangle_centres(g):
+    """The corners' mean of every cell of a grid of triangles (n x 3)."""
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 3)
+    return x[conn].mean(axis=1)
