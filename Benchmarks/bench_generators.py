@@ -33,8 +33,6 @@ and per pair the worst order over the best.
 import argparse
 import math
 import os
-import re
-import subprocess
 import sys
 
 import gmsh
@@ -130,26 +128,7 @@ def pair(directory, dim, cells):
 
 def run(bench, target, source, order, threads, peer, runs):
     """`threads` "1,2": one and two threads in alternating runs (and the peer's)."""
-    command = [bench, "--filter-only", "--threads", str(threads), "--runs", str(runs), "--order", order,
-               "--target", target, "--source", source]
-    if peer:
-        command += ["--peer", peer]
-    out = subprocess.run(command, capture_output=True, text=True, check=True).stdout
-    number = r"\s+([0-9.eE+-]+)"
-    result = {
-        "cells": int(re.search(r"target (\d+) cells", out).group(1)),
-        "source": int(re.search(r"source (\d+) cells", out).group(1)),
-        "filter": float(re.search(r"VTK filter \((?:one run|best of \d+)\)" + number, out).group(1)),
-        "renumber": float(re.search(r"of which renumbering" + number, out).group(1)),
-        "renumbered": int(re.search(r"\((\d) of 2 meshes\)", out).group(1)),
-    }
-    m = re.search(r"inputs [0-9.]+ MiB, ratio ([^)]+)\)", out)
-    result["memory"] = float(m.group(1)) if m else float("nan")
-    m = re.search(r"VTK filter on \d+ threads" + number, out)
-    result["filter2"] = float(m.group(1)) if m else None
-    m = re.search(r"libsupermesh intersections only" + number, out)
-    result["peer"] = float(m.group(1)) if m else None
-    return result
+    return mpbench.bench_pair(bench, target, source, ["--threads", str(threads), "--order", order], peer, runs)
 
 
 def main():

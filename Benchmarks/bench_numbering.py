@@ -30,8 +30,6 @@ renumbering, 1 and 2 threads).
 """
 import argparse
 import os
-import re
-import subprocess
 import sys
 
 import numpy as np
@@ -123,22 +121,8 @@ def pair(directory, dim, cells):
 
 def run(bench, target, source, renumber, peer, runs):
     """The filter on 1 and 2 threads (and the peer's intersections) in alternating runs."""
-    command = [bench, "--filter-only", "--threads", "1,2", "--runs", str(runs), "--order", "asis",
-               "--renumber", renumber, "--target", target, "--source", source]
-    if peer:
-        command += ["--peer", peer]
-    out = subprocess.run(command, capture_output=True, text=True, check=True).stdout
-    number = r"\s+([0-9.eE+-]+)"
-    result = {
-        "cells": int(re.search(r"target (\d+) cells", out).group(1)),
-        "source": int(re.search(r"source (\d+) cells", out).group(1)),
-        "filter": float(re.search(r"VTK filter \((?:one run|best of \d+)\)" + number, out).group(1)),
-        "filter2": float(re.search(r"VTK filter on \d+ threads" + number, out).group(1)),
-        "renumbered": int(re.search(r"\((\d) of 2 meshes\)", out).group(1)),
-    }
-    m = re.search(r"libsupermesh intersections only" + number, out)
-    result["peer"] = float(m.group(1)) if m else None
-    return result
+    return mpbench.bench_pair(bench, target, source,
+                              ["--threads", "1,2", "--order", "asis", "--renumber", renumber], peer, runs)
 
 
 def main():

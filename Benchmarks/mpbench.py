@@ -1,6 +1,7 @@
 """What the benchmark scripts share: the filter timed on a pair, as docs/performance.md
 reports it, and the jittered pairs of the unit square and cube (the meshes of
 mpsupport.meshes, shared with the tests) as numpy arrays and VTK grids."""
+import re
 import subprocess
 import time
 
@@ -108,3 +109,32 @@ def find_peer():
         return out.stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return None
+
+
+def bench_pair(bench, target, source, options, peer, runs):
+    """mesh-projection-bench --filter-only on two .vtu files, with `options`
+    (e.g. ["--threads", "1,2", "--order", "asis"]) and the peer's
+    intersections in the same process when `peer` is given: a dict of the
+    cells, the filter's best time on the first thread count ("filter") and
+    on the second ("filter2", None without), the renumbering's time and
+    count, the memory ratio and the peer's time (None without)."""
+    command = [bench, "--filter-only", "--runs", str(runs), "--target", target, "--source", source] + options
+    if peer:
+        command += ["--peer", peer]
+    out = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+    number = r"\s+([0-9.eE+-]+)"
+
+    def found(pattern, convert, missing=None):
+        m = re.search(pattern, out)
+        return convert(m.group(1)) if m else missing
+
+    return {
+        "cells": int(re.search(r"target (\d+) cells", out).group(1)),
+        "source": int(re.search(r"source (\d+) cells", out).group(1)),
+        "filter": float(re.search(r"VTK filter \((?:one run|best of \d+)\)" + number, out).group(1)),
+        "renumber": float(re.search(r"of which renumbering" + number, out).group(1)),
+        "renumbered": int(re.search(r"\((\d) of 2 meshes\)", out).group(1)),
+        "memory": found(r"inputs [0-9.]+ MiB, ratio ([^)]+)\)", float, float("nan")),
+        "filter2": found(r"VTK filter on \d+ threads" + number, float),
+        "peer": found(r"libsupermesh intersections only" + number, float),
+    }
