@@ -97,6 +97,17 @@ std::vector<double> DistancesFrom(
     }
   }
 }
+
+/// Parents that pair cells 2k and 2k + 1 (a grid's triangles into quads).
+std::vector<Index> PairsOfCells(Index cells)
+{
+  std::vector<Index> parent(static_cast<size_t>(cells));
+  for (Index c = 0; c < cells; ++c)
+  {
+    parent[c] = c / 2;
+  }
+  return parent;
+}
 } // namespace
 
 TEST(Extrapolation, CreepFillStaysWithinTheValidRange)
@@ -184,11 +195,7 @@ TEST(Extrapolation, NearestTakesTheNearestValidFunctionAlongTheGraph)
   const TestMesh m = mptest::GridMesh(11, 9, 0.3, 4);
   mp::MeshView view = m.View(false);
   // Parents: pairs of triangles, so that the cell graph is tried too.
-  std::vector<Index> parent(static_cast<size_t>(m.NumberOfCells()));
-  for (Index c = 0; c < m.NumberOfCells(); ++c)
-  {
-    parent[c] = c / 2;
-  }
+  const std::vector<Index> parent = PairsOfCells(m.NumberOfCells());
   for (bool points : { true, false })
   {
     mp::MeshView v = view;
@@ -246,11 +253,7 @@ TEST(Extrapolation, CellGraphPositionsAreCornerMeans)
 {
   const TestMesh m = mptest::GridMesh(5, 4, 0.3, 6);
   mp::MeshView view = m.View(false);
-  std::vector<Index> parent(static_cast<size_t>(m.NumberOfCells()));
-  for (Index c = 0; c < m.NumberOfCells(); ++c)
-  {
-    parent[c] = c / 2;
-  }
+  const std::vector<Index> parent = PairsOfCells(m.NumberOfCells());
   view.Parent = parent.data();
   view.NumberOfParents = parent.back() + 1;
   const mp::FunctionGraph graph =

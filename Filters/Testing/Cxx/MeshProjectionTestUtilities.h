@@ -18,10 +18,12 @@
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
@@ -53,6 +55,17 @@
 
 namespace mptest
 {
+/// A ghost array (vtkGhostType) of n values, all 0 (nothing a ghost): the
+/// caller marks its ghosts and adds it to the cell data.
+inline vtkSmartPointer<vtkUnsignedCharArray> GhostArray(vtkIdType n)
+{
+  vtkNew<vtkUnsignedCharArray> ghosts;
+  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  ghosts->SetNumberOfValues(n);
+  ghosts->Fill(0);
+  return ghosts;
+}
+
 inline vtkSmartPointer<vtkUnstructuredGrid> ReadSample(const std::string& name)
 {
   vtkNew<vtkXMLUnstructuredGridReader> reader;

@@ -237,11 +237,7 @@ std::vector<Corruption> Corruptions(vtkUnstructuredGrid* source, vtkUnstructured
     { "a ghost array shorter than the cells",
       [=]() {
         auto g = Copy(source);
-        vtkNew<vtkUnsignedCharArray> ghosts;
-        ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
-        ghosts->SetNumberOfValues(3);
-        ghosts->Fill(0);
-        g->GetCellData()->AddArray(ghosts);
+        g->GetCellData()->AddArray(mptest::GhostArray(3));
         return vtkSmartPointer<vtkDataObject>(g);
       },
       "cell ghost array has 3 tuples of 1 components for 1056 cells" },

@@ -193,9 +193,8 @@ bool CheckSourceGhostCells(vtkUnstructuredGrid* source, vtkUnstructuredGrid* tar
   vtkNew<vtkUnstructuredGrid> removed;
   removed->SetPoints(source->GetPoints());
   removed->GetPointData()->ShallowCopy(source->GetPointData());
-  vtkNew<vtkUnsignedCharArray> ghosts;
-  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
-  ghosts->SetNumberOfValues(source->GetNumberOfCells());
+  const vtkSmartPointer<vtkUnsignedCharArray> ghosts =
+    mptest::GhostArray(source->GetNumberOfCells());
   vtkNew<vtkIdList> ids;
   vtkIdType ghostCount = 0;
   for (vtkIdType c = 0; c < source->GetNumberOfCells(); ++c)
@@ -225,10 +224,8 @@ bool CheckTargetGhostCell(vtkUnstructuredGrid* source, vtkUnstructuredGrid* targ
   int failures = 0;
   vtkNew<vtkUnstructuredGrid> targetGhosted;
   targetGhosted->DeepCopy(target);
-  vtkNew<vtkUnsignedCharArray> tghosts;
-  tghosts->SetName(vtkDataSetAttributes::GhostArrayName());
-  tghosts->SetNumberOfValues(target->GetNumberOfCells());
-  tghosts->Fill(0);
+  const vtkSmartPointer<vtkUnsignedCharArray> tghosts =
+    mptest::GhostArray(target->GetNumberOfCells());
   tghosts->SetValue(0, vtkDataSetAttributes::DUPLICATECELL);
   targetGhosted->GetCellData()->AddArray(tghosts);
   const Result tg = Project(targetGhosted, source);
@@ -245,9 +242,8 @@ bool CheckTargetGhostRegion(vtkUnstructuredGrid* source, vtkUnstructuredGrid* ta
   int failures = 0;
   vtkNew<vtkUnstructuredGrid> targetArm;
   targetArm->DeepCopy(target);
-  vtkNew<vtkUnsignedCharArray> armGhosts;
-  armGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
-  armGhosts->SetNumberOfValues(target->GetNumberOfCells());
+  const vtkSmartPointer<vtkUnsignedCharArray> armGhosts =
+    mptest::GhostArray(target->GetNumberOfCells());
   std::vector<char> owned(target->GetNumberOfPoints(), 0);
   vtkNew<vtkIdList> ids;
   vtkIdType armCount = 0;
