@@ -168,11 +168,7 @@ def main():
                 peer_cells[0], peer_cells[1], one["memory"]))
             print(lines[-1], flush=True)
         summary.append("%dD %g: worst order / best order %.2f" % (dim, cells, max(times.values()) / min(times.values())))
-    table = "\n".join(lines + [""] + summary)
-    print("\n" + table)
-    if args.markdown:
-        with open(args.markdown, "w") as out:
-            out.write(table + "\n")
+    mpbench.print_table(lines, summary, args.markdown)
 
 
 if __name__ == "__main__":

@@ -169,11 +169,7 @@ def main():
         two = [t[1] for t in times.values()]
         summary.append("%dD %g: numbering spread (slowest / fastest numbering, automatic) %.2f on 1 thread, "
                        "%.2f on 2" % (dim, cells, max(one) / min(one), max(two) / min(two)))
-    table = "\n".join(lines + [""] + summary)
-    print("\n" + table)
-    if args.markdown:
-        with open(args.markdown, "w") as out:
-            out.write(table + "\n")
+    mpbench.print_table(lines, summary, args.markdown)
 
 
 if __name__ == "__main__":

@@ -138,3 +138,13 @@ def bench_pair(bench, target, source, options, peer, runs):
         "filter2": found(r"VTK filter on \d+ threads" + number, float),
         "peer": found(r"libsupermesh intersections only" + number, float),
     }
+
+
+def print_table(lines, summary, markdown=None):
+    """A benchmark's table (markdown rows) and its summary lines, printed and,
+    given a file name, written there too."""
+    table = "\n".join(lines + [""] + summary)
+    print("\n" + table)
+    if markdown:
+        with open(markdown, "w") as out:
+            out.write(table + "\n")
