@@ -1,4 +1,4 @@
-"""Every code block a user would copy from README.md, docs/user-guide.md, docs/mpi.md and docs/operator.md runs.
+"""Every code block a user would copy from README.md, docs/user-guide.md, docs/mpi.md, docs/operator.md and docs/fields.md runs.
 
     python3 TestDocSnippets.py --source-dir SRC --build-dir BUILD --python PY
         --pvpython PVPYTHON --pvbatch PVBATCH --mpiexec MPIEXEC --plugin SO
@@ -31,7 +31,7 @@ import shutil
 import subprocess
 import sys
 
-PAGES = ["README.md", "docs/user-guide.md", "docs/mpi.md", "docs/operator.md"]
+PAGES = ["README.md", "docs/user-guide.md", "docs/mpi.md", "docs/operator.md", "docs/fields.md"]
 NOT_RUN = "<!-- not-run -->"
 
 
