@@ -89,6 +89,7 @@ mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjection
   ForEachProperty(filter, s, [](const auto& property, auto& field) {
     field = static_cast<std::decay_t<decltype(field)>>(property);
   });
+  s.TangentArrays = filter.Internal->TangentArrays;
   return s;
 }
 
@@ -98,6 +99,7 @@ void vtkMeshProjectionFilter::Internals::SetDefaults(vtkMeshProjectionFilter& fi
   ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
     property = static_cast<std::decay_t<decltype(property)>>(field);
   });
+  filter.Internal->TangentArrays = defaults.TangentArrays;
 }
 
 // The public constants are the values of Projection's own (Settings.h,
@@ -193,6 +195,36 @@ void vtkMeshProjectionFilter::ListSource(vtkDataObject* data)
   vtkAlgorithm* producer =
     this->GetNumberOfInputConnections(1) > 0 ? this->GetInputAlgorithm(1, 0) : nullptr;
   this->Internal->Arrays.List(data, producer);
+}
+
+void vtkMeshProjectionFilter::AddTangentArray(const char* name)
+{
+  std::vector<std::string>& names = this->Internal->TangentArrays;
+  if (name && std::find(names.begin(), names.end(), name) == names.end())
+  {
+    names.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearTangentArrays()
+{
+  if (!this->Internal->TangentArrays.empty())
+  {
+    this->Internal->TangentArrays.clear();
+    this->Modified();
+  }
+}
+
+int vtkMeshProjectionFilter::GetNumberOfTangentArrays() const
+{
+  return static_cast<int>(this->Internal->TangentArrays.size());
+}
+
+const char* vtkMeshProjectionFilter::GetTangentArray(int i) const
+{
+  const std::vector<std::string>& names = this->Internal->TangentArrays;
+  return i >= 0 && i < static_cast<int>(names.size()) ? names[i].c_str() : nullptr;
 }
 
 vtkDataArraySelection* vtkMeshProjectionFilter::GetPointDataArraySelection()
@@ -544,7 +576,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
   filter.ListSource(sourceObject);
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
-    source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
+    source.Data, source.Mesh, selections, settings, say, parts, source.Fields);
   mpvtk::ReconstructCellFields(
     settings, source.Mesh, source.Print, source.Fields[mpvtk::CellArrays], in.Cache.Reconstruction);
   if (!source.AnyTransfer(settings))

@@ -186,6 +186,24 @@ public:
 
   ///@{
   /**
+   * TangentArrays: the names of 3-component Source point or cell arrays
+   * that are vector fields tangent to a surface or curve (none by default).
+   * Each is projected from its tangential part (its normal part at the
+   * Source's points or cells removed) and returned in Input's tangent plane
+   * (the normal part at each Input point or cell removed, with Input's own
+   * normals; on a curve the part along its tangent is kept); the magnitude
+   * removed at Input is written as "<name>_NormalPart". Other meshes
+   * (volumes) project the array as an ordinary one, with a warning. See
+   * docs/fields.md.
+   */
+  void AddTangentArray(const char* name);
+  void ClearTangentArrays();
+  int GetNumberOfTangentArrays() const;
+  const char* GetTangentArray(int i) const;
+  ///@}
+
+  ///@{
+  /**
    * Where Source point arrays go (default: TO_POINTS) and where Source cell
    * arrays go (default: TO_CELLS); TO_POINTS_AND_CELLS gives both.
    */

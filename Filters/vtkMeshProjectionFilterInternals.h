@@ -37,7 +37,8 @@ struct Verdict;
 struct vtkMeshProjectionFilter::Internals
 {
   mpvtk::SourceArrayLists Arrays;
-  std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
+  std::vector<std::string> TangentArrays; ///< the TangentArrays property (Settings::TangentArrays)
+  std::set<std::string> Warned;           ///< warnings said once per filter (mpvtk::Messages)
   vtkTimeStamp Executed; ///< the end of the last execution (GetMatrix reads the cache as of it)
   mpvtk::OperatorCache Cache;
   /// The processes' seam (Parallel/Parts.h): vtkPMeshProjectionFilter installs

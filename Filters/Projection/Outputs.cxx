@@ -19,6 +19,7 @@
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
+#include "Projection/TangentFields.h"
 #include "Adapter/CompositeLeaves.h"
 #include "Adapter/FieldArrays.h"
 #include "Adapter/IntersectionOutput.h"
@@ -144,10 +145,62 @@ SourceColumns SourceColumnsOf(const GatheredFields& g, int a)
   return { &g, g.Components, g.Offsets[a] };
 }
 
+/**
+ * A tangent array's normal part at the target removed from `out` (written
+ * in the dataset's numbering) where it is valid or extrapolated, and its
+ * magnitude written as "<name>_NormalPart" (the fill value elsewhere); a
+ * warning when it is large (LargeNormalPart) next to the field, or when the
+ * target is neither surface nor curve (the array is left as projected).
+ */
+void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray* out, Transfer t,
+  const std::vector<char>& valid, const LeafSolutions& solutions, vtkDataSetAttributes* outData)
+{
+  const std::string name = out->GetName();
+  if (!tangents.Applies())
+  {
+    ctx.Say.WarnOnce("tangent/ignored/" + name,
+      "TangentArrays: '" + name + "' is not made tangent on " + ctx.Role + ", whose cells are " +
+        std::to_string(tangents.CellDimension()) +
+        "D (only surfaces and curves have a tangent plane): it is projected as an ordinary "
+        "array.");
+    return;
+  }
+  const bool toPoints = ToPoints(t);
+  const vtkIdType n = out->GetNumberOfTuples();
+  std::vector<char> keep(valid.begin(), valid.begin() + n);
+  const std::vector<char>& extrapolated = solutions.Extrapolated[t];
+  for (size_t f = 0; f < extrapolated.size(); ++f)
+  {
+    const vtkIdType at =
+      toPoints ? ctx.Target.DataSetPoint(static_cast<mp::Index>(f)) : static_cast<vtkIdType>(f);
+    keep[at] = keep[at] || extrapolated[f];
+  }
+  double largest[2] = { 0.0, 0.0 }; // removed, field
+  const std::vector<double> removed = tangents.Remove(
+    out->GetPointer(0), n, toPoints, keep, ctx.Options.Fill(), largest[0], largest[1]);
+  vtkNew<vtkDoubleArray> part;
+  part->SetName((name + "_NormalPart").c_str());
+  part->SetNumberOfValues(n);
+  std::copy(removed.begin(), removed.end(), part->GetPointer(0));
+  outData->AddArray(part);
+  // The largest over every process (a minimum of the negatives).
+  largest[0] = -largest[0];
+  largest[1] = -largest[1];
+  ctx.Processes.Minimum(largest, 2);
+  if (-largest[0] > LargeNormalPart * -largest[1])
+  {
+    ctx.Say.WarnOnce("tangent/large/" + ctx.Role + "/" + name,
+      "TangentArrays: the projected '" + name + "' on " + ctx.Role + " had a normal part up to " +
+        std::to_string(-largest[0]) + " (removed, see " + name +
+        "_NormalPart) for a largest magnitude of " + std::to_string(-largest[1]) +
+        ": the meshes' normals differ much there (a coarse facetization, or Input off Source).");
+  }
+}
+
 /// The arrays of transfer t (with their integrals for the fields' own association).
 void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions, SourceWeights& weights, Transfer t, PointNumbering& numbering,
-  Written& written)
+  TargetTangents& tangents, Written& written)
 {
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const bool toPoints = ToPoints(t);
@@ -205,6 +258,12 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
         }
       }
     });
+    if (nc == 3 && IsTangentArray(ctx.Options, array))
+    {
+      const std::vector<char>& where =
+        toPoints ? *numbering.InDataSet(*system.Valid) : *system.Valid;
+      WriteTangentPart(ctx, tangents, out, t, where, solutions, outData);
+    }
     // (The transfers to the other association have the same integrals.)
     if (IsOwnAssociation(t))
     {
@@ -495,11 +554,13 @@ void WriteLeafOutputs(LeafContext& ctx, vtkDataSet* output, const OperatorSet& o
 {
   PointNumbering numbering(ctx.Target);
   Written written;
+  TargetTangents tangents(
+    ctx.TargetData, ctx.Target, pointHooks, static_cast<vtkIdType>(pointCover.size()));
   for (Transfer t : OutputOrder)
   {
     if (ops.Operators[t] && ctx.Source.Fields[SourceAssociation(t)].Components > 0)
     {
-      WriteTransfer(ctx, output, ops, solutions, weights, t, numbering, written);
+      WriteTransfer(ctx, output, ops, solutions, weights, t, numbering, tangents, written);
     }
   }
   MakeActiveScalars(output, written);

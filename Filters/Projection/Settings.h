@@ -22,6 +22,8 @@
 #include "Transfer/LinearReconstruction.h" // mp::Reconstruction
 
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace mpvtk
 {
@@ -54,6 +56,8 @@ struct Settings
   mp::Reconstruction CellDataReconstruction = mp::Reconstruction::Constant;
   bool Lumped = false; ///< MassMatrix is LUMPED_MASS
   bool PreserveBounds = false;
+  /// TangentArrays: names of 3-component arrays tangent to a surface or curve (none by default).
+  std::vector<std::string> TangentArrays;
   int MaximumIterations = 500;
   double SurfaceReach = 0.5;
   double MaximumNormalAngle = 45.0;
@@ -69,6 +73,13 @@ struct Settings
   {
     return this->CellDataReconstruction != mp::Reconstruction::Constant &&
       this->CellDataTarget != 0;
+  }
+  /// Whether, on several processes, Source comes with the cells around those
+  /// that meet Input: a reconstruction's gradients and a tangent point
+  /// array's normals read them (Parts::GatherSource).
+  bool GathersNeighborLayer() const
+  {
+    return this->ReconstructsCellData() || !this->TangentArrays.empty();
   }
   /// The value of target functions that the Source does not reach.
   double Fill() const

@@ -10,6 +10,8 @@
 #include "Parallel/Parts.h"
 #include "Projection/Fingerprint.h"
 #include "Projection/Messages.h"
+#include "Projection/Settings.h"
+#include "Projection/TangentFields.h"
 #include "Adapter/FieldArrays.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
@@ -262,9 +264,10 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group)
 }
 
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
-  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
-  GatheredFields fields[2])
+  vtkDataArraySelection* const selections[2], const Settings& settings, Messages& messages,
+  Parts& parts, GatheredFields fields[2])
 {
+  const bool extensive = settings.Extensive;
   for (int association = 0; association < 2; ++association)
   {
     // Arrays that differ between Source's pieces or blocks (Adapter/PieceArrays.h).
@@ -286,7 +289,16 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
       continue;
     }
     CopyValues(source, mesh, association, extensive, g);
-    FindNaNGroups(mesh, association, messages, parts, g);
+  }
+  // (Before the NaN groups take their arrays' columns.)
+  RemoveSourceNormalParts(source, mesh, settings, messages, parts, fields);
+  for (int association = 0; association < 2; ++association)
+  {
+    GatheredFields& g = fields[association];
+    if (g.Components > 0)
+    {
+      FindNaNGroups(mesh, association, messages, parts, g);
+    }
   }
 }
 } // namespace mpvtk

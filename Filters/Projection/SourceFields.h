@@ -39,6 +39,7 @@ namespace mpvtk
 class Messages;
 class Parts;
 class SimplexMesh;
+struct Settings;
 
 /// The two associations of Source arrays (GatheredFields per association).
 enum Association
@@ -92,14 +93,16 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group);
 
 /**
  * The fields of `source` (wrapped as `mesh`) that `selections` (points,
- * cells) enable; warns of arrays skipped (not numeric, too short) or
+ * cells) enable, extensive cell arrays as densities (settings.Extensive),
+ * tangent arrays' normal parts removed (settings.TangentArrays:
+ * TangentFields.h); warns of arrays skipped (not numeric, too short) or
  * projected as real values (integers), of NaN groups, and says the
  * PieceWarnings of the arrays enabled (`fields` comes with Holes and
  * PieceWarnings set).
  */
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
-  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
-  GatheredFields fields[2]);
+  vtkDataArraySelection* const selections[2], const Settings& settings, Messages& messages,
+  Parts& parts, GatheredFields fields[2]);
 } // namespace mpvtk
 
 #endif

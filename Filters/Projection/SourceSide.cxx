@@ -57,10 +57,10 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   }
   // Each process gets the Source cells its part of Input needs, from all.
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
-  // (With a reconstruction of cell data, and the cells around them.)
+  // (With a reconstruction of cell data or tangent arrays, and the cells around them.)
   JoinedFields pieces; // fields that differ between the processes' pieces
   source =
-    parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed, pieces);
+    parts.GatherSource(source, input, reach, settings.GathersNeighborLayer(), failed, pieces);
   KeepJoined(blocks, side);
   KeepJoined(pieces, side);
   if (!failed.empty())

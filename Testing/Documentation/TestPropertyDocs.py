@@ -6,14 +6,16 @@ code, in the plugin's XML and in the user guide's property table.
 * Code: the properties are the vtkSet...Macro names of the header
   (Filters/vtkMeshProjectionFilter.h), plus the two array selections
   (GetPointDataArraySelection, GetCellDataArraySelection), whose default is
-  "all"; their defaults are the initializers of the fields of the same
+  "all", and the lists of names (Add<Name>Array and Clear<Name>Arrays, the
+  property <Name>Arrays, e.g. TangentArrays), whose default is "none" (an
+  empty std::vector<std::string> <Name>Arrays in Settings.h); their defaults are the initializers of the fields of the same
   names in Filters/Projection/Settings.h, the one place they are written
   (`mp::ExtrapolationMode Extrapolation = mp::ExtrapolationMode::None;`,
   enumerators resolved from the headers under Filters/). CellDataQuantity
   and MassMatrix are the bools Extensive and Lumped there (0 or 1).
 * XML (Plugin/MeshProjection.xml): the proxy's Int/Double/StringVector
-  properties (not information-only), their command (Set<Name>) and
-  default_values; a "Default: X" in a property's help must agree too.
+  properties (not information-only), their command (Set<Name>; a list of
+  names: Add<...>, default "none") and default_values; a "Default: X" in a property's help must agree too.
 * User guide (docs/user-guide.md): the table under "## Properties" whose
   header starts with `| property | default |`; a default is "all", "on",
   "off", a number, or "`CONSTANT` (number)" (the header's constant of that
@@ -27,6 +29,7 @@ import sys
 import xml.etree.ElementTree as ET
 
 ALL = "all"
+NONE = "none"  # a list of array names, empty by default (TangentArrays)
 
 
 def number(text):
@@ -100,6 +103,16 @@ def header_properties(path, root):
             raise SystemExit("Settings.h: %s's initializer %r is not a number, bool or enumerator"
                              % (field, defaults[field]))
         props[name] = defaults[field]
+    # Lists of names (Add<Name>Array, Clear<Name>Arrays): empty by default,
+    # a field of Settings.h without an initializer.
+    for name in re.findall(r"\bvoid\s+Add(\w+)Array\(\s*const char\*", src):
+        if "Clear%sArrays" % name not in src:
+            raise SystemExit("header: Add%sArray without Clear%sArrays" % (name, name))
+        settings = open(os.path.join(root, "Filters", "Projection", "Settings.h"),
+                        encoding="utf-8").read()
+        if not re.search(r"std::vector<std::string>\s+%sArrays;" % name, settings):
+            raise SystemExit("Settings.h: no empty list %sArrays for Add%sArray" % (name, name))
+        props[name + "Arrays"] = NONE
     if "GetPointDataArraySelection" in src:
         props["PointDataArrays"] = ALL
     if "GetCellDataArraySelection" in src:
@@ -120,7 +133,7 @@ def xml_properties(path, problems):
         name = element.get("name")
         command = element.get("command")
         if element.tag == "StringVectorProperty":
-            props[name] = ALL
+            props[name] = NONE if (command or "").startswith("Add") else ALL
             continue
         if command != "Set" + name:
             problems.append("XML: %s calls %s, not Set%s" % (name, command, name))
@@ -170,8 +183,8 @@ def guide_properties(path, problems, enums):
             problems.append("user guide: property cell %r is not one `Name`" % cells[0])
             continue
         text = cells[1]
-        if text == ALL:
-            value = ALL
+        if text in (ALL, NONE):
+            value = text
         elif text == "on":
             value = 1.0
         elif text == "off":
