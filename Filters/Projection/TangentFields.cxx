@@ -17,6 +17,8 @@
 #include "Projection/SourceFields.h"
 
 #include <algorithm>
+#include <array>
+#include <numeric>
 #include <cmath>
 
 namespace mpvtk
@@ -219,6 +221,52 @@ double RemoveNormalPart(double* v, const double* d, int dimension)
 
 namespace
 {
+/**
+ * The directions of points at the same coordinates summed, each with all
+ * of them: a Source in pieces (processes' parts gathered without global
+ * ids, a composite's blocks appended) has its points on the cuts once per
+ * piece, whose cells together are the point's star.
+ */
+void JoinCoincident(vtkDataSet* data, std::vector<double>& d)
+{
+  const vtkIdType n = data->GetNumberOfPoints();
+  std::vector<std::array<double, 3>> x(static_cast<size_t>(n));
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    data->GetPoint(p, x[p].data());
+  }
+  std::vector<vtkIdType> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+    [&](vtkIdType a, vtkIdType b) { return x[a] < x[b] || (x[a] == x[b] && a < b); });
+  for (vtkIdType begin = 0, end = 0; begin < n; begin = end)
+  {
+    end = begin + 1;
+    while (end < n && x[order[end]] == x[order[begin]])
+    {
+      ++end;
+    }
+    if (end - begin == 1)
+    {
+      continue;
+    }
+    double sum[3] = { 0.0, 0.0, 0.0 };
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const double* w = &d[3 * order[i]];
+      const double sign = Dot(sum, w) < 0 ? -1.0 : 1.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        sum[k] += sign * w[k];
+      }
+    }
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      std::copy_n(sum, 3, &d[3 * order[i]]);
+    }
+  }
+}
+
 /// The largest over every process (by the seam's minimum).
 double Largest(Parts& parts, double mine)
 {
@@ -289,6 +337,7 @@ void RemoveSourceNormalParts(vtkDataSet* source, const SimplexMesh& mesh, const 
       {
         cells = CellDirections(source, dimension);
         points = PointDirections(source, dimension);
+        JoinCoincident(source, points);
       }
       if (applies)
       {

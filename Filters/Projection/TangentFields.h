@@ -21,7 +21,10 @@
  * sign that agrees with the sum so far, so that a surface that flips its
  * cells' orientation still gets its normal. On several processes a target
  * point's sum is completed over the processes that share it (the solver's
- * hooks). The normal part of a planar mesh is its plane's: removed to
+ * hooks); the Source's points at the same coordinates share their sums
+ * (its pieces' points on the cuts come once per piece: processes' parts
+ * gathered without global ids, a composite's blocks), and the gathering
+ * brings the cells around those that meet Input (Settings::GathersNeighborLayer). The normal part of a planar mesh is its plane's: removed to
  * round-off, linear tangent fields stay exact.
  */
 #ifndef MeshProjection_Projection_TangentFields_h
