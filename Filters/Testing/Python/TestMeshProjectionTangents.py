@@ -269,6 +269,83 @@ error = np.sqrt(np.mean(np.sum((u - exact) ** 2, axis=1)))
 error0 = np.sqrt(np.mean(np.sum((u0 - exact) ** 2, axis=1)))
 check(error <= error0, "circle: error against the exact tangent %.3e, plain %.3e" % (error, error0))
 
+# --- Composite data, PreserveBounds, a kept operator --------------------------
+from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet  # noqa: E402
+from vtkmodules.vtkFiltersCore import vtkThreshold  # noqa: E402
+
+
+def halves(mesh):
+    """Two blocks: the cells below and above z = 0.1 (their points copied on the cut)."""
+    z = centroids(mesh)[:, 2]
+    side = numpy_to_vtk((z > 0.1).astype(float), deep=1)
+    side.SetName("side")
+    copy = vtkPolyData()
+    copy.DeepCopy(mesh)
+    copy.GetCellData().AddArray(side)
+    blocks = vtkMultiBlockDataSet()
+    for i, (lo, hi) in enumerate(((-1.0, 0.5), (0.5, 2.0))):
+        t = vtkThreshold()
+        t.SetInputData(copy)
+        t.SetInputArrayToProcess(0, 0, 0, 1, "side")
+        t.SetLowerThreshold(lo)
+        t.SetUpperThreshold(hi)
+        t.Update()
+        block = t.GetOutput().NewInstance()
+        block.DeepCopy(t.GetOutput())
+        block.GetCellData().RemoveArray("side")
+        blocks.SetBlock(i, block)
+    return blocks
+
+
+source = sphere(24, 18)
+target = sphere(37, 29)
+with_field(source, "v", on_sphere(points(source)))
+whole = output_array(tangents(target, source, "v"), "v")
+f = tangents(target, halves(source), "v")
+u = output_array(f, "v")
+check(np.max(np.abs(u - whole)) < 1e-12 * np.max(np.abs(whole)),
+      "composite Source: its blocks' points on the cut share their normals, the result is the "
+      "whole Source's (%.2e)" % np.max(np.abs(u - whole)))
+f = tangents(halves(target), source, "v")
+for i in range(2):
+    block = f.GetOutput().GetBlock(i)
+    u = vtk_to_numpy(block.GetPointData().GetArray("v"))
+    cells = vtk_to_numpy(block.GetCells().GetConnectivityArray()).reshape(-1, 3)
+    x = vtk_to_numpy(block.GetPoints().GetData()).astype(float)
+    area = 0.5 * np.cross(x[cells[:, 1]] - x[cells[:, 0]], x[cells[:, 2]] - x[cells[:, 0]])
+    n = np.zeros_like(x)
+    for k in range(3):
+        np.add.at(n, cells[:, k], area)
+    used = np.linalg.norm(n, axis=1) > 0
+    normal = normal_part(u[used], n[used], False)
+    check(np.max(normal) < ROUND_OFF * np.max(np.abs(u)),
+          "composite Input block %d: the normal part (its own normals) is at round-off (%.2e)"
+          % (i, np.max(normal)))
+
+# PreserveBounds bounds the Cartesian components, then the normal part goes.
+f = tangents(target, source, "v", PreserveBounds=True)
+u = output_array(f, "v")
+n = point_normals(target, cell_normals(target))
+check(np.max(normal_part(u, n, False)) < ROUND_OFF * np.max(np.abs(u)),
+      "PreserveBounds: the normal part is at round-off (%.2e)" % np.max(normal_part(u, n, False)))
+
+# A kept operator (a time series' next step): the next field's result is a fresh filter's.
+f = meshprojection.vtkMeshProjectionFilter()
+f.SetInputData(target)
+f.SetSourceData(source)
+f.AddTangentArray("v")
+f.Update()
+source.GetPointData().RemoveArray("v")
+with_field(source, "v", 2.0 * on_sphere(points(source)) + 0.3 * np.cross([1.0, 0, 0], points(source)))
+f.Modified()
+f.Update()
+kept = output_array(f, "v")
+fresh = output_array(tangents(target, source, "v"), "v")
+check(np.max(np.abs(kept - fresh)) < 1e-10 * np.max(np.abs(fresh)),
+      "kept operator: the next step's result is a fresh filter's (%.2e)" % np.max(np.abs(kept - fresh)))
+check(np.max(normal_part(kept, n, False)) < ROUND_OFF * np.max(np.abs(kept)),
+      "kept operator: the normal part is at round-off (%.2e)" % np.max(normal_part(kept, n, False)))
+
 # --- Said by name: not 3 components; a volume target --------------------------
 f, texts = observed_filter("WarningEvent")
 source = sphere(12, 10)
