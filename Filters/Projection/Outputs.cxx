@@ -149,8 +149,9 @@ SourceColumns SourceColumnsOf(const GatheredFields& g, int a)
  * A tangent array's normal part at the target removed from `out` (written
  * in the dataset's numbering) where it is valid or extrapolated, and its
  * magnitude written as "<name>_NormalPart" (the fill value elsewhere); a
- * warning when it is large (LargeNormalPart) next to the field, or when the
- * target is neither surface nor curve (the array is left as projected).
+ * warning when it is large (LargeNormalPart) next to the field (not on a
+ * trace, whose vectors are a volume's), or when the target is neither
+ * surface nor curve (the array is left as projected).
  */
 void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray* out, Transfer t,
   const std::vector<char>& valid, const LeafSolutions& solutions, vtkDataSetAttributes* outData)
@@ -187,7 +188,8 @@ void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray
   largest[0] = -largest[0];
   largest[1] = -largest[1];
   ctx.Processes.Minimum(largest, 2);
-  if (-largest[0] > LargeNormalPart * -largest[1])
+  // (A trace's vectors are the volume's: their normal part is no surprise.)
+  if (-largest[0] > LargeNormalPart * -largest[1] && !ctx.Shape.Trace)
   {
     ctx.Say.WarnOnce("tangent/large/" + ctx.Role + "/" + name,
       "TangentArrays: the projected '" + name + "' on " + ctx.Role + " had a normal part up to " +

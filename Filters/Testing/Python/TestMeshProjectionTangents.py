@@ -5,7 +5,9 @@ the result's normal part at every target point and cell (the target's own
 normals, computed here independently) is at round-off, the tangential error
 against the exact tangent field is no worse than the plain projection's,
 the removed part is reported in <name>_NormalPart (what the plain
-projection had there), a linear tangent field on a plane stays exact, and
+projection had there), a linear tangent field on a plane stays exact, a trace keeps the part of
+a volume's vectors tangent to a sheet inside it, large removed parts are
+said (10%), composite data, PreserveBounds and a kept operator work, and
 a non-3-component array or a volume target is said by name and projected
 as an ordinary array."""
 import numpy as np
@@ -269,6 +271,39 @@ error = np.sqrt(np.mean(np.sum((u - exact) ** 2, axis=1)))
 error0 = np.sqrt(np.mean(np.sum((u0 - exact) ** 2, axis=1)))
 check(error <= error0, "circle: error against the exact tangent %.3e, plain %.3e" % (error, error0))
 
+# --- Large removed parts are said (over 10% of the field's magnitude) ---------
+f, texts = observed_filter("WarningEvent")
+source = sphere(24, 18)
+with_field(source, "v", on_sphere(points(source)))
+f.SetInputData(sphere(37, 29))
+f.SetSourceData(source)
+f.AddTangentArray("v")
+f.Update()
+check(not any("TangentArrays" in t for t in texts), "a tangent field on a fine pair: nothing said: %s" % texts)
+f, texts = observed_filter("WarningEvent")
+source = sphere(24, 18)
+with_field(source, "v", on_sphere(points(source)) + 2.0 * unit(points(source)))
+f.SetInputData(sphere(37, 29))
+f.SetSourceData(source)
+f.AddTangentArray("v")
+f.Update()
+said = [t for t in texts if "TangentArrays" in t]
+check(len(said) == 1 and "'v' is not tangent to the Source" in said[0],
+      "a radial part on the Source is said: %s" % said)
+f, texts = observed_filter("WarningEvent")
+source = sphere(6, 4)
+with_field(source, "v", on_sphere(points(source)))
+f.SetInputData(sphere(37, 29))
+f.SetSourceData(source)
+f.SetSurfaceReach(2.0)
+f.SetMaximumNormalAngle(89.0)
+f.AddTangentArray("v")
+f.Update()
+said = [t for t in texts if "TangentArrays" in t]
+largest = np.nanmax(output_array(f, "v_NormalPart"))
+check(len(said) == 1 and "'v' on Input had a normal part up to %f" % largest in said[0],
+      "a coarse Source (6 x 4): Input's large normal part (%.3f) is said: %s" % (largest, said))
+
 # --- Composite data, PreserveBounds, a kept operator --------------------------
 from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet  # noqa: E402
 from vtkmodules.vtkFiltersCore import vtkThreshold  # noqa: E402
@@ -380,5 +415,24 @@ f.AddTangentArray("v")
 f.Update()
 check(any("'v'" in t and "3D" in t for t in texts), "a volume target: said by name: %s" % texts)
 check(f.GetOutput().GetPointData().GetArray("v") is not None, "... and projected as an ordinary array")
+
+# A trace: a tilted sheet inside the volume keeps the part of the volume's
+# (linear) vectors tangent to it, exactly.
+sheet = tilted_plane((9, 7), True)
+x = points(sheet) * 2.0 + 2.0
+moved = vtkPoints()
+moved.SetData(numpy_to_vtk(np.ascontiguousarray(x), deep=1))
+sheet.SetPoints(moved)
+f, texts = observed_filter("WarningEvent")
+f.SetInputData(sheet)
+f.SetSourceData(calc.GetOutput())
+f.AddTangentArray("v")
+f.Update()
+u = vtk_to_numpy(f.GetOutput().GetPointData().GetArray("v")).astype(float)
+exact = np.stack([x[:, 0], np.ones(len(x)), np.zeros(len(x))], axis=1) @ P.T
+check(np.max(np.abs(u - exact)) < 1e-10 * np.max(np.abs(exact)),
+      "trace: the volume's linear vectors' part tangent to a sheet inside it, exact (%.2e)"
+      % np.max(np.abs(u - exact)))
+check(not any("TangentArrays" in t for t in texts), "trace: nothing to say: %s" % texts)
 
 finish()
