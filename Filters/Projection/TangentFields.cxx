@@ -18,8 +18,8 @@
 
 #include <algorithm>
 #include <array>
-#include <numeric>
 #include <cmath>
+#include <numeric>
 
 namespace mpvtk
 {
