@@ -81,6 +81,8 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.KeepMatrices, s.KeepMatrices);
   each(f.NumberOfThreads, s.NumberOfThreads);
   each(f.Renumbering, s.Renumbering);
+  each(f.DensityArray, s.DensityArray);
+  each(f.MassWeightedArrays, s.MassWeightedArrays);
 }
 
 mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjectionFilter& filter)
@@ -213,6 +215,41 @@ void vtkMeshProjectionFilter::ClearPointDataArrayStatuses()
 void vtkMeshProjectionFilter::SetPointDataArrayStatus(const char* name, int status)
 {
   this->Internal->Arrays.SetStatus(0, name, status);
+}
+
+void vtkMeshProjectionFilter::SetDensityArray(const char* name)
+{
+  const std::string value = name ? name : "";
+  if (value != this->DensityArray)
+  {
+    this->DensityArray = value;
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::AddMassWeightedArray(const char* name)
+{
+  if (name && *name)
+  {
+    this->MassWeightedArrays.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearMassWeightedArrays()
+{
+  if (!this->MassWeightedArrays.empty())
+  {
+    this->MassWeightedArrays.clear();
+    this->Modified();
+  }
+}
+
+const char* vtkMeshProjectionFilter::GetMassWeightedArray(int i) const
+{
+  return i >= 0 && i < static_cast<int>(this->MassWeightedArrays.size())
+    ? this->MassWeightedArrays[static_cast<size_t>(i)].c_str()
+    : nullptr;
 }
 
 void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
@@ -544,7 +581,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
   filter.ListSource(sourceObject);
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
-    source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
+    source.Data, source.Mesh, selections, settings, say, parts, source.Fields);
   mpvtk::ReconstructCellFields(
     settings, source.Mesh, source.Print, source.Fields[mpvtk::CellArrays], in.Cache.Reconstruction);
   if (!source.AnyTransfer(settings))
@@ -759,6 +796,13 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
   os << indent << "KeepMatrices: " << (this->KeepMatrices ? "On" : "Off") << "\n";
+  os << indent << "DensityArray: " << this->DensityArray << "\n";
+  os << indent << "MassWeightedArrays:";
+  for (const std::string& name : this->MassWeightedArrays)
+  {
+    os << " " << name;
+  }
+  os << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";

@@ -22,6 +22,8 @@
 #include "Transfer/LinearReconstruction.h" // mp::Reconstruction
 
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace mpvtk
 {
@@ -63,6 +65,10 @@ struct Settings
   int NumberOfThreads = 0; ///< 0: every core (the filter's RequestData)
   int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
   bool KeepMatrices = false;
+  /// Mass weighting (MassWeighting.h): the Source's density array ("": off), and the
+  /// arrays weighted by it (empty: every array of its association).
+  std::string DensityArray = "";
+  std::vector<std::string> MassWeightedArrays;
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const
