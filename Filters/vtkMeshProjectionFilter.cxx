@@ -219,7 +219,8 @@ void vtkMeshProjectionFilter::SetPointDataArrayStatus(const char* name, int stat
 
 void vtkMeshProjectionFilter::SetDensityArray(const char* name)
 {
-  const std::string value = name ? name : "";
+  // (None: the panel's entry for no density.)
+  const std::string value = name && std::string(name) != "None" ? name : "";
   if (value != this->DensityArray)
   {
     this->DensityArray = value;

@@ -221,7 +221,7 @@ public:
   /**
    * Mass-weighted projection. DensityArray names a one-component Source
    * array, the density rho (point data if Source has a point array of that
-   * name, else cell data; default: none, off). Each mass-weighted array q
+   * name, else cell data; default: none, off; "" or "None" turn it off). Each mass-weighted array q
    * of the same association is then projected so that the integral of
    * rho q is conserved: rho q and rho are projected (same operator, same
    * settings) and q's output is their ratio. Where the projected rho is at
