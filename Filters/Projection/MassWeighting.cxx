@@ -294,38 +294,42 @@ void WeighSourceFields(const Settings& settings, int association, int densityAss
 
 namespace
 {
-/// One weighted array of transfer t: the ratio, guarded and clipped, on its valid functions.
-vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, const LeafSolutions& solutions,
-  Transfer t, const mp::SolverHooks& hook, mp::LargeVector<double>& values,
-  mp::LargeVector<double>& products, int productOffset, int productWidth,
-  std::vector<char>& guarded)
+/**
+ * The w-th weighted array of transfer t: its projected product put aside
+ * (solutions.Products), then the ratio, guarded (solutions.Guarded) and
+ * clipped, on its valid functions. Returns how many functions the guard
+ * left (points: those this process counts).
+ */
+vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, Transfer t,
+  const mp::SolverHooks& hook, LeafSolutions& solutions)
 {
   const MassWeights& mass = g.Mass;
   const int a = mass.Weighted[static_cast<size_t>(w)];
   const int nc = g.Arrays[a]->GetNumberOfComponents();
   const int width = g.Components;
-  const int offset = g.Offsets[a];
-  const int densityColumn = g.Offsets[mass.Density];
+  mp::LargeVector<double>& values = solutions.Values[t];
   const std::vector<char>& valid = *solutions.ByArray[t][static_cast<size_t>(a)].Valid;
   const std::vector<char>& densityValid =
     *solutions.ByArray[t][static_cast<size_t>(mass.Density)].Valid;
   const double guard = DensityGuard * mass.Scale;
   const bool clip = ctx.Options.PreserveBounds;
-  const size_t first = static_cast<size_t>(ProductOffset(g, w)); // its first component in Low, High
+  const int first = ProductOffset(g, w); // its columns in Products, its components in Low, High
+  const int productWidth = ProductWidth(g);
   const size_t rows = values.size() / static_cast<size_t>(width);
   const size_t points = static_cast<size_t>(ctx.TargetData->GetNumberOfPoints());
   const bool onPoints = TargetSpaceOf(t) == mp::SpaceType::P1;
+  std::vector<char>& guarded = solutions.Guarded[t][static_cast<size_t>(w)];
   guarded.assign(rows, 0);
   vtkIdType count = 0;
   for (size_t f = 0; f < rows; ++f)
   {
-    double* q = &values[f * width + offset];
-    std::copy(q, q + nc, &products[f * productWidth + productOffset]);
+    double* q = &values[f * width + g.Offsets[a]];
+    std::copy(q, q + nc, &solutions.Products[t][f * productWidth + first]);
     if (!valid[f])
     {
       continue;
     }
-    const double rho = values[f * width + densityColumn];
+    const double rho = values[f * width + g.Offsets[mass.Density]];
     const bool divides = densityValid[f] && rho > guard;
     if (!divides)
     {
@@ -349,6 +353,23 @@ vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, const LeafSol
   }
   return count;
 }
+
+/// Says (once, by process 0) how many functions the guard left for array a of transfer t.
+void WarnGuarded(LeafContext& ctx, const GatheredFields& g, int a, Transfer t, double count)
+{
+  const bool onPoints = TargetSpaceOf(t) == mp::SpaceType::P1;
+  const std::string name = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
+  if (count == 0 || ctx.Processes.Rank() != 0)
+  {
+    return;
+  }
+  ctx.Say.WarnOnce("massweight/guard/" + ctx.Role + "/" + TransferName(t) + "/" + name,
+    std::to_string(static_cast<long long>(count)) + " " + ctx.Role +
+      (onPoints ? " points" : " cells") + " have a projected density '" + ctx.Options.DensityArray +
+      "' of at most 1e-10 times the Source's largest |density|: the mass-weighted array '" + name +
+      "' is not divided there; they get the fill value and are marked invalid (in " +
+      (onPoints ? "vtkValidPointMask" : "vtkValidCellMask") + ", or in a mask of its own).");
+}
 } // namespace
 
 void DivideByDensity(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks hooks[2],
@@ -361,31 +382,15 @@ void DivideByDensity(LeafContext& ctx, const OperatorSet& ops, const mp::SolverH
     {
       continue;
     }
-    const bool onPoints = TargetSpaceOf(t) == mp::SpaceType::P1;
-    const mp::SolverHooks& hook = hooks[onPoints ? 0 : 1];
-    mp::LargeVector<double>& values = solutions.Values[t];
-    const int productWidth = ProductWidth(g);
-    const size_t rows = values.size() / static_cast<size_t>(g.Components);
-    solutions.Products[t].assign(rows * static_cast<size_t>(productWidth), 0.0);
+    const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
+    const size_t rows = solutions.Values[t].size() / static_cast<size_t>(g.Components);
+    solutions.Products[t].assign(rows * static_cast<size_t>(ProductWidth(g)), 0.0);
     solutions.Guarded[t].assign(g.Mass.Weighted.size(), std::vector<char>());
     for (size_t w = 0; w < g.Mass.Weighted.size(); ++w)
     {
-      const int a = g.Mass.Weighted[w];
-      double count = static_cast<double>(
-        Divide(ctx, g, static_cast<int>(w), solutions, t, hook, values, solutions.Products[t],
-          ProductOffset(g, static_cast<int>(w)), productWidth, solutions.Guarded[t][w]));
-      ctx.Processes.Sum(&count, 1);
-      const std::string name = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
-      if (count > 0 && ctx.Processes.Rank() == 0)
-      {
-        ctx.Say.WarnOnce("massweight/guard/" + ctx.Role + "/" + TransferName(t) + "/" + name,
-          std::to_string(static_cast<long long>(count)) + " " + ctx.Role +
-            (onPoints ? " points" : " cells") + " have a projected density '" +
-            ctx.Options.DensityArray +
-            "' of at most 1e-10 times the Source's largest |density|: the mass-weighted array '" +
-            name + "' is not divided there; they get the fill value and are marked invalid (in " +
-            (onPoints ? "vtkValidPointMask" : "vtkValidCellMask") + ", or in a mask of its own).");
-      }
+      double count = static_cast<double>(Divide(ctx, g, static_cast<int>(w), t, hook, solutions));
+      ctx.Processes.Sum(&count, 1); // (collective: every process, every weighted array)
+      WarnGuarded(ctx, g, g.Mass.Weighted[w], t, count);
     }
   }
 }

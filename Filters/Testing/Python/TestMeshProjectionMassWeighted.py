@@ -16,7 +16,8 @@ rho q is kept: rho q and rho are projected, q is their ratio.
        with rho = 0 on part of it), q is invalid, with its own count said;
     e. NaN in q or in rho: a hole, the rest conserved;
     f. PreserveBounds: q within its Source range; the density not selected
-       is projected but not written, with the same q;
+       is projected but not written, with the same q; cells to points;
+       Extrapolation (finite, within q's range, the valid values unchanged);
     g. errors (a missing density, a three-component one, a density with no
        finite value, an array of the other association): a warning by
        name, q projected plainly;
@@ -140,6 +141,19 @@ def test_cells():
     check(np.array_equal(cells_of(named, "q"), cells_of(f, "q"), equal_nan=True), "cells: q named gives the same q")
     check(field(named, "TargetIntegral_one (cell data)") == field(plain, "TargetIntegral_one (cell data)"),
           "cells: an array not named is projected plainly")
+    # Cells to points: the ratio of two P1 projections of cell data; a constant stays.
+    both, _ = run(SHIFTED, source, CellDataTarget=3)
+    on_points = vtk_to_numpy(both.GetOutput().GetPointData().GetArray("vtkValidPointMask")) == 1
+    check(np.max(np.abs(points_of(both, "one")[on_points] - 2.5)) < 2.5 * 1e-11,
+          "cells to points: a constant stays constant")
+    check(np.array_equal(cells_of(both, "q"), cells_of(f, "q"), equal_nan=True),
+          "cells to points and cells: the cells' q as to cells only")
+    # Extrapolation: every target cell gets a value, within q's range.
+    ext, _ = run(SHIFTED, source, Extrapolation=1)
+    qe = cells_of(ext, "q")
+    check(np.isfinite(qe).all() and qe.min() >= q(SC).min() and qe.max() <= q(SC).max(),
+          "cells, extrapolated: finite, within q's range")
+    check(np.array_equal(qe[valid], cells_of(f, "q")[valid]), "cells, extrapolated: the valid values as without")
     # Reconstruction: conservation and constants as well.
     for mode in (1, 2):
         r, _ = run(SHIFTED, source, CellDataReconstruction=mode)
@@ -218,6 +232,22 @@ def test_guard():
           "guard: the count (%d) is said once: %r" % (small.sum(), said))
     check(relative(field(f, "TargetIntegral_q (cell data)"), field(f, "SourceIntegral_q (cell data)")) < TIGHT,
           "guard: the integral of rho q is kept")
+    # Points beyond the Source extrapolated next to guarded ones: finite
+    # (the guarded ones alone get the fill value).
+    rp = np.where(SX[:, 0] < 0.5, 0.0, SX[:, 0] - 0.4)
+    points = with_arrays(SOURCE, points={"rho": rp, "q": q(SX)})
+    e, texts = run(SHIFTED, points, observe=True, Extrapolation=1)
+    qe = points_of(e, "q")
+    own = points_of(e, "vtkValidPointMask_q")
+    guarded = (own == 0) & (points_of(e, "vtkValidPointMask") == 1) if own is not None else np.zeros(len(qe), bool)
+    check(guarded.sum() > 0 and np.array_equal(np.isnan(qe), guarded),
+          "guard, extrapolated points: NaN exactly at the %d guarded points (%d NaN)"
+          % (guarded.sum(), np.isnan(qe).sum()))
+    valid = points_of(e, "vtkValidPointMask") == 1
+    kept = qe[valid & ~guarded]
+    beyond = qe[~valid]
+    check(len(beyond) > 0 and beyond.min() >= kept.min() - 1e-12 and beyond.max() <= kept.max() + 1e-12,
+          "guard, extrapolated points: within the valid values' range")
     # With a fill value instead of NaN.
     g, _ = run(TARGET, source, FillWithNaN=False, FillValue=-7.0)
     check(np.all(cells_of(g, "q")[small] == -7.0), "guard: the fill value")
