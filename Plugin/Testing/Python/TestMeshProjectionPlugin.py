@@ -35,8 +35,10 @@ check(set(projection.ListProperties()) == {
     "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "KeepMatrices", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "Extrapolation", "FringeThreshold",
-    "NormalOrientation"},
+    "NormalOrientation", "DensityArray", "MassWeightedArrays"},
       "properties %r" % projection.ListProperties())
+check(projection.DensityArray == "None" and len(projection.MassWeightedArrays) == 0,
+      "mass weighting off by default (%r, %r)" % (projection.DensityArray, projection.MassWeightedArrays))
 check(projection.SurfaceReach == 0.5 and projection.MaximumNormalAngle == 45 and
       projection.ConserveSourceIntegral == 0 and projection.NormalOrientation == "Same", "surface defaults")
 check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "Cells",
