@@ -166,6 +166,40 @@ SourceColumns SourceColumnsOf(const GatheredFields& g, int a)
   return { &g, g.Components, g.Offsets[a] };
 }
 
+/**
+ * ConserveSourceIntegral's scale of each component of array a: its
+ * integrals' Factor, and for a mass-weighted array that divided by the
+ * density's own (the density is written scaled), so that the written
+ * density times the written q keeps the Source's integral of rho q and a
+ * constant q stays constant. Collective (the density's weights and sums).
+ */
+std::vector<double> ValueFactors(LeafContext& ctx, const OperatorSet& ops,
+  const LeafSolutions& solutions, SourceWeights& weights, Transfer t, int a,
+  const ArrayIntegrals& integrals)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  std::vector<double> factors = integrals.Factor;
+  const bool conserve = ctx.Options.ConserveSourceIntegral && !ctx.Shape.Trace;
+  if (!conserve || !g.Mass.Active() || g.Mass.WeightedIndex(a) < 0)
+  {
+    return factors;
+  }
+  const int d = g.Mass.Density;
+  const SourceColumns source = SourceColumnsOf(g, d);
+  const vtkIdType n =
+    ToPoints(t) ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
+  const ProjectedArray density{ solutions.ByArray[t][static_cast<size_t>(d)],
+    weights.Of(*ops.ByArray[t][d]), source.Block->Functions(), source.Width, source.Offset,
+    solutions.Values[t], g.Components, g.Offsets[d], 1, n };
+  const double scale =
+    Integrate(density, true, ctx.Options.DensityArray, ctx.Role, ctx.Processes, ctx.Say).Factor[0];
+  for (double& factor : factors)
+  {
+    factor /= scale;
+  }
+  return factors;
+}
+
 /// The arrays of transfer t (with their integrals for the fields' own association).
 void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions, SourceWeights& weights, Transfer t, PointNumbering& numbering,
@@ -209,6 +243,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
       product ? ProductWidth(g) : g.Components, product ? ProductOffset(g, w) : offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);
+    const std::vector<double> factors = ValueFactors(ctx, ops, solutions, weights, t, a, integrals);
     vtkNew<vtkDoubleArray> out;
     out->SetName(name.c_str());
     out->SetNumberOfComponents(nc);
@@ -234,7 +269,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
         {
           to[at * nc + k] = !valid[f] && (*system.Valid)[f]
             ? fill // (left by the density guard: MassWeighting.h)
-            : scale * (valid[f] ? integrals.Factor[k] : 1.0) * values[f * width + offset + k];
+            : scale * (valid[f] ? factors[k] : 1.0) * values[f * width + offset + k];
         }
       }
     });

@@ -21,7 +21,10 @@ rho q is kept: rho q and rho are projected, q is their ratio.
     g. errors (a missing density, a three-component one, a density with no
        finite value, an array of the other association): a warning by
        name, q projected plainly;
-    h. a time series: the operators are reused and give a fresh run's result.
+    h. a time series: the operators are reused and give a fresh run's result;
+    i. two facetizations of a sphere: with ConserveSourceIntegral the written
+       rho_t q_t keeps the Source's integral of rho q to 1e-12 (cells; points:
+       the product's integral) and a constant stays constant.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -333,8 +336,50 @@ def test_time_series():
     check(f.GetOperatorReused(), "time series: the operators are reused")
 
 
+def triangles_of(g):
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    conn = vtk_to_numpy(g.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    area = 0.5 * np.linalg.norm(np.cross(x[conn[:, 1]] - x[conn[:, 0]], x[conn[:, 2]] - x[conn[:, 0]]), axis=1)
+    return x, conn, x[conn].mean(axis=1), area
+
+
+def test_sphere():
+    """Two facetizations of a sphere (areas differ by O(h^2)): with
+    ConserveSourceIntegral the written density times the written q keeps the
+    Source's integral of rho q and a constant stays constant."""
+    source_mesh = gmshmeshes.surface("sphere", 0.15)
+    target = gmshmeshes.surface("sphere", 0.2, algorithm=1)
+    sx, sconn, sc, sa = triangles_of(source_mesh)
+    _, _, _, ta = triangles_of(target)
+
+    def density(x):
+        return 1.5 + x[:, 0] * x[:, 1] + 0.3 * x[:, 2]
+
+    cells = with_arrays(source_mesh, cells={"rho": density(sc), "q": q(sc), "one": np.full(len(sc), 3.0)})
+    whole = float(np.sum(sa * density(sc) * q(sc)))
+    for conserve in (False, True):
+        f, _ = run(target, cells, ConserveSourceIntegral=conserve)
+        covered = vtk_to_numpy(f.GetOutput().GetCellData().GetArray("CoveredFraction")) * ta
+        kept = float(np.sum(covered * cells_of(f, "rho") * cells_of(f, "q")))
+        check(relative(field(f, "SourceIntegral_q (cell data)"), whole) < TIGHT,
+              "sphere: SourceIntegral_q is the Source's integral of rho q")
+        check(np.max(np.abs(cells_of(f, "one") - 3.0)) < 3e-12, "sphere, conserve %d: a constant stays" % conserve)
+        if conserve:
+            check(relative(kept, whole) < TIGHT, "sphere, conserved: integral of rho_t q_t %.16g, Source's %.16g"
+                  % (kept, whole))
+        else:
+            check(relative(kept, field(f, "TargetIntegral_q (cell data)")) < TIGHT,
+                  "sphere: integral of rho_t q_t is TargetIntegral_q")
+    points = with_arrays(source_mesh, points={"rho": density(sx), "q": q(sx), "one": np.full(len(sx), 3.0)})
+    exact = float(np.sum(sa * (density(sx) * q(sx))[sconn].mean(axis=1)))
+    f, _ = run(target, points, ConserveSourceIntegral=True)
+    check(relative(field(f, "TargetIntegral_q"), exact) < TIGHT, "sphere, points: TargetIntegral_q conserved")
+    check(np.max(np.abs(points_of(f, "one") - 3.0)) < 3e-12, "sphere, points: a constant stays")
+
+
 test_cells()
 test_points()
+test_sphere()
 test_guard()
 test_nan()
 test_bounds_and_hidden()
