@@ -15,13 +15,16 @@
  * |rho|; elsewhere q_t is the fill value and q is invalid there (its own
  * mask). With PreserveBounds, q_t is clipped to q's Source range. The
  * projected products are kept beside (LeafSolutions::Products): the
- * integrals SourceIntegral_<q> and TargetIntegral_<q> are those of rho q.
+ * integrals SourceIntegral_<q> and TargetIntegral_<q> are those of rho q,
+ * and ConserveSourceIntegral scales q by rho q's factor over rho's
+ * (Outputs.cxx), so that the written rho_t q_t has the Source's integral.
  *
  * What is conserved: with cell targets (P0), the sum over covered cells of
  * |cell's covered part| rho_t q_t, i.e. the integral of the product of the
  * two output fields, equals the Source's integral of rho q over the
  * covered part. With point targets (P1), the projected product (rho q)_t
- * has the Source's integral; its integral is the sum over points of
+ * is the projection of the Source's (P1) rho q, with its integral as any
+ * projected point array; that integral is the sum over points of
  * (integral of the point's basis function over the covered part) rho_t q_t,
  * the nodal quadrature of the two output fields' product. Why the ratio and
  * not a rho-weighted mass matrix: docs/design.md.
