@@ -81,6 +81,8 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.KeepMatrices, s.KeepMatrices);
   each(f.NumberOfThreads, s.NumberOfThreads);
   each(f.Renumbering, s.Renumbering);
+  each(f.DensityArray, s.DensityArray);
+  each(f.MassWeightedArrays, s.MassWeightedArrays);
 }
 
 mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjectionFilter& filter)
@@ -245,6 +247,42 @@ void vtkMeshProjectionFilter::ClearPointDataArrayStatuses()
 void vtkMeshProjectionFilter::SetPointDataArrayStatus(const char* name, int status)
 {
   this->Internal->Arrays.SetStatus(0, name, status);
+}
+
+void vtkMeshProjectionFilter::SetDensityArray(const char* name)
+{
+  // (None: the panel's entry for no density.)
+  const std::string value = name && std::string(name) != "None" ? name : "";
+  if (value != this->DensityArray)
+  {
+    this->DensityArray = value;
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::AddMassWeightedArray(const char* name)
+{
+  if (name && *name)
+  {
+    this->MassWeightedArrays.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearMassWeightedArrays()
+{
+  if (!this->MassWeightedArrays.empty())
+  {
+    this->MassWeightedArrays.clear();
+    this->Modified();
+  }
+}
+
+const char* vtkMeshProjectionFilter::GetMassWeightedArray(int i) const
+{
+  return i >= 0 && i < static_cast<int>(this->MassWeightedArrays.size())
+    ? this->MassWeightedArrays[static_cast<size_t>(i)].c_str()
+    : nullptr;
 }
 
 void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
@@ -791,6 +829,13 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
   os << indent << "KeepMatrices: " << (this->KeepMatrices ? "On" : "Off") << "\n";
+  os << indent << "DensityArray: " << this->DensityArray << "\n";
+  os << indent << "MassWeightedArrays:";
+  for (const std::string& name : this->MassWeightedArrays)
+  {
+    os << " " << name;
+  }
+  os << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";

@@ -30,6 +30,9 @@
 #include "MeshProjectionFiltersModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
 
+#include <string> // for DensityArray
+#include <vector> // for MassWeightedArrays
+
 class vtkDataArraySelection;
 class vtkDoubleArray;
 class vtkIdTypeArray;
@@ -230,6 +233,35 @@ public:
    */
   vtkSetClampMacro(CellDataReconstruction, int, CONSTANT_RECONSTRUCTION, UNLIMITED_RECONSTRUCTION);
   vtkGetMacro(CellDataReconstruction, int);
+  ///@}
+
+  ///@{
+  /**
+   * Mass-weighted projection. DensityArray names a one-component Source
+   * array, the density rho (point data if Source has a point array of that
+   * name, else cell data; default: none, off; "" or "None" turn it off). Each mass-weighted array q
+   * of the same association is then projected so that the integral of
+   * rho q is conserved: rho q and rho are projected (same operator, same
+   * settings) and q's output is their ratio. Where the projected rho is at
+   * most 1e-10 times the Source's largest |rho|, q gets the fill value and
+   * is marked invalid in a mask of its own. With PreserveBounds, q is then
+   * clipped to its Source range. The density itself is output only when it
+   * is selected (GetPointDataArraySelection, ...). MassWeightedArrays: the
+   * arrays to weight (default: none named, meaning every array of the
+   * density's association); AddMassWeightedArray adds one name,
+   * ClearMassWeightedArrays empties the list. SourceIntegral_<q> and
+   * TargetIntegral_<q> are then the integrals of rho q. Cell data must be
+   * INTENSIVE. Details: docs/fields.md.
+   */
+  void SetDensityArray(const char* name);
+  const char* GetDensityArray() const { return this->DensityArray.c_str(); }
+  void AddMassWeightedArray(const char* name);
+  void ClearMassWeightedArrays();
+  int GetNumberOfMassWeightedArrays() const
+  {
+    return static_cast<int>(this->MassWeightedArrays.size());
+  }
+  const char* GetMassWeightedArray(int i) const;
   ///@}
 
   ///@{
@@ -469,6 +501,8 @@ protected:
   bool KeepMatrices;
   int NumberOfThreads;
   int Renumbering;
+  std::string DensityArray;
+  std::vector<std::string> MassWeightedArrays;
 
   // The results of the last execution.
   bool OperatorReused = false;

@@ -53,6 +53,15 @@ struct LeafSolutions
   std::uint64_t ExtensionKey[NumberOfTransfers] = {};
   bool Built[NumberOfTransfers] = {};
   mp::Extension Extension[NumberOfTransfers];
+  /**
+   * Mass weighting (MassWeighting.h), per transfer: the weighted arrays'
+   * projected products rho q (target functions x their components, in
+   * GatheredFields::Mass.Weighted's order), before the division; and per
+   * weighted array, the functions valid in its system that the density
+   * guard left undivided (empty: none).
+   */
+  mp::LargeVector<double> Products[NumberOfTransfers];
+  std::vector<std::vector<char>> Guarded[NumberOfTransfers];
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators

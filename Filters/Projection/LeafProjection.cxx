@@ -7,6 +7,7 @@
 #include "Projection/Apply.h"
 #include "Projection/Conservation.h"
 #include "Projection/Extrapolation.h"
+#include "Projection/MassWeighting.h"
 #include "Projection/Messages.h"
 #include "Projection/OperatorBuild.h"
 #include "Projection/OperatorCache.h"
@@ -186,6 +187,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   result.Outcome = ApplyOperators(ctx, kept, plan, ops, hooks, halo, solutions);
   if (result.Outcome.Ok())
   {
+    DivideByDensity(ctx, ops, hooks, solutions);
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
   }
   result.Outcome =

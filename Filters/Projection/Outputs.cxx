@@ -83,7 +83,29 @@ struct Written
 {
   std::vector<std::string> PointNames, CellNames; // by the transfers to the fields' own association
   Validity PointValid, CellValid;
+  /// Validities of mass-weighted arrays that the density guard narrowed (MassWeighting.h).
+  std::deque<std::vector<char>> Narrowed;
 };
+
+/// Where array a of transfer t is valid: its system's functions, less those the density guard left.
+const std::vector<char>* ValidOf(
+  const GatheredFields& g, int a, Transfer t, const LeafSolutions& solutions, Written& written)
+{
+  const std::vector<char>* valid = solutions.ByArray[t][static_cast<size_t>(a)].Valid;
+  const int w = g.Mass.Active() ? g.Mass.WeightedIndex(a) : -1;
+  if (w < 0 || solutions.Guarded[t][static_cast<size_t>(w)].empty())
+  {
+    return valid;
+  }
+  const std::vector<char>& guarded = solutions.Guarded[t][static_cast<size_t>(w)];
+  written.Narrowed.emplace_back(*valid);
+  std::vector<char>& narrowed = written.Narrowed.back();
+  for (size_t f = 0; f < narrowed.size(); ++f)
+  {
+    narrowed[f] = narrowed[f] && !guarded[f];
+  }
+  return &narrowed;
+}
 
 /// The name of array a of transfer t in the output (renamed when it clashes).
 std::string OutputName(
@@ -199,6 +221,40 @@ void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray
   }
 }
 
+/**
+ * ConserveSourceIntegral's scale of each component of array a: its
+ * integrals' Factor, and for a mass-weighted array that divided by the
+ * density's own (the density is written scaled), so that the written
+ * density times the written q keeps the Source's integral of rho q and a
+ * constant q stays constant. Collective (the density's weights and sums).
+ */
+std::vector<double> ValueFactors(LeafContext& ctx, const OperatorSet& ops,
+  const LeafSolutions& solutions, SourceWeights& weights, Transfer t, int a,
+  const ArrayIntegrals& integrals)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  std::vector<double> factors = integrals.Factor;
+  const bool conserve = ctx.Options.ConserveSourceIntegral && !ctx.Shape.Trace;
+  if (!conserve || !g.Mass.Active() || g.Mass.WeightedIndex(a) < 0)
+  {
+    return factors;
+  }
+  const int d = g.Mass.Density;
+  const SourceColumns source = SourceColumnsOf(g, d);
+  const vtkIdType n =
+    ToPoints(t) ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
+  const ProjectedArray density{ solutions.ByArray[t][static_cast<size_t>(d)],
+    weights.Of(*ops.ByArray[t][d]), source.Block->Functions(), source.Width, source.Offset,
+    solutions.Values[t], g.Components, g.Offsets[d], 1, n };
+  const double scale =
+    Integrate(density, true, ctx.Options.DensityArray, ctx.Role, ctx.Processes, ctx.Say).Factor[0];
+  for (double& factor : factors)
+  {
+    factor /= scale;
+  }
+  return factors;
+}
+
 /// The arrays of transfer t (with their integrals for the fields' own association).
 void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions, SourceWeights& weights, Transfer t, PointNumbering& numbering,
@@ -221,17 +277,28 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   {
     vtkDataArray* array = g.Arrays[a];
     const int nc = array->GetNumberOfComponents();
+    const mp::MortarOperator& op = *ops.ByArray[t][a];
+    if (g.Hidden[a])
+    {
+      offset += nc;
+      continue; // a density gathered for the mass weighting only
+    }
     const std::string name = OutputName(array, a, t, names);
     names.push_back(name);
-    const mp::MortarOperator& op = *ops.ByArray[t][a];
     const mp::ProjectedSystem& system = solutions.ByArray[t][static_cast<size_t>(a)];
+    const std::vector<char>& valid = *ValidOf(g, a, t, solutions, written);
     (toPoints ? written.PointValid : written.CellValid)
-      .emplace_back(name, toPoints ? numbering.InDataSet(*system.Valid) : system.Valid);
+      .emplace_back(name, toPoints ? numbering.InDataSet(valid) : &valid);
     const SourceColumns source = SourceColumnsOf(g, a);
+    // A mass-weighted array's integrals are those of rho q, its projected product.
+    const int w = g.Mass.Active() ? g.Mass.WeightedIndex(a) : -1;
+    const bool product = w >= 0;
     const ProjectedArray projected{ system, weights.Of(op), source.Block->Functions(), source.Width,
-      source.Offset, values, g.Components, offset, nc, n };
+      source.Offset, product ? solutions.Products[t] : values,
+      product ? ProductWidth(g) : g.Components, product ? ProductOffset(g, w) : offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);
+    const std::vector<double> factors = ValueFactors(ctx, ops, solutions, weights, t, a, integrals);
     vtkNew<vtkDoubleArray> out;
     out->SetName(name.c_str());
     out->SetNumberOfComponents(nc);
@@ -245,7 +312,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     out->SetNumberOfTuples(n);
     double* to = out->GetPointer(0);
     const std::vector<double>& covered = *system.CoveredIntegrals;
-    const std::vector<char>& valid = *system.Valid;
+    const double fill = ctx.Options.Fill();
     const int width = g.Components;
     const SimplexMesh& target = ctx.Target;
     mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
@@ -255,15 +322,15 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
         const vtkIdType at = toPoints ? target.DataSetPoint(f) : f;
         for (int k = 0; k < nc; ++k)
         {
-          to[at * nc + k] =
-            scale * (valid[f] ? integrals.Factor[k] : 1.0) * values[f * width + offset + k];
+          to[at * nc + k] = !valid[f] && (*system.Valid)[f]
+            ? fill // (left by the density guard: MassWeighting.h)
+            : scale * (valid[f] ? factors[k] : 1.0) * values[f * width + offset + k];
         }
       }
     });
     if (nc == 3 && IsTangentArray(ctx.Options, array))
     {
-      const std::vector<char>& where =
-        toPoints ? *numbering.InDataSet(*system.Valid) : *system.Valid;
+      const std::vector<char>& where = toPoints ? *numbering.InDataSet(valid) : valid;
       WriteTangentPart(ctx, tangents, out, t, where, solutions, outData);
     }
     // (The transfers to the other association have the same integrals.)

@@ -56,8 +56,8 @@ struct Settings
   mp::Reconstruction CellDataReconstruction = mp::Reconstruction::Constant;
   bool Lumped = false; ///< MassMatrix is LUMPED_MASS
   bool PreserveBounds = false;
-  /// TangentArrays: names of 3-component arrays tangent to a surface or curve (none by default).
-  std::vector<std::string> TangentArrays;
+  /// Names of 3-component arrays tangent to a surface or curve (TangentFields.h).
+  std::vector<std::string> TangentArrays; ///< empty: none
   int MaximumIterations = 500;
   double SurfaceReach = 0.5;
   double MaximumNormalAngle = 45.0;
@@ -67,6 +67,10 @@ struct Settings
   int NumberOfThreads = 0; ///< 0: every core (the filter's RequestData)
   int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
   bool KeepMatrices = false;
+  /// Mass weighting (MassWeighting.h): the Source's density array ("": off), and the
+  /// arrays weighted by it (empty: every array of its association).
+  std::string DensityArray = "";
+  std::vector<std::string> MassWeightedArrays; ///< empty: all
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const

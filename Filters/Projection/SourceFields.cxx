@@ -27,9 +27,10 @@ namespace mpvtk
 {
 namespace
 {
-/// The enabled numeric fields of one association, long enough, in order.
+/// The enabled numeric fields of one association, long enough, in order
+/// (and `density`, hidden when not enabled).
 void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* selection,
-  Messages& messages, GatheredFields& g)
+  const std::string& density, Messages& messages, GatheredFields& g)
 {
   vtkDataSetAttributes* data = AttributesOf(source, association);
   const char* kind = association == 0 ? "point" : "cell";
@@ -40,7 +41,8 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
     vtkAbstractArray* abstract = data->GetAbstractArray(i);
     const char* name = abstract->GetName();
     const std::string label = name ? name : "(unnamed)";
-    if (!IsField(data, abstract) || (name && !selection->ArrayIsEnabled(name)))
+    const bool hidden = name && !selection->ArrayIsEnabled(name) && density == name;
+    if (!IsField(data, abstract) || (name && !selection->ArrayIsEnabled(name) && !hidden))
     {
       continue;
     }
@@ -69,6 +71,7 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
           "it).");
     }
     g.Arrays.push_back(array);
+    g.Hidden.push_back(hidden);
     g.Offsets.push_back(g.Components);
     g.Components += array->GetNumberOfComponents();
     g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
@@ -268,6 +271,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   Parts& parts, GatheredFields fields[2])
 {
   const bool extensive = settings.Extensive;
+  const int density = DensityAssociation(source, settings, messages);
   for (int association = 0; association < 2; ++association)
   {
     // Arrays that differ between Source's pieces or blocks (Adapter/PieceArrays.h).
@@ -278,7 +282,9 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
         messages.WarnOnce("pieces/" + warning.second, warning.second); // once, not at every step
       }
     }
-    SelectArrays(source, association, selections[association], messages, fields[association]);
+    SelectArrays(source, association, selections[association],
+      association == density ? settings.DensityArray : std::string(), messages,
+      fields[association]);
   }
   fields[1].Key += extensive ? "extensive" : "intensive";
   for (int association = 0; association < 2; ++association)
@@ -289,6 +295,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
       continue;
     }
     CopyValues(source, mesh, association, extensive, g);
+    WeighSourceFields(settings, association, density, source, parts, messages, g);
   }
   // (Before the NaN groups take their arrays' columns.)
   RemoveSourceNormalParts(source, mesh, settings, messages, parts, fields);

@@ -23,6 +23,7 @@
 
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Projection/MassWeighting.h"
 
 #include <cstdint>
 #include <set>
@@ -86,6 +87,11 @@ struct GatheredFields : FieldBlock
   /// That rule's warnings (name, text), on arrays with a hole or refused:
   /// said when the array is selected.
   std::vector<std::pair<std::string, std::string>> PieceWarnings;
+  /// Per array: 1 for the density gathered for mass weighting only (not
+  /// selected): projected, not written.
+  std::vector<char> Hidden;
+  /// Which arrays are projected as rho q (MassWeighting.h).
+  MassWeights Mass;
 };
 
 /// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
@@ -94,11 +100,12 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group);
 /**
  * The fields of `source` (wrapped as `mesh`) that `selections` (points,
  * cells) enable, extensive cell arrays as densities (settings.Extensive),
- * tangent arrays' normal parts removed (settings.TangentArrays:
- * TangentFields.h); warns of arrays skipped (not numeric, too short) or
- * projected as real values (integers), of NaN groups, and says the
- * PieceWarnings of the arrays enabled (`fields` comes with Holes and
- * PieceWarnings set).
+ * the density of a mass weighting (MassWeighting.h; hidden when not
+ * enabled), weighted arrays as rho q, tangent arrays' normal parts removed
+ * (settings.TangentArrays: TangentFields.h); warns of arrays skipped (not
+ * numeric, too short) or projected as real values (integers), of NaN
+ * groups, and says the PieceWarnings of the arrays enabled (`fields` comes
+ * with Holes and PieceWarnings set).
  */
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   vtkDataArraySelection* const selections[2], const Settings& settings, Messages& messages,

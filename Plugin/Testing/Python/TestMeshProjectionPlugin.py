@@ -35,9 +35,11 @@ check(set(projection.ListProperties()) == {
     "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "KeepMatrices", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "Extrapolation", "FringeThreshold",
-    "NormalOrientation", "TangentArrays"},
+    "NormalOrientation", "TangentArrays", "DensityArray", "MassWeightedArrays"},
       "properties %r" % projection.ListProperties())
 check(len(projection.TangentArrays) == 0, "TangentArrays default: none")
+check(projection.DensityArray == "None" and len(projection.MassWeightedArrays) == 0,
+      "mass weighting off by default (%r, %r)" % (projection.DensityArray, projection.MassWeightedArrays))
 check(projection.SurfaceReach == 0.5 and projection.MaximumNormalAngle == 45 and
       projection.ConserveSourceIntegral == 0 and projection.NormalOrientation == "Same", "surface defaults")
 check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "Cells",
