@@ -6,6 +6,7 @@
 
 #include "Geometry/CellGeometry.h"
 #include "Mesh/CellNeighbors.h"
+#include "Transfer/FringeFrames.h"
 #include "Transfer/CsrBuilder.h"
 
 #include <Eigen/Dense>
@@ -63,19 +64,89 @@ int Monomials(const double* y, int d, int degree, double* into)
  */
 constexpr double QuadraticAmplification = 8.0;
 
+using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>;
+
+/**
+ * The weighted mean square of a stencil's normal coordinates (in units of
+ * h^2, beyond what the columns before them fit) above which the stencil is
+ * curved and its fit made to reproduce them too: on a surface of radius R
+ * they are of the order of (h / 2R)^2; rounding leaves some 1e-30 on a
+ * plane; points written in single precision some 1e-12.
+ */
+constexpr double CurvedNormalSpread = 1e-10;
+
+/**
+ * A quadratic column of a curved stencil's fit that its columns before it
+ * (1, the tangent coordinates, the normal ones) fit to all but this part
+ * of its mean square is left out: on a sphere the normal coordinate is
+ * nearly (u^2 + v^2) / 2R, and fitting both would fit the rest of the
+ * sphere's shape (its fourth-order terms) with large weights.
+ */
+constexpr double DependentQuadratic = 1e-3;
+
+/**
+ * The columns of a curved stencil's fit, in the order they are tried: the
+ * constant and tangent coordinates, the normal coordinates whose spread
+ * beyond them is above CurvedNormalSpread, the quadratic monomials not
+ * nearly fitted by those (DependentQuadratic). `G` is the weighted normal
+ * matrix of the tangent monomials (first `linear` of them linear) then
+ * the `normals` normal coordinates. Empty when no normal coordinate is kept
+ * (a plane or a straight line: the tangent fit reproduces them already).
+ */
+std::vector<int> CurvedColumns(const Small& G, int linear, int terms, int normals)
+{
+  std::vector<int> kept;
+  bool curved = false;
+  auto residual = [&](int j) {
+    Small K(kept.size(), kept.size());
+    SmallVector g(kept.size());
+    for (size_t a = 0; a < kept.size(); ++a)
+    {
+      g(a) = G(kept[a], j);
+      for (size_t b = 0; b < kept.size(); ++b)
+      {
+        K(a, b) = G(kept[a], kept[b]);
+      }
+    }
+    return G(j, j) - g.dot(K.ldlt().solve(g));
+  };
+  for (int j = 0; j < linear; ++j)
+  {
+    kept.push_back(j);
+  }
+  for (int j = terms; j < terms + normals; ++j)
+  {
+    if (residual(j) > CurvedNormalSpread)
+    {
+      kept.push_back(j);
+      curved = true;
+    }
+  }
+  for (int j = linear; j < terms && curved; ++j)
+  {
+    if (residual(j) > DependentQuadratic * G(j, j))
+    {
+      kept.push_back(j);
+    }
+  }
+  return curved ? kept : std::vector<int>();
+}
+
 /**
  * The weights of `points` that give, at point i, the value of the
- * least-squares polynomial fit of degree `degree` through them (the
+ * least-squares polynomial fit of degree `degree` through them, in i's
+ * `frame` (FringeFrames.h) (the
  * minimum-norm weights reproducing those polynomials at i), or empty when
  * the points do not allow a stable fit: when they do not spread well
  * (nearly on a line, a plane or a conic), or, quadratic, when the weights
  * amplify more than QuadraticAmplification. Degree 1 or 2: either
  * reproduces affine functions and sums to 1.
  */
-std::vector<double> FitWeights(
-  const MeshView& mesh, Index i, const std::vector<Index>& points, size_t keep, int degree)
+std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, Index i,
+  const std::vector<Index>& points, size_t keep, int degree)
 {
-  const int d = mesh.SpaceDimension;
+  const int d = frame.Dimension;
   const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
   const double* xi = mesh.Point(i);
   const Index m = static_cast<Index>(keep);
@@ -86,30 +157,30 @@ std::vector<double> FitWeights(
   double h = 0.0;
   for (size_t r = 0; r < keep; ++r)
   {
-    const Index k = points[r];
+    double y[3];
+    frame.Offset(mesh, mesh.Point(points[r]), xi, y);
     for (int a = 0; a < d; ++a)
     {
-      h = std::max(h, std::abs(mesh.Point(k)[a] - xi[a]));
+      h = std::max(h, std::abs(y[a]));
     }
   }
   if (!(h > 0.0))
   {
     return {};
   }
-  // Monomials of (x_k - x_i) / h: coordinates of order 1 about i; each
+  // Monomials of (x_k - x_i) / h in i's frame: coordinates of order 1 about i; each
   // point weighed by omega_k, larger near i (the fit is evaluated at i:
   // near points tell most about it). The normal matrix G = sum_k omega_k
   // v_k v_k^T (v_k the monomials at k) summed row by row, at most 10 x 10
   // on the stack; the monomials made again for the weights rather than
   // kept (no matrix of points x terms to allocate per fit).
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10>;
-  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>;
   auto monomialsAt = [&](Index r, double& omega, SmallVector& v) {
     double y[3];
     double distance2 = 0.0;
+    frame.Offset(mesh, mesh.Point(points[static_cast<size_t>(r)]), xi, y);
     for (int a = 0; a < d; ++a)
     {
-      y[a] = (mesh.Point(points[static_cast<size_t>(r)])[a] - xi[a]) / h;
+      y[a] /= h;
       distance2 += y[a] * y[a];
     }
     omega = 1.0 / ((distance2 + 0.25) * (distance2 + 0.25));
@@ -155,7 +226,66 @@ std::vector<double> FitWeights(
   {
     return {};
   }
-  return w;
+  if (frame.Normals == 0)
+  {
+    return w;
+  }
+  // A curved stencil (on a surface or a curve): the fit also through the
+  // points' normal coordinates, so that it reproduces the ambient affine
+  // functions (a linear Source field on a trace, on a sphere in a volume);
+  // kept where its weights stay within QuadraticAmplification, else the
+  // tangent fit's (stable, affine in the tangent coordinates).
+  const int all = terms + frame.Normals;
+  SmallVector u(all);
+  auto columnsAt = [&](Index r, double& omega) {
+    monomialsAt(r, omega, v);
+    double z[3];
+    frame.NormalOffset(mesh, mesh.Point(points[static_cast<size_t>(r)]), xi, z);
+    u.head(terms) = v;
+    for (int b = 0; b < frame.Normals; ++b)
+    {
+      u(terms + b) = z[b] / h;
+    }
+  };
+  Small X = Small::Zero(all, all);
+  for (Index r = 0; r < m; ++r)
+  {
+    double omega;
+    columnsAt(r, omega);
+    X += (omega / omegaSum) * u * u.transpose();
+  }
+  const std::vector<int> kept = CurvedColumns(X, d + 1, terms, frame.Normals);
+  if (kept.empty())
+  {
+    return w;
+  }
+  const int k = static_cast<int>(kept.size());
+  Small K(k, k);
+  for (int a = 0; a < k; ++a)
+  {
+    for (int b = 0; b < k; ++b)
+    {
+      K(a, b) = X(kept[a], kept[b]);
+    }
+  }
+  SmallVector ek = SmallVector::Zero(k);
+  ek(0) = 1.0;
+  const SmallVector ck = K.ldlt().solve(ek);
+  std::vector<double> curved(static_cast<size_t>(m));
+  double curvedAmplification = 0.0;
+  for (Index r = 0; r < m; ++r)
+  {
+    double omega;
+    columnsAt(r, omega);
+    double value = 0.0;
+    for (int a = 0; a < k; ++a)
+    {
+      value += u(kept[a]) * ck(a);
+    }
+    curved[static_cast<size_t>(r)] = omega * value / omegaSum;
+    curvedAmplification += std::abs(curved[static_cast<size_t>(r)]);
+  }
+  return curvedAmplification <= QuadraticAmplification ? curved : w;
 }
 
 /**
@@ -167,11 +297,12 @@ std::vector<double> FitWeights(
  * call that found no fit: a set of nearest points it already tried is not
  * fitted again (the next ring's nearest points are often the same).
  */
-std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>& points,
-  int degree, const std::vector<Index>* rejected = nullptr)
+std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, Index i,
+  std::vector<Index>& points, int degree, const std::vector<Index>* rejected = nullptr)
 {
   const int d = mesh.SpaceDimension;
-  const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
+  const int f = frame.Dimension;
+  const int terms = degree == 1 ? f + 1 : (f + 1) * (f + 2) / 2;
   const double* xi = mesh.Point(i);
   std::vector<std::pair<double, Index>> byDistance;
   for (Index k : points)
@@ -206,7 +337,7 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
       std::min(keep, rejected->size()) == used &&
       std::equal(points.begin(), points.begin() + used, rejected->begin());
     std::vector<double> w =
-      tried ? std::vector<double>() : FitWeights(mesh, i, points, used, degree);
+      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree);
     if (!w.empty())
     {
       points.resize(w.size());
@@ -222,15 +353,19 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
 
 /**
  * The ill-posed function i's stencil and weights: free points ring by ring,
- * a quadratic (2D) or affine fit within FringeRings rings, else an affine
- * one farther, up to FringeSearchRings; none when no ring allows one.
+ * a quadratic (in 2D or 1D coordinates: 2D meshes, surfaces, curves) or
+ * affine fit within FringeRings rings, else an affine one farther, up to
+ * FringeSearchRings; none when no ring allows one.
  */
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
 {
   const int corners = mesh.CornersPerCell();
-  const bool quadratic = mesh.SpaceDimension == 2;
+  const Index first = around.Start[static_cast<size_t>(i)];
+  const StencilFrame frame = StencilFrameOf(
+    mesh, i, around.Cells.data() + first, around.Start[static_cast<size_t>(i) + 1] - first);
+  const bool quadratic = frame.Dimension <= 2;
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   std::vector<Index> affinePoints;
@@ -281,7 +416,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     if (quadratic && inner)
     {
       points = found;
-      weights = NearestFit(mesh, i, points, 2, &rejected);
+      weights = NearestFit(mesh, frame, i, points, 2, &rejected);
       if (!weights.empty())
       {
         return;
@@ -291,7 +426,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     if (affine.empty())
     {
       affinePoints = found;
-      affine = NearestFit(mesh, i, affinePoints, 1);
+      affine = NearestFit(mesh, frame, i, affinePoints, 1);
     }
     if (!affine.empty() && !(quadratic && inner && r + 1 < FringeRings))
     {
