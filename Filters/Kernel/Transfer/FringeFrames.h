@@ -25,7 +25,7 @@
  * - the normal coordinates of the stencil's points (their offsets from the
  *   tangent plane or line, of the order of h^2 / R on a surface or curve
  *   of radius R) let the fit also reproduce the ambient linear fields
- *   where the stencil is curved (FringeAggregation.cxx): a trace on a
+ *   where the stencil is curved (FringeFits.h): a trace on a
  *   sphere in a volume keeps a linear Source field exact.
  *
  * A frame depends on the geometry of the cells around i only (their
