@@ -1,5 +1,6 @@
 """The fringe on surfaces, curves and traces, on pairs that overlap in part:
-a cap of one Gmsh facetization of the sphere turned onto a cap of another,
+a cap of one Gmsh facetization of the sphere (above z = 0.3) projected onto
+a larger cap of another (above z = 0), a cap turned onto a cap,
 a tilted flat patch beside another, a straight polyline in 3D and arcs of a
 circle beside others, a sphere half out of a box of tetrahedra (a trace).
 
@@ -17,12 +18,12 @@ With the fringe (the default), on each pair:
 """
 import numpy as np
 
-from mpsupport import gmshmeshes
+from mpsupport import gmshmeshes, meshes
 from mpsupport.testing import check, finish, observed_filter
 from meshprojection import operator_matrices
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkIdList, vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkCommonDataModel import VTK_LINE
 
 
 def linear(x, y, z):
@@ -46,18 +47,9 @@ def in_box(x, y, z):
 
 
 def polyline(x):
-    """vtkPolyData of the segments joining the rows of x in turn."""
+    """The segments joining the rows of x in turn (a vtkUnstructuredGrid of lines)."""
     n = len(x) - 1
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.ascontiguousarray(x), deep=True))
-    connectivity = np.stack([np.arange(n), np.arange(1, n + 1)], 1).ravel().astype(np.int64)
-    lines = vtkCellArray()
-    lines.SetData(numpy_to_vtkIdTypeArray(np.arange(0, 2 * n + 1, 2).astype(np.int64), deep=True),
-                  numpy_to_vtkIdTypeArray(connectivity, deep=True))
-    mesh = vtkPolyData()
-    mesh.SetPoints(points)
-    mesh.SetLines(lines)
-    return mesh
+    return meshes.grid(x, np.stack([np.arange(n), np.arange(1, n + 1)], 1), VTK_LINE)
 
 
 def parameters(t0, t1, n, seed):
@@ -75,6 +67,16 @@ def arc(t0, t1, n, seed, tilt=0.5):
 def segment(t0, t1, n, seed):
     t = parameters(t0, t1, n, seed)
     return polyline(np.stack([0.2 + 0.6 * t, 0.1 + 0.3 * t, 0.4 - 0.5 * t], 1))
+
+
+def sphere_above(h, z0):
+    """The triangles of a Gmsh sphere (size h) whose corners all lie above z = z0: a cap."""
+    sphere = gmshmeshes.surface("sphere", h, 6)
+    x = vtk_to_numpy(sphere.GetPoints().GetData())
+    offsets = vtk_to_numpy(sphere.GetPolys().GetOffsetsArray())
+    connectivity = vtk_to_numpy(sphere.GetPolys().GetConnectivityArray())
+    keep = [x[connectivity[offsets[c]:offsets[c + 1]], 2].min() > z0 for c in range(len(offsets) - 1)]
+    return meshes.extract(sphere, np.array(keep))
 
 
 def point_cells(out):
@@ -115,6 +117,7 @@ def ratio(out, around, field):
 
 pairs = [
     # (name, Input, Source, smooth field, linear exact, shows the problem without the fringe)
+    ("a cap onto a larger cap", sphere_above(0.08, 0.0), gmshmeshes.surface("cap", 0.1, 5), on_sphere, False, True),
     ("sphere caps turned by 20 degrees", gmshmeshes.moved(gmshmeshes.surface("cap", 0.08, 6), rotate_x=20),
      gmshmeshes.surface("cap", 0.1, 5), on_sphere, False, True),
     ("tilted patches", gmshmeshes.moved(gmshmeshes.surface("patch0", 0.06, 6), rotate_x=30, translate=(0.31, 0.15 * np.cos(np.pi / 6), 0.15 * np.sin(np.pi / 6))),
