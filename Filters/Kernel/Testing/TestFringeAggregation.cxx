@@ -187,6 +187,35 @@ TEST(FringeAggregation, ReproducesAffineFunctionsOnALineIn3D)
   }
 }
 
+TEST(FringeAggregation, ReproducesAffineFunctionsOnAnArcIn3D)
+{
+  // An arc of a circle in a tilted plane, ill-posed in five gaps of two or
+  // three points: its curved stencils fitted through their normal
+  // coordinates too (a gap's last point from the inner ring whose points
+  // allow that). (At the arc's end the one-sided fit through them would
+  // amplify more than QuadraticAmplification: the tangent fit is kept.)
+  const TestMesh m = mptest::Polyline(
+    mptest::Uniform(120, 0.0, 2.5, 0.3, 6, false),
+    [](double s, double* x) {
+      x[0] = 0.8 * std::cos(s);
+      x[1] = 0.8 * std::sin(s) * std::cos(0.4);
+      x[2] = 0.8 * std::sin(s) * std::sin(0.4) + 0.3;
+    },
+    false, 3);
+  for (int tasks : { 1, 3 })
+  {
+    // (Parameter s from the point: the angle about the circle's centre.)
+    const Fringe f = FringeWhere(
+      m, [](const double*) { return true; },
+      [](const double* x) {
+        const double s = std::atan2(x[1] / std::cos(0.4), x[0]);
+        return s * 2 - std::floor(s * 2) > 0.9;
+      },
+      tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "arc in 3D" : "arc in 3D, 3 tasks");
+  }
+}
+
 TEST(FringeAggregation, ReproducesAffineFunctionsOnASphere)
 {
   // Valid below x = 0.6, a fringe of about two rings above x = 0.4: extended

@@ -39,9 +39,11 @@ struct CellsAroundPoints
  * ones used. `rejected`, when given, holds the sorted points of an earlier
  * call that found no fit: a set of nearest points it already tried is not
  * fitted again (the next ring's nearest points are often the same).
+ * `ambient` as FitWeights'.
  */
 std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, Index i,
-  std::vector<Index>& points, int degree, const std::vector<Index>* rejected = nullptr)
+  std::vector<Index>& points, int degree, const std::vector<Index>* rejected = nullptr,
+  bool* ambient = nullptr)
 {
   const int d = mesh.SpaceDimension;
   const int f = frame.Dimension;
@@ -80,7 +82,7 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
       std::min(keep, rejected->size()) == used &&
       std::equal(points.begin(), points.begin() + used, rejected->begin());
     std::vector<double> w =
-      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree);
+      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree, ambient);
     if (!w.empty())
     {
       points.resize(w.size());
@@ -113,6 +115,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   std::vector<Index> next;
   std::vector<Index> affinePoints;
   std::vector<double> affine;
+  bool affineAmbient = false; // affine reproduces the ambient affine functions
   std::vector<Index> found;
   std::vector<Index> rejected; // the last ring's points, sorted: no quadratic fit
   points.clear();
@@ -166,10 +169,20 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
       }
       rejected = points;
     }
-    if (affine.empty())
+    // (On a curved surface or curve an affine fit that reproduces the
+    // tangent coordinates only, a fit through too few points for their
+    // normal ones too, gives way to one from a later inner ring that does.)
+    if (affine.empty() || (!affineAmbient && inner))
     {
-      affinePoints = found;
-      affine = NearestFit(mesh, frame, i, affinePoints, 1);
+      std::vector<Index> candidates = found;
+      bool ambient = true;
+      std::vector<double> fit = NearestFit(mesh, frame, i, candidates, 1, nullptr, &ambient);
+      if (!fit.empty() && (affine.empty() || ambient))
+      {
+        affinePoints.swap(candidates);
+        affine.swap(fit);
+        affineAmbient = ambient;
+      }
     }
     if (!affine.empty() && !(quadratic && inner && r + 1 < FringeRings))
     {

@@ -37,12 +37,20 @@ int Monomials(const double* y, int d, int degree, double* into)
 
 /**
  * The weighted mean square of a stencil's normal coordinates (in units of
- * h^2, beyond what the columns before them fit) above which the stencil is
- * curved and its fit made to reproduce them too: on a surface of radius R
- * they are of the order of (h / 2R)^2; rounding leaves some 1e-30 on a
- * plane; points written in single precision some 1e-12.
+ * h^2, beyond what the columns before them fit) above which the fit takes
+ * them as a column: on a surface of radius R they are of the order of
+ * (h / 2R)^2; points written in single precision leave some 1e-12 on a
+ * plane, rounding some 1e-30; a second normal coordinate of a plane curve
+ * nearly a multiple of the first leaves its rounding.
  */
 constexpr double CurvedNormalSpread = 1e-10;
+
+/**
+ * The largest value at i (in units of h) of a normal coordinate that the
+ * tangent fit gives and that counts as reproducing it (0 at i): rounding
+ * leaves some 1e-16 on a plane or a straight line.
+ */
+constexpr double FlatMiss = 1e-12;
 
 /**
  * A quadratic column of a curved stencil's fit that its columns before it
@@ -60,7 +68,8 @@ constexpr double DependentQuadratic = 1e-3;
  * nearly fitted by those (DependentQuadratic). `G` is the weighted normal
  * matrix of the tangent monomials (first `linear` of them linear) then
  * the `normals` normal coordinates. Empty when no normal coordinate is kept
- * (a plane or a straight line: the tangent fit reproduces them already).
+ * (the points' normal coordinates affine in their tangent ones, or too few
+ * points to tell).
  */
 std::vector<int> CurvedColumns(const Small& G, int linear, int terms, int normals)
 {
@@ -151,23 +160,32 @@ struct FitPoints
  * A curved stencil's weights (on a surface or a curve): the fit also
  * through the points' normal coordinates, so that it reproduces the
  * ambient affine functions (a linear Source field on a trace, on a sphere
- * in a volume); `tangent` (the tangent fit's weights, stable) where the
- * stencil is flat or those weights amplify more than QuadraticAmplification.
+ * in a volume); `tangent` (the tangent fit's weights, stable) where those
+ * reproduce the normal coordinates already (a flat stencil), where the
+ * points do not determine the fit through them (too few, or their normal
+ * coordinates affine in the tangent ones while i is off that line) or
+ * where those weights amplify more than QuadraticAmplification (`ambient`
+ * false then: only the tangent coordinates' affine functions).
  */
-std::vector<double> CurvedWeights(
-  const FitPoints& fit, Index m, int terms, double omegaSum, std::vector<double> tangent)
+std::vector<double> CurvedWeights(const FitPoints& fit, Index m, int terms, double omegaSum,
+  std::vector<double> tangent, bool& ambient)
 {
   const int all = terms + fit.Frame.Normals;
   SmallVector v(terms);
   SmallVector u(all);
   Small X = Small::Zero(all, all);
+  SmallVector miss = SmallVector::Zero(all); // the tangent fit's values of the columns at i
   for (Index r = 0; r < m; ++r)
   {
     double omega;
     fit.ColumnsAt(r, terms, omega, v, u);
     X += (omega / omegaSum) * u * u.transpose();
+    miss += tangent[static_cast<size_t>(r)] * u;
   }
-  const std::vector<int> kept = CurvedColumns(X, fit.Frame.Dimension + 1, terms, fit.Frame.Normals);
+  ambient = miss.tail(fit.Frame.Normals).cwiseAbs().maxCoeff() <= FlatMiss;
+  const std::vector<int> kept = ambient
+    ? std::vector<int>()
+    : CurvedColumns(X, fit.Frame.Dimension + 1, terms, fit.Frame.Normals);
   if (kept.empty())
   {
     return tangent;
@@ -198,13 +216,19 @@ std::vector<double> CurvedWeights(
     w[static_cast<size_t>(r)] = omega * value / omegaSum;
     amplification += std::abs(w[static_cast<size_t>(r)]);
   }
-  return amplification <= QuadraticAmplification ? w : tangent;
+  ambient = amplification <= QuadraticAmplification;
+  return ambient ? w : tangent;
 }
 } // namespace
 
 std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, Index i,
-  const std::vector<Index>& points, size_t keep, int degree)
+  const std::vector<Index>& points, size_t keep, int degree, bool* ambient)
 {
+  bool reproduces = true;
+  if (ambient)
+  {
+    *ambient = true;
+  }
   const int d = frame.Dimension;
   const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
   const double* xi = mesh.Point(i);
@@ -272,6 +296,15 @@ std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, 
   {
     return {};
   }
-  return frame.Normals == 0 ? w : CurvedWeights(fit, m, terms, omegaSum, std::move(w));
+  if (frame.Normals == 0)
+  {
+    return w;
+  }
+  w = CurvedWeights(fit, m, terms, omegaSum, std::move(w), reproduces);
+  if (ambient)
+  {
+    *ambient = reproduces;
+  }
+  return w;
 }
 } // namespace mp

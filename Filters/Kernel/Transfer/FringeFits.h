@@ -50,10 +50,13 @@ constexpr double QuadraticAmplification = 8.0;
  * i), or empty when the points do not allow a stable fit: when they do
  * not spread well (nearly on a line, a plane or a conic), or, quadratic,
  * when the weights amplify more than QuadraticAmplification. Either degree
- * reproduces the affine functions of the frame's coordinates and sums to 1.
+ * reproduces the affine functions of the frame's coordinates and sums to 1;
+ * `ambient`, when given, says whether the weights also reproduce the
+ * ambient affine functions (always on volume meshes and flat stencils; on
+ * curved ones where the fit through the normal coordinates is kept).
  */
 std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, Index i,
-  const std::vector<Index>& points, size_t keep, int degree);
+  const std::vector<Index>& points, size_t keep, int degree, bool* ambient = nullptr);
 } // namespace mp
 
 #endif
