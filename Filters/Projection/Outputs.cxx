@@ -416,11 +416,11 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
 /**
  * Valid points whose cells are all covered only in slivers and that the
  * fringe's aggregation left free: their values are extrapolated from a
- * sliver (an ill-conditioned row) and can be far off. On volume meshes
- * only with the fringe off (FringeThreshold 0, or below the few percent
- * such a point's support is covered at most): with it on, such a point is
- * aggregated or, with no stencil, dropped (FringeStrandedDropFraction);
- * surfaces, curves and traces are not aggregated. On several processes a
+ * sliver (an ill-conditioned row) and can be far off. Only with the
+ * fringe off (FringeThreshold 0, or below the few percent such a point's
+ * support is covered at most): with it on, such a point is aggregated or,
+ * with no stencil, dropped (FringeStrandedDropFraction), on volumes,
+ * surfaces, curves and traces alike. On several processes a
  * point on a partition boundary has cells on
  * each: it is such a point only when the cells of every process around it
  * are slivers (the hooks complete the cover across processes; alone they
@@ -466,7 +466,7 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
       std::to_string(slivers) + " " + ctx.Role +
         " points are valid through slivers only (every cell around them is covered less than "
         "0.1%): their values are extrapolated from the sliver and can be far off. Where Input "
-        "reaches beyond Source, keep FringeThreshold at its default (volume meshes), or leave out "
+        "reaches beyond Source, keep FringeThreshold at its default, or leave out "
         "points whose cells' CoveredFraction is that small.");
   }
 }

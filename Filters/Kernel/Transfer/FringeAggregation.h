@@ -36,6 +36,11 @@
  * (a corner of the target poking out of the source, its free neighbours
  * all on one face) seeks an affine one farther, up to FringeSearchRings.
  *
+ * On surfaces and curves the fit is in the tangent coordinates of i
+ * (FringeFrames.h), in 2D or 1D as on a 2D mesh: the extension reproduces
+ * the functions affine in those coordinates (ambient linear fields on a
+ * plane surface or a straight curve), and its rows still sum to 1.
+ *
  * Every valid value is then a stable one: a function that finds no stable
  * fit even there is dropped to invalid when its support is covered less
  * than FringeStrandedDropFraction (it would keep the plain projection's
@@ -54,7 +59,7 @@
 
 namespace mp
 {
-/// Per point of a volume mesh (triangles in the x-y plane in 2D, tetrahedra in 3D): int phi_i over its whole support.
+/// Per point of a mesh (triangles, tetrahedra, triangles of a surface, segments of a curve): int phi_i over its whole support.
 LargeVector<double> SupportIntegrals(const MeshView& mesh);
 
 /// The extension of a fringe: P (functions x functions) and which rows it aggregates.
