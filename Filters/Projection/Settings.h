@@ -22,6 +22,8 @@
 #include "Transfer/LinearReconstruction.h" // mp::Reconstruction
 
 #include <limits>
+#include <set>
+#include <string>
 
 namespace mpvtk
 {
@@ -38,6 +40,13 @@ enum SurfaceOrientation : int
   SameOrientation = 0,
   OppositeOrientation = 1,
   AnyOrientation = 2
+};
+
+/// Which Source arrays are labels (CategoricalMode; Labels.h).
+enum CategoricalModes : int
+{
+  CategoricalAutomatic = 0, ///< single-component integer arrays
+  CategoricalSelected = 1   ///< exactly the arrays named in CategoricalArrays
 };
 
 struct Settings
@@ -63,6 +72,11 @@ struct Settings
   int NumberOfThreads = 0; ///< 0: every core (the filter's RequestData)
   int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
   bool KeepMatrices = false;
+  int CategoricalMode = CategoricalAutomatic; ///< CategoricalModes
+  bool LabelFractions = false;                ///< also <name>_Fractions per label array
+  int FillLabel = -1;                         ///< the label of uncovered target points and cells
+  /// The arrays named as labels (CategoricalSelected), point or cell arrays alike.
+  std::set<std::string> CategoricalArrays;
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const

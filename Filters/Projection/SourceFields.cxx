@@ -9,7 +9,9 @@
 
 #include "Parallel/Parts.h"
 #include "Projection/Fingerprint.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
+#include "Projection/Settings.h"
 #include "Adapter/FieldArrays.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
@@ -25,9 +27,9 @@ namespace mpvtk
 {
 namespace
 {
-/// The enabled numeric fields of one association, long enough, in order.
+/// The enabled numeric fields of one association, long enough, in order (labels apart).
 void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* selection,
-  Messages& messages, GatheredFields& g)
+  const Settings& settings, Messages& messages, GatheredFields& g)
 {
   vtkDataSetAttributes* data = AttributesOf(source, association);
   const char* kind = association == 0 ? "point" : "cell";
@@ -57,14 +59,20 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
         abstract->GetClassName() + "): skipped.");
       continue;
     }
+    if (IsLabelArray(array, settings, association, messages))
+    {
+      g.Labels.emplace_back();
+      g.Labels.back().Array = array;
+      continue;
+    }
     if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
     {
       messages.WarnOnce(std::string(kind) + "/" + label, // once per array, not per step
         "Source " + std::string(kind) + " array '" + label + "' holds integers (" +
           array->GetClassName() +
           "): it is projected as real values (a 0/1 indicator becomes a covered fraction, but "
-          "labels and ids do not carry over: use Resample With Dataset for those, or deselect "
-          "it).");
+          "labels and ids do not carry over: set CategoricalMode to CATEGORICAL_AUTOMATIC, or "
+          "name it in CategoricalArrays, to project it as labels, or deselect it).");
     }
     g.Arrays.push_back(array);
     g.Offsets.push_back(g.Components);
@@ -262,9 +270,10 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group)
 }
 
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
-  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
-  GatheredFields fields[2])
+  vtkDataArraySelection* const selections[2], const Settings& settings, Messages& messages,
+  Parts& parts, GatheredFields fields[2])
 {
+  const bool extensive = settings.Extensive;
   for (int association = 0; association < 2; ++association)
   {
     // Arrays that differ between Source's pieces or blocks (Adapter/PieceArrays.h).
@@ -275,12 +284,14 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
         messages.WarnOnce("pieces/" + warning.second, warning.second); // once, not at every step
       }
     }
-    SelectArrays(source, association, selections[association], messages, fields[association]);
+    SelectArrays(
+      source, association, selections[association], settings, messages, fields[association]);
   }
   fields[1].Key += extensive ? "extensive" : "intensive";
   for (int association = 0; association < 2; ++association)
   {
     GatheredFields& g = fields[association];
+    IndexLabels(mesh, association, settings.ReconstructsCellData(), parts, g);
     if (g.Components == 0)
     {
       continue;

@@ -16,8 +16,8 @@ namespace mpvtk
 {
 bool SourceSide::AnyTransfer(const Settings& settings) const
 {
-  return (this->Fields[PointArrays].Components > 0 && settings.PointDataTarget != 0) ||
-    (this->Fields[CellArrays].Components > 0 && settings.CellDataTarget != 0);
+  return (this->Fields[PointArrays].Any() && settings.PointDataTarget != 0) ||
+    (this->Fields[CellArrays].Any() && settings.CellDataTarget != 0);
 }
 
 namespace
