@@ -6,7 +6,8 @@ code, in the plugin's XML and in the user guide's property table.
 * Code: the properties are the vtkSet...Macro names of the header
   (Filters/vtkMeshProjectionFilter.h), plus the two array selections
   (GetPointDataArraySelection, GetCellDataArraySelection), whose default is
-  "all"; their defaults are the initializers of the fields of the same
+  "all", and the list of label arrays (AddCategoricalArray), "none"; their
+  defaults are the initializers of the fields of the same
   names in Filters/Projection/Settings.h, the one place they are written
   (`mp::ExtrapolationMode Extrapolation = mp::ExtrapolationMode::None;`,
   enumerators resolved from the headers under Filters/). CellDataQuantity
@@ -16,7 +17,7 @@ code, in the plugin's XML and in the user guide's property table.
   default_values; a "Default: X" in a property's help must agree too.
 * User guide (docs/user-guide.md): the table under "## Properties" whose
   header starts with `| property | default |`; a default is "all", "on",
-  "off", a number, or "`CONSTANT` (number)" (the header's constant of that
+  "off", "none", a number, or "`CONSTANT` (number)" (the header's constant of that
   value); the third column is the panel group, as in the XML's
   PropertyGroups.
 Also: the header's class comment points at docs/user-guide.md.
@@ -27,6 +28,7 @@ import sys
 import xml.etree.ElementTree as ET
 
 ALL = "all"
+NONE = "none"  # an Add.../Clear... list (CategoricalArrays): nothing named by default
 
 
 def number(text):
@@ -104,6 +106,8 @@ def header_properties(path, root):
         props["PointDataArrays"] = ALL
     if "GetCellDataArraySelection" in src:
         props["CellDataArrays"] = ALL
+    if "AddCategoricalArray" in src:
+        props["CategoricalArrays"] = NONE
     comment = re.search(r"/\*\*.*?@class.*?\*/", src, re.S)
     return props, comment.group(0) if comment else "", enums
 
@@ -120,7 +124,7 @@ def xml_properties(path, problems):
         name = element.get("name")
         command = element.get("command")
         if element.tag == "StringVectorProperty":
-            props[name] = ALL
+            props[name] = NONE if (command or "").startswith("Add") else ALL
             continue
         if command != "Set" + name:
             problems.append("XML: %s calls %s, not Set%s" % (name, command, name))
@@ -170,8 +174,8 @@ def guide_properties(path, problems, enums):
             problems.append("user guide: property cell %r is not one `Name`" % cells[0])
             continue
         text = cells[1]
-        if text == ALL:
-            value = ALL
+        if text in (ALL, NONE):
+            value = text
         elif text == "on":
             value = 1.0
         elif text == "off":
