@@ -2,9 +2,12 @@
 #include "Projection/Labels.h"
 
 #include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
 
+#include "Adapter/FieldArrays.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
 #include "Parallel/Parts.h"
@@ -97,7 +100,7 @@ void Normalize(mp::LargeVector<double>& weights, int count, const std::vector<ch
 } // namespace
 
 bool IsLabelArray(
-  vtkDataArray* array, const Settings& settings, int association, Messages& messages)
+  vtkDataArray* array, const Settings& settings, int association, Messages* messages)
 {
   const bool integers = array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE;
   if (settings.CategoricalMode == CategoricalAutomatic)
@@ -109,17 +112,39 @@ bool IsLabelArray(
   {
     return false;
   }
-  if (array->GetNumberOfComponents() != 1)
+  if (array->GetNumberOfComponents() != 1 && messages)
   {
     const char* kind = association == PointArrays ? "point" : "cell";
-    messages.WarnOnce(std::string("labels/") + kind + "/" + name,
+    messages->WarnOnce(std::string("labels/") + kind + "/" + name,
       "Source " + std::string(kind) + " array '" + name +
         "' is named in CategoricalArrays but has " +
         std::to_string(array->GetNumberOfComponents()) +
         " components: only single-component arrays are labels; it is projected as numbers.");
-    return false;
   }
-  return true;
+  return array->GetNumberOfComponents() == 1;
+}
+
+void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredFields fields[2])
+{
+  for (int association = 0; source && association < 2; ++association)
+  {
+    vtkDataSetAttributes* data = AttributesOf(source, association);
+    for (int i = 0; i < data->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* array = data->GetArray(i);
+      if (!array || !array->GetName() || !IsField(data, array) ||
+        !IsLabelArray(array, settings, association, nullptr))
+      {
+        continue;
+      }
+      std::vector<double> values(static_cast<size_t>(array->GetNumberOfTuples()));
+      for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+      {
+        values[static_cast<size_t>(t)] = array->GetComponent(t, 0);
+      }
+      fields[association].PieceLabels[array->GetName()] = SortedValues(std::move(values));
+    }
+  }
 }
 
 void IndexLabels(
@@ -136,6 +161,13 @@ void IndexLabels(
         values[f] = LabelOf(mesh, field.Array, association, reconstructed, f);
       }
     });
+    // (Those of the Source piece this process had, too: the whole Source's labels.)
+    const char* name = field.Array->GetName();
+    const auto piece = name ? g.PieceLabels.find(name) : g.PieceLabels.end();
+    if (piece != g.PieceLabels.end())
+    {
+      values.insert(values.end(), piece->second.begin(), piece->second.end());
+    }
     field.Labels = parts.UnionOfValues(SortedValues(values));
     const std::vector<double>& labels = field.Labels;
     field.Which.assign(static_cast<size_t>(n), -1);

@@ -46,19 +46,29 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkDataSet;
 
 namespace mpvtk
 {
 class Messages;
 struct Settings;
 
-/// Whether `array` (of `association`) is projected as labels by `settings`' rule (says why not
-/// when a named array cannot be one).
+/// Whether `array` (of `association`) is projected as labels by `settings`' rule (says why not,
+/// to `messages` when given, when a named array cannot be one).
 bool IsLabelArray(
-  vtkDataArray* array, const Settings& settings, int association, Messages& messages);
+  vtkDataArray* array, const Settings& settings, int association, Messages* messages);
 
 /**
- * For each of g.Labels: its labels (every process's) and each source
+ * Before the Source is gathered: the labels of each array of this
+ * process's piece `source` that `settings` makes a label array
+ * (GatheredFields::PieceLabels), so that every process knows the whole
+ * Source's labels.
+ */
+void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredFields fields[2]);
+
+/**
+ * For each of g.Labels: its labels (every process's, and those of the
+ * pieces the processes had before the gathering) and each source
  * function's label index, for the operators of that association (`dp1`:
  * cell data reconstructed, the cells' corners). Collective.
  */

@@ -59,7 +59,7 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
         abstract->GetClassName() + "): skipped.");
       continue;
     }
-    if (IsLabelArray(array, settings, association, messages))
+    if (IsLabelArray(array, settings, association, &messages))
     {
       g.Labels.emplace_back();
       g.Labels.back().Array = array;

@@ -25,6 +25,7 @@
 #include "Mesh/MeshView.h"
 
 #include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -102,6 +103,10 @@ struct GatheredFields : FieldBlock
   /// That rule's warnings (name, text), on arrays with a hole or refused:
   /// said when the array is selected.
   std::vector<std::pair<std::string, std::string>> PieceWarnings;
+  /// The labels of this process's own Source piece (before the gathering),
+  /// per label array's name: on several processes the labels are the whole
+  /// Source's, as one process sees them (Labels.h: IndexLabels).
+  std::map<std::string, std::vector<double>> PieceLabels;
 };
 
 /// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
