@@ -14,8 +14,12 @@ Source triangle, in the test):
        numbers (with the "holds integers" warning), a real array named is
        a label array; no warning for labels in the default mode;
     d. FillLabel on an unsigned array that cannot hold -1;
-    e. a composite Input and a second execution on the kept operator give
-       the same labels.
+    e. a composite Input, a composite Source (two blocks) and a second
+       execution on the kept operator give the same labels;
+    f. the labels come from the overlap matrix: GetMatrix(CELLS_TO_CELLS,
+       MIXED_MASS)'s columns summed per label are the overlap areas;
+    g. CellDataReconstruction and Extrapolation leave labels alone: the same
+       labels (a label has no gradient), the fill label where uncovered.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -283,4 +287,30 @@ check(f4.GetOperatorReused(), "e. the second execution reuses the kept operator"
 again = vtk_to_numpy(f4.GetOutput().GetBlock(0).GetCellData().GetArray("MaterialId"))
 check(np.array_equal(again[valid], got[valid]) and np.all(again[~valid] == -7),
       "e. the kept operator serves the labels again (FillLabel -7 where uncovered)")
+
+# e. A composite Source: the Source in two blocks (by cell parity) is one mesh.
+from mpsupport.meshes import extract  # noqa: E402
+halves = vtkMultiBlockDataSet()
+halves.SetNumberOfBlocks(2)
+parity = np.arange(source_mesh.GetNumberOfCells()) % 2
+for b in range(2):
+    halves.SetBlock(b, extract(source_mesh, parity == b))
+f5, out5, _ = project(target, halves)
+check(np.array_equal(vtk_to_numpy(out5.GetCellData().GetArray("MaterialId")), got),
+      "e. a composite Source (two blocks) gives the same cell labels")
+
+# f. GetMatrix: M_ts of cells to cells, its columns summed per label: the areas above.
+from meshprojection import operator_matrices  # noqa: E402
+m_tt, m_ts, _ = operator_matrices(f4, "cells_to_cells")
+by_label = np.column_stack([np.asarray(m_ts[:, material == m].sum(axis=1)).ravel() for m in mats])
+check(np.max(np.abs(by_label - area)) <= 1e-12 * area.max(),
+      "f. GetMatrix's M_ts summed per label == the overlap areas (%.3g)" % np.max(np.abs(by_label - area)))
+
+# g. Reconstruction (DP1 indicators) and Extrapolation.
+f6, out6, _ = project(target, source_mesh, CellDataReconstruction=1, Extrapolation=2)
+check(np.array_equal(vtk_to_numpy(out6.GetCellData().GetArray("MaterialId")), got),
+      "g. with CellDataReconstruction and Extrapolation: the same cell labels, the fill label where uncovered")
+f6f = vtk_to_numpy(out6.GetCellData().GetArray("MaterialId_Fractions"))
+check(np.max(np.abs(f6f[valid] - frac[valid])) <= 1e-12,
+      "g. with CellDataReconstruction: the same fractions (%.3g)" % np.max(np.abs(f6f[valid] - frac[valid])))
 finish()
