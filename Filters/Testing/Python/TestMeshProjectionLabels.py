@@ -19,7 +19,11 @@ Source triangle, in the test):
     f. the labels come from the overlap matrix: GetMatrix(CELLS_TO_CELLS,
        MIXED_MASS)'s columns summed per label are the overlap areas;
     g. CellDataReconstruction and Extrapolation leave labels alone: the same
-       labels (a label has no gradient), the fill label where uncovered.
+       labels (a label has no gradient), the fill label where uncovered;
+    h. 3D: Gmsh tetrahedra of a box, moved, with four materials: each
+       target cell's label is the one of largest overlap volume, from the
+       intersection pieces (OutputIntersections) summed per label, and the
+       fractions keep each label's volume over the covered part to 1e-12.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -313,4 +317,48 @@ check(np.array_equal(vtk_to_numpy(out6.GetCellData().GetArray("MaterialId")), go
 f6f = vtk_to_numpy(out6.GetCellData().GetArray("MaterialId_Fractions"))
 check(np.max(np.abs(f6f[valid] - frac[valid])) <= 1e-12,
       "g. with CellDataReconstruction: the same fractions (%.3g)" % np.max(np.abs(f6f[valid] - frac[valid])))
+
+# h. 3D, against the intersection pieces' volumes summed per label.
+box_source = gmshmeshes.volume("box", 0.11)
+box_target = gmshmeshes.moved(gmshmeshes.volume("box", 0.14), translate=(0.23, 0.11, 0.07))
+xs3 = vtk_to_numpy(box_source.GetPoints().GetData())
+tets = vtk_to_numpy(box_source.GetCells().GetConnectivityArray()).reshape(-1, 4)
+c3 = xs3[tets].mean(axis=1)
+material3 = np.where(c3[:, 2] > 0.55 + 0.2 * c3[:, 0], 4,
+                     np.where((c3[:, 0] - 0.5) ** 2 + (c3[:, 1] - 0.5) ** 2 < 0.09, 2,
+                              np.where(c3[:, 1] > 0.6 - 0.3 * c3[:, 0], 1, 0))).astype(np.int32)
+labelled3 = box_source.NewInstance()
+labelled3.ShallowCopy(box_source)
+m3 = numpy_to_vtk(material3, deep=True, array_type=VTK_INT)
+m3.SetName("MaterialId")
+labelled3.GetCellData().AddArray(m3)
+f7, out7, _ = project(box_target, labelled3, OutputIntersections=True)
+pieces3 = f7.GetOutput(2).GetCellData()
+pt = vtk_to_numpy(pieces3.GetArray("TargetCellId"))
+ps = vtk_to_numpy(pieces3.GetArray("SourceCellId"))
+pv = vtk_to_numpy(pieces3.GetArray("Volume"))
+mats3 = np.unique(material3)
+volume = np.zeros((box_target.GetNumberOfCells(), len(mats3)))
+np.add.at(volume, (pt, np.searchsorted(mats3, material3[ps])), pv)
+got3 = vtk_to_numpy(out7.GetCellData().GetArray("MaterialId"))
+valid3 = vtk_to_numpy(out7.GetCellData().GetArray("vtkValidCellMask")).astype(bool)
+wrong = decided = mixed = 0
+for t in range(len(got3)):
+    want, clear = winner(volume[t], mats3)
+    mixed += np.count_nonzero(volume[t] > 0) > 1
+    if clear:
+        decided += 1
+        wrong += got3[t] != want
+check(wrong == 0 and decided > 300 and mixed > 50,
+      "h. 3D: %d of %d cells (%d mixed) take another label than the largest overlap volume"
+      % (wrong, decided, mixed))
+check(np.all(got3[~valid3] == FILL) and np.count_nonzero(~valid3) > 0, "h. 3D: uncovered cells get the fill label")
+frac3 = vtk_to_numpy(out7.GetCellData().GetArray("MaterialId_Fractions"))
+covered3 = volume.sum(axis=1)
+for k, m in enumerate(mats3):
+    kept = float(np.sum(covered3[valid3] * frac3[valid3, k]))
+    want = float(volume[:, k].sum())
+    check(abs(kept - want) <= 1e-12 * want,
+          "h. 3D label %d: covered-volume-weighted fractions %r == its Source volume over the covered part %r"
+          % (m, kept, want))
 finish()
