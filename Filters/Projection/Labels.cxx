@@ -18,9 +18,9 @@
 #include "Transfer/Space.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
+#include <functional>
 #include <sstream>
+#include <string>
 
 namespace mpvtk
 {
@@ -99,13 +99,17 @@ void Normalize(mp::LargeVector<double>& weights, int count, const std::vector<ch
 }
 } // namespace
 
+bool HoldsIntegers(vtkDataArray* array)
+{
+  return array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE;
+}
+
 bool IsLabelArray(
   vtkDataArray* array, const Settings& settings, int association, Messages* messages)
 {
-  const bool integers = array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE;
   if (settings.CategoricalMode == CategoricalAutomatic)
   {
-    return integers && array->GetNumberOfComponents() == 1;
+    return HoldsIntegers(array) && array->GetNumberOfComponents() == 1;
   }
   const char* name = array->GetName();
   if (!name || settings.CategoricalArrays.count(name) == 0)
@@ -268,14 +272,12 @@ LabelOutput WriteLabelArray(const LabelField& field, const mp::LargeVector<doubl
   out.Labels->SetNumberOfComponents(1);
   out.Labels->SetNumberOfTuples(n);
   const double fill = FillLabelFor(field.Array, settings.FillLabel);
-  vtkDataArray* labels = out.Labels;
-  mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType f = begin; f < end; ++f)
-    {
-      const int k = any && valid[f] ? WinningLabel(weights.data() + f * count, count) : -1;
-      labels->SetComponent(at(f), 0, k >= 0 ? field.Labels[k] : fill);
-    }
-  });
+  // (One thread: any vtkDataArray, a vtkBitArray's shared bytes too.)
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    const int k = any && valid[f] ? WinningLabel(weights.data() + f * count, count) : -1;
+    out.Labels->SetComponent(at(f), 0, k >= 0 ? field.Labels[k] : fill);
+  }
   if (!settings.LabelFractions)
   {
     return out;

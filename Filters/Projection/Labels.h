@@ -53,6 +53,9 @@ namespace mpvtk
 class Messages;
 struct Settings;
 
+/// Whether `array` holds integers (any type but float and double): a label array by default.
+bool HoldsIntegers(vtkDataArray* array);
+
 /// Whether `array` (of `association`) is projected as labels by `settings`' rule (says why not,
 /// to `messages` when given, when a named array cannot be one).
 bool IsLabelArray(

@@ -65,7 +65,7 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
       g.Labels.back().Array = array;
       continue;
     }
-    if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+    if (HoldsIntegers(array))
     {
       messages.WarnOnce(std::string(kind) + "/" + label, // once per array, not per step
         "Source " + std::string(kind) + " array '" + label + "' holds integers (" +
