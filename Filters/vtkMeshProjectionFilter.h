@@ -231,7 +231,7 @@ public:
    * output keeps the Source array's type. CategoricalMode says which
    * arrays are labels: CATEGORICAL_AUTOMATIC (default), every
    * single-component integer array (vtkIntArray, vtkIdTypeArray,
-   * vtkUnsignedCharArray, ...); CATEGORICAL_SELECTED, exactly the
+   * vtkUnsignedCharArray, ...; not vtkBitArray); CATEGORICAL_SELECTED, exactly the
    * single-component point or cell arrays named with AddCategoricalArray
    * (so an integer array can be projected as numbers and a real array as
    * labels). Default: CATEGORICAL_AUTOMATIC, none named.

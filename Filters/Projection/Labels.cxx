@@ -109,7 +109,9 @@ bool IsLabelArray(
 {
   if (settings.CategoricalMode == CategoricalAutomatic)
   {
-    return HoldsIntegers(array) && array->GetNumberOfComponents() == 1;
+    // (A vtkBitArray is a 0/1 indicator, whose projection is a covered fraction.)
+    return HoldsIntegers(array) && array->GetNumberOfComponents() == 1 &&
+      array->GetDataType() != VTK_BIT;
   }
   const char* name = array->GetName();
   if (!name || settings.CategoricalArrays.count(name) == 0)

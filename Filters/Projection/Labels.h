@@ -7,7 +7,7 @@
  *
  * Which arrays are labels (CategoricalMode): CategoricalAutomatic, every
  * single-component integer array (vtkIntArray, vtkShortArray,
- * vtkCharArray, vtkIdTypeArray, the unsigned ones...); CategoricalSelected,
+ * vtkCharArray, vtkIdTypeArray, the unsigned ones...; not a vtkBitArray); CategoricalSelected,
  * exactly the single-component arrays named in CategoricalArrays (an
  * integer array then left out is projected as numbers; a real one named
  * is a label array).
