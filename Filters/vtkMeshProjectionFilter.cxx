@@ -83,6 +83,9 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.Renumbering, s.Renumbering);
   each(f.DensityArray, s.DensityArray);
   each(f.MassWeightedArrays, s.MassWeightedArrays);
+  each(f.CategoricalMode, s.CategoricalMode);
+  each(f.LabelFractions, s.LabelFractions);
+  each(f.FillLabel, s.FillLabel);
 }
 
 mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjectionFilter& filter)
@@ -92,6 +95,8 @@ mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjection
     field = static_cast<std::decay_t<decltype(field)>>(property);
   });
   s.TangentArrays = filter.Internal->TangentArrays;
+  const std::vector<std::string>& named = filter.Internal->CategoricalNames;
+  s.CategoricalArrays.insert(named.begin(), named.end());
   return s;
 }
 
@@ -128,6 +133,9 @@ static_assert(Same(F::CONSTANT_RECONSTRUCTION, mp::Reconstruction::Constant) &&
     Same(F::LIMITED_RECONSTRUCTION, mp::Reconstruction::Limited) &&
     Same(F::UNLIMITED_RECONSTRUCTION, mp::Reconstruction::Unlimited),
   "Reconstructions are mp::Reconstruction's values");
+static_assert(Same(F::CATEGORICAL_AUTOMATIC, mpvtk::CategoricalAutomatic) &&
+    Same(F::CATEGORICAL_SELECTED, mpvtk::CategoricalSelected),
+  "CategoricalModes are mpvtk::CategoricalModes");
 static_assert(Same(F::TO_POINTS, mpvtk::ToPointsBit) && Same(F::TO_CELLS, mpvtk::ToCellsBit) &&
     Same(F::TO_POINTS_AND_CELLS, mpvtk::ToPointsBit | mpvtk::ToCellsBit),
   "Targets are mpvtk::TargetBits");
@@ -293,6 +301,36 @@ void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
 void vtkMeshProjectionFilter::SetCellDataArrayStatus(const char* name, int status)
 {
   this->Internal->Arrays.SetStatus(1, name, status);
+}
+
+void vtkMeshProjectionFilter::AddCategoricalArray(const char* name)
+{
+  if (name)
+  {
+    this->Internal->CategoricalNames.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearCategoricalArrays()
+{
+  if (!this->Internal->CategoricalNames.empty())
+  {
+    this->Internal->CategoricalNames.clear();
+    this->Modified();
+  }
+}
+
+int vtkMeshProjectionFilter::GetNumberOfCategoricalArrays()
+{
+  return static_cast<int>(this->Internal->CategoricalNames.size());
+}
+
+const char* vtkMeshProjectionFilter::GetCategoricalArray(int i)
+{
+  const std::vector<std::string>& named = this->Internal->CategoricalNames;
+  return i >= 0 && i < static_cast<int>(named.size()) ? named[static_cast<size_t>(i)].c_str()
+                                                      : nullptr;
 }
 
 vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
@@ -818,6 +856,15 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive")
      << "\n";
   os << indent << "CellDataReconstruction: " << this->CellDataReconstruction << "\n";
+  os << indent << "CategoricalMode: " << this->CategoricalMode << "\n";
+  os << indent << "CategoricalArrays:";
+  for (const std::string& name : this->Internal->CategoricalNames)
+  {
+    os << " " << name;
+  }
+  os << "\n";
+  os << indent << "LabelFractions: " << this->LabelFractions << "\n";
+  os << indent << "FillLabel: " << this->FillLabel << "\n";
   os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent")
      << "\n";
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";

@@ -12,7 +12,8 @@
  * not alias. Inputs: any vtkDataSet or composite dataset, curves, 2D,
  * surfaces in 3D, volumes, or a surface or curve inside a volume Source.
  *
- * Output 0 is Input with a double array per projected Source array, the
+ * Output 0 is Input with a double array per projected Source array (a
+ * label array keeps its type: CategoricalMode), the
  * masks vtkValidPointMask / vtkValidCellMask, CoveredFraction, and the
  * field data SourceIntegral_<array> and TargetIntegral_<array>; outputs 1
  * and 2 the intersection pieces (OutputIntersections). Invalid input gives
@@ -68,6 +69,12 @@ public:
     CONSTANT_RECONSTRUCTION = 0, ///< the cell's value (first order)
     LIMITED_RECONSTRUCTION = 1,  ///< linear, limited: second order, no new extrema in cells
     UNLIMITED_RECONSTRUCTION = 2 ///< linear: second order, exact for linear fields
+  };
+  /// Which Source arrays are labels (CategoricalMode).
+  enum CategoricalModes
+  {
+    CATEGORICAL_AUTOMATIC = 0, ///< single-component integer arrays
+    CATEGORICAL_SELECTED = 1   ///< exactly the arrays named in CategoricalArrays
   };
   enum MassMatrices
   {
@@ -262,6 +269,52 @@ public:
     return static_cast<int>(this->MassWeightedArrays.size());
   }
   const char* GetMassWeightedArray(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * Categorical arrays (labels: material ids, regions, classes). A label
+   * array is not averaged: each target cell takes the Source label that
+   * covers most of its covered measure, each target point the label whose
+   * Source cells (or points) weigh most under its basis function, both
+   * read from the overlap matrix M_ts; ties go to the smallest label. The
+   * output keeps the Source array's type. CategoricalMode says which
+   * arrays are labels: CATEGORICAL_AUTOMATIC (default), every
+   * single-component integer array (vtkIntArray, vtkIdTypeArray,
+   * vtkUnsignedCharArray, ...; not vtkBitArray); CATEGORICAL_SELECTED, exactly the
+   * single-component point or cell arrays named with AddCategoricalArray
+   * (so an integer array can be projected as numbers and a real array as
+   * labels). Default: CATEGORICAL_AUTOMATIC, none named.
+   */
+  vtkSetClampMacro(CategoricalMode, int, CATEGORICAL_AUTOMATIC, CATEGORICAL_SELECTED);
+  vtkGetMacro(CategoricalMode, int);
+  void AddCategoricalArray(const char* name);
+  void ClearCategoricalArrays();
+  int GetNumberOfCategoricalArrays();
+  const char* GetCategoricalArray(int i);
+  ///@}
+
+  ///@{
+  /**
+   * With LabelFractions, each label array also gives "<name>_Fractions":
+   * per target point or cell, the weight of each label over the sum (one
+   * component per label, named by it), which sum to 1; over the cells,
+   * weighed by their covered measure, they sum to each label's Source
+   * measure over the covered part. Default: false.
+   */
+  vtkSetMacro(LabelFractions, bool);
+  vtkGetMacro(LabelFractions, bool);
+  vtkBooleanMacro(LabelFractions, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The label of target points and cells the Source does not reach (an
+   * unsigned array that cannot hold it gets its type's largest value).
+   * Default: -1.
+   */
+  vtkSetMacro(FillLabel, int);
+  vtkGetMacro(FillLabel, int);
   ///@}
 
   ///@{
@@ -503,6 +556,9 @@ protected:
   int Renumbering;
   std::string DensityArray;
   std::vector<std::string> MassWeightedArrays;
+  int CategoricalMode;
+  bool LabelFractions;
+  int FillLabel;
 
   // The results of the last execution.
   bool OperatorReused = false;

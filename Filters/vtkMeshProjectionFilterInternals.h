@@ -45,6 +45,8 @@ struct vtkMeshProjectionFilter::Internals
   /// its own while it runs on several processes; null, one process
   /// (mpvtk::SerialParts).
   mpvtk::Parts* Parts = nullptr;
+  /// The arrays named as labels (AddCategoricalArray), in the order named.
+  std::vector<std::string> CategoricalNames;
 
   /**
    * The one list of the properties with their fields of mpvtk::Settings:

@@ -103,6 +103,23 @@ std::vector<unsigned int> MPIParts::Union(const std::vector<unsigned int>& value
   return all;
 }
 
+std::vector<double> MPIParts::UnionOfValues(const std::vector<double>& values)
+{
+  std::vector<std::vector<char>> out(static_cast<size_t>(this->N));
+  const std::vector<double> mine = SortedValues(values);
+  for (int r = 0; r < this->N; ++r)
+  {
+    Append(out[r], mine.data(), mine.size());
+  }
+  std::vector<double> all;
+  for (const std::vector<char>& in : this->AllToAll(out))
+  {
+    const std::vector<double> v = Read<double>(in);
+    all.insert(all.end(), v.begin(), v.end());
+  }
+  return SortedValues(all);
+}
+
 std::vector<double> MPIParts::SumByKey(
   const std::vector<long long>& keys, int width, const std::vector<double>& values)
 {

@@ -78,6 +78,7 @@ public:
   void Sum(double* values, int count) override;
   void Minimum(double* values, int count) override;
   std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override;
+  std::vector<double> UnionOfValues(const std::vector<double>& values) override;
   /// Each entry is summed on the process its key hashes to, which answers
   /// every entry: the sums are the same, bit for bit, on any run.
   std::vector<double> SumByKey(

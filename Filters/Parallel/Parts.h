@@ -124,6 +124,8 @@ public:
   virtual void Minimum(double* values, int count) = 0;
   /// The union over the processes (sorted, without repeats).
   virtual std::vector<unsigned int> Union(const std::vector<unsigned int>& values) = 0;
+  /// The union over the processes of values that are not NaN (sorted, without repeats): labels.
+  virtual std::vector<double> UnionOfValues(const std::vector<double>& values) = 0;
   /**
    * Entry i of this process is keyed by keys[width * i ... width * i +
    * width - 1] with value values[i]; returns, per entry, the sum of the
@@ -163,6 +165,16 @@ public:
   virtual double SentBytes() const = 0;
 };
 
+/// `values` without NaN, sorted, without repeats (UnionOfValues' one process).
+inline std::vector<double> SortedValues(std::vector<double> values)
+{
+  values.erase(
+    std::remove_if(values.begin(), values.end(), [](double v) { return v != v; }), values.end());
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  return values;
+}
+
 /// One process: every collective is the identity.
 class SerialParts final : public Parts
 {
@@ -181,6 +193,10 @@ public:
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
     return all;
+  }
+  std::vector<double> UnionOfValues(const std::vector<double>& values) override
+  {
+    return SortedValues(values);
   }
   std::vector<double> SumByKey(
     const std::vector<long long>& keys, int width, const std::vector<double>& values) override;

@@ -4,6 +4,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 
+#include "Projection/Labels.h"
 #include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
@@ -216,6 +217,6 @@ Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPla
       return applied;
     }
   }
-  return Verdict();
+  return ApplyLabels(ctx, ops, hooks, solutions);
 }
 } // namespace mpvtk

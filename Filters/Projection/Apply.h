@@ -62,6 +62,9 @@ struct LeafSolutions
    */
   mp::LargeVector<double> Products[NumberOfTransfers];
   std::vector<std::vector<char>> Guarded[NumberOfTransfers];
+  /// Per transfer and label array of its association (GatheredFields::Labels): the label
+  /// fractions, target functions x labels (Labels.h; empty when no label is anywhere).
+  std::vector<mp::LargeVector<double>> Labels[NumberOfTransfers];
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators
@@ -73,7 +76,8 @@ void ShareSystems(
 /**
  * Applies every operator in use to its fields (and NaN groups' operators to
  * theirs), warm started from the kept solution where `kept` has one for the
- * same fields; with plan.Cache.Keep each solution is put aside to be kept.
+ * same fields; with plan.Cache.Keep each solution is put aside to be kept;
+ * then the label arrays (Labels.h: ApplyLabels).
  */
 Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
   const OperatorSet& ops, const mp::SolverHooks hooks[2], const mp::FringeHalo& halo,

@@ -16,6 +16,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "Projection/Conservation.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
@@ -351,6 +352,47 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   }
 }
 
+/// The label arrays of transfer t (Labels.h), after its numbers: valid where
+/// the transfer's numbers are (its operator's system), in the masks' list.
+void WriteLabels(LeafContext& ctx, vtkDataSet* output, const LeafSolutions& solutions, Transfer t,
+  PointNumbering& numbering, Written& written)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  const bool toPoints = ToPoints(t);
+  vtkDataSetAttributes* sourceData = AttributesOf(ctx.Source.Data, SourceAssociation(t));
+  vtkDataSetAttributes* outData = AttributesOf(output, toPoints ? PointArrays : CellArrays);
+  std::vector<std::string>& names = toPoints ? written.PointNames : written.CellNames;
+  const vtkIdType n =
+    toPoints ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
+  const SimplexMesh& target = ctx.Target;
+  const std::function<vtkIdType(vtkIdType)> at = [&target, toPoints](vtkIdType f) {
+    return toPoints ? target.DataSetPoint(f) : f;
+  };
+  const std::vector<char>& valid = *solutions.System[t].Valid;
+  static const mp::LargeVector<double> none;
+  for (size_t i = 0; i < g.Labels.size(); ++i)
+  {
+    const LabelField& field = g.Labels[i];
+    const std::string name =
+      OutputName(field.Array, static_cast<int>(g.Arrays.size() + i), t, names);
+    names.push_back(name);
+    (toPoints ? written.PointValid : written.CellValid)
+      .emplace_back(name, toPoints ? numbering.InDataSet(valid) : &valid);
+    const mp::LargeVector<double>& weights =
+      i < solutions.Labels[t].size() ? solutions.Labels[t][i] : none;
+    const LabelOutput out = WriteLabelArray(field, weights, valid, n, at, name, ctx.Options);
+    outData->AddArray(out.Labels);
+    if (out.Fractions)
+    {
+      outData->AddArray(out.Fractions);
+    }
+    if (IsOwnAssociation(t) && field.Array == sourceData->GetScalars())
+    {
+      outData->SetActiveScalars(out.Labels->GetName());
+    }
+  }
+}
+
 /// Without active scalars (none in Source, none in Input), the first
 /// projected scalar array becomes them (points first), so that ParaView
 /// shows the result coloured by it rather than in a solid colour.
@@ -630,6 +672,10 @@ void WriteLeafOutputs(LeafContext& ctx, vtkDataSet* output, const OperatorSet& o
     if (ops.Operators[t] && ctx.Source.Fields[SourceAssociation(t)].Components > 0)
     {
       WriteTransfer(ctx, output, ops, solutions, weights, t, numbering, tangents, written);
+    }
+    if (ops.Operators[t])
+    {
+      WriteLabels(ctx, output, solutions, t, numbering, written);
     }
   }
   MakeActiveScalars(output, written);

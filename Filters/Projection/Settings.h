@@ -22,6 +22,7 @@
 #include "Transfer/LinearReconstruction.h" // mp::Reconstruction
 
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,13 @@ enum SurfaceOrientation : int
   SameOrientation = 0,
   OppositeOrientation = 1,
   AnyOrientation = 2
+};
+
+/// Which Source arrays are labels (CategoricalMode; Labels.h).
+enum CategoricalModes : int
+{
+  CategoricalAutomatic = 0, ///< single-component integer arrays
+  CategoricalSelected = 1   ///< exactly the arrays named in CategoricalArrays
 };
 
 struct Settings
@@ -71,6 +79,11 @@ struct Settings
   /// arrays weighted by it (empty: every array of its association).
   std::string DensityArray = "";
   std::vector<std::string> MassWeightedArrays; ///< empty: all
+  int CategoricalMode = CategoricalAutomatic;  ///< CategoricalModes
+  bool LabelFractions = false;                 ///< also <name>_Fractions per label array
+  int FillLabel = -1;                          ///< the label of uncovered target points and cells
+  /// The arrays named as labels (CategoricalSelected), point or cell arrays alike.
+  std::set<std::string> CategoricalArrays; ///< empty: none
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const

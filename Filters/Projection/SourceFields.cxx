@@ -9,6 +9,7 @@
 
 #include "Parallel/Parts.h"
 #include "Projection/Fingerprint.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/TangentFields.h"
@@ -28,9 +29,9 @@ namespace mpvtk
 namespace
 {
 /// The enabled numeric fields of one association, long enough, in order
-/// (and `density`, hidden when not enabled).
+/// (labels apart; and `density`, hidden when not enabled, never a label).
 void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* selection,
-  const std::string& density, Messages& messages, GatheredFields& g)
+  const Settings& settings, const std::string& density, Messages& messages, GatheredFields& g)
 {
   vtkDataSetAttributes* data = AttributesOf(source, association);
   const char* kind = association == 0 ? "point" : "cell";
@@ -61,14 +62,20 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
         abstract->GetClassName() + "): skipped.");
       continue;
     }
-    if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+    if (density != label && IsLabelArray(array, settings, association, &messages))
+    {
+      g.Labels.emplace_back();
+      g.Labels.back().Array = array;
+      continue;
+    }
+    if (HoldsIntegers(array))
     {
       messages.WarnOnce(std::string(kind) + "/" + label, // once per array, not per step
         "Source " + std::string(kind) + " array '" + label + "' holds integers (" +
           array->GetClassName() +
           "): it is projected as real values (a 0/1 indicator becomes a covered fraction, but "
-          "labels and ids do not carry over: use Resample With Dataset for those, or deselect "
-          "it).");
+          "labels and ids do not carry over: set CategoricalMode to CATEGORICAL_AUTOMATIC, or "
+          "name it in CategoricalArrays, to project it as labels, or deselect it).");
     }
     g.Arrays.push_back(array);
     g.Hidden.push_back(hidden);
@@ -282,7 +289,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
         messages.WarnOnce("pieces/" + warning.second, warning.second); // once, not at every step
       }
     }
-    SelectArrays(source, association, selections[association],
+    SelectArrays(source, association, selections[association], settings,
       association == density ? settings.DensityArray : std::string(), messages,
       fields[association]);
   }
@@ -290,6 +297,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   for (int association = 0; association < 2; ++association)
   {
     GatheredFields& g = fields[association];
+    IndexLabels(mesh, association, settings.ReconstructsCellData(), parts, g);
     if (g.Components == 0)
     {
       continue;

@@ -7,6 +7,7 @@
 #include "Parallel/Parts.h"
 #include "Projection/Composite.h"
 #include "Projection/Fingerprint.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/Shape.h"
@@ -16,8 +17,8 @@ namespace mpvtk
 {
 bool SourceSide::AnyTransfer(const Settings& settings) const
 {
-  return (this->Fields[PointArrays].Components > 0 && settings.PointDataTarget != 0) ||
-    (this->Fields[CellArrays].Components > 0 && settings.CellDataTarget != 0);
+  return (this->Fields[PointArrays].Any() && settings.PointDataTarget != 0) ||
+    (this->Fields[CellArrays].Any() && settings.CellDataTarget != 0);
 }
 
 namespace
@@ -54,6 +55,12 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   {
     failed = std::string("Source is a ") + sourceObject->GetClassName() +
       ": a dataset or a composite dataset is needed.";
+  }
+  // On several processes, the labels of this process's piece before it
+  // gathers (every process then knows the whole Source's labels: Labels.h).
+  if (!parts.Whole())
+  {
+    ListPieceLabels(source, settings, side.Fields);
   }
   // Each process gets the Source cells its part of Input needs, from all.
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;

@@ -8,7 +8,7 @@ code, in the plugin's XML and in the user guide's property table.
   (GetPointDataArraySelection, GetCellDataArraySelection), whose default is
   "all", the strings set by `Set<Name>(const char*)` (an array's name:
   "none" when empty) and the name lists emptied by `Clear<Name>()` with a
-  `std::vector<std::string> <Name>; ///< empty: all` (or `none`) in
+  `std::vector<std::string> <Name>; ///< empty: all` (or `none`; or a std::set) in
   Settings.h, whose comment says what an empty list means; their defaults are the initializers of the fields of the same
   names in Filters/Projection/Settings.h, the one place they are written
   (`mp::ExtrapolationMode Extrapolation = mp::ExtrapolationMode::None;`,
@@ -35,7 +35,7 @@ ALL = "all"
 NONE = "none"
 LIST = "a list"  # the XML's repeated StringVectorProperty: no default of its own
 # Settings.h's lists of names and what an empty one means.
-LISTS = re.compile(r"^\s*std::vector<std::string>\s+(\w+)\s*;\s*///<\s*empty:\s*(all|none)\b", re.M)
+LISTS = re.compile(r"^\s*std::(?:vector|set)<std::string>\s+(\w+)\s*;\s*///<\s*empty:\s*(all|none)\b", re.M)
 
 
 def number(text):
@@ -115,7 +115,7 @@ def header_properties(path, root):
             props[name] = NONE if defaults[name] in ('""', "") else defaults[name]
     settings = open(os.path.join(root, "Filters", "Projection", "Settings.h"), encoding="utf-8").read()
     lists = dict(LISTS.findall(settings))
-    for name in re.findall(r"^\s*std::vector<std::string>\s+(\w+)\s*;", settings, re.M):
+    for name in re.findall(r"^\s*std::(?:vector|set)<std::string>\s+(\w+)\s*;", settings, re.M):
         if name not in lists:
             raise SystemExit("Settings.h: the list %s does not say '///< empty: all' or "
                              "'///< empty: none'" % name)
