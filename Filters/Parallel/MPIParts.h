@@ -74,6 +74,7 @@ public:
 
   // The collectives (MPIParts.cxx).
   Verdict Agree(const Verdict& mine, bool* flag = nullptr) override;
+  void Abandon(const std::string& why) override;
   void Or(std::vector<char>& flags) override;
   void Sum(double* values, int count) override;
   void Minimum(double* values, int count) override;
