@@ -96,9 +96,9 @@ struct PointSharing;
 
 /**
  * A dataset of Input as the processes share it (Parts::ShareTarget): the
- * dataset, with global point ids on several processes, and what the
+ * dataset, and on several processes what the
  * processes learnt of its points (which this process shares with which
- * others, who owns each; MPIParts reads it). The leaf's hooks and its halo
+ * others, who owns each, their global ids; MPIParts reads it). The leaf's hooks and its halo
  * are made from this value (Parts::Hooks, Parts::Halo). Serial: the
  * dataset alone.
  */
@@ -181,8 +181,10 @@ public:
   /**
    * Per dataset of Input: finds the points this process shares with others
    * (by the GlobalIds point array when every process has one, else by
-   * their coordinates) and returns the dataset with global point ids (its
-   * own, or made: each point numbered by the lowest process that has it).
+   * their coordinates) and their global ids (its own, or made: each point
+   * numbered by the lowest process that has it; SharedTarget::Points).
+   * The dataset is `target` itself (cells other than simplices split by
+   * its GlobalIds when it has them, else by its point ids, as in serial).
    * Serial: `target` itself.
    */
   virtual SharedTarget ShareTarget(vtkDataSet* target) = 0;
