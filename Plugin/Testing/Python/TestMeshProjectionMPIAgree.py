@@ -17,6 +17,10 @@ never one process with output while the others fail:
 
 Each process's outcome (error text, whether the output has projected
 arrays) is gathered on every process and compared there.
+
+Not here, for want of a way to cause them from outside: a solve that fails
+(MaximumIterations 0 or 1 only hands the system to the direct solver,
+which solves it) and an exception in one process's step (mpvtk::Guarded).
 """
 
 import sys
