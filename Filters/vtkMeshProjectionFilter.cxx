@@ -483,6 +483,7 @@ int vtkMeshProjectionFilter::Execute(
     if (thrown)
     {
       parts.Abandon(outcome.Why);
+      mpvtk::PassInput(input, output, polygons, polyhedra); // (what a leaf had written goes)
     }
   }
   switch (outcome.What)

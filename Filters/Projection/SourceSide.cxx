@@ -78,7 +78,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
-  const Verdict wrapped = parts.Agree(Guarded("Reading Source", [&]() {
+  const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
     const std::string why = side.Mesh.Wrap(source, "Source");
     stats.Check += side.Mesh.CheckSeconds();
     stats.Renumber += side.Mesh.OrderSeconds();
