@@ -577,12 +577,27 @@ int vtkMeshProjectionFilter::Execute(
     // The seam: one process, unless vtkPMeshProjectionFilter installed its own.
     mpvtk::SerialParts alone;
     mpvtk::Parts& parts = this->Internal->Parts ? *this->Internal->Parts : alone;
-    outcome = Internals::Project(*this, inputVector, outputVector, parts, clock, stats);
+    // The steps of one process alone turn their exceptions into failures
+    // that all processes agree on (mpvtk::Guarded); one that gets here came
+    // from a step with collectives inside: an error on one process, the
+    // end of the run on several (Parts::Abandon: the others may wait in it).
+    bool thrown = true; // until Project returns
+    outcome = mpvtk::Guarded("The projection", [&]() {
+      const mpvtk::Verdict projected =
+        Internals::Project(*this, inputVector, outputVector, parts, clock, stats);
+      thrown = false;
+      return projected;
+    });
+    if (thrown)
+    {
+      parts.Abandon(outcome.Why);
+      mpvtk::PassInput(input, output, polygons, polyhedra); // (what a leaf had written goes)
+    }
   }
   switch (outcome.What)
   {
     case mpvtk::Outcome::Failed:
-      vtkErrorMacro(<< outcome.Why);
+      vtkErrorMacro(<< outcome.Message());
       break;
     case mpvtk::Outcome::Stopped:
       mpvtk::PassInput(input, output, polygons, polyhedra);
@@ -705,7 +720,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
       {
         return result.Outcome;
       }
-      skipped.push_back(result.Outcome.Why); // names the block
+      skipped.push_back(result.Outcome.Message()); // names the block
       continue;
     }
     ++projected;

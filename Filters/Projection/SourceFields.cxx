@@ -6,6 +6,8 @@
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
 
 #include "Parallel/Parts.h"
 #include "Projection/Fingerprint.h"
@@ -18,11 +20,14 @@
 #include "Adapter/Threads.h"
 
 #include "Geometry/Measures.h"
+#include "Mesh/ContentHash.h"
 #include "Transfer/Space.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 
 namespace mpvtk
 {
@@ -170,10 +175,116 @@ std::vector<char> CellsUsing(
   return excluded;
 }
 
+/// A Source point's identity over the processes: its coordinates' bits (a
+/// point on the border of two pieces is one point, whatever ids they gave it).
+void PointIdentity(vtkDataSet* source, vtkIdType p, long long key[3])
+{
+  double x[3];
+  source->GetPoint(p, x);
+  std::memcpy(key, x, sizeof(x));
+}
+
+/// A Source cell's identity over the processes: its points' identities,
+/// sorted and hashed, and their number.
+void CellIdentity(vtkDataSet* source, vtkIdType c, vtkIdList* ids, long long key[3])
+{
+  source->GetCellPoints(c, ids);
+  std::vector<std::array<long long, 3>> corners(static_cast<size_t>(ids->GetNumberOfIds()));
+  for (size_t k = 0; k < corners.size(); ++k)
+  {
+    PointIdentity(source, ids->GetId(static_cast<vtkIdType>(k)), corners[k].data());
+  }
+  std::sort(corners.begin(), corners.end());
+  key[0] = static_cast<long long>(
+    mp::Fnv1a64(corners.data(), corners.size() * sizeof(std::array<long long, 3>)));
+  key[1] = static_cast<long long>(corners.size());
+  key[2] = 0;
+}
+
+/**
+ * The sum over the processes of `counts` (entry i of this process, known
+ * by the identity keys[3i .. 3i + 2]), each item counted once however many
+ * copies the processes hold: every copy counts its share. (The processes'
+ * gathered Sources overlap: a cell two parts of Input need is on both, and
+ * without the Source's own GlobalIds a point on the border of two pieces
+ * is twice on a process that gathers both.) Collective.
+ */
+vtkIdType CountedOnce(
+  Parts& parts, const std::vector<long long>& keys, const std::vector<double>& counts)
+{
+  const std::vector<double> copies =
+    parts.SumByKey(keys, 3, std::vector<double>(counts.size(), 1.0));
+  double total = 0.0;
+  for (size_t i = 0; i < counts.size(); ++i)
+  {
+    total += counts[i] / copies[i];
+  }
+  parts.Sum(&total, 1);
+  return static_cast<vtkIdType>(std::llround(total));
+}
+
+/**
+ * What the warning of array a says, over all processes on several: its
+ * non-finite values (`values` comes in with this process's count, `bad`
+ * its functions with one) and the Source cells left out, each point and
+ * cell counted once (CountedOnce): the serial run's numbers over the
+ * Source cells some process gathered (every cell near Input). Collective
+ * on several processes; one process: `values` and the cells as they are.
+ */
+vtkIdType CountLeftOut(vtkDataSet* source, const SimplexMesh& mesh, const GatheredFields& g, int a,
+  int association, const std::vector<char>& bad, const NaNGroup& group, Parts& parts,
+  vtkIdType& values)
+{
+  const std::vector<char> parents = LeftOutCells(mesh.View(), group);
+  if (parts.Whole())
+  {
+    return std::count(parents.begin(), parents.end(), 1);
+  }
+  vtkNew<vtkIdList> ids;
+  std::vector<long long> keys;
+  std::vector<double> counts;
+  const int nc = g.Arrays[a]->GetNumberOfComponents();
+  for (size_t f = 0; f < bad.size(); ++f)
+  {
+    if (!bad[f])
+    {
+      continue;
+    }
+    long long key[3];
+    if (association == 0)
+    {
+      PointIdentity(source, mesh.DataSetPoint(static_cast<mp::Index>(f)), key);
+    }
+    else
+    {
+      CellIdentity(source, static_cast<vtkIdType>(f), ids, key);
+    }
+    keys.insert(keys.end(), key, key + 3);
+    int here = 0;
+    for (int k = 0; k < nc; ++k)
+    {
+      here += !std::isfinite(g.Values[f * g.Components + g.Offsets[a] + k]);
+    }
+    counts.push_back(here);
+  }
+  values = CountedOnce(parts, keys, counts);
+  keys.clear();
+  for (size_t c = 0; c < parents.size(); ++c)
+  {
+    if (parents[c])
+    {
+      long long key[3];
+      CellIdentity(source, static_cast<vtkIdType>(c), ids, key);
+      keys.insert(keys.end(), key, key + 3);
+    }
+  }
+  return CountedOnce(parts, keys, std::vector<double>(keys.size() / 3, 1.0));
+}
+
 /// Says once per array how many values and cells are left out (not for an
 /// array with a hole where pieces lack it: PieceArrays.h's warning said it).
-void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::string& label,
-  int association, vtkIdType values, Messages& messages, bool hole)
+void WarnNonFinite(const std::string& label, int association, vtkIdType values, vtkIdType cells,
+  Messages& messages, bool hole)
 {
   const char* kind = association == 0 ? "point" : "cell";
   const std::string key = std::string("nonfinite/") + kind + "/" + label;
@@ -181,9 +292,6 @@ void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::s
   {
     return;
   }
-  // The dataset's cells left out (a split cell counts once).
-  const std::vector<char> parents = LeftOutCells(view, group);
-  const vtkIdType cells = std::count(parents.begin(), parents.end(), 1);
   messages.Warn("Source " + std::string(kind) + " array '" + label + "' has " +
     std::to_string(values) + " NaN or infinite values: the " + std::to_string(cells) +
     " Source cells that use them are left out of its projection, as a hole in Source (the "
@@ -221,8 +329,8 @@ void SplitOffGroups(GatheredFields& g, mp::Index functions)
 }
 
 /// The NaN groups of one association.
-void FindNaNGroups(
-  const SimplexMesh& mesh, int association, Messages& messages, Parts& parts, GatheredFields& g)
+void FindNaNGroups(vtkDataSet* source, const SimplexMesh& mesh, int association, Messages& messages,
+  Parts& parts, GatheredFields& g)
 {
   const mp::MeshView& view = mesh.View();
   const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
@@ -257,7 +365,10 @@ void FindNaNGroups(
     group->Arrays.push_back(a);
     group->Components += g.Arrays[a]->GetNumberOfComponents();
     const std::string label = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
-    WarnNonFinite(view, *group, label, association, values, messages, g.Holes.count(label) > 0);
+    // (The dataset's cells left out: a split cell counts once.)
+    const vtkIdType cells =
+      CountLeftOut(source, mesh, g, a, association, bad, *group, parts, values);
+    WarnNonFinite(label, association, values, cells, messages, g.Holes.count(label) > 0);
   }
   SplitOffGroups(g, functions);
 }
@@ -312,7 +423,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
     GatheredFields& g = fields[association];
     if (g.Components > 0)
     {
-      FindNaNGroups(mesh, association, messages, parts, g);
+      FindNaNGroups(source, mesh, association, messages, parts, g);
     }
   }
 }

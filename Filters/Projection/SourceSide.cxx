@@ -46,7 +46,15 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   std::string note;
   std::string failed;
   JoinedFields blocks; // fields that differ between a composite's blocks
-  vtkSmartPointer<vtkDataSet> source = AppendedSource(sourceObject, note, failed, blocks);
+  vtkSmartPointer<vtkDataSet> source;
+  const Verdict appended = Guarded("Reading Source", [&]() {
+    source = AppendedSource(sourceObject, note, failed, blocks);
+    return Verdict();
+  });
+  if (!appended.Ok())
+  {
+    failed = appended.Why; // (agreed in the gathering)
+  }
   if (!note.empty())
   {
     messages.WarnOnce("note/" + note, note); // once, not at every step
@@ -77,10 +85,12 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
-  const std::string why = side.Mesh.Wrap(source, "Source");
-  stats.Check += side.Mesh.CheckSeconds();
-  stats.Renumber += side.Mesh.OrderSeconds();
-  const Verdict wrapped = parts.Agree(why.empty() ? Verdict() : Verdict::Fail(why));
+  const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
+    const std::string why = side.Mesh.Wrap(source, "Source");
+    stats.Check += side.Mesh.CheckSeconds();
+    stats.Renumber += side.Mesh.OrderSeconds();
+    return why.empty() ? Verdict() : Verdict::Fail(why);
+  }));
   if (!wrapped.Ok())
   {
     return wrapped;
