@@ -51,17 +51,34 @@ int Monomials(const double* y, int d, int degree, double* into)
 }
 
 /**
- * The largest sum of |w_ik| a quadratic extension may have: the factor by
- * which it can amplify an oscillation of the free values. One-sided
- * quadratic extrapolations reach a dozen and more (three points on a line:
- * 3, -3, 1 already 7); such weights couple the stencil's functions with
- * alternating signs in P^T M P and widen its spectrum (the conjugate
- * gradients then need up to three times the iterations). The affine fit,
- * taken beyond this, is of second order only: at a curved boundary it
- * leaves the fringe's error several times the interior's, so the bound
- * keeps what quadratic fits it can.
+ * The largest sum of |w_ik| a quadratic extension may have in 2D: the
+ * factor by which it can amplify an oscillation of the free values.
+ * One-sided quadratic extrapolations reach a dozen and more (three points
+ * on a line: 3, -3, 1 already 7); such weights couple the stencil's
+ * functions with alternating signs in P^T M P and widen its spectrum (the
+ * conjugate gradients then need up to three times the iterations). The
+ * affine fit, taken beyond this, is of second order only: at a curved
+ * boundary it leaves the fringe's error several times the interior's, so
+ * the bound keeps what quadratic fits it can.
  */
 constexpr double QuadraticAmplification = 8.0;
+
+/**
+ * The same bound in 3D. A corner of a volume target reaching out of the
+ * source is extrapolated along up to three directions at once: the affine
+ * fit's error there (its weights times the squared distances, a cell and
+ * two away) is many times the interior's, while the free values a
+ * quadratic fit amplifies are smooth along the fringe (they are errors of
+ * the same projection, of second order). A quadratic fit through the
+ * 15 and more points of one side of i is accepted up to this amplification.
+ */
+constexpr double VolumeQuadraticAmplification = 12.0;
+
+/// The amplification a quadratic fit in `d` dimensions may have.
+double AmplificationBound(int d)
+{
+  return d == 3 ? VolumeQuadraticAmplification : QuadraticAmplification;
+}
 
 /**
  * The weights of `points` that give, at point i, the value of the
@@ -69,7 +86,7 @@ constexpr double QuadraticAmplification = 8.0;
  * minimum-norm weights reproducing those polynomials at i), or empty when
  * the points do not allow a stable fit: when they do not spread well
  * (nearly on a line, a plane or a conic), or, quadratic, when the weights
- * amplify more than QuadraticAmplification. Degree 1 or 2: either
+ * amplify more than AmplificationBound. Degree 1 or 2: either
  * reproduces affine functions and sums to 1.
  */
 std::vector<double> FitWeights(
@@ -142,7 +159,7 @@ std::vector<double> FitWeights(
   }
   // (Not "> bound": a singular G gives NaN weights, rejected too.) Most
   // one-sided quadratic fits stop here, before the spectrum's cost.
-  if (degree == 2 && !(amplification <= QuadraticAmplification))
+  if (degree == 2 && !(amplification <= AmplificationBound(d)))
   {
     return {};
   }
@@ -221,16 +238,27 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
 }
 
 /**
+ * The rings a quadratic fit is sought in: FringeRings in 2D;
+ * FringeVolumeRings in 3D, where one side of a point on an edge or a corner
+ * of the target holds the 15 points of a quadratic fit only farther.
+ */
+int QuadraticRings(int d)
+{
+  return d == 3 ? FringeVolumeRings : FringeRings;
+}
+
+/**
  * The ill-posed function i's stencil and weights: free points ring by ring,
- * a quadratic (2D) or affine fit within FringeRings rings, else an affine
- * one farther, up to FringeSearchRings; none when no ring allows one.
+ * a quadratic fit within QuadraticRings rings, else the affine fit of the
+ * first ring that allows one, up to FringeSearchRings; none when no ring
+ * allows one.
  */
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
 {
   const int corners = mesh.CornersPerCell();
-  const bool quadratic = mesh.SpaceDimension == 2;
+  const int quadraticRings = QuadraticRings(mesh.SpaceDimension);
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   std::vector<Index> affinePoints;
@@ -273,12 +301,9 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     }
     // A quadratic fit where the rings so far allow one (its extrapolation
     // error is of third order), else an affine one from the first ring
-    // that allows it. In 3D a quadratic fit through points on one side of
-    // i nearly never keeps its weights within QuadraticAmplification: the
-    // affine fit of the first ring that allows one, without walking on.
-    // Beyond FringeRings only the affine fit is sought.
-    const bool inner = r < FringeRings;
-    if (quadratic && inner)
+    // that allows it. Beyond QuadraticRings only the affine fit is sought.
+    const bool inner = r < quadraticRings;
+    if (inner)
     {
       points = found;
       weights = NearestFit(mesh, i, points, 2, &rejected);
@@ -293,7 +318,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
       affinePoints = found;
       affine = NearestFit(mesh, i, affinePoints, 1);
     }
-    if (!affine.empty() && !(quadratic && inner && r + 1 < FringeRings))
+    if (!affine.empty() && !(inner && r + 1 < quadraticRings))
     {
       break;
     }
