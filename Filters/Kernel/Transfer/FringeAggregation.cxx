@@ -176,11 +176,22 @@ std::vector<double> FitWeights(
 }
 
 /**
+ * How many times its number of terms a fit takes points first: twice, but
+ * three times for a quadratic fit in 3D. Its 20 nearest points, all on one
+ * side of i, give weights that carry the free values' errors several times
+ * over; half as many more average them out.
+ */
+size_t FirstPoints(int d, int degree)
+{
+  return d == 3 && degree == 2 ? 3 : 2;
+}
+
+/**
  * The fit of `degree` through the nearest points of `points` (sorted by
- * their distance to i on return): the nearest 2 x terms first, then 4 x,
- * then all, until one is stable. Few points keep P^T M P sparse (an
- * aggregated function couples all of its stencil); `points` is cut to the
- * ones used. `rejected`, when given, holds the sorted points of an earlier
+ * their distance to i on return): the nearest FirstPoints x terms first,
+ * then 4 x, then all, until one is stable. Few points keep P^T M P sparse
+ * (an aggregated function couples all of its stencil); `points` is cut to
+ * the ones used. `rejected`, when given, holds the sorted points of an earlier
  * call that found no fit: a set of nearest points it already tried is not
  * fitted again (the next ring's nearest points are often the same).
  */
@@ -216,7 +227,8 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
   {
     points[r] = byDistance[r].second;
   }
-  for (const size_t keep : { size_t(2 * terms), size_t(4 * terms), points.size() })
+  const size_t first = FirstPoints(d, degree) * static_cast<size_t>(terms);
+  for (const size_t keep : { first, size_t(4 * terms), points.size() })
   {
     const size_t used = std::min(keep, points.size());
     const bool tried = rejected && used <= rejected->size() &&

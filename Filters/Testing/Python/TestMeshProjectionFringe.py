@@ -228,6 +228,8 @@ for name, target, source_mesh in corners:
 volume_pairs = [
     ("3D tetrahedra, coarse Input", gmshmeshes.moved(gmshmeshes.volume("box", 0.104), translate=(0.27, 0.13, 0.21)),
      gmshmeshes.volume("box", 0.08)),
+    ("3D tetrahedra, coarse Input, shift 2",
+     gmshmeshes.moved(gmshmeshes.volume("box", 0.104), translate=(0.27, -0.19, 0.13)), gmshmeshes.volume("box", 0.08)),
     ("3D wedges, coarse Input", gmshmeshes.moved(gmshmeshes.wedges(0.104), translate=(0.27, 0.13, 0.21)),
      gmshmeshes.wedges(0.08)),
     ("3D hexahedra", gmshmeshes.moved(gmshmeshes.hexahedra(0.08), translate=(0.27, 0.13, 0.21)),

@@ -330,40 +330,6 @@ def _mixed_grid(name, dim, build, h):
     return grid
 
 
-def mixed(h):
-    """The unit cube meshed by Gmsh with size `h` in three volumes: x < 0.5,
-    y < 0.5 transfinite hexahedra; x < 0.5, y > 0.5 transfinite wedges;
-    x > 0.5 Delaunay tetrahedra, closed by pyramids on the quads of the
-    x = 0.5 interface. A vtkUnstructuredGrid of the four types."""
-    key = ("mixed", h)
-    if key not in _cache:
-        def build():
-            import gmsh
-            occ = gmsh.model.occ
-            a = occ.addBox(0, 0, 0, 0.5, 0.5, 1)
-            b = occ.addBox(0, 0.5, 0, 0.5, 0.5, 1)
-            c = occ.addBox(0.5, 0, 0, 0.5, 1, 1)
-            occ.fragment([(3, a), (3, b)], [(3, c)])
-            occ.synchronize()
-            centres = {t: occ.getCenterOfMass(3, t) for _, t in gmsh.model.getEntities(3)}
-            structured = [t for t, p in centres.items() if p[0] < 0.5]
-            gmsh.option.setNumber("Mesh.Algorithm", 5)
-            gmsh.option.setNumber("Mesh.Algorithm3D", 1)
-            for v in structured:
-                hexes = centres[v][1] < 0.5
-                for _, s in gmsh.model.getBoundary([(3, v)], oriented=False):
-                    for _, cv in gmsh.model.getBoundary([(2, s)], oriented=False):
-                        length = max(np.ptp(np.reshape(gmsh.model.getBoundingBox(1, abs(cv)), (2, 3)), axis=0))
-                        gmsh.model.mesh.setTransfiniteCurve(abs(cv), int(round(length / h)) + 1)
-                    gmsh.model.mesh.setTransfiniteSurface(s)
-                    z = occ.getCenterOfMass(2, s)[2]
-                    if hexes or 0.01 < z < 0.99:
-                        gmsh.model.mesh.setRecombine(2, s)
-                gmsh.model.mesh.setTransfiniteVolume(v)
-        _cache[key] = _mixed_grid("mixed", 3, build, h)
-    return _cache[key]
-
-
 def planar_mixed(h):
     """The unit square in the plane z = 0 meshed by Gmsh with size `h`:
     triangles for x < 0.5, quads (recombined) for x > 0.5, a
