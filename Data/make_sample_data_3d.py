@@ -2,7 +2,8 @@
 # make_sample_data_3d.py -- writes the 3D sample pair used by MeshProjection.
 #
 # Output (default: next to this script):
-#   lshape3d_source.vtu  ~8400 tetrahedra, point data Smooth, Linear, Velocity
+#   lshape3d_source.vtu  ~8400 tetrahedra, point data Smooth, Linear, Velocity,
+#                        cell data Region
 #   lshape3d_target.vtu  ~2500 tetrahedra, point data TargetId
 # Run with Debian's interpreter (vtkmodules from python3-paraview):
 #   /usr/bin/python3 Data/make_sample_data_3d.py [--out-dir DIR] [--seed N]
@@ -24,6 +25,9 @@ Fields on the SOURCE (double point data):
     Smooth   = sin(3x) cos(2y) exp(z / 2)
     Linear   = 1 + 2x - 3y + 0.5z          (reproduced exactly by the projection)
     Velocity = (-(y - 1.5), x - 1.5, 0.3)   (a rigid rotation plus a drift)
+Cell data on the SOURCE (int, by the tetrahedron's centroid): Region, a
+material id: 3 above the slanted plane z = 0.62 - 0.08x, else 1 for
+x > 1.55, 2 for y > 1.55, 0 elsewhere (boundaries that follow neither mesh).
 TARGET: TargetId = point index (int64).
 """
 import argparse
@@ -104,6 +108,14 @@ def build(name, h, seed):
     return pts, grid
 
 
+def regions(pts, grid):
+    """The material id of each tetrahedron of `grid` (points `pts`), by its centroid."""
+    tets = ns.vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    c = pts[tets].mean(axis=1)
+    region = np.where(c[:, 0] > 1.55, 1, np.where(c[:, 1] > 1.55, 2, 0))
+    return np.where(c[:, 2] > 0.62 - 0.08 * c[:, 0], 3, region).astype(np.int32)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out-dir", default=os.path.dirname(os.path.abspath(__file__)))
@@ -117,6 +129,7 @@ def main():
     add_array(pd, "Smooth", np.sin(3 * x) * np.cos(2 * y) * np.exp(z / 2))
     add_array(pd, "Linear", 1 + 2 * x - 3 * y + 0.5 * z)
     add_array(pd, "Velocity", np.column_stack([-(y - 1.5), x - 1.5, np.full_like(x, 0.3)]))
+    add_array(src.GetCellData(), "Region", regions(pts, src))
     write(src, os.path.join(args.out_dir, "lshape3d_source.vtu"))
 
     pts, tgt = build("lshape3d_target", 1 / 4, args.seed + 1)

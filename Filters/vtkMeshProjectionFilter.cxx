@@ -81,6 +81,11 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.KeepMatrices, s.KeepMatrices);
   each(f.NumberOfThreads, s.NumberOfThreads);
   each(f.Renumbering, s.Renumbering);
+  each(f.DensityArray, s.DensityArray);
+  each(f.MassWeightedArrays, s.MassWeightedArrays);
+  each(f.CategoricalMode, s.CategoricalMode);
+  each(f.LabelFractions, s.LabelFractions);
+  each(f.FillLabel, s.FillLabel);
 }
 
 mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjectionFilter& filter)
@@ -89,6 +94,9 @@ mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjection
   ForEachProperty(filter, s, [](const auto& property, auto& field) {
     field = static_cast<std::decay_t<decltype(field)>>(property);
   });
+  s.TangentArrays = filter.Internal->TangentArrays;
+  const std::vector<std::string>& named = filter.Internal->CategoricalNames;
+  s.CategoricalArrays.insert(named.begin(), named.end());
   return s;
 }
 
@@ -98,6 +106,7 @@ void vtkMeshProjectionFilter::Internals::SetDefaults(vtkMeshProjectionFilter& fi
   ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
     property = static_cast<std::decay_t<decltype(property)>>(field);
   });
+  filter.Internal->TangentArrays = defaults.TangentArrays;
 }
 
 // The public constants are the values of Projection's own (Settings.h,
@@ -124,6 +133,9 @@ static_assert(Same(F::CONSTANT_RECONSTRUCTION, mp::Reconstruction::Constant) &&
     Same(F::LIMITED_RECONSTRUCTION, mp::Reconstruction::Limited) &&
     Same(F::UNLIMITED_RECONSTRUCTION, mp::Reconstruction::Unlimited),
   "Reconstructions are mp::Reconstruction's values");
+static_assert(Same(F::CATEGORICAL_AUTOMATIC, mpvtk::CategoricalAutomatic) &&
+    Same(F::CATEGORICAL_SELECTED, mpvtk::CategoricalSelected),
+  "CategoricalModes are mpvtk::CategoricalModes");
 static_assert(Same(F::TO_POINTS, mpvtk::ToPointsBit) && Same(F::TO_CELLS, mpvtk::ToCellsBit) &&
     Same(F::TO_POINTS_AND_CELLS, mpvtk::ToPointsBit | mpvtk::ToCellsBit),
   "Targets are mpvtk::TargetBits");
@@ -195,6 +207,36 @@ void vtkMeshProjectionFilter::ListSource(vtkDataObject* data)
   this->Internal->Arrays.List(data, producer);
 }
 
+void vtkMeshProjectionFilter::AddTangentArray(const char* name)
+{
+  std::vector<std::string>& names = this->Internal->TangentArrays;
+  if (name && std::find(names.begin(), names.end(), name) == names.end())
+  {
+    names.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearTangentArrays()
+{
+  if (!this->Internal->TangentArrays.empty())
+  {
+    this->Internal->TangentArrays.clear();
+    this->Modified();
+  }
+}
+
+int vtkMeshProjectionFilter::GetNumberOfTangentArrays() const
+{
+  return static_cast<int>(this->Internal->TangentArrays.size());
+}
+
+const char* vtkMeshProjectionFilter::GetTangentArray(int i) const
+{
+  const std::vector<std::string>& names = this->Internal->TangentArrays;
+  return i >= 0 && i < static_cast<int>(names.size()) ? names[i].c_str() : nullptr;
+}
+
 vtkDataArraySelection* vtkMeshProjectionFilter::GetPointDataArraySelection()
 {
   return this->Internal->Arrays.Selection(0);
@@ -215,6 +257,42 @@ void vtkMeshProjectionFilter::SetPointDataArrayStatus(const char* name, int stat
   this->Internal->Arrays.SetStatus(0, name, status);
 }
 
+void vtkMeshProjectionFilter::SetDensityArray(const char* name)
+{
+  // (None: the panel's entry for no density.)
+  const std::string value = name && std::string(name) != "None" ? name : "";
+  if (value != this->DensityArray)
+  {
+    this->DensityArray = value;
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::AddMassWeightedArray(const char* name)
+{
+  if (name && *name)
+  {
+    this->MassWeightedArrays.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearMassWeightedArrays()
+{
+  if (!this->MassWeightedArrays.empty())
+  {
+    this->MassWeightedArrays.clear();
+    this->Modified();
+  }
+}
+
+const char* vtkMeshProjectionFilter::GetMassWeightedArray(int i) const
+{
+  return i >= 0 && i < static_cast<int>(this->MassWeightedArrays.size())
+    ? this->MassWeightedArrays[static_cast<size_t>(i)].c_str()
+    : nullptr;
+}
+
 void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
 {
   this->Internal->Arrays.ClearStatuses(1);
@@ -223,6 +301,36 @@ void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
 void vtkMeshProjectionFilter::SetCellDataArrayStatus(const char* name, int status)
 {
   this->Internal->Arrays.SetStatus(1, name, status);
+}
+
+void vtkMeshProjectionFilter::AddCategoricalArray(const char* name)
+{
+  if (name)
+  {
+    this->Internal->CategoricalNames.emplace_back(name);
+    this->Modified();
+  }
+}
+
+void vtkMeshProjectionFilter::ClearCategoricalArrays()
+{
+  if (!this->Internal->CategoricalNames.empty())
+  {
+    this->Internal->CategoricalNames.clear();
+    this->Modified();
+  }
+}
+
+int vtkMeshProjectionFilter::GetNumberOfCategoricalArrays()
+{
+  return static_cast<int>(this->Internal->CategoricalNames.size());
+}
+
+const char* vtkMeshProjectionFilter::GetCategoricalArray(int i)
+{
+  const std::vector<std::string>& named = this->Internal->CategoricalNames;
+  return i >= 0 && i < static_cast<int>(named.size()) ? named[static_cast<size_t>(i)].c_str()
+                                                      : nullptr;
 }
 
 vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
@@ -469,12 +577,27 @@ int vtkMeshProjectionFilter::Execute(
     // The seam: one process, unless vtkPMeshProjectionFilter installed its own.
     mpvtk::SerialParts alone;
     mpvtk::Parts& parts = this->Internal->Parts ? *this->Internal->Parts : alone;
-    outcome = Internals::Project(*this, inputVector, outputVector, parts, clock, stats);
+    // The steps of one process alone turn their exceptions into failures
+    // that all processes agree on (mpvtk::Guarded); one that gets here came
+    // from a step with collectives inside: an error on one process, the
+    // end of the run on several (Parts::Abandon: the others may wait in it).
+    bool thrown = true; // until Project returns
+    outcome = mpvtk::Guarded("The projection", [&]() {
+      const mpvtk::Verdict projected =
+        Internals::Project(*this, inputVector, outputVector, parts, clock, stats);
+      thrown = false;
+      return projected;
+    });
+    if (thrown)
+    {
+      parts.Abandon(outcome.Why);
+      mpvtk::PassInput(input, output, polygons, polyhedra); // (what a leaf had written goes)
+    }
   }
   switch (outcome.What)
   {
     case mpvtk::Outcome::Failed:
-      vtkErrorMacro(<< outcome.Why);
+      vtkErrorMacro(<< outcome.Message());
       break;
     case mpvtk::Outcome::Stopped:
       mpvtk::PassInput(input, output, polygons, polyhedra);
@@ -544,7 +667,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
   filter.ListSource(sourceObject);
   vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
-    source.Data, source.Mesh, selections, settings.Extensive, say, parts, source.Fields);
+    source.Data, source.Mesh, selections, settings, say, parts, source.Fields);
   mpvtk::ReconstructCellFields(
     settings, source.Mesh, source.Print, source.Fields[mpvtk::CellArrays], in.Cache.Reconstruction);
   if (!source.AnyTransfer(settings))
@@ -597,7 +720,7 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
       {
         return result.Outcome;
       }
-      skipped.push_back(result.Outcome.Why); // names the block
+      skipped.push_back(result.Outcome.Message()); // names the block
       continue;
     }
     ++projected;
@@ -748,6 +871,15 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "CellDataQuantity: " << (this->CellDataQuantity == EXTENSIVE ? "Extensive" : "Intensive")
      << "\n";
   os << indent << "CellDataReconstruction: " << this->CellDataReconstruction << "\n";
+  os << indent << "CategoricalMode: " << this->CategoricalMode << "\n";
+  os << indent << "CategoricalArrays:";
+  for (const std::string& name : this->Internal->CategoricalNames)
+  {
+    os << " " << name;
+  }
+  os << "\n";
+  os << indent << "LabelFractions: " << this->LabelFractions << "\n";
+  os << indent << "FillLabel: " << this->FillLabel << "\n";
   os << indent << "MassMatrix: " << (this->MassMatrix == LUMPED_MASS ? "Lumped" : "Consistent")
      << "\n";
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
@@ -759,6 +891,13 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NormalOrientation: " << this->NormalOrientation << "\n";
   os << indent << "CacheOperator: " << (this->CacheOperator ? "On" : "Off") << "\n";
   os << indent << "KeepMatrices: " << (this->KeepMatrices ? "On" : "Off") << "\n";
+  os << indent << "DensityArray: " << this->DensityArray << "\n";
+  os << indent << "MassWeightedArrays:";
+  for (const std::string& name : this->MassWeightedArrays)
+  {
+    os << " " << name;
+  }
+  os << "\n";
   os << indent << "OperatorReused: " << (this->OperatorReused ? "Yes" : "No") << "\n";
   os << indent << "NumberOfIntersections: " << this->NumberOfIntersections << "\n";
   os << indent << "NumberOfIntersectionTests: " << this->NumberOfIntersectionTests << "\n";

@@ -12,7 +12,8 @@
  * not alias. Inputs: any vtkDataSet or composite dataset, curves, 2D,
  * surfaces in 3D, volumes, or a surface or curve inside a volume Source.
  *
- * Output 0 is Input with a double array per projected Source array, the
+ * Output 0 is Input with a double array per projected Source array (a
+ * label array keeps its type: CategoricalMode), the
  * masks vtkValidPointMask / vtkValidCellMask, CoveredFraction, and the
  * field data SourceIntegral_<array> and TargetIntegral_<array>; outputs 1
  * and 2 the intersection pieces (OutputIntersections). Invalid input gives
@@ -29,6 +30,9 @@
 
 #include "MeshProjectionFiltersModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
+
+#include <string> // for DensityArray
+#include <vector> // for MassWeightedArrays
 
 class vtkDataArraySelection;
 class vtkDoubleArray;
@@ -65,6 +69,12 @@ public:
     CONSTANT_RECONSTRUCTION = 0, ///< the cell's value (first order)
     LIMITED_RECONSTRUCTION = 1,  ///< linear, limited: second order, no new extrema in cells
     UNLIMITED_RECONSTRUCTION = 2 ///< linear: second order, exact for linear fields
+  };
+  /// Which Source arrays are labels (CategoricalMode).
+  enum CategoricalModes
+  {
+    CATEGORICAL_AUTOMATIC = 0, ///< single-component integer arrays
+    CATEGORICAL_SELECTED = 1   ///< exactly the arrays named in CategoricalArrays
   };
   enum MassMatrices
   {
@@ -186,6 +196,24 @@ public:
 
   ///@{
   /**
+   * TangentArrays: the names of 3-component Source point or cell arrays
+   * that are vector fields tangent to a surface or curve (none by default).
+   * Each is projected from its tangential part (its normal part at the
+   * Source's points or cells removed) and returned in Input's tangent plane
+   * (the normal part at each Input point or cell removed, with Input's own
+   * normals; on a curve the part along its tangent is kept); the magnitude
+   * removed at Input is written as "<name>_NormalPart". Other meshes
+   * (volumes) project the array as an ordinary one, with a warning. See
+   * docs/fields.md.
+   */
+  void AddTangentArray(const char* name);
+  void ClearTangentArrays();
+  int GetNumberOfTangentArrays() const;
+  const char* GetTangentArray(int i) const;
+  ///@}
+
+  ///@{
+  /**
    * Where Source point arrays go (default: TO_POINTS) and where Source cell
    * arrays go (default: TO_CELLS); TO_POINTS_AND_CELLS gives both.
    */
@@ -212,6 +240,81 @@ public:
    */
   vtkSetClampMacro(CellDataReconstruction, int, CONSTANT_RECONSTRUCTION, UNLIMITED_RECONSTRUCTION);
   vtkGetMacro(CellDataReconstruction, int);
+  ///@}
+
+  ///@{
+  /**
+   * Mass-weighted projection. DensityArray names a one-component Source
+   * array, the density rho (point data if Source has a point array of that
+   * name, else cell data; default: none, off; "" or "None" turn it off). Each mass-weighted array q
+   * of the same association is then projected so that the integral of
+   * rho q is conserved: rho q and rho are projected (same operator, same
+   * settings) and q's output is their ratio. Where the projected rho is at
+   * most 1e-10 times the Source's largest |rho|, q gets the fill value and
+   * is marked invalid in a mask of its own. With PreserveBounds, q is then
+   * clipped to its Source range. The density itself is output only when it
+   * is selected (GetPointDataArraySelection, ...). MassWeightedArrays: the
+   * arrays to weight (default: none named, meaning every array of the
+   * density's association); AddMassWeightedArray adds one name,
+   * ClearMassWeightedArrays empties the list. SourceIntegral_<q> and
+   * TargetIntegral_<q> are then the integrals of rho q. Cell data must be
+   * INTENSIVE. Details: docs/fields.md.
+   */
+  void SetDensityArray(const char* name);
+  const char* GetDensityArray() const { return this->DensityArray.c_str(); }
+  void AddMassWeightedArray(const char* name);
+  void ClearMassWeightedArrays();
+  int GetNumberOfMassWeightedArrays() const
+  {
+    return static_cast<int>(this->MassWeightedArrays.size());
+  }
+  const char* GetMassWeightedArray(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * Categorical arrays (labels: material ids, regions, classes). A label
+   * array is not averaged: each target cell takes the Source label that
+   * covers most of its covered measure, each target point the label whose
+   * Source cells (or points) weigh most under its basis function, both
+   * read from the overlap matrix M_ts; ties go to the smallest label. The
+   * output keeps the Source array's type. CategoricalMode says which
+   * arrays are labels: CATEGORICAL_AUTOMATIC (default), every
+   * single-component integer array (vtkIntArray, vtkIdTypeArray,
+   * vtkUnsignedCharArray, ...; not vtkBitArray); CATEGORICAL_SELECTED, exactly the
+   * single-component point or cell arrays named with AddCategoricalArray
+   * (so an integer array can be projected as numbers and a real array as
+   * labels). Default: CATEGORICAL_AUTOMATIC, none named.
+   */
+  vtkSetClampMacro(CategoricalMode, int, CATEGORICAL_AUTOMATIC, CATEGORICAL_SELECTED);
+  vtkGetMacro(CategoricalMode, int);
+  void AddCategoricalArray(const char* name);
+  void ClearCategoricalArrays();
+  int GetNumberOfCategoricalArrays();
+  const char* GetCategoricalArray(int i);
+  ///@}
+
+  ///@{
+  /**
+   * With LabelFractions, each label array also gives "<name>_Fractions":
+   * per target point or cell, the weight of each label over the sum (one
+   * component per label, named by it), which sum to 1; over the cells,
+   * weighed by their covered measure, they sum to each label's Source
+   * measure over the covered part. Default: false.
+   */
+  vtkSetMacro(LabelFractions, bool);
+  vtkGetMacro(LabelFractions, bool);
+  vtkBooleanMacro(LabelFractions, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The label of target points and cells the Source does not reach (an
+   * unsigned array that cannot hold it gets its type's largest value).
+   * Default: -1.
+   */
+  vtkSetMacro(FillLabel, int);
+  vtkGetMacro(FillLabel, int);
   ///@}
 
   ///@{
@@ -451,6 +554,11 @@ protected:
   bool KeepMatrices;
   int NumberOfThreads;
   int Renumbering;
+  std::string DensityArray;
+  std::vector<std::string> MassWeightedArrays;
+  int CategoricalMode;
+  bool LabelFractions;
+  int FillLabel;
 
   // The results of the last execution.
   bool OperatorReused = false;

@@ -37,13 +37,16 @@ struct Verdict;
 struct vtkMeshProjectionFilter::Internals
 {
   mpvtk::SourceArrayLists Arrays;
-  std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
+  std::vector<std::string> TangentArrays; ///< the TangentArrays property (Settings::TangentArrays)
+  std::set<std::string> Warned;           ///< warnings said once per filter (mpvtk::Messages)
   vtkTimeStamp Executed; ///< the end of the last execution (GetMatrix reads the cache as of it)
   mpvtk::OperatorCache Cache;
   /// The processes' seam (Parallel/Parts.h): vtkPMeshProjectionFilter installs
   /// its own while it runs on several processes; null, one process
   /// (mpvtk::SerialParts).
   mpvtk::Parts* Parts = nullptr;
+  /// The arrays named as labels (AddCategoricalArray), in the order named.
+  std::vector<std::string> CategoricalNames;
 
   /**
    * The one list of the properties with their fields of mpvtk::Settings:

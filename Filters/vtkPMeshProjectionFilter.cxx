@@ -93,7 +93,7 @@ int vtkPMeshProjectionFilter::RequestData(
       mpvtk::PassInput(input, vtkDataObject::GetData(outputVector, 0),
         vtkPolyData::GetData(outputVector, 1), vtkUnstructuredGrid::GetData(outputVector, 2));
     }
-    vtkErrorMacro(<< present.Why);
+    vtkErrorMacro(<< present.Message());
     return 1;
   }
   this->Internal->Parts = &parts;

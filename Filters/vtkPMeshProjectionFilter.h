@@ -13,10 +13,19 @@
  * else by their coordinates) have their rows summed across the processes,
  * and the conjugate gradients run over all of them. The result equals the
  * serial one up to summation order (the tests compare to 1e-10): cells
- * other than simplices are split from their corner of lowest global id on
- * every process, which is the serial split when the GlobalIds follow the
- * serial numbering (else the split may differ, by O(h^2) for smooth
- * fields, from a serial run's).
+ * other than simplices are split from their corner of lowest GlobalIds
+ * value where the dataset has them, else of lowest point id in the
+ * process's piece (a Source piece's ids as its process numbers them),
+ * which is the serial split when the GlobalIds follow the serial
+ * numbering, or the pieces keep the serial order of their points (as
+ * extracting cells does); else the split may differ, by O(h^2) for smooth
+ * fields, from a serial run's.
+ *
+ * A failure on any process (a corrupt piece, no Input or Source on one
+ * process, a failed solve, an exception in a step of one process) is the
+ * same error on every process, naming that process, and every output is
+ * Input as it came; an exception inside a step the processes run
+ * together aborts the MPI run (docs/mpi.md).
  *
  * Ghost cells of either input are left out, as in serial runs; the points
  * of Input's ghost cells get the values their owners compute. Per process:

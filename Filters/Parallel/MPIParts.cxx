@@ -2,12 +2,14 @@
 #include "Parallel/MPIParts.h"
 
 #include "vtkCommunicator.h"
+#include "vtkMPI.h"
 #include "vtkMPICommunicator.h"
 #include "vtkMultiProcessController.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <string>
 #include <utility>
 
@@ -35,20 +37,26 @@ Verdict MPIParts::Agree(const Verdict& verdict, bool* flag)
   {
     return Verdict();
   }
-  // The first process's outcome and reason, to the others.
+  // The first process's outcome, reason and origin, to the others.
   std::string text = first == this->Me ? verdict.Why : std::string();
-  long long head[2] = { static_cast<long long>(verdict.What), static_cast<long long>(text.size()) };
-  this->C->Broadcast(head, 2, first);
+  long long head[3] = { static_cast<long long>(verdict.What), static_cast<long long>(text.size()),
+    verdict.Process < 0 ? first : verdict.Process };
+  this->C->Broadcast(head, 3, first);
   text.resize(static_cast<size_t>(head[1]));
   if (head[1] > 0)
   {
     this->C->Broadcast(&text[0], head[1], first);
   }
-  if (first == this->Me)
-  {
-    return verdict;
-  }
-  return { static_cast<Outcome>(head[0]), text + " (on process " + std::to_string(first) + ")" };
+  return { static_cast<Outcome>(head[0]), text, static_cast<int>(head[2]) };
+}
+
+void MPIParts::Abandon(const std::string& why)
+{
+  std::cerr << "MeshProjection: " << why << " (on process " << this->Me
+            << "): the other processes may be waiting in a collective step, so the run is "
+               "aborted on every process."
+            << std::endl;
+  MPI_Abort(*this->Mpi->GetMPIComm()->GetHandle(), 1);
 }
 
 void MPIParts::Or(std::vector<char>& flags)
@@ -101,6 +109,23 @@ std::vector<unsigned int> MPIParts::Union(const std::vector<unsigned int>& value
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   return all;
+}
+
+std::vector<double> MPIParts::UnionOfValues(const std::vector<double>& values)
+{
+  std::vector<std::vector<char>> out(static_cast<size_t>(this->N));
+  const std::vector<double> mine = SortedValues(values);
+  for (int r = 0; r < this->N; ++r)
+  {
+    Append(out[r], mine.data(), mine.size());
+  }
+  std::vector<double> all;
+  for (const std::vector<char>& in : this->AllToAll(out))
+  {
+    const std::vector<double> v = Read<double>(in);
+    all.insert(all.end(), v.begin(), v.end());
+  }
+  return SortedValues(all);
 }
 
 std::vector<double> MPIParts::SumByKey(

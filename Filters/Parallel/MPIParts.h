@@ -74,10 +74,12 @@ public:
 
   // The collectives (MPIParts.cxx).
   Verdict Agree(const Verdict& mine, bool* flag = nullptr) override;
+  void Abandon(const std::string& why) override;
   void Or(std::vector<char>& flags) override;
   void Sum(double* values, int count) override;
   void Minimum(double* values, int count) override;
   std::vector<unsigned int> Union(const std::vector<unsigned int>& values) override;
+  std::vector<double> UnionOfValues(const std::vector<double>& values) override;
   /// Each entry is summed on the process its key hashes to, which answers
   /// every entry: the sums are the same, bit for bit, on any run.
   std::vector<double> SumByKey(
@@ -155,10 +157,13 @@ private:
   /// Neighbours, Shared and Owner of `points` from the points shared per process.
   void SetNeighbours(
     const std::vector<std::vector<vtkIdType>>& shared, vtkIdType count, PointSharing& points);
-  /// Global ids made (no usable GlobalIds on some process): each process
-  /// numbers the points it owns after those of the processes before it;
-  /// the others learn them from their owner. Returns `target` with them.
-  vtkSmartPointer<vtkDataSet> NumberPoints(vtkDataSet* target, PointSharing& points);
+  /// Global ids made (no usable GlobalIds on some process), into
+  /// points.GlobalOf: each process numbers the points it owns after those
+  /// of the processes before it; the others learn them from their owner.
+  /// (Not given to the dataset: its cells other than simplices are split
+  /// by its own point ids, as the serial run splits them, not by these,
+  /// whose order at a border between pieces is not the serial one.)
+  void NumberPoints(vtkIdType count, PointSharing& points);
   /// The rows of the system over a shared dataset's points (row f: point dataSetPoint(f)).
   std::shared_ptr<RowSharing> PointRows(const PointSharing& points, mp::Index rows,
     const std::function<vtkIdType(mp::Index)>& dataSetPoint) const;

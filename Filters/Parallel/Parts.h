@@ -27,6 +27,7 @@
 #include "vtkType.h"
 
 #include <algorithm>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -50,19 +51,54 @@ struct Verdict
 {
   Outcome What = Outcome::Done;
   std::string Why;
+  /// On several processes, once agreed (Parts::Agree): the process it came
+  /// from. -1: not agreed yet, or one process.
+  int Process = -1;
 
   static Verdict Fail(const std::string& why) { return { Outcome::Failed, why }; }
   static Verdict Stop() { return { Outcome::Stopped, "stopped" }; }
   bool Ok() const { return this->What == Outcome::Done; }
+  /// What the user reads: the reason, and, once agreed on several
+  /// processes, the process it came from (the same text on every process).
+  std::string Message() const
+  {
+    return this->Process < 0 ? this->Why
+                             : this->Why + " (on process " + std::to_string(this->Process) + ")";
+  }
 };
+
+/**
+ * Runs `step`, a step of this process alone (no collective inside: nothing
+ * another process waits in), and returns its verdict; an exception it
+ * throws becomes this process's failure, naming `what` and the exception,
+ * instead of leaving the execution (and, on several processes, the others
+ * waiting in the next collective). The caller then takes it to the next
+ * agreement like any failure (Parts::Agree, LeafAgreement::Local).
+ */
+template <class Step>
+Verdict Guarded(const std::string& what, const Step& step)
+{
+  try
+  {
+    return step();
+  }
+  catch (const std::exception& e)
+  {
+    return Verdict::Fail(what + " failed: " + e.what());
+  }
+  catch (...)
+  {
+    return Verdict::Fail(what + " failed: an exception of unknown type.");
+  }
+}
 
 struct PointSharing;
 
 /**
  * A dataset of Input as the processes share it (Parts::ShareTarget): the
- * dataset, with global point ids on several processes, and what the
+ * dataset, and on several processes what the
  * processes learnt of its points (which this process shares with which
- * others, who owns each; MPIParts reads it). The leaf's hooks and its halo
+ * others, who owns each, their global ids; MPIParts reads it). The leaf's hooks and its halo
  * are made from this value (Parts::Hooks, Parts::Halo). Serial: the
  * dataset alone.
  */
@@ -111,11 +147,20 @@ public:
     double reach, bool neighborLayer, std::string& error, JoinedFields& joined) = 0;
 
   /**
-   * The verdict of the lowest process whose verdict is not Done (its own
-   * reason on that process, "... (on process k)" elsewhere), else Done.
-   * With `flag`: the flag ANDed over the processes.
+   * The verdict of the lowest process whose verdict is not Done, the same
+   * on every process (its Process set to that process, unless it came
+   * from an earlier agreement already), else Done. With `flag`: the flag
+   * ANDed over the processes. The one place where a process's failure
+   * reaches the others: every failure before a collective goes through it.
    */
   virtual Verdict Agree(const Verdict& mine, bool* flag = nullptr) = 0;
+  /**
+   * Ends the execution on every process after an exception in a step with
+   * collectives inside (the other processes may be waiting in one, where no
+   * agreement reaches them): says `why` on this process and aborts the run
+   * (MPI_Abort). Serial: returns (the caller reports a failure).
+   */
+  virtual void Abandon(const std::string& why) = 0;
   /// Element-wise OR over the processes.
   virtual void Or(std::vector<char>& flags) = 0;
   /// Sums over the processes, in place.
@@ -124,6 +169,8 @@ public:
   virtual void Minimum(double* values, int count) = 0;
   /// The union over the processes (sorted, without repeats).
   virtual std::vector<unsigned int> Union(const std::vector<unsigned int>& values) = 0;
+  /// The union over the processes of values that are not NaN (sorted, without repeats): labels.
+  virtual std::vector<double> UnionOfValues(const std::vector<double>& values) = 0;
   /**
    * Entry i of this process is keyed by keys[width * i ... width * i +
    * width - 1] with value values[i]; returns, per entry, the sum of the
@@ -136,8 +183,10 @@ public:
   /**
    * Per dataset of Input: finds the points this process shares with others
    * (by the GlobalIds point array when every process has one, else by
-   * their coordinates) and returns the dataset with global point ids (its
-   * own, or made: each point numbered by the lowest process that has it).
+   * their coordinates) and their global ids (its own, or made: each point
+   * numbered by the lowest process that has it; SharedTarget::Points).
+   * The dataset is `target` itself (cells other than simplices split by
+   * its GlobalIds when it has them, else by its point ids, as in serial).
    * Serial: `target` itself.
    */
   virtual SharedTarget ShareTarget(vtkDataSet* target) = 0;
@@ -163,6 +212,16 @@ public:
   virtual double SentBytes() const = 0;
 };
 
+/// `values` without NaN, sorted, without repeats (UnionOfValues' one process).
+inline std::vector<double> SortedValues(std::vector<double> values)
+{
+  values.erase(
+    std::remove_if(values.begin(), values.end(), [](double v) { return v != v; }), values.end());
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  return values;
+}
+
 /// One process: every collective is the identity.
 class SerialParts final : public Parts
 {
@@ -172,6 +231,7 @@ public:
   vtkSmartPointer<vtkDataSet> GatherSource(
     vtkDataSet* source, vtkDataObject*, double, bool, std::string& error, JoinedFields&) override;
   Verdict Agree(const Verdict& mine, bool*) override { return mine; }
+  void Abandon(const std::string&) override {}
   void Or(std::vector<char>&) override {}
   void Sum(double*, int) override {}
   void Minimum(double*, int) override {}
@@ -181,6 +241,10 @@ public:
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
     return all;
+  }
+  std::vector<double> UnionOfValues(const std::vector<double>& values) override
+  {
+    return SortedValues(values);
   }
   std::vector<double> SumByKey(
     const std::vector<long long>& keys, int width, const std::vector<double>& values) override;

@@ -48,7 +48,6 @@ SharedTarget MPIParts::ShareTarget(vtkDataSet* target)
   // Sent as the key's first `width` numbers.
   const size_t width = useIds ? 1 : 3;
   this->SetNeighbours(this->FindShared(x, bounds, keys, index, width, *points), np, *points);
-  SharedTarget shared;
   if (useIds)
   {
     points->GlobalOf.resize(static_cast<size_t>(np));
@@ -56,12 +55,13 @@ SharedTarget MPIParts::ShareTarget(vtkDataSet* target)
     {
       points->GlobalOf[p] = static_cast<long long>(global->GetTuple1(points->Representative[p]));
     }
-    shared.Data = target;
   }
   else
   {
-    shared.Data = this->NumberPoints(target, *points);
+    this->NumberPoints(np, *points);
   }
+  SharedTarget shared;
+  shared.Data = target;
   shared.Points = points;
   return shared;
 }
@@ -156,10 +156,9 @@ void MPIParts::SetNeighbours(
   }
 }
 
-vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target, PointSharing& points)
+void MPIParts::NumberPoints(vtkIdType np, PointSharing& points)
 {
   const int n = this->N;
-  const vtkIdType np = target->GetNumberOfPoints();
   long long owned = 0;
   for (vtkIdType p = 0; p < np; ++p)
   {
@@ -173,7 +172,6 @@ vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target, PointShar
     next += counts[r];
   }
   vtkNew<vtkIdTypeArray> ids;
-  ids->SetName("GlobalIds");
   ids->SetNumberOfValues(np);
   for (vtkIdType p = 0; p < np; ++p)
   {
@@ -212,11 +210,6 @@ vtkSmartPointer<vtkDataSet> MPIParts::NumberPoints(vtkDataSet* target, PointShar
     ids->SetValue(p, ids->GetValue(points.Representative[p]));
     points.GlobalOf[p] = static_cast<long long>(ids->GetValue(p));
   }
-  vtkSmartPointer<vtkDataSet> copy;
-  copy.TakeReference(target->NewInstance());
-  copy->ShallowCopy(target);
-  copy->GetPointData()->SetGlobalIds(ids);
-  return copy;
 }
 
 void MPIParts::Complete(const RowSharing& rows, double* v, int width, bool minimum)

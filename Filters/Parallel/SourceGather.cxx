@@ -824,14 +824,16 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(vtkDataSet* source, vtkDataOb
 {
   // The checks run before any cell is read, and all processes learn of a
   // failure on any of them before the gathering's exchanges start.
-  if (error.empty())
-  {
-    error = CheckParts(source, input);
-  }
-  Verdict all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
+  const Verdict checked = error.empty() ? Guarded("Checking the datasets",
+                                            [&]() {
+                                              const std::string why = CheckParts(source, input);
+                                              return why.empty() ? Verdict() : Verdict::Fail(why);
+                                            })
+                                        : Verdict::Fail(error);
+  Verdict all = this->Agree(checked);
   if (!all.Ok())
   {
-    error = all.Why;
+    error = all.Message();
     return nullptr;
   }
   vtkSmartPointer<vtkDataSet> gathered =
@@ -839,7 +841,7 @@ vtkSmartPointer<vtkDataSet> MPIParts::GatherSource(vtkDataSet* source, vtkDataOb
   all = this->Agree(error.empty() ? Verdict() : Verdict::Fail(error));
   if (!all.Ok())
   {
-    error = all.Why;
+    error = all.Message();
     return nullptr;
   }
   return gathered;

@@ -7,7 +7,8 @@
  * On several processes every process takes part in each round, in order:
  * Shape (whether the leaf is a surface: any process's parts out of one
  * plane), Build (whether every process can reuse its kept operators),
- * Solve (whether every process built its operators) and Solved (whether
+ * Solve (whether every process built its operators and
+ * their target mass) and Solved (whether
  * every process's solves and extrapolation went through, before the
  * outputs' sums: a solve's sums are collective, so a failed solve fails
  * alike everywhere, and this round makes that an agreement with the same
@@ -16,7 +17,10 @@
  * verdict, and then acts on what the first of them agreed: the same on
  * every process (a stop here and a failure on a lower process in the same
  * round is that failure everywhere, and the other way round a stop), so
- * that all go on or end alike. On one process every round is the identity.
+ * that all go on or end alike. The steps between rounds that involve this
+ * process alone run through Local, which turns their exceptions into
+ * failures agreed in the next round. On one process every round is the
+ * identity.
  */
 #ifndef MeshProjection_Projection_Agreement_h
 #define MeshProjection_Projection_Agreement_h
@@ -66,6 +70,20 @@ public:
       }
     }
     return outcome;
+  }
+
+  /**
+   * A step of this process alone before the next round (no collective
+   * inside but the rounds it takes part in), run Guarded: a failure or a
+   * stop it returns, or an exception it throws, ends the leaf here (End:
+   * the rounds left, whose first gives every process the same verdict).
+   * A step that ended the leaf itself keeps that verdict.
+   */
+  template <class Step>
+  Verdict Local(const std::string& what, const Step& step)
+  {
+    const Verdict mine = Guarded(what, step);
+    return mine.Ok() ? mine : this->End(mine);
   }
 
 private:

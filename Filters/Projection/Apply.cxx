@@ -4,6 +4,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 
+#include "Projection/Labels.h"
 #include "Projection/OperatorCache.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
@@ -119,22 +120,18 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
 }
 /**
  * The fringe of every P1 operator in use aggregated (MortarOperator::
- * AggregateFringe), on volume targets (a surface's or curve's points do not
- * span their space: an affine fit there is not defined). On several
- * processes first the target's halo (Parts::Halo), so that every process
- * extends as the serial run does. Collective: every process decides alike
- * and calls it for the same operators.
+ * AggregateFringe), on every kind of target: volumes, surfaces, curves and
+ * traces (on surfaces and curves the stencils are fitted in the tangent
+ * coordinates, FringeFrames.h). On several processes first the target's
+ * halo (Parts::Halo), so that every process extends as the serial run does.
+ * Collective: every process decides alike and calls it for the same
+ * operators.
  */
 void AggregateFringes(
   LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks& hooks, mp::FringeHalo& halo)
 {
   const mp::MeshView& view = ctx.Target.View();
-  double volume[2] = { !ctx.Shape.Trace && view.IsVolumeMesh() ? 1.0 : 0.0, 1.0 };
-  if (hooks.Reduce)
-  {
-    hooks.Reduce(volume, 2); // volume when every process says so
-  }
-  const double threshold = volume[0] == volume[1] ? ctx.Options.FringeThreshold : 0.0;
+  const double threshold = ctx.Options.FringeThreshold;
   // (Lumped values are means: nothing to aggregate; a later consistent run aggregates then.)
   const double used = ctx.Options.Lumped ? 0.0 : threshold;
   bool anyP1 = false;
@@ -220,6 +217,6 @@ Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPla
       return applied;
     }
   }
-  return Verdict();
+  return ApplyLabels(ctx, ops, hooks, solutions);
 }
 } // namespace mpvtk

@@ -53,6 +53,18 @@ struct LeafSolutions
   std::uint64_t ExtensionKey[NumberOfTransfers] = {};
   bool Built[NumberOfTransfers] = {};
   mp::Extension Extension[NumberOfTransfers];
+  /**
+   * Mass weighting (MassWeighting.h), per transfer: the weighted arrays'
+   * projected products rho q (target functions x their components, in
+   * GatheredFields::Mass.Weighted's order), before the division; and per
+   * weighted array, the functions valid in its system that the density
+   * guard left undivided (empty: none).
+   */
+  mp::LargeVector<double> Products[NumberOfTransfers];
+  std::vector<std::vector<char>> Guarded[NumberOfTransfers];
+  /// Per transfer and label array of its association (GatheredFields::Labels): the label
+  /// fractions, target functions x labels (Labels.h; empty when no label is anywhere).
+  std::vector<mp::LargeVector<double>> Labels[NumberOfTransfers];
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators
@@ -64,7 +76,8 @@ void ShareSystems(
 /**
  * Applies every operator in use to its fields (and NaN groups' operators to
  * theirs), warm started from the kept solution where `kept` has one for the
- * same fields; with plan.Cache.Keep each solution is put aside to be kept.
+ * same fields; with plan.Cache.Keep each solution is put aside to be kept;
+ * then the label arrays (Labels.h: ApplyLabels).
  */
 Verdict ApplyOperators(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
   const OperatorSet& ops, const mp::SolverHooks hooks[2], const mp::FringeHalo& halo,

@@ -7,6 +7,7 @@
 #include "Projection/Apply.h"
 #include "Projection/Conservation.h"
 #include "Projection/Extrapolation.h"
+#include "Projection/MassWeighting.h"
 #include "Projection/Messages.h"
 #include "Projection/OperatorBuild.h"
 #include "Projection/OperatorCache.h"
@@ -136,7 +137,10 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   const SharedTarget shared = run.Processes.ShareTarget(job.Target);
   vtkDataSet* target = shared.Data;
   SimplexMesh targetMesh;
-  result.Outcome = WrapTarget(run, target, job.Role, targetMesh, result.Stats, agreement);
+  // The steps of this process alone run through agreement.Local (an
+  // exception there is this process's failure, agreed at the next round).
+  result.Outcome = agreement.Local("Reading " + job.Role,
+    [&]() { return WrapTarget(run, target, job.Role, targetMesh, result.Stats, agreement); });
   if (!result.Outcome.Ok())
   {
     return result;
@@ -145,15 +149,16 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     run.Source, targetMesh, target, shared, job.Role, LeafShape(), job.LastReaderOfSource };
   OperatorPlan plan;
   OperatorSet ops;
-  result.Outcome = DecideShape(ctx, agreement);
+  // (DecideShape's collective part follows its round, where all go on.)
+  result.Outcome =
+    agreement.Local("Deciding the shape", [&]() { return DecideShape(ctx, agreement); });
   if (result.Outcome.Ok())
   {
     WarnShape(ctx);
-    result.Outcome = PlanOperators(ctx, kept, agreement, plan);
-  }
-  if (result.Outcome.Ok())
-  {
-    result.Outcome = BuildOperators(ctx, kept, plan, agreement, ops);
+    result.Outcome = agreement.Local("Building the operators", [&]() {
+      const Verdict planned = PlanOperators(ctx, kept, agreement, plan);
+      return planned.Ok() ? BuildOperators(ctx, kept, plan, agreement, ops) : planned;
+    });
   }
   if (!result.Outcome.Ok())
   {
@@ -163,16 +168,20 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   // before the solves need their room (the Source's may serve other leaves).
   targetMesh.ReleaseNeighbors();
   run.Clock.Lap();
-  result.Outcome =
-    ctx.Bar(0.9) ? agreement.At(LeafAgreement::Solve) : agreement.End(Verdict::Stop());
-  if (!result.Outcome.Ok())
-  {
-    result.Outcome = agreement.End(result.Outcome, true); // (the rounds left)
-    return result;
-  }
   SourceWeights weights(run.Source.Mesh, run.Source.Data, run.Processes);
   mp::LargeVector<double> cover;
-  const bool haveCover = PrepareSolves(ctx, plan, ops, weights, cover);
+  bool haveCover = false;
+  // The operators' target mass too before the round (this process alone).
+  result.Outcome = ctx.Bar(0.9) ? agreement.Local("Assembling the target mass",
+                                    [&]() {
+                                      haveCover = PrepareSolves(ctx, plan, ops, weights, cover);
+                                      return agreement.At(LeafAgreement::Solve);
+                                    })
+                                : agreement.End(Verdict::Stop());
+  if (!result.Outcome.Ok())
+  {
+    return result;
+  }
   mp::SolverHooks hooks[2]; // P1, P0 target functions
   mp::FringeHalo halo;      // several processes: the fringe's ghost layer
   ShareSystems(ctx, ops, hooks, halo);
@@ -186,6 +195,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   result.Outcome = ApplyOperators(ctx, kept, plan, ops, hooks, halo, solutions);
   if (result.Outcome.Ok())
   {
+    DivideByDensity(ctx, ops, hooks, solutions);
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
   }
   result.Outcome =

@@ -342,8 +342,8 @@ Verdict PlanOperators(
     return agreement.End(elsewhere, true);
   }
   kept.Begin(plan.Cache);
-  const bool points = ctx.Source.Fields[PointArrays].Components > 0;
-  const bool cells = ctx.Source.Fields[CellArrays].Components > 0;
+  const bool points = ctx.Source.Fields[PointArrays].Any();
+  const bool cells = ctx.Source.Fields[CellArrays].Any();
   plan.Used[PointsToPoints] = points && (s.PointDataTarget & ToPointsBit);
   plan.Used[PointsToCells] = points && (s.PointDataTarget & ToCellsBit);
   plan.Used[CellsToCells] = cells && (s.CellDataTarget & ToCellsBit);
@@ -353,7 +353,10 @@ Verdict PlanOperators(
   {
     plan.Used[PointsToPoints] = true;
   }
-  plan.Assembled = s.PreserveBounds || plan.Cache.Assembles();
+  // (Labels are weighed by M_ts's rows: Labels.h.)
+  const bool labels =
+    !ctx.Source.Fields[PointArrays].Labels.empty() || !ctx.Source.Fields[CellArrays].Labels.empty();
+  plan.Assembled = s.PreserveBounds || plan.Cache.Assembles() || labels;
   return Verdict();
 }
 

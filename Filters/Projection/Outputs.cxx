@@ -16,9 +16,11 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "Projection/Conservation.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
+#include "Projection/TangentFields.h"
 #include "Adapter/CompositeLeaves.h"
 #include "Adapter/FieldArrays.h"
 #include "Adapter/IntersectionOutput.h"
@@ -82,7 +84,29 @@ struct Written
 {
   std::vector<std::string> PointNames, CellNames; // by the transfers to the fields' own association
   Validity PointValid, CellValid;
+  /// Validities of mass-weighted arrays that the density guard narrowed (MassWeighting.h).
+  std::deque<std::vector<char>> Narrowed;
 };
+
+/// Where array a of transfer t is valid: its system's functions, less those the density guard left.
+const std::vector<char>* ValidOf(
+  const GatheredFields& g, int a, Transfer t, const LeafSolutions& solutions, Written& written)
+{
+  const std::vector<char>* valid = solutions.ByArray[t][static_cast<size_t>(a)].Valid;
+  const int w = g.Mass.Active() ? g.Mass.WeightedIndex(a) : -1;
+  if (w < 0 || solutions.Guarded[t][static_cast<size_t>(w)].empty())
+  {
+    return valid;
+  }
+  const std::vector<char>& guarded = solutions.Guarded[t][static_cast<size_t>(w)];
+  written.Narrowed.emplace_back(*valid);
+  std::vector<char>& narrowed = written.Narrowed.back();
+  for (size_t f = 0; f < narrowed.size(); ++f)
+  {
+    narrowed[f] = narrowed[f] && !guarded[f];
+  }
+  return &narrowed;
+}
 
 /// The name of array a of transfer t in the output (renamed when it clashes).
 std::string OutputName(
@@ -144,10 +168,98 @@ SourceColumns SourceColumnsOf(const GatheredFields& g, int a)
   return { &g, g.Components, g.Offsets[a] };
 }
 
+/**
+ * A tangent array's normal part at the target removed from `out` (written
+ * in the dataset's numbering) where it is valid or extrapolated, and its
+ * magnitude written as "<name>_NormalPart" (the fill value elsewhere); a
+ * warning when it is large (LargeNormalPart) next to the field (not on a
+ * trace, whose vectors are a volume's), or when the target is neither
+ * surface nor curve (the array is left as projected).
+ */
+void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray* out, Transfer t,
+  const std::vector<char>& valid, const LeafSolutions& solutions, vtkDataSetAttributes* outData)
+{
+  const std::string name = out->GetName();
+  if (!tangents.Applies())
+  {
+    ctx.Say.WarnOnce("tangent/ignored/" + name,
+      "TangentArrays: '" + name + "' is not made tangent on " + ctx.Role + ", whose cells are " +
+        std::to_string(tangents.CellDimension()) +
+        "D (only surfaces and curves have a tangent plane): it is projected as an ordinary "
+        "array.");
+    return;
+  }
+  const bool toPoints = ToPoints(t);
+  const vtkIdType n = out->GetNumberOfTuples();
+  std::vector<char> keep(valid.begin(), valid.begin() + n);
+  const std::vector<char>& extrapolated = solutions.Extrapolated[t];
+  for (size_t f = 0; f < extrapolated.size(); ++f)
+  {
+    const vtkIdType at =
+      toPoints ? ctx.Target.DataSetPoint(static_cast<mp::Index>(f)) : static_cast<vtkIdType>(f);
+    keep[at] = keep[at] || extrapolated[f];
+  }
+  double largest[2] = { 0.0, 0.0 }; // removed, field
+  const std::vector<double> removed = tangents.Remove(
+    out->GetPointer(0), n, toPoints, keep, ctx.Options.Fill(), largest[0], largest[1]);
+  vtkNew<vtkDoubleArray> part;
+  part->SetName((name + "_NormalPart").c_str());
+  part->SetNumberOfValues(n);
+  std::copy(removed.begin(), removed.end(), part->GetPointer(0));
+  outData->AddArray(part);
+  // The largest over every process (a minimum of the negatives).
+  largest[0] = -largest[0];
+  largest[1] = -largest[1];
+  ctx.Processes.Minimum(largest, 2);
+  // (A trace's vectors are the volume's: their normal part is no surprise.)
+  if (-largest[0] > LargeNormalPart * -largest[1] && !ctx.Shape.Trace)
+  {
+    ctx.Say.WarnOnce("tangent/large/" + ctx.Role + "/" + name,
+      "TangentArrays: the projected '" + name + "' on " + ctx.Role + " had a normal part up to " +
+        std::to_string(-largest[0]) + " (removed, see " + name +
+        "_NormalPart) for a largest magnitude of " + std::to_string(-largest[1]) +
+        ": the meshes' normals differ much there (a coarse facetization, or Input off Source).");
+  }
+}
+
+/**
+ * ConserveSourceIntegral's scale of each component of array a: its
+ * integrals' Factor, and for a mass-weighted array that divided by the
+ * density's own (the density is written scaled), so that the written
+ * density times the written q keeps the Source's integral of rho q and a
+ * constant q stays constant. Collective (the density's weights and sums).
+ */
+std::vector<double> ValueFactors(LeafContext& ctx, const OperatorSet& ops,
+  const LeafSolutions& solutions, SourceWeights& weights, Transfer t, int a,
+  const ArrayIntegrals& integrals)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  std::vector<double> factors = integrals.Factor;
+  const bool conserve = ctx.Options.ConserveSourceIntegral && !ctx.Shape.Trace;
+  if (!conserve || !g.Mass.Active() || g.Mass.WeightedIndex(a) < 0)
+  {
+    return factors;
+  }
+  const int d = g.Mass.Density;
+  const SourceColumns source = SourceColumnsOf(g, d);
+  const vtkIdType n =
+    ToPoints(t) ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
+  const ProjectedArray density{ solutions.ByArray[t][static_cast<size_t>(d)],
+    weights.Of(*ops.ByArray[t][d]), source.Block->Functions(), source.Width, source.Offset,
+    solutions.Values[t], g.Components, g.Offsets[d], 1, n };
+  const double scale =
+    Integrate(density, true, ctx.Options.DensityArray, ctx.Role, ctx.Processes, ctx.Say).Factor[0];
+  for (double& factor : factors)
+  {
+    factor /= scale;
+  }
+  return factors;
+}
+
 /// The arrays of transfer t (with their integrals for the fields' own association).
 void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const LeafSolutions& solutions, SourceWeights& weights, Transfer t, PointNumbering& numbering,
-  Written& written)
+  TargetTangents& tangents, Written& written)
 {
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   const bool toPoints = ToPoints(t);
@@ -166,17 +278,28 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   {
     vtkDataArray* array = g.Arrays[a];
     const int nc = array->GetNumberOfComponents();
+    const mp::MortarOperator& op = *ops.ByArray[t][a];
+    if (g.Hidden[a])
+    {
+      offset += nc;
+      continue; // a density gathered for the mass weighting only
+    }
     const std::string name = OutputName(array, a, t, names);
     names.push_back(name);
-    const mp::MortarOperator& op = *ops.ByArray[t][a];
     const mp::ProjectedSystem& system = solutions.ByArray[t][static_cast<size_t>(a)];
+    const std::vector<char>& valid = *ValidOf(g, a, t, solutions, written);
     (toPoints ? written.PointValid : written.CellValid)
-      .emplace_back(name, toPoints ? numbering.InDataSet(*system.Valid) : system.Valid);
+      .emplace_back(name, toPoints ? numbering.InDataSet(valid) : &valid);
     const SourceColumns source = SourceColumnsOf(g, a);
+    // A mass-weighted array's integrals are those of rho q, its projected product.
+    const int w = g.Mass.Active() ? g.Mass.WeightedIndex(a) : -1;
+    const bool product = w >= 0;
     const ProjectedArray projected{ system, weights.Of(op), source.Block->Functions(), source.Width,
-      source.Offset, values, g.Components, offset, nc, n };
+      source.Offset, product ? solutions.Products[t] : values,
+      product ? ProductWidth(g) : g.Components, product ? ProductOffset(g, w) : offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);
+    const std::vector<double> factors = ValueFactors(ctx, ops, solutions, weights, t, a, integrals);
     vtkNew<vtkDoubleArray> out;
     out->SetName(name.c_str());
     out->SetNumberOfComponents(nc);
@@ -190,7 +313,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     out->SetNumberOfTuples(n);
     double* to = out->GetPointer(0);
     const std::vector<double>& covered = *system.CoveredIntegrals;
-    const std::vector<char>& valid = *system.Valid;
+    const double fill = ctx.Options.Fill();
     const int width = g.Components;
     const SimplexMesh& target = ctx.Target;
     mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
@@ -200,11 +323,17 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
         const vtkIdType at = toPoints ? target.DataSetPoint(f) : f;
         for (int k = 0; k < nc; ++k)
         {
-          to[at * nc + k] =
-            scale * (valid[f] ? integrals.Factor[k] : 1.0) * values[f * width + offset + k];
+          to[at * nc + k] = !valid[f] && (*system.Valid)[f]
+            ? fill // (left by the density guard: MassWeighting.h)
+            : scale * (valid[f] ? factors[k] : 1.0) * values[f * width + offset + k];
         }
       }
     });
+    if (nc == 3 && IsTangentArray(ctx.Options, array))
+    {
+      const std::vector<char>& where = toPoints ? *numbering.InDataSet(valid) : valid;
+      WriteTangentPart(ctx, tangents, out, t, where, solutions, outData);
+    }
     // (The transfers to the other association have the same integrals.)
     if (IsOwnAssociation(t))
     {
@@ -219,6 +348,47 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
     else if (IsOwnAssociation(t) && array == sourceData->GetVectors())
     {
       outData->SetActiveVectors(out->GetName());
+    }
+  }
+}
+
+/// The label arrays of transfer t (Labels.h), after its numbers: valid where
+/// the transfer's numbers are (its operator's system), in the masks' list.
+void WriteLabels(LeafContext& ctx, vtkDataSet* output, const LeafSolutions& solutions, Transfer t,
+  PointNumbering& numbering, Written& written)
+{
+  const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
+  const bool toPoints = ToPoints(t);
+  vtkDataSetAttributes* sourceData = AttributesOf(ctx.Source.Data, SourceAssociation(t));
+  vtkDataSetAttributes* outData = AttributesOf(output, toPoints ? PointArrays : CellArrays);
+  std::vector<std::string>& names = toPoints ? written.PointNames : written.CellNames;
+  const vtkIdType n =
+    toPoints ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
+  const SimplexMesh& target = ctx.Target;
+  const std::function<vtkIdType(vtkIdType)> at = [&target, toPoints](vtkIdType f) {
+    return toPoints ? target.DataSetPoint(f) : f;
+  };
+  const std::vector<char>& valid = *solutions.System[t].Valid;
+  static const mp::LargeVector<double> none;
+  for (size_t i = 0; i < g.Labels.size(); ++i)
+  {
+    const LabelField& field = g.Labels[i];
+    const std::string name =
+      OutputName(field.Array, static_cast<int>(g.Arrays.size() + i), t, names);
+    names.push_back(name);
+    (toPoints ? written.PointValid : written.CellValid)
+      .emplace_back(name, toPoints ? numbering.InDataSet(valid) : &valid);
+    const mp::LargeVector<double>& weights =
+      i < solutions.Labels[t].size() ? solutions.Labels[t][i] : none;
+    const LabelOutput out = WriteLabelArray(field, weights, valid, n, at, name, ctx.Options);
+    outData->AddArray(out.Labels);
+    if (out.Fractions)
+    {
+      outData->AddArray(out.Fractions);
+    }
+    if (IsOwnAssociation(t) && field.Array == sourceData->GetScalars())
+    {
+      outData->SetActiveScalars(out.Labels->GetName());
     }
   }
 }
@@ -288,11 +458,11 @@ void AddValidMasks(vtkCharArray* mask, const Validity& arrays, vtkDataSetAttribu
 /**
  * Valid points whose cells are all covered only in slivers and that the
  * fringe's aggregation left free: their values are extrapolated from a
- * sliver (an ill-conditioned row) and can be far off. On volume meshes
- * only with the fringe off (FringeThreshold 0, or below the few percent
- * such a point's support is covered at most): with it on, such a point is
- * aggregated or, with no stencil, dropped (FringeStrandedDropFraction);
- * surfaces, curves and traces are not aggregated. On several processes a
+ * sliver (an ill-conditioned row) and can be far off. Only with the
+ * fringe off (FringeThreshold 0, or below the few percent such a point's
+ * support is covered at most): with it on, such a point is aggregated or,
+ * with no stencil, dropped (FringeStrandedDropFraction), on volumes,
+ * surfaces, curves and traces alike. On several processes a
  * point on a partition boundary has cells on
  * each: it is such a point only when the cells of every process around it
  * are slivers (the hooks complete the cover across processes; alone they
@@ -338,7 +508,7 @@ void WarnSliverPoints(LeafContext& ctx, const mp::MortarOperator& onPoints,
       std::to_string(slivers) + " " + ctx.Role +
         " points are valid through slivers only (every cell around them is covered less than "
         "0.1%): their values are extrapolated from the sliver and can be far off. Where Input "
-        "reaches beyond Source, keep FringeThreshold at its default (volume meshes), or leave out "
+        "reaches beyond Source, keep FringeThreshold at its default, or leave out "
         "points whose cells' CoveredFraction is that small.");
   }
 }
@@ -495,11 +665,17 @@ void WriteLeafOutputs(LeafContext& ctx, vtkDataSet* output, const OperatorSet& o
 {
   PointNumbering numbering(ctx.Target);
   Written written;
+  TargetTangents tangents(
+    ctx.TargetData, ctx.Target, pointHooks, static_cast<vtkIdType>(pointCover.size()));
   for (Transfer t : OutputOrder)
   {
     if (ops.Operators[t] && ctx.Source.Fields[SourceAssociation(t)].Components > 0)
     {
-      WriteTransfer(ctx, output, ops, solutions, weights, t, numbering, written);
+      WriteTransfer(ctx, output, ops, solutions, weights, t, numbering, tangents, written);
+    }
+    if (ops.Operators[t])
+    {
+      WriteLabels(ctx, output, solutions, t, numbering, written);
     }
   }
   MakeActiveScalars(output, written);

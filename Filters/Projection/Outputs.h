@@ -6,7 +6,8 @@
  *        the covered fractions, the integrals, and the intersection pieces.
  *
  * Each projected array is a vtkDoubleArray of the Source array's name and
- * components (an array projected to the other association next to one of
+ * components, a label array (Labels.h) one of the Source array's type with
+ * its "<name>_Fractions" when asked for (an array projected to the other association next to one of
  * the same name there gets " (from points)" or " (from cells)"); the first
  * projected scalar array becomes the active scalars when neither input
  * has any, so that ParaView colours by it. vtkValidPointMask and

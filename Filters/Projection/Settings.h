@@ -22,6 +22,9 @@
 #include "Transfer/LinearReconstruction.h" // mp::Reconstruction
 
 #include <limits>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace mpvtk
 {
@@ -40,6 +43,13 @@ enum SurfaceOrientation : int
   AnyOrientation = 2
 };
 
+/// Which Source arrays are labels (CategoricalMode; Labels.h).
+enum CategoricalModes : int
+{
+  CategoricalAutomatic = 0, ///< single-component integer arrays
+  CategoricalSelected = 1   ///< exactly the arrays named in CategoricalArrays
+};
+
 struct Settings
 {
   mp::SearchMethod SearchMethod = mp::SearchMethod::AdvancingFront;
@@ -54,6 +64,8 @@ struct Settings
   mp::Reconstruction CellDataReconstruction = mp::Reconstruction::Constant;
   bool Lumped = false; ///< MassMatrix is LUMPED_MASS
   bool PreserveBounds = false;
+  /// Names of 3-component arrays tangent to a surface or curve (TangentFields.h).
+  std::vector<std::string> TangentArrays; ///< empty: none
   int MaximumIterations = 500;
   double SurfaceReach = 0.5;
   double MaximumNormalAngle = 45.0;
@@ -63,12 +75,28 @@ struct Settings
   int NumberOfThreads = 0; ///< 0: every core (the filter's RequestData)
   int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
   bool KeepMatrices = false;
+  /// Mass weighting (MassWeighting.h): the Source's density array ("": off), and the
+  /// arrays weighted by it (empty: every array of its association).
+  std::string DensityArray = "";
+  std::vector<std::string> MassWeightedArrays; ///< empty: all
+  int CategoricalMode = CategoricalAutomatic;  ///< CategoricalModes
+  bool LabelFractions = false;                 ///< also <name>_Fractions per label array
+  int FillLabel = -1;                          ///< the label of uncovered target points and cells
+  /// The arrays named as labels (CategoricalSelected), point or cell arrays alike.
+  std::set<std::string> CategoricalArrays; ///< empty: none
 
   /// Whether cell data is reconstructed (CellReconstruction.h): a mode, and cell data going somewhere.
   bool ReconstructsCellData() const
   {
     return this->CellDataReconstruction != mp::Reconstruction::Constant &&
       this->CellDataTarget != 0;
+  }
+  /// Whether, on several processes, Source comes with the cells around those
+  /// that meet Input: a reconstruction's gradients and a tangent point
+  /// array's normals read them (Parts::GatherSource).
+  bool GathersNeighborLayer() const
+  {
+    return this->ReconstructsCellData() || !this->TangentArrays.empty();
   }
   /// The value of target functions that the Source does not reach.
   double Fill() const

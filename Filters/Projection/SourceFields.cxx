@@ -6,28 +6,37 @@
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
 
 #include "Parallel/Parts.h"
 #include "Projection/Fingerprint.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
+#include "Projection/Settings.h"
+#include "Projection/TangentFields.h"
 #include "Adapter/FieldArrays.h"
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
 
 #include "Geometry/Measures.h"
+#include "Mesh/ContentHash.h"
 #include "Transfer/Space.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 
 namespace mpvtk
 {
 namespace
 {
-/// The enabled numeric fields of one association, long enough, in order.
+/// The enabled numeric fields of one association, long enough, in order
+/// (labels apart; and `density`, hidden when not enabled, never a label).
 void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* selection,
-  Messages& messages, GatheredFields& g)
+  const Settings& settings, const std::string& density, Messages& messages, GatheredFields& g)
 {
   vtkDataSetAttributes* data = AttributesOf(source, association);
   const char* kind = association == 0 ? "point" : "cell";
@@ -38,7 +47,8 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
     vtkAbstractArray* abstract = data->GetAbstractArray(i);
     const char* name = abstract->GetName();
     const std::string label = name ? name : "(unnamed)";
-    if (!IsField(data, abstract) || (name && !selection->ArrayIsEnabled(name)))
+    const bool hidden = name && !selection->ArrayIsEnabled(name) && density == name;
+    if (!IsField(data, abstract) || (name && !selection->ArrayIsEnabled(name) && !hidden))
     {
       continue;
     }
@@ -57,16 +67,23 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
         abstract->GetClassName() + "): skipped.");
       continue;
     }
-    if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+    if (density != label && IsLabelArray(array, settings, association, &messages))
+    {
+      g.Labels.emplace_back();
+      g.Labels.back().Array = array;
+      continue;
+    }
+    if (HoldsIntegers(array))
     {
       messages.WarnOnce(std::string(kind) + "/" + label, // once per array, not per step
         "Source " + std::string(kind) + " array '" + label + "' holds integers (" +
           array->GetClassName() +
           "): it is projected as real values (a 0/1 indicator becomes a covered fraction, but "
-          "labels and ids do not carry over: use Resample With Dataset for those, or deselect "
-          "it).");
+          "labels and ids do not carry over: set CategoricalMode to CATEGORICAL_AUTOMATIC, or "
+          "name it in CategoricalArrays, to project it as labels, or deselect it).");
     }
     g.Arrays.push_back(array);
+    g.Hidden.push_back(hidden);
     g.Offsets.push_back(g.Components);
     g.Components += array->GetNumberOfComponents();
     g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
@@ -158,10 +175,116 @@ std::vector<char> CellsUsing(
   return excluded;
 }
 
+/// A Source point's identity over the processes: its coordinates' bits (a
+/// point on the border of two pieces is one point, whatever ids they gave it).
+void PointIdentity(vtkDataSet* source, vtkIdType p, long long key[3])
+{
+  double x[3];
+  source->GetPoint(p, x);
+  std::memcpy(key, x, sizeof(x));
+}
+
+/// A Source cell's identity over the processes: its points' identities,
+/// sorted and hashed, and their number.
+void CellIdentity(vtkDataSet* source, vtkIdType c, vtkIdList* ids, long long key[3])
+{
+  source->GetCellPoints(c, ids);
+  std::vector<std::array<long long, 3>> corners(static_cast<size_t>(ids->GetNumberOfIds()));
+  for (size_t k = 0; k < corners.size(); ++k)
+  {
+    PointIdentity(source, ids->GetId(static_cast<vtkIdType>(k)), corners[k].data());
+  }
+  std::sort(corners.begin(), corners.end());
+  key[0] = static_cast<long long>(
+    mp::Fnv1a64(corners.data(), corners.size() * sizeof(std::array<long long, 3>)));
+  key[1] = static_cast<long long>(corners.size());
+  key[2] = 0;
+}
+
+/**
+ * The sum over the processes of `counts` (entry i of this process, known
+ * by the identity keys[3i .. 3i + 2]), each item counted once however many
+ * copies the processes hold: every copy counts its share. (The processes'
+ * gathered Sources overlap: a cell two parts of Input need is on both, and
+ * without the Source's own GlobalIds a point on the border of two pieces
+ * is twice on a process that gathers both.) Collective.
+ */
+vtkIdType CountedOnce(
+  Parts& parts, const std::vector<long long>& keys, const std::vector<double>& counts)
+{
+  const std::vector<double> copies =
+    parts.SumByKey(keys, 3, std::vector<double>(counts.size(), 1.0));
+  double total = 0.0;
+  for (size_t i = 0; i < counts.size(); ++i)
+  {
+    total += counts[i] / copies[i];
+  }
+  parts.Sum(&total, 1);
+  return static_cast<vtkIdType>(std::llround(total));
+}
+
+/**
+ * What the warning of array a says, over all processes on several: its
+ * non-finite values (`values` comes in with this process's count, `bad`
+ * its functions with one) and the Source cells left out, each point and
+ * cell counted once (CountedOnce): the serial run's numbers over the
+ * Source cells some process gathered (every cell near Input). Collective
+ * on several processes; one process: `values` and the cells as they are.
+ */
+vtkIdType CountLeftOut(vtkDataSet* source, const SimplexMesh& mesh, const GatheredFields& g, int a,
+  int association, const std::vector<char>& bad, const NaNGroup& group, Parts& parts,
+  vtkIdType& values)
+{
+  const std::vector<char> parents = LeftOutCells(mesh.View(), group);
+  if (parts.Whole())
+  {
+    return std::count(parents.begin(), parents.end(), 1);
+  }
+  vtkNew<vtkIdList> ids;
+  std::vector<long long> keys;
+  std::vector<double> counts;
+  const int nc = g.Arrays[a]->GetNumberOfComponents();
+  for (size_t f = 0; f < bad.size(); ++f)
+  {
+    if (!bad[f])
+    {
+      continue;
+    }
+    long long key[3];
+    if (association == 0)
+    {
+      PointIdentity(source, mesh.DataSetPoint(static_cast<mp::Index>(f)), key);
+    }
+    else
+    {
+      CellIdentity(source, static_cast<vtkIdType>(f), ids, key);
+    }
+    keys.insert(keys.end(), key, key + 3);
+    int here = 0;
+    for (int k = 0; k < nc; ++k)
+    {
+      here += !std::isfinite(g.Values[f * g.Components + g.Offsets[a] + k]);
+    }
+    counts.push_back(here);
+  }
+  values = CountedOnce(parts, keys, counts);
+  keys.clear();
+  for (size_t c = 0; c < parents.size(); ++c)
+  {
+    if (parents[c])
+    {
+      long long key[3];
+      CellIdentity(source, static_cast<vtkIdType>(c), ids, key);
+      keys.insert(keys.end(), key, key + 3);
+    }
+  }
+  return CountedOnce(parts, keys, std::vector<double>(keys.size() / 3, 1.0));
+}
+
 /// Says once per array how many values and cells are left out (not for an
 /// array with a hole where pieces lack it: PieceArrays.h's warning said it).
-void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::string& label,
-  int association, vtkIdType values, Messages& messages, bool hole)
+void WarnNonFinite(const std::string& label, int association, vtkIdType values, vtkIdType cells,
+  Messages& messages, bool hole)
 {
   const char* kind = association == 0 ? "point" : "cell";
   const std::string key = std::string("nonfinite/") + kind + "/" + label;
@@ -169,9 +292,6 @@ void WarnNonFinite(const mp::MeshView& view, const NaNGroup& group, const std::s
   {
     return;
   }
-  // The dataset's cells left out (a split cell counts once).
-  const std::vector<char> parents = LeftOutCells(view, group);
-  const vtkIdType cells = std::count(parents.begin(), parents.end(), 1);
   messages.Warn("Source " + std::string(kind) + " array '" + label + "' has " +
     std::to_string(values) + " NaN or infinite values: the " + std::to_string(cells) +
     " Source cells that use them are left out of its projection, as a hole in Source (the "
@@ -209,8 +329,8 @@ void SplitOffGroups(GatheredFields& g, mp::Index functions)
 }
 
 /// The NaN groups of one association.
-void FindNaNGroups(
-  const SimplexMesh& mesh, int association, Messages& messages, Parts& parts, GatheredFields& g)
+void FindNaNGroups(vtkDataSet* source, const SimplexMesh& mesh, int association, Messages& messages,
+  Parts& parts, GatheredFields& g)
 {
   const mp::MeshView& view = mesh.View();
   const mp::Index functions = static_cast<mp::Index>(g.Values.size() / std::max(g.Components, 1));
@@ -245,7 +365,10 @@ void FindNaNGroups(
     group->Arrays.push_back(a);
     group->Components += g.Arrays[a]->GetNumberOfComponents();
     const std::string label = g.Arrays[a]->GetName() ? g.Arrays[a]->GetName() : "(unnamed)";
-    WarnNonFinite(view, *group, label, association, values, messages, g.Holes.count(label) > 0);
+    // (The dataset's cells left out: a split cell counts once.)
+    const vtkIdType cells =
+      CountLeftOut(source, mesh, g, a, association, bad, *group, parts, values);
+    WarnNonFinite(label, association, values, cells, messages, g.Holes.count(label) > 0);
   }
   SplitOffGroups(g, functions);
 }
@@ -262,9 +385,11 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group)
 }
 
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
-  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
-  GatheredFields fields[2])
+  vtkDataArraySelection* const selections[2], const Settings& settings, Messages& messages,
+  Parts& parts, GatheredFields fields[2])
 {
+  const bool extensive = settings.Extensive;
+  const int density = DensityAssociation(source, settings, messages);
   for (int association = 0; association < 2; ++association)
   {
     // Arrays that differ between Source's pieces or blocks (Adapter/PieceArrays.h).
@@ -275,18 +400,31 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
         messages.WarnOnce("pieces/" + warning.second, warning.second); // once, not at every step
       }
     }
-    SelectArrays(source, association, selections[association], messages, fields[association]);
+    SelectArrays(source, association, selections[association], settings,
+      association == density ? settings.DensityArray : std::string(), messages,
+      fields[association]);
   }
   fields[1].Key += extensive ? "extensive" : "intensive";
   for (int association = 0; association < 2; ++association)
   {
     GatheredFields& g = fields[association];
+    IndexLabels(mesh, association, settings.ReconstructsCellData(), parts, g);
     if (g.Components == 0)
     {
       continue;
     }
     CopyValues(source, mesh, association, extensive, g);
-    FindNaNGroups(mesh, association, messages, parts, g);
+    WeighSourceFields(settings, association, density, source, parts, messages, g);
+  }
+  // (Before the NaN groups take their arrays' columns.)
+  RemoveSourceNormalParts(source, mesh, settings, messages, parts, fields);
+  for (int association = 0; association < 2; ++association)
+  {
+    GatheredFields& g = fields[association];
+    if (g.Components > 0)
+    {
+      FindNaNGroups(source, mesh, association, messages, parts, g);
+    }
   }
 }
 } // namespace mpvtk

@@ -23,8 +23,10 @@
 
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Projection/MassWeighting.h"
 
 #include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -39,6 +41,7 @@ namespace mpvtk
 class Messages;
 class Parts;
 class SimplexMesh;
+struct Settings;
 
 /// The two associations of Source arrays (GatheredFields per association).
 enum Association
@@ -71,10 +74,26 @@ struct NaNGroup : FieldBlock
   std::uint64_t Print = 0;    ///< of Excluded
 };
 
+/**
+ * A Source array projected as labels (Labels.h): its distinct values and,
+ * per source function of the operators that carry it, the index of its
+ * label (-1: none, a NaN of a real array marked as labels).
+ */
+struct LabelField
+{
+  vtkDataArray* Array = nullptr;
+  std::vector<double> Labels; ///< sorted; on several processes, every process's
+  std::vector<int> Which;     ///< per source function (P1, P0 or DP1): index into Labels, or -1
+};
+
 /// The Source arrays of one association, gathered side by side (NaN groups'
 /// columns of Values as 0).
 struct GatheredFields : FieldBlock
 {
+  /// The arrays projected as labels (Labels.h), not among Arrays.
+  std::vector<LabelField> Labels;
+  /// Whether any array of this association goes somewhere (numbers or labels).
+  bool Any() const { return this->Components > 0 || !this->Labels.empty(); }
   std::vector<vtkDataArray*> Arrays;
   std::vector<int> Offsets;     ///< each array's first column
   std::string Key;              ///< names and components: which solution a warm start may reuse
@@ -85,6 +104,15 @@ struct GatheredFields : FieldBlock
   /// That rule's warnings (name, text), on arrays with a hole or refused:
   /// said when the array is selected.
   std::vector<std::pair<std::string, std::string>> PieceWarnings;
+  /// Per array: 1 for the density gathered for mass weighting only (not
+  /// selected): projected, not written.
+  std::vector<char> Hidden;
+  /// Which arrays are projected as rho q (MassWeighting.h).
+  MassWeights Mass;
+  /// The labels of this process's own Source piece (before the gathering),
+  /// per label array's name: on several processes the labels are the whole
+  /// Source's, as one process sees them (Labels.h: IndexLabels).
+  std::map<std::string, std::vector<double>> PieceLabels;
 };
 
 /// Per Source cell (parent, the dataset's cell): 1 where a NaN group leaves it out.
@@ -92,14 +120,19 @@ std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group);
 
 /**
  * The fields of `source` (wrapped as `mesh`) that `selections` (points,
- * cells) enable; warns of arrays skipped (not numeric, too short) or
- * projected as real values (integers), of NaN groups, and says the
- * PieceWarnings of the arrays enabled (`fields` comes with Holes and
- * PieceWarnings set).
+ * cells) enable, the labels (Labels.h: IsLabelArray) apart, extensive
+ * cell arrays as densities (settings.Extensive), the density of a mass
+ * weighting (MassWeighting.h; hidden when not enabled), weighted arrays as
+ * rho q, tangent arrays' normal parts removed (settings.TangentArrays:
+ * TangentFields.h); warns of arrays skipped (not numeric, too short) or
+ * projected as real values (integers not handled as labels), of NaN
+ * groups, and says the PieceWarnings of the arrays enabled (`fields` comes
+ * with Holes and PieceWarnings set). Collective (the NaN groups, the
+ * labels).
  */
 void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
-  vtkDataArraySelection* const selections[2], bool extensive, Messages& messages, Parts& parts,
-  GatheredFields fields[2]);
+  vtkDataArraySelection* const selections[2], const Settings& settings, Messages& messages,
+  Parts& parts, GatheredFields fields[2]);
 } // namespace mpvtk
 
 #endif

@@ -7,6 +7,7 @@
 #include "Parallel/Parts.h"
 #include "Projection/Composite.h"
 #include "Projection/Fingerprint.h"
+#include "Projection/Labels.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
 #include "Projection/Shape.h"
@@ -16,8 +17,8 @@ namespace mpvtk
 {
 bool SourceSide::AnyTransfer(const Settings& settings) const
 {
-  return (this->Fields[PointArrays].Components > 0 && settings.PointDataTarget != 0) ||
-    (this->Fields[CellArrays].Components > 0 && settings.CellDataTarget != 0);
+  return (this->Fields[PointArrays].Any() && settings.PointDataTarget != 0) ||
+    (this->Fields[CellArrays].Any() && settings.CellDataTarget != 0);
 }
 
 namespace
@@ -45,7 +46,15 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   std::string note;
   std::string failed;
   JoinedFields blocks; // fields that differ between a composite's blocks
-  vtkSmartPointer<vtkDataSet> source = AppendedSource(sourceObject, note, failed, blocks);
+  vtkSmartPointer<vtkDataSet> source;
+  const Verdict appended = Guarded("Reading Source", [&]() {
+    source = AppendedSource(sourceObject, note, failed, blocks);
+    return Verdict();
+  });
+  if (!appended.Ok())
+  {
+    failed = appended.Why; // (agreed in the gathering)
+  }
   if (!note.empty())
   {
     messages.WarnOnce("note/" + note, note); // once, not at every step
@@ -55,12 +64,18 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
     failed = std::string("Source is a ") + sourceObject->GetClassName() +
       ": a dataset or a composite dataset is needed.";
   }
+  // On several processes, the labels of this process's piece before it
+  // gathers (every process then knows the whole Source's labels: Labels.h).
+  if (!parts.Whole())
+  {
+    ListPieceLabels(source, settings, side.Fields);
+  }
   // Each process gets the Source cells its part of Input needs, from all.
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
-  // (With a reconstruction of cell data, and the cells around them.)
+  // (With a reconstruction of cell data or tangent arrays, and the cells around them.)
   JoinedFields pieces; // fields that differ between the processes' pieces
   source =
-    parts.GatherSource(source, input, reach, settings.ReconstructsCellData(), failed, pieces);
+    parts.GatherSource(source, input, reach, settings.GathersNeighborLayer(), failed, pieces);
   KeepJoined(blocks, side);
   KeepJoined(pieces, side);
   if (!failed.empty())
@@ -70,10 +85,12 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
-  const std::string why = side.Mesh.Wrap(source, "Source");
-  stats.Check += side.Mesh.CheckSeconds();
-  stats.Renumber += side.Mesh.OrderSeconds();
-  const Verdict wrapped = parts.Agree(why.empty() ? Verdict() : Verdict::Fail(why));
+  const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
+    const std::string why = side.Mesh.Wrap(source, "Source");
+    stats.Check += side.Mesh.CheckSeconds();
+    stats.Renumber += side.Mesh.OrderSeconds();
+    return why.empty() ? Verdict() : Verdict::Fail(why);
+  }));
   if (!wrapped.Ok())
   {
     return wrapped;

@@ -6,17 +6,22 @@ code, in the plugin's XML and in the user guide's property table.
 * Code: the properties are the vtkSet...Macro names of the header
   (Filters/vtkMeshProjectionFilter.h), plus the two array selections
   (GetPointDataArraySelection, GetCellDataArraySelection), whose default is
-  "all"; their defaults are the initializers of the fields of the same
+  "all", the strings set by `Set<Name>(const char*)` (an array's name:
+  "none" when empty) and the name lists emptied by `Clear<Name>()` with a
+  `std::vector<std::string> <Name>; ///< empty: all` (or `none`; or a std::set) in
+  Settings.h, whose comment says what an empty list means; their defaults are the initializers of the fields of the same
   names in Filters/Projection/Settings.h, the one place they are written
   (`mp::ExtrapolationMode Extrapolation = mp::ExtrapolationMode::None;`,
   enumerators resolved from the headers under Filters/). CellDataQuantity
   and MassMatrix are the bools Extensive and Lumped there (0 or 1).
 * XML (Plugin/MeshProjection.xml): the proxy's Int/Double/StringVector
   properties (not information-only), their command (Set<Name>) and
-  default_values; a "Default: X" in a property's help must agree too.
+  default_values; a "Default: X" in a property's help must agree too; a
+  one-element StringVectorProperty is an array's name ("None": none), a
+  repeated one a list (its default is the code's: the XML has none).
 * User guide (docs/user-guide.md): the table under "## Properties" whose
-  header starts with `| property | default |`; a default is "all", "on",
-  "off", a number, or "`CONSTANT` (number)" (the header's constant of that
+  header starts with `| property | default |`; a default is "all", "none",
+  "on", "off", a number, or "`CONSTANT` (number)" (the header's constant of that
   value); the third column is the panel group, as in the XML's
   PropertyGroups.
 Also: the header's class comment points at docs/user-guide.md.
@@ -27,6 +32,10 @@ import sys
 import xml.etree.ElementTree as ET
 
 ALL = "all"
+NONE = "none"
+LIST = "a list"  # the XML's repeated StringVectorProperty: no default of its own
+# Settings.h's lists of names and what an empty one means.
+LISTS = re.compile(r"^\s*std::(?:vector|set)<std::string>\s+(\w+)\s*;\s*///<\s*empty:\s*(all|none)\b", re.M)
 
 
 def number(text):
@@ -100,6 +109,19 @@ def header_properties(path, root):
             raise SystemExit("Settings.h: %s's initializer %r is not a number, bool or enumerator"
                              % (field, defaults[field]))
         props[name] = defaults[field]
+    # Strings (a Source array's name; "" is none) and name lists.
+    for name in re.findall(r"\bvoid\s+Set(\w+)\(const char\*", src):
+        if name in defaults:
+            props[name] = NONE if defaults[name] in ('""', "") else defaults[name]
+    settings = open(os.path.join(root, "Filters", "Projection", "Settings.h"), encoding="utf-8").read()
+    lists = dict(LISTS.findall(settings))
+    for name in re.findall(r"^\s*std::(?:vector|set)<std::string>\s+(\w+)\s*;", settings, re.M):
+        if name not in lists:
+            raise SystemExit("Settings.h: the list %s does not say '///< empty: all' or "
+                             "'///< empty: none'" % name)
+    for name in re.findall(r"\bvoid\s+Clear(\w+)\(\)", src):
+        if name in lists:
+            props[name] = ALL if lists[name] == "all" else NONE
     if "GetPointDataArraySelection" in src:
         props["PointDataArrays"] = ALL
     if "GetCellDataArraySelection" in src:
@@ -120,7 +142,14 @@ def xml_properties(path, problems):
         name = element.get("name")
         command = element.get("command")
         if element.tag == "StringVectorProperty":
-            props[name] = ALL
+            # One array's name (NONE when empty or the panel's "None"), else a list.
+            single = element.get("number_of_elements") == "1" and element.get("repeat_command") != "1"
+            value = element.get("default_values", "")
+            props[name] = (NONE if value in ("", "None") else value) if single else LIST
+            if single and command != "Set" + name:
+                problems.append("XML: %s calls %s, not Set%s" % (name, command, name))
+            if not single and (command or "").startswith("Add") and command != "Add" + name[:-1]:
+                problems.append("XML: list %s calls %s, not Add%s" % (name, command, name[:-1]))
             continue
         if command != "Set" + name:
             problems.append("XML: %s calls %s, not Set%s" % (name, command, name))
@@ -170,8 +199,8 @@ def guide_properties(path, problems, enums):
             problems.append("user guide: property cell %r is not one `Name`" % cells[0])
             continue
         text = cells[1]
-        if text == ALL:
-            value = ALL
+        if text in (ALL, NONE):
+            value = text
         elif text == "on":
             value = 1.0
         elif text == "off":
@@ -214,6 +243,8 @@ def main():
     names = set(header) | set(xml) | set(guide)
     for name in sorted(names):
         seen = {where: props[name] for where, props in sources.items() if name in props}
+        if seen.get("XML") == LIST and seen.get("code") in (ALL, NONE):
+            seen["XML"] = seen["code"]  # (a list's default lives in the code only)
         missing = [where for where in sources if where not in seen]
         if missing:
             problems.append("%s: missing from %s (present in %s)"

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// FringeAggregation (Transfer/FringeAggregation.h): on a 2D and a 3D mesh
+// FringeAggregation (Transfer/FringeAggregation.h): on a 2D and a 3D mesh,
+// a plane and a line in 3D and a sphere
 // whose points beyond a line are ill-posed, P reproduces affine functions
 // at the aggregated points from the free values, its aggregated rows sum to
 // 1 and read free functions only, P^T M P is the dense product, and the
@@ -15,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -46,6 +48,24 @@ Fringe FringeOf(const TestMesh& m, double edge, double drop, int tasks)
   {
     const double x = view.Point(i)[0];
     f.Fraction[i] = x > drop ? 0.01 : (x > edge ? 0.05 : 1.0);
+  }
+  f.Extension = mp::ExtendFringe(
+    view, f.Valid, f.Fraction, 0.1, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
+  return f;
+}
+
+/// Points where `valid` holds valid, those where also `ill` holds covered 5 % (ill-posed at a threshold of 10 %).
+Fringe FringeWhere(const TestMesh& m, const std::function<bool(const double*)>& valid,
+  const std::function<bool(const double*)>& ill, int tasks)
+{
+  Fringe f;
+  const mp::MeshView view = m.View(false);
+  f.Valid.assign(static_cast<size_t>(view.NumberOfPoints), 1);
+  f.Fraction.assign(static_cast<size_t>(view.NumberOfPoints), 1.0);
+  for (Index i = 0; i < view.NumberOfPoints; ++i)
+  {
+    f.Valid[i] = valid(view.Point(i));
+    f.Fraction[i] = f.Valid[i] && ill(view.Point(i)) ? 0.05 : 1.0;
   }
   f.Extension = mp::ExtendFringe(
     view, f.Valid, f.Fraction, 0.1, mp::FringeDropFraction, mptest::ThreadRunner(tasks));
@@ -166,6 +186,86 @@ TEST(FringeAggregation, QuadraticWhereBoundedIn3D)
   }
   EXPECT_GT(e.Count, 20);
   EXPECT_GT(reproduced, e.Count / 2) << reproduced << " of " << e.Count;
+}
+
+// On surfaces and curves the stencils are fitted in the tangent frame of
+// each point (FringeFrames.h, FringeFits.h): on a plane in 3D and a
+// straight line in 3D the extension reproduces the ambient affine
+// functions; on a sphere too (the fit through the normal coordinates of
+// its curved stencils).
+TEST(FringeAggregation, ReproducesAffineFunctionsOnAPlaneIn3D)
+{
+  TestMesh m = mptest::GridMesh(14, 12, 0.25, 3);
+  m.Surface = true;
+  mptest::Move3D(m, 0.0, 0.6, 1.0, 0.1, -0.2, 0.3); // about the x axis: x kept
+  for (int tasks : { 1, 3 })
+  {
+    const Fringe f = FringeOf(m, 0.75, 0.9, tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "plane in 3D" : "plane in 3D, 3 tasks");
+  }
+}
+
+TEST(FringeAggregation, ReproducesAffineFunctionsOnALineIn3D)
+{
+  // Five gaps of ill-posed points along the line, one at its end.
+  const TestMesh m = mptest::Polyline(
+    mptest::Uniform(200, 0.0, 1.0, 0.3, 5, false),
+    [](double s, double* x) {
+      x[0] = s;
+      x[1] = 0.2 + 0.5 * s;
+      x[2] = -0.3 - 0.7 * s;
+    },
+    false, 3);
+  for (int tasks : { 1, 3 })
+  {
+    const Fringe f = FringeWhere(
+      m, [](const double*) { return true; },
+      [](const double* x) { return x[0] * 5 - std::floor(x[0] * 5) > 0.85; }, tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "line in 3D" : "line in 3D, 3 tasks");
+  }
+}
+
+TEST(FringeAggregation, ReproducesAffineFunctionsOnAnArcIn3D)
+{
+  // An arc of a circle in a tilted plane, ill-posed in five gaps of two or
+  // three points: its curved stencils fitted through their normal
+  // coordinates too (a gap's last point from the inner ring whose points
+  // allow that). (At the arc's end the one-sided fit through them would
+  // amplify more than QuadraticAmplification: the tangent fit is kept.)
+  const TestMesh m = mptest::Polyline(
+    mptest::Uniform(120, 0.0, 2.5, 0.3, 6, false),
+    [](double s, double* x) {
+      x[0] = 0.8 * std::cos(s);
+      x[1] = 0.8 * std::sin(s) * std::cos(0.4);
+      x[2] = 0.8 * std::sin(s) * std::sin(0.4) + 0.3;
+    },
+    false, 3);
+  for (int tasks : { 1, 3 })
+  {
+    // (Parameter s from the point: the angle about the circle's centre.)
+    const Fringe f = FringeWhere(
+      m, [](const double*) { return true; },
+      [](const double* x) {
+        const double s = std::atan2(x[1] / std::cos(0.4), x[0]);
+        return s * 2 - std::floor(s * 2) > 0.9;
+      },
+      tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "arc in 3D" : "arc in 3D, 3 tasks");
+  }
+}
+
+TEST(FringeAggregation, ReproducesAffineFunctionsOnASphere)
+{
+  // Valid below x = 0.6, a fringe of about two rings above x = 0.4: extended
+  // from one side, over the sphere's curvature.
+  const TestMesh m = mptest::Icosphere(4);
+  for (int tasks : { 1, 3 })
+  {
+    const Fringe f = FringeWhere(
+      m, [](const double* x) { return x[0] <= 0.6; }, [](const double* x) { return x[0] > 0.4; },
+      tasks);
+    ExpectAffineExtension(m, f, tasks == 1 ? "sphere" : "sphere, 3 tasks");
+  }
 }
 
 TEST(FringeAggregation, AggregatedMassIsPTransposedMP)

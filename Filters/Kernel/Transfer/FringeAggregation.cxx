@@ -7,8 +7,8 @@
 #include "Geometry/CellGeometry.h"
 #include "Mesh/CellNeighbors.h"
 #include "Transfer/CsrBuilder.h"
-
-#include <Eigen/Dense>
+#include "Transfer/FringeFits.h"
+#include "Transfer/FringeFrames.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,150 +31,6 @@ struct CellsAroundPoints
   }
 };
 
-/// The monomials of degree <= `degree` (1 or 2) at y (d coordinates): 1, y_a, y_a y_b.
-int Monomials(const double* y, int d, int degree, double* into)
-{
-  int m = 0;
-  into[m++] = 1.0;
-  for (int a = 0; a < d; ++a)
-  {
-    into[m++] = y[a];
-  }
-  for (int a = 0; degree > 1 && a < d; ++a)
-  {
-    for (int b = a; b < d; ++b)
-    {
-      into[m++] = y[a] * y[b];
-    }
-  }
-  return m;
-}
-
-/**
- * The largest sum of |w_ik| a quadratic extension may have in 2D: the
- * factor by which it can amplify an oscillation of the free values.
- * One-sided quadratic extrapolations reach a dozen and more (three points
- * on a line: 3, -3, 1 already 7); such weights couple the stencil's
- * functions with alternating signs in P^T M P and widen its spectrum (the
- * conjugate gradients then need up to three times the iterations). The
- * affine fit, taken beyond this, is of second order only: at a curved
- * boundary it leaves the fringe's error several times the interior's, so
- * the bound keeps what quadratic fits it can.
- */
-constexpr double QuadraticAmplification = 8.0;
-
-/**
- * The same bound in 3D. A corner of a volume target reaching out of the
- * source is extrapolated along up to three directions at once: the affine
- * fit's error there (its weights times the squared distances, a cell and
- * two away) is many times the interior's, while the free values a
- * quadratic fit amplifies are smooth along the fringe (they are errors of
- * the same projection, of second order). A quadratic fit through the
- * 15 and more points of one side of i is accepted up to this amplification.
- */
-constexpr double VolumeQuadraticAmplification = 12.0;
-
-/// The amplification a quadratic fit in `d` dimensions may have.
-double AmplificationBound(int d)
-{
-  return d == 3 ? VolumeQuadraticAmplification : QuadraticAmplification;
-}
-
-/**
- * The weights of `points` that give, at point i, the value of the
- * least-squares polynomial fit of degree `degree` through them (the
- * minimum-norm weights reproducing those polynomials at i), or empty when
- * the points do not allow a stable fit: when they do not spread well
- * (nearly on a line, a plane or a conic), or, quadratic, when the weights
- * amplify more than AmplificationBound. Degree 1 or 2: either
- * reproduces affine functions and sums to 1.
- */
-std::vector<double> FitWeights(
-  const MeshView& mesh, Index i, const std::vector<Index>& points, size_t keep, int degree)
-{
-  const int d = mesh.SpaceDimension;
-  const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
-  const double* xi = mesh.Point(i);
-  const Index m = static_cast<Index>(keep);
-  if (m < (degree == 1 ? terms : 3 * terms / 2))
-  {
-    return {};
-  }
-  double h = 0.0;
-  for (size_t r = 0; r < keep; ++r)
-  {
-    const Index k = points[r];
-    for (int a = 0; a < d; ++a)
-    {
-      h = std::max(h, std::abs(mesh.Point(k)[a] - xi[a]));
-    }
-  }
-  if (!(h > 0.0))
-  {
-    return {};
-  }
-  // Monomials of (x_k - x_i) / h: coordinates of order 1 about i; each
-  // point weighed by omega_k, larger near i (the fit is evaluated at i:
-  // near points tell most about it). The normal matrix G = sum_k omega_k
-  // v_k v_k^T (v_k the monomials at k) summed row by row, at most 10 x 10
-  // on the stack; the monomials made again for the weights rather than
-  // kept (no matrix of points x terms to allocate per fit).
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10>;
-  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>;
-  auto monomialsAt = [&](Index r, double& omega, SmallVector& v) {
-    double y[3];
-    double distance2 = 0.0;
-    for (int a = 0; a < d; ++a)
-    {
-      y[a] = (mesh.Point(points[static_cast<size_t>(r)])[a] - xi[a]) / h;
-      distance2 += y[a] * y[a];
-    }
-    omega = 1.0 / ((distance2 + 0.25) * (distance2 + 0.25));
-    Monomials(y, d, degree, v.data());
-  };
-  Small G = Small::Zero(terms, terms);
-  SmallVector v(terms);
-  double omegaSum = 0.0;
-  for (Index r = 0; r < m; ++r)
-  {
-    double omega;
-    monomialsAt(r, omega, v);
-    G.selfadjointView<Eigen::Lower>().rankUpdate(v, omega);
-    omegaSum += omega;
-  }
-  G = G.selfadjointView<Eigen::Lower>();
-  G /= omegaSum;
-  SmallVector e = SmallVector::Zero(terms);
-  e(0) = 1.0; // the fit's value at i (the origin of the coordinates)
-  // The weighted fit's value at i: w_k = omega_k v_k . G^-1 e / sum omega.
-  const SmallVector c = G.ldlt().solve(e);
-  std::vector<double> w(static_cast<size_t>(m));
-  double amplification = 0.0;
-  for (Index r = 0; r < m; ++r)
-  {
-    double omega;
-    monomialsAt(r, omega, v);
-    w[static_cast<size_t>(r)] = omega * v.dot(c) / omegaSum;
-    amplification += std::abs(w[static_cast<size_t>(r)]);
-  }
-  // (Not "> bound": a singular G gives NaN weights, rejected too.) Most
-  // one-sided quadratic fits stop here, before the spectrum's cost.
-  if (degree == 2 && !(amplification <= AmplificationBound(d)))
-  {
-    return {};
-  }
-  // Points nearly on a line or a plane (or a conic) do not determine the
-  // fit, whatever its weights (on a Gmsh wedge pair, quadratic fits
-  // accepted on their amplification alone gave 17 times the interior's
-  // error).
-  if (Eigen::SelfAdjointEigenSolver<Small>(G, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() <
-    (degree == 1 ? 1e-2 : 1e-4))
-  {
-    return {};
-  }
-  return w;
-}
-
 /**
  * How many times its number of terms a fit takes points first: twice, but
  * three times for a quadratic fit in 3D. Its 20 nearest points, all on one
@@ -187,6 +43,17 @@ size_t FirstPoints(int d, int degree)
 }
 
 /**
+ * The rings a quadratic fit is sought in: FringeRings in 2D or 1D
+ * coordinates (2D meshes, surfaces, curves); FringeVolumeRings in 3D,
+ * where one side of a point on an edge or a corner of the target holds the
+ * points of a quadratic fit only farther.
+ */
+int QuadraticRings(int d)
+{
+  return d == 3 ? FringeVolumeRings : FringeRings;
+}
+
+/**
  * The fit of `degree` through the nearest points of `points` (sorted by
  * their distance to i on return): the nearest FirstPoints x terms first,
  * then 4 x, then all, until one is stable. Few points keep P^T M P sparse
@@ -194,12 +61,15 @@ size_t FirstPoints(int d, int degree)
  * the ones used. `rejected`, when given, holds the sorted points of an earlier
  * call that found no fit: a set of nearest points it already tried is not
  * fitted again (the next ring's nearest points are often the same).
+ * `ambient` as FitWeights'.
  */
-std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>& points,
-  int degree, const std::vector<Index>* rejected = nullptr)
+std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, Index i,
+  std::vector<Index>& points, int degree, const std::vector<Index>* rejected = nullptr,
+  bool* ambient = nullptr)
 {
   const int d = mesh.SpaceDimension;
-  const int terms = degree == 1 ? d + 1 : (d + 1) * (d + 2) / 2;
+  const int f = frame.Dimension;
+  const int terms = degree == 1 ? f + 1 : (f + 1) * (f + 2) / 2;
   const double* xi = mesh.Point(i);
   std::vector<std::pair<double, Index>> byDistance;
   for (Index k : points)
@@ -227,15 +97,15 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
   {
     points[r] = byDistance[r].second;
   }
-  const size_t first = FirstPoints(d, degree) * static_cast<size_t>(terms);
-  for (const size_t keep : { first, size_t(4 * terms), points.size() })
+  const size_t firstKeep = FirstPoints(f, degree) * static_cast<size_t>(terms);
+  for (const size_t keep : { firstKeep, size_t(4 * terms), points.size() })
   {
     const size_t used = std::min(keep, points.size());
     const bool tried = rejected && used <= rejected->size() &&
       std::min(keep, rejected->size()) == used &&
       std::equal(points.begin(), points.begin() + used, rejected->begin());
     std::vector<double> w =
-      tried ? std::vector<double>() : FitWeights(mesh, i, points, used, degree);
+      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree, ambient);
     if (!w.empty())
     {
       points.resize(w.size());
@@ -250,16 +120,6 @@ std::vector<double> NearestFit(const MeshView& mesh, Index i, std::vector<Index>
 }
 
 /**
- * The rings a quadratic fit is sought in: FringeRings in 2D;
- * FringeVolumeRings in 3D, where one side of a point on an edge or a corner
- * of the target holds the 15 points of a quadratic fit only farther.
- */
-int QuadraticRings(int d)
-{
-  return d == 3 ? FringeVolumeRings : FringeRings;
-}
-
-/**
  * The ill-posed function i's stencil and weights: free points ring by ring,
  * a quadratic fit within QuadraticRings rings, else the affine fit of the
  * first ring that allows one, up to FringeSearchRings; none when no ring
@@ -270,11 +130,15 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   std::vector<Index>& points, std::vector<double>& weights)
 {
   const int corners = mesh.CornersPerCell();
-  const int quadraticRings = QuadraticRings(mesh.SpaceDimension);
+  const Index first = around.Start[static_cast<size_t>(i)];
+  const StencilFrame frame = StencilFrameOf(
+    mesh, i, around.Cells.data() + first, around.Start[static_cast<size_t>(i) + 1] - first);
+  const int quadraticRings = QuadraticRings(frame.Dimension);
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   std::vector<Index> affinePoints;
   std::vector<double> affine;
+  bool affineAmbient = false; // affine reproduces the ambient affine functions
   std::vector<Index> found;
   std::vector<Index> rejected; // the last ring's points, sorted: no quadratic fit
   points.clear();
@@ -318,17 +182,27 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     if (inner)
     {
       points = found;
-      weights = NearestFit(mesh, i, points, 2, &rejected);
+      weights = NearestFit(mesh, frame, i, points, 2, &rejected);
       if (!weights.empty())
       {
         return;
       }
       rejected = points;
     }
-    if (affine.empty())
+    // (On a curved surface or curve an affine fit that reproduces the
+    // tangent coordinates only, a fit through too few points for their
+    // normal ones too, gives way to one from a later inner ring that does.)
+    if (affine.empty() || (!affineAmbient && inner))
     {
-      affinePoints = found;
-      affine = NearestFit(mesh, i, affinePoints, 1);
+      std::vector<Index> candidates = found;
+      bool ambient = true;
+      std::vector<double> fit = NearestFit(mesh, frame, i, candidates, 1, nullptr, &ambient);
+      if (!fit.empty() && (affine.empty() || ambient))
+      {
+        affinePoints.swap(candidates);
+        affine.swap(fit);
+        affineAmbient = ambient;
+      }
     }
     if (!affine.empty() && !(inner && r + 1 < quadraticRings))
     {

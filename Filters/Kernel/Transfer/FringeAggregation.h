@@ -31,8 +31,9 @@
  * theirs), evaluated at i, ring by ring until the points allow a stable
  * fit: quadratic where its weights stay bounded (the extension's error is
  * then of third order, below the projection's second), else affine. The
- * quadratic fit is sought within FringeRings rings in 2D, FringeVolumeRings
- * in 3D (a point on an edge or a corner of the target, reaching out of the
+ * quadratic fit is sought within FringeRings rings in 2D or 1D
+ * coordinates (2D meshes, surfaces, curves), FringeVolumeRings in 3D (a
+ * point on an edge or a corner of the target, reaching out of the
  * source, finds the points of a quadratic fit only there; its affine fit
  * would extrapolate over a cell or two with an error of second order, many
  * times the interior's). A function with no quadratic fit takes the affine
@@ -40,6 +41,11 @@
  * within those rings (a corner of the target poking out of the source, its
  * free neighbours all on one face) seeks an affine one farther, up to
  * FringeSearchRings.
+ *
+ * On surfaces and curves the fit is in the tangent coordinates of i
+ * (FringeFrames.h), in 2D or 1D as on a 2D mesh: the extension reproduces
+ * the functions affine in those coordinates (ambient linear fields on a
+ * plane surface or a straight curve), and its rows still sum to 1.
  *
  * Every valid value is then a stable one: a function that finds no stable
  * fit even there is dropped to invalid when its support is covered less
@@ -59,7 +65,7 @@
 
 namespace mp
 {
-/// Per point of a volume mesh (triangles in the x-y plane in 2D, tetrahedra in 3D): int phi_i over its whole support.
+/// Per point of a mesh (triangles, tetrahedra, triangles of a surface, segments of a curve): int phi_i over its whole support.
 LargeVector<double> SupportIntegrals(const MeshView& mesh);
 
 /// The extension of a fringe: P (functions x functions) and which rows it aggregates.
@@ -74,7 +80,8 @@ struct FringeExtension
 
 /**
  * The rings around an ill-posed function (the points sharing a cell with
- * it, then theirs, ...) its stencil is sought in first, in 2D: a quadratic
+ * it, then theirs, ...) its stencil is sought in first, in 2D or 1D
+ * coordinates: a quadratic
  * fit through any of them, else the affine fit of the first ring that
  * allows one.
  */
@@ -123,7 +130,7 @@ constexpr double FringeStrandedDropFraction = 0.1;
 /**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
- * rings around it (FringeRings in 2D, FringeVolumeRings in 3D, then farther
+ * rings around it (FringeRings, FringeVolumeRings in 3D, then farther
  * up to FringeSearchRings for an affine fit). Those below `drop` are marked Dropped too. A function
  * with no stable fit stays free, Dropped (and Stranded) when below
  * FringeStrandedDropFraction. The

@@ -267,10 +267,10 @@ public:
   void ShareValidity(const SolverHooks& hooks);
 
   /**
-   * A well-posed fringe (FringeAggregation.h), P1 target functions of a
-   * volume mesh only: the valid functions whose covered fraction of their
-   * support is below `threshold` take the least-squares extension of well-covered
-   * ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
+   * A well-posed fringe (FringeAggregation.h), P1 target functions of
+   * any mesh (volumes, surfaces, curves, traces): the valid functions
+   * whose covered fraction of their support is below `threshold` take the
+   * least-squares extension of well-covered ones nearby; consistent Applies then solve P^T M_tt P u = P^T M_ts u_s.
    * After CompleteTargetMass (and ShareValidity): a distributed system
    * sums the covered and whole integrals over the parts (hooks.Exchange)
    * and, given its `halo` (the cells of the other parts within

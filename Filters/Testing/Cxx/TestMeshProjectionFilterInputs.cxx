@@ -33,15 +33,20 @@ struct Run
 {
   vtkNew<vtkMeshProjectionFilter> Filter;
   vtkNew<vtkTest::ErrorObserver> Observer;
-  Run(vtkUnstructuredGrid* target, vtkUnstructuredGrid* source)
+  Run(vtkUnstructuredGrid* target, vtkUnstructuredGrid* source,
+    const std::function<void(vtkMeshProjectionFilter*)>& setUp = nullptr)
   {
     this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Observer);
     this->Filter->AddObserver(vtkCommand::WarningEvent, this->Observer);
     this->Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Observer);
-    // The samples' integer label (warned about when projected).
+    // The samples' label array: left out, these cases are about other arrays.
     this->Filter->GetCellDataArraySelection()->DisableArray("Region");
     this->Filter->SetInputData(target);
     this->Filter->SetSourceData(source);
+    if (setUp)
+    {
+      setUp(this->Filter);
+    }
     this->Filter->Update();
   }
   vtkUnstructuredGrid* Output() { return this->Filter->GetUnstructuredGridOutput(); }
@@ -541,22 +546,38 @@ bool CheckNonNumericArrays(vtkUnstructuredGrid* source, vtkUnstructuredGrid* tar
   ones->SetNumberOfValues(typed->GetNumberOfPoints());
   ones->Fill(1);
   typed->GetPointData()->AddArray(ones);
-  Run run(target, typed);
-  MP_CHECK(run.WarningSays("Source point array 'Names' is not numeric (vtkStringArray): skipped."));
-  MP_CHECK(run.WarningSays("Source point array 'Ones' holds integers (vtkIntArray)"));
-  MP_CHECK(run.Output()->GetPointData()->GetAbstractArray("Names") == nullptr);
-  vtkDataArray* projected = run.Output()->GetPointData()->GetArray("Ones");
-  MP_CHECK(projected != nullptr);
-  for (vtkIdType i = 0; projected && i < projected->GetNumberOfTuples(); ++i)
+  // An integer array is a label array by default (its type kept, no
+  // warning); treated as numbers (CATEGORICAL_SELECTED, not named), a real
+  // array, with the warning.
+  for (const bool numbers : { false, true })
   {
-    MP_CHECK(std::fabs(projected->GetComponent(i, 0) - 1.0) < 1e-13);
+    Run run(target, typed, [numbers](vtkMeshProjectionFilter* f) {
+      f->SetCategoricalMode(numbers ? vtkMeshProjectionFilter::CATEGORICAL_SELECTED
+                                    : vtkMeshProjectionFilter::CATEGORICAL_AUTOMATIC);
+    });
+    MP_CHECK(
+      run.WarningSays("Source point array 'Names' is not numeric (vtkStringArray): skipped."));
+    MP_CHECK(run.WarningSays("Source point array 'Ones' holds integers (vtkIntArray)") == numbers);
+    MP_CHECK(run.Output()->GetPointData()->GetAbstractArray("Names") == nullptr);
+    vtkDataArray* projected = run.Output()->GetPointData()->GetArray("Ones");
+    MP_CHECK(projected != nullptr);
+    MP_CHECK(projected &&
+      (numbers ? vtkDoubleArray::SafeDownCast(projected) != nullptr
+               : vtkIntArray::SafeDownCast(projected) != nullptr));
+    for (vtkIdType i = 0; projected && i < projected->GetNumberOfTuples(); ++i)
+    {
+      MP_CHECK(std::fabs(projected->GetComponent(i, 0) - 1.0) < 1e-13);
+    }
   }
   return failures == 0;
 }
 
-/// Integer arrays (labels, ids) are projected as real values, with a
-/// warning naming each; vtkValidPointMask and vtkGhostType are not
-/// projected (nor warned about).
+/// Integer arrays (labels, ids) that the user treats as numbers
+/// (CATEGORICAL_SELECTED without naming them) are projected as real values,
+/// with a warning naming each; vtkValidPointMask and vtkGhostType are not
+/// projected (nor warned about). By default (CATEGORICAL_AUTOMATIC) the
+/// single-component ones are labels: no warning, their type kept, only
+/// Source labels; a two-component integer array stays numbers, warned.
 bool CheckIntegerArrays(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target)
 {
   int failures = 0;
@@ -588,12 +609,30 @@ bool CheckIntegerArrays(vtkUnstructuredGrid* source, vtkUnstructuredGrid* target
   labelled->GetPointData()->AddArray(pair);
   labelled->GetPointData()->AddArray(sourceMask);
   labelled->GetPointData()->AddArray(ghosts);
-  Run run(target, labelled);
+  Run asLabels(target, labelled);
+  MP_CHECK(!asLabels.Observer->GetError());
+  MP_CHECK(!asLabels.WarningSays("'Labels' holds integers"));
+  MP_CHECK(asLabels.WarningSays("Source point array 'Pair' holds integers (vtkShortArray)"));
+  vtkIntArray* label =
+    vtkIntArray::SafeDownCast(asLabels.Output()->GetPointData()->GetArray("Labels"));
+  MP_CHECK(label != nullptr);
+  vtkIdType threes = 0;
+  vtkIdType sevens = 0;
+  for (vtkIdType i = 0; label && i < label->GetNumberOfValues(); ++i)
+  {
+    threes += label->GetValue(i) == 3;
+    sevens += label->GetValue(i) == 7;
+  }
+  MP_CHECK(label && threes > 0 && sevens > 0 && threes + sevens == label->GetNumberOfValues());
+  Run run(target, labelled, [](vtkMeshProjectionFilter* f) {
+    f->SetCategoricalMode(vtkMeshProjectionFilter::CATEGORICAL_SELECTED);
+  });
   MP_CHECK(!run.Observer->GetError());
   MP_CHECK(run.WarningSays("Source point array 'Labels' holds integers (vtkIntArray): it is "
                            "projected as real values (a 0/1 indicator becomes a covered "
-                           "fraction, but labels and ids do not carry over: use Resample With "
-                           "Dataset for those, or deselect it)."));
+                           "fraction, but labels and ids do not carry over: set CategoricalMode "
+                           "to CATEGORICAL_AUTOMATIC, or name it in CategoricalArrays, to "
+                           "project it as labels, or deselect it)."));
   MP_CHECK(run.WarningSays("Source point array 'Pair' holds integers (vtkShortArray)"));
   const std::string warnings = run.Observer->GetWarningMessage();
   for (const char* quiet :

@@ -1,7 +1,9 @@
 """The fringe and extrapolation on several MPI processes (run under mpiexec
 with pvbatch --mpi --symmetric), on pairs that overlap in part (Gmsh's 2D
-triangles and 3D tetrahedra; jittered Kuhn tetrahedra with a corner poking
-out of the Source): Input split in blocks along x, Source at random.
+triangles, 3D tetrahedra and hexahedra; jittered Kuhn tetrahedra with a
+corner poking out of the Source; Gmsh sphere caps, straight polylines in
+3D, and a Gmsh sphere half out of a box, a trace): Input split in blocks
+along x, Source at random.
 
 Each process finds the fringe's stencils in the target's halo (the other
 processes' cells within FringeSearchRings (6) rings of its points), as the
@@ -10,7 +12,8 @@ every process, for its points:
  - the valid points' values equal the serial ones to 1e-10 of the field's
    range, and the valid mask is the serial one;
  - the worst error at a valid point within 5x the worst at interior points
-   (the interior measured by the serial run), the linear field exact;
+   (the interior measured by the serial run), the linear field exact
+   (but between the two facetizations of the caps);
  - the masks: vtkExtrapolatedPointMask exactly where not valid
    (Extrapolation 1), and every point then finite, within the range of
    the valid values (over all processes) and equal to the serial value
@@ -24,7 +27,7 @@ every process, for its points:
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdList
-from vtkmodules.vtkCommonDataModel import VTK_TETRA
+from vtkmodules.vtkCommonDataModel import VTK_LINE, VTK_TETRA
 from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
@@ -100,17 +103,40 @@ def kuhn(n):
     return meshes.grid(*meshes.tetrahedra(n, (0.0, 0.0, 0.0), (1.0, 1.0, 1.0), n), VTK_TETRA)
 
 
+def segment(t0, t1, n, seed):
+    """A straight polyline in 3D, its inner points jittered along it."""
+    t = np.linspace(t0, t1, n + 1)
+    t[1:-1] += np.random.default_rng(seed).uniform(-0.3, 0.3, n - 1) * (t1 - t0) / n
+    x = np.stack([0.2 + 0.6 * t, 0.1 + 0.3 * t, 0.4 - 0.5 * t], 1)
+    return meshes.grid(x, np.stack([np.arange(n), np.arange(1, n + 1)], 1), VTK_LINE)
+
+
 pairs = [
+    # (name, Input, Source, a linear field exact)
     ("2D triangles", grid(gmshmeshes.moved(gmshmeshes.planar(0.05), translate=(0.31, 0.17, 0))),
-     with_fields(grid(gmshmeshes.planar(0.065), False))),
+     with_fields(grid(gmshmeshes.planar(0.065), False)), True),
     ("3D tetrahedra", grid(gmshmeshes.moved(gmshmeshes.volume("box", 0.1), translate=(0.27, 0.13, 0.21))),
-     with_fields(grid(gmshmeshes.volume("box", 0.13), False))),
+     with_fields(grid(gmshmeshes.volume("box", 0.13), False)), True),
     # A corner whose points find stencils only beyond FringeRings rings:
     # the halo reaches FringeSearchRings rings.
     ("3D tetrahedra, corner", grid(gmshmeshes.moved(kuhn(10), translate=(-0.2, 0.33, 0.11))),
-     with_fields(grid(kuhn(8), False))),
+     with_fields(grid(kuhn(8), False)), True),
+    # Surfaces, curves and traces: stencils fitted in each point's tangent
+    # frame, from the cells around it in the halo. (Two facetizations of
+    # the sphere: a linear field is not exact between them.)
+    ("sphere caps", grid(gmshmeshes.moved(gmshmeshes.surface("cap", 0.08, 6), rotate_x=20)),
+     with_fields(grid(gmshmeshes.surface("cap", 0.1, 5), False)), False),
+    ("straight polylines", grid(segment(0.0, 1.0, 30, 1)), with_fields(grid(segment(0.37, 1.4, 23, 2), False)), True),
+    ("trace: a sphere half out of a box", grid(gmshmeshes.surface("sphere", 0.08)),
+     with_fields(grid(gmshmeshes.volume("box", 0.1), False)), True),
+    # Hexahedra without GlobalIds: each process splits its cells by its own
+    # point ids, as the serial run does (by ids made across the processes
+    # the cells on a border between parts were split otherwise: 0.35% of
+    # the range off).
+    ("3D hexahedra", grid(gmshmeshes.moved(gmshmeshes.hexahedra(0.1, False), translate=(0.27, -0.19, 0.13))),
+     with_fields(grid(gmshmeshes.hexahedra(0.13, False), False)), True),
 ]
-for name, target, source in pairs:
+for name, target, source, linear_exact in pairs:
     serial = run(meshprojection.vtkMeshProjectionFilter, target, source)
     x = vtk_to_numpy(serial.GetPoints().GetData())
     serial_valid = array(serial, "vtkValidPointMask").astype(bool)
@@ -143,7 +169,7 @@ for name, target, source in pairs:
         check(worst <= 5, "%s: fringe error %.2f x the interior's" % (name, worst))
         exact = linear(x[ids])
         lin = np.max(np.abs(array(out, "l") - exact)[valid], initial=0.0) / np.ptp(linear(x))
-        check(lin < 1e-8, "%s: linear exact (%.2g of its range)" % (name, lin))
+        check(lin < 1e-8 or not linear_exact, "%s: linear exact (%.2g of its range)" % (name, lin))
         check(np.array_equal(valid, serial_valid[ids]), "%s: valid mask as serial" % name)
         both_valid = valid & serial_valid[ids]
         scale = np.ptp(array(serial, "s")[serial_valid])

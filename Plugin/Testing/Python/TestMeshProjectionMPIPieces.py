@@ -18,7 +18,10 @@ silently (Adapter/PieceArrays.h states the rule):
    piece of one process: the same error on every process;
  - an empty Input piece, an Input piece without an array or with other
    components of it: the fields are projected on the others as in serial;
- - no Source on one process: the same error on every process.
+ - no Source on one process: the same error on every process;
+ - NaN values along the border of two Source pieces (no GlobalIds), inside
+   Input's bounds: the warning's counts of NaN values and left-out cells
+   are the serial ones, on every process.
 """
 
 import numpy as np
@@ -271,5 +274,33 @@ check(everywhere(len(errors) > 0), "no Source on one process: no error on some p
 first = errors[0].strip().split(" (on process")[0] if errors else ""
 check("No Source" in first, "no Source on one process: the error %r" % first)
 check(same_everywhere(first), "no Source on one process: errors differ")
+
+# 8. NaN values along the border of the Source pieces, the Source without
+# GlobalIds (its border points on two pieces), Input in slabs too (each
+# process gathers other Source cells): the NaN warning's counts of values
+# and cells are the serial ones, the same on every process (each point and
+# cell counted once over the processes).
+def nan_warnings(warnings):
+    return sorted(w.split("): ", 1)[-1].split(": the ")[0] + " / " + w.split(": the ")[1].split(" Source")[0]
+                  for w in warnings if "NaN or infinite values" in w)
+
+
+striped = copy(whole)
+striped.GetPointData().RemoveArray("GlobalIds")
+border = lo + (hi - lo) * max(bad, 1) / size  # a border between two pieces
+# (Inside Input's bounds: a Source cell away from every part of Input is
+# gathered by no process, and its NaN values are not counted there.)
+band = (x[:, 1] > 0.1) & (x[:, 1] < 0.9)
+vtk_to_numpy(striped.GetPointData().GetArray("f"))[(np.abs(x[:, 0] - border) < 0.09) & band] = np.nan
+cy = meshes.triangle_centres(whole)[:, 1]
+vtk_to_numpy(striped.GetCellData().GetArray("c"))[(np.abs(cx - border) < 0.05) & (cy > 0.1) & (cy < 0.9)] = np.nan
+_, serial_warnings, _ = run(meshprojection.vtkMeshProjectionFilter, target, striped)
+tx = meshes.triangle_centres(target)[:, 0]
+slabs = meshes.extract(target, np.minimum((tx * size).astype(int), size - 1) == rank)
+_, warnings, errors = run(meshprojection.vtkPMeshProjectionFilter, slabs, meshes.extract(striped, mine))
+said, expected = nan_warnings(warnings), nan_warnings(serial_warnings)
+check(len(expected) == 2, "NaN counts: the serial run's warnings %s" % serial_warnings)
+check(said == expected, "NaN counts: %s, serial %s" % (said, expected))
+check(same_everywhere(" ".join(said)), "NaN counts: the warnings differ between processes")
 
 check.finish("%d processes, spoiled pieces" % size)

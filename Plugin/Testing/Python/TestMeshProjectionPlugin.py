@@ -35,8 +35,15 @@ check(set(projection.ListProperties()) == {
     "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "KeepMatrices", "PointDataArrayInfo", "CellDataArrayInfo",
     "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "Extrapolation", "FringeThreshold",
-    "NormalOrientation"},
+    "NormalOrientation", "TangentArrays", "DensityArray", "MassWeightedArrays",
+    "CategoricalMode", "CategoricalArrays", "LabelFractions", "FillLabel"},
       "properties %r" % projection.ListProperties())
+check(len(projection.TangentArrays) == 0, "TangentArrays default: none")
+check(projection.DensityArray == "None" and len(projection.MassWeightedArrays) == 0,
+      "mass weighting off by default (%r, %r)" % (projection.DensityArray, projection.MassWeightedArrays))
+check(projection.CategoricalMode == "Integer Arrays" and list(projection.CategoricalArrays) == [] and
+      projection.LabelFractions == 0 and projection.FillLabel == -1,
+      "label defaults %r %r" % (projection.CategoricalMode, list(projection.CategoricalArrays)))
 check(projection.SurfaceReach == 0.5 and projection.MaximumNormalAngle == 45 and
       projection.ConserveSourceIntegral == 0 and projection.NormalOrientation == "Same", "surface defaults")
 check(projection.PointDataTarget == "Points" and projection.CellDataTarget == "Cells",
@@ -92,9 +99,33 @@ projection.SearchMethod = "Advancing Front"
 projection.UpdatePipeline()
 chosen = servermanager.Fetch(projection)
 region = chosen.GetCellData().GetArray("Region")
-check(region is not None and -1e-13 <= region.GetRange()[0] and region.GetRange()[1] <= 2 + 1e-13,
-      "the Region labels (0, 1, 2) projected to cells as means in [0, 2]: %r"
+covered = chosen.GetCellData().GetArray("vtkValidCellMask")
+values = {(int(region.GetValue(i)), covered.GetValue(i)) for i in range(region.GetNumberOfTuples())} \
+    if region else set()
+check(region is not None and region.GetClassName() in ("vtkIntArray", "vtkTypeInt32Array") and
+      {v for v, c in values if c} <= {0, 1, 2} and {v for v, c in values if not c} <= {-1},
+      "the Region labels (0, 1, 2) projected to cells as labels, integers: %r %r"
+      % (region.GetClassName() if region else None, sorted(values)))
+projection.CategoricalMode = "Selected Arrays"
+projection.UpdatePipeline()
+region = servermanager.Fetch(projection).GetCellData().GetArray("Region")
+check(region is not None and region.GetClassName() == "vtkDoubleArray" and
+      -1e-13 <= region.GetRange()[0] and region.GetRange()[1] <= 2 + 1e-13,
+      "Selected Arrays, Region not checked: projected as numbers, means in [0, 2]: %r"
       % (region.GetRange() if region else None,))
+projection.CategoricalArrays = ["Region"]
+projection.LabelFractions = 1
+projection.UpdatePipeline()
+fetched = servermanager.Fetch(projection)
+region = fetched.GetCellData().GetArray("Region")
+fractions = fetched.GetCellData().GetArray("Region_Fractions")
+check(region is not None and region.GetClassName() in ("vtkIntArray", "vtkTypeInt32Array") and
+      fractions is not None and fractions.GetNumberOfComponents() == 3 and
+      [fractions.GetComponentName(k) for k in range(3)] == ["0", "1", "2"],
+      "Selected Arrays, Region checked: labels with their fractions")
+projection.CategoricalMode = "Integer Arrays"
+projection.CategoricalArrays = []
+projection.LabelFractions = 0
 projection.PointDataArrays = ["Smooth"]
 projection.CellDataArrays = []
 projection.UpdatePipeline()

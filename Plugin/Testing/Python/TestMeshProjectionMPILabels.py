@@ -1,0 +1,104 @@
+"""vtkPMeshProjectionFilter on several MPI processes (run under mpiexec with
+pvbatch --mpi --symmetric): label arrays (Filters/Projection/Labels.h) give
+the serial result.
+
+Source: jittered triangles reaching beyond Input on two sides, with a cell
+label MaterialId (int: three regions crossing the cells, and a label 9 on
+Source cells that no part of Input reaches) and a point label NodeTag
+(short); both go to points and cells, with their fractions. Each process
+has a random part of Input and another of Source. Checked on every
+process, by original ids: the labels equal the serial ones exactly, in the
+Source arrays' types; the fractions' components are the serial ones (label
+9 too: the labels are the whole Source's, not only those gathered) and
+their values the serial ones to 1e-12; the masks equal the serial ones.
+"""
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import VTK_INT, VTK_SHORT
+from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE
+
+from mpsupport import meshes, mpi
+
+controller, made_here = mpi.start()
+rank = controller.GetLocalProcessId()
+size = controller.GetNumberOfProcesses()
+
+import meshprojection  # noqa: E402  (after MPI is up)
+
+check = mpi.Checks(controller, made_here)
+
+
+def with_labels(g):
+    c = meshes.triangle_centres(g)
+    material = np.where((c[:, 0] - 0.55) ** 2 + (c[:, 1] - 0.6) ** 2 < 0.08, 3,
+                        np.where(c[:, 1] < 0.3 + 0.25 * c[:, 0], 0, 7))
+    material[(c[:, 0] < -0.06) & (c[:, 1] > 1.1)] = 9  # beyond Input: never gathered
+    a = numpy_to_vtk(material.astype(np.int32), deep=True, array_type=VTK_INT)
+    a.SetName("MaterialId")
+    g.GetCellData().AddArray(a)
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    tag = 1 + (x[:, 0] > 0.42) + 2 * (x[:, 1] > 0.5 - 0.3 * x[:, 0])
+    t = numpy_to_vtk(tag.astype(np.int16), deep=True, array_type=VTK_SHORT)
+    t.SetName("NodeTag")
+    g.GetPointData().AddArray(t)
+    return g
+
+
+def run(filter_class, target, source):
+    f = filter_class()
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetCacheOperator(False)
+    f.SetLabelFractions(True)
+    f.SetPointDataTarget(f.TO_POINTS_AND_CELLS)
+    f.SetCellDataTarget(f.TO_POINTS_AND_CELLS)
+    f.Update()
+    return f
+
+
+target = mpi.numbered(meshes.grid(*meshes.triangles(23, (0, 0, 0), (1, 1, 0), 1), VTK_TRIANGLE))
+source = with_labels(meshes.grid(*meshes.triangles(19, (-0.13, 0.07, 0), (0.91, 1.2, 0), 2),
+                                 VTK_TRIANGLE))
+serial = run(meshprojection.vtkMeshProjectionFilter, target, source).GetOutput()
+
+rng = np.random.default_rng(11)
+lt = meshes.extract(target, rng.integers(0, size, target.GetNumberOfCells()) == rank)
+keep = np.random.default_rng(12).integers(0, size, source.GetNumberOfCells()) == rank
+out = run(meshprojection.vtkPMeshProjectionFilter, lt, meshes.extract(source, keep)).GetOutput()
+
+compared = 0
+for assoc, mask in (("point", "vtkValidPointMask"), ("cell", "vtkValidCellMask")):
+    ld = out.GetPointData() if assoc == "point" else out.GetCellData()
+    sd = serial.GetPointData() if assoc == "point" else serial.GetCellData()
+    if ld.GetNumberOfTuples() == 0:
+        continue
+    ids = vtk_to_numpy(ld.GetArray("origId"))
+    check(np.array_equal(vtk_to_numpy(sd.GetArray(mask))[ids], vtk_to_numpy(ld.GetArray(mask))),
+          "%s masks differ from serial" % assoc)
+    for name, kind in (("MaterialId", VTK_INT), ("NodeTag", VTK_SHORT)):
+        la, sa = ld.GetArray(name), sd.GetArray(name)
+        if la is None or sa is None:
+            check(False, "%s %s missing (parallel %s, serial %s)" % (assoc, name, la, sa))
+            continue
+        check(la.GetDataType() == kind, "%s %s keeps its type (%s)" % (assoc, name, la.GetClassName()))
+        lv, sv = vtk_to_numpy(la), vtk_to_numpy(sa)[ids]
+        check(np.array_equal(lv, sv), "%s %s: %d labels differ from serial"
+              % (assoc, name, np.count_nonzero(lv != sv)))
+        lf, sf = ld.GetArray(name + "_Fractions"), sd.GetArray(name + "_Fractions")
+        components = [lf.GetComponentName(k) for k in range(lf.GetNumberOfComponents())]
+        serial_components = [sf.GetComponentName(k) for k in range(sf.GetNumberOfComponents())]
+        check(components == serial_components, "%s %s fractions' components %s, serial %s"
+              % (assoc, name, components, serial_components))
+        if components == serial_components:
+            a, b = vtk_to_numpy(lf), vtk_to_numpy(sf)[ids]
+            both = np.isfinite(b)
+            err = float(np.max(np.abs(a[both] - b[both]))) if both.any() else 0.0
+            check(np.array_equal(np.isfinite(a), both) and err <= 1e-12,
+                  "%s %s fractions differ from serial by %.3g" % (assoc, name, err))
+        compared += len(lv)
+check("9" in [serial.GetCellData().GetArray("MaterialId_Fractions").GetComponentName(k) for k in range(4)],
+      "the serial fractions list label 9")
+check(compared > 0 or out.GetNumberOfCells() == 0, "labels compared")
+
+check.finish("%d processes, labels" % size)
