@@ -5,7 +5,8 @@
 // at the aggregated points from the free values, its aggregated rows sum to
 // 1 and read free functions only, P^T M P is the dense product, and the
 // support integrals add up to the mesh's measure; the search beyond
-// FringeRings and the drop of functions with no stencil.
+// FringeRings and the drop of functions with no stencil; in 3D, quadratic
+// fits with bounded weights where the rings allow them.
 #include "Transfer/FringeAggregation.h"
 
 #include "GeneratedMeshes.h"
@@ -148,6 +149,43 @@ TEST(FringeAggregation, ReproducesAffineFunctionsIn3D)
     const Fringe f = FringeOf(m, 0.7, 0.9, tasks);
     ExpectAffineExtension(m, f, tasks == 1 ? "3D" : "3D, 3 tasks");
   }
+}
+
+TEST(FringeAggregation, QuadraticWhereBoundedIn3D)
+{
+  // Most points beyond the line find, within FringeVolumeRings rings, a
+  // quadratic fit whose weights stay bounded: their rows reproduce a
+  // quadratic field, with sum |w| at most 12; the others an affine one
+  // (ReproducesAffineFunctionsIn3D).
+  const TestMesh m = mptest::CubeMesh(8, 7, 8, 0.2, 4);
+  const Fringe f = FringeOf(m, 0.7, 0.95, 1);
+  const mp::MeshView view = m.View(false);
+  const mp::FringeExtension& e = f.Extension;
+  auto quadratic = [](const double* x) {
+    return 0.5 + x[0] * x[0] - 1.3 * x[0] * x[1] + 0.7 * x[1] * x[2] + 2.1 * x[2] * x[2] - x[1];
+  };
+  Index reproduced = 0;
+  for (Index i = 0; i < view.NumberOfPoints; ++i)
+  {
+    if (!e.Aggregated[i])
+    {
+      continue;
+    }
+    double value = 0.0;
+    double amplification = 0.0;
+    for (Index q = e.P.RowStart[i]; q < e.P.RowStart[i + 1]; ++q)
+    {
+      value += e.P.Values[q] * quadratic(view.Point(e.P.ColumnIndex[q]));
+      amplification += std::abs(e.P.Values[q]);
+    }
+    if (std::abs(value - quadratic(view.Point(i))) < 1e-10)
+    {
+      ++reproduced;
+      EXPECT_LE(amplification, 12.0 + 1e-12) << "point " << i;
+    }
+  }
+  EXPECT_GT(e.Count, 20);
+  EXPECT_GT(reproduced, e.Count / 2) << reproduced << " of " << e.Count;
 }
 
 // On surfaces and curves the stencils are fitted in the tangent frame of

@@ -32,11 +32,33 @@ struct CellsAroundPoints
 };
 
 /**
+ * How many times its number of terms a fit takes points first: twice, but
+ * three times for a quadratic fit in 3D. Its 20 nearest points, all on one
+ * side of i, give weights that carry the free values' errors several times
+ * over; half as many more average them out.
+ */
+size_t FirstPoints(int d, int degree)
+{
+  return d == 3 && degree == 2 ? 3 : 2;
+}
+
+/**
+ * The rings a quadratic fit is sought in: FringeRings in 2D or 1D
+ * coordinates (2D meshes, surfaces, curves); FringeVolumeRings in 3D,
+ * where one side of a point on an edge or a corner of the target holds the
+ * points of a quadratic fit only farther.
+ */
+int QuadraticRings(int d)
+{
+  return d == 3 ? FringeVolumeRings : FringeRings;
+}
+
+/**
  * The fit of `degree` through the nearest points of `points` (sorted by
- * their distance to i on return): the nearest 2 x terms first, then 4 x,
- * then all, until one is stable. Few points keep P^T M P sparse (an
- * aggregated function couples all of its stencil); `points` is cut to the
- * ones used. `rejected`, when given, holds the sorted points of an earlier
+ * their distance to i on return): the nearest FirstPoints x terms first,
+ * then 4 x, then all, until one is stable. Few points keep P^T M P sparse
+ * (an aggregated function couples all of its stencil); `points` is cut to
+ * the ones used. `rejected`, when given, holds the sorted points of an earlier
  * call that found no fit: a set of nearest points it already tried is not
  * fitted again (the next ring's nearest points are often the same).
  * `ambient` as FitWeights'.
@@ -75,7 +97,8 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
   {
     points[r] = byDistance[r].second;
   }
-  for (const size_t keep : { size_t(2 * terms), size_t(4 * terms), points.size() })
+  const size_t firstKeep = FirstPoints(f, degree) * static_cast<size_t>(terms);
+  for (const size_t keep : { firstKeep, size_t(4 * terms), points.size() })
   {
     const size_t used = std::min(keep, points.size());
     const bool tried = rejected && used <= rejected->size() &&
@@ -98,9 +121,9 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
 
 /**
  * The ill-posed function i's stencil and weights: free points ring by ring,
- * a quadratic (in 2D or 1D coordinates: 2D meshes, surfaces, curves) or
- * affine fit within FringeRings rings, else an affine one farther, up to
- * FringeSearchRings; none when no ring allows one.
+ * a quadratic fit within QuadraticRings rings, else the affine fit of the
+ * first ring that allows one, up to FringeSearchRings; none when no ring
+ * allows one.
  */
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
@@ -110,7 +133,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const Index first = around.Start[static_cast<size_t>(i)];
   const StencilFrame frame = StencilFrameOf(
     mesh, i, around.Cells.data() + first, around.Start[static_cast<size_t>(i) + 1] - first);
-  const bool quadratic = frame.Dimension <= 2;
+  const int quadraticRings = QuadraticRings(frame.Dimension);
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   std::vector<Index> affinePoints;
@@ -154,12 +177,9 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     }
     // A quadratic fit where the rings so far allow one (its extrapolation
     // error is of third order), else an affine one from the first ring
-    // that allows it. In 3D a quadratic fit through points on one side of
-    // i nearly never keeps its weights within QuadraticAmplification: the
-    // affine fit of the first ring that allows one, without walking on.
-    // Beyond FringeRings only the affine fit is sought.
-    const bool inner = r < FringeRings;
-    if (quadratic && inner)
+    // that allows it. Beyond QuadraticRings only the affine fit is sought.
+    const bool inner = r < quadraticRings;
+    if (inner)
     {
       points = found;
       weights = NearestFit(mesh, frame, i, points, 2, &rejected);
@@ -184,7 +204,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
         affineAmbient = ambient;
       }
     }
-    if (!affine.empty() && !(quadratic && inner && r + 1 < FringeRings))
+    if (!affine.empty() && !(inner && r + 1 < quadraticRings))
     {
       break;
     }

@@ -29,12 +29,18 @@
  * The weights are those of a weighted least-squares fit through the free
  * points of the rings around i (the points sharing a cell with i, then
  * theirs), evaluated at i, ring by ring until the points allow a stable
- * fit: in 2D quadratic where its weights stay bounded (the extension's
- * error is then of third order, below the projection's second), else
- * affine; in 3D affine (one-sided quadratic fits nearly never stay
- * bounded there). A function with no stable fit within FringeRings rings
- * (a corner of the target poking out of the source, its free neighbours
- * all on one face) seeks an affine one farther, up to FringeSearchRings.
+ * fit: quadratic where its weights stay bounded (the extension's error is
+ * then of third order, below the projection's second), else affine. The
+ * quadratic fit is sought within FringeRings rings in 2D or 1D
+ * coordinates (2D meshes, surfaces, curves), FringeVolumeRings in 3D (a
+ * point on an edge or a corner of the target, reaching out of the
+ * source, finds the points of a quadratic fit only there; its affine fit
+ * would extrapolate over a cell or two with an error of second order, many
+ * times the interior's). A function with no quadratic fit takes the affine
+ * one of the first ring that allows one; a function with no stable fit
+ * within those rings (a corner of the target poking out of the source, its
+ * free neighbours all on one face) seeks an affine one farther, up to
+ * FringeSearchRings.
  *
  * On surfaces and curves the fit is in the tangent coordinates of i
  * (FringeFrames.h), in 2D or 1D as on a 2D mesh: the extension reproduces
@@ -74,11 +80,18 @@ struct FringeExtension
 
 /**
  * The rings around an ill-posed function (the points sharing a cell with
- * it, then theirs, ...) its stencil is sought in first: in 2D a quadratic
+ * it, then theirs, ...) its stencil is sought in first, in 2D or 1D
+ * coordinates: a quadratic
  * fit through any of them, else the affine fit of the first ring that
  * allows one.
  */
 constexpr int FringeRings = 3;
+
+/**
+ * The same in 3D: a quadratic fit is sought up to this ring. Within
+ * FringeSearchRings, so that the halo of a distributed target holds them.
+ */
+constexpr int FringeVolumeRings = 5;
 
 /**
  * The farthest ring an affine stencil is sought in when the first
@@ -117,8 +130,8 @@ constexpr double FringeStrandedDropFraction = 0.1;
 /**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
- * rings around it (FringeRings, then farther up to FringeSearchRings for
- * an affine fit). Those below `drop` are marked Dropped too. A function
+ * rings around it (FringeRings, FringeVolumeRings in 3D, then farther
+ * up to FringeSearchRings for an affine fit). Those below `drop` are marked Dropped too. A function
  * with no stable fit stays free, Dropped (and Stranded) when below
  * FringeStrandedDropFraction. The
  * stencils are fitted in `runner`'s tasks (the same whatever their number).

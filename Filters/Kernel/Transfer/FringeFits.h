@@ -44,12 +44,29 @@ namespace mp
 constexpr double QuadraticAmplification = 8.0;
 
 /**
+ * The same bound for a quadratic fit in 3D coordinates (volume meshes). A
+ * corner of a volume target reaching out of the source is extrapolated
+ * along up to three directions at once: the affine fit's error there (its
+ * weights times the squared distances, a cell and two away) is many times
+ * the interior's, while the free values a quadratic fit amplifies are
+ * smooth along the fringe (they are errors of the same projection, of
+ * second order).
+ */
+constexpr double VolumeQuadraticAmplification = 12.0;
+
+/// The amplification a quadratic fit in `d` coordinates may have.
+inline double QuadraticAmplificationIn(int d)
+{
+  return d == 3 ? VolumeQuadraticAmplification : QuadraticAmplification;
+}
+
+/**
  * The weights of points[0 .. keep) that give, at point i, the value of the
  * least-squares polynomial fit of degree `degree` (1 or 2) through them in
  * i's `frame` (the minimum-norm weights reproducing those polynomials at
  * i), or empty when the points do not allow a stable fit: when they do
  * not spread well (nearly on a line, a plane or a conic), or, quadratic,
- * when the weights amplify more than QuadraticAmplification. Either degree
+ * when the weights amplify more than QuadraticAmplificationIn(d). Either degree
  * reproduces the affine functions of the frame's coordinates and sums to 1;
  * `ambient`, when given, says whether the weights also reproduce the
  * ambient affine functions (always on volume meshes and flat stencils; on

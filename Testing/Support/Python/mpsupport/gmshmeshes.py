@@ -282,3 +282,94 @@ def hexahedra(h, structured=True):
         x, cells = _generate("hexahedra", 3, build, h, options)
         _cache[key] = _grid(x, np.asarray(cells, dtype=np.int64), VTK_HEXAHEDRON)
     return _cache[key]
+
+
+# Gmsh element type -> (VTK cell type, VTK node i is Gmsh node order[i]);
+# a prism's base triangle turns towards its top in Gmsh, away in VTK.
+_GMSH_TO_VTK = {2: (5, [0, 1, 2]), 3: (9, [0, 1, 2, 3]), 4: (10, [0, 1, 2, 3]),
+                5: (12, list(range(8))), 6: (13, [0, 2, 1, 3, 5, 4]), 7: (14, list(range(5)))}
+
+
+def _mixed_grid(name, dim, build, h):
+    """vtkUnstructuredGrid of every element of dimension `dim` that Gmsh
+    makes on what `build()` adds (it sets its own meshing constraints),
+    with size `h`, of any linear type, in Gmsh's order."""
+    import gmsh
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add(name)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        build()
+        gmsh.model.mesh.generate(dim)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        index = {int(t): i for i, t in enumerate(tags)}
+        x = np.asarray(coords).reshape(-1, 3)
+        cells = []
+        for etype, _, enodes in zip(*gmsh.model.mesh.getElements(dim)):
+            vtk_type, order = _GMSH_TO_VTK[int(etype)]
+            block = np.asarray(enodes, dtype=np.int64).reshape(-1, len(order))[:, order]
+            cells.extend((vtk_type, [index[int(t)] for t in c]) for c in block)
+    finally:
+        gmsh.finalize()
+    used = np.unique(np.concatenate([c for _, c in cells]))
+    renumber = np.full(len(x), -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(x[used]), deep=True))
+    grid = vtkUnstructuredGrid()
+    grid.SetPoints(points)
+    grid.Allocate(len(cells))
+    for vtk_type, c in cells:
+        grid.InsertNextCell(vtk_type, len(c), [int(renumber[k]) for k in c])
+    return grid
+
+
+def planar_mixed(h):
+    """The unit square in the plane z = 0 meshed by Gmsh with size `h`:
+    triangles for x < 0.5, quads (recombined) for x > 0.5, a
+    vtkUnstructuredGrid of both."""
+    key = ("planar_mixed", h)
+    if key not in _cache:
+        def build():
+            import gmsh
+            occ = gmsh.model.occ
+            occ.addRectangle(0, 0, 0, 0.5, 1, 1)
+            occ.addRectangle(0.5, 0, 0, 0.5, 1, 2)
+            occ.fragment([(2, 1)], [(2, 2)])
+            occ.synchronize()
+            for _, s in gmsh.model.getEntities(2):
+                if occ.getCenterOfMass(2, s)[0] > 0.5:
+                    gmsh.model.mesh.setRecombine(2, s)
+        _cache[key] = _mixed_grid("planar_mixed", 2, build, h)
+    return _cache[key]
+
+
+def pyramids(h):
+    """Gmsh's unstructured hexahedra of size `h` (hexahedra(h, False)), each
+    cut into six pyramids about its centroid (Gmsh makes pyramids only to
+    close quads against tetrahedra): a vtkUnstructuredGrid of pyramids."""
+    key = ("pyramids", h)
+    if key not in _cache:
+        from vtkmodules.vtkCommonDataModel import VTK_PYRAMID
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        hexes = hexahedra(h, structured=False)
+        x = vtk_to_numpy(hexes.GetPoints().GetData())
+        corners = vtk_to_numpy(hexes.GetCells().GetConnectivityArray()).reshape(-1, 8)
+        apex = len(x) + np.arange(len(corners))
+        x = np.vstack([x, x[corners].mean(axis=1)])
+        # VTK's hexahedron's faces, each turning towards the centroid (a
+        # pyramid's base turns towards its apex).
+        faces = [(0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7), (0, 3, 2, 1), (4, 5, 6, 7)]
+        cells = np.concatenate([np.column_stack([corners[:, f], apex]) for f in faces])
+        base = x[cells[:, :4]]
+        normal = np.cross(base[:, 2] - base[:, 0], base[:, 3] - base[:, 1])
+        away = np.einsum("ij,ij->i", normal, x[cells[:, 4]] - base.mean(axis=1)) < 0
+        cells[away] = cells[away][:, [0, 3, 2, 1, 4]]
+        _cache[key] = _grid(x, cells, VTK_PYRAMID)
+    return _cache[key]

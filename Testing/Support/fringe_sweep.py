@@ -1,0 +1,201 @@
+"""The fringe on Gmsh pairs that overlap in part: a table per pair and shift.
+
+    PYTHONPATH=BUILD/lib/python3/dist-packages /usr/bin/python3 Testing/Support/fringe_sweep.py [FILTER]
+
+Input is a Gmsh mesh of the unit square or cube moved by a shift, the
+Source another (finer or coarser) of the same domain; FILTER keeps the pairs
+whose name contains it. Per pair, with the default settings, on the smooth
+field sin(2x)cos(3y)+z^2 as point data (s) and as cell data to points (c):
+
+  s, c      worst error at a valid point / worst at interior points (every
+            cell around the point fully covered: Python.Fringe's interior)
+  s1, c1    the same over interior points at least one ring from the fringe
+            (every cell around the point's neighbours fully covered too)
+  linear    worst error of 1 + 2x - 3y + 0.5z at a valid point / its range
+  >10%      points whose support is covered 10% or more left invalid
+  sliver    the "valid through slivers only" warning fired
+  worst     the point of the worst s: its covered fraction, whether it is
+            aggregated (A), free (F), and its distance to the covered part in
+            cells (rings to a fully covered cell)
+
+The mixed pairs use Testing/Data/Gmsh's meshes (mixed_box: hexahedra,
+wedges, tetrahedra and pyramids): Gmsh 4.8 (python3-gmsh) often aborts in
+an Eigen assertion making such meshes, and what it makes depends on what
+it meshed before in the process. Each kind of pair runs in a child
+process, tried again up to three times, so that such an abort loses only
+its rows (said in a line).
+"""
+import os
+import sys
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.vtkFiltersCore import vtkCellCenters
+
+from meshprojection import fringe_extension, operator_matrices
+from mpsupport import gmshmeshes
+from mpsupport.testing import mortar, observed_filter
+
+SHIFTS_3D = [(0.27, 0.13, 0.21), (-0.33, 0.41, 0.07), (-0.2, 0.33, 0.11), (0.17, 0.29, 0.07), (0.27, -0.19, 0.13)]
+SHIFTS_2D = [(0.31, 0.17, 0), (-0.2, 0.33, 0), (0.17, 0.29, 0), (0.27, -0.19, 0), (0.4, 0.1, 0)]
+
+
+def smooth(x):
+    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
+
+
+def linear(x):
+    return 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]
+
+
+def with_fields(mesh):
+    g = mesh.NewInstance()
+    g.DeepCopy(mesh)
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    for name, f in (("s", smooth), ("l", linear)):
+        a = numpy_to_vtk(f(x), deep=True)
+        a.SetName(name)
+        g.GetPointData().AddArray(a)
+    centres = vtkCellCenters()
+    centres.SetInputData(g)
+    centres.Update()
+    a = numpy_to_vtk(smooth(vtk_to_numpy(centres.GetOutput().GetPoints().GetData())), deep=True)
+    a.SetName("c")
+    g.GetCellData().AddArray(a)
+    return g
+
+
+def stored(name):
+    """A mesh of Testing/Data/Gmsh (the mixed one: Gmsh 4.8 aborts making it)."""
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Data", "Gmsh", name + ".vtu"))
+    reader.Update()
+    return reader.GetOutput()
+
+
+def kinds():
+    """(name, make(h), Input's h, Source's h, shifts) of every kind of pair
+    (for the stored meshes, h is the file's name)."""
+    g = gmshmeshes
+    three = [
+        ("tets", lambda h: g.volume("box", h), 0.08, 0.104),
+        ("tets coarse Input", lambda h: g.volume("box", h), 0.104, 0.08),
+        ("wedges", g.wedges, 0.08, 0.104),
+        ("wedges coarse Input", g.wedges, 0.104, 0.08),
+        ("pyramids", g.pyramids, 0.15, 0.195),
+        ("pyramids coarse Input", g.pyramids, 0.195, 0.15),
+        ("hexes", lambda h: g.hexahedra(h), 0.08, 0.1),
+        ("hexes coarse Input", lambda h: g.hexahedra(h), 0.1, 0.0714),
+        ("hexes unstructured", lambda h: g.hexahedra(h, structured=False), 0.15, 0.195),
+        ("mixed", stored, "mixed_box", "mixed_box"),
+        ("mixed, hexahedra Source", stored, "mixed_box", "hexes_box"),
+        ("tets Input, mixed Source", stored, "tets_box", "mixed_box"),
+    ]
+    two = [
+        ("2D triangles", lambda h: g.planar(h), 0.05, 0.065),
+        ("2D quads", lambda h: g.planar(h, quads=True), 0.05, 0.065),
+        ("2D quads coarse Input", lambda h: g.planar(h, quads=True), 0.065, 0.05),
+        ("2D mixed", g.planar_mixed, 0.05, 0.065),
+        ("2D disk Source", None, 0.05, 0.065),
+    ]
+    return [k + (SHIFTS_3D,) for k in three] + [k + (SHIFTS_2D,) for k in two]
+
+
+def neighbours(out):
+    """Per point, the cells around it and the points sharing a cell with it."""
+    ids = vtkIdList()
+    cells = []
+    for p in range(out.GetNumberOfPoints()):
+        out.GetPointCells(p, ids)
+        cells.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+    corners = [[out.GetCell(c).GetPointId(k) for k in range(out.GetCell(c).GetNumberOfPoints())]
+               for c in range(out.GetNumberOfCells())]
+    points = [sorted({q for c in around for q in corners[c]}) for around in cells]
+    return cells, points
+
+
+def measure(target, source, around, near, whole):
+    f, texts = observed_filter("WarningEvent")
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetOutputIntersections(False)
+    f.SetCellDataTarget(1)
+    f.SetCacheOperator(True)
+    f.Update()
+    out = f.GetOutput()
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    pd, cd = out.GetPointData(), out.GetCellData()
+    valid = vtk_to_numpy(pd.GetArray("vtkValidPointMask")).astype(bool)
+    cover = vtk_to_numpy(cd.GetArray("CoveredFraction"))
+    full = np.array([min(cover[c] for c in cells) > 1 - 1e-9 for cells in around])
+    interior = valid & full
+    deep = interior & np.array([all(full[q] for q in ring) for ring in near])
+    row = {}
+    for name in ("s", "c"):
+        error = np.abs(vtk_to_numpy(pd.GetArray(name)) - smooth(x))
+        row[name] = np.max(error[valid]) / np.max(error[interior])
+        row[name + "1"] = np.max(error[valid]) / np.max(error[deep]) if deep.any() else np.nan
+        if name == "s":
+            worst = int(np.argmax(np.where(valid, error, -1)))
+    exact = linear(x)
+    row["linear"] = np.max(np.abs(vtk_to_numpy(pd.GetArray("l"))[valid] - exact[valid])) / np.ptp(exact)
+    m_tt, _, reached = operator_matrices(f)
+    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / whole
+    row["invalid10"] = int((reached & ~valid & (fraction >= 0.1)).sum())
+    row["sliver"] = any("valid through slivers only" in t for t in texts)
+    P = fringe_extension(f)
+    aggregated = P.getnnz(axis=0) == 0
+    # Rings from the worst point to a fully covered cell.
+    ring, seen, distance = {worst}, {worst}, 0
+    while distance < 12 and not any(full[p] or min(cover[c] for c in around[p]) > 1 - 1e-9 for p in ring):
+        ring = {q for p in ring for q in near[p]} - seen
+        seen |= ring
+        distance += 1
+    row["worst"] = "%.3f %s %d" % (fraction[worst], "A" if aggregated[worst] else "F", distance)
+    return row
+
+
+def run_in_child(name, tries=3):
+    """In the parent: runs the kind in a child process, again when it
+    aborts (up to `tries` times); True. In the child: False."""
+    for _ in range(tries):
+        child = os.fork()
+        if not child:
+            return False
+        _, status = os.waitpid(child, 0)
+        if not status:
+            return True
+    print("%-26s failed %d times (status %d): Gmsh aborted" % (name, tries, status), flush=True)
+    return True
+
+
+def main():
+    pick = sys.argv[1] if len(sys.argv) > 1 else ""
+    print("%-26s %-20s %6s %6s %6s %6s %8s %5s %6s  %s" %
+          ("pair", "shift", "s", "c", "s1", "c1", "linear", ">10%", "sliver", "worst (cover, A/F, rings)"))
+    for name, make, h_in, h_src, shifts in kinds():
+        if pick not in name:
+            continue
+        if run_in_child(name):
+            continue
+        if make is None:
+            base, source = gmshmeshes.planar(h_in), gmshmeshes.surface("disk", h_src)
+        else:
+            base, source = make(h_in), make(h_src)
+        source = with_fields(source)
+        for shift in shifts:
+            target = gmshmeshes.moved(base, translate=shift)
+            around, near = neighbours(target)
+            whole_f = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
+            whole = np.asarray(operator_matrices(whole_f)[0].sum(axis=1)).ravel()
+            r = measure(target, source, around, near, whole)
+            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s  %s" %
+                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["s1"], r["c1"], r["linear"], r["invalid10"],
+                   "yes" if r["sliver"] else "-", r["worst"]), flush=True)
+        os._exit(0)
+
+
+if __name__ == "__main__":
+    main()
