@@ -28,6 +28,19 @@ namespace mpvtk
 {
 struct KeptLeaf;
 
+/**
+ * One label array's result on one transfer's target functions (Labels.h:
+ * ApplyLabels): per target function the index of the label that wins
+ * there (-1: none; empty when no label is anywhere) and, when asked for
+ * (LabelFractions, at most MaximumLabelFractions labels), the fractions,
+ * target functions x labels.
+ */
+struct LabelSolution
+{
+  std::vector<int> Winner;
+  mp::LargeVector<double> Fractions;
+};
+
 /// The solutions of one leaf: per transfer, target functions x the fields' components.
 struct LeafSolutions
 {
@@ -62,9 +75,9 @@ struct LeafSolutions
    */
   mp::LargeVector<double> Products[NumberOfTransfers];
   std::vector<std::vector<char>> Guarded[NumberOfTransfers];
-  /// Per transfer and label array of its association (GatheredFields::Labels): the label
-  /// fractions, target functions x labels (Labels.h; empty when no label is anywhere).
-  std::vector<mp::LargeVector<double>> Labels[NumberOfTransfers];
+  /// Per transfer and label array of its association (GatheredFields::Labels): the
+  /// winning labels and the fractions (Labels.h: LabelSolution).
+  std::vector<LabelSolution> Labels[NumberOfTransfers];
 };
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators

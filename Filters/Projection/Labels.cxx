@@ -74,28 +74,122 @@ double FillLabelFor(vtkDataArray* array, int fill)
   return value;
 }
 
-/// Row-wise w / sum(w) on valid rows (the NaN of a real label array has no label: not in the sum).
-void Normalize(mp::LargeVector<double>& weights, int count, const std::vector<char>& valid)
+/// A label's fraction from its weight w and its row's sum of weights: w / sum
+/// (a row without weight, or invalid, keeps w).
+double Fraction(double w, double sum)
 {
-  const vtkIdType rows = static_cast<vtkIdType>(valid.size());
-  mpvtk::For(0, rows, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType f = begin; f < end; ++f)
+  return sum > 0 ? w / sum : w;
+}
+
+/// Whether fraction v of a row whose largest fraction is top (> 0) is in its tie.
+bool InTie(double v, double top)
+{
+  return v >= top * (1.0 - TieTolerance);
+}
+
+/// The labels of the block that starts at label `first`: LabelBlock, but never
+/// one label of several (a single column is multiplied in another order).
+int BlockWidth(int first, int count)
+{
+  const int left = count - first;
+  if (left <= LabelBlock)
+  {
+    return left;
+  }
+  return left == LabelBlock + 1 ? LabelBlock - 1 : LabelBlock;
+}
+
+/// The weights w_iL (rows x width) of labels first .. first + width - 1:
+/// their indicators projected by `op`, lumped. Collective.
+mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks& hook,
+  const LabelField& field, int first, int width, mp::LargeVector<double>& weights)
+{
+  mp::LargeVector<double> indicators(field.Which.size() * static_cast<size_t>(width), 0.0);
+  for (size_t f = 0; f < field.Which.size(); ++f)
+  {
+    const int k = field.Which[f] - first;
+    if (k >= 0 && k < width)
     {
-      double* w = weights.data() + f * count;
-      double sum = 0;
-      for (int k = 0; k < count && valid[f]; ++k)
+      indicators[f * width + static_cast<size_t>(k)] = 1.0;
+    }
+  }
+  weights.resize(static_cast<size_t>(op.GetNumberOfTargetFunctions()) * width);
+  mp::ApplyOptions apply;
+  apply.Mass = mp::MassType::Lumped;
+  return op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
+}
+
+/**
+ * One label array on one operator, block by block. First pass: per row
+ * the sum of its weights in label order and the largest weight (w / sum
+ * is monotone in w: the largest fraction is the largest weight's). Second
+ * pass (the blocks projected again, unless there is one): the winner,
+ * the smallest label whose fraction is in the tie of the largest, and
+ * the fractions when `fractions`. Collective.
+ */
+bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, const LabelField& field,
+  const std::vector<char>& valid, bool fractions, LabelSolution& out, double& seconds)
+{
+  const int count = static_cast<int>(field.Labels.size());
+  const vtkIdType rows = static_cast<vtkIdType>(valid.size());
+  std::vector<double> sum(valid.size(), 0.0);
+  std::vector<double> most(valid.size(), 0.0);
+  mp::LargeVector<double> weights;
+  for (int first = 0, width = 0; first < count; first += width)
+  {
+    width = BlockWidth(first, count);
+    const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, weights);
+    if (!applied)
+    {
+      return false;
+    }
+    seconds += applied.Seconds;
+    mpvtk::For(0, rows, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType f = begin; f < end; ++f)
       {
-        sum += w[k];
-      }
-      if (sum > 0)
-      {
-        for (int k = 0; k < count; ++k)
+        for (int k = 0; k < width; ++k)
         {
-          w[k] /= sum;
+          const double w = weights[f * width + k];
+          sum[f] += valid[f] ? w : 0.0;
+          most[f] = std::max(most[f], w);
         }
       }
+    });
+  }
+  out.Winner.assign(valid.size(), -1);
+  out.Fractions.resize(fractions ? valid.size() * static_cast<size_t>(count) : 0);
+  for (int first = 0, width = 0; first < count; first += width)
+  {
+    width = BlockWidth(first, count);
+    if (width < count)
+    {
+      const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, weights);
+      if (!applied)
+      {
+        return false;
+      }
+      seconds += applied.Seconds;
     }
-  });
+    mpvtk::For(0, rows, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType f = begin; f < end; ++f)
+      {
+        const double top = Fraction(most[f], sum[f]);
+        for (int k = 0; k < width; ++k)
+        {
+          const double v = Fraction(weights[f * width + k], sum[f]);
+          if (fractions)
+          {
+            out.Fractions[f * count + first + k] = v;
+          }
+          if (valid[f] && top > 0 && out.Winner[f] < 0 && InTie(v, top))
+          {
+            out.Winner[f] = first + k; // the smallest label of the tie
+          }
+        }
+      }
+    });
+  }
+  return true;
 }
 } // namespace
 
@@ -190,6 +284,39 @@ void IndexLabels(
   }
 }
 
+void ProjectIdsAsNumbers(
+  int association, const Settings& settings, Messages& messages, GatheredFields& g)
+{
+  if (settings.CategoricalMode != CategoricalAutomatic)
+  {
+    return;
+  }
+  const char* kind = association == PointArrays ? "point" : "cell";
+  for (size_t i = 0; i < g.Labels.size();)
+  {
+    const LabelField& field = g.Labels[i];
+    if (field.Labels.size() <= MaximumAutomaticLabels)
+    {
+      ++i;
+      continue;
+    }
+    const std::string label = field.Array->GetName() ? field.Array->GetName() : "(unnamed)";
+    messages.WarnOnce(std::string("ids/") + kind + "/" + label, // once per array, not per step
+      "Source " + std::string(kind) + " array '" + label + "' looks like an id array (" +
+        std::to_string(field.Labels.size()) + " distinct values, more than " +
+        std::to_string(MaximumAutomaticLabels) +
+        "): projected as numbers; deselect it, or name it in CategoricalArrays with "
+        "CATEGORICAL_SELECTED to project it as labels.");
+    g.AddArray(field.Array, label, false);
+    g.Labels.erase(g.Labels.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+}
+
+bool WritesFractions(const LabelField& field, const Settings& settings)
+{
+  return settings.LabelFractions && field.Labels.size() <= MaximumLabelFractions;
+}
+
 Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks hooks[2],
   LeafSolutions& solutions)
 {
@@ -202,72 +329,41 @@ Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHo
     }
     const mp::MortarOperator& op = *ops.Operators[t];
     const mp::SolverHooks& hook = hooks[TargetSpaceOf(t) == mp::SpaceType::P1 ? 0 : 1];
-    const size_t rows = static_cast<size_t>(op.GetNumberOfTargetFunctions());
-    const std::vector<char>& valid = *solutions.System[t].Valid;
     solutions.Labels[t].resize(g.Labels.size());
     for (size_t i = 0; i < g.Labels.size(); ++i)
     {
       const LabelField& field = g.Labels[i];
-      const int count = static_cast<int>(field.Labels.size());
-      if (count == 0 ||
+      if (field.Labels.empty() ||
         static_cast<mp::Index>(field.Which.size()) != op.GetNumberOfSourceFunctions())
       {
         continue; // no label anywhere (every value NaN): the fill label everywhere
       }
-      // The indicators chi_L side by side; M_ts chi_L / (its row sums), lumped.
-      mp::LargeVector<double> indicators(field.Which.size() * static_cast<size_t>(count), 0.0);
-      for (size_t f = 0; f < field.Which.size(); ++f)
+      const bool fractions = WritesFractions(field, ctx.Options);
+      if (ctx.Options.LabelFractions && !fractions)
       {
-        if (field.Which[f] >= 0)
-        {
-          indicators[f * count + static_cast<size_t>(field.Which[f])] = 1.0;
-        }
+        const std::string name = field.Array->GetName() ? field.Array->GetName() : "(unnamed)";
+        ctx.Say.WarnOnce("fractions/" + name,
+          "Label array '" + name + "' has " + std::to_string(field.Labels.size()) +
+            " labels, more than " + std::to_string(MaximumLabelFractions) + ": no '" + name +
+            "_Fractions' array (one component per label); its labels are projected.");
       }
-      mp::LargeVector<double>& weights = solutions.Labels[t][i];
-      weights.resize(rows * static_cast<size_t>(count));
-      mp::ApplyOptions apply;
-      apply.Mass = mp::MassType::Lumped;
-      const mp::ApplyResult applied =
-        op.Apply(indicators.data(), count, weights.data(), 0.0, apply, hook);
-      if (!applied)
+      if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions,
+            solutions.Labels[t][i], ctx.Stats.Solve))
       {
         return Verdict::Fail(std::string("The labels of ") + TransferName(t) +
           " could not be projected: the operator lacks its overlap matrix M_ts.");
       }
-      ctx.Stats.Solve += applied.Seconds;
-      Normalize(weights, count, valid);
     }
   }
   return Verdict();
 }
 
-int WinningLabel(const double* weights, int count)
-{
-  double most = 0;
-  for (int k = 0; k < count; ++k)
-  {
-    most = std::max(most, weights[k]);
-  }
-  if (!(most > 0))
-  {
-    return -1;
-  }
-  for (int k = 0; k < count; ++k)
-  {
-    if (weights[k] >= most * (1.0 - TieTolerance))
-    {
-      return k; // the smallest label of the tie
-    }
-  }
-  return -1;
-}
-
-LabelOutput WriteLabelArray(const LabelField& field, const mp::LargeVector<double>& weights,
+LabelOutput WriteLabelArray(const LabelField& field, const LabelSolution& solution,
   const std::vector<char>& valid, vtkIdType n, const std::function<vtkIdType(vtkIdType)>& at,
   const std::string& name, const Settings& settings)
 {
   const int count = static_cast<int>(field.Labels.size());
-  const bool any = count > 0 && !weights.empty();
+  const bool any = count > 0 && !solution.Winner.empty();
   LabelOutput out;
   out.Labels = vtkSmartPointer<vtkDataArray>::Take(field.Array->NewInstance());
   out.Labels->SetName(name.c_str());
@@ -277,10 +373,10 @@ LabelOutput WriteLabelArray(const LabelField& field, const mp::LargeVector<doubl
   // (One thread: any vtkDataArray, a vtkBitArray's shared bytes too.)
   for (vtkIdType f = 0; f < n; ++f)
   {
-    const int k = any && valid[f] ? WinningLabel(weights.data() + f * count, count) : -1;
+    const int k = any && valid[f] ? solution.Winner[f] : -1;
     out.Labels->SetComponent(at(f), 0, k >= 0 ? field.Labels[k] : fill);
   }
-  if (!settings.LabelFractions)
+  if (!WritesFractions(field, settings))
   {
     return out;
   }
@@ -301,7 +397,7 @@ LabelOutput WriteLabelArray(const LabelField& field, const mp::LargeVector<doubl
       const vtkIdType row = at(f);
       for (int k = 0; k < width; ++k)
       {
-        to[row * width + k] = any && valid[f] ? weights[f * count + k] : none;
+        to[row * width + k] = any && valid[f] ? solution.Fractions[f * count + k] : none;
       }
     }
   });

@@ -7,7 +7,10 @@
  *
  * Which arrays are labels (CategoricalMode): CategoricalAutomatic, every
  * single-component integer array (vtkIntArray, vtkShortArray,
- * vtkCharArray, vtkIdTypeArray, the unsigned ones...; not a vtkBitArray); CategoricalSelected,
+ * vtkCharArray, vtkIdTypeArray, the unsigned ones...; not a vtkBitArray)
+ * with at most MaximumAutomaticLabels distinct values over the whole
+ * Source (more: an id array, projected as numbers with a warning:
+ * ProjectIdsAsNumbers); CategoricalSelected,
  * exactly the single-component arrays named in CategoricalArrays (an
  * integer array then left out is projected as numbers; a real one named
  * is a label array).
@@ -27,6 +30,12 @@
  * covered part. Functions the masks call invalid get FillLabel (and NaN
  * or FillValue fractions). Labels are not extrapolated.
  *
+ * Memory does not grow with the number of labels: the indicators are
+ * projected LabelBlock labels at a time (per row the sum of the weights,
+ * their largest, then the winner), never all side by side; the fractions,
+ * an output of one component per label, only up to MaximumLabelFractions
+ * labels.
+ *
  * The operators that carry labels need M_ts (PlanOperators assembles it);
  * on several processes the labels are every process's (UnionOfValues) and
  * the shared rows' weights are summed by the solver's hooks, as the right-
@@ -41,6 +50,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -52,6 +62,21 @@ namespace mpvtk
 {
 class Messages;
 struct Settings;
+
+/**
+ * In CategoricalAutomatic, an integer array with more distinct values than
+ * this over the whole Source is an id (cell or point numbers, Generate
+ * Ids' "Ids"), not a label: material ids, regions and classes number at
+ * most a few hundred, ids as many as the cells or points. A label array
+ * with more is still projected (CategoricalSelected), in blocks.
+ */
+constexpr size_t MaximumAutomaticLabels = 1024;
+
+/// The labels projected side by side at once (the indicators' and weights' columns).
+constexpr int LabelBlock = 16;
+
+/// A label array with more labels than this gets no fractions array (one component per label).
+constexpr size_t MaximumLabelFractions = 256;
 
 /// Whether `array` holds integers (any type but float and double): a label array by default.
 bool HoldsIntegers(vtkDataArray* array);
@@ -79,30 +104,40 @@ void IndexLabels(
   const SimplexMesh& mesh, int association, bool dp1, Parts& parts, GatheredFields& g);
 
 /**
- * Per transfer in use and label array of its association: the label
- * fractions (target functions x labels, solutions.Labels), the lumped
- * projection of the labels' indicators by the transfer's operator.
+ * After IndexLabels, in CategoricalAutomatic: each of g.Labels with more
+ * than MaximumAutomaticLabels labels (the same on every process) goes to
+ * the arrays projected as numbers, with a warning that names it.
+ */
+void ProjectIdsAsNumbers(
+  int association, const Settings& settings, Messages& messages, GatheredFields& g);
+
+/**
+ * Per transfer in use and label array of its association: the winning
+ * labels and, with LabelFractions, the fractions (solutions.Labels), from
+ * the lumped projection of the labels' indicators by the transfer's
+ * operator, LabelBlock labels at a time. Collective (every process has the
+ * same labels, so the same blocks).
  */
 Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHooks hooks[2],
   LeafSolutions& solutions);
 
-/// The label index that wins at one target function (weights over `count` labels), -1 if none.
-int WinningLabel(const double* weights, int count);
+/// Whether the label array `field` gets a fractions array (LabelFractions, few enough labels).
+bool WritesFractions(const LabelField& field, const Settings& settings);
 
 /**
  * One label array's output: `name`, the Source array's type, per target
  * point or cell (target function f at at(f)) the winning label where
  * `valid`, else the fill label (FillLabel; for an unsigned type that
- * cannot hold it, the type's largest value). With `fractions`, also the
- * fractions array "<name>_Fractions" (one component per label, named by
- * it; invalid functions: `fill`).
+ * cannot hold it, the type's largest value). When WritesFractions, also
+ * the fractions array "<name>_Fractions" (one component per label, named
+ * by it; invalid functions: the fill value).
  */
 struct LabelOutput
 {
   vtkSmartPointer<vtkDataArray> Labels;
   vtkSmartPointer<vtkDataArray> Fractions; ///< null unless asked for
 };
-LabelOutput WriteLabelArray(const LabelField& field, const mp::LargeVector<double>& weights,
+LabelOutput WriteLabelArray(const LabelField& field, const LabelSolution& solution,
   const std::vector<char>& valid, vtkIdType n, const std::function<vtkIdType(vtkIdType)>& at,
   const std::string& name, const Settings& settings);
 } // namespace mpvtk

@@ -369,7 +369,7 @@ void WriteLabels(LeafContext& ctx, vtkDataSet* output, const LeafSolutions& solu
     return toPoints ? target.DataSetPoint(f) : f;
   };
   const std::vector<char>& valid = *solutions.System[t].Valid;
-  static const mp::LargeVector<double> none;
+  static const LabelSolution none;
   for (size_t i = 0; i < g.Labels.size(); ++i)
   {
     const LabelField& field = g.Labels[i];
@@ -378,9 +378,8 @@ void WriteLabels(LeafContext& ctx, vtkDataSet* output, const LeafSolutions& solu
     names.push_back(name);
     (toPoints ? written.PointValid : written.CellValid)
       .emplace_back(name, toPoints ? numbering.InDataSet(valid) : &valid);
-    const mp::LargeVector<double>& weights =
-      i < solutions.Labels[t].size() ? solutions.Labels[t][i] : none;
-    const LabelOutput out = WriteLabelArray(field, weights, valid, n, at, name, ctx.Options);
+    const LabelSolution& solution = i < solutions.Labels[t].size() ? solutions.Labels[t][i] : none;
+    const LabelOutput out = WriteLabelArray(field, solution, valid, n, at, name, ctx.Options);
     outData->AddArray(out.Labels);
     if (out.Fractions)
     {

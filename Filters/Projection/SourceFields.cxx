@@ -82,11 +82,7 @@ void SelectArrays(vtkDataSet* source, int association, vtkDataArraySelection* se
           "labels and ids do not carry over: set CategoricalMode to CATEGORICAL_AUTOMATIC, or "
           "name it in CategoricalArrays, to project it as labels, or deselect it).");
     }
-    g.Arrays.push_back(array);
-    g.Hidden.push_back(hidden);
-    g.Offsets.push_back(g.Components);
-    g.Components += array->GetNumberOfComponents();
-    g.Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
+    g.AddArray(array, label, hidden);
   }
 }
 
@@ -374,6 +370,15 @@ void FindNaNGroups(vtkDataSet* source, const SimplexMesh& mesh, int association,
 }
 } // namespace
 
+void GatheredFields::AddArray(vtkDataArray* array, const std::string& label, bool hidden)
+{
+  this->Arrays.push_back(array);
+  this->Hidden.push_back(hidden);
+  this->Offsets.push_back(this->Components);
+  this->Components += array->GetNumberOfComponents();
+  this->Key += label + "/" + std::to_string(array->GetNumberOfComponents()) + ";";
+}
+
 std::vector<char> LeftOutCells(const mp::MeshView& view, const NaNGroup& group)
 {
   std::vector<char> parents(static_cast<size_t>(view.Parents()), 0);
@@ -409,6 +414,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   {
     GatheredFields& g = fields[association];
     IndexLabels(mesh, association, settings.ReconstructsCellData(), parts, g);
+    ProjectIdsAsNumbers(association, settings, messages, g);
     if (g.Components == 0)
     {
       continue;

@@ -109,6 +109,8 @@ struct GatheredFields : FieldBlock
   std::vector<char> Hidden;
   /// Which arrays are projected as rho q (MassWeighting.h).
   MassWeights Mass;
+  /// Appends `array` (named `label`) to the arrays projected as numbers.
+  void AddArray(vtkDataArray* array, const std::string& label, bool hidden);
   /// The labels of this process's own Source piece (before the gathering),
   /// per label array's name: on several processes the labels are the whole
   /// Source's, as one process sees them (Labels.h: IndexLabels).
