@@ -342,9 +342,11 @@ Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHo
       if (ctx.Options.LabelFractions && !fractions)
       {
         const std::string name = field.Array->GetName() ? field.Array->GetName() : "(unnamed)";
-        ctx.Say.WarnOnce("fractions/" + name,
-          "Label array '" + name + "' has " + std::to_string(field.Labels.size()) +
-            " labels, more than " + std::to_string(MaximumLabelFractions) + ": no '" + name +
+        const std::string kind = SourceAssociation(t) == PointArrays ? "point" : "cell";
+        ctx.Say.WarnOnce("fractions/" + kind + "/" + name,
+          "Source " + kind + " label array '" + name + "' has " +
+            std::to_string(field.Labels.size()) + " labels, more than " +
+            std::to_string(MaximumLabelFractions) + ": no '" + name +
             "_Fractions' array (one component per label); its labels are projected.");
       }
       if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions,
