@@ -281,7 +281,9 @@ public:
    * output keeps the Source array's type. CategoricalMode says which
    * arrays are labels: CATEGORICAL_AUTOMATIC (default), every
    * single-component integer array (vtkIntArray, vtkIdTypeArray,
-   * vtkUnsignedCharArray, ...; not vtkBitArray); CATEGORICAL_SELECTED, exactly the
+   * vtkUnsignedCharArray, ...; not vtkBitArray) with at most 1024 distinct
+   * values (more: an id array, projected as numbers with a warning);
+   * CATEGORICAL_SELECTED, exactly the
    * single-component point or cell arrays named with AddCategoricalArray
    * (so an integer array can be projected as numbers and a real array as
    * labels). Default: CATEGORICAL_AUTOMATIC, none named.
@@ -300,7 +302,8 @@ public:
    * per target point or cell, the weight of each label over the sum (one
    * component per label, named by it), which sum to 1; over the cells,
    * weighed by their covered measure, they sum to each label's Source
-   * measure over the covered part. Default: false.
+   * measure over the covered part. A label array with more than 256
+   * labels gets none (a warning). Default: false.
    */
   vtkSetMacro(LabelFractions, bool);
   vtkGetMacro(LabelFractions, bool);
