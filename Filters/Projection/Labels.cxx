@@ -284,14 +284,11 @@ void IndexLabels(
   }
 }
 
-void ProjectIdsAsNumbers(
+void CheckLabelCounts(
   int association, const Settings& settings, Messages& messages, GatheredFields& g)
 {
-  if (settings.CategoricalMode != CategoricalAutomatic)
-  {
-    return;
-  }
   const char* kind = association == PointArrays ? "point" : "cell";
+  const bool automatic = settings.CategoricalMode == CategoricalAutomatic;
   for (size_t i = 0; i < g.Labels.size();)
   {
     const LabelField& field = g.Labels[i];
@@ -301,10 +298,20 @@ void ProjectIdsAsNumbers(
       continue;
     }
     const std::string label = field.Array->GetName() ? field.Array->GetName() : "(unnamed)";
+    const std::string count = std::to_string(field.Labels.size());
+    if (!automatic)
+    {
+      // (Named by the user: projected, in time that grows with the number of labels.)
+      messages.WarnOnce(std::string("many/") + kind + "/" + label,
+        "Source " + std::string(kind) + " label array '" + label + "' has " + count +
+          " labels: they are projected " + std::to_string(LabelBlock) +
+          " at a time, in time that grows with their number.");
+      ++i;
+      continue;
+    }
     messages.WarnOnce(std::string("ids/") + kind + "/" + label, // once per array, not per step
-      "Source " + std::string(kind) + " array '" + label + "' looks like an id array (" +
-        std::to_string(field.Labels.size()) + " distinct values, more than " +
-        std::to_string(MaximumAutomaticLabels) +
+      "Source " + std::string(kind) + " array '" + label + "' looks like an id array (" + count +
+        " distinct values, more than " + std::to_string(MaximumAutomaticLabels) +
         "): projected as numbers; deselect it, or name it in CategoricalArrays with "
         "CATEGORICAL_SELECTED to project it as labels.");
     g.AddArray(field.Array, label, false);

@@ -10,7 +10,7 @@
  * vtkCharArray, vtkIdTypeArray, the unsigned ones...; not a vtkBitArray)
  * with at most MaximumAutomaticLabels distinct values over the whole
  * Source (more: an id array, projected as numbers with a warning:
- * ProjectIdsAsNumbers); CategoricalSelected,
+ * CheckLabelCounts); CategoricalSelected,
  * exactly the single-component arrays named in CategoricalArrays (an
  * integer array then left out is projected as numbers; a real one named
  * is a label array).
@@ -104,11 +104,13 @@ void IndexLabels(
   const SimplexMesh& mesh, int association, bool dp1, Parts& parts, GatheredFields& g);
 
 /**
- * After IndexLabels, in CategoricalAutomatic: each of g.Labels with more
- * than MaximumAutomaticLabels labels (the same on every process) goes to
- * the arrays projected as numbers, with a warning that names it.
+ * After IndexLabels, each of g.Labels with more than
+ * MaximumAutomaticLabels labels (the same on every process): in
+ * CategoricalAutomatic an id array, which goes to the arrays projected as
+ * numbers, with a warning that names it; in CategoricalSelected still a
+ * label array, with a warning of the time its blocks take.
  */
-void ProjectIdsAsNumbers(
+void CheckLabelCounts(
   int association, const Settings& settings, Messages& messages, GatheredFields& g);
 
 /**

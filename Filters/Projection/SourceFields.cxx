@@ -414,7 +414,7 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   {
     GatheredFields& g = fields[association];
     IndexLabels(mesh, association, settings.ReconstructsCellData(), parts, g);
-    ProjectIdsAsNumbers(association, settings, messages, g);
+    CheckLabelCounts(association, settings, messages, g);
     if (g.Components == 0)
     {
       continue;

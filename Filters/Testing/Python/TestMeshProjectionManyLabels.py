@@ -10,8 +10,9 @@ uncovered), checked against the overlap matrix M_ts (GetMatrix):
     b. CATEGORICAL_SELECTED with "Ids" named, 4,500 cells, all distinct: each
        covered target cell takes the Source cell of largest overlap (ties:
        the smallest id), with a small memory peak (the dense indicators
-       and weights would be 200 MB); more labels than 256: no fractions
-       array, a warning naming it, the labels still there;
+       and weights would be 200 MB) and a warning of the many labels; more
+       labels than 256: no fractions array, a warning naming it, the
+       labels still there;
     c. 40 labels (more than one block of 16): the labels and the fractions
        (M_ts summed per label, over the row) to 1e-12, as the dense rule;
        the same with 17 labels (blocks of 15 and 2).
@@ -93,6 +94,8 @@ check(ids_b is not None and ids_b.GetDataType() == VTK_ID_TYPE,
       "b. SELECTED: 'Ids' is a label array of the Source's type (%s)"
       % (ids_b.GetClassName() if ids_b else None))
 check(grown < 60, "b. %d labels: the memory peak grows by %.1f MB (< 60)" % (n_b, grown))
+check(any("cell label array 'Ids' has %d labels: they are projected 16 at a time" % n_b in w
+          for w in warn_b), "b. a warning names the many labels of 'Ids' and their blocks")
 check(out_b.GetCellData().GetArray("Ids_Fractions") is None,
       "b. more than 256 labels: no fractions array")
 check(any("cell label array 'Ids' has %d labels, more than 256" % n_b in w for w in warn_b),
