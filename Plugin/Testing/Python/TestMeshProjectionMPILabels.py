@@ -11,11 +11,14 @@ process, by original ids: the labels equal the serial ones exactly, in the
 Source arrays' types; the fractions' components are the serial ones (label
 9 too: the labels are the whole Source's, not only those gathered) and
 their values the serial ones to 1e-12; the masks equal the serial ones.
+An integer array with more distinct values over the whole Source than
+MaximumAutomaticLabels (but fewer in each process's part) is projected as
+numbers on every process, as in serial.
 """
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_INT, VTK_SHORT
+from vtkmodules.vtkCommonCore import VTK_DOUBLE, VTK_ID_TYPE, VTK_INT, VTK_SHORT
 from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE
 
 from mpsupport import meshes, mpi
@@ -100,5 +103,30 @@ for assoc, mask in (("point", "vtkValidPointMask"), ("cell", "vtkValidCellMask")
 check("9" in [serial.GetCellData().GetArray("MaterialId_Fractions").GetComponentName(k) for k in range(4)],
       "the serial fractions list label 9")
 check(compared > 0 or out.GetNumberOfCells() == 0, "labels compared")
+
+# An id array: more distinct values over the whole Source (1,800) than
+# MaximumAutomaticLabels, fewer in each process's part: numbers on every
+# process, as in serial (the decision is the whole Source's).
+fine = meshes.grid(*meshes.triangles(30, (-0.13, 0.07, 0), (0.91, 1.2, 0), 2), VTK_TRIANGLE)
+n_fine = fine.GetNumberOfCells()
+numbers = numpy_to_vtk(np.arange(n_fine, dtype=np.int64), deep=True, array_type=VTK_ID_TYPE)
+numbers.SetName("CellNumber")
+fine.GetCellData().AddArray(numbers)
+serial_ids = run(meshprojection.vtkMeshProjectionFilter, target, fine).GetOutput().GetCellData()
+part = np.random.default_rng(13).integers(0, size, n_fine) == rank
+local_ids = run(meshprojection.vtkPMeshProjectionFilter, lt, meshes.extract(fine, part)).GetOutput()
+if local_ids.GetNumberOfCells() > 0:
+    la, sa = local_ids.GetCellData().GetArray("CellNumber"), serial_ids.GetArray("CellNumber")
+    ids = vtk_to_numpy(local_ids.GetCellData().GetArray("origId"))
+    check(n_fine > 1024 and np.count_nonzero(part) < 1024 and la is not None
+          and la.GetDataType() == VTK_DOUBLE and sa.GetDataType() == VTK_DOUBLE,
+          "'CellNumber' (%d values, %d here) is projected as numbers (%s, serial %s)"
+          % (n_fine, np.count_nonzero(part), la.GetClassName() if la else None, sa.GetClassName()))
+    if la is not None:
+        lv, sv = vtk_to_numpy(la), vtk_to_numpy(sa)[ids]
+        both = np.isfinite(sv)
+        err = float(np.max(np.abs(lv[both] - sv[both]))) if both.any() else 0.0
+        check(np.array_equal(np.isfinite(lv), both) and err <= 1e-9 * n_fine,
+              "'CellNumber' differs from serial by %.3g" % err)
 
 check.finish("%d processes, labels" % size)
