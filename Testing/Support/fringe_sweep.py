@@ -11,6 +11,8 @@ field sin(2x)cos(3y)+z^2 as point data (s) and as cell data to points (c):
             cell around the point fully covered: Python.Fringe's interior)
   s1, c1    the same over interior points at least one ring from the fringe
             (every cell around the point's neighbours fully covered too)
+  sF, cF    the worst error at free valid points that are not interior (the
+            values an extension carries) over the worst at interior points
   linear    worst error of 1 + 2x - 3y + 0.5z at a valid point / its range
   >10%      points whose support is covered 10% or more left invalid
   sliver    the "valid through slivers only" warning fired
@@ -140,12 +142,14 @@ def measure(target, source, around, near, whole):
     row = {"interior": int(interior.sum())}
     worst, split = {}, {}
     P = fringe_extension(f).tocsr()
+    aggregated = P.getnnz(axis=0) == 0
     exact_s = smooth(x)
     for name in ("s", "c"):
         signed = vtk_to_numpy(pd.GetArray(name)) - exact_s
         error = np.abs(signed)
         row[name] = np.max(error[valid]) / np.max(error[interior])
         row[name + "1"] = np.max(error[valid]) / np.max(error[deep]) if deep.any() else np.nan
+        row[name + "F"] = np.max(error[valid & ~full & ~aggregated], initial=0) / np.max(error[interior])
         worst[name] = int(np.argmax(np.where(valid, error, -1)))
         # (The cells-to-points transfer has the same extension: P is built per target.)
         w = P.getrow(worst[name])
@@ -157,7 +161,6 @@ def measure(target, source, around, near, whole):
     fraction = np.asarray(m_tt.sum(axis=1)).ravel() / whole
     row["invalid10"] = int((reached & ~valid & (fraction >= 0.1)).sum())
     row["sliver"] = any("valid through slivers only" in t for t in texts)
-    aggregated = P.getnnz(axis=0) == 0
     for name in ("s", "c"):
         # Rings from the worst point to a fully covered cell.
         start = worst[name]
@@ -194,8 +197,8 @@ def main():
         refine = float(args[k + 1])
         del args[k:k + 2]
     pick = args[0] if args else ""
-    print("%-26s %-20s %6s %6s %6s %6s %8s %5s %6s %8s  %-42s %s" %
-          ("pair", "shift", "s", "c", "s1", "c1", "linear", ">10%", "sliver", "interior",
+    print("%-26s %-20s %6s %6s %6s %6s %6s %6s %8s %5s %6s %8s  %-42s %s" %
+          ("pair", "shift", "s", "c", "s1", "c1", "sF", "cF", "linear", ">10%", "sliver", "interior",
            "worst s (cover, A/F, rings; own, carried)", "worst c"))
     for name, make, h_in, h_src, shifts in kinds():
         if pick not in name or (refine != 1.0 and make is stored):
@@ -215,8 +218,9 @@ def main():
             whole_f = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
             whole = np.asarray(operator_matrices(whole_f)[0].sum(axis=1)).ravel()
             r = measure(target, source, around, near, whole)
-            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s %8d  %-42s %s" %
-                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["s1"], r["c1"], r["linear"], r["invalid10"],
+            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s %8d  %-42s %s" %
+                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["s1"], r["c1"], r["sF"], r["cF"], r["linear"],
+                   r["invalid10"],
                    "yes" if r["sliver"] else "-", r["interior"], r["worst s"], r["worst c"]), flush=True)
         os._exit(0)
 
