@@ -1,6 +1,6 @@
 """The fringe on Gmsh pairs that overlap in part: a table per pair and shift.
 
-    PYTHONPATH=BUILD/lib/python3/dist-packages /usr/bin/python3 Testing/Support/fringe_sweep.py [FILTER]
+    PYTHONPATH=BUILD/lib/python3/dist-packages /usr/bin/python3 Testing/Support/fringe_sweep.py [FILTER] [--refine K]
 
 Input is a Gmsh mesh of the unit square or cube moved by a shift, the
 Source another (finer or coarser) of the same domain; FILTER keeps the pairs
@@ -11,12 +11,19 @@ field sin(2x)cos(3y)+z^2 as point data (s) and as cell data to points (c):
             cell around the point fully covered: Python.Fringe's interior)
   s1, c1    the same over interior points at least one ring from the fringe
             (every cell around the point's neighbours fully covered too)
+  sF, cF    the worst error at free valid points that are not interior (the
+            values an extension carries) over the worst at interior points
   linear    worst error of 1 + 2x - 3y + 0.5z at a valid point / its range
   >10%      points whose support is covered 10% or more left invalid
   sliver    the "valid through slivers only" warning fired
-  worst     the point of the worst s: its covered fraction, whether it is
+  interior  the number of interior points (the denominators' points)
+  worst s, worst c
+            the point of the worst s (c): its covered fraction, whether it is
             aggregated (A), free (F), and its distance to the covered part in
-            cells (rings to a fully covered cell)
+            cells (rings to a fully covered cell); for an aggregated one its
+            error split as the extension's own (sum_k w_k f(x_k) - f(x_i))
+            and the free values' errors it carries (sum_k w_k e_k), both
+            over the interior's worst error, and its weights' sum |w|
 
 The mixed pairs use Testing/Data/Gmsh's meshes (mixed_box: hexahedra,
 wedges, tetrahedra and pyramids): Gmsh 4.8 (python3-gmsh) often aborts in
@@ -132,28 +139,39 @@ def measure(target, source, around, near, whole):
     full = np.array([min(cover[c] for c in cells) > 1 - 1e-9 for cells in around])
     interior = valid & full
     deep = interior & np.array([all(full[q] for q in ring) for ring in near])
-    row = {}
+    row = {"interior": int(interior.sum())}
+    worst, split = {}, {}
+    P = fringe_extension(f).tocsr()
+    aggregated = P.getnnz(axis=0) == 0
+    exact_s = smooth(x)
     for name in ("s", "c"):
-        error = np.abs(vtk_to_numpy(pd.GetArray(name)) - smooth(x))
+        signed = vtk_to_numpy(pd.GetArray(name)) - exact_s
+        error = np.abs(signed)
         row[name] = np.max(error[valid]) / np.max(error[interior])
         row[name + "1"] = np.max(error[valid]) / np.max(error[deep]) if deep.any() else np.nan
-        if name == "s":
-            worst = int(np.argmax(np.where(valid, error, -1)))
+        row[name + "F"] = np.max(error[valid & ~full & ~aggregated], initial=0) / np.max(error[interior])
+        worst[name] = int(np.argmax(np.where(valid, error, -1)))
+        # (The cells-to-points transfer has the same extension: P is built per target.)
+        w = P.getrow(worst[name])
+        split[name] = (abs(w.dot(exact_s)[0] - exact_s[worst[name]]) / np.max(error[interior]),
+                       abs(w.dot(signed)[0]) / np.max(error[interior]), np.abs(w.data).sum())
     exact = linear(x)
     row["linear"] = np.max(np.abs(vtk_to_numpy(pd.GetArray("l"))[valid] - exact[valid])) / np.ptp(exact)
     m_tt, _, reached = operator_matrices(f)
     fraction = np.asarray(m_tt.sum(axis=1)).ravel() / whole
     row["invalid10"] = int((reached & ~valid & (fraction >= 0.1)).sum())
     row["sliver"] = any("valid through slivers only" in t for t in texts)
-    P = fringe_extension(f)
-    aggregated = P.getnnz(axis=0) == 0
-    # Rings from the worst point to a fully covered cell.
-    ring, seen, distance = {worst}, {worst}, 0
-    while distance < 12 and not any(full[p] or min(cover[c] for c in around[p]) > 1 - 1e-9 for p in ring):
-        ring = {q for p in ring for q in near[p]} - seen
-        seen |= ring
-        distance += 1
-    row["worst"] = "%.3f %s %d" % (fraction[worst], "A" if aggregated[worst] else "F", distance)
+    for name in ("s", "c"):
+        # Rings from the worst point to a fully covered cell.
+        start = worst[name]
+        ring, seen, distance = {start}, {start}, 0
+        while distance < 12 and not any(full[p] or min(cover[c] for c in around[p]) > 1 - 1e-9 for p in ring):
+            ring = {q for p in ring for q in near[p]} - seen
+            seen |= ring
+            distance += 1
+        row["worst " + name] = "%.3f %s %d" % (fraction[start], "A" if aggregated[start] else "F", distance)
+        if aggregated[start]:
+            row["worst " + name] += " own %.2f carried %.2f |w| %.1f" % split[name]
     return row
 
 
@@ -172,12 +190,21 @@ def run_in_child(name, tries=3):
 
 
 def main():
-    pick = sys.argv[1] if len(sys.argv) > 1 else ""
-    print("%-26s %-20s %6s %6s %6s %6s %8s %5s %6s  %s" %
-          ("pair", "shift", "s", "c", "s1", "c1", "linear", ">10%", "sliver", "worst (cover, A/F, rings)"))
+    args = sys.argv[1:]
+    refine = 1.0
+    if "--refine" in args:
+        k = args.index("--refine")
+        refine = float(args[k + 1])
+        del args[k:k + 2]
+    pick = args[0] if args else ""
+    print("%-26s %-20s %6s %6s %6s %6s %6s %6s %8s %5s %6s %8s  %-42s %s" %
+          ("pair", "shift", "s", "c", "s1", "c1", "sF", "cF", "linear", ">10%", "sliver", "interior",
+           "worst s (cover, A/F, rings; own, carried)", "worst c"))
     for name, make, h_in, h_src, shifts in kinds():
-        if pick not in name:
+        if pick not in name or (refine != 1.0 and make is stored):
             continue
+        if refine != 1.0:
+            h_in, h_src = h_in / refine, h_src / refine
         if run_in_child(name):
             continue
         if make is None:
@@ -191,9 +218,10 @@ def main():
             whole_f = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
             whole = np.asarray(operator_matrices(whole_f)[0].sum(axis=1)).ravel()
             r = measure(target, source, around, near, whole)
-            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s  %s" %
-                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["s1"], r["c1"], r["linear"], r["invalid10"],
-                   "yes" if r["sliver"] else "-", r["worst"]), flush=True)
+            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s %8d  %-42s %s" %
+                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["s1"], r["c1"], r["sF"], r["cF"], r["linear"],
+                   r["invalid10"],
+                   "yes" if r["sliver"] else "-", r["interior"], r["worst s"], r["worst c"]), flush=True)
         os._exit(0)
 
 
