@@ -33,24 +33,24 @@ struct CellsAroundPoints
 
 /**
  * How many times its number of terms a fit takes points first: twice, but
- * three times for a quadratic fit in 3D. Its 20 nearest points, all on one
- * side of i, give weights that carry the free values' errors several times
- * over; half as many more average them out.
+ * three times for a quadratic fit of a volume mesh (VolumeFit). Its nearest
+ * points, all on one side of i, give weights that carry the free values'
+ * errors several times over; half as many more average them out.
  */
-size_t FirstPoints(int d, int degree)
+size_t FirstPoints(const MeshView& mesh, const StencilFrame& frame, int degree)
 {
-  return d == 3 && degree == 2 ? 3 : 2;
+  return VolumeFit(mesh, frame) && degree == 2 ? 3 : 2;
 }
 
 /**
- * The rings a quadratic fit is sought in: FringeRings in 2D or 1D
- * coordinates (2D meshes, surfaces, curves); FringeVolumeRings in 3D,
- * where one side of a point on an edge or a corner of the target holds the
- * points of a quadratic fit only farther.
+ * The rings a quadratic fit is sought in: FringeVolumeRings on volume
+ * meshes (VolumeFit), where one side of a point on an edge or a corner of
+ * the target holds the points of a quadratic fit only farther;
+ * FringeRings on surfaces and curves.
  */
-int QuadraticRings(int d)
+int QuadraticRings(const MeshView& mesh, const StencilFrame& frame)
 {
-  return d == 3 ? FringeVolumeRings : FringeRings;
+  return VolumeFit(mesh, frame) ? FringeVolumeRings : FringeRings;
 }
 
 /**
@@ -97,7 +97,7 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
   {
     points[r] = byDistance[r].second;
   }
-  const size_t firstKeep = FirstPoints(f, degree) * static_cast<size_t>(terms);
+  const size_t firstKeep = FirstPoints(mesh, frame, degree) * static_cast<size_t>(terms);
   for (const size_t keep : { firstKeep, size_t(4 * terms), points.size() })
   {
     const size_t used = std::min(keep, points.size());
@@ -133,7 +133,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const Index first = around.Start[static_cast<size_t>(i)];
   const StencilFrame frame = StencilFrameOf(
     mesh, i, around.Cells.data() + first, around.Start[static_cast<size_t>(i) + 1] - first);
-  const int quadraticRings = QuadraticRings(frame.Dimension);
+  const int quadraticRings = QuadraticRings(mesh, frame);
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   std::vector<Index> affinePoints;

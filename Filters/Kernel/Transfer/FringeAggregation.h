@@ -31,10 +31,10 @@
  * theirs), evaluated at i, ring by ring until the points allow a stable
  * fit: quadratic where its weights stay bounded (the extension's error is
  * then of third order, below the projection's second), else affine. The
- * quadratic fit is sought within FringeRings rings in 2D or 1D
- * coordinates (2D meshes, surfaces, curves), FringeVolumeRings in 3D (a
- * point on an edge or a corner of the target, reaching out of the
- * source, finds the points of a quadratic fit only there; its affine fit
+ * quadratic fit is sought within FringeRings rings on surfaces and
+ * curves, FringeVolumeRings on 2D and volume meshes (a point on an edge
+ * or a corner of the target, reaching out of the source, finds the
+ * points of a quadratic fit only there; its affine fit
  * would extrapolate over a cell or two with an error of second order, many
  * times the interior's). A function with no quadratic fit takes the affine
  * one of the first ring that allows one; a function with no stable fit
@@ -80,15 +80,16 @@ struct FringeExtension
 
 /**
  * The rings around an ill-posed function (the points sharing a cell with
- * it, then theirs, ...) its stencil is sought in first, in 2D or 1D
- * coordinates: a quadratic
+ * it, then theirs, ...) its stencil is sought in first on surfaces and
+ * curves (in their tangent coordinates): a quadratic
  * fit through any of them, else the affine fit of the first ring that
  * allows one.
  */
 constexpr int FringeRings = 3;
 
 /**
- * The same in 3D: a quadratic fit is sought up to this ring. Within
+ * The same on 2D and volume meshes (VolumeFit in FringeFits.h): a
+ * quadratic fit is sought up to this ring. Within
  * FringeSearchRings, so that the halo of a distributed target holds them.
  */
 constexpr int FringeVolumeRings = 5;
@@ -130,7 +131,7 @@ constexpr double FringeStrandedDropFraction = 0.1;
 /**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
- * rings around it (FringeRings, FringeVolumeRings in 3D, then farther
+ * rings around it (FringeRings, FringeVolumeRings on 2D and volume meshes, then farther
  * up to FringeSearchRings for an affine fit). Those below `drop` are marked Dropped too. A function
  * with no stable fit stays free, Dropped (and Stranded) when below
  * FringeStrandedDropFraction. The

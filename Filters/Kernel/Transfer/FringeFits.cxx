@@ -283,7 +283,7 @@ std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, 
   }
   // (Not "> bound": a singular G gives NaN weights, rejected too.) Most
   // one-sided quadratic fits stop here, before the spectrum's cost.
-  if (degree == 2 && !(amplification <= QuadraticAmplificationIn(d)))
+  if (degree == 2 && !(amplification <= QuadraticAmplificationIn(mesh, frame)))
   {
     return {};
   }

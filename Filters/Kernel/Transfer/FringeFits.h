@@ -30,8 +30,9 @@
 namespace mp
 {
 /**
- * The largest sum of |w_ik| a quadratic extension (or a curved stencil's
- * fit through the normal coordinates) may have: the factor by which it can
+ * The largest sum of |w_ik| a quadratic extension on a surface or a curve
+ * (or a curved stencil's fit through the normal coordinates) may have: the
+ * factor by which it can
  * amplify an oscillation of the free values. One-sided quadratic
  * extrapolations reach a dozen and more (three points on a line: 3, -3, 1
  * already 7); such weights couple the stencil's functions with alternating
@@ -44,20 +45,33 @@ namespace mp
 constexpr double QuadraticAmplification = 8.0;
 
 /**
- * The same bound for a quadratic fit in 3D coordinates (volume meshes). A
- * corner of a volume target reaching out of the source is extrapolated
- * along up to three directions at once: the affine fit's error there (its
- * weights times the squared distances, a cell and two away) is many times
- * the interior's, while the free values a quadratic fit amplifies are
- * smooth along the fringe (they are errors of the same projection, of
- * second order).
+ * The same bound for a quadratic fit of a volume mesh (triangles in the
+ * plane, tetrahedra: VolumeFit). A corner of a volume target reaching out
+ * of the source is extrapolated along two or three directions at once:
+ * the affine fit's error there (its weights times the squared distances,
+ * a cell and two away) is many times the interior's, while the free values
+ * a quadratic fit amplifies are smooth along the fringe (they are errors
+ * of the same projection, of second order).
  */
 constexpr double VolumeQuadraticAmplification = 12.0;
 
-/// The amplification a quadratic fit in `d` coordinates may have.
-inline double QuadraticAmplificationIn(int d)
+/**
+ * Whether a fit at a point of `mesh` in `frame` follows the volume rule
+ * (VolumeQuadraticAmplification here, FringeVolumeRings and more points
+ * first in FringeAggregation.cxx): on volume meshes, fitted in their own
+ * coordinates (2D or 3D), and on any fit in 3D coordinates (a point of a
+ * surface whose cells give no tangent). Surfaces and curves, fitted in
+ * their tangent coordinates, keep QuadraticAmplification.
+ */
+inline bool VolumeFit(const MeshView& mesh, const StencilFrame& frame)
 {
-  return d == 3 ? VolumeQuadraticAmplification : QuadraticAmplification;
+  return mesh.IsVolumeMesh() || frame.Dimension == 3;
+}
+
+/// The amplification a quadratic fit at a point of `mesh` in `frame` may have.
+inline double QuadraticAmplificationIn(const MeshView& mesh, const StencilFrame& frame)
+{
+  return VolumeFit(mesh, frame) ? VolumeQuadraticAmplification : QuadraticAmplification;
 }
 
 /**
@@ -66,7 +80,7 @@ inline double QuadraticAmplificationIn(int d)
  * i's `frame` (the minimum-norm weights reproducing those polynomials at
  * i), or empty when the points do not allow a stable fit: when they do
  * not spread well (nearly on a line, a plane or a conic), or, quadratic,
- * when the weights amplify more than QuadraticAmplificationIn(d). Either degree
+ * when the weights amplify more than QuadraticAmplificationIn. Either degree
  * reproduces the affine functions of the frame's coordinates and sums to 1;
  * `ambient`, when given, says whether the weights also reproduce the
  * ambient affine functions (always on volume meshes and flat stencils; on

@@ -1,6 +1,7 @@
 """The fringe and beyond it, on Gmsh pairs that overlap in part: Input is
 the Source's mesher's domain moved so that it reaches beyond the Source
-(2D triangles and quads, a disk's curved boundary at two shifts, 3D
+(2D triangles and quads, quads with a coarser Input reaching beyond the
+Source's corner, a disk's curved boundary at two shifts, 3D
 tetrahedra at two shifts, wedges).
 
 The fringe (FringeThreshold, default 0.25):
@@ -109,6 +110,11 @@ pairs = [
      gmshmeshes.planar(0.065)),
     ("2D quads", gmshmeshes.moved(gmshmeshes.planar(0.05, quads=True), translate=(0.31, 0.17, 0)),
      gmshmeshes.planar(0.065, quads=True)),
+    # A corner of Input beyond the Source's: its quadratic fit's points lie
+    # up to five rings away (FringeVolumeRings); the affine fit of three
+    # points at two rings gave 8.5x.
+    ("2D quads, coarse Input", gmshmeshes.moved(gmshmeshes.planar(0.065, quads=True), translate=(0.4, 0.1, 0)),
+     gmshmeshes.planar(0.05, quads=True)),
     # A curved boundary: the Source a Gmsh disk.
     ("2D disk, shift 1", gmshmeshes.moved(gmshmeshes.planar(0.06), translate=(0.25, -0.45, 0)),
      gmshmeshes.surface("disk", 0.075)),
