@@ -36,41 +36,15 @@ import os
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkIdList
-from vtkmodules.vtkFiltersCore import vtkCellCenters
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from meshprojection import fringe_extension, operator_matrices
 from mpsupport import gmshmeshes
+from mpsupport.fringe import fully_covered, linear, point_cells, smooth, with_fields
 from mpsupport.testing import mortar, observed_filter
 
 SHIFTS_3D = [(0.27, 0.13, 0.21), (-0.33, 0.41, 0.07), (-0.2, 0.33, 0.11), (0.17, 0.29, 0.07), (0.27, -0.19, 0.13)]
 SHIFTS_2D = [(0.31, 0.17, 0), (-0.2, 0.33, 0), (0.17, 0.29, 0), (0.27, -0.19, 0), (0.4, 0.1, 0)]
-
-
-def smooth(x):
-    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
-
-
-def linear(x):
-    return 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]
-
-
-def with_fields(mesh):
-    g = mesh.NewInstance()
-    g.DeepCopy(mesh)
-    x = vtk_to_numpy(g.GetPoints().GetData())
-    for name, f in (("s", smooth), ("l", linear)):
-        a = numpy_to_vtk(f(x), deep=True)
-        a.SetName(name)
-        g.GetPointData().AddArray(a)
-    centres = vtkCellCenters()
-    centres.SetInputData(g)
-    centres.Update()
-    a = numpy_to_vtk(smooth(vtk_to_numpy(centres.GetOutput().GetPoints().GetData())), deep=True)
-    a.SetName("c")
-    g.GetCellData().AddArray(a)
-    return g
 
 
 def stored(name):
@@ -112,11 +86,7 @@ def kinds():
 
 def neighbours(out):
     """Per point, the cells around it and the points sharing a cell with it."""
-    ids = vtkIdList()
-    cells = []
-    for p in range(out.GetNumberOfPoints()):
-        out.GetPointCells(p, ids)
-        cells.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+    cells = point_cells(out)
     corners = [[out.GetCell(c).GetPointId(k) for k in range(out.GetCell(c).GetNumberOfPoints())]
                for c in range(out.GetNumberOfCells())]
     points = [sorted({q for c in around for q in corners[c]}) for around in cells]
@@ -136,7 +106,7 @@ def measure(target, source, around, near, whole):
     pd, cd = out.GetPointData(), out.GetCellData()
     valid = vtk_to_numpy(pd.GetArray("vtkValidPointMask")).astype(bool)
     cover = vtk_to_numpy(cd.GetArray("CoveredFraction"))
-    full = np.array([min(cover[c] for c in cells) > 1 - 1e-9 for cells in around])
+    full = fully_covered(cover, around)
     interior = valid & full
     deep = interior & np.array([all(full[q] for q in ring) for ring in near])
     row = {"interior": int(interior.sum())}
@@ -165,7 +135,7 @@ def measure(target, source, around, near, whole):
         # Rings from the worst point to a fully covered cell.
         start = worst[name]
         ring, seen, distance = {start}, {start}, 0
-        while distance < 12 and not any(full[p] or min(cover[c] for c in around[p]) > 1 - 1e-9 for p in ring):
+        while distance < 12 and not any(full[p] for p in ring):
             ring = {q for p in ring for q in near[p]} - seen
             seen |= ring
             distance += 1

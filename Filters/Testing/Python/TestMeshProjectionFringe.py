@@ -44,37 +44,11 @@ import scipy.sparse.linalg
 import meshprojection
 from meshprojection import fringe_extension, operator_matrices
 from mpsupport import gmshmeshes, meshes
+from mpsupport.fringe import fully_covered, linear, point_cells, smooth, with_fields
 from mpsupport.testing import check, finish, mortar, observed_filter
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkIdList
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_TETRA
-from vtkmodules.vtkFiltersCore import vtkAppendFilter, vtkCellCenters
-
-
-def smooth(x):
-    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
-
-
-def linear(x):
-    return 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]
-
-
-def with_fields(mesh):
-    """A copy of mesh with point arrays s (smooth), l (linear), cell array c (smooth at centroids)."""
-    g = mesh.NewInstance()
-    g.DeepCopy(mesh)
-    x = vtk_to_numpy(g.GetPoints().GetData())
-    for name, f in (("s", smooth), ("l", linear)):
-        a = numpy_to_vtk(f(x), deep=True)
-        a.SetName(name)
-        g.GetPointData().AddArray(a)
-    centres = vtkCellCenters()
-    centres.SetInputData(g)
-    centres.Update()
-    a = numpy_to_vtk(smooth(vtk_to_numpy(centres.GetOutput().GetPoints().GetData())), deep=True)
-    a.SetName("c")
-    g.GetCellData().AddArray(a)
-    return g
+from vtkmodules.vtkFiltersCore import vtkAppendFilter
 
 
 def array(out, name, cells=False):
@@ -82,21 +56,12 @@ def array(out, name, cells=False):
     return vtk_to_numpy(data.GetArray(name))
 
 
-def point_cells(out):
-    ids = vtkIdList()
-    around = []
-    for p in range(out.GetNumberOfPoints()):
-        out.GetPointCells(p, ids)
-        around.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
-    return around
-
-
 def ratios(out, around):
     """Worst error at a valid point over the worst at interior points, for s and c (cells to points)."""
     x = vtk_to_numpy(out.GetPoints().GetData())
     valid = array(out, "vtkValidPointMask").astype(bool)
     covered = array(out, "CoveredFraction", cells=True)
-    interior = valid & np.array([min(covered[c] for c in cells) > 1 - 1e-9 for cells in around])
+    interior = valid & fully_covered(covered, around)
     result = []
     for name in ("s", "c"):
         error = np.abs(array(out, name) - smooth(x))
@@ -208,7 +173,7 @@ for name, target, source_mesh in corners:
     cover = array(out, "CoveredFraction", cells=True)
     slivers = valid & np.array([max(cover[c] for c in cells) < 1e-3 for cells in around])
     check(not slivers.any(), "%s: no valid point whose every cell is covered less than 0.1%% (%d)" % (name, slivers.sum()))
-    interior = valid & np.array([min(cover[c] for c in cells) > 1 - 1e-9 for cells in around])
+    interior = valid & fully_covered(cover, around)
     error = np.abs(array(out, "s") - smooth(x))
     r = np.max(error[valid]) / np.max(error[interior])
     print("%-24s worst/interior error: point data %4.2f" % (name, r))

@@ -26,11 +26,11 @@ every process, for its points:
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkIdList
 from vtkmodules.vtkCommonDataModel import VTK_LINE, VTK_TETRA
 from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
+from mpsupport.fringe import fully_covered, linear, point_cells, smooth
 
 controller, made_here = mpi.start()
 rank = controller.GetLocalProcessId()
@@ -39,14 +39,6 @@ size = controller.GetNumberOfProcesses()
 import meshprojection  # noqa: E402  (after MPI is up)
 
 check = mpi.Checks(controller, made_here)
-
-
-def smooth(x):
-    return np.sin(2 * x[:, 0]) * np.cos(3 * x[:, 1]) + x[:, 2] ** 2
-
-
-def linear(x):
-    return 1 + 2 * x[:, 0] - 3 * x[:, 1] + 0.5 * x[:, 2]
 
 
 def add(data, name, values):
@@ -89,13 +81,7 @@ def array(out, name):
 
 
 def interior_points(out):
-    covered = vtk_to_numpy(out.GetCellData().GetArray("CoveredFraction"))
-    ids = vtkIdList()
-    inside = np.ones(out.GetNumberOfPoints(), bool)
-    for p in range(out.GetNumberOfPoints()):
-        out.GetPointCells(p, ids)
-        inside[p] = min(covered[ids.GetId(k)] for k in range(ids.GetNumberOfIds())) > 1 - 1e-9
-    return inside
+    return fully_covered(vtk_to_numpy(out.GetCellData().GetArray("CoveredFraction")), point_cells(out))
 
 
 def kuhn(n):

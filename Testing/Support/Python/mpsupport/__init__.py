@@ -5,6 +5,7 @@
     meshes      jittered grids of quads, triangles, hexahedra, tetrahedra
     gmshmeshes  surfaces, curves and volumes meshed by Gmsh (python3-gmsh)
     mpi         the MPI controller and collectives for pvbatch --symmetric
+    fringe      the fringe's fields and measure (interior points)
 
 Not installed: the build copies it next to the `meshprojection` package
 (<build>/lib/python3/dist-packages), which ctest puts on PYTHONPATH; run a
