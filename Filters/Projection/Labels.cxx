@@ -247,8 +247,32 @@ void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredField
   }
 }
 
-void IndexLabels(
-  const SimplexMesh& mesh, int association, bool dp1, Parts& parts, GatheredFields& g)
+namespace
+{
+/**
+ * Whether some process alone has more than MaximumAutomaticLabels distinct
+ * values of `field` (`mine` here): then its Distinct is the largest such
+ * count (the whole Source's when one process has every value, else a lower
+ * bound: AtLeast). Collective.
+ */
+bool IsIdArray(size_t mine, Parts& parts, LabelField& field)
+{
+  double counts[2] = { -static_cast<double>(mine), static_cast<double>(mine) }; // largest, sum
+  parts.Minimum(counts, 1);
+  parts.Sum(counts + 1, 1);
+  const double largest = -counts[0];
+  if (!(largest > static_cast<double>(MaximumAutomaticLabels)))
+  {
+    return false;
+  }
+  field.Distinct = static_cast<size_t>(largest);
+  field.AtLeast = counts[1] > largest;
+  return true;
+}
+} // namespace
+
+void IndexLabels(const SimplexMesh& mesh, int association, bool dp1, bool automatic, Parts& parts,
+  GatheredFields& g)
 {
   const bool reconstructed = association == CellArrays && dp1;
   const mp::Index n = SourceFunctions(mesh.View(), association, reconstructed);
@@ -268,7 +292,13 @@ void IndexLabels(
     {
       values.insert(values.end(), piece->second.begin(), piece->second.end());
     }
-    field.Labels = parts.UnionOfValues(SortedValues(values));
+    std::vector<double> mine = SortedValues(values);
+    if (automatic && IsIdArray(mine.size(), parts, field))
+    {
+      continue;
+    }
+    field.Labels = parts.UnionOfValues(mine);
+    field.Distinct = field.Labels.size();
     const std::vector<double>& labels = field.Labels;
     field.Which.assign(static_cast<size_t>(n), -1);
     mpvtk::For(0, n, [&](vtkIdType begin, vtkIdType end) {
@@ -292,13 +322,13 @@ void CheckLabelCounts(
   for (size_t i = 0; i < g.Labels.size();)
   {
     const LabelField& field = g.Labels[i];
-    if (field.Labels.size() <= MaximumAutomaticLabels)
+    if (field.Distinct <= MaximumAutomaticLabels)
     {
       ++i;
       continue;
     }
     const std::string label = field.Array->GetName() ? field.Array->GetName() : "(unnamed)";
-    const std::string count = std::to_string(field.Labels.size());
+    const std::string count = (field.AtLeast ? "at least " : "") + std::to_string(field.Distinct);
     if (!automatic)
     {
       // (Named by the user: projected, in time that grows with the number of labels.)

@@ -98,10 +98,14 @@ void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredField
  * For each of g.Labels: its labels (every process's, and those of the
  * pieces the processes had before the gathering) and each source
  * function's label index, for the operators of that association (`dp1`:
- * cell data reconstructed, the cells' corners). Collective.
+ * cell data reconstructed, the cells' corners). Collective. With
+ * `automatic` (CategoricalAutomatic), an array of which some process alone
+ * has more than MaximumAutomaticLabels distinct values is an id array,
+ * decided before the union (which would send each process's whole set to
+ * every other): its Distinct is that count, and it has no labels or index.
  */
-void IndexLabels(
-  const SimplexMesh& mesh, int association, bool dp1, Parts& parts, GatheredFields& g);
+void IndexLabels(const SimplexMesh& mesh, int association, bool dp1, bool automatic, Parts& parts,
+  GatheredFields& g);
 
 /**
  * After IndexLabels, each of g.Labels with more than

@@ -413,7 +413,8 @@ void GatherSourceFields(vtkDataSet* source, const SimplexMesh& mesh,
   for (int association = 0; association < 2; ++association)
   {
     GatheredFields& g = fields[association];
-    IndexLabels(mesh, association, settings.ReconstructsCellData(), parts, g);
+    IndexLabels(mesh, association, settings.ReconstructsCellData(),
+      settings.CategoricalMode == CategoricalAutomatic, parts, g);
     CheckLabelCounts(association, settings, messages, g);
     if (g.Components == 0)
     {

@@ -84,6 +84,11 @@ struct LabelField
   vtkDataArray* Array = nullptr;
   std::vector<double> Labels; ///< sorted; on several processes, every process's
   std::vector<int> Which;     ///< per source function (P1, P0 or DP1): index into Labels, or -1
+  /// How many distinct labels: Labels.size(), or, for an id array found
+  /// before the union (Labels.h: IndexLabels), the most one process had.
+  size_t Distinct = 0;
+  /// Whether Distinct is only a lower bound (an id array on several processes).
+  bool AtLeast = false;
 };
 
 /// The Source arrays of one association, gathered side by side (NaN groups'

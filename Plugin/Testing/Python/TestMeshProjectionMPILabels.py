@@ -129,4 +129,21 @@ if local_ids.GetNumberOfCells() > 0:
         check(np.array_equal(np.isfinite(lv), both) and err <= 1e-9 * n_fine,
               "'CellNumber' differs from serial by %.3g" % err)
 
+# The same array with the whole Source on the first process: it alone has
+# more distinct values than MaximumAutomaticLabels, so every process
+# decides "numbers" before the union of the values (the same result).
+alone = np.full(n_fine, rank == 0)
+first = run(meshprojection.vtkPMeshProjectionFilter, lt, meshes.extract(fine, alone)).GetOutput()
+if first.GetNumberOfCells() > 0:
+    fa = first.GetCellData().GetArray("CellNumber")
+    ids = vtk_to_numpy(first.GetCellData().GetArray("origId"))
+    check(fa is not None and fa.GetDataType() == VTK_DOUBLE,
+          "'CellNumber' all on the first process is projected as numbers (%s)" % (fa.GetClassName() if fa else None))
+    if fa is not None:
+        fv, sv = vtk_to_numpy(fa), vtk_to_numpy(serial_ids.GetArray("CellNumber"))[ids]
+        both = np.isfinite(sv)
+        err = float(np.max(np.abs(fv[both] - sv[both]))) if both.any() else 0.0
+        check(np.array_equal(np.isfinite(fv), both) and err <= 1e-9 * n_fine,
+              "'CellNumber' all on the first process differs from serial by %.3g" % err)
+
 check.finish("%d processes, labels" % size)
