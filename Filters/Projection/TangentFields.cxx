@@ -11,6 +11,7 @@
 
 #include "Adapter/Ghosts.h"
 #include "Adapter/SimplexMesh.h"
+#include "Mesh/Vec3.h"
 #include "Parallel/Parts.h"
 #include "Projection/Messages.h"
 #include "Projection/Settings.h"
@@ -23,6 +24,7 @@
 
 namespace mpvtk
 {
+using mp::Dot;
 namespace
 {
 /// The area vector of a polygon (Newell), or the chord of a line, of points `ids`.
@@ -94,11 +96,6 @@ void CellDirection(vtkDataSet* data, int type, vtkIdList* ids, double* d)
     ids->SetId(3, p2);
   }
   Direction(data, ids, vtkCellTypes::GetDimension(type), d);
-}
-
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 } // namespace
 
