@@ -40,8 +40,8 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from meshprojection import fringe_extension, operator_matrices
 from mpsupport import gmshmeshes
-from mpsupport.fringe import fully_covered, linear, point_cells, smooth, with_fields
-from mpsupport.testing import mortar, observed_filter
+from mpsupport.fringe import fully_covered, linear, point_cells, project, smooth, with_fields
+from mpsupport.testing import mortar
 
 SHIFTS_3D = [(0.27, 0.13, 0.21), (-0.33, 0.41, 0.07), (-0.2, 0.33, 0.11), (0.17, 0.29, 0.07), (0.27, -0.19, 0.13)]
 SHIFTS_2D = [(0.31, 0.17, 0), (-0.2, 0.33, 0), (0.17, 0.29, 0), (0.27, -0.19, 0), (0.4, 0.1, 0)]
@@ -94,14 +94,7 @@ def neighbours(out):
 
 
 def measure(target, source, around, near, whole):
-    f, texts = observed_filter("WarningEvent")
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetOutputIntersections(False)
-    f.SetCellDataTarget(1)
-    f.SetCacheOperator(True)
-    f.Update()
-    out = f.GetOutput()
+    f, out, texts = project(target, source)
     x = vtk_to_numpy(out.GetPoints().GetData())
     pd, cd = out.GetPointData(), out.GetCellData()
     valid = vtk_to_numpy(pd.GetArray("vtkValidPointMask")).astype(bool)

@@ -44,7 +44,7 @@ import scipy.sparse.linalg
 import meshprojection
 from meshprojection import fringe_extension, operator_matrices
 from mpsupport import gmshmeshes, meshes
-from mpsupport.fringe import fully_covered, linear, point_cells, smooth, with_fields
+from mpsupport.fringe import fully_covered, linear, point_cells, project, smooth, with_fields
 from mpsupport.testing import check, finish, mortar, observed_filter
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_TETRA
@@ -211,14 +211,7 @@ volume_pairs = [
 for name, target, source_mesh in volume_pairs:
     source = with_fields(source_mesh)
     around = point_cells(target)
-    f, texts = observed_filter("WarningEvent")
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetOutputIntersections(False)
-    f.SetCellDataTarget(1)
-    f.SetCacheOperator(True)
-    f.Update()
-    out = f.GetOutput()
+    f, out, texts = project(target, source)
     r = ratios(out, around)
     print("%-24s worst/interior error: point data %4.2f, cell data to points %4.2f" % (name, r[0], r[1]))
     check(r[0] <= 5 and r[1] <= 5, "%s: fringe errors within 5x the interior's (%.2f, %.2f)" % (name, r[0], r[1]))

@@ -57,3 +57,19 @@ def point_cells(mesh):
 def fully_covered(cover, around):
     """Per point, whether every cell around it is fully covered (cover: CoveredFraction)."""
     return np.array([min(cover[c] for c in cells) > FULLY_COVERED for cells in around])
+
+
+def project(target, source):
+    """The fringe's run: source onto target with the default settings, cell
+    data sent to points too, the operator kept (for its matrices and the
+    extension); the filter, its output and the warnings it gave."""
+    # (Imported here: Python.FringeMPI imports this module before MPI is up.)
+    from mpsupport.testing import observed_filter
+    f, texts = observed_filter("WarningEvent")
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetOutputIntersections(False)
+    f.SetCellDataTarget(1)
+    f.SetCacheOperator(True)
+    f.Update()
+    return f, f.GetOutput(), texts
