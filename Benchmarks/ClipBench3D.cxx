@@ -16,9 +16,10 @@
 //   valgrind --tool=callgrind --toggle-collect='*ClipPairs*' \
 //       build/bin/mesh-projection-clip3d --runs 1
 //
-// (callgrind_annotate's total divided by the pairs printed). The volume sum
-// and the checksum of what feeds the front (touched faces, their seeds, the
-// source faces) let a change be checked against the numbers before it.
+// (callgrind_annotate's total divided by the pairs printed). The volume sum,
+// the checksum of what feeds the front (touched faces, their seeds, the
+// source faces) and a hash of the moments' bits let a change be checked
+// against the numbers before it.
 #include "GeneratedMeshes.h"
 
 #include "Geometry/TetrahedronIntersector.h"
@@ -99,6 +100,32 @@ __attribute__((noinline)) Pass ClipPairs(const std::vector<Tet::Cell>& target,
   }
   return pass;
 }
+/// A hash of the bits of every piece's moments (outside ClipPairs, so
+/// that its instructions are the clip's): equal before and after a change
+/// that keeps the moments bit for bit.
+unsigned long long MomentsHash(const std::vector<Tet::Cell>& target,
+  const std::vector<Tet::Cell>& source, const std::vector<std::pair<Index, Index>>& pairs)
+{
+  unsigned long long hash = 1469598103934665603ull;
+  Tet::Piece piece;
+  for (const auto& pair : pairs)
+  {
+    Tet::Intersect(target[pair.first], source[pair.second], piece);
+    double origin[3];
+    double M[4][4] = {};
+    if (Tet::Moments(piece, origin, M) > 0.0)
+    {
+      for (const double x : { M[0][0], M[0][1], M[0][2], M[0][3], M[1][1], M[1][2], M[1][3],
+             M[2][2], M[2][3], M[3][3], origin[0], origin[1], origin[2] })
+      {
+        unsigned long long bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        hash = (hash ^ bits) * 1099511628211ull;
+      }
+    }
+  }
+  return hash;
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -145,6 +172,7 @@ int main(int argc, char** argv)
     static_cast<long long>(target.NumberOfCells()), static_cast<long long>(source.NumberOfCells()),
     static_cast<long long>(found.Pairs.size()), static_cast<long long>(pass.Met));
   std::printf("clip: %.1f ns per pair (best of %d runs)\n", 1e9 * best / n, runs);
-  std::printf("volume sum %.17g, faces checksum %016llx\n", pass.Volume, pass.Faces);
+  std::printf("volume sum %.17g, faces checksum %016llx, moments hash %016llx\n", pass.Volume,
+    pass.Faces, MomentsHash(t, s, found.Pairs));
   return 0;
 }

@@ -41,7 +41,7 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
   const double w[3] = { x[0] - a[0], x[1] - a[1], x[2] - a[2] };
   const double d = c.Normal[k][0] * w[0] + c.Normal[k][1] * w[1] + c.Normal[k][2] * w[2];
   const double size = std::max({ std::fabs(w[0]), std::fabs(w[1]), std::fabs(w[2]) });
-  if (std::fabs(d) > 64.0 * RoundingUnit * c.NormalScale[k] * size)
+  if (std::fabs(d) > c.SideBound[k] * size)
   {
     return d;
   }
@@ -49,29 +49,37 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
   return (k % 2) ? o : -o;
 }
 
-/**
- * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
- * corners of `other`, with the filters of all sixteen evaluated first,
- * without branches, and the exact path taken only for the undecided ones.
- * The filters bound |x - a| by the extent of the two cells' boxes together
- * (once per pair instead of per point): looser than FaceSide's own, so a
- * point this one leaves undecided is then classified by FaceSide, and the
- * signs and values are FaceSide's either way. (Looser still for cells of
- * very different sizes or shapes: more pairs then take that second pass.)
- */
-inline void FaceSides(const TetrahedronIntersector::Cell& c,
-  const TetrahedronIntersector::Cell& other, double (&sides)[4][4])
+/// The extent of two cells' boxes together, per axis the largest: what
+/// FaceSides' filters bound |x - a| by (the same for either cell's planes).
+inline double PairExtent(
+  const TetrahedronIntersector::Cell& c, const TetrahedronIntersector::Cell& other)
 {
-  const double(&x)[4][3] = other.X;
   double size = 0.0;
   for (int d = 0; d < 3; ++d)
   {
     size = std::max(size,
       std::max(c.Box[2 * d + 1], other.Box[2 * d + 1]) - std::min(c.Box[2 * d], other.Box[2 * d]));
   }
+  return size;
+}
+
+/**
+ * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
+ * corners of `other`, with the filters of all sixteen evaluated first,
+ * without branches, and the exact path taken only for the undecided ones.
+ * The filters bound |x - a| by `size`, PairExtent(c, other) (once per pair
+ * instead of per point): looser than FaceSide's own, so a point this one
+ * leaves undecided is then classified by FaceSide, and the signs and values
+ * are FaceSide's either way. (Looser still for cells of very different
+ * sizes or shapes: more pairs then take that second pass.)
+ */
+inline void FaceSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, double size, double (&sides)[4][4])
+{
+  const double(&x)[4][3] = other.X;
   // The corners by coordinate, two per vector (Lanes.h): the same operations
   // in the same order as FaceSide's fast path, so the same values; a lane
-  // is decided when its distance is beyond the bound on either side (a NaN
+  // is decided when its distance's magnitude is beyond the bound (a NaN
   // never is). Scalar, these 32 evaluations per pair were a large cost of
   // a 3D run: they are done for every candidate pair.
   const double(&corner)[3][4] = other.ByAxis;
@@ -83,29 +91,41 @@ inline void FaceSides(const TetrahedronIntersector::Cell& c,
     x2[h] = LoadLanes(&corner[2][2 * h]);
   }
   Mask2 decided = { -1, -1 };
+  double bound[4];
   for (int k = 0; k < 4; ++k)
   {
     const double* a = c.X[(k + 1) % 4];
     const double* n = c.Normal[k];
-    const double bound = 64.0 * RoundingUnit * c.NormalScale[k] * size;
+    bound[k] = c.SideBound[k] * size;
     for (int h = 0; h < 2; ++h)
     {
       const Doubles2 d = n[0] * (x0[h] - a[0]) + n[1] * (x1[h] - a[1]) + n[2] * (x2[h] - a[2]);
       std::memcpy(&sides[k][2 * h], &d, sizeof d);
-      decided &= (d > bound) | (d < -bound);
+      decided &= Magnitude(d) > bound[k];
     }
   }
   if (decided[0] && decided[1])
   {
     return;
   }
+  // Only the undecided ones again: a decided value is FaceSide's already.
   for (int k = 0; k < 4; ++k)
   {
     for (int v = 0; v < 4; ++v)
     {
-      sides[k][v] = FaceSide(c, k, x[v]);
+      if (!(std::fabs(sides[k][v]) > bound[k]))
+      {
+        sides[k][v] = FaceSide(c, k, x[v]);
+      }
     }
   }
+}
+
+/// FaceSides with the size of the two cells' boxes.
+inline void FaceSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, double (&sides)[4][4])
+{
+  FaceSides(c, other, PairExtent(c, other), sides);
 }
 
 /// Of a table sides[k][v] (FaceSides'), per row k, bit v: the side is

@@ -42,8 +42,9 @@ struct FacePlaneSides
 /// vertex: no volume).
 inline bool Separated(const TetCell& t, const TetCell& s, FacePlaneSides& p)
 {
-  FaceSides(t, s, p.Exact);
-  FaceSides(s, t, p.ExactS);
+  const double size = PairExtent(t, s);
+  FaceSides(t, s, size, p.Exact);
+  FaceSides(s, t, size, p.ExactS);
   GetSideBits(p.Exact, p.Bits);
   GetSideBits(p.ExactS, p.BitsS);
   bool apart = false;
@@ -98,6 +99,7 @@ struct Clip
   const TetCell& Clipped;
   const TetCell& Clipping;
   const double (&Sides)[4][4]; ///< the clipping planes against the clipped cell's corners
+  const unsigned (&Zero)[4];   ///< of Sides, per plane: the corners on it (SideBits::Zero)
   unsigned Cut;                ///< the clipping planes that cut the clipped cell
   int TargetShift;             ///< 4 when the target is clipped (its faces in bits 4-7)
   double MinArea2;
@@ -116,15 +118,16 @@ inline bool ClipAsGraph(const Clip& c, const int (&planes)[4], bool asGraph, Tet
   VertexGraph graph;
   const int cutting = static_cast<int>(CountBits4(c.Cut));
   int i = 0;
-  const unsigned first =
-    asGraph && i < cutting ? graph.SetClippedTetrahedron(c.Clipped, c.Sides, planes[0]) : 0u;
+  const unsigned first = asGraph && i < cutting
+    ? graph.SetClippedTetrahedron(c.Clipped, c.Sides, c.Zero, planes[0])
+    : 0u;
   if (first)
   {
     ++i;
   }
   else
   {
-    graph.SetTetrahedron(c.Clipped, c.Sides);
+    graph.SetTetrahedron(c.Clipped, c.Zero);
   }
   bool second = first != 0;
   bool clippedAsGraph = asGraph;
@@ -329,8 +332,9 @@ bool TetrahedronIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
     Sub(b, a, u);
     Sub(c, a, v);
     Cross(u, v, cell.Normal[k]);
-    cell.NormalScale[k] = std::max({ std::fabs(u[0]), std::fabs(u[1]), std::fabs(u[2]) }) *
-      std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) });
+    cell.SideBound[k] = 64.0 * RoundingUnit *
+      (std::max({ std::fabs(u[0]), std::fabs(u[1]), std::fabs(u[2]) }) *
+        std::max({ std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2]) }));
     if (k % 2 == 0)
     {
       for (double& n : cell.Normal[k])
@@ -380,7 +384,7 @@ bool TetrahedronIntersector::Apart(const Cell& t, const Cell& s)
     for (int k = 0; k < 4; ++k)
     {
       const double* a = c.X[(k + 1) % 4];
-      const double bound = 64.0 * RoundingUnit * c.NormalScale[k] * size;
+      const double bound = c.SideBound[k] * size;
       bool all = true;
       for (int v = 0; v < 4; ++v)
       {
@@ -438,7 +442,8 @@ bool TetrahedronIntersector::IntersectCells(
   // (Compared as the squared norm of twice the area vector.)
   const double minArea = 2e-12 * std::min(t.FaceScale, s.FaceScale);
   const Clip clip{ clipTarget ? t : s, clipTarget ? s : t, clipTarget ? p.ExactS : p.Exact,
-    clipTarget ? p.BeyondS : p.Beyond, clipTarget ? 4 : 0, minArea * minArea };
+    clipTarget ? p.BitsS.Zero : p.Bits.Zero, clipTarget ? p.BeyondS : p.Beyond, clipTarget ? 4 : 0,
+    minArea * minArea };
   int planes[4];
   CuttingOrder(clipTarget ? p.BitsS.Negative : p.Bits.Negative, planes);
   if (!ClipAsGraph(clip, planes, asGraph, piece))
@@ -474,9 +479,7 @@ void TetrahedronIntersector::SumMoments(Piece& piece)
   }
   const double* o = piece.Points[piece.Corner[0][0]];
   std::copy(o, o + 3, piece.Origin);
-  double m0 = 0.0;
-  double m1[3] = { 0, 0, 0 };
-  double m2[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+  MomentSums sums;
   for (int n = 0; n < piece.NumberOfTetrahedra; ++n)
   {
     const double v = piece.Volume[n]; // signed: rounding may leave a sliver negative
@@ -489,9 +492,10 @@ void TetrahedronIntersector::SumMoments(Piece& piece)
     {
       Sub(piece.Points[piece.Corner[n][a]], piece.Origin, p[a]);
     }
-    AddTetrahedronMoments(v, p, m0, m1, m2);
+    const double* corners[4] = { p[0], p[1], p[2], p[3] };
+    AddTetrahedronMoments(v, corners, sums);
   }
-  SetMoments(m0, m1, m2, piece);
+  SetMoments(sums, piece);
 }
 
 void TetrahedronIntersector::AppendPiece(

@@ -56,11 +56,14 @@ public:
     /// X by coordinate (ByAxis[a][v] = X[v][a]): the four corners' distances
     /// from a plane are then one vector expression (FaceSides).
     double ByAxis[3][4];
-    double Box[6];         ///< xmin, xmax, ymin, ymax, zmin, zmax
-    double Measure;        ///< volume, > 0
-    double FaceScale;      ///< volume^(2/3): the area of a typical face
-    double Normal[4][3];   ///< inward normal of face k (not unit), through X[(k+1)%4]
-    double NormalScale[4]; ///< |u|max |v|max of the two edges spanning face k (error bounds)
+    double Box[6];       ///< xmin, xmax, ymin, ymax, zmin, zmax
+    double Measure;      ///< volume, > 0
+    double FaceScale;    ///< volume^(2/3): the area of a typical face
+    double Normal[4][3]; ///< inward normal of face k (not unit), through X[(k+1)%4]
+    /// 64 eps |u|max |v|max of the two edges spanning face k: times a bound
+    /// on |x - X[(k+1)%4]|, the error bound of a distance from that face's
+    /// plane by Normal (FaceSides.h).
+    double SideBound[4];
     /// The cell's affine map: x - X[0] to barycentric coordinates 1..3
     /// (geometry; the P1 space of Transfer/Space.h builds its basis from it).
     double Inverse[3][3];

@@ -76,30 +76,57 @@ struct VertexGraph
   static constexpr int TetrahedronBack[4][3] = { { 0, 0, 0 }, { 0, 2, 1 }, { 1, 2, 1 },
     { 2, 2, 1 } };
 
-  /// The bits SetTetrahedron gives corner v: the cell's faces through it,
-  /// and the clipping planes it lies on.
-  static unsigned CornerBits(int v, const double (&sides)[4][4])
+  /// Per plane k of the clipping cell, bit v: corner v of the clipped cell
+  /// lies on it (sides[k][v] == 0, as SideBits::Zero has them).
+  static void ZeroRows(const double (&sides)[4][4], unsigned (&zero)[4])
   {
-    unsigned on = (15u & ~(1u << v)) << 4;
     for (int k = 0; k < 4; ++k)
     {
-      on |= (sides[k][v] == 0.0 ? 1u : 0u) << k;
+      zero[k] = 0;
+      for (int v = 0; v < 4; ++v)
+      {
+        zero[k] |= (sides[k][v] == 0.0 ? 1u : 0u) << v;
+      }
     }
-    return on;
+  }
+
+  /// The bits SetTetrahedron gives the corners: each one's faces of the
+  /// cell, and the clipping planes it lies on (zero: ZeroRows).
+  static void CornerBits(const unsigned (&zero)[4], unsigned (&on)[4])
+  {
+    // The rows' 4 x 4 bits transposed: packed 4 apart, corner v's column
+    // (bits v, v + 4, v + 8, v + 12) is gathered to bits 12-15 by one
+    // product (its partial products never meet below bit 16: no carries).
+    const unsigned packed = zero[0] | zero[1] << 4 | zero[2] << 8 | zero[3] << 12;
+    for (int v = 0; v < 4; ++v)
+    {
+      const unsigned planes = ((((packed >> v) & 0x1111u) * 0x1248u) >> 12) & 15u;
+      on[v] = ((15u & ~(1u << v)) << 4) | planes;
+    }
+  }
+
+  /// The clipped cell itself (zero: ZeroRows of the sides).
+  void SetTetrahedron(const TetrahedronIntersector::Cell& c, const unsigned (&zero)[4])
+  {
+    this->NumberOfVertices = 4;
+    this->Faces = nullptr;
+    unsigned on[4];
+    CornerBits(zero, on);
+    for (int v = 0; v < 4; ++v)
+    {
+      this->On[v] = on[v];
+      std::copy(c.X[v], c.X[v] + 3, this->X[v]);
+      std::copy(TetrahedronNext[v], TetrahedronNext[v] + 3, this->Next[v]);
+      std::copy(TetrahedronBack[v], TetrahedronBack[v] + 3, this->Back[v]);
+      this->Original[v] = v;
+    }
   }
 
   void SetTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4])
   {
-    this->NumberOfVertices = 4;
-    this->Faces = nullptr;
-    for (int v = 0; v < 4; ++v)
-    {
-      std::copy(c.X[v], c.X[v] + 3, this->X[v]);
-      std::copy(TetrahedronNext[v], TetrahedronNext[v] + 3, this->Next[v]);
-      std::copy(TetrahedronBack[v], TetrahedronBack[v] + 3, this->Back[v]);
-      this->On[v] = CornerBits(v, sides);
-      this->Original[v] = v;
-    }
+    unsigned zero[4];
+    ZeroRows(sides, zero);
+    this->SetTetrahedron(c, zero);
   }
 
   // The first two cuts, from tables (VertexGraphTables.h).
@@ -131,14 +158,22 @@ struct VertexGraph
 
   /**
    * SetTetrahedron and then Clip by plane `k` (bit 1 << k, sides[k] the
-   * corners' distances), in one step from the table of cuts: the same
+   * corners' distances, zero their ZeroRows), in one step from the table of cuts: the same
    * vertices, in the same order, with the same links and bits, and the
    * crossings computed by the same expression. Returns the pattern of
    * corners outside (bit v: corner v), 0 with nothing set when a corner
    * lies on the plane (or its side is NaN) or none is clipped or kept.
    */
+  unsigned SetClippedTetrahedron(const TetrahedronIntersector::Cell& c, const double (&sides)[4][4],
+    const unsigned (&zero)[4], int k);
+  /// The same with ZeroRows of the sides.
   unsigned SetClippedTetrahedron(
-    const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k);
+    const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k)
+  {
+    unsigned zero[4];
+    ZeroRows(sides, zero);
+    return this->SetClippedTetrahedron(c, sides, zero, k);
+  }
 
   /// SecondCuts()[64 * first + pattern]: the cuts of the table of first
   /// cuts' graphs (`first` a pattern of TetrahedronCuts), for every pattern
@@ -358,6 +393,9 @@ struct VertexGraph
    */
   template <class Visit>
   bool WalkFaces(Visit&& visit) const;
+  /// WalkFaces with the links' bits in W words (1 for up to 21 vertices, or 3).
+  template <int W, class Visit>
+  bool WalkFacesIn(Visit& visit) const;
 
   /// The walked faces into `faces`; false when a walk does not close or
   /// they do not fit.

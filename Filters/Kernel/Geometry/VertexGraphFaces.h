@@ -28,57 +28,68 @@ namespace clipping
 template <class Visit>
 inline bool VertexGraph::WalkFaces(Visit&& visit) const
 {
+  // Most graphs have at most 21 vertices: their links' bits fit one word.
+  return this->NumberOfVertices <= 21 ? this->WalkFacesIn<1>(visit) : this->WalkFacesIn<3>(visit);
+}
+
+template <int W, class Visit>
+inline bool VertexGraph::WalkFacesIn(Visit& visit) const
+{
   // The links not yet walked as bits (link j of vertex v: bit 3v + j),
   // the next face started at the lowest: the order of a loop over
   // vertices and links, without its mispredicted tests per link.
+  static_assert(W == 1 || W == 3, "one word of link bits, or all three");
   static_assert(3 * MaxVertices <= 192, "three words of link bits");
   const int n = this->NumberOfVertices;
-  unsigned long long open[3];
-  for (int w = 0; w < 3; ++w)
+  const signed char* next = &this->Next[0][0]; // by link 3v + j
+  const signed char* back = &this->Back[0][0];
+  unsigned long long open[W];
+  for (int w = 0; w < W; ++w)
   {
     const int in = std::min(64, std::max(0, 3 * n - 64 * w));
     open[w] = in == 64 ? ~0ull : (1ull << in) - 1;
   }
-  int cycle[MaxVertices];
+  // Each step takes a link still open: a walk has at most 3n.
+  int cycle[3 * MaxVertices];
   for (int word = 0;;)
   {
-    while (word < 3 && open[word] == 0)
+    while (word < W && open[word] == 0)
     {
       ++word;
     }
-    if (word == 3)
+    if (word == W)
     {
       break;
     }
     const int start = 64 * word + __builtin_ctzll(open[word]);
     int size = 0;
     int a = start / 3;
-    int slot = start % 3;
     bool holdsApex = false;
     unsigned common = 0xFFu;
     for (int at = start;;)
     {
+      unsigned long long& bits = open[W == 1 ? 0 : at >> 6];
       const unsigned long long bit = 1ull << (at & 63);
-      if (size == MaxVertices || !(open[at >> 6] & bit))
+      if (!(bits & bit))
       {
         return false;
       }
-      open[at >> 6] &= ~bit;
+      bits &= ~bit;
       cycle[size++] = a;
       holdsApex |= a == 0;
       common &= this->On[a];
-      const int b = this->Next[a][slot];
-      const int back = this->Back[a][slot];
-      slot = back == 2 ? 0 : back + 1;
+      const int b = next[at];
+      if (static_cast<unsigned>(b) >= static_cast<unsigned>(n))
+      {
+        return false; // not a link of the graph
+      }
+      // The face goes on at b from the link after the one back to a.
+      const int slot = back[at] == 2 ? 0 : back[at] + 1;
       a = b;
-      at = 3 * a + slot;
+      at = 3 * b + slot;
       if (at == start)
       {
         break;
-      }
-      if (a < 0 || a >= n)
-      {
-        return false; // not a link of the graph
       }
     }
     if (!visit(cycle, size, holdsApex, common))
@@ -120,20 +131,24 @@ inline bool VertexGraph::Decompose(
   {
     return true;
   }
-  // The moments about vertex 0, summed tetrahedron by tetrahedron as
-  // TetrahedronIntersector::SumMoments does (the same operations: vertex
-  // 0's offset is zero), from the edges the volumes take anyway.
+  // The vertices about vertex 0: the edges of the fans' tetrahedra, for
+  // their volumes here and their moments after the walk.
   std::copy(this->X[0], this->X[0] + 3, piece.Origin);
-  double m0 = 0.0;
-  double m1[3] = { 0.0, 0.0, 0.0 };
-  double m2[3][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
+  double about0[MaxVertices][3];
+  for (int v = 0; v < n; ++v)
+  {
+    Sub(this->X[v], this->X[0], about0[v]);
+  }
   unsigned any = 0;
   for (int v = 0; v < n; ++v)
   {
     any |= this->On[v];
   }
   piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
-  auto face = [&](const auto* cycle, int size, bool holdsApex, unsigned common) {
+  // Always inlined, at both calls: called, its captures lived in memory.
+  auto face = [&](const auto* cycle, int size, bool holdsApex, unsigned common)
+    __attribute__((always_inline))
+  {
     const unsigned target = (common >> targetShift) & 15u;
     if (size < 3 || (holdsApex && !(target & ~piece.TouchedFaces)))
     {
@@ -144,13 +159,11 @@ inline bool VertexGraph::Decompose(
     Vec area = { 0.0, 0.0, 0.0 };
     for (int i = 1; i + 1 < size; ++i)
     {
-      const double* corners[4] = { this->X[0], this->X[cycle[0]], this->X[cycle[i]],
-        this->X[cycle[i + 1]] };
       if (needArea)
       {
         Vec e, f, g;
-        Sub(corners[2], corners[1], e);
-        Sub(corners[3], corners[1], f);
+        Sub(this->X[cycle[i]], this->X[cycle[0]], e);
+        Sub(this->X[cycle[i + 1]], this->X[cycle[0]], f);
         Cross(e, f, g);
         for (int c = 0; c < 3; ++c)
         {
@@ -161,14 +174,9 @@ inline bool VertexGraph::Decompose(
       {
         continue;
       }
-      Vec p[3]; // corners 1-3 about corner 0
-      for (int k = 0; k < 3; ++k)
-      {
-        Sub(corners[k + 1], corners[0], p[k]);
-      }
       Vec normal;
-      Cross(p[1], p[2], normal);
-      const double six = Dot(p[0], normal); // SixVolume
+      Cross(about0[cycle[i]], about0[cycle[i + 1]], normal);
+      const double six = Dot(about0[cycle[0]], normal); // SixVolume
       if (six == 0.0)
       {
         continue;
@@ -183,7 +191,6 @@ inline bool VertexGraph::Decompose(
       piece.Corner[t][2] = cycle[i];
       piece.Corner[t][3] = cycle[i + 1];
       piece.Volume[t] = six / 6.0;
-      AddTetrahedronMoments(piece.Volume[t], p, m0, m1, m2);
     }
     if (needArea && Dot(area, area) > minArea2)
     {
@@ -216,7 +223,18 @@ inline bool VertexGraph::Decompose(
   }
   // The tetrahedra's corners: the vertices, one contiguous block.
   std::copy(&this->X[0][0], &this->X[0][0] + 3 * n, &piece.Points[0][0]);
-  SetMoments(m0, m1, m2, piece);
+  // The moments about vertex 0, summed tetrahedron by tetrahedron as
+  // TetrahedronIntersector::SumMoments does (the same operations: vertex
+  // 0's offset is zero). After the walk, apart from it: within it they
+  // left the walk too few registers.
+  MomentSums sums;
+  for (int t = 0; t < piece.NumberOfTetrahedra; ++t)
+  {
+    const int(&corner)[4] = piece.Corner[t];
+    const double* p[3] = { about0[corner[1]], about0[corner[2]], about0[corner[3]] };
+    AddTetrahedronMoments(piece.Volume[t], p, sums);
+  }
+  SetMoments(sums, piece);
   return true;
 }
 } // namespace clipping

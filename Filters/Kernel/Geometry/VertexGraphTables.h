@@ -153,8 +153,8 @@ inline const VertexGraph::TableCut* VertexGraph::TetrahedronCuts()
   return table.Cut;
 }
 
-inline unsigned VertexGraph::SetClippedTetrahedron(
-  const TetrahedronIntersector::Cell& c, const double (&sides)[4][4], int k)
+inline unsigned VertexGraph::SetClippedTetrahedron(const TetrahedronIntersector::Cell& c,
+  const double (&sides)[4][4], const unsigned (&zero)[4], int k)
 {
   const double* d = sides[k];
   unsigned pattern = 0;
@@ -170,10 +170,7 @@ inline unsigned VertexGraph::SetClippedTetrahedron(
     return 0;
   }
   unsigned on[4];
-  for (int v = 0; v < 4; ++v)
-  {
-    on[v] = CornerBits(v, sides);
-  }
+  CornerBits(zero, on);
   static constexpr int corners[4] = { 0, 1, 2, 3 };
   this->SetCut(cut, c.X, on, corners, d, 1u << k);
   return pattern;
