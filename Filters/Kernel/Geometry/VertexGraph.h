@@ -257,23 +257,11 @@ struct VertexGraph
       clipped |= static_cast<unsigned long long>(d[v] < 0.0) << v;
     }
     unsigned links[MaxVertices];
-    unsigned long long from = 0;
-    for (int v = 0; v < n; ++v)
-    {
-      unsigned l = 0;
-      for (int j = 0; j < 3; ++j)
-      {
-        l |= static_cast<unsigned>((clipped >> (this->Next[v][j] & 63)) & 1u) << j;
-      }
-      l *= static_cast<unsigned>(((clipped >> v) & 1u) ^ 1u); // kept vertices only
-      links[v] = l;
-      from |= static_cast<unsigned long long>(l != 0) << v;
-    }
+    const unsigned long long from = this->CrossedLinks(clipped, links);
     int total = n;
-    while (from != 0)
+    for (unsigned long long kept = from; kept != 0; kept &= kept - 1)
     {
-      const int v = __builtin_ctzll(from);
-      from &= from - 1;
+      const int v = __builtin_ctzll(kept);
       for (unsigned l = links[v]; l != 0; l &= l - 1)
       {
         const int j = __builtin_ctz(l);
@@ -341,38 +329,87 @@ struct VertexGraph
         break;
       }
     }
-    // Compact: drop the clipped vertices. Without a branch per link (the
-    // checks are gathered) or per kept vertex (one moved onto itself is
-    // harmless).
-    int map[MaxVertices];
+    return this->Compact(total, clipped);
+  }
+
+  /**
+   * Of the clipped vertices (bits), the links of kept vertices to them:
+   * links[v] bit j for link j of kept vertex v, and the kept vertices with
+   * any (returned). Found from the clipped vertices' own links (mostly far
+   * fewer than the kept ones), each the way back by Back; links[v] is set
+   * for those vertices only.
+   */
+  unsigned long long CrossedLinks(unsigned long long clipped, unsigned (&links)[MaxVertices]) const
+  {
+    unsigned long long from = 0;
+    for (unsigned long long out = clipped; out != 0; out &= out - 1)
+    {
+      const int q = __builtin_ctzll(out);
+      for (int j = 0; j < 3; ++j)
+      {
+        const int v = this->Next[q][j];
+        // A link's id is below 48 or -1 (bit 63 of the mask, never set).
+        const unsigned long long bit = 1ull << (v & 63);
+        if ((~clipped & bit) != 0 && v >= 0)
+        {
+          const unsigned slot = 1u << this->Back[q][j]; // of q in v
+          links[v] = (from & bit) != 0 ? links[v] | slot : slot;
+          from |= bit;
+        }
+      }
+    }
+    return from;
+  }
+
+  /**
+   * Drops the clipped vertices (bits) of the `total`, moving the others
+   * down in order and renumbering their links; false when a kept vertex
+   * links to a clipped one or to none (inconsistent signs). Without a
+   * branch per link (the checks are gathered) or per kept vertex.
+   */
+  bool Compact(int total, unsigned long long clipped)
+  {
+    // map[v + 1]: the new index of v, -1 for a clipped one (and for a link
+    // to none, -1 itself: map[0]).
+    int map[MaxVertices + 1];
+    map[0] = -1;
     int m = 0;
     for (int v = 0; v < total; ++v)
     {
       const int keep = static_cast<int>(((clipped >> v) & 1u) ^ 1u);
-      map[v] = keep * (m + 1) - 1; // -1 for a clipped vertex
+      map[v + 1] = keep * (m + 1) - 1;
       m += keep;
     }
-    bool broken = false;
-    const unsigned long long all = total == 64 ? ~0ull : (1ull << total) - 1;
-    for (unsigned long long kept = all & ~clipped; kept != 0; kept &= kept - 1)
-    {
-      const int v = __builtin_ctzll(kept);
-      const int to = map[v];
+    int broken = 0;
+    auto relink = [&](int v, int to) {
       for (int j = 0; j < 3; ++j)
       {
-        const int x = this->Next[v][j];
-        const int y = map[x < 0 ? 0 : x];
-        broken |= (x < 0) | (y < 0);
+        const int y = map[this->Next[v][j] + 1];
+        broken |= y;
         this->Next[to][j] = static_cast<signed char>(y);
         this->Back[to][j] = this->Back[v][j];
       }
+    };
+    // The vertices below the first clipped one stay where they are: only
+    // their links change. (clipped != 0: Cut has vertices on both sides.)
+    const unsigned long long all = total == 64 ? ~0ull : (1ull << total) - 1;
+    const unsigned long long stay = (clipped & (0ull - clipped)) - 1;
+    for (int v = 0; (stay >> v) & 1u; ++v)
+    {
+      relink(v, v);
+    }
+    for (unsigned long long kept = all & ~clipped & ~stay; kept != 0; kept &= kept - 1)
+    {
+      const int v = __builtin_ctzll(kept);
+      const int to = map[v + 1];
+      relink(v, to);
       this->X[to][0] = this->X[v][0];
       this->X[to][1] = this->X[v][1];
       this->X[to][2] = this->X[v][2];
       this->On[to] = this->On[v];
       this->Original[to] = this->Original[v];
     }
-    if (broken)
+    if (broken < 0)
     {
       return false;
     }

@@ -64,7 +64,9 @@ inline bool VertexGraph::WalkFacesIn(Visit& visit) const
     const int start = 64 * word + __builtin_ctzll(open[word]);
     int size = 0;
     int a = start / 3;
-    bool holdsApex = false;
+    // A face holds vertex 0 when it has one of its links, bits 0-2: the
+    // lowest, so then the face starts there (its first vertex is 0).
+    const bool holdsApex = start < 3;
     unsigned common = 0xFFu;
     for (int at = start;;)
     {
@@ -76,7 +78,6 @@ inline bool VertexGraph::WalkFacesIn(Visit& visit) const
       }
       bits &= ~bit;
       cycle[size++] = a;
-      holdsApex |= a == 0;
       common &= this->On[a];
       const int b = next[at];
       if (static_cast<unsigned>(b) >= static_cast<unsigned>(n))
@@ -135,13 +136,10 @@ inline bool VertexGraph::Decompose(
   // their volumes here and their moments after the walk.
   std::copy(this->X[0], this->X[0] + 3, piece.Origin);
   double about0[MaxVertices][3];
-  for (int v = 0; v < n; ++v)
-  {
-    Sub(this->X[v], this->X[0], about0[v]);
-  }
   unsigned any = 0;
   for (int v = 0; v < n; ++v)
   {
+    Sub(this->X[v], this->X[0], about0[v]);
     any |= this->On[v];
   }
   piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
@@ -204,14 +202,13 @@ inline bool VertexGraph::Decompose(
     const signed char* cycle = faces->Vertex;
     for (int f = 0; f < faces->NumberOfFaces; cycle += faces->Size[f++])
     {
-      bool holdsApex = false;
       unsigned common = 0xFFu;
       for (int i = 0; i < faces->Size[f]; ++i)
       {
-        holdsApex |= cycle[i] == 0;
         common &= this->On[cycle[i]];
       }
-      if (!face(cycle, faces->Size[f], holdsApex, common))
+      // As walked: a face holding vertex 0 starts at it.
+      if (!face(cycle, faces->Size[f], cycle[0] == 0, common))
       {
         return false;
       }
