@@ -138,7 +138,7 @@ inline bool ClipAsGraph(const Clip& c, const int (&planes)[4], bool asGraph, Tet
     const double* origin = c.Clipping.X[(k + 1) % 4];
     if (!second || !graph.ClipSecond(first, normal, origin, 1u << k, c.Sides[k]))
     {
-      clippedAsGraph = graph.Clip(normal, origin, 1u << k, c.Sides[k]);
+      clippedAsGraph = graph.Clip(normal, origin, 1u << k, c.Sides[k], i + 1 == cutting);
     }
     second = false;
   }

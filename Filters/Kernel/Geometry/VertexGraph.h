@@ -58,6 +58,10 @@ struct VertexGraph
   /// The faces of the table's graphs (at most 12 vertices).
   using TableFaces = FaceCycles<12>;
   int NumberOfVertices = 0;
+  /// Bit v: vertex v (below NumberOfVertices) is no longer part of the
+  /// graph, left in place (with On 0) by a last cut that did not compact
+  /// (Clip's `last`): only Decompose takes such a graph. 0 otherwise.
+  unsigned long long Dead = 0;
   /// The faces when the graph is one of the tables' (then Decompose need
   /// not walk them), else null.
   const TableFaces* Faces = nullptr;
@@ -109,6 +113,7 @@ struct VertexGraph
   void SetTetrahedron(const TetrahedronIntersector::Cell& c, const unsigned (&zero)[4])
   {
     this->NumberOfVertices = 4;
+    this->Dead = 0;
     this->Faces = nullptr;
     unsigned on[4];
     CornerBits(zero, on);
@@ -192,8 +197,11 @@ struct VertexGraph
 
   /// Keeps the part on the inner side of plane `bit`; false when it cannot
   /// (capacity, or a face walk that does not come back): then the caller
-  /// falls back to splitting tetrahedra.
-  bool Clip(const double* normal, const double* origin, unsigned bit, const double sides[4])
+  /// falls back to splitting tetrahedra. The `last` cut before Decompose
+  /// leaves the clipped vertices in place, as Dead (moving the others down
+  /// would give Decompose the same graph, numbered without gaps).
+  bool Clip(const double* normal, const double* origin, unsigned bit, const double sides[4],
+    bool last = false)
   {
     const int n = this->NumberOfVertices;
     double d[MaxVertices];
@@ -218,7 +226,7 @@ struct VertexGraph
     {
       return true;
     }
-    return this->Cut(d, bit);
+    return this->Cut(d, bit, last);
   }
 
   /// Vertex v's distance from the plane as Clip takes it: a corner's exact
@@ -239,8 +247,8 @@ struct VertexGraph
     return Dot(normal, r);
   }
 
-  /// Clip's cut for distances d with vertices on both sides.
-  bool Cut(const double* d, unsigned bit)
+  /// Clip's cut for distances d with vertices on both sides (`last`: Clip's).
+  bool Cut(const double* d, unsigned bit, bool last = false)
   {
     this->Faces = nullptr; // a new graph
     const int n = this->NumberOfVertices;
@@ -329,6 +337,16 @@ struct VertexGraph
         break;
       }
     }
+    if (last)
+    {
+      for (unsigned long long dead = clipped; dead != 0; dead &= dead - 1)
+      {
+        this->On[__builtin_ctzll(dead)] = 0; // on nothing: out of the piece's bits
+      }
+      this->Dead = clipped;
+      this->NumberOfVertices = total;
+      return true;
+    }
     return this->Compact(total, clipped);
   }
 
@@ -414,6 +432,7 @@ struct VertexGraph
       return false;
     }
     this->NumberOfVertices = m;
+    this->Dead = 0;
     return true;
   }
   int Beyond[MaxVertices];     ///< per new vertex (index - n): the clipped end of its edge
@@ -443,8 +462,9 @@ struct VertexGraph
    * The faces (the tables' when the graph is one of theirs, else walked):
    * the faces of positive area whose vertices all lie on target face k set
    * bit k of `touched` (target faces are the vertex bits from
-   * `targetShift`), and the tetrahedra from vertex 0 to the triangles of
-   * the faces not holding it go to the piece. False when a walk does not
+   * `targetShift`), and the tetrahedra from the first vertex not Dead
+   * (the apex) to the triangles of the faces not holding it go to the
+   * piece. False when a walk does not
    * close or the piece has no room.
    */
   bool Decompose(int targetShift, double minArea2, TetrahedronIntersector::Piece& piece) const;

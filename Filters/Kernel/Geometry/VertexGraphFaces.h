@@ -2,13 +2,15 @@
 /**
  * @file VertexGraphFaces.h
  * @brief VertexGraph's faces, and the piece they make: the tetrahedra from
- *        vertex 0 to the faces' triangles, with their moments (part of
+ *        its first vertex to the faces' triangles, with their moments (part of
  *        VertexGraph.h, which includes it: include that).
  *
  * The faces are never stored while clipping: they follow from the links
  * (the face to the left of a -> b goes on at b), so they are walked once
  * the clip is done, or read from the tables when the graph is one of
- * theirs. Decompose then fans them from vertex 0 into tetrahedra and sums
+ * theirs. Decompose then fans them from the first vertex (the apex: 0, or
+ * after a last cut that left vertices Dead the first one not) into
+ * tetrahedra and sums
  * their moments (PieceMoments.h), and notes which target faces the piece
  * touches with positive area.
  */
@@ -49,6 +51,21 @@ inline bool VertexGraph::WalkFacesIn(Visit& visit) const
     const int in = std::min(64, std::max(0, 3 * n - 64 * w));
     open[w] = in == 64 ? ~0ull : (1ull << in) - 1;
   }
+  for (unsigned long long dead = this->Dead; dead != 0; dead &= dead - 1)
+  {
+    // Their links are never walked (no vertex of the graph links to them).
+    const int v = __builtin_ctzll(dead);
+    if (W == 1)
+    {
+      open[0] &= ~(7ull << (3 * v));
+      continue;
+    }
+    for (int at = 3 * v; at < 3 * v + 3; ++at)
+    {
+      open[at >> 6] &= ~(1ull << (at & 63));
+    }
+  }
+  const int apex = __builtin_ctzll(~this->Dead); // the first vertex of the graph
   // Each step takes a link still open: a walk has at most 3n.
   int cycle[3 * MaxVertices];
   for (int word = 0;;)
@@ -64,9 +81,9 @@ inline bool VertexGraph::WalkFacesIn(Visit& visit) const
     const int start = 64 * word + __builtin_ctzll(open[word]);
     int size = 0;
     int a = start / 3;
-    // A face holds vertex 0 when it has one of its links, bits 0-2: the
-    // lowest, so then the face starts there (its first vertex is 0).
-    const bool holdsApex = start < 3;
+    // A face holds the apex (the first vertex) when it has one of its
+    // links, the lowest: then the face starts there.
+    const bool holdsApex = a == apex;
     unsigned common = 0xFFu;
     for (int at = start;;)
     {
@@ -132,15 +149,17 @@ inline bool VertexGraph::Decompose(
   {
     return true;
   }
-  // The vertices about vertex 0: the edges of the fans' tetrahedra, for
-  // their volumes here and their moments after the walk.
-  std::copy(this->X[0], this->X[0] + 3, piece.Origin);
+  // The vertices about the apex, the first vertex (0 but after a last
+  // cut, Dead): the edges of the fans' tetrahedra, for their volumes here
+  // and their moments after the walk.
+  const int apex = __builtin_ctzll(~this->Dead);
+  std::copy(this->X[apex], this->X[apex] + 3, piece.Origin);
   double about0[MaxVertices][3];
   unsigned any = 0;
   for (int v = 0; v < n; ++v)
   {
-    Sub(this->X[v], this->X[0], about0[v]);
-    any |= this->On[v];
+    Sub(this->X[v], this->X[apex], about0[v]);
+    any |= this->On[v]; // (0 for Dead vertices)
   }
   piece.SourceFaces = (any >> (4 - targetShift)) & 15u; // the other cell's bits
   // Always inlined, at both calls: called, its captures lived in memory.
@@ -184,7 +203,7 @@ inline bool VertexGraph::Decompose(
         return false;
       }
       const int t = piece.NumberOfTetrahedra++;
-      piece.Corner[t][0] = 0;
+      piece.Corner[t][0] = apex;
       piece.Corner[t][1] = cycle[0];
       piece.Corner[t][2] = cycle[i];
       piece.Corner[t][3] = cycle[i + 1];
@@ -207,7 +226,7 @@ inline bool VertexGraph::Decompose(
       {
         common &= this->On[cycle[i]];
       }
-      // As walked: a face holding vertex 0 starts at it.
+      // As walked: a face holding the apex (0 here) starts at it.
       if (!face(cycle, faces->Size[f], cycle[0] == 0, common))
       {
         return false;
@@ -218,11 +237,12 @@ inline bool VertexGraph::Decompose(
   {
     return false;
   }
-  // The tetrahedra's corners: the vertices, one contiguous block.
+  // The tetrahedra's corners: the vertices, one contiguous block (Dead
+  // ones too: no tetrahedron names them).
   std::copy(&this->X[0][0], &this->X[0][0] + 3 * n, &piece.Points[0][0]);
-  // The moments about vertex 0, summed tetrahedron by tetrahedron as
-  // TetrahedronIntersector::SumMoments does (the same operations: vertex
-  // 0's offset is zero). After the walk, apart from it: within it they
+  // The moments about the apex, summed tetrahedron by tetrahedron as
+  // TetrahedronIntersector::SumMoments does (the same operations: the
+  // apex's offset is zero). After the walk, apart from it: within it they
   // left the walk too few registers.
   MomentSums sums;
   for (int t = 0; t < piece.NumberOfTetrahedra; ++t)

@@ -96,6 +96,7 @@ inline void VertexGraph::SetCut(const TableCut& cut, const double (*x)[3], const
   const int* original, const double* d, unsigned bit)
 {
   this->NumberOfVertices = cut.NumberOfVertices;
+  this->Dead = 0;
   this->Faces = cut.HasFaces ? &cut.Faces : nullptr;
   // The kept vertices come first, then the crossings: two loops without
   // a branch per vertex (one on the data, often mispredicted).
