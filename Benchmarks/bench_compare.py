@@ -30,8 +30,9 @@ tables, rows ready to paste into docs/performance.md: the times and ratios
 (filter / libsupermesh on one thread, 2-thread speed-up, filter / Resample
 With Dataset, memory), and nanoseconds per intersecting pair for each of
 the filter's stages on 1 / 2 threads; then per pair the numbering spread
-(the slowest numbering over the fastest) and the figures issue #56 sets
-targets for.
+(the slowest numbering over the fastest), the figures issue #56 sets
+targets for, and the host's load average (1 minute) before and after the
+pair's runs.
 
 --large N: also the generated 2D pair of N target triangles (and about as
 many source ones: N = 5e7 is a pair of 10^8 cells together), on 1 and 2
@@ -168,6 +169,7 @@ def compare(args, peer):
     for family in ("qhull", "gmsh", "generated"):
         for dim, cells in parse_sizes(getattr(args, family)):
             results = {}
+            load = os.getloadavg()[0]
             for numbering, target, source, options in pair_runs(family, dim, cells, args):
                 r = mpbench.bench_pair(args.bench, target, source, options, peer, args.runs, resample=True)
                 results[numbering] = r
@@ -176,7 +178,8 @@ def compare(args, peer):
                 times.append(time_row(name, shown, r))
                 per_pair.append(ns_row(name, shown, r))
                 print(times[-1], flush=True)
-            summary.append(summary_line(family, dim, cells, results))
+            summary.append(summary_line(family, dim, cells, results) +
+                           " [load average %.1f before, %.1f after]" % (load, os.getloadavg()[0]))
             print(summary[-1], flush=True)
     return times + [""] + per_pair, summary
 
