@@ -215,9 +215,9 @@ def large(args):
             "speed-up | peak resident memory (GiB) | the filter's peak beyond its inputs (GiB) | "
             "inputs (GiB) | whole run (m:ss) |",
             "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
-            "| generated 2D %d + %d = %.3g | %d | %.1f | %.1f | %.2f | %.1f | %.1f | %.1f | %s |" % (
-                target, source, target + source, pairs, one, two, one / two, rss / 2 ** 30,
-                beyond / 1024, inputs / 1024, wall)]
+            "| generated 2D {:,} + {:,} = {:,} | {:,} | %.1f | %.1f | %.2f | %.1f | %.1f | %.1f | %s |".format(
+                target, source, target + source, pairs) % (
+                one, two, one / two, rss / 2 ** 30, beyond / 1024, inputs / 1024, wall)]
 
 
 def main():
@@ -246,9 +246,11 @@ def main():
     if not peer:
         print("libsupermesh not found: no peer columns (see --peer)", file=sys.stderr)
     os.makedirs(args.meshes, exist_ok=True)
-    lines, summary = compare(args, peer)
+    lines, summary = [], []
+    if args.qhull or args.gmsh or args.generated:
+        lines, summary = compare(args, peer)
     if args.large:
-        summary += [""] + large(args)
+        summary += ([""] if summary else []) + large(args)
     mpbench.print_table(lines, summary, args.markdown)
 
 
