@@ -30,6 +30,17 @@ void PrintPeer(const Row& r, double filter)
     static_cast<long long>(r.PeerPieces), r.PeerMeasure);
   std::printf("  %-34s %10.2fx\n", "VTK filter / libsupermesh", filter / r.Peer);
 }
+
+/// --filter-only --resample: Resample With Dataset's best time, against the filter's.
+void PrintResample(const Row& r)
+{
+  if (r.Resample < 0)
+  {
+    return;
+  }
+  std::printf("  %-34s %10.4f\n", "Resample With Dataset", r.Resample);
+  std::printf("  %-34s %10.2fx\n", "VTK filter / Resample With Dataset", r.Filter1 / r.Resample);
+}
 } // namespace
 
 /// --filter-only: the VTK filter on the calling thread, stage by stage.
@@ -67,6 +78,7 @@ void PrintFilter(const Row& r)
     }
   }
   PrintPeer(r, r.Filter1);
+  PrintResample(r);
 }
 
 void Print(const Row& r)

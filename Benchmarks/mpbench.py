@@ -111,16 +111,31 @@ def find_peer():
         return None
 
 
-def bench_pair(bench, target, source, options, peer, runs):
-    """mesh-projection-bench --filter-only on two .vtu files, with `options`
-    (e.g. ["--threads", "1,2", "--order", "asis"]) and the peer's
-    intersections in the same process when `peer` is given: a dict of the
-    cells, the filter's best time on the first thread count ("filter") and
-    on the second ("filter2", None without), the renumbering's time and
-    count, the memory ratio and the peer's time (None without)."""
-    command = [bench, "--filter-only", "--runs", str(runs), "--target", target, "--source", source] + options
+# The filter's stages as mesh-projection-bench --filter-only prints them
+# (vtkMeshProjectionFilter::Get*Time), and two parts of the first.
+STAGES = ("reading the inputs", "neighbours", "seeding (boundary-cell bins)",
+          "search + intersections + integrals", "assembly", "solve", "writing the outputs")
+INPUT_PARTS = ("of which id/offset checks", "of which renumbering")
+
+
+def bench_pair(bench, target, source, options, peer, runs, resample=False):
+    """mesh-projection-bench --filter-only on two .vtu files (or, with
+    `target` and `source` None, on the pair it generates from `options`'
+    --dim and --sizes), with `options` (e.g. ["--threads", "1,2", "--order",
+    "asis"]), the peer's intersections in the same process when `peer` is
+    given and Resample With Dataset with `resample`: a dict of the cells,
+    the intersecting pairs, the filter's best time on the first thread count
+    ("filter") and on the second ("filter2", None without), its stages on
+    each ("stages", "stages2": {stage: seconds}, with the input's parts),
+    the renumbering's time and count, the memory ratio, the peer's time and
+    Resample With Dataset's (None without)."""
+    command = [bench, "--filter-only", "--runs", str(runs)] + options
+    if target:
+        command += ["--target", target, "--source", source]
     if peer:
         command += ["--peer", peer]
+    if resample:
+        command += ["--resample"]
     out = subprocess.run(command, capture_output=True, text=True, check=True).stdout
     number = r"\s+([0-9.eE+-]+)"
 
@@ -128,15 +143,23 @@ def bench_pair(bench, target, source, options, peer, runs):
         m = re.search(pattern, out)
         return convert(m.group(1)) if m else missing
 
+    stages = [{}, {}]  # the first thread count's stages are printed first
+    for name in STAGES + INPUT_PARTS:
+        for slot, value in enumerate(re.findall(r"\n\s+" + re.escape(name) + number, out)[:2]):
+            stages[slot][name] = float(value)
     return {
         "cells": int(re.search(r"target (\d+) cells", out).group(1)),
         "source": int(re.search(r"source (\d+) cells", out).group(1)),
+        "pairs": int(re.search(r"(\d+) intersecting pairs", out).group(1)),
         "filter": float(re.search(r"VTK filter \((?:one run|best of \d+)\)" + number, out).group(1)),
         "renumber": float(re.search(r"of which renumbering" + number, out).group(1)),
         "renumbered": int(re.search(r"\((\d) of 2 meshes\)", out).group(1)),
         "memory": found(r"inputs [0-9.]+ MiB, ratio ([^)]+)\)", float, float("nan")),
         "filter2": found(r"VTK filter on \d+ threads" + number, float),
+        "stages": stages[0],
+        "stages2": stages[1] or None,
         "peer": found(r"libsupermesh intersections only" + number, float),
+        "resample": found(r"Resample With Dataset" + number, float),
     }
 
 
