@@ -207,17 +207,14 @@ void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray
   part->SetNumberOfValues(n);
   std::copy(removed.begin(), removed.end(), part->GetPointer(0));
   outData->AddArray(part);
-  // The largest over every process (a minimum of the negatives).
-  largest[0] = -largest[0];
-  largest[1] = -largest[1];
-  ctx.Processes.Minimum(largest, 2);
+  ctx.Processes.Maximum(largest, 2);
   // (A trace's vectors are the volume's: their normal part is no surprise.)
-  if (-largest[0] > LargeNormalPart * -largest[1] && !ctx.Shape.Trace)
+  if (largest[0] > LargeNormalPart * largest[1] && !ctx.Shape.Trace)
   {
     ctx.Say.WarnOnce("tangent/large/" + ctx.Role + "/" + name,
       "TangentArrays: the projected '" + name + "' on " + ctx.Role + " had a normal part up to " +
-        std::to_string(-largest[0]) + " (removed, see " + name +
-        "_NormalPart) for a largest magnitude of " + std::to_string(-largest[1]) +
+        std::to_string(largest[0]) + " (removed, see " + name +
+        "_NormalPart) for a largest magnitude of " + std::to_string(largest[1]) +
         ": the meshes' normals differ much there (a coarse facetization, or Input off Source).");
   }
 }

@@ -11,6 +11,7 @@
 
 #include "Adapter/Ghosts.h"
 #include "Adapter/SimplexMesh.h"
+#include "Mesh/AlignedSum.h"
 #include "Mesh/Vec3.h"
 #include "Parallel/Parts.h"
 #include "Projection/Messages.h"
@@ -24,6 +25,7 @@
 
 namespace mpvtk
 {
+using mp::AddAligned;
 using mp::Dot;
 namespace
 {
@@ -134,20 +136,6 @@ std::vector<double> CellDirections(vtkDataSet* data, int dimension)
   return d;
 }
 
-namespace
-{
-/// Adds `w` to the direction at point p, with the sign that agrees with the sum so far.
-void AddAligned(std::vector<double>& d, vtkIdType p, const double* w)
-{
-  double* sum = &d[3 * p];
-  const double sign = Dot(sum, w) < 0 ? -1.0 : 1.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    sum[k] += sign * w[k];
-  }
-}
-} // namespace
-
 std::vector<double> PointDirections(vtkDataSet* data, int dimension)
 {
   const vtkIdType n = data->GetNumberOfPoints();
@@ -174,8 +162,8 @@ std::vector<double> PointDirections(vtkDataSet* data, int dimension)
         part->SetId(0, ids->GetId(i));
         part->SetId(1, ids->GetId(i + 1));
         Direction(data, part, 1, w);
-        AddAligned(d, part->GetId(0), w);
-        AddAligned(d, part->GetId(1), w);
+        AddAligned(&d[3 * part->GetId(0)], w);
+        AddAligned(&d[3 * part->GetId(1)], w);
       }
       continue;
     }
@@ -189,7 +177,7 @@ std::vector<double> PointDirections(vtkDataSet* data, int dimension)
     }
     for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
     {
-      AddAligned(d, ids->GetId(i), w);
+      AddAligned(&d[3 * ids->GetId(i)], w);
     }
   }
   return d;
@@ -250,26 +238,13 @@ void JoinCoincident(vtkDataSet* data, std::vector<double>& d)
     double sum[3] = { 0.0, 0.0, 0.0 };
     for (vtkIdType i = begin; i < end; ++i)
     {
-      const double* w = &d[3 * order[i]];
-      const double sign = Dot(sum, w) < 0 ? -1.0 : 1.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        sum[k] += sign * w[k];
-      }
+      AddAligned(sum, &d[3 * order[i]]);
     }
     for (vtkIdType i = begin; i < end; ++i)
     {
       std::copy_n(sum, 3, &d[3 * order[i]]);
     }
   }
-}
-
-/// The largest over every process (by the seam's minimum).
-double Largest(Parts& parts, double mine)
-{
-  double negative = -mine;
-  parts.Minimum(&negative, 1);
-  return -negative;
 }
 
 /// The normal part of tangent array a of `g` removed at every function of the Source.
@@ -326,7 +301,7 @@ void RemoveSourceNormalParts(vtkDataSet* source, const SimplexMesh& mesh, const 
             " components, not 3: it is projected as an ordinary array.");
         continue;
       }
-      double removedMost = 0.0, fieldMost = 0.0;
+      double most[2] = { 0.0, 0.0 }; // removed, field
       // (A volume Source keeps its vectors: the normal part is removed on
       // Input alone, a surface or curve inside it. A process without Source
       // cells has nothing to remove but takes part in the maxima.)
@@ -338,17 +313,16 @@ void RemoveSourceNormalParts(vtkDataSet* source, const SimplexMesh& mesh, const 
       }
       if (applies)
       {
-        RemoveFromSourceArray(mesh, association, a, cells, points, g, removedMost, fieldMost);
+        RemoveFromSourceArray(mesh, association, a, cells, points, g, most[0], most[1]);
       }
-      removedMost = Largest(parts, removedMost);
-      fieldMost = Largest(parts, fieldMost);
-      if (removedMost > LargeNormalPart * fieldMost)
+      parts.Maximum(most, 2);
+      if (most[0] > LargeNormalPart * most[1])
       {
         messages.WarnOnce(std::string("tangent/source/") + kind + "/" + label,
           "TangentArrays: Source " + std::string(kind) + " array '" + label +
-            "' is not tangent to the Source: its normal part, up to " +
-            std::to_string(removedMost) + " for a largest magnitude of " +
-            std::to_string(fieldMost) + ", is removed before the projection.");
+            "' is not tangent to the Source: its normal part, up to " + std::to_string(most[0]) +
+            " for a largest magnitude of " + std::to_string(most[1]) +
+            ", is removed before the projection.");
       }
     }
   }
