@@ -149,9 +149,9 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     run.Source, targetMesh, target, shared, job.Role, LeafShape(), job.LastReaderOfSource };
   OperatorPlan plan;
   OperatorSet ops;
-  // (DecideShape's collective part follows its round, where all go on.)
-  result.Outcome =
-    agreement.Local("Deciding the shape", [&]() { return DecideShape(ctx, agreement); });
+  // (DecideShape runs its own steps of this process alone through
+  // agreement.Local: its collective sums are outside them.)
+  result.Outcome = DecideShape(ctx, agreement);
   if (result.Outcome.Ok())
   {
     WarnShape(ctx);
