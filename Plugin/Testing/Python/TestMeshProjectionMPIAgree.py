@@ -33,15 +33,11 @@ from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE, vtkUnstructur
 
 from mpsupport import meshes, mpi
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 which = sys.argv[1] if len(sys.argv) > 1 else "last"
 bad = 0 if which == "first" else size - 1  # the process that fails alone
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 
 
 def run(target, source, abort_at=None):

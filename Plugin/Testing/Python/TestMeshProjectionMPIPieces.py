@@ -32,14 +32,10 @@ from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE, vtkUnstructuredGrid
 
 from mpsupport import meshes, mpi
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 bad = size - 1  # the process whose piece is spoiled
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 
 
 def copy(g):

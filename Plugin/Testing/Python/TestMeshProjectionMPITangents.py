@@ -13,19 +13,16 @@ of the field's largest magnitude), and the result's normal part is at
 round-off on every process.
 """
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkFiltersCore import vtkAppendFilter
 
 from mpsupport import meshes, mpi
+from mpsupport.mpi import add
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 F = meshprojection.vtkMeshProjectionFilter
 
 
@@ -56,12 +53,6 @@ def centres(g):
     x = vtk_to_numpy(g.GetPoints().GetData())
     conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 3)
     return x[conn].mean(axis=1)
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
 
 
 def run(filter_class, target, source):

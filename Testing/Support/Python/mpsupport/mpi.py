@@ -32,6 +32,24 @@ def start():
     return controller, True
 
 
+def begin():
+    """A symmetric MPI test's start: start(), then its Checks. Returns
+    (controller, rank, size, check); the test imports meshprojection after
+    it (once MPI is up)."""
+    controller, made_here = start()
+    rank = controller.GetLocalProcessId()
+    size = controller.GetNumberOfProcesses()
+    return controller, rank, size, Checks(controller, made_here)
+
+
+def add(data, name, values):
+    """Adds `values` (a numpy array: one row per tuple) to `data` (point or
+    cell data) as the array `name` (a deep copy, of values' type)."""
+    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
+    a.SetName(name)
+    data.AddArray(a)
+
+
 def allreduce(controller, value, op=vtkCommunicator.MAX_OP):
     out = numpy_to_vtk(np.zeros(1), deep=True)
     controller.AllReduce(numpy_to_vtk(np.array([float(value)]), deep=True), out, op)
