@@ -354,22 +354,39 @@ const std::vector<double>& TargetTangents::Directions(bool points)
     this->HavePoints = true;
     if (this->Hooks.Exchange)
     {
-      // The sums completed over the processes that share a point, in the
-      // solver's rows (the kernel's point order; rows beyond: zero).
-      const vtkIdType n = this->Data->GetNumberOfPoints();
-      std::vector<double> rows(static_cast<size_t>(3 * std::max(this->PointRows, n)), 0.0);
-      for (vtkIdType f = 0; f < n; ++f)
-      {
-        std::copy_n(&this->Points[3 * this->Mesh.DataSetPoint(f)], 3, &rows[3 * f]);
-      }
-      this->Hooks.Exchange(rows.data(), 3);
-      for (vtkIdType f = 0; f < n; ++f)
-      {
-        std::copy_n(&rows[3 * f], 3, &this->Points[3 * this->Mesh.DataSetPoint(f)]);
-      }
+      this->CompleteSharedSums();
     }
   }
   return this->Points;
+}
+
+void TargetTangents::CompleteSharedSums()
+{
+  // In the solver's rows (the kernel's point order; rows beyond: zero).
+  // Each process's sum has its own sign: the processes first agree on the
+  // axis of each shared point (AlignedSum.h), whose sign each part then
+  // takes before the parts are added.
+  const vtkIdType n = this->Data->GetNumberOfPoints();
+  const size_t rows = static_cast<size_t>(std::max(this->PointRows, n));
+  std::vector<double> sums(3 * rows, 0.0);
+  std::vector<double> outer(6 * rows, 0.0);
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    std::copy_n(&this->Points[3 * this->Mesh.DataSetPoint(f)], 3, &sums[3 * f]);
+    mp::AddOuter(&outer[6 * f], &sums[3 * f]);
+  }
+  this->Hooks.Exchange(outer.data(), 6);
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    double axis[3];
+    mp::PrincipalAxis(&outer[6 * f], axis);
+    mp::AlignWithAxis(&sums[3 * f], axis);
+  }
+  this->Hooks.Exchange(sums.data(), 3);
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    std::copy_n(&sums[3 * f], 3, &this->Points[3 * this->Mesh.DataSetPoint(f)]);
+  }
 }
 
 std::vector<double> TargetTangents::Remove(double* values, vtkIdType functions, bool points,
