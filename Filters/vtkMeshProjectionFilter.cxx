@@ -650,16 +650,17 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
   mpvtk::Messages say(&filter, in.Warned);
   mpvtk::Progress progress(&filter);
 
-  // 1. Source as one mesh, then its fields.
+  // 1. Source as one mesh, then its fields (the arrays listed first: the
+  // selection says which of this process's piece are labels).
+  filter.ListSource(sourceObject);
+  vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::SourceSide source;
   mpvtk::Verdict verdict =
-    mpvtk::PrepareSourceMesh(sourceObject, input, settings, parts, say, stats, source);
+    mpvtk::PrepareSourceMesh(sourceObject, input, settings, selections, parts, say, stats, source);
   if (!verdict.Ok())
   {
     return verdict;
   }
-  filter.ListSource(sourceObject);
-  vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
     source.Data, source.Mesh, selections, settings, say, parts, source.Fields);
   mpvtk::ReconstructCellFields(

@@ -2,6 +2,7 @@
 #include "Projection/Labels.h"
 
 #include "vtkDataArray.h"
+#include "vtkDataArraySelection.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
@@ -224,7 +225,8 @@ bool IsLabelArray(
   return array->GetNumberOfComponents() == 1;
 }
 
-void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredFields fields[2])
+void ListPieceLabels(vtkDataSet* source, vtkDataArraySelection* const selections[2],
+  const Settings& settings, GatheredFields fields[2])
 {
   for (int association = 0; source && association < 2; ++association)
   {
@@ -233,6 +235,7 @@ void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredField
     {
       vtkDataArray* array = data->GetArray(i);
       if (!array || !array->GetName() || !IsField(data, array) ||
+        !selections[association]->ArrayIsEnabled(array->GetName()) ||
         !IsLabelArray(array, settings, association, nullptr))
       {
         continue;

@@ -56,6 +56,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkDataArraySelection;
 class vtkDataSet;
 
 namespace mpvtk
@@ -88,11 +89,13 @@ bool IsLabelArray(
 
 /**
  * Before the Source is gathered: the labels of each array of this
- * process's piece `source` that `settings` makes a label array
- * (GatheredFields::PieceLabels), so that every process knows the whole
- * Source's labels.
+ * process's piece `source` that `selections` (points, cells) enable and
+ * `settings` makes a label array (GatheredFields::PieceLabels), so that
+ * every process knows the whole Source's labels. (Arrays not projected
+ * are not read.)
  */
-void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredFields fields[2]);
+void ListPieceLabels(vtkDataSet* source, vtkDataArraySelection* const selections[2],
+  const Settings& settings, GatheredFields fields[2]);
 
 /**
  * For each of g.Labels: its labels (every process's, and those of the
