@@ -18,10 +18,20 @@ never one process with output while the others fail:
 Each process's outcome (error text, whether the output has projected
 arrays) is gathered on every process and compared there.
 
-Not here, for want of a way to cause them from outside: a solve that fails
-(MaximumIterations 0 or 1 only hands the system to the direct solver,
-which solves it) and an exception in one process's step (mpvtk::Guarded).
+A solve that fails and an exception have no honest cause from outside
+(the solves are collective: a system that fails, fails on every process;
+MaximumIterations 0 or 1 only hands it to the direct solver, which solves
+it), so the test makes them on the failing process with the test-only
+MESHPROJECTION_TEST_FAULT=<stage>@<rank> (docs/testing.md):
+ - "solve": its solves reported failed (the leaf's last round agrees it);
+ - "local": an exception in a step of that process alone (building the
+   operators: mpvtk::Guarded, agreed in the next round).
+With the argument "collective" (the last process): an exception between
+the solves' collectives, where the others wait; the run must end, aborted
+on every process (MPI_Abort), not hang: the script then never reaches its
+end, and the test passes on the filter's abort message.
 """
+import os
 
 import sys
 
@@ -36,6 +46,10 @@ from mpsupport import meshes, mpi
 controller, rank, size, check = mpi.begin()
 which = sys.argv[1] if len(sys.argv) > 1 else "last"
 bad = 0 if which == "first" else size - 1  # the process that fails alone
+if which == "collective":
+    # An exception inside a collective step: the run ends (MPI_Abort) on
+    # every process; "FAILED" if the execution comes back on any.
+    os.environ["MESHPROJECTION_TEST_FAULT"] = "collective@%d" % bad
 
 import meshprojection  # noqa: E402  (after MPI is up)
 
@@ -135,6 +149,10 @@ def nan_coordinate(g):
 
 # 0. Nothing spoiled: every process projects (the test's own baseline).
 out, warnings, errors = run(copy(target_piece), copy(source_piece))
+if which == "collective":
+    print("FAILED on process %d: the execution came back after an exception in a collective step "
+          "(errors: %s)" % (rank, errors), file=sys.stderr, flush=True)
+    os._exit(1)
 all_ = outcomes(out, errors)
 check(np.all(all_[:, 0] == 0) and np.all(all_[:, 2] == 1), "unspoiled: errors or no output %s" % all_)
 
@@ -169,5 +187,13 @@ all_ = outcomes(out, stopped)
 check(np.all(all_[:, 0] == 1), "abort on one process: not stopped on processes %s" % np.where(all_[:, 0] != 1)[0])
 check(np.all(all_[:, 2] == 0), "abort on one process: projected output on processes %s" % np.where(all_[:, 2] != 0)[0])
 check(not errors, "abort on one process: errors %s" % errors)
+
+# 6. Test faults (MESHPROJECTION_TEST_FAULT) on the failing process: a
+# failed solve, an exception in a step of that process alone.
+for stage, words in (("solve", "the solves failed"), ("local", "Building the operators failed")):
+    os.environ["MESHPROJECTION_TEST_FAULT"] = "%s@%d" % (stage, bad)
+    out, _, errors = run(copy(target_piece), copy(source_piece))
+    del os.environ["MESHPROJECTION_TEST_FAULT"]
+    expect_failure("test fault %s" % stage, out, errors, words)
 
 check.finish("%d processes, the %s process fails alone" % (size, which))
