@@ -32,9 +32,10 @@
  *
  * Memory does not grow with the number of labels: the indicators are
  * projected LabelBlock labels at a time (per row the sum of the weights,
- * their largest, then the winner), never all side by side; the fractions,
- * an output of one component per label, only up to MaximumLabelFractions
- * labels.
+ * their largest, then the winner: each block projected again), never all
+ * side by side; the fractions, an output of one component per label, only
+ * up to MaximumLabelFractions labels (their storage holds the weights
+ * between the two passes: each block projected once).
  *
  * The operators that carry labels need M_ts (PlanOperators assembles it);
  * on several processes the labels are every process's (UnionOfValues) and
