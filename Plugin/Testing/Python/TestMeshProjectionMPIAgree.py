@@ -36,9 +36,7 @@ import os
 import sys
 
 import numpy as np
-from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE, vtkUnstructuredGrid
 
 from mpsupport import meshes, mpi
@@ -58,41 +56,26 @@ def run(target, source, abort_at=None):
     """The parallel filter updated on this process's pieces; its output and
     the texts of its warnings and errors (`abort_at`: this process sets
     AbortExecute once the progress passes it)."""
-    texts = {"WarningEvent": [], "ErrorEvent": []}
     f = meshprojection.vtkPMeshProjectionFilter()
-
-    def observe(obj, event):
-        @calldata_type(VTK_STRING)
-        def collect(o, e, text):
-            texts[event].append(str(text))
-        obj.AddObserver(event, collect)
-        return collect
-    keep = [observe(f, e) for e in texts] + [observe(f.GetExecutive(), "ErrorEvent")]
+    texts = mpi.messages(f)
     if abort_at is not None:
         def progress(o, e):
             if o.GetProgress() >= abort_at:
                 o.SetAbortExecute(1)
-        keep.append(f.AddObserver("ProgressEvent", progress))
+        f.AddObserver("ProgressEvent", progress)
     f.SetInputData(target)
     if source is not None:
         f.SetSourceData(source)
     f.SetCacheOperator(False)
     f.Update()
-    del keep
     return f.GetOutput(), texts["WarningEvent"], texts["ErrorEvent"]
-
-
-def text_hash(text):
-    """A number for a message (the text after VTK's "(address): " header)."""
-    text = text.split("): ", 1)[-1].strip()
-    return float(sum((i + 1) * ord(c) for i, c in enumerate(text)) % 1000003)
 
 
 def outcomes(out, messages):
     """Every process's (has a message, hash of its first, projected output)."""
     projected = out.GetPointData().GetArray("vtkValidPointMask") is not None or \
         out.GetPointData().GetArray("f") is not None
-    mine = [1.0 if messages else 0.0, text_hash(messages[0]) if messages else -1.0, 1.0 if projected else 0.0]
+    mine = [1.0 if messages else 0.0, mpi.message_hash(messages[0]) if messages else -1.0, 1.0 if projected else 0.0]
     return np.array(mpi.allgather(controller, np.array(mine)))
 
 

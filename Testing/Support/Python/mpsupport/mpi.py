@@ -50,6 +50,33 @@ def add(data, name, values):
     data.AddArray(a)
 
 
+def messages(f):
+    """The texts of the warnings and errors of the filter f (its executive's
+    errors too), collected as they come: {"WarningEvent": [...],
+    "ErrorEvent": [...]}. (The observers also keep VTK from printing them.)"""
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.vtkCommonCore import VTK_STRING
+    texts = {"WarningEvent": [], "ErrorEvent": []}
+
+    def observe(obj, event):
+        @calldata_type(VTK_STRING)
+        def collect(o, e, text):
+            texts[event].append(str(text))
+        obj.AddObserver(event, collect)
+    for event in texts:
+        observe(f, event)
+    observe(f.GetExecutive(), "ErrorEvent")
+    return texts
+
+
+def message_hash(text):
+    """A number for a message, the same on every process for the same words
+    (the text after VTK's "(address): " header, without the white space
+    around it)."""
+    text = text.split("): ", 1)[-1].strip()
+    return float(sum((i + 1) * ord(c) for i, c in enumerate(text)) % 1000003)
+
+
 def allreduce(controller, value, op=vtkCommunicator.MAX_OP):
     out = numpy_to_vtk(np.zeros(1), deep=True)
     controller.AllReduce(numpy_to_vtk(np.array([float(value)]), deep=True), out, op)
