@@ -82,7 +82,6 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.NumberOfThreads, s.NumberOfThreads);
   each(f.Renumbering, s.Renumbering);
   each(f.DensityArray, s.DensityArray);
-  each(f.MassWeightedArrays, s.MassWeightedArrays);
   each(f.CategoricalMode, s.CategoricalMode);
   each(f.LabelFractions, s.LabelFractions);
   each(f.FillLabel, s.FillLabel);
@@ -94,9 +93,11 @@ mpvtk::Settings vtkMeshProjectionFilter::Internals::Read(const vtkMeshProjection
   ForEachProperty(filter, s, [](const auto& property, auto& field) {
     field = static_cast<std::decay_t<decltype(field)>>(property);
   });
-  s.TangentArrays = filter.Internal->TangentArrays;
-  const std::vector<std::string>& named = filter.Internal->CategoricalNames;
-  s.CategoricalArrays.insert(named.begin(), named.end());
+  const Internals& lists = *filter.Internal;
+  s.TangentArrays = lists.TangentArrays.All();
+  s.MassWeightedArrays = lists.MassWeightedArrays.All();
+  s.CategoricalArrays.insert(
+    lists.CategoricalArrays.All().begin(), lists.CategoricalArrays.All().end());
   return s;
 }
 
@@ -106,7 +107,7 @@ void vtkMeshProjectionFilter::Internals::SetDefaults(vtkMeshProjectionFilter& fi
   ForEachProperty(filter, defaults, [](auto& property, const auto& field) {
     property = static_cast<std::decay_t<decltype(property)>>(field);
   });
-  filter.Internal->TangentArrays = defaults.TangentArrays;
+  // (The list properties, Internals' NameLists, start empty as a default mpvtk::Settings's.)
 }
 
 // The public constants are the values of Projection's own (Settings.h,
@@ -209,32 +210,28 @@ void vtkMeshProjectionFilter::ListSource(vtkDataObject* data)
 
 void vtkMeshProjectionFilter::AddTangentArray(const char* name)
 {
-  std::vector<std::string>& names = this->Internal->TangentArrays;
-  if (name && std::find(names.begin(), names.end(), name) == names.end())
+  if (this->Internal->TangentArrays.Add(name))
   {
-    names.emplace_back(name);
     this->Modified();
   }
 }
 
 void vtkMeshProjectionFilter::ClearTangentArrays()
 {
-  if (!this->Internal->TangentArrays.empty())
+  if (this->Internal->TangentArrays.Clear())
   {
-    this->Internal->TangentArrays.clear();
     this->Modified();
   }
 }
 
 int vtkMeshProjectionFilter::GetNumberOfTangentArrays() const
 {
-  return static_cast<int>(this->Internal->TangentArrays.size());
+  return this->Internal->TangentArrays.Count();
 }
 
 const char* vtkMeshProjectionFilter::GetTangentArray(int i) const
 {
-  const std::vector<std::string>& names = this->Internal->TangentArrays;
-  return i >= 0 && i < static_cast<int>(names.size()) ? names[i].c_str() : nullptr;
+  return this->Internal->TangentArrays.Get(i);
 }
 
 vtkDataArraySelection* vtkMeshProjectionFilter::GetPointDataArraySelection()
@@ -270,27 +267,28 @@ void vtkMeshProjectionFilter::SetDensityArray(const char* name)
 
 void vtkMeshProjectionFilter::AddMassWeightedArray(const char* name)
 {
-  if (name && *name)
+  if (this->Internal->MassWeightedArrays.Add(name))
   {
-    this->MassWeightedArrays.emplace_back(name);
     this->Modified();
   }
 }
 
 void vtkMeshProjectionFilter::ClearMassWeightedArrays()
 {
-  if (!this->MassWeightedArrays.empty())
+  if (this->Internal->MassWeightedArrays.Clear())
   {
-    this->MassWeightedArrays.clear();
     this->Modified();
   }
 }
 
+int vtkMeshProjectionFilter::GetNumberOfMassWeightedArrays() const
+{
+  return this->Internal->MassWeightedArrays.Count();
+}
+
 const char* vtkMeshProjectionFilter::GetMassWeightedArray(int i) const
 {
-  return i >= 0 && i < static_cast<int>(this->MassWeightedArrays.size())
-    ? this->MassWeightedArrays[static_cast<size_t>(i)].c_str()
-    : nullptr;
+  return this->Internal->MassWeightedArrays.Get(i);
 }
 
 void vtkMeshProjectionFilter::ClearCellDataArrayStatuses()
@@ -305,32 +303,28 @@ void vtkMeshProjectionFilter::SetCellDataArrayStatus(const char* name, int statu
 
 void vtkMeshProjectionFilter::AddCategoricalArray(const char* name)
 {
-  if (name)
+  if (this->Internal->CategoricalArrays.Add(name))
   {
-    this->Internal->CategoricalNames.emplace_back(name);
     this->Modified();
   }
 }
 
 void vtkMeshProjectionFilter::ClearCategoricalArrays()
 {
-  if (!this->Internal->CategoricalNames.empty())
+  if (this->Internal->CategoricalArrays.Clear())
   {
-    this->Internal->CategoricalNames.clear();
     this->Modified();
   }
 }
 
-int vtkMeshProjectionFilter::GetNumberOfCategoricalArrays()
+int vtkMeshProjectionFilter::GetNumberOfCategoricalArrays() const
 {
-  return static_cast<int>(this->Internal->CategoricalNames.size());
+  return this->Internal->CategoricalArrays.Count();
 }
 
-const char* vtkMeshProjectionFilter::GetCategoricalArray(int i)
+const char* vtkMeshProjectionFilter::GetCategoricalArray(int i) const
 {
-  const std::vector<std::string>& named = this->Internal->CategoricalNames;
-  return i >= 0 && i < static_cast<int>(named.size()) ? named[static_cast<size_t>(i)].c_str()
-                                                      : nullptr;
+  return this->Internal->CategoricalArrays.Get(i);
 }
 
 vtkIdType vtkMeshProjectionFilter::GetOperatorMemory()
@@ -656,16 +650,17 @@ mpvtk::Verdict vtkMeshProjectionFilter::Internals::Project(vtkMeshProjectionFilt
   mpvtk::Messages say(&filter, in.Warned);
   mpvtk::Progress progress(&filter);
 
-  // 1. Source as one mesh, then its fields.
+  // 1. Source as one mesh, then its fields (the arrays listed first: the
+  // selection says which of this process's piece are labels).
+  filter.ListSource(sourceObject);
+  vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::SourceSide source;
   mpvtk::Verdict verdict =
-    mpvtk::PrepareSourceMesh(sourceObject, input, settings, parts, say, stats, source);
+    mpvtk::PrepareSourceMesh(sourceObject, input, settings, selections, parts, say, stats, source);
   if (!verdict.Ok())
   {
     return verdict;
   }
-  filter.ListSource(sourceObject);
-  vtkDataArraySelection* const selections[2] = { in.Arrays.Selection(0), in.Arrays.Selection(1) };
   mpvtk::GatherSourceFields(
     source.Data, source.Mesh, selections, settings, say, parts, source.Fields);
   mpvtk::ReconstructCellFields(
@@ -873,7 +868,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellDataReconstruction: " << this->CellDataReconstruction << "\n";
   os << indent << "CategoricalMode: " << this->CategoricalMode << "\n";
   os << indent << "CategoricalArrays:";
-  for (const std::string& name : this->Internal->CategoricalNames)
+  for (const std::string& name : this->Internal->CategoricalArrays.All())
   {
     os << " " << name;
   }
@@ -893,7 +888,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "KeepMatrices: " << (this->KeepMatrices ? "On" : "Off") << "\n";
   os << indent << "DensityArray: " << this->DensityArray << "\n";
   os << indent << "MassWeightedArrays:";
-  for (const std::string& name : this->MassWeightedArrays)
+  for (const std::string& name : this->Internal->MassWeightedArrays.All())
   {
     os << " " << name;
   }

@@ -32,7 +32,6 @@
 #include "vtkPassInputTypeAlgorithm.h"
 
 #include <string> // for DensityArray
-#include <vector> // for MassWeightedArrays
 
 class vtkDataArraySelection;
 class vtkDoubleArray;
@@ -264,10 +263,7 @@ public:
   const char* GetDensityArray() const { return this->DensityArray.c_str(); }
   void AddMassWeightedArray(const char* name);
   void ClearMassWeightedArrays();
-  int GetNumberOfMassWeightedArrays() const
-  {
-    return static_cast<int>(this->MassWeightedArrays.size());
-  }
+  int GetNumberOfMassWeightedArrays() const;
   const char* GetMassWeightedArray(int i) const;
   ///@}
 
@@ -292,8 +288,8 @@ public:
   vtkGetMacro(CategoricalMode, int);
   void AddCategoricalArray(const char* name);
   void ClearCategoricalArrays();
-  int GetNumberOfCategoricalArrays();
-  const char* GetCategoricalArray(int i);
+  int GetNumberOfCategoricalArrays() const;
+  const char* GetCategoricalArray(int i) const;
   ///@}
 
   ///@{
@@ -558,7 +554,6 @@ protected:
   int NumberOfThreads;
   int Renumbering;
   std::string DensityArray;
-  std::vector<std::string> MassWeightedArrays;
   int CategoricalMode;
   bool LabelFractions;
   int FillLabel;

@@ -21,6 +21,7 @@
 
 #include "vtkTimeStamp.h"
 
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -36,17 +37,54 @@ struct Verdict;
 
 struct vtkMeshProjectionFilter::Internals
 {
+  /**
+   * A list property of array names (TangentArrays, MassWeightedArrays,
+   * CategoricalArrays): in the order added, each name once, no empty name
+   * (the panel's entry for none). Add and Clear say whether the list
+   * changed (the filter is then Modified).
+   */
+  class NameList
+  {
+  public:
+    bool Add(const char* name)
+    {
+      if (!name || !*name ||
+        std::find(this->Names.begin(), this->Names.end(), name) != this->Names.end())
+      {
+        return false;
+      }
+      this->Names.emplace_back(name);
+      return true;
+    }
+    bool Clear()
+    {
+      const bool had = !this->Names.empty();
+      this->Names.clear();
+      return had;
+    }
+    int Count() const { return static_cast<int>(this->Names.size()); }
+    /// Name i, or null out of range.
+    const char* Get(int i) const
+    {
+      return i >= 0 && i < this->Count() ? this->Names[static_cast<size_t>(i)].c_str() : nullptr;
+    }
+    const std::vector<std::string>& All() const { return this->Names; }
+
+  private:
+    std::vector<std::string> Names;
+  };
+
   mpvtk::SourceArrayLists Arrays;
-  std::vector<std::string> TangentArrays; ///< the TangentArrays property (Settings::TangentArrays)
-  std::set<std::string> Warned;           ///< warnings said once per filter (mpvtk::Messages)
+  NameList TangentArrays;       ///< Settings::TangentArrays
+  NameList MassWeightedArrays;  ///< Settings::MassWeightedArrays
+  NameList CategoricalArrays;   ///< Settings::CategoricalArrays
+  std::set<std::string> Warned; ///< warnings said once per filter (mpvtk::Messages)
   vtkTimeStamp Executed; ///< the end of the last execution (GetMatrix reads the cache as of it)
   mpvtk::OperatorCache Cache;
   /// The processes' seam (Parallel/Parts.h): vtkPMeshProjectionFilter installs
   /// its own while it runs on several processes; null, one process
   /// (mpvtk::SerialParts).
   mpvtk::Parts* Parts = nullptr;
-  /// The arrays named as labels (AddCategoricalArray), in the order named.
-  std::vector<std::string> CategoricalNames;
 
   /**
    * The one list of the properties with their fields of mpvtk::Settings:

@@ -167,6 +167,19 @@ public:
   virtual void Sum(double* values, int count) = 0;
   /// Smallest values over the processes, in place.
   virtual void Minimum(double* values, int count) = 0;
+  /// Largest values over the processes, in place (the smallest of the negatives).
+  void Maximum(double* values, int count)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      values[i] = -values[i];
+    }
+    this->Minimum(values, count);
+    for (int i = 0; i < count; ++i)
+    {
+      values[i] = -values[i];
+    }
+  }
   /// The union over the processes (sorted, without repeats).
   virtual std::vector<unsigned int> Union(const std::vector<unsigned int>& values) = 0;
   /// The union over the processes of values that are not NaN (sorted, without repeats): labels.

@@ -2,6 +2,7 @@
 #include "Projection/Labels.h"
 
 #include "vtkDataArray.h"
+#include "vtkDataArraySelection.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
@@ -120,20 +121,57 @@ mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks
 }
 
 /**
+ * Pass 2 of SolveLabels for the block of labels first .. first + width - 1,
+ * from their weights (row f's label first + k at w[f * stride + k]): the
+ * winner of each row, the smallest label whose fraction is in the tie of
+ * the largest, and the fractions when `fractions` (w may be those
+ * fractions' own storage, each weight replaced by its fraction).
+ */
+void DecideBlock(const double* w, size_t stride, int first, int width, int count,
+  const std::vector<double>& sum, const std::vector<double>& most, const std::vector<char>& valid,
+  bool fractions, LabelSolution& out)
+{
+  const vtkIdType rows = static_cast<vtkIdType>(valid.size());
+  mpvtk::For(0, rows, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType f = begin; f < end; ++f)
+    {
+      const double top = Fraction(most[f], sum[f]);
+      for (int k = 0; k < width; ++k)
+      {
+        const double v = Fraction(w[f * stride + k], sum[f]);
+        if (fractions)
+        {
+          out.Fractions[f * count + first + k] = v;
+        }
+        if (valid[f] && top > 0 && out.Winner[f] < 0 && InTie(v, top))
+        {
+          out.Winner[f] = first + k; // the smallest label of the tie
+        }
+      }
+    }
+  });
+}
+
+/**
  * One label array on one operator, block by block. First pass: per row
  * the sum of its weights in label order and the largest weight (w / sum
  * is monotone in w: the largest fraction is the largest weight's). Second
- * pass (the blocks projected again, unless there is one): the winner,
- * the smallest label whose fraction is in the tie of the largest, and
- * the fractions when `fractions`. Collective.
+ * pass (DecideBlock): the winner and the fractions when `fractions`. With
+ * several blocks the second pass projects the blocks again, unless it has
+ * the fractions: their storage (rows x labels) keeps the first pass's
+ * weights. Collective.
  */
 bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, const LabelField& field,
   const std::vector<char>& valid, bool fractions, LabelSolution& out, double& seconds)
 {
   const int count = static_cast<int>(field.Labels.size());
   const vtkIdType rows = static_cast<vtkIdType>(valid.size());
+  const bool blocks = BlockWidth(0, count) < count;
+  const bool keep = blocks && fractions; // the weights kept in out.Fractions
   std::vector<double> sum(valid.size(), 0.0);
   std::vector<double> most(valid.size(), 0.0);
+  out.Winner.assign(valid.size(), -1);
+  out.Fractions.resize(fractions ? valid.size() * static_cast<size_t>(count) : 0);
   mp::LargeVector<double> weights;
   for (int first = 0, width = 0; first < count; first += width)
   {
@@ -152,16 +190,24 @@ bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, cons
           const double w = weights[f * width + k];
           sum[f] += valid[f] ? w : 0.0;
           most[f] = std::max(most[f], w);
+          if (keep)
+          {
+            out.Fractions[f * count + first + k] = w;
+          }
         }
       }
     });
   }
-  out.Winner.assign(valid.size(), -1);
-  out.Fractions.resize(fractions ? valid.size() * static_cast<size_t>(count) : 0);
   for (int first = 0, width = 0; first < count; first += width)
   {
     width = BlockWidth(first, count);
-    if (width < count)
+    if (keep)
+    {
+      DecideBlock(out.Fractions.data() + first, static_cast<size_t>(count), first, width, count,
+        sum, most, valid, fractions, out);
+      continue;
+    }
+    if (blocks)
     {
       const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, weights);
       if (!applied)
@@ -170,24 +216,8 @@ bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, cons
       }
       seconds += applied.Seconds;
     }
-    mpvtk::For(0, rows, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType f = begin; f < end; ++f)
-      {
-        const double top = Fraction(most[f], sum[f]);
-        for (int k = 0; k < width; ++k)
-        {
-          const double v = Fraction(weights[f * width + k], sum[f]);
-          if (fractions)
-          {
-            out.Fractions[f * count + first + k] = v;
-          }
-          if (valid[f] && top > 0 && out.Winner[f] < 0 && InTie(v, top))
-          {
-            out.Winner[f] = first + k; // the smallest label of the tie
-          }
-        }
-      }
-    });
+    DecideBlock(weights.data(), static_cast<size_t>(width), first, width, count, sum, most, valid,
+      fractions, out);
   }
   return true;
 }
@@ -224,7 +254,8 @@ bool IsLabelArray(
   return array->GetNumberOfComponents() == 1;
 }
 
-void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredFields fields[2])
+void ListPieceLabels(vtkDataSet* source, vtkDataArraySelection* const selections[2],
+  const Settings& settings, GatheredFields fields[2])
 {
   for (int association = 0; source && association < 2; ++association)
   {
@@ -233,6 +264,7 @@ void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredField
     {
       vtkDataArray* array = data->GetArray(i);
       if (!array || !array->GetName() || !IsField(data, array) ||
+        !selections[association]->ArrayIsEnabled(array->GetName()) ||
         !IsLabelArray(array, settings, association, nullptr))
       {
         continue;

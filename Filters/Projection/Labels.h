@@ -32,9 +32,10 @@
  *
  * Memory does not grow with the number of labels: the indicators are
  * projected LabelBlock labels at a time (per row the sum of the weights,
- * their largest, then the winner), never all side by side; the fractions,
- * an output of one component per label, only up to MaximumLabelFractions
- * labels.
+ * their largest, then the winner: each block projected again), never all
+ * side by side; the fractions, an output of one component per label, only
+ * up to MaximumLabelFractions labels (their storage holds the weights
+ * between the two passes: each block projected once).
  *
  * The operators that carry labels need M_ts (PlanOperators assembles it);
  * on several processes the labels are every process's (UnionOfValues) and
@@ -56,6 +57,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkDataArraySelection;
 class vtkDataSet;
 
 namespace mpvtk
@@ -88,11 +90,13 @@ bool IsLabelArray(
 
 /**
  * Before the Source is gathered: the labels of each array of this
- * process's piece `source` that `settings` makes a label array
- * (GatheredFields::PieceLabels), so that every process knows the whole
- * Source's labels.
+ * process's piece `source` that `selections` (points, cells) enable and
+ * `settings` makes a label array (GatheredFields::PieceLabels), so that
+ * every process knows the whole Source's labels. (Arrays not projected
+ * are not read.)
  */
-void ListPieceLabels(vtkDataSet* source, const Settings& settings, GatheredFields fields[2]);
+void ListPieceLabels(vtkDataSet* source, vtkDataArraySelection* const selections[2],
+  const Settings& settings, GatheredFields fields[2]);
 
 /**
  * For each of g.Labels: its labels (every process's, and those of the

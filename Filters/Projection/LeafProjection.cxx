@@ -17,11 +17,33 @@
 #include "Adapter/SimplexMesh.h"
 
 #include <chrono>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 namespace mpvtk
 {
 namespace
 {
+/**
+ * Test only: whether the environment variable MESHPROJECTION_TEST_FAULT
+ * is `stage`@`rank` (docs/testing.md), a fault this process then makes
+ * in the leaf: "solve" (its solves reported failed), "local" (an
+ * exception in a step of this process alone), "collective" (an exception
+ * between the solves' collectives, where the others wait). Unset: never.
+ */
+bool TestFault(const char* stage, const Parts& parts)
+{
+  const char* fault = std::getenv("MESHPROJECTION_TEST_FAULT");
+  return fault && std::string(fault) == std::string(stage) + "@" + std::to_string(parts.Rank());
+}
+
+/// The text of a test fault's failure or exception.
+std::string TestFaultText(const char* stage)
+{
+  return std::string("MESHPROJECTION_TEST_FAULT ") + stage + " (a fault made by a test)";
+}
+
 /// Stage 1: the target as the kernel's mesh.
 Verdict WrapTarget(const ExecutionShare& run, vtkDataSet* target, const std::string& role,
   SimplexMesh& mesh, Statistics& stats, LeafAgreement& agreement)
@@ -149,13 +171,17 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     run.Source, targetMesh, target, shared, job.Role, LeafShape(), job.LastReaderOfSource };
   OperatorPlan plan;
   OperatorSet ops;
-  // (DecideShape's collective part follows its round, where all go on.)
-  result.Outcome =
-    agreement.Local("Deciding the shape", [&]() { return DecideShape(ctx, agreement); });
+  // (DecideShape runs its own steps of this process alone through
+  // agreement.Local: its collective sums are outside them.)
+  result.Outcome = DecideShape(ctx, agreement);
   if (result.Outcome.Ok())
   {
     WarnShape(ctx);
     result.Outcome = agreement.Local("Building the operators", [&]() {
+      if (TestFault("local", run.Processes))
+      {
+        throw std::runtime_error(TestFaultText("local"));
+      }
       const Verdict planned = PlanOperators(ctx, kept, agreement, plan);
       return planned.Ok() ? BuildOperators(ctx, kept, plan, agreement, ops) : planned;
     });
@@ -192,7 +218,16 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     targetMesh.ReleaseGeometry();
   }
   LeafSolutions solutions;
+  if (TestFault("collective", run.Processes))
+  {
+    throw std::runtime_error(TestFaultText("collective"));
+  }
   result.Outcome = ApplyOperators(ctx, kept, plan, ops, hooks, halo, solutions);
+  if (result.Outcome.Ok() && TestFault("solve", run.Processes))
+  {
+    result.Outcome =
+      Verdict::Fail("The projection failed: the solves failed: " + TestFaultText("solve") + ".");
+  }
   if (result.Outcome.Ok())
   {
     DivideByDensity(ctx, ops, hooks, solutions);

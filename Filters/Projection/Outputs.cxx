@@ -28,6 +28,7 @@
 #include "Adapter/Threads.h"
 
 #include <algorithm>
+#include <optional>
 #include <deque>
 #include <string>
 #include <utility>
@@ -207,17 +208,14 @@ void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray
   part->SetNumberOfValues(n);
   std::copy(removed.begin(), removed.end(), part->GetPointer(0));
   outData->AddArray(part);
-  // The largest over every process (a minimum of the negatives).
-  largest[0] = -largest[0];
-  largest[1] = -largest[1];
-  ctx.Processes.Minimum(largest, 2);
+  ctx.Processes.Maximum(largest, 2);
   // (A trace's vectors are the volume's: their normal part is no surprise.)
-  if (-largest[0] > LargeNormalPart * -largest[1] && !ctx.Shape.Trace)
+  if (largest[0] > LargeNormalPart * largest[1] && !ctx.Shape.Trace)
   {
     ctx.Say.WarnOnce("tangent/large/" + ctx.Role + "/" + name,
       "TangentArrays: the projected '" + name + "' on " + ctx.Role + " had a normal part up to " +
-        std::to_string(-largest[0]) + " (removed, see " + name +
-        "_NormalPart) for a largest magnitude of " + std::to_string(-largest[1]) +
+        std::to_string(largest[0]) + " (removed, see " + name +
+        "_NormalPart) for a largest magnitude of " + std::to_string(largest[1]) +
         ": the meshes' normals differ much there (a coarse facetization, or Input off Source).");
   }
 }
@@ -227,11 +225,13 @@ void WriteTangentPart(LeafContext& ctx, TargetTangents& tangents, vtkDoubleArray
  * integrals' Factor, and for a mass-weighted array that divided by the
  * density's own (the density is written scaled), so that the written
  * density times the written q keeps the Source's integral of rho q and a
- * constant q stays constant. Collective (the density's weights and sums).
+ * constant q stays constant. Collective (the density's weights and sums):
+ * the density's own scale is integrated once per transfer, by its first
+ * weighted array on every process, and kept in `densityScale`.
  */
 std::vector<double> ValueFactors(LeafContext& ctx, const OperatorSet& ops,
   const LeafSolutions& solutions, SourceWeights& weights, Transfer t, int a,
-  const ArrayIntegrals& integrals)
+  const ArrayIntegrals& integrals, std::optional<double>& densityScale)
 {
   const GatheredFields& g = ctx.Source.Fields[SourceAssociation(t)];
   std::vector<double> factors = integrals.Factor;
@@ -240,18 +240,22 @@ std::vector<double> ValueFactors(LeafContext& ctx, const OperatorSet& ops,
   {
     return factors;
   }
-  const int d = g.Mass.Density;
-  const SourceColumns source = SourceColumnsOf(g, d);
-  const vtkIdType n =
-    ToPoints(t) ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
-  const ProjectedArray density{ solutions.ByArray[t][static_cast<size_t>(d)],
-    weights.Of(*ops.ByArray[t][d]), source.Block->Functions(), source.Width, source.Offset,
-    solutions.Values[t], g.Components, g.Offsets[d], 1, n };
-  const double scale =
-    Integrate(density, true, ctx.Options.DensityArray, ctx.Role, ctx.Processes, ctx.Say).Factor[0];
+  if (!densityScale)
+  {
+    const int d = g.Mass.Density;
+    const SourceColumns source = SourceColumnsOf(g, d);
+    const vtkIdType n =
+      ToPoints(t) ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
+    const ProjectedArray density{ solutions.ByArray[t][static_cast<size_t>(d)],
+      weights.Of(*ops.ByArray[t][d]), source.Block->Functions(), source.Width, source.Offset,
+      solutions.Values[t], g.Components, g.Offsets[d], 1, n };
+    densityScale =
+      Integrate(density, true, ctx.Options.DensityArray, ctx.Role, ctx.Processes, ctx.Say)
+        .Factor[0];
+  }
   for (double& factor : factors)
   {
-    factor /= scale;
+    factor /= *densityScale;
   }
   return factors;
 }
@@ -274,6 +278,7 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
   const vtkIdType n =
     toPoints ? ctx.TargetData->GetNumberOfPoints() : ctx.TargetData->GetNumberOfCells();
   const mp::LargeVector<double>& values = solutions.Values[t];
+  std::optional<double> densityScale; // (ValueFactors: once per transfer)
   for (int a = 0, offset = 0; a < static_cast<int>(g.Arrays.size()); ++a)
   {
     vtkDataArray* array = g.Arrays[a];
@@ -299,7 +304,8 @@ void WriteTransfer(LeafContext& ctx, vtkDataSet* output, const OperatorSet& ops,
       product ? ProductWidth(g) : g.Components, product ? ProductOffset(g, w) : offset, nc, n };
     const ArrayIntegrals integrals = Integrate(projected,
       ctx.Options.ConserveSourceIntegral && !trace, name, ctx.Role, ctx.Processes, ctx.Say);
-    const std::vector<double> factors = ValueFactors(ctx, ops, solutions, weights, t, a, integrals);
+    const std::vector<double> factors =
+      ValueFactors(ctx, ops, solutions, weights, t, a, integrals, densityScale);
     vtkNew<vtkDoubleArray> out;
     out->SetName(name.c_str());
     out->SetNumberOfComponents(nc);

@@ -291,7 +291,10 @@ void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& mes
       ") are left out of the projection (their cell values are invalid).");
 }
 
-Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
+namespace
+{
+/// DecideShape's part on this process alone, up to and with the Shape round.
+Verdict ShapeHere(LeafContext& ctx, LeafAgreement& agreement)
 {
   SimplexMesh& target = ctx.Target;
   SimplexMesh& source = ctx.Source.Mesh;
@@ -318,26 +321,50 @@ Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
   // be planar, e.g. one face of a box, projects as the serial run does).
   shape.Planar = shape.Trace || target.Dimension() != 2 || !(target.Surface() || source.Surface());
   const Verdict elsewhere = agreement.At(LeafAgreement::Shape, &shape.Planar);
-  if (!elsewhere.Ok())
+  return elsewhere.Ok() ? elsewhere : agreement.End(elsewhere, true);
+}
+
+/// The meshes put in the frames of the agreed shape (this process alone).
+std::string UseFrames(LeafContext& ctx)
+{
+  SimplexMesh& target = ctx.Target;
+  SimplexMesh& source = ctx.Source.Mesh;
+  LeafShape& shape = ctx.Shape;
+  if (shape.Trace)
   {
-    return agreement.End(elsewhere, true);
+    return UseTraceFrames(target, source, ctx.Role);
+  }
+  if (target.Dimension() == 1 || (target.Dimension() == 2 && !shape.Planar))
+  {
+    return UseSurfaces(target, source, ctx.Options);
+  }
+  return target.Dimension() == 2 ? UseOnePlane(target, source, shape.PlaneWarning) : std::string();
+}
+} // namespace
+
+Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
+{
+  // The steps of this process alone run through agreement.Local (an
+  // exception there is this process's failure, agreed at the next round);
+  // the sums between them are collective, where every process is (an
+  // exception inside one ends the run: the filter's Parts::Abandon).
+  const Verdict here =
+    agreement.Local("Deciding the shape", [&]() { return ShapeHere(ctx, agreement); });
+  if (!here.Ok())
+  {
+    return here;
   }
   // The rest of what one process sees in the whole meshes (every process
   // here passed the round above; on one process nothing changes).
-  std::string why =
-    AgreeOnShape(ctx.Processes, target, source, ctx.Role, shape.Trace, shape.Planar);
-  if (why.empty() && shape.Trace)
+  const std::string why = AgreeOnShape(
+    ctx.Processes, ctx.Target, ctx.Source.Mesh, ctx.Role, ctx.Shape.Trace, ctx.Shape.Planar);
+  if (!why.empty())
   {
-    why = UseTraceFrames(target, source, ctx.Role);
+    return agreement.End(Verdict::Fail(why));
   }
-  else if (why.empty() && (target.Dimension() == 1 || (target.Dimension() == 2 && !shape.Planar)))
-  {
-    why = UseSurfaces(target, source, ctx.Options);
-  }
-  else if (why.empty() && target.Dimension() == 2)
-  {
-    why = UseOnePlane(target, source, shape.PlaneWarning);
-  }
-  return why.empty() ? Verdict() : agreement.End(Verdict::Fail(why));
+  return agreement.Local("Deciding the shape", [&]() {
+    const std::string framed = UseFrames(ctx);
+    return framed.empty() ? Verdict() : Verdict::Fail(framed);
+  });
 }
 } // namespace mpvtk

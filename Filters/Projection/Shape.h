@@ -41,8 +41,9 @@ struct LeafShape
 
 /**
  * Decides the leaf's shape (ctx.Shape) and puts both meshes in their frames
- * (takes part in the Shape round of `agreement`); a failure is the agreed
- * verdict.
+ * (takes part in the Shape round of `agreement`, its steps of this process
+ * alone run through LeafAgreement::Local, the collective sums between them
+ * not); a failure is the agreed verdict.
  */
 Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement);
 

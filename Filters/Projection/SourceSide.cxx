@@ -41,7 +41,8 @@ void KeepJoined(const JoinedFields& joined, SourceSide& side)
 } // namespace
 
 Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
-  const Settings& settings, Parts& parts, Messages& messages, Statistics& stats, SourceSide& side)
+  const Settings& settings, vtkDataArraySelection* const selections[2], Parts& parts,
+  Messages& messages, Statistics& stats, SourceSide& side)
 {
   std::string note;
   std::string failed;
@@ -68,7 +69,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   // gathers (every process then knows the whole Source's labels: Labels.h).
   if (!parts.Whole())
   {
-    ListPieceLabels(source, settings, side.Fields);
+    ListPieceLabels(source, selections, settings, side.Fields);
   }
   // Each process gets the Source cells its part of Input needs, from all.
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 
+class vtkDataArraySelection;
 class vtkDataObject;
 class vtkDataSet;
 
@@ -51,10 +52,13 @@ struct SourceSide
 /**
  * Stage 1: Source as one mesh (a composite appended; on several processes
  * gathered), wrapped and checked, in its own plane when planar; its
- * fingerprint. Fills `side`; a failure is agreed by every process.
+ * fingerprint. Fills `side`; a failure is agreed by every process. On
+ * several processes it first lists the labels of this process's piece of
+ * the label arrays `selections` (points, cells) enable (ListPieceLabels).
  */
 Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
-  const Settings& settings, Parts& parts, Messages& messages, Statistics& stats, SourceSide& side);
+  const Settings& settings, vtkDataArraySelection* const selections[2], Parts& parts,
+  Messages& messages, Statistics& stats, SourceSide& side);
 } // namespace mpvtk
 
 #endif

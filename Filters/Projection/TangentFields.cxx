@@ -11,6 +11,7 @@
 
 #include "Adapter/Ghosts.h"
 #include "Adapter/SimplexMesh.h"
+#include "Mesh/AlignedSum.h"
 #include "Mesh/Vec3.h"
 #include "Parallel/Parts.h"
 #include "Projection/Messages.h"
@@ -24,6 +25,7 @@
 
 namespace mpvtk
 {
+using mp::AddAligned;
 using mp::Dot;
 namespace
 {
@@ -134,20 +136,6 @@ std::vector<double> CellDirections(vtkDataSet* data, int dimension)
   return d;
 }
 
-namespace
-{
-/// Adds `w` to the direction at point p, with the sign that agrees with the sum so far.
-void AddAligned(std::vector<double>& d, vtkIdType p, const double* w)
-{
-  double* sum = &d[3 * p];
-  const double sign = Dot(sum, w) < 0 ? -1.0 : 1.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    sum[k] += sign * w[k];
-  }
-}
-} // namespace
-
 std::vector<double> PointDirections(vtkDataSet* data, int dimension)
 {
   const vtkIdType n = data->GetNumberOfPoints();
@@ -174,8 +162,8 @@ std::vector<double> PointDirections(vtkDataSet* data, int dimension)
         part->SetId(0, ids->GetId(i));
         part->SetId(1, ids->GetId(i + 1));
         Direction(data, part, 1, w);
-        AddAligned(d, part->GetId(0), w);
-        AddAligned(d, part->GetId(1), w);
+        AddAligned(&d[3 * part->GetId(0)], w);
+        AddAligned(&d[3 * part->GetId(1)], w);
       }
       continue;
     }
@@ -189,7 +177,7 @@ std::vector<double> PointDirections(vtkDataSet* data, int dimension)
     }
     for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
     {
-      AddAligned(d, ids->GetId(i), w);
+      AddAligned(&d[3 * ids->GetId(i)], w);
     }
   }
   return d;
@@ -250,26 +238,13 @@ void JoinCoincident(vtkDataSet* data, std::vector<double>& d)
     double sum[3] = { 0.0, 0.0, 0.0 };
     for (vtkIdType i = begin; i < end; ++i)
     {
-      const double* w = &d[3 * order[i]];
-      const double sign = Dot(sum, w) < 0 ? -1.0 : 1.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        sum[k] += sign * w[k];
-      }
+      AddAligned(sum, &d[3 * order[i]]);
     }
     for (vtkIdType i = begin; i < end; ++i)
     {
       std::copy_n(sum, 3, &d[3 * order[i]]);
     }
   }
-}
-
-/// The largest over every process (by the seam's minimum).
-double Largest(Parts& parts, double mine)
-{
-  double negative = -mine;
-  parts.Minimum(&negative, 1);
-  return -negative;
 }
 
 /// The normal part of tangent array a of `g` removed at every function of the Source.
@@ -326,7 +301,7 @@ void RemoveSourceNormalParts(vtkDataSet* source, const SimplexMesh& mesh, const 
             " components, not 3: it is projected as an ordinary array.");
         continue;
       }
-      double removedMost = 0.0, fieldMost = 0.0;
+      double most[2] = { 0.0, 0.0 }; // removed, field
       // (A volume Source keeps its vectors: the normal part is removed on
       // Input alone, a surface or curve inside it. A process without Source
       // cells has nothing to remove but takes part in the maxima.)
@@ -338,17 +313,16 @@ void RemoveSourceNormalParts(vtkDataSet* source, const SimplexMesh& mesh, const 
       }
       if (applies)
       {
-        RemoveFromSourceArray(mesh, association, a, cells, points, g, removedMost, fieldMost);
+        RemoveFromSourceArray(mesh, association, a, cells, points, g, most[0], most[1]);
       }
-      removedMost = Largest(parts, removedMost);
-      fieldMost = Largest(parts, fieldMost);
-      if (removedMost > LargeNormalPart * fieldMost)
+      parts.Maximum(most, 2);
+      if (most[0] > LargeNormalPart * most[1])
       {
         messages.WarnOnce(std::string("tangent/source/") + kind + "/" + label,
           "TangentArrays: Source " + std::string(kind) + " array '" + label +
-            "' is not tangent to the Source: its normal part, up to " +
-            std::to_string(removedMost) + " for a largest magnitude of " +
-            std::to_string(fieldMost) + ", is removed before the projection.");
+            "' is not tangent to the Source: its normal part, up to " + std::to_string(most[0]) +
+            " for a largest magnitude of " + std::to_string(most[1]) +
+            ", is removed before the projection.");
       }
     }
   }
@@ -380,22 +354,39 @@ const std::vector<double>& TargetTangents::Directions(bool points)
     this->HavePoints = true;
     if (this->Hooks.Exchange)
     {
-      // The sums completed over the processes that share a point, in the
-      // solver's rows (the kernel's point order; rows beyond: zero).
-      const vtkIdType n = this->Data->GetNumberOfPoints();
-      std::vector<double> rows(static_cast<size_t>(3 * std::max(this->PointRows, n)), 0.0);
-      for (vtkIdType f = 0; f < n; ++f)
-      {
-        std::copy_n(&this->Points[3 * this->Mesh.DataSetPoint(f)], 3, &rows[3 * f]);
-      }
-      this->Hooks.Exchange(rows.data(), 3);
-      for (vtkIdType f = 0; f < n; ++f)
-      {
-        std::copy_n(&rows[3 * f], 3, &this->Points[3 * this->Mesh.DataSetPoint(f)]);
-      }
+      this->CompleteSharedSums();
     }
   }
   return this->Points;
+}
+
+void TargetTangents::CompleteSharedSums()
+{
+  // In the solver's rows (the kernel's point order; rows beyond: zero).
+  // Each process's sum has its own sign: the processes first agree on the
+  // axis of each shared point (AlignedSum.h), whose sign each part then
+  // takes before the parts are added.
+  const vtkIdType n = this->Data->GetNumberOfPoints();
+  const size_t rows = static_cast<size_t>(std::max(this->PointRows, n));
+  std::vector<double> sums(3 * rows, 0.0);
+  std::vector<double> outer(6 * rows, 0.0);
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    std::copy_n(&this->Points[3 * this->Mesh.DataSetPoint(f)], 3, &sums[3 * f]);
+    mp::AddOuter(&outer[6 * f], &sums[3 * f]);
+  }
+  this->Hooks.Exchange(outer.data(), 6);
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    double axis[3];
+    mp::PrincipalAxis(&outer[6 * f], axis);
+    mp::AlignWithAxis(&sums[3 * f], axis);
+  }
+  this->Hooks.Exchange(sums.data(), 3);
+  for (vtkIdType f = 0; f < n; ++f)
+  {
+    std::copy_n(&sums[3 * f], 3, &this->Points[3 * this->Mesh.DataSetPoint(f)]);
+  }
 }
 
 std::vector<double> TargetTangents::Remove(double* values, vtkIdType functions, bool points,

@@ -21,7 +21,9 @@
  * sign that agrees with the sum so far, so that a surface that flips its
  * cells' orientation still gets its normal. On several processes a target
  * point's sum is completed over the processes that share it (the solver's
- * hooks); the Source's points at the same coordinates share their sums
+ * hooks), each process's part first given the sign of the parts' common
+ * axis (Mesh/AlignedSum.h), so that parts pointing opposite ways do not
+ * cancel; the Source's points at the same coordinates share their sums
  * (its pieces' points on the cuts come once per piece: processes' parts
  * gathered without global ids, a composite's blocks), and the gathering
  * brings the cells around those that meet Input (Settings::GathersNeighborLayer). The normal part of a planar mesh is its plane's: removed to
@@ -114,6 +116,8 @@ public:
 
 private:
   const std::vector<double>& Directions(bool points);
+  /// The points' sums completed over the processes that share them (AlignedSum.h). Collective.
+  void CompleteSharedSums();
   vtkDataSet* Data;
   const SimplexMesh& Mesh;
   const mp::SolverHooks& Hooks;

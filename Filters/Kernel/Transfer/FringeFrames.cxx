@@ -4,6 +4,7 @@
 // point taken in an order of their geometry.
 #include "Transfer/FringeFrames.h"
 
+#include "Mesh/AlignedSum.h"
 #include "Mesh/Vec3.h"
 
 #include <algorithm>
@@ -85,11 +86,7 @@ void MeanDirection(
     {
       std::copy(p, p + 3, d);
     }
-    const double sign = Dot(d, sum) < 0.0 ? -1.0 : 1.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      sum[a] += sign * d[a];
-    }
+    AddAligned(sum, d);
   }
 }
 

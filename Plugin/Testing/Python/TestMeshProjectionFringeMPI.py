@@ -25,26 +25,17 @@ every process, for its points:
    the serial one.
 """
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_LINE, VTK_TETRA
 from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
+from mpsupport.mpi import add
 from mpsupport.fringe import fully_covered, linear, point_cells, smooth
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
 
 
 def grid(mesh, numbered=True):

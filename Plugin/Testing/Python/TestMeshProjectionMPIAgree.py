@@ -18,71 +18,64 @@ never one process with output while the others fail:
 Each process's outcome (error text, whether the output has projected
 arrays) is gathered on every process and compared there.
 
-Not here, for want of a way to cause them from outside: a solve that fails
-(MaximumIterations 0 or 1 only hands the system to the direct solver,
-which solves it) and an exception in one process's step (mpvtk::Guarded).
+A solve that fails and an exception have no honest cause from outside
+(the solves are collective: a system that fails, fails on every process;
+MaximumIterations 0 or 1 only hands it to the direct solver, which solves
+it), so the test makes them on the failing process with the test-only
+MESHPROJECTION_TEST_FAULT=<stage>@<rank> (docs/testing.md):
+ - "solve": its solves reported failed (the leaf's last round agrees it);
+ - "local": an exception in a step of that process alone (building the
+   operators: mpvtk::Guarded, agreed in the next round).
+With the argument "collective" (the last process): an exception between
+the solves' collectives, where the others wait; the run must end, aborted
+on every process (MPI_Abort), not hang: the script then never reaches its
+end, and the test passes on the filter's abort message.
 """
+import os
 
 import sys
 
 import numpy as np
-from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE, vtkUnstructuredGrid
 
 from mpsupport import meshes, mpi
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 which = sys.argv[1] if len(sys.argv) > 1 else "last"
 bad = 0 if which == "first" else size - 1  # the process that fails alone
+if which == "collective":
+    # An exception inside a collective step: the run ends (MPI_Abort) on
+    # every process; "FAILED" if the execution comes back on any.
+    os.environ["MESHPROJECTION_TEST_FAULT"] = "collective@%d" % bad
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 
 
 def run(target, source, abort_at=None):
     """The parallel filter updated on this process's pieces; its output and
     the texts of its warnings and errors (`abort_at`: this process sets
     AbortExecute once the progress passes it)."""
-    texts = {"WarningEvent": [], "ErrorEvent": []}
     f = meshprojection.vtkPMeshProjectionFilter()
-
-    def observe(obj, event):
-        @calldata_type(VTK_STRING)
-        def collect(o, e, text):
-            texts[event].append(str(text))
-        obj.AddObserver(event, collect)
-        return collect
-    keep = [observe(f, e) for e in texts] + [observe(f.GetExecutive(), "ErrorEvent")]
+    texts = mpi.messages(f)
     if abort_at is not None:
         def progress(o, e):
             if o.GetProgress() >= abort_at:
                 o.SetAbortExecute(1)
-        keep.append(f.AddObserver("ProgressEvent", progress))
+        f.AddObserver("ProgressEvent", progress)
     f.SetInputData(target)
     if source is not None:
         f.SetSourceData(source)
     f.SetCacheOperator(False)
     f.Update()
-    del keep
     return f.GetOutput(), texts["WarningEvent"], texts["ErrorEvent"]
-
-
-def text_hash(text):
-    """A number for a message (the text after VTK's "(address): " header)."""
-    text = text.split("): ", 1)[-1].strip()
-    return float(sum((i + 1) * ord(c) for i, c in enumerate(text)) % 1000003)
 
 
 def outcomes(out, messages):
     """Every process's (has a message, hash of its first, projected output)."""
     projected = out.GetPointData().GetArray("vtkValidPointMask") is not None or \
         out.GetPointData().GetArray("f") is not None
-    mine = [1.0 if messages else 0.0, text_hash(messages[0]) if messages else -1.0, 1.0 if projected else 0.0]
+    mine = [1.0 if messages else 0.0, mpi.message_hash(messages[0]) if messages else -1.0, 1.0 if projected else 0.0]
     return np.array(mpi.allgather(controller, np.array(mine)))
 
 
@@ -139,6 +132,10 @@ def nan_coordinate(g):
 
 # 0. Nothing spoiled: every process projects (the test's own baseline).
 out, warnings, errors = run(copy(target_piece), copy(source_piece))
+if which == "collective":
+    print("FAILED on process %d: the execution came back after an exception in a collective step "
+          "(errors: %s)" % (rank, errors), file=sys.stderr, flush=True)
+    os._exit(1)
 all_ = outcomes(out, errors)
 check(np.all(all_[:, 0] == 0) and np.all(all_[:, 2] == 1), "unspoiled: errors or no output %s" % all_)
 
@@ -173,5 +170,13 @@ all_ = outcomes(out, stopped)
 check(np.all(all_[:, 0] == 1), "abort on one process: not stopped on processes %s" % np.where(all_[:, 0] != 1)[0])
 check(np.all(all_[:, 2] == 0), "abort on one process: projected output on processes %s" % np.where(all_[:, 2] != 0)[0])
 check(not errors, "abort on one process: errors %s" % errors)
+
+# 6. Test faults (MESHPROJECTION_TEST_FAULT) on the failing process: a
+# failed solve, an exception in a step of that process alone.
+for stage, words in (("solve", "the solves failed"), ("local", "Building the operators failed")):
+    os.environ["MESHPROJECTION_TEST_FAULT"] = "%s@%d" % (stage, bad)
+    out, _, errors = run(copy(target_piece), copy(source_piece))
+    del os.environ["MESHPROJECTION_TEST_FAULT"]
+    expect_failure("test fault %s" % stage, out, errors, words)
 
 check.finish("%d processes, the %s process fails alone" % (size, which))

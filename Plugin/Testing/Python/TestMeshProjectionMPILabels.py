@@ -13,7 +13,10 @@ Source arrays' types; the fractions' components are the serial ones (label
 their values the serial ones to 1e-12; the masks equal the serial ones.
 An integer array with more distinct values over the whole Source than
 MaximumAutomaticLabels (but fewer in each process's part) is projected as
-numbers on every process, as in serial.
+numbers on every process, as in serial, with the serial warning's count
+of values or, where a process alone has more once it gathered, a lower
+bound said "at least"; with Input in a corner of the Source only (every
+process below the limit, their union above) the serial count exactly.
 """
 
 import numpy as np
@@ -23,13 +26,9 @@ from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE
 
 from mpsupport import meshes, mpi
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 
 
 def with_labels(g):
@@ -49,7 +48,9 @@ def with_labels(g):
 
 
 def run(filter_class, target, source):
+    """The filter updated; its warnings' texts in f.warnings."""
     f = filter_class()
+    f.warnings = mpi.messages(f)["WarningEvent"]
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetCacheOperator(False)
@@ -112,9 +113,31 @@ n_fine = fine.GetNumberOfCells()
 numbers = numpy_to_vtk(np.arange(n_fine, dtype=np.int64), deep=True, array_type=VTK_ID_TYPE)
 numbers.SetName("CellNumber")
 fine.GetCellData().AddArray(numbers)
-serial_ids = run(meshprojection.vtkMeshProjectionFilter, target, fine).GetOutput().GetCellData()
+serial_run = run(meshprojection.vtkMeshProjectionFilter, target, fine)
+serial_ids = serial_run.GetOutput().GetCellData()
 part = np.random.default_rng(13).integers(0, size, n_fine) == rank
-local_ids = run(meshprojection.vtkPMeshProjectionFilter, lt, meshes.extract(fine, part)).GetOutput()
+local_run = run(meshprojection.vtkPMeshProjectionFilter, lt, meshes.extract(fine, part))
+local_ids = local_run.GetOutput()
+
+
+def id_count(f):
+    """The count of values in f's warning that 'CellNumber' looks like an id
+    array, and whether it is a lower bound ("at least"); None: no warning."""
+    for w in f.warnings:
+        if "'CellNumber' looks like an id array (" in w:
+            words = w.split("looks like an id array (", 1)[1].split(" distinct values")[0]
+            return int(words.replace("at least ", "")), words.startswith("at least ")
+    return None
+
+
+# The warning on every process: the serial count, or (a process alone above
+# the limit once its gathered cells join its piece: decided before the
+# union) a lower bound above the limit, said "at least".
+said, whole = id_count(local_run), id_count(serial_run)
+check(whole == (n_fine, False), "'CellNumber': the serial warning counts %d values (%s)" % (n_fine, whole))
+check(said is not None and (said == whole or (said[1] and 1024 < said[0] <= n_fine)),
+      "'CellNumber': the id array warning's count is the serial one or a lower bound (%s, serial %s)"
+      % (said, whole))
 if local_ids.GetNumberOfCells() > 0:
     la, sa = local_ids.GetCellData().GetArray("CellNumber"), serial_ids.GetArray("CellNumber")
     ids = vtk_to_numpy(local_ids.GetCellData().GetArray("origId"))
@@ -145,5 +168,30 @@ if first.GetNumberOfCells() > 0:
         err = float(np.max(np.abs(fv[both] - sv[both]))) if both.any() else 0.0
         check(np.array_equal(np.isfinite(fv), both) and err <= 1e-9 * n_fine,
               "'CellNumber' all on the first process differs from serial by %.3g" % err)
+
+# Every process below the limit, the union above: Input only in a corner
+# of the Source (each process gathers few cells beyond its piece, a third
+# or half of the Source): the processes' values are unioned, and the
+# decision and the warning's count are the serial ones exactly.
+tc = meshes.triangle_centres(target)
+corner = mpi.numbered(meshes.extract(target, (tc[:, 0] < 0.25) & (tc[:, 1] < 0.25)))
+serial_corner = run(meshprojection.vtkMeshProjectionFilter, corner, fine)
+mine = np.random.default_rng(17).integers(0, size, corner.GetNumberOfCells()) == rank
+local_corner = run(meshprojection.vtkPMeshProjectionFilter, meshes.extract(corner, mine), meshes.extract(fine, part))
+check(id_count(local_corner) == (n_fine, False),
+      "corner: the id array warning counts the serial %d values (%s)" % (n_fine, id_count(local_corner)))
+out = local_corner.GetOutput()
+if out.GetNumberOfCells() > 0:
+    la = out.GetCellData().GetArray("CellNumber")
+    check(la is not None and la.GetDataType() == VTK_DOUBLE,
+          "corner: 'CellNumber' is projected as numbers (%s)" % (la.GetClassName() if la else None))
+    if la is not None:
+        ids = vtk_to_numpy(out.GetCellData().GetArray("origId"))
+        lv = vtk_to_numpy(la)
+        sv = vtk_to_numpy(serial_corner.GetOutput().GetCellData().GetArray("CellNumber"))[ids]
+        both = np.isfinite(sv)
+        err = float(np.max(np.abs(lv[both] - sv[both]))) if both.any() else 0.0
+        check(np.array_equal(np.isfinite(lv), both) and err <= 1e-9 * n_fine,
+              "corner: 'CellNumber' differs from serial by %.3g" % err)
 
 check.finish("%d processes, labels" % size)

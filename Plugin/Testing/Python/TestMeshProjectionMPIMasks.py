@@ -18,24 +18,15 @@ Checked on every process:
 """
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE, vtkUnstructuredGrid
 
 from mpsupport import meshes, mpi
+from mpsupport.mpi import add
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
 
 
 def with_fields(g):

@@ -25,21 +25,15 @@ silently (Adapter/PieceArrays.h states the rule):
 """
 
 import numpy as np
-from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING
 from vtkmodules.vtkCommonDataModel import VTK_TRIANGLE, vtkUnstructuredGrid
 
 from mpsupport import meshes, mpi
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 bad = size - 1  # the process whose piece is spoiled
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 
 
 def copy(g):
@@ -51,21 +45,12 @@ def copy(g):
 def run(filter_class, target, source):
     """The filter updated on target and source; its output and the texts of
     its warnings and errors."""
-    texts = {"WarningEvent": [], "ErrorEvent": []}
     f = filter_class()
-
-    def observe(obj, event):
-        @calldata_type(VTK_STRING)
-        def collect(o, e, text):
-            texts[event].append(str(text))
-        obj.AddObserver(event, collect)
-        return collect
-    keep = [observe(f, e) for e in texts] + [observe(f.GetExecutive(), "ErrorEvent")]
+    texts = mpi.messages(f)
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetCacheOperator(False)
     f.Update()
-    del keep
     return f.GetOutput(), texts["WarningEvent"], texts["ErrorEvent"]
 
 
@@ -77,8 +62,7 @@ def everywhere(flag):
 def same_everywhere(text):
     """Whether every process has the same message (compared by a hash; the
     text after VTK's "(address): " header)."""
-    text = text.split("): ", 1)[-1]
-    h = float(sum((i + 1) * ord(c) for i, c in enumerate(text)) % 1000003)
+    h = mpi.message_hash(text)
     return mpi.allreduce(controller, h) == mpi.allreduce(controller, h, mpi.vtkCommunicator.MIN_OP)
 
 

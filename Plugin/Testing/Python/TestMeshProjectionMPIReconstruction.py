@@ -14,18 +14,15 @@ processes (Input in slabs, Source at random), modes 1 (limited) and 2 (linear), 
    of a process's gathered part would not be the serial ones.
 """
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, VTK_TRIANGLE
 
 from mpsupport import meshes, mpi
+from mpsupport.mpi import add
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
 F = meshprojection.vtkMeshProjectionFilter
 
 
@@ -33,12 +30,6 @@ def centres(g, k):
     x = vtk_to_numpy(g.GetPoints().GetData())
     conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, k)
     return x[conn].mean(axis=1)
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
 
 
 def run(filter_class, target, source, mode):

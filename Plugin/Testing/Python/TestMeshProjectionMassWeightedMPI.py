@@ -10,24 +10,15 @@ points and cells, against the serial filter on the whole pair:
    ones to 1e-12, and each other on cells.
 """
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
+from mpsupport.mpi import add
 
-controller, made_here = mpi.start()
-rank = controller.GetLocalProcessId()
-size = controller.GetNumberOfProcesses()
+controller, rank, size, check = mpi.begin()
 
 import meshprojection  # noqa: E402  (after MPI is up)
-
-check = mpi.Checks(controller, made_here)
-
-
-def add(data, name, values):
-    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-    a.SetName(name)
-    data.AddArray(a)
 
 
 def ids(g, data, name, n):

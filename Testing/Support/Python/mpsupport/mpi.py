@@ -32,6 +32,51 @@ def start():
     return controller, True
 
 
+def begin():
+    """A symmetric MPI test's start: start(), then its Checks. Returns
+    (controller, rank, size, check); the test imports meshprojection after
+    it (once MPI is up)."""
+    controller, made_here = start()
+    rank = controller.GetLocalProcessId()
+    size = controller.GetNumberOfProcesses()
+    return controller, rank, size, Checks(controller, made_here)
+
+
+def add(data, name, values):
+    """Adds `values` (a numpy array: one row per tuple) to `data` (point or
+    cell data) as the array `name` (a deep copy, of values' type)."""
+    a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
+    a.SetName(name)
+    data.AddArray(a)
+
+
+def messages(f):
+    """The texts of the warnings and errors of the filter f (its executive's
+    errors too), collected as they come: {"WarningEvent": [...],
+    "ErrorEvent": [...]}. (The observers also keep VTK from printing them.)"""
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.vtkCommonCore import VTK_STRING
+    texts = {"WarningEvent": [], "ErrorEvent": []}
+
+    def observe(obj, event):
+        @calldata_type(VTK_STRING)
+        def collect(o, e, text):
+            texts[event].append(str(text))
+        obj.AddObserver(event, collect)
+    for event in texts:
+        observe(f, event)
+    observe(f.GetExecutive(), "ErrorEvent")
+    return texts
+
+
+def message_hash(text):
+    """A number for a message, the same on every process for the same words
+    (the text after VTK's "(address): " header, without the white space
+    around it)."""
+    text = text.split("): ", 1)[-1].strip()
+    return float(sum((i + 1) * ord(c) for i, c in enumerate(text)) % 1000003)
+
+
 def allreduce(controller, value, op=vtkCommunicator.MAX_OP):
     out = numpy_to_vtk(np.zeros(1), deep=True)
     controller.AllReduce(numpy_to_vtk(np.array([float(value)]), deep=True), out, op)
