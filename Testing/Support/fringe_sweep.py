@@ -9,6 +9,10 @@ field sin(2x)cos(3y)+z^2 as point data (s) and as cell data to points (c):
 
   s, c      worst error at a valid point / worst at interior points (every
             cell around the point fully covered: Python.Fringe's interior)
+  cL        c with the Source's cell data reconstructed linear
+            (CellDataReconstruction 2): second order on each cell, where
+            constant cells (c) give free points beside the fringe a
+            one-sided mean of first order
   s1, c1    the same over interior points at least one ring from the fringe
             (every cell around the point's neighbours fully covered too)
   sF, cF    the worst error at free valid points that are not interior (the
@@ -118,6 +122,9 @@ def measure(target, source, around, near, whole):
         w = P.getrow(worst[name])
         split[name] = (abs(w.dot(exact_s)[0] - exact_s[worst[name]]) / np.max(error[interior]),
                        abs(w.dot(signed)[0]) / np.max(error[interior]), np.abs(w.data).sum())
+    linear_cells = mortar(target, source, pieces=False, CellDataTarget=1, CellDataReconstruction=2).GetOutput()
+    error = np.abs(vtk_to_numpy(linear_cells.GetPointData().GetArray("c")) - exact_s)
+    row["cL"] = np.max(error[valid]) / np.max(error[interior])
     exact = linear(x)
     row["linear"] = np.max(np.abs(vtk_to_numpy(pd.GetArray("l"))[valid] - exact[valid])) / np.ptp(exact)
     m_tt, _, reached = operator_matrices(f)
@@ -160,8 +167,8 @@ def main():
         refine = float(args[k + 1])
         del args[k:k + 2]
     pick = args[0] if args else ""
-    print("%-26s %-20s %6s %6s %6s %6s %6s %6s %8s %5s %6s %8s  %-42s %s" %
-          ("pair", "shift", "s", "c", "s1", "c1", "sF", "cF", "linear", ">10%", "sliver", "interior",
+    print("%-26s %-20s %6s %6s %6s %6s %6s %6s %6s %8s %5s %6s %8s  %-42s %s" %
+          ("pair", "shift", "s", "c", "cL", "s1", "c1", "sF", "cF", "linear", ">10%", "sliver", "interior",
            "worst s (cover, A/F, rings; own, carried)", "worst c"))
     for name, make, h_in, h_src, shifts in kinds():
         if pick not in name or (refine != 1.0 and make is stored):
@@ -181,8 +188,8 @@ def main():
             whole_f = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
             whole = np.asarray(operator_matrices(whole_f)[0].sum(axis=1)).ravel()
             r = measure(target, source, around, near, whole)
-            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s %8d  %-42s %s" %
-                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["s1"], r["c1"], r["sF"], r["cF"], r["linear"],
+            print("%-26s %-20s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %8.1e %5d %6s %8d  %-42s %s" %
+                  (name, "(%g,%g,%g)" % shift, r["s"], r["c"], r["cL"], r["s1"], r["c1"], r["sF"], r["cF"], r["linear"],
                    r["invalid10"],
                    "yes" if r["sliver"] else "-", r["interior"], r["worst s"], r["worst c"]), flush=True)
         os._exit(0)

@@ -8,6 +8,7 @@
 // FringeRings and the drop of functions with no stencil; in 3D, quadratic
 // fits with bounded weights where the rings allow them.
 #include "Transfer/FringeAggregation.h"
+#include "Transfer/FringeFits.h"
 
 #include "GeneratedMeshes.h"
 #include "Threads.h"
@@ -251,6 +252,57 @@ TEST(FringeAggregation, ReproducesAffineFunctionsOnAnArcIn3D)
       },
       tasks);
     ExpectAffineExtension(m, f, tasks == 1 ? "arc in 3D" : "arc in 3D, 3 tasks");
+  }
+}
+
+TEST(FringeAggregation, ReproducesAffineFunctionsAtTheEndOfAnArc)
+{
+  // An arc whose last point is ill-posed: extended from one side through
+  // the points' normal offsets (the nearest few amplify more than
+  // QuadraticAmplification there, more of them less), so that an ambient
+  // affine field stays exact, with bounded weights. (Two cells beyond the
+  // last well-covered point the six rings' points still amplify more.)
+  for (const double end : { 1.47, 1.46 })
+  {
+    for (int seed : { 7, 8 })
+    {
+      const TestMesh m = mptest::Polyline(
+        mptest::Uniform(40, 0.0, 1.5, 0.3, seed, false),
+        [](double s, double* x) {
+          x[0] = 0.8 * std::cos(s);
+          x[1] = 0.8 * std::sin(s) * std::cos(0.7);
+          x[2] = 0.8 * std::sin(s) * std::sin(0.7) + 0.3;
+        },
+        false, 3);
+      const Fringe f = FringeWhere(
+        m, [](const double*) { return true; },
+        [end](const double* x) { return std::atan2(x[1] / std::cos(0.7), x[0]) > end; }, 1);
+      const mp::MeshView view = m.View(false);
+      const mp::FringeExtension& e = f.Extension;
+      EXPECT_GE(e.Count, 1) << end << ", seed " << seed;
+      for (Index i = 0; i < view.NumberOfPoints; ++i)
+      {
+        EXPECT_TRUE(e.Aggregated[i] || f.Fraction[i] >= 0.1) << "point " << i;
+        if (!e.Aggregated[i])
+        {
+          continue;
+        }
+        double sum = 0.0;
+        double value = 0.0;
+        double amplification = 0.0;
+        for (Index q = e.P.RowStart[i]; q < e.P.RowStart[i + 1]; ++q)
+        {
+          sum += e.P.Values[q];
+          value += e.P.Values[q] * Affine(view.Point(e.P.ColumnIndex[q]));
+          amplification += std::abs(e.P.Values[q]);
+        }
+        EXPECT_NEAR(sum, 1.0, 1e-12) << end << ", seed " << seed << ", row " << i;
+        EXPECT_NEAR(value, Affine(view.Point(i)), 1e-11)
+          << end << ", seed " << seed << ", row " << i;
+        EXPECT_LE(amplification, mp::QuadraticAmplification)
+          << end << ", seed " << seed << ", row " << i;
+      }
+    }
   }
 }
 

@@ -98,25 +98,47 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
     points[r] = byDistance[r].second;
   }
   const size_t firstKeep = FirstPoints(mesh, frame, degree) * static_cast<size_t>(terms);
+  // (A fit that reproduces the tangent coordinates only, where `ambient`
+  // is asked for, is kept while more points are tried for one that
+  // reproduces the ambient ones too: at the end of a curved curve the few
+  // nearest points, all on one side, amplify too much through the normal
+  // offsets, more of them less.)
+  std::vector<double> tangent;
+  size_t tangentUsed = 0;
   for (const size_t keep : { firstKeep, size_t(4 * terms), points.size() })
   {
     const size_t used = std::min(keep, points.size());
     const bool tried = rejected && used <= rejected->size() &&
       std::min(keep, rejected->size()) == used &&
       std::equal(points.begin(), points.begin() + used, rejected->begin());
+    bool reproduces = true;
     std::vector<double> w =
-      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree, ambient);
-    if (!w.empty())
+      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree, &reproduces);
+    if (!w.empty() && (reproduces || !ambient))
     {
+      if (ambient)
+      {
+        *ambient = reproduces;
+      }
       points.resize(w.size());
       return w;
+    }
+    if (!w.empty() && tangent.empty())
+    {
+      tangent.swap(w);
+      tangentUsed = used;
     }
     if (keep >= points.size())
     {
       break;
     }
   }
-  return {};
+  if (!tangent.empty())
+  {
+    *ambient = false;
+    points.resize(tangentUsed);
+  }
+  return tangent;
 }
 
 /**
@@ -140,7 +162,9 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   std::vector<double> affine;
   bool affineAmbient = false; // affine reproduces the ambient affine functions
   std::vector<Index> found;
-  std::vector<Index> rejected; // the last ring's points, sorted: no quadratic fit
+  std::vector<Index> rejected;      // the last ring's points, sorted: no quadratic fit
+  std::vector<Index> tangentPoints; // the first quadratic fit of the tangent coordinates only
+  std::vector<double> tangentWeights;
   points.clear();
   weights.clear();
   stamp[static_cast<size_t>(i)] = i;
@@ -182,17 +206,29 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     if (inner)
     {
       points = found;
-      weights = NearestFit(mesh, frame, i, points, 2, &rejected);
-      if (!weights.empty())
+      bool ambient = true;
+      weights = NearestFit(mesh, frame, i, points, 2, &rejected, &ambient);
+      if (!weights.empty() && ambient)
       {
         return;
       }
-      rejected = points;
+      if (weights.empty())
+      {
+        rejected = points;
+      }
+      else if (tangentWeights.empty())
+      {
+        tangentPoints.swap(points);
+        tangentWeights.swap(weights);
+      }
     }
-    // (On a curved surface or curve an affine fit that reproduces the
-    // tangent coordinates only, a fit through too few points for their
-    // normal ones too, gives way to one from a later inner ring that does.)
-    if (affine.empty() || (!affineAmbient && inner))
+    // (On a curved surface or curve a fit that reproduces the tangent
+    // coordinates only, through too few points for their normal ones too,
+    // gives way to one from a later ring that does: a quadratic one within
+    // QuadraticRings, an affine one up to FringeSearchRings. At the end of
+    // a curved curve the nearest points lie on one side only, and a linear
+    // field stays exact only through the normal offsets of more of them.)
+    if (affine.empty() || !affineAmbient)
     {
       std::vector<Index> candidates = found;
       bool ambient = true;
@@ -204,14 +240,17 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
         affineAmbient = ambient;
       }
     }
-    if (!affine.empty() && !(inner && r + 1 < quadraticRings))
+    if (!affine.empty() && affineAmbient && !(inner && r + 1 < quadraticRings))
     {
       break;
     }
     ring.swap(next);
   }
-  points.swap(affinePoints);
-  weights.swap(affine);
+  // (A quadratic fit of the tangent coordinates before an affine one of
+  // them: the first found, as where no fit reproduces the ambient ones.)
+  const bool tangentQuadratic = !tangentWeights.empty() && !affineAmbient;
+  points.swap(tangentQuadratic ? tangentPoints : affinePoints);
+  weights.swap(tangentQuadratic ? tangentWeights : affine);
   if (weights.empty())
   {
     points.clear(); // no stable fit: ExtendFringe frees or drops the function

@@ -45,7 +45,13 @@
  * On surfaces and curves the fit is in the tangent coordinates of i
  * (FringeFrames.h), in 2D or 1D as on a 2D mesh: the extension reproduces
  * the functions affine in those coordinates (ambient linear fields on a
- * plane surface or a straight curve), and its rows still sum to 1.
+ * plane surface or a straight curve), and its rows still sum to 1. Where
+ * the stencil is curved, a fit that reproduces the ambient affine
+ * functions too (FringeFits.h) is sought first: more points, then farther
+ * rings (a quadratic one within FringeRings, an affine one up to
+ * FringeSearchRings), the tangent fit kept only where none of those stays
+ * within QuadraticAmplification (two cells beyond the end of a curved
+ * curve's well-covered points).
  *
  * Every valid value is then a stable one: a function that finds no stable
  * fit even there is dropped to invalid when its support is covered less

@@ -2,7 +2,7 @@
 with pvbatch --mpi --symmetric), on pairs that overlap in part (Gmsh's 2D
 triangles, 3D tetrahedra and hexahedra; jittered Kuhn tetrahedra with a
 corner poking out of the Source; Gmsh sphere caps, straight polylines in
-3D, and a Gmsh sphere half out of a box, a trace): Input split in blocks
+3D, and a Gmsh sphere and an arc half out of a box, traces): Input split in blocks
 along x, Source at random.
 
 Each process finds the fringe's stencils in the target's halo (the other
@@ -88,6 +88,14 @@ def segment(t0, t1, n, seed):
     return meshes.grid(x, np.stack([np.arange(n), np.arange(1, n + 1)], 1), VTK_LINE)
 
 
+def arc(t0, t1, n, seed, tilt):
+    """An arc of the unit circle about the origin in a plane tilted about x, its inner points jittered."""
+    t = np.linspace(t0, t1, n + 1)
+    t[1:-1] += np.random.default_rng(seed).uniform(-0.3, 0.3, n - 1) * (t1 - t0) / n
+    x = np.stack([np.cos(t), np.sin(t) * np.cos(tilt), np.sin(t) * np.sin(tilt)], 1)
+    return meshes.grid(x, np.stack([np.arange(n), np.arange(1, n + 1)], 1), VTK_LINE)
+
+
 pairs = [
     # (name, Input, Source, a linear field exact)
     ("2D triangles", grid(gmshmeshes.moved(gmshmeshes.planar(0.05), translate=(0.31, 0.17, 0))),
@@ -105,6 +113,10 @@ pairs = [
      with_fields(grid(gmshmeshes.surface("cap", 0.1, 5), False)), False),
     ("straight polylines", grid(segment(0.0, 1.0, 30, 1)), with_fields(grid(segment(0.37, 1.4, 23, 2), False)), True),
     ("trace: a sphere half out of a box", grid(gmshmeshes.surface("sphere", 0.08)),
+     with_fields(grid(gmshmeshes.volume("box", 0.1), False)), True),
+    # A curved curve leaving the box: its end extended through the normal
+    # offsets of points up to FringeSearchRings rings back (linear exact).
+    ("trace: an arc leaving a box", grid(arc(0.3, 2.2, 25, 2, 0.9)),
      with_fields(grid(gmshmeshes.volume("box", 0.1), False)), True),
     # Hexahedra without GlobalIds: each process splits its cells by its own
     # point ids, as the serial run does (by ids made across the processes
