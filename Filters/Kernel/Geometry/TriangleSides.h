@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file TriangleSides.h
+ * @brief The signs and crossings TriangleIntersector builds a piece from
+ *        (private to it and its tests).
+ *
+ * For a target and a source triangle (TriangleIntersector::Cell): the side
+ * of each corner of one w.r.t. each edge line of the other, as exactly
+ * evaluated orientations (Predicates.h) with their sign masks, and the
+ * point where an edge of one properly crosses an edge of the other.
+ */
+#ifndef MeshProjection_Kernel_TriangleSides_h
+#define MeshProjection_Kernel_TriangleSides_h
+
+#include "Geometry/Lanes.h"
+#include "Geometry/Predicates.h"
+#include "Geometry/TriangleIntersector.h"
+
+#include <cmath>
+#include <utility>
+
+namespace mp
+{
+namespace triangle
+{
+/**
+ * o[k][j] = Orient2D(a[k], b[k], c[j]) for 3 lines and 3 points, with one
+ * floating-point filter for all nine (Predicates.h): the nine determinants
+ * and their error bounds are computed without branches, and only when one is
+ * within its bound are the undecided ones recomputed exactly.
+ */
+inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (&o)[3][3])
+{
+  // The three points as the lanes of two vectors per coordinate (points
+  // 0-1, and 2 twice), so that each line's determinants and filters are
+  // two vector expressions (Lanes.h):
+  // the same operations in the same order as one at a time, the same
+  // values. Scalar, these 18 filtered orientations per pair were an eighth
+  // of a 2D run's instructions.
+  constexpr double bound = (3.0 + 16.0 * RoundingUnit) * RoundingUnit;
+  const Doubles2 cx[2] = { { c[0][0], c[1][0] }, { c[2][0], c[2][0] } };
+  const Doubles2 cy[2] = { { c[0][1], c[1][1] }, { c[2][1], c[2][1] } };
+  Mask2 decidedLanes = { -1, -1 };
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* a = x[(k + 1) % 3];
+    const double* b = x[(k + 2) % 3];
+    for (int h = 0; h < 2; ++h)
+    {
+      const Doubles2 left = (a[0] - cx[h]) * (b[1] - cy[h]);
+      const Doubles2 right = (a[1] - cy[h]) * (b[0] - cx[h]);
+      const Doubles2 det = left - right;
+      o[k][2 * h] = det[0];
+      if (h == 0)
+      {
+        o[k][1] = det[1];
+      }
+      decidedLanes &= Magnitude(det) > bound * (Magnitude(left) + Magnitude(right));
+    }
+  }
+  const bool decided = (decidedLanes[0] & decidedLanes[1]) != 0;
+  if (decided)
+  {
+    return;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      o[k][j] = Orient2D(x[(k + 1) % 3], x[(k + 2) % 3], c[j]);
+    }
+  }
+}
+
+/**
+ * Bits 3k + j, with 3k + j < 9, of `bits`' even bits 2 (3k + j): two
+ * interleaved 9-bit masks taken apart.
+ */
+inline unsigned EvenBits(unsigned bits)
+{
+  bits &= 0x15555u;
+  bits = (bits | (bits >> 1)) & 0x13333u;
+  bits = (bits | (bits >> 2)) & 0x10F0Fu;
+  bits = (bits | (bits >> 4)) & 0x100FFu;
+  return (bits | (bits >> 8)) & 0x1FFu;
+}
+
+/**
+ * ot[k][j] = Orient2D(t.X[k + 1], t.X[k + 2], s.X[j]) and os[k][j] the
+ * same with t and s exchanged, with their signs as negT, negS (bit 3k + j),
+ * when one floating-point filter decides all 18 (returns false, all unset,
+ * else). Each is Shewchuk's orient2d with the edge's first corner as its
+ * pivot, edge k - s.Edge[k], t.Edge[k] - prepared, and both sides paired
+ * as the two lanes of one vector (Lanes.h). Its bound takes the place of
+ * each determinant's |left| + |right| by one above it for every point of
+ * both boxes: the edge's EdgeSize times `extent` (the larger side of the
+ * box around both cells; a difference of two coordinates in it rounds to
+ * at most that). (3 + 64u) u covers Shewchuk's (3 + 16u) u with the
+ * roundings of the bound itself. A decided determinant is not zero, so its
+ * sign bit is its sign: the pair is in general position.
+ */
+inline bool FilteredSides(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
+  double extent, double (&ot)[3][3], double (&os)[3][3], unsigned& negT, unsigned& negS)
+{
+  constexpr double c = (3.0 + 64.0 * RoundingUnit) * RoundingUnit;
+  const double scale = c * extent;
+  Doubles2 px[3];
+  Doubles2 py[3];
+  for (int j = 0; j < 3; ++j)
+  {
+    px[j] = Doubles2{ s.X[j][0], t.X[j][0] };
+    py[j] = Doubles2{ s.X[j][1], t.X[j][1] };
+  }
+  Mask2 decided = { -1, -1 };
+  unsigned signs = 0; // bit 2 (3k + j): ot[k][j] < 0, the next bit os[k][j] < 0
+  for (int k = 0; k < 3; ++k)
+  {
+    const int a = k == 2 ? 0 : k + 1;
+    const Doubles2 ax = { t.X[a][0], s.X[a][0] };
+    const Doubles2 ay = { t.X[a][1], s.X[a][1] };
+    const Doubles2 ex = { t.Edge[k][0], s.Edge[k][0] };
+    const Doubles2 ey = { t.Edge[k][1], s.Edge[k][1] };
+    const Doubles2 bound = scale * Doubles2{ t.EdgeSize[k], s.EdgeSize[k] };
+    for (int j = 0; j < 3; ++j)
+    {
+      const Doubles2 det = ex * (py[j] - ay) - ey * (px[j] - ax);
+      decided &= Magnitude(det) > bound;
+      ot[k][j] = det[0];
+      os[k][j] = det[1];
+      signs |= SignBits(det) << (2 * (3 * k + j));
+    }
+  }
+  if (!(decided[0] & decided[1]))
+  {
+    return false;
+  }
+  negT = EvenBits(signs);
+  negS = EvenBits(signs >> 1);
+  return true;
+}
+
+/**
+ * Bits 3k + j of pos, neg: o[k][j] > 0, < 0 (a NaN: neither). Entries 0-1
+ * of a row as one vector, their signs by SSE2 movemask (generic code
+ * elsewhere); compared one by one, these were a visible share of a 2D
+ * run's instructions.
+ */
+inline void SignBits3x3(const double (&o)[3][3], unsigned& pos, unsigned& neg)
+{
+  pos = 0;
+  neg = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const Doubles2 r = LoadLanes(&o[k][0]);
+    pos |= (LaneBits(r > 0.0) | static_cast<unsigned>(o[k][2] > 0.0) << 2) << (3 * k);
+    neg |= (LaneBits(r < 0.0) | static_cast<unsigned>(o[k][2] < 0.0) << 2) << (3 * k);
+  }
+}
+
+/**
+ * Where target edge a-b and source edge c-d cross (properly), given the
+ * sides oa, ob of a, b w.r.t. the line of c-d and oc, od of c, d w.r.t. the
+ * line of a-b (each pair strictly of opposite signs).
+ *
+ * Their signs are exact, but a determinant the filter decided is only the
+ * rounded one, whose error (below 2^-51 of the sum of its two products'
+ * magnitudes, its scale) is large relative to it when a point lies very
+ * near the line; so then is the error of the crossing's place along the
+ * edge (on nearly parallel edges, a few percent of a piece's area were
+ * seen). A determinant below `limit` (2^-19 D^2, D the extent of both
+ * cells' boxes together: at least 2^-20 of its scale, since a scale is at
+ * most 2 D^2) is recomputed exactly with its partner, so that each one used
+ * is within about 2^-31 of its value.
+ *
+ * Placed along an edge, the point's error is about the rounding unit u
+ * times the edge's length (the error of u times it), and the rounded
+ * orientations' errors (about u D^2) add about u D^2 / |o| of it. For
+ * cells of similar sizes both stay within rounding of the cells. For a
+ * small cell (size h) and a huge one (size L: `careful`, one box more than
+ * 16 times the other) the first is up to u L along a huge edge, and the
+ * second u L / h relative, since the orientations are about L h: both
+ * could exceed the small cell. The point is then placed along the shorter
+ * edge, from exact orientations.
+ */
+inline void Crossing(const double* a, const double* b, double oa, double ob, const double* c,
+  const double* d, double oc, double od, double limit, bool careful, double (&x)[2])
+{
+  if (careful &&
+    (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) <
+      (d[0] - c[0]) * (d[0] - c[0]) + (d[1] - c[1]) * (d[1] - c[1]))
+  {
+    std::swap(a, c); // along the target edge a-b, across the line of c-d
+    std::swap(b, d);
+    std::swap(oa, oc);
+    std::swap(ob, od);
+  }
+  if (careful || std::fabs(oc) < limit || std::fabs(od) < limit)
+  {
+    oc = Orient2DExact(a, b, c);
+    od = Orient2DExact(a, b, d);
+  }
+  const double u = oc / (oc - od);
+  x[0] = c[0] + u * (d[0] - c[0]);
+  x[1] = c[1] + u * (d[1] - c[1]);
+}
+
+/// Target edge K and source edge L as bit 3K + L of a mask of crossings,
+/// with their end corners: edge k runs from corner k + 1 to corner k + 2
+/// (a table: the divisions by 3 it spares were on the crossings' path).
+struct EdgePair
+{
+  unsigned char K, L, A, B, C, D;
+};
+constexpr EdgePair EdgePairs[9] = { { 0, 0, 1, 2, 1, 2 }, { 0, 1, 1, 2, 2, 0 },
+  { 0, 2, 1, 2, 0, 1 }, { 1, 0, 2, 0, 1, 2 }, { 1, 1, 2, 0, 2, 0 }, { 1, 2, 2, 0, 0, 1 },
+  { 2, 0, 0, 1, 1, 2 }, { 2, 1, 0, 1, 2, 0 }, { 2, 2, 0, 1, 0, 1 } };
+
+/// Bit j: column j of a 3 x 3 mask (bit 3k + j) has a bit set.
+inline unsigned AnyInColumn(unsigned m)
+{
+  return (m | (m >> 3) | (m >> 6)) & 7u;
+}
+
+/// Bit k: row k of a 3 x 3 mask (bit 3k + j) has a bit set.
+inline unsigned AnyInRow(unsigned m)
+{
+  const unsigned r = m | (m >> 1) | (m >> 2);
+  return (r & 1u) | ((r >> 2) & 2u) | ((r >> 4) & 4u);
+}
+
+/**
+ * Bits 3k + l: target edge k and source edge l cross properly (each one's
+ * end points strictly on both sides of the other's line), from the sign
+ * masks of Intersect (pos, neg of ot and of os).
+ */
+inline unsigned ProperCrossings(unsigned posT, unsigned negT, unsigned posS, unsigned negS)
+{
+  // straddleT bit 3k + l: source edge l's corners (l+1, l+2) are strictly
+  // on opposite sides of target edge k; straddleS bit 3l + k likewise.
+  auto straddle = [](unsigned pos, unsigned neg) {
+    // Bit 3k + l of rot1(m), rot2(m): entry (l + 1) % 3, (l + 2) % 3 of row k.
+    auto rot1 = [](unsigned m) { return ((m >> 1) & 0xDBu) | ((m << 2) & 0x124u); };
+    auto rot2 = [](unsigned m) { return ((m >> 2) & 0x49u) | ((m << 1) & 0x1B6u); };
+    return (rot1(pos) & rot2(neg)) | (rot1(neg) & rot2(pos));
+  };
+  const unsigned straddleT = straddle(posT, negT);
+  const unsigned straddleS = straddle(posS, negS);
+  // straddleS transposed: bit 3l + k to 3k + l.
+  const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
+    ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
+  return straddleT & transposed & 0x1FFu;
+}
+} // namespace triangle
+} // namespace mp
+
+#endif
