@@ -168,34 +168,14 @@ bool ChainByEdges(TriangleIntersector::Piece& p, const unsigned char* in, const 
   return true;
 }
 
-/// What places the crossings of a pair (Crossing): the larger side of the
-/// box around both cells, determinants below Limit recomputed exactly, and
-/// whether the cells' sizes differ so much that points go along the
-/// shorter edge (Careful).
-struct Placement
-{
-  Placement(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s)
-  {
-    this->Extent = std::max(t.Box[1], s.Box[1]) - std::min(t.Box[0], s.Box[0]);
-    this->Extent =
-      std::max(this->Extent, std::max(t.Box[3], s.Box[3]) - std::min(t.Box[2], s.Box[2]));
-    this->Limit = 0x1p-19 * this->Extent * this->Extent;
-    const double sourceSize = std::max(s.Box[1] - s.Box[0], s.Box[3] - s.Box[2]);
-    const double targetSize = std::max(t.Box[1] - t.Box[0], t.Box[3] - t.Box[2]);
-    this->Careful = sourceSize > 16.0 * targetSize || targetSize > 16.0 * sourceSize;
-  }
-  double Extent;
-  double Limit;
-  bool Careful;
-};
-
 /**
  * The piece of t and s whose boxes overlap, from the exactly evaluated sides
  * of all corners (Orient3x3), any configuration: corners on the other's
  * edges, shared corners, touching cells. Returns false when they do not
- * meet. The route of the pairs GeneralPiece does not take.
+ * meet. The route of the pairs GeneralPiece does not take (not inlined:
+ * its registers and stack would burden that route's).
  */
-bool AnyPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
+__attribute__((noinline)) bool AnyPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
   const Placement& place, TriangleIntersector::Piece& piece)
 {
   // ot[k][j]: side of source corner j w.r.t. target edge k (corners k+1, k+2),
@@ -211,6 +191,15 @@ bool AnyPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cel
   unsigned negS = 0;
   SignBits3x3(ot, posT, negT);
   SignBits3x3(os, posS, negS);
+  double sides[18]; // both in the layout of FilteredSides, for Crossing
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      sides[2 * (3 * k + j)] = ot[k][j];
+      sides[2 * (3 * k + j) + 1] = os[k][j];
+    }
+  }
   // Separating edge: all three corners of the other cell strictly outside.
   constexpr unsigned row = 7u;
   if (((negT & row) == row) | (((negT >> 3) & row) == row) | (((negT >> 6) & row) == row) |
@@ -280,8 +269,7 @@ bool AnyPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cel
   {
     const EdgePair e = EdgePairs[__builtin_ctz(crossings)];
     double x[2];
-    Crossing(t.X[e.A], t.X[e.B], os[e.L][e.A], os[e.L][e.B], s.X[e.C], s.X[e.D], ot[e.K][e.C],
-      ot[e.K][e.D], place.Limit, place.Careful, x);
+    Crossing(t, s, e, sides, place, x);
     // Source edge l entering the target's side of edge k (c outside):
     // the piece arrives along target edge k and leaves along l; leaving
     // it, the other way round.
@@ -319,12 +307,11 @@ inline unsigned ArrivingLines(unsigned corners)
  * The rest of GeneralPiece: the crossings placed (Crossing) and kept by
  * the line they arrive along, then the walk from line `start`'s vertex
  * along the leaving lines. `at`, `next` and `held` come with the corners:
- * line L's vertex, its leaving line (bits 3L of next), and the lines that
- * hold one.
+ * line L's vertex, its leaving line, and the lines that hold one (bit L).
  */
 int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  const double (&ot)[3][3], const double (&os)[3][3], unsigned crossings, const Placement& place,
-  int start, const double* (&at)[6], unsigned next, unsigned held,
+  const double (&sides)[18], unsigned crossings, const Placement& place, int start,
+  const double* (&at)[6], unsigned char (&next)[6], unsigned held,
   TriangleIntersector::Piece& piece)
 {
   double x[6][2];
@@ -335,15 +322,13 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
     // Source edge l entering the target's side of edge k (c outside):
     // the piece arrives along target edge k and leaves along l; leaving
     // it, the other way round.
-    const bool entering = ot[e.K][e.C] < 0.0;
+    const bool entering = sides[e.OC] < 0.0;
     const unsigned in = entering ? e.K : 3u + e.L;
-    const unsigned out = entering ? 3u + e.L : e.K;
-    Crossing(t.X[e.A], t.X[e.B], os[e.L][e.A], os[e.L][e.B], s.X[e.C], s.X[e.D], ot[e.K][e.C],
-      ot[e.K][e.D], place.Limit, place.Careful, x[in]);
+    Crossing(t, s, e, sides, place, x[in]);
     at[in] = x[in];
+    next[in] = static_cast<unsigned char>(entering ? 3u + e.L : e.K);
     clash |= held & (1u << in);
     held |= 1u << in;
-    next = (next & ~(7u << (3 * in))) | out << (3 * in);
     start = start < 0 ? static_cast<int>(in) : start;
   }
   if (held == 0)
@@ -356,37 +341,33 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
   }
   // Each vertex stored only when it differs from the one before (a
   // rounded crossing can equal its neighbour), as StoreWithoutRepeats.
-  unsigned line = static_cast<unsigned>(start);
+  int line = start;
   unsigned seen = 0;
   int steps = 0;
   int m = 0;
-  const double* previous = at[line];
+  Doubles2 previous = LoadLanes(at[line]);
   do
   {
-    const double* v = at[line];
-    piece.X[m][0] = v[0];
-    piece.X[m][1] = v[1];
-    m += (m == 0) | (v[0] != previous[0]) | (v[1] != previous[1]);
+    const Doubles2 v = LoadLanes(at[line]);
+    std::memcpy(piece.X[m], &v, sizeof v);
+    m += (m == 0) | (LaneBits(v != previous) != 0);
     previous = v;
     seen |= 1u << line;
-    line = (next >> (3 * line)) & 7u;
-  } while (++steps < 6 && line != static_cast<unsigned>(start));
+    line = next[line];
+  } while (++steps < 6 && line != start);
   // One cycle through every vertex, as ChainByEdges asks.
-  if (line != static_cast<unsigned>(start) || seen != held || steps < 3)
+  if (line != start || seen != held || steps < 3)
   {
     return 0;
   }
-  if (m > 2 && previous[0] == at[start][0] && previous[1] == at[start][1])
-  {
-    --m;
-  }
+  m -= m > 2 && LaneBits(previous != LoadLanes(at[start])) == 0;
   piece.NumberOfVertices = m;
   return 1;
 }
 
 /**
  * The piece of t and s in general position: the filter decided every side
- * (FilteredSides: ot, os and their negative signs negT, negS, none zero),
+ * (FilteredSides: `sides` and their negative signs negT, negS, none zero),
  * so no corner lies on a line of the other cell's edges and AnyPiece's
  * borderline cases cannot arise. Each vertex of the piece arrives along
  * one of the six edge lines (ChainByEdges' labels), and along each line at
@@ -397,8 +378,8 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
  * into one cycle (AnyPiece then sorts).
  */
 int GeneralPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  const double (&ot)[3][3], const double (&os)[3][3], unsigned negT, unsigned negS,
-  const Placement& place, TriangleIntersector::Piece& piece)
+  const double (&sides)[18], unsigned negT, unsigned negS, const Placement& place,
+  TriangleIntersector::Piece& piece)
 {
   // Separating edge: all three corners of the other cell outside.
   const unsigned full = (negT & (negT >> 1) & (negT >> 2)) | (negS & (negS >> 1) & (negS >> 2));
@@ -409,23 +390,23 @@ int GeneralPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::
   // Corners inside the other cell: no edge of it has them outside.
   const unsigned targetInside = ~AnyInColumn(negS) & 7u;
   const unsigned sourceInside = ~AnyInColumn(negT) & 7u;
-  const unsigned crossings = ProperCrossings(~negT & 0x1FFu, negT, ~negS & 0x1FFu, negS);
+  const unsigned crossings = GeneralCrossings(negT, negS);
   // The faces at the inside corners (all three but the corner's own, per corner).
   constexpr unsigned char faces[8] = { 0, 6, 5, 7, 3, 7, 7, 7 };
   piece.TouchedFaces = faces[targetInside] | AnyInRow(crossings);
   piece.SourceFaces = faces[sourceInside] | AnyInColumn(crossings);
   // Line L (target edges 0-2, source edges 3-5) and its vertex: corner i
   // arrives along edge i + 1 and leaves along edge i + 2, so line L holds
-  // corner L + 2 and leaves along L + 1 (bits 3L of next).
+  // corner L + 2 and leaves along L + 1.
   const double* at[6] = { t.X[2], t.X[0], t.X[1], s.X[2], s.X[0], s.X[1] };
-  const unsigned next = 1u | 2u << 3 | 0u << 6 | 4u << 9 | 5u << 12 | 3u << 15;
+  unsigned char next[6] = { 1, 2, 0, 4, 5, 3 };
   const unsigned held = ArrivingLines(targetInside) | ArrivingLines(sourceInside) << 3;
   // AnyPiece's first vertex: the first target corner inside, else the
   // first source corner, else the first crossing.
   const int start = targetInside != 0 ? __builtin_ctz(ArrivingLines(targetInside & -targetInside))
     : sourceInside != 0 ? 3 + __builtin_ctz(ArrivingLines(sourceInside & -sourceInside))
                         : -1;
-  return ChainPiece(t, s, ot, os, crossings, place, start, at, next, held, piece);
+  return ChainPiece(t, s, sides, crossings, place, start, at, next, held, piece);
 }
 
 } // namespace
@@ -531,13 +512,12 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
     return false;
   }
   const Placement place(t, s);
-  double ot[3][3];
-  double os[3][3];
+  double sides[18];
   unsigned negT = 0;
   unsigned negS = 0;
-  if (FilteredSides(t, s, place.Extent, ot, os, negT, negS))
+  if (FilteredSides(t, s, place.Extent, sides, negT, negS))
   {
-    const int met = GeneralPiece(t, s, ot, os, negT, negS, place, piece);
+    const int met = GeneralPiece(t, s, sides, negT, negS, place, piece);
     if (met >= 0)
     {
       return met > 0;

@@ -16,7 +16,9 @@
 #include "Geometry/Predicates.h"
 #include "Geometry/TriangleIntersector.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 namespace mp
@@ -86,8 +88,9 @@ inline unsigned EvenBits(unsigned bits)
 }
 
 /**
- * ot[k][j] = Orient2D(t.X[k + 1], t.X[k + 2], s.X[j]) and os[k][j] the
- * same with t and s exchanged, with their signs as negT, negS (bit 3k + j),
+ * sides[2 (3k + j)] = Orient2D(t.X[k + 1], t.X[k + 2], s.X[j]) (ot[k][j] of
+ * Intersect) and the next one the same with t and s exchanged (os[k][j]),
+ * with their signs as negT, negS (bit 3k + j),
  * when one floating-point filter decides all 18 (returns false, all unset,
  * else). Each is Shewchuk's orient2d with the edge's first corner as its
  * pivot, edge k - s.Edge[k], t.Edge[k] - prepared, and both sides paired
@@ -100,7 +103,7 @@ inline unsigned EvenBits(unsigned bits)
  * sign bit is its sign: the pair is in general position.
  */
 inline bool FilteredSides(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  double extent, double (&ot)[3][3], double (&os)[3][3], unsigned& negT, unsigned& negS)
+  double extent, double (&sides)[18], unsigned& negT, unsigned& negS)
 {
   constexpr double c = (3.0 + 64.0 * RoundingUnit) * RoundingUnit;
   const double scale = c * extent;
@@ -125,8 +128,7 @@ inline bool FilteredSides(const TriangleIntersector::Cell& t, const TriangleInte
     {
       const Doubles2 det = ex * (py[j] - ay) - ey * (px[j] - ax);
       decided &= Magnitude(det) > bound;
-      ot[k][j] = det[0];
-      os[k][j] = det[1];
+      std::memcpy(&sides[2 * (3 * k + j)], &det, sizeof det);
       signs |= SignBits(det) << (2 * (3 * k + j));
     }
   }
@@ -157,63 +159,31 @@ inline void SignBits3x3(const double (&o)[3][3], unsigned& pos, unsigned& neg)
   }
 }
 
-/**
- * Where target edge a-b and source edge c-d cross (properly), given the
- * sides oa, ob of a, b w.r.t. the line of c-d and oc, od of c, d w.r.t. the
- * line of a-b (each pair strictly of opposite signs).
- *
- * Their signs are exact, but a determinant the filter decided is only the
- * rounded one, whose error (below 2^-51 of the sum of its two products'
- * magnitudes, its scale) is large relative to it when a point lies very
- * near the line; so then is the error of the crossing's place along the
- * edge (on nearly parallel edges, a few percent of a piece's area were
- * seen). A determinant below `limit` (2^-19 D^2, D the extent of both
- * cells' boxes together: at least 2^-20 of its scale, since a scale is at
- * most 2 D^2) is recomputed exactly with its partner, so that each one used
- * is within about 2^-31 of its value.
- *
- * Placed along an edge, the point's error is about the rounding unit u
- * times the edge's length (the error of u times it), and the rounded
- * orientations' errors (about u D^2) add about u D^2 / |o| of it. For
- * cells of similar sizes both stay within rounding of the cells. For a
- * small cell (size h) and a huge one (size L: `careful`, one box more than
- * 16 times the other) the first is up to u L along a huge edge, and the
- * second u L / h relative, since the orientations are about L h: both
- * could exceed the small cell. The point is then placed along the shorter
- * edge, from exact orientations.
- */
-inline void Crossing(const double* a, const double* b, double oa, double ob, const double* c,
-  const double* d, double oc, double od, double limit, bool careful, double (&x)[2])
-{
-  if (careful &&
-    (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) <
-      (d[0] - c[0]) * (d[0] - c[0]) + (d[1] - c[1]) * (d[1] - c[1]))
-  {
-    std::swap(a, c); // along the target edge a-b, across the line of c-d
-    std::swap(b, d);
-    std::swap(oa, oc);
-    std::swap(ob, od);
-  }
-  if (careful || std::fabs(oc) < limit || std::fabs(od) < limit)
-  {
-    oc = Orient2DExact(a, b, c);
-    od = Orient2DExact(a, b, d);
-  }
-  const double u = oc / (oc - od);
-  x[0] = c[0] + u * (d[0] - c[0]);
-  x[1] = c[1] + u * (d[1] - c[1]);
-}
-
 /// Target edge K and source edge L as bit 3K + L of a mask of crossings,
-/// with their end corners: edge k runs from corner k + 1 to corner k + 2
-/// (a table: the divisions by 3 it spares were on the crossings' path).
+/// with their end corners (edge k runs from corner k + 1 to corner k + 2)
+/// and the places in FilteredSides' `sides` of the sides of the source's
+/// corners C, D w.r.t. target edge K (a table: the divisions by 3 it
+/// spares were on the crossings' path).
 struct EdgePair
 {
-  unsigned char K, L, A, B, C, D;
+  unsigned char K, L, A, B, C, D, OC, OD;
 };
-constexpr EdgePair EdgePairs[9] = { { 0, 0, 1, 2, 1, 2 }, { 0, 1, 1, 2, 2, 0 },
-  { 0, 2, 1, 2, 0, 1 }, { 1, 0, 2, 0, 1, 2 }, { 1, 1, 2, 0, 2, 0 }, { 1, 2, 2, 0, 0, 1 },
-  { 2, 0, 0, 1, 1, 2 }, { 2, 1, 0, 1, 2, 0 }, { 2, 2, 0, 1, 0, 1 } };
+constexpr EdgePair MakeEdgePair(int bit)
+{
+  const int k = bit / 3;
+  const int l = bit % 3;
+  const int a = (k + 1) % 3;
+  const int b = (k + 2) % 3;
+  const int c = (l + 1) % 3;
+  const int d = (l + 2) % 3;
+  return { static_cast<unsigned char>(k), static_cast<unsigned char>(l),
+    static_cast<unsigned char>(a), static_cast<unsigned char>(b), static_cast<unsigned char>(c),
+    static_cast<unsigned char>(d), static_cast<unsigned char>(2 * (3 * k + c)),
+    static_cast<unsigned char>(2 * (3 * k + d)) };
+}
+constexpr EdgePair EdgePairs[9] = { MakeEdgePair(0), MakeEdgePair(1), MakeEdgePair(2),
+  MakeEdgePair(3), MakeEdgePair(4), MakeEdgePair(5), MakeEdgePair(6), MakeEdgePair(7),
+  MakeEdgePair(8) };
 
 /// Bit j: column j of a 3 x 3 mask (bit 3k + j) has a bit set.
 inline unsigned AnyInColumn(unsigned m)
@@ -249,6 +219,107 @@ inline unsigned ProperCrossings(unsigned posT, unsigned negT, unsigned posS, uns
   const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
     ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
   return straddleT & transposed & 0x1FFu;
+}
+
+/// ProperCrossings in general position (no side zero: pos = ~neg).
+inline unsigned GeneralCrossings(unsigned negT, unsigned negS)
+{
+  // Both ends on opposite sides: the two entries differ.
+  auto straddle = [](unsigned neg) {
+    return (((neg >> 1) & 0xDBu) | ((neg << 2) & 0x124u)) ^
+      (((neg >> 2) & 0x49u) | ((neg << 1) & 0x1B6u));
+  };
+  const unsigned straddleT = straddle(negT);
+  const unsigned straddleS = straddle(negS);
+  const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
+    ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
+  return straddleT & transposed;
+}
+/// What places the crossings of a pair (Crossing): the larger side of the
+/// box around both cells, determinants below Limit recomputed exactly, and
+/// whether the cells' sizes differ so much that points go along the
+/// shorter edge (Careful).
+struct Placement
+{
+  Placement(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s)
+  {
+    this->Extent = std::max(t.Box[1], s.Box[1]) - std::min(t.Box[0], s.Box[0]);
+    this->Extent =
+      std::max(this->Extent, std::max(t.Box[3], s.Box[3]) - std::min(t.Box[2], s.Box[2]));
+    this->Limit = 0x1p-19 * this->Extent * this->Extent;
+    const double sourceSize = std::max(s.Box[1] - s.Box[0], s.Box[3] - s.Box[2]);
+    const double targetSize = std::max(t.Box[1] - t.Box[0], t.Box[3] - t.Box[2]);
+    this->Careful = sourceSize > 16.0 * targetSize || targetSize > 16.0 * sourceSize;
+  }
+  double Extent;
+  double Limit;
+  bool Careful;
+};
+
+/// Crossing's rare way, from exact sides (along the shorter edge when
+/// `careful`); apart, so that the usual way keeps its registers.
+__attribute__((noinline)) inline void CrossingFromExactSides(const TriangleIntersector::Cell& t,
+  const TriangleIntersector::Cell& s, const EdgePair& e, bool careful, double (&x)[2])
+{
+  const double* a = t.X[e.A];
+  const double* b = t.X[e.B];
+  const double* c = s.X[e.C];
+  const double* d = s.X[e.D];
+  const double* cd = s.Edge[e.L];
+  const double* ab = t.Edge[e.K];
+  if (careful && ab[0] * ab[0] + ab[1] * ab[1] < cd[0] * cd[0] + cd[1] * cd[1])
+  {
+    std::swap(a, c); // along the target edge a-b, across the line of c-d
+    std::swap(b, d);
+    cd = ab;
+  }
+  const double oc = Orient2DExact(a, b, c);
+  const double od = Orient2DExact(a, b, d);
+  const double u = oc / (oc - od);
+  const Doubles2 point = LoadLanes(c) + u * LoadLanes(cd);
+  std::memcpy(x, &point, sizeof point);
+}
+
+/**
+ * Where target edge a-b and source edge c-d of `e` cross (properly), given
+ * their sides in the layout of FilteredSides: those of c, d w.r.t. the
+ * line of a-b (strictly of opposite signs) place the point along c-d.
+ *
+ * Their signs are exact, but a determinant the filter decided is only the
+ * rounded one, whose error (below 2^-51 of the sum of its two products'
+ * magnitudes, its scale) is large relative to it when a point lies very
+ * near the line; so then is the error of the crossing's place along the
+ * edge (on nearly parallel edges, a few percent of a piece's area were
+ * seen). A determinant below `Limit` (2^-19 D^2, D the extent of both
+ * cells' boxes together: at least 2^-20 of its scale, since a scale is at
+ * most 2 D^2; FilteredSides' scale is at most 4 D^2) is recomputed exactly
+ * with its partner, so that each one used is within about 2^-31 of its
+ * value.
+ *
+ * Placed along an edge, the point's error is about the rounding unit u
+ * times the edge's length (the error of u times it), and the rounded
+ * orientations' errors (about u D^2) add about u D^2 / |o| of it. For
+ * cells of similar sizes both stay within rounding of the cells. For a
+ * small cell (size h) and a huge one (size L: `Careful`, one box more than
+ * 16 times the other) the first is up to u L along a huge edge, and the
+ * second u L / h relative, since the orientations are about L h: both
+ * could exceed the small cell. The point is then placed along the shorter
+ * edge, from exact orientations. The edge vectors are the cells' Edge,
+ * the differences of the corners.
+ */
+inline void Crossing(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
+  const EdgePair& e, const double (&sides)[18], const Placement& place, double (&x)[2])
+{
+  const double oc = sides[e.OC];
+  const double od = sides[e.OD];
+  if (place.Careful || std::fabs(oc) < place.Limit || std::fabs(od) < place.Limit)
+  {
+    CrossingFromExactSides(t, s, e, place.Careful, x);
+    return;
+  }
+  const double u = oc / (oc - od);
+  const Doubles2 point = LoadLanes(s.X[e.C]) + u * LoadLanes(s.Edge[e.L]);
+  std::memcpy(x, &point, sizeof point);
 }
 } // namespace triangle
 } // namespace mp
