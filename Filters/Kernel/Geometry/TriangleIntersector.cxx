@@ -175,8 +175,8 @@ bool ChainByEdges(TriangleIntersector::Piece& p, const unsigned char* in, const 
  * meet. The route of the pairs GeneralPiece does not take (not inlined:
  * its registers and stack would burden that route's).
  */
-__attribute__((noinline)) bool AnyPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  const Placement& place, TriangleIntersector::Piece& piece)
+__attribute__((noinline)) bool AnyPiece(const TriangleIntersector::Cell& t,
+  const TriangleIntersector::Cell& s, const Placement& place, TriangleIntersector::Piece& piece)
 {
   // ot[k][j]: side of source corner j w.r.t. target edge k (corners k+1, k+2),
   // os[l][i]: side of target corner i w.r.t. source edge l. Positive = inside.
@@ -304,25 +304,25 @@ inline unsigned ArrivingLines(unsigned corners)
 }
 
 /**
- * The rest of GeneralPiece: the crossings placed (Crossing) and kept by
- * the line they arrive along, then the walk from line `start`'s vertex
- * along the leaving lines. `at`, `next` and `held` come with the corners:
+ * The rest of GeneralPiece: the crossings (bits 2 (3k + l) of `crossings`)
+ * placed (Crossing) and kept by the line they arrive along, then the walk
+ * from line `start`'s vertex along the leaving lines. `at`, `next` and `held` come with the corners:
  * line L's vertex, its leaving line, and the lines that hold one (bit L).
  */
 int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  const double (&sides)[18], unsigned crossings, const Placement& place, int start,
-  const double* (&at)[6], unsigned char (&next)[6], unsigned held,
+  const double (&sides)[18], unsigned negative, unsigned crossings, const Placement& place,
+  int start, const double* (&at)[6], unsigned char (&next)[6], unsigned held,
   TriangleIntersector::Piece& piece)
 {
   double x[6][2];
   unsigned clash = 0; // a line with two vertices: not a chain
   for (; crossings != 0; crossings &= crossings - 1)
   {
-    const EdgePair e = EdgePairs[__builtin_ctz(crossings)];
+    const EdgePair e = EdgePairs[__builtin_ctz(crossings) >> 1];
     // Source edge l entering the target's side of edge k (c outside):
     // the piece arrives along target edge k and leaves along l; leaving
     // it, the other way round.
-    const bool entering = sides[e.OC] < 0.0;
+    const bool entering = (negative >> e.OC) & 1u;
     const unsigned in = entering ? e.K : 3u + e.L;
     Crossing(t, s, e, sides, place, x[in]);
     at[in] = x[in];
@@ -367,7 +367,7 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
 
 /**
  * The piece of t and s in general position: the filter decided every side
- * (FilteredSides: `sides` and their negative signs negT, negS, none zero),
+ * (FilteredSides: `sides` and their negative signs, none zero),
  * so no corner lies on a line of the other cell's edges and AnyPiece's
  * borderline cases cannot arise. Each vertex of the piece arrives along
  * one of the six edge lines (ChainByEdges' labels), and along each line at
@@ -378,23 +378,23 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
  * into one cycle (AnyPiece then sorts).
  */
 int GeneralPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  const double (&sides)[18], unsigned negT, unsigned negS, const Placement& place,
+  const double (&sides)[18], unsigned negative, const Placement& place,
   TriangleIntersector::Piece& piece)
 {
   // Separating edge: all three corners of the other cell outside.
-  const unsigned full = (negT & (negT >> 1) & (negT >> 2)) | (negS & (negS >> 1) & (negS >> 2));
-  if (full & 0x49u)
+  if (AnyRowFull(negative))
   {
     return -1;
   }
   // Corners inside the other cell: no edge of it has them outside.
-  const unsigned targetInside = ~AnyInColumn(negS) & 7u;
-  const unsigned sourceInside = ~AnyInColumn(negT) & 7u;
-  const unsigned crossings = GeneralCrossings(negT, negS);
+  const unsigned columns = AnyInColumns(negative);
+  const unsigned targetInside = ~EvenOfSix(columns >> 1) & 7u;
+  const unsigned sourceInside = ~EvenOfSix(columns) & 7u;
+  const unsigned crossings = GeneralCrossings(negative);
   // The faces at the inside corners (all three but the corner's own, per corner).
   constexpr unsigned char faces[8] = { 0, 6, 5, 7, 3, 7, 7, 7 };
-  piece.TouchedFaces = faces[targetInside] | AnyInRow(crossings);
-  piece.SourceFaces = faces[sourceInside] | AnyInColumn(crossings);
+  piece.TouchedFaces = faces[targetInside] | AnyInEvenRows(crossings);
+  piece.SourceFaces = faces[sourceInside] | EvenOfSix(AnyInColumns(crossings));
   // Line L (target edges 0-2, source edges 3-5) and its vertex: corner i
   // arrives along edge i + 1 and leaves along edge i + 2, so line L holds
   // corner L + 2 and leaves along L + 1.
@@ -406,7 +406,7 @@ int GeneralPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::
   const int start = targetInside != 0 ? __builtin_ctz(ArrivingLines(targetInside & -targetInside))
     : sourceInside != 0 ? 3 + __builtin_ctz(ArrivingLines(sourceInside & -sourceInside))
                         : -1;
-  return ChainPiece(t, s, sides, crossings, place, start, at, next, held, piece);
+  return ChainPiece(t, s, sides, negative, crossings, place, start, at, next, held, piece);
 }
 
 } // namespace
@@ -513,11 +513,10 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   }
   const Placement place(t, s);
   double sides[18];
-  unsigned negT = 0;
-  unsigned negS = 0;
-  if (FilteredSides(t, s, place.Extent, sides, negT, negS))
+  unsigned negative = 0;
+  if (FilteredSides(t, s, place.Extent, sides, negative))
   {
-    const int met = GeneralPiece(t, s, sides, negT, negS, place, piece);
+    const int met = GeneralPiece(t, s, sides, negative, place, piece);
     if (met >= 0)
     {
       return met > 0;

@@ -75,22 +75,10 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
 }
 
 /**
- * Bits 3k + j, with 3k + j < 9, of `bits`' even bits 2 (3k + j): two
- * interleaved 9-bit masks taken apart.
- */
-inline unsigned EvenBits(unsigned bits)
-{
-  bits &= 0x15555u;
-  bits = (bits | (bits >> 1)) & 0x13333u;
-  bits = (bits | (bits >> 2)) & 0x10F0Fu;
-  bits = (bits | (bits >> 4)) & 0x100FFu;
-  return (bits | (bits >> 8)) & 0x1FFu;
-}
-
-/**
  * sides[2 (3k + j)] = Orient2D(t.X[k + 1], t.X[k + 2], s.X[j]) (ot[k][j] of
  * Intersect) and the next one the same with t and s exchanged (os[k][j]),
- * with their signs as negT, negS (bit 3k + j),
+ * with their signs as `negative` (bits 2 (3k + j) and the next: the masks
+ * negT, negS of Intersect interleaved, see GeneralCrossings),
  * when one floating-point filter decides all 18 (returns false, all unset,
  * else). Each is Shewchuk's orient2d with the edge's first corner as its
  * pivot, edge k - s.Edge[k], t.Edge[k] - prepared, and both sides paired
@@ -103,7 +91,7 @@ inline unsigned EvenBits(unsigned bits)
  * sign bit is its sign: the pair is in general position.
  */
 inline bool FilteredSides(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
-  double extent, double (&sides)[18], unsigned& negT, unsigned& negS)
+  double extent, double (&sides)[18], unsigned& negative)
 {
   constexpr double c = (3.0 + 64.0 * RoundingUnit) * RoundingUnit;
   const double scale = c * extent;
@@ -136,8 +124,7 @@ inline bool FilteredSides(const TriangleIntersector::Cell& t, const TriangleInte
   {
     return false;
   }
-  negT = EvenBits(signs);
-  negS = EvenBits(signs >> 1);
+  negative = signs;
   return true;
 }
 
@@ -185,19 +172,6 @@ constexpr EdgePair EdgePairs[9] = { MakeEdgePair(0), MakeEdgePair(1), MakeEdgePa
   MakeEdgePair(3), MakeEdgePair(4), MakeEdgePair(5), MakeEdgePair(6), MakeEdgePair(7),
   MakeEdgePair(8) };
 
-/// Bit j: column j of a 3 x 3 mask (bit 3k + j) has a bit set.
-inline unsigned AnyInColumn(unsigned m)
-{
-  return (m | (m >> 3) | (m >> 6)) & 7u;
-}
-
-/// Bit k: row k of a 3 x 3 mask (bit 3k + j) has a bit set.
-inline unsigned AnyInRow(unsigned m)
-{
-  const unsigned r = m | (m >> 1) | (m >> 2);
-  return (r & 1u) | ((r >> 2) & 2u) | ((r >> 4) & 4u);
-}
-
 /**
  * Bits 3k + l: target edge k and source edge l cross properly (each one's
  * end points strictly on both sides of the other's line), from the sign
@@ -221,19 +195,54 @@ inline unsigned ProperCrossings(unsigned posT, unsigned negT, unsigned posS, uns
   return straddleT & transposed & 0x1FFu;
 }
 
-/// ProperCrossings in general position (no side zero: pos = ~neg).
-inline unsigned GeneralCrossings(unsigned negT, unsigned negS)
+/*
+ * The general-position route's masks: ot[k][j] < 0 at bit 2 (3k + j) and
+ * os[k][j] < 0 at the bit after it (FilteredSides), AnyPiece's negT and
+ * negS interleaved, so that each expression below treats both cells.
+ */
+
+/// Bits 0-2 of the result: bits 0, 2, 4 of `bits`.
+inline unsigned EvenOfSix(unsigned bits)
 {
-  // Both ends on opposite sides: the two entries differ.
-  auto straddle = [](unsigned neg) {
-    return (((neg >> 1) & 0xDBu) | ((neg << 2) & 0x124u)) ^
-      (((neg >> 2) & 0x49u) | ((neg << 1) & 0x1B6u));
-  };
-  const unsigned straddleT = straddle(negT);
-  const unsigned straddleS = straddle(negS);
-  const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
-    ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
-  return straddleT & transposed;
+  return (bits & 1u) | ((bits >> 1) & 2u) | ((bits >> 2) & 4u);
+}
+
+/// Bit 2j, 2j + 1: column j of either interleaved mask has a bit set.
+inline unsigned AnyInColumns(unsigned m)
+{
+  return (m | (m >> 6) | (m >> 12)) & 0x3Fu;
+}
+
+/// Some row of either interleaved mask is full (a separating edge).
+inline bool AnyRowFull(unsigned m)
+{
+  return (m & (m >> 2) & (m >> 4) & 0x30C3u) != 0;
+}
+
+/// Bit k: row k of an interleaved mask's first one (even bits) has a bit set.
+inline unsigned AnyInEvenRows(unsigned m)
+{
+  const unsigned r = m | (m >> 2) | (m >> 4);
+  return (r & 1u) | ((r >> 5) & 2u) | ((r >> 10) & 4u);
+}
+
+/**
+ * ProperCrossings in general position (pos = ~neg) from the interleaved
+ * negative signs: bit 2 (3k + l) when target edge k and source edge l
+ * cross properly.
+ */
+inline unsigned GeneralCrossings(unsigned m)
+{
+  // Entries (l + 1) % 3 and (l + 2) % 3 of each row at place l, both
+  // masks at once: edge l's ends on opposite sides where they differ.
+  const unsigned next = ((m >> 2) & 0xF3CFu) | ((m << 4) & 0x30C30u);
+  const unsigned after = ((m >> 4) & 0x30C3u) | ((m << 2) & 0x3CF3Cu);
+  const unsigned straddle = next ^ after;
+  // The source's (odd bits, 3l + k) at the target's places (even, 3k + l).
+  const unsigned s = (straddle >> 1) & 0x15555u;
+  const unsigned transposed = (s & 0x10101u) | ((s & 0x404u) << 4) | ((s & 0x4040u) >> 4) |
+    ((s & 0x10u) << 8) | ((s & 0x1000u) >> 8);
+  return straddle & transposed & 0x15555u;
 }
 /// What places the crossings of a pair (Crossing): the larger side of the
 /// box around both cells, determinants below Limit recomputed exactly, and
