@@ -267,7 +267,7 @@ __attribute__((noinline)) bool AnyPiece(const TriangleIntersector::Cell& t,
   for (unsigned crossings = ProperCrossings(posT, negT, posS, negS); crossings != 0;
        crossings &= crossings - 1)
   {
-    const EdgePair e = EdgePairs[__builtin_ctz(crossings)];
+    const EdgePair& e = EdgePairs[__builtin_ctz(crossings)];
     double x[2];
     Crossing(t, s, e, sides, place, x);
     // Source edge l entering the target's side of edge k (c outside):
@@ -314,11 +314,20 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
   int start, const double* (&at)[6], unsigned char (&next)[6], unsigned held,
   TriangleIntersector::Piece& piece)
 {
+  if (start < 0)
+  {
+    if (crossings == 0)
+    {
+      return -1; // no vertex: the cells do not meet
+    }
+    const EdgePair& e = EdgePairs[__builtin_ctz(crossings) >> 1];
+    start = (negative >> e.OC) & 1u ? e.K : 3 + e.L; // its arriving line, as below
+  }
   double x[6][2];
   unsigned clash = 0; // a line with two vertices: not a chain
   for (; crossings != 0; crossings &= crossings - 1)
   {
-    const EdgePair e = EdgePairs[__builtin_ctz(crossings) >> 1];
+    const EdgePair& e = EdgePairs[__builtin_ctz(crossings) >> 1];
     // Source edge l entering the target's side of edge k (c outside):
     // the piece arrives along target edge k and leaves along l; leaving
     // it, the other way round.
@@ -329,11 +338,6 @@ int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Ce
     next[in] = static_cast<unsigned char>(entering ? 3u + e.L : e.K);
     clash |= held & (1u << in);
     held |= 1u << in;
-    start = start < 0 ? static_cast<int>(in) : start;
-  }
-  if (held == 0)
-  {
-    return -1; // no vertex: the cells do not meet
   }
   if (clash != 0)
   {
