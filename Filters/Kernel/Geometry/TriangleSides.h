@@ -81,8 +81,8 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
  * negT, negS of Intersect interleaved, see GeneralCrossings),
  * when one floating-point filter decides all 18 (returns false, all unset,
  * else). Each is Shewchuk's orient2d with the edge's first corner as its
- * pivot, edge k - s.Edge[k], t.Edge[k] - prepared, and both sides paired
- * as the two lanes of one vector (Lanes.h). Its bound takes the place of
+ * pivot and the edge's vector as prepared (Cell::Edge), the two cells'
+ * sides paired as the two lanes of one vector (Lanes.h). Its bound takes the place of
  * each determinant's |left| + |right| by one above it for every point of
  * both boxes: the edge's EdgeSize times `extent` (the larger side of the
  * box around both cells; a difference of two coordinates in it rounds to
