@@ -40,6 +40,18 @@ inline unsigned LaneBits(Mask2 mask)
 #endif
 }
 
+/// Bit l of the result: lane l's sign bit is set (negative, or -0).
+inline unsigned SignBits(Doubles2 v)
+{
+  Mask2 bits;
+  std::memcpy(&bits, &v, sizeof v);
+#if defined(__SSE2__)
+  return static_cast<unsigned>(_mm_movemask_pd(reinterpret_cast<__m128d>(bits)));
+#else
+  return static_cast<unsigned>((bits[0] < 0) | ((bits[1] < 0) << 1));
+#endif
+}
+
 /// |v| per lane (the sign bit cleared).
 inline Doubles2 Magnitude(Doubles2 v)
 {

@@ -2,8 +2,8 @@
 #include "Geometry/TriangleIntersector.h"
 
 #include "Geometry/IntersectionPieces.h"
-#include "Geometry/Lanes.h"
 #include "Geometry/Predicates.h"
+#include "Geometry/TriangleSides.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +14,8 @@ namespace mp
 {
 namespace
 {
+using namespace triangle;
+
 // A monotone function of the angle of (dx, dy), in [0, 4): cheaper than
 // atan2 and enough to order points around an interior point.
 inline double PseudoAngle(double dx, double dy)
@@ -167,117 +169,248 @@ bool ChainByEdges(TriangleIntersector::Piece& p, const unsigned char* in, const 
 }
 
 /**
- * o[k][j] = Orient2D(a[k], b[k], c[j]) for 3 lines and 3 points, with one
- * floating-point filter for all nine (Predicates.h): the nine determinants
- * and their error bounds are computed without branches, and only when one is
- * within its bound are the undecided ones recomputed exactly.
+ * The piece of t and s whose boxes overlap, from the exactly evaluated sides
+ * of all corners (Orient3x3), any configuration: corners on the other's
+ * edges, shared corners, touching cells. Returns false when they do not
+ * meet. The route of the pairs GeneralPiece does not take (not inlined:
+ * its registers and stack would burden that route's).
  */
-inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (&o)[3][3])
+__attribute__((noinline)) bool AnyPiece(const TriangleIntersector::Cell& t,
+  const TriangleIntersector::Cell& s, const Placement& place, TriangleIntersector::Piece& piece)
 {
-  // The three points as the lanes of two vectors per coordinate (points
-  // 0-1, and 2 twice), so that each line's determinants and filters are
-  // two vector expressions (Lanes.h):
-  // the same operations in the same order as one at a time, the same
-  // values. Scalar, these 18 filtered orientations per pair were an eighth
-  // of a 2D run's instructions.
-  constexpr double bound = (3.0 + 16.0 * RoundingUnit) * RoundingUnit;
-  const Doubles2 cx[2] = { { c[0][0], c[1][0] }, { c[2][0], c[2][0] } };
-  const Doubles2 cy[2] = { { c[0][1], c[1][1] }, { c[2][1], c[2][1] } };
-  Mask2 decidedLanes = { -1, -1 };
-  for (int k = 0; k < 3; ++k)
-  {
-    const double* a = x[(k + 1) % 3];
-    const double* b = x[(k + 2) % 3];
-    for (int h = 0; h < 2; ++h)
-    {
-      const Doubles2 left = (a[0] - cx[h]) * (b[1] - cy[h]);
-      const Doubles2 right = (a[1] - cy[h]) * (b[0] - cx[h]);
-      const Doubles2 det = left - right;
-      o[k][2 * h] = det[0];
-      if (h == 0)
-      {
-        o[k][1] = det[1];
-      }
-      decidedLanes &= Magnitude(det) > bound * (Magnitude(left) + Magnitude(right));
-    }
-  }
-  const bool decided = (decidedLanes[0] & decidedLanes[1]) != 0;
-  if (decided)
-  {
-    return;
-  }
+  // ot[k][j]: side of source corner j w.r.t. target edge k (corners k+1, k+2),
+  // os[l][i]: side of target corner i w.r.t. source edge l. Positive = inside.
+  double ot[3][3];
+  double os[3][3];
+  Orient3x3(t.X, s.X, ot);
+  Orient3x3(s.X, t.X, os);
+  // Sign masks, bit 3k + j for entry [k][j].
+  unsigned posT = 0;
+  unsigned negT = 0;
+  unsigned posS = 0;
+  unsigned negS = 0;
+  SignBits3x3(ot, posT, negT);
+  SignBits3x3(os, posS, negS);
+  double sides[18]; // both in the layout of FilteredSides, for Crossing
   for (int k = 0; k < 3; ++k)
   {
     for (int j = 0; j < 3; ++j)
     {
-      o[k][j] = Orient2D(x[(k + 1) % 3], x[(k + 2) % 3], c[j]);
+      sides[2 * (3 * k + j)] = ot[k][j];
+      sides[2 * (3 * k + j) + 1] = os[k][j];
     }
   }
+  // Separating edge: all three corners of the other cell strictly outside.
+  constexpr unsigned row = 7u;
+  if (((negT & row) == row) | (((negT >> 3) & row) == row) | (((negT >> 6) & row) == row) |
+    ((negS & row) == row) | (((negS >> 3) & row) == row) | (((negS >> 6) & row) == row))
+  {
+    return false;
+  }
+  constexpr unsigned column = 1u | 8u | 64u; // entries [0][0], [1][0], [2][0]
+  // Each vertex's edge lines, arriving and leaving (ChainByEdges): target
+  // edge k is line k, source edge l line 3 + l; edge k runs from corner
+  // k + 1 to corner k + 2, so corner i is reached along edge i + 1 and left
+  // along edge i + 2.
+  unsigned char in[TriangleIntersector::MaxPolygonVertices];
+  unsigned char out[TriangleIntersector::MaxPolygonVertices];
+  int n = 0;
+  auto add = [&piece, &in, &out, &n](double x, double y, unsigned arriving, unsigned leaving) {
+    piece.X[n][0] = x;
+    piece.X[n][1] = y;
+    in[n] = static_cast<unsigned char>(arriving);
+    out[n] = static_cast<unsigned char>(leaving);
+    ++n;
+  };
+  // Corners of the target in the closed source: they lie on the two target
+  // faces that meet at that corner, and on the source faces they are on.
+  const unsigned zeroS = ~(posS | negS);
+  unsigned targetInside = 0;
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!(negS & (column << i)))
+    {
+      targetInside |= 1u << i;
+      add(t.X[i][0], t.X[i][1], (i + 1) % 3, (i + 2) % 3);
+      piece.TouchedFaces |= 7u & ~(1u << i);
+      const unsigned on = (zeroS >> i) & column; // bits 0, 3, 6: on source edge 0, 1, 2
+      piece.SourceFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
+    }
+  }
+  // Corners of the source in the closed target (skipping one equal to a
+  // target corner already added); one on target edge k touches face k.
+  const unsigned zeroT = ~(posT | negT);
+  for (int j = 0; j < 3; ++j)
+  {
+    if (negT & (column << j))
+    {
+      continue;
+    }
+    piece.SourceFaces |= 7u & ~(1u << j); // the source edges at corner j
+    const unsigned on = (zeroT >> j) & column;
+    piece.TouchedFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
+    bool known = false;
+    for (int i = 0; i < 3; ++i)
+    {
+      known |= ((targetInside >> i) & 1u) && t.X[i][0] == s.X[j][0] && t.X[i][1] == s.X[j][1];
+    }
+    if (!known)
+    {
+      add(s.X[j][0], s.X[j][1], 3 + (j + 1) % 3, 3 + (j + 2) % 3);
+    }
+  }
+  // Proper crossings: both pairs of end points strictly on opposite sides.
+  // Every touching configuration is already covered by the corner tests.
+  // Visited lowest bit first: the order of a loop over k and l, without
+  // its test per pair of edges (unpredictable, it was among the most
+  // mispredicted branches of a 2D run's intersections).
+  for (unsigned crossings = ProperCrossings(posT, negT, posS, negS); crossings != 0;
+       crossings &= crossings - 1)
+  {
+    const EdgePair& e = EdgePairs[__builtin_ctz(crossings)];
+    double x[2];
+    Crossing(t, s, e, sides, place, x);
+    // Source edge l entering the target's side of edge k (c outside):
+    // the piece arrives along target edge k and leaves along l; leaving
+    // it, the other way round.
+    const unsigned entering = ot[e.K][e.C] < 0.0;
+    const unsigned target = e.K;
+    const unsigned source = 3u + e.L;
+    add(x[0], x[1], entering ? target : source, entering ? source : target);
+    piece.TouchedFaces |= 1u << e.K;
+    piece.SourceFaces |= 1u << e.L;
+  }
+  piece.NumberOfVertices = n;
+  if (piece.NumberOfVertices == 0)
+  {
+    return false;
+  }
+  // In general position (no orientation zero) the labels order the piece;
+  // a corner on a line of the other cell (shared points, touching cells)
+  // can put several vertices on one point or line: sorted by angle.
+  constexpr unsigned all = 0x1FFu;
+  if (((zeroS | zeroT) & all) == 0 && ChainByEdges(piece, in, out))
+  {
+    return true;
+  }
+  SortAndRemoveDoubles(piece);
+  return true;
+}
+
+/// Bit (i + 1) % 3 of the result: bit i of a 3-bit mask (corner i's line).
+inline unsigned ArrivingLines(unsigned corners)
+{
+  return ((corners << 1) | (corners >> 2)) & 7u;
 }
 
 /**
- * Bits 3k + j of pos, neg: o[k][j] > 0, < 0 (a NaN: neither). Entries 0-1
- * of a row as one vector, their signs by SSE2 movemask (generic code
- * elsewhere); compared one by one, these were a visible share of a 2D
- * run's instructions.
+ * The rest of GeneralPiece: the crossings (bits 2 (3k + l) of `crossings`)
+ * placed (Crossing) and kept by the line they arrive along, then the walk
+ * from line `start`'s vertex along the leaving lines. `at`, `next` and `held` come with the corners:
+ * line L's vertex, its leaving line, and the lines that hold one (bit L).
  */
-inline void SignBits3x3(const double (&o)[3][3], unsigned& pos, unsigned& neg)
+int ChainPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
+  const double (&sides)[18], unsigned negative, unsigned crossings, const Placement& place,
+  int start, const double* (&at)[6], unsigned char (&next)[6], unsigned held,
+  TriangleIntersector::Piece& piece)
 {
-  pos = 0;
-  neg = 0;
-  for (int k = 0; k < 3; ++k)
+  if (start < 0)
   {
-    const Doubles2 r = LoadLanes(&o[k][0]);
-    pos |= (LaneBits(r > 0.0) | static_cast<unsigned>(o[k][2] > 0.0) << 2) << (3 * k);
-    neg |= (LaneBits(r < 0.0) | static_cast<unsigned>(o[k][2] < 0.0) << 2) << (3 * k);
+    if (crossings == 0)
+    {
+      return -1; // no vertex: the cells do not meet
+    }
+    const EdgePair& e = EdgePairs[__builtin_ctz(crossings) >> 1];
+    start = (negative >> e.OC) & 1u ? e.K : 3 + e.L; // its arriving line, as below
   }
+  double x[6][2];
+  unsigned clash = 0; // a line with two vertices: not a chain
+  for (; crossings != 0; crossings &= crossings - 1)
+  {
+    const EdgePair& e = EdgePairs[__builtin_ctz(crossings) >> 1];
+    // Source edge l entering the target's side of edge k (c outside):
+    // the piece arrives along target edge k and leaves along l; leaving
+    // it, the other way round.
+    const bool entering = (negative >> e.OC) & 1u;
+    const unsigned in = entering ? e.K : 3u + e.L;
+    Crossing(t, s, e, sides, place, x[in]);
+    at[in] = x[in];
+    next[in] = static_cast<unsigned char>(entering ? 3u + e.L : e.K);
+    clash |= held & (1u << in);
+    held |= 1u << in;
+  }
+  if (clash != 0)
+  {
+    return 0;
+  }
+  // Each vertex stored only when it differs from the one before (a
+  // rounded crossing can equal its neighbour), as StoreWithoutRepeats.
+  int line = start;
+  unsigned seen = 0;
+  int steps = 0;
+  int m = 0;
+  Doubles2 previous = LoadLanes(at[line]);
+  do
+  {
+    const Doubles2 v = LoadLanes(at[line]);
+    std::memcpy(piece.X[m], &v, sizeof v);
+    m += (m == 0) | (LaneBits(v != previous) != 0);
+    previous = v;
+    seen |= 1u << line;
+    line = next[line];
+  } while (++steps < 6 && line != start);
+  // One cycle through every vertex, as ChainByEdges asks.
+  if (line != start || seen != held || steps < 3)
+  {
+    return 0;
+  }
+  m -= m > 2 && LaneBits(previous != LoadLanes(at[start])) == 0;
+  piece.NumberOfVertices = m;
+  return 1;
 }
 
 /**
- * Where target edge a-b and source edge c-d cross (properly), given the
- * sides oa, ob of a, b w.r.t. the line of c-d and oc, od of c, d w.r.t. the
- * line of a-b (each pair strictly of opposite signs).
- *
- * Their signs are exact, but a determinant the filter decided is only the
- * rounded one, whose error (below 2^-51 of the sum of its two products'
- * magnitudes, its scale) is large relative to it when a point lies very
- * near the line; so then is the error of the crossing's place along the
- * edge (on nearly parallel edges, a few percent of a piece's area were
- * seen). A determinant below `limit` (2^-19 D^2, D the extent of both
- * cells' boxes together: at least 2^-20 of its scale, since a scale is at
- * most 2 D^2) is recomputed exactly with its partner, so that each one used
- * is within about 2^-31 of its value.
- *
- * Placed along an edge, the point's error is about the rounding unit u
- * times the edge's length (the error of u times it), and the rounded
- * orientations' errors (about u D^2) add about u D^2 / |o| of it. For
- * cells of similar sizes both stay within rounding of the cells. For a
- * small cell (size h) and a huge one (size L: `careful`, one box more than
- * 16 times the other) the first is up to u L along a huge edge, and the
- * second u L / h relative, since the orientations are about L h: both
- * could exceed the small cell. The point is then placed along the shorter
- * edge, from exact orientations.
+ * The piece of t and s in general position: the filter decided every side
+ * (FilteredSides: `sides` and their negative signs, none zero),
+ * so no corner lies on a line of the other cell's edges and AnyPiece's
+ * borderline cases cannot arise. Each vertex of the piece arrives along
+ * one of the six edge lines (ChainByEdges' labels), and along each line at
+ * most one does: the vertices are kept by that line, the corners where they
+ * are, and the piece is the walk from line to line, from the vertex
+ * AnyPiece would put first, with the same faces touched. Returns 1 with the
+ * piece set, -1 when the cells do not meet, 0 when the labels do not chain
+ * into one cycle (AnyPiece then sorts).
  */
-inline void Crossing(const double* a, const double* b, double oa, double ob, const double* c,
-  const double* d, double oc, double od, double limit, bool careful, double (&x)[2])
+int GeneralPiece(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
+  const double (&sides)[18], unsigned negative, const Placement& place,
+  TriangleIntersector::Piece& piece)
 {
-  if (careful &&
-    (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) <
-      (d[0] - c[0]) * (d[0] - c[0]) + (d[1] - c[1]) * (d[1] - c[1]))
+  // Separating edge: all three corners of the other cell outside.
+  if (AnyRowFull(negative))
   {
-    std::swap(a, c); // along the target edge a-b, across the line of c-d
-    std::swap(b, d);
-    std::swap(oa, oc);
-    std::swap(ob, od);
+    return -1;
   }
-  if (careful || std::fabs(oc) < limit || std::fabs(od) < limit)
-  {
-    oc = Orient2DExact(a, b, c);
-    od = Orient2DExact(a, b, d);
-  }
-  const double u = oc / (oc - od);
-  x[0] = c[0] + u * (d[0] - c[0]);
-  x[1] = c[1] + u * (d[1] - c[1]);
+  // Corners inside the other cell: no edge of it has them outside.
+  const unsigned columns = AnyInColumns(negative);
+  const unsigned targetInside = ~EvenOfSix(columns >> 1) & 7u;
+  const unsigned sourceInside = ~EvenOfSix(columns) & 7u;
+  const unsigned crossings = GeneralCrossings(negative);
+  // The faces at the inside corners (all three but the corner's own, per corner).
+  constexpr unsigned char faces[8] = { 0, 6, 5, 7, 3, 7, 7, 7 };
+  piece.TouchedFaces = faces[targetInside] | AnyInEvenRows(crossings);
+  piece.SourceFaces = faces[sourceInside] | EvenOfSix(AnyInColumns(crossings));
+  // Line L (target edges 0-2, source edges 3-5) and its vertex: corner i
+  // arrives along edge i + 1 and leaves along edge i + 2, so line L holds
+  // corner L + 2 and leaves along L + 1.
+  const double* at[6] = { t.X[2], t.X[0], t.X[1], s.X[2], s.X[0], s.X[1] };
+  unsigned char next[6] = { 1, 2, 0, 4, 5, 3 };
+  const unsigned held = ArrivingLines(targetInside) | ArrivingLines(sourceInside) << 3;
+  // AnyPiece's first vertex: the first target corner inside, else the
+  // first source corner, else the first crossing.
+  const int start = targetInside != 0 ? __builtin_ctz(ArrivingLines(targetInside & -targetInside))
+    : sourceInside != 0 ? 3 + __builtin_ctz(ArrivingLines(sourceInside & -sourceInside))
+                        : -1;
+  return ChainPiece(t, s, sides, negative, crossings, place, start, at, next, held, piece);
 }
 
 } // namespace
@@ -328,6 +461,14 @@ bool TriangleIntersector::PrepareCorners(Cell& cell)
   cell.Inverse[0][1] = -j01 * inverse;
   cell.Inverse[1][0] = -j10 * inverse;
   cell.Inverse[1][1] = j00 * inverse;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* a = cell.X[(k + 1) % 3];
+    const double* b = cell.X[(k + 2) % 3];
+    cell.Edge[k][0] = b[0] - a[0];
+    cell.Edge[k][1] = b[1] - a[1];
+    cell.EdgeSize[k] = std::fabs(cell.Edge[k][0]) + std::fabs(cell.Edge[k][1]);
+  }
   return cell.Measure > 0.0 &&
     std::isfinite(
       cell.Inverse[0][0] + cell.Inverse[0][1] + cell.Inverse[1][0] + cell.Inverse[1][1]);
@@ -374,143 +515,20 @@ bool TriangleIntersector::Intersect(const Cell& t, const Cell& s, Piece& piece)
   {
     return false;
   }
-
-  // ot[k][j]: side of source corner j w.r.t. target edge k (corners k+1, k+2),
-  // os[l][i]: side of target corner i w.r.t. source edge l. Positive = inside.
-  double ot[3][3];
-  double os[3][3];
-  Orient3x3(t.X, s.X, ot);
-  Orient3x3(s.X, t.X, os);
-  // Sign masks, bit 3k + j for entry [k][j].
-  unsigned posT = 0;
-  unsigned negT = 0;
-  unsigned posS = 0;
-  unsigned negS = 0;
-  SignBits3x3(ot, posT, negT);
-  SignBits3x3(os, posS, negS);
-  // Separating edge: all three corners of the other cell strictly outside.
-  constexpr unsigned row = 7u;
-  if (((negT & row) == row) | (((negT >> 3) & row) == row) | (((negT >> 6) & row) == row) |
-    ((negS & row) == row) | (((negS >> 3) & row) == row) | (((negS >> 6) & row) == row))
+  const Placement place(t, s);
+  double sides[18];
+  unsigned negative = 0;
+  if (FilteredSides(t, s, place.Extent, sides, negative))
   {
-    return false;
-  }
-  constexpr unsigned column = 1u | 8u | 64u; // entries [0][0], [1][0], [2][0]
-  // Each vertex's edge lines, arriving and leaving (ChainByEdges): target
-  // edge k is line k, source edge l line 3 + l; edge k runs from corner
-  // k + 1 to corner k + 2, so corner i is reached along edge i + 1 and left
-  // along edge i + 2.
-  unsigned char in[MaxPolygonVertices];
-  unsigned char out[MaxPolygonVertices];
-  int n = 0;
-  auto add = [&piece, &in, &out, &n](double x, double y, unsigned arriving, unsigned leaving) {
-    piece.X[n][0] = x;
-    piece.X[n][1] = y;
-    in[n] = static_cast<unsigned char>(arriving);
-    out[n] = static_cast<unsigned char>(leaving);
-    ++n;
-  };
-  // Corners of the target in the closed source: they lie on the two target
-  // faces that meet at that corner, and on the source faces they are on.
-  const unsigned zeroS = ~(posS | negS);
-  unsigned targetInside = 0;
-  for (int i = 0; i < 3; ++i)
-  {
-    if (!(negS & (column << i)))
+    const int met = GeneralPiece(t, s, sides, negative, place, piece);
+    if (met >= 0)
     {
-      targetInside |= 1u << i;
-      add(t.X[i][0], t.X[i][1], (i + 1) % 3, (i + 2) % 3);
-      piece.TouchedFaces |= 7u & ~(1u << i);
-      const unsigned on = (zeroS >> i) & column; // bits 0, 3, 6: on source edge 0, 1, 2
-      piece.SourceFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
+      return met > 0;
     }
+    piece.TouchedFaces = 0; // labels that do not chain: sorted below
+    piece.SourceFaces = 0;
   }
-  // Corners of the source in the closed target (skipping one equal to a
-  // target corner already added); one on target edge k touches face k.
-  const unsigned zeroT = ~(posT | negT);
-  for (int j = 0; j < 3; ++j)
-  {
-    if (negT & (column << j))
-    {
-      continue;
-    }
-    piece.SourceFaces |= 7u & ~(1u << j); // the source edges at corner j
-    const unsigned on = (zeroT >> j) & column;
-    piece.TouchedFaces |= (on & 1u) | ((on >> 2) & 2u) | ((on >> 4) & 4u);
-    bool known = false;
-    for (int i = 0; i < 3; ++i)
-    {
-      known |= ((targetInside >> i) & 1u) && t.X[i][0] == s.X[j][0] && t.X[i][1] == s.X[j][1];
-    }
-    if (!known)
-    {
-      add(s.X[j][0], s.X[j][1], 3 + (j + 1) % 3, 3 + (j + 2) % 3);
-    }
-  }
-  // Proper crossings: both pairs of end points strictly on opposite sides.
-  // Every touching configuration is already covered by the corner tests.
-  // straddleT bit 3k + l: source edge l's corners (l+1, l+2) are strictly on
-  // opposite sides of target edge k; straddleS bit 3l + k likewise.
-  auto straddle = [](unsigned pos, unsigned neg) {
-    // Bit 3k + l of rot1(m), rot2(m): entry (l + 1) % 3, (l + 2) % 3 of row k.
-    auto rot1 = [](unsigned m) { return ((m >> 1) & 0xDBu) | ((m << 2) & 0x124u); };
-    auto rot2 = [](unsigned m) { return ((m >> 2) & 0x49u) | ((m << 1) & 0x1B6u); };
-    return (rot1(pos) & rot2(neg)) | (rot1(neg) & rot2(pos));
-  };
-  const unsigned straddleT = straddle(posT, negT);
-  const unsigned straddleS = straddle(posS, negS);
-  // Crossings' determinants below this are recomputed exactly (Crossing).
-  double extent = std::max(t.Box[1], s.Box[1]) - std::min(t.Box[0], s.Box[0]);
-  extent = std::max(extent, std::max(t.Box[3], s.Box[3]) - std::min(t.Box[2], s.Box[2]));
-  const double limit = 0x1p-19 * extent * extent;
-  // Cells of very different sizes: crossings placed carefully.
-  const double sourceSize = std::max(s.Box[1] - s.Box[0], s.Box[3] - s.Box[2]);
-  const double targetSize = std::max(t.Box[1] - t.Box[0], t.Box[3] - t.Box[2]);
-  const bool careful = sourceSize > 16.0 * targetSize || targetSize > 16.0 * sourceSize;
-  // The crossings as bits 3k + l (straddleS transposed: bit 3l + k to
-  // 3k + l), visited lowest first: the order of a loop over k and l,
-  // without its test per pair of edges (unpredictable, it was among the
-  // most mispredicted branches of a 2D run's intersections).
-  const unsigned transposed = (straddleS & 0x111u) | ((straddleS & 0x022u) << 2) |
-    ((straddleS & 0x088u) >> 2) | ((straddleS & 0x004u) << 4) | ((straddleS & 0x040u) >> 4);
-  for (unsigned crossings = straddleT & transposed & 0x1FFu; crossings != 0;
-       crossings &= crossings - 1)
-  {
-    const int bit = __builtin_ctz(crossings);
-    const int k = bit / 3;
-    const int l = bit % 3;
-    const int ci = (l + 1) % 3;
-    const int di = (l + 2) % 3;
-    double x[2];
-    const int ai = (k + 1) % 3;
-    const int bi = (k + 2) % 3;
-    Crossing(t.X[ai], t.X[bi], os[l][ai], os[l][bi], s.X[ci], s.X[di], ot[k][ci], ot[k][di], limit,
-      careful, x);
-    // Source edge l entering the target's side of edge k (c outside):
-    // the piece arrives along target edge k and leaves along l; leaving
-    // it, the other way round.
-    const unsigned entering = ot[k][ci] < 0.0;
-    const unsigned target = static_cast<unsigned>(k);
-    const unsigned source = static_cast<unsigned>(3 + l);
-    add(x[0], x[1], entering ? target : source, entering ? source : target);
-    piece.TouchedFaces |= 1u << k;
-    piece.SourceFaces |= 1u << l;
-  }
-  piece.NumberOfVertices = n;
-  if (piece.NumberOfVertices == 0)
-  {
-    return false;
-  }
-  // In general position (no orientation zero) the labels order the piece;
-  // a corner on a line of the other cell (shared points, touching cells)
-  // can put several vertices on one point or line: sorted by angle.
-  constexpr unsigned all = 0x1FFu;
-  if (((zeroS | zeroT) & all) == 0 && ChainByEdges(piece, in, out))
-  {
-    return true;
-  }
-  SortAndRemoveDoubles(piece);
-  return true;
+  return AnyPiece(t, s, place, piece);
 }
 
 double TriangleIntersector::Measure(const Piece& p)

@@ -54,6 +54,11 @@ public:
     /// The cell's affine map: x - X[0] to barycentric coordinates 1 and 2
     /// (geometry; the P1 space of Transfer/Space.h builds its basis from it).
     double Inverse[2][2];
+    /// Edge k as a vector, X[k + 2] - X[k + 1] (rounded), and the sum of
+    /// its components' magnitudes: each side of a point w.r.t. edge k is
+    /// then two products, and one bound per edge filters them (Intersect).
+    double Edge[3][2];
+    double EdgeSize[3];
   };
 
   /// The intersection of a target and a source triangle.

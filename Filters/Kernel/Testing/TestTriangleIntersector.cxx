@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "Geometry/Predicates.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Transfer/MortarAssembler.h"
 
@@ -307,6 +308,75 @@ TEST(TriangleIntersector, GeneralPositionPiecesAreConvexPolygons)
   {
     EXPECT_GT(counts[v], 100) << v << " vertices";
   }
+}
+
+namespace
+{
+// Whether segment a-b meets the closed counterclockwise triangle c, for a
+// segment and triangle in general position (no corner on a line of the
+// other: the exact orientations are not zero; false `general` else).
+bool SegmentMeets(const double* a, const double* b, const double (&c)[3][2], bool& general)
+{
+  bool inside[2] = { true, true };
+  bool crosses = false;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* p = c[(k + 1) % 3];
+    const double* q = c[(k + 2) % 3];
+    const double oa = mp::Orient2D(p, q, a);
+    const double ob = mp::Orient2D(p, q, b);
+    const double op = mp::Orient2D(a, b, p);
+    const double oq = mp::Orient2D(a, b, q);
+    general = general && oa != 0 && ob != 0 && op != 0 && oq != 0;
+    inside[0] = inside[0] && oa > 0;
+    inside[1] = inside[1] && ob > 0;
+    crosses = crosses || ((oa > 0) != (ob > 0) && (op > 0) != (oq > 0));
+  }
+  return inside[0] || inside[1] || crosses;
+}
+} // namespace
+
+// The faces a piece reports (the front passes its seeds on by them) are
+// exactly the edges of each cell that meet the other closed cell: checked
+// edge by edge on random pairs in general position (the route that keeps
+// vertices by the line they arrive along), both roles.
+TEST(TriangleIntersector, TouchedFacesAreTheEdgesMeetingTheOtherCell)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int checked = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    double t[3][2];
+    double s[3][2];
+    for (auto& x : t)
+      x[0] = u(rng), x[1] = u(rng);
+    const double size = n % 2 ? 1.0 : 0.4;
+    for (auto& x : s)
+      x[0] = size * u(rng), x[1] = size * u(rng);
+    if (TriangleArea(t) < 1e-4 || TriangleArea(s) < 1e-4)
+      continue;
+    Pair p(t, s);
+    bool general = true;
+    unsigned touched = 0;
+    unsigned sourceFaces = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      touched |=
+        static_cast<unsigned>(SegmentMeets(p.T.X[(k + 1) % 3], p.T.X[(k + 2) % 3], p.S.X, general))
+        << k;
+      sourceFaces |=
+        static_cast<unsigned>(SegmentMeets(p.S.X[(k + 1) % 3], p.S.X[(k + 2) % 3], p.T.X, general))
+        << k;
+    }
+    if (!general)
+      continue;
+    ++checked;
+    EXPECT_EQ(p.Met, touched != 0 || sourceFaces != 0) << n;
+    EXPECT_EQ(p.Piece.TouchedFaces, p.Met ? touched : 0u) << n;
+    EXPECT_EQ(p.Piece.SourceFaces, p.Met ? sourceFaces : 0u) << n;
+  }
+  EXPECT_GT(checked, 15000);
 }
 
 // A source edge passing at a tiny distance from a target corner, on either
