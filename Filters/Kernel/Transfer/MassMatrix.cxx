@@ -117,8 +117,8 @@ template <class Id>
 void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const TaskRunner& runner,
   LargeVector<Index>& start, UninitializedLargeVector<Column>& columns)
 {
-  const Id* cellStart = around.Start.data();
-  const Id* cells = around.Cells.data();
+  const UninitializedLargeVector<Id>& cellStart = around.Start;
+  const UninitializedLargeVector<Id>& cells = around.Cells;
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
   // Each task marks candidates in an array over all points (`seen` below):
