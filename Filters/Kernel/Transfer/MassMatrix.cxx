@@ -19,6 +19,9 @@ namespace mp
 {
 namespace
 {
+/// Points per task of M_tt's values (P1Values), at least.
+constexpr Index ValuesGrain = Index(1) << 16;
+
 /// M_tt's values (as many as its pattern's entries) set to zero, by
 /// concurrent tasks (each the first to touch its pages).
 void ZeroValues(CsrMatrix& matrix, const TaskRunner& runner)
@@ -235,13 +238,14 @@ void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const Task
 /**
  * M_tt's values for P1, its pattern made (the cells around the points,
  * which the pattern needed, are gone by now: the values take their room;
- * `spans` is what they left). Each task owns a range of rows and goes
- * through the cells that may use its points (its span), in order, adding
- * the rows of its range of each cell's block: a row sums its cells'
- * blocks in cell order, whatever the number of tasks. With `cover`, each
- * point of the task's range also takes the largest of `cellValue` over its
- * cells (a reading of cells the loop makes anyway, by the task owning the
- * point: no two tasks write one).
+ * `spans` is what they left, when there are several tasks). Each task owns
+ * a range of rows and goes through the cells that may use its points (its
+ * span; one task: every cell), in order, adding the rows of its range of
+ * each cell's block: a row sums its cells' blocks in cell order, whatever
+ * the number of tasks. With `cover`, each point of the task's range also
+ * takes the largest of `cellValue` over its cells (a reading of cells the
+ * loop makes anyway, by the task owning the point: no two tasks write
+ * one).
  */
 void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& masses,
   const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue, double* cover)
@@ -250,7 +254,7 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
   const Index points = mesh.NumberOfPoints;
   // The element mass of a whole cell: unit (1 + delta_ik) times its measure.
   const double unit = 1.0 / ((mesh.CellDimension + 1) * (mesh.CellDimension + 2));
-  const int tasks = runner.TasksFor(points, 1 << 16);
+  const int tasks = runner.TasksFor(points, ValuesGrain);
   const Index* rowStart = matrix.RowStart.data();
   const Column* columns = matrix.ColumnIndex.data();
   double* values = matrix.Values.data();
@@ -298,8 +302,11 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
     const Index last = RangeBegin(points, k + 1, tasks);
     auto mine = [first, last](Index p) { return p >= first && p < last; };
     Index low = 0;
-    Index high = -1;
-    spans.Of(first, last, low, high);
+    Index high = mesh.NumberOfCells - 1;
+    if (tasks > 1)
+    {
+      spans.Of(first, last, low, high);
+    }
     for (Index c = low; c <= high; ++c)
     {
       const float state = masses.State[static_cast<size_t>(c)];
@@ -390,7 +397,7 @@ void P1Matrix(const MeshView& mesh, const CellMasses* masses, const TaskRunner& 
   {
     const AroundPoints<Id> around(mesh, runner);
     PointGraph(mesh, around, runner, matrix.RowStart, matrix.ColumnIndex);
-    if (masses)
+    if (masses && runner.TasksFor(mesh.NumberOfPoints, ValuesGrain) > 1)
     {
       spans = CellSpans(around, mesh.NumberOfPoints, runner);
     }
