@@ -19,8 +19,10 @@ namespace mp
 {
 namespace
 {
-/// Points per task of M_tt's values (P1Values), at least.
-constexpr Index ValuesGrain = Index(1) << 16;
+/// Points per task of M_tt's values (P1Values), at least: as the
+/// pattern's (a task reads only about its share of the cells, CellSpans,
+/// so that a 3D mesh of 10^5 cells, some 17,000 points, is split too).
+constexpr Index ValuesGrain = 4096;
 
 /// M_tt's values (as many as its pattern's entries) set to zero, by
 /// concurrent tasks (each the first to touch its pages).
