@@ -350,7 +350,7 @@ void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells, const T
   const Index n = mesh.NumberOfCells;
   const Index uses = n * corners;
   const int tasks = static_cast<int>(
-    std::min<Index>(runner.TasksFor(n, 65536), std::max<Index>(1, np > 0 ? uses / np : 1)));
+    std::min<Index>(runner.TasksFor(n, 16384), std::max<Index>(1, np > 0 ? uses / np : 1)));
   start.assign(static_cast<std::size_t>(np) + 1, 0);
   // Per task: its uses of each point, then where they go in the point's list.
   std::vector<Vector> count(static_cast<std::size_t>(tasks));

@@ -73,7 +73,8 @@ void FindMarked(const Id* ids, int corners, Index begin, Index end,
 /**
  * (point, cell) for every marked point of every cell, sorted: the cells
  * around each marked point. One pass over the connectivity, each task
- * keeping its range's pairs, joined in range order.
+ * keeping and sorting its range's pairs, then the sorted parts merged in
+ * range order (the one sorted list, whatever the number of tasks).
  */
 std::vector<std::pair<Index, Index>> CellsAroundMarked(
   const MeshView& mesh, const std::vector<std::uint64_t>& marked, const TaskRunner& runner)
@@ -93,13 +94,15 @@ std::vector<std::pair<Index, Index>> CellsAroundMarked(
     {
       FindMarked(mesh.Connectivity, corners, begin, end, marked, found[t]);
     }
+    std::sort(found[t].begin(), found[t].end());
   });
   std::vector<std::pair<Index, Index>> around;
   for (const auto& part : found)
   {
+    const auto middle = static_cast<std::ptrdiff_t>(around.size());
     around.insert(around.end(), part.begin(), part.end());
+    std::inplace_merge(around.begin(), around.begin() + middle, around.end());
   }
-  std::sort(around.begin(), around.end());
   return around;
 }
 

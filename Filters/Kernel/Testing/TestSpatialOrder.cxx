@@ -570,12 +570,12 @@ TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
 
 TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
 {
-  // M_tt's values come from tasks owning ranges of points (from 2^17
-  // points on: two tasks and more), each adding its rows of every cell's
-  // block in cell order: on a renumbered mesh of 203,401 points, from
-  // cells covered whole, in part (blocks of their own) and not at all, 2
-  // and 3 tasks give the one-task matrix and point cover bit for bit, with
-  // the cover's values per cell and per parent.
+  // M_tt's values come from tasks owning ranges of points (from 2 x 4096
+  // points on: two tasks and more), each adding its rows of the blocks of
+  // the cells around its points in cell order: on a renumbered mesh of
+  // 203,401 points, from cells covered whole, in part (blocks of their
+  // own) and not at all, 2 and 3 tasks give the one-task matrix and point
+  // cover bit for bit, with the cover's values per cell and per parent.
   const TestMesh mesh = Shuffled(mptest::GridMesh(450, 450, 0.25, 5), 6);
   ASSERT_GE(mesh.NumberOfPoints(), Index(3) << 16);
   const Renumbered t(mesh);

@@ -19,31 +19,111 @@ namespace mp
 {
 namespace
 {
-/// The CSR pattern of the point graph of a simplicial mesh (every pair of
-/// points sharing a cell, and every point with itself), from the cells
-/// around each point (with ids of type Id: 32 bits when they fit, half the
-/// memory; those the neighbours' construction kept, mesh.Around, when
-/// there are, emptied once read); rows in concurrent tasks over point
-/// ranges when a runner is given, each into a block of its own, then moved
-/// into place.
-template <class Id>
-void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Index>& start,
-  UninitializedLargeVector<Column>& columns)
+/// Points per task of M_tt's values (P1Values), at least: as the
+/// pattern's (a task reads only about its share of the cells, CellSpans,
+/// so that a 3D mesh of 10^5 cells, some 17,000 points, is split too).
+constexpr Index ValuesGrain = 4096;
+
+/// M_tt's values (as many as its pattern's entries) set to zero, by
+/// concurrent tasks (each the first to touch its pages).
+void ZeroValues(CsrMatrix& matrix, const TaskRunner& runner)
 {
-  UninitializedLargeVector<Id> cellStart;
-  UninitializedLargeVector<Id> cells;
-  if constexpr (std::is_same<Id, std::int32_t>::value)
+  matrix.Values.resize(matrix.ColumnIndex.size());
+  runner.Fill(matrix.Values.data(), static_cast<Index>(matrix.Values.size()), 0.0, 1 << 18);
+}
+
+/**
+ * The cells around each point of a mesh (BuildPointCells' lists), with ids
+ * of type Id: 32 bits when they fit, half the memory. The pattern reads
+ * them; the values only their spans (CellSpans).
+ */
+template <class Id>
+struct AroundPoints
+{
+  UninitializedLargeVector<Id> Start;
+  UninitializedLargeVector<Id> Cells;
+
+  /// Those the neighbours' construction kept (mesh.Around, emptied), when
+  /// there are; else built.
+  AroundPoints(const MeshView& mesh, const TaskRunner& runner)
   {
-    if (mesh.Around && mesh.Around->Fit(mesh))
+    if constexpr (std::is_same<Id, std::int32_t>::value)
     {
-      cellStart.swap(mesh.Around->Start);
-      cells.swap(mesh.Around->Cells);
+      if (mesh.Around && mesh.Around->Fit(mesh))
+      {
+        this->Start.swap(mesh.Around->Start);
+        this->Cells.swap(mesh.Around->Cells);
+        return;
+      }
+    }
+    BuildPointCells(mesh, this->Start, this->Cells, runner);
+  }
+};
+
+/**
+ * Per block of Points consecutive points, the lowest and highest id of the
+ * cells using them (none: Low > High), from the lists of the cells around
+ * the points (read in one pass, in concurrent ranges of blocks). On a mesh
+ * numbered along space (SpatialOrder.h) the cells using a range of points
+ * lie in a range of ids barely wider than their share: a task of the
+ * values reads those, not every cell.
+ */
+struct CellSpans
+{
+  static constexpr Index Points = 1024;
+  std::vector<Index> Low;
+  std::vector<Index> High;
+
+  CellSpans() = default;
+  template <class Id>
+  CellSpans(const AroundPoints<Id>& around, Index points, const TaskRunner& runner)
+  {
+    const Index blocks = (points + Points - 1) / Points;
+    this->Low.resize(static_cast<size_t>(blocks));
+    this->High.resize(static_cast<size_t>(blocks));
+    runner.ForRanges(
+      blocks,
+      [&](Index begin, Index end) {
+        for (Index b = begin; b < end; ++b)
+        {
+          Index low = std::numeric_limits<Index>::max();
+          Index high = -1;
+          const Index last = around.Start[std::min(points, (b + 1) * Points)];
+          for (Index i = around.Start[b * Points]; i < last; ++i)
+          {
+            low = std::min<Index>(low, around.Cells[i]);
+            high = std::max<Index>(high, around.Cells[i]);
+          }
+          this->Low[b] = low;
+          this->High[b] = high;
+        }
+        return 0;
+      },
+      64);
+  }
+  /// [low, high]: the ids of the cells using points [first, last) lie there.
+  void Of(Index first, Index last, Index& low, Index& high) const
+  {
+    low = std::numeric_limits<Index>::max();
+    high = -1;
+    for (Index b = first / Points; b < (last + Points - 1) / Points; ++b)
+    {
+      low = std::min(low, this->Low[b]);
+      high = std::max(high, this->High[b]);
     }
   }
-  if (cellStart.empty())
-  {
-    BuildPointCells(mesh, cellStart, cells, runner);
-  }
+};
+
+/// The CSR pattern of the point graph of a simplicial mesh (every pair of
+/// points sharing a cell, and every point with itself), from the cells
+/// around each point; rows in concurrent tasks over point ranges when a
+/// runner is given, each into a block of its own, then moved into place.
+template <class Id>
+void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const TaskRunner& runner,
+  LargeVector<Index>& start, UninitializedLargeVector<Column>& columns)
+{
+  const UninitializedLargeVector<Id>& cellStart = around.Start;
+  const UninitializedLargeVector<Id>& cells = around.Cells;
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
   // Each task marks candidates in an array over all points (`seen` below):
@@ -157,38 +237,26 @@ void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Inde
   }
 }
 
-void PointGraph(const MeshView& mesh, const TaskRunner& runner, LargeVector<Index>& start,
-  UninitializedLargeVector<Column>& columns)
-{
-  if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
-  {
-    PointGraph<std::int32_t>(mesh, runner, start, columns);
-  }
-  else
-  {
-    PointGraph<Index>(mesh, runner, start, columns);
-  }
-}
-
 /**
  * M_tt's values for P1, its pattern made (the cells around the points,
- * which the pattern needed, are gone by now: the values take their room).
- * Each task owns a range of rows and goes through all cells, adding the
- * rows of its range of each cell's block: a row sums its cells' blocks in
- * cell order, whatever the number of tasks. With `cover`, each point of
- * the task's range also takes the largest of `cellValue` over its cells
- * (a reading of cells the loop makes anyway, by the task owning
- * the point: no two tasks write one).
+ * which the pattern needed, are gone by now: the values take their room;
+ * `spans` is what they left, when there are several tasks). Each task owns
+ * a range of rows and goes through the cells that may use its points (its
+ * span; one task: every cell), in order, adding the rows of its range of
+ * each cell's block: a row sums its cells' blocks in cell order, whatever
+ * the number of tasks. With `cover`, each point of the task's range also
+ * takes the largest of `cellValue` over its cells (a reading of cells the
+ * loop makes anyway, by the task owning the point: no two tasks write
+ * one).
  */
-void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& runner,
-  CsrMatrix& matrix, const CellValues& cellValue, double* cover)
+void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& masses,
+  const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue, double* cover)
 {
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
-  const Index cells = mesh.NumberOfCells;
   // The element mass of a whole cell: unit (1 + delta_ik) times its measure.
   const double unit = 1.0 / ((mesh.CellDimension + 1) * (mesh.CellDimension + 2));
-  const int tasks = runner.TasksFor(points, 1 << 16);
+  const int tasks = runner.TasksFor(points, ValuesGrain);
   const Index* rowStart = matrix.RowStart.data();
   const Column* columns = matrix.ColumnIndex.data();
   double* values = matrix.Values.data();
@@ -235,7 +303,13 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
     const Index first = RangeBegin(points, k, tasks);
     const Index last = RangeBegin(points, k + 1, tasks);
     auto mine = [first, last](Index p) { return p >= first && p < last; };
-    for (Index c = 0; c < cells; ++c)
+    Index low = 0;
+    Index high = mesh.NumberOfCells - 1;
+    if (tasks > 1)
+    {
+      spans.Of(first, last, low, high);
+    }
+    for (Index c = low; c <= high; ++c)
     {
       const float state = masses.State[static_cast<size_t>(c)];
       if (state == CellMasses::None && !cover)
@@ -259,7 +333,7 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
         // (Uncovered cells too: a parent may be covered by its other cells.
         // By parent, the values are in the dataset's order: a cache miss a
         // cell unless asked for ahead.)
-        if (cellValue.ByParent && c + 16 < cells)
+        if (cellValue.ByParent && c + 16 <= high)
         {
           __builtin_prefetch(cellValue.Values + mesh.ParentOf(c + 16));
         }
@@ -309,6 +383,40 @@ void P1Values(const MeshView& mesh, const CellMasses& masses, const TaskRunner& 
       }
     }
   });
+}
+
+/**
+ * M_tt for P1 (AssembleTargetMass): the point graph, zeros, then with
+ * `masses` the values (and with `cover`, of mesh.NumberOfPoints, the point
+ * cover), from one set of lists of the cells around the points (gone
+ * before the values: they take their room).
+ */
+template <class Id>
+void P1Matrix(const MeshView& mesh, const CellMasses* masses, const TaskRunner& runner,
+  CsrMatrix& matrix, const CellValues& cellValue, LargeVector<double>* cover)
+{
+  CellSpans spans;
+  {
+    const AroundPoints<Id> around(mesh, runner);
+    PointGraph(mesh, around, runner, matrix.RowStart, matrix.ColumnIndex);
+    if (masses && runner.TasksFor(mesh.NumberOfPoints, ValuesGrain) > 1)
+    {
+      spans = CellSpans(around, mesh.NumberOfPoints, runner);
+    }
+  }
+  ZeroValues(matrix, runner);
+  if (!masses)
+  {
+    return;
+  }
+  double* coverData = nullptr;
+  if (cover && cellValue.Values)
+  {
+    cover->resize(static_cast<size_t>(mesh.NumberOfPoints));
+    runner.Fill(cover->data(), mesh.NumberOfPoints, 0.0, 1 << 18);
+    coverData = cover->data();
+  }
+  P1Values(mesh, spans, *masses, runner, matrix, cellValue, coverData);
 }
 
 } // namespace
@@ -363,39 +471,30 @@ void AssembleTargetMass(SpaceType space, const MeshView& mesh, const CellMasses*
   matrix.Rows = matrix.Columns = n;
   if (space == SpaceType::P1)
   {
-    PointGraph(mesh, runner, matrix.RowStart, matrix.ColumnIndex);
-  }
-  else
-  {
-    // P0: the functions do not overlap; the matrix is diagonal.
-    matrix.RowStart.resize(static_cast<size_t>(n) + 1);
-    matrix.ColumnIndex.resize(static_cast<size_t>(n));
-    for (Index i = 0; i <= n; ++i)
+    if (mesh.NumberOfCells * mesh.CornersPerCell() < std::numeric_limits<std::int32_t>::max())
     {
-      matrix.RowStart[i] = i;
+      P1Matrix<std::int32_t>(mesh, masses, runner, matrix, cellValue, pointCover);
     }
-    for (Index i = 0; i < n; ++i)
+    else
     {
-      matrix.ColumnIndex[i] = static_cast<Column>(i);
+      P1Matrix<Index>(mesh, masses, runner, matrix, cellValue, pointCover);
     }
-  }
-  // Zeros written by concurrent tasks (each the first to touch its pages).
-  matrix.Values.resize(matrix.ColumnIndex.size());
-  runner.Fill(matrix.Values.data(), static_cast<Index>(matrix.Values.size()), 0.0, 1 << 18);
-  if (!masses)
-  {
     return;
   }
-  if (space == SpaceType::P1)
+  // P0: the functions do not overlap; the matrix is diagonal.
+  matrix.RowStart.resize(static_cast<size_t>(n) + 1);
+  matrix.ColumnIndex.resize(static_cast<size_t>(n));
+  for (Index i = 0; i <= n; ++i)
   {
-    double* cover = nullptr;
-    if (pointCover && cellValue.Values)
-    {
-      pointCover->resize(static_cast<size_t>(mesh.NumberOfPoints));
-      runner.Fill(pointCover->data(), mesh.NumberOfPoints, 0.0, 1 << 18);
-      cover = pointCover->data();
-    }
-    P1Values(mesh, *masses, runner, matrix, cellValue, cover);
+    matrix.RowStart[i] = i;
+  }
+  for (Index i = 0; i < n; ++i)
+  {
+    matrix.ColumnIndex[i] = static_cast<Column>(i);
+  }
+  ZeroValues(matrix, runner);
+  if (!masses)
+  {
     return;
   }
   // P0: each cell's measure (whole) or covered measure into its original
