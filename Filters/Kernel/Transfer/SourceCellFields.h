@@ -36,9 +36,13 @@ class SourceCellFieldCache
 {
 public:
   static constexpr int K = Space::K;
-  /// As many slots as the search's PreparedCells (SourceWalk.h): the front
-  /// meets a source cell again about as long as it keeps it prepared.
-  static constexpr Index Slots = 4096;
+  /// At most as many slots as the search's PreparedCells (SourceWalk.h):
+  /// the front meets a source cell again about as long as it keeps it
+  /// prepared ...
+  static constexpr Index MaxSlots = 4096;
+  /// ... and fewer for many components, so that a task's cache holds at
+  /// most this many coefficients (512 KiB) however many arrays are projected.
+  static constexpr size_t MaxValues = size_t(1) << 16;
 
   /// Forgets every cell (the fields or their number of components changed).
   void Clear()
@@ -55,10 +59,14 @@ public:
   template <class Cell>
   const double* Of(const MeshView& mesh, const Cell& cell, const double* fields, int components)
   {
-    const Index slot = cell.Id & (Slots - 1);
-    if (this->Ids.empty() || this->Ids[slot] != cell.Id)
+    if (this->Ids.empty())
     {
-      this->Fill(mesh, cell, fields, components);
+      this->Allocate(components);
+    }
+    const Index slot = cell.Id & this->Mask;
+    if (this->Ids[slot] != cell.Id)
+    {
+      this->Fill(mesh, cell, slot, fields, components);
     }
     return &this->Values[static_cast<size_t>(slot) * components * K];
   }
@@ -76,21 +84,28 @@ public:
   }
 
 private:
-  /// Forms the functions of `cell` in its slot (kept out of line: the
-  /// front meets each cell several times, and Of's hit is its common case).
-  template <class Cell>
-  __attribute__((noinline)) void Fill(
-    const MeshView& mesh, const Cell& cell, const double* fields, int components)
+  /// The slots, as many as fit the bound on coefficients.
+  void Allocate(int components)
   {
     const size_t row = static_cast<size_t>(components) * K;
-    if (this->Ids.empty())
+    Index slots = MaxSlots;
+    while (slots > 1 && static_cast<size_t>(slots) * row > MaxValues)
     {
-      this->Ids.assign(static_cast<size_t>(Slots), -1);
-      this->Values.resize(static_cast<size_t>(Slots) * row);
+      slots /= 2;
     }
-    const Index slot = cell.Id & (Slots - 1);
+    this->Mask = slots - 1;
+    this->Ids.assign(static_cast<size_t>(slots), -1);
+    this->Values.resize(static_cast<size_t>(slots) * row);
+  }
+
+  /// Forms the functions of `cell` in `slot` (kept out of line: the front
+  /// meets each cell several times, and Of's hit is its common case).
+  template <class Cell>
+  __attribute__((noinline)) void Fill(
+    const MeshView& mesh, const Cell& cell, Index slot, const double* fields, int components)
+  {
     this->Ids[slot] = cell.Id;
-    double* f = &this->Values[static_cast<size_t>(slot) * row];
+    double* f = &this->Values[static_cast<size_t>(slot) * components * K];
     Index dofs[Space::Dofs];
     Space::CellDofs(mesh, cell, dofs);
     double l[Space::Dofs][K];
@@ -109,6 +124,7 @@ private:
     }
   }
 
+  Index Mask = 0;             ///< slots - 1 (a power of two), set on the first fill
   std::vector<Index> Ids;     ///< per slot: the cell whose functions it holds, or -1
   std::vector<double> Values; ///< per slot: components x K coefficients
 };
