@@ -694,44 +694,50 @@ TEST(Spaces, SingleUseFieldsGiveTheAssembledProjection)
       const std::string what = std::to_string(d) + "D " + pair.Name;
       const TestMesh& target = meshes.first;
       const TestMesh& source = meshes.second;
-      // Two fields side by side.
       const std::vector<double> a = Field(source, pair.Source, 0);
       const std::vector<double> b = Field(source, pair.Source, 1);
       const Index ns = Size(source, pair.Source);
       const Index nt = Size(target, pair.Target);
-      std::vector<double> fields(static_cast<size_t>(2 * ns));
-      for (Index j = 0; j < ns; ++j)
-      {
-        fields[2 * j] = a[j];
-        fields[2 * j + 1] = b[j];
-      }
       Operator assembled(target, source, pair.Target, pair.Source);
       ASSERT_TRUE(assembled.Ok) << what;
-      std::vector<double> expected(static_cast<size_t>(2 * nt));
-      ASSERT_TRUE(assembled.Op.Apply(fields.data(), 2, expected.data(), -7.0)) << what;
-      for (int tasks : { 1, 3 })
+      // Two fields side by side, and 40 (more than the assembler's cache
+      // of fields per source cell holds at full size: SourceCellFields.h).
+      for (int nc : { 2, 40 })
       {
-        mp::BoxGridLocator locator(source.View());
-        mp::OperatorOptions options;
-        options.TargetSpace = pair.Target;
-        options.SourceSpace = pair.Source;
-        options.Fields = fields.data();
-        options.FieldComponents = 2;
-        options.Runner.Tasks = tasks;
-        options.Runner.Run = mptest::RunInThreads;
-        mp::MortarOperator single;
-        ASSERT_TRUE(single.Build(target.View(), source.View(), &locator, options)) << what;
-        EXPECT_FALSE(single.HasMixedMass()) << what;
-        EXPECT_EQ(single.GetMixedMass().NonZeros(), 0) << what;
-        std::vector<double> values(static_cast<size_t>(2 * nt));
-        ASSERT_TRUE(single.Apply(fields.data(), 2, values.data(), -7.0)) << what;
-        for (size_t k = 0; k < values.size(); ++k)
+        std::vector<double> fields(static_cast<size_t>(nc * ns));
+        for (Index j = 0; j < ns; ++j)
         {
-          ASSERT_NEAR(values[k], expected[k], 1e-12)
-            << what << " tasks " << tasks << " entry " << k;
+          for (int c = 0; c < nc; ++c)
+          {
+            fields[nc * j + c] = (c % 2 ? b[j] : a[j]) * (1.0 + 0.125 * (c / 2));
+          }
         }
-        // Other fields cannot be projected without M_ts.
-        EXPECT_FALSE(single.Apply(a.data(), 1, values.data(), -7.0)) << what;
+        std::vector<double> expected(static_cast<size_t>(nc * nt));
+        ASSERT_TRUE(assembled.Op.Apply(fields.data(), nc, expected.data(), -7.0)) << what;
+        for (int tasks : { 1, 3 })
+        {
+          mp::BoxGridLocator locator(source.View());
+          mp::OperatorOptions options;
+          options.TargetSpace = pair.Target;
+          options.SourceSpace = pair.Source;
+          options.Fields = fields.data();
+          options.FieldComponents = nc;
+          options.Runner.Tasks = tasks;
+          options.Runner.Run = mptest::RunInThreads;
+          mp::MortarOperator single;
+          ASSERT_TRUE(single.Build(target.View(), source.View(), &locator, options)) << what;
+          EXPECT_FALSE(single.HasMixedMass()) << what;
+          EXPECT_EQ(single.GetMixedMass().NonZeros(), 0) << what;
+          std::vector<double> values(static_cast<size_t>(nc * nt));
+          ASSERT_TRUE(single.Apply(fields.data(), nc, values.data(), -7.0)) << what;
+          for (size_t k = 0; k < values.size(); ++k)
+          {
+            ASSERT_NEAR(values[k], expected[k], 1e-12)
+              << what << " components " << nc << " tasks " << tasks << " entry " << k;
+          }
+          // Other fields cannot be projected without M_ts.
+          EXPECT_FALSE(single.Apply(a.data(), 1, values.data(), -7.0)) << what;
+        }
       }
     }
   }

@@ -32,6 +32,7 @@
 #include "Transfer/MassMatrix.h"
 #include "Transfer/MixedMatrix.h"
 #include "Transfer/MortarBlocks.h"
+#include "Transfer/SourceCellFields.h"
 #include "Transfer/Space.h"
 
 #include <algorithm>
@@ -126,6 +127,8 @@ struct MortarAssembler
   /// The current cell's pieces' moments times each source field, about its
   /// corner 0 (Components x K): its right-hand sides follow once per cell.
   std::vector<double> CellField;
+  /// The source fields per recently met source cell (Clear when Fields change).
+  SourceCellFieldCache<SourceSpace> FieldCache;
 
   Index Current = -1; ///< the target cell whose pieces are coming
   Cell CurrentCell;
@@ -298,24 +301,20 @@ struct MortarAssembler
     // facet: its image in the target's plane).
     const auto& sourceCell = Intersector::SourceCell(s, piece);
     Index dofs[Ns];
-    SourceSpace::CellDofs(*this->Source, sourceCell, dofs);
     if (this->Fields)
     {
-      // Those moments times the source fields, as affine functions about
-      // that corner: the target functions come in once per cell (Flush),
-      // not once per piece.
-      double ls[Ns][K];
-      SourceSpace::Basis(sourceCell, t.X[0], ls);
-      const double* u[Ns];
-      for (int j = 0; j < Ns; ++j)
+      this->AddFields(t, s, sourceCell, shifted);
+      if (this->SourceFunctionCovered)
       {
-        u[j] = this->Fields + dofs[j] * this->Components;
+        double ls[Ns][K];
+        SourceSpace::CellDofs(*this->Source, sourceCell, dofs);
+        SourceSpace::Basis(sourceCell, t.X[0], ls);
+        this->AddFunctionCover(s, piece, ls, shifted[0], dofs);
       }
-      AddFieldMoments<Ns, K>(ls, shifted, u, this->Components, this->CellField.data());
-      this->AddFunctionCover(s, piece, ls, shifted[0], dofs);
       this->Finish(t, s, piece, measure);
       return;
     }
+    SourceSpace::CellDofs(*this->Source, sourceCell, dofs);
     double lt[Nt][K];
     double ls[Ns][K];
     TargetSpace::Basis(t, o, lt);
@@ -344,6 +343,56 @@ struct MortarAssembler
       }
     }
     this->Finish(t, s, piece, measure);
+  }
+
+  /**
+   * Adds the piece's moments `shifted` (about t's corner 0) times the
+   * source fields on `cell` (the source cell as the spaces see it on the
+   * piece, of search cell `s`), as affine functions about that corner: the
+   * target functions come in once per cell (Flush), not once per piece.
+   */
+  template <class SourceCell, class SpaceCell>
+  void AddFields(
+    const Cell& t, const SourceCell& s, const SpaceCell& cell, const double (&shifted)[K][K])
+  {
+    if constexpr (std::is_same<SpaceCell, SourceCell>::value)
+    {
+      // The search's own prepared cell is the same on all its pieces: its
+      // fields come from the cache, formed once while the front meets it.
+      if (&cell == &s)
+      {
+        const int nc = this->Components;
+        const double* g = this->FieldCache.Of(*this->Source, cell, this->Fields, nc);
+        double d[D];
+        for (int a = 0; a < D; ++a)
+        {
+          d[a] = t.X[0][a] - cell.X[0][a];
+        }
+        for (int c = 0; c < nc; ++c)
+        {
+          double f[K];
+          SourceCellFieldCache<SourceSpace>::At(g + c * K, d, f);
+          double Mf[K];
+          MomentTimes<K>(shifted, f, Mf);
+          double* field = &this->CellField[static_cast<size_t>(c) * K];
+          for (int a = 0; a < K; ++a)
+          {
+            field[a] += Mf[a];
+          }
+        }
+        return;
+      }
+    }
+    Index dofs[Ns];
+    SourceSpace::CellDofs(*this->Source, cell, dofs);
+    double ls[Ns][K];
+    SourceSpace::Basis(cell, t.X[0], ls);
+    const double* u[Ns];
+    for (int j = 0; j < Ns; ++j)
+    {
+      u[j] = this->Fields + dofs[j] * this->Components;
+    }
+    AddFieldMoments<Ns, K>(ls, shifted, u, this->Components, this->CellField.data());
   }
 
   /// The piece's integrals of the source functions (ls, about the origin

@@ -211,6 +211,7 @@ struct MortarOperator::Session
         a.Fields = op.Options.Fields;
         a.Components = op.Options.FieldComponents;
         a.Rhs = op.Rhs.data();
+        a.FieldCache.Clear();
         continue;
       }
       // Room for the blocks of the range's cells at a generous estimate of
