@@ -223,15 +223,17 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
     throw std::runtime_error(TestFaultText("collective"));
   }
   result.Outcome = ApplyOperators(ctx, kept, plan, ops, hooks, halo, solutions);
-  if (result.Outcome.Ok() && TestFault("solve", run.Processes))
-  {
-    result.Outcome =
-      Verdict::Fail("The projection failed: the solves failed: " + TestFaultText("solve") + ".");
-  }
   if (result.Outcome.Ok())
   {
     DivideByDensity(ctx, ops, hooks, solutions);
     result.Outcome = ExtrapolateLeaf(ctx, kept, ops, hooks, solutions);
+  }
+  // After the collective steps that follow the solves, so that the other
+  // processes reach the Solved round as this one does.
+  if (result.Outcome.Ok() && TestFault("solve", run.Processes))
+  {
+    result.Outcome =
+      Verdict::Fail("The projection failed: the solves failed: " + TestFaultText("solve") + ".");
   }
   result.Outcome =
     result.Outcome.Ok() ? agreement.At(LeafAgreement::Solved) : agreement.End(result.Outcome);

@@ -88,11 +88,18 @@ inline void Orient3x3(const double (&x)[3][2], const double (&c)[3][2], double (
  * box around both cells; a difference of two coordinates in it rounds to
  * at most that). (3 + 64u) u covers Shewchuk's (3 + 16u) u with the
  * roundings of the bound itself. A decided determinant is not zero, so its
- * sign bit is its sign: the pair is in general position.
+ * sign bit is its sign: the pair is in general position. Pairs whose
+ * extent is outside [2^-450, 2^450] are left to the exact route: there a
+ * product could overflow to infinity, or the bound underflow to zero, and
+ * the filter would decide a sign it cannot know.
  */
 inline bool FilteredSides(const TriangleIntersector::Cell& t, const TriangleIntersector::Cell& s,
   double extent, double (&sides)[18], unsigned& negative)
 {
+  if (!(extent >= 0x1p-450 && extent <= 0x1p450))
+  {
+    return false;
+  }
   constexpr double c = (3.0 + 64.0 * RoundingUnit) * RoundingUnit;
   const double scale = c * extent;
   Doubles2 px[3];

@@ -305,7 +305,7 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
     auto mine = [first, last](Index p) { return p >= first && p < last; };
     Index low = 0;
     Index high = mesh.NumberOfCells - 1;
-    if (tasks > 1)
+    if (!spans.Low.empty()) // P1Matrix builds them only for several tasks
     {
       spans.Of(first, last, low, high);
     }
