@@ -6,6 +6,7 @@
 #include "Geometry/TetrahedronClipping.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "SearchComparison.h"
+#include "TetrahedronPairs.h"
 #include "Transfer/MortarAssembler.h"
 #include "Transfer/MortarOperator.h"
 
@@ -22,47 +23,14 @@
 
 using mp::Index;
 using mp::TetrahedronIntersector;
+using mptest::PreparedPair;
+using mptest::RandomPair;
+using mptest::SameBits;
 using mptest::TestMesh;
+using mptest::TwoTetrahedra;
 
 namespace
 {
-TestMesh TwoTetrahedra(const double t[4][3], const double s[4][3])
-{
-  TestMesh m;
-  m.Dimension = 3;
-  for (int k = 0; k < 4; ++k)
-    m.Points.insert(m.Points.end(), { t[k][0], t[k][1], t[k][2] });
-  for (int k = 0; k < 4; ++k)
-    m.Points.insert(m.Points.end(), { s[k][0], s[k][1], s[k][2] });
-  m.Cells = { 0, 1, 2, 3, 4, 5, 6, 7 };
-  return m;
-}
-
-/// A random pair: t's corners in [-1, 1]^3, s's in [-scale, scale]^3 (t's drawn first).
-void RandomPair(std::mt19937& rng, double scale, double (&t)[4][3], double (&s)[4][3])
-{
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (auto& x : t)
-    for (double& c : x)
-      c = u(rng);
-  for (auto& x : s)
-    for (double& c : x)
-      c = scale * u(rng);
-}
-
-/// The cells of TwoTetrahedra(t, s), prepared; false (skip the pair) when
-/// either has a volume below 1e-4.
-bool PreparedPair(const double t[4][3], const double s[4][3], TetrahedronIntersector::Cell& a,
-  TetrahedronIntersector::Cell& b)
-{
-  const TestMesh m = TwoTetrahedra(t, s);
-  if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
-    return false;
-  EXPECT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 0, a));
-  EXPECT_TRUE(TetrahedronIntersector::Prepare(m.View(false), 1, b));
-  return true;
-}
-
 double PairVolume(const double t[4][3], const double s[4][3], unsigned* touched = nullptr)
 {
   const TestMesh m = TwoTetrahedra(t, s);
@@ -304,11 +272,6 @@ TEST(Tetrahedra, GraphClipperMatchesSplittingClipper)
   }
   EXPECT_GT(met, 1500);
   EXPECT_GT(wellShaped, 500);
-}
-
-bool SameBits(double a, double b)
-{
-  return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 /// The same graph bit for bit (and, unless one comes from the tables and the

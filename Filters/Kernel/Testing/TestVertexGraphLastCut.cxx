@@ -6,44 +6,20 @@
 #include "Geometry/TetrahedronClipping.h"
 #include "Geometry/TetrahedronIntersector.h"
 
-#include "GeneratedMeshes.h"
+#include "TetrahedronPairs.h"
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <random>
 
 using mp::TetrahedronIntersector;
 using mp::clipping::VertexGraph;
+using mptest::PreparedPair;
+using mptest::RandomPair;
+using mptest::SameBits;
 
 namespace
 {
-bool SameBits(double a, double b)
-{
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
-
-/// Two random tetrahedra (corners in [-1, 1]^3 and [-0.8, 0.8]^3), prepared;
-/// false for a cell below 1e-4 in volume.
-bool RandomCells(
-  std::mt19937& rng, TetrahedronIntersector::Cell& a, TetrahedronIntersector::Cell& b)
-{
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  mptest::TestMesh m;
-  m.Dimension = 3;
-  for (int p = 0; p < 8; ++p)
-  {
-    const double scale = p < 4 ? 1.0 : 0.8;
-    for (int c = 0; c < 3; ++c)
-      m.Points.push_back(scale * u(rng));
-  }
-  m.Cells = { 0, 1, 2, 3, 4, 5, 6, 7 };
-  if (m.CellVolume(0) < 1e-4 || m.CellVolume(1) < 1e-4)
-    return false;
-  return TetrahedronIntersector::Prepare(m.View(false), 0, a) &&
-    TetrahedronIntersector::Prepare(m.View(false), 1, b);
-}
-
 /// b clipped by every plane of a that cuts it, in face order, the last cut
 /// compacted or not; false when a clip fails.
 bool ClipAll(const TetrahedronIntersector::Cell& a, const TetrahedronIntersector::Cell& b,
@@ -72,9 +48,12 @@ TEST(VertexGraph, LastCutInPlaceDecomposesAsTheCompactedGraph)
   int pieces = 0;
   for (int pair = 0; pair < 20000; ++pair)
   {
+    double t[4][3];
+    double s[4][3];
+    RandomPair(rng, 0.8, t, s);
     TetrahedronIntersector::Cell a;
     TetrahedronIntersector::Cell b;
-    if (!RandomCells(rng, a, b))
+    if (!PreparedPair(t, s, a, b))
       continue;
     double sides[4][4];
     mp::clipping::FaceSides(a, b, sides);
