@@ -47,6 +47,7 @@ using NeighborId = int;
 static_assert(sizeof(NeighborId) == 4, "mp::NeighborId must be a 32-bit integer");
 
 struct PointCells;
+struct NodalCells;
 
 /**
  * The corners of one cell, read from a 64-bit or a 32-bit connectivity
@@ -96,6 +97,9 @@ struct MeshView
   /// them again, and empties them. Null: not kept (the filter does not keep
   /// them: M_tt comes after the search, which they would take room from).
   PointCells* Around = nullptr;
+  /// Second-order cells split on their nodes: each parent's type and nodes
+  /// (NodalCells.h); null when every cell is linear.
+  const NodalCells* Nodal = nullptr;
   /**
    * Surfaces in 3D (CellDimension 2, SpaceDimension 3) and curves
    * (CellDimension 1), read from the target's view: a source facet meets a
