@@ -28,8 +28,10 @@ namespace mpvtk
 {
 namespace
 {
-/// The number of points a cell of a linear type has (-n: at least n), or 0
-/// for a type with no fixed count worth checking (empty, nonlinear cells).
+/// The number of points a cell of a linear or quadratic type has (-n: at
+/// least n), or 0 for a type with no fixed count worth checking (empty
+/// cells, Lagrange cells: their count is their order, checked when they
+/// are split).
 int PointsOfType(int type)
 {
   switch (type)
@@ -68,6 +70,26 @@ int PointsOfType(int type)
       return 12;
     case VTK_POLYHEDRON:
       return -4;
+    case VTK_QUADRATIC_EDGE:
+      return 3;
+    case VTK_QUADRATIC_TRIANGLE:
+      return 6;
+    case VTK_QUADRATIC_QUAD:
+      return 8;
+    case VTK_BIQUADRATIC_QUAD:
+      return 9;
+    case VTK_QUADRATIC_TETRA:
+      return 10;
+    case VTK_QUADRATIC_HEXAHEDRON:
+      return 20;
+    case VTK_TRIQUADRATIC_HEXAHEDRON:
+      return 27;
+    case VTK_QUADRATIC_WEDGE:
+      return 15;
+    case VTK_BIQUADRATIC_QUADRATIC_WEDGE:
+      return 18;
+    case VTK_QUADRATIC_PYRAMID:
+      return 13;
     default:
       return 0;
   }

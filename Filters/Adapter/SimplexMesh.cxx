@@ -3,6 +3,7 @@
 
 #include "Adapter/DataSetChecks.h"
 #include "Adapter/Ghosts.h"
+#include "Adapter/NodalTypes.h"
 #include "Adapter/Threads.h"
 #include "Mesh/CellNeighbors.h"
 #include "Mesh/NumberingQuality.h"
@@ -81,13 +82,15 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
   std::set<int> nonlinear;
   std::set<int> unsupported;
   int dimension = 0;
+  this->NodalStore.reset();
+  this->Kernel.Nodal = nullptr;
   for (int type = 1; type < 256; ++type)
   {
     if (!present[type])
     {
       continue;
     }
-    if (!vtkCellTypes::IsLinear(static_cast<unsigned char>(type)))
+    if (!vtkCellTypes::IsLinear(static_cast<unsigned char>(type)) && !IsAcceptedNonlinear(type))
     {
       nonlinear.insert(type);
     }
@@ -107,8 +110,9 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
     {
       why << ' ' << CellTypeName(type) << " (" << type << ')';
     }
-    why << ". The projection uses linear cells: apply Tessellate first (it splits curved and "
-           "higher-order cells into linear ones to a chosen accuracy).";
+    why << ", which the projection does not take. " << AcceptedNonlinearCells()
+        << " (split on their own nodes). For the others apply Tessellate first (it changes the "
+           "mesh: it splits curved and higher-order cells into linear ones to a chosen accuracy).";
     return why.str();
   }
   if (!unsupported.empty())
@@ -387,6 +391,14 @@ void SimplexMesh::OrderInSpace()
   }
   this->ParentIds.swap(order.Cells);
   this->Kernel.Parent = this->ParentIds.data();
+  if (this->NodalStore)
+  {
+    // Second-order cells name their nodes by kernel point too.
+    for (long long& node : this->NodalStore->Nodes)
+    {
+      node = order.NewPoint[node];
+    }
+  }
   this->OrderedConnectivity.swap(connectivity);
   this->OrderedConnectivity32.swap(connectivity32);
   this->Kernel.Connectivity = narrow ? nullptr : this->OrderedConnectivity.data();

@@ -15,7 +15,11 @@
  * (MeshView::Parent), so cell data and covered fractions belong to the
  * original cells. The mesh's dimension is that of its highest-dimensional
  * cells; cells of lower dimension (vertices, lines, boundary faces) are
- * left out and counted. Nonlinear cells are refused, naming Tessellate.
+ * left out and counted. Second-order cells (Adapter/NodalTypes.h: quadratic
+ * cells and Lagrange cells of order 2) are split on their own nodes
+ * (Geometry/NodalSplit.h) and remembered whole, with their nodes in kernel
+ * point ids (View().Nodal, Mesh/NodalCells.h; null when there are none);
+ * other nonlinear cells are refused by name, naming Tessellate.
  *
  * A 2D mesh is then seen in a plane frame (UseFrame): the points are used
  * in place for planes z = constant and mapped into the frame otherwise.
@@ -37,6 +41,7 @@
 #include "Mesh/CellNeighbors.h"
 #include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/NodalCells.h"
 #include "Mesh/PlaneFrame.h"
 
 #include "vtkSmartPointer.h"
@@ -202,6 +207,12 @@ private:
   /// counting the cells left out; an error names the first cell that
   /// cannot be split (SimplexSplit.cxx).
   std::string Split(vtkDataSet* data, const char* role);
+  /// Split's record of second-order cell c (of `numberOfCells`): its type
+  /// and its nodes (dataset point ids, in the type's order) ...
+  void AddNodal(
+    vtkIdType c, mp::NodalType nodal, const std::vector<mp::Index>& nodes, vtkIdType numberOfCells);
+  /// ... and the view of them all (View().Nodal), once every cell is split.
+  void FinishNodal(vtkIdType numberOfCells);
 
   // WrapSimplices' steps, in their order.
   /// AllConnectivity: the grid's cells, ghosts included, as mp::Index.
@@ -246,6 +257,16 @@ private:
   mp::LargeVector<mp::Index> AllConnectivityCopy;
   mp::LargeBuffer<mp::NeighborId> Neighbors;
   std::unique_ptr<mp::PointCells> Around; ///< (on the heap: the view points to it)
+  /// Second-order cells' types and nodes (kernel point ids once Wrap is done).
+  struct NodalArrays
+  {
+    std::vector<mp::NodalType> Types; ///< per dataset cell
+    std::vector<long long> Offsets;   ///< dataset cells + 1
+    std::vector<long long> Nodes;
+    mp::NodalCells View;
+  };
+  std::unique_ptr<NodalArrays> NodalStore; ///< (on the heap: the view points to it); null without
+
   mp::PlaneFrame Own;
   mp::PlaneFrame Seen;
   vtkIdType NonManifold = 0;

@@ -5,8 +5,10 @@
 #include "Adapter/SimplexMesh.h"
 
 #include "Adapter/Ghosts.h"
+#include "Adapter/NodalTypes.h"
 #include "Adapter/Threads.h"
 #include "Geometry/CellSplit.h"
+#include "Geometry/NodalSplit.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellType.h"
@@ -175,6 +177,42 @@ public:
     }
   }
 
+  /**
+   * Appends the simplices of second-order cell c (of VTK type `type`) on
+   * its nodes (Geometry/NodalSplit.h). `nodal`: its kernel type, None
+   * (nothing appended) when the type's order or node count is not
+   * accepted; Nodes() then holds its nodes in the kernel type's order. A
+   * cell naming a node twice is refused (`repeated` set).
+   */
+  mp::SplitStatus SplitNodal(
+    vtkIdType c, int type, std::vector<mp::Index>& simplices, mp::NodalType& nodal, bool& repeated)
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    this->Data->GetCellPoints(c, npts, pts, this->Scratch);
+    this->Count = npts;
+    repeated = false;
+    nodal = this->Types.TypeOf(type, npts, this->Data, c);
+    if (nodal == mp::NodalType::None)
+    {
+      return mp::SplitStatus::Split;
+    }
+    this->Ids.resize(static_cast<size_t>(npts));
+    this->Types.Order(type, nodal, pts, this->Ids.data());
+    this->Sorted.assign(this->Ids.begin(), this->Ids.end());
+    std::sort(this->Sorted.begin(), this->Sorted.end());
+    if (std::adjacent_find(this->Sorted.begin(), this->Sorted.end()) != this->Sorted.end())
+    {
+      repeated = true;
+      return mp::SplitStatus::NotStarShaped;
+    }
+    return mp::SplitNodalCell(nodal, this->X, this->Ids.data(), simplices, this->Key);
+  }
+  /// The nodes of the last cell SplitNodal accepted, in its kernel type's order.
+  const std::vector<mp::Index>& Nodes() const { return this->Ids; }
+  /// The number of points of the last cell SplitNodal read.
+  vtkIdType NodeCount() const { return this->Count; }
+
 private:
   /// A polyline's segments, but those of a repeated point.
   static void SplitPolyLine(const std::vector<mp::Index>& ids, std::vector<mp::Index>& simplices)
@@ -224,7 +262,10 @@ private:
   const mp::Index* Key;
   vtkNew<vtkIdList> Scratch;
   std::vector<mp::Index> Ids;
+  std::vector<mp::Index> Sorted;
   std::vector<mp::Index> Stream;
+  NodalCellTypes Types;
+  vtkIdType Count = 0;
 };
 
 /// Why the first refused cell (and `refused` - 1 more) cannot be split.
@@ -251,6 +292,37 @@ std::string Refusal(vtkDataSet* data, const char* role, int dimension, vtkIdType
   why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise" : std::string())
       << ". Check the mesh, or apply " << (dimension == 3 ? "Tetrahedralize" : "Triangulate")
       << " first.";
+  return why.str();
+}
+
+/// Why second-order cell c (and `refused` - 1 more) cannot be used:
+/// `nodal` None: its order or node count; `repeated`: a node named twice;
+/// else it folds.
+std::string NodalRefusal(vtkDataSet* data, const char* role, vtkIdType c, mp::NodalType nodal,
+  bool repeated, vtkIdType count, vtkIdType refused)
+{
+  std::ostringstream why;
+  const int type = data->GetCellType(c);
+  why << role << " cell " << c << " (" << CellTypeName(type) << ") ";
+  if (nodal == mp::NodalType::None)
+  {
+    why << "has " << count << " nodes: only Lagrange cells of order 2 are accepted (3, 6, 9, 10, "
+        << "27 or 18 nodes for curves, triangles, quadrilaterals, tetrahedra, hexahedra and "
+        << "wedges, with HigherOrderDegrees 2 when given)";
+  }
+  else if (repeated)
+  {
+    why << "names one node twice: a second-order cell needs distinct corner, mid-edge and "
+        << "mid-face nodes";
+  }
+  else
+  {
+    why << "is folded: the simplices through its nodes do not all have one orientation (a "
+        << "mid node lies beyond its cell or too far off its edge)";
+  }
+  why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise" : std::string())
+      << ". Check the mesh, or apply Tessellate first (it changes the mesh: it splits the cells "
+      << "into linear ones).";
   return why.str();
 }
 
@@ -299,6 +371,11 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   vtkIdType refused = 0;
   vtkIdType firstRefused = -1;
   mp::SplitStatus firstStatus = mp::SplitStatus::Split;
+  // Why the first refused cell was, when it is second-order (NodalRefusal).
+  bool firstIsNodal = false;
+  mp::NodalType firstNodal = mp::NodalType::None;
+  bool firstRepeated = false;
+  vtkIdType firstCount = 0;
   const int corners = dimension + 1;
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
@@ -315,7 +392,30 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
       continue;
     }
     const size_t before = simplices.size();
-    const mp::SplitStatus status = splitter.Split(c, type, simplices);
+    mp::SplitStatus status = mp::SplitStatus::Split;
+    if (IsAcceptedNonlinear(type))
+    {
+      mp::NodalType nodal = mp::NodalType::None;
+      bool repeated = false;
+      status = splitter.SplitNodal(c, type, simplices, nodal, repeated);
+      if (nodal == mp::NodalType::None || status != mp::SplitStatus::Split)
+      {
+        if (refused++ == 0)
+        {
+          firstRefused = c;
+          firstIsNodal = true;
+          firstNodal = nodal;
+          firstRepeated = repeated;
+          firstCount = splitter.NodeCount();
+        }
+        continue;
+      }
+      this->AddNodal(c, nodal, splitter.Nodes(), numberOfCells);
+    }
+    else
+    {
+      status = splitter.Split(c, type, simplices);
+    }
     if (status != mp::SplitStatus::Split)
     {
       firstRefused = refused++ == 0 ? c : firstRefused;
@@ -327,11 +427,49 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     this->SplitCount += type != SimplexType(dimension);
     this->ParentIds.insert(this->ParentIds.end(), added, c);
   }
+  if (refused > 0 && firstIsNodal)
+  {
+    return NodalRefusal(data, role, firstRefused, firstNodal, firstRepeated, firstCount, refused);
+  }
   if (refused > 0)
   {
     return Refusal(data, role, dimension, firstRefused, firstStatus, refused);
   }
+  this->FinishNodal(numberOfCells);
   this->SplitGrid = SimplexGridOf(points, simplices, dimension);
   return std::string();
+}
+
+void SimplexMesh::AddNodal(
+  vtkIdType c, mp::NodalType nodal, const std::vector<mp::Index>& nodes, vtkIdType numberOfCells)
+{
+  if (!this->NodalStore)
+  {
+    this->NodalStore.reset(new NodalArrays);
+    this->NodalStore->Types.assign(static_cast<size_t>(numberOfCells), mp::NodalType::None);
+    this->NodalStore->Offsets.assign(static_cast<size_t>(numberOfCells) + 1, 0);
+  }
+  NodalArrays& store = *this->NodalStore;
+  store.Types[c] = nodal;
+  // Offsets hold each cell's count until FinishNodal sums them.
+  store.Offsets[c + 1] = static_cast<long long>(nodes.size());
+  store.Nodes.insert(store.Nodes.end(), nodes.begin(), nodes.end());
+}
+
+void SimplexMesh::FinishNodal(vtkIdType numberOfCells)
+{
+  if (!this->NodalStore)
+  {
+    return;
+  }
+  NodalArrays& store = *this->NodalStore;
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    store.Offsets[c + 1] += store.Offsets[c];
+  }
+  store.View.Type = store.Types.data();
+  store.View.Offsets = store.Offsets.data();
+  store.View.Nodes = store.Nodes.data();
+  this->Kernel.Nodal = &store.View;
 }
 } // namespace mpvtk

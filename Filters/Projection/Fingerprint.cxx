@@ -9,6 +9,7 @@
 
 #include "Adapter/SimplexMesh.h"
 #include "Adapter/Threads.h"
+#include "Mesh/NodalCells.h"
 
 #include <cstring>
 
@@ -62,6 +63,16 @@ void Fingerprint::Add(const SimplexMesh& mesh)
   {
     this->Add(view.Parent, static_cast<size_t>(view.NumberOfCells) * sizeof(mp::Index),
       mpvtk::SMPTaskRunner());
+  }
+  if (view.Nodal)
+  {
+    // Second-order cells: their types and nodes in their own order (what
+    // their shape functions read), beside the split on them.
+    const size_t parents = static_cast<size_t>(view.Parents());
+    const size_t nodes = static_cast<size_t>(view.Nodal->Offsets[parents]);
+    this->Add(static_cast<std::uint64_t>(nodes));
+    this->Add(view.Nodal->Type, parents * sizeof(mp::NodalType), mpvtk::SMPTaskRunner());
+    this->Add(view.Nodal->Nodes, nodes * sizeof(long long), mpvtk::SMPTaskRunner());
   }
 }
 } // namespace mpvtk

@@ -12,7 +12,8 @@ directory on PYTHONPATH). Meshes: Testing/Data/Gmsh (point array Linear =
        triangle strips, of hexagons and pentagons) and pentagonal and
        hexagonal prisms;
     d. polyhedra (hexes_box as face streams, some faces reversed) == hexahedra;
-    e. errors: nonlinear cells, twisted hexahedra, 2D Source for a 3D Input,
+    e. errors: nonlinear cells not accepted (TestMeshProjectionSecondOrder.py
+       has those accepted), twisted hexahedra, 2D Source for a 3D Input,
        lower-dimensional cells left out;
     f. composites: multiblock, partitioned dataset (collection) Input leaf by
        leaf; composite Source == the uncut mesh; the pieces' TargetBlock.
@@ -26,8 +27,8 @@ from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_STRING, vtkIdList, vtkPoints
 from vtkmodules.vtkCommonDataModel import (VTK_HEXAGONAL_PRISM, VTK_PENTAGONAL_PRISM,
-                                           VTK_POLYHEDRON, VTK_QUADRATIC_TETRA,
-                                           VTK_QUADRATIC_TRIANGLE, VTK_TRIANGLE, vtkCellArray,
+                                           VTK_POLYHEDRON, VTK_QUADRATIC_LINEAR_WEDGE,
+                                           VTK_BIQUADRATIC_TRIANGLE, VTK_TRIANGLE, vtkCellArray,
                                            vtkDataSetAttributes, vtkImageData,
                                            vtkMultiBlockDataSet,
                                            vtkPartitionedDataSet,
@@ -637,21 +638,22 @@ def check_passed_through(p, what):
           "%s: no projected arrays, no vtkValidPointMask" % what)
 
 
-# A quadratic triangle in Source.
+# A biquadratic triangle in Source (7 nodes: not one of the accepted
+# second-order cells).
 qt = with_fields(unstructured([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0.5, 0, 0), (0.5, 0.5, 0),
-                               (0, 0.5, 0)], [VTK_QUADRATIC_TRIANGLE], [range(6)]))
+                               (0, 0.5, 0), (1 / 3, 1 / 3, 0)], [VTK_BIQUADRATIC_TRIANGLE], [range(7)]))
 target = without_u(MESHES["tris_disk"])
 p = Projection(target, qt)
-check(p.error("Tessellate"), "quadratic triangle Source: error naming Tessellate (%r)" % p.errors)
-check_passed_through(p, "quadratic triangle")
-# A quadratic tetrahedron in Source, next to linear ones.
-qtet_points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0, 0), (0.5, 0.5, 0),
-               (0, 0.5, 0), (0, 0, 0.5), (0.5, 0, 0.5), (0, 0.5, 0.5)]
-qtet = with_fields(unstructured(qtet_points, [VTK_QUADRATIC_TETRA], [range(10)]))
+check(p.error("Tessellate"), "biquadratic triangle Source: error naming Tessellate (%r)" % p.errors)
+check_passed_through(p, "biquadratic triangle")
+# A quadratic-linear wedge in Source (12 nodes), next to linear ones.
+qwedge_points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1), (0.5, 0, 0),
+                 (0.5, 0.5, 0), (0, 0.5, 0), (0.5, 0, 1), (0.5, 0.5, 1), (0, 0.5, 1)]
+qwedge = with_fields(unstructured(qwedge_points, [VTK_QUADRATIC_LINEAR_WEDGE], [range(12)]))
 target = without_u(MESHES["tets_box"])
-p = Projection(target, qtet)
-check(p.error("Tessellate"), "quadratic tetrahedron Source: error naming Tessellate (%r)" % p.errors)
-check_passed_through(p, "quadratic tetrahedron")
+p = Projection(target, qwedge)
+check(p.error("Tessellate"), "quadratic-linear wedge Source: error naming Tessellate (%r)" % p.errors)
+check_passed_through(p, "quadratic-linear wedge")
 
 # A twisted hexahedron (two top corners swapped), as Input and as Source.
 twisted = vtkUnstructuredGrid()
