@@ -40,6 +40,21 @@ int SimplexType(int d)
 
 const char* CellTypeName(int type)
 {
+  // VTK 9.2's table swaps the names of the Lagrange and Bezier triangles
+  // and quadrilaterals.
+  switch (type)
+  {
+    case VTK_LAGRANGE_TRIANGLE:
+      return "vtkLagrangeTriangle";
+    case VTK_LAGRANGE_QUADRILATERAL:
+      return "vtkLagrangeQuadrilateral";
+    case VTK_BEZIER_TRIANGLE:
+      return "vtkBezierTriangle";
+    case VTK_BEZIER_QUADRILATERAL:
+      return "vtkBezierQuadrilateral";
+    default:
+      break;
+  }
   const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
   return name ? name : "unknown cell type";
 }

@@ -373,3 +373,89 @@ def pyramids(h):
         cells[away] = cells[away][:, [0, 3, 2, 1, 4]]
         _cache[key] = _grid(x, cells, VTK_PYRAMID)
     return _cache[key]
+
+
+# Gmsh's second-order element types -> (VTK cell type, VTK node i is Gmsh
+# node order[i]): the mid-edge nodes of tetrahedra, hexahedra and prisms and
+# the mid-face nodes are numbered differently (Gmsh's reference elements
+# against VTK's GetParametricCoords()).
+_HEX20 = [0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15]
+_PRISM15 = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11]
+_GMSH2_TO_VTK = {8: (21, [0, 1, 2]), 9: (22, list(range(6))), 16: (23, list(range(8))),
+                 10: (28, list(range(9))), 11: (24, [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]),
+                 17: (25, _HEX20), 12: (29, _HEX20 + [22, 23, 21, 24, 20, 25, 26]),
+                 18: (26, _PRISM15), 13: (32, _PRISM15 + [15, 17, 16])}
+
+
+def second_order(shape, h, quads=False, incomplete=False):
+    """vtkUnstructuredGrid of Gmsh's order-2 mesh (gmsh.model.mesh.setOrder(2))
+    of `shape` with size `h`: "square" (the unit square, z = 0), "disk" (the
+    unit disk: its boundary mid nodes on the circle), "cube" (the unit cube:
+    tetrahedra), "hexes" (the unit cube, structured: hexahedra) or "prisms"
+    (the unit square extruded over 1: wedges). `quads`: 2D cells recombined
+    into quadrilaterals; `incomplete`: serendipity cells (Quad8, Hexa20,
+    Wedge15: Mesh.SecondOrderIncomplete), else Quad9, Hexa27, Wedge18."""
+    key = ("second_order", shape, h, quads, incomplete)
+    if key in _cache:
+        return _cache[key]
+    import gmsh
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    dim = 3 if shape in ("cube", "hexes", "prisms") else 2
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("second_order")
+        occ = gmsh.model.occ
+        mesh = gmsh.model.mesh
+        if shape == "square":
+            occ.addRectangle(0, 0, 0, 1, 1)
+        elif shape == "disk":
+            occ.addDisk(0, 0, 0, 1.0, 1.0)
+        elif shape in ("cube", "hexes"):
+            occ.addBox(0, 0, 0, 1, 1, 1)
+        elif shape == "prisms":
+            occ.addRectangle(0, 0, 0, 1, 1)
+            occ.extrude([(2, 1)], 0, 0, 1, numElements=[max(1, int(round(1 / h)))], recombine=True)
+        else:
+            raise ValueError(shape)
+        occ.synchronize()
+        if shape == "hexes":
+            for _, tag in gmsh.model.getEntities(1):
+                mesh.setTransfiniteCurve(tag, int(round(1 / h)) + 1)
+            for _, tag in gmsh.model.getEntities(2):
+                mesh.setTransfiniteSurface(tag)
+                mesh.setRecombine(2, tag)
+            for _, tag in gmsh.model.getEntities(3):
+                mesh.setTransfiniteVolume(tag)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1 if incomplete else 0)
+        if quads:
+            gmsh.option.setNumber("Mesh.RecombineAll", 1)
+        mesh.generate(dim)
+        mesh.setOrder(2)
+        tags, coords, _ = mesh.getNodes()
+        index = {int(t): i for i, t in enumerate(tags)}
+        x = np.asarray(coords).reshape(-1, 3)
+        cells = []
+        for etype, _, enodes in zip(*mesh.getElements(dim)):
+            vtk_type, order = _GMSH2_TO_VTK[int(etype)]
+            block = np.asarray(enodes, dtype=np.int64).reshape(-1, len(order))[:, order]
+            cells.extend((vtk_type, [index[int(t)] for t in c]) for c in block)
+    finally:
+        gmsh.finalize()
+    used = np.unique(np.concatenate([c for _, c in cells]))
+    renumber = np.full(len(x), -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(x[used]), deep=True))
+    grid = vtkUnstructuredGrid()
+    grid.SetPoints(points)
+    grid.Allocate(len(cells))
+    for vtk_type, c in cells:
+        grid.InsertNextCell(vtk_type, len(c), [int(renumber[k]) for k in c])
+    _cache[key] = grid
+    return grid

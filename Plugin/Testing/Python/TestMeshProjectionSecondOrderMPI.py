@@ -1,0 +1,91 @@
+"""Second-order cells on several MPI processes (run under mpiexec with
+pvbatch --mpi --symmetric): a Gmsh tet10 cube as
+Input, in blocks along x, and a Gmsh hex20 cube moved to overlap it in
+part as Source, its cells dealt at random, projected by
+vtkPMeshProjectionFilter; the gathered Source and the Input's halo carry
+the quadratic cells whole (their mid nodes too). On every process, for its
+points (by their original ids):
+ - the valid mask is the serial one, and the values of a smooth field
+   (given at every node) equal the serial ones to 1e-10 of its range;
+ - a linear field is exact at every valid node (1e-9 of its range);
+ - the integral over the covered part (a total over the processes) equals
+   the serial one (1e-12).
+"""
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkFiltersCore import vtkCellCenters
+
+from mpsupport import gmshmeshes, meshes, mpi
+from mpsupport.mpi import add
+
+controller, rank, size, check = mpi.begin()
+
+import meshprojection  # noqa: E402  (after MPI is up)
+
+
+def smooth(x):
+    return np.sin(3.0 * x[:, 0]) + x[:, 1] ** 2 + np.cos(2.0 * x[:, 2])
+
+
+def linear(x):
+    return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
+
+
+def run(filter_class, target, source):
+    f = filter_class()
+    f.SetInputData(target)
+    f.SetSourceData(source)
+    f.SetCacheOperator(False)
+    f.Update()
+    return f.GetOutput()
+
+
+def array(out, name):
+    return vtk_to_numpy(out.GetPointData().GetArray(name))
+
+
+tets = gmshmeshes.second_order("cube", 0.3)
+target = meshes.extract(tets, np.ones(tets.GetNumberOfCells(), bool))
+ids = numpy_to_vtkIdTypeArray(np.arange(target.GetNumberOfPoints(), dtype=np.int64), deep=True)
+ids.SetName("origId")
+target.GetPointData().AddArray(ids)
+hexes = gmshmeshes.second_order("hexes", 0.26, False, True)
+source = meshes.extract(gmshmeshes.moved(hexes, translate=(0.27, 0.13, -0.21)),
+                        np.ones(hexes.GetNumberOfCells(), bool))
+x = vtk_to_numpy(source.GetPoints().GetData())
+add(source.GetPointData(), "s", smooth(x))
+add(source.GetPointData(), "l", linear(x))
+
+serial = run(meshprojection.vtkMeshProjectionFilter, target, source)
+xt = vtk_to_numpy(serial.GetPoints().GetData())
+serial_valid = array(serial, "vtkValidPointMask").astype(bool)
+# This process's part: Input in blocks along x, Source at random.
+centres = vtkCellCenters()
+centres.SetInputData(target)
+centres.Update()
+cx = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())[:, 0]
+n = target.GetNumberOfCells()
+owner = np.minimum((np.argsort(np.argsort(cx)) * size) // n, size - 1)
+part = meshes.extract(target, owner == rank)
+keep = np.random.default_rng(5).integers(0, size, source.GetNumberOfCells()) == rank
+out = run(meshprojection.vtkPMeshProjectionFilter, part, meshes.extract(source, keep))
+
+mine = array(out, "origId")
+check(out.GetCellType(0) == 24 and out.GetNumberOfPoints() == part.GetNumberOfPoints(),
+      "the output is the part of Input, quadratic tetrahedra")
+valid = array(out, "vtkValidPointMask").astype(bool)
+check(valid.any() and np.array_equal(valid, serial_valid[mine]), "valid mask as serial")
+scale = np.ptp(array(serial, "s")[serial_valid])
+off = np.max(np.abs(array(out, "s") - array(serial, "s")[mine])[valid], initial=0.0) / scale
+largest = max(a[0] for a in mpi.allgather(controller, np.array([off])))
+if rank == 0:
+    print("tet10 <- hex20: %d processes, largest difference to serial %.3g of the range" % (size, largest))
+check(off <= 1e-10, "the serial values (%.2g of the range off)" % off)
+lin = np.max(np.abs(array(out, "l") - linear(xt[mine]))[valid], initial=0.0) / np.ptp(linear(xt))
+check(lin <= 1e-9, "linear exact at every valid node (%.2g of its range)" % lin)
+total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+reference = serial.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
+      "integral %.15g, serial %.15g" % (total, reference))
+
+check.finish("%d processes, second-order cells" % size)
