@@ -109,15 +109,16 @@ int CutCorners(const CornerCutCell& cell, const Index* nodes, std::vector<Index>
   }
   for (int v = 0; v < cell.Corners; ++v)
   {
-    std::vector<int> around;
+    int around[4];
+    int valence = 0;
     for (const std::array<int, 2>& e : cell.Edges)
     {
-      if (e[0] == v || e[1] == v)
+      if ((e[0] == v || e[1] == v) && valence < 4)
       {
-        around.push_back(e[0] == v ? e[1] : e[0]);
+        around[valence++] = e[0] == v ? e[1] : e[0];
       }
     }
-    if (around.size() == 4)
+    if (valence == 4)
     {
       // The pyramid's apex: its edges' mid nodes in the base's order make a
       // pyramid like the cell; their loop faces the apex, outward of the rest.
@@ -147,9 +148,9 @@ int CutCorners(const CornerCutCell& cell, const Index* nodes, std::vector<Index>
       }
     }
     int r = -1;
-    for (int w : around)
+    for (int k = 0; k < valence; ++k)
     {
-      r = (w != p && w != q) ? w : r;
+      r = (around[k] != p && around[k] != q) ? around[k] : r;
     }
     tetrahedra.insert(tetrahedra.end(), { nodes[v], mid(v, p), mid(v, q), mid(v, r) });
     // The cut is the tetrahedron's face away from v, outward of the
