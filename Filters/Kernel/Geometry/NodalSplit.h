@@ -31,7 +31,9 @@
  *
  * The simplices keep the cell's orientation (VTK's positive cells give
  * positive simplices: Orient3D > 0, and for 2D cells the orientation of the
- * cell's outline). Curved cells (mid nodes off the straight edges) are split
+ * cell's outline; positive as VTK's parametric coordinates are, in which a
+ * wedge's triangle 0 1 2 turns counterclockwise seen from 3 4 5, as Gmsh's
+ * prisms do, unlike CellSplit's linear wedge). Curved cells (mid nodes off the straight edges) are split
  * alike: the split is the polygon or polyhedron through their nodes. A cell
  * whose simplices do not all have one orientation (a folded curved cell, or
  * an edge whose mid node is not between its ends) is refused
