@@ -10,7 +10,9 @@
 #include "MeshProjectionTestUtilities.h"
 #include "Mesh/NodalCells.h"
 
+#include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
 #include "vtkIdList.h"
 #include "vtkLagrangeHexahedron.h"
@@ -224,6 +226,25 @@ bool CheckRefusals()
   }
   std::string why = WrapError(VTK_LAGRANGE_HEXAHEDRON, cubic);
   MP_CHECK(Says(why, "Source cell 0 (vtkLagrangeHexahedron) has 64 nodes") && Says(why, "order 2"));
+  // A Lagrange wedge of 18 nodes is of order 2 unless its HigherOrderDegrees
+  // say otherwise (1, 1, 5: 3 x 6 nodes).
+  for (const bool linearTriangles : { false, true })
+  {
+    const vtkSmartPointer<vtkUnstructuredGrid> grid =
+      GridOf({ { VTK_LAGRANGE_WEDGE, Parametric(VTK_BIQUADRATIC_QUADRATIC_WEDGE, 18), 0.0 } });
+    vtkNew<vtkDoubleArray> degrees;
+    degrees->SetNumberOfComponents(3);
+    const double d[3] = { linearTriangles ? 1.0 : 2.0, linearTriangles ? 1.0 : 2.0,
+      linearTriangles ? 5.0 : 2.0 };
+    degrees->InsertNextTuple(d);
+    degrees->SetName("HigherOrderDegrees");
+    grid->GetCellData()->SetHigherOrderDegrees(degrees);
+    mpvtk::SimplexMesh mesh;
+    why = mesh.Wrap(grid, "Input");
+    MP_CHECK(linearTriangles
+        ? Says(why, "Input cell 0 (vtkLagrangeWedge) has 18 nodes")
+        : why.empty() && mesh.View().Nodal && mesh.View().Nodal->Type[0] == mp::NodalType::Wedge18);
+  }
   // Bézier cells and other nonlinear types: named, with what is accepted.
   why = WrapError(VTK_BEZIER_HEXAHEDRON, Parametric(VTK_TRIQUADRATIC_HEXAHEDRON, 27));
   MP_CHECK(Says(why, "vtkBezierHexahedron") && Says(why, "Accepted second-order cells") &&
