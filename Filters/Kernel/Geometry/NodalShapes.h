@@ -15,8 +15,10 @@
  *
  * The functions, in VTK's order and equal to VTK's own
  * (vtkQuadratic*::InterpolationFunctions and InterpolationDerivs, checked
- * by Filters/Testing/Cxx/TestNodalShapesVTK.cxx), span in the reference
- * coordinates (x, y, z) = xi:
+ * by Filters/Testing/Cxx/TestNodalShapesVTK.cxx; for the pyramid the
+ * derivatives are those of VTK's functions, which VTK 9.2's own
+ * InterpolationDerivs are not), span in the reference coordinates
+ * (x, y, z) = xi:
  *  - Edge3, Triangle6, Tetra10 (quadratic Lagrange: lambda_i (2 lambda_i - 1)
  *    at the corners, 4 lambda_i lambda_j at the mid-edge nodes, lambda the
  *    barycentric coordinates): P2, every polynomial of degree <= 2;
