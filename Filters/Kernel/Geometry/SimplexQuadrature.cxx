@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Geometry/SimplexQuadrature.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -156,6 +157,124 @@ SimplexRule ConicalProduct(int dimension, int degree)
   return rule;
 }
 
+/**
+ * An orbit of a symmetric rule: every distinct permutation of the
+ * barycentric point (A, A, 1 - 2A) (triangle, B unused), (A, B, 1 - A - B)
+ * (triangle, B > 0), (A, A, A, 1 - 3A) (tetrahedron, B unused),
+ * (A, A, 1/2 - A, 1/2 - A) (tetrahedron, B < 0) or (A, A, B, 1 - 2A - B)
+ * (tetrahedron, B > 0), each with Weight (a fraction of the measure); A = 0
+ * is the centroid alone.
+ */
+struct Orbit
+{
+  double A;
+  double B;
+  double Weight;
+};
+
+/// A compact rule: its dimension, the degree it is exact to, its orbits.
+struct CompactRule
+{
+  int Dimension;
+  int Degree;
+  std::vector<Orbit> Orbits;
+};
+
+/**
+ * The compact symmetric rules (positive weights, points inside), fewer
+ * points than the conical products of the same degree. Their parameters
+ * solve the moment equations of the symmetric polynomials (products of the
+ * power sums of the barycentric coordinates) up to their degree, by Newton
+ * in 40-digit arithmetic from the published values (Strang and Fix;
+ * Dunavant 1985; Radon 1948; Keast 1986; Walkington); the test checks
+ * every monomial.
+ */
+const std::vector<CompactRule>& CompactRules()
+{
+  static const std::vector<CompactRule> rules = {
+    { 2, 2, { { 1.0 / 6.0, 0.0, 1.0 / 3.0 } } },
+    { 2, 4,
+      { { 0.445948490915964886318, 0.0, 0.223381589678011465695 },
+        { 0.0915762135097707434596, 0.0, 0.109951743655321867638 } } },
+    { 2, 5,
+      { { 0.0, 0.0, 0.225 }, { 0.47014206410511508977, 0.0, 0.132394152788506180738 },
+        { 0.101286507323456338801, 0.0, 0.125939180544827152596 } } },
+    { 2, 6,
+      { { 0.249286745170910421292, 0.0, 0.116786275726379366025 },
+        { 0.0630890144915022283403, 0.0, 0.0508449063702068169209 },
+        { 0.0531450498448169473532, 0.310352451033784405417, 0.0828510756183735751936 } } },
+    { 3, 2, { { 0.13819660112501051518, 0.0, 0.25 } } },
+    { 3, 5,
+      { { 0.0927352503108912264023, 0.0, 0.0734930431163619495437 },
+        { 0.310885919263300609797, 0.0, 0.112687925718015850799 },
+        { 0.0455037041256496494919, -1.0, 0.0425460207770814664381 } } },
+    { 3, 6,
+      { { 0.214602871259152029289, 0.0, 0.0399227502581674920997 },
+        { 0.0406739585346113531156, 0.0, 0.010077211055320642948 },
+        { 0.322337890142275510344, 0.0, 0.0553571815436547220952 },
+        { 0.0636610018750175252992, 0.269672331458315808034, 0.0482142857142857142857 } } },
+  };
+  return rules;
+}
+
+/// A compact rule's points: each orbit's distinct permutations.
+SimplexRule Expand(const CompactRule& compact, int degree)
+{
+  SimplexRule rule;
+  rule.Dimension = compact.Dimension;
+  rule.Degree = degree;
+  const int d = compact.Dimension;
+  for (const Orbit& orbit : compact.Orbits)
+  {
+    double point[4];
+    const double a = orbit.A;
+    const double b = orbit.B;
+    if (a == 0.0)
+    {
+      std::fill(point, point + d + 1, 1.0 / (d + 1));
+    }
+    else if (d == 2)
+    {
+      point[0] = a;
+      point[1] = b > 0.0 ? b : a;
+      point[2] = 1.0 - a - point[1];
+    }
+    else
+    {
+      point[0] = point[1] = a;
+      point[2] = b > 0.0 ? b : (b < 0.0 ? 0.5 - a : a);
+      point[3] = b < 0.0 ? 0.5 - a : 1.0 - 2.0 * a - point[2];
+    }
+    std::sort(point, point + d + 1); // next_permutation visits each distinct one once
+    do
+    {
+      rule.Barycentric.insert(rule.Barycentric.end(), point, point + d + 1);
+      rule.Weight.push_back(orbit.Weight);
+    } while (std::next_permutation(point, point + d + 1));
+  }
+  rule.Points = static_cast<int>(rule.Weight.size());
+  return rule;
+}
+
+/// The rule of fewest points exact to `degree`: a compact one where it has
+/// fewer points than the conical product.
+SimplexRule Smallest(int dimension, int degree)
+{
+  SimplexRule best = ConicalProduct(dimension, degree);
+  for (const CompactRule& compact : CompactRules())
+  {
+    if (compact.Dimension == dimension && compact.Degree >= degree)
+    {
+      SimplexRule candidate = Expand(compact, degree);
+      if (candidate.Points < best.Points)
+      {
+        best = std::move(candidate);
+      }
+    }
+  }
+  return best;
+}
+
 std::vector<SimplexRule> AllRules()
 {
   std::vector<SimplexRule> rules;
@@ -163,7 +282,7 @@ std::vector<SimplexRule> AllRules()
   {
     for (int degree = 0; degree <= MaxSimplexDegree; ++degree)
     {
-      rules.push_back(ConicalProduct(dimension, degree));
+      rules.push_back(Smallest(dimension, degree));
     }
   }
   return rules;

@@ -15,17 +15,25 @@
  * inside (all barycentric coordinates positive), so no point of a rule
  * falls on a neighbour's side of a face.
  *
- * The rules are Stroud's conical products: the simplex is the image of the
- * unit cube under the collapse xi_1 = a, xi_2 = b (1 - a),
- * xi_3 = c (1 - a)(1 - b), whose Jacobian (1 - a)^(d-1) (1 - b)^(d-2) is
- * taken into the Gauss-Jacobi rules of weights (1 - a)^(d-1) and
- * (1 - b)^(d-2) on [0, 1] (Gauss-Legendre for the last direction). Each
- * one-dimensional rule has n = ceil((Degree + 1) / 2) points, exact to
- * degree 2n - 1 >= Degree for the collapsed polynomial (of degree at most
- * Degree in each direction): n^d points in all. The Gauss-Jacobi nodes are
- * the roots of the Jacobi polynomials, found by bisection and Newton on
- * their three-term recurrence, and the weights come from the polynomials'
- * derivatives at them, so no table is copied.
+ * Each rule is the one with fewer points of two kinds:
+ *  - Stroud's conical products: the simplex is the image of the unit cube
+ *    under the collapse xi_1 = a, xi_2 = b (1 - a), xi_3 = c (1 - a)(1 - b),
+ *    whose Jacobian (1 - a)^(d-1) (1 - b)^(d-2) is taken into the
+ *    Gauss-Jacobi rules of weights (1 - a)^(d-1) and (1 - b)^(d-2) on
+ *    [0, 1] (Gauss-Legendre for the last direction). Each one-dimensional
+ *    rule has n = ceil((Degree + 1) / 2) points, exact to degree
+ *    2n - 1 >= Degree for the collapsed polynomial (of degree at most Degree
+ *    in each direction): n^d points in all. The Gauss-Jacobi nodes are the
+ *    roots of the Jacobi polynomials, found by bisection on their
+ *    three-term recurrence, and the weights come from the polynomials'
+ *    derivatives at them, so no table is copied;
+ *  - compact symmetric rules with positive weights and inner points:
+ *    triangle degree 2 (3 points), 4 (6), 5 (7), 6 (12); tetrahedron
+ *    degree 2 (4), 5 (14), 6 (24). Their parameters solve the symmetric
+ *    moment equations (see the .cxx).
+ * E.g. the tetrahedron's degree 4 (the product of two quadratic fields)
+ * takes the 14-point rule, not the 27-point product; degree 7 and above
+ * are conical products (64 points and more in a tetrahedron).
  *
  * All rules (dimensions 1 to 3, degrees 0 to MaxSimplexDegree) are built
  * once, at the first call, under C++'s thread-safe initialization of a

@@ -3,8 +3,9 @@
 // and degrees 0 to 12, every monomial of total degree <= the rule's degree
 // integrates to its exact mean over the reference simplex
 // (d! a_1! ... a_d! / (a_1 + ... + a_d + d)!), the weights are positive and
-// sum to 1, every point is strictly inside, and one degree more is not
-// always exact (the rules are not over-sized by accident).
+// sum to 1, every point is strictly inside, and for odd degrees one degree
+// more is not always exact (the rules are not over-sized by accident); the
+// compact symmetric rules are used where they have fewer points.
 #include "Geometry/SimplexQuadrature.h"
 
 #include <gtest/gtest.h>
@@ -153,10 +154,23 @@ TEST(SimplexQuadrature, PositiveWeightsInside)
 
 TEST(SimplexQuadrature, SizesAndArguments)
 {
-  // n = ceil((degree + 1) / 2) points per direction, n^d in all.
+  // The conical products: n = ceil((degree + 1) / 2) points per direction,
+  // n^d in all; the compact rules where they have fewer.
   EXPECT_EQ(mp::SimplexQuadrature(1, 0).Points, 1);
-  EXPECT_EQ(mp::SimplexQuadrature(2, 2).Points, 4);
-  EXPECT_EQ(mp::SimplexQuadrature(3, 4).Points, 27);
+  EXPECT_EQ(mp::SimplexQuadrature(1, 12).Points, 7);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 1).Points, 1);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 2).Points, 3);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 3).Points, 4);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 4).Points, 6);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 5).Points, 7);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 6).Points, 12);
+  EXPECT_EQ(mp::SimplexQuadrature(2, 7).Points, 16);
+  EXPECT_EQ(mp::SimplexQuadrature(3, 2).Points, 4);
+  EXPECT_EQ(mp::SimplexQuadrature(3, 3).Points, 8);
+  EXPECT_EQ(mp::SimplexQuadrature(3, 4).Points, 14);
+  EXPECT_EQ(mp::SimplexQuadrature(3, 5).Points, 14);
+  EXPECT_EQ(mp::SimplexQuadrature(3, 6).Points, 24);
+  EXPECT_EQ(mp::SimplexQuadrature(3, 7).Points, 64);
   EXPECT_EQ(mp::SimplexQuadrature(3, 12).Points, 343);
   EXPECT_THROW(mp::SimplexQuadrature(0, 2), std::out_of_range);
   EXPECT_THROW(mp::SimplexQuadrature(4, 2), std::out_of_range);
