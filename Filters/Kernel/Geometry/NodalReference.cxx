@@ -166,10 +166,40 @@ bool NewtonStep(
   return true;
 }
 
+/// The determinant of the full map's Jacobian at xi (cell dimension =
+/// space dimension).
+double Orientation(const LocalCell& cell, const double* xi)
+{
+  double dN[MaxNodalNodes * 3];
+  NodalDerivatives(cell.Type, xi, dN);
+  double J[3][3] = {};
+  for (int n = 0; n < cell.Count; ++n)
+  {
+    for (int i = 0; i < cell.Space; ++i)
+    {
+      for (int a = 0; a < cell.Dimension; ++a)
+      {
+        J[i][a] += dN[n * 3 + a] * cell.X[n][i];
+      }
+    }
+  }
+  switch (cell.Dimension)
+  {
+    case 1:
+      return J[0][0];
+    case 2:
+      return J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    default:
+      return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+        J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+        J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  }
+}
+
 /**
  * Newton iterations from xi: stops at a step below 1e-14 (not applied, so
- * an exact start stays exact), or below 1e-10 once steps stop shrinking
- * (the rounding floor). False when singular or not converged in 50 steps.
+ * an exact start stays exact), or at one below 1e-10 over half the last
+ * (the steps no longer shrink: the rounding floor). False when singular or not converged in 50 steps.
  */
 template <typename Shapes>
 bool Iterate(const LocalCell& cell, int count, Shapes shapes, const double* x, double* xi)
@@ -187,7 +217,7 @@ bool Iterate(const LocalCell& cell, int count, Shapes shapes, const double* x, d
     {
       size = std::max(size, std::abs(step[a]));
     }
-    if (size <= 1e-14 || (size <= 1e-10 && size > 0.25 * previous))
+    if (size <= 1e-14 || (size <= 1e-10 && size > 0.5 * previous))
     {
       return true;
     }
@@ -244,7 +274,13 @@ bool NodalReference(
   {
     std::copy(centre, centre + 3, xi);
   }
-  return Iterate(cell, cell.Count, full, local, xi);
+  if (!Iterate(cell, cell.Count, full, local, xi))
+  {
+    return false;
+  }
+  // On the cell's own sheet only: past a fold of the extrapolated map (or
+  // inside an inverted cell) the map turns the other way round.
+  return spaceDimension > d || Orientation(cell, xi) * Orientation(cell, centre) > 0.0;
 }
 
 bool NodalIsStraight(NodalType type, const double* X, int spaceDimension, double tolerance)

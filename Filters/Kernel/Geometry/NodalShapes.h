@@ -134,10 +134,18 @@ void NodalCornerFunctions(NodalType type, const double* xi, double* N, double* d
  * is extrapolated, never clamped, so xi may leave the reference cell.
  *
  * Converges to ~1e-14 in xi (relative to the cell's size, which is 1 in
- * xi): stops at a step below 1e-14, or below 1e-10 once the steps stop
- * shrinking (rounding). Returns false, with xi the last iterate, when the
+ * xi): stops at a step below 1e-14, or at one below 1e-10 that is more
+ * than half the step before it (the steps no longer shrink: rounding).
+ * Near the foot of a point off a curve or surface Gauss-Newton converges
+ * linearly, at a rate that grows with the point's distance times the
+ * cell's curvature. Returns false, with xi the last iterate, when the
  * Jacobian is singular (relative to its columns' lengths, 1e-13) or when
- * 50 steps do not converge.
+ * 50 steps do not converge; and, when the cell's dimension equals
+ * spaceDimension, with xi a converged preimage of x, when the Jacobian
+ * there is oriented against the one at the reference centre: x lies past
+ * a fold of the extrapolated map (far outside a strongly curved cell,
+ * where x has several preimages) or in an inverted part of an invalid
+ * cell.
  */
 bool NodalReference(
   NodalType type, const double* X, int spaceDimension, const double* x, double* xi);

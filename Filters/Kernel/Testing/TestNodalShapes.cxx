@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 #include <vector>
@@ -423,7 +424,7 @@ TEST(NodalShapes, PyramidReproduces)
 namespace
 {
 /// A curved cell: the straight one's non-corner nodes moved in random
-/// directions by up to `amount` times the cell's shortest distance between
+/// directions by `amount` times the cell's shortest distance between
 /// two corners (at most its shortest edge), in the space's coordinates.
 std::vector<double> Curved(
   NodalType type, std::vector<double> X, int space, double amount, std::mt19937& rng)
@@ -456,7 +457,7 @@ std::vector<double> Curved(
         length += v[i] * v[i];
       }
     } while (length > 1.0 || length < 1e-4);
-    const double radius = amount * shortest * std::abs(u(rng)) / std::sqrt(length);
+    const double radius = amount * shortest / std::sqrt(length);
     for (int i = 0; i < space; ++i)
     {
       X[3 * n + i] += radius * v[i];
@@ -465,13 +466,67 @@ std::vector<double> Curved(
   return X;
 }
 
-/// Round trips xi -> x -> xi for random points of the cell (inside and up
-/// to `margin` outside) in its first `space` coordinates: the largest
-/// error in xi; -1 if one failed.
-double RoundTrip(
+/// The determinant of the map's Jacobian at xi, in the cell's own
+/// dimension (its first coordinates).
+double Orientation(NodalType type, const std::vector<double>& X, const double* xi)
+{
+  const int d = mp::NodalCellDimension(type);
+  double dN[mp::MaxNodalNodes * 3];
+  mp::NodalDerivatives(type, xi, dN);
+  double J[3][3] = {};
+  for (int n = 0; n < mp::NodalNodeCount(type); ++n)
+  {
+    for (int i = 0; i < d; ++i)
+    {
+      for (int a = 0; a < d; ++a)
+      {
+        J[i][a] += dN[n * 3 + a] * X[3 * n + i];
+      }
+    }
+  }
+  if (d == 1)
+  {
+    return J[0][0];
+  }
+  if (d == 2)
+  {
+    return J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  }
+  return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+    J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+    J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
+struct RoundTrips
+{
+  double Worst = 0.0;    ///< the largest error in xi of the points found
+  double Residual = 0.0; ///< the largest |x(found) - x| of every success
+  int Failed = 0;        ///< refused although x's xi is on the cell's sheet
+  int Folded = 0;        ///< x's xi past a fold (left out of Worst)
+};
+
+/**
+ * Round trips xi -> x -> xi for 50 random points of the cell (inside and
+ * up to `margin` outside) in its first `space` (= its dimension)
+ * coordinates. Points whose xi lies past a fold of the extrapolated map
+ * (its Jacobian turned against the centre's) have another preimage on the
+ * cell's own sheet, so their xi cannot be asked back: they are counted
+ * apart.
+ */
+RoundTrips RoundTrip(
   NodalType type, const std::vector<double>& X, int space, double margin, std::mt19937& rng)
 {
-  double worst = 0.0;
+  const std::vector<double> nodes = ReferenceNodes(type);
+  double centre[3] = { 0.0, 0.0, 0.0 };
+  const int corners = mp::NodalCornerCount(type);
+  for (int c = 0; c < corners; ++c)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      centre[a] += nodes[3 * c + a] / corners;
+    }
+  }
+  RoundTrips result;
   for (int k = 0; k < 50; ++k)
   {
     double xi[3];
@@ -479,38 +534,68 @@ double RoundTrip(
     double x[3];
     MapPoint(type, X, xi, x);
     double found[3];
-    if (!mp::NodalReference(type, X.data(), space, x, found))
+    const bool ok = mp::NodalReference(type, X.data(), space, x, found);
+    if (ok)
     {
-      return -1.0;
+      double y[3];
+      MapPoint(type, X, found, y);
+      for (int i = 0; i < space; ++i)
+      {
+        result.Residual = std::max(result.Residual, std::abs(y[i] - x[i]));
+      }
+    }
+    if (Orientation(type, X, xi) * Orientation(type, X, centre) <= 0.0)
+    {
+      ++result.Folded;
+      continue;
+    }
+    if (!ok)
+    {
+      ++result.Failed;
+      continue;
     }
     for (int a = 0; a < 3; ++a)
     {
-      worst = std::max(worst, std::abs(found[a] - xi[a]));
+      result.Worst = std::max(result.Worst, std::abs(found[a] - xi[a]));
     }
   }
-  return worst;
+  return result;
 }
 } // namespace
 
 TEST(NodalShapes, ReferenceRoundTrip)
 {
+  // Straight cells, and curved ones inside: every point found to 1e-13.
+  // Curved cells 0.1 outside (mid nodes moved by 10% of the shortest edge):
+  // the few points past a fold of the extrapolated map are left out, and
+  // at most 1% of the others may be refused (found on the folded sheet).
   std::mt19937 rng(6);
   for (NodalType type : AllTypes)
   {
-    for (int trial = 0; trial < 10; ++trial)
+    int outsideFailed = 0;
+    int folded = 0;
+    for (int trial = 0; trial < 20; ++trial)
     {
       const int space = mp::NodalCellDimension(type);
       const std::vector<double> straight = StraightCell(type, MappedCorners(type, rng, 0.1));
-      EXPECT_LT(RoundTrip(type, straight, space, 0.0, rng), 1e-13) << int(type);
-      EXPECT_LT(RoundTrip(type, straight, space, 0.1, rng), 1e-13) << int(type);
       const std::vector<double> curved = Curved(type, straight, space, 0.1, rng);
-      const double inside = RoundTrip(type, curved, space, 0.0, rng);
-      const double outside = RoundTrip(type, curved, space, 0.1, rng);
-      EXPECT_GE(inside, 0.0) << int(type);
-      EXPECT_LT(inside, 1e-13) << int(type);
-      EXPECT_GE(outside, 0.0) << int(type);
-      EXPECT_LT(outside, 1e-13) << int(type);
+      const RoundTrips runs[3] = { RoundTrip(type, straight, space, 0.0, rng),
+        RoundTrip(type, straight, space, 0.1, rng), RoundTrip(type, curved, space, 0.0, rng) };
+      for (const RoundTrips& run : runs)
+      {
+        EXPECT_EQ(run.Failed + run.Folded, 0) << int(type);
+        EXPECT_LT(run.Worst, 1e-13) << int(type);
+        EXPECT_LT(run.Residual, 1e-13) << int(type);
+      }
+      const RoundTrips outside = RoundTrip(type, curved, space, 0.1, rng);
+      EXPECT_LT(outside.Worst, 1e-13) << int(type);
+      EXPECT_LT(outside.Residual, 1e-13) << int(type);
+      outsideFailed += outside.Failed;
+      folded += outside.Folded;
     }
+    EXPECT_LE(outsideFailed, 10) << int(type) << " of 1000 points 0.1 outside";
+    std::printf("type %d: 0.1 outside curved cells: %d of 1000 past a fold, %d refused\n",
+      int(type), folded, outsideFailed);
   }
 }
 
