@@ -551,6 +551,11 @@ void NodalDerivatives(NodalType type, const double* xi, double* dN)
   Evaluate(type, xi, nullptr, dN);
 }
 
+void NodalValuesAndDerivatives(NodalType type, const double* xi, double* N, double* dN)
+{
+  Evaluate(type, xi, N, dN);
+}
+
 void NodalCornerFunctions(NodalType type, const double* xi, double* N, double* dN)
 {
   switch (type)

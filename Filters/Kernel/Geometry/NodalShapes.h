@@ -106,6 +106,10 @@ void NodalValues(NodalType type, const double* xi, double* N);
  */
 void NodalDerivatives(NodalType type, const double* xi, double* dN);
 
+/// Both at once (one pass over the nodes): as NodalValues and
+/// NodalDerivatives.
+void NodalValuesAndDerivatives(NodalType type, const double* xi, double* N, double* dN);
+
 /**
  * The corners' own (multi)linear functions at xi, those of the linear cell
  * on the same corners: barycentric for Edge3, Triangle6 and Tetra10,
@@ -142,7 +146,8 @@ void NodalCornerFunctions(NodalType type, const double* xi, double* N, double* d
  * Jacobian is singular (relative to its columns' lengths, 1e-13) or when
  * 50 steps do not converge; and, when the cell's dimension equals
  * spaceDimension, with xi a converged preimage of x, when the Jacobian
- * there is oriented against the one at the reference centre: x lies past
+ * there is oriented against the corners' map's at the reference centre
+ * (the cell's orientation as its corners give it): x lies past
  * a fold of the extrapolated map (far outside a strongly curved cell,
  * where x has several preimages) or in an inverted part of an invalid
  * cell.
