@@ -138,8 +138,10 @@ void NodalCornerFunctions(NodalType type, const double* xi, double* N, double* d
  * is extrapolated, never clamped, so xi may leave the reference cell.
  *
  * Converges to ~1e-14 in xi (relative to the cell's size, which is 1 in
- * xi): stops at a step below 1e-14, or at one below 1e-10 that is more
- * than half the step before it (the steps no longer shrink: rounding).
+ * xi): stops at a step below 1e-14 (not applied), after applying one below
+ * 1e-9 that is below 1e-3 times the step before it (quadratic convergence:
+ * the next would be below 1e-15), or at one below 1e-10 that is more than
+ * half the step before it (the steps no longer shrink: rounding).
  * Near the foot of a point off a curve or surface Gauss-Newton converges
  * linearly, at a rate that grows with the point's distance times the
  * cell's curvature. Returns false, with xi the last iterate, when the
