@@ -178,7 +178,7 @@ mp::NodalType NodalCellTypes::TypeOf(int type, vtkIdType npts, vtkDataSet* data,
     }
     for (int d = 0; d < std::min(3, degrees->GetNumberOfComponents()); ++d)
     {
-      nodal = degrees->GetComponent(c, d) == 2.0 || (mp::NodalDimension(nodal) <= d)
+      nodal = degrees->GetComponent(c, d) == 2.0 || (mp::NodalCellDimension(nodal) <= d)
         ? nodal
         : mp::NodalType::None;
     }

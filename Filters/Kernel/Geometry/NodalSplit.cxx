@@ -454,52 +454,6 @@ SplitStatus SplitEdge(const double* points, const Index* nodes, std::vector<Inde
 }
 } // namespace
 
-int NodalNodeCount(NodalType type)
-{
-  switch (type)
-  {
-    case NodalType::Edge3:
-      return 3;
-    case NodalType::Triangle6:
-      return 6;
-    case NodalType::Quad8:
-      return 8;
-    case NodalType::Quad9:
-      return 9;
-    case NodalType::Tetra10:
-      return 10;
-    case NodalType::Hexa20:
-      return 20;
-    case NodalType::Hexa27:
-      return 27;
-    case NodalType::Wedge15:
-      return 15;
-    case NodalType::Wedge18:
-      return 18;
-    case NodalType::Pyramid13:
-      return 13;
-    default:
-      return 0;
-  }
-}
-
-int NodalDimension(NodalType type)
-{
-  switch (type)
-  {
-    case NodalType::None:
-      return 0;
-    case NodalType::Edge3:
-      return 1;
-    case NodalType::Triangle6:
-    case NodalType::Quad8:
-    case NodalType::Quad9:
-      return 2;
-    default:
-      return 3;
-  }
-}
-
 SplitStatus SplitNodalCell(NodalType type, const double* points, const Index* nodes,
   std::vector<Index>& simplices, const Index* keys)
 {

@@ -44,6 +44,7 @@
 #define MeshProjection_Kernel_NodalSplit_h
 
 #include "Geometry/CellSplit.h"
+#include "Geometry/NodalShapes.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/NodalCells.h"
 
@@ -51,18 +52,11 @@
 
 namespace mp
 {
-/// How many nodes a cell of `type` has (0 for None).
-int NodalNodeCount(NodalType type);
-
-/// The dimension of a cell of `type`: 1 (Edge3), 2 (triangles and
-/// quadrilaterals) or 3 (0 for None).
-int NodalDimension(NodalType type);
-
 /**
  * Splits one second-order cell. `nodes`: its NodalNodeCount(type) point
  * ids in the type's (VTK's) order; `points`: 3 coordinates per point id;
  * `keys` (optional, one per point id): replaces the ids in the rule, as in
- * CellSplit.h. Simplices (NodalDimension(type) + 1 ids each) are appended
+ * CellSplit.h. Simplices (NodalCellDimension(type) + 1 ids each) are appended
  * to `simplices`; on a refusal nothing is appended.
  */
 SplitStatus SplitNodalCell(NodalType type, const double* points, const Index* nodes,

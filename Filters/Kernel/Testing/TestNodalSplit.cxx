@@ -190,7 +190,7 @@ TEST(NodalSplit, FillsAffineCellsWithEveryNode)
   std::mt19937 rng(54);
   for (NodalType type : AllTypes)
   {
-    const int d = mp::NodalDimension(type);
+    const int d = mp::NodalCellDimension(type);
     const std::vector<std::array<double, 3>> ref = Reference(type);
     ASSERT_EQ(static_cast<int>(ref.size()), mp::NodalNodeCount(type));
     for (int trial = 0; trial < 50; ++trial)
@@ -267,7 +267,7 @@ void SharedFacePair(NodalType type,
   const std::function<std::array<double, 3>(std::array<double, 3>)>& g, std::mt19937& rng,
   int trials)
 {
-  const int d = mp::NodalDimension(type);
+  const int d = mp::NodalCellDimension(type);
   const std::vector<std::array<double, 3>> ref = Reference(type);
   std::vector<std::array<double, 3>> points(ref);
   std::vector<Index> a(ref.size()), b(ref.size());
