@@ -1,0 +1,541 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Point data in the cells' own space (Transfer/NodalSpace.h) projected by
+// quadrature (Transfer/QuadratureAssembler.h): second-order meshes built
+// here (tri6 squares, tet10 cubes, curved tri6 disks) with their split on
+// their nodes, and what the projection must keep: quadratic fields on
+// straight cells, the integral onto a linear target, linear fields on
+// curved cells, and the matrices of a brute-force assembly.
+#include "Geometry/CellGeometry.h"
+#include "Geometry/SimplexQuadrature.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TriangleIntersector.h"
+#include "Mesh/CellNeighbors.h"
+#include "Mesh/NodalCells.h"
+#include "Search/CandidateLocator.h"
+#include "Transfer/MortarOperator.h"
+#include "Transfer/NodalSpace.h"
+#include "Transfer/QuadratureAssembler.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+namespace
+{
+using mp::Index;
+using mp::NodalType;
+
+/// A mesh of second-order (or linear) cells with their split on their nodes.
+struct NodalMesh
+{
+  int Dimension = 2;
+  std::vector<double> Points; // x, y, z
+  std::vector<Index> Cells;   // the split's simplices
+  std::vector<Index> Parent;
+  std::vector<NodalType> Types;
+  std::vector<Index> Offsets{ 0 };
+  std::vector<Index> Nodes;
+  std::vector<mp::NeighborId> Neighbors;
+  mp::NodalCells Nodal;
+  bool Linear = false; // no Nodal: P1 on the simplices
+
+  Index NumberOfPoints() const { return Index(this->Points.size() / 3); }
+  const double* Point(Index p) const { return &this->Points[3 * p]; }
+
+  void Simplex(std::initializer_list<Index> corners)
+  {
+    this->Cells.insert(this->Cells.end(), corners);
+    this->Parent.push_back(Index(this->Types.size()) - 1);
+  }
+  /// A tri6 (VTK order) split into its 4 triangles on its nodes.
+  void Triangle6(const std::array<Index, 6>& n)
+  {
+    this->Types.push_back(NodalType::Triangle6);
+    this->Nodes.insert(this->Nodes.end(), n.begin(), n.end());
+    this->Offsets.push_back(Index(this->Nodes.size()));
+    this->Simplex({ n[0], n[3], n[5] });
+    this->Simplex({ n[3], n[1], n[4] });
+    this->Simplex({ n[5], n[4], n[2] });
+    this->Simplex({ n[3], n[4], n[5] });
+  }
+  /// A tet10 (VTK order) split into its 4 corner tetrahedra and the 4 of
+  /// its octahedron around the diagonal from mid 01 to mid 23.
+  void Tetra10(const std::array<Index, 10>& n)
+  {
+    this->Types.push_back(NodalType::Tetra10);
+    this->Nodes.insert(this->Nodes.end(), n.begin(), n.end());
+    this->Offsets.push_back(Index(this->Nodes.size()));
+    this->Simplex({ n[0], n[4], n[6], n[7] });
+    this->Simplex({ n[4], n[1], n[5], n[8] });
+    this->Simplex({ n[6], n[5], n[2], n[9] });
+    this->Simplex({ n[7], n[8], n[9], n[3] });
+    this->Simplex({ n[4], n[9], n[5], n[8] });
+    this->Simplex({ n[4], n[9], n[8], n[7] });
+    this->Simplex({ n[4], n[9], n[7], n[6] });
+    this->Simplex({ n[4], n[9], n[6], n[5] });
+  }
+  void Finish()
+  {
+    this->Nodal.Type = this->Types.data();
+    this->Nodal.Offsets = this->Offsets.data();
+    this->Nodal.Nodes = this->Nodes.data();
+    mp::BuildFaceNeighbors(this->View(false), this->Neighbors);
+  }
+  mp::MeshView View(bool withNeighbors = true) const
+  {
+    mp::MeshView v;
+    v.CellDimension = v.SpaceDimension = this->Dimension;
+    v.Points = this->Points.data();
+    v.NumberOfPoints = this->NumberOfPoints();
+    v.Connectivity = this->Cells.data();
+    v.NumberOfCells = Index(this->Cells.size()) / (this->Dimension + 1);
+    if (!this->Linear)
+    {
+      v.Parent = this->Parent.data();
+      v.NumberOfParents = Index(this->Types.size());
+      v.Nodal = &this->Nodal;
+    }
+    v.Neighbors = withNeighbors && !this->Neighbors.empty() ? this->Neighbors.data() : nullptr;
+    return v;
+  }
+};
+
+/// The nodes of a grid of (2n + 1)^d points: corners at even indices, mid
+/// nodes between them. Corner (i, j, k) in [0, 1]^d, interior ones moved
+/// by up to `jitter` of a cell, mid nodes at the middle of their edges.
+struct Grid
+{
+  int N;
+  int D;
+  int Size() const { return 2 * this->N + 1; }
+  Index Id(int i, int j, int k = 0) const
+  {
+    return i + Index(this->Size()) * (j + Index(this->Size()) * k);
+  }
+};
+
+/// Puts every mid node (a grid point with an odd index) at the middle of
+/// the edge whose ends are the corners one step away in its odd indices.
+void PlaceMidNodes(const Grid& g, std::vector<double>& points)
+{
+  const int s = g.Size();
+  for (int k = 0; k < (g.D == 3 ? s : 1); ++k)
+    for (int j = 0; j < s; ++j)
+      for (int i = 0; i < s; ++i)
+      {
+        const int odd[3] = { i % 2, j % 2, k % 2 };
+        if (odd[0] + odd[1] + odd[2] == 0)
+          continue;
+        const Index a = g.Id(i - odd[0], j - odd[1], k - odd[2]);
+        const Index b = g.Id(i + odd[0], j + odd[1], k + odd[2]);
+        for (int c = 0; c < 3; ++c)
+          points[3 * g.Id(i, j, k) + c] = 0.5 * (points[3 * a + c] + points[3 * b + c]);
+      }
+}
+
+/// Corner points of the grid over [0, 1]^d, interior ones jittered.
+std::vector<double> GridCorners(const Grid& g, double jitter, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> shift(-jitter, jitter);
+  const int s = g.Size();
+  const int ks = g.D == 3 ? s : 1;
+  std::vector<double> points(3 * size_t(s) * s * ks, 0.0);
+  for (int k = 0; k < ks; k += 2)
+    for (int j = 0; j < s; j += 2)
+      for (int i = 0; i < s; i += 2)
+      {
+        const int index[3] = { i, j, k };
+        for (int c = 0; c < g.D; ++c)
+        {
+          const bool interior =
+            i > 0 && i < s - 1 && j > 0 && j < s - 1 && (g.D == 2 || (k > 0 && k < s - 1));
+          points[3 * g.Id(i, j, k) + c] =
+            (index[c] + (interior ? 2.0 * shift(random) : 0.0)) / (s - 1);
+        }
+      }
+  return points;
+}
+
+/// Tri6 cells of an n x n grid of squares (each cut along its rising diagonal).
+void Triangles6(const Grid& g, NodalMesh& mesh)
+{
+  for (int j = 0; j + 2 < g.Size(); j += 2)
+    for (int i = 0; i + 2 < g.Size(); i += 2)
+    {
+      mesh.Triangle6({ g.Id(i, j), g.Id(i + 2, j), g.Id(i + 2, j + 2), g.Id(i + 1, j),
+        g.Id(i + 2, j + 1), g.Id(i + 1, j + 1) });
+      mesh.Triangle6({ g.Id(i, j), g.Id(i + 2, j + 2), g.Id(i, j + 2), g.Id(i + 1, j + 1),
+        g.Id(i + 1, j + 2), g.Id(i, j + 1) });
+    }
+}
+
+NodalMesh Square(int n, double jitter, unsigned seed)
+{
+  const Grid g{ n, 2 };
+  NodalMesh mesh;
+  mesh.Points = GridCorners(g, jitter, seed);
+  PlaceMidNodes(g, mesh.Points);
+  Triangles6(g, mesh);
+  mesh.Finish();
+  return mesh;
+}
+
+/// Tet10 cells of an n^3 grid of cubes, each in Kuhn's 6 tetrahedra (the
+/// corners along a monotone path: conforming across the cubes).
+NodalMesh Cube(int n, double jitter, unsigned seed)
+{
+  const Grid g{ n, 3 };
+  NodalMesh mesh;
+  mesh.Dimension = 3;
+  mesh.Points = GridCorners(g, jitter, seed);
+  PlaceMidNodes(g, mesh.Points);
+  const int orders[6][3] = { { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 },
+    { 2, 1, 0 } };
+  for (int k = 0; k + 2 < g.Size(); k += 2)
+    for (int j = 0; j + 2 < g.Size(); j += 2)
+      for (int i = 0; i + 2 < g.Size(); i += 2)
+        for (const auto& order : orders)
+        {
+          int v[4][3];
+          v[0][0] = i, v[0][1] = j, v[0][2] = k;
+          for (int s = 1; s < 4; ++s)
+          {
+            std::copy(v[s - 1], v[s - 1] + 3, v[s]);
+            v[s][order[s - 1]] += 2;
+          }
+          auto id = [&](int a, int b) {
+            return g.Id((v[a][0] + v[b][0]) / 2, (v[a][1] + v[b][1]) / 2, (v[a][2] + v[b][2]) / 2);
+          };
+          mesh.Tetra10({ id(0, 0), id(1, 1), id(2, 2), id(3, 3), id(0, 1), id(1, 2), id(0, 2),
+            id(0, 3), id(1, 3), id(2, 3) });
+        }
+  mesh.Finish();
+  return mesh;
+}
+
+/// A tri6 disk of radius 1: the square [-1, 1]^2's grid mapped onto it,
+/// mid nodes at their edges' middles but on the boundary, on the circle.
+NodalMesh Disk(int n)
+{
+  const Grid g{ n, 2 };
+  NodalMesh mesh;
+  mesh.Points = GridCorners(g, 0.0, 0);
+  for (Index p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    double* x = &mesh.Points[3 * p];
+    const double u = 2 * x[0] - 1, v = 2 * x[1] - 1;
+    x[0] = u * std::sqrt(1 - 0.5 * v * v);
+    x[1] = v * std::sqrt(1 - 0.5 * u * u);
+  }
+  PlaceMidNodes(g, mesh.Points);
+  const int s = g.Size();
+  for (int j = 0; j < s; ++j)
+    for (int i = 0; i < s; ++i)
+      if ((i % 2) + (j % 2) == 1 && (i == 0 || i == s - 1 || j == 0 || j == s - 1))
+      {
+        double* x = &mesh.Points[3 * g.Id(i, j)];
+        const double r = std::hypot(x[0], x[1]);
+        x[0] /= r;
+        x[1] /= r;
+      }
+  Triangles6(g, mesh);
+  mesh.Finish();
+  return mesh;
+}
+
+/// A linear mesh (P1 on its triangles, no Nodal): the split of Square's.
+NodalMesh LinearSquare(int n, double jitter, unsigned seed)
+{
+  NodalMesh mesh = Square(n, jitter, seed);
+  mesh.Linear = true;
+  return mesh;
+}
+
+struct Built
+{
+  mp::MortarOperator Op;
+  bool Ok = false;
+  Built(const NodalMesh& target, const NodalMesh& source,
+    mp::SpaceType targetSpace = mp::SpaceType::P1, mp::SpaceType sourceSpace = mp::SpaceType::P1)
+  {
+    const mp::MeshView s = source.View();
+    mp::BoxGridLocator locator(s);
+    mp::OperatorOptions options;
+    options.TargetSpace = targetSpace;
+    options.SourceSpace = sourceSpace;
+    this->Ok = this->Op.Build(target.View(), s, &locator, options);
+  }
+};
+
+using Field = std::function<double(const double*)>;
+
+double Quadratic2(const double* x)
+{
+  return 1.0 + x[0] - 2.0 * x[1] + 3.0 * x[0] * x[0] - x[0] * x[1] + 2.0 * x[1] * x[1];
+}
+double Quadratic3(const double* x)
+{
+  return Quadratic2(x) + 0.5 * x[2] - 1.5 * x[2] * x[2] + x[0] * x[2] + 2.0 * x[1] * x[2];
+}
+double LinearField(const double* x)
+{
+  return 0.5 - 2.0 * x[0] + 3.0 * x[1];
+}
+
+std::vector<double> AtPoints(const NodalMesh& mesh, const Field& f)
+{
+  std::vector<double> u(size_t(mesh.NumberOfPoints()));
+  for (Index p = 0; p < mesh.NumberOfPoints(); ++p)
+    u[p] = f(mesh.Point(p));
+  return u;
+}
+
+/// The largest |projected - f| at the target's nodes, over f's range there.
+double WorstRelativeError(const NodalMesh& target, const NodalMesh& source, const Field& f)
+{
+  Built b(target, source);
+  EXPECT_TRUE(b.Ok) << b.Op.GetError();
+  const std::vector<double> us = AtPoints(source, f);
+  const std::vector<double> exact = AtPoints(target, f);
+  std::vector<double> ut(exact.size());
+  EXPECT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), std::nan("")).Ok);
+  const auto range = std::minmax_element(exact.begin(), exact.end());
+  double worst = 0.0;
+  for (size_t p = 0; p < ut.size(); ++p)
+    worst = std::max(worst, std::fabs(ut[p] - exact[p]));
+  EXPECT_EQ(b.Op.GetNumberOfValid(), target.NumberOfPoints());
+  return worst / (*range.second - *range.first);
+}
+
+// (a) A quadratic field at every source node is reproduced at every node
+// of a straight second-order target.
+TEST(NodalSpace, QuadraticFieldOnStraightTriangles)
+{
+  const NodalMesh source = Square(5, 0.2, 1);
+  const NodalMesh target = Square(7, 0.2, 2);
+  EXPECT_LE(WorstRelativeError(target, source, Quadratic2), 1e-9);
+}
+
+TEST(NodalSpace, QuadraticFieldOnStraightTetrahedra)
+{
+  const NodalMesh source = Cube(2, 0.15, 3);
+  const NodalMesh target = Cube(3, 0.15, 4);
+  EXPECT_LE(WorstRelativeError(target, source, Quadratic3), 1e-9);
+}
+
+/// The integral of `u` (nodal values) over `mesh` in its own space, by the
+/// quadrature of degree 4 on every simplex of its split.
+double NodalIntegral(const NodalMesh& mesh, const std::vector<double>& u)
+{
+  const mp::MeshView view = mesh.View(false);
+  const int d = mesh.Dimension;
+  const mp::SimplexRule& rule = mp::SimplexQuadrature(d, 4);
+  mp::NodalFunctions f;
+  double sum = 0.0;
+  for (Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    f.Bind(view, mp::SpaceType::P1, c);
+    const double measure = mp::SimplexMeasure(view, c);
+    for (int q = 0; q < rule.Points; ++q)
+    {
+      double x[3] = { 0, 0, 0 };
+      for (int k = 0; k <= d; ++k)
+        for (int a = 0; a < d; ++a)
+          x[a] += rule.Barycentric[q * (d + 1) + k] * view.Point(view.Cell(c)[k])[a];
+      double values[mp::MaxNodalFunctions];
+      f.Values(x, values);
+      for (int i = 0; i < f.Count; ++i)
+        sum += rule.Weight[q] * measure * values[i] * u[f.Dofs[i]];
+    }
+  }
+  return sum;
+}
+
+// (b) A second-order source onto a linear target keeps its exact integral.
+TEST(NodalSpace, IntegralOntoLinearTarget)
+{
+  const NodalMesh source = Square(4, 0.2, 5);
+  const NodalMesh target = LinearSquare(6, 0.2, 6);
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  const std::vector<double> us =
+    AtPoints(source, [](const double* x) { return std::exp(x[0]) * std::sin(3 * x[1]) + 2.0; });
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), std::nan("")).Ok);
+  double integral = 0.0;
+  for (size_t i = 0; i < ut.size(); ++i)
+    integral += b.Op.GetCoveredIntegrals()[i] * ut[i];
+  const double exact = NodalIntegral(source, us);
+  EXPECT_NEAR(integral, exact, 1e-11 * std::fabs(exact));
+  EXPECT_NEAR(b.Op.GetCoveredMeasure(), 1.0, 1e-12);
+}
+
+TEST(NodalSpace, IntegralOntoLinearTargetInSpace)
+{
+  const NodalMesh source = Cube(2, 0.15, 7);
+  NodalMesh target = Cube(3, 0.15, 8);
+  target.Linear = true;
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  const std::vector<double> us = AtPoints(
+    source, [](const double* x) { return std::exp(x[0] - x[2]) * std::sin(3 * x[1]) + 2.0; });
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), std::nan("")).Ok);
+  double integral = 0.0;
+  for (size_t i = 0; i < ut.size(); ++i)
+    integral += b.Op.GetCoveredIntegrals()[i] * ut[i];
+  const double exact = NodalIntegral(source, us);
+  EXPECT_NEAR(integral, exact, 1e-11 * std::fabs(exact));
+}
+
+// (c) On curved disks a linear field is exact at every target node.
+TEST(NodalSpace, LinearFieldOnCurvedDisks)
+{
+  const NodalMesh source = Disk(5);
+  const NodalMesh target = Disk(4);
+  EXPECT_LE(WorstRelativeError(target, source, LinearField), 1e-9);
+  // Onto a curved target from a straight-sided source too, and back.
+  const NodalMesh square = Square(4, 0.0, 0);
+  NodalMesh inside = Disk(3);
+  for (double& x : inside.Points)
+    x = 0.25 + 0.2 * x; // the disk of radius 0.2 about (0.25, 0.25) (z stays 0.25: unread)
+  EXPECT_LE(WorstRelativeError(inside, square, LinearField), 1e-9);
+}
+
+/// The matrices of every pair of cells, dense, by AddQuadratureBlocks.
+template <class I>
+void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<double>& mts,
+  std::vector<double>& mtt)
+{
+  const mp::MeshView t = target.View(false), s = source.View(false);
+  const Index nt = t.NumberOfPoints, ns = s.NumberOfPoints;
+  mts.assign(size_t(nt * ns), 0.0);
+  mtt.assign(size_t(nt * nt), 0.0);
+  mp::NodalFunctions ft, fs;
+  for (Index a = 0; a < t.NumberOfCells; ++a)
+  {
+    typename I::Cell ct;
+    ASSERT_TRUE(I::Prepare(t, a, ct));
+    ft.Bind(t, mp::SpaceType::P1, a);
+    for (Index b = 0; b < s.NumberOfCells; ++b)
+    {
+      typename I::Cell cs;
+      ASSERT_TRUE(I::Prepare(s, b, cs));
+      typename I::Piece piece;
+      if (!I::Intersect(ct, cs, piece) || !(I::Measure(piece) > 0.0))
+        continue;
+      fs.Bind(s, mp::SpaceType::P1, b);
+      std::vector<double> bts(size_t(ft.Count * fs.Count), 0.0),
+        btt(size_t(ft.Count * ft.Count), 0.0);
+      mp::AddQuadratureBlocks<I>(piece, ft, fs, bts.data(), btt.data(), nullptr);
+      for (int i = 0; i < ft.Count; ++i)
+      {
+        for (int j = 0; j < fs.Count; ++j)
+          mts[ft.Dofs[i] * ns + fs.Dofs[j]] += bts[i * fs.Count + j];
+        for (int k = 0; k < ft.Count; ++k)
+          mtt[ft.Dofs[i] * nt + ft.Dofs[k]] += btt[i * ft.Count + k];
+      }
+    }
+  }
+}
+
+template <class I>
+void ExpectBruteForce(const NodalMesh& target, const NodalMesh& source)
+{
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  std::vector<double> mts, mtt;
+  BruteForce<I>(target, source, mts, mtt);
+  const Index nt = target.NumberOfPoints(), ns = source.NumberOfPoints();
+  const double scale = *std::max_element(mtt.begin(), mtt.end());
+  double worst = 0.0;
+  for (Index i = 0; i < nt; ++i)
+  {
+    ASSERT_TRUE(b.Op.GetValid()[i]);
+    for (Index j = 0; j < ns; ++j)
+      worst = std::max(worst, std::fabs(b.Op.GetMixedMass().Entry(i, j) - mts[i * ns + j]));
+    for (Index k = 0; k < nt; ++k)
+      worst = std::max(worst, std::fabs(b.Op.GetTargetMass().Entry(i, k) - mtt[i * nt + k]));
+  }
+  EXPECT_LE(worst, 1e-13 * scale);
+  EXPECT_GT(scale, 0.0);
+}
+
+// (d) The matrices from the front are those of every pair of cells.
+TEST(NodalSpace, MatricesAsBruteForce)
+{
+  ExpectBruteForce<mp::TriangleIntersector>(Square(3, 0.2, 9), Square(4, 0.2, 10));
+  ExpectBruteForce<mp::TriangleIntersector>(Disk(3), Disk(4));
+  ExpectBruteForce<mp::TetrahedronIntersector>(Cube(1, 0.0, 0), Cube(2, 0.15, 11));
+}
+
+// Cell data to point data and back: a constant stays constant.
+TEST(NodalSpace, CellAndPointTransfers)
+{
+  const NodalMesh source = Square(4, 0.2, 12);
+  const NodalMesh target = Square(5, 0.2, 13);
+  {
+    Built b(target, source, mp::SpaceType::P1, mp::SpaceType::P0);
+    ASSERT_TRUE(b.Ok) << b.Op.GetError();
+    std::vector<double> us(source.Types.size(), 3.5), ut(size_t(target.NumberOfPoints()));
+    ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), 0.0).Ok);
+    for (double v : ut)
+      EXPECT_NEAR(v, 3.5, 1e-11);
+  }
+  {
+    Built b(target, source, mp::SpaceType::P0, mp::SpaceType::P1);
+    ASSERT_TRUE(b.Ok) << b.Op.GetError();
+    const std::vector<double> us = AtPoints(source, Quadratic2);
+    std::vector<double> ut(target.Types.size());
+    ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), 0.0).Ok);
+    // Each target cell's value is the source field's mean over it.
+    const mp::MeshView view = target.View(false);
+    std::vector<double> mean(ut.size(), 0.0), measure(ut.size(), 0.0);
+    const mp::SimplexRule& rule = mp::SimplexQuadrature(2, 2);
+    for (Index c = 0; c < view.NumberOfCells; ++c)
+    {
+      const double m = mp::SimplexMeasure(view, c);
+      measure[view.ParentOf(c)] += m;
+      for (int q = 0; q < rule.Points; ++q)
+      {
+        double x[2] = { 0, 0 };
+        for (int k = 0; k < 3; ++k)
+          for (int a = 0; a < 2; ++a)
+            x[a] += rule.Barycentric[q * 3 + k] * view.Point(view.Cell(c)[k])[a];
+        mean[view.ParentOf(c)] += rule.Weight[q] * m * Quadratic2(x);
+      }
+    }
+    for (size_t p = 0; p < ut.size(); ++p)
+      EXPECT_NEAR(ut[p], mean[p] / measure[p], 1e-11);
+  }
+}
+
+// A lumped mass is refused on a target of second-order cells.
+TEST(NodalSpace, LumpedRefused)
+{
+  const NodalMesh mesh = Square(2, 0.0, 0);
+  Built b(mesh, mesh);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  EXPECT_TRUE(b.Op.HasNodalTarget());
+  std::vector<double> u(size_t(mesh.NumberOfPoints()), 1.0), v(u.size());
+  mp::ApplyOptions options;
+  options.Mass = mp::MassType::Lumped;
+  EXPECT_FALSE(b.Op.Apply(u.data(), 1, v.data(), 0.0, options).Ok);
+}
+
+// A second-order cell naming a node that does not exist is named.
+TEST(NodalSpace, BadNodeNamed)
+{
+  NodalMesh mesh = Square(2, 0.0, 0);
+  mesh.Nodes[6 * 3 + 4] = mesh.NumberOfPoints() + 5;
+  Built b(mesh, Square(2, 0.0, 0));
+  EXPECT_FALSE(b.Ok);
+  EXPECT_NE(b.Op.GetError().find("second-order cell 3"), std::string::npos) << b.Op.GetError();
+}
+} // namespace

@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file QuadratureAssembler.h
+ * @brief From pieces to matrices by quadrature: the mortar integrals of
+ *        functions that are not affine on a piece (NodalSpace.h).
+ *
+ * The search hands every (target cell, source cell, piece) to a
+ * QuadratureAssembler, as to a MortarAssembler. The piece is cut into
+ * simplices (in the plane its convex polygon fanned from its first vertex,
+ * in space its own tetrahedra), and on each the rule of degree
+ * max(dt + ds, 2 dt) (SimplexQuadrature; dt, ds the two cells' degrees:
+ * NodalDegree for a second-order parent, 1 for P1 and DP1, 0 for P0)
+ * integrates phi_i psi_j and phi_i phi_k, the two cells' functions
+ * evaluated at its points (NodalFunctions). Exact for straight cells, whose
+ * functions are polynomials of those degrees; on a curved cell the
+ * functions are its true isoparametric ones and the rule's error is that
+ * of their polynomial approximation on the piece.
+ *
+ * Both M_ts and M_tt come from the pieces (on a curved cell the covered
+ * part is what the pieces measure, so no element matrix stands in for a
+ * cell covered whole). When a target cell's last piece has come, its
+ * blocks go to the task's MixedBlocks, one block per target function
+ * (RowsPerBlock 1: the cells have different numbers of functions), M_ts's
+ * into Blocks and M_tt's into MassBlocks; M_tt is then assembled from
+ * these with MixedMatrix.h (AssembleNodalTargetMass). The covered
+ * fractions, the source cover, the kept pieces and the counts are those of
+ * MortarAssembler.
+ *
+ * Volumes only (triangles in the plane, tetrahedra): the other
+ * intersectors' pieces live in a target frame that the source's nodes do
+ * not (QuadratureSupports).
+ */
+#ifndef MeshProjection_Kernel_QuadratureAssembler_h
+#define MeshProjection_Kernel_QuadratureAssembler_h
+
+#include "Geometry/IntersectionPieces.h"
+#include "Geometry/SimplexQuadrature.h"
+#include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TriangleIntersector.h"
+#include "Transfer/MixedMatrix.h"
+#include "Transfer/NodalSpace.h"
+
+#include <algorithm>
+#include <type_traits>
+#include <vector>
+
+namespace mp
+{
+/// Whether the quadrature assembler takes intersector I's pieces.
+template <class I>
+constexpr bool QuadratureSupports =
+  std::is_same<I, TriangleIntersector>::value || std::is_same<I, TetrahedronIntersector>::value;
+
+/**
+ * Calls f(corners, measure) for each simplex of `piece` (corners: D + 1
+ * pointers to D coordinates; measure signed, as the piece's own).
+ */
+template <class I, class F>
+void ForEachPieceSimplex(const typename I::Piece& piece, F&& f)
+{
+  if constexpr (std::is_same<I, TriangleIntersector>::value)
+  {
+    const double* o = piece.X[0];
+    for (int i = 1; i + 1 < piece.NumberOfVertices; ++i)
+    {
+      const double* p = piece.X[i];
+      const double* q = piece.X[i + 1];
+      const double area = 0.5 * ((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]));
+      const double* corners[3] = { o, p, q };
+      f(corners, area);
+    }
+  }
+  else if constexpr (std::is_same<I, TetrahedronIntersector>::value)
+  {
+    for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
+    {
+      const double* corners[4];
+      for (int k = 0; k < 4; ++k)
+      {
+        corners[k] = piece.Points[piece.Corner[i][k]];
+      }
+      f(corners, piece.Volume[i]);
+    }
+  }
+}
+
+/**
+ * Sums one piece's blocks by quadrature: Mts[i][j] += int phi_i psi_j,
+ * Mtt[i][k] += int phi_i phi_k (row-major, t.Count wide), and, with
+ * `sourceIntegrals`, the integrals of the psi_j. The functions t and s
+ * bound to the piece's cells. The reference the assembled matrices are
+ * checked against, and the assembler's own step.
+ */
+template <class I>
+void AddQuadratureBlocks(const typename I::Piece& piece, const NodalFunctions& t,
+  const NodalFunctions& s, double* Mts, double* Mtt, double* sourceIntegrals)
+{
+  constexpr int D = I::Dimension;
+  const int nt = t.Count;
+  const int ns = s.Count;
+  const int degree = std::max(t.Degree + s.Degree, std::max(2 * t.Degree, 1));
+  const SimplexRule& rule = SimplexQuadrature(D, std::min(degree, MaxSimplexDegree));
+  ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
+    for (int q = 0; q < rule.Points; ++q)
+    {
+      const double* b = &rule.Barycentric[static_cast<size_t>(q) * (D + 1)];
+      double x[3] = { 0.0, 0.0, 0.0 };
+      for (int k = 0; k <= D; ++k)
+      {
+        for (int a = 0; a < D; ++a)
+        {
+          x[a] += b[k] * corners[k][a];
+        }
+      }
+      double phi[MaxNodalFunctions];
+      double psi[MaxNodalFunctions];
+      t.Values(x, phi);
+      s.Values(x, psi);
+      const double w = rule.Weight[q] * measure;
+      for (int i = 0; i < nt; ++i)
+      {
+        const double wi = w * phi[i];
+        for (int j = 0; j < ns; ++j)
+        {
+          Mts[i * ns + j] += wi * psi[j];
+        }
+        for (int k = 0; k < nt; ++k)
+        {
+          Mtt[i * nt + k] += wi * phi[k];
+        }
+      }
+      for (int j = 0; sourceIntegrals && j < ns; ++j)
+      {
+        sourceIntegrals[j] += w * psi[j];
+      }
+    }
+  });
+}
+
+template <class Intersector>
+struct QuadratureAssembler
+{
+  using Cell = typename Intersector::Cell;
+  using Piece = typename Intersector::Piece;
+  static constexpr int D = Intersector::Dimension;
+
+  const MeshView* Target = nullptr;
+  const MeshView* Source = nullptr;
+  SpaceType TargetSpace = SpaceType::P1;
+  SpaceType SourceSpace = SpaceType::P1;
+  MixedBlocks* Blocks = nullptr;     ///< this task's M_ts blocks (one per target function)
+  MixedBlocks* MassBlocks = nullptr; ///< this task's M_tt blocks (one per target function)
+  /// Per target kernel cell: the covered fraction of its measure, written
+  /// when its last piece has come (each cell belongs to one task).
+  double* CoveredFraction = nullptr;
+  double CoveredSum = 0.0; ///< measure of all pieces of this task
+  Index Overcovered = 0;   ///< cells whose pieces add up to more than the cell
+  IntersectionPieces* Pieces = nullptr;
+  Index Count = 0;                         ///< pieces of positive measure
+  const char* Excluded = nullptr;          ///< per source cell: nonzero to leave its pieces out
+  double* SourceCovered = nullptr;         ///< per source cell (this task's, or null)
+  double* SourceFunctionCovered = nullptr; ///< DP1: per source function (this task's, or null)
+
+  Index Current = -1; ///< the target cell whose pieces are coming
+  double CurrentMeasure = 0.0;
+  double Covered = 0.0;             ///< its pieces' measure so far
+  NodalFunctions T;                 ///< its functions
+  NodalFunctions S;                 ///< the current source cell's
+  std::vector<Column> BlockColumns; ///< source functions its pieces met
+  std::vector<double> BlockValues;  ///< T.Count per column
+  std::vector<double> Mtt;          ///< T.Count x T.Count
+  std::vector<double> PieceMts;     ///< one piece's, T.Count x S.Count
+
+  void Flush()
+  {
+    if (this->Current < 0)
+    {
+      return;
+    }
+    const double fraction = this->Covered / this->CurrentMeasure;
+    this->Overcovered += fraction > 1.0 + 1e-9;
+    this->CoveredFraction[this->Current] = std::min(1.0, fraction);
+    this->CoveredSum += this->Covered;
+    this->Current = -1;
+    if (!(this->Covered > 0.0))
+    {
+      return; // only touching pieces
+    }
+    const int nt = this->T.Count;
+    const size_t columns = this->BlockColumns.size();
+    for (int i = 0; i < nt; ++i)
+    {
+      MixedBlocks& b = *this->Blocks;
+      b.Rows.push_back(this->T.Dofs[i]);
+      b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
+      for (size_t slot = 0; slot < columns; ++slot)
+      {
+        b.Values.push_back(this->BlockValues[slot * nt + i]);
+      }
+      b.Start.push_back(static_cast<Index>(b.Columns.size()));
+      MixedBlocks& m = *this->MassBlocks;
+      m.Rows.push_back(this->T.Dofs[i]);
+      for (int k = 0; k < nt; ++k)
+      {
+        m.Columns.push_back(static_cast<Column>(this->T.Dofs[k]));
+        m.Values.push_back(this->Mtt[static_cast<size_t>(i) * nt + k]);
+      }
+      m.Start.push_back(static_cast<Index>(m.Columns.size()));
+    }
+  }
+
+  template <class SourceCell>
+  void operator()(const Cell& t, const SourceCell& s, const Piece& piece)
+  {
+    if (t.Id != this->Current)
+    {
+      this->Flush();
+      this->Current = t.Id;
+      this->CurrentMeasure = t.Measure;
+      this->Covered = 0.0;
+      this->T.Bind(*this->Target, this->TargetSpace, t.Id);
+      this->BlockColumns.clear();
+      this->BlockValues.clear();
+      this->Mtt.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
+    }
+    if constexpr (QuadratureSupports<Intersector>)
+    {
+      this->Add(t, s, piece);
+    }
+  }
+
+  /// Adds one piece of the current target cell.
+  template <class SourceCell>
+  void Add(const Cell& t, const SourceCell& s, const Piece& piece)
+  {
+    if (this->Excluded && this->Excluded[s.Id])
+    {
+      return; // a hole in the source (no data there)
+    }
+    double o[D];
+    double M[D + 1][D + 1];
+    const double measure = Intersector::Moments(piece, o, M);
+    if (!(measure > 0.0))
+    {
+      return; // the cells only touch
+    }
+    this->Covered += measure;
+    this->S.Bind(*this->Source, this->SourceSpace, s.Id);
+    const int nt = this->T.Count;
+    const int ns = this->S.Count;
+    this->PieceMts.assign(static_cast<size_t>(nt) * ns, 0.0);
+    double integrals[MaxNodalFunctions] = {};
+    AddQuadratureBlocks<Intersector>(piece, this->T, this->S, this->PieceMts.data(),
+      this->Mtt.data(), this->SourceFunctionCovered ? integrals : nullptr);
+    for (int j = 0; j < ns; ++j)
+    {
+      const Column c = static_cast<Column>(this->S.Dofs[j]);
+      size_t slot = 0;
+      while (slot < this->BlockColumns.size() && this->BlockColumns[slot] != c)
+      {
+        ++slot;
+      }
+      if (slot == this->BlockColumns.size())
+      {
+        this->BlockColumns.push_back(c);
+        this->BlockValues.insert(this->BlockValues.end(), nt, 0.0);
+      }
+      double* values = &this->BlockValues[slot * nt];
+      for (int i = 0; i < nt; ++i)
+      {
+        values[i] += this->PieceMts[static_cast<size_t>(i) * ns + j];
+      }
+      if (this->SourceFunctionCovered)
+      {
+        this->SourceFunctionCovered[this->S.Dofs[j]] += integrals[j];
+      }
+    }
+    ++this->Count;
+    if (this->SourceCovered)
+    {
+      this->SourceCovered[s.Id] += measure;
+    }
+    if (this->Pieces)
+    {
+      Intersector::AppendPiece(piece, t.Id, s.Id, *this->Pieces);
+    }
+  }
+};
+
+} // namespace mp
+
+#endif
