@@ -15,6 +15,7 @@
 #include "Transfer/MortarOperator.h"
 #include "Transfer/NodalSpace.h"
 #include "Transfer/QuadratureAssembler.h"
+#include "Threads.h"
 
 #include <gtest/gtest.h>
 
@@ -513,6 +514,66 @@ TEST(NodalSpace, CellAndPointTransfers)
     }
     for (size_t p = 0; p < ut.size(); ++p)
       EXPECT_NEAR(ut[p], mean[p] / measure[p], 1e-11);
+  }
+}
+
+/// The largest difference of two matrices' entries (on a's pattern, which must be b's).
+double MatrixDifference(const mp::CsrMatrix& a, const mp::CsrMatrix& b)
+{
+  EXPECT_EQ(a.RowStart, b.RowStart);
+  EXPECT_EQ(a.ColumnIndex, b.ColumnIndex);
+  double worst = 0.0;
+  for (size_t p = 0; p < a.Values.size() && p < b.Values.size(); ++p)
+    worst = std::max(worst, std::fabs(a.Values[p] - b.Values[p]));
+  return worst;
+}
+
+// Tasks, a search shared with a linear-path operator, and the one-off
+// fields give the matrices and values of a plain build.
+TEST(NodalSpace, TasksSharedSearchAndFields)
+{
+  const NodalMesh source = Square(6, 0.2, 14);
+  const NodalMesh target = Square(7, 0.2, 15);
+  const mp::MeshView t = target.View(), s = source.View();
+  const std::vector<double> us = AtPoints(source, Quadratic2);
+  Built plain(target, source);
+  ASSERT_TRUE(plain.Ok);
+  std::vector<double> expected(size_t(target.NumberOfPoints()));
+  ASSERT_TRUE(plain.Op.Apply(us.data(), 1, expected.data(), 0.0).Ok);
+  const double scale = *std::max_element(
+    plain.Op.GetTargetMass().Values.begin(), plain.Op.GetTargetMass().Values.end());
+  {
+    mp::BoxGridLocator locator(s);
+    mp::OperatorOptions options;
+    options.Runner = mptest::ThreadRunner(4);
+    mp::MortarOperator op;
+    ASSERT_TRUE(op.Build(t, s, &locator, options)) << op.GetError();
+    EXPECT_LE(MatrixDifference(op.GetMixedMass(), plain.Op.GetMixedMass()), 1e-14 * scale);
+    EXPECT_LE(MatrixDifference(op.GetTargetMass(), plain.Op.GetTargetMass()), 1e-14 * scale);
+  }
+  {
+    mp::BoxGridLocator locator(s);
+    mp::OperatorOptions points, cells;
+    cells.TargetSpace = cells.SourceSpace = mp::SpaceType::P0;
+    mp::MortarOperator a, b, alone;
+    ASSERT_TRUE(mp::MortarOperator::BuildTogether({ &a, &b }, { points, cells }, t, s, &locator));
+    EXPECT_EQ(MatrixDifference(a.GetMixedMass(), plain.Op.GetMixedMass()), 0.0);
+    EXPECT_EQ(MatrixDifference(a.GetTargetMass(), plain.Op.GetTargetMass()), 0.0);
+    ASSERT_TRUE(alone.Build(t, s, &locator, cells));
+    EXPECT_EQ(MatrixDifference(b.GetMixedMass(), alone.GetMixedMass()), 0.0);
+    EXPECT_EQ(MatrixDifference(b.GetTargetMass(), alone.GetTargetMass()), 0.0);
+  }
+  {
+    mp::BoxGridLocator locator(s);
+    mp::OperatorOptions options;
+    options.Fields = us.data();
+    options.FieldComponents = 1;
+    mp::MortarOperator op;
+    ASSERT_TRUE(op.Build(t, s, &locator, options)) << op.GetError();
+    EXPECT_FALSE(op.HasMixedMass());
+    std::vector<double> ut(expected.size());
+    ASSERT_TRUE(op.Apply(us.data(), 1, ut.data(), 0.0).Ok);
+    EXPECT_EQ(ut, expected);
   }
 }
 
