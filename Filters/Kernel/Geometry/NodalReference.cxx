@@ -1,0 +1,318 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// NodalReference and NodalIsStraight (NodalShapes.h): the inverse of the
+// isoparametric map, by (Gauss-)Newton on the shape functions.
+#include "Geometry/NodalShapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace mp
+{
+namespace
+{
+/// Solves the n x n system A y = b (n <= 3, y into b) by elimination with
+/// partial pivoting, and gives A's determinant; false for a zero pivot.
+bool Solve(int n, double A[3][3], double* b, double& determinant)
+{
+  determinant = 1.0;
+  for (int k = 0; k < n; ++k)
+  {
+    int pivot = k;
+    for (int i = k + 1; i < n; ++i)
+    {
+      pivot = std::abs(A[i][k]) > std::abs(A[pivot][k]) ? i : pivot;
+    }
+    if (!(std::abs(A[pivot][k]) > 0.0))
+    {
+      return false;
+    }
+    determinant *= A[pivot][k];
+    std::swap(A[k], A[pivot]);
+    std::swap(b[k], b[pivot]);
+    for (int i = k + 1; i < n; ++i)
+    {
+      const double factor = A[i][k] / A[k][k];
+      for (int j = k; j < n; ++j)
+      {
+        A[i][j] -= factor * A[k][j];
+      }
+      b[i] -= factor * b[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; --k)
+  {
+    for (int j = k + 1; j < n; ++j)
+    {
+      b[k] -= A[k][j] * b[j];
+    }
+    b[k] /= A[k][k];
+  }
+  return true;
+}
+
+/// A cell's nodes relative to its first corner (so that rounding scales
+/// with the cell, not with its distance from the origin), and its size.
+struct LocalCell
+{
+  NodalType Type;
+  int Dimension;
+  int Space;
+  int Count;
+  double X[MaxNodalNodes][3];
+  double Size;
+};
+
+LocalCell MakeLocal(NodalType type, const double* X, int space)
+{
+  LocalCell cell;
+  cell.Type = type;
+  cell.Dimension = NodalCellDimension(type);
+  cell.Space = space;
+  cell.Count = NodalNodeCount(type);
+  double lo[3] = { 0.0, 0.0, 0.0 };
+  double hi[3] = { 0.0, 0.0, 0.0 };
+  for (int n = 0; n < cell.Count; ++n)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      cell.X[n][i] = i < space ? X[n * 3 + i] - X[i] : 0.0;
+      if (n < NodalCornerCount(type))
+      {
+        lo[i] = std::min(lo[i], cell.X[n][i]);
+        hi[i] = std::max(hi[i], cell.X[n][i]);
+      }
+    }
+  }
+  cell.Size = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return cell;
+}
+
+/**
+ * One (Gauss-)Newton step for sum_n N_n(xi) X_n = x over the first `count`
+ * nodes with the functions `shapes` (the corners' or the full ones):
+ * step = the least-squares solution of J step = x - x(xi). False when J's
+ * columns are dependent (relative 1e-13).
+ */
+template <typename Shapes>
+bool NewtonStep(
+  const LocalCell& cell, int count, Shapes shapes, const double* x, const double* xi, double* step)
+{
+  double N[MaxNodalNodes];
+  double dN[MaxNodalNodes * 3];
+  shapes(xi, N, dN);
+  double residual[3] = { x[0], x[1], x[2] };
+  double J[3][3] = {}; // J[i][a] = dx_i / dxi_a
+  for (int n = 0; n < count; ++n)
+  {
+    for (int i = 0; i < cell.Space; ++i)
+    {
+      residual[i] -= N[n] * cell.X[n][i];
+      for (int a = 0; a < cell.Dimension; ++a)
+      {
+        J[i][a] += dN[n * 3 + a] * cell.X[n][i];
+      }
+    }
+  }
+  const int d = cell.Dimension;
+  double A[3][3] = {};
+  double b[3] = { 0.0, 0.0, 0.0 };
+  double lengths = 1.0; // the product of the columns' lengths
+  for (int a = 0; a < d; ++a)
+  {
+    double length = 0.0;
+    for (int i = 0; i < cell.Space; ++i)
+    {
+      length += J[i][a] * J[i][a];
+    }
+    lengths *= std::sqrt(length);
+  }
+  if (cell.Space == d)
+  {
+    std::copy(&J[0][0], &J[0][0] + 9, &A[0][0]);
+    std::copy(residual, residual + 3, b);
+  }
+  else // the normal equations J^T J step = J^T residual
+  {
+    for (int a = 0; a < d; ++a)
+    {
+      for (int c = 0; c < d; ++c)
+      {
+        for (int i = 0; i < cell.Space; ++i)
+        {
+          A[a][c] += J[i][a] * J[i][c];
+        }
+      }
+      for (int i = 0; i < cell.Space; ++i)
+      {
+        b[a] += J[i][a] * residual[i];
+      }
+    }
+  }
+  // The volume the columns span against the product of their lengths
+  // (1 for orthogonal columns): |det J|, or sqrt(det J^T J) in space.
+  double determinant = 0.0;
+  if (!Solve(d, A, b, determinant))
+  {
+    return false;
+  }
+  const double volume = cell.Space == d ? std::abs(determinant) : std::sqrt(std::abs(determinant));
+  if (!(volume > 1e-13 * lengths))
+  {
+    return false;
+  }
+  std::copy(b, b + d, step);
+  return true;
+}
+
+/// The determinant of the full map's Jacobian at xi (cell dimension =
+/// space dimension).
+double Orientation(const LocalCell& cell, const double* xi)
+{
+  double dN[MaxNodalNodes * 3];
+  NodalDerivatives(cell.Type, xi, dN);
+  double J[3][3] = {};
+  for (int n = 0; n < cell.Count; ++n)
+  {
+    for (int i = 0; i < cell.Space; ++i)
+    {
+      for (int a = 0; a < cell.Dimension; ++a)
+      {
+        J[i][a] += dN[n * 3 + a] * cell.X[n][i];
+      }
+    }
+  }
+  switch (cell.Dimension)
+  {
+    case 1:
+      return J[0][0];
+    case 2:
+      return J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    default:
+      return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+        J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+        J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  }
+}
+
+/**
+ * Newton iterations from xi: stops at a step below 1e-14 (not applied, so
+ * an exact start stays exact), or at one below 1e-10 over half the last
+ * (the steps no longer shrink: the rounding floor). False when singular or not converged in 50 steps.
+ */
+template <typename Shapes>
+bool Iterate(const LocalCell& cell, int count, Shapes shapes, const double* x, double* xi)
+{
+  double previous = HUGE_VAL;
+  for (int iteration = 0; iteration < 50; ++iteration)
+  {
+    double step[3] = { 0.0, 0.0, 0.0 };
+    if (!NewtonStep(cell, count, shapes, x, xi, step))
+    {
+      return false;
+    }
+    double size = 0.0;
+    for (int a = 0; a < cell.Dimension; ++a)
+    {
+      size = std::max(size, std::abs(step[a]));
+    }
+    if (size <= 1e-14 || (size <= 1e-10 && size > 0.5 * previous))
+    {
+      return true;
+    }
+    for (int a = 0; a < cell.Dimension; ++a)
+    {
+      xi[a] += step[a];
+    }
+    previous = size;
+  }
+  return false;
+}
+} // namespace
+
+bool NodalReference(
+  NodalType type, const double* X, int spaceDimension, const double* x, double* xi)
+{
+  const int d = NodalCellDimension(type);
+  xi[0] = xi[1] = xi[2] = 0.0;
+  if (d == 0 || spaceDimension < d || spaceDimension > 3)
+  {
+    return false;
+  }
+  const LocalCell cell = MakeLocal(type, X, spaceDimension);
+  double local[3] = { 0.0, 0.0, 0.0 };
+  for (int i = 0; i < spaceDimension; ++i)
+  {
+    local[i] = x[i] - X[i];
+  }
+  // Start at the reference cell's centre (a corner's simplex: one step is
+  // the affine solve) and invert the corners' map, then the full one.
+  double centre[3] = { 0.0, 0.0, 0.0 };
+  double nodes[MaxNodalNodes * 3];
+  NodalReferenceNodes(type, nodes);
+  const int corners = NodalCornerCount(type);
+  for (int n = 0; n < corners; ++n)
+  {
+    for (int a = 0; a < d; ++a)
+    {
+      centre[a] += nodes[n * 3 + a] / corners;
+    }
+  }
+  if (type == NodalType::Pyramid13)
+  {
+    centre[0] = centre[1] = 0.5; // the apex's (0, 0) is one of its points
+  }
+  auto linear = [type](
+                  const double* p, double* N, double* dN) { NodalCornerFunctions(type, p, N, dN); };
+  auto full = [type](const double* p, double* N, double* dN) {
+    NodalValues(type, p, N);
+    NodalDerivatives(type, p, dN);
+  };
+  std::copy(centre, centre + 3, xi);
+  if (!Iterate(cell, corners, linear, local, xi))
+  {
+    std::copy(centre, centre + 3, xi);
+  }
+  if (!Iterate(cell, cell.Count, full, local, xi))
+  {
+    return false;
+  }
+  // On the cell's own sheet only: past a fold of the extrapolated map (or
+  // inside an inverted cell) the map turns the other way round.
+  return spaceDimension > d || Orientation(cell, xi) * Orientation(cell, centre) > 0.0;
+}
+
+bool NodalIsStraight(NodalType type, const double* X, int spaceDimension, double tolerance)
+{
+  if (NodalCellDimension(type) == 0)
+  {
+    return true;
+  }
+  const LocalCell cell = MakeLocal(type, X, spaceDimension);
+  double nodes[MaxNodalNodes * 3];
+  NodalReferenceNodes(type, nodes);
+  const int corners = NodalCornerCount(type);
+  const double bound = tolerance * cell.Size;
+  for (int n = corners; n < cell.Count; ++n)
+  {
+    double N[8];
+    NodalCornerFunctions(type, nodes + 3 * n, N, nullptr);
+    double distance2 = 0.0;
+    for (int i = 0; i < spaceDimension; ++i)
+    {
+      double linear = 0.0;
+      for (int c = 0; c < corners; ++c)
+      {
+        linear += N[c] * cell.X[c][i];
+      }
+      distance2 += (cell.X[n][i] - linear) * (cell.X[n][i] - linear);
+    }
+    if (!(std::sqrt(distance2) <= bound))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace mp
