@@ -35,6 +35,7 @@ using mp::NodalType;
 struct NodalMesh
 {
   int Dimension = 2;
+  int Space = 0;              // SpaceDimension (0: Dimension)
   std::vector<double> Points; // x, y, z
   std::vector<Index> Cells;   // the split's simplices
   std::vector<Index> Parent;
@@ -64,6 +65,15 @@ struct NodalMesh
     this->Simplex({ n[5], n[4], n[2] });
     this->Simplex({ n[3], n[4], n[5] });
   }
+  /// An edge3 (VTK order: ends, then middle) split into its 2 segments.
+  void Edge3(const std::array<Index, 3>& n)
+  {
+    this->Types.push_back(NodalType::Edge3);
+    this->Nodes.insert(this->Nodes.end(), n.begin(), n.end());
+    this->Offsets.push_back(Index(this->Nodes.size()));
+    this->Simplex({ n[0], n[2] });
+    this->Simplex({ n[2], n[1] });
+  }
   /// A tet10 (VTK order) split into its 4 corner tetrahedra and the 4 of
   /// its octahedron around the diagonal from mid 01 to mid 23.
   void Tetra10(const std::array<Index, 10>& n)
@@ -90,7 +100,8 @@ struct NodalMesh
   mp::MeshView View(bool withNeighbors = true) const
   {
     mp::MeshView v;
-    v.CellDimension = v.SpaceDimension = this->Dimension;
+    v.CellDimension = this->Dimension;
+    v.SpaceDimension = this->Space > 0 ? this->Space : this->Dimension;
     v.Points = this->Points.data();
     v.NumberOfPoints = this->NumberOfPoints();
     v.Connectivity = this->Cells.data();
@@ -434,7 +445,7 @@ void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<do
       fs.Bind(s, mp::SpaceType::P1, b);
       std::vector<double> bts(size_t(ft.Count * fs.Count), 0.0),
         btt(size_t(ft.Count * ft.Count), 0.0);
-      mp::AddQuadratureBlocks<I>(piece, ft, fs, bts.data(), btt.data(), nullptr);
+      mp::AddQuadratureBlocks<I>(piece, ct, ft, s, fs, bts.data(), btt.data(), nullptr);
       for (int i = 0; i < ft.Count; ++i)
       {
         for (int j = 0; j < fs.Count; ++j)
@@ -577,6 +588,76 @@ TEST(NodalSpace, TasksSharedSearchAndFields)
   }
 }
 
+/// `mesh` (planar, z = 0) moved onto a tilted plane in space (a surface in 3D).
+NodalMesh Tilted(NodalMesh mesh)
+{
+  const double e1[3] = { 0.6, 0.0, 0.8 }, e2[3] = { 0.0, 1.0, 0.0 }, o[3] = { 0.3, -0.2, 0.5 };
+  for (Index p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    double* x = &mesh.Points[3 * p];
+    const double u = x[0], v = x[1];
+    for (int a = 0; a < 3; ++a)
+      x[a] = o[a] + u * e1[a] + v * e2[a];
+  }
+  mesh.Space = 3;
+  mesh.Finish();
+  return mesh;
+}
+
+/// In the tilted plane's coordinates: a quadratic and a linear field.
+double TiltedQuadratic(const double* x)
+{
+  const double u = (x[0] - 0.3) * 0.6 + (x[2] - 0.5) * 0.8, v = x[1] + 0.2;
+  const double p[2] = { u, v };
+  return Quadratic2(p);
+}
+
+// Surfaces in 3D: a quadratic field on straight tri6 facets of a tilted
+// plane, and a linear one on curved disks in it.
+TEST(NodalSpace, Surfaces)
+{
+  EXPECT_LE(
+    WorstRelativeError(Tilted(Square(5, 0.2, 16)), Tilted(Square(4, 0.2, 17)), TiltedQuadratic),
+    1e-9);
+  EXPECT_LE(WorstRelativeError(Tilted(Disk(4)), Tilted(Disk(5)),
+              [](const double* x) { return 0.5 - 2.0 * x[0] + 3.0 * x[1] + x[2]; }),
+    1e-9);
+  ExpectBruteForce<mp::SurfaceIntersector>(Tilted(Square(2, 0.2, 18)), Tilted(Square(3, 0.2, 19)));
+}
+
+/// Edge3 cells along the line from (0.1, 0.2) in direction (0.6, 0.8),
+/// n of them over [0, 1], their ends jittered (mid nodes in the middle).
+NodalMesh Line(int n, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> shift(-0.2, 0.2);
+  NodalMesh mesh;
+  mesh.Dimension = 1;
+  mesh.Space = 2;
+  std::vector<double> t(size_t(2 * n + 1));
+  for (int i = 0; i <= 2 * n; i += 2)
+    t[i] = (i + (i > 0 && i < 2 * n ? 2.0 * shift(random) : 0.0)) / (2 * n);
+  for (int i = 1; i < 2 * n; i += 2)
+    t[i] = 0.5 * (t[i - 1] + t[i + 1]);
+  for (double s : t)
+    mesh.Points.insert(mesh.Points.end(), { 0.1 + 0.6 * s, 0.2 + 0.8 * s, 0.0 });
+  for (int i = 0; i < 2 * n; i += 2)
+    mesh.Edge3({ i, i + 2, i + 1 });
+  mesh.Finish();
+  return mesh;
+}
+
+// Curves: a quadratic field along a line of edge3 cells.
+TEST(NodalSpace, Curves)
+{
+  const auto alongLine = [](const double* x) {
+    const double s = 0.6 * (x[0] - 0.1) + 0.8 * (x[1] - 0.2);
+    return 1.0 - 2.0 * s + 5.0 * s * s;
+  };
+  EXPECT_LE(WorstRelativeError(Line(7, 20), Line(5, 21), alongLine), 1e-9);
+  ExpectBruteForce<mp::SegmentIntersector>(Line(3, 22), Line(4, 23));
+}
+
 // A lumped mass is refused on a target of second-order cells.
 TEST(NodalSpace, LumpedRefused)
 {
@@ -600,3 +681,31 @@ TEST(NodalSpace, BadNodeNamed)
   EXPECT_NE(b.Op.GetError().find("second-order cell 3"), std::string::npos) << b.Op.GetError();
 }
 } // namespace
+
+#include <chrono>
+TEST(NodalSpace, DISABLED_Speed)
+{
+  for (int n : { 8 })
+  {
+    const NodalMesh source = Cube(n, 0.15, 21);
+    const NodalMesh target = Cube(n + 1, 0.15, 22);
+    NodalMesh ls = source, lt = target;
+    ls.Linear = lt.Linear = true;
+    ls.Neighbors = source.Neighbors;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      auto t0 = std::chrono::steady_clock::now();
+      Built nodal(target, source);
+      auto t1 = std::chrono::steady_clock::now();
+      Built linear(lt, ls);
+      auto t2 = std::chrono::steady_clock::now();
+      std::printf(
+        "n %d: %zu tet10 target, nodal %.3f s (search %.3f, assembly %.3f), linear %.3f s "
+        "(search %.3f), pieces %lld\n",
+        n, target.Types.size(), std::chrono::duration<double>(t1 - t0).count(),
+        nodal.Op.GetTimings().Search, nodal.Op.GetTimings().Assembly,
+        std::chrono::duration<double>(t2 - t1).count(), linear.Op.GetTimings().Search,
+        (long long)nodal.Op.GetStatistics().Pieces);
+    }
+  }
+}

@@ -123,11 +123,10 @@ bool MortarOperator::Check(
     return false;
   }
   if ((HasNodalSpace(options.TargetSpace, target) || HasNodalSpace(options.SourceSpace, source)) &&
-    !(target.IsVolumeMesh() && source.IsVolumeMesh() &&
-      target.CellDimension == source.CellDimension))
+    trace)
   {
-    this->Error = "point data on second-order cells is projected between triangles in the plane "
-                  "or tetrahedra only (not yet on surfaces, curves or traces)";
+    this->Error = "point data on second-order cells is not projected onto a trace (a surface "
+                  "or curve in a volume) yet";
     return false;
   }
   if (options.TargetSpace == SpaceType::DP1)

@@ -7,8 +7,8 @@ namespace mp
 {
 namespace
 {
-/// The inverse of the d x d matrix whose column k - 1 is corner k minus
-/// corner 0 (d = 1, 2, 3); false when it is singular.
+/// The inverse of a d x d matrix (d = 1, 2, 3): of the edges from corner
+/// 0 (column k - 1: corner k), or of their Gram matrix; false when singular.
 bool InvertEdges(int d, const double (&e)[3][3], double (&inverse)[3][3])
 {
   if (d == 1)
@@ -178,22 +178,56 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
   const double* x0 = mesh.Point(simplex[0]);
   std::copy(x0, x0 + 3, this->Origin);
   const int d = this->Corners - 1;
-  double e[3][3] = {};
+  const int n = this->Dimension;
+  double e[3][3] = {}; // column k - 1: corner k - corner 0
   for (int k = 1; k <= d; ++k)
   {
-    for (int a = 0; a < d; ++a)
+    for (int a = 0; a < n; ++a)
     {
       e[a][k - 1] = mesh.Point(simplex[k])[a] - x0[a];
     }
   }
-  InvertEdges(d, e, this->Inverse);
+  if (d == n)
+  {
+    InvertEdges(d, e, this->Inverse);
+    return;
+  }
+  // A facet or segment in a higher space: the least-squares inverse
+  // (E^T E)^-1 E^T, which maps a point to the barycentric coordinates of
+  // its orthogonal projection onto the simplex's plane or line.
+  double g[3][3] = {};
+  for (int r = 0; r < d; ++r)
+  {
+    for (int k = 0; k < d; ++k)
+    {
+      for (int a = 0; a < n; ++a)
+      {
+        g[r][k] += e[a][r] * e[a][k];
+      }
+    }
+  }
+  double gi[3][3];
+  InvertEdges(d, g, gi);
+  for (int r = 0; r < d; ++r)
+  {
+    for (int a = 0; a < n; ++a)
+    {
+      double v = 0.0;
+      for (int k = 0; k < d; ++k)
+      {
+        v += gi[r][k] * e[a][k];
+      }
+      this->Inverse[r][a] = v;
+    }
+  }
 }
 
 void NodalFunctions::Barycentric(const double* x, double* lambda) const
 {
   const int d = this->Corners - 1;
+  const int n = this->Dimension;
   double shift[3];
-  for (int a = 0; a < d; ++a)
+  for (int a = 0; a < n; ++a)
   {
     shift[a] = x[a] - this->Origin[a];
   }
@@ -201,7 +235,7 @@ void NodalFunctions::Barycentric(const double* x, double* lambda) const
   for (int r = 0; r < d; ++r)
   {
     double v = 0.0;
-    for (int a = 0; a < d; ++a)
+    for (int a = 0; a < n; ++a)
     {
       v += this->Inverse[r][a] * shift[a];
     }

@@ -87,7 +87,8 @@ public:
   SpaceType Space = SpaceType::P1; ///< the bound space
 
 private:
-  /// The barycentric coordinates 1..d of x in the corner simplex.
+  /// The barycentric coordinates 0..d of x in the affine simplex (of its
+  /// orthogonal projection onto a facet's plane or a segment's line).
   void Barycentric(const double* x, double* lambda) const;
 
   NodalType Type = NodalType::None;
@@ -95,7 +96,7 @@ private:
   int Corners = 3;             ///< of the affine simplex (Dimension + 1)
   bool Affine = true;          ///< the values come from the barycentric coordinates
   double Origin[3] = {};       ///< corner 0 of the affine simplex
-  double Inverse[3][3] = {};   ///< x - Origin to barycentric coordinates 1..d
+  double Inverse[3][3] = {};   ///< x - Origin (Dimension coordinates) to barycentric 1..d
   double Reference[4][3] = {}; ///< nodal affine: the reference coordinates of the corners
   double Nodes[3 * MaxNodalFunctions] = {}; ///< the parent's nodes (3 coordinates each)
 };

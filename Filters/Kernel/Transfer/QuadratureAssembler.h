@@ -26,15 +26,19 @@
  * fractions, the source cover, the kept pieces and the counts are those of
  * MortarAssembler.
  *
- * Volumes only (triangles in the plane, tetrahedra): the other
- * intersectors' pieces live in a target frame that the source's nodes do
- * not (QuadratureSupports).
+ * Triangles in the plane, tetrahedra, surfaces and curves: a surface's or
+ * curve's piece lies in the target facet's frame, where each quadrature
+ * point is taken back to the target facet and to the source facet it is
+ * the image of (PiecePlaces), the functions evaluated there. Not the
+ * traces (QuadratureSupports).
  */
 #ifndef MeshProjection_Kernel_QuadratureAssembler_h
 #define MeshProjection_Kernel_QuadratureAssembler_h
 
 #include "Geometry/IntersectionPieces.h"
+#include "Geometry/SegmentIntersector.h"
 #include "Geometry/SimplexQuadrature.h"
+#include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Transfer/MixedMatrix.h"
@@ -46,31 +50,22 @@
 
 namespace mp
 {
-/// Whether the quadrature assembler takes intersector I's pieces.
+/// Whether the quadrature assembler takes intersector I's pieces (not the traces').
 template <class I>
 constexpr bool QuadratureSupports =
-  std::is_same<I, TriangleIntersector>::value || std::is_same<I, TetrahedronIntersector>::value;
+  std::is_same<I, TriangleIntersector>::value || std::is_same<I, TetrahedronIntersector>::value ||
+  std::is_same<I, SurfaceIntersector>::value || std::is_same<I, SegmentIntersector>::value;
 
 /**
- * Calls f(corners, measure) for each simplex of `piece` (corners: D + 1
- * pointers to D coordinates; measure signed, as the piece's own).
+ * Calls f(corners, measure) for each simplex of `piece` in the
+ * intersector's D coordinates (corners: D + 1 pointers to D coordinates;
+ * measure signed, as the piece's own): a polygon fanned from its first
+ * vertex, a polyhedron's tetrahedra, an interval.
  */
 template <class I, class F>
 void ForEachPieceSimplex(const typename I::Piece& piece, F&& f)
 {
-  if constexpr (std::is_same<I, TriangleIntersector>::value)
-  {
-    const double* o = piece.X[0];
-    for (int i = 1; i + 1 < piece.NumberOfVertices; ++i)
-    {
-      const double* p = piece.X[i];
-      const double* q = piece.X[i + 1];
-      const double area = 0.5 * ((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]));
-      const double* corners[3] = { o, p, q };
-      f(corners, area);
-    }
-  }
-  else if constexpr (std::is_same<I, TetrahedronIntersector>::value)
+  if constexpr (std::is_same<I, TetrahedronIntersector>::value)
   {
     for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
     {
@@ -82,29 +77,96 @@ void ForEachPieceSimplex(const typename I::Piece& piece, F&& f)
       f(corners, piece.Volume[i]);
     }
   }
+  else if constexpr (std::is_same<I, SegmentIntersector>::value)
+  {
+    if (piece.NumberOfVertices == 2)
+    {
+      const double* corners[2] = { piece.X[0], piece.X[1] };
+      f(corners, piece.X[1][0] - piece.X[0][0]);
+    }
+  }
+  else
+  {
+    const double* o = piece.X[0];
+    for (int i = 1; i + 1 < piece.NumberOfVertices; ++i)
+    {
+      const double* p = piece.X[i];
+      const double* q = piece.X[i + 1];
+      const double area = 0.5 * ((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]));
+      const double* corners[3] = { o, p, q };
+      f(corners, area);
+    }
+  }
+}
+
+/**
+ * Where point x of a piece (in intersector I's D coordinates) lies on the
+ * target mesh (`onTarget`) and on the source mesh (`onSource`), in each
+ * mesh's SpaceDimension coordinates: the same point for volumes; for
+ * surfaces and curves the point of the target facet or segment in space,
+ * and the point of the source facet or segment whose image it is (the
+ * same barycentric coordinates on the source's projection, Piece::Projected).
+ */
+template <class I>
+void PiecePlaces(const typename I::Cell& t, const typename I::Piece& piece, const MeshView& source,
+  const double* x, double* onTarget, double* onSource)
+{
+  if constexpr (std::is_same<I, SurfaceIntersector>::value)
+  {
+    const TriangleIntersector::Cell& p = piece.Projected;
+    const double u = x[0] - p.X[0][0], v = x[1] - p.X[0][1];
+    const double l[3] = { 0.0, p.Inverse[0][0] * u + p.Inverse[0][1] * v,
+      p.Inverse[1][0] * u + p.Inverse[1][1] * v };
+    for (int a = 0; a < 3; ++a)
+    {
+      onTarget[a] = t.Origin[a] + x[0] * t.Axis[0][a] + x[1] * t.Axis[1][a];
+      onSource[a] = (1.0 - l[1] - l[2]) * source.Point(p.Points[0])[a] +
+        l[1] * source.Point(p.Points[1])[a] + l[2] * source.Point(p.Points[2])[a];
+    }
+  }
+  else if constexpr (std::is_same<I, SegmentIntersector>::value)
+  {
+    const SegmentIntersector::Cell& p = piece.Projected;
+    const double l = (x[0] - p.X[0][0]) * p.Inverse[0][0];
+    for (int a = 0; a < 3; ++a)
+    {
+      onTarget[a] = t.Origin[a] + x[0] * t.Axis[a];
+      onSource[a] = (1.0 - l) * p.Corner[0][a] + l * p.Corner[1][a];
+    }
+  }
+  else
+  {
+    for (int a = 0; a < I::Dimension; ++a)
+    {
+      onTarget[a] = onSource[a] = x[a];
+    }
+  }
 }
 
 /**
  * Sums one piece's blocks by quadrature: Mts[i][j] += int phi_i psi_j,
- * Mtt[i][k] += int phi_i phi_k (row-major, t.Count wide), and, with
- * `sourceIntegrals`, the integrals of the psi_j. The functions t and s
- * bound to the piece's cells. The reference the assembled matrices are
- * checked against, and the assembler's own step.
+ * Mtt[i][k] += int phi_i phi_k (row-major, ft.Count wide), and, with
+ * `sourceIntegrals`, the integrals of the psi_j; over the piece as the
+ * target sees it (a surface's or curve's: on the target facet). The
+ * functions ft and fs bound to the piece's cells t and (of `source`) s.
+ * The reference the assembled matrices are checked against, and the
+ * assembler's own step.
  */
 template <class I>
-void AddQuadratureBlocks(const typename I::Piece& piece, const NodalFunctions& t,
-  const NodalFunctions& s, double* Mts, double* Mtt, double* sourceIntegrals)
+void AddQuadratureBlocks(const typename I::Piece& piece, const typename I::Cell& t,
+  const NodalFunctions& ft, const MeshView& source, const NodalFunctions& fs, double* Mts,
+  double* Mtt, double* sourceIntegrals)
 {
   constexpr int D = I::Dimension;
-  const int nt = t.Count;
-  const int ns = s.Count;
-  const int degree = std::max(t.Degree + s.Degree, std::max(2 * t.Degree, 1));
+  const int nt = ft.Count;
+  const int ns = fs.Count;
+  const int degree = std::max(ft.Degree + fs.Degree, std::max(2 * ft.Degree, 1));
   const SimplexRule& rule = SimplexQuadrature(D, std::min(degree, MaxSimplexDegree));
   ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
     for (int q = 0; q < rule.Points; ++q)
     {
       const double* b = &rule.Barycentric[static_cast<size_t>(q) * (D + 1)];
-      double x[3] = { 0.0, 0.0, 0.0 };
+      double x[D] = {};
       for (int k = 0; k <= D; ++k)
       {
         for (int a = 0; a < D; ++a)
@@ -112,10 +174,12 @@ void AddQuadratureBlocks(const typename I::Piece& piece, const NodalFunctions& t
           x[a] += b[k] * corners[k][a];
         }
       }
+      double onTarget[3], onSource[3];
+      PiecePlaces<I>(t, piece, source, x, onTarget, onSource);
       double phi[MaxNodalFunctions];
       double psi[MaxNodalFunctions];
-      t.Values(x, phi);
-      s.Values(x, psi);
+      ft.Values(onTarget, phi);
+      fs.Values(onSource, psi);
       const double w = rule.Weight[q] * measure;
       for (int i = 0; i < nt; ++i)
       {
@@ -248,10 +312,12 @@ struct QuadratureAssembler
     this->S.Bind(*this->Source, this->SourceSpace, s.Id);
     const int nt = this->T.Count;
     const int ns = this->S.Count;
+    // A piece's measure on the source cell per unit of its own (surfaces, curves).
+    const double scale = Intersector::SourceScale(s, piece);
     this->PieceMts.assign(static_cast<size_t>(nt) * ns, 0.0);
     double integrals[MaxNodalFunctions] = {};
-    AddQuadratureBlocks<Intersector>(piece, this->T, this->S, this->PieceMts.data(),
-      this->Mtt.data(), this->SourceFunctionCovered ? integrals : nullptr);
+    AddQuadratureBlocks<Intersector>(piece, t, this->T, *this->Source, this->S,
+      this->PieceMts.data(), this->Mtt.data(), this->SourceFunctionCovered ? integrals : nullptr);
     for (int j = 0; j < ns; ++j)
     {
       const Column c = static_cast<Column>(this->S.Dofs[j]);
@@ -272,13 +338,13 @@ struct QuadratureAssembler
       }
       if (this->SourceFunctionCovered)
       {
-        this->SourceFunctionCovered[this->S.Dofs[j]] += integrals[j];
+        this->SourceFunctionCovered[this->S.Dofs[j]] += scale * integrals[j];
       }
     }
     ++this->Count;
     if (this->SourceCovered)
     {
-      this->SourceCovered[s.Id] += measure;
+      this->SourceCovered[s.Id] += measure * scale;
     }
     if (this->Pieces)
     {
