@@ -682,30 +682,3 @@ TEST(NodalSpace, BadNodeNamed)
 }
 } // namespace
 
-#include <chrono>
-TEST(NodalSpace, DISABLED_Speed)
-{
-  for (int n : { 8 })
-  {
-    const NodalMesh source = Cube(n, 0.15, 21);
-    const NodalMesh target = Cube(n + 1, 0.15, 22);
-    NodalMesh ls = source, lt = target;
-    ls.Linear = lt.Linear = true;
-    ls.Neighbors = source.Neighbors;
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      auto t0 = std::chrono::steady_clock::now();
-      Built nodal(target, source);
-      auto t1 = std::chrono::steady_clock::now();
-      Built linear(lt, ls);
-      auto t2 = std::chrono::steady_clock::now();
-      std::printf(
-        "n %d: %zu tet10 target, nodal %.3f s (search %.3f, assembly %.3f), linear %.3f s "
-        "(search %.3f), pieces %lld\n",
-        n, target.Types.size(), std::chrono::duration<double>(t1 - t0).count(),
-        nodal.Op.GetTimings().Search, nodal.Op.GetTimings().Assembly,
-        std::chrono::duration<double>(t2 - t1).count(), linear.Op.GetTimings().Search,
-        (long long)nodal.Op.GetStatistics().Pieces);
-    }
-  }
-}

@@ -115,8 +115,12 @@ std::string CheckNodalCells(const MeshView& mesh, const char* name)
 
 void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
 {
-  if (c == this->Cell && space == this->Space)
+  if (space == this->Space &&
+    (c == this->Cell ||
+      (this->Type != NodalType::None && space == SpaceType::P1 &&
+        mesh.ParentOf(c) == this->Parent)))
   {
+    this->Cell = c; // (a second-order parent's functions are the same on all its simplices)
     return;
   }
   this->Cell = c;
@@ -133,6 +137,7 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
     return;
   }
   const Index p = mesh.ParentOf(c);
+  this->Parent = p;
   const NodalType type = space == SpaceType::P1 ? NodalTypeOf(mesh, p) : NodalType::None;
   const CellCorners corners = mesh.Cell(c);
   // The affine simplex: the cell itself, or a simplex parent's corners.
@@ -245,38 +250,60 @@ void NodalFunctions::Barycentric(const double* x, double* lambda) const
   lambda[0] = 1.0 - sum;
 }
 
-void NodalFunctions::Values(const double* x, double* values) const
+int NodalFunctions::Coordinates(const double* x, double* c) const
+{
+  if (this->Space == SpaceType::P0)
+  {
+    return 0;
+  }
+  if (this->Type == NodalType::None)
+  {
+    this->Barycentric(x, c);
+    return this->Corners;
+  }
+  double lambda[4];
+  this->Barycentric(x, lambda);
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = 0.0;
+    for (int k = 0; k < this->Corners; ++k)
+    {
+      c[a] += lambda[k] * this->Reference[k][a];
+    }
+  }
+  return 3;
+}
+
+void NodalFunctions::ValuesAt(const double* c, double* values) const
 {
   if (this->Space == SpaceType::P0)
   {
     values[0] = 1.0;
-    return;
   }
-  if (this->Type == NodalType::None)
+  else if (this->Type == NodalType::None)
   {
-    this->Barycentric(x, values);
-    return;
-  }
-  double xi[3] = { 0.0, 0.0, 0.0 };
-  if (this->Affine)
-  {
-    double lambda[4];
-    this->Barycentric(x, lambda);
-    for (int k = 0; k < this->Corners; ++k)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        xi[a] += lambda[k] * this->Reference[k][a];
-      }
-    }
+    std::copy(c, c + this->Corners, values);
   }
   else
   {
-    double point[3] = { x[0], x[1], this->Dimension == 3 ? x[2] : 0.0 };
-    // (Outside the cell by rounding, or where Newton stalls on a badly
-    // curved cell, its last iterate is the best there is.)
-    NodalReference(this->Type, this->Nodes, this->Dimension, point, xi);
+    NodalValues(this->Type, c, values);
   }
+}
+
+void NodalFunctions::Values(const double* x, double* values) const
+{
+  if (this->Affine)
+  {
+    double c[4];
+    this->Coordinates(x, c);
+    this->ValuesAt(c, values);
+    return;
+  }
+  double xi[3] = { 0.0, 0.0, 0.0 };
+  double point[3] = { x[0], x[1], this->Dimension == 3 ? x[2] : 0.0 };
+  // (Outside the cell by rounding, or where Newton stalls on a badly
+  // curved cell, its last iterate is the best there is.)
+  NodalReference(this->Type, this->Nodes, this->Dimension, point, xi);
   NodalValues(this->Type, xi, values);
 }
 } // namespace mp

@@ -70,7 +70,8 @@ std::string CheckNodalCells(const MeshView& mesh, const char* name);
  *    through the inverse map), else the simplex's corners (barycentric);
  *  - P0: the parent's one function, 1;
  *  - DP1: the simplex's corners' own functions (c (d + 1) + k).
- * Rebinding the same cell costs nothing: a task keeps one per side.
+ * Rebinding the same cell (or a simplex of the same second-order parent)
+ * costs nothing: a task keeps one per side, each bound to one mesh only.
  */
 class NodalFunctions
 {
@@ -79,6 +80,19 @@ public:
   void Bind(const MeshView& mesh, SpaceType space, Index c);
   /// The bound functions' values at x (SpaceDimension coordinates), in the order of Dofs.
   void Values(const double* x, double* values) const;
+  /**
+   * An affine cell's functions read from coordinates that are affine in x
+   * (the barycentric ones, or a second-order parent's reference ones):
+   * those of x into c (at most 4; their count returned), and the values
+   * from such c, which may be a barycentric combination of several points'
+   * (a quadrature point's from its simplex's corners').
+   */
+  int Coordinates(const double* x, double* c) const;
+  void ValuesAt(const double* c, double* values) const;
+
+  /// Whether the functions are polynomials of x (an affine cell: a
+  /// straight or linear parent, P0, DP1), so that rules integrate them exactly.
+  bool IsAffine() const { return this->Affine; }
 
   int Count = 0;                   ///< functions on the cell
   Index Dofs[MaxNodalFunctions];   ///< their global numbers
@@ -92,6 +106,7 @@ private:
   void Barycentric(const double* x, double* lambda) const;
 
   NodalType Type = NodalType::None;
+  Index Parent = -1;           ///< of the bound cell
   int Dimension = 2;           ///< coordinates of a point (the mesh's SpaceDimension)
   int Corners = 3;             ///< of the affine simplex (Dimension + 1)
   bool Affine = true;          ///< the values come from the barycentric coordinates

@@ -17,8 +17,10 @@
  * of their polynomial approximation on the piece.
  *
  * Both M_ts and M_tt come from the pieces (on a curved cell the covered
- * part is what the pieces measure, so no element matrix stands in for a
- * cell covered whole). When a target cell's last piece has come, its
+ * part is what the pieces measure), but for an affine cell (straight or
+ * linear) covered whole, whose M_tt block the rule on the cell gives
+ * exactly, once (ElementMass): the pieces' points are kept per cell until
+ * its last piece says which. When a target cell's last piece has come, its
  * blocks go to the task's MixedBlocks, one block per target function
  * (RowsPerBlock 1: the cells have different numbers of functions), M_ts's
  * into Blocks and M_tt's into MassBlocks; M_tt is then assembled from
@@ -45,6 +47,8 @@
 #include "Transfer/NodalSpace.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <type_traits>
 #include <vector>
 
@@ -143,19 +147,36 @@ void PiecePlaces(const typename I::Cell& t, const typename I::Piece& piece, cons
   }
 }
 
+/// sum_k b[k] corner[k][0 .. count).
+template <int D>
+inline std::array<double, 4> Combination(
+  const double* b, const double (&corner)[D + 1][4], int count)
+{
+  std::array<double, 4> c{};
+  for (int k = 0; k <= D; ++k)
+  {
+    for (int a = 0; a < count; ++a)
+    {
+      c[a] += b[k] * corner[k][a];
+    }
+  }
+  return c;
+}
+
 /**
  * Sums one piece's blocks by quadrature: Mts[i][j] += int phi_i psi_j,
- * Mtt[i][k] += int phi_i phi_k (row-major, ft.Count wide), and, with
- * `sourceIntegrals`, the integrals of the psi_j; over the piece as the
- * target sees it (a surface's or curve's: on the target facet). The
- * functions ft and fs bound to the piece's cells t and (of `source`) s.
- * The reference the assembled matrices are checked against, and the
- * assembler's own step.
+ * Mtt[i][k] += int phi_i phi_k (row-major, ft.Count wide; or, with
+ * `targetPoints`, the weight and the phi_i of every point appended there
+ * for TargetMassFromPoints), and, with `sourceIntegrals`, the integrals of
+ * the psi_j; over the piece as the target sees it (a surface's or curve's:
+ * on the target facet). The functions ft and fs bound to the piece's cells
+ * t and (of `source`) s. The reference the assembled matrices are checked
+ * against, and the assembler's own step.
  */
 template <class I>
 void AddQuadratureBlocks(const typename I::Piece& piece, const typename I::Cell& t,
   const NodalFunctions& ft, const MeshView& source, const NodalFunctions& fs, double* Mts,
-  double* Mtt, double* sourceIntegrals)
+  double* Mtt, double* sourceIntegrals, std::vector<double>* targetPoints = nullptr)
 {
   constexpr int D = I::Dimension;
   const int nt = ft.Count;
@@ -163,23 +184,51 @@ void AddQuadratureBlocks(const typename I::Piece& piece, const typename I::Cell&
   const int degree = std::max(ft.Degree + fs.Degree, std::max(2 * ft.Degree, 1));
   const SimplexRule& rule = SimplexQuadrature(D, std::min(degree, MaxSimplexDegree));
   ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
+    // An affine side's coordinates at the simplex's corners: a point's are
+    // then their barycentric combination (no inverse map per point).
+    double cornerT[D + 1][4], cornerS[D + 1][4];
+    int countT = 0, countS = 0;
+    for (int k = 0; k <= D && (ft.IsAffine() || fs.IsAffine()); ++k)
+    {
+      double onTarget[3], onSource[3];
+      PiecePlaces<I>(t, piece, source, corners[k], onTarget, onSource);
+      countT = ft.IsAffine() ? ft.Coordinates(onTarget, cornerT[k]) : 0;
+      countS = fs.IsAffine() ? fs.Coordinates(onSource, cornerS[k]) : 0;
+    }
     for (int q = 0; q < rule.Points; ++q)
     {
       const double* b = &rule.Barycentric[static_cast<size_t>(q) * (D + 1)];
-      double x[D] = {};
-      for (int k = 0; k <= D; ++k)
-      {
-        for (int a = 0; a < D; ++a)
-        {
-          x[a] += b[k] * corners[k][a];
-        }
-      }
-      double onTarget[3], onSource[3];
-      PiecePlaces<I>(t, piece, source, x, onTarget, onSource);
       double phi[MaxNodalFunctions];
       double psi[MaxNodalFunctions];
-      ft.Values(onTarget, phi);
-      fs.Values(onSource, psi);
+      if (!ft.IsAffine() || !fs.IsAffine())
+      {
+        double x[D] = {};
+        for (int k = 0; k <= D; ++k)
+        {
+          for (int a = 0; a < D; ++a)
+          {
+            x[a] += b[k] * corners[k][a];
+          }
+        }
+        double onTarget[3], onSource[3];
+        PiecePlaces<I>(t, piece, source, x, onTarget, onSource);
+        if (!ft.IsAffine())
+        {
+          ft.Values(onTarget, phi);
+        }
+        if (!fs.IsAffine())
+        {
+          fs.Values(onSource, psi);
+        }
+      }
+      if (ft.IsAffine())
+      {
+        ft.ValuesAt(Combination<D>(b, cornerT, countT).data(), phi);
+      }
+      if (fs.IsAffine())
+      {
+        fs.ValuesAt(Combination<D>(b, cornerS, countS).data(), psi);
+      }
       const double w = rule.Weight[q] * measure;
       for (int i = 0; i < nt; ++i)
       {
@@ -188,9 +237,20 @@ void AddQuadratureBlocks(const typename I::Piece& piece, const typename I::Cell&
         {
           Mts[i * ns + j] += wi * psi[j];
         }
-        for (int k = 0; k < nt; ++k)
+      }
+      if (targetPoints)
+      {
+        targetPoints->push_back(w);
+        targetPoints->insert(targetPoints->end(), phi, phi + nt);
+      }
+      else
+      {
+        for (int i = 0; i < nt; ++i)
         {
-          Mtt[i * nt + k] += wi * phi[k];
+          for (int k = 0; k < nt; ++k)
+          {
+            Mtt[i * nt + k] += w * phi[i] * phi[k];
+          }
         }
       }
       for (int j = 0; sourceIntegrals && j < ns; ++j)
@@ -199,6 +259,77 @@ void AddQuadratureBlocks(const typename I::Piece& piece, const typename I::Cell&
       }
     }
   });
+}
+
+/// Mtt[i][k] = sum over `points` (weight, then nt values each) of w phi_i phi_k.
+inline void TargetMassFromPoints(const std::vector<double>& points, int nt, double* Mtt)
+{
+  std::fill(Mtt, Mtt + nt * nt, 0.0);
+  for (size_t p = 0; p < points.size(); p += static_cast<size_t>(nt) + 1)
+  {
+    const double w = points[p];
+    const double* phi = &points[p + 1];
+    for (int i = 0; i < nt; ++i)
+    {
+      const double wi = w * phi[i];
+      for (int k = i; k < nt; ++k)
+      {
+        Mtt[i * nt + k] += wi * phi[k];
+      }
+    }
+  }
+  for (int i = 0; i < nt; ++i)
+  {
+    for (int k = 0; k < i; ++k)
+    {
+      Mtt[i * nt + k] = Mtt[k * nt + i];
+    }
+  }
+}
+
+/**
+ * Mtt[i][k] = int phi_i phi_k over kernel cell c of `mesh` whole (of
+ * `measure`), f bound to it: the rule of degree 2 f.Degree on the simplex,
+ * exact where f is affine (a straight or linear parent).
+ */
+inline void ElementMass(
+  const MeshView& mesh, Index c, double measure, const NodalFunctions& f, double* Mtt)
+{
+  const int d = mesh.CellDimension;
+  const int nt = f.Count;
+  const SimplexRule& rule =
+    SimplexQuadrature(d, std::min(std::max(2 * f.Degree, 1), MaxSimplexDegree));
+  const CellCorners corners = mesh.Cell(c);
+  std::fill(Mtt, Mtt + nt * nt, 0.0);
+  for (int q = 0; q < rule.Points; ++q)
+  {
+    const double* b = &rule.Barycentric[static_cast<size_t>(q) * (d + 1)];
+    double x[3] = { 0.0, 0.0, 0.0 };
+    for (int k = 0; k <= d; ++k)
+    {
+      for (int a = 0; a < mesh.SpaceDimension; ++a)
+      {
+        x[a] += b[k] * mesh.Point(corners[k])[a];
+      }
+    }
+    double phi[MaxNodalFunctions];
+    f.Values(x, phi);
+    const double w = rule.Weight[q] * measure;
+    for (int i = 0; i < nt; ++i)
+    {
+      for (int k = i; k < nt; ++k)
+      {
+        Mtt[i * nt + k] += w * phi[i] * phi[k];
+      }
+    }
+  }
+  for (int i = 0; i < nt; ++i)
+  {
+    for (int k = 0; k < i; ++k)
+    {
+      Mtt[i * nt + k] = Mtt[k * nt + i];
+    }
+  }
 }
 
 template <class Intersector>
@@ -232,7 +363,8 @@ struct QuadratureAssembler
   NodalFunctions S;                 ///< the current source cell's
   std::vector<Column> BlockColumns; ///< source functions its pieces met
   std::vector<double> BlockValues;  ///< T.Count per column
-  std::vector<double> Mtt;          ///< T.Count x T.Count
+  std::vector<double> Mtt;          ///< T.Count x T.Count, formed by Flush
+  std::vector<double> TargetPoints; ///< its pieces' points: weight, then T.Count values
   std::vector<double> PieceMts;     ///< one piece's, T.Count x S.Count
 
   void Flush()
@@ -245,12 +377,26 @@ struct QuadratureAssembler
     this->Overcovered += fraction > 1.0 + 1e-9;
     this->CoveredFraction[this->Current] = std::min(1.0, fraction);
     this->CoveredSum += this->Covered;
+    const Index current = this->Current;
     this->Current = -1;
     if (!(this->Covered > 0.0))
     {
       return; // only touching pieces
     }
     const int nt = this->T.Count;
+    // M_tt's block: the cell's own where that is exact (an affine cell
+    // covered whole, as the linear path's element matrix), else the
+    // pieces' points'.
+    this->Mtt.resize(static_cast<size_t>(nt) * nt);
+    if (this->T.IsAffine() &&
+      std::fabs(this->Covered - this->CurrentMeasure) <= 1e-12 * this->CurrentMeasure)
+    {
+      ElementMass(*this->Target, current, this->CurrentMeasure, this->T, this->Mtt.data());
+    }
+    else
+    {
+      TargetMassFromPoints(this->TargetPoints, nt, this->Mtt.data());
+    }
     const size_t columns = this->BlockColumns.size();
     for (int i = 0; i < nt; ++i)
     {
@@ -285,7 +431,7 @@ struct QuadratureAssembler
       this->T.Bind(*this->Target, this->TargetSpace, t.Id);
       this->BlockColumns.clear();
       this->BlockValues.clear();
-      this->Mtt.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
+      this->TargetPoints.clear();
     }
     if constexpr (QuadratureSupports<Intersector>)
     {
@@ -317,7 +463,8 @@ struct QuadratureAssembler
     this->PieceMts.assign(static_cast<size_t>(nt) * ns, 0.0);
     double integrals[MaxNodalFunctions] = {};
     AddQuadratureBlocks<Intersector>(piece, t, this->T, *this->Source, this->S,
-      this->PieceMts.data(), this->Mtt.data(), this->SourceFunctionCovered ? integrals : nullptr);
+      this->PieceMts.data(), nullptr, this->SourceFunctionCovered ? integrals : nullptr,
+      &this->TargetPoints);
     for (int j = 0; j < ns; ++j)
     {
       const Column c = static_cast<Column>(this->S.Dofs[j]);
