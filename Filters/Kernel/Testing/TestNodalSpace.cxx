@@ -420,6 +420,42 @@ TEST(NodalSpace, LinearFieldOnCurvedDisks)
   EXPECT_LE(WorstRelativeError(inside, square, LinearField), 1e-9);
 }
 
+// A target reaching past the source: its functions the source does not
+// meet are invalid (filled), the others still reproduce a quadratic field.
+TEST(NodalSpace, PartlyCovered)
+{
+  const NodalMesh source = Square(5, 0.2, 24);
+  NodalMesh target = Square(4, 0.2, 25);
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+    target.Points[3 * p] += 0.6;
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  const std::vector<double> us = AtPoints(source, Quadratic2);
+  const std::vector<double> exact = AtPoints(target, Quadratic2);
+  std::vector<double> ut(exact.size());
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), std::nan("")).Ok);
+  Index valid = 0;
+  double worst = 0.0;
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+  {
+    const double x = target.Point(p)[0];
+    if (b.Op.GetValid()[p])
+    {
+      ++valid;
+      worst = std::max(worst, std::fabs(ut[p] - exact[p]));
+    }
+    else
+    {
+      EXPECT_TRUE(std::isnan(ut[p]));
+      EXPECT_GT(x, 1.0 - 1e-12);
+    }
+  }
+  EXPECT_LT(valid, target.NumberOfPoints());
+  EXPECT_GT(valid, target.NumberOfPoints() / 3);
+  const auto range = std::minmax_element(exact.begin(), exact.end());
+  EXPECT_LE(worst, 1e-9 * (*range.second - *range.first));
+}
+
 /// The matrices of every pair of cells, dense, by AddQuadratureBlocks.
 template <class I>
 void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<double>& mts,

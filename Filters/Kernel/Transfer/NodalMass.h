@@ -4,8 +4,8 @@
  * @brief M_tt of the cells' own space (NodalSpace.h), and what the fringe
  *        reads of it, after a search by quadrature (QuadratureAssembler.h).
  *
- * The quadrature assembler leaves M_tt as blocks, one per target function
- * of every covered target cell (MixedBlocks, RowsPerBlock 1). Their sum in
+ * The quadrature assembler leaves M_tt as blocks, one per covered target
+ * cell or one per function of such a cell (MixedBlocks). Their sum in
  * compressed rows is M_tt over the covered part; every row also holds its
  * diagonal (0 where no piece met the function), which the operator turns
  * into the 1 of an invalid function as for the linear path.

@@ -23,6 +23,7 @@
 #include "Transfer/QuadratureAssembler.h"
 #include "Transfer/StageClock.h"
 
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -83,8 +84,10 @@ struct MortarOperator::NodalSession
     this->Pieces.resize(static_cast<size_t>(tasks > 1 ? tasks : 0));
     this->Met.resize(static_cast<size_t>(cover ? tasks : 0));
     this->FunctionMet.resize(static_cast<size_t>(functionCover ? tasks : 0));
+    const int rowsPerBlock = std::max(1, UniformFunctionCount(target, op.Options.TargetSpace));
     for (int k = 0; k < tasks; ++k)
     {
+      this->Blocks[k].RowsPerBlock = this->MassBlocks[k].RowsPerBlock = rowsPerBlock;
       if (cover)
       {
         this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0);

@@ -57,6 +57,33 @@ bool IsSimplexType(NodalType type)
 }
 } // namespace
 
+int UniformFunctionCount(const MeshView& mesh, SpaceType space)
+{
+  if (space == SpaceType::P0)
+  {
+    return 1;
+  }
+  const int corners = mesh.CornersPerCell();
+  if (space == SpaceType::DP1 || !mesh.Nodal)
+  {
+    return corners;
+  }
+  const NodalCells& nodal = *mesh.Nodal;
+  int count = -1;
+  for (Index p = 0; p < mesh.Parents(); ++p)
+  {
+    const int n = nodal.Type[p] == NodalType::None
+      ? corners
+      : static_cast<int>(nodal.Offsets[p + 1] - nodal.Offsets[p]);
+    if (count >= 0 && n != count)
+    {
+      return 0;
+    }
+    count = n;
+  }
+  return std::max(count, 0);
+}
+
 std::string CheckNodalCells(const MeshView& mesh, const char* name)
 {
   if (!mesh.Nodal)

@@ -55,6 +55,10 @@ inline NodalType NodalTypeOf(const MeshView& mesh, Index p)
   return mesh.Nodal ? mesh.Nodal->Type[p] : NodalType::None;
 }
 
+/// How many functions of `space` every cell of `mesh` has, when all have
+/// as many (a mesh of one cell type); else 0.
+int UniformFunctionCount(const MeshView& mesh, SpaceType space);
+
 /**
  * The checks of a mesh's Nodal arrays: offsets increasing from 0, each
  * nodal parent with its type's node count, nodes that exist, and every

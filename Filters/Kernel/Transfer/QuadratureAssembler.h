@@ -21,8 +21,9 @@
  * linear) covered whole, whose M_tt block the rule on the cell gives
  * exactly, once (ElementMass): the pieces' points are kept per cell until
  * its last piece says which. When a target cell's last piece has come, its
- * blocks go to the task's MixedBlocks, one block per target function
- * (RowsPerBlock 1: the cells have different numbers of functions), M_ts's
+ * blocks go to the task's MixedBlocks, one block per cell when every
+ * target cell has as many functions (RowsPerBlock: UniformFunctionCount),
+ * else one per target function (RowsPerBlock 1), M_ts's
  * into Blocks and M_tt's into MassBlocks; M_tt is then assembled from
  * these with MixedMatrix.h (AssembleNodalTargetMass). The covered
  * fractions, the source cover, the kept pieces and the counts are those of
@@ -397,10 +398,33 @@ struct QuadratureAssembler
     {
       TargetMassFromPoints(this->TargetPoints, nt, this->Mtt.data());
     }
+    this->AppendBlocks(nt);
+  }
+
+  /// The current cell's blocks into the task's: one block of all its rows
+  /// when the blocks have that many (RowsPerBlock), else one per row.
+  void AppendBlocks(int nt)
+  {
+    MixedBlocks& b = *this->Blocks;
+    MixedBlocks& m = *this->MassBlocks;
     const size_t columns = this->BlockColumns.size();
+    if (b.RowsPerBlock == nt)
+    {
+      b.Rows.insert(b.Rows.end(), this->T.Dofs, this->T.Dofs + nt);
+      b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
+      b.Values.insert(b.Values.end(), this->BlockValues.begin(), this->BlockValues.end());
+      b.Start.push_back(static_cast<Index>(b.Columns.size()));
+      m.Rows.insert(m.Rows.end(), this->T.Dofs, this->T.Dofs + nt);
+      for (int k = 0; k < nt; ++k)
+      {
+        m.Columns.push_back(static_cast<Column>(this->T.Dofs[k]));
+      }
+      m.Values.insert(m.Values.end(), this->Mtt.begin(), this->Mtt.end()); // (symmetric)
+      m.Start.push_back(static_cast<Index>(m.Columns.size()));
+      return;
+    }
     for (int i = 0; i < nt; ++i)
     {
-      MixedBlocks& b = *this->Blocks;
       b.Rows.push_back(this->T.Dofs[i]);
       b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
       for (size_t slot = 0; slot < columns; ++slot)
@@ -408,7 +432,6 @@ struct QuadratureAssembler
         b.Values.push_back(this->BlockValues[slot * nt + i]);
       }
       b.Start.push_back(static_cast<Index>(b.Columns.size()));
-      MixedBlocks& m = *this->MassBlocks;
       m.Rows.push_back(this->T.Dofs[i]);
       for (int k = 0; k < nt; ++k)
       {
