@@ -456,7 +456,7 @@ TEST(NodalSpace, PartlyCovered)
   EXPECT_LE(worst, 1e-9 * (*range.second - *range.first));
 }
 
-/// The matrices of every pair of cells, dense, by AddQuadratureBlocks.
+/// The matrices of every pair of cells, dense, by AddByPoints.
 template <class I>
 void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<double>& mts,
   std::vector<double>& mtt)
@@ -481,7 +481,8 @@ void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<do
       fs.Bind(s, mp::SpaceType::P1, b);
       std::vector<double> bts(size_t(ft.Count * fs.Count), 0.0),
         btt(size_t(ft.Count * ft.Count), 0.0);
-      mp::AddQuadratureBlocks<I>(piece, ct, ft, s, fs, bts.data(), btt.data(), nullptr);
+      // (Every function at every point: the reference for InTargetBasis too.)
+      mp::AddByPoints<I>(piece, ct, ft, s, fs, bts.data(), btt.data(), nullptr, nullptr);
       for (int i = 0; i < ft.Count; ++i)
       {
         for (int j = 0; j < fs.Count; ++j)

@@ -158,6 +158,7 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
   this->Affine = true;
   if (space == SpaceType::P0)
   {
+    this->Parent = mesh.ParentOf(c);
     this->Count = 1;
     this->Dofs[0] = mesh.ParentOf(c);
     this->Degree = 0;

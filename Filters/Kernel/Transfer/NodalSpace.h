@@ -98,6 +98,14 @@ public:
   /// straight or linear parent, P0, DP1), so that rules integrate them exactly.
   bool IsAffine() const { return this->Affine; }
 
+  /// What the bound functions are the same on: the parent for a
+  /// second-order parent's functions and for P0, else the cell.
+  Index Key() const
+  {
+    return this->Space == SpaceType::P0 || this->Type != NodalType::None ? this->Parent
+                                                                         : this->Cell;
+  }
+
   int Count = 0;                   ///< functions on the cell
   Index Dofs[MaxNodalFunctions];   ///< their global numbers
   int Degree = 1;                  ///< polynomial degree on a straight cell (P0: 0)

@@ -5,16 +5,17 @@
  *        functions that are not affine on a piece (NodalSpace.h).
  *
  * The search hands every (target cell, source cell, piece) to a
- * QuadratureAssembler, as to a MortarAssembler. The piece is cut into
- * simplices (in the plane its convex polygon fanned from its first vertex,
- * in space its own tetrahedra), and on each the rule of degree
- * max(dt + ds, 2 dt) (SimplexQuadrature; dt, ds the two cells' degrees:
- * NodalDegree for a second-order parent, 1 for P1 and DP1, 0 for P0)
- * integrates phi_i psi_j and phi_i phi_k, the two cells' functions
- * evaluated at its points (NodalFunctions). Exact for straight cells, whose
- * functions are polynomials of those degrees; on a curved cell the
- * functions are its true isoparametric ones and the rule's error is that
- * of their polynomial approximation on the piece.
+ * QuadratureAssembler, as to a MortarAssembler, which integrates the two
+ * cells' functions over the piece by quadrature (PieceQuadrature.h) with
+ * the rule of degree max(dt + ds, 2 dt) (dt, ds the two cells' degrees:
+ * NodalDegree for a second-order parent, 1 for P1 and DP1, 0 for P0):
+ * exact for straight cells, whose functions are polynomials of those
+ * degrees; on a curved cell the functions are its true isoparametric ones
+ * and the rule's error is that of their polynomial approximation on the
+ * piece. Where the source functions lie in the target cell's span
+ * (InTargetBasis), the pieces' target mass blocks are summed per source
+ * parent (Deferred) and turned into mixed blocks once per parent when the
+ * target cell is done.
  *
  * Both M_ts and M_tt come from the pieces (on a curved cell the covered
  * part is what the pieces measure), but for an affine cell (straight or
@@ -23,11 +24,10 @@
  * its last piece says which. When a target cell's last piece has come, its
  * blocks go to the task's MixedBlocks, one block per cell when every
  * target cell has as many functions (RowsPerBlock: UniformFunctionCount),
- * else one per target function (RowsPerBlock 1), M_ts's
- * into Blocks and M_tt's into MassBlocks; M_tt is then assembled from
- * these with MixedMatrix.h (AssembleNodalTargetMass). The covered
- * fractions, the source cover, the kept pieces and the counts are those of
- * MortarAssembler.
+ * else one per target function (RowsPerBlock 1), M_ts's into Blocks and
+ * M_tt's into MassBlocks; M_tt is then assembled from these
+ * (NodalMass.h). The covered fractions, the source cover, the kept pieces
+ * and the counts are those of MortarAssembler.
  *
  * Triangles in the plane, tetrahedra, surfaces and curves: a surface's or
  * curve's piece lies in the target facet's frame, where each quadrature
@@ -39,13 +39,9 @@
 #define MeshProjection_Kernel_QuadratureAssembler_h
 
 #include "Geometry/IntersectionPieces.h"
-#include "Geometry/SegmentIntersector.h"
-#include "Geometry/SimplexQuadrature.h"
-#include "Geometry/SurfaceIntersector.h"
-#include "Geometry/TetrahedronIntersector.h"
-#include "Geometry/TriangleIntersector.h"
 #include "Transfer/MixedMatrix.h"
 #include "Transfer/NodalSpace.h"
+#include "Transfer/PieceQuadrature.h"
 
 #include <algorithm>
 #include <array>
@@ -55,284 +51,6 @@
 
 namespace mp
 {
-/// Whether the quadrature assembler takes intersector I's pieces (not the traces').
-template <class I>
-constexpr bool QuadratureSupports =
-  std::is_same<I, TriangleIntersector>::value || std::is_same<I, TetrahedronIntersector>::value ||
-  std::is_same<I, SurfaceIntersector>::value || std::is_same<I, SegmentIntersector>::value;
-
-/**
- * Calls f(corners, measure) for each simplex of `piece` in the
- * intersector's D coordinates (corners: D + 1 pointers to D coordinates;
- * measure signed, as the piece's own): a polygon fanned from its first
- * vertex, a polyhedron's tetrahedra, an interval.
- */
-template <class I, class F>
-void ForEachPieceSimplex(const typename I::Piece& piece, F&& f)
-{
-  if constexpr (std::is_same<I, TetrahedronIntersector>::value)
-  {
-    for (int i = 0; i < piece.NumberOfTetrahedra; ++i)
-    {
-      const double* corners[4];
-      for (int k = 0; k < 4; ++k)
-      {
-        corners[k] = piece.Points[piece.Corner[i][k]];
-      }
-      f(corners, piece.Volume[i]);
-    }
-  }
-  else if constexpr (std::is_same<I, SegmentIntersector>::value)
-  {
-    if (piece.NumberOfVertices == 2)
-    {
-      const double* corners[2] = { piece.X[0], piece.X[1] };
-      f(corners, piece.X[1][0] - piece.X[0][0]);
-    }
-  }
-  else
-  {
-    const double* o = piece.X[0];
-    for (int i = 1; i + 1 < piece.NumberOfVertices; ++i)
-    {
-      const double* p = piece.X[i];
-      const double* q = piece.X[i + 1];
-      const double area = 0.5 * ((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]));
-      const double* corners[3] = { o, p, q };
-      f(corners, area);
-    }
-  }
-}
-
-/**
- * Where point x of a piece (in intersector I's D coordinates) lies on the
- * target mesh (`onTarget`) and on the source mesh (`onSource`), in each
- * mesh's SpaceDimension coordinates: the same point for volumes; for
- * surfaces and curves the point of the target facet or segment in space,
- * and the point of the source facet or segment whose image it is (the
- * same barycentric coordinates on the source's projection, Piece::Projected).
- */
-template <class I>
-void PiecePlaces(const typename I::Cell& t, const typename I::Piece& piece, const MeshView& source,
-  const double* x, double* onTarget, double* onSource)
-{
-  if constexpr (std::is_same<I, SurfaceIntersector>::value)
-  {
-    const TriangleIntersector::Cell& p = piece.Projected;
-    const double u = x[0] - p.X[0][0], v = x[1] - p.X[0][1];
-    const double l[3] = { 0.0, p.Inverse[0][0] * u + p.Inverse[0][1] * v,
-      p.Inverse[1][0] * u + p.Inverse[1][1] * v };
-    for (int a = 0; a < 3; ++a)
-    {
-      onTarget[a] = t.Origin[a] + x[0] * t.Axis[0][a] + x[1] * t.Axis[1][a];
-      onSource[a] = (1.0 - l[1] - l[2]) * source.Point(p.Points[0])[a] +
-        l[1] * source.Point(p.Points[1])[a] + l[2] * source.Point(p.Points[2])[a];
-    }
-  }
-  else if constexpr (std::is_same<I, SegmentIntersector>::value)
-  {
-    const SegmentIntersector::Cell& p = piece.Projected;
-    const double l = (x[0] - p.X[0][0]) * p.Inverse[0][0];
-    for (int a = 0; a < 3; ++a)
-    {
-      onTarget[a] = t.Origin[a] + x[0] * t.Axis[a];
-      onSource[a] = (1.0 - l) * p.Corner[0][a] + l * p.Corner[1][a];
-    }
-  }
-  else
-  {
-    for (int a = 0; a < I::Dimension; ++a)
-    {
-      onTarget[a] = onSource[a] = x[a];
-    }
-  }
-}
-
-/// sum_k b[k] corner[k][0 .. count).
-template <int D>
-inline std::array<double, 4> Combination(
-  const double* b, const double (&corner)[D + 1][4], int count)
-{
-  std::array<double, 4> c{};
-  for (int k = 0; k <= D; ++k)
-  {
-    for (int a = 0; a < count; ++a)
-    {
-      c[a] += b[k] * corner[k][a];
-    }
-  }
-  return c;
-}
-
-/**
- * Sums one piece's blocks by quadrature: Mts[i][j] += int phi_i psi_j,
- * Mtt[i][k] += int phi_i phi_k (row-major, ft.Count wide; or, with
- * `targetPoints`, the weight and the phi_i of every point appended there
- * for TargetMassFromPoints), and, with `sourceIntegrals`, the integrals of
- * the psi_j; over the piece as the target sees it (a surface's or curve's:
- * on the target facet). The functions ft and fs bound to the piece's cells
- * t and (of `source`) s. The reference the assembled matrices are checked
- * against, and the assembler's own step.
- */
-template <class I>
-void AddQuadratureBlocks(const typename I::Piece& piece, const typename I::Cell& t,
-  const NodalFunctions& ft, const MeshView& source, const NodalFunctions& fs, double* Mts,
-  double* Mtt, double* sourceIntegrals, std::vector<double>* targetPoints = nullptr)
-{
-  constexpr int D = I::Dimension;
-  const int nt = ft.Count;
-  const int ns = fs.Count;
-  const int degree = std::max(ft.Degree + fs.Degree, std::max(2 * ft.Degree, 1));
-  const SimplexRule& rule = SimplexQuadrature(D, std::min(degree, MaxSimplexDegree));
-  ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
-    // An affine side's coordinates at the simplex's corners: a point's are
-    // then their barycentric combination (no inverse map per point).
-    double cornerT[D + 1][4], cornerS[D + 1][4];
-    int countT = 0, countS = 0;
-    for (int k = 0; k <= D && (ft.IsAffine() || fs.IsAffine()); ++k)
-    {
-      double onTarget[3], onSource[3];
-      PiecePlaces<I>(t, piece, source, corners[k], onTarget, onSource);
-      countT = ft.IsAffine() ? ft.Coordinates(onTarget, cornerT[k]) : 0;
-      countS = fs.IsAffine() ? fs.Coordinates(onSource, cornerS[k]) : 0;
-    }
-    for (int q = 0; q < rule.Points; ++q)
-    {
-      const double* b = &rule.Barycentric[static_cast<size_t>(q) * (D + 1)];
-      double phi[MaxNodalFunctions];
-      double psi[MaxNodalFunctions];
-      if (!ft.IsAffine() || !fs.IsAffine())
-      {
-        double x[D] = {};
-        for (int k = 0; k <= D; ++k)
-        {
-          for (int a = 0; a < D; ++a)
-          {
-            x[a] += b[k] * corners[k][a];
-          }
-        }
-        double onTarget[3], onSource[3];
-        PiecePlaces<I>(t, piece, source, x, onTarget, onSource);
-        if (!ft.IsAffine())
-        {
-          ft.Values(onTarget, phi);
-        }
-        if (!fs.IsAffine())
-        {
-          fs.Values(onSource, psi);
-        }
-      }
-      if (ft.IsAffine())
-      {
-        ft.ValuesAt(Combination<D>(b, cornerT, countT).data(), phi);
-      }
-      if (fs.IsAffine())
-      {
-        fs.ValuesAt(Combination<D>(b, cornerS, countS).data(), psi);
-      }
-      const double w = rule.Weight[q] * measure;
-      for (int i = 0; i < nt; ++i)
-      {
-        const double wi = w * phi[i];
-        for (int j = 0; j < ns; ++j)
-        {
-          Mts[i * ns + j] += wi * psi[j];
-        }
-      }
-      if (targetPoints)
-      {
-        targetPoints->push_back(w);
-        targetPoints->insert(targetPoints->end(), phi, phi + nt);
-      }
-      else
-      {
-        for (int i = 0; i < nt; ++i)
-        {
-          for (int k = 0; k < nt; ++k)
-          {
-            Mtt[i * nt + k] += w * phi[i] * phi[k];
-          }
-        }
-      }
-      for (int j = 0; sourceIntegrals && j < ns; ++j)
-      {
-        sourceIntegrals[j] += w * psi[j];
-      }
-    }
-  });
-}
-
-/// Mtt[i][k] = sum over `points` (weight, then nt values each) of w phi_i phi_k.
-inline void TargetMassFromPoints(const std::vector<double>& points, int nt, double* Mtt)
-{
-  std::fill(Mtt, Mtt + nt * nt, 0.0);
-  for (size_t p = 0; p < points.size(); p += static_cast<size_t>(nt) + 1)
-  {
-    const double w = points[p];
-    const double* phi = &points[p + 1];
-    for (int i = 0; i < nt; ++i)
-    {
-      const double wi = w * phi[i];
-      for (int k = i; k < nt; ++k)
-      {
-        Mtt[i * nt + k] += wi * phi[k];
-      }
-    }
-  }
-  for (int i = 0; i < nt; ++i)
-  {
-    for (int k = 0; k < i; ++k)
-    {
-      Mtt[i * nt + k] = Mtt[k * nt + i];
-    }
-  }
-}
-
-/**
- * Mtt[i][k] = int phi_i phi_k over kernel cell c of `mesh` whole (of
- * `measure`), f bound to it: the rule of degree 2 f.Degree on the simplex,
- * exact where f is affine (a straight or linear parent).
- */
-inline void ElementMass(
-  const MeshView& mesh, Index c, double measure, const NodalFunctions& f, double* Mtt)
-{
-  const int d = mesh.CellDimension;
-  const int nt = f.Count;
-  const SimplexRule& rule =
-    SimplexQuadrature(d, std::min(std::max(2 * f.Degree, 1), MaxSimplexDegree));
-  const CellCorners corners = mesh.Cell(c);
-  std::fill(Mtt, Mtt + nt * nt, 0.0);
-  for (int q = 0; q < rule.Points; ++q)
-  {
-    const double* b = &rule.Barycentric[static_cast<size_t>(q) * (d + 1)];
-    double x[3] = { 0.0, 0.0, 0.0 };
-    for (int k = 0; k <= d; ++k)
-    {
-      for (int a = 0; a < mesh.SpaceDimension; ++a)
-      {
-        x[a] += b[k] * mesh.Point(corners[k])[a];
-      }
-    }
-    double phi[MaxNodalFunctions];
-    f.Values(x, phi);
-    const double w = rule.Weight[q] * measure;
-    for (int i = 0; i < nt; ++i)
-    {
-      for (int k = i; k < nt; ++k)
-      {
-        Mtt[i * nt + k] += w * phi[i] * phi[k];
-      }
-    }
-  }
-  for (int i = 0; i < nt; ++i)
-  {
-    for (int k = 0; k < i; ++k)
-    {
-      Mtt[i * nt + k] = Mtt[k * nt + i];
-    }
-  }
-}
-
 template <class Intersector>
 struct QuadratureAssembler
 {
@@ -365,8 +83,19 @@ struct QuadratureAssembler
   std::vector<Column> BlockColumns; ///< source functions its pieces met
   std::vector<double> BlockValues;  ///< T.Count per column
   std::vector<double> Mtt;          ///< T.Count x T.Count, formed by Flush
-  std::vector<double> TargetPoints; ///< its pieces' points: weight, then T.Count values
-  std::vector<double> PieceMts;     ///< one piece's, T.Count x S.Count
+  std::vector<double> TargetPoints; ///< its pieces' points: weight, then T.Count values ...
+  std::vector<double> MttSum;       ///< ... or their blocks (InTargetBasis)
+  /// The target mass blocks of its pieces per source parent (InTargetBasis):
+  /// their mixed blocks follow once per parent (Flush).
+  struct Deferred
+  {
+    Index Key = -1;  ///< NodalFunctions::Key of the source functions
+    Index Cell = -1; ///< a source cell they live on
+    std::vector<double> G;
+  };
+  std::vector<Deferred> Pending;
+  size_t PendingCount = 0;
+  std::vector<double> PieceMts; ///< one piece's, T.Count x S.Count
 
   void Flush()
   {
@@ -385,6 +114,7 @@ struct QuadratureAssembler
       return; // only touching pieces
     }
     const int nt = this->T.Count;
+    this->SettlePending();
     // M_tt's block: the cell's own where that is exact (an affine cell
     // covered whole, as the linear path's element matrix), else the
     // pieces' points'.
@@ -396,9 +126,84 @@ struct QuadratureAssembler
     }
     else
     {
+      std::copy(this->MttSum.begin(), this->MttSum.end(), this->Mtt.begin());
       TargetMassFromPoints(this->TargetPoints, nt, this->Mtt.data());
     }
     this->AppendBlocks(nt);
+  }
+
+  /// The deferred sources' mixed blocks (and their mass blocks into MttSum).
+  void SettlePending()
+  {
+    const int nt = this->T.Count;
+    for (size_t k = 0; k < this->PendingCount; ++k)
+    {
+      const Deferred& d = this->Pending[k];
+      this->S.Bind(*this->Source, this->SourceSpace, d.Cell);
+      this->PieceMts.assign(static_cast<size_t>(nt) * this->S.Count, 0.0);
+      double integrals[MaxNodalFunctions] = {};
+      SourceInTargetBasis(*this->Target, this->T, this->S, d.G.data(), this->PieceMts.data(),
+        this->SourceFunctionCovered ? integrals : nullptr);
+      this->MergeColumns(integrals, 1.0);
+      for (size_t e = 0; e < d.G.size(); ++e)
+      {
+        this->MttSum[e] += d.G[e];
+      }
+    }
+    this->PendingCount = 0;
+  }
+
+  /// The pending target mass block of the source functions bound in S (zeros when new).
+  double* PendingFor(Index cell)
+  {
+    const Index key = this->S.Key();
+    for (size_t k = 0; k < this->PendingCount; ++k)
+    {
+      if (this->Pending[k].Key == key)
+      {
+        return this->Pending[k].G.data();
+      }
+    }
+    if (this->PendingCount == this->Pending.size())
+    {
+      this->Pending.emplace_back();
+    }
+    Deferred& d = this->Pending[this->PendingCount++];
+    d.Key = key;
+    d.Cell = cell;
+    d.G.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
+    return d.G.data();
+  }
+
+  /// Adds PieceMts (T.Count x S.Count, the functions bound in S) to the
+  /// block's columns, and `integrals` times `scale` to the source functions' cover.
+  void MergeColumns(const double* integrals, double scale)
+  {
+    const int nt = this->T.Count;
+    const int ns = this->S.Count;
+    for (int j = 0; j < ns; ++j)
+    {
+      const Column c = static_cast<Column>(this->S.Dofs[j]);
+      size_t slot = 0;
+      while (slot < this->BlockColumns.size() && this->BlockColumns[slot] != c)
+      {
+        ++slot;
+      }
+      if (slot == this->BlockColumns.size())
+      {
+        this->BlockColumns.push_back(c);
+        this->BlockValues.insert(this->BlockValues.end(), nt, 0.0);
+      }
+      double* values = &this->BlockValues[slot * nt];
+      for (int i = 0; i < nt; ++i)
+      {
+        values[i] += this->PieceMts[static_cast<size_t>(i) * ns + j];
+      }
+      if (this->SourceFunctionCovered)
+      {
+        this->SourceFunctionCovered[this->S.Dofs[j]] += scale * integrals[j];
+      }
+    }
   }
 
   /// The current cell's blocks into the task's: one block of all its rows
@@ -455,6 +260,8 @@ struct QuadratureAssembler
       this->BlockColumns.clear();
       this->BlockValues.clear();
       this->TargetPoints.clear();
+      this->MttSum.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
+      this->PendingCount = 0;
     }
     if constexpr (QuadratureSupports<Intersector>)
     {
@@ -479,37 +286,21 @@ struct QuadratureAssembler
     }
     this->Covered += measure;
     this->S.Bind(*this->Source, this->SourceSpace, s.Id);
-    const int nt = this->T.Count;
-    const int ns = this->S.Count;
     // A piece's measure on the source cell per unit of its own (surfaces, curves).
     const double scale = Intersector::SourceScale(s, piece);
-    this->PieceMts.assign(static_cast<size_t>(nt) * ns, 0.0);
-    double integrals[MaxNodalFunctions] = {};
-    AddQuadratureBlocks<Intersector>(piece, t, this->T, *this->Source, this->S,
-      this->PieceMts.data(), nullptr, this->SourceFunctionCovered ? integrals : nullptr,
-      &this->TargetPoints);
-    for (int j = 0; j < ns; ++j)
+    constexpr bool volume = std::is_same<Intersector, TriangleIntersector>::value ||
+      std::is_same<Intersector, TetrahedronIntersector>::value;
+    if (InTargetBasis(volume, this->T, this->S, t.Measure, s.Measure))
     {
-      const Column c = static_cast<Column>(this->S.Dofs[j]);
-      size_t slot = 0;
-      while (slot < this->BlockColumns.size() && this->BlockColumns[slot] != c)
-      {
-        ++slot;
-      }
-      if (slot == this->BlockColumns.size())
-      {
-        this->BlockColumns.push_back(c);
-        this->BlockValues.insert(this->BlockValues.end(), nt, 0.0);
-      }
-      double* values = &this->BlockValues[slot * nt];
-      for (int i = 0; i < nt; ++i)
-      {
-        values[i] += this->PieceMts[static_cast<size_t>(i) * ns + j];
-      }
-      if (this->SourceFunctionCovered)
-      {
-        this->SourceFunctionCovered[this->S.Dofs[j]] += scale * integrals[j];
-      }
+      AddPieceTargetMass<Intersector>(piece, this->T, this->PendingFor(s.Id));
+    }
+    else
+    {
+      this->PieceMts.assign(static_cast<size_t>(this->T.Count) * this->S.Count, 0.0);
+      double integrals[MaxNodalFunctions] = {};
+      AddByPoints<Intersector>(piece, t, this->T, *this->Source, this->S, this->PieceMts.data(),
+        nullptr, this->SourceFunctionCovered ? integrals : nullptr, &this->TargetPoints);
+      this->MergeColumns(integrals, scale);
     }
     ++this->Count;
     if (this->SourceCovered)
