@@ -105,6 +105,14 @@ public:
     return this->Space == SpaceType::P0 || this->Type != NodalType::None ? this->Parent
                                                                          : this->Cell;
   }
+  /// The Key of kernel cell c's functions of `space`.
+  static Index KeyOf(const MeshView& mesh, SpaceType space, Index c)
+  {
+    const Index p = mesh.ParentOf(c);
+    const bool byParent =
+      space == SpaceType::P0 || (space == SpaceType::P1 && NodalTypeOf(mesh, p) != NodalType::None);
+    return byParent ? p : c;
+  }
 
   int Count = 0;                   ///< functions on the cell
   Index Dofs[MaxNodalFunctions];   ///< their global numbers

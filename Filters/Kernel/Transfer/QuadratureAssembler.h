@@ -82,7 +82,8 @@ struct QuadratureAssembler
   NodalFunctions S;                 ///< the current source cell's
   std::vector<Column> BlockColumns; ///< source functions its pieces met
   std::vector<double> BlockValues;  ///< T.Count per column
-  std::vector<double> Mtt;          ///< T.Count x T.Count, formed by Flush
+  bool Open = false;                ///< blocks of cells with T's functions are open
+  std::vector<double> Mtt;          ///< their M_tt block (T.Count x T.Count)
   std::vector<double> TargetPoints; ///< its pieces' points: weight, then T.Count values ...
   std::vector<double> MttSum;       ///< ... or their blocks (InTargetBasis)
   /// The target mass blocks of its pieces per source parent (InTargetBasis):
@@ -97,7 +98,22 @@ struct QuadratureAssembler
   size_t PendingCount = 0;
   std::vector<double> PieceMts; ///< one piece's, T.Count x S.Count
 
+  /// The last cell done, and its open blocks appended.
   void Flush()
+  {
+    this->CloseCell();
+    this->AppendBlocks();
+  }
+
+  /**
+   * The current cell done: its covered fraction, and its M_tt block added
+   * to the open one: the cell's own where that is exact (an affine cell
+   * covered whole, as the linear path's element matrix), else its pieces'.
+   * Its mixed blocks stay open while the next cells have the same
+   * functions (the simplices of one second-order parent, met one after
+   * the other: one block for them all).
+   */
+  void CloseCell()
   {
     if (this->Current < 0)
     {
@@ -115,21 +131,25 @@ struct QuadratureAssembler
     }
     const int nt = this->T.Count;
     this->SettlePending();
-    // M_tt's block: the cell's own where that is exact (an affine cell
-    // covered whole, as the linear path's element matrix), else the
-    // pieces' points'.
-    this->Mtt.resize(static_cast<size_t>(nt) * nt);
+    if (!this->Open)
+    {
+      this->Mtt.assign(static_cast<size_t>(nt) * nt, 0.0);
+      this->Open = true;
+    }
     if (this->T.IsAffine() &&
       std::fabs(this->Covered - this->CurrentMeasure) <= 1e-12 * this->CurrentMeasure)
     {
-      ElementMass(*this->Target, current, this->CurrentMeasure, this->T, this->Mtt.data());
+      this->MttSum.resize(static_cast<size_t>(nt) * nt);
+      ElementMass(*this->Target, current, this->CurrentMeasure, this->T, this->MttSum.data());
     }
     else
     {
-      std::copy(this->MttSum.begin(), this->MttSum.end(), this->Mtt.begin());
-      TargetMassFromPoints(this->TargetPoints, nt, this->Mtt.data());
+      TargetMassFromPoints(this->TargetPoints, nt, this->MttSum.data());
     }
-    this->AppendBlocks(nt);
+    for (size_t e = 0; e < this->Mtt.size(); ++e)
+    {
+      this->Mtt[e] += this->MttSum[e];
+    }
   }
 
   /// The deferred sources' mixed blocks (and their mass blocks into MttSum).
@@ -206,10 +226,16 @@ struct QuadratureAssembler
     }
   }
 
-  /// The current cell's blocks into the task's: one block of all its rows
-  /// when the blocks have that many (RowsPerBlock), else one per row.
-  void AppendBlocks(int nt)
+  /// The open blocks into the task's: one block of all their rows when the
+  /// blocks have that many (RowsPerBlock), else one per row.
+  void AppendBlocks()
   {
+    if (!this->Open)
+    {
+      return;
+    }
+    this->Open = false;
+    const int nt = this->T.Count;
     MixedBlocks& b = *this->Blocks;
     MixedBlocks& m = *this->MassBlocks;
     const size_t columns = this->BlockColumns.size();
@@ -252,13 +278,20 @@ struct QuadratureAssembler
   {
     if (t.Id != this->Current)
     {
-      this->Flush();
+      this->CloseCell();
+      if (this->T.Key() != NodalFunctions::KeyOf(*this->Target, this->TargetSpace, t.Id))
+      {
+        this->AppendBlocks();
+      }
       this->Current = t.Id;
       this->CurrentMeasure = t.Measure;
       this->Covered = 0.0;
       this->T.Bind(*this->Target, this->TargetSpace, t.Id);
-      this->BlockColumns.clear();
-      this->BlockValues.clear();
+      if (!this->Open)
+      {
+        this->BlockColumns.clear();
+        this->BlockValues.clear();
+      }
       this->TargetPoints.clear();
       this->MttSum.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
       this->PendingCount = 0;
