@@ -695,6 +695,31 @@ TEST(NodalSpace, Curves)
   ExpectBruteForce<mp::SegmentIntersector>(Line(3, 22), Line(4, 23));
 }
 
+// Reconstructed cell data (DP1, linear on each source simplex) onto a
+// second-order target: a linear field stays exact, and the functions'
+// covered integrals add up to the covered measure.
+TEST(NodalSpace, ReconstructedCellData)
+{
+  const NodalMesh source = Square(4, 0.2, 26);
+  const NodalMesh target = Square(5, 0.2, 27);
+  Built b(target, source, mp::SpaceType::P1, mp::SpaceType::DP1);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  const mp::MeshView s = source.View(false);
+  std::vector<double> us(size_t(s.NumberOfCells * 3));
+  for (Index c = 0; c < s.NumberOfCells; ++c)
+    for (int k = 0; k < 3; ++k)
+      us[3 * c + k] = LinearField(s.Point(s.Cell(c)[k]));
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), std::nan("")).Ok);
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+    EXPECT_NEAR(ut[p], LinearField(target.Point(p)), 1e-11);
+  double sum = 0.0;
+  for (double v : b.Op.GetSourceFunctionCovered())
+    sum += v;
+  EXPECT_NEAR(sum, b.Op.GetCoveredMeasure(), 1e-13);
+  EXPECT_NEAR(b.Op.GetCoveredMeasure(), 1.0, 1e-13);
+}
+
 // A lumped mass is refused on a target of second-order cells.
 TEST(NodalSpace, LumpedRefused)
 {
