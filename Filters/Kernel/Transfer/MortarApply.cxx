@@ -338,6 +338,12 @@ ApplyResult MortarOperator::Apply(const double* sourceValues, int components, do
   {
     return done(false);
   }
+  if (options.Mass == MassType::Lumped && this->NodalTarget)
+  {
+    // Second-order functions are not all positive: a lumped row would not
+    // give a mean (MassType::Lumped), so it is refused rather than guessed.
+    return done(false);
+  }
   const SolverHooks& rowHooks = halo ? *options.FringeHooks : hooks;
   // The right-hand sides: summed during the search for the build's fields,
   // else M_ts u_s; P^T b when aggregated (before the shared rows are

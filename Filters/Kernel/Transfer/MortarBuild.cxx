@@ -7,6 +7,7 @@
 #include "Geometry/Intersectors.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MortarSession.h"
+#include "Transfer/NodalSession.h"
 #include "Transfer/StageClock.h"
 
 #include <algorithm>
@@ -52,6 +53,9 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.CoveredMeasure = 0;
     op.OvercoveredCells = 0;
     op.SourceFunctions = 0;
+    op.NodalPath = false;
+    op.NodalTarget = false;
+    op.NodalMassBlocks.clear();
     op.Pieces.Dimension = target.CellDimension;
     const unsigned pair = 1u << (3 * (op.Options.TargetSpace == SpaceType::P1 ? 1 : 0) +
                             static_cast<int>(op.Options.SourceSpace));
@@ -127,6 +131,26 @@ struct SharedVisitor
   }
 };
 
+/**
+ * SharedVisitor's pieces also to the tasks' assemblers of the operators in
+ * the cells' own space (NodalSession.h), after the others.
+ */
+template <class Q, class... A>
+struct SharedVisitorWithNodal
+{
+  SharedVisitor<A...> Linear;
+  std::vector<Q*> Nodal;
+  template <class Cell, class SourceCell, class Piece>
+  void operator()(const Cell& t, const SourceCell& s, const Piece& piece)
+  {
+    this->Linear(t, s, piece);
+    for (Q* q : this->Nodal)
+    {
+      (*q)(t, s, piece);
+    }
+  }
+};
+
 /// The session of one pair of spaces, made when an operator asks for it.
 template <class S>
 struct SessionSlot
@@ -168,9 +192,19 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
   // The cover of the source cells is the same for every operator (the
   // same pieces, the same excluded cells): the lead's session sums it
   // (per-task arrays of source cells: once, not per operator).
+  // Operators whose point data lives in the cells' own space take the
+  // quadrature path (NodalSession.h); the others' sessions are untouched.
+  using Nodal = NodalSession<Intersector>;
+  std::vector<std::unique_ptr<Nodal>> nodal;
   for (MortarOperator* op : operators)
   {
     const bool cover = op == &lead;
+    if (UsesNodalSpace(op->Options, target, source))
+    {
+      nodal.emplace_back(new Nodal);
+      nodal.back()->Prepare(*op, target, source, tasks, cover);
+      continue;
+    }
     std::apply(
       [&](auto&... slot) {
         auto make = [&](auto& s) {
@@ -194,7 +228,26 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
       visitors, statistics, lead.Options.Progress);
   };
   bool done = false;
-  if (operators.size() == 1)
+  if (!nodal.empty())
+  {
+    auto visitorsOf = [&](auto&... slot) {
+      using Visitor = SharedVisitorWithNodal<typename Nodal::Assembler,
+        typename std::remove_reference_t<decltype(slot)>::Assembler...>;
+      std::vector<Visitor> visitors(static_cast<size_t>(tasks));
+      for (int k = 0; k < tasks; ++k)
+      {
+        visitors[k].Linear.Each = std::make_tuple(slot.AssemblerOf(k)...);
+        for (auto& session : nodal)
+        {
+          visitors[k].Nodal.push_back(&session->Assemblers[k]);
+        }
+      }
+      return visitors;
+    };
+    auto visitors = std::apply(visitorsOf, slots);
+    done = search(visitors);
+  }
+  else if (operators.size() == 1)
   {
     // One operator: its assemblers visit the pieces themselves (no
     // dispatch per piece, which costs a little on every piece).
@@ -229,6 +282,10 @@ void MortarOperator::AssembleTogether(const std::vector<MortarOperator*>& operat
     return;
   }
   forEachSession([&](auto& session) { session.Finish(source); });
+  for (auto& session : nodal)
+  {
+    session->Finish(source);
+  }
   for (MortarOperator* op : operators)
   {
     if (op != &lead)

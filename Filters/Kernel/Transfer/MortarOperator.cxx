@@ -10,6 +10,8 @@
 #include "Geometry/Measures.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MassMatrix.h"
+#include "Transfer/NodalMass.h"
+#include "Transfer/NodalSpace.h"
 #include "Transfer/StageClock.h"
 
 #include <algorithm>
@@ -89,6 +91,10 @@ bool MortarOperator::Check(
     {
       this->Error = CheckIds(m, mesh.second, options.Runner);
     }
+    if (this->Error.empty())
+    {
+      this->Error = CheckNodalCells(m, mesh.second);
+    }
     if (!this->Error.empty())
     {
       return false;
@@ -114,6 +120,13 @@ bool MortarOperator::Check(
       std::to_string(target.CellDimension) + "D and " + std::to_string(source.CellDimension) +
       "D); of different dimensions, only a surface in tetrahedra or a curve in triangles (in "
       "their plane) or tetrahedra (a trace) can be projected";
+    return false;
+  }
+  if ((HasNodalSpace(options.TargetSpace, target) || HasNodalSpace(options.SourceSpace, source)) &&
+    trace)
+  {
+    this->Error = "point data on second-order cells is not projected onto a trace (a surface "
+                  "or curve in a volume) yet";
     return false;
   }
   if (options.TargetSpace == SpaceType::DP1)
@@ -165,8 +178,19 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
     coverFrom.Values = this->CoveredFraction.data();
     coverFrom.ByParent = target.Parent != nullptr;
   }
-  AssembleTargetMass(this->Options.TargetSpace, target, &this->Masses, runner, this->TargetMass,
-    coverFrom, &this->PointCover);
+  if (this->NodalPath)
+  {
+    // The cells' own space: M_tt summed from the pieces' blocks (NodalMass.h).
+    AssembleNodalTargetMass(this->NodalMassBlocks, target, this->Options.TargetSpace, runner,
+      this->TargetMass, this->Options.TargetSpace == SpaceType::P1 ? coverFrom.Values : nullptr,
+      &this->PointCover);
+    std::vector<MixedBlocks>().swap(this->NodalMassBlocks);
+  }
+  else
+  {
+    AssembleTargetMass(this->Options.TargetSpace, target, &this->Masses, runner, this->TargetMass,
+      coverFrom, &this->PointCover);
+  }
   this->Masses = CellMasses();
   // A function is valid when its support meets the source: its diagonal
   // entry of the covered mass matrix is positive. An invalid function's
@@ -205,8 +229,21 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
     16384);
   // (Its lumped start reads the valid rows' sums just made: an invalid
   // row's decoupling 1 is left out, but its right-hand side is 0.)
-  this->Solver.reset(new BlockCG(this->TargetMass, runner, this->RowSums.data()));
+  this->Solver.reset(new BlockCG(
+    this->TargetMass, runner, this->StartSums(this->RowSums.data(), this->TargetMass.Rows)));
   this->Timings.Assembly += SecondsSince(start);
+}
+
+const double* MortarOperator::StartSums(const double* rowSums, Index rows)
+{
+  if (!this->NodalTarget)
+  {
+    return rowSums;
+  }
+  // Second-order rows sum to zero or less at corners: the lumped start
+  // b_i / sum_k A_ik would blow up there. Zeros: the solve starts from 0.
+  this->ZeroStart.assign(static_cast<size_t>(rows), 0.0);
+  return this->ZeroStart.data();
 }
 
 void MortarOperator::ShareValidity(const SolverHooks& hooks)
@@ -251,7 +288,17 @@ Index MortarOperator::AggregateFringe(
   // system both integrals summed over the parts, so that every part decides
   // alike).
   std::vector<double> covered(this->RowSums);
-  LargeVector<double> whole = SupportIntegrals(target);
+  LargeVector<double> whole;
+  if (this->NodalTarget)
+  {
+    // Second-order functions' integrals are no measure of their support
+    // (NodalMass.h): its cells' covered measure instead.
+    NodalSupportCover(target, this->CoveredFraction.data(), covered, whole);
+  }
+  else
+  {
+    whole = SupportIntegrals(target);
+  }
   whole.resize(static_cast<size_t>(n), 0.0);
   if (hooks.Exchange)
   {
@@ -279,7 +326,8 @@ Index MortarOperator::AggregateFringe(
     if (this->Fringe.Count + this->Fringe.Stranded > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
-      this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
+      this->FringeSolver.reset(new BlockCG(
+        this->FringeMass, this->Options.Runner, this->StartSums(nullptr, this->FringeMass.Rows)));
       this->DropFringe(nullptr);
       this->FringeSystem = true;
     }
@@ -378,7 +426,8 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   padded.Rows = padded.Columns = rows;
   padded.RowStart.resize(static_cast<size_t>(rows) + 1, padded.RowStart.back());
   this->FringeMass = AggregatedMass(padded, this->Fringe, this->Options.Runner);
-  this->FringeSolver.reset(new BlockCG(this->FringeMass, this->Options.Runner));
+  this->FringeSolver.reset(new BlockCG(
+    this->FringeMass, this->Options.Runner, this->StartSums(nullptr, this->FringeMass.Rows)));
   this->HaloPoints = ghosts;
   this->FringeSystem = true;
   this->DropFringe(&extended);

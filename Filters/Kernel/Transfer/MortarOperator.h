@@ -48,6 +48,7 @@
 #include "Transfer/CsrMatrix.h"
 #include "Transfer/FringeAggregation.h"
 #include "Transfer/MassMatrix.h"
+#include "Transfer/MixedMatrix.h"
 #include "Transfer/Space.h"
 
 #include <memory>
@@ -114,6 +115,9 @@ enum class MassType
    * sums are d_i too, so each value is a weighted mean of the source values
    * on its support (never outside their range), the integral is conserved,
    * and no system is solved; but only constants stay exact (first order).
+   * Refused (Apply's Ok false) on a target whose point functions are its
+   * second-order cells' own (HasNodalTarget): their integrals are zero or
+   * negative at corners, so no row sum is a weight of a mean.
    */
   Lumped = 1
 };
@@ -316,6 +320,9 @@ public:
    */
   void ReleaseMatrices();
   SpaceType GetTargetSpace() const { return this->Options.TargetSpace; }
+  /// Whether the target functions are its second-order cells' own
+  /// (NodalSpace.h): a lumped Apply is then refused.
+  bool HasNodalTarget() const { return this->NodalTarget; }
   SpaceType GetSourceSpace() const { return this->Options.SourceSpace; }
   Index GetNumberOfTargetFunctions() const { return this->TargetMass.Rows; }
   Index GetNumberOfSourceFunctions() const { return this->SourceFunctions; }
@@ -375,6 +382,9 @@ public:
 private:
   template <class Intersector, class TargetSpace, class SourceSpace>
   struct Session;
+  /// The session of an operator in the cells' own space (NodalSession.h).
+  template <class Intersector>
+  struct NodalSession;
   /// FringeValid and FringeRowSums: the dropped functions invalid, their
   /// covered integrals given to their stencils (with a halo, through its hooks).
   void DropFringe(const SolverHooks* haloHooks);
@@ -404,6 +414,10 @@ private:
   /// The aggregated solve on a distributed system with a halo (extended rows).
   bool SolveWithHalo(const double* rhs, double* targetValues, int components,
     const SolveOptions& solve, const SolverHooks& haloHooks) const;
+  /// The row sums the solvers' lumped start divides by: `rowSums`, or
+  /// `rows` zeros (a start from 0) for a target of second-order cells. (A
+  /// distributed solve sums its own: BlockCG.h.)
+  const double* StartSums(const double* rowSums, Index rows);
   /// The checks of the meshes and options (Options set): false, with Error set, on unusable input.
   bool Check(const MeshView& target, const MeshView& source, CandidateLocator* locator);
   template <class Intersector>
@@ -412,8 +426,16 @@ private:
 
   OperatorOptions Options;
   CsrMatrix TargetMass;
-  CellMasses Masses;        ///< from the search until M_tt is assembled
-  bool MassPending = false; ///< the search is done, M_tt not assembled yet
+  CellMasses Masses; ///< from the search until M_tt is assembled
+  /// The cells' own space (NodalSpace.h) on either side: M_tt's blocks
+  /// from the search until it is assembled (NodalMass.h).
+  bool NodalPath = false;
+  std::vector<MixedBlocks> NodalMassBlocks;
+  /// The target's point functions are its cells' own (lumping is refused,
+  /// the fringe measures supports by cells: NodalMass.h).
+  bool NodalTarget = false;
+  std::vector<double> ZeroStart; ///< StartSums' zeros
+  bool MassPending = false;      ///< the search is done, M_tt not assembled yet
   CsrMatrix MixedMass;
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file NodalSession.h
+ * @brief MortarOperator::NodalSession: one operator's share of a search
+ *        when a side's point data lives in the cells' own space (private
+ *        to MortarBuild.cxx).
+ *
+ * The counterpart of MortarSession.h for an operator whose target or
+ * source space is P1 on a mesh with second-order cells (NodalSpace.h):
+ * Prepare() sets up one QuadratureAssembler per task, Finish() adds the
+ * tasks' sums in task order and assembles M_ts, and keeps M_tt's blocks
+ * for CompleteTargetMass (NodalMass.h). With OperatorOptions::Fields,
+ * M_ts is assembled all the same and its product with the fields is the
+ * right-hand side (M_ts is then given back): the one-off path's result,
+ * not its saving.
+ */
+#ifndef MeshProjection_Kernel_NodalSession_h
+#define MeshProjection_Kernel_NodalSession_h
+
+#include "Transfer/MortarOperator.h"
+
+#include "Transfer/MixedMatrix.h"
+#include "Transfer/QuadratureAssembler.h"
+#include "Transfer/StageClock.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace mp
+{
+/// Whether an operator with `options` on these meshes takes the nodal path.
+inline bool UsesNodalSpace(
+  const OperatorOptions& options, const MeshView& target, const MeshView& source)
+{
+  return HasNodalSpace(options.TargetSpace, target) || HasNodalSpace(options.SourceSpace, source);
+}
+
+template <class Intersector>
+struct MortarOperator::NodalSession
+{
+  using Assembler = QuadratureAssembler<Intersector>;
+  MortarOperator* Op = nullptr;
+  std::vector<Assembler> Assemblers;
+  std::vector<MixedBlocks> Blocks;
+  std::vector<MixedBlocks> MassBlocks;
+  std::vector<IntersectionPieces> Pieces;
+  std::vector<LargeVector<double>> Met;         ///< per task: the source cells' cover
+  std::vector<LargeVector<double>> FunctionMet; ///< per task: DP1 functions' cover
+
+  /// Sums the tasks' arrays (in task order) into `sum` (empty when there are none).
+  static void SumTasks(std::vector<LargeVector<double>>& parts, LargeVector<double>& sum)
+  {
+    sum.clear();
+    if (parts.empty())
+    {
+      return;
+    }
+    sum.swap(parts[0]);
+    for (size_t k = 1; k < parts.size(); ++k)
+    {
+      for (size_t i = 0; i < sum.size(); ++i)
+      {
+        sum[i] += parts[k][i];
+      }
+    }
+  }
+
+  /// `cover`: this session sums how much of each source cell the pieces cover.
+  void Prepare(
+    MortarOperator& op, const MeshView& target, const MeshView& source, int tasks, bool cover)
+  {
+    auto start = std::chrono::steady_clock::now();
+    this->Op = &op;
+    const Index rows = SpaceSize(op.Options.TargetSpace, target);
+    op.TargetMass = CsrMatrix();
+    op.TargetMass.Rows = op.TargetMass.Columns = rows;
+    op.NodalPath = true;
+    op.NodalTarget = HasNodalSpace(op.Options.TargetSpace, target);
+    const bool functionCover = op.Options.SourceSpace == SpaceType::DP1;
+    this->Assemblers.resize(static_cast<size_t>(tasks));
+    this->Blocks.resize(static_cast<size_t>(tasks));
+    this->MassBlocks.resize(static_cast<size_t>(tasks));
+    this->Pieces.resize(static_cast<size_t>(tasks > 1 ? tasks : 0));
+    this->Met.resize(static_cast<size_t>(cover ? tasks : 0));
+    this->FunctionMet.resize(static_cast<size_t>(functionCover ? tasks : 0));
+    const int rowsPerBlock = std::max(1, UniformFunctionCount(target, op.Options.TargetSpace));
+    for (int k = 0; k < tasks; ++k)
+    {
+      this->Blocks[k].RowsPerBlock = this->MassBlocks[k].RowsPerBlock = rowsPerBlock;
+      if (cover)
+      {
+        this->Met[k].assign(static_cast<size_t>(source.NumberOfCells), 0.0);
+      }
+      if (functionCover)
+      {
+        this->FunctionMet[k].assign(static_cast<size_t>(SpaceSize(SpaceType::DP1, source)), 0.0);
+      }
+      Assembler& a = this->Assemblers[k];
+      a.Target = &target;
+      a.Source = &source;
+      a.TargetSpace = op.Options.TargetSpace;
+      a.SourceSpace = op.Options.SourceSpace;
+      a.Blocks = &this->Blocks[k];
+      a.MassBlocks = &this->MassBlocks[k];
+      a.CoveredFraction = op.CoveredFraction.data();
+      a.Excluded = op.Options.ExcludedSourceCells;
+      a.SourceCovered = cover ? this->Met[k].data() : nullptr;
+      a.SourceFunctionCovered = functionCover ? this->FunctionMet[k].data() : nullptr;
+      if (op.Options.KeepPieces)
+      {
+        a.Pieces = tasks > 1 ? &this->Pieces[k] : &op.Pieces;
+      }
+    }
+    op.Timings.Assembly = SecondsSince(start);
+  }
+
+  /// After the search: the tasks' sums merged, M_ts (or the right-hand sides), M_tt's blocks kept.
+  void Finish(const MeshView& source)
+  {
+    MortarOperator& op = *this->Op;
+    auto start = std::chrono::steady_clock::now();
+    const TaskRunner& runner = op.Options.Runner;
+    const int tasks = static_cast<int>(this->Assemblers.size());
+    for (Assembler& a : this->Assemblers)
+    {
+      a.Flush();
+    }
+    for (int k = 0; k < tasks; ++k)
+    {
+      const Assembler& a = this->Assemblers[k];
+      if (tasks > 1)
+      {
+        op.Pieces.Append(this->Pieces[k]);
+      }
+      op.CoveredMeasure += a.CoveredSum;
+      op.OvercoveredCells += a.Overcovered;
+      op.Statistics.Pieces += a.Count;
+    }
+    if (!this->Met.empty())
+    {
+      SumTasks(this->Met, op.SourceCovered);
+    }
+    SumTasks(this->FunctionMet, op.SourceFunctionCovered);
+    std::vector<Assembler>().swap(this->Assemblers);
+    std::vector<IntersectionPieces>().swap(this->Pieces);
+    op.Timings.Search += SecondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    const Index rows = op.TargetMass.Rows;
+    AssembleMixedMatrix(
+      this->Blocks, rows, SpaceSize(op.Options.SourceSpace, source), runner, op.MixedMass);
+    if (op.Options.Fields)
+    {
+      const int nc = op.Options.FieldComponents;
+      op.Rhs.resize(static_cast<size_t>(rows) * nc);
+      op.MixedMass.MultiplyRows(op.Options.Fields, op.Rhs.data(), nc, 0, rows);
+      op.MixedMass = CsrMatrix();
+    }
+    op.NodalMassBlocks.swap(this->MassBlocks);
+    op.Timings.Assembly += SecondsSince(start);
+  }
+};
+} // namespace mp
+
+#endif

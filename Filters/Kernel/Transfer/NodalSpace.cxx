@@ -1,0 +1,337 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Transfer/NodalSpace.h"
+
+#include <cmath>
+
+namespace mp
+{
+namespace
+{
+/// The inverse of a d x d matrix (d = 1, 2, 3): of the edges from corner
+/// 0 (column k - 1: corner k), or of their Gram matrix; false when singular.
+bool InvertEdges(int d, const double (&e)[3][3], double (&inverse)[3][3])
+{
+  if (d == 1)
+  {
+    inverse[0][0] = 1.0 / e[0][0];
+    return e[0][0] != 0.0;
+  }
+  if (d == 2)
+  {
+    const double det = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+    inverse[0][0] = e[1][1] / det;
+    inverse[0][1] = -e[0][1] / det;
+    inverse[1][0] = -e[1][0] / det;
+    inverse[1][1] = e[0][0] / det;
+    return det != 0.0;
+  }
+  double c[3][3]; // cofactors, transposed: the adjugate
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      c[k][r] = e[r1][k1] * e[r2][k2] - e[r1][k2] * e[r2][k1];
+    }
+  }
+  const double det = e[0][0] * c[0][0] + e[0][1] * c[1][0] + e[0][2] * c[2][0];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      inverse[r][k] = c[r][k] / det;
+    }
+  }
+  return det != 0.0;
+}
+
+/// Mid nodes within this much of the cell's size from where the corners'
+/// map puts them: the cell is taken as straight (its map affine). Far
+/// below any curvature a mesher writes, far above rounding.
+constexpr double StraightTolerance = 1e-12;
+
+/// Whether `type` is a simplex whose straight cells have an affine map.
+bool IsSimplexType(NodalType type)
+{
+  return type == NodalType::Edge3 || type == NodalType::Triangle6 || type == NodalType::Tetra10;
+}
+} // namespace
+
+int UniformFunctionCount(const MeshView& mesh, SpaceType space)
+{
+  if (space == SpaceType::P0)
+  {
+    return 1;
+  }
+  const int corners = mesh.CornersPerCell();
+  if (space == SpaceType::DP1 || !mesh.Nodal)
+  {
+    return corners;
+  }
+  const NodalCells& nodal = *mesh.Nodal;
+  int count = -1;
+  for (Index p = 0; p < mesh.Parents(); ++p)
+  {
+    const int n = nodal.Type[p] == NodalType::None
+      ? corners
+      : static_cast<int>(nodal.Offsets[p + 1] - nodal.Offsets[p]);
+    if (count >= 0 && n != count)
+    {
+      return 0;
+    }
+    count = n;
+  }
+  return std::max(count, 0);
+}
+
+std::string CheckNodalCells(const MeshView& mesh, const char* name)
+{
+  if (!mesh.Nodal)
+  {
+    return std::string();
+  }
+  const NodalCells& nodal = *mesh.Nodal;
+  const Index parents = mesh.Parents();
+  auto bad = [&](Index p, const char* why) {
+    return std::string(name) + ": second-order cell " + std::to_string(p) + " " + why;
+  };
+  if (!nodal.Type || !nodal.Offsets || nodal.Offsets[0] != 0)
+  {
+    return std::string(name) + ": second-order cells without their types or offsets";
+  }
+  for (Index p = 0; p < parents; ++p)
+  {
+    const NodalType type = nodal.Type[p];
+    const Index count = nodal.Offsets[p + 1] - nodal.Offsets[p];
+    if (type == NodalType::None ? count != 0 : count != NodalNodeCount(type))
+    {
+      return bad(p, "has a wrong number of nodes");
+    }
+    if (type != NodalType::None && NodalCellDimension(type) != mesh.CellDimension)
+    {
+      return bad(p, "has another dimension than its simplices");
+    }
+    for (Index i = nodal.Offsets[p]; i < nodal.Offsets[p + 1]; ++i)
+    {
+      if (nodal.Nodes[i] < 0 || nodal.Nodes[i] >= mesh.NumberOfPoints)
+      {
+        return bad(p, "names a node that does not exist");
+      }
+    }
+  }
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    const Index p = mesh.ParentOf(c);
+    if (nodal.Type[p] == NodalType::None)
+    {
+      continue;
+    }
+    const Index* first = nodal.Nodes + nodal.Offsets[p];
+    const Index* last = nodal.Nodes + nodal.Offsets[p + 1];
+    const CellCorners corners = mesh.Cell(c);
+    for (int k = 0; k < mesh.CornersPerCell(); ++k)
+    {
+      if (std::find(first, last, corners[k]) == last)
+      {
+        return bad(p, "has a simplex on a point that is not one of its nodes");
+      }
+    }
+  }
+  return std::string();
+}
+
+void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
+{
+  if (space == this->Space &&
+    (c == this->Cell ||
+      (this->Type != NodalType::None && space == SpaceType::P1 &&
+        mesh.ParentOf(c) == this->Parent)))
+  {
+    this->Cell = c; // (a second-order parent's functions are the same on all its simplices)
+    return;
+  }
+  this->Cell = c;
+  this->Space = space;
+  this->Dimension = mesh.SpaceDimension;
+  this->Corners = mesh.CornersPerCell();
+  this->Type = NodalType::None;
+  this->Affine = true;
+  if (space == SpaceType::P0)
+  {
+    this->Parent = mesh.ParentOf(c);
+    this->Count = 1;
+    this->Dofs[0] = mesh.ParentOf(c);
+    this->Degree = 0;
+    return;
+  }
+  const Index p = mesh.ParentOf(c);
+  this->Parent = p;
+  const NodalType type = space == SpaceType::P1 ? NodalTypeOf(mesh, p) : NodalType::None;
+  const CellCorners corners = mesh.Cell(c);
+  // The affine simplex: the cell itself, or a simplex parent's corners.
+  Index simplex[4];
+  if (type == NodalType::None)
+  {
+    this->Count = this->Corners;
+    this->Degree = 1;
+    for (int k = 0; k < this->Corners; ++k)
+    {
+      simplex[k] = corners[k];
+      this->Dofs[k] = space == SpaceType::DP1 ? c * this->Corners + k : corners[k];
+    }
+  }
+  else
+  {
+    this->Type = type;
+    this->Degree = NodalDegree(type);
+    const NodalCells& nodal = *mesh.Nodal;
+    this->Count = static_cast<int>(nodal.Offsets[p + 1] - nodal.Offsets[p]);
+    std::copy(nodal.Nodes + nodal.Offsets[p], nodal.Nodes + nodal.Offsets[p + 1], this->Dofs);
+    for (int n = 0; n < this->Count; ++n)
+    {
+      std::copy(mesh.Point(this->Dofs[n]), mesh.Point(this->Dofs[n]) + 3, this->Nodes + 3 * n);
+    }
+    this->Affine =
+      IsSimplexType(type) && NodalIsStraight(type, this->Nodes, this->Dimension, StraightTolerance);
+    if (this->Affine)
+    {
+      double reference[3 * MaxNodalFunctions];
+      NodalReferenceNodes(type, reference);
+      for (int k = 0; k < this->Corners; ++k)
+      {
+        simplex[k] = this->Dofs[k];
+        std::copy(reference + 3 * k, reference + 3 * k + 3, this->Reference[k]);
+      }
+    }
+  }
+  if (!this->Affine)
+  {
+    return;
+  }
+  const double* x0 = mesh.Point(simplex[0]);
+  std::copy(x0, x0 + 3, this->Origin);
+  const int d = this->Corners - 1;
+  const int n = this->Dimension;
+  double e[3][3] = {}; // column k - 1: corner k - corner 0
+  for (int k = 1; k <= d; ++k)
+  {
+    for (int a = 0; a < n; ++a)
+    {
+      e[a][k - 1] = mesh.Point(simplex[k])[a] - x0[a];
+    }
+  }
+  if (d == n)
+  {
+    InvertEdges(d, e, this->Inverse);
+    return;
+  }
+  // A facet or segment in a higher space: the least-squares inverse
+  // (E^T E)^-1 E^T, which maps a point to the barycentric coordinates of
+  // its orthogonal projection onto the simplex's plane or line.
+  double g[3][3] = {};
+  for (int r = 0; r < d; ++r)
+  {
+    for (int k = 0; k < d; ++k)
+    {
+      for (int a = 0; a < n; ++a)
+      {
+        g[r][k] += e[a][r] * e[a][k];
+      }
+    }
+  }
+  double gi[3][3];
+  InvertEdges(d, g, gi);
+  for (int r = 0; r < d; ++r)
+  {
+    for (int a = 0; a < n; ++a)
+    {
+      double v = 0.0;
+      for (int k = 0; k < d; ++k)
+      {
+        v += gi[r][k] * e[a][k];
+      }
+      this->Inverse[r][a] = v;
+    }
+  }
+}
+
+void NodalFunctions::Barycentric(const double* x, double* lambda) const
+{
+  const int d = this->Corners - 1;
+  const int n = this->Dimension;
+  double shift[3];
+  for (int a = 0; a < n; ++a)
+  {
+    shift[a] = x[a] - this->Origin[a];
+  }
+  double sum = 0.0;
+  for (int r = 0; r < d; ++r)
+  {
+    double v = 0.0;
+    for (int a = 0; a < n; ++a)
+    {
+      v += this->Inverse[r][a] * shift[a];
+    }
+    lambda[r + 1] = v;
+    sum += v;
+  }
+  lambda[0] = 1.0 - sum;
+}
+
+int NodalFunctions::Coordinates(const double* x, double* c) const
+{
+  if (this->Space == SpaceType::P0)
+  {
+    return 0;
+  }
+  if (this->Type == NodalType::None)
+  {
+    this->Barycentric(x, c);
+    return this->Corners;
+  }
+  double lambda[4];
+  this->Barycentric(x, lambda);
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = 0.0;
+    for (int k = 0; k < this->Corners; ++k)
+    {
+      c[a] += lambda[k] * this->Reference[k][a];
+    }
+  }
+  return 3;
+}
+
+void NodalFunctions::ValuesAt(const double* c, double* values) const
+{
+  if (this->Space == SpaceType::P0)
+  {
+    values[0] = 1.0;
+  }
+  else if (this->Type == NodalType::None)
+  {
+    std::copy(c, c + this->Corners, values);
+  }
+  else
+  {
+    NodalValues(this->Type, c, values);
+  }
+}
+
+void NodalFunctions::Values(const double* x, double* values) const
+{
+  if (this->Affine)
+  {
+    double c[4];
+    this->Coordinates(x, c);
+    this->ValuesAt(c, values);
+    return;
+  }
+  double xi[3] = { 0.0, 0.0, 0.0 };
+  double point[3] = { x[0], x[1], this->Dimension == 3 ? x[2] : 0.0 };
+  // (Outside the cell by rounding, or where Newton stalls on a badly
+  // curved cell, its last iterate is the best there is.)
+  NodalReference(this->Type, this->Nodes, this->Dimension, point, xi);
+  NodalValues(this->Type, xi, values);
+}
+} // namespace mp
