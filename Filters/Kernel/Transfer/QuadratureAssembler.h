@@ -62,8 +62,8 @@ struct QuadratureAssembler
   const MeshView* Source = nullptr;
   SpaceType TargetSpace = SpaceType::P1;
   SpaceType SourceSpace = SpaceType::P1;
-  MixedBlocks* Blocks = nullptr;     ///< this task's M_ts blocks (one per target function)
-  MixedBlocks* MassBlocks = nullptr; ///< this task's M_tt blocks (one per target function)
+  MixedBlocks* Blocks = nullptr;     ///< this task's M_ts blocks (see the file comment)
+  MixedBlocks* MassBlocks = nullptr; ///< this task's M_tt blocks
   /// Per target kernel cell: the covered fraction of its measure, written
   /// when its last piece has come (each cell belongs to one task).
   double* CoveredFraction = nullptr;
@@ -80,14 +80,14 @@ struct QuadratureAssembler
   double Covered = 0.0;             ///< its pieces' measure so far
   NodalFunctions T;                 ///< its functions
   NodalFunctions S;                 ///< the current source cell's
-  std::vector<Column> BlockColumns; ///< source functions its pieces met
+  std::vector<Column> BlockColumns; ///< source functions the open blocks' pieces met
   std::vector<double> BlockValues;  ///< T.Count per column
   bool Open = false;                ///< blocks of cells with T's functions are open
   std::vector<double> Mtt;          ///< their M_tt block (T.Count x T.Count)
   std::vector<double> TargetPoints; ///< its pieces' points: weight, then T.Count values ...
   std::vector<double> MttSum;       ///< ... or their blocks (InTargetBasis)
-  /// The target mass blocks of its pieces per source parent (InTargetBasis):
-  /// their mixed blocks follow once per parent (Flush).
+  /// The current cell's pieces' target mass blocks per source parent
+  /// (InTargetBasis): their mixed blocks follow once per parent (CloseCell).
   struct Deferred
   {
     Index Key = -1;  ///< NodalFunctions::Key of the source functions
