@@ -446,6 +446,32 @@ TEST(NodalSpace, ReconstructedCellData)
   EXPECT_NEAR(b.Op.GetCoveredMeasure(), 1.0, 1e-13);
 }
 
+// Bounds (clip and assured sum) on a second-order target: a step field
+// stays within [0, 1] at every node and keeps its integral.
+TEST(NodalSpace, Bounds)
+{
+  const NodalMesh source = Square(6, 0.2, 30);
+  const NodalMesh target = Square(5, 0.2, 31);
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  const std::vector<double> us =
+    AtPoints(source, [](const double* x) { return x[0] + 0.3 * x[1] > 0.5 ? 1.0 : 0.0; });
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  mp::ApplyOptions options;
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), 0.0, options).Ok);
+  EXPECT_LT(*std::min_element(ut.begin(), ut.end()), -0.1); // the unbounded one overshoots
+  options.Bounded = true;
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), 0.0, options).Ok);
+  double integral = 0.0;
+  for (size_t i = 0; i < ut.size(); ++i)
+  {
+    EXPECT_GE(ut[i], 0.0);
+    EXPECT_LE(ut[i], 1.0);
+    integral += b.Op.GetCoveredIntegrals()[i] * ut[i];
+  }
+  EXPECT_NEAR(integral, NodalIntegral(source, us), 1e-12);
+}
+
 // A lumped mass is refused on a target of second-order cells.
 TEST(NodalSpace, LumpedRefused)
 {
