@@ -220,6 +220,40 @@ TEST(NodalSpace, PartlyCovered)
   EXPECT_LE(worst, 1e-9 * (*range.second - *range.first));
 }
 
+// The fringe on a second-order target (its supports measured by their
+// cells): some functions are aggregated, and a linear field stays exact.
+TEST(NodalSpace, Fringe)
+{
+  const NodalMesh source = Square(5, 0.2, 28);
+  NodalMesh target = Square(4, 0.2, 29);
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+    target.Points[3 * p] += 0.63;
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  EXPECT_GT(b.Op.AggregateFringe(target.View(), 0.5, mp::SolverHooks()), 0);
+  const std::vector<double> us = AtPoints(source, LinearField);
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  const mp::ApplyResult r = b.Op.Apply(us.data(), 1, ut.data(), std::nan(""));
+  ASSERT_TRUE(r.Ok);
+  ASSERT_TRUE(r.System.Aggregated);
+  Index valid = 0;
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+  {
+    if ((*r.System.Valid)[p])
+    {
+      ++valid;
+      EXPECT_NEAR(ut[p], LinearField(target.Point(p)), 1e-9);
+    }
+    // Well inside the source, supports are covered whole: never aggregated
+    // (their corner functions' integrals, zero or less, say nothing).
+    if (target.Point(p)[0] < 0.85)
+    {
+      EXPECT_FALSE(b.Op.GetFringe().Aggregated[p]) << p;
+    }
+  }
+  EXPECT_GT(valid, target.NumberOfPoints() / 3);
+}
+
 /// The matrices of every pair of cells, dense, by AddByPoints.
 template <class I>
 void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<double>& mts,
