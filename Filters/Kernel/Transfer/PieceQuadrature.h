@@ -245,17 +245,33 @@ void AddByPoints(const typename I::Piece& piece, const typename I::Cell& t,
   });
 }
 
+/// G[i][k] += w phi_i phi_k for k >= i (the upper triangle), N functions
+/// (N > 0: known at compile time, so the loops unroll; 0: n of them).
+template <int N>
+inline void AddUpperProduct(double w, const double* phi, int n, double* G)
+{
+  const int nt = N > 0 ? N : n;
+  for (int i = 0; i < nt; ++i)
+  {
+    const double wi = w * phi[i];
+    for (int k = i; k < nt; ++k)
+    {
+      G[i * nt + k] += wi * phi[k];
+    }
+  }
+}
+
 /**
  * Adds the piece's target mass block G[i][k] += int phi_i phi_k (ft affine,
- * row-major, symmetric), by the rule of degree 2 ft.Degree (exact). With
- * SourceInTargetBasis it gives the piece's mixed block too.
+ * row-major; the upper triangle k >= i only, the rest left as it is), by
+ * the rule of degree 2 ft.Degree (exact). With SourceInTargetBasis it
+ * gives the piece's mixed block too.
  */
 template <class I>
 void AddPieceTargetMass(const typename I::Piece& piece, const NodalFunctions& ft, double* G)
 {
   constexpr int D = I::Dimension;
   const int nt = ft.Count;
-  double upper[MaxNodalFunctions * MaxNodalFunctions] = {};
   const SimplexRule& rule = SimplexQuadrature(D, std::max(2 * ft.Degree, 1));
   ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
     double corner[D + 1][4];
@@ -270,21 +286,32 @@ void AddPieceTargetMass(const typename I::Piece& piece, const NodalFunctions& ft
       double phi[MaxNodalFunctions];
       ft.ValuesAt(Combination<D>(b, corner, count).data(), phi);
       const double w = rule.Weight[q] * measure;
-      for (int i = 0; i < nt; ++i)
+      switch (nt) // (the usual counts: tetrahedra's and triangles' P2 and P1)
       {
-        const double wi = w * phi[i];
-        for (int k = i; k < nt; ++k)
-        {
-          upper[i * nt + k] += wi * phi[k];
-        }
+        case 10:
+          AddUpperProduct<10>(w, phi, nt, G);
+          break;
+        case 6:
+          AddUpperProduct<6>(w, phi, nt, G);
+          break;
+        case 4:
+          AddUpperProduct<4>(w, phi, nt, G);
+          break;
+        default:
+          AddUpperProduct<0>(w, phi, nt, G);
       }
     }
   });
-  for (int i = 0; i < nt; ++i)
+}
+
+/// Copies the upper triangle of the n x n matrix G onto its lower one.
+inline void MirrorUpper(int n, double* G)
+{
+  for (int i = 0; i < n; ++i)
   {
-    for (int k = 0; k < nt; ++k)
+    for (int k = 0; k < i; ++k)
     {
-      G[i * nt + k] += upper[i < k ? i * nt + k : k * nt + i];
+      G[i * n + k] = G[k * n + i];
     }
   }
 }

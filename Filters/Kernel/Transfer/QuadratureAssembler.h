@@ -158,7 +158,8 @@ struct QuadratureAssembler
     const int nt = this->T.Count;
     for (size_t k = 0; k < this->PendingCount; ++k)
     {
-      const Deferred& d = this->Pending[k];
+      Deferred& d = this->Pending[k];
+      MirrorUpper(nt, d.G.data()); // (AddPieceTargetMass summed the upper triangle)
       this->S.Bind(*this->Source, this->SourceSpace, d.Cell);
       this->PieceMts.assign(static_cast<size_t>(nt) * this->S.Count, 0.0);
       double integrals[MaxNodalFunctions] = {};
