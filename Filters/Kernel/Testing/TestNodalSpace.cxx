@@ -506,6 +506,29 @@ TEST(NodalSpace, Bounds)
   EXPECT_NEAR(integral, NodalIntegral(source, us), 1e-12);
 }
 
+// Traces: a tri6 surface inside a tet10 cube, an edge3 curve inside a tri6
+// square and one along edges of a tet10 cube's split (where the cells
+// around each edge all claim the piece) take the volume's quadratic field.
+TEST(NodalSpace, Traces)
+{
+  const NodalMesh cube = Cube(2, 0.15, 32);
+  EXPECT_LE(WorstRelativeError(InsideCube(Square(3, 0.2, 33)), cube, Quadratic3), 1e-9);
+  const NodalMesh square = Square(4, 0.2, 34);
+  EXPECT_LE(WorstRelativeError(Line(5, 35), square, Quadratic2), 1e-9);
+  // Along the line y = z = 0.5 of a straight cube's split: on its edges.
+  const NodalMesh straight = Cube(2, 0.0, 0);
+  NodalMesh along = Line(3, 36, { 0.0, 0.5 }, { 1.0, 0.5 }, 0.0);
+  for (Index p = 0; p < along.NumberOfPoints(); ++p)
+    along.Points[3 * p + 2] = 0.5;
+  along.Space = 3;
+  along.Finish();
+  EXPECT_LE(WorstRelativeError(along, straight, Quadratic3), 1e-9);
+  Built b(along, straight);
+  ASSERT_TRUE(b.Ok);
+  EXPECT_NEAR(b.Op.GetCoveredMeasure(), 1.0, 1e-13); // each tied piece once
+  EXPECT_EQ(b.Op.GetNumberOfOvercoveredCells(), 0);
+}
+
 // A lumped mass is refused on a target of second-order cells.
 TEST(NodalSpace, LumpedRefused)
 {

@@ -28,6 +28,7 @@
 #include "Geometry/SimplexQuadrature.h"
 #include "Geometry/SurfaceIntersector.h"
 #include "Geometry/TetrahedronIntersector.h"
+#include "Geometry/TraceIntersector.h"
 #include "Geometry/TriangleIntersector.h"
 #include "Transfer/NodalSpace.h"
 
@@ -38,11 +39,18 @@
 
 namespace mp
 {
-/// Whether the quadrature assembler takes intersector I's pieces (not the traces').
+/// Whether intersector I's pieces are intervals of a target segment's axis.
+template <class I>
+constexpr bool OnSegments = std::is_same<I, SegmentIntersector>::value ||
+  std::is_same<I, CurveTraceIntersector<TriangleIntersector>>::value ||
+  std::is_same<I, CurveTraceIntersector<TetrahedronIntersector>>::value;
+
+/// Whether the quadrature assembler takes intersector I's pieces (all).
 template <class I>
 constexpr bool QuadratureSupports =
   std::is_same<I, TriangleIntersector>::value || std::is_same<I, TetrahedronIntersector>::value ||
-  std::is_same<I, SurfaceIntersector>::value || std::is_same<I, SegmentIntersector>::value;
+  std::is_same<I, SurfaceIntersector>::value || std::is_same<I, SegmentIntersector>::value ||
+  std::is_same<I, SurfaceTraceIntersector>::value || OnSegments<I>;
 
 /**
  * Calls f(corners, measure) for each simplex of `piece` in the
@@ -65,12 +73,19 @@ void ForEachPieceSimplex(const typename I::Piece& piece, F&& f)
       f(corners, piece.Volume[i]);
     }
   }
-  else if constexpr (std::is_same<I, SegmentIntersector>::value)
+  else if constexpr (OnSegments<I>)
   {
     if (piece.NumberOfVertices == 2)
     {
       const double* corners[2] = { piece.X[0], piece.X[1] };
       f(corners, piece.X[1][0] - piece.X[0][0]);
+    }
+  }
+  else if constexpr (std::is_same<I, SurfaceTraceIntersector>::value)
+  {
+    for (int p = 0; p < piece.NumberOfParts; ++p)
+    {
+      ForEachPieceSimplex<TriangleIntersector>(piece.Parts[p], f);
     }
   }
   else
@@ -93,7 +108,8 @@ void ForEachPieceSimplex(const typename I::Piece& piece, F&& f)
  * mesh's SpaceDimension coordinates: the same point for volumes; for
  * surfaces and curves the point of the target facet or segment in space,
  * and the point of the source facet or segment whose image it is (the
- * same barycentric coordinates on the source's projection, Piece::Projected).
+ * same barycentric coordinates on the source's projection, Piece::Projected);
+ * for traces the target's point in space on both (it lies in the source).
  */
 template <class I>
 void PiecePlaces(const typename I::Cell& t, const typename I::Piece& piece, const MeshView& source,
@@ -120,6 +136,20 @@ void PiecePlaces(const typename I::Cell& t, const typename I::Piece& piece, cons
     {
       onTarget[a] = t.Origin[a] + x[0] * t.Axis[a];
       onSource[a] = (1.0 - l) * p.Corner[0][a] + l * p.Corner[1][a];
+    }
+  }
+  else if constexpr (std::is_same<I, SurfaceTraceIntersector>::value)
+  {
+    for (int a = 0; a < 3; ++a) // (a trace lies in the source volume: the same point)
+    {
+      onTarget[a] = onSource[a] = t.Origin[a] + x[0] * t.Axis[0][a] + x[1] * t.Axis[1][a];
+    }
+  }
+  else if constexpr (OnSegments<I>)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      onTarget[a] = onSource[a] = t.Origin[a] + x[0] * t.Axis[a];
     }
   }
   else
