@@ -5,7 +5,8 @@
  *        (TestNodalSpace.cxx), each with its split on its own nodes: tri6
  *        squares and tet10 cubes with jittered interior corners and
  *        straight edges, tri6 disks whose boundary mid nodes lie on the
- *        circle, planar meshes moved onto a tilted plane, edge3 lines.
+ *        circle, planar meshes moved onto a tilted plane (or one inside
+ *        the unit cube), edge3 lines.
  */
 #ifndef MeshProjection_Kernel_Testing_NodalMeshes_h
 #define MeshProjection_Kernel_Testing_NodalMeshes_h
@@ -280,12 +281,14 @@ inline NodalMesh Tilted(NodalMesh mesh)
   return mesh;
 }
 
-/// Edge3 cells along the line from (0.1, 0.2) in direction (0.6, 0.8),
-/// n of them over [0, 1], their ends jittered (mid nodes in the middle).
-inline NodalMesh Line(int n, unsigned seed)
+/// Edge3 cells along the segment from `from` to `to` (in the plane: z = 0),
+/// n of them, their ends jittered by up to `jitter` of a cell (mid nodes
+/// in the middle).
+inline NodalMesh Line(int n, unsigned seed, const std::array<double, 2>& from = { 0.1, 0.2 },
+  const std::array<double, 2>& to = { 0.7, 1.0 }, double jitter = 0.2)
 {
   std::mt19937 random(seed);
-  std::uniform_real_distribution<double> shift(-0.2, 0.2);
+  std::uniform_real_distribution<double> shift(-jitter, jitter);
   NodalMesh mesh;
   mesh.Dimension = 1;
   mesh.Space = 2;
@@ -295,9 +298,27 @@ inline NodalMesh Line(int n, unsigned seed)
   for (int i = 1; i < 2 * n; i += 2)
     t[i] = 0.5 * (t[i - 1] + t[i + 1]);
   for (double s : t)
-    mesh.Points.insert(mesh.Points.end(), { 0.1 + 0.6 * s, 0.2 + 0.8 * s, 0.0 });
+    mesh.Points.insert(
+      mesh.Points.end(), { from[0] + (to[0] - from[0]) * s, from[1] + (to[1] - from[1]) * s, 0.0 });
   for (int i = 0; i < 2 * n; i += 2)
     mesh.Edge3({ i, i + 2, i + 1 });
+  mesh.Finish();
+  return mesh;
+}
+
+/// `mesh` (planar, z = 0, in [0, 1]^2) moved onto the plane through
+/// (0.1, 0.15, 0.3) spanned by (0.8, 0, 0.4) and (0, 0.7, 0): inside the unit cube.
+inline NodalMesh InsideCube(NodalMesh mesh)
+{
+  for (Index p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    double* x = &mesh.Points[3 * p];
+    const double u = x[0], v = x[1];
+    x[0] = 0.1 + 0.8 * u;
+    x[1] = 0.15 + 0.7 * v;
+    x[2] = 0.3 + 0.4 * u;
+  }
+  mesh.Space = 3;
   mesh.Finish();
   return mesh;
 }

@@ -220,6 +220,40 @@ TEST(NodalSpace, PartlyCovered)
   EXPECT_LE(worst, 1e-9 * (*range.second - *range.first));
 }
 
+// The fringe on a second-order target (its supports measured by their
+// cells): some functions are aggregated, and a linear field stays exact.
+TEST(NodalSpace, Fringe)
+{
+  const NodalMesh source = Square(5, 0.2, 28);
+  NodalMesh target = Square(4, 0.2, 29);
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+    target.Points[3 * p] += 0.63;
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  EXPECT_GT(b.Op.AggregateFringe(target.View(), 0.5, mp::SolverHooks()), 0);
+  const std::vector<double> us = AtPoints(source, LinearField);
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  const mp::ApplyResult r = b.Op.Apply(us.data(), 1, ut.data(), std::nan(""));
+  ASSERT_TRUE(r.Ok);
+  ASSERT_TRUE(r.System.Aggregated);
+  Index valid = 0;
+  for (Index p = 0; p < target.NumberOfPoints(); ++p)
+  {
+    if ((*r.System.Valid)[p])
+    {
+      ++valid;
+      EXPECT_NEAR(ut[p], LinearField(target.Point(p)), 1e-9);
+    }
+    // Well inside the source, supports are covered whole: never aggregated
+    // (their corner functions' integrals, zero or less, say nothing).
+    if (target.Point(p)[0] < 0.85)
+    {
+      EXPECT_FALSE(b.Op.GetFringe().Aggregated[p]) << p;
+    }
+  }
+  EXPECT_GT(valid, target.NumberOfPoints() / 3);
+}
+
 /// The matrices of every pair of cells, dense, by AddByPoints.
 template <class I>
 void BruteForce(const NodalMesh& target, const NodalMesh& source, std::vector<double>& mts,
@@ -444,6 +478,55 @@ TEST(NodalSpace, ReconstructedCellData)
     sum += v;
   EXPECT_NEAR(sum, b.Op.GetCoveredMeasure(), 1e-13);
   EXPECT_NEAR(b.Op.GetCoveredMeasure(), 1.0, 1e-13);
+}
+
+// Bounds (clip and assured sum) on a second-order target: a step field
+// stays within [0, 1] at every node and keeps its integral.
+TEST(NodalSpace, Bounds)
+{
+  const NodalMesh source = Square(6, 0.2, 30);
+  const NodalMesh target = Square(5, 0.2, 31);
+  Built b(target, source);
+  ASSERT_TRUE(b.Ok) << b.Op.GetError();
+  const std::vector<double> us =
+    AtPoints(source, [](const double* x) { return x[0] + 0.3 * x[1] > 0.5 ? 1.0 : 0.0; });
+  std::vector<double> ut(size_t(target.NumberOfPoints()));
+  mp::ApplyOptions options;
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), 0.0, options).Ok);
+  EXPECT_LT(*std::min_element(ut.begin(), ut.end()), -0.1); // the unbounded one overshoots
+  options.Bounded = true;
+  ASSERT_TRUE(b.Op.Apply(us.data(), 1, ut.data(), 0.0, options).Ok);
+  double integral = 0.0;
+  for (size_t i = 0; i < ut.size(); ++i)
+  {
+    EXPECT_GE(ut[i], 0.0);
+    EXPECT_LE(ut[i], 1.0);
+    integral += b.Op.GetCoveredIntegrals()[i] * ut[i];
+  }
+  EXPECT_NEAR(integral, NodalIntegral(source, us), 1e-12);
+}
+
+// Traces: a tri6 surface inside a tet10 cube, an edge3 curve inside a tri6
+// square and one along edges of a tet10 cube's split (where the cells
+// around each edge all claim the piece) take the volume's quadratic field.
+TEST(NodalSpace, Traces)
+{
+  const NodalMesh cube = Cube(2, 0.15, 32);
+  EXPECT_LE(WorstRelativeError(InsideCube(Square(3, 0.2, 33)), cube, Quadratic3), 1e-9);
+  const NodalMesh square = Square(4, 0.2, 34);
+  EXPECT_LE(WorstRelativeError(Line(5, 35), square, Quadratic2), 1e-9);
+  // Along the line y = z = 0.5 of a straight cube's split: on its edges.
+  const NodalMesh straight = Cube(2, 0.0, 0);
+  NodalMesh along = Line(3, 36, { 0.0, 0.5 }, { 1.0, 0.5 }, 0.0);
+  for (Index p = 0; p < along.NumberOfPoints(); ++p)
+    along.Points[3 * p + 2] = 0.5;
+  along.Space = 3;
+  along.Finish();
+  EXPECT_LE(WorstRelativeError(along, straight, Quadratic3), 1e-9);
+  Built b(along, straight);
+  ASSERT_TRUE(b.Ok);
+  EXPECT_NEAR(b.Op.GetCoveredMeasure(), 1.0, 1e-13); // each tied piece once
+  EXPECT_EQ(b.Op.GetNumberOfOvercoveredCells(), 0);
 }
 
 // A lumped mass is refused on a target of second-order cells.

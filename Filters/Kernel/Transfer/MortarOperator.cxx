@@ -122,13 +122,6 @@ bool MortarOperator::Check(
       "their plane) or tetrahedra (a trace) can be projected";
     return false;
   }
-  if ((HasNodalSpace(options.TargetSpace, target) || HasNodalSpace(options.SourceSpace, source)) &&
-    trace)
-  {
-    this->Error = "point data on second-order cells is not projected onto a trace (a surface "
-                  "or curve in a volume) yet";
-    return false;
-  }
   if (options.TargetSpace == SpaceType::DP1)
   {
     this->Error = "DP1 is a source space only (reconstructed cell data): the target is P1 or P0";

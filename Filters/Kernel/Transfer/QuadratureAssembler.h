@@ -29,17 +29,18 @@
  * (NodalMass.h). The covered fractions, the source cover, the kept pieces
  * and the counts are those of MortarAssembler.
  *
- * Triangles in the plane, tetrahedra, surfaces and curves: a surface's or
- * curve's piece lies in the target facet's frame, where each quadrature
- * point is taken back to the target facet and to the source facet it is
- * the image of (PiecePlaces), the functions evaluated there. Not the
- * traces (QuadratureSupports).
+ * Triangles in the plane, tetrahedra, surfaces, curves and traces: a
+ * surface's or curve's piece lies in the target facet's frame, where each
+ * quadrature point is taken back to the target facet and to the source
+ * facet it is the image of, or for a trace to the point in the source
+ * volume (PiecePlaces), the functions evaluated there.
  */
 #ifndef MeshProjection_Kernel_QuadratureAssembler_h
 #define MeshProjection_Kernel_QuadratureAssembler_h
 
 #include "Geometry/IntersectionPieces.h"
 #include "Transfer/MixedMatrix.h"
+#include "Transfer/MortarAssembler.h"
 #include "Transfer/NodalSpace.h"
 #include "Transfer/PieceQuadrature.h"
 
@@ -62,8 +63,8 @@ struct QuadratureAssembler
   const MeshView* Source = nullptr;
   SpaceType TargetSpace = SpaceType::P1;
   SpaceType SourceSpace = SpaceType::P1;
-  MixedBlocks* Blocks = nullptr;     ///< this task's M_ts blocks (one per target function)
-  MixedBlocks* MassBlocks = nullptr; ///< this task's M_tt blocks (one per target function)
+  MixedBlocks* Blocks = nullptr;     ///< this task's M_ts blocks (see the file comment)
+  MixedBlocks* MassBlocks = nullptr; ///< this task's M_tt blocks
   /// Per target kernel cell: the covered fraction of its measure, written
   /// when its last piece has come (each cell belongs to one task).
   double* CoveredFraction = nullptr;
@@ -80,14 +81,14 @@ struct QuadratureAssembler
   double Covered = 0.0;             ///< its pieces' measure so far
   NodalFunctions T;                 ///< its functions
   NodalFunctions S;                 ///< the current source cell's
-  std::vector<Column> BlockColumns; ///< source functions its pieces met
+  std::vector<Column> BlockColumns; ///< source functions the open blocks' pieces met
   std::vector<double> BlockValues;  ///< T.Count per column
   bool Open = false;                ///< blocks of cells with T's functions are open
   std::vector<double> Mtt;          ///< their M_tt block (T.Count x T.Count)
   std::vector<double> TargetPoints; ///< its pieces' points: weight, then T.Count values ...
   std::vector<double> MttSum;       ///< ... or their blocks (InTargetBasis)
-  /// The target mass blocks of its pieces per source parent (InTargetBasis):
-  /// their mixed blocks follow once per parent (Flush).
+  /// The current cell's pieces' target mass blocks per source parent
+  /// (InTargetBasis): their mixed blocks follow once per parent (CloseCell).
   struct Deferred
   {
     Index Key = -1;  ///< NodalFunctions::Key of the source functions
@@ -105,6 +106,39 @@ struct QuadratureAssembler
     this->AppendBlocks();
   }
 
+  /// Pieces of the current target cell claimed by several source cells
+  /// (HasTies: a curve along an edge of a volume): each edge's claim from
+  /// the lowest source cell id is kept, as MortarAssembler keeps it.
+  struct Tie
+  {
+    std::pair<Index, Index> Key;
+    typename SourceSideOf<Intersector>::type::Cell Source;
+    Piece Part;
+  };
+  std::vector<Tie> Ties;
+  Cell CurrentCell; ///< (ties are settled after the search's own has moved on)
+
+  void SettleTies()
+  {
+    if (this->Ties.empty())
+    {
+      return;
+    }
+    std::vector<Tie> ties;
+    ties.swap(this->Ties);
+    std::sort(ties.begin(), ties.end(), [](const Tie& a, const Tie& b) {
+      return a.Key != b.Key ? a.Key < b.Key : a.Source.Id < b.Source.Id;
+    });
+    for (size_t i = 0; i < ties.size(); ++i)
+    {
+      if (i == 0 || ties[i].Key != ties[i - 1].Key)
+      {
+        ties[i].Part.Target = &this->CurrentCell;
+        this->Add(this->CurrentCell, ties[i].Source, ties[i].Part);
+      }
+    }
+  }
+
   /**
    * The current cell done: its covered fraction, and its M_tt block added
    * to the open one: the cell's own where that is exact (an affine cell
@@ -118,6 +152,10 @@ struct QuadratureAssembler
     if (this->Current < 0)
     {
       return;
+    }
+    if constexpr (HasTies<Intersector>::value)
+    {
+      this->SettleTies();
     }
     const double fraction = this->Covered / this->CurrentMeasure;
     this->Overcovered += fraction > 1.0 + 1e-9;
@@ -158,7 +196,8 @@ struct QuadratureAssembler
     const int nt = this->T.Count;
     for (size_t k = 0; k < this->PendingCount; ++k)
     {
-      const Deferred& d = this->Pending[k];
+      Deferred& d = this->Pending[k];
+      MirrorUpper(nt, d.G.data()); // (AddPieceTargetMass summed the upper triangle)
       this->S.Bind(*this->Source, this->SourceSpace, d.Cell);
       this->PieceMts.assign(static_cast<size_t>(nt) * this->S.Count, 0.0);
       double integrals[MaxNodalFunctions] = {};
@@ -284,6 +323,7 @@ struct QuadratureAssembler
         this->AppendBlocks();
       }
       this->Current = t.Id;
+      this->CurrentCell = t;
       this->CurrentMeasure = t.Measure;
       this->Covered = 0.0;
       this->T.Bind(*this->Target, this->TargetSpace, t.Id);
@@ -298,6 +338,14 @@ struct QuadratureAssembler
     }
     if constexpr (QuadratureSupports<Intersector>)
     {
+      if constexpr (HasTies<Intersector>::value)
+      {
+        if (Intersector::Tied(piece))
+        {
+          this->Ties.push_back({ Intersector::TieKey(piece), s, piece });
+          return;
+        }
+      }
       this->Add(t, s, piece);
     }
   }
