@@ -13,6 +13,7 @@
 #include "Geometry/Measures.h"
 #include "Mesh/BlockSums.h"
 #include "Mesh/CellCornersInOrder.h"
+#include "Transfer/NodalSpace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -142,6 +143,14 @@ const std::vector<double>& SourceWeights::Make(
           }
         }
       });
+    }
+    else if (mp::HasNodalSpace(space, view))
+    {
+      // The second-order cells' own functions: each one's integral over the
+      // covered part, as the pieces measure it (a function spans several
+      // simplices, so the surfaces' 90% rule, a per-cell share, is not applied).
+      const mp::LargeVector<double>& integrals = op.GetSourceFunctionCovered();
+      std::copy(integrals.begin(), integrals.end(), w.begin());
     }
     else if (space == mp::SpaceType::P1)
     {

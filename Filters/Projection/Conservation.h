@@ -7,8 +7,9 @@
  * SourceIntegral_<array> is the Source field's integral over the part of
  * Source the operator's pieces cover: per Source function a weight (P1: a
  * third (a half, a quarter) of the covered measure of each simplex around
- * the point; P0: the cell's covered measure; DP1, reconstructed cell data:
- * its own integral over the covered part), NaN groups' cells not covered.
+ * the point; P0: the cell's covered measure; DP1, reconstructed cell data,
+ * and the second-order cells' own functions: each one's integral over the
+ * covered part), NaN groups' cells not covered.
  * For surfaces and curves the pieces, projected along each target
  * facet's own normal, cover a Source cell only up to O(h^2): a cell
  * covered to 90% or more counts whole, so that a Source covered whole gives

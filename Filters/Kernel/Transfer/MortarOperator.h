@@ -363,9 +363,10 @@ public:
   /// cover, measured on the source cell (for surfaces and curves through
   /// the projection's Jacobian; cells left out by ExcludedSourceCells: 0).
   const LargeVector<double>& GetSourceCovered() const { return this->SourceCovered; }
-  /// DP1 source functions (reconstructed cell data): per function, its
-  /// integral over the covered part, on the source cell as GetSourceCovered
-  /// measures it; empty for the other source spaces.
+  /// DP1 source functions (reconstructed cell data) and the second-order
+  /// cells' own (NodalSpace.h): per function, its integral over the covered
+  /// part, on the source cell as GetSourceCovered measures it; empty for
+  /// the other source spaces.
   const LargeVector<double>& GetSourceFunctionCovered() const
   {
     return this->SourceFunctionCovered;

@@ -77,7 +77,11 @@ struct MortarOperator::NodalSession
     op.TargetMass.Rows = op.TargetMass.Columns = rows;
     op.NodalPath = true;
     op.NodalTarget = HasNodalSpace(op.Options.TargetSpace, target);
-    const bool functionCover = op.Options.SourceSpace == SpaceType::DP1;
+    // Each source function's integral over the covered part: DP1's, and the
+    // cells' own functions' (their integrals are not a share of the cells'
+    // measures, as P1's are: a quadratic corner's is zero or less).
+    const bool functionCover =
+      op.Options.SourceSpace == SpaceType::DP1 || HasNodalSpace(op.Options.SourceSpace, source);
     this->Assemblers.resize(static_cast<size_t>(tasks));
     this->Blocks.resize(static_cast<size_t>(tasks));
     this->MassBlocks.resize(static_cast<size_t>(tasks));
@@ -94,7 +98,8 @@ struct MortarOperator::NodalSession
       }
       if (functionCover)
       {
-        this->FunctionMet[k].assign(static_cast<size_t>(SpaceSize(SpaceType::DP1, source)), 0.0);
+        this->FunctionMet[k].assign(
+          static_cast<size_t>(SpaceSize(op.Options.SourceSpace, source)), 0.0);
       }
       Assembler& a = this->Assemblers[k];
       a.Target = &target;
