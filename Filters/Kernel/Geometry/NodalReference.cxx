@@ -12,7 +12,8 @@ namespace mp
 namespace
 {
 /// Solves the n x n system A y = b (n <= 3, y into b) by elimination with
-/// partial pivoting, and gives A's determinant; false for a zero pivot.
+/// partial pivoting, and gives A's (signed) determinant; false for a zero
+/// pivot.
 bool Solve(int n, double A[3][3], double* b, double& determinant)
 {
   determinant = 1.0;
@@ -27,7 +28,7 @@ bool Solve(int n, double A[3][3], double* b, double& determinant)
     {
       return false;
     }
-    determinant *= A[pivot][k];
+    determinant *= pivot == k ? A[pivot][k] : -A[pivot][k]; // a swap turns the sign
     std::swap(A[k], A[pivot]);
     std::swap(b[k], b[pivot]);
     for (int i = k + 1; i < n; ++i)
@@ -92,12 +93,13 @@ LocalCell MakeLocal(NodalType type, const double* X, int space)
 /**
  * One (Gauss-)Newton step for sum_n N_n(xi) X_n = x over the first `count`
  * nodes with the functions `shapes` (the corners' or the full ones):
- * step = the least-squares solution of J step = x - x(xi). False when J's
- * columns are dependent (relative 1e-13).
+ * step = the least-squares solution of J step = x - x(xi), and J's
+ * determinant at xi (det J^T J in space). False when J's columns are
+ * dependent (relative 1e-13).
  */
 template <typename Shapes>
-bool NewtonStep(
-  const LocalCell& cell, int count, Shapes shapes, const double* x, const double* xi, double* step)
+bool NewtonStep(const LocalCell& cell, int count, Shapes shapes, const double* x, const double* xi,
+  double* step, double& determinant)
 {
   double N[MaxNodalNodes];
   double dN[MaxNodalNodes * 3];
@@ -152,7 +154,6 @@ bool NewtonStep(
   }
   // The volume the columns span against the product of their lengths
   // (1 for orthogonal columns): |det J|, or sqrt(det J^T J) in space.
-  double determinant = 0.0;
   if (!Solve(d, A, b, determinant))
   {
     return false;
@@ -166,49 +167,24 @@ bool NewtonStep(
   return true;
 }
 
-/// The determinant of the full map's Jacobian at xi (cell dimension =
-/// space dimension).
-double Orientation(const LocalCell& cell, const double* xi)
-{
-  double dN[MaxNodalNodes * 3];
-  NodalDerivatives(cell.Type, xi, dN);
-  double J[3][3] = {};
-  for (int n = 0; n < cell.Count; ++n)
-  {
-    for (int i = 0; i < cell.Space; ++i)
-    {
-      for (int a = 0; a < cell.Dimension; ++a)
-      {
-        J[i][a] += dN[n * 3 + a] * cell.X[n][i];
-      }
-    }
-  }
-  switch (cell.Dimension)
-  {
-    case 1:
-      return J[0][0];
-    case 2:
-      return J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    default:
-      return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-        J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-        J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-  }
-}
-
 /**
  * Newton iterations from xi: stops at a step below 1e-14 (not applied, so
- * an exact start stays exact), or at one below 1e-10 over half the last
- * (the steps no longer shrink: the rounding floor). False when singular or not converged in 50 steps.
+ * an exact start stays exact), at one below 1e-10 over half the last (the
+ * steps no longer shrink: the rounding floor), or after applying one below
+ * 1e-9 and 1e-3 times the last (converging quadratically, the next would
+ * be below 1e-15); gives the determinant of the last step's J (at or next
+ * to the xi returned). False when singular or not
+ * converged in 50 steps.
  */
 template <typename Shapes>
-bool Iterate(const LocalCell& cell, int count, Shapes shapes, const double* x, double* xi)
+bool Iterate(
+  const LocalCell& cell, int count, Shapes shapes, const double* x, double* xi, double& determinant)
 {
   double previous = HUGE_VAL;
   for (int iteration = 0; iteration < 50; ++iteration)
   {
     double step[3] = { 0.0, 0.0, 0.0 };
-    if (!NewtonStep(cell, count, shapes, x, xi, step))
+    if (!NewtonStep(cell, count, shapes, x, xi, step, determinant))
     {
       return false;
     }
@@ -224,6 +200,13 @@ bool Iterate(const LocalCell& cell, int count, Shapes shapes, const double* x, d
     for (int a = 0; a < cell.Dimension; ++a)
     {
       xi[a] += step[a];
+    }
+    if (size <= 1e-9 && size <= 1e-3 * previous)
+    {
+      // Quadratic convergence: the next step would be about size^2 / previous
+      // (below 1e-15); J is that of the point before, hence the determinant
+      // is nearly that at xi.
+      return true;
     }
     previous = size;
   }
@@ -266,21 +249,36 @@ bool NodalReference(
   auto linear = [type](
                   const double* p, double* N, double* dN) { NodalCornerFunctions(type, p, N, dN); };
   auto full = [type](const double* p, double* N, double* dN) {
-    NodalValues(type, p, N);
-    NodalDerivatives(type, p, dN);
+    NodalValuesAndDerivatives(type, p, N, dN);
   };
+  // The corners' map: on a simplex it is affine and the first step from
+  // the centre inverts it; otherwise Newton goes on (from the centre again
+  // if it fails). Its Jacobian at the centre orients the cell.
+  double orientation = 0.0;
+  double step[3] = { 0.0, 0.0, 0.0 };
   std::copy(centre, centre + 3, xi);
-  if (!Iterate(cell, corners, linear, local, xi))
+  if (NewtonStep(cell, corners, linear, local, centre, step, orientation))
   {
-    std::copy(centre, centre + 3, xi);
+    for (int a = 0; a < d; ++a)
+    {
+      xi[a] += step[a];
+    }
+    const bool simplex =
+      type == NodalType::Edge3 || type == NodalType::Triangle6 || type == NodalType::Tetra10;
+    double ignored = 0.0;
+    if (!simplex && !Iterate(cell, corners, linear, local, xi, ignored))
+    {
+      std::copy(centre, centre + 3, xi);
+    }
   }
-  if (!Iterate(cell, cell.Count, full, local, xi))
+  double determinant = 0.0; // the full map's, at the xi returned
+  if (!Iterate(cell, cell.Count, full, local, xi, determinant))
   {
     return false;
   }
   // On the cell's own sheet only: past a fold of the extrapolated map (or
   // inside an inverted cell) the map turns the other way round.
-  return spaceDimension > d || Orientation(cell, xi) * Orientation(cell, centre) > 0.0;
+  return spaceDimension > d || orientation == 0.0 || orientation * determinant > 0.0;
 }
 
 bool NodalIsStraight(NodalType type, const double* X, int spaceDimension, double tolerance)

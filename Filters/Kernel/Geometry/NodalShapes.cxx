@@ -90,29 +90,37 @@ void SimplexP2(int d, const double* xi, double* N, double* dN)
   }
 }
 
-/// Tensor-product quadratic Lagrange (Quad9, Hexa27) on `nodes`.
+/// Tensor-product quadratic Lagrange (Quad9, Hexa27) on `nodes`: the
+/// three 1D functions of each direction once, then their products.
 void TensorQ2(int d, int count, const double* nodes, const double* xi, double* N, double* dN)
 {
+  double line[3][3];  // line[a][k]: direction a's function k at xi_a
+  double slope[3][3]; // and its derivative
+  for (int a = 0; a < d; ++a)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      line[a][k] = Lagrange(k, xi[a]);
+      slope[a][k] = LagrangeDerivative(k, xi[a]);
+    }
+  }
   for (int n = 0; n < count; ++n)
   {
-    double value[3];
-    double slope[3];
+    int k[3] = { 0, 0, 0 };
     for (int a = 0; a < d; ++a)
     {
-      const int k = LagrangeIndex(nodes[n * 3 + a]);
-      value[a] = Lagrange(k, xi[a]);
-      slope[a] = LagrangeDerivative(k, xi[a]);
+      k[a] = LagrangeIndex(nodes[n * 3 + a]);
     }
     if (N)
     {
-      N[n] = d == 2 ? value[0] * value[1] : value[0] * value[1] * value[2];
+      N[n] = line[0][k[0]] * line[1][k[1]] * (d == 3 ? line[2][k[2]] : 1.0);
     }
     for (int a = 0; dN && a < 3; ++a)
     {
-      double product = a < d ? slope[a] : 0.0;
+      double product = a < d ? slope[a][k[a]] : 0.0;
       for (int b = 0; b < d; ++b)
       {
-        product *= b == a ? 1.0 : value[b];
+        product *= b == a ? 1.0 : line[b][k[b]];
       }
       dN[n * 3 + a] = product;
     }
@@ -549,6 +557,11 @@ void NodalValues(NodalType type, const double* xi, double* N)
 void NodalDerivatives(NodalType type, const double* xi, double* dN)
 {
   Evaluate(type, xi, nullptr, dN);
+}
+
+void NodalValuesAndDerivatives(NodalType type, const double* xi, double* N, double* dN)
+{
+  Evaluate(type, xi, N, dN);
 }
 
 void NodalCornerFunctions(NodalType type, const double* xi, double* N, double* dN)

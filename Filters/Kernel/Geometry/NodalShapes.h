@@ -106,6 +106,10 @@ void NodalValues(NodalType type, const double* xi, double* N);
  */
 void NodalDerivatives(NodalType type, const double* xi, double* dN);
 
+/// Both at once (one pass over the nodes): as NodalValues and
+/// NodalDerivatives.
+void NodalValuesAndDerivatives(NodalType type, const double* xi, double* N, double* dN);
+
 /**
  * The corners' own (multi)linear functions at xi, those of the linear cell
  * on the same corners: barycentric for Edge3, Triangle6 and Tetra10,
@@ -134,15 +138,18 @@ void NodalCornerFunctions(NodalType type, const double* xi, double* N, double* d
  * is extrapolated, never clamped, so xi may leave the reference cell.
  *
  * Converges to ~1e-14 in xi (relative to the cell's size, which is 1 in
- * xi): stops at a step below 1e-14, or at one below 1e-10 that is more
- * than half the step before it (the steps no longer shrink: rounding).
+ * xi): stops at a step below 1e-14 (not applied), after applying one below
+ * 1e-9 that is below 1e-3 times the step before it (quadratic convergence:
+ * the next would be below 1e-15), or at one below 1e-10 that is more than
+ * half the step before it (the steps no longer shrink: rounding).
  * Near the foot of a point off a curve or surface Gauss-Newton converges
  * linearly, at a rate that grows with the point's distance times the
  * cell's curvature. Returns false, with xi the last iterate, when the
  * Jacobian is singular (relative to its columns' lengths, 1e-13) or when
  * 50 steps do not converge; and, when the cell's dimension equals
  * spaceDimension, with xi a converged preimage of x, when the Jacobian
- * there is oriented against the one at the reference centre: x lies past
+ * there is oriented against the corners' map's at the reference centre
+ * (the cell's orientation as its corners give it): x lies past
  * a fold of the extrapolated map (far outside a strongly curved cell,
  * where x has several preimages) or in an inverted part of an invalid
  * cell.

@@ -5,8 +5,14 @@
 // (d! a_1! ... a_d! / (a_1 + ... + a_d + d)!), the weights are positive and
 // sum to 1, every point is strictly inside, and for odd degrees one degree
 // more is not always exact (the rules are not over-sized by accident); the
-// compact symmetric rules are used where they have fewer points.
+// compact symmetric rules are used where they have fewer points; the mass
+// matrices of the quadratic simplices (int N_i N_j, degree 4) from the
+// degree-4 rules (compact in 2D and 3D) equal those from the degree-12
+// conical products, their sums the exact integral of 1 and a corner's
+// diagonal entry its exact value.
 #include "Geometry/SimplexQuadrature.h"
+
+#include "Geometry/NodalShapes.h"
 
 #include <gtest/gtest.h>
 
@@ -193,5 +199,51 @@ TEST(SimplexQuadrature, SameRuleFromEveryThread)
   for (int t = 1; t < 4; ++t)
   {
     EXPECT_EQ(seen[t], seen[0]);
+  }
+}
+
+TEST(SimplexQuadrature, QuadraticMassMatrices)
+{
+  const mp::NodalType types[] = { mp::NodalType::Edge3, mp::NodalType::Triangle6,
+    mp::NodalType::Tetra10 };
+  for (mp::NodalType type : types)
+  {
+    const int d = mp::NodalCellDimension(type);
+    const int count = mp::NodalNodeCount(type);
+    auto mass = [&](const mp::SimplexRule& rule) {
+      std::vector<double> M(count * count, 0.0);
+      for (int q = 0; q < rule.Points; ++q)
+      {
+        double N[mp::MaxNodalNodes];
+        // The reference coordinates are the barycentric ones past the first.
+        double xi[3] = { 0.0, 0.0, 0.0 };
+        for (int a = 0; a < d; ++a)
+        {
+          xi[a] = rule.Barycentric[q * (d + 1) + a + 1];
+        }
+        mp::NodalValues(type, xi, N);
+        for (int i = 0; i < count; ++i)
+        {
+          for (int j = 0; j < count; ++j)
+          {
+            M[i * count + j] += rule.Weight[q] * N[i] * N[j];
+          }
+        }
+      }
+      return M;
+    };
+    const std::vector<double> low = mass(mp::SimplexQuadrature(d, 4));
+    const std::vector<double> high = mass(mp::SimplexQuadrature(d, mp::MaxSimplexDegree));
+    double sum = 0.0;
+    for (int k = 0; k < count * count; ++k)
+    {
+      EXPECT_NEAR(low[k], high[k], 1e-15) << int(type) << " entry " << k;
+      sum += low[k];
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-14) << int(type);
+    // A corner's diagonal entry, 4 <l^4> - 4 <l^3> + <l^2> with
+    // <l^k> = d! k! / (k + d)!: 2/15, 1/30, 1/70 of the measure.
+    const double exact = d == 1 ? 2.0 / 15.0 : (d == 2 ? 1.0 / 30.0 : 1.0 / 70.0);
+    EXPECT_NEAR(low[0], exact, 1e-16) << int(type);
   }
 }
