@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Projection/Apply.h"
+#include "Projection/Messages.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
@@ -78,6 +79,16 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
+  if (ctx.Options.Lumped && op.HasNodalTarget())
+  {
+    // The cells' own quadratic functions integrate to zero or less at
+    // corners: no lumped mass is a mean there.
+    apply.Mass = mp::MassType::Consistent;
+    ctx.Say.WarnOnce("lumped/" + ctx.Role,
+      "MassMatrix is Lumped, but " + ctx.Role +
+        " has second-order cells, whose own functions have no lumped mass (a corner's "
+        "integral is zero or less): its point data is projected with the consistent mass.");
+  }
   apply.Bounded = ctx.Options.PreserveBounds;
   apply.Solve.MaxIterations = ctx.Options.MaximumIterations;
   apply.FringeHooks =
@@ -132,8 +143,10 @@ void AggregateFringes(
 {
   const mp::MeshView& view = ctx.Target.View();
   const double threshold = ctx.Options.FringeThreshold;
-  // (Lumped values are means: nothing to aggregate; a later consistent run aggregates then.)
-  const double used = ctx.Options.Lumped ? 0.0 : threshold;
+  // (Lumped values are means: nothing to aggregate; a later consistent run
+  // aggregates then. Second-order targets are solved with the consistent
+  // mass whatever the setting: ApplyTransfer.)
+  const double used = ctx.Options.Lumped && !view.Nodal ? 0.0 : threshold;
   bool anyP1 = false;
   for (Transfer t : AllTransfers)
   {

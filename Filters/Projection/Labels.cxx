@@ -101,7 +101,8 @@ int BlockWidth(int first, int count)
 }
 
 /// The weights w_iL (rows x width) of labels first .. first + width - 1:
-/// their indicators projected by `op`, lumped. Collective.
+/// their indicators projected by `op`, lumped (consistent on a
+/// second-order target, negative weights cut). Collective.
 mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks& hook,
   const LabelField& field, int first, int width, mp::LargeVector<double>& weights)
 {
@@ -117,7 +118,21 @@ mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks
   weights.resize(static_cast<size_t>(op.GetNumberOfTargetFunctions()) * width);
   mp::ApplyOptions apply;
   apply.Mass = mp::MassType::Lumped;
-  return op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
+  if (!op.HasNodalTarget())
+  {
+    return op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
+  }
+  // Second-order targets have no lumped mass (their corner functions
+  // integrate to zero or less): the indicators' consistent projection, its
+  // overshoots cut at zero, so that the fractions stay in [0, 1].
+  apply.Mass = mp::MassType::Consistent;
+  const mp::ApplyResult result =
+    op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
+  for (double& w : weights)
+  {
+    w = std::max(w, 0.0);
+  }
+  return result;
 }
 
 /**

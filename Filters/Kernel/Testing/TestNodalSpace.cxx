@@ -552,4 +552,3 @@ TEST(NodalSpace, BadNodeNamed)
   EXPECT_NE(b.Op.GetError().find("second-order cell 3"), std::string::npos) << b.Op.GetError();
 }
 } // namespace
-

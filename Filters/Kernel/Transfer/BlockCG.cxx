@@ -111,8 +111,8 @@ class CGIterations
 {
 public:
   CGIterations(const CsrMatrix& a, const TaskRunner& runner, const double* givenRowSums,
-    const double* b, double* x, int c, const SolveOptions& options, std::vector<char>& converged,
-    const SolverHooks& hooks)
+    bool lumpedStart, const double* b, double* x, int c, const SolveOptions& options,
+    std::vector<char>& converged, const SolverHooks& hooks)
     : A(a)
     , Runner(runner)
     , B(b)
@@ -131,8 +131,9 @@ public:
     , InverseDiagonal(static_cast<size_t>(a.Rows))
     // The row sums for the lumped start: given (a serial system's), or summed
     // here (a distributed one's are completed across the parts in place).
-    , Given(givenRowSums && !hooks.Exchange)
-    , RowSums(options.StartFromX || this->Given ? 0 : static_cast<size_t>(a.Rows))
+    , Lumped(lumpedStart && !options.StartFromX)
+    , Given(this->Lumped && givenRowSums && !hooks.Exchange)
+    , RowSums(this->Lumped && !this->Given ? static_cast<size_t>(a.Rows) : 0)
     , SumOf(this->Given ? givenRowSums : this->RowSums.data())
   {
     converged.assign(static_cast<size_t>(c), 0);
@@ -245,7 +246,7 @@ private:
   /// sums, completed across the parts.
   void ReadDiagonal()
   {
-    const bool sum = !this->Options.StartFromX && !this->Given;
+    const bool sum = this->Lumped && !this->Given;
     double* inverseDiagonal = this->InverseDiagonal.data();
     double* rowSums = this->RowSums.data();
     this->Runner.ForRanges(this->N, [&](Index begin, Index end) {
@@ -296,7 +297,7 @@ private:
           const double b = B[i * c + k];
           if (!startFromX)
           {
-            X[i * c + k] = sumOf[i] > 0.0 ? b / sumOf[i] : 0.0;
+            X[i * c + k] = this->Lumped && sumOf[i] > 0.0 ? b / sumOf[i] : 0.0;
           }
           if (!counted || counted[i])
           {
@@ -468,7 +469,8 @@ private:
   UninitializedLargeVector<double> P;
   UninitializedLargeVector<double> Q;
   UninitializedLargeVector<double> InverseDiagonal;
-  const bool Given; ///< the row sums are the solver's own (BlockCG's rowSums)
+  const bool Lumped; ///< X starts as the lumped-mass solution (else from 0)
+  const bool Given;  ///< the row sums are the solver's own (BlockCG's rowSums)
   UninitializedLargeVector<double> RowSums;
   const double* SumOf;
   Sums Bb;        ///< per column |b|^2
@@ -487,10 +489,12 @@ struct BlockCG::Direct
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> Solver;
 };
 
-BlockCG::BlockCG(const CsrMatrix& matrix, const TaskRunner& runner, const double* rowSums)
+BlockCG::BlockCG(
+  const CsrMatrix& matrix, const TaskRunner& runner, const double* rowSums, bool lumpedStart)
   : A(matrix)
   , Runner(runner)
   , RowSums(rowSums)
+  , LumpedStart(lumpedStart)
 {}
 
 BlockCG::~BlockCG() = default;
@@ -519,7 +523,8 @@ int BlockCG::IterateFixed(const double* B, double* X, int dynamicC, const SolveO
   std::vector<char>& converged, const SolverHooks& hooks) const
 {
   const int c = FixedC > 0 ? FixedC : dynamicC;
-  CGIterations<FixedC> cg(this->A, this->Runner, this->RowSums, B, X, c, options, converged, hooks);
+  CGIterations<FixedC> cg(
+    this->A, this->Runner, this->RowSums, this->LumpedStart, B, X, c, options, converged, hooks);
   cg.Start();
   this->Stopped = false;
   int iteration = 0;

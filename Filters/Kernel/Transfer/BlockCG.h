@@ -82,8 +82,11 @@ public:
   /// order (the same bits Iterate would sum; 0 allowed for rows whose only
   /// entry is a decoupling 1, whose right-hand side is 0): the lumped start
   /// of a serial system reads them instead of summing the matrix again.
-  /// They must outlive the solver.
-  BlockCG(const CsrMatrix& matrix, const TaskRunner& runner, const double* rowSums = nullptr);
+  /// They must outlive the solver. `lumpedStart` false: the iterations
+  /// start from 0 instead (matrices whose row sums are no weights: the
+  /// second-order cells' own functions sum to zero or less at corners).
+  BlockCG(const CsrMatrix& matrix, const TaskRunner& runner, const double* rowSums = nullptr,
+    bool lumpedStart = true);
   ~BlockCG();
 
   /**
@@ -122,6 +125,7 @@ private:
   const CsrMatrix& A;
   TaskRunner Runner;
   const double* RowSums = nullptr;
+  bool LumpedStart = true;
   mutable std::unique_ptr<Direct> Factor; ///< built on the first need
   mutable bool Stopped = false;
 };

@@ -222,21 +222,9 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
     16384);
   // (Its lumped start reads the valid rows' sums just made: an invalid
   // row's decoupling 1 is left out, but its right-hand side is 0.)
-  this->Solver.reset(new BlockCG(
-    this->TargetMass, runner, this->StartSums(this->RowSums.data(), this->TargetMass.Rows)));
+  this->Solver.reset(
+    new BlockCG(this->TargetMass, runner, this->RowSums.data(), !this->NodalTarget));
   this->Timings.Assembly += SecondsSince(start);
-}
-
-const double* MortarOperator::StartSums(const double* rowSums, Index rows)
-{
-  if (!this->NodalTarget)
-  {
-    return rowSums;
-  }
-  // Second-order rows sum to zero or less at corners: the lumped start
-  // b_i / sum_k A_ik would blow up there. Zeros: the solve starts from 0.
-  this->ZeroStart.assign(static_cast<size_t>(rows), 0.0);
-  return this->ZeroStart.data();
 }
 
 void MortarOperator::ShareValidity(const SolverHooks& hooks)
@@ -319,8 +307,8 @@ Index MortarOperator::AggregateFringe(
     if (this->Fringe.Count + this->Fringe.Stranded > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
-      this->FringeSolver.reset(new BlockCG(
-        this->FringeMass, this->Options.Runner, this->StartSums(nullptr, this->FringeMass.Rows)));
+      this->FringeSolver.reset(
+        new BlockCG(this->FringeMass, this->Options.Runner, nullptr, !this->NodalTarget));
       this->DropFringe(nullptr);
       this->FringeSystem = true;
     }
@@ -419,8 +407,8 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   padded.Rows = padded.Columns = rows;
   padded.RowStart.resize(static_cast<size_t>(rows) + 1, padded.RowStart.back());
   this->FringeMass = AggregatedMass(padded, this->Fringe, this->Options.Runner);
-  this->FringeSolver.reset(new BlockCG(
-    this->FringeMass, this->Options.Runner, this->StartSums(nullptr, this->FringeMass.Rows)));
+  this->FringeSolver.reset(
+    new BlockCG(this->FringeMass, this->Options.Runner, nullptr, !this->NodalTarget));
   this->HaloPoints = ghosts;
   this->FringeSystem = true;
   this->DropFringe(&extended);

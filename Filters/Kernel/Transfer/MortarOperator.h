@@ -415,10 +415,6 @@ private:
   /// The aggregated solve on a distributed system with a halo (extended rows).
   bool SolveWithHalo(const double* rhs, double* targetValues, int components,
     const SolveOptions& solve, const SolverHooks& haloHooks) const;
-  /// The row sums the solvers' lumped start divides by: `rowSums`, or
-  /// `rows` zeros (a start from 0) for a target of second-order cells. (A
-  /// distributed solve sums its own: BlockCG.h.)
-  const double* StartSums(const double* rowSums, Index rows);
   /// The checks of the meshes and options (Options set): false, with Error set, on unusable input.
   bool Check(const MeshView& target, const MeshView& source, CandidateLocator* locator);
   template <class Intersector>
@@ -435,8 +431,7 @@ private:
   /// The target's point functions are its cells' own (lumping is refused,
   /// the fringe measures supports by cells: NodalMass.h).
   bool NodalTarget = false;
-  std::vector<double> ZeroStart; ///< StartSums' zeros
-  bool MassPending = false;      ///< the search is done, M_tt not assembled yet
+  bool MassPending = false; ///< the search is done, M_tt not assembled yet
   CsrMatrix MixedMass;
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields
   Index SourceFunctions = 0;

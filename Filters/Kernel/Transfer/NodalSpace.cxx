@@ -50,10 +50,61 @@ bool InvertEdges(int d, const double (&e)[3][3], double (&inverse)[3][3])
 /// below any curvature a mesher writes, far above rounding.
 constexpr double StraightTolerance = 1e-12;
 
-/// Whether `type` is a simplex whose straight cells have an affine map.
-bool IsSimplexType(NodalType type)
+/**
+ * The nodes of a cell of `type` at the reference origin and one unit step
+ * along each reference axis (frame[0], then one per axis): the simplices'
+ * corners, a quadrilateral's 0, 1, 3, a hexahedron's 0, 1, 3, 4, a wedge's
+ * 0, 1, 2, 3. Where the cell is the affine image of its reference cell,
+ * these nodes give that map. Returns how many (0: the pyramid, whose map
+ * is never affine).
+ */
+int AffineFrame(NodalType type, int frame[4])
 {
-  return type == NodalType::Edge3 || type == NodalType::Triangle6 || type == NodalType::Tetra10;
+  switch (type)
+  {
+    case NodalType::Quad8:
+    case NodalType::Quad9:
+      frame[0] = 0, frame[1] = 1, frame[2] = 3;
+      return 3;
+    case NodalType::Hexa20:
+    case NodalType::Hexa27:
+      frame[0] = 0, frame[1] = 1, frame[2] = 3, frame[3] = 4;
+      return 4;
+    case NodalType::Pyramid13:
+      return 0;
+    default: // simplices and wedges: their first corners
+      for (int k = 0; k < 4; ++k)
+      {
+        frame[k] = k;
+      }
+      return NodalCellDimension(type) + 1;
+  }
+}
+
+/// Whether every node of the cell (its coordinates `nodes`, 3 each) is
+/// where the affine map of its frame (AffineFrame) puts it, within
+/// StraightTolerance of the cell's size.
+bool IsAffineCell(NodalType type, const double* nodes, int dimension, const int frame[4])
+{
+  double reference[3 * MaxNodalNodes];
+  NodalReferenceNodes(type, reference);
+  const double* x0 = nodes + 3 * frame[0];
+  double size = 0.0;
+  double worst = 0.0;
+  for (int n = 0; n < NodalNodeCount(type); ++n)
+  {
+    for (int a = 0; a < dimension; ++a)
+    {
+      double mapped = x0[a];
+      for (int r = 0; r < NodalCellDimension(type); ++r)
+      {
+        mapped += reference[3 * n + r] * (nodes[3 * frame[r + 1] + a] - x0[a]);
+      }
+      worst = std::max(worst, std::fabs(nodes[3 * n + a] - mapped));
+      size = std::max(size, std::fabs(nodes[3 * n + a] - x0[a]));
+    }
+  }
+  return worst <= StraightTolerance * size;
 }
 } // namespace
 
@@ -191,16 +242,21 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
     {
       std::copy(mesh.Point(this->Dofs[n]), mesh.Point(this->Dofs[n]) + 3, this->Nodes + 3 * n);
     }
+    // An affine image of the reference cell (a straight simplex, a
+    // parallelogram, a parallelepiped, a straight prism): its functions
+    // are polynomials in x, reached through one affine inverse.
+    int frame[4];
+    const int framed = AffineFrame(type, frame);
     this->Affine =
-      IsSimplexType(type) && NodalIsStraight(type, this->Nodes, this->Dimension, StraightTolerance);
+      framed == this->Corners && IsAffineCell(type, this->Nodes, this->Dimension, frame);
     if (this->Affine)
     {
       double reference[3 * MaxNodalFunctions];
       NodalReferenceNodes(type, reference);
       for (int k = 0; k < this->Corners; ++k)
       {
-        simplex[k] = this->Dofs[k];
-        std::copy(reference + 3 * k, reference + 3 * k + 3, this->Reference[k]);
+        simplex[k] = this->Dofs[frame[k]];
+        std::copy(reference + 3 * frame[k], reference + 3 * frame[k] + 3, this->Reference[k]);
       }
     }
   }

@@ -178,6 +178,17 @@ inline std::array<double, 4> Combination(
 }
 
 /**
+ * The highest degree of the pieces' rules. Products of the tensor-product
+ * and pyramid cells' functions reach degree 8 to 12 (a 27-node hexahedron
+ * by itself), whose rules take 125 to 343 points per tetrahedron of a piece;
+ * capped at 6 (24 points), M_ts and M_tt are inexact for them alone but
+ * come from the same points, so every field of the target's space (a
+ * quadratic on straight cells) is still reproduced, and each function's
+ * own integral (degree <= 6) is still exact.
+ */
+constexpr int MaxPieceDegree = 6;
+
+/**
  * Sums one piece's blocks by quadrature, both sides' functions at every
  * point: Mts[i][j] += int phi_i psi_j, Mtt[i][k] += int phi_i phi_k
  * (row-major, ft.Count wide; or, with `targetPoints`, the weight and the
@@ -196,7 +207,7 @@ void AddByPoints(const typename I::Piece& piece, const typename I::Cell& t,
   const int nt = ft.Count;
   const int ns = fs.Count;
   const int degree = std::max(ft.Degree + fs.Degree, std::max(2 * ft.Degree, 1));
-  const SimplexRule& rule = SimplexQuadrature(D, std::min(degree, MaxSimplexDegree));
+  const SimplexRule& rule = SimplexQuadrature(D, std::min(degree, MaxPieceDegree));
   ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
     // An affine side's coordinates at the simplex's corners: a point's are
     // then their barycentric combination (no inverse map per point).

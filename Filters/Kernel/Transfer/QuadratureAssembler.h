@@ -8,9 +8,9 @@
  * QuadratureAssembler, as to a MortarAssembler, which integrates the two
  * cells' functions over the piece by quadrature (PieceQuadrature.h) with
  * the rule of degree max(dt + ds, 2 dt) (dt, ds the two cells' degrees:
- * NodalDegree for a second-order parent, 1 for P1 and DP1, 0 for P0):
- * exact for straight cells, whose functions are polynomials of those
- * degrees; on a curved cell the functions are its true isoparametric ones
+ * NodalDegree for a second-order parent, 1 for P1 and DP1, 0 for P0), at
+ * most 6 (MaxPieceDegree): exact for straight simplices, whose functions
+ * are polynomials of those degrees; on a curved cell the functions are its true isoparametric ones
  * and the rule's error is that of their polynomial approximation on the
  * piece. Where the source functions lie in the target cell's span
  * (InTargetBasis), the pieces' target mass blocks are summed per source
@@ -19,8 +19,8 @@
  *
  * Both M_ts and M_tt come from the pieces (on a curved cell the covered
  * part is what the pieces measure), but for an affine cell (straight or
- * linear) covered whole, whose M_tt block the rule on the cell gives
- * exactly, once (ElementMass): the pieces' points are kept per cell until
+ * linear) of degree at most 3 covered whole, whose M_tt block the rule on
+ * the cell gives exactly, once (ElementMass): the pieces' points are kept per cell until
  * its last piece says which. When a target cell's last piece has come, its
  * blocks go to the task's MixedBlocks, one block per cell when every
  * target cell has as many functions (RowsPerBlock: UniformFunctionCount),
@@ -174,7 +174,10 @@ struct QuadratureAssembler
       this->Mtt.assign(static_cast<size_t>(nt) * nt, 0.0);
       this->Open = true;
     }
-    if (this->T.IsAffine() &&
+    // (Only where the pieces' rule is exact for M_tt too: else M_tt comes
+    // from the pieces' points, as M_ts, and a field of the target's space
+    // is still reproduced.)
+    if (this->T.IsAffine() && 2 * this->T.Degree <= MaxPieceDegree &&
       std::fabs(this->Covered - this->CurrentMeasure) <= 1e-12 * this->CurrentMeasure)
     {
       this->MttSum.resize(static_cast<size_t>(nt) * nt);

@@ -1,5 +1,6 @@
 """Second-order cells (VTK's quadratic cells, Lagrange cells of order 2),
-split into simplices on their own nodes, on Gmsh order-2 meshes
+split into simplices on their own nodes (point data in the cells' own space:
+TestMeshProjectionSecondOrderSpace.py), on Gmsh order-2 meshes
 (mpsupport.gmshmeshes.second_order: gmsh.model.mesh.setOrder(2)) of a
 square, a disk (mid nodes on the circle: curved cells) and a cube, and on
 meshes made here:
@@ -7,10 +8,10 @@ meshes made here:
     a. a linear field given at every Source node is exact at every Input
        node (1e-9 of its range), on straight and curved pairs of every
        type, also pairs that overlap in part, surfaces in 3D and curves;
-    b. the Source field (linear on its split) keeps its integral on an
-       Input that covers it (1e-11 relative): against the filter's
-       SourceIntegral_ everywhere, and against the integral summed here
-       over the 4 triangles of each 6-node triangle;
+    b. the Source field keeps its integral on an Input that covers it
+       (1e-11 relative): against the filter's SourceIntegral_ everywhere,
+       and against the 6-node triangles' own integral (a third of the area
+       times the mid nodes' values) summed here;
     c. constant cell data stays constant on every covered Input cell;
     d. Lagrange cells of order 2 give the quadratic cells' results bit for
        bit, on both ports;
@@ -226,17 +227,17 @@ def bulge(x):
     return x + 0.04 * np.stack([np.sin(3 * x[:, 1]), np.sin(3 * x[:, 2]), np.sin(3 * x[:, 0])], 1)
 
 
-pyramids13 = raised(gmshmeshes.pyramids(0.3))
-hexes20 = raised(gmshmeshes.hexahedra(0.25, False))
+pyramids13 = raised(gmshmeshes.pyramids(1.2))
+hexes20 = raised(gmshmeshes.hexahedra(0.6, False))
 wedges15 = raised(gmshmeshes.wedges(0.3))
 check(pyramids13.GetCellType(0) == 27 and hexes20.GetCellType(0) == 25, "raised meshes: pyramid13, hex20")
 check_linear("raised pyramid13 -> hex20", hexes20, with_arrays(pyramids13))
 check_linear("raised hex20 -> pyramid13", pyramids13, with_arrays(hexes20))
 check_linear("raised wedge15 -> pyramid13, in part", shifted(pyramids13, (0.3, -0.2, 0.4)), with_arrays(wedges15))
-check_linear("bent pyramid13 -> tet10 (curved)", raised(gmshmeshes.volume("box", 0.2), bulge),
-             with_arrays(raised(gmshmeshes.pyramids(0.3), bulge)))
-check_linear("bent tet10 -> hex20 (curved)", raised(gmshmeshes.hexahedra(0.25, False), bulge),
-             with_arrays(raised(gmshmeshes.volume("box", 0.2), bulge)))
+check_linear("bent pyramid13 -> tet10 (curved)", raised(gmshmeshes.volume("box", 0.4), bulge),
+             with_arrays(raised(gmshmeshes.pyramids(1.2), bulge)))
+check_linear("bent tet10 -> hex20 (curved)", raised(gmshmeshes.hexahedra(0.6, False), bulge),
+             with_arrays(raised(gmshmeshes.volume("box", 0.4), bulge)))
 
 # b. Conservation: Inputs covering their Source (the Source scaled into them).
 inner = {"square": lambda x: 0.1 + 0.8 * x, "cube": lambda x: 0.1 + 0.8 * x}
@@ -252,28 +253,32 @@ for group, meshes in (("square", square), ("cube", cube)):
 
 
 def tri6_integral(g, values):
-    """The integral of `values` (at every node), linear on the 4 triangles
-    of each 6-node triangle (the split of NodalSplit.h)."""
+    """The integral of the 6-node triangles' own quadratic interpolant of
+    `values` (at every node) on straight cells: a third of the area times
+    each mid node's value (the corners' functions integrate to zero)."""
     x = points_of(g)
     total = 0.0
     for c in range(g.GetNumberOfCells()):
         n = [g.GetCell(c).GetPointId(k) for k in range(6)]
-        for a, b, d in ((0, 3, 5), (3, 1, 4), (5, 4, 2), (3, 4, 5)):
-            u, v = x[n[b]] - x[n[a]], x[n[d]] - x[n[a]]
-            area = 0.5 * abs(u[0] * v[1] - u[1] * v[0])
-            total += area * (values[n[a]] + values[n[b]] + values[n[d]]) / 3.0
+        u, v = x[n[1]] - x[n[0]], x[n[2]] - x[n[0]]
+        area = 0.5 * abs(u[0] * v[1] - u[1] * v[0])
+        total += area / 3.0 * (values[n[3]] + values[n[4]] + values[n[5]])
     return total
 
 
+# The cells' own integral on the straight square; on the curved disk (the
+# functions through the true inverse map over the polygon through the
+# nodes) the Source's and the Input's integrals agree.
 for name, mesh in (("square", copy_grid(square["tri6"], inner["square"])), ("disk", disk["tri6"])):
     source = with_arrays(mesh)
-    expected = tri6_integral(source, point_array(source, "Smooth"))
     target = copy_grid(square["quad9"], lambda x: 2.4 * x - 1.2) if name == "disk" else square["quad8"]
     out = project(target, source)
+    expected = tri6_integral(source, point_array(source, "Smooth")) if name == "square" else \
+        field(out, "SourceIntegral_Smooth")
     for which in ("SourceIntegral_Smooth", "TargetIntegral_Smooth"):
         got = field(out, which)
         check(abs(got - expected) <= 1e-11 * abs(expected),
-              "%s tri6: %s %.17g, the split's own %.17g" % (name, which, got, expected))
+              "%s tri6: %s %.17g, the cells' own %.17g" % (name, which, got, expected))
 
 # d. Lagrange cells of order 2 == the quadratic cells with the same nodes.
 lagrange = {22: VTK_LAGRANGE_TRIANGLE, 28: VTK_LAGRANGE_QUADRILATERAL, 24: VTK_LAGRANGE_TETRAHEDRON,
