@@ -80,9 +80,8 @@ def nodes(mesh, values):
 def actor(data, table=None, color=(0.2, 0.2, 0.2)):
     mapper = vtkPolyDataMapper()
     mapper.SetInputData(data)
-    if table is None:
-        mapper.ScalarVisibilityOff()
-    else:
+    mapper.SetScalarVisibility(table is not None)
+    if table is not None:
         mapper.SetLookupTable(table)
         mapper.UseLookupTableScalarRangeOn()
     result = vtkActor()
@@ -90,16 +89,6 @@ def actor(data, table=None, color=(0.2, 0.2, 0.2)):
     result.GetProperty().SetColor(*color)
     result.GetProperty().SetLineWidth(1.5)
     return result
-
-
-def lookup(scalar_range, log=False):
-    table = vtkLookupTable()
-    if log:
-        table.SetScaleToLog10()
-    table.SetTableRange(*scalar_range)
-    table.SetHueRange(0.66, 0.0)
-    table.Build()
-    return table
 
 
 def surface(mesh, name):
@@ -112,7 +101,14 @@ def surface(mesh, name):
     return tessellate.GetOutput()
 
 
-def scalar_bar(table, label_format):
+def colors(scalar_range, label_format, log=False):
+    """A blue-to-red table over `scalar_range` and its horizontal bar."""
+    table = vtkLookupTable()
+    if log:
+        table.SetScaleToLog10()
+    table.SetTableRange(*scalar_range)
+    table.SetHueRange(0.66, 0.0)
+    table.Build()
     bar = vtkScalarBarActor()
     bar.SetLookupTable(table)
     bar.SetOrientationToHorizontal()
@@ -127,7 +123,7 @@ def scalar_bar(table, label_format):
     text.SetColor(0, 0, 0)
     text.ShadowOff()
     text.ItalicOff()
-    return bar
+    return table, bar
 
 
 def add_panel(window, k, height, title, actors, bar):
@@ -159,19 +155,18 @@ def main(path):
     target = gmshmeshes.second_order("disk", 0.28, quads=True)
     projected, error = project(source, target)
     top = np.abs(vtk_to_numpy(source.GetPointData().GetArray("f"))).max()
-    values = lookup((-top, top))
-    errors = lookup((error.max() * 1e-3, error.max()), log=True)
-    grey = actor(surface(target, None), color=(0.88, 0.88, 0.88))
+    values, values_bar = colors((-top, top), "%.1f")
+    errors, errors_bar = colors((error.max() * 1e-3, error.max()), "%.0e", log=True)
     dots = actor(nodes(projected, error), errors)
     dots.GetProperty().SetPointSize(9)
     dots.GetProperty().RenderPointsAsSpheresOn()
     dots.SetPosition(0, 0, 0.02)
+    edges = actor(curved_edges(projected))
     panels = [("Source: 6-node triangles, f", [actor(surface(source, "f"), values), actor(curved_edges(source))],
-               scalar_bar(values, "%.1f")),
-              ("Input: 9-node quads, projected u", [actor(surface(projected, "f"), values),
-                                                     actor(curved_edges(projected))], scalar_bar(values, "%.1f")),
-              ("|u - f| at the Input's nodes", [grey, actor(curved_edges(projected)), dots],
-               scalar_bar(errors, "%.0e"))]
+               values_bar),
+              ("Input: 9-node quads, projected u", [actor(surface(projected, "f"), values), edges], values_bar),
+              ("|u - f| at the Input's nodes",
+               [actor(surface(target, None), color=(0.88, 0.88, 0.88)), edges, dots], errors_bar)]
     width, height = 1500, 520
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
