@@ -119,6 +119,10 @@ public:
   /// after Wrap). `keepPointCells`: the cells around each point, which the
   /// matching builds, stay (View().Around) for the target mass matrix's
   /// pattern, until ReleaseNeighbors.
+  /// Point data in the second-order cells' own space (View().Nodal, every
+  /// parent linear) even where this part of the mesh has none: another
+  /// process's part has some, and every process assembles and solves alike.
+  void UseNodalSpace();
   void BuildNeighbors(bool keepPointCells = false);
   /// Gives the neighbours' memory back once no search will need them (and
   /// the cells around the points).

@@ -472,4 +472,17 @@ void SimplexMesh::FinishNodal(vtkIdType numberOfCells)
   store.View.Nodes = store.Nodes.data();
   this->Kernel.Nodal = &store.View;
 }
+
+void SimplexMesh::UseNodalSpace()
+{
+  if (this->Kernel.Nodal)
+  {
+    return;
+  }
+  const mp::Index parents = this->Kernel.Parents();
+  this->NodalStore.reset(new NodalArrays);
+  this->NodalStore->Types.assign(static_cast<size_t>(parents), mp::NodalType::None);
+  this->NodalStore->Offsets.assign(static_cast<size_t>(parents) + 1, 0);
+  this->FinishNodal(parents);
+}
 } // namespace mpvtk

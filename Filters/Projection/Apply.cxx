@@ -68,6 +68,33 @@ Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
   return Verdict();
 }
 
+/**
+ * Point data on second-order Input cells (on any process: the choice is the
+ * same everywhere, the solves being collective): the consistent mass and no
+ * node bounds, each said once. The cells' own quadratic functions integrate
+ * to zero or less at corners, so no lumped mass is a mean there and the
+ * bounds' assured sum has no positive weights.
+ */
+void SecondOrderSolve(LeafContext& ctx, mp::ApplyOptions& apply)
+{
+  const std::string cells = ctx.Role + " has second-order cells, whose own functions ";
+  if (apply.Mass == mp::MassType::Lumped)
+  {
+    apply.Mass = mp::MassType::Consistent;
+    ctx.Say.WarnOnce("lumped/" + ctx.Role,
+      "MassMatrix is Lumped, but " + cells +
+        "have no lumped mass (a corner's integral is zero or less): its point data is "
+        "projected with the consistent mass.");
+  }
+  if (apply.Bounded)
+  {
+    apply.Bounded = false;
+    ctx.Say.WarnOnce("bounds/" + ctx.Role,
+      "PreserveBounds: " + cells +
+        "are not bounded by their nodes' values: its point data is projected without bounds.");
+  }
+}
+
 /// One transfer: its fields' solution (warm started when it may), then the NaN groups'.
 Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan& plan,
   const OperatorSet& ops, Transfer t, const mp::SolverHooks& hook, const mp::FringeHalo& halo,
@@ -79,17 +106,11 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   const size_t size = static_cast<size_t>(op.GetNumberOfTargetFunctions()) * g.Components;
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
-  if (ctx.Options.Lumped && op.HasNodalTarget())
-  {
-    // The cells' own quadratic functions integrate to zero or less at
-    // corners: no lumped mass is a mean there.
-    apply.Mass = mp::MassType::Consistent;
-    ctx.Say.WarnOnce("lumped/" + ctx.Role,
-      "MassMatrix is Lumped, but " + ctx.Role +
-        " has second-order cells, whose own functions have no lumped mass (a corner's "
-        "integral is zero or less): its point data is projected with the consistent mass.");
-  }
   apply.Bounded = ctx.Options.PreserveBounds;
+  if (ctx.Shape.SecondOrder && TargetSpaceOf(t) == mp::SpaceType::P1)
+  {
+    SecondOrderSolve(ctx, apply);
+  }
   apply.Solve.MaxIterations = ctx.Options.MaximumIterations;
   apply.FringeHooks =
     halo.Hooks.Exchange && TargetSpaceOf(t) == mp::SpaceType::P1 ? &halo.Hooks : nullptr;
@@ -146,7 +167,7 @@ void AggregateFringes(
   // (Lumped values are means: nothing to aggregate; a later consistent run
   // aggregates then. Second-order targets are solved with the consistent
   // mass whatever the setting: ApplyTransfer.)
-  const double used = ctx.Options.Lumped && !view.Nodal ? 0.0 : threshold;
+  const double used = ctx.Options.Lumped && !ctx.Shape.SecondOrder ? 0.0 : threshold;
   bool anyP1 = false;
   for (Transfer t : AllTransfers)
   {

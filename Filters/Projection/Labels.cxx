@@ -101,10 +101,12 @@ int BlockWidth(int first, int count)
 }
 
 /// The weights w_iL (rows x width) of labels first .. first + width - 1:
-/// their indicators projected by `op`, lumped (consistent on a
-/// second-order target, negative weights cut). Collective.
+/// their indicators projected by `op` with `mass`: lumped, or consistent on
+/// second-order targets (which have no lumped mass), negative weights cut.
+/// Collective.
 mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks& hook,
-  const LabelField& field, int first, int width, mp::LargeVector<double>& weights)
+  const LabelField& field, int first, int width, mp::MassType mass,
+  mp::LargeVector<double>& weights)
 {
   mp::LargeVector<double> indicators(field.Which.size() * static_cast<size_t>(width), 0.0);
   for (size_t f = 0; f < field.Which.size(); ++f)
@@ -117,15 +119,13 @@ mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks
   }
   weights.resize(static_cast<size_t>(op.GetNumberOfTargetFunctions()) * width);
   mp::ApplyOptions apply;
-  apply.Mass = mp::MassType::Lumped;
-  if (!op.HasNodalTarget())
+  apply.Mass = mass;
+  if (mass == mp::MassType::Lumped)
   {
     return op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
   }
-  // Second-order targets have no lumped mass (their corner functions
-  // integrate to zero or less): the indicators' consistent projection, its
-  // overshoots cut at zero, so that the fractions stay in [0, 1].
-  apply.Mass = mp::MassType::Consistent;
+  // The consistent projection overshoots: cut at zero, so that the
+  // fractions stay in [0, 1].
   const mp::ApplyResult result =
     op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
   for (double& w : weights)
@@ -177,7 +177,8 @@ void DecideBlock(const double* w, size_t stride, int first, int width, int count
  * weights. Collective.
  */
 bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, const LabelField& field,
-  const std::vector<char>& valid, bool fractions, LabelSolution& out, double& seconds)
+  const std::vector<char>& valid, bool fractions, mp::MassType mass, LabelSolution& out,
+  double& seconds)
 {
   const int count = static_cast<int>(field.Labels.size());
   const vtkIdType rows = static_cast<vtkIdType>(valid.size());
@@ -191,7 +192,7 @@ bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, cons
   for (int first = 0, width = 0; first < count; first += width)
   {
     width = BlockWidth(first, count);
-    const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, weights);
+    const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, mass, weights);
     if (!applied)
     {
       return false;
@@ -224,7 +225,7 @@ bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, cons
     }
     if (blocks)
     {
-      const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, weights);
+      const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, mass, weights);
       if (!applied)
       {
         return false;
@@ -433,7 +434,11 @@ Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHo
             std::to_string(MaximumLabelFractions) + ": no '" + name +
             "_Fractions' array (one component per label); its labels are projected.");
       }
-      if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions,
+      // (Second-order Input cells on any process: consistent everywhere.)
+      const mp::MassType mass = ctx.Shape.SecondOrder && TargetSpaceOf(t) == mp::SpaceType::P1
+        ? mp::MassType::Consistent
+        : mp::MassType::Lumped;
+      if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions, mass,
             solutions.Labels[t][i], ctx.Stats.Solve))
       {
         return Verdict::Fail(std::string("The labels of ") + TransferName(t) +

@@ -77,7 +77,7 @@ std::string UseOnePlane(SimplexMesh& target, SimplexMesh& source, std::string& w
 
 /// What the serial filter decides from the whole meshes, decided from every process's parts.
 std::string AgreeOnShape(Parts& parts, SimplexMesh& target, SimplexMesh& source,
-  const std::string& role, bool& trace, bool& planar)
+  const std::string& role, bool& trace, bool& planar, bool& secondOrder)
 {
   // Each process sees only its parts of the meshes. What the serial filter
   // decides from the whole meshes is decided here from every process's
@@ -88,14 +88,17 @@ std::string AgreeOnShape(Parts& parts, SimplexMesh& target, SimplexMesh& source,
   // - a 2D leaf lies in one plane only when every process's parts of each
   //   mesh lie in one and the same plane (each process's may be flat in a
   //   plane of its own: separate sheets, split by blocks); else the leaf is
-  //   a surface everywhere, as in the serial run.
+  //   a surface everywhere, as in the serial run;
+  // - second-order Input cells on any process: every process then solves
+  //   its point data alike (the solves and the fringe are collective).
   constexpr int PerMesh = 7; // has cells, dimension, normal, offset, tolerance
-  constexpr int Width = 1 + 2 * PerMesh;
+  constexpr int Width = 2 + 2 * PerMesh;
   const int size = parts.Size();
   std::vector<double> all(static_cast<size_t>(size) * Width, 0.0);
   double* mine = all.data() + static_cast<size_t>(parts.Rank()) * Width;
   SimplexMesh* meshes[2] = { &target, &source };
   mine[0] = trace ? 1.0 : 0.0;
+  mine[Width - 1] = target.View().Nodal ? 1.0 : 0.0;
   for (int m = 0; m < 2; ++m)
   {
     double* at = mine + 1 + PerMesh * m;
@@ -113,6 +116,7 @@ std::string AgreeOnShape(Parts& parts, SimplexMesh& target, SimplexMesh& source,
   {
     const double* at = all.data() + static_cast<size_t>(p) * Width;
     anyTrace = anyTrace || at[0] != 0.0;
+    secondOrder = secondOrder || at[Width - 1] != 0.0;
     for (int m = 0; m < 2; ++m)
     {
       if (at[1 + PerMesh * m] != 0.0)
@@ -356,13 +360,17 @@ Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
   }
   // The rest of what one process sees in the whole meshes (every process
   // here passed the round above; on one process nothing changes).
-  const std::string why = AgreeOnShape(
-    ctx.Processes, ctx.Target, ctx.Source.Mesh, ctx.Role, ctx.Shape.Trace, ctx.Shape.Planar);
+  const std::string why = AgreeOnShape(ctx.Processes, ctx.Target, ctx.Source.Mesh, ctx.Role,
+    ctx.Shape.Trace, ctx.Shape.Planar, ctx.Shape.SecondOrder);
   if (!why.empty())
   {
     return agreement.End(Verdict::Fail(why));
   }
   return agreement.Local("Deciding the shape", [&]() {
+    if (ctx.Shape.SecondOrder)
+    {
+      ctx.Target.UseNodalSpace(); // (this part may have no second-order cell)
+    }
     const std::string framed = UseFrames(ctx);
     return framed.empty() ? Verdict() : Verdict::Fail(framed);
   });

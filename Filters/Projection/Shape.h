@@ -37,6 +37,9 @@ struct LeafShape
   bool Trace = false;       ///< a surface or curve inside a volume Source
   bool Planar = false;      ///< seen in one plane (2D), or not a surface leaf at all
   std::string PlaneWarning; ///< Source in a parallel plane: said for the first leaf
+  /// Input has second-order cells on some process (their own functions
+  /// have no lumped mass and no node bounds): decided alike everywhere.
+  bool SecondOrder = false;
 };
 
 /**

@@ -131,9 +131,11 @@ public:
     , InverseDiagonal(static_cast<size_t>(a.Rows))
     // The row sums for the lumped start: given (a serial system's), or summed
     // here (a distributed one's are completed across the parts in place).
+    // (A distributed system sums and exchanges them even for a start from 0:
+    // every part makes the same exchanges, whatever its own cells.)
     , Lumped(lumpedStart && !options.StartFromX)
-    , Given(this->Lumped && givenRowSums && !hooks.Exchange)
-    , RowSums(this->Lumped && !this->Given ? static_cast<size_t>(a.Rows) : 0)
+    , Given(givenRowSums && !hooks.Exchange)
+    , RowSums(options.StartFromX || this->Given ? 0 : static_cast<size_t>(a.Rows))
     , SumOf(this->Given ? givenRowSums : this->RowSums.data())
   {
     converged.assign(static_cast<size_t>(c), 0);
@@ -246,7 +248,7 @@ private:
   /// sums, completed across the parts.
   void ReadDiagonal()
   {
-    const bool sum = this->Lumped && !this->Given;
+    const bool sum = !this->Options.StartFromX && !this->Given;
     double* inverseDiagonal = this->InverseDiagonal.data();
     double* rowSums = this->RowSums.data();
     this->Runner.ForRanges(this->N, [&](Index begin, Index end) {

@@ -9,7 +9,12 @@ points (by their original ids):
    (given at every node) equal the serial ones to 1e-10 of its range;
  - a linear field is exact at every valid node (1e-9 of its range);
  - the integral over the covered part (a total over the processes) equals
-   the serial one (1e-12).
+   the serial one (1e-12);
+ - a mixed Input whose first part is linear tetrahedra (that process has no
+   second-order cell) and the rest tet10, inside a Source that covers it,
+   with MassMatrix Lumped and PreserveBounds: every process solves alike
+   (consistent mass, no bounds, as serial), ends, and gives the serial
+   values (1e-10 of the range).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -31,11 +36,14 @@ def linear(x):
     return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
 
 
-def run(filter_class, target, source):
+def run(filter_class, target, source, lumped_bounded=False):
     f = filter_class()
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetCacheOperator(False)
+    if lumped_bounded:
+        f.SetMassMatrix(1)
+        f.SetPreserveBounds(True)
     f.Update()
     return f.GetOutput()
 
@@ -87,5 +95,34 @@ total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
 reference = serial.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
 check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
       "integral %.15g, serial %.15g" % (total, reference))
+
+# The first part's cells linear (their corners), the rest tet10; a Source
+# covering the whole cube.
+from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkUnstructuredGrid  # noqa: E402
+mixed = vtkUnstructuredGrid()
+mixed.SetPoints(target.GetPoints())
+mixed.GetPointData().ShallowCopy(target.GetPointData())
+for c in range(n):
+    cell = target.GetCell(c)
+    kept = [cell.GetPointId(k) for k in range(4 if owner[c] == 0 else 10)]
+    mixed.InsertNextCell(VTK_TETRA if owner[c] == 0 else 24, len(kept), kept)
+covering = meshes.extract(hexes, np.ones(hexes.GetNumberOfCells(), bool))
+grown = vtk_to_numpy(covering.GetPoints().GetData())
+grown[:] = 0.5 + 1.04 * (grown - 0.5)  # (the extract's own copy of the points)
+covering.GetPoints().Modified()
+add(covering.GetPointData(), "s", smooth(vtk_to_numpy(covering.GetPoints().GetData())))
+serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, True)
+out = run(meshprojection.vtkPMeshProjectionFilter, meshes.extract(mixed, owner == rank),
+          meshes.extract(covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank),
+          True)
+mine = array(out, "origId")
+valid = array(out, "vtkValidPointMask").astype(bool)  # (the linear cells' mid nodes are unused)
+serial_valid = array(serial_mixed, "vtkValidPointMask").astype(bool)
+check(np.array_equal(valid, serial_valid[mine]), "mixed tet4 + tet10: valid mask as serial")
+scale = np.ptp(array(serial_mixed, "s")[serial_valid])
+off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s")[mine])[valid], initial=0.0) / scale
+if rank == 0:
+    print("mixed tet4 + tet10, lumped and bounded asked: %.3g of the range from serial" % off)
+check(valid.sum() > 0 and off <= 1e-10, "mixed tet4 + tet10: the serial values (%.2g off)" % off)
 
 check.finish("%d processes, second-order cells" % size)
