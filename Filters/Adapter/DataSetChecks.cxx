@@ -122,7 +122,8 @@ std::string CheckCells(const T* offsets, vtkIdType numberOfOffsets, const T* ids
   const vtkIdType c = FirstWhere(n, [&](vtkIdType c) {
     const T from = offsets[c];
     const T to = offsets[c + 1];
-    bool wrong = to < from;
+    // (An offset past the connectivity, even one later ones come back from.)
+    bool wrong = to < from || to > numberOfIds;
     const int count = expected(c);
     wrong = wrong || (count > 0 && to - from != count) || (count < 0 && to - from < -count);
     for (T i = from; i < to && !wrong; ++i)
@@ -139,9 +140,11 @@ std::string CheckCells(const T* offsets, vtkIdType numberOfOffsets, const T* ids
   const T to = offsets[c + 1];
   why << what << ": cell " << first + c;
   const int count = expected(c);
-  if (to < from)
+  if (to < from || to > numberOfIds)
   {
-    why << " has offsets " << from << " then " << to << " (they must not decrease).";
+    why << " has offsets " << from << " then " << to
+        << " (they must not decrease nor pass the connectivity array of " << numberOfIds
+        << " ids).";
   }
   else if ((count > 0 && to - from != count) || (count < 0 && to - from < -count))
   {
