@@ -14,6 +14,7 @@
 #ifndef MeshProjection_Kernel_Tasks_h
 #define MeshProjection_Kernel_Tasks_h
 
+#include "Mesh/LargeArray.h"
 #include "Mesh/MeshView.h"
 
 #include <algorithm>
@@ -106,6 +107,35 @@ struct TaskRunner
       grain);
   }
 };
+
+/// Sums the tasks' arrays (in task order, element by element: the same bits
+/// on any number of threads) into `sum` (empty when there are none); the
+/// first part's storage becomes the sum.
+inline void SumTaskArrays(
+  std::vector<LargeVector<double>>& parts, const TaskRunner& runner, LargeVector<double>& sum)
+{
+  sum.clear();
+  if (parts.empty())
+  {
+    return;
+  }
+  sum.swap(parts[0]);
+  for (size_t k = 1; k < parts.size(); ++k)
+  {
+    const double* part = parts[k].data();
+    double* to = sum.data();
+    runner.ForRanges(
+      static_cast<Index>(sum.size()),
+      [=](Index begin, Index end) {
+        for (Index i = begin; i < end; ++i)
+        {
+          to[i] += part[i];
+        }
+        return 0;
+      },
+      Index(1) << 16);
+  }
+}
 } // namespace mp
 
 #endif

@@ -54,33 +54,6 @@ struct MortarOperator::Session
   // DP1 sources: each function's covered integral, per task, summed after.
   std::vector<LargeVector<double>> FunctionMet;
 
-  /// Sums the tasks' arrays (in task order) into `sum` (empty when there are none).
-  static void SumTasks(
-    std::vector<LargeVector<double>>& parts, const TaskRunner& runner, LargeVector<double>& sum)
-  {
-    sum.clear();
-    if (parts.empty())
-    {
-      return;
-    }
-    sum.swap(parts[0]);
-    for (size_t k = 1; k < parts.size(); ++k)
-    {
-      const double* part = parts[k].data();
-      double* to = sum.data();
-      runner.ForRanges(
-        static_cast<Index>(sum.size()),
-        [=](Index begin, Index end) {
-          for (Index i = begin; i < end; ++i)
-          {
-            to[i] += part[i];
-          }
-          return 0;
-        },
-        Index(1) << 16);
-    }
-  }
-
   /// `cover`: this session sums how much of each source cell the pieces
   /// cover (the same for every operator of a search: one session does).
   void Prepare(
@@ -259,9 +232,9 @@ struct MortarOperator::Session
     // (Without Met, another session of the search sums the cover: copied after.)
     if (!this->Met.empty())
     {
-      SumTasks(this->Met, runner, op.SourceCovered);
+      SumTaskArrays(this->Met, runner, op.SourceCovered);
     }
-    SumTasks(this->FunctionMet, runner, op.SourceFunctionCovered);
+    SumTaskArrays(this->FunctionMet, runner, op.SourceFunctionCovered);
     std::vector<Assembler>().swap(this->Assemblers);
     std::vector<IntersectionPieces>().swap(this->Pieces);
     std::vector<LargeVector<double>>().swap(this->Met);

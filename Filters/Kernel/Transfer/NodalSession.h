@@ -48,24 +48,6 @@ struct MortarOperator::NodalSession
   std::vector<LargeVector<double>> Met;         ///< per task: the source cells' cover
   std::vector<LargeVector<double>> FunctionMet; ///< per task: DP1 functions' cover
 
-  /// Sums the tasks' arrays (in task order) into `sum` (empty when there are none).
-  static void SumTasks(std::vector<LargeVector<double>>& parts, LargeVector<double>& sum)
-  {
-    sum.clear();
-    if (parts.empty())
-    {
-      return;
-    }
-    sum.swap(parts[0]);
-    for (size_t k = 1; k < parts.size(); ++k)
-    {
-      for (size_t i = 0; i < sum.size(); ++i)
-      {
-        sum[i] += parts[k][i];
-      }
-    }
-  }
-
   /// `cover`: this session sums how much of each source cell the pieces cover.
   void Prepare(
     MortarOperator& op, const MeshView& target, const MeshView& source, int tasks, bool cover)
@@ -144,9 +126,9 @@ struct MortarOperator::NodalSession
     }
     if (!this->Met.empty())
     {
-      SumTasks(this->Met, op.SourceCovered);
+      SumTaskArrays(this->Met, runner, op.SourceCovered);
     }
-    SumTasks(this->FunctionMet, op.SourceFunctionCovered);
+    SumTaskArrays(this->FunctionMet, runner, op.SourceFunctionCovered);
     std::vector<Assembler>().swap(this->Assemblers);
     std::vector<IntersectionPieces>().swap(this->Pieces);
     op.Timings.Search += SecondsSince(start);
