@@ -26,6 +26,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <utility>
 
@@ -182,7 +183,9 @@ public:
    * its nodes (Geometry/NodalSplit.h). `nodal`: its kernel type, None
    * (nothing appended) when the type's order or node count is not
    * accepted; Nodes() then holds its nodes in the kernel type's order. A
-   * cell naming a node twice is refused (`repeated` set).
+   * cell naming a node twice is refused (`repeated` set), and so is one
+   * with a node at a NaN or infinite coordinate (NonFiniteNode(): its
+   * orientation tests would call it folded).
    */
   mp::SplitStatus SplitNodal(
     vtkIdType c, int type, std::vector<mp::Index>& simplices, mp::NodalType& nodal, bool& repeated)
@@ -191,6 +194,7 @@ public:
     const vtkIdType* pts = nullptr;
     this->Data->GetCellPoints(c, npts, pts, this->Scratch);
     this->Count = npts;
+    this->NonFinite = -1;
     repeated = false;
     nodal = this->Types.TypeOf(type, npts, this->Data, c);
     if (nodal == mp::NodalType::None)
@@ -206,8 +210,20 @@ public:
       repeated = true;
       return mp::SplitStatus::NotStarShaped;
     }
+    for (const mp::Index id : this->Ids)
+    {
+      const double* p = this->X + 3 * id;
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      {
+        this->NonFinite = id;
+        return mp::SplitStatus::NotStarShaped;
+      }
+    }
     return mp::SplitNodalCell(nodal, this->X, this->Ids.data(), simplices, this->Key);
   }
+  /// The node at a NaN or infinite coordinate that refused the last cell
+  /// SplitNodal read, or -1.
+  vtkIdType NonFiniteNode() const { return this->NonFinite; }
   /// The nodes of the last cell SplitNodal accepted, in its kernel type's order.
   const std::vector<mp::Index>& Nodes() const { return this->Ids; }
   /// The number of points of the last cell SplitNodal read.
@@ -266,6 +282,7 @@ private:
   std::vector<mp::Index> Stream;
   NodalCellTypes Types;
   vtkIdType Count = 0;
+  vtkIdType NonFinite = -1;
 };
 
 /// Why the first refused cell (and `refused` - 1 more) cannot be split.
@@ -297,9 +314,10 @@ std::string Refusal(vtkDataSet* data, const char* role, int dimension, vtkIdType
 
 /// Why second-order cell c (and `refused` - 1 more) cannot be used:
 /// `nodal` None: its order or node count; `repeated`: a node named twice;
-/// else it folds.
+/// `nonFinite` (not -1): that node at a NaN or infinite coordinate; else
+/// it folds.
 std::string NodalRefusal(vtkDataSet* data, const char* role, vtkIdType c, mp::NodalType nodal,
-  bool repeated, vtkIdType count, vtkIdType refused)
+  bool repeated, vtkIdType nonFinite, vtkIdType count, vtkIdType refused)
 {
   std::ostringstream why;
   const int type = data->GetCellType(c);
@@ -315,13 +333,24 @@ std::string NodalRefusal(vtkDataSet* data, const char* role, vtkIdType c, mp::No
     why << "names one node twice: a second-order cell needs distinct corner, mid-edge and "
         << "mid-face nodes";
   }
+  else if (nonFinite >= 0)
+  {
+    why << "has a node with a NaN or infinite coordinate (point " << nonFinite << ")";
+  }
   else
   {
     why << "is folded: the simplices through its nodes do not all have one orientation (a "
         << "mid node lies beyond its cell or too far off its edge)";
   }
-  why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise" : std::string())
-      << ". Check the mesh, or apply Tessellate first (it changes the mesh: it splits the cells "
+  why << (refused > 1 ? "; " + std::to_string(refused - 1) + " more cells likewise"
+                      : std::string());
+  if (nonFinite >= 0)
+  {
+    // (Tessellate would not mend the point.)
+    why << ". Fix the points: the dataset is corrupt.";
+    return why.str();
+  }
+  why << ". Check the mesh, or apply Tessellate first (it changes the mesh: it splits the cells "
       << "into linear ones).";
   return why.str();
 }
@@ -375,6 +404,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   bool firstIsNodal = false;
   mp::NodalType firstNodal = mp::NodalType::None;
   bool firstRepeated = false;
+  vtkIdType firstNonFinite = -1;
   vtkIdType firstCount = 0;
   const int corners = dimension + 1;
   for (vtkIdType c = 0; c < numberOfCells; ++c)
@@ -406,6 +436,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
           firstIsNodal = true;
           firstNodal = nodal;
           firstRepeated = repeated;
+          firstNonFinite = splitter.NonFiniteNode();
           firstCount = splitter.NodeCount();
         }
         continue;
@@ -429,7 +460,8 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   }
   if (refused > 0 && firstIsNodal)
   {
-    return NodalRefusal(data, role, firstRefused, firstNodal, firstRepeated, firstCount, refused);
+    return NodalRefusal(
+      data, role, firstRefused, firstNodal, firstRepeated, firstNonFinite, firstCount, refused);
   }
   if (refused > 0)
   {
