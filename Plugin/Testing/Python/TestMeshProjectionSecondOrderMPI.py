@@ -18,10 +18,10 @@ points (by their original ids):
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
 from mpsupport.mpi import add
+from mpsupport.mpi import point_array as array
 
 controller, rank, size, check = mpi.begin()
 
@@ -37,19 +37,7 @@ def linear(x):
 
 
 def run(filter_class, target, source, lumped_bounded=False):
-    f = filter_class()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetCacheOperator(False)
-    if lumped_bounded:
-        f.SetMassMatrix(1)
-        f.SetPreserveBounds(True)
-    f.Update()
-    return f.GetOutput()
-
-
-def array(out, name):
-    return vtk_to_numpy(out.GetPointData().GetArray(name))
+    return mpi.run(filter_class, target, source, **(dict(MassMatrix=1, PreserveBounds=True) if lumped_bounded else {}))
 
 
 tets = gmshmeshes.second_order("cube", 0.3)
@@ -68,12 +56,8 @@ serial = run(meshprojection.vtkMeshProjectionFilter, target, source)
 xt = vtk_to_numpy(serial.GetPoints().GetData())
 serial_valid = array(serial, "vtkValidPointMask").astype(bool)
 # This process's part: Input in blocks along x, Source at random.
-centres = vtkCellCenters()
-centres.SetInputData(target)
-centres.Update()
-cx = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())[:, 0]
 n = target.GetNumberOfCells()
-owner = np.minimum((np.argsort(np.argsort(cx)) * size) // n, size - 1)
+owner = mpi.blocks_along_x(target, size)
 part = meshes.extract(target, owner == rank)
 keep = np.random.default_rng(5).integers(0, size, source.GetNumberOfCells()) == rank
 out = run(meshprojection.vtkPMeshProjectionFilter, part, meshes.extract(source, keep))

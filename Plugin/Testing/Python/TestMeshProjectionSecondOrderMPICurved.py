@@ -12,17 +12,18 @@ original ids):
  - a linear field is exact at every valid node (1e-9 of its range);
  - the integral over the covered part (a total over the processes) equals
    the serial one (1e-12);
- - with Extrapolation Smooth every node is finite and the extrapolated
-   values equal the serial ones (1e-10 of the range).
+ - with Extrapolation Smooth (the ball's and the tri6 disk's Input) every
+   node is finite and the extrapolated values equal the serial ones (1e-10
+   of the range).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
-from vtkmodules.vtkFiltersCore import vtkCellCenters
 
 from mpsupport import gmshmeshes, meshes, mpi
 from mpsupport.fringe import linear, smooth
-from mpsupport.mpi import add
+from mpsupport.mpi import add, run
+from mpsupport.mpi import point_array as array
 
 controller, rank, size, check = mpi.begin()
 
@@ -58,21 +59,6 @@ def bend(x):
     return x + 0.04 * np.stack([np.sin(3 * x[:, 1]), np.sin(3 * x[:, 2]), np.sin(3 * x[:, 0])], 1)
 
 
-def run(filter_class, target, source, **props):
-    f = filter_class()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetCacheOperator(False)
-    for k, v in props.items():
-        getattr(f, "Set" + k)(v)
-    f.Update()
-    return f.GetOutput()
-
-
-def array(out, name):
-    return vtk_to_numpy(out.GetPointData().GetArray(name))
-
-
 so = gmshmeshes.second_order
 ball = so("ball", 0.2)
 hex20 = so("hexes", 0.25, False, True)
@@ -80,28 +66,23 @@ hex27 = so("hexes", 0.34)
 disk_tri6 = so("disk", 0.2)
 disk_quad9 = so("disk", 0.25, True)
 pairs = [
+    # (name, Input, Source, Extrapolation modes)
     ("curved tet10 ball <- bent hex20", numbered(grid(ball)),
-     with_fields(grid(hex20, lambda x: bend(x) + [0.45, 0.2, -0.3]))),
+     with_fields(grid(hex20, lambda x: bend(x) + [0.45, 0.2, -0.3])), (0, 1)),
     ("bent hex27 <- curved tet10 ball", numbered(grid(hex27, lambda x: bend(x) + [0.4, -0.3, 0.25])),
-     with_fields(grid(ball))),
+     with_fields(grid(ball)), (0,)),
     ("curved tri6 disk <- quad9 disk", numbered(grid(disk_tri6)),
-     with_fields(grid(disk_quad9, lambda x: x + [0.6, -0.3, 0.0]))),
+     with_fields(grid(disk_quad9, lambda x: x + [0.6, -0.3, 0.0])), (0, 1)),
     ("curved quad9 disk <- tri6 disk", numbered(grid(disk_quad9, lambda x: x + [-0.5, 0.45, 0.0])),
-     with_fields(grid(disk_tri6))),
+     with_fields(grid(disk_tri6)), (0,)),
 ]
-for name, target, source in pairs:
+for name, target, source, modes in pairs:
     # This process's part: Input in blocks along x, Source at random.
-    centres = vtkCellCenters()
-    centres.SetInputData(target)
-    centres.Update()
-    cx = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())[:, 0]
-    n = target.GetNumberOfCells()
-    owner = np.minimum((np.argsort(np.argsort(cx)) * size) // n, size - 1)
-    part = meshes.extract(target, owner == rank)
+    part = meshes.extract(target, mpi.blocks_along_x(target, size) == rank)
     keep = np.random.default_rng(9).integers(0, size, source.GetNumberOfCells()) == rank
     local_source = meshes.extract(source, keep)
     x = vtk_to_numpy(target.GetPoints().GetData())
-    for mode in (0, 1):
+    for mode in modes:
         serial = run(meshprojection.vtkMeshProjectionFilter, target, source, Extrapolation=mode)
         out = run(meshprojection.vtkPMeshProjectionFilter, part, local_source, Extrapolation=mode)
         ids = array(out, "origId")
