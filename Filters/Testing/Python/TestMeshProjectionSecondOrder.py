@@ -32,65 +32,22 @@ from vtkmodules.vtkCommonDataModel import (VTK_BEZIER_TRIANGLE, VTK_LAGRANGE_CUR
                                            vtkMultiBlockDataSet, vtkUnstructuredGrid)
 
 import meshprojection
-from mpsupport import gmshmeshes
+from mpsupport import gmshmeshes, secondorder
+from mpsupport.secondorder import copy_grid, linear, point_array, points_of
 from mpsupport.testing import check, finish, observed_filter
-
-
-def linear(x):
-    return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
 
 
 def smooth(x):
     return np.sin(3.0 * x[:, 0]) + x[:, 1] ** 2 + np.cos(2.0 * x[:, 2])
 
 
-def points_of(g):
-    return vtk_to_numpy(g.GetPoints().GetData())
-
-
-def copy_grid(g, transform=None, types=None):
-    """A deep copy of g, its points through `transform`, its cell types
-    replaced (types: {old: new}), without arrays."""
-    out = vtkUnstructuredGrid()
-    points = vtkPoints()
-    x = points_of(g).copy()
-    points.SetData(numpy_to_vtk(transform(x) if transform else x, deep=True))
-    out.SetPoints(points)
-    out.Allocate(g.GetNumberOfCells())
-    for c in range(g.GetNumberOfCells()):
-        ids = g.GetCell(c).GetPointIds()
-        t = g.GetCellType(c)
-        out.InsertNextCell(types.get(t, t) if types else t, ids)
-    return out
-
-
 def with_arrays(g):
     """g with point arrays Linear and Smooth and the cell array Constant."""
-    g = copy_grid(g)
-    x = points_of(g)
-    for name, values in (("Linear", linear(x)), ("Smooth", smooth(x))):
-        a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-        a.SetName(name)
-        g.GetPointData().AddArray(a)
-    c = numpy_to_vtk(np.full(g.GetNumberOfCells(), 7.0), deep=True)
-    c.SetName("Constant")
-    g.GetCellData().AddArray(c)
-    return g
+    return secondorder.with_fields(g, (("Linear", linear), ("Smooth", smooth)))
 
 
 def project(target, source, **properties):
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetCacheOperator(False)
-    for name, value in properties.items():
-        getattr(f, "Set" + name)(value)
-    f.Update()
-    return f.GetOutput()
-
-
-def point_array(out, name):
-    return vtk_to_numpy(out.GetPointData().GetArray(name))
+    return secondorder.project(target, source, CacheOperator=False, **properties)
 
 
 def field(out, name):

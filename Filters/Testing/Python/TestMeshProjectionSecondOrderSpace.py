@@ -23,12 +23,12 @@ of the unit disk (curved: its boundary mid nodes on the circle):
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import (VTK_LAGRANGE_TETRAHEDRON, VTK_LAGRANGE_TRIANGLE, VTK_QUADRATIC_TETRA,
-                                           VTK_QUADRATIC_TRIANGLE, VTK_TETRA, VTK_TRIANGLE, vtkUnstructuredGrid)
+                                           VTK_QUADRATIC_TRIANGLE, VTK_TETRA, VTK_TRIANGLE)
 
 import meshprojection
-from mpsupport import gmshmeshes
+from mpsupport import gmshmeshes, secondorder
+from mpsupport.secondorder import copy_grid, linear, point_array, points_of
 from mpsupport.testing import check, finish, observed_filter
 
 
@@ -37,27 +37,9 @@ def quadratic(x):
         + 0.8 * x[:, 1] ** 2 + 0.6 * x[:, 1] * x[:, 2] - 0.9 * x[:, 2] ** 2 + 0.4 * x[:, 0] * x[:, 2]
 
 
-def linear(x):
-    return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
-
-
-def points_of(g):
-    return vtk_to_numpy(g.GetPoints().GetData())
-
-
-def rebuilt(g, cell=lambda t, ids: (t, ids), transform=None):
+def rebuilt(g, cell=None, transform=None):
     """A copy of g without arrays: each cell through cell(type, ids), the points through transform."""
-    out = vtkUnstructuredGrid()
-    points = vtkPoints()
-    x = points_of(g).copy()
-    points.SetData(numpy_to_vtk(transform(x) if transform else x, deep=True))
-    out.SetPoints(points)
-    out.Allocate(g.GetNumberOfCells())
-    for c in range(g.GetNumberOfCells()):
-        ids = g.GetCell(c).GetPointIds()
-        t, kept = cell(g.GetCellType(c), [ids.GetId(k) for k in range(ids.GetNumberOfIds())])
-        out.InsertNextCell(t, len(kept), kept)
-    return out
+    return copy_grid(g, transform, cell=cell)
 
 
 def corners_only(g):
@@ -73,28 +55,11 @@ def as_lagrange(g):
 
 
 def with_fields(g):
-    g = rebuilt(g)
-    x = points_of(g)
-    for name, values in (("Quadratic", quadratic(x)), ("Linear", linear(x))):
-        a = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-        a.SetName(name)
-        g.GetPointData().AddArray(a)
-    c = numpy_to_vtk(np.full(g.GetNumberOfCells(), 7.0), deep=True)
-    c.SetName("Constant")
-    g.GetCellData().AddArray(c)
-    return g
+    return secondorder.with_fields(g, (("Quadratic", quadratic), ("Linear", linear)))
 
 
 def project(target, source):
-    f = meshprojection.vtkMeshProjectionFilter()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.Update()
-    return f.GetOutput()
-
-
-def point_array(out, name):
-    return vtk_to_numpy(out.GetPointData().GetArray(name))
+    return secondorder.project(target, source)
 
 
 def nodal_error(out, name, f):

@@ -6,6 +6,7 @@
     gmshmeshes  surfaces, curves and volumes meshed by Gmsh (python3-gmsh)
     mpi         the MPI controller and collectives for pvbatch --symmetric
     fringe      the fringe's fields and measure (interior points)
+    secondorder copies of meshes, fields and projections of the second-order tests
 
 Not installed: the build copies it next to the `meshprojection` package
 (<build>/lib/python3/dist-packages), which ctest puts on PYTHONPATH; run a

@@ -295,9 +295,6 @@ def _mixed_grid(name, dim, build, h):
     makes on what `build()` adds (it sets its own meshing constraints),
     with size `h`, of any linear type, in Gmsh's order."""
     import gmsh
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
-    from vtkmodules.util.numpy_support import numpy_to_vtk
     gmsh.initialize()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
@@ -307,16 +304,34 @@ def _mixed_grid(name, dim, build, h):
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         build()
         gmsh.model.mesh.generate(dim)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        index = {int(t): i for i, t in enumerate(tags)}
-        x = np.asarray(coords).reshape(-1, 3)
-        cells = []
-        for etype, _, enodes in zip(*gmsh.model.mesh.getElements(dim)):
-            vtk_type, order = _GMSH_TO_VTK[int(etype)]
-            block = np.asarray(enodes, dtype=np.int64).reshape(-1, len(order))[:, order]
-            cells.extend((vtk_type, [index[int(t)] for t in c]) for c in block)
+        x, cells = _typed_cells(dim, _GMSH_TO_VTK)
     finally:
         gmsh.finalize()
+    return _typed_grid(x, cells)
+
+
+def _typed_cells(dim, table):
+    """Gmsh's nodes and its elements of dimension `dim`, each as (VTK type,
+    indices into the nodes in VTK's order) through `table` (Gmsh element
+    type -> (VTK type, VTK node i is Gmsh node order[i]))."""
+    import gmsh
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    index = {int(t): i for i, t in enumerate(tags)}
+    x = np.asarray(coords).reshape(-1, 3)
+    cells = []
+    for etype, _, enodes in zip(*gmsh.model.mesh.getElements(dim)):
+        vtk_type, order = table[int(etype)]
+        block = np.asarray(enodes, dtype=np.int64).reshape(-1, len(order))[:, order]
+        cells.extend((vtk_type, [index[int(t)] for t in c]) for c in block)
+    return x, cells
+
+
+def _typed_grid(x, cells):
+    """vtkUnstructuredGrid of `cells` ((VTK type, node indices), of any
+    types) on the nodes of `x` they use, in their order."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+    from vtkmodules.util.numpy_support import numpy_to_vtk
     used = np.unique(np.concatenate([c for _, c in cells]))
     renumber = np.full(len(x), -1, dtype=np.int64)
     renumber[used] = np.arange(len(used))
@@ -400,9 +415,6 @@ def second_order(shape, h, quads=False, incomplete=False):
     if key in _cache:
         return _cache[key]
     import gmsh
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
-    from vtkmodules.util.numpy_support import numpy_to_vtk
     dim = 3 if shape in ("cube", "hexes", "prisms", "ball") else 2
     gmsh.initialize()
     try:
@@ -440,25 +452,8 @@ def second_order(shape, h, quads=False, incomplete=False):
             gmsh.option.setNumber("Mesh.RecombineAll", 1)
         mesh.generate(dim)
         mesh.setOrder(2)
-        tags, coords, _ = mesh.getNodes()
-        index = {int(t): i for i, t in enumerate(tags)}
-        x = np.asarray(coords).reshape(-1, 3)
-        cells = []
-        for etype, _, enodes in zip(*mesh.getElements(dim)):
-            vtk_type, order = _GMSH2_TO_VTK[int(etype)]
-            block = np.asarray(enodes, dtype=np.int64).reshape(-1, len(order))[:, order]
-            cells.extend((vtk_type, [index[int(t)] for t in c]) for c in block)
+        x, cells = _typed_cells(dim, _GMSH2_TO_VTK)
     finally:
         gmsh.finalize()
-    used = np.unique(np.concatenate([c for _, c in cells]))
-    renumber = np.full(len(x), -1, dtype=np.int64)
-    renumber[used] = np.arange(len(used))
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.ascontiguousarray(x[used]), deep=True))
-    grid = vtkUnstructuredGrid()
-    grid.SetPoints(points)
-    grid.Allocate(len(cells))
-    for vtk_type, c in cells:
-        grid.InsertNextCell(vtk_type, len(c), [int(renumber[k]) for k in c])
-    _cache[key] = grid
-    return grid
+    _cache[key] = _typed_grid(x, cells)
+    return _cache[key]
