@@ -21,7 +21,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 
 from mpsupport import gmshmeshes, meshes, mpi
 from mpsupport.mpi import add
-from mpsupport.mpi import point_array as array
+from mpsupport.secondorder import point_array as array
+from mpsupport.secondorder import project
 
 controller, rank, size, check = mpi.begin()
 
@@ -37,7 +38,8 @@ def linear(x):
 
 
 def run(filter_class, target, source, lumped_bounded=False):
-    return mpi.run(filter_class, target, source, **(dict(MassMatrix=1, PreserveBounds=True) if lumped_bounded else {}))
+    bounded = dict(MassMatrix=1, PreserveBounds=True) if lumped_bounded else {}
+    return project(target, source, filter_class, CacheOperator=False, **bounded)
 
 
 tets = gmshmeshes.second_order("cube", 0.3)

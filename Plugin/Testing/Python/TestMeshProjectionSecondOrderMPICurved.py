@@ -21,9 +21,9 @@ from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
 
 from mpsupport import gmshmeshes, meshes, mpi
-from mpsupport.fringe import linear, smooth
-from mpsupport.mpi import add, run
-from mpsupport.mpi import point_array as array
+from mpsupport.fringe import linear, with_fields
+from mpsupport.secondorder import point_array as array
+from mpsupport.secondorder import project
 
 controller, rank, size, check = mpi.begin()
 
@@ -48,11 +48,8 @@ def numbered(g):
     return g
 
 
-def with_fields(g):
-    x = vtk_to_numpy(g.GetPoints().GetData())
-    add(g.GetPointData(), "s", smooth(x))
-    add(g.GetPointData(), "l", linear(x))
-    return g
+def run(filter_class, target, source, **properties):
+    return project(target, source, filter_class, CacheOperator=False, **properties)
 
 
 def bend(x):

@@ -139,25 +139,6 @@ class Checks:
             sys.exit(1)  # (pvbatch finalizes its own; a SystemExit on success made it exit with 1)
 
 
-def run(filter_class, target, source, **properties):
-    """A filter of filter_class (the serial or the parallel one) updated on
-    target and source, nothing kept, with any property by name
-    (Extrapolation=1 calls SetExtrapolation(1)); its output."""
-    f = filter_class()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetCacheOperator(False)
-    for name, value in properties.items():
-        getattr(f, "Set" + name)(value)
-    f.Update()
-    return f.GetOutput()
-
-
-def point_array(out, name):
-    """The point array `name` of out, as numpy."""
-    return vtk_to_numpy(out.GetPointData().GetArray(name))
-
-
 def blocks_along_x(target, size):
     """Per cell of target, the process it goes to: blocks of as many cells
     along x (by the cells' centres), one per process."""

@@ -52,11 +52,13 @@ def with_fields(g, fields):
     return g
 
 
-def project(target, source, **properties):
-    """The filter's output on target and source, with any property by name
-    (CacheOperator=False calls SetCacheOperator(False))."""
+def project(target, source, filter_class=None, **properties):
+    """The output of a filter of filter_class (vtkMeshProjectionFilter
+    unless told: vtkPMeshProjectionFilter on MPI processes) on target and
+    source, with any property by name (CacheOperator=False calls
+    SetCacheOperator(False))."""
     import meshprojection
-    f = meshprojection.vtkMeshProjectionFilter()
+    f = (filter_class or meshprojection.vtkMeshProjectionFilter)()
     f.SetInputData(target)
     f.SetSourceData(source)
     for name, value in properties.items():
