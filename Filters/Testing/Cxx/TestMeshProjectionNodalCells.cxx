@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -261,6 +262,14 @@ bool CheckRefusals()
   // A mid node named twice (a missing mid node given as another).
   why = WrapError(VTK_QUADRATIC_TETRA, tetra, { 0, 1, 2, 3, 4, 5, 6, 7, 8, 8 });
   MP_CHECK(Says(why, "Source cell 0 (vtkQuadraticTetra) names one node twice"));
+  // A mid node at a NaN point: said as such, not as a fold (nor Tessellate).
+  std::vector<double> nan = tetra;
+  nan[3 * 9 + 1] = std::numeric_limits<double>::quiet_NaN();
+  why = WrapError(VTK_QUADRATIC_TETRA, nan);
+  MP_CHECK(Says(why,
+             "Source cell 0 (vtkQuadraticTetra) has a node with a NaN or infinite "
+             "coordinate (point 9)") &&
+    !Says(why, "folded") && !Says(why, "Tessellate"));
   // A folded quadratic tetrahedron: the mid node of edge 1-3 through the cell.
   tetra[3 * 8] = tetra[3 * 8 + 1] = tetra[3 * 8 + 2] = -0.4;
   why = WrapError(VTK_QUADRATIC_TETRA, tetra);
