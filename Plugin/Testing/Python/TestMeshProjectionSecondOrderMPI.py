@@ -12,9 +12,10 @@ points (by their original ids):
    the serial one (1e-12);
  - a mixed Input whose first part is linear tetrahedra (that process has no
    second-order cell) and the rest tet10, inside a Source that covers it,
-   with MassMatrix Lumped and PreserveBounds: every process solves alike
-   (consistent mass, no bounds, as serial), ends, and gives the serial
-   values (1e-10 of the range).
+   with MassMatrix Lumped and PreserveBounds, and with PreserveBounds alone
+   (both in the Bernstein form of the cells' space): every process solves
+   alike, ends, and gives the serial values (1e-10 of the range), within
+   the Source's range, with the serial integral (1e-12).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -36,14 +37,14 @@ def linear(x):
     return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
 
 
-def run(filter_class, target, source, lumped_bounded=False):
+def run(filter_class, target, source, lumped_bounded=False, bounded=False):
     f = filter_class()
     f.SetInputData(target)
     f.SetSourceData(source)
     f.SetCacheOperator(False)
     if lumped_bounded:
         f.SetMassMatrix(1)
-        f.SetPreserveBounds(True)
+    f.SetPreserveBounds(lumped_bounded or bounded)
     f.Update()
     return f.GetOutput()
 
@@ -111,18 +112,30 @@ grown = vtk_to_numpy(covering.GetPoints().GetData())
 grown[:] = 0.5 + 1.04 * (grown - 0.5)  # (the extract's own copy of the points)
 covering.GetPoints().Modified()
 add(covering.GetPointData(), "s", smooth(vtk_to_numpy(covering.GetPoints().GetData())))
-serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, True)
-out = run(meshprojection.vtkPMeshProjectionFilter, meshes.extract(mixed, owner == rank),
-          meshes.extract(covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank),
-          True)
-mine = array(out, "origId")
-valid = array(out, "vtkValidPointMask").astype(bool)  # (the linear cells' mid nodes are unused)
-serial_valid = array(serial_mixed, "vtkValidPointMask").astype(bool)
-check(np.array_equal(valid, serial_valid[mine]), "mixed tet4 + tet10: valid mask as serial")
-scale = np.ptp(array(serial_mixed, "s")[serial_valid])
-off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s")[mine])[valid], initial=0.0) / scale
-if rank == 0:
-    print("mixed tet4 + tet10, lumped and bounded asked: %.3g of the range from serial" % off)
-check(valid.sum() > 0 and off <= 1e-10, "mixed tet4 + tet10: the serial values (%.2g off)" % off)
+part_mixed = meshes.extract(mixed, owner == rank)
+part_covering = meshes.extract(
+    covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank)
+low, high = array(covering, "s").min(), array(covering, "s").max()
+for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounded", dict(bounded=True))):
+    serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, **options)
+    out = run(meshprojection.vtkPMeshProjectionFilter, part_mixed, part_covering, **options)
+    mine = array(out, "origId")
+    valid = array(out, "vtkValidPointMask").astype(bool)  # (the linear cells' mid nodes are unused)
+    serial_valid = array(serial_mixed, "vtkValidPointMask").astype(bool)
+    check(np.array_equal(valid, serial_valid[mine]), "mixed tet4 + tet10, %s: valid mask as serial" % how)
+    scale = np.ptp(array(serial_mixed, "s")[serial_valid])
+    off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s")[mine])[valid], initial=0.0) / scale
+    if rank == 0:
+        print("mixed tet4 + tet10, %s: %.3g of the range from serial" % (how, off))
+    check(valid.sum() > 0 and off <= 1e-10, "mixed tet4 + tet10, %s: the serial values (%.2g off)" % (how, off))
+    u = array(out, "s")[valid]
+    slack = 1e-13 * (high - low)
+    check(u.min() >= low - slack and u.max() <= high + slack,
+          "mixed tet4 + tet10, %s: within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
+          % (how, u.min(), u.max(), low, high))
+    total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    reference = serial_mixed.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
+          "mixed tet4 + tet10, %s: integral %.15g, serial %.15g" % (how, total, reference))
 
 check.finish("%d processes, second-order cells" % size)
