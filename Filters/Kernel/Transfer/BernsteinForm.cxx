@@ -411,6 +411,10 @@ void BernsteinForm::Transpose(const double* x, int components, double* y) const
 
 size_t BernsteinForm::MemoryBytes() const
 {
+  if (this->Empty())
+  {
+    return 0;
+  }
   return this->C.RowStart.capacity() * sizeof(Index) +
     this->C.ColumnIndex.capacity() * sizeof(Column) + this->C.Values.capacity() * sizeof(double) +
     this->Order.capacity() * sizeof(Index);

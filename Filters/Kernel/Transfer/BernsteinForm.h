@@ -83,6 +83,7 @@ public:
 
   /// The matrix C (rows: nodes, columns: Bernstein functions, one per node).
   const CsrMatrix& GetMatrix() const { return this->C; }
+  /// Bytes held (0 when Empty).
   size_t MemoryBytes() const;
 
 private:
