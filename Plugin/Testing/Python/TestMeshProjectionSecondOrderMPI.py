@@ -15,7 +15,9 @@ points (by their original ids):
    with MassMatrix Lumped and PreserveBounds, and with PreserveBounds alone
    (both in the Bernstein form of the cells' space): every process solves
    alike, ends, and gives the serial values (1e-10 of the range), within
-   the Source's range, with the serial integral (1e-12).
+   the Source's range, with the serial integral (1e-12); its point labels
+   (a region id given at the Source's nodes: the lumped, bounded
+   Bernstein weights) are the serial ones.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -137,5 +139,25 @@ for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounde
     reference = serial_mixed.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
     check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
           "mixed tet4 + tet10, %s: integral %.15g, serial %.15g" % (how, total, reference))
+
+# Point labels onto the mixed Input: the serial labels.
+xs = vtk_to_numpy(covering.GetPoints().GetData())
+add(covering.GetPointData(), "Region", ((xs[:, 0] > 0.45).astype(np.int32) + 2 * (xs[:, 2] > 0.6)).astype(np.int32))
+part_covering = meshes.extract(
+    covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank)
+labelled = []
+for filter_class, target_part, source_part in ((meshprojection.vtkMeshProjectionFilter, mixed, covering),
+                                               (meshprojection.vtkPMeshProjectionFilter, part_mixed, part_covering)):
+    f = filter_class()
+    f.SetInputData(target_part)
+    f.SetSourceData(source_part)
+    f.SetCacheOperator(False)
+    f.AddCategoricalArray("Region")
+    f.Update()
+    labelled.append(f.GetOutput())
+mine = array(labelled[1], "origId")
+valid = array(labelled[1], "vtkValidPointMask").astype(bool)
+same = np.array_equal(array(labelled[1], "Region")[valid], array(labelled[0], "Region")[mine][valid])
+check(valid.sum() > 0 and same, "mixed tet4 + tet10: point labels as serial (%d valid)" % valid.sum())
 
 check.finish("%d processes, second-order cells" % size)
