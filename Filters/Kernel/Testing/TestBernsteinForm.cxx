@@ -112,6 +112,26 @@ void ExpectForm(const NodalMesh& mesh)
   {
     EXPECT_NEAR(back[i], b[i], 1e-14);
   }
+  // The lumped weights: the nodal functions' integrals (the mesh onto
+  // itself) are zero or less at the corners, the Bernstein ones positive,
+  // and both sum to the measure.
+  const mp::MeshView s = mesh.View();
+  mp::BoxGridLocator locator(s);
+  mp::MortarOperator op;
+  ASSERT_TRUE(op.Build(mesh.View(), s, &locator)) << op.GetError();
+  const std::vector<double>& nodal = op.GetCoveredIntegrals();
+  std::vector<double> weights(nodal.size());
+  form.Transpose(nodal.data(), 1, weights.data());
+  EXPECT_LE(*std::min_element(nodal.begin(), nodal.end()), 1e-15);
+  double sumNodal = 0.0, sumBernstein = 0.0;
+  for (size_t i = 0; i < weights.size(); ++i)
+  {
+    EXPECT_GT(weights[i], 0.0) << "function " << i;
+    sumNodal += nodal[i];
+    sumBernstein += weights[i];
+  }
+  EXPECT_NEAR(sumBernstein, sumNodal, 1e-13);
+  EXPECT_NEAR(sumBernstein, op.GetCoveredMeasure(), 1e-13);
 }
 
 TEST(BernsteinForm, MatrixOnMeshes)
