@@ -10,6 +10,7 @@
 #include "Projection/Settings.h"
 #include "Projection/SourceSide.h"
 #include "Adapter/SimplexMesh.h"
+#include "Transfer/BernsteinForm.h"
 
 #include <algorithm>
 #include <vector>
@@ -69,21 +70,26 @@ Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
 }
 
 /**
- * Point data on second-order Input cells (on any process: the choice is the
- * same everywhere, the solves being collective): the consistent mass and no
- * node bounds, each said once. The cells' own quadratic functions integrate
- * to zero or less at corners, so no lumped mass is a mean there and the
- * bounds' assured sum has no positive weights.
+ * Point data on second-order Input cells without a Bernstein form (on any
+ * process: the choice is the same everywhere, the solves being
+ * collective): the consistent mass and no node bounds, each said once.
+ * Serendipity and pyramid cells' own quadratic functions integrate to
+ * zero or less at corners and have no non-negative basis of their own, so
+ * no lumped mass is a mean there and the bounds' assured sum has no
+ * positive weights. (Other second-order cells are lumped and bounded in
+ * their Bernstein form: MassType::Lumped.)
  */
 void SecondOrderSolve(LeafContext& ctx, mp::ApplyOptions& apply)
 {
-  const std::string cells = ctx.Role + " has second-order cells, whose own functions ";
+  const std::string cells = ctx.Role +
+    " has serendipity or pyramid cells (quadratic quadrilaterals, hexahedra, wedges or "
+    "pyramids: 8, 20, 15 or 13 nodes), whose own functions ";
   if (apply.Mass == mp::MassType::Lumped)
   {
     apply.Mass = mp::MassType::Consistent;
     ctx.Say.WarnOnce("lumped/" + ctx.Role,
       "MassMatrix is Lumped, but " + cells +
-        "have no lumped mass (a corner's integral is zero or less): its point data is "
+        "have no positive lumped mass (a corner's integral is zero or less): its point data is "
         "projected with the consistent mass.");
   }
   if (apply.Bounded)
@@ -107,7 +113,7 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
   apply.Bounded = ctx.Options.PreserveBounds;
-  if (ctx.Shape.SecondOrder && TargetSpaceOf(t) == mp::SpaceType::P1)
+  if (ctx.Shape.SecondOrder && !ctx.Shape.Bernstein && TargetSpaceOf(t) == mp::SpaceType::P1)
   {
     SecondOrderSolve(ctx, apply);
   }
@@ -165,9 +171,10 @@ void AggregateFringes(
   const mp::MeshView& view = ctx.Target.View();
   const double threshold = ctx.Options.FringeThreshold;
   // (Lumped values are means: nothing to aggregate; a later consistent run
-  // aggregates then. Second-order targets are solved with the consistent
-  // mass whatever the setting: ApplyTransfer.)
-  const double used = ctx.Options.Lumped && !ctx.Shape.SecondOrder ? 0.0 : threshold;
+  // aggregates then. Second-order targets without a Bernstein form are
+  // solved with the consistent mass whatever the setting: ApplyTransfer.)
+  const bool lumped = !ctx.Shape.SecondOrder || ctx.Shape.Bernstein;
+  const double used = ctx.Options.Lumped && lumped ? 0.0 : threshold;
   bool anyP1 = false;
   for (Transfer t : AllTransfers)
   {
@@ -207,6 +214,14 @@ void AggregateFringes(
 void ShareSystems(
   LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo)
 {
+  if (ctx.Shape.SecondOrder)
+  {
+    // Whether every process's second-order Input cells have a Bernstein
+    // form (the lumped mass and the bounds of their point data).
+    bool bernstein = mp::BernsteinForm::Covers(ctx.Target.View());
+    ctx.Processes.Agree(Verdict(), &bernstein);
+    ctx.Shape.Bernstein = bernstein;
+  }
   const SimplexMesh& target = ctx.Target;
   hooks[0] = ctx.Processes.Hooks(ctx.Shared, true,
     static_cast<mp::Index>(ctx.TargetData->GetNumberOfPoints()),

@@ -82,7 +82,9 @@ struct LeafSolutions
 
 /// The solver's hooks of P1 (0) and P0 (1) target functions; P1 operators
 /// share their validity, then aggregate their fringe (FringeThreshold; on
-/// several processes with the target's `halo`, made here).
+/// several processes with the target's `halo`, made here). First decides,
+/// alike everywhere, whether second-order Input cells have a Bernstein
+/// form (LeafShape::Bernstein).
 void ShareSystems(
   LeafContext& ctx, const OperatorSet& ops, mp::SolverHooks hooks[2], mp::FringeHalo& halo);
 

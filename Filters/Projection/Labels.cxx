@@ -101,8 +101,10 @@ int BlockWidth(int first, int count)
 }
 
 /// The weights w_iL (rows x width) of labels first .. first + width - 1:
-/// their indicators projected by `op` with `mass`: lumped, or consistent on
-/// second-order targets (which have no lumped mass), negative weights cut.
+/// their indicators projected by `op` with `mass`: lumped (on second-order
+/// targets in their Bernstein form, bounded), or consistent on
+/// second-order targets without one (which have no lumped mass), negative
+/// weights cut.
 /// Collective.
 mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks& hook,
   const LabelField& field, int first, int width, mp::MassType mass,
@@ -120,10 +122,15 @@ mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks
   weights.resize(static_cast<size_t>(op.GetNumberOfTargetFunctions()) * width);
   mp::ApplyOptions apply;
   apply.Mass = mass;
-  if (mass == mp::MassType::Lumped)
+  if (mass == mp::MassType::Lumped && !op.HasNodalTarget())
   {
     return op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
   }
+  // A second-order target's lumped weights are means of the indicators'
+  // fields, which a second-order Source's quadratic functions take below 0
+  // and above 1 next to a region's edge: bounded (each label's measure
+  // kept), then cut at 0 as the consistent projection is.
+  apply.Bounded = mass == mp::MassType::Lumped;
   // The consistent projection overshoots: cut at zero, so that the
   // fractions stay in [0, 1].
   const mp::ApplyResult result =
@@ -434,8 +441,10 @@ Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHo
             std::to_string(MaximumLabelFractions) + ": no '" + name +
             "_Fractions' array (one component per label); its labels are projected.");
       }
-      // (Second-order Input cells on any process: consistent everywhere.)
-      const mp::MassType mass = ctx.Shape.SecondOrder && TargetSpaceOf(t) == mp::SpaceType::P1
+      // (Second-order Input cells without a Bernstein form on any process:
+      // consistent everywhere.)
+      const bool nodal = ctx.Shape.SecondOrder && !ctx.Shape.Bernstein;
+      const mp::MassType mass = nodal && TargetSpaceOf(t) == mp::SpaceType::P1
         ? mp::MassType::Consistent
         : mp::MassType::Lumped;
       if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions, mass,

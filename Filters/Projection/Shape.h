@@ -40,6 +40,10 @@ struct LeafShape
   /// Input has second-order cells on some process (their own functions
   /// have no lumped mass and no node bounds): decided alike everywhere.
   bool SecondOrder = false;
+  /// ... and every one of them has a Bernstein form (Kernel
+  /// Transfer/BernsteinForm.h), in which point data is lumped and bounded:
+  /// decided alike everywhere by ShareSystems (Apply.h).
+  bool Bernstein = false;
 };
 
 /**

@@ -529,19 +529,6 @@ TEST(NodalSpace, Traces)
   EXPECT_EQ(b.Op.GetNumberOfOvercoveredCells(), 0);
 }
 
-// A lumped mass is refused on a target of second-order cells.
-TEST(NodalSpace, LumpedRefused)
-{
-  const NodalMesh mesh = Square(2, 0.0, 0);
-  Built b(mesh, mesh);
-  ASSERT_TRUE(b.Ok) << b.Op.GetError();
-  EXPECT_TRUE(b.Op.HasNodalTarget());
-  std::vector<double> u(size_t(mesh.NumberOfPoints()), 1.0), v(u.size());
-  mp::ApplyOptions options;
-  options.Mass = mp::MassType::Lumped;
-  EXPECT_FALSE(b.Op.Apply(u.data(), 1, v.data(), 0.0, options).Ok);
-}
-
 // A second-order cell naming a node that does not exist is named.
 TEST(NodalSpace, BadNodeNamed)
 {

@@ -80,41 +80,64 @@ void ClipAndAssuredSum(double* x, int c, int k, const std::vector<double>& w,
 }
 
 /**
- * Bound preservation after a consistent solve (ApplyOptions::Bounded), on
- * x (n rows x `components`): per component, every row's bounds and the
- * integral wanted, then ClipAndAssuredSum. Apply has checked that M_ts
+ * Each row's bounds for component k: the Source values of its columns (a
+ * shared row's columns are spread over the parts: their extremes,
+ * completed).
+ */
+void RowBounds(const CsrMatrix& mixed, Index n, const double* sourceValues, int components, int k,
+  const SolverHooks& hooks, std::vector<double>& low, std::vector<double>& high)
+{
+  for (Index i = 0; i < n; ++i)
+  {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (Index p = mixed.RowStart[i]; p < mixed.RowStart[i + 1]; ++p)
+    {
+      const double u = sourceValues[static_cast<Index>(mixed.ColumnIndex[p]) * components + k];
+      lo = std::min(lo, u);
+      hi = std::max(hi, u);
+    }
+    low[i] = lo;
+    high[i] = hi;
+  }
+  if (hooks.ExchangeMinimum)
+  {
+    // The largest as the smallest of the negated values.
+    std::vector<double> extremes(2 * static_cast<size_t>(n));
+    for (Index i = 0; i < n; ++i)
+    {
+      extremes[2 * i] = low[i];
+      extremes[2 * i + 1] = -high[i];
+    }
+    hooks.ExchangeMinimum(extremes.data(), 2);
+    for (Index i = 0; i < n; ++i)
+    {
+      low[i] = extremes[2 * i];
+      high[i] = -extremes[2 * i + 1];
+    }
+  }
+}
+
+/**
+ * Bound preservation (ApplyOptions::Bounded), on x (n rows x
+ * `components`): per component, every row's bounds (RowBounds) and the
+ * integral wanted (sum_i over the rows `counted` of rhs_i: the integral of
+ * u_s over the covered part), then ClipAndAssuredSum of the rows `clip`
+ * with `weights` (complete in shared rows). Apply has checked that M_ts
  * and the hooks this needs are there.
  */
-void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& valid,
-  const std::vector<double>& rowSums, Index n, const double* sourceValues, int components,
-  const double* rhs, double* targetValues, const SolverHooks& hooks)
+void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& clip,
+  const std::vector<char>& counted, const std::vector<double>& weights, Index n,
+  const double* sourceValues, int components, const double* rhs, double* x,
+  const SolverHooks& hooks)
 {
-  // Each row's bounds: the Source values of its columns (a shared row's
-  // columns are spread over the parts: their extremes, completed). The
-  // weights: M_tt's row sums, completed like the right-hand sides.
-  std::vector<double> weights(rowSums);
-  if (hooks.Exchange)
-  {
-    hooks.Exchange(weights.data(), 1);
-  }
   std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
-  std::vector<double> extremes(hooks.ExchangeMinimum ? 2 * static_cast<size_t>(n) : 0);
   for (int k = 0; k < components; ++k)
   {
     double total = 0.0;
     for (Index i = 0; i < n; ++i)
     {
-      double lo = std::numeric_limits<double>::infinity();
-      double hi = -lo;
-      for (Index p = mixed.RowStart[i]; p < mixed.RowStart[i + 1]; ++p)
-      {
-        const double u = sourceValues[static_cast<Index>(mixed.ColumnIndex[p]) * components + k];
-        lo = std::min(lo, u);
-        hi = std::max(hi, u);
-      }
-      low[i] = lo;
-      high[i] = hi;
-      if (valid[i] && (!hooks.Counted || hooks.Counted[i]))
+      if (counted[i] && (!hooks.Counted || hooks.Counted[i]))
       {
         total += rhs[i * components + k]; // sum_i (M_ts u_s)_i = int u_s over the covered part
       }
@@ -123,22 +146,8 @@ void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& valid,
     {
       hooks.Reduce(&total, 1);
     }
-    if (hooks.ExchangeMinimum)
-    {
-      // The largest as the smallest of the negated values.
-      for (Index i = 0; i < n; ++i)
-      {
-        extremes[2 * i] = low[i];
-        extremes[2 * i + 1] = -high[i];
-      }
-      hooks.ExchangeMinimum(extremes.data(), 2);
-      for (Index i = 0; i < n; ++i)
-      {
-        low[i] = extremes[2 * i];
-        high[i] = -extremes[2 * i + 1];
-      }
-    }
-    ClipAndAssuredSum(targetValues, components, k, weights, valid, low, high, total, hooks);
+    RowBounds(mixed, n, sourceValues, components, k, hooks, low, high);
+    ClipAndAssuredSum(x, components, k, weights, clip, low, high, total, hooks);
   }
 }
 } // namespace
@@ -300,15 +309,83 @@ bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const Project
     return true; // lumped values are means of source values: within every bound
   }
   const Index n = this->TargetMass.Rows;
+  if (!options.Bounded)
+  {
+    return true;
+  }
+  if (!this->HasMixedMass() || (hooks.Exchange && !hooks.ExchangeMinimum))
+  {
+    return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
+  }
+  if (!this->NodalTarget)
+  {
+    // The weights: M_tt's row sums, completed like the right-hand sides.
+    std::vector<double> weights(*system.CoveredIntegrals);
+    if (hooks.Exchange)
+    {
+      hooks.Exchange(weights.data(), 1);
+    }
+    ClipToLocalBounds(this->MixedMass, *system.Valid, *system.Valid, weights, n, sourceValues,
+      components, rhs, targetValues, hooks);
+    return true;
+  }
+  if (this->Bernstein.Empty())
+  {
+    return false; // nodal values of quadratic functions have no positive weights
+  }
+  // The Bernstein coefficients clipped: each within the bounds of its
+  // node's row (the Source on its support), every coefficient a valid node
+  // reads (M_tt's valid functions: also those an aggregated fringe drops),
+  // with the Bernstein functions' integrals as weights.
+  std::vector<double> weights(static_cast<size_t>(n));
+  this->Bernstein.Transpose(system.CoveredIntegrals->data(), 1, weights.data());
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(weights.data(), 1);
+  }
+  LargeVector<double> b(static_cast<size_t>(n) * components);
+  this->Bernstein.FromNodes(targetValues, components, b.data());
+  ClipToLocalBounds(this->MixedMass, this->Valid, *system.Valid, weights, n, sourceValues,
+    components, rhs, b.data(), hooks);
+  this->Bernstein.ToNodes(b.data(), components, targetValues);
+  return true;
+}
+
+bool MortarOperator::LumpBernstein(const ApplyOptions& options, const double* sourceValues,
+  int components, const double* rhs, double* targetValues, const SolverHooks& hooks) const
+{
+  // rhs: the Bernstein functions' right-hand sides int B_m u_s, completed;
+  // their integrals over the covered part alike, from the nodal ones.
+  const Index n = this->TargetMass.Rows;
+  std::vector<double> integrals(static_cast<size_t>(n));
+  this->Bernstein.Transpose(this->RowSums.data(), 1, integrals.data());
+  if (hooks.Exchange)
+  {
+    hooks.Exchange(integrals.data(), 1);
+  }
+  std::vector<char> usable(static_cast<size_t>(n));
+  LargeVector<double> b(static_cast<size_t>(n) * components);
+  for (Index m = 0; m < n; ++m)
+  {
+    usable[m] = this->Valid[m] && integrals[m] > 0.0;
+    for (int k = 0; k < components; ++k)
+    {
+      b[m * components + k] = usable[m] ? rhs[m * components + k] / integrals[m] : 0.0;
+    }
+  }
   if (options.Bounded)
   {
+    // Means of the Source field, within the bounds of its node values when
+    // its functions are non-negative; a second-order Source's field may
+    // leave them between its nodes.
     if (!this->HasMixedMass() || (hooks.Exchange && !hooks.ExchangeMinimum))
     {
-      return false; // local bounds need M_ts's rows (and, shared, their parts' extremes)
+      return false;
     }
-    ClipToLocalBounds(this->MixedMass, *system.Valid, *system.CoveredIntegrals, n, sourceValues,
-      components, rhs, targetValues, hooks);
+    ClipToLocalBounds(this->MixedMass, usable, usable, integrals, n, sourceValues, components, rhs,
+      b.data(), hooks);
   }
+  this->Bernstein.ToNodes(b.data(), components, usable, targetValues);
   return true;
 }
 
@@ -338,10 +415,11 @@ ApplyResult MortarOperator::Apply(const double* sourceValues, int components, do
   {
     return done(false);
   }
-  if (options.Mass == MassType::Lumped && this->NodalTarget)
+  const bool bernstein = options.Mass == MassType::Lumped && this->NodalTarget;
+  if (bernstein && this->Bernstein.Empty())
   {
-    // Second-order functions are not all positive: a lumped row would not
-    // give a mean (MassType::Lumped), so it is refused rather than guessed.
+    // Second-order functions without a Bernstein form (MassType::Lumped):
+    // refused rather than guessed.
     return done(false);
   }
   const SolverHooks& rowHooks = halo ? *options.FringeHooks : hooks;
@@ -360,13 +438,25 @@ ApplyResult MortarOperator::Apply(const double* sourceValues, int components, do
     this->RestrictRightHandSides(rhs, components, product);
     rhs = product.data();
   }
+  if (bernstein)
+  {
+    // The Bernstein functions' right-hand sides, C^T b, from each part's
+    // share before the shared rows are completed (a shared corner's
+    // Bernstein function reads the mid nodes of every part around it).
+    LargeVector<double> onBernstein(static_cast<size_t>(n) * components);
+    this->Bernstein.Transpose(rhs, components, onBernstein.data());
+    product.swap(onBernstein);
+    rhs = product.data();
+  }
   if (rowHooks.Exchange)
   {
     rowHooks.Exchange(product.data(), components);
   }
-  const bool ok = this->Solve(options, rhs, targetValues, components, hooks, rowHooks, result) &&
-    this->KeepWithinBounds(
-      options, result.System, sourceValues, components, rhs, targetValues, hooks);
+  const bool ok = bernstein
+    ? this->LumpBernstein(options, sourceValues, components, rhs, targetValues, hooks)
+    : this->Solve(options, rhs, targetValues, components, hooks, rowHooks, result) &&
+      this->KeepWithinBounds(
+        options, result.System, sourceValues, components, rhs, targetValues, hooks);
   const std::vector<char>& valid = *result.System.Valid;
   for (Index i = 0; i < n; ++i)
   {

@@ -55,6 +55,7 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.SourceFunctions = 0;
     op.NodalPath = false;
     op.NodalTarget = false;
+    op.Bernstein = BernsteinForm();
     op.NodalMassBlocks.clear();
     op.Pieces.Dimension = target.CellDimension;
     const unsigned pair = 1u << (3 * (op.Options.TargetSpace == SpaceType::P1 ? 1 : 0) +

@@ -178,6 +178,10 @@ void MortarOperator::CompleteTargetMass(const MeshView& target)
       this->TargetMass, this->Options.TargetSpace == SpaceType::P1 ? coverFrom.Values : nullptr,
       &this->PointCover);
     std::vector<MixedBlocks>().swap(this->NodalMassBlocks);
+    if (this->NodalTarget && BernsteinForm::Covers(target))
+    {
+      this->Bernstein.Build(target); // lumped and bounded Applies (MassType::Lumped)
+    }
   }
   else
   {
@@ -470,6 +474,7 @@ void MortarOperator::ReleaseMatrices()
     *m = std::move(empty);
   }
   UninitializedLargeVector<double>().swap(this->Rhs);
+  this->Bernstein = BernsteinForm();
 }
 
 size_t MortarOperator::MemoryBytes() const
@@ -481,6 +486,7 @@ size_t MortarOperator::MemoryBytes() const
   return csr(this->TargetMass) + csr(this->MixedMass) + csr(this->FringeMass) +
     csr(this->Fringe.P) + this->Rhs.capacity() * sizeof(double) + this->Valid.capacity() +
     this->RowSums.capacity() * sizeof(double) + this->CoveredFraction.capacity() * sizeof(double) +
-    this->PointCover.capacity() * sizeof(double) + this->Pieces.MemoryBytes();
+    this->PointCover.capacity() * sizeof(double) + this->Pieces.MemoryBytes() +
+    this->Bernstein.MemoryBytes();
 }
 } // namespace mp

@@ -44,6 +44,7 @@
 #include "Mesh/Tasks.h"
 #include "Search/CandidateLocator.h"
 #include "Search/SearchStatistics.h"
+#include "Transfer/BernsteinForm.h"
 #include "Transfer/BlockCG.h"
 #include "Transfer/CsrMatrix.h"
 #include "Transfer/FringeAggregation.h"
@@ -115,9 +116,16 @@ enum class MassType
    * sums are d_i too, so each value is a weighted mean of the source values
    * on its support (never outside their range), the integral is conserved,
    * and no system is solved; but only constants stay exact (first order).
-   * Refused (Apply's Ok false) on a target whose point functions are its
-   * second-order cells' own (HasNodalTarget): their integrals are zero or
-   * negative at corners, so no row sum is a weight of a mean.
+   * On a target whose point functions are its second-order cells' own
+   * (HasNodalTarget) the nodal functions' integrals are zero or negative
+   * at corners, so no row sum is a weight of a mean: the field is lumped
+   * in the same space's Bernstein basis (BernsteinForm.h), non-negative
+   * functions B_m that sum to 1: b_m = int B_m u_s / int B_m over the
+   * covered part, a mean of the source field on B_m's support, and the
+   * node values u = C b. Constants stay exact, the integral is conserved,
+   * and the whole field (not only its nodes) lies within the range of the
+   * b_m. Refused (Apply's Ok false) on a target with cells that have no
+   * Bernstein form (Quad8, Hexa20, Wedge15, Pyramid13).
    */
   Lumped = 1
 };
@@ -150,6 +158,15 @@ struct ApplyOptions
    * field over the covered part, values stay within their local bounds, and
    * a field that needs no clipping (e.g. a linear one) is unchanged. Needs
    * the assembled M_ts.
+   * On a target in its second-order cells' own space the Bernstein
+   * coefficients of the field (BernsteinForm.h) are clipped instead, each
+   * to the bounds of its node's row, with the Bernstein functions'
+   * integrals as the positive weights: the field lies within the bounds
+   * everywhere in each cell (a convex combination of its coefficients),
+   * its nodes included, and its integral is kept. With Lumped the
+   * coefficients, means of the source field, are clipped alike (a
+   * second-order source's field may pass its node values between them).
+   * Refused where the target has no Bernstein form.
    */
   bool Bounded = false;
   SolveOptions Solve;
@@ -321,8 +338,12 @@ public:
   void ReleaseMatrices();
   SpaceType GetTargetSpace() const { return this->Options.TargetSpace; }
   /// Whether the target functions are its second-order cells' own
-  /// (NodalSpace.h): a lumped Apply is then refused.
+  /// (NodalSpace.h): a lumped or bounded Apply then works in their
+  /// Bernstein form (HasBernsteinForm), or is refused without one.
   bool HasNodalTarget() const { return this->NodalTarget; }
+  /// Whether a nodal target's Bernstein form is there (every cell has one:
+  /// BernsteinForm::Covers), made with M_tt.
+  bool HasBernsteinForm() const { return !this->Bernstein.Empty(); }
   SpaceType GetSourceSpace() const { return this->Options.SourceSpace; }
   Index GetNumberOfTargetFunctions() const { return this->TargetMass.Rows; }
   Index GetNumberOfSourceFunctions() const { return this->SourceFunctions; }
@@ -408,6 +429,10 @@ private:
   /// The solve of one Apply: lumped, aggregated (with or without a halo) or plain; sets result.Stopped.
   bool Solve(const ApplyOptions& options, const double* rhs, double* targetValues, int components,
     const SolverHooks& hooks, const SolverHooks& rowHooks, ApplyResult& result) const;
+  /// The lumped Apply of a nodal target in its Bernstein form, from the
+  /// Bernstein functions' completed right-hand sides `rhs` (with the bounds).
+  bool LumpBernstein(const ApplyOptions& options, const double* sourceValues, int components,
+    const double* rhs, double* targetValues, const SolverHooks& hooks) const;
   /// ApplyOptions::Bounded after a consistent solve of `system`; false without M_ts where needed.
   bool KeepWithinBounds(const ApplyOptions& options, const ProjectedSystem& system,
     const double* sourceValues, int components, const double* rhs, double* targetValues,
@@ -431,6 +456,7 @@ private:
   /// The target's point functions are its cells' own (lumping is refused,
   /// the fringe measures supports by cells: NodalMass.h).
   bool NodalTarget = false;
+  BernsteinForm Bernstein;  ///< a nodal target's, when every cell has one
   bool MassPending = false; ///< the search is done, M_tt not assembled yet
   CsrMatrix MixedMass;
   UninitializedLargeVector<double> Rhs; ///< M_ts u_s of OperatorOptions::Fields

@@ -12,9 +12,12 @@ points (by their original ids):
    the serial one (1e-12);
  - a mixed Input whose first part is linear tetrahedra (that process has no
    second-order cell) and the rest tet10, inside a Source that covers it,
-   with MassMatrix Lumped and PreserveBounds: every process solves alike
-   (consistent mass, no bounds, as serial), ends, and gives the serial
-   values (1e-10 of the range).
+   with MassMatrix Lumped and PreserveBounds, and with PreserveBounds alone
+   (both in the Bernstein form of the cells' space): every process solves
+   alike, ends, and gives the serial values (1e-10 of the range), within
+   the Source's range, with the serial integral (1e-12); its point labels
+   (a region id given at the Source's nodes: the lumped, bounded
+   Bernstein weights) are the serial ones.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -37,9 +40,11 @@ def linear(x):
     return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
 
 
-def run(filter_class, target, source, lumped_bounded=False):
-    bounded = dict(MassMatrix=1, PreserveBounds=True) if lumped_bounded else {}
-    return project(target, source, filter_class, CacheOperator=False, **bounded)
+def run(filter_class, target, source, lumped_bounded=False, bounded=False):
+    options = dict(MassMatrix=1) if lumped_bounded else {}
+    if lumped_bounded or bounded:
+        options["PreserveBounds"] = True
+    return project(target, source, filter_class, CacheOperator=False, **options)
 
 
 tets = gmshmeshes.second_order("cube", 0.3)
@@ -97,18 +102,50 @@ grown = vtk_to_numpy(covering.GetPoints().GetData())
 grown[:] = 0.5 + 1.04 * (grown - 0.5)  # (the extract's own copy of the points)
 covering.GetPoints().Modified()
 add(covering.GetPointData(), "s", smooth(vtk_to_numpy(covering.GetPoints().GetData())))
-serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, True)
-out = run(meshprojection.vtkPMeshProjectionFilter, meshes.extract(mixed, owner == rank),
-          meshes.extract(covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank),
-          True)
-mine = array(out, "origId")
-valid = array(out, "vtkValidPointMask").astype(bool)  # (the linear cells' mid nodes are unused)
-serial_valid = array(serial_mixed, "vtkValidPointMask").astype(bool)
-check(np.array_equal(valid, serial_valid[mine]), "mixed tet4 + tet10: valid mask as serial")
-scale = np.ptp(array(serial_mixed, "s")[serial_valid])
-off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s")[mine])[valid], initial=0.0) / scale
-if rank == 0:
-    print("mixed tet4 + tet10, lumped and bounded asked: %.3g of the range from serial" % off)
-check(valid.sum() > 0 and off <= 1e-10, "mixed tet4 + tet10: the serial values (%.2g off)" % off)
+part_mixed = meshes.extract(mixed, owner == rank)
+part_covering = meshes.extract(
+    covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank)
+low, high = array(covering, "s").min(), array(covering, "s").max()
+for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounded", dict(bounded=True))):
+    serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, **options)
+    out = run(meshprojection.vtkPMeshProjectionFilter, part_mixed, part_covering, **options)
+    mine = array(out, "origId")
+    valid = array(out, "vtkValidPointMask").astype(bool)  # (the linear cells' mid nodes are unused)
+    serial_valid = array(serial_mixed, "vtkValidPointMask").astype(bool)
+    check(np.array_equal(valid, serial_valid[mine]), "mixed tet4 + tet10, %s: valid mask as serial" % how)
+    scale = np.ptp(array(serial_mixed, "s")[serial_valid])
+    off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s")[mine])[valid], initial=0.0) / scale
+    if rank == 0:
+        print("mixed tet4 + tet10, %s: %.3g of the range from serial" % (how, off))
+    check(valid.sum() > 0 and off <= 1e-10, "mixed tet4 + tet10, %s: the serial values (%.2g off)" % (how, off))
+    u = array(out, "s")[valid]
+    slack = 1e-13 * (high - low)
+    check(u.min() >= low - slack and u.max() <= high + slack,
+          "mixed tet4 + tet10, %s: within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
+          % (how, u.min(), u.max(), low, high))
+    total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    reference = serial_mixed.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
+          "mixed tet4 + tet10, %s: integral %.15g, serial %.15g" % (how, total, reference))
+
+# Point labels onto the mixed Input: the serial labels.
+xs = vtk_to_numpy(covering.GetPoints().GetData())
+add(covering.GetPointData(), "Region", ((xs[:, 0] > 0.45).astype(np.int32) + 2 * (xs[:, 2] > 0.6)).astype(np.int32))
+part_covering = meshes.extract(
+    covering, np.random.default_rng(6).integers(0, size, covering.GetNumberOfCells()) == rank)
+labelled = []
+for filter_class, target_part, source_part in ((meshprojection.vtkMeshProjectionFilter, mixed, covering),
+                                               (meshprojection.vtkPMeshProjectionFilter, part_mixed, part_covering)):
+    f = filter_class()
+    f.SetInputData(target_part)
+    f.SetSourceData(source_part)
+    f.SetCacheOperator(False)
+    f.AddCategoricalArray("Region")
+    f.Update()
+    labelled.append(f.GetOutput())
+mine = array(labelled[1], "origId")
+valid = array(labelled[1], "vtkValidPointMask").astype(bool)
+same = np.array_equal(array(labelled[1], "Region")[valid], array(labelled[0], "Region")[mine][valid])
+check(valid.sum() > 0 and same, "mixed tet4 + tet10: point labels as serial (%d valid)" % valid.sum())
 
 check.finish("%d processes, second-order cells" % size)
