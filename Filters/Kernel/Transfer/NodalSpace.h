@@ -30,6 +30,7 @@
 #ifndef MeshProjection_Kernel_NodalSpace_h
 #define MeshProjection_Kernel_NodalSpace_h
 
+#include "Geometry/HiddenNodes.h"
 #include "Geometry/NodalShapes.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/NodalCells.h"
@@ -124,6 +125,10 @@ private:
   /// The barycentric coordinates 0..d of x in the affine simplex (of its
   /// orthogonal projection onto a facet's plane or a segment's line).
   void Barycentric(const double* x, double* lambda) const;
+  /// A non-affine serendipity parent (Quad8, Hexa20, Wedge15): its
+  /// functions become its complete sibling's with hidden nodes
+  /// (Geometry/HiddenNodes.h), their weights taken for this cell.
+  void BindHiddenNodes();
 
   NodalType Type = NodalType::None;
   Index Parent = -1;           ///< of the bound cell
@@ -133,7 +138,9 @@ private:
   double Origin[3] = {};       ///< corner 0 of the affine simplex
   double Inverse[3][3] = {};   ///< x - Origin (Dimension coordinates) to barycentric 1..d
   double Reference[4][3] = {}; ///< nodal affine: the reference coordinates of the corners
-  double Nodes[3 * MaxNodalFunctions] = {}; ///< the parent's nodes (3 coordinates each)
+  double Nodes[3 * MaxNodalFunctions] = {};        ///< the parent's nodes (3 coordinates each)
+  NodalType Sibling = NodalType::None;             ///< non-affine serendipity: the complete sibling
+  double Hidden[MaxHiddenNodes * MaxHiddenOwners]; ///< its hidden nodes' weights
 };
 } // namespace mp
 

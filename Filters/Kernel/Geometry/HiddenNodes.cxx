@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Geometry/HiddenNodes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mp
+{
+namespace
+{
+/// A face of a reference cell: the points with Coefficient . xi = Value.
+struct ReferenceFace
+{
+  double Coefficient[3];
+  double Value;
+};
+
+const ReferenceFace QuadFaces[] = { { { 1, 0, 0 }, 0 }, { { 1, 0, 0 }, 1 }, { { 0, 1, 0 }, 0 },
+  { { 0, 1, 0 }, 1 } };
+const ReferenceFace HexaFaces[] = { { { 1, 0, 0 }, 0 }, { { 1, 0, 0 }, 1 }, { { 0, 1, 0 }, 0 },
+  { { 0, 1, 0 }, 1 }, { { 0, 0, 1 }, 0 }, { { 0, 0, 1 }, 1 } };
+const ReferenceFace WedgeFaces[] = { { { 1, 0, 0 }, 0 }, { { 0, 1, 0 }, 0 }, { { 1, 1, 0 }, 1 },
+  { { 0, 0, 1 }, 0 }, { { 0, 0, 1 }, 1 } };
+
+bool OnFace(const ReferenceFace& f, const double* xi)
+{
+  const double v = f.Coefficient[0] * xi[0] + f.Coefficient[1] * xi[1] + f.Coefficient[2] * xi[2];
+  return std::fabs(v - f.Value) < 1e-12;
+}
+
+/**
+ * The nodes of the cell that a hidden node's value depends on: those on
+ * every reference face the hidden node lies on (all of them for a node
+ * inside). Their count; `support` gets their numbers.
+ */
+int HiddenSupport(NodalType type, const double* reference, int hidden, int* support)
+{
+  const ReferenceFace* faces = QuadFaces;
+  int count = 4;
+  if (type == NodalType::Hexa20)
+  {
+    faces = HexaFaces, count = 6;
+  }
+  else if (type == NodalType::Wedge15)
+  {
+    faces = WedgeFaces, count = 5;
+  }
+  const double* xh = reference + 3 * hidden;
+  int n = 0;
+  for (int node = 0; node < NodalNodeCount(type); ++node)
+  {
+    bool on = true;
+    for (int f = 0; f < count && on; ++f)
+    {
+      on = !OnFace(faces[f], xh) || OnFace(faces[f], reference + 3 * node);
+    }
+    if (on)
+    {
+      support[n++] = node;
+    }
+  }
+  return n;
+}
+
+/// The monomials of degree <= 2 of y (d coordinates): 1, the d linear ones,
+/// then the products y_a y_b (a <= b); their count.
+int Monomials(int d, const double* y, double* m)
+{
+  int k = 0;
+  m[k++] = 1.0;
+  for (int a = 0; a < d; ++a)
+  {
+    m[k++] = y[a];
+  }
+  for (int a = 0; a < d; ++a)
+  {
+    for (int b = a; b < d; ++b)
+    {
+      m[k++] = y[a] * y[b];
+    }
+  }
+  return k;
+}
+
+constexpr int MaxMonomials = 10;
+
+/// A column left, after its part along the columns before it is taken
+/// off, with less than this much of its length, carries no constraint of
+/// its own. The linear columns' bound only skips what rounding leaves of
+/// a coordinate that is constant or affine in the others (a face in a
+/// plane); the quadratic columns' is looser, since a quadratic constraint
+/// nearly dependent on the others would amplify rounding in the weights.
+constexpr double LinearDependence = 1e-12;
+constexpr double QuadraticDependence = 1e-8;
+
+/**
+ * The weights of one hidden node over `count` nodes (their coordinates P,
+ * 3 per node, d read), from the serendipity weights s: w = s + the
+ * smallest change that makes sum_k w_k p(P_k) = p(x_h) for every
+ * quadratic monomial p (x_h = sum_k s_k P_k, the cell's own map at the
+ * hidden node's reference point) while keeping the linear ones as s has
+ * them. Modified Gram-Schmidt (twice) over the monomials' columns, each
+ * carrying its value at x_h, the linear ones first: the change is the sum,
+ * over the quadratic columns left independent, of the unit column times
+ * its constraint's residual.
+ */
+void CorrectedWeights(int count, const double* P, int d, const double* s, double* w)
+{
+  double centre[3] = {};
+  for (int k = 0; k < count; ++k)
+  {
+    for (int a = 0; a < d; ++a)
+    {
+      centre[a] += P[3 * k + a];
+    }
+  }
+  double size = 0.0;
+  for (int a = 0; a < d; ++a)
+  {
+    centre[a] /= count;
+    for (int k = 0; k < count; ++k)
+    {
+      size = std::max(size, std::fabs(P[3 * k + a] - centre[a]));
+    }
+  }
+  std::copy(s, s + count, w);
+  if (!(size > 0.0))
+  {
+    return;
+  }
+  // Row k of `columns`: the monomials at node k; row `count`: at x_h.
+  double columns[MaxHiddenOwners + 1][MaxMonomials];
+  double hidden[3] = {};
+  int monomials = 0;
+  for (int k = 0; k < count; ++k)
+  {
+    double y[3];
+    for (int a = 0; a < d; ++a)
+    {
+      y[a] = (P[3 * k + a] - centre[a]) / size;
+      hidden[a] += s[k] * y[a];
+    }
+    monomials = Monomials(d, y, columns[k]);
+  }
+  Monomials(d, hidden, columns[count]);
+  double basis[MaxMonomials][MaxHiddenOwners + 1];
+  int kept = 0;
+  for (int j = 0; j < monomials; ++j)
+  {
+    double v[MaxHiddenOwners + 1];
+    double length = 0.0;
+    for (int k = 0; k <= count; ++k)
+    {
+      v[k] = columns[k][j];
+      length += k < count ? v[k] * v[k] : 0.0;
+    }
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      for (int i = 0; i < kept; ++i)
+      {
+        double r = 0.0;
+        for (int k = 0; k < count; ++k)
+        {
+          r += basis[i][k] * v[k];
+        }
+        for (int k = 0; k <= count; ++k)
+        {
+          v[k] -= r * basis[i][k];
+        }
+      }
+    }
+    double left = 0.0;
+    for (int k = 0; k < count; ++k)
+    {
+      left += v[k] * v[k];
+    }
+    const double bound = j <= d ? LinearDependence : QuadraticDependence;
+    if (!(left > bound * bound * length))
+    {
+      continue;
+    }
+    const double scale = 1.0 / std::sqrt(left);
+    for (int k = 0; k <= count; ++k)
+    {
+      basis[kept][k] = v[k] * scale;
+    }
+    if (j > d)
+    {
+      double residual = basis[kept][count];
+      for (int k = 0; k < count; ++k)
+      {
+        residual -= basis[kept][k] * w[k];
+      }
+      for (int k = 0; k < count; ++k)
+      {
+        w[k] += residual * basis[kept][k];
+      }
+    }
+    ++kept;
+  }
+}
+} // namespace
+
+NodalType CompleteSibling(NodalType type)
+{
+  switch (type)
+  {
+    case NodalType::Quad8:
+      return NodalType::Quad9;
+    case NodalType::Hexa20:
+      return NodalType::Hexa27;
+    case NodalType::Wedge15:
+      return NodalType::Wedge18;
+    default:
+      return NodalType::None;
+  }
+}
+
+void HiddenNodeWeights(
+  NodalType type, const double* X, const Index* ids, int spaceDimension, double* W)
+{
+  const NodalType sibling = CompleteSibling(type);
+  const int own = NodalNodeCount(type);
+  double reference[3 * MaxNodalNodes];
+  NodalReferenceNodes(sibling, reference);
+  std::fill(W, W + (NodalNodeCount(sibling) - own) * own, 0.0);
+  for (int h = 0; h < NodalNodeCount(sibling) - own; ++h)
+  {
+    int support[MaxHiddenOwners];
+    const int count = HiddenSupport(type, reference, own + h, support);
+    // The face's nodes in the order of their ids: both cells on it
+    // combine the same numbers in the same order.
+    std::sort(support, support + count,
+      [ids](int a, int b) { return ids[a] < ids[b] || (ids[a] == ids[b] && a < b); });
+    double N[MaxNodalNodes];
+    NodalValues(type, reference + 3 * (own + h), N);
+    double P[3 * MaxHiddenOwners], s[MaxHiddenOwners], w[MaxHiddenOwners];
+    for (int k = 0; k < count; ++k)
+    {
+      std::copy(X + 3 * support[k], X + 3 * support[k] + 3, P + 3 * k);
+      s[k] = N[support[k]];
+    }
+    CorrectedWeights(count, P, spaceDimension, s, w);
+    for (int k = 0; k < count; ++k)
+    {
+      W[h * own + support[k]] = w[k];
+    }
+  }
+}
+
+void HiddenNodeFunctions(NodalType type, const double* W, const double* xi, double* phi)
+{
+  const NodalType sibling = CompleteSibling(type);
+  const int own = NodalNodeCount(type);
+  const int hidden = NodalNodeCount(sibling) - own;
+  double M[MaxNodalNodes];
+  NodalValues(sibling, xi, M);
+  for (int n = 0; n < own; ++n)
+  {
+    double v = M[n];
+    for (int h = 0; h < hidden; ++h)
+    {
+      v += W[h * own + n] * M[own + h];
+    }
+    phi[n] = v;
+  }
+}
+} // namespace mp
