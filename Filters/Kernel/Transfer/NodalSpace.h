@@ -17,7 +17,11 @@
  * straight split. On a straight simplex parent (Edge3, Triangle6, Tetra10
  * with its mid nodes on its straight edges) the inverse map is affine and
  * is taken once per cell; other parents (curved ones, quads, hexahedra,
- * wedges, pyramids) take Newton's inverse at every point.
+ * wedges, pyramids) take Newton's inverse at every point. A Quad8, Hexa20
+ * or Wedge15 parent that is not an affine image of its reference cell
+ * takes its complete sibling's functions with hidden nodes
+ * (Geometry/HiddenNodes.h), their weights taken when the parent is bound,
+ * so that quadratics stay in its space on straight cells.
  *
  * These functions are not affine on a piece, so the moments of the linear
  * path (Space.h) cannot integrate them: QuadratureAssembler.h integrates
@@ -127,7 +131,8 @@ private:
   void Barycentric(const double* x, double* lambda) const;
   /// A non-affine serendipity parent (Quad8, Hexa20, Wedge15): its
   /// functions become its complete sibling's with hidden nodes
-  /// (Geometry/HiddenNodes.h), their weights taken for this cell.
+  /// (Geometry/HiddenNodes.h), their weights taken for this cell, and
+  /// its Degree.
   void BindHiddenNodes();
 
   NodalType Type = NodalType::None;
