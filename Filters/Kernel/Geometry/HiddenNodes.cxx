@@ -93,13 +93,42 @@ constexpr int MaxMonomials = 10;
 constexpr double LinearDependence = 1e-12;
 constexpr double QuadraticDependence = 1e-8;
 
+double SquaredLength(const double* v, int count)
+{
+  double sum = 0.0;
+  for (int k = 0; k < count; ++k)
+  {
+    sum += v[k] * v[k];
+  }
+  return sum;
+}
+
+/// v -= (q_i . v) q_i for the first `kept` unit columns q_i of `basis`
+/// (the dot products over the nodes; the hidden value, entry `count`,
+/// follows).
+void SubtractProjections(const double (*basis)[MaxHiddenOwners + 1], int kept, int count, double* v)
+{
+  for (int i = 0; i < kept; ++i)
+  {
+    double r = 0.0;
+    for (int k = 0; k < count; ++k)
+    {
+      r += basis[i][k] * v[k];
+    }
+    for (int k = 0; k <= count; ++k)
+    {
+      v[k] -= r * basis[i][k];
+    }
+  }
+}
+
 /**
  * The weights of one hidden node over `count` nodes (their coordinates P,
  * 3 per node, d read), from the serendipity weights s: w = s + the
  * smallest change that makes sum_k w_k p(P_k) = p(x_h) for every
  * quadratic monomial p (x_h = sum_k s_k P_k, the cell's own map at the
  * hidden node's reference point) while keeping the linear ones as s has
- * them. Modified Gram-Schmidt (twice) over the monomials' columns, each
+ * them. Gram-Schmidt (twice where needed) over the monomials' columns, each
  * carrying its value at x_h, the linear ones first: the change is the sum,
  * over the quadratic columns left independent, of the unit column times
  * its constraint's residual.
@@ -154,25 +183,18 @@ void CorrectedWeights(int count, const double* P, int d, const double* s, double
       v[k] = columns[k][j];
       length += k < count ? v[k] * v[k] : 0.0;
     }
-    for (int pass = 0; pass < 2; ++pass)
+    // A second pass only where the first cancelled much of the column
+    // (where rounding leaves it off orthogonal): "twice is enough".
+    double left = length;
+    for (int pass = 0; pass < 2 && kept > 0; ++pass)
     {
-      for (int i = 0; i < kept; ++i)
+      const double before = left;
+      SubtractProjections(basis, kept, count, v);
+      left = SquaredLength(v, count);
+      if (left > 0.25 * before)
       {
-        double r = 0.0;
-        for (int k = 0; k < count; ++k)
-        {
-          r += basis[i][k] * v[k];
-        }
-        for (int k = 0; k <= count; ++k)
-        {
-          v[k] -= r * basis[i][k];
-        }
+        break;
       }
-    }
-    double left = 0.0;
-    for (int k = 0; k < count; ++k)
-    {
-      left += v[k] * v[k];
     }
     const double bound = j <= d ? LinearDependence : QuadraticDependence;
     if (!(left > bound * bound * length))
@@ -199,6 +221,40 @@ void CorrectedWeights(int count, const double* P, int d, const double* s, double
     ++kept;
   }
 }
+/// A type's hidden nodes: how many, the nodes each depends on
+/// (HiddenSupport) and the serendipity weights there, N_n(xi_h).
+struct HiddenLayout
+{
+  int Hidden = 0;
+  int Count[MaxHiddenNodes] = {};
+  int Support[MaxHiddenNodes][MaxHiddenOwners] = {};
+  double Serendipity[MaxHiddenNodes][MaxNodalNodes] = {};
+};
+
+HiddenLayout MakeLayout(NodalType type)
+{
+  HiddenLayout layout;
+  const NodalType sibling = CompleteSibling(type);
+  const int own = NodalNodeCount(type);
+  double reference[3 * MaxNodalNodes];
+  NodalReferenceNodes(sibling, reference);
+  layout.Hidden = NodalNodeCount(sibling) - own;
+  for (int h = 0; h < layout.Hidden; ++h)
+  {
+    layout.Count[h] = HiddenSupport(type, reference, own + h, layout.Support[h]);
+    NodalValues(type, reference + 3 * (own + h), layout.Serendipity[h]);
+  }
+  return layout;
+}
+
+/// The layout of Quad8, Hexa20 or Wedge15, made once.
+const HiddenLayout& LayoutOf(NodalType type)
+{
+  static const HiddenLayout quad = MakeLayout(NodalType::Quad8);
+  static const HiddenLayout hexa = MakeLayout(NodalType::Hexa20);
+  static const HiddenLayout wedge = MakeLayout(NodalType::Wedge15);
+  return type == NodalType::Quad8 ? quad : (type == NodalType::Hexa20 ? hexa : wedge);
+}
 } // namespace
 
 NodalType CompleteSibling(NodalType type)
@@ -219,26 +275,23 @@ NodalType CompleteSibling(NodalType type)
 void HiddenNodeWeights(
   NodalType type, const double* X, const Index* ids, int spaceDimension, double* W)
 {
-  const NodalType sibling = CompleteSibling(type);
+  const HiddenLayout& layout = LayoutOf(type);
   const int own = NodalNodeCount(type);
-  double reference[3 * MaxNodalNodes];
-  NodalReferenceNodes(sibling, reference);
-  std::fill(W, W + (NodalNodeCount(sibling) - own) * own, 0.0);
-  for (int h = 0; h < NodalNodeCount(sibling) - own; ++h)
+  std::fill(W, W + layout.Hidden * own, 0.0);
+  for (int h = 0; h < layout.Hidden; ++h)
   {
-    int support[MaxHiddenOwners];
-    const int count = HiddenSupport(type, reference, own + h, support);
     // The face's nodes in the order of their ids: both cells on it
     // combine the same numbers in the same order.
+    const int count = layout.Count[h];
+    int support[MaxHiddenOwners];
+    std::copy(layout.Support[h], layout.Support[h] + count, support);
     std::sort(support, support + count,
       [ids](int a, int b) { return ids[a] < ids[b] || (ids[a] == ids[b] && a < b); });
-    double N[MaxNodalNodes];
-    NodalValues(type, reference + 3 * (own + h), N);
     double P[3 * MaxHiddenOwners], s[MaxHiddenOwners], w[MaxHiddenOwners];
     for (int k = 0; k < count; ++k)
     {
       std::copy(X + 3 * support[k], X + 3 * support[k] + 3, P + 3 * k);
-      s[k] = N[support[k]];
+      s[k] = layout.Serendipity[h][support[k]];
     }
     CorrectedWeights(count, P, spaceDimension, s, w);
     for (int k = 0; k < count; ++k)
