@@ -84,14 +84,17 @@ int Monomials(int d, const double* y, double* m)
 
 constexpr int MaxMonomials = 10;
 
-/// A column left, after its part along the columns before it is taken
-/// off, with less than this much of its length, carries no constraint of
-/// its own. The linear columns' bound only skips what rounding leaves of
-/// a coordinate that is constant or affine in the others (a face in a
-/// plane); the quadratic columns' is looser, since a quadratic constraint
-/// nearly dependent on the others would amplify rounding in the weights.
+/// A linear column left, after its part along the columns before it is
+/// taken off, with less than this much of its length, carries no
+/// constraint of its own (a coordinate constant or affine in the others).
+/// A quadratic column left shorter than this (the coordinates scaled to
+/// the nodes' extent, per node) carries none either: a constraint nearly
+/// dependent on the others would make the weights huge. A face's normal
+/// coordinate that varies less than NormalFloor is taken as 0 (a planar
+/// face).
 constexpr double LinearDependence = 1e-12;
-constexpr double QuadraticDependence = 1e-8;
+constexpr double QuadraticDependence = 1e-6;
+constexpr double NormalFloor = 1e-12;
 
 double SquaredLength(const double* v, int count)
 {
@@ -123,15 +126,153 @@ void SubtractProjections(const double (*basis)[MaxHiddenOwners + 1], int kept, i
 }
 
 /**
+ * The principal axes of `count` points (3 coordinates each) about their
+ * centre: axes[0], axes[1], axes[2] unit and orthogonal, by decreasing
+ * spread (axes[2]: a face's normal). Cyclic Jacobi on the 3 x 3 scatter
+ * matrix.
+ */
+void PrincipalAxes(int count, const double* P, const double* centre, double (&axes)[3][3])
+{
+  double a[3][3] = {};
+  for (int k = 0; k < count; ++k)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        a[r][c] += (P[3 * k + r] - centre[r]) * (P[3 * k + c] - centre[c]);
+      }
+    }
+  }
+  double v[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }; // columns: the vectors
+  for (int sweep = 0; sweep < 50; ++sweep)
+  {
+    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const double diagonal = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+    if (!(off > 1e-32 * diagonal))
+    {
+      break;
+    }
+    for (int p = 0; p < 2; ++p)
+    {
+      for (int q = p + 1; q < 3; ++q)
+      {
+        if (a[p][q] == 0.0)
+        {
+          continue;
+        }
+        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+        const double t =
+          (theta >= 0.0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+        for (int k = 0; k < 3; ++k) // A <- A J, then A <- J^T A, V <- V J
+        {
+          const double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - s * akq;
+          a[k][q] = s * akp + c * akq;
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          const double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - s * aqk;
+          a[q][k] = s * apk + c * aqk;
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - s * vkq;
+          v[k][q] = s * vkp + c * vkq;
+        }
+      }
+    }
+  }
+  int order[3] = { 0, 1, 2 };
+  std::sort(order, order + 3, [&a](int i, int j) { return a[i][i] > a[j][j]; });
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      axes[i][k] = v[k][order[i]];
+    }
+  }
+}
+
+/**
+ * Gram-Schmidt (twice where needed) over the columns of `columns` (rows:
+ * the count nodes, then the hidden node), the first `linear` ones the
+ * linear monomials: each quadratic column left independent adds its unit
+ * column times its constraint's residual to w. Returns how many linear
+ * columns were kept (they are basis[0 ..]).
+ */
+int Correct(const double (*columns)[MaxMonomials], int count, int monomials, int linear,
+  double (*basis)[MaxHiddenOwners + 1], double* w)
+{
+  int kept = 0, keptLinear = 0;
+  for (int j = 0; j < monomials; ++j)
+  {
+    double v[MaxHiddenOwners + 1];
+    for (int k = 0; k <= count; ++k)
+    {
+      v[k] = columns[k][j];
+    }
+    const double length = SquaredLength(v, count);
+    // A second pass only where the first cancelled much of the column
+    // (where rounding leaves it off orthogonal): "twice is enough".
+    double left = length;
+    for (int pass = 0; pass < 2 && kept > 0; ++pass)
+    {
+      const double before = left;
+      SubtractProjections(basis, kept, count, v);
+      left = SquaredLength(v, count);
+      if (left > 0.25 * before)
+      {
+        break;
+      }
+    }
+    const bool isLinear = j < linear;
+    const double floor = isLinear ? LinearDependence * LinearDependence * length
+                                  : QuadraticDependence * QuadraticDependence * count;
+    if (!(left > floor))
+    {
+      continue;
+    }
+    const double scale = 1.0 / std::sqrt(left);
+    for (int k = 0; k <= count; ++k)
+    {
+      basis[kept][k] = v[k] * scale;
+    }
+    if (!isLinear)
+    {
+      double residual = basis[kept][count];
+      for (int k = 0; k < count; ++k)
+      {
+        residual -= basis[kept][k] * w[k];
+      }
+      for (int k = 0; k < count; ++k)
+      {
+        w[k] += residual * basis[kept][k];
+      }
+    }
+    keptLinear += isLinear;
+    ++kept;
+  }
+  return keptLinear;
+}
+
+/**
  * The weights of one hidden node over `count` nodes (their coordinates P,
  * 3 per node, d read), from the serendipity weights s: w = s + the
  * smallest change that makes sum_k w_k p(P_k) = p(x_h) for every
  * quadratic monomial p (x_h = sum_k s_k P_k, the cell's own map at the
  * hidden node's reference point) while keeping the linear ones as s has
- * them. Gram-Schmidt (twice where needed) over the monomials' columns, each
- * carrying its value at x_h, the linear ones first: the change is the sum,
- * over the quadratic columns left independent, of the unit column times
- * its constraint's residual.
+ * them (Correct). The coordinates are centred on the nodes and scaled by
+ * their extent. A face (8 nodes in 3D) is taken in its principal axes:
+ * the quadratic monomials of its two in-plane coordinates only, and the
+ * change then made orthogonal to the normal coordinate too, so that
+ * linear fields stay exact on a curved or twisted face while the
+ * in-plane problem stays well conditioned (a normal coordinate nearly
+ * affine in the others would make its quadratic constraints nearly
+ * dependent and the weights huge).
  */
 void CorrectedWeights(int count, const double* P, int d, const double* s, double* w)
 {
@@ -157,8 +298,16 @@ void CorrectedWeights(int count, const double* P, int d, const double* s, double
   {
     return;
   }
+  const bool face = d == 3 && count == 8;
+  double axes[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  if (face)
+  {
+    PrincipalAxes(count, P, centre, axes);
+  }
+  const int m = face ? 2 : d; // the coordinates of the monomials
   // Row k of `columns`: the monomials at node k; row `count`: at x_h.
   double columns[MaxHiddenOwners + 1][MaxMonomials];
+  double normal[MaxHiddenOwners];
   double hidden[3] = {};
   int monomials = 0;
   for (int k = 0; k < count; ++k)
@@ -166,61 +315,46 @@ void CorrectedWeights(int count, const double* P, int d, const double* s, double
     double y[3];
     for (int a = 0; a < d; ++a)
     {
-      y[a] = (P[3 * k + a] - centre[a]) / size;
+      y[a] = 0.0;
+      for (int b = 0; b < d; ++b)
+      {
+        y[a] += axes[a][b] * (P[3 * k + b] - centre[b]);
+      }
+      y[a] /= size;
       hidden[a] += s[k] * y[a];
     }
-    monomials = Monomials(d, y, columns[k]);
+    normal[k] = y[2];
+    monomials = Monomials(m, y, columns[k]);
   }
-  Monomials(d, hidden, columns[count]);
+  Monomials(m, hidden, columns[count]);
   double basis[MaxMonomials][MaxHiddenOwners + 1];
-  int kept = 0;
-  for (int j = 0; j < monomials; ++j)
+  const int linear = Correct(columns, count, monomials, m + 1, basis, w);
+  if (!face)
   {
-    double v[MaxHiddenOwners + 1];
-    double length = 0.0;
-    for (int k = 0; k <= count; ++k)
-    {
-      v[k] = columns[k][j];
-      length += k < count ? v[k] * v[k] : 0.0;
-    }
-    // A second pass only where the first cancelled much of the column
-    // (where rounding leaves it off orthogonal): "twice is enough".
-    double left = length;
-    for (int pass = 0; pass < 2 && kept > 0; ++pass)
-    {
-      const double before = left;
-      SubtractProjections(basis, kept, count, v);
-      left = SquaredLength(v, count);
-      if (left > 0.25 * before)
-      {
-        break;
-      }
-    }
-    const double bound = j <= d ? LinearDependence : QuadraticDependence;
-    if (!(left > bound * bound * length))
-    {
-      continue;
-    }
-    const double scale = 1.0 / std::sqrt(left);
-    for (int k = 0; k <= count; ++k)
-    {
-      basis[kept][k] = v[k] * scale;
-    }
-    if (j > d)
-    {
-      double residual = basis[kept][count];
-      for (int k = 0; k < count; ++k)
-      {
-        residual -= basis[kept][k] * w[k];
-      }
-      for (int k = 0; k < count; ++k)
-      {
-        w[k] += residual * basis[kept][k];
-      }
-    }
-    ++kept;
+    return;
+  }
+  // The normal coordinate's part off the in-plane linear columns; the
+  // change made orthogonal to it (it stays orthogonal to them).
+  double v[MaxHiddenOwners + 1] = {};
+  std::copy(normal, normal + count, v);
+  SubtractProjections(basis, linear, count, v);
+  SubtractProjections(basis, linear, count, v);
+  const double left = SquaredLength(v, count);
+  if (!(left > NormalFloor * NormalFloor * count))
+  {
+    return; // a planar face
+  }
+  double along = 0.0;
+  for (int k = 0; k < count; ++k)
+  {
+    along += v[k] * (w[k] - s[k]);
+  }
+  for (int k = 0; k < count; ++k)
+  {
+    w[k] -= along / left * v[k];
   }
 }
+
 /// A type's hidden nodes: how many, the nodes each depends on
 /// (HiddenSupport) and the serendipity weights there, N_n(xi_h).
 struct HiddenLayout
