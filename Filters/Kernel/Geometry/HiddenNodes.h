@@ -25,18 +25,24 @@
  *  - W starts from the serendipity weights s_n = N_n(xi_h) (the cell's own
  *    function at the hidden node's reference point: on an affine cell
  *    they are already exact) and takes the smallest change that makes the
- *    combination exact for the quadratic monomials of the physical
- *    coordinates (centred on the nodes and scaled by their extent), the
- *    linear ones kept exact as s makes them: the hidden node's place is
- *    the cell's own map at xi_h, so linear fields stay reproduced on
- *    curved cells too. Monomials that the nodes cannot tell from lower
- *    ones (z on a face in a plane z = const, or any face of a planar
- *    cell) are left out.
+ *    combination exact for the quadratic monomials of the coordinates
+ *    (centred on the nodes and scaled by their extent), the linear ones
+ *    kept exact as s makes them: the hidden node's place is the cell's own
+ *    map at xi_h, so linear fields stay reproduced on curved cells too.
+ *    The coordinates are the physical ones for the quadrilateral in the
+ *    plane and the body centre; a face (or a quadrilateral in space) is
+ *    taken in its principal axes, with the quadratic monomials of its two
+ *    in-plane coordinates only, and the change then made orthogonal to
+ *    its normal coordinate (so linear fields stay exact on a curved or
+ *    twisted face; the normal coordinate's own quadratics, nearly
+ *    dependent on the others on a slightly bent face, would make the
+ *    weights huge). Monomials that the nodes cannot tell from the ones
+ *    before are left out.
  * On a planar face (or a planar quadrilateral) every quadratic is then
  * exact; on a twisted or curved face no combination of its nodes is (a
- * quadratic on a bilinear twisted face needs the ninth value), and the
- * monomials that can be made exact are, in the order 1, x, y, z, x^2, xy,
- * xz, y^2, yz, z^2.
+ * quadratic on a bilinear twisted face needs the ninth value): there the
+ * field is exact for linear fields, and the in-plane quadratics are
+ * matched as the nodes' projections onto the face's plane have them.
  */
 #ifndef MeshProjection_Kernel_HiddenNodes_h
 #define MeshProjection_Kernel_HiddenNodes_h
