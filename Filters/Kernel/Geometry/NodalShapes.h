@@ -44,7 +44,8 @@
  * of degree <= 2 in the physical coordinates. On a straight cell that is
  * not (a trapezoid: nodes on the corners' multilinear map), Quad9, Hexa27
  * and Wedge18 still do, Quad8, Hexa20, Wedge15 and Pyramid13 reproduce
- * degree 1 only. Every type reproduces degree 1 on every cell, curved or
+ * degree 1 only (the point data of the first three takes their complete
+ * sibling's space there: Geometry/HiddenNodes.h). Every type reproduces degree 1 on every cell, curved or
  * not (the partition of unity).
  *
  * Products of shape functions are integrated by SimplexQuadrature.h on the

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Transfer/NodalSpace.h"
 
+#include "Geometry/HiddenNodes.h"
+
 #include <cmath>
 
 namespace mp
@@ -206,6 +208,7 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
   this->Dimension = mesh.SpaceDimension;
   this->Corners = mesh.CornersPerCell();
   this->Type = NodalType::None;
+  this->Sibling = NodalType::None;
   this->Affine = true;
   if (space == SpaceType::P0)
   {
@@ -249,6 +252,10 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
     const int framed = AffineFrame(type, frame);
     this->Affine =
       framed == this->Corners && IsAffineCell(type, this->Nodes, this->Dimension, frame);
+    if (!this->Affine)
+    {
+      this->BindHiddenNodes();
+    }
     if (this->Affine)
     {
       double reference[3 * MaxNodalFunctions];
@@ -388,6 +395,24 @@ void NodalFunctions::Values(const double* x, double* values) const
   // (Outside the cell by rounding, or where Newton stalls on a badly
   // curved cell, its last iterate is the best there is.)
   NodalReference(this->Type, this->Nodes, this->Dimension, point, xi);
-  NodalValues(this->Type, xi, values);
+  if (this->Sibling != NodalType::None)
+  {
+    HiddenNodeFunctions(this->Type, this->Hidden, xi, values);
+  }
+  else
+  {
+    NodalValues(this->Type, xi, values);
+  }
+}
+
+void NodalFunctions::BindHiddenNodes()
+{
+  this->Sibling = CompleteSibling(this->Type);
+  if (this->Sibling == NodalType::None)
+  {
+    return;
+  }
+  HiddenNodeWeights(this->Type, this->Nodes, this->Dofs, this->Dimension, this->Hidden);
+  this->Degree = NodalDegree(this->Sibling);
 }
 } // namespace mp

@@ -17,7 +17,11 @@
  * straight split. On a straight simplex parent (Edge3, Triangle6, Tetra10
  * with its mid nodes on its straight edges) the inverse map is affine and
  * is taken once per cell; other parents (curved ones, quads, hexahedra,
- * wedges, pyramids) take Newton's inverse at every point.
+ * wedges, pyramids) take Newton's inverse at every point. A Quad8, Hexa20
+ * or Wedge15 parent that is not an affine image of its reference cell
+ * takes its complete sibling's functions with hidden nodes
+ * (Geometry/HiddenNodes.h), their weights taken when the parent is bound,
+ * so that quadratics stay in its space on straight cells.
  *
  * These functions are not affine on a piece, so the moments of the linear
  * path (Space.h) cannot integrate them: QuadratureAssembler.h integrates
@@ -30,6 +34,7 @@
 #ifndef MeshProjection_Kernel_NodalSpace_h
 #define MeshProjection_Kernel_NodalSpace_h
 
+#include "Geometry/HiddenNodes.h"
 #include "Geometry/NodalShapes.h"
 #include "Mesh/MeshView.h"
 #include "Mesh/NodalCells.h"
@@ -124,6 +129,11 @@ private:
   /// The barycentric coordinates 0..d of x in the affine simplex (of its
   /// orthogonal projection onto a facet's plane or a segment's line).
   void Barycentric(const double* x, double* lambda) const;
+  /// A non-affine serendipity parent (Quad8, Hexa20, Wedge15): its
+  /// functions become its complete sibling's with hidden nodes
+  /// (Geometry/HiddenNodes.h), their weights taken for this cell, and
+  /// its Degree.
+  void BindHiddenNodes();
 
   NodalType Type = NodalType::None;
   Index Parent = -1;           ///< of the bound cell
@@ -133,7 +143,9 @@ private:
   double Origin[3] = {};       ///< corner 0 of the affine simplex
   double Inverse[3][3] = {};   ///< x - Origin (Dimension coordinates) to barycentric 1..d
   double Reference[4][3] = {}; ///< nodal affine: the reference coordinates of the corners
-  double Nodes[3 * MaxNodalFunctions] = {}; ///< the parent's nodes (3 coordinates each)
+  double Nodes[3 * MaxNodalFunctions] = {};        ///< the parent's nodes (3 coordinates each)
+  NodalType Sibling = NodalType::None;             ///< non-affine serendipity: the complete sibling
+  double Hidden[MaxHiddenNodes * MaxHiddenOwners]; ///< its hidden nodes' weights
 };
 } // namespace mp
 
