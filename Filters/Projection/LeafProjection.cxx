@@ -49,6 +49,7 @@ Verdict WrapTarget(const ExecutionShare& run, vtkDataSet* target, const std::str
   SimplexMesh& mesh, Statistics& stats, LeafAgreement& agreement)
 {
   mesh.SetOrdering(run.Options.Renumbering);
+  mesh.SetCurvedLevel(run.Options.CurvedCellSubdivision);
   const std::string why = mesh.Wrap(target, role.c_str());
   stats.Check += mesh.CheckSeconds();
   stats.Renumber += mesh.OrderSeconds();

@@ -86,6 +86,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
+  side.Mesh.SetCurvedLevel(settings.CurvedCellSubdivision);
   const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
     const std::string why = side.Mesh.Wrap(source, "Source");
     stats.Check += side.Mesh.CheckSeconds();

@@ -46,9 +46,8 @@ Index CountOutside(const Id* ids, Index n, Index bound, const TaskRunner& runner
 std::string CheckIds(const MeshView& mesh, const char* name, const TaskRunner& runner)
 {
   const Index uses = mesh.NumberOfCells * mesh.CornersPerCell();
-  if ((mesh.Connectivity32
-          ? CountOutside(mesh.Connectivity32, uses, mesh.NumberOfPoints, runner)
-          : CountOutside(mesh.Connectivity, uses, mesh.NumberOfPoints, runner)) > 0)
+  if ((mesh.Connectivity32 ? CountOutside(mesh.Connectivity32, uses, mesh.AllPoints(), runner)
+                           : CountOutside(mesh.Connectivity, uses, mesh.AllPoints(), runner)) > 0)
   {
     return std::string(name) + ": a cell refers to a point that does not exist";
   }
@@ -327,6 +326,11 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
   const int corners = target.CornersPerCell();
   points.assign(target.Points, target.Points + 3 * target.NumberOfPoints);
   points.insert(points.end(), halo.Points.begin(), halo.Points.end());
+  // Geometric-only points (curved cells split finer) after the halo's,
+  // which are numbered as functions after the target's.
+  const Index functions = static_cast<Index>(points.size() / 3);
+  points.insert(points.end(), target.Points + 3 * target.NumberOfPoints,
+    target.Points + 3 * target.AllPoints());
   cells.clear();
   cells.reserve(static_cast<size_t>(target.NumberOfCells * corners) + halo.Cells.size());
   for (Index c = 0; c < target.NumberOfCells; ++c)
@@ -334,7 +338,8 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
     const CellCorners cell = target.Cell(c);
     for (int a = 0; a < corners; ++a)
     {
-      cells.push_back(cell[a]);
+      cells.push_back(
+        target.HasFunction(cell[a]) ? cell[a] : functions + (cell[a] - target.NumberOfPoints));
     }
   }
   cells.insert(cells.end(), halo.Cells.begin(), halo.Cells.end());
@@ -342,7 +347,8 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
   whole.CellDimension = target.CellDimension;
   whole.SpaceDimension = target.SpaceDimension;
   whole.Points = points.data();
-  whole.NumberOfPoints = static_cast<Index>(points.size() / 3);
+  whole.NumberOfPoints = functions;
+  whole.GeometricPoints = target.GeometricPoints;
   whole.Connectivity = cells.data();
   whole.NumberOfCells = static_cast<Index>(cells.size()) / corners;
   return whole;
