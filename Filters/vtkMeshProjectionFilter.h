@@ -431,7 +431,7 @@ public:
    * through the cell's isoparametric map, so that the split's boundary lies
    * within |d| / (4 L^2) of each curved edge (d: its mid node's offset from
    * the chord's middle) and the measures converge as 1 / L^2. 1: the
-   * polygon or polyhedron through the nodes (|d| / 4). Default 2. Straight
+   * polygon or polyhedron through the nodes (|d| / 4), the default. Straight
    * cells are always split on their nodes. Applies to 3-node edges, 6-node
    * triangles, 8- and 9-node quadrilaterals and 10-node tetrahedra (and the
    * Lagrange cells of order 2 of those shapes); the other curved cells keep

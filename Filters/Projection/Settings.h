@@ -76,7 +76,7 @@ struct Settings
   int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
   /// SimplexMesh::SetCurvedLevel: curved second-order cells split on the
   /// lattice of order 2 L through their isoparametric map (1: on their nodes).
-  int CurvedCellSubdivision = 2;
+  int CurvedCellSubdivision = 1;
   bool KeepMatrices = false;
   /// Mass weighting (MassWeighting.h): the Source's density array ("": off), and the
   /// arrays weighted by it (empty: every array of its association).

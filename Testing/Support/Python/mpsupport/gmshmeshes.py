@@ -392,7 +392,8 @@ def second_order(shape, h, quads=False, incomplete=False):
     of `shape` with size `h`: "square" (the unit square, z = 0), "disk" (the
     unit disk: its boundary mid nodes on the circle), "cube" (the unit cube:
     tetrahedra), "hexes" (the unit cube, structured: hexahedra) or "prisms"
-    (the unit square extruded over 1: wedges). `quads`: 2D cells recombined
+    (the unit square extruded over 1: wedges) or "ball" (the unit ball:
+    tetrahedra, its boundary mid nodes on the sphere). `quads`: 2D cells recombined
     into quadrilaterals; `incomplete`: serendipity cells (Quad8, Hexa20,
     Wedge15: Mesh.SecondOrderIncomplete), else Quad9, Hexa27, Wedge18."""
     key = ("second_order", shape, h, quads, incomplete)
@@ -402,7 +403,7 @@ def second_order(shape, h, quads=False, incomplete=False):
     from vtkmodules.vtkCommonCore import vtkPoints
     from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
     from vtkmodules.util.numpy_support import numpy_to_vtk
-    dim = 3 if shape in ("cube", "hexes", "prisms") else 2
+    dim = 3 if shape in ("cube", "hexes", "prisms", "ball") else 2
     gmsh.initialize()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
@@ -415,6 +416,8 @@ def second_order(shape, h, quads=False, incomplete=False):
             occ.addDisk(0, 0, 0, 1.0, 1.0)
         elif shape in ("cube", "hexes"):
             occ.addBox(0, 0, 0, 1, 1, 1)
+        elif shape == "ball":
+            occ.addSphere(0, 0, 0, 1.0)
         elif shape == "prisms":
             occ.addRectangle(0, 0, 0, 1, 1)
             occ.extrude([(2, 1)], 0, 0, 1, numElements=[max(1, int(round(1 / h)))], recombine=True)
