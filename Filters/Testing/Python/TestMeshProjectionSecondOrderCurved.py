@@ -86,12 +86,12 @@ def curved_bound(g):
     return sum(seen.values())
 
 
-def check_fields(name, out, source):
+def check_fields(name, out, source, everywhere=True):
     x = points_of(out)
     valid = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask")).astype(bool)
     error = np.max(np.abs(vtk_to_numpy(out.GetPointData().GetArray("Linear")) - linear(x))[valid])
     error /= np.ptp(linear(x))
-    check(valid.all() and error <= 1e-9, "%s: linear field exact at every node (%.2g)" % (name, error))
+    check((valid.all() or not everywhere) and valid.any() and error <= 1e-9, "%s: linear field exact at every node (%.2g)" % (name, error))
     covered = vtk_to_numpy(out.GetCellData().GetArray("CoveredFraction")) > 1e-9
     constant = vtk_to_numpy(out.GetCellData().GetArray("Constant"))[covered]
     check(covered.any() and np.max(np.abs(constant - 7.0)) <= 1e-12,
@@ -109,8 +109,9 @@ for level in (1, 2, 3, 4, 8, 16):
     measures[level] = field(out, "TargetIntegral_One")
     if level <= 4:
         check_fields("disk, level %d" % level, out, source)
-curved = measures[16]
-print("level  measure             |error| vs level 16   bound sum|d||e|/(4L^2)  |measure - pi|")
+# The curved disk's measure: level 16's, extrapolated (its error ~ 1/16^2).
+curved = measures[16] + (measures[16] - measures[8]) / 3.0
+print("level  measure             |error| vs curved     bound sum|d||e|/(4L^2)  |measure - pi|")
 for level in (1, 2, 3, 4, 8):
     error = abs(measures[level] - curved)
     print("%5d  %.15f  %.3e             %.3e              %.3e" %
@@ -133,11 +134,12 @@ for level in (1, 2, 4):
     t, s = field(out, "TargetIntegral_Linear"), field(out, "SourceIntegral_Linear")
     check(abs(t - s) <= 1e-11 * abs(s), "level %d: TargetIntegral_ = SourceIntegral_ (%.3g)" % (level, abs(t - s) / abs(s)))
     out = project(big, small, level, extensive=True)
-    total = vtk_to_numpy(out.GetCellData().GetArray("Total")).sum()
+    total = np.nansum(vtk_to_numpy(out.GetCellData().GetArray("Total")))  # NaN: not covered
     expected = 3.0 * small.GetNumberOfCells()
     check(abs(total - expected) <= 1e-11 * expected,
           "level %d: extensive totals conserved (%.3g)" % (level, abs(total - expected) / expected))
-    check_fields("disk onto a larger disk, level %d" % level, project(big, small, level), small)
+    check_fields("disk onto a larger disk, level %d" % level, project(big, small, level), small,
+                 everywhere=False)
 
 # --- c. a tet10 ball: curved boundary cells next to straight ones -------------
 ball = gmshmeshes.second_order("cube", 0.4)  # straight: every cell keeps its split
@@ -152,6 +154,7 @@ if sphere is not None:
     front = project(with_arrays(sphere), src, 2)
     brute = project(with_arrays(sphere), src, 2, method=1)
     check_fields("tet10 ball, level 2", front, src)
+    print("tet10 ball: %d cells, %d points" % (sphere.GetNumberOfCells(), sphere.GetNumberOfPoints()))
     diff = np.max(np.abs(vtk_to_numpy(front.GetPointData().GetArray("Linear")) -
                          vtk_to_numpy(brute.GetPointData().GetArray("Linear"))))
     check(diff <= 1e-12, "tet10 ball: front = brute force (%.3g)" % diff)
