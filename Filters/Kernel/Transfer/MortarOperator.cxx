@@ -8,6 +8,7 @@
 
 #include "Geometry/Intersectors.h"
 #include "Geometry/Measures.h"
+#include "Mesh/NodalCells.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MassMatrix.h"
 #include "Transfer/NodalMass.h"
@@ -320,6 +321,52 @@ Index MortarOperator::AggregateFringe(
   return this->Fringe.Count;
 }
 
+namespace
+{
+/**
+ * A target with curved cells split finer (geometric-only points), seen
+ * with its halo: its cells keep their parents and nodal cells, so that the
+ * fringe's rings read a refined simplex's parent nodes as on one part
+ * (ForEachFunctionPoint); each halo cell is a linear parent of its own.
+ */
+struct HaloParents
+{
+  std::vector<Index> Parent;
+  std::vector<NodalType> Type;
+  std::vector<long long> Offsets;
+  NodalCells Nodal;
+
+  void Attach(const MeshView& target, MeshView& whole)
+  {
+    if (target.GeometricPoints == 0 || !target.Nodal)
+    {
+      return;
+    }
+    const Index parents = target.Parents();
+    const Index haloCells = whole.NumberOfCells - target.NumberOfCells;
+    this->Parent.resize(static_cast<size_t>(whole.NumberOfCells));
+    for (Index c = 0; c < target.NumberOfCells; ++c)
+    {
+      this->Parent[c] = target.ParentOf(c);
+    }
+    for (Index k = 0; k < haloCells; ++k)
+    {
+      this->Parent[target.NumberOfCells + k] = parents + k;
+    }
+    this->Type.assign(target.Nodal->Type, target.Nodal->Type + parents);
+    this->Type.resize(static_cast<size_t>(parents + haloCells), NodalType::None);
+    this->Offsets.assign(target.Nodal->Offsets, target.Nodal->Offsets + parents + 1);
+    this->Offsets.resize(static_cast<size_t>(parents + haloCells) + 1, this->Offsets.back());
+    this->Nodal.Type = this->Type.data();
+    this->Nodal.Offsets = this->Offsets.data();
+    this->Nodal.Nodes = target.Nodal->Nodes;
+    whole.Parent = this->Parent.data();
+    whole.NumberOfParents = parents + haloCells;
+    whole.Nodal = &this->Nodal;
+  }
+};
+} // namespace
+
 MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo,
   std::vector<double>& points, std::vector<Index>& cells)
 {
@@ -389,7 +436,9 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   }
   std::vector<double> points;
   std::vector<Index> cells;
-  const MeshView whole = WithHalo(target, halo, points, cells);
+  MeshView whole = WithHalo(target, halo, points, cells);
+  HaloParents parents;
+  parents.Attach(target, whole);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
   this->Fringe = ExtendFringe(
