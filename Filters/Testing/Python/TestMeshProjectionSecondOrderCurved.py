@@ -15,7 +15,9 @@ disks (boundary mid nodes on the circle) and balls:
        field exactly, with the front and brute force agreeing;
     d. level 1 is the split on the nodes (the property's effect: the measure
        differs from level 2's), and changing the level rebuilds a kept
-       operator.
+       operator;
+    e. curved 6-node triangles of a surface in 3D (a ball's boundary): the
+       area nears 4 pi with the level, constant cell data stays constant.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -169,6 +171,41 @@ if sphere is not None:
     diff = np.max(np.abs(vtk_to_numpy(front.GetPointData().GetArray("Linear")) -
                          vtk_to_numpy(brute.GetPointData().GetArray("Linear"))))
     check(diff <= 1e-12, "tet10 ball: front = brute force (%.3g)" % diff)
+
+# --- e. curved 6-node triangles of a surface in 3D (the ball's boundary) -----
+def shell(ball):
+    """The boundary faces of a tet10 mesh as 6-node triangles (outward)."""
+    from vtkmodules.vtkCommonDataModel import VTK_QUADRATIC_TRIANGLE
+    faces = {}
+    table = [((0, 1, 3), (4, 8, 7)), ((1, 2, 3), (5, 9, 8)), ((2, 0, 3), (6, 7, 9)),
+             ((0, 2, 1), (6, 5, 4))]
+    for c in range(ball.GetNumberOfCells()):
+        ids = [ball.GetCell(c).GetPointId(k) for k in range(10)]
+        for cs, ms in table:
+            key = tuple(sorted(ids[k] for k in cs))
+            faces.setdefault(key, []).append([ids[k] for k in cs] + [ids[k] for k in ms])
+    g = vtkUnstructuredGrid()
+    g.SetPoints(ball.GetPoints())
+    for f in faces.values():
+        if len(f) == 1:
+            g.InsertNextCell(VTK_QUADRATIC_TRIANGLE, 6, f[0])
+    return g
+
+
+if sphere is not None:
+    skin, skin_source = with_arrays(shell(sphere)), with_arrays(shell(gmshmeshes.second_order("ball", 0.4)))
+    areas = {}
+    for level in (1, 2):
+        out = project(skin, skin_source, level)
+        areas[level] = field(out, "SourceIntegral_Constant (cell data)") / 7.0
+        covered = vtk_to_numpy(out.GetCellData().GetArray("CoveredFraction")) > 1e-9
+        constant = vtk_to_numpy(out.GetCellData().GetArray("Constant"))[covered]
+        check(covered.any() and np.max(np.abs(constant - 7.0)) <= 1e-12,
+              "sphere of 6-node triangles, level %d: constant cell data stays 7" % level)
+    print("sphere of 6-node triangles: area %.6f (level 1), %.6f (level 2), 4 pi %.6f" %
+          (areas[1], areas[2], 4 * np.pi))
+    check(abs(areas[2] - 4 * np.pi) * 2.5 <= abs(areas[1] - 4 * np.pi),
+          "sphere of 6-node triangles: level 2's area much nearer 4 pi than level 1's")
 
 # --- d. a kept operator follows the level -----------------------------------
 f = meshprojection.vtkMeshProjectionFilter()
