@@ -316,7 +316,6 @@ void ReadSums(const CsrMatrix& reads, Index i, const double* values, int width, 
 FunctionGraph PointGraph(const MeshView& mesh, const std::vector<char>& want)
 {
   FunctionGraph graph;
-  const int corners = mesh.CornersPerCell();
   std::vector<Index> start, cells;
   BuildPointCells(mesh, start, cells);
   Rows(

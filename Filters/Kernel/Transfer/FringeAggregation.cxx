@@ -152,7 +152,6 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
 {
-  const int corners = mesh.CornersPerCell();
   const Index first = around.Start[static_cast<size_t>(i)];
   const StencilFrame frame = StencilFrameOf(
     mesh, i, around.Cells.data() + first, around.Start[static_cast<size_t>(i) + 1] - first);
