@@ -81,6 +81,7 @@ void vtkMeshProjectionFilter::Internals::ForEachProperty(Filter& f, Fields& s, E
   each(f.KeepMatrices, s.KeepMatrices);
   each(f.NumberOfThreads, s.NumberOfThreads);
   each(f.Renumbering, s.Renumbering);
+  each(f.CurvedCellSubdivision, s.CurvedCellSubdivision);
   each(f.DensityArray, s.DensityArray);
   each(f.CategoricalMode, s.CategoricalMode);
   each(f.LabelFractions, s.LabelFractions);
@@ -880,6 +881,7 @@ void vtkMeshProjectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreserveBounds: " << (this->PreserveBounds ? "On" : "Off") << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
   os << indent << "SurfaceReach: " << this->SurfaceReach << "\n";
+  os << indent << "CurvedCellSubdivision: " << this->CurvedCellSubdivision << "\n";
   os << indent << "ConserveSourceIntegral: " << (this->ConserveSourceIntegral ? "On" : "Off")
      << "\n";
   os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";

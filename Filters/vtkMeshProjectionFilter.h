@@ -425,6 +425,25 @@ public:
 
   ///@{
   /**
+   * Curved second-order cells (mid nodes off their straight edges, as
+   * meshers write them at curved boundaries) are met through a split into
+   * simplices: at level L, the lattice of order 2 L of the reference cell
+   * through the cell's isoparametric map, so that the split's boundary lies
+   * within |d| / (4 L^2) of each curved edge (d: its mid node's offset from
+   * the chord's middle) and the measures converge as 1 / L^2. 1: the
+   * polygon or polyhedron through the nodes (|d| / 4), the default. Straight
+   * cells are always split on their nodes. Applies to 3-node edges, 6-node
+   * triangles, 8- and 9-node quadrilaterals and 10-node tetrahedra (and the
+   * Lagrange cells of order 2 of those shapes); the other curved cells keep
+   * the split on their nodes. A curved tetrahedron costs (2 L)^3 / 8 times
+   * the simplices of L = 1.
+   */
+  vtkSetClampMacro(CurvedCellSubdivision, int, 1, 16);
+  vtkGetMacro(CurvedCellSubdivision, int);
+  ///@}
+
+  ///@{
+  /**
    * Keeps the operators between executions and reuses them while neither
    * mesh changes (time series on fixed meshes). Default: true. Off, nothing
    * is kept between executions and no matrices can be read out.
@@ -553,6 +572,7 @@ protected:
   bool KeepMatrices;
   int NumberOfThreads;
   int Renumbering;
+  int CurvedCellSubdivision;
   std::string DensityArray;
   int CategoricalMode;
   bool LabelFractions;

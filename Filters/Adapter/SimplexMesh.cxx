@@ -99,6 +99,8 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
   int dimension = 0;
   this->NodalStore.reset();
   this->Kernel.Nodal = nullptr;
+  this->Refined = 0;
+  this->Geometric = 0;
   for (int type = 1; type < 256; ++type)
   {
     if (!present[type])
@@ -268,7 +270,9 @@ void SimplexMesh::NameParents(vtkIdType parents, vtkIdType numberOfCells, vtkIdT
 
 void SimplexMesh::ViewPoints(vtkUnstructuredGrid* grid)
 {
-  this->Kernel.NumberOfPoints = grid->GetNumberOfPoints();
+  // The points a curved cell's finer split added come last and carry no function.
+  this->Kernel.NumberOfPoints = grid->GetNumberOfPoints() - this->Geometric;
+  this->Kernel.GeometricPoints = this->Geometric;
   // VTK's own array when it holds doubles.
   vtkPoints* points = grid->GetPoints();
   vtkDoubleArray* doubles = points ? vtkDoubleArray::SafeDownCast(points->GetData()) : nullptr;
@@ -307,7 +311,7 @@ std::string SimplexMesh::CheckPoints(const char* role) const
     }
     return bad;
   };
-  const mp::Index i = FirstWhere(kernel.NumberOfPoints, badPoint) == kernel.NumberOfPoints
+  const mp::Index i = FirstWhere(kernel.AllPoints(), badPoint) == kernel.AllPoints()
     ? uses
     : FirstWhere(uses, [&](vtkIdType u) { return badPoint(ids(u)); });
   if (i >= uses)
@@ -368,7 +372,8 @@ void SimplexMesh::OrderInSpace()
   // Automatic: point ids or the ids of cells across a face that do not
   // follow space (NumberingQuality.h), measured only when it would decide.
   auto tidy = [&] { return mp::MeasureNumbering(this->Kernel, SMPTaskRunner()).Tidy(); };
-  if (this->OrderingMode == NEVER || n == 0 ||
+  // (Geometric-only points would be mixed with the functions' points.)
+  if (this->OrderingMode == NEVER || n == 0 || this->Geometric > 0 ||
     (this->OrderingMode == AUTOMATIC && (n < MinimumOrderedCells || tidy())))
   {
     return;

@@ -87,6 +87,19 @@ public:
     NEVER = 2
   };
   void SetOrdering(int ordering) { this->OrderingMode = ordering; }
+  /**
+   * The level L at which Wrap() splits curved second-order cells (mid nodes
+   * off their straight edges): on the lattice of order 2L through their
+   * isoparametric map (Geometry/CurvedSplit.h), adding the lattice points
+   * that are not nodes as geometric-only points (View().GeometricPoints,
+   * after the dataset's points: no function lives on them). 1: on their
+   * nodes, as straight cells always are. A mesh with such points is not
+   * renumbered (SetOrdering).
+   */
+  void SetCurvedLevel(int level) { this->CurvedLevel = level < 1 ? 1 : level; }
+  int GetCurvedLevel() const { return this->CurvedLevel; }
+  /// Curved cells Wrap() split on the finer lattice.
+  vtkIdType RefinedCells() const { return this->Refined; }
   static constexpr vtkIdType MinimumOrderedCells = 4096;
   /// Whether the kernel's numbering is a renumbered copy (see SetOrdering).
   bool Ordered() const { return !this->PointOrder.empty(); }
@@ -245,6 +258,9 @@ private:
   vtkIdType LowerDimensional = 0;
   vtkIdType Flat = 0;
   vtkIdType SplitCount = 0;
+  int CurvedLevel = 1;
+  vtkIdType Refined = 0;
+  vtkIdType Geometric = 0; ///< points the split added after the dataset's (geometric only)
   double CheckTime = 0;
   double OrderTime = 0;
   int OrderingMode = AUTOMATIC;

@@ -8,6 +8,8 @@
 #include "Adapter/NodalTypes.h"
 #include "Adapter/Threads.h"
 #include "Geometry/CellSplit.h"
+#include "Geometry/CurvedSplit.h"
+#include "Geometry/NodalShapes.h"
 #include "Geometry/NodalSplit.h"
 
 #include "vtkCellArray.h"
@@ -285,6 +287,38 @@ private:
   vtkIdType NonFinite = -1;
 };
 
+/// Whether a second-order cell's mid nodes lie off its straight edges
+/// (NodalIsStraight, to the rounding of its coordinates).
+bool IsCurved(mp::NodalType type, const double* x, const std::vector<mp::Index>& nodes)
+{
+  double X[3 * mp::MaxNodalNodes];
+  for (size_t k = 0; k < nodes.size(); ++k)
+  {
+    std::copy(x + 3 * nodes[k], x + 3 * nodes[k] + 3, X + 3 * k);
+  }
+  return !mp::NodalIsStraight(type, X, 3, 1e-12);
+}
+
+/// Replaces the simplices from `before` on (a curved cell's split on its
+/// nodes) by its split on the finer lattice, when `curved` refines it;
+/// true then.
+bool RefineCurved(mp::CurvedSplitter& curved, mp::NodalType type, const double* x,
+  const std::vector<mp::Index>& nodes, std::vector<mp::Index>& simplices, size_t before)
+{
+  if (curved.Level() < 2 || !mp::IsRefinedWhenCurved(type) || !IsCurved(type, x, nodes))
+  {
+    return false;
+  }
+  std::vector<mp::Index> finer;
+  if (!curved.Split(type, nodes.data(), finer))
+  {
+    return false; // the finer split folds: the one on the nodes stays
+  }
+  simplices.resize(before);
+  simplices.insert(simplices.end(), finer.begin(), finer.end());
+  return true;
+}
+
 /// Why the first refused cell (and `refused` - 1 more) cannot be split.
 std::string Refusal(vtkDataSet* data, const char* role, int dimension, vtkIdType firstRefused,
   mp::SplitStatus firstStatus, vtkIdType refused)
@@ -355,6 +389,22 @@ std::string NodalRefusal(vtkDataSet* data, const char* role, vtkIdType c, mp::No
   return why.str();
 }
 
+/// The dataset's points then those a finer split of curved cells added.
+vtkSmartPointer<vtkPoints> WithAddedPoints(vtkPoints* points, const std::vector<double>& added)
+{
+  auto all = vtkSmartPointer<vtkPoints>::New();
+  all->SetDataTypeToDouble();
+  const vtkIdType np = points->GetNumberOfPoints();
+  all->SetNumberOfPoints(np + static_cast<vtkIdType>(added.size() / 3));
+  double* to = vtkDoubleArray::SafeDownCast(all->GetData())->GetPointer(0);
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    points->GetPoint(p, to + 3 * p);
+  }
+  std::copy(added.begin(), added.end(), to + 3 * np);
+  return all;
+}
+
 /// The simplices (`corners` ids each) as a grid of their own on `points`.
 vtkSmartPointer<vtkUnstructuredGrid> SimplexGridOf(
   vtkPoints* points, const std::vector<mp::Index>& simplices, int dimension)
@@ -392,6 +442,8 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   // global ids, else of lowest point id (SplitKeys).
   const std::vector<mp::Index> keys = SplitKeys(data);
   CellSplitter splitter(data, x, keys.empty() ? nullptr : keys.data());
+  mp::CurvedSplitter curved(x, static_cast<mp::Index>(points->GetNumberOfPoints()),
+    this->CurvedLevel, keys.empty() ? nullptr : keys.data());
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
   std::vector<mp::Index> simplices;
   simplices.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 24 : 6));
@@ -442,6 +494,7 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
         continue;
       }
       this->AddNodal(c, nodal, splitter.Nodes(), numberOfCells);
+      this->Refined += RefineCurved(curved, nodal, x, splitter.Nodes(), simplices, before);
     }
     else
     {
@@ -468,7 +521,10 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
     return Refusal(data, role, dimension, firstRefused, firstStatus, refused);
   }
   this->FinishNodal(numberOfCells);
-  this->SplitGrid = SimplexGridOf(points, simplices, dimension);
+  this->Geometric = static_cast<vtkIdType>(curved.AddedCount());
+  this->SplitGrid =
+    SimplexGridOf(this->Geometric > 0 ? WithAddedPoints(points, curved.AddedPoints()) : points,
+      simplices, dimension);
   return std::string();
 }
 

@@ -141,7 +141,14 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
       {
         Grow(box, target.Point(cell[a]));
       }
-      if (!Meet(box, reached))
+      // (A simplex of a curved cell split finer, on geometric-only points,
+      // is no cell of the functions' graph the halo extends.)
+      bool functions = true;
+      for (int a = 0; a < corners; ++a)
+      {
+        functions = functions && target.HasFunction(cell[a]);
+      }
+      if (!functions || !Meet(box, reached))
       {
         continue;
       }

@@ -16,6 +16,7 @@
 #include "Transfer/NodalSpace.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <sstream>
 
@@ -61,8 +62,22 @@ std::vector<double> SourceWeights::CoveredTotals(const mp::MortarOperator& op, b
         long long key[4] = { -1, -1, -1, 0 };
         for (int k = 0; k < corners; ++k)
         {
-          key[k] =
-            static_cast<long long>(global->GetTuple1(this->Source.DataSetPoint(view.Cell(c)[k])));
+          const mp::Index p = view.Cell(c)[k];
+          // A geometric-only point (a curved cell split finer) has no global
+          // id: its coordinates' bits, the same on every process, name it.
+          long long bits = 0;
+          if (!view.HasFunction(p))
+          {
+            for (int d = 0; d < 3; ++d)
+            {
+              long long w = 0;
+              std::memcpy(&w, view.Point(p) + d, sizeof w);
+              bits = bits * 1000003 ^ w;
+            }
+          }
+          key[k] = view.HasFunction(p)
+            ? static_cast<long long>(global->GetTuple1(this->Source.DataSetPoint(p)))
+            : (bits | (1LL << 62));
         }
         for (int k = 0; k < corners; ++k)
         {

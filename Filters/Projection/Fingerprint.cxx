@@ -71,6 +71,7 @@ void Fingerprint::Add(const SimplexMesh& mesh)
     const size_t parents = static_cast<size_t>(view.Parents());
     const size_t nodes = static_cast<size_t>(view.Nodal->Offsets[parents]);
     this->Add(static_cast<std::uint64_t>(nodes));
+    this->Add(static_cast<std::uint64_t>(mesh.GetCurvedLevel())); // the finer split of curved cells
     this->Add(view.Nodal->Type, parents * sizeof(mp::NodalType), mpvtk::SMPTaskRunner());
     this->Add(view.Nodal->Nodes, nodes * sizeof(long long), mpvtk::SMPTaskRunner());
   }

@@ -15,6 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "Mesh/NodalCells.h"
 #include "Projection/Conservation.h"
 #include "Projection/Labels.h"
 #include "Projection/Messages.h"
@@ -655,11 +656,9 @@ mp::LargeVector<double> PointCover(const SimplexMesh& target, OperatorSet& ops)
   for (mp::Index c = 0; c < view.NumberOfCells; ++c)
   {
     const double f = fraction[static_cast<size_t>(view.ParentOf(c))];
-    const mp::CellCorners p = view.Cell(c);
-    for (int k = 0; k < view.CornersPerCell(); ++k)
-    {
-      most[static_cast<size_t>(p[k])] = std::max(most[static_cast<size_t>(p[k])], f);
-    }
+    mp::ForEachFunctionPoint(view, c, [&](mp::Index p) {
+      most[static_cast<size_t>(p)] = std::max(most[static_cast<size_t>(p)], f);
+    });
   }
   return most;
 }

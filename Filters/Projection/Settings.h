@@ -74,6 +74,9 @@ struct Settings
   bool CacheOperator = true;
   int NumberOfThreads = 0; ///< 0: every core (the filter's RequestData)
   int Renumbering = 0;     ///< SimplexMesh::Ordering (AUTOMATIC)
+  /// SimplexMesh::SetCurvedLevel: curved second-order cells split on the
+  /// lattice of order 2 L through their isoparametric map (1: on their nodes).
+  int CurvedCellSubdivision = 1;
   bool KeepMatrices = false;
   /// Mass weighting (MassWeighting.h): the Source's density array ("": off), and the
   /// arrays weighted by it (empty: every array of its association).

@@ -21,6 +21,7 @@
 
 #include "Geometry/Measures.h"
 #include "Mesh/ContentHash.h"
+#include "Mesh/NodalCells.h"
 #include "Transfer/Space.h"
 
 #include <algorithm>
@@ -152,7 +153,6 @@ std::vector<char> CellsUsing(
   const mp::MeshView& view, const std::vector<char>& bad, int association)
 {
   std::vector<char> excluded(static_cast<size_t>(view.NumberOfCells), 0);
-  const int corners = view.CornersPerCell();
   mpvtk::For(0, view.NumberOfCells, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType c = begin; c < end; ++c)
     {
@@ -161,11 +161,7 @@ std::vector<char> CellsUsing(
         excluded[c] = bad[view.ParentOf(c)];
         continue;
       }
-      const mp::CellCorners p = view.Cell(c);
-      for (int k = 0; k < corners; ++k)
-      {
-        excluded[c] = excluded[c] || bad[p[k]];
-      }
+      mp::ForEachFunctionPoint(view, c, [&](mp::Index p) { excluded[c] = excluded[c] || bad[p]; });
     }
   });
   return excluded;

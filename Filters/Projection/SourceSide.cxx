@@ -86,6 +86,8 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
+  // (Level 1 on several processes: LeafProjection's WrapTarget says why.)
+  side.Mesh.SetCurvedLevel(parts.Whole() ? settings.CurvedCellSubdivision : 1);
   const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
     const std::string why = side.Mesh.Wrap(source, "Source");
     stats.Check += side.Mesh.CheckSeconds();

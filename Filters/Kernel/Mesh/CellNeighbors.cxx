@@ -25,9 +25,9 @@ Index FaceNeighbors(
   runner.Fill(neighbors, size, NeighborId(-1));
   std::atomic<bool> repeated(false);
   // MatchFacesAtPoints packs two point ids + 1 into 32 bits each.
-  const bool packable = mesh.NumberOfPoints < (Index(1) << 32) - 1;
+  const bool packable = mesh.AllPoints() < (Index(1) << 32) - 1;
   const Index nonManifold =
-    !packable ? 0 : runner.ForRanges(mesh.NumberOfPoints, [&](Index begin, Index end) {
+    !packable ? 0 : runner.ForRanges(mesh.AllPoints(), [&](Index begin, Index end) {
       Index count = 0;
       switch (corners)
       {

@@ -313,8 +313,7 @@ struct PointCells
   /// Whether these are the lists of `mesh` (as many starts as its points, plus one).
   bool Fit(const MeshView& mesh) const
   {
-    return !this->Start.empty() &&
-      static_cast<Index>(this->Start.size()) == mesh.NumberOfPoints + 1;
+    return !this->Start.empty() && static_cast<Index>(this->Start.size()) == mesh.AllPoints() + 1;
   }
 };
 
@@ -346,7 +345,7 @@ void BuildPointCells(const MeshView& mesh, Vector& start, Vector& cells, const T
 {
   using Id = typename Vector::value_type;
   const int corners = mesh.CornersPerCell();
-  const Index np = mesh.NumberOfPoints;
+  const Index np = mesh.AllPoints();
   const Index n = mesh.NumberOfCells;
   const Index uses = n * corners;
   const int tasks = static_cast<int>(

@@ -77,8 +77,14 @@ struct MeshView
 {
   int CellDimension = 2;          ///< 1: segments, 2: triangles, 3: tetrahedra
   int SpaceDimension = 2;         ///< coordinates used: 2 (x, y) or 3 (x, y, z)
-  const double* Points = nullptr; ///< 3 * NumberOfPoints coordinates
-  Index NumberOfPoints = 0;
+  const double* Points = nullptr; ///< 3 * AllPoints() coordinates
+  Index NumberOfPoints = 0;       ///< the points that carry functions (P1), first
+  /// Points after those that carry geometry only: the lattice points of
+  /// curved second-order cells split finer than on their nodes
+  /// (Geometry/CurvedSplit.h). They are corners of simplices of
+  /// second-order parents only, whose functions are the parents' nodes, so
+  /// no function lives on them.
+  Index GeometricPoints = 0;
   const Index* Connectivity = nullptr; ///< (CellDimension + 1) * NumberOfCells point ids
   /// The same in 32 bits (half the memory: a renumbered copy of a mesh of
   /// fewer than 2^31 points); when set, it is read instead of Connectivity.
@@ -131,6 +137,10 @@ struct MeshView
   /// Whether the mesh has its connectivity (in either width).
   bool HasConnectivity() const { return this->Connectivity || this->Connectivity32; }
   const double* Point(Index p) const { return this->Points + 3 * p; }
+  /// Every point a simplex may name: NumberOfPoints + GeometricPoints.
+  Index AllPoints() const { return this->NumberOfPoints + this->GeometricPoints; }
+  /// Whether point p carries a function (not a geometric-only point).
+  bool HasFunction(Index p) const { return p < this->NumberOfPoints; }
   Index Neighbor(Index c, int face) const
   {
     return this->Neighbors[c * this->CornersPerCell() + face];

@@ -22,6 +22,8 @@
 #ifndef MeshProjection_Kernel_NodalCells_h
 #define MeshProjection_Kernel_NodalCells_h
 
+#include "Mesh/MeshView.h"
+
 #include <cstdint>
 
 namespace mp
@@ -56,6 +58,50 @@ struct NodalCells
   const long long* Offsets = nullptr; ///< Parents() + 1 entries
   const long long* Nodes = nullptr;
 };
+/**
+ * Calls f(p) for each point of simplex c that carries a function: its
+ * corners, or, when one of them is a geometric-only point (a curved cell
+ * split finer than on its nodes: MeshView::GeometricPoints), its parent's
+ * nodes, which are the functions living on it. Graphs of functions over
+ * the simplices (the fringe's rings, the extrapolation's neighbours) then
+ * join a refined cell's nodes as its split on the nodes did.
+ */
+template <class F>
+void ForEachFunctionPoint(const MeshView& mesh, Index c, F&& f)
+{
+  const CellCorners corners = mesh.Cell(c);
+  const int n = mesh.CornersPerCell();
+  bool geometric = false;
+  for (int k = 0; k < n; ++k)
+  {
+    geometric = geometric || !mesh.HasFunction(corners[k]);
+  }
+  if (!geometric)
+  {
+    for (int k = 0; k < n; ++k)
+    {
+      f(corners[k]);
+    }
+    return;
+  }
+  if (!mesh.Nodal)
+  {
+    // (A copy of the mesh without its parents: its functions' points only.)
+    for (int k = 0; k < n; ++k)
+    {
+      if (mesh.HasFunction(corners[k]))
+      {
+        f(corners[k]);
+      }
+    }
+    return;
+  }
+  const Index p = mesh.ParentOf(c);
+  for (long long i = mesh.Nodal->Offsets[p]; i < mesh.Nodal->Offsets[p + 1]; ++i)
+  {
+    f(static_cast<Index>(mesh.Nodal->Nodes[i]));
+  }
+}
 } // namespace mp
 
 #endif

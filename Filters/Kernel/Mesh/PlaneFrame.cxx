@@ -359,8 +359,8 @@ PlaneFrame PlaneFrame::Shifted(double offset) const
 
 void PlaneFrame::ToPlane(const MeshView& mesh, std::vector<double>& uv) const
 {
-  uv.resize(static_cast<size_t>(3 * mesh.NumberOfPoints));
-  for (Index p = 0; p < mesh.NumberOfPoints; ++p)
+  uv.resize(static_cast<size_t>(3 * mesh.AllPoints()));
+  for (Index p = 0; p < mesh.AllPoints(); ++p)
   {
     this->ToPlane(mesh.Point(p), &uv[3 * p]);
   }

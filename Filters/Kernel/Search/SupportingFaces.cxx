@@ -283,13 +283,13 @@ private:
 bool BoundaryCorners(
   const MeshView& mesh, const std::vector<BoundaryFace>& faces, std::vector<Index>& ids)
 {
-  std::vector<char> used(static_cast<size_t>(mesh.NumberOfPoints), 0);
+  std::vector<char> used(static_cast<size_t>(mesh.AllPoints()), 0);
   for (const BoundaryFace& f : faces)
   {
     for (int j = 0; j < 3; ++j)
     {
       const Index p = FaceCorner(mesh, f, j);
-      if (p < 0 || p >= mesh.NumberOfPoints)
+      if (p < 0 || p >= mesh.AllPoints())
       {
         return false;
       }

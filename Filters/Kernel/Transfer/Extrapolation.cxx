@@ -6,6 +6,7 @@
 
 #include "Geometry/CellGeometry.h"
 #include "Mesh/CellNeighbors.h"
+#include "Mesh/NodalCells.h"
 #include "Transfer/CsrBuilder.h"
 
 #include <algorithm>
@@ -315,7 +316,6 @@ void ReadSums(const CsrMatrix& reads, Index i, const double* values, int width, 
 FunctionGraph PointGraph(const MeshView& mesh, const std::vector<char>& want)
 {
   FunctionGraph graph;
-  const int corners = mesh.CornersPerCell();
   std::vector<Index> start, cells;
   BuildPointCells(mesh, start, cells);
   Rows(
@@ -323,11 +323,8 @@ FunctionGraph PointGraph(const MeshView& mesh, const std::vector<char>& want)
     [&](Index i, auto add) {
       for (Index q = start[i]; q < start[i + 1]; ++q)
       {
-        const CellCorners cell = mesh.Cell(cells[static_cast<size_t>(q)]);
-        for (int a = 0; a < corners; ++a)
-        {
-          add(cell[a], 1.0); // one more cell holds the edge
-        }
+        // One more cell holds the edge.
+        ForEachFunctionPoint(mesh, cells[static_cast<size_t>(q)], [&](Index k) { add(k, 1.0); });
       }
     },
     graph);

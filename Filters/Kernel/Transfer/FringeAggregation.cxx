@@ -6,6 +6,7 @@
 
 #include "Geometry/CellGeometry.h"
 #include "Mesh/CellNeighbors.h"
+#include "Mesh/NodalCells.h"
 #include "Transfer/CsrBuilder.h"
 #include "Transfer/FringeFits.h"
 #include "Transfer/FringeFrames.h"
@@ -151,7 +152,6 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
 {
-  const int corners = mesh.CornersPerCell();
   const Index first = around.Start[static_cast<size_t>(i)];
   const StencilFrame frame = StencilFrameOf(
     mesh, i, around.Cells.data() + first, around.Start[static_cast<size_t>(i) + 1] - first);
@@ -183,10 +183,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
           continue;
         }
         cellStamp[static_cast<size_t>(c)] = i;
-        const CellCorners cell = mesh.Cell(c);
-        for (int a = 0; a < corners; ++a)
-        {
-          const Index k = cell[a];
+        ForEachFunctionPoint(mesh, c, [&](Index k) {
           if (stamp[static_cast<size_t>(k)] != i)
           {
             stamp[static_cast<size_t>(k)] = i;
@@ -196,7 +193,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
               found.push_back(k);
             }
           }
-        }
+        });
       }
     }
     // A quadratic fit where the rings so far allow one (its extrapolation

@@ -162,7 +162,7 @@ void LinearReconstruction::FindSites(const NeighborId* across)
   // equal ones side by side. Each point is its own site, a copy its run's
   // first point's.
   const MeshView& mesh = *this->Mesh;
-  const Index points = mesh.NumberOfPoints;
+  const Index points = mesh.AllPoints(); // sites are places: geometric points too
   const int space = mesh.SpaceDimension;
   const int corners = mesh.CornersPerCell();
   this->Site.resize(static_cast<size_t>(points));

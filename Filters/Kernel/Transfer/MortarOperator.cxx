@@ -8,6 +8,7 @@
 
 #include "Geometry/Intersectors.h"
 #include "Geometry/Measures.h"
+#include "Mesh/NodalCells.h"
 #include "Search/ParallelSearch.h"
 #include "Transfer/MassMatrix.h"
 #include "Transfer/NodalMass.h"
@@ -46,9 +47,8 @@ Index CountOutside(const Id* ids, Index n, Index bound, const TaskRunner& runner
 std::string CheckIds(const MeshView& mesh, const char* name, const TaskRunner& runner)
 {
   const Index uses = mesh.NumberOfCells * mesh.CornersPerCell();
-  if ((mesh.Connectivity32
-          ? CountOutside(mesh.Connectivity32, uses, mesh.NumberOfPoints, runner)
-          : CountOutside(mesh.Connectivity, uses, mesh.NumberOfPoints, runner)) > 0)
+  if ((mesh.Connectivity32 ? CountOutside(mesh.Connectivity32, uses, mesh.AllPoints(), runner)
+                           : CountOutside(mesh.Connectivity, uses, mesh.AllPoints(), runner)) > 0)
   {
     return std::string(name) + ": a cell refers to a point that does not exist";
   }
@@ -325,12 +325,63 @@ Index MortarOperator::AggregateFringe(
   return this->Fringe.Count;
 }
 
+namespace
+{
+/**
+ * A target with curved cells split finer (geometric-only points), seen
+ * with its halo: its cells keep their parents and nodal cells, so that the
+ * fringe's rings read a refined simplex's parent nodes as on one part
+ * (ForEachFunctionPoint); each halo cell is a linear parent of its own.
+ */
+struct HaloParents
+{
+  std::vector<Index> Parent;
+  std::vector<NodalType> Type;
+  std::vector<long long> Offsets;
+  NodalCells Nodal;
+
+  void Attach(const MeshView& target, MeshView& whole)
+  {
+    if (target.GeometricPoints == 0 || !target.Nodal)
+    {
+      return;
+    }
+    const Index parents = target.Parents();
+    const Index haloCells = whole.NumberOfCells - target.NumberOfCells;
+    this->Parent.resize(static_cast<size_t>(whole.NumberOfCells));
+    for (Index c = 0; c < target.NumberOfCells; ++c)
+    {
+      this->Parent[c] = target.ParentOf(c);
+    }
+    for (Index k = 0; k < haloCells; ++k)
+    {
+      this->Parent[target.NumberOfCells + k] = parents + k;
+    }
+    this->Type.assign(target.Nodal->Type, target.Nodal->Type + parents);
+    this->Type.resize(static_cast<size_t>(parents + haloCells), NodalType::None);
+    this->Offsets.assign(target.Nodal->Offsets, target.Nodal->Offsets + parents + 1);
+    this->Offsets.resize(static_cast<size_t>(parents + haloCells) + 1, this->Offsets.back());
+    this->Nodal.Type = this->Type.data();
+    this->Nodal.Offsets = this->Offsets.data();
+    this->Nodal.Nodes = target.Nodal->Nodes;
+    whole.Parent = this->Parent.data();
+    whole.NumberOfParents = parents + haloCells;
+    whole.Nodal = &this->Nodal;
+  }
+};
+} // namespace
+
 MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo,
   std::vector<double>& points, std::vector<Index>& cells)
 {
   const int corners = target.CornersPerCell();
   points.assign(target.Points, target.Points + 3 * target.NumberOfPoints);
   points.insert(points.end(), halo.Points.begin(), halo.Points.end());
+  // Geometric-only points (curved cells split finer) after the halo's,
+  // which are numbered as functions after the target's.
+  const Index functions = static_cast<Index>(points.size() / 3);
+  points.insert(points.end(), target.Points + 3 * target.NumberOfPoints,
+    target.Points + 3 * target.AllPoints());
   cells.clear();
   cells.reserve(static_cast<size_t>(target.NumberOfCells * corners) + halo.Cells.size());
   for (Index c = 0; c < target.NumberOfCells; ++c)
@@ -338,7 +389,8 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
     const CellCorners cell = target.Cell(c);
     for (int a = 0; a < corners; ++a)
     {
-      cells.push_back(cell[a]);
+      cells.push_back(
+        target.HasFunction(cell[a]) ? cell[a] : functions + (cell[a] - target.NumberOfPoints));
     }
   }
   cells.insert(cells.end(), halo.Cells.begin(), halo.Cells.end());
@@ -346,7 +398,8 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
   whole.CellDimension = target.CellDimension;
   whole.SpaceDimension = target.SpaceDimension;
   whole.Points = points.data();
-  whole.NumberOfPoints = static_cast<Index>(points.size() / 3);
+  whole.NumberOfPoints = functions;
+  whole.GeometricPoints = target.GeometricPoints;
   whole.Connectivity = cells.data();
   whole.NumberOfCells = static_cast<Index>(cells.size()) / corners;
   return whole;
@@ -387,7 +440,9 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   }
   std::vector<double> points;
   std::vector<Index> cells;
-  const MeshView whole = WithHalo(target, halo, points, cells);
+  MeshView whole = WithHalo(target, halo, points, cells);
+  HaloParents parents;
+  parents.Attach(target, whole);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
   this->Fringe = ExtendFringe(

@@ -33,7 +33,7 @@ check(set(projection.ListProperties()) == {
     "Input", "Source", "FillValue", "FillWithNaN", "OutputIntersections", "SearchMethod",
     "PointDataArrays", "CellDataArrays", "PointDataTarget", "CellDataTarget", "CellDataQuantity",
     "CellDataReconstruction", "MassMatrix", "PreserveBounds", "MaximumIterations", "CacheOperator", "KeepMatrices", "PointDataArrayInfo", "CellDataArrayInfo",
-    "NumberOfThreads", "Renumbering", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
+    "NumberOfThreads", "Renumbering", "CurvedCellSubdivision", "SurfaceReach", "MaximumNormalAngle", "ConserveSourceIntegral",
     "Extrapolation", "FringeThreshold",
     "NormalOrientation", "TangentArrays", "DensityArray", "MassWeightedArrays",
     "CategoricalMode", "CategoricalArrays", "LabelFractions", "FillLabel"},
@@ -59,6 +59,7 @@ check(projection.Extrapolation == "None" and projection.FringeThreshold == 0.25,
 check(projection.MaximumIterations == 500, "iterations default %r" % projection.MaximumIterations)
 check(projection.NumberOfThreads == 0 and projection.Renumbering == "Automatic",
       "threads and renumbering defaults %r %r" % (projection.NumberOfThreads, projection.Renumbering))
+check(projection.CurvedCellSubdivision == 1, "CurvedCellSubdivision default %r" % projection.CurvedCellSubdivision)
 # The Source was read before the filter was made (as in the GUI): its arrays
 # are listed, all selected.
 check(list(projection.PointDataArrays) == ["Smooth", "Linear", "Velocity"],

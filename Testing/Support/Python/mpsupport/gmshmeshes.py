@@ -408,14 +408,15 @@ def second_order(shape, h, quads=False, incomplete=False):
     unit disk: its boundary mid nodes on the circle), "cube" (the unit cube:
     tetrahedra), "ball" (the ball of radius 0.5 about (0.5, 0.5, 0.5):
     tetrahedra, the boundary mid nodes on the sphere), "hexes" (the unit cube, structured: hexahedra) or "prisms"
-    (the unit square extruded over 1: wedges). `quads`: 2D cells recombined
+    (the unit square extruded over 1: wedges) or "unitball" (the unit ball about
+    the origin: tetrahedra, its boundary mid nodes on the sphere). `quads`: 2D cells recombined
     into quadrilaterals; `incomplete`: serendipity cells (Quad8, Hexa20,
     Wedge15: Mesh.SecondOrderIncomplete), else Quad9, Hexa27, Wedge18."""
     key = ("second_order", shape, h, quads, incomplete)
     if key in _cache:
         return _cache[key]
     import gmsh
-    dim = 3 if shape in ("cube", "hexes", "prisms", "ball") else 2
+    dim = 3 if shape in ("cube", "hexes", "prisms", "ball", "unitball") else 2
     gmsh.initialize()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
@@ -430,6 +431,8 @@ def second_order(shape, h, quads=False, incomplete=False):
             occ.addBox(0, 0, 0, 1, 1, 1)
         elif shape == "ball":
             occ.addSphere(0.5, 0.5, 0.5, 0.5)
+        elif shape == "unitball":
+            occ.addSphere(0, 0, 0, 1.0)
         elif shape == "prisms":
             occ.addRectangle(0, 0, 0, 1, 1)
             occ.extrude([(2, 1)], 0, 0, 1, numElements=[max(1, int(round(1 / h)))], recombine=True)
