@@ -122,6 +122,8 @@ struct MortarOperator::NodalSession
       }
       op.CoveredMeasure += a.CoveredSum;
       op.OvercoveredCells += a.Overcovered;
+      op.UnconvergedPoints[0] += a.T.Unconverged;
+      op.UnconvergedPoints[1] += a.S.Unconverged;
       op.Statistics.Pieces += a.Count;
     }
     if (!this->Met.empty())
