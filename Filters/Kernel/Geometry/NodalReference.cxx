@@ -290,6 +290,7 @@ bool NodalInverse::Prepare(NodalType type, const double* X, int spaceDimension)
   {
     this->Centre[0] = this->Centre[1] = 0.5; // the apex's (0, 0) is one of its points
   }
+  this->Straight = NodalIsStraight(type, X, spaceDimension, 1e-12);
   // The cell's orientation: the corners' map's Jacobian at the centre (0
   // where it is singular: no fold check).
   const Frame frame{ this->X, d, spaceDimension };
@@ -340,6 +341,18 @@ bool NodalInverse::Find(const double* x, const double* start, double* xi) const
     return false;
   }
   std::copy(start, start + this->Dimension, xi);
+  if (this->Straight)
+  {
+    // The map is the corners' (multi)linear one: its cheaper steps first,
+    // then the full map's (a step or two to confirm).
+    const Frame frame{ this->X, this->Dimension, this->Space };
+    double ignored = 0.0;
+    if (!Iterate(
+          frame, NodalCornerCount(this->Type), CornerShapes{ this->Type }, local, xi, ignored))
+    {
+      std::copy(start, start + this->Dimension, xi);
+    }
+  }
   return this->Converge(local, xi);
 }
 

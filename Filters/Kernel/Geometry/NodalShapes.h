@@ -164,7 +164,8 @@ bool NodalReference(
  * is found by NodalReference's full-map Newton iterations and fold check.
  * Find starts them from a reference point the caller knows to be near
  * (the piecewise-affine image of the point on the simplex of the cell's
- * split it lies in: a few steps); FindFromCentre is NodalReference's own
+ * split it lies in: a few steps; on a straight cell, NodalIsStraight,
+ * the corners' cheaper map first, as NodalReference does); FindFromCentre is NodalReference's own
  * start (the corners' map inverted from the centre), the same operations
  * and the same xi. Both return false, xi then the last iterate, where
  * NodalReference does.
@@ -195,6 +196,7 @@ private:
   double Origin[3] = {};           ///< the first corner
   double Centre[3] = {};           ///< NodalReference's start
   double Orientation = 0.0;        ///< the corners' map's determinant at Centre
+  bool Straight = false;           ///< NodalIsStraight: the map is the corners'
 };
 
 /**
