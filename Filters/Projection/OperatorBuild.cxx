@@ -203,6 +203,36 @@ Verdict BuildMissing(LeafContext& ctx, KeptLeaf& kept, const OperatorPlan& plan,
   return Verdict();
 }
 
+/// Quadrature points of second-order cells whose inverse map failed, the
+/// most any operator built here met (each meets the same pieces' points).
+void WarnUnconverged(LeafContext& ctx, const OperatorSet& ops)
+{
+  vtkIdType counts[2] = { 0, 0 };
+  auto count = [&counts](const mp::MortarOperator* op) {
+    counts[0] = std::max<vtkIdType>(counts[0], op->GetNumberOfUnconvergedTargetPoints());
+    counts[1] = std::max<vtkIdType>(counts[1], op->GetNumberOfUnconvergedSourcePoints());
+  };
+  for (const std::unique_ptr<mp::MortarOperator>& op : ops.Fresh)
+  {
+    if (op)
+    {
+      count(op.get());
+    }
+  }
+  for (const auto& group : ops.GroupFresh)
+  {
+    count(group.second.get());
+  }
+  if (counts[0] > 0 || counts[1] > 0)
+  {
+    ctx.Say.Warn("The inverse map of second-order cells failed at " + std::to_string(counts[0]) +
+      " quadrature points of " + ctx.Role + " and " + std::to_string(counts[1]) +
+      " of Source (Newton did not converge, or the point lies past a fold of a strongly curved or "
+      "inverted cell): their functions were taken at the point's place on the cell's straight "
+      "split. Check those cells' mid nodes.");
+  }
+}
+
 /// The search's counts, and what it found wrong with the meshes.
 void ReportSearch(LeafContext& ctx, const OperatorSet& ops)
 {
@@ -241,6 +271,7 @@ void ReportSearch(LeafContext& ctx, const OperatorSet& ops)
             "fluid-structure) need Opposite, meshes of unknown orientation Any."
           : ""));
   }
+  WarnUnconverged(ctx, ops);
   if (first->GetNumberOfOvercoveredCells() > 0)
   {
     const bool composite = ctx.Source.Composite;

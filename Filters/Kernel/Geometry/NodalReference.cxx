@@ -64,6 +64,15 @@ struct LocalCell
   double Size;
 };
 
+/// What the Newton steps read of a cell: its nodes relative to the first
+/// corner (LocalCell's, or NodalInverse's), its dimension and its space's.
+struct Frame
+{
+  const double (*X)[3];
+  int Dimension;
+  int Space;
+};
+
 LocalCell MakeLocal(NodalType type, const double* X, int space)
 {
   LocalCell cell;
@@ -98,7 +107,7 @@ LocalCell MakeLocal(NodalType type, const double* X, int space)
  * dependent (relative 1e-13).
  */
 template <typename Shapes>
-bool NewtonStep(const LocalCell& cell, int count, Shapes shapes, const double* x, const double* xi,
+bool NewtonStep(const Frame& cell, int count, Shapes shapes, const double* x, const double* xi,
   double* step, double& determinant)
 {
   double N[MaxNodalNodes];
@@ -178,7 +187,7 @@ bool NewtonStep(const LocalCell& cell, int count, Shapes shapes, const double* x
  */
 template <typename Shapes>
 bool Iterate(
-  const LocalCell& cell, int count, Shapes shapes, const double* x, double* xi, double& determinant)
+  const Frame& cell, int count, Shapes shapes, const double* x, double* xi, double& determinant)
 {
   double previous = HUGE_VAL;
   for (int iteration = 0; iteration < 50; ++iteration)
@@ -212,73 +221,180 @@ bool Iterate(
   }
   return false;
 }
+
+/// The full map's functions of `type` (NodalValuesAndDerivatives).
+struct FullShapes
+{
+  NodalType Type;
+  void operator()(const double* p, double* N, double* dN) const
+  {
+    NodalValuesAndDerivatives(this->Type, p, N, dN);
+  }
+};
+
+/// The corners' functions of `type` (NodalCornerFunctions).
+struct CornerShapes
+{
+  NodalType Type;
+  void operator()(const double* p, double* N, double* dN) const
+  {
+    NodalCornerFunctions(this->Type, p, N, dN);
+  }
+};
 } // namespace
 
 bool NodalReference(
   NodalType type, const double* X, int spaceDimension, const double* x, double* xi)
 {
+  NodalInverse inverse;
+  if (!inverse.Prepare(type, X, spaceDimension))
+  {
+    xi[0] = xi[1] = xi[2] = 0.0;
+    return false;
+  }
+  return inverse.FindFromCentre(x, xi);
+}
+
+bool NodalInverse::Prepare(NodalType type, const double* X, int spaceDimension)
+{
   const int d = NodalCellDimension(type);
-  xi[0] = xi[1] = xi[2] = 0.0;
+  this->Type = NodalType::None;
   if (d == 0 || spaceDimension < d || spaceDimension > 3)
   {
     return false;
   }
+  this->Type = type;
+  this->Dimension = d;
+  this->Space = spaceDimension;
+  this->Count = NodalNodeCount(type);
   const LocalCell cell = MakeLocal(type, X, spaceDimension);
-  double local[3] = { 0.0, 0.0, 0.0 };
-  for (int i = 0; i < spaceDimension; ++i)
+  std::copy(&cell.X[0][0], &cell.X[0][0] + 3 * MaxNodalNodes, &this->X[0][0]);
+  for (int i = 0; i < 3; ++i)
   {
-    local[i] = x[i] - X[i];
+    this->Origin[i] = i < spaceDimension ? X[i] : 0.0;
   }
-  // Start at the reference cell's centre (a corner's simplex: one step is
-  // the affine solve) and invert the corners' map, then the full one.
-  double centre[3] = { 0.0, 0.0, 0.0 };
+  // The reference cell's centre (a corner's simplex: one step from it is
+  // the affine solve).
   double nodes[MaxNodalNodes * 3];
   NodalReferenceNodes(type, nodes);
   const int corners = NodalCornerCount(type);
+  std::fill(this->Centre, this->Centre + 3, 0.0);
   for (int n = 0; n < corners; ++n)
   {
     for (int a = 0; a < d; ++a)
     {
-      centre[a] += nodes[n * 3 + a] / corners;
+      this->Centre[a] += nodes[n * 3 + a] / corners;
     }
   }
   if (type == NodalType::Pyramid13)
   {
-    centre[0] = centre[1] = 0.5; // the apex's (0, 0) is one of its points
+    this->Centre[0] = this->Centre[1] = 0.5; // the apex's (0, 0) is one of its points
   }
-  auto linear = [type](
-                  const double* p, double* N, double* dN) { NodalCornerFunctions(type, p, N, dN); };
-  auto full = [type](const double* p, double* N, double* dN) {
-    NodalValuesAndDerivatives(type, p, N, dN);
-  };
-  // The corners' map: on a simplex it is affine and the first step from
-  // the centre inverts it; otherwise Newton goes on (from the centre again
-  // if it fails). Its Jacobian at the centre orients the cell.
-  double orientation = 0.0;
-  double step[3] = { 0.0, 0.0, 0.0 };
-  std::copy(centre, centre + 3, xi);
-  if (NewtonStep(cell, corners, linear, local, centre, step, orientation))
+  this->Straight = NodalIsStraight(type, X, spaceDimension, 1e-12);
+  // The cell's orientation: the corners' map's Jacobian at the centre (0
+  // where it is singular: no fold check).
+  const Frame frame{ this->X, d, spaceDimension };
+  const double zero[3] = { 0.0, 0.0, 0.0 };
+  double step[3];
+  if (!NewtonStep(
+        frame, corners, CornerShapes{ type }, zero, this->Centre, step, this->Orientation))
   {
-    for (int a = 0; a < d; ++a)
-    {
-      xi[a] += step[a];
-    }
-    const bool simplex =
-      type == NodalType::Edge3 || type == NodalType::Triangle6 || type == NodalType::Tetra10;
-    double ignored = 0.0;
-    if (!simplex && !Iterate(cell, corners, linear, local, xi, ignored))
-    {
-      std::copy(centre, centre + 3, xi);
-    }
+    this->Orientation = 0.0;
   }
+  return true;
+}
+
+bool NodalInverse::Local(const double* x, double* local) const
+{
+  local[0] = local[1] = local[2] = 0.0;
+  if (this->Type == NodalType::None)
+  {
+    return false;
+  }
+  for (int i = 0; i < this->Space; ++i)
+  {
+    local[i] = x[i] - this->Origin[i];
+  }
+  return true;
+}
+
+bool NodalInverse::Converge(const double* local, double* xi) const
+{
+  const Frame frame{ this->X, this->Dimension, this->Space };
   double determinant = 0.0; // the full map's, at the xi returned
-  if (!Iterate(cell, cell.Count, full, local, xi, determinant))
+  if (!Iterate(frame, this->Count, FullShapes{ this->Type }, local, xi, determinant))
   {
     return false;
   }
   // On the cell's own sheet only: past a fold of the extrapolated map (or
   // inside an inverted cell) the map turns the other way round.
-  return spaceDimension > d || orientation == 0.0 || orientation * determinant > 0.0;
+  return this->Space > this->Dimension || this->Orientation == 0.0 ||
+    this->Orientation * determinant > 0.0;
+}
+
+bool NodalInverse::Find(const double* x, const double* start, double* xi) const
+{
+  double local[3];
+  xi[0] = xi[1] = xi[2] = 0.0;
+  if (!this->Local(x, local))
+  {
+    return false;
+  }
+  std::copy(start, start + this->Dimension, xi);
+  if (this->Straight)
+  {
+    // The map is the corners' (multi)linear one: its cheaper steps first,
+    // then the full map's (a step or two to confirm).
+    const Frame frame{ this->X, this->Dimension, this->Space };
+    double ignored = 0.0;
+    if (!Iterate(
+          frame, NodalCornerCount(this->Type), CornerShapes{ this->Type }, local, xi, ignored))
+    {
+      std::copy(start, start + this->Dimension, xi);
+    }
+  }
+  return this->Converge(local, xi);
+}
+
+bool NodalInverse::FindFromCentre(const double* x, double* xi) const
+{
+  double local[3];
+  xi[0] = xi[1] = xi[2] = 0.0;
+  if (!this->Local(x, local))
+  {
+    return false;
+  }
+  const int d = this->Dimension;
+  const Frame frame{ this->X, d, this->Space };
+  // The corners' map: on a simplex it is affine and the first step from
+  // the centre inverts it; otherwise Newton goes on (from the centre again
+  // if it fails). Its Jacobian at the centre orients the cell.
+  double orientation = 0.0;
+  double step[3] = { 0.0, 0.0, 0.0 };
+  std::copy(this->Centre, this->Centre + 3, xi);
+  if (NewtonStep(frame, NodalCornerCount(this->Type), CornerShapes{ this->Type }, local,
+        this->Centre, step, orientation))
+  {
+    for (int a = 0; a < d; ++a)
+    {
+      xi[a] += step[a];
+    }
+    const NodalType type = this->Type;
+    const bool simplex =
+      type == NodalType::Edge3 || type == NodalType::Triangle6 || type == NodalType::Tetra10;
+    double ignored = 0.0;
+    if (!simplex &&
+      !Iterate(frame, NodalCornerCount(type), CornerShapes{ type }, local, xi, ignored))
+    {
+      std::copy(this->Centre, this->Centre + 3, xi);
+    }
+  }
+  double determinant = 0.0; // the full map's, at the xi returned
+  if (!Iterate(frame, this->Count, FullShapes{ this->Type }, local, xi, determinant))
+  {
+    return false;
+  }
+  return this->Space > d || orientation == 0.0 || orientation * determinant > 0.0;
 }
 
 bool NodalIsStraight(NodalType type, const double* X, int spaceDimension, double tolerance)

@@ -159,6 +159,48 @@ bool NodalReference(
   NodalType type, const double* X, int spaceDimension, const double* x, double* xi);
 
 /**
+ * One cell's inverse isoparametric map, for many points: Prepare keeps the
+ * cell's nodes relative to its first corner and its orientation (the
+ * corners' map's Jacobian at the reference centre), once; then each point
+ * is found by NodalReference's full-map Newton iterations and fold check.
+ * Find starts them from a reference point the caller knows to be near
+ * (the piecewise-affine image of the point on the simplex of the cell's
+ * split it lies in: a few steps; on a straight cell, NodalIsStraight,
+ * the corners' cheaper map first, as NodalReference does); FindFromCentre is NodalReference's own
+ * start (the corners' map inverted from the centre), the same operations
+ * and the same xi. Both return false, xi then the last iterate, where
+ * NodalReference does.
+ */
+class NodalInverse
+{
+public:
+  /// Binds the cell of `type` with nodes X (3 doubles each; the first
+  /// spaceDimension read); false (nothing found later) for a type without
+  /// a dimension or a space it does not fit in.
+  bool Prepare(NodalType type, const double* X, int spaceDimension);
+  /// xi of x (spaceDimension coordinates) by Newton from `start`.
+  bool Find(const double* x, const double* start, double* xi) const;
+  /// xi of x from NodalReference's start.
+  bool FindFromCentre(const double* x, double* xi) const;
+
+private:
+  /// x relative to the first corner; false when Prepare failed.
+  bool Local(const double* x, double* local) const;
+  /// The full map's Newton iterations from xi and the fold check.
+  bool Converge(const double* local, double* xi) const;
+
+  NodalType Type = NodalType::None;
+  int Dimension = 0;               ///< of the cell
+  int Space = 0;                   ///< coordinates of a point
+  int Count = 0;                   ///< nodes
+  double X[MaxNodalNodes][3] = {}; ///< relative to the first corner
+  double Origin[3] = {};           ///< the first corner
+  double Centre[3] = {};           ///< NodalReference's start
+  double Orientation = 0.0;        ///< the corners' map's determinant at Centre
+  bool Straight = false;           ///< NodalIsStraight: the map is the corners'
+};
+
+/**
  * Whether the cell is straight: every non-corner node lies where the
  * corners' (multi)linear map puts its reference point, within tolerance
  * times the cell's size (the corners' bounding-box diagonal). Then the

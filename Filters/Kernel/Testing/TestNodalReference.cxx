@@ -312,6 +312,56 @@ TEST(NodalReference, FootOnCurvedSurfacesAndCurves)
   }
 }
 
+TEST(NodalReference, InverseFromANearbyStart)
+{
+  // NodalInverse, prepared once per cell: FindFromCentre is NodalReference
+  // (the same xi, bit for bit); Find from a start 0.05 off in each
+  // reference coordinate gives the same point to 1e-13 on curved cells of
+  // every type; on a degenerate cell both fail.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> off(-0.05, 0.05);
+  for (NodalType type : AllTypes)
+  {
+    const int space = mp::NodalCellDimension(type);
+    const std::vector<double> straight = StraightCell(type, MappedCorners(type, rng, 0.1));
+    const std::vector<double> curved = Curved(type, straight, space, 0.1, rng);
+    mp::NodalInverse inverse;
+    ASSERT_TRUE(inverse.Prepare(type, curved.data(), space));
+    for (int k = 0; k < 50; ++k)
+    {
+      double xi[3];
+      RandomReferencePoint(type, rng, 0.0, xi);
+      double x[3];
+      MapPoint(type, curved, xi, x);
+      double reference[3], centre[3], near[3];
+      const bool ok = mp::NodalReference(type, curved.data(), space, x, reference);
+      ASSERT_EQ(inverse.FindFromCentre(x, centre), ok) << int(type);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_EQ(centre[a], reference[a]) << int(type);
+      }
+      double start[3] = { 0.0, 0.0, 0.0 };
+      for (int a = 0; a < space; ++a)
+      {
+        start[a] = xi[a] + off(rng);
+      }
+      ASSERT_TRUE(inverse.Find(x, start, near)) << int(type);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_NEAR(near[a], xi[a], 1e-13) << int(type);
+      }
+    }
+  }
+  std::vector<double> X(3 * 10, 1.5);
+  const double x[3] = { 1.5, 1.5, 1.5 };
+  const double start[3] = { 0.25, 0.25, 0.25 };
+  double xi[3];
+  mp::NodalInverse inverse;
+  ASSERT_TRUE(inverse.Prepare(NodalType::Tetra10, X.data(), 3));
+  EXPECT_FALSE(inverse.Find(x, start, xi));
+  EXPECT_FALSE(inverse.FindFromCentre(x, xi));
+}
+
 TEST(NodalReference, FailsOnDegenerateCells)
 {
   // Every node at one point: no Jacobian to invert.

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 #include <vector>
@@ -539,3 +540,70 @@ TEST(NodalSpace, BadNodeNamed)
   EXPECT_NE(b.Op.GetError().find("second-order cell 3"), std::string::npos) << b.Op.GetError();
 }
 } // namespace
+
+// A failed inverse map is counted, never used silently: on curved disks
+// every quadrature point converges; on a tri6 whose mid node 4 is pulled
+// across its cell (the map folds), the points of its middle simplex where
+// Newton fails are counted and their functions taken at a defined point
+// (finite, summing to 1), and every other point's functions give back the
+// point itself (x = sum N_n X_n: a true preimage).
+TEST(NodalSpace, FailedInversesCounted)
+{
+  Built disks(Disk(5), Disk(4));
+  ASSERT_TRUE(disks.Ok) << disks.Op.GetError();
+  EXPECT_EQ(disks.Op.GetNumberOfUnconvergedTargetPoints(), 0);
+  EXPECT_EQ(disks.Op.GetNumberOfUnconvergedSourcePoints(), 0);
+
+  NodalMesh folded;
+  folded.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5, 0, 0, -0.2, -0.2, 0, 0, 0.5, 0 };
+  folded.Triangle6({ 0, 1, 2, 3, 4, 5 });
+  folded.Finish();
+  const mp::MeshView view = folded.View();
+  mp::NodalFunctions f;
+  int failed = 0;
+  int points = 0;
+  for (Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    f.Bind(view, mp::SpaceType::P1, c);
+    const mp::CellCorners corners = view.Cell(c);
+    for (int i = 0; i <= 8; ++i)
+    {
+      for (int j = 0; i + j <= 8; ++j)
+      {
+        const double b[3] = { (i + 0.5) / 9.5, (j + 0.5) / 9.5, (8.5 - i - j) / 9.5 };
+        double x[3] = { 0.0, 0.0, 0.0 };
+        for (int k = 0; k < 3; ++k)
+        {
+          for (int a = 0; a < 2; ++a)
+          {
+            x[a] += b[k] * view.Point(corners[k])[a];
+          }
+        }
+        const Index before = f.Unconverged;
+        double N[mp::MaxNodalFunctions];
+        f.Values(x, N);
+        ++points;
+        double sum = 0.0, y[2] = { 0.0, 0.0 };
+        for (int n = 0; n < f.Count; ++n)
+        {
+          ASSERT_TRUE(std::isfinite(N[n]));
+          sum += N[n];
+          for (int a = 0; a < 2; ++a)
+          {
+            y[a] += N[n] * view.Point(f.Dofs[n])[a];
+          }
+        }
+        EXPECT_NEAR(sum, 1.0, 1e-12);
+        if (f.Unconverged == before)
+        {
+          EXPECT_NEAR(y[0], x[0], 1e-12);
+          EXPECT_NEAR(y[1], x[1], 1e-12);
+        }
+        failed += static_cast<int>(f.Unconverged - before);
+      }
+    }
+  }
+  EXPECT_EQ(f.Unconverged, failed);
+  EXPECT_GT(failed, 0);
+  std::printf("folded tri6: %d of %d points without an inverse\n", failed, points);
+}

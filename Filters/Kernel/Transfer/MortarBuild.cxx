@@ -52,6 +52,7 @@ bool MortarOperator::BuildTogether(const std::vector<MortarOperator*>& operators
     op.SourceFunctionCovered.clear();
     op.CoveredMeasure = 0;
     op.OvercoveredCells = 0;
+    op.UnconvergedPoints[0] = op.UnconvergedPoints[1] = 0;
     op.SourceFunctions = 0;
     op.NodalPath = false;
     op.NodalTarget = false;

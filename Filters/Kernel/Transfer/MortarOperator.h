@@ -394,6 +394,11 @@ public:
   }
   /// Target cells whose pieces add up to more than the cell (the source overlaps itself).
   Index GetNumberOfOvercoveredCells() const { return this->OvercoveredCells; }
+  /// Quadrature points where a second-order target (source) cell's inverse
+  /// map failed (NodalFunctions::Unconverged): its functions taken at the
+  /// point's image on the simplex of its split instead.
+  Index GetNumberOfUnconvergedTargetPoints() const { return this->UnconvergedPoints[0]; }
+  Index GetNumberOfUnconvergedSourcePoints() const { return this->UnconvergedPoints[1]; }
   /// Area (2D) or volume (3D) of the union of all pieces: the covered part of the target.
   double GetCoveredMeasure() const { return this->CoveredMeasure; }
   const SearchStatistics& GetStatistics() const { return this->Statistics; }
@@ -481,6 +486,7 @@ private:
   LargeVector<double> SourceFunctionCovered;
   double CoveredMeasure = 0;
   Index OvercoveredCells = 0;
+  Index UnconvergedPoints[2] = {}; ///< target's, source's
   SearchStatistics Statistics;
   mutable OperatorTimings Timings;
   IntersectionPieces Pieces;

@@ -19,6 +19,7 @@
 
 #include "Transfer/MortarOperator.h"
 
+#include "Mesh/Tasks.h"
 #include "Transfer/MixedMatrix.h"
 #include "Transfer/QuadratureAssembler.h"
 #include "Transfer/StageClock.h"
@@ -98,8 +99,36 @@ struct MortarOperator::NodalSession
       {
         a.Pieces = tasks > 1 ? &this->Pieces[k] : &op.Pieces;
       }
+      this->Reserve(target,
+        RangeBegin(target.NumberOfCells, k + 1, tasks) - RangeBegin(target.NumberOfCells, k, tasks),
+        k);
     }
     op.Timings.Assembly = SecondsSince(start);
+  }
+
+  /**
+   * Room for task k's blocks of `cells` target kernel cells at a generous
+   * estimate per cell (the columns of the source functions meeting its
+   * parent): pages of an untouched reservation cost nothing (LargeArray.h),
+   * and the buffers never grow by copying (which touches every page
+   * again) on ordinary meshes.
+   */
+  void Reserve(const MeshView& target, Index cells, int k)
+  {
+    const size_t n = static_cast<size_t>(cells);
+    const size_t corners = static_cast<size_t>(target.CornersPerCell());
+    const size_t columns = target.CellDimension == 3 ? 40 : 16;
+    const size_t values = target.CellDimension == 3 ? 160 : 60;
+    MixedBlocks& b = this->Blocks[k];
+    b.Rows.reserve(n * corners);
+    b.Start.reserve(n + 1);
+    b.Columns.reserve(n * columns);
+    b.Values.reserve(n * values);
+    MixedBlocks& m = this->MassBlocks[k];
+    m.Rows.reserve(n * corners);
+    m.Start.reserve(n + 1);
+    m.Columns.reserve(n * corners);
+    m.Values.reserve(n * corners * corners);
   }
 
   /// After the search: the tasks' sums merged, M_ts (or the right-hand sides), M_tt's blocks kept.
@@ -122,6 +151,8 @@ struct MortarOperator::NodalSession
       }
       op.CoveredMeasure += a.CoveredSum;
       op.OvercoveredCells += a.Overcovered;
+      op.UnconvergedPoints[0] += a.T.Unconverged;
+      op.UnconvergedPoints[1] += a.S.Unconverged;
       op.Statistics.Pieces += a.Count;
     }
     if (!this->Met.empty())

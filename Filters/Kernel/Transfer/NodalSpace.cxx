@@ -201,6 +201,10 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
       (this->Type != NodalType::None && space == SpaceType::P1 &&
         mesh.ParentOf(c) == this->Parent)))
   {
+    if (c != this->Cell && !this->Affine)
+    {
+      this->BindSimplex(mesh, c); // (only the start of the inverse map moves)
+    }
     this->Cell = c; // (a second-order parent's functions are the same on all its simplices)
     return;
   }
@@ -268,10 +272,41 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
       }
     }
   }
-  if (!this->Affine)
+  if (this->Affine && (this->AffineMap(mesh, simplex) || type == NodalType::None))
   {
     return;
   }
+  // A non-affine parent (or an affine one of zero measure, whose frame has
+  // no inverse: its simplices have no pieces): Newton's inverse per point.
+  this->Affine = false;
+  this->Map.Prepare(type, this->Nodes, this->Dimension);
+  this->BindSimplex(mesh, c);
+}
+
+void NodalFunctions::BindSimplex(const MeshView& mesh, Index c)
+{
+  double reference[3 * MaxNodalFunctions];
+  NodalReferenceNodes(this->Type, reference);
+  const CellCorners corners = mesh.Cell(c);
+  Index simplex[4];
+  for (int k = 0; k < this->Corners; ++k)
+  {
+    simplex[k] = corners[k];
+    // (Every corner is one of the parent's nodes but the points a curved
+    // cell's finer split adds (CurvedSplit.h): those start Newton from the
+    // reference origin, and from the centre where that fails.)
+    const int n =
+      static_cast<int>(std::find(this->Dofs, this->Dofs + this->Count, corners[k]) - this->Dofs);
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Reference[k][a] = n < this->Count ? reference[3 * n + a] : 0.0;
+    }
+  }
+  this->AffineMap(mesh, simplex);
+}
+
+bool NodalFunctions::AffineMap(const MeshView& mesh, const Index* simplex)
+{
   const double* x0 = mesh.Point(simplex[0]);
   std::copy(x0, x0 + 3, this->Origin);
   const int d = this->Corners - 1;
@@ -284,11 +319,29 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
       e[a][k - 1] = mesh.Point(simplex[k])[a] - x0[a];
     }
   }
+  bool regular = true;
   if (d == n)
   {
-    InvertEdges(d, e, this->Inverse);
-    return;
+    regular = InvertEdges(d, e, this->Inverse);
   }
+  else
+  {
+    regular = this->ProjectionInverse(e);
+  }
+  if (!regular)
+  {
+    for (auto& row : this->Inverse)
+    {
+      std::fill(row, row + 3, 0.0); // (every point then has corner 0's coordinates)
+    }
+  }
+  return regular;
+}
+
+bool NodalFunctions::ProjectionInverse(const double (&e)[3][3])
+{
+  const int d = this->Corners - 1;
+  const int n = this->Dimension;
   // A facet or segment in a higher space: the least-squares inverse
   // (E^T E)^-1 E^T, which maps a point to the barycentric coordinates of
   // its orthogonal projection onto the simplex's plane or line.
@@ -304,7 +357,10 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
     }
   }
   double gi[3][3];
-  InvertEdges(d, g, gi);
+  if (!InvertEdges(d, g, gi))
+  {
+    return false;
+  }
   for (int r = 0; r < d; ++r)
   {
     for (int a = 0; a < n; ++a)
@@ -317,6 +373,7 @@ void NodalFunctions::Bind(const MeshView& mesh, SpaceType space, Index c)
       this->Inverse[r][a] = v;
     }
   }
+  return true;
 }
 
 void NodalFunctions::Barycentric(const double* x, double* lambda) const
@@ -391,11 +448,18 @@ void NodalFunctions::Values(const double* x, double* values) const
     this->ValuesAt(c, values);
     return;
   }
+  // Newton from x's image under the bound simplex's affine map, else from
+  // the centre; where both fail (past a fold, a singular Jacobian) that
+  // image is taken, a defined point of the cell, and counted.
+  double start[3] = { 0.0, 0.0, 0.0 };
+  this->Coordinates(x, start);
   double xi[3] = { 0.0, 0.0, 0.0 };
-  double point[3] = { x[0], x[1], this->Dimension == 3 ? x[2] : 0.0 };
-  // (Outside the cell by rounding, or where Newton stalls on a badly
-  // curved cell, its last iterate is the best there is.)
-  NodalReference(this->Type, this->Nodes, this->Dimension, point, xi);
+  const double point[3] = { x[0], x[1], this->Dimension == 3 ? x[2] : 0.0 };
+  if (!this->Map.Find(point, start, xi) && !this->Map.FindFromCentre(point, xi))
+  {
+    ++this->Unconverged;
+    std::copy(start, start + 3, xi);
+  }
   if (this->Sibling != NodalType::None)
   {
     HiddenNodeFunctions(this->Type, this->Hidden, xi, values);

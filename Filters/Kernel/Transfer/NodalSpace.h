@@ -14,10 +14,18 @@
  * isoparametric map (Geometry/NodalShapes.h): every node of the parent
  * lives on each of its simplices. A curved parent's functions are its true
  * isoparametric ones, evaluated at points of the pieces cut from its
- * straight split. On a straight simplex parent (Edge3, Triangle6, Tetra10
- * with its mid nodes on its straight edges) the inverse map is affine and
- * is taken once per cell; other parents (curved ones, quads, hexahedra,
- * wedges, pyramids) take Newton's inverse at every point. A Quad8, Hexa20
+ * straight split. On an affine parent (a straight simplex: Edge3,
+ * Triangle6, Tetra10 with its mid nodes on its straight edges; a
+ * parallelogram, parallelepiped or straight prism) the inverse map is
+ * affine and is taken once per cell; other parents (curved ones, general
+ * quads, hexahedra, wedges, pyramids) take Newton's inverse at every point
+ * (Geometry/NodalShapes.h: NodalInverse, prepared once per parent), started
+ * from the point's image under the affine map of the split simplex it lies
+ * in (its corners are nodes of the parent, whose reference points are
+ * known). Where Newton fails from there and from the reference centre (a
+ * point past a fold of a strongly curved cell, a singular Jacobian), the
+ * functions are those at that start, and the point is counted
+ * (Unconverged) for the filter's warning. A Quad8, Hexa20
  * or Wedge15 parent that is not an affine image of its reference cell
  * takes its complete sibling's functions with hidden nodes
  * (Geometry/HiddenNodes.h), their weights taken when the parent is bound,
@@ -99,6 +107,13 @@ public:
   int Coordinates(const double* x, double* c) const;
   void ValuesAt(const double* c, double* values) const;
 
+  /**
+   * Points of non-affine parents whose inverse map failed (NodalInverse:
+   * not converged, singular, or past a fold), evaluated at the start
+   * instead: counted by Values, summed by the assembler for the warning.
+   */
+  mutable Index Unconverged = 0;
+
   /// Whether the functions are polynomials of x (an affine cell: a
   /// straight or linear parent, P0, DP1), so that rules integrate them exactly.
   bool IsAffine() const { return this->Affine; }
@@ -129,6 +144,15 @@ private:
   /// The barycentric coordinates 0..d of x in the affine simplex (of its
   /// orthogonal projection onto a facet's plane or a segment's line).
   void Barycentric(const double* x, double* lambda) const;
+  /// Origin and Inverse for the simplex on points `simplex` of `mesh`
+  /// (Corners of them); false, Inverse 0, when it is degenerate.
+  bool AffineMap(const MeshView& mesh, const Index* simplex);
+  /// Inverse for a facet or segment in a higher space from its edges e
+  /// (column k - 1: corner k - corner 0); false when they are dependent.
+  bool ProjectionInverse(const double (&e)[3][3]);
+  /// A non-affine parent's simplex c: its affine map, and its corners'
+  /// reference points into Reference (the start of Newton's inverse).
+  void BindSimplex(const MeshView& mesh, Index c);
   /// A non-affine serendipity parent (Quad8, Hexa20, Wedge15): its
   /// functions become its complete sibling's with hidden nodes
   /// (Geometry/HiddenNodes.h), their weights taken for this cell, and
@@ -136,13 +160,16 @@ private:
   void BindHiddenNodes();
 
   NodalType Type = NodalType::None;
-  Index Parent = -1;           ///< of the bound cell
-  int Dimension = 2;           ///< coordinates of a point (the mesh's SpaceDimension)
-  int Corners = 3;             ///< of the affine simplex (Dimension + 1)
-  bool Affine = true;          ///< the values come from the barycentric coordinates
-  double Origin[3] = {};       ///< corner 0 of the affine simplex
-  double Inverse[3][3] = {};   ///< x - Origin (Dimension coordinates) to barycentric 1..d
-  double Reference[4][3] = {}; ///< nodal affine: the reference coordinates of the corners
+  Index Parent = -1;         ///< of the bound cell
+  int Dimension = 2;         ///< coordinates of a point (the mesh's SpaceDimension)
+  int Corners = 3;           ///< of the affine simplex (Dimension + 1)
+  bool Affine = true;        ///< the values come from the barycentric coordinates
+  double Origin[3] = {};     ///< corner 0 of the affine simplex
+  double Inverse[3][3] = {}; ///< x - Origin (Dimension coordinates) to barycentric 1..d
+  /// The reference coordinates of the affine simplex's corners (a nodal
+  /// parent's: an affine one's frame, else the bound simplex's).
+  double Reference[4][3] = {};
+  NodalInverse Map;                                ///< a non-affine parent's inverse map
   double Nodes[3 * MaxNodalFunctions] = {};        ///< the parent's nodes (3 coordinates each)
   NodalType Sibling = NodalType::None;             ///< non-affine serendipity: the complete sibling
   double Hidden[MaxHiddenNodes * MaxHiddenOwners]; ///< its hidden nodes' weights
