@@ -321,10 +321,22 @@ Index MortarOperator::AggregateFringe(
   return this->Fringe.Count;
 }
 
-MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo,
-  std::vector<double>& points, std::vector<Index>& cells)
+struct MortarOperator::HaloMesh
+{
+  std::vector<double> Points;
+  std::vector<Index> Cells;
+  std::vector<Index> Parent;
+  std::vector<NodalType> Types;
+  std::vector<long long> Offsets;
+  std::vector<long long> Nodes;
+  NodalCells Nodal;
+};
+
+MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo, HaloMesh& storage)
 {
   const int corners = target.CornersPerCell();
+  std::vector<double>& points = storage.Points;
+  std::vector<Index>& cells = storage.Cells;
   points.assign(target.Points, target.Points + 3 * target.NumberOfPoints);
   points.insert(points.end(), halo.Points.begin(), halo.Points.end());
   cells.clear();
@@ -345,6 +357,39 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
   whole.NumberOfPoints = static_cast<Index>(points.size() / 3);
   whole.Connectivity = cells.data();
   whole.NumberOfCells = static_cast<Index>(cells.size()) / corners;
+  const Index ghostCells = static_cast<Index>(halo.Cells.size()) / corners;
+  if (target.Nodal && static_cast<Index>(halo.CellParents.size()) == ghostCells)
+  {
+    // The second-order parents too, the halo's after this part's, so that
+    // the fringe's root cells are the whole target's (FringeRoots.h).
+    const Index own = target.Parents();
+    storage.Parent.resize(static_cast<size_t>(whole.NumberOfCells));
+    for (Index c = 0; c < target.NumberOfCells; ++c)
+    {
+      storage.Parent[static_cast<size_t>(c)] = target.ParentOf(c);
+    }
+    for (Index g = 0; g < ghostCells; ++g)
+    {
+      storage.Parent[static_cast<size_t>(target.NumberOfCells + g)] =
+        own + halo.CellParents[static_cast<size_t>(g)];
+    }
+    storage.Types.assign(target.Nodal->Type, target.Nodal->Type + own);
+    storage.Types.insert(storage.Types.end(), halo.ParentTypes.begin(), halo.ParentTypes.end());
+    storage.Offsets.assign(target.Nodal->Offsets, target.Nodal->Offsets + own + 1);
+    storage.Nodes.assign(target.Nodal->Nodes, target.Nodal->Nodes + storage.Offsets.back());
+    for (size_t q = 1; q < halo.ParentOffsets.size(); ++q)
+    {
+      storage.Offsets.push_back(
+        storage.Offsets.back() + halo.ParentOffsets[q] - halo.ParentOffsets[q - 1]);
+    }
+    storage.Nodes.insert(storage.Nodes.end(), halo.ParentNodes.begin(), halo.ParentNodes.end());
+    storage.Nodal.Type = storage.Types.data();
+    storage.Nodal.Offsets = storage.Offsets.data();
+    storage.Nodal.Nodes = storage.Nodes.data();
+    whole.Parent = storage.Parent.data();
+    whole.NumberOfParents = static_cast<Index>(storage.Types.size());
+    whole.Nodal = &storage.Nodal;
+  }
   return whole;
 }
 
@@ -381,9 +426,8 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
     valid[g] = usable[g] > 0.0;
     extendedFraction[g] = valid[g] ? std::numeric_limits<double>::infinity() : 0.0;
   }
-  std::vector<double> points;
-  std::vector<Index> cells;
-  const MeshView whole = WithHalo(target, halo, points, cells);
+  HaloMesh storage;
+  const MeshView whole = WithHalo(target, halo, storage);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
   this->Fringe = ExtendFringe(
