@@ -26,8 +26,10 @@
  * FringeRootRings rings of i whose corners' map is affine (straight
  * simplices, parallelograms, parallelepipeds, straight wedges with
  * parallel triangles: their map extrapolates as one polynomial, and every
- * type but the pyramid then reproduces every quadratic), on 2D and volume
- * meshes. Of those, the one with the smallest amplification sum_k |w_k|
+ * type but the pyramid then reproduces every quadratic), or straight
+ * Quad9, Hexa27 and Wedge18 (their corners' multilinear map: their tensor
+ * spaces reproduce every quadratic through it too), on 2D and volume
+ * meshes. Curved cells are left out: their map, extrapolated, bends. Of those, the one with the smallest amplification sum_k |w_k|
  * (nearest, in effect), ties broken by its nodes' centroid (not by the
  * numbering), and only while that amplification stays within
  * FringeRootAmplification; else the affine fit.
@@ -65,7 +67,8 @@ constexpr double FringeRootAmplification = 400.0;
 /**
  * Whether parent p of `mesh` can be a root: a nodal parent of the mesh's own
  * dimension whose nodes are an affine image of its reference nodes (within
- * 1e-9 of its size), not a pyramid.
+ * 1e-9 of its size), not a pyramid; or a straight Quad9, Hexa27 or Wedge18
+ * (NodalIsStraight, 1e-9).
  */
 bool IsAffineRoot(const MeshView& mesh, Index p);
 
