@@ -85,6 +85,93 @@ double FromBits(long long b)
   std::memcpy(&x, &b, sizeof x);
   return x;
 }
+
+/**
+ * The parents of the halo cells sent to one process, for a second-order
+ * target's fringe (FringeHalo::CellParents): per cell sent, its parent's
+ * place in the message's list, then per parent its type, node count and
+ * nodes' global ids (a linear parent: None, no nodes).
+ */
+struct NodalParents
+{
+  std::vector<long long> Cells;   // per cell sent: its parent's place
+  std::vector<long long> Parents; // type, count, global ids, per parent
+  std::vector<long long> Place;   // per parent of the target: its place, or -1
+  long long Count = 0;
+
+  explicit NodalParents(const mp::MeshView& target)
+    : Place(static_cast<size_t>(target.Parents()), -1)
+  {}
+
+  void Add(const mp::MeshView& target, mp::Index c, const std::vector<long long>& global)
+  {
+    const mp::Index p = target.ParentOf(c);
+    long long& place = this->Place[static_cast<size_t>(p)];
+    if (place < 0)
+    {
+      place = this->Count++;
+      const mp::NodalType type = target.Nodal ? target.Nodal->Type[p] : mp::NodalType::None;
+      const long long begin = target.Nodal ? target.Nodal->Offsets[p] : 0;
+      const long long end = target.Nodal ? target.Nodal->Offsets[p + 1] : 0;
+      this->Parents.push_back(static_cast<long long>(type));
+      this->Parents.push_back(end - begin);
+      for (long long q = begin; q < end; ++q)
+      {
+        this->Parents.push_back(global[static_cast<size_t>(target.Nodal->Nodes[q])]);
+      }
+    }
+    this->Cells.push_back(place);
+  }
+
+  /// Cells' count, Cells, Parents.
+  std::vector<long long> Message() const
+  {
+    std::vector<long long> m(1, static_cast<long long>(this->Cells.size()));
+    m.insert(m.end(), this->Cells.begin(), this->Cells.end());
+    m.insert(m.end(), this->Parents.begin(), this->Parents.end());
+    return m;
+  }
+};
+
+/**
+ * The halo's parents from the messages' NodalParents (`received`, in the
+ * order of the halo's cells): a parent with a node that is neither this
+ * part's nor a ghost is None (no root).
+ */
+void ReadNodalParents(const std::vector<std::vector<long long>>& received,
+  const std::unordered_map<long long, mp::Index>& rowOf, mp::FringeHalo& halo)
+{
+  halo.ParentOffsets.assign(1, 0);
+  for (const std::vector<long long>& m : received)
+  {
+    const size_t cells = static_cast<size_t>(m[0]);
+    const mp::Index base = static_cast<mp::Index>(halo.ParentTypes.size());
+    for (size_t k = 0; k < cells; ++k)
+    {
+      halo.CellParents.push_back(base + static_cast<mp::Index>(m[1 + k]));
+    }
+    for (size_t at = 1 + cells; at < m.size();)
+    {
+      const long long count = m[at + 1];
+      mp::NodalType type = static_cast<mp::NodalType>(m[at]);
+      std::vector<long long> nodes;
+      for (long long n = 0; n < count; ++n)
+      {
+        const auto found = rowOf.find(m[at + 2 + static_cast<size_t>(n)]);
+        type = found == rowOf.end() ? mp::NodalType::None : type;
+        nodes.push_back(found == rowOf.end() ? -1 : found->second);
+      }
+      if (type == mp::NodalType::None)
+      {
+        nodes.clear();
+      }
+      halo.ParentTypes.push_back(type);
+      halo.ParentNodes.insert(halo.ParentNodes.end(), nodes.begin(), nodes.end());
+      halo.ParentOffsets.push_back(static_cast<long long>(halo.ParentNodes.size()));
+      at += 2 + static_cast<size_t>(count);
+    }
+  }
+}
 } // namespace
 
 mp::FringeHalo MPIParts::Halo(const SharedTarget& shared, const mp::MeshView& target,
@@ -133,6 +220,7 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
     std::vector<long long> points;
     std::vector<long long> corner;
     std::vector<mp::Index> used;
+    NodalParents parents(target);
     for (mp::Index c = 0; c < target.NumberOfCells; ++c)
     {
       const mp::CellCorners cell = target.Cell(c);
@@ -167,16 +255,19 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
         }
         corner.push_back(slot[p]);
       }
+      parents.Add(target, c, global);
     }
     for (mp::Index p : used)
     {
       slot[p] = -1;
     }
-    const long long head[2] = { static_cast<long long>(used.size()),
-      static_cast<long long>(corner.size()) };
-    Append(out[r], head, 2);
+    const std::vector<long long> parentMessage = parents.Message();
+    const long long head[3] = { static_cast<long long>(used.size()),
+      static_cast<long long>(corner.size()), static_cast<long long>(parentMessage.size()) };
+    Append(out[r], head, 3);
     Append(out[r], points.data(), points.size());
     Append(out[r], corner.data(), corner.size());
+    Append(out[r], parentMessage.data(), parentMessage.size());
   }
   std::vector<std::vector<char>> in = this->AllToAll(out);
   // Each global id once: this part's point (its representative's row, as
@@ -193,10 +284,11 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
     rowOf.emplace(global[f], f);
   }
   std::vector<long long> ghostIds;
+  std::vector<std::vector<long long>> received; // per message, its NodalParents'
   for (int r = 0; r < this->N; ++r)
   {
     const std::vector<long long> v = Read<long long>(in[r]);
-    if (v.size() < 2)
+    if (v.size() < 3)
     {
       continue;
     }
@@ -204,7 +296,7 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
     std::vector<mp::Index> row(np);
     for (size_t k = 0; k < np; ++k)
     {
-      const long long* at = v.data() + 2 + 4 * k;
+      const long long* at = v.data() + 3 + 4 * k;
       auto found = rowOf.emplace(at[0], n + static_cast<mp::Index>(ghostIds.size()));
       if (found.second)
       {
@@ -216,12 +308,14 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
       }
       row[k] = found.first->second;
     }
-    const long long* corner = v.data() + 2 + 4 * np;
+    const long long* corner = v.data() + 3 + 4 * np;
     for (long long k = 0; k < v[1]; ++k)
     {
       halo.Cells.push_back(row[static_cast<size_t>(corner[k])]);
     }
+    received.emplace_back(corner + v[1], corner + v[1] + v[2]);
   }
+  ReadNodalParents(received, rowOf, halo);
   return ghostIds;
 }
 

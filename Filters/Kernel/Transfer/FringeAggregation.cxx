@@ -10,6 +10,7 @@
 #include "Transfer/CsrBuilder.h"
 #include "Transfer/FringeFits.h"
 #include "Transfer/FringeFrames.h"
+#include "Transfer/FringeRoots.h"
 
 #include <algorithm>
 #include <cmath>
@@ -143,12 +144,56 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
 }
 
 /**
- * The ill-posed function i's stencil and weights: free points ring by ring,
- * a quadratic fit within QuadraticRings rings, else the affine fit of the
+ * The simplices within FringeRootRings rings of point i (those around it,
+ * then those around their corners, ...), in `cells`. The stamps mark with
+ * -2 - i (StencilOf's marks are i).
+ */
+void RootRingCells(const MeshView& mesh, const CellsAroundPoints& around, Index i,
+  std::vector<Index>& stamp, std::vector<Index>& cellStamp, std::vector<Index>& cells)
+{
+  const Index mark = -2 - i;
+  const int corners = mesh.CornersPerCell();
+  std::vector<Index> ring{ i };
+  std::vector<Index> next;
+  cells.clear();
+  stamp[static_cast<size_t>(i)] = mark;
+  for (int r = 0; r < FringeRootRings && !ring.empty(); ++r)
+  {
+    next.clear();
+    for (Index p : ring)
+    {
+      for (Index q = around.Start[static_cast<size_t>(p)];
+           q < around.Start[static_cast<size_t>(p) + 1]; ++q)
+      {
+        const Index c = around.Cells[static_cast<size_t>(q)];
+        if (cellStamp[static_cast<size_t>(c)] == mark)
+        {
+          continue;
+        }
+        cellStamp[static_cast<size_t>(c)] = mark;
+        cells.push_back(c);
+        const CellCorners cell = mesh.Cell(c);
+        for (int a = 0; a < corners; ++a)
+        {
+          if (stamp[static_cast<size_t>(cell[a])] != mark)
+          {
+            stamp[static_cast<size_t>(cell[a])] = mark;
+            next.push_back(cell[a]);
+          }
+        }
+      }
+    }
+    ring.swap(next);
+  }
+}
+
+/**
+ * The ill-posed function i's fit: free points ring by ring, a quadratic fit
+ * within QuadraticRings rings (true returned), else the affine fit of the
  * first ring that allows one, up to FringeSearchRings; none when no ring
  * allows one.
  */
-void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
+bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
   std::vector<Index>& points, std::vector<double>& weights)
 {
@@ -207,7 +252,7 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
       weights = NearestFit(mesh, frame, i, points, 2, &rejected, &ambient);
       if (!weights.empty() && ambient)
       {
-        return;
+        return true;
       }
       if (weights.empty())
       {
@@ -251,6 +296,32 @@ void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   if (weights.empty())
   {
     points.clear(); // no stable fit: ExtendFringe frees or drops the function
+  }
+  return tangentQuadratic;
+}
+
+/**
+ * The ill-posed function i's stencil and weights: its fit (FitStencil); on
+ * a second-order target (`roots` not empty) where that fit is affine or
+ * none, a root cell's own function instead when one is within
+ * FringeRootAmplification (FringeRoots.h).
+ */
+void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
+  const std::vector<char>& usable, const std::vector<char>& roots, std::vector<Index>& stamp,
+  std::vector<Index>& cellStamp, std::vector<Index>& points, std::vector<double>& weights)
+{
+  if (FitStencil(mesh, around, i, usable, stamp, cellStamp, points, weights) || roots.empty())
+  {
+    return;
+  }
+  std::vector<Index> cells;
+  std::vector<Index> rootPoints;
+  std::vector<double> rootWeights;
+  RootRingCells(mesh, around, i, stamp, cellStamp, cells);
+  if (RootExtension(mesh, i, cells, roots, usable, rootPoints, rootWeights))
+  {
+    points.swap(rootPoints);
+    weights.swap(rootWeights);
   }
 }
 
@@ -367,6 +438,16 @@ void Stencils(const MeshView& mesh, const std::vector<Index>& ill, const std::ve
 {
   const CellsAroundPoints around(mesh, runner);
   const Index n = static_cast<Index>(usable.size());
+  // Per parent of a second-order target: whether it can be a root (FringeRoots.h).
+  std::vector<char> roots;
+  if (mesh.Nodal)
+  {
+    roots.resize(static_cast<size_t>(mesh.Parents()));
+    for (Index p = 0; p < mesh.Parents(); ++p)
+    {
+      roots[static_cast<size_t>(p)] = IsAffineRoot(mesh, p);
+    }
+  }
   stencils.assign(ill.size(), {});
   weights.assign(ill.size(), {});
   runner.ForRanges(
@@ -376,7 +457,7 @@ void Stencils(const MeshView& mesh, const std::vector<Index>& ill, const std::ve
       std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
       for (Index a = begin; a < end; ++a)
       {
-        StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, stamp, cellStamp,
+        StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, roots, stamp, cellStamp,
           stencils[static_cast<size_t>(a)], weights[static_cast<size_t>(a)]);
       }
       return 0;

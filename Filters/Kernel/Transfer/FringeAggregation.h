@@ -42,6 +42,15 @@
  * free neighbours all on one face) seeks an affine one farther, up to
  * FringeSearchRings.
  *
+ * On a second-order target (MeshView::Nodal: its point data the cells'
+ * own quadratic field, an order more accurate inside than P1), a function
+ * whose rings give only an affine fit takes, where one is near, the value
+ * of a well-covered root cell's own function extrapolated to it
+ * (FringeRoots.h): the shape functions of a straight parent whose nodes
+ * are all free, at i's reference coordinates in it, a third-order
+ * extension like the quadratic fit. A distributed target's halo carries
+ * its cells' parents (FringeHalo), so that every part finds the serial root.
+ *
  * On surfaces and curves the fit is in the tangent coordinates of i
  * (FringeFrames.h), in 2D or 1D as on a 2D mesh: the extension reproduces
  * the functions affine in those coordinates (ambient linear fields on a

@@ -325,56 +325,22 @@ Index MortarOperator::AggregateFringe(
   return this->Fringe.Count;
 }
 
-namespace
+struct MortarOperator::HaloMesh
 {
-/**
- * A target with curved cells split finer (geometric-only points), seen
- * with its halo: its cells keep their parents and nodal cells, so that the
- * fringe's rings read a refined simplex's parent nodes as on one part
- * (ForEachFunctionPoint); each halo cell is a linear parent of its own.
- */
-struct HaloParents
-{
+  std::vector<double> Points;
+  std::vector<Index> Cells;
   std::vector<Index> Parent;
-  std::vector<NodalType> Type;
+  std::vector<NodalType> Types;
   std::vector<long long> Offsets;
+  std::vector<long long> Nodes;
   NodalCells Nodal;
-
-  void Attach(const MeshView& target, MeshView& whole)
-  {
-    if (target.GeometricPoints == 0 || !target.Nodal)
-    {
-      return;
-    }
-    const Index parents = target.Parents();
-    const Index haloCells = whole.NumberOfCells - target.NumberOfCells;
-    this->Parent.resize(static_cast<size_t>(whole.NumberOfCells));
-    for (Index c = 0; c < target.NumberOfCells; ++c)
-    {
-      this->Parent[c] = target.ParentOf(c);
-    }
-    for (Index k = 0; k < haloCells; ++k)
-    {
-      this->Parent[target.NumberOfCells + k] = parents + k;
-    }
-    this->Type.assign(target.Nodal->Type, target.Nodal->Type + parents);
-    this->Type.resize(static_cast<size_t>(parents + haloCells), NodalType::None);
-    this->Offsets.assign(target.Nodal->Offsets, target.Nodal->Offsets + parents + 1);
-    this->Offsets.resize(static_cast<size_t>(parents + haloCells) + 1, this->Offsets.back());
-    this->Nodal.Type = this->Type.data();
-    this->Nodal.Offsets = this->Offsets.data();
-    this->Nodal.Nodes = target.Nodal->Nodes;
-    whole.Parent = this->Parent.data();
-    whole.NumberOfParents = parents + haloCells;
-    whole.Nodal = &this->Nodal;
-  }
 };
-} // namespace
 
-MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo,
-  std::vector<double>& points, std::vector<Index>& cells)
+MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo, HaloMesh& storage)
 {
   const int corners = target.CornersPerCell();
+  std::vector<double>& points = storage.Points;
+  std::vector<Index>& cells = storage.Cells;
   points.assign(target.Points, target.Points + 3 * target.NumberOfPoints);
   points.insert(points.end(), halo.Points.begin(), halo.Points.end());
   // Geometric-only points (curved cells split finer) after the halo's,
@@ -402,6 +368,39 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
   whole.GeometricPoints = target.GeometricPoints;
   whole.Connectivity = cells.data();
   whole.NumberOfCells = static_cast<Index>(cells.size()) / corners;
+  const Index ghostCells = static_cast<Index>(halo.Cells.size()) / corners;
+  if (target.Nodal && static_cast<Index>(halo.CellParents.size()) == ghostCells)
+  {
+    // The second-order parents too, the halo's after this part's, so that
+    // the fringe's root cells are the whole target's (FringeRoots.h).
+    const Index own = target.Parents();
+    storage.Parent.resize(static_cast<size_t>(whole.NumberOfCells));
+    for (Index c = 0; c < target.NumberOfCells; ++c)
+    {
+      storage.Parent[static_cast<size_t>(c)] = target.ParentOf(c);
+    }
+    for (Index g = 0; g < ghostCells; ++g)
+    {
+      storage.Parent[static_cast<size_t>(target.NumberOfCells + g)] =
+        own + halo.CellParents[static_cast<size_t>(g)];
+    }
+    storage.Types.assign(target.Nodal->Type, target.Nodal->Type + own);
+    storage.Types.insert(storage.Types.end(), halo.ParentTypes.begin(), halo.ParentTypes.end());
+    storage.Offsets.assign(target.Nodal->Offsets, target.Nodal->Offsets + own + 1);
+    storage.Nodes.assign(target.Nodal->Nodes, target.Nodal->Nodes + storage.Offsets.back());
+    for (size_t q = 1; q < halo.ParentOffsets.size(); ++q)
+    {
+      storage.Offsets.push_back(
+        storage.Offsets.back() + halo.ParentOffsets[q] - halo.ParentOffsets[q - 1]);
+    }
+    storage.Nodes.insert(storage.Nodes.end(), halo.ParentNodes.begin(), halo.ParentNodes.end());
+    storage.Nodal.Type = storage.Types.data();
+    storage.Nodal.Offsets = storage.Offsets.data();
+    storage.Nodal.Nodes = storage.Nodes.data();
+    whole.Parent = storage.Parent.data();
+    whole.NumberOfParents = static_cast<Index>(storage.Types.size());
+    whole.Nodal = &storage.Nodal;
+  }
   return whole;
 }
 
@@ -438,11 +437,8 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
     valid[g] = usable[g] > 0.0;
     extendedFraction[g] = valid[g] ? std::numeric_limits<double>::infinity() : 0.0;
   }
-  std::vector<double> points;
-  std::vector<Index> cells;
-  MeshView whole = WithHalo(target, halo, points, cells);
-  HaloParents parents;
-  parents.Attach(target, whole);
+  HaloMesh storage;
+  const MeshView whole = WithHalo(target, halo, storage);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
   this->Fringe = ExtendFringe(

@@ -41,6 +41,7 @@
 
 #include "Geometry/IntersectionPieces.h"
 #include "Mesh/MeshView.h"
+#include "Mesh/NodalCells.h"
 #include "Mesh/Tasks.h"
 #include "Search/CandidateLocator.h"
 #include "Search/SearchStatistics.h"
@@ -142,6 +143,13 @@ struct FringeHalo
 {
   std::vector<double> Points; ///< 3 coordinates per ghost point
   std::vector<Index> Cells;   ///< the target's corners per cell, in the extended rows
+  /// A second-order target's ghost parents, so that its fringe finds the
+  /// root cells (FringeRoots.h) the whole target gives: per cell of Cells
+  /// its parent among ParentTypes (all empty for a linear target).
+  std::vector<Index> CellParents;
+  std::vector<NodalType> ParentTypes;   ///< None: linear, or a node the halo lacks
+  std::vector<long long> ParentOffsets; ///< ParentTypes.size() + 1 entries
+  std::vector<long long> ParentNodes;   ///< each parent's nodes, in the extended rows
   SolverHooks Hooks;
   Index NumberOfPoints() const { return static_cast<Index>(this->Points.size() / 3); }
 };
@@ -419,8 +427,9 @@ private:
   void AggregateWithHalo(const MeshView& target, const std::vector<double>& fraction,
     double threshold, const FringeHalo& halo);
   /// The target and its halo as one mesh (extended rows), in `points` and `cells`.
-  static MeshView WithHalo(const MeshView& target, const FringeHalo& halo,
-    std::vector<double>& points, std::vector<Index>& cells);
+  /// The arrays of a target joined with its halo (WithHalo).
+  struct HaloMesh;
+  static MeshView WithHalo(const MeshView& target, const FringeHalo& halo, HaloMesh& storage);
   // Apply's steps (MortarApply.cxx).
   /**
    * `rhs`: M_ts u_s, or the right-hand sides summed during the search (in

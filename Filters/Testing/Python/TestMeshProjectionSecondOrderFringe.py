@@ -12,10 +12,12 @@ The fringe (FringeThreshold at its default):
    whose cells are all covered), printed for the point data and the cell
    data, and within 5x for the cell data on every pair, for the point data
    on the tri6 Inputs, and for the point data at the free nodes (those the
-   fringe does not aggregate) of the others. (The aggregated nodes of
+   fringe does not aggregate) of the others. The aggregated nodes of
    quad9, tet10, hex20 and hex27 Inputs, covered a few percent, are
-   extensions over a cell or more, of a lower order than the second-order
-   interior: docs/limitations.md.)
+   extensions over a cell or two (docs/limitations.md): a root cell's own
+   quadratic where the rings allow only an affine fit (FringeRoots.h); their
+   point data within the pair's bound below (the affine fits alone gave
+   327, 91, 128 and 13).
  - no node whose support (its cells) is covered 10% or more left invalid.
 Extrapolation Smooth and Nearest:
  - every node finite; the valid values those without Extrapolation bit for
@@ -56,17 +58,17 @@ def array(out, name, cells=False):
 
 so = gmshmeshes.second_order
 moved = gmshmeshes.moved
-# (name, Input, Source, point data within 5x at every valid node)
+# (name, Input, Source, worst valid over interior error of the point data at most)
 pairs = [
-    ("tri6 <- quad9", moved(so("square", 0.06), translate=(0.31, 0.17, 0)), so("square", 0.078, True), True),
+    ("tri6 <- quad9", moved(so("square", 0.06), translate=(0.31, 0.17, 0)), so("square", 0.078, True), 5),
     ("tri6 <- curved quad9 disk", moved(so("square", 0.06), translate=(0.25, -0.45, 0)), so("disk", 0.078, True),
-     True),
-    ("quad9 <- tri6", moved(so("square", 0.078, True), translate=(0.4, 0.1, 0)), so("square", 0.06), False),
-    ("tet10 <- hex20", moved(so("cube", 0.14), translate=(0.27, 0.13, 0.21)), so("hexes", 0.14, False, True), False),
-    ("hex20 <- tet10", moved(so("hexes", 0.17, False, True), translate=(0.27, 0.13, 0.21)), so("cube", 0.17), False),
-    ("hex27 <- tet10", moved(so("hexes", 0.2), translate=(-0.33, 0.41, 0.07)), so("cube", 0.17), False),
+     5),
+    ("quad9 <- tri6", moved(so("square", 0.078, True), translate=(0.4, 0.1, 0)), so("square", 0.06), 40),
+    ("tet10 <- hex20", moved(so("cube", 0.14), translate=(0.27, 0.13, 0.21)), so("hexes", 0.14, False, True), 12),
+    ("hex20 <- tet10", moved(so("hexes", 0.17, False, True), translate=(0.27, 0.13, 0.21)), so("cube", 0.17), 120),
+    ("hex27 <- tet10", moved(so("hexes", 0.2), translate=(-0.33, 0.41, 0.07)), so("cube", 0.17), 15),
 ]
-for name, target, source_mesh, everywhere in pairs:
+for name, target, source_mesh, bound in pairs:
     source = with_fields(source_mesh)
     around = point_cells(target)
     f = mortar(target, source, pieces=False, CellDataTarget=1, CacheOperator=True)
@@ -91,7 +93,7 @@ for name, target, source_mesh, everywhere in pairs:
           "cell data to points %4.2f" % (name, r_point, r_free, valid.sum() - free.sum(), valid.sum(), r_cell))
     check(r_cell <= 5, "%s: cell data to points within 5x the interior's (%.2f)" % (name, r_cell))
     check(r_free <= 5, "%s: point data at the free nodes within 5x the interior's (%.2f)" % (name, r_free))
-    check(r_point <= 5 or not everywhere, "%s: point data within 5x the interior's (%.2f)" % (name, r_point))
+    check(r_point <= bound, "%s: point data within %gx the interior's (%.2f)" % (name, bound, r_point))
     # Nodes left invalid: the covered measure of their cells over their measure.
     size = measures(target)
     fraction = np.array([np.dot(cover[c], size[c]) / size[c].sum() for c in around])

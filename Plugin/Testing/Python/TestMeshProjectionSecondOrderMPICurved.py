@@ -3,7 +3,9 @@
 (FringeThreshold at its default) and with Extrapolation Smooth: a Gmsh
 tet10 ball (its boundary mid nodes on the sphere) and Gmsh hex20 and hex27
 cubes bent by a smooth map (every cell curved), each way; a Gmsh tri6 disk
-and a quad9 disk (mid nodes on the circle), each way. Input in blocks
+and a quad9 disk (mid nodes on the circle), each way; straight quad9 and
+tet10 Inputs whose fringe extends nodes by root cells (the halo carries
+the cells' parents). Input in blocks
 along x, Source dealt at random, projected by vtkPMeshProjectionFilter
 against the serial filter. On every process, for its points (by their
 original ids):
@@ -72,6 +74,11 @@ pairs = [
      with_fields(grid(disk_quad9, lambda x: x + [0.6, -0.3, 0.0])), (0, 1)),
     ("curved quad9 disk <- tri6 disk", numbered(grid(disk_quad9, lambda x: x + [-0.5, 0.45, 0.0])),
      with_fields(grid(disk_tri6)), (0,)),
+    # Straight pairs whose fringe takes root cells' own functions (FringeRoots.h), some across the parts.
+    ("straight quad9 <- tri6", numbered(grid(so("square", 0.078, True), lambda x: x + [0.4, 0.1, 0.0])),
+     with_fields(grid(so("square", 0.06))), (0,)),
+    ("straight tet10 <- hex20", numbered(grid(so("cube", 0.14), lambda x: x + [0.27, 0.13, 0.21])),
+     with_fields(grid(so("hexes", 0.14, False, True))), (0,)),
 ]
 for name, target, source, modes in pairs:
     # This process's part: Input in blocks along x, Source at random.
