@@ -353,7 +353,18 @@ bool NodalInverse::Find(const double* x, const double* start, double* xi) const
       std::copy(start, start + this->Dimension, xi);
     }
   }
-  return this->Converge(local, xi);
+  if (!this->Converge(local, xi))
+  {
+    return false;
+  }
+  for (int a = 0; a < this->Dimension; ++a)
+  {
+    if (std::abs(xi[a] - start[a]) > FindReach)
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool NodalInverse::FindFromCentre(const double* x, double* xi) const

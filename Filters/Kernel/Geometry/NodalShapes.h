@@ -178,8 +178,14 @@ public:
   /// spaceDimension read); false (nothing found later) for a type without
   /// a dimension or a space it does not fit in.
   bool Prepare(NodalType type, const double* X, int spaceDimension);
-  /// xi of x (spaceDimension coordinates) by Newton from `start`.
+  /// xi of x (spaceDimension coordinates) by Newton from `start`; false
+  /// too when the xi found lies farther than FindReach from `start` in any
+  /// reference coordinate: the extrapolated map has other preimages on the
+  /// cell's own orientation far outside it, which a poor start can reach.
   bool Find(const double* x, const double* start, double* xi) const;
+  /// (A start from the point's own simplex of the split is within a small
+  /// fraction of the reference cell, whose coordinates span 1.)
+  static constexpr double FindReach = 0.5;
   /// xi of x from NodalReference's start.
   bool FindFromCentre(const double* x, double* xi) const;
 

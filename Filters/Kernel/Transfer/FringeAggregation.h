@@ -129,6 +129,25 @@ constexpr int FringeSearchRings = 6;
 constexpr double FringeDropFraction = 0.02;
 
 /**
+ * The same for the functions of a target with second-order cells
+ * (MeshView::Nodal). Their interior is a whole order more accurate than a
+ * linear target's, while an extension over a cell or more (the nearest
+ * well-covered nodes or root cells, FringeRoots.h, are farther in units of
+ * node spacing) is not: a node covered a few percent would carry an error
+ * tens of times the interior's. Below a tenth of its support covered its
+ * value is an extrapolation, not a projection, and is dropped; above, the
+ * covered part holds enough to anchor it.
+ */
+constexpr double FringeNodalDropFraction = 0.1;
+
+/// The drop fraction for functions of `target` (FringeDropFraction, or
+/// FringeNodalDropFraction on a target with second-order cells).
+inline double FringeDropFractionOf(const MeshView& target)
+{
+  return target.Nodal ? FringeNodalDropFraction : FringeDropFraction;
+}
+
+/**
  * A function with no stable stencil within FringeSearchRings rings and
  * covered less than this fraction of its support is dropped to invalid
  * too (Stranded): its value would be the plain projection's fit to its

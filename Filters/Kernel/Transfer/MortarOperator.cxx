@@ -307,7 +307,7 @@ Index MortarOperator::AggregateFringe(
     // symmetric, positive definite on the free functions and exact for
     // linear fields).
     this->Fringe = ExtendFringe(
-      target, this->Valid, fraction, threshold, FringeDropFraction, this->Options.Runner);
+      target, this->Valid, fraction, threshold, FringeDropFractionOf(target), this->Options.Runner);
     if (this->Fringe.Count + this->Fringe.Stranded > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
@@ -441,8 +441,8 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   const MeshView whole = WithHalo(target, halo, storage);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
-  this->Fringe = ExtendFringe(
-    whole, valid, extendedFraction, threshold, FringeDropFraction, this->Options.Runner, true);
+  this->Fringe = ExtendFringe(whole, valid, extendedFraction, threshold,
+    FringeDropFractionOf(target), this->Options.Runner, true);
   // One system for all parts: aggregated when any part aggregates.
   double count = static_cast<double>(this->Fringe.Count + this->Fringe.Stranded);
   extended.Reduce(&count, 1);

@@ -17,7 +17,8 @@ The fringe (FringeThreshold at its default):
    extensions over a cell or two (docs/limitations.md): a root cell's own
    quadratic where the rings allow only an affine fit (FringeRoots.h); their
    point data within the pair's bound below (the affine fits alone gave
-   327, 91, 128 and 13).
+   327, 91, 128 and 13); nodes covered less than a tenth of their support
+   are invalid on these Inputs (FringeNodalDropFraction).
  - no node whose support (its cells) is covered 10% or more left invalid.
 Extrapolation Smooth and Nearest:
  - every node finite; the valid values those without Extrapolation bit for
@@ -64,9 +65,9 @@ pairs = [
     ("tri6 <- curved quad9 disk", moved(so("square", 0.06), translate=(0.25, -0.45, 0)), so("disk", 0.078, True),
      5),
     ("quad9 <- tri6", moved(so("square", 0.078, True), translate=(0.4, 0.1, 0)), so("square", 0.06), 40),
-    ("tet10 <- hex20", moved(so("cube", 0.14), translate=(0.27, 0.13, 0.21)), so("hexes", 0.14, False, True), 12),
-    ("hex20 <- tet10", moved(so("hexes", 0.17, False, True), translate=(0.27, 0.13, 0.21)), so("cube", 0.17), 120),
-    ("hex27 <- tet10", moved(so("hexes", 0.2), translate=(-0.33, 0.41, 0.07)), so("cube", 0.17), 15),
+    ("tet10 <- hex20", moved(so("cube", 0.14), translate=(0.27, 0.13, 0.21)), so("hexes", 0.14, False, True), 8),
+    ("hex20 <- tet10", moved(so("hexes", 0.17, False, True), translate=(0.27, 0.13, 0.21)), so("cube", 0.17), 20),
+    ("hex27 <- tet10", moved(so("hexes", 0.2), translate=(-0.33, 0.41, 0.07)), so("cube", 0.17), 5),
 ]
 for name, target, source_mesh, bound in pairs:
     source = with_fields(source_mesh)
