@@ -100,6 +100,7 @@ std::string SimplexMesh::Wrap(vtkDataSet* data, const char* role)
   this->NodalStore.reset();
   this->Kernel.Nodal = nullptr;
   this->Refined = 0;
+  this->Unrefined = 0;
   this->Geometric = 0;
   for (int type = 1; type < 256; ++type)
   {

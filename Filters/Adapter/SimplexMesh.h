@@ -100,6 +100,15 @@ public:
   int GetCurvedLevel() const { return this->CurvedLevel; }
   /// Curved cells Wrap() split on the finer lattice.
   vtkIdType RefinedCells() const { return this->Refined; }
+  /**
+   * Curved cells the last Wrap() left on their nodes' split although the
+   * level asked for more: those of a type the finer split does not take
+   * (hexahedra, wedges, pyramids: then no cell of the mesh is split finer,
+   * so that their faces shared with refined cells stay conforming) and
+   * those whose finer split folds (kept on their nodes: next to a refined
+   * neighbour the covered part has slivers along their shared face).
+   */
+  vtkIdType UnrefinedCurvedCells() const { return this->Unrefined; }
   static constexpr vtkIdType MinimumOrderedCells = 4096;
   /// Whether the kernel's numbering is a renumbered copy (see SetOrdering).
   bool Ordered() const { return !this->PointOrder.empty(); }
@@ -260,6 +269,7 @@ private:
   vtkIdType SplitCount = 0;
   int CurvedLevel = 1;
   vtkIdType Refined = 0;
+  vtkIdType Unrefined = 0; ///< UnrefinedCurvedCells
   vtkIdType Geometric = 0; ///< points the split added after the dataset's (geometric only)
   double CheckTime = 0;
   double OrderTime = 0;

@@ -299,24 +299,58 @@ bool IsCurved(mp::NodalType type, const double* x, const std::vector<mp::Index>&
   return !mp::NodalIsStraight(type, X, 3, 1e-12);
 }
 
+/// What RefineCurved did with a cell.
+enum class Refinement
+{
+  None,    ///< straight, or no finer level asked for
+  Refined, ///< split on the finer lattice
+  Folded   ///< curved, but its finer split folds: the one on its nodes stays
+};
+
 /// Replaces the simplices from `before` on (a curved cell's split on its
-/// nodes) by its split on the finer lattice, when `curved` refines it;
-/// true then.
-bool RefineCurved(mp::CurvedSplitter& curved, mp::NodalType type, const double* x,
+/// nodes) by its split on the finer lattice, when `curved` refines it.
+Refinement RefineCurved(mp::CurvedSplitter& curved, mp::NodalType type, const double* x,
   const std::vector<mp::Index>& nodes, std::vector<mp::Index>& simplices, size_t before)
 {
   if (curved.Level() < 2 || !mp::IsRefinedWhenCurved(type) || !IsCurved(type, x, nodes))
   {
-    return false;
+    return Refinement::None;
   }
   std::vector<mp::Index> finer;
   if (!curved.Split(type, nodes.data(), finer))
   {
-    return false; // the finer split folds: the one on the nodes stays
+    return Refinement::Folded;
   }
   simplices.resize(before);
   simplices.insert(simplices.end(), finer.begin(), finer.end());
-  return true;
+  return Refinement::Refined;
+}
+
+/// The number of curved cells of `data` of a type the finer split does not
+/// take (IsRefinedWhenCurved): any of them keeps the whole mesh on its
+/// nodes' split, whose faces they share conformingly.
+vtkIdType CurvedUnrefinable(vtkDataSet* data, CellSplitter& splitter, const double* x)
+{
+  vtkIdType count = 0;
+  std::vector<mp::Index> scratch;
+  for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
+  {
+    const int type = data->GetCellType(c);
+    if (!IsAcceptedNonlinear(type))
+    {
+      continue;
+    }
+    mp::NodalType nodal = mp::NodalType::None;
+    bool repeated = false;
+    scratch.clear();
+    if (splitter.SplitNodal(c, type, scratch, nodal, repeated) == mp::SplitStatus::Split &&
+      nodal != mp::NodalType::None && !mp::IsRefinedWhenCurved(nodal) &&
+      IsCurved(nodal, x, splitter.Nodes()))
+    {
+      ++count;
+    }
+  }
+  return count;
 }
 
 /// Why the first refused cell (and `refused` - 1 more) cannot be split.
@@ -442,8 +476,9 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   // global ids, else of lowest point id (SplitKeys).
   const std::vector<mp::Index> keys = SplitKeys(data);
   CellSplitter splitter(data, x, keys.empty() ? nullptr : keys.data());
+  this->Unrefined = this->CurvedLevel > 1 ? CurvedUnrefinable(data, splitter, x) : 0;
   mp::CurvedSplitter curved(x, static_cast<mp::Index>(points->GetNumberOfPoints()),
-    this->CurvedLevel, keys.empty() ? nullptr : keys.data());
+    this->Unrefined > 0 ? 1 : this->CurvedLevel, keys.empty() ? nullptr : keys.data());
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
   std::vector<mp::Index> simplices;
   simplices.reserve(static_cast<size_t>(numberOfCells) * (dimension == 3 ? 24 : 6));
@@ -494,7 +529,9 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
         continue;
       }
       this->AddNodal(c, nodal, splitter.Nodes(), numberOfCells);
-      this->Refined += RefineCurved(curved, nodal, x, splitter.Nodes(), simplices, before);
+      const Refinement done = RefineCurved(curved, nodal, x, splitter.Nodes(), simplices, before);
+      this->Refined += done == Refinement::Refined;
+      this->Unrefined += done == Refinement::Folded;
     }
     else
     {

@@ -65,19 +65,19 @@ std::vector<double> SourceWeights::CoveredTotals(const mp::MortarOperator& op, b
           const mp::Index p = view.Cell(c)[k];
           // A geometric-only point (a curved cell split finer) has no global
           // id: its coordinates' bits, the same on every process, name it.
-          long long bits = 0;
+          unsigned long long bits = 0;
           if (!view.HasFunction(p))
           {
             for (int d = 0; d < 3; ++d)
             {
-              long long w = 0;
+              unsigned long long w = 0;
               std::memcpy(&w, view.Point(p) + d, sizeof w);
-              bits = bits * 1000003 ^ w;
+              bits = bits * 1000003ULL ^ w;
             }
           }
           key[k] = view.HasFunction(p)
             ? static_cast<long long>(global->GetTuple1(this->Source.DataSetPoint(p)))
-            : (bits | (1LL << 62));
+            : static_cast<long long>((bits >> 2) | (1ULL << 62));
         }
         for (int k = 0; k < corners; ++k)
         {

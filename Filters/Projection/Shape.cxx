@@ -283,6 +283,16 @@ std::string UseSurfaces(SimplexMesh& target, SimplexMesh& source, const Settings
 
 void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages)
 {
+  if (mesh.UnrefinedCurvedCells() > 0)
+  {
+    messages.WarnOnce("unrefined/" + role,
+      role + ": CurvedCellSubdivision is " + std::to_string(mesh.GetCurvedLevel()) + ", but " +
+        std::to_string(mesh.UnrefinedCurvedCells()) +
+        " curved cells are not split finer: hexahedra, wedges and pyramids are not (a mesh "
+        "with curved ones keeps the split on its nodes throughout), and a cell whose finer "
+        "split folds keeps the split on its nodes (slivers between it and refined neighbours "
+        "count as uncovered or covered twice).");
+  }
   if (mesh.LowerDimensionalCells() == 0)
   {
     return;

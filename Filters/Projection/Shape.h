@@ -54,7 +54,8 @@ struct LeafShape
  */
 Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement);
 
-/// Warns once per filter when `mesh` left out cells of lower dimension.
+/// Warns once per filter when `mesh` left out cells of lower dimension, or
+/// kept curved cells on their nodes' split against CurvedCellSubdivision.
 void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages);
 } // namespace mpvtk
 

@@ -188,6 +188,8 @@ public:
   static constexpr double FindReach = 0.5;
   /// xi of x from NodalReference's start.
   bool FindFromCentre(const double* x, double* xi) const;
+  /// That start: the reference cell's centre (3 coordinates).
+  const double* ReferenceCentre() const { return this->Centre; }
 
 private:
   /// x relative to the first corner; false when Prepare failed.

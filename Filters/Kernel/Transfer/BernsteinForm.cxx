@@ -227,6 +227,7 @@ void BernsteinForm::Values(NodalType type, const double* xi, double* B)
 
 void BernsteinForm::Build(const MeshView& mesh)
 {
+  this->Built = true;
   const Index n = mesh.NumberOfPoints;
   // Each node's row from the first parent that has it (neighbours agree on
   // their common faces, so any would do).

@@ -64,8 +64,10 @@ public:
 
   /// C on the point functions of `mesh` (Covers(mesh) must hold).
   void Build(const MeshView& mesh);
-  /// Whether Build ran (a mesh without second-order cells: identity).
-  bool Empty() const { return this->C.Rows == 0; }
+  /// Whether Build never ran (a mesh without second-order cells: identity).
+  /// A part with no points, built, is not Empty: it takes part in the
+  /// collective steps of a distributed Apply like the others.
+  bool Empty() const { return !this->Built; }
 
   /// u = C b: node values from Bernstein coefficients (rows x components, row-major).
   void ToNodes(const double* b, int components, double* u) const;
@@ -89,6 +91,7 @@ public:
 private:
   CsrMatrix C;
   std::vector<Index> Order; ///< the nodes by the dimension of what they stand for
+  bool Built = false;
 };
 } // namespace mp
 

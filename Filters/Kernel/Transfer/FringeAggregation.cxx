@@ -152,7 +152,6 @@ void RootRingCells(const MeshView& mesh, const CellsAroundPoints& around, Index 
   std::vector<Index>& stamp, std::vector<Index>& cellStamp, std::vector<Index>& cells)
 {
   const Index mark = -2 - i;
-  const int corners = mesh.CornersPerCell();
   std::vector<Index> ring{ i };
   std::vector<Index> next;
   cells.clear();
@@ -172,15 +171,15 @@ void RootRingCells(const MeshView& mesh, const CellsAroundPoints& around, Index 
         }
         cellStamp[static_cast<size_t>(c)] = mark;
         cells.push_back(c);
-        const CellCorners cell = mesh.Cell(c);
-        for (int a = 0; a < corners; ++a)
-        {
-          if (stamp[static_cast<size_t>(cell[a])] != mark)
+        // (A refined curved simplex's geometric-only corners carry no
+        // function: its parent's nodes are its points here.)
+        ForEachFunctionPoint(mesh, c, [&](Index k) {
+          if (stamp[static_cast<size_t>(k)] != mark)
           {
-            stamp[static_cast<size_t>(cell[a])] = mark;
-            next.push_back(cell[a]);
+            stamp[static_cast<size_t>(k)] = mark;
+            next.push_back(k);
           }
-        }
+        });
       }
     }
     ring.swap(next);

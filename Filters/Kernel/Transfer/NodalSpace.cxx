@@ -148,7 +148,8 @@ std::string CheckNodalCells(const MeshView& mesh, const char* name)
   auto bad = [&](Index p, const char* why) {
     return std::string(name) + ": second-order cell " + std::to_string(p) + " " + why;
   };
-  if (!nodal.Type || !nodal.Offsets || nodal.Offsets[0] != 0)
+  // (An empty part of a distributed second-order mesh has no types.)
+  if ((parents > 0 && !nodal.Type) || !nodal.Offsets || nodal.Offsets[0] != 0)
   {
     return std::string(name) + ": second-order cells without their types or offsets";
   }
@@ -292,14 +293,24 @@ void NodalFunctions::BindSimplex(const MeshView& mesh, Index c)
   for (int k = 0; k < this->Corners; ++k)
   {
     simplex[k] = corners[k];
-    // (Every corner is one of the parent's nodes but the points a curved
-    // cell's finer split adds (CurvedSplit.h): those start Newton from the
-    // reference origin, and from the centre where that fails.)
     const int n =
       static_cast<int>(std::find(this->Dofs, this->Dofs + this->Count, corners[k]) - this->Dofs);
-    for (int a = 0; a < 3; ++a)
+    if (n < this->Count)
     {
-      this->Reference[k][a] = n < this->Count ? reference[3 * n + a] : 0.0;
+      std::copy(reference + 3 * n, reference + 3 * n + 3, this->Reference[k]);
+    }
+    else
+    {
+      // A point a curved cell's finer split adds (CurvedSplit.h) is no node:
+      // its reference point is found once per simplex bound (the centre's
+      // image where even that fails), so that the points of the simplex
+      // start near their own.
+      const double* x = mesh.Point(corners[k]);
+      const double point[3] = { x[0], x[1], this->Dimension == 3 ? x[2] : 0.0 };
+      if (!this->Map.FindFromCentre(point, this->Reference[k]))
+      {
+        std::copy(this->Map.ReferenceCentre(), this->Map.ReferenceCentre() + 3, this->Reference[k]);
+      }
     }
   }
   this->AffineMap(mesh, simplex);

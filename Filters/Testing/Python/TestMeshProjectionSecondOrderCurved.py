@@ -17,7 +17,12 @@ disks (boundary mid nodes on the circle) and balls:
        differs from level 2's), and changing the level rebuilds a kept
        operator;
     e. curved 6-node triangles of a surface in 3D (a ball's boundary): the
-       area nears 4 pi with the level, constant cell data stays constant.
+       area nears 4 pi with the level, constant cell data stays constant;
+    f. the fringe on a refined curved Input reaching beyond the Source (its
+       rings read the refined simplices' parent nodes): the linear field
+       exact at every valid node, every value finite;
+    g. a curved mesh with hexahedra (not split finer) keeps level 1
+       throughout, with one warning, and gives level 1's result.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -26,7 +31,7 @@ from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
 
 import meshprojection
 from mpsupport import gmshmeshes
-from mpsupport.testing import check, finish
+from mpsupport.testing import check, finish, observed_filter
 
 
 def linear(x):
@@ -212,5 +217,47 @@ f = meshprojection.vtkMeshProjectionFilter()
 one = field(project(target, source, 1, keep=f), "TargetIntegral_One")
 two = field(project(target, source, 2, keep=f), "TargetIntegral_One")
 check(one == measures[1] and two == measures[2], "the kept operator follows CurvedCellSubdivision")
+
+# --- f. the fringe on a refined curved Input (a disk moved off it as Source) --
+disk = gmshmeshes.second_order("disk", 0.35)
+inner = with_arrays(gmshmeshes.moved(gmshmeshes.second_order("disk", 0.2), translate=(0.37, 0.21, 0)))
+for level in (1, 2):
+    f = meshprojection.vtkMeshProjectionFilter()
+    f.SetInputData(with_arrays(disk))
+    f.SetSourceData(inner)
+    f.SetCacheOperator(True)
+    f.SetCurvedCellSubdivision(level)
+    f.Update()
+    out = f.GetOutput()
+    check_fields("curved disk beyond a moved Source, level %d" % level, out, inner, everywhere=False)
+    values = vtk_to_numpy(out.GetPointData().GetArray("Linear"))
+    valid = vtk_to_numpy(out.GetPointData().GetArray("vtkValidPointMask")).astype(bool)
+    P = meshprojection.fringe_extension(f)
+    aggregated = int((P.getnnz(axis=0) == 0).sum()) if P.shape[0] else 0
+    print("curved disk beyond a moved Source, level %d: %d nodes aggregated" % (level, aggregated))
+    check(np.isfinite(values[valid]).all() and aggregated > 0,
+          "curved disk beyond a moved Source, level %d: the fringe aggregates, values finite" % level)
+
+# --- g. curved hexahedra keep the whole mesh at level 1 ----------------------
+hexes = gmshmeshes.second_order("hexes", 0.34, False, True)
+x = points_of(hexes)
+x += 0.04 * np.stack([np.sin(3 * x[:, 1]), np.sin(3 * x[:, 2]), np.sin(3 * x[:, 0])], 1)
+bent = vtkUnstructuredGrid()
+bent.DeepCopy(hexes)
+bent_points = vtkPoints()
+bent_points.SetData(numpy_to_vtk(x, deep=True))
+bent.SetPoints(bent_points)
+cube_source = with_arrays(gmshmeshes.second_order("cube", 0.3))
+f, texts = observed_filter("WarningEvent")
+f.SetInputData(with_arrays(bent))
+f.SetSourceData(cube_source)
+f.SetCurvedCellSubdivision(2)
+f.Update()
+said = [t for t in texts if "are not split finer" in t]
+check(len(said) == 1 and "hexahedra" in said[0], "curved hex20 at level 2: one warning (%s)" % said)
+plain = project(with_arrays(bent), cube_source, 1)
+same = np.array_equal(vtk_to_numpy(f.GetOutput().GetPointData().GetArray("Linear")),
+                      vtk_to_numpy(plain.GetPointData().GetArray("Linear")))
+check(same, "curved hex20 at level 2: level 1's result")
 
 finish()

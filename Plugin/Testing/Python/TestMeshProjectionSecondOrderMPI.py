@@ -148,4 +148,19 @@ valid = array(labelled[1], "vtkValidPointMask").astype(bool)
 same = np.array_equal(array(labelled[1], "Region")[valid], array(labelled[0], "Region")[mine][valid])
 check(valid.sum() > 0 and same, "mixed tet4 + tet10: point labels as serial (%d valid)" % valid.sum())
 
+# The whole mixed Input on the first process (the others' parts empty),
+# Lumped and PreserveBounds: the empty parts take part in the bounded
+# solve's collective steps, every process ends, the first gives serial.
+alone = meshes.extract(mixed, np.full(n, rank == 0))
+for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounded", dict(bounded=True))):
+    serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, **options)
+    out = run(meshprojection.vtkPMeshProjectionFilter, alone, part_covering, **options)
+    if rank == 0:
+        valid = array(out, "vtkValidPointMask").astype(bool)
+        off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s"))[valid], initial=0.0)
+        check(valid.any() and off <= 1e-10 * scale,
+              "mixed Input on one process, %s: the serial values (%.2g off)" % (how, off))
+    else:
+        check(out.GetNumberOfPoints() == 0, "mixed Input on one process, %s: an empty part ends empty" % how)
+
 check.finish("%d processes, second-order cells" % size)
