@@ -49,19 +49,12 @@ Verdict WrapTarget(const ExecutionShare& run, vtkDataSet* target, const std::str
   SimplexMesh& mesh, Statistics& stats, LeafAgreement& agreement)
 {
   mesh.SetOrdering(run.Options.Renumbering);
-  // On several processes curved cells keep the split on their nodes: the
-  // finer split's geometric points are not matched between the parts (the
-  // Source's gathering, the fringe's halo), where results would differ from
-  // the serial ones.
-  const bool finer = run.Options.CurvedCellSubdivision > 1 && !run.Processes.Whole();
-  mesh.SetCurvedLevel(finer ? 1 : run.Options.CurvedCellSubdivision);
+  const int asked = run.Options.CurvedCellSubdivision;
+  mesh.SetCurvedLevel(CurvedLevelOn(asked, run.Processes.Whole()));
   const std::string why = mesh.Wrap(target, role.c_str());
-  if (finer && why.empty() && mesh.View().Nodal)
+  if (why.empty())
   {
-    run.Say.WarnOnce("curved/processes",
-      "CurvedCellSubdivision is " + std::to_string(run.Options.CurvedCellSubdivision) +
-        ", but the filter runs on several processes: curved second-order cells are met "
-        "through their split on their nodes (level 1) there.");
+    WarnCurvedLevel(mesh, asked, run.Processes.Whole(), run.Say);
   }
   stats.Check += mesh.CheckSeconds();
   stats.Renumber += mesh.OrderSeconds();

@@ -281,6 +281,22 @@ std::string UseSurfaces(SimplexMesh& target, SimplexMesh& source, const Settings
 }
 } // namespace
 
+int CurvedLevelOn(int asked, bool whole)
+{
+  return whole ? asked : 1;
+}
+
+void WarnCurvedLevel(const SimplexMesh& mesh, int asked, bool whole, Messages& messages)
+{
+  if (asked > 1 && !whole && mesh.View().Nodal)
+  {
+    messages.WarnOnce("curved/processes",
+      "CurvedCellSubdivision is " + std::to_string(asked) +
+        ", but the filter runs on several processes: curved second-order cells are met "
+        "through their split on their nodes (level 1) there.");
+  }
+}
+
 void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages)
 {
   if (mesh.UnrefinedCurvedCells() > 0)

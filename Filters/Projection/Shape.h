@@ -54,6 +54,19 @@ struct LeafShape
  */
 Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement);
 
+/**
+ * The level at which `role`'s curved cells are split (SimplexMesh::
+ * SetCurvedLevel): `asked` on one process, 1 on several, where the finer
+ * split's geometric points are not matched between the parts (the
+ * Source's gathering, the fringe's halo) and results would differ from the
+ * serial ones.
+ */
+int CurvedLevelOn(int asked, bool whole);
+
+/// After `mesh` is wrapped at CurvedLevelOn: warns once per filter when
+/// the level asked for was dropped to 1 on a mesh with second-order cells.
+void WarnCurvedLevel(const SimplexMesh& mesh, int asked, bool whole, Messages& messages);
+
 /// Warns once per filter when `mesh` left out cells of lower dimension, or
 /// kept curved cells on their nodes' split against CurvedCellSubdivision.
 void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages);

@@ -86,8 +86,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
-  // (Level 1 on several processes: LeafProjection's WrapTarget says why.)
-  side.Mesh.SetCurvedLevel(parts.Whole() ? settings.CurvedCellSubdivision : 1);
+  side.Mesh.SetCurvedLevel(CurvedLevelOn(settings.CurvedCellSubdivision, parts.Whole()));
   const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
     const std::string why = side.Mesh.Wrap(source, "Source");
     stats.Check += side.Mesh.CheckSeconds();
@@ -99,6 +98,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
     return wrapped;
   }
   WarnLeftOut(side.Mesh, "Source", messages);
+  WarnCurvedLevel(side.Mesh, settings.CurvedCellSubdivision, parts.Whole(), messages);
   if (side.Mesh.Dimension() == 2 && !side.Mesh.View().IsSurfaceMesh())
   {
     // A planar Source in its own plane's coordinates until a leaf picks the
