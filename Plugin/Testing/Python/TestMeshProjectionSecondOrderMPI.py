@@ -17,7 +17,10 @@ points (by their original ids):
    alike, ends, and gives the serial values (1e-10 of the range), within
    the Source's range, with the serial integral (1e-12); its point labels
    (a region id given at the Source's nodes: the lumped, bounded
-   Bernstein weights) are the serial ones.
+   Bernstein weights) are the serial ones; the same with the whole Input
+   on the first process (the others' parts empty);
+ - CurvedCellSubdivision 2 on several processes: level 1's values and one
+   warning on every process, also with only the Source second-order.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
