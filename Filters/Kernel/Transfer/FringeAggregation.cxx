@@ -144,6 +144,42 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
 }
 
 /**
+ * One step of the rings around a point: every cell around a point of
+ * `ring` not met yet (cellStamp != mark) is stamped and given to
+ * `onCell`, and its function points not met yet (stamp != mark; a refined
+ * curved simplex's are its parent's nodes, ForEachFunctionPoint) are
+ * stamped and listed in `next`, in the order met.
+ */
+template <typename OnCell>
+void GrowRing(const MeshView& mesh, const CellsAroundPoints& around, const std::vector<Index>& ring,
+  Index mark, std::vector<Index>& stamp, std::vector<Index>& cellStamp, std::vector<Index>& next,
+  OnCell&& onCell)
+{
+  next.clear();
+  for (Index p : ring)
+  {
+    for (Index q = around.Start[static_cast<size_t>(p)];
+         q < around.Start[static_cast<size_t>(p) + 1]; ++q)
+    {
+      const Index c = around.Cells[static_cast<size_t>(q)];
+      if (cellStamp[static_cast<size_t>(c)] == mark)
+      {
+        continue;
+      }
+      cellStamp[static_cast<size_t>(c)] = mark;
+      onCell(c);
+      ForEachFunctionPoint(mesh, c, [&](Index k) {
+        if (stamp[static_cast<size_t>(k)] != mark)
+        {
+          stamp[static_cast<size_t>(k)] = mark;
+          next.push_back(k);
+        }
+      });
+    }
+  }
+}
+
+/**
  * The simplices within FringeRootRings rings of point i (those around it,
  * then those around their corners, ...), in `cells`. The stamps mark with
  * -2 - i (StencilOf's marks are i).
@@ -158,30 +194,8 @@ void RootRingCells(const MeshView& mesh, const CellsAroundPoints& around, Index 
   stamp[static_cast<size_t>(i)] = mark;
   for (int r = 0; r < FringeRootRings && !ring.empty(); ++r)
   {
-    next.clear();
-    for (Index p : ring)
-    {
-      for (Index q = around.Start[static_cast<size_t>(p)];
-           q < around.Start[static_cast<size_t>(p) + 1]; ++q)
-      {
-        const Index c = around.Cells[static_cast<size_t>(q)];
-        if (cellStamp[static_cast<size_t>(c)] == mark)
-        {
-          continue;
-        }
-        cellStamp[static_cast<size_t>(c)] = mark;
-        cells.push_back(c);
-        // (A refined curved simplex's geometric-only corners carry no
-        // function: its parent's nodes are its points here.)
-        ForEachFunctionPoint(mesh, c, [&](Index k) {
-          if (stamp[static_cast<size_t>(k)] != mark)
-          {
-            stamp[static_cast<size_t>(k)] = mark;
-            next.push_back(k);
-          }
-        });
-      }
-    }
+    GrowRing(
+      mesh, around, ring, mark, stamp, cellStamp, next, [&](Index c) { cells.push_back(c); });
     ring.swap(next);
   }
 }
@@ -214,30 +228,12 @@ bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
   stamp[static_cast<size_t>(i)] = i;
   for (int r = 0; r < FringeSearchRings && !ring.empty(); ++r)
   {
-    next.clear();
-    for (Index p : ring)
+    GrowRing(mesh, around, ring, i, stamp, cellStamp, next, [](Index) {});
+    for (Index k : next)
     {
-      for (Index q = around.Start[static_cast<size_t>(p)];
-           q < around.Start[static_cast<size_t>(p) + 1]; ++q)
+      if (usable[static_cast<size_t>(k)])
       {
-        // (A cell met from an earlier point of the rings has its corners stamped.)
-        const Index c = around.Cells[static_cast<size_t>(q)];
-        if (cellStamp[static_cast<size_t>(c)] == i)
-        {
-          continue;
-        }
-        cellStamp[static_cast<size_t>(c)] = i;
-        ForEachFunctionPoint(mesh, c, [&](Index k) {
-          if (stamp[static_cast<size_t>(k)] != i)
-          {
-            stamp[static_cast<size_t>(k)] = i;
-            next.push_back(k);
-            if (usable[static_cast<size_t>(k)])
-            {
-              found.push_back(k);
-            }
-          }
-        });
+        found.push_back(k);
       }
     }
     // A quadratic fit where the rings so far allow one (its extrapolation
