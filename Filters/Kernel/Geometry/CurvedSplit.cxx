@@ -510,8 +510,11 @@ Index CurvedSplitter::IdOf(NodalType type, const Index* nodes, Local& p)
     {
       if (p.W[k] > 0)
       {
-        name[2 * m] = nodes[k];
-        name[2 * m + 1] = p.W[k];
+        if (m < 3) // (a point with four: inside a tetrahedron, named below as its own)
+        {
+          name[2 * m] = nodes[k];
+          name[2 * m + 1] = p.W[k];
+        }
         ++m;
       }
     }
