@@ -32,6 +32,8 @@ from vtkmodules.vtkFiltersCore import vtkCellCenters
 from mpsupport import gmshmeshes, meshes, mpi
 from mpsupport.mpi import add
 from mpsupport.fringe import fully_covered, linear, point_cells, smooth
+from mpsupport.secondorder import point_array as array
+from mpsupport.secondorder import project
 
 controller, rank, size, check = mpi.begin()
 
@@ -57,18 +59,7 @@ def with_fields(g):
 
 
 def run(filter_class, target, source, **props):
-    f = filter_class()
-    f.SetInputData(target)
-    f.SetSourceData(source)
-    f.SetCacheOperator(False)
-    for k, v in props.items():
-        getattr(f, "Set" + k)(v)
-    f.Update()
-    return f.GetOutput()
-
-
-def array(out, name):
-    return vtk_to_numpy(out.GetPointData().GetArray(name))
+    return project(target, source, filter_class, CacheOperator=False, **props)
 
 
 def interior_points(out):
