@@ -125,8 +125,13 @@ enum class MassType
    * covered part, a mean of the source field on B_m's support, and the
    * node values u = C b. Constants stay exact, the integral is conserved,
    * and the whole field (not only its nodes) lies within the range of the
-   * b_m. Refused (Apply's Ok false) on a target with cells that have no
-   * Bernstein form (Quad8, Hexa20, Wedge15, Pyramid13).
+   * b_m. On Quad8, Hexa20, Wedge15 and Pyramid13 the form is signed
+   * (BernsteinForm.h): b_m = int Psi_m u_s / int Psi_m keeps constants
+   * and the integral but is no mean, so the b_m are then clipped to their
+   * rows' bounds as ApplyOptions::Bounded does (needs M_ts; a distributed
+   * Apply sets Bounded on every part when any part's form is signed): the
+   * nodes lie within the bounds, the field between them need not.
+   * Refused (Apply's Ok false) on a target with no form (BernsteinForm::Covers).
    */
   Lumped = 1
 };
@@ -174,7 +179,9 @@ struct ApplyOptions
    * its nodes included, and its integral is kept. With Lumped the
    * coefficients, means of the source field, are clipped alike (a
    * second-order source's field may pass its node values between them).
-   * Refused where the target has no Bernstein form.
+   * On a signed form (Quad8, Hexa20, Wedge15, Pyramid13) the nodes lie
+   * within the bounds and the integral is kept, the field between the
+   * nodes is not bounded. Refused where the target has no form.
    */
   bool Bounded = false;
   SolveOptions Solve;
