@@ -16,8 +16,9 @@
 //  - Lumped and bounded onto quad8 squares, affine (VTK's functions) and
 //    jittered (the quad9 space with a hidden centre), in their signed
 //    form: constants exact, the integral kept, and every node within the
-//    source's range (a positive field positive) without asking for bounds;
-//    refused on a mesh mixing hex20's edge share with tri6's.
+//    source's range (a positive field positive) without asking for bounds,
+//    also where the target reaches past the source; refused on a mesh
+//    mixing hex20's edge share with tri6's.
 #include "Geometry/NodalShapes.h"
 #include "Search/CandidateLocator.h"
 #include "Transfer/BernsteinForm.h"
@@ -374,6 +375,42 @@ TEST(BernsteinForm, LumpedOnSerendipityTargets)
     const std::vector<double> used = Used(target, weights);
     EXPECT_LT(*std::min_element(nodal.begin(), nodal.end()), 0.0);
     EXPECT_GT(*std::min_element(used.begin(), used.end()), 0.0);
+  }
+}
+
+// A quad8 target reaching past the source: functions covered in part;
+// every valid node still keeps a constant and stays within the source's
+// range. (Their functions being non-negative on these nearly affine
+// cells, none weighs zero or less here.)
+TEST(BernsteinForm, LumpedOnSerendipityCoveredInPart)
+{
+  NodalMesh target = Quads8(5, 0.2, 34);
+  for (size_t i = 0; i < target.Points.size(); i += 3)
+  {
+    target.Points[i] = 0.5 + 1.3 * (target.Points[i] - 0.5);
+    target.Points[i + 1] = 0.5 + 1.3 * (target.Points[i + 1] - 0.5);
+  }
+  NodalMesh source = Square(6, 0.2, 35);
+  const double fill = -1.0;
+  Lumped constant(target, source, Constant);
+  int valid = 0;
+  for (double v : constant.Target)
+  {
+    valid += v != fill;
+    EXPECT_TRUE(v == fill || std::abs(v - 3.5) <= 3.5e-12) << v;
+  }
+  EXPECT_GT(valid, 0);
+  for (bool bounded : { false, true })
+  {
+    for (auto f : { Bump, Step })
+    {
+      Lumped l(target, source, f, bounded);
+      for (double v : l.Target)
+      {
+        EXPECT_TRUE(v == fill || (v >= -1e-14 && v <= 1 + 1e-14)) << v;
+        EXPECT_TRUE(f != Bump || v == fill || v > 0.0) << v;
+      }
+    }
   }
 }
 
