@@ -27,15 +27,16 @@ mixed Input of linear and quadratic triangles:
        the quad9 space with a hidden centre; hex20 and wedge15 on straight
        structured cells, VTK's own functions; hex20 warped into curved
        cells) and pyramid13 (a cube of pyramids about its subcubes'
-       centres), in their signed form (BernsteinForm.h): Lumped alone,
-       PreserveBounds alone and both: no warning, a constant stays constant
-       (1e-12), the integral kept (1e-11), every node within the Source's
-       range (Lumped alone too: the signed form's coefficients are always
-       clipped; a positive field positive), and on the affine hex20 and
-       wedge15 the field inside the cells too (sampled with VTK's shape
-       functions); and the node error of a smooth
-       field lumped against consistent and against lumped on the linear
-       cells of its corners (printed; the lumped one between them).
+       centres), in their form (BernsteinForm.h: 7/16 of a mid-edge node
+       on each corner, 1/4 on the pyramid): Lumped alone, PreserveBounds
+       alone and both: no warning, a constant stays constant (1e-12), the
+       integral kept (1e-11), every node within the Source's range
+       (Lumped alone too: these forms' coefficients are always clipped; a
+       positive field positive), and on the affine hex20 and wedge15 (whose
+       form's functions are non-negative) the field inside the cells too
+       (sampled with VTK's shape functions); and the node error of a
+       smooth field lumped against consistent and against lumped on the
+       linear cells of its corners (printed; the lumped one between them).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
