@@ -70,34 +70,34 @@ Verdict ApplyGroups(LeafContext& ctx, const OperatorSet& ops, Transfer t,
 }
 
 /**
- * Point data on second-order Input cells without a Bernstein form (on any
- * process: the choice is the same everywhere, the solves being
- * collective): the consistent mass and no node bounds, each said once.
- * Serendipity and pyramid cells' own quadratic functions integrate to
- * zero or less at corners and have no non-negative basis of their own, so
- * no lumped mass is a mean there and the bounds' assured sum has no
- * positive weights. (Other second-order cells are lumped and bounded in
- * their Bernstein form: MassType::Lumped.)
+ * Point data on second-order Input cells without a form (on any process:
+ * the choice is the same everywhere, the solves being collective): the
+ * consistent mass and no node bounds, each said once. The 8-node
+ * quadrilaterals, 20-node hexahedra and 15-node wedges weigh their
+ * mid-edge nodes' corners by 7/16 in their form, the other second-order
+ * cells by 1/4 (BernsteinForm::EdgeShare): a shared edge would have two
+ * rows. (Every other second-order Input is lumped and bounded in its
+ * form: MassType::Lumped.)
  */
 void SecondOrderSolve(LeafContext& ctx, mp::ApplyOptions& apply)
 {
   const std::string cells = ctx.Role +
-    " has serendipity or pyramid cells (quadratic quadrilaterals, hexahedra, wedges or "
-    "pyramids: 8, 20, 15 or 13 nodes), whose own functions ";
+    " mixes serendipity cells (8-node quadrilaterals, 20-node hexahedra or 15-node wedges) with "
+    "other second-order cells, whose forms ";
   if (apply.Mass == mp::MassType::Lumped)
   {
     apply.Mass = mp::MassType::Consistent;
     ctx.Say.WarnOnce("lumped/" + ctx.Role,
       "MassMatrix is Lumped, but " + cells +
-        "have no positive lumped mass (a corner's integral is zero or less): its point data is "
-        "projected with the consistent mass.");
+        "do not agree on their shared edges: its point data is projected with the consistent "
+        "mass.");
   }
   if (apply.Bounded)
   {
     apply.Bounded = false;
     ctx.Say.WarnOnce("bounds/" + ctx.Role,
       "PreserveBounds: " + cells +
-        "are not bounded by their nodes' values: its point data is projected without bounds.");
+        "do not agree on their shared edges: its point data is projected without bounds.");
   }
 }
 
@@ -116,6 +116,11 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   if (ctx.Shape.SecondOrder && !ctx.Shape.Bernstein && TargetSpaceOf(t) == mp::SpaceType::P1)
   {
     SecondOrderSolve(ctx, apply);
+  }
+  else if (ctx.Shape.Signed && apply.Mass == mp::MassType::Lumped &&
+    TargetSpaceOf(t) == mp::SpaceType::P1)
+  {
+    apply.Bounded = true; // (a signed form's coefficients, clipped on every process alike)
   }
   apply.Solve.MaxIterations = ctx.Options.MaximumIterations;
   apply.FringeHooks =
@@ -218,9 +223,17 @@ void ShareSystems(
   {
     // Whether every process's second-order Input cells have a Bernstein
     // form (the lumped mass and the bounds of their point data).
-    bool bernstein = mp::BernsteinForm::Covers(ctx.Target.View());
+    // (and take one edge share: a shared edge's row is the same on both
+    // sides).
+    const mp::MeshView& view = ctx.Target.View();
+    bool bernstein = mp::BernsteinForm::Covers(view);
+    const int shares = mp::BernsteinForm::EdgeShares(view);
+    bool noQuarter = !(shares & mp::BernsteinForm::QuarterShare);
+    bool noSixteenths = !(shares & mp::BernsteinForm::SevenSixteenthsShare);
     ctx.Processes.Agree(Verdict(), &bernstein);
-    ctx.Shape.Bernstein = bernstein;
+    ctx.Processes.Agree(Verdict(), &noQuarter);
+    ctx.Processes.Agree(Verdict(), &noSixteenths);
+    ctx.Shape.Bernstein = bernstein && (noQuarter || noSixteenths);
   }
   const SimplexMesh& target = ctx.Target;
   hooks[0] = ctx.Processes.Hooks(ctx.Shared, true,

@@ -44,6 +44,11 @@ struct LeafShape
   /// Transfer/BernsteinForm.h), in which point data is lumped and bounded:
   /// decided alike everywhere by ShareSystems (Apply.h).
   bool Bernstein = false;
+  /// ... and some process's have a signed form (serendipity cells,
+  /// pyramids: BernsteinForm.h), whose lumped point data is always
+  /// bounded: decided alike everywhere by PlanOperators (OperatorBuild.h)
+  /// when MassMatrix is Lumped.
+  bool Signed = false;
 };
 
 /**

@@ -136,8 +136,68 @@ struct TypeTable
   int Dimension[MaxNodalNodes] = {};
 };
 
+/// The corners of each mid-edge node of the serendipity types and the
+/// pyramid (VTK's order: the edges after the corners).
+struct EdgeTable
+{
+  int Corners = 0;
+  int Edges = 0;
+  const int (*Ends)[2] = nullptr;
+};
+
+const int QuadEdges[4][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 } };
+const int HexaEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 }, { 6, 7 },
+  { 7, 4 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+const int WedgeEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 },
+  { 1, 4 }, { 2, 5 } };
+const int PyramidEdges[8][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 0, 4 }, { 1, 4 },
+  { 2, 4 }, { 3, 4 } };
+
+EdgeTable EdgesOf(NodalType type)
+{
+  switch (type)
+  {
+    case NodalType::Quad8:
+      return { 4, 4, QuadEdges };
+    case NodalType::Hexa20:
+      return { 8, 12, HexaEdges };
+    case NodalType::Wedge15:
+      return { 6, 9, WedgeEdges };
+    default:
+      return { 5, 8, PyramidEdges };
+  }
+}
+
+/**
+ * C of a serendipity type or the pyramid: a corner's row is itself, a
+ * mid-edge node's s (b_a + b_b) + (1 - 2 s) b_e, s its EdgeShare.
+ */
+void MakeSerendipityTable(NodalType type, TypeTable& table)
+{
+  const EdgeTable edges = EdgesOf(type);
+  const double share = BernsteinForm::EdgeShare(type);
+  table.Count = edges.Corners + edges.Edges;
+  for (int a = 0; a < edges.Corners; ++a)
+  {
+    table.At[a][a] = 1.0;
+  }
+  for (int e = 0; e < edges.Edges; ++e)
+  {
+    const int n = edges.Corners + e;
+    table.At[n][edges.Ends[e][0]] = share;
+    table.At[n][edges.Ends[e][1]] = share;
+    table.At[n][n] = 1.0 - 2.0 * share;
+    table.Dimension[n] = 1;
+  }
+}
+
 void MakeTable(NodalType type, TypeTable& table)
 {
+  if (BernsteinForm::Signed(type))
+  {
+    MakeSerendipityTable(type, table);
+    return;
+  }
   double xi[3 * MaxNodalNodes];
   NodalReferenceNodes(type, xi);
   table.Count = NodalNodeCount(type);
@@ -190,10 +250,50 @@ bool BernsteinForm::Supports(NodalType type)
     case NodalType::Quad9:
     case NodalType::Hexa27:
     case NodalType::Wedge18:
+    case NodalType::Quad8:
+    case NodalType::Hexa20:
+    case NodalType::Wedge15:
+    case NodalType::Pyramid13:
       return true;
     default:
       return false;
   }
+}
+
+bool BernsteinForm::Signed(NodalType type)
+{
+  switch (type)
+  {
+    case NodalType::Quad8:
+    case NodalType::Hexa20:
+    case NodalType::Wedge15:
+    case NodalType::Pyramid13:
+      return true;
+    default:
+      return false;
+  }
+}
+
+double BernsteinForm::EdgeShare(NodalType type)
+{
+  return type == NodalType::Quad8 || type == NodalType::Hexa20 || type == NodalType::Wedge15
+    ? 0.4375
+    : 0.25;
+}
+
+int BernsteinForm::EdgeShares(const MeshView& mesh)
+{
+  int shares = 0;
+  const Index parents = mesh.Nodal ? mesh.Parents() : 0;
+  for (Index p = 0; p < parents; ++p)
+  {
+    const NodalType type = mesh.Nodal->Type[p];
+    if (type != NodalType::None)
+    {
+      shares |= EdgeShare(type) == 0.25 ? QuarterShare : SevenSixteenthsShare;
+    }
+  }
+  return shares;
 }
 
 bool BernsteinForm::Covers(const MeshView& mesh)
@@ -210,11 +310,40 @@ bool BernsteinForm::Covers(const MeshView& mesh)
       return false;
     }
   }
-  return true;
+  return EdgeShares(mesh) != (QuarterShare | SevenSixteenthsShare);
+}
+
+bool BernsteinForm::HasSigned(const MeshView& mesh)
+{
+  const Index parents = mesh.Nodal ? mesh.Parents() : 0;
+  for (Index p = 0; p < parents; ++p)
+  {
+    if (Signed(mesh.Nodal->Type[p]))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 void BernsteinForm::Values(NodalType type, const double* xi, double* B)
 {
+  if (Signed(type))
+  {
+    TypeTable table;
+    MakeSerendipityTable(type, table);
+    double N[MaxNodalNodes];
+    NodalValues(type, xi, N);
+    for (int m = 0; m < table.Count; ++m)
+    {
+      B[m] = 0.0;
+      for (int n = 0; n < table.Count; ++n)
+      {
+        B[m] += table.At[n][m] * N[n];
+      }
+    }
+    return;
+  }
   double nodes[3 * MaxNodalNodes];
   NodalReferenceNodes(type, nodes);
   const int count = NodalNodeCount(type);
@@ -228,6 +357,7 @@ void BernsteinForm::Values(NodalType type, const double* xi, double* B)
 void BernsteinForm::Build(const MeshView& mesh)
 {
   this->Built = true;
+  this->AnySigned = HasSigned(mesh);
   const Index n = mesh.NumberOfPoints;
   // Each node's row from the first parent that has it (neighbours agree on
   // their common faces, so any would do).
@@ -340,7 +470,7 @@ void BernsteinForm::ToNodes(
     {
       used += usable[static_cast<size_t>(this->C.ColumnIndex[begin + j])] != 0;
     }
-    double total = 1.0; // (every row's weights sum to 1 exactly: powers of 2)
+    double total = 1.0; // (every row's weights sum to 1 exactly: sixteenths)
     if (used < count)
     {
       int w = 0;

@@ -28,10 +28,31 @@
  * of linear cells keep their P1 functions (the degree-1 Bernstein ones):
  * their rows are the identity's.
  *
- * Quad8, Hexa20, Wedge15 and Pyramid13 have no such basis (the
- * serendipity spaces hold no non-negative basis with one function per
- * node that sums to 1): a mesh with any of them has no Bernstein form
- * (Covers).
+ * Quad8, Hexa20, Wedge15 and Pyramid13 have no Bernstein basis; their
+ * form takes the same kind of C, a corner's row itself and a mid-edge
+ * node's s (b_a + b_b) + (1 - 2 s) b_e (EdgeShare), and the functions
+ * Psi_m = sum_n C_nm phi_n of their own functions phi (VTK's on affine
+ * cells; the complete sibling's with hidden nodes elsewhere,
+ * Geometry/HiddenNodes.h), which sum to 1 (C's rows do). With s = 1/4
+ * (the edge's quadratic Bernstein relation) a corner's Psi dips below
+ * zero; with s = 7/16 those of Quad8, Hexa20 and Wedge15 are
+ * non-negative on affine cells (in reference coordinates a corner's is
+ * the linear cell's corner function times 1 - (x + y) / 4, 1 - (x + y +
+ * z) / 4 or (3 + lambda - z) / 4: s >= 3/8, 5/12 and 3/8 would do), and
+ * integrate to 5/24 and
+ * 1/24 of an affine Quad8 at corners and edges, 3/32 and 1/48 of a
+ * Hexa20, 19/144 and 1/48 (1/36 on the vertical edges) of a Wedge15. On
+ * other cells the hidden nodes' weights move them a little and they may
+ * dip below zero; VTK's Pyramid13 would need s near 0.45 and keeps 1/4
+ * (its Psi integrate to 1/30 and 1/10 of the cell at base corners and
+ * apex, 7/60 and 3/40 at base and slanted edges, and dip below zero), so
+ * that it shares its edges with tetrahedra. These four types' forms are
+ * Signed: a lumped coefficient need not be a mean, and an Apply clips
+ * them (MassType::Lumped). Node values, convex combinations of the
+ * coefficients, keep their bounds; the field between them does where the
+ * Psi are non-negative. The two shares on one edge would make its row
+ * depend on which cell read it: a mesh whose second-order cells take
+ * both has no form (EdgeShares, Covers).
  *
  * The sums of rows are taken in an order that depends on the values only
  * (sorted terms), so that processes that share a node compute it alike
@@ -51,19 +72,40 @@ namespace mp
 class BernsteinForm
 {
 public:
-  /// Whether cells of `type` have a Bernstein basis here (Edge3,
-  /// Triangle6, Tetra10, Quad9, Hexa27, Wedge18; None: P1, itself one).
+  /// Whether cells of `type` have a form here (every nodal type: a
+  /// Bernstein basis for Edge3, Triangle6, Tetra10, Quad9, Hexa27,
+  /// Wedge18 and None, P1 itself one; a signed one for the others).
   static bool Supports(NodalType type);
-  /// Whether every parent of `mesh` is of a supported type (true without Nodal).
+  /// Whether `type`'s form may be signed (Quad8, Hexa20, Wedge15, Pyramid13).
+  static bool Signed(NodalType type);
+  /// The weight s of each corner in a mid-edge node's row (1/4, or 7/16
+  /// for Quad8, Hexa20 and Wedge15).
+  static double EdgeShare(NodalType type);
+  /// Which shares the second-order parents of `mesh` take (bits).
+  enum
+  {
+    QuarterShare = 1,
+    SevenSixteenthsShare = 2
+  };
+  static int EdgeShares(const MeshView& mesh);
+  /// Whether every parent of `mesh` is of a supported type and they take
+  /// one share (true without Nodal). A distributed mesh needs the parts to
+  /// agree on EdgeShares too: a part's edges are its neighbours'.
   static bool Covers(const MeshView& mesh);
+  /// Whether some parent of `mesh` has a signed form.
+  static bool HasSigned(const MeshView& mesh);
   /**
-   * The Bernstein functions of a cell of `type` at reference point xi,
-   * one per node in the type's node order (function m belongs to node m).
+   * The functions of a cell of `type` at reference point xi, one per node
+   * in the type's node order (function m belongs to node m): the
+   * Bernstein ones, or for a signed type sum_n C_nm N_n with the type's
+   * own functions N (those of an affine cell).
    */
   static void Values(NodalType type, const double* xi, double* B);
 
   /// C on the point functions of `mesh` (Covers(mesh) must hold).
   void Build(const MeshView& mesh);
+  /// Whether the mesh built on has a signed form (HasSigned).
+  bool IsSigned() const { return this->AnySigned; }
   /// Whether Build never ran (a mesh without second-order cells: identity).
   /// A part with no points, built, is not Empty: it takes part in the
   /// collective steps of a distributed Apply like the others.
@@ -92,6 +134,7 @@ private:
   CsrMatrix C;
   std::vector<Index> Order; ///< the nodes by the dimension of what they stand for
   bool Built = false;
+  bool AnySigned = false;
 };
 } // namespace mp
 

@@ -123,13 +123,14 @@ void RowBounds(const CsrMatrix& mixed, Index n, const double* sourceValues, int 
  * `components`): per component, every row's bounds (RowBounds) and the
  * integral wanted (sum_i over the rows `counted` of rhs_i: the integral of
  * u_s over the covered part), then ClipAndAssuredSum of the rows `clip`
- * with `weights` (complete in shared rows). Apply has checked that M_ts
- * and the hooks this needs are there.
+ * with `weights` (complete in shared rows); the rows `centred` (if given)
+ * then take the middle of their bounds. Apply has checked that M_ts and
+ * the hooks this needs are there.
  */
 void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& clip,
   const std::vector<char>& counted, const std::vector<double>& weights, Index n,
   const double* sourceValues, int components, const double* rhs, double* x,
-  const SolverHooks& hooks)
+  const SolverHooks& hooks, const std::vector<char>* centred = nullptr)
 {
   std::vector<double> low(static_cast<size_t>(n)), high(static_cast<size_t>(n));
   for (int k = 0; k < components; ++k)
@@ -148,6 +149,13 @@ void ClipToLocalBounds(const CsrMatrix& mixed, const std::vector<char>& clip,
     }
     RowBounds(mixed, n, sourceValues, components, k, hooks, low, high);
     ClipAndAssuredSum(x, components, k, weights, clip, low, high, total, hooks);
+    for (Index i = 0; centred && i < n; ++i)
+    {
+      if ((*centred)[i])
+      {
+        x[i * components + k] = 0.5 * (low[i] + high[i]);
+      }
+    }
   }
 }
 } // namespace
@@ -345,8 +353,18 @@ bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const Project
   }
   LargeVector<double> b(static_cast<size_t>(n) * components);
   this->Bernstein.FromNodes(targetValues, components, b.data());
-  ClipToLocalBounds(this->MixedMass, this->Valid, *system.Valid, weights, n, sourceValues,
-    components, rhs, b.data(), hooks);
+  // (A signed function covered in part may weigh zero or less: its
+  // coefficient the middle of its bounds, as LumpBernstein does.)
+  std::vector<char> clip(this->Valid), orphans(static_cast<size_t>(n), 0);
+  bool anyOrphan = false;
+  for (Index m = 0; this->Bernstein.IsSigned() && m < n; ++m)
+  {
+    orphans[m] = clip[m] && !(weights[m] > 0.0);
+    clip[m] = clip[m] && !orphans[m];
+    anyOrphan = anyOrphan || orphans[m];
+  }
+  ClipToLocalBounds(this->MixedMass, clip, *system.Valid, weights, n, sourceValues, components, rhs,
+    b.data(), hooks, anyOrphan ? &orphans : nullptr);
   this->Bernstein.ToNodes(b.data(), components, targetValues);
   return true;
 }
@@ -373,17 +391,32 @@ bool MortarOperator::LumpBernstein(const ApplyOptions& options, const double* so
       b[m * components + k] = usable[m] ? rhs[m * components + k] / integrals[m] : 0.0;
     }
   }
-  if (options.Bounded)
+  if (options.Bounded || this->Bernstein.IsSigned())
   {
     // Means of the Source field, within the bounds of its node values when
     // its functions are non-negative; a second-order Source's field may
-    // leave them between its nodes.
+    // leave them between its nodes. A signed form's (serendipity cells,
+    // pyramids) are no means: always clipped.
     if (!this->HasMixedMass() || (hooks.Exchange && !hooks.ExchangeMinimum))
     {
       return false;
     }
+    // A signed function covered in part may integrate to zero or less
+    // there: a valid node's coefficient all the same, the middle of its
+    // bounds (its share of the integral is then not the Source's).
+    std::vector<char> orphans(static_cast<size_t>(n), 0);
+    bool anyOrphan = false;
+    for (Index m = 0; m < n; ++m)
+    {
+      orphans[m] = this->Bernstein.IsSigned() && this->Valid[m] && !usable[m];
+      anyOrphan = anyOrphan || orphans[m];
+    }
     ClipToLocalBounds(this->MixedMass, usable, usable, integrals, n, sourceValues, components, rhs,
-      b.data(), hooks);
+      b.data(), hooks, anyOrphan ? &orphans : nullptr);
+    for (Index m = 0; anyOrphan && m < n; ++m)
+    {
+      usable[m] = usable[m] || orphans[m];
+    }
   }
   this->Bernstein.ToNodes(b.data(), components, usable, targetValues);
   return true;

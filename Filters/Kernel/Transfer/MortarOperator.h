@@ -125,8 +125,15 @@ enum class MassType
    * covered part, a mean of the source field on B_m's support, and the
    * node values u = C b. Constants stay exact, the integral is conserved,
    * and the whole field (not only its nodes) lies within the range of the
-   * b_m. Refused (Apply's Ok false) on a target with cells that have no
-   * Bernstein form (Quad8, Hexa20, Wedge15, Pyramid13).
+   * b_m. On Quad8, Hexa20, Wedge15 and Pyramid13 the form may be signed
+   * (BernsteinForm.h: non-negative on affine Quad8, Hexa20, Wedge15, not
+   * on pyramids nor always elsewhere): b_m = int Psi_m u_s / int Psi_m
+   * keeps constants and the integral but need not be a mean, so the b_m
+   * are then always clipped to their rows' bounds as ApplyOptions::Bounded
+   * does (needs M_ts; a distributed Apply sets Bounded on every part when
+   * any part has such cells): the nodes lie within the bounds, the field
+   * between them where the Psi_m are non-negative.
+   * Refused (Apply's Ok false) on a target with no form (BernsteinForm::Covers).
    */
   Lumped = 1
 };
@@ -174,7 +181,10 @@ struct ApplyOptions
    * its nodes included, and its integral is kept. With Lumped the
    * coefficients, means of the source field, are clipped alike (a
    * second-order source's field may pass its node values between them).
-   * Refused where the target has no Bernstein form.
+   * On Quad8, Hexa20, Wedge15 and Pyramid13 the nodes lie within the
+   * bounds and the integral is kept, the field between the nodes where
+   * the form's functions are non-negative (affine Quad8, Hexa20, Wedge15).
+   * Refused where the target has no form.
    */
   bool Bounded = false;
   SolveOptions Solve;

@@ -23,15 +23,29 @@ mixed Input of linear and quadratic triangles:
        cells on the same corners and onto the split of the cells on all
        their nodes (printed; the lumped second-order error at most that of
        the linear cells on the same corners);
-    d. serendipity cells (quad8, hex20) keep the consistent mass and no
-       bounds, with one warning each.
+    d. serendipity cells (quad8 recombined by Gmsh: not parallelograms,
+       the quad9 space with a hidden centre; hex20 and wedge15 on straight
+       structured cells, VTK's own functions; hex20 warped into curved
+       cells) and pyramid13 (a cube of pyramids about its subcubes'
+       centres), in their form (BernsteinForm.h: 7/16 of a mid-edge node
+       on each corner, 1/4 on the pyramid): Lumped alone, PreserveBounds
+       alone and both: no warning, a constant stays constant (1e-12), the
+       integral kept (1e-11), every node within the Source's range
+       (Lumped alone too: these forms' coefficients are always clipped; a
+       positive field positive), and on the affine hex20 and wedge15 (whose
+       form's functions are non-negative) the field inside the cells too
+       (sampled with VTK's shape functions); and the node error of a
+       smooth field lumped against consistent and against lumped on the
+       linear cells of its corners (printed; the lumped one between them).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import (VTK_HEXAHEDRON, VTK_QUAD, VTK_QUADRATIC_TETRA, VTK_QUADRATIC_TRIANGLE,
                                            VTK_TETRA, VTK_TRIANGLE, VTK_TRIQUADRATIC_HEXAHEDRON,
-                                           VTK_BIQUADRATIC_QUAD, VTK_BIQUADRATIC_QUADRATIC_WEDGE,
+                                           VTK_BIQUADRATIC_QUAD, VTK_BIQUADRATIC_QUADRATIC_WEDGE, VTK_QUADRATIC_PYRAMID,
+                                           VTK_QUADRATIC_QUAD, VTK_QUADRATIC_HEXAHEDRON, VTK_QUADRATIC_WEDGE,
+                                           VTK_PYRAMID, VTK_WEDGE,
                                            vtkUnstructuredGrid)
 
 from mpsupport import gmshmeshes
@@ -57,7 +71,9 @@ def rebuilt(g, cell=lambda c, t, ids: (t, ids)):
 
 
 LINEAR_OF = {VTK_QUADRATIC_TRIANGLE: (VTK_TRIANGLE, 3), VTK_QUADRATIC_TETRA: (VTK_TETRA, 4),
-             VTK_BIQUADRATIC_QUAD: (VTK_QUAD, 4), VTK_TRIQUADRATIC_HEXAHEDRON: (VTK_HEXAHEDRON, 8)}
+             VTK_BIQUADRATIC_QUAD: (VTK_QUAD, 4), VTK_TRIQUADRATIC_HEXAHEDRON: (VTK_HEXAHEDRON, 8),
+             VTK_QUADRATIC_QUAD: (VTK_QUAD, 4), VTK_QUADRATIC_HEXAHEDRON: (VTK_HEXAHEDRON, 8),
+             VTK_QUADRATIC_WEDGE: (VTK_WEDGE, 6), VTK_QUADRATIC_PYRAMID: (VTK_PYRAMID, 5)}
 
 
 def corners_only(g, which=lambda c: True):
@@ -252,16 +268,106 @@ for family, t, target in (("square", "tri6", square["tri6"]), ("square", "quad9"
     check(errors["consistent"] < errors["lumped"] <= errors["linear lumped"],
           "%s: lumped error between the consistent one and the linear cells' lumped one (%r)" % (t, errors))
 
-# d. Serendipity cells: the consistent mass and no bounds, one warning each.
-for t, target in (("quad8", gmshmeshes.second_order("square", 0.31, True, True)),
-                  ("hex20", gmshmeshes.second_order("hexes", 0.5, incomplete=True))):
-    source = sources["square" if t == "quad8" else "cube"]["tri6" if t == "quad8" else "tet10"]
-    out, warnings = project(target, source, lumped=True, bounded=True)
-    consistent, _ = project(target, source)
-    same = np.array_equal(values(out, "Smooth"), values(consistent, "Smooth"))
-    check(same, "%s lumped and bounded: the consistent projection" % t)
-    check(sum("MassMatrix is Lumped" in w and "serendipity" in w for w in warnings) == 1
-          and sum("PreserveBounds" in w and "serendipity" in w for w in warnings) == 1,
-          "%s: one warning for each (%r)" % (t, warnings))
+# d. Serendipity cells and pyramids: lumped and bounded in their signed form.
+def warped(g):
+    """g with its points moved inside the unit cube (the boundary kept): curved cells."""
+    g = rebuilt(g)
+    x = points_of(g)
+    bubble = np.sin(np.pi * x[:, 0]) * np.sin(np.pi * x[:, 1]) * np.sin(np.pi * x[:, 2])
+    moved = x + 0.06 * bubble[:, None] * np.array([1.0, -0.7, 0.5])
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(moved), deep=True))
+    g.SetPoints(points)
+    return g
+
+
+def pyramids(k):
+    """The unit cube in k^3 subcubes, each in the 6 pyramid13 on its faces about its centre."""
+    ids = {}
+    coords = []
+
+    def point(p):
+        key = tuple(np.round(np.asarray(p) * 4 * k).astype(int))
+        if key not in ids:
+            ids[key] = len(coords)
+            coords.append(np.asarray(p, float))
+        return ids[key]
+
+    cells = []
+    faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    for i in range(k):
+        for j in range(k):
+            for m in range(k):
+                o = np.array([i, j, m], float) / k
+                corner = [o + np.array([a, b, c], float) / k for a in (0, 1) for b in (0, 1) for c in (0, 1)]
+                centre = o + 0.5 / k
+                for f in faces:
+                    base = [corner[v] for v in f]
+                    if np.dot(np.cross(base[1] - base[0], base[3] - base[0]), centre - base[0]) < 0:
+                        base = base[::-1]
+                    nodes = base + [centre]
+                    edges = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 4), (2, 4), (3, 4)]
+                    cells.append([point(p) for p in nodes] + [point(0.5 * (nodes[a] + nodes[b])) for a, b in edges])
+    g = vtkUnstructuredGrid()
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(coords), deep=True))
+    g.SetPoints(points)
+    for c in cells:
+        g.InsertNextCell(VTK_QUADRATIC_PYRAMID, 13, c)
+    return g
+
+
+signed = {"quad8": gmshmeshes.second_order("square", 0.31, True, True),
+          "hex20": gmshmeshes.second_order("hexes", 0.5, incomplete=True),
+          "hex20 warped": warped(gmshmeshes.second_order("hexes", 0.34, incomplete=True)),
+          "wedge15": gmshmeshes.second_order("prisms", 0.5, incomplete=True),
+          "pyramid13": pyramids(2)}
+for t, target in signed.items():
+    family = "square" if t == "quad8" else "cube"
+    for s, source in sources[family].items():
+        pair = "%s -> %s" % (s, t)
+        for how, lumped, bounded in (("lumped", True, False), ("bounds", False, True),
+                                     ("bounds lumped", True, True)):
+            out, warnings = project(target, source, lumped=lumped, bounded=bounded)
+            valid = valid_of(out)
+            check(np.array_equal(valid, used_points(target)),
+                  "%s %s: every node of a cell valid (%d of %d)" % (pair, how, valid.sum(), len(valid)))
+            off = np.max(np.abs(values(out, "Constant")[valid] - 7.0)) / 7.0
+            check(off <= 1e-12, "%s %s: a constant stays constant (%.2g)" % (pair, how, off))
+            for name in ("Step", "Bump", "Smooth"):
+                low, high = values(source, name).min(), values(source, name).max()
+                u = values(out, name)[valid]
+                slack = 1e-13 * (high - low)
+                check(u.min() >= low - slack and u.max() <= high + slack,
+                      "%s %s: every node of %s within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
+                      % (pair, how, name, u.min(), u.max(), low, high))
+                got, wanted = integrals(out, name)
+                check(abs(got - wanted) <= 1e-11 * max(1.0, abs(wanted)),
+                      "%s %s: the integral of %s kept (%.17g, Source %.17g)" % (pair, how, name, got, wanted))
+            bump = values(out, "Bump")[valid]
+            check(bump.min() > 0.0, "%s %s: a positive field stays positive (%.3g)" % (pair, how, bump.min()))
+            if t in ("hex20", "wedge15"):
+                # (affine cells: their form's functions are non-negative)
+                inside = cell_samples(out, "Step")
+                check(inside.size and inside.min() >= -1e-13 and inside.max() <= 1 + 1e-13,
+                      "%s %s: the field inside the cells within [0, 1] (%.3g, %.3g)"
+                      % (pair, how, inside.min(initial=0), inside.max(initial=1)))
+            check(not warnings, "%s %s: no warning (%r)" % (pair, how, warnings))
+    # The node error of a smooth field: lumped against consistent and
+    # against lumped on the linear cells of its corners.
+    source = sources[family]["tri6" if family == "square" else "tet10"]
+    x = points_of(target)
+    exact = smooth(x)
+    errors = {}
+    for how, mesh, lumped in (("lumped", target, True), ("consistent", target, False),
+                              ("linear lumped", corners_only(target), True)):
+        out, _ = project(mesh, source, lumped=lumped)
+        valid = valid_of(out) & used_points(mesh)
+        errors[how] = np.max(np.abs(values(out, "Smooth") - exact)[valid]) / np.ptp(exact)
+    print("%s <- %s, smooth field, largest node error / range: lumped %.3g, consistent %.3g, lumped on the "
+          "linear cells of its corners %.3g" % (t, "tri6" if family == "square" else "tet10", errors["lumped"],
+                                                errors["consistent"], errors["linear lumped"]))
+    check(errors["consistent"] < errors["lumped"] <= errors["linear lumped"],
+          "%s: lumped error between the consistent one and the linear cells' lumped one (%r)" % (t, errors))
 
 finish()

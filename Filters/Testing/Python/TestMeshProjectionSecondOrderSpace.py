@@ -16,10 +16,12 @@ of the unit disk (curved: its boundary mid nodes on the circle):
        TargetIntegral_ and SourceIntegral_;
     c. on curved disks a linear field is exact at every node (1e-9 of its
        range) and constant cell data stays constant, whole and in part;
-    d. MassMatrix Lumped on a serendipity Input (hex20), which has no
-       Bernstein form: one warning, and the consistent projection (the
-       quadratic field still reproduced; the other second-order Inputs are
-       lumped: TestMeshProjectionSecondOrderLumped.py);
+    d. MassMatrix Lumped on an Input mixing serendipity cells (hex20) with
+       other second-order cells (tet10 beside them), which has no form
+       (their mid-edge nodes' shares differ: Transfer/BernsteinForm.h): one
+       warning, and the consistent projection (the quadratic field still
+       reproduced; the other second-order Inputs are lumped:
+       TestMeshProjectionSecondOrderLumped.py);
        integer point labels onto a second-order Input: each node takes the
        label of the region it lies in, fractions within [0, 1].
 """
@@ -174,16 +176,27 @@ for s in disk:
             check(covered.any() and np.max(np.abs(constant - 7.0)) <= 1e-12,
                   "disk %s -> %s (%s): constant cell data stays 7" % (s, t, how))
 
-# d. Lumped mass on serendipity cells falls back to the consistent one,
-# with a warning; point labels (a region's id) onto second-order nodes.
+# d. Lumped mass on serendipity cells mixed with others falls back to the
+# consistent one, with a warning; point labels (a region's id) onto
+# second-order nodes.
+def beside(a, b):
+    """a and b moved by 1 along x, in one grid."""
+    from vtkmodules.vtkFiltersCore import vtkAppendFilter
+    append = vtkAppendFilter()
+    append.AddInputData(a)
+    append.AddInputData(gmshmeshes.moved(b, translate=(1.0, 0.0, 0.0)))
+    append.Update()
+    return append.GetOutput()
+
+
 f, warnings = observed_filter("WarningEvent")
-f.SetInputData(cube["hex20"])
-f.SetSourceData(with_fields(cube["tet10"]))
+f.SetInputData(beside(cube["hex20"], cube["tet10"]))
+f.SetSourceData(with_fields(beside(cube["tet10"], cube["tet10"])))
 f.SetMassMatrix(1)
 f.Update()
 error, valid = nodal_error(f.GetOutput(), "Quadratic", quadratic)
-check(valid.all() and error <= 1e-9, "lumped on hex20: the consistent projection (%.2g)" % error)
-check(sum("serendipity" in w for w in warnings) == 1, "lumped on hex20: one warning (%r)" % warnings)
+check(valid.all() and error <= 1e-9, "lumped on hex20 + tet10: the consistent projection (%.2g)" % error)
+check(sum("serendipity" in w for w in warnings) == 1, "lumped on hex20 + tet10: one warning (%r)" % warnings)
 source = with_fields(square["tri6"])
 
 x = points_of(source)

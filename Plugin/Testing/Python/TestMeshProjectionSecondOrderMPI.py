@@ -19,6 +19,12 @@ points (by their original ids):
    (a region id given at the Source's nodes: the lumped, bounded
    Bernstein weights) are the serial ones; the same with the whole Input
    on the first process (the others' parts empty);
+ - a mixed Input of linear hexahedra (the first part) and hex20 (signed
+   form: BernsteinForm.h, its lumped coefficients always clipped, so
+   every process clips alike, the first with no signed cell), with
+   MassMatrix Lumped alone and with PreserveBounds: the serial values
+   (1e-10 of the range), within the Source's range, the serial integral
+   (1e-12);
  - CurvedCellSubdivision 2 on several processes: level 1's values and one
    warning on every process, also with only the Source second-order.
 """
@@ -43,8 +49,8 @@ def linear(x):
     return 1.0 + 2.0 * x[:, 0] - 3.0 * x[:, 1] + 0.5 * x[:, 2]
 
 
-def run(filter_class, target, source, lumped_bounded=False, bounded=False):
-    options = dict(MassMatrix=1) if lumped_bounded else {}
+def run(filter_class, target, source, lumped_bounded=False, bounded=False, lumped=False):
+    options = dict(MassMatrix=1) if lumped_bounded or lumped else {}
     if lumped_bounded or bounded:
         options["PreserveBounds"] = True
     return project(target, source, filter_class, CacheOperator=False, **options)
@@ -165,6 +171,55 @@ for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounde
               "mixed Input on one process, %s: the serial values (%.2g off)" % (how, off))
     else:
         check(out.GetNumberOfPoints() == 0, "mixed Input on one process, %s: an empty part ends empty" % how)
+
+# Lumped onto a mixed Input of linear hexahedra (the first part) and
+# hex20, inside a tet10 Source that covers it: every process clips the
+# signed form's coefficients, the first with no hex20 too.
+from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON  # noqa: E402
+hex_input = meshes.extract(hexes, np.ones(hexes.GetNumberOfCells(), bool))
+hex_input.GetPointData().AddArray(numpy_to_vtkIdTypeArray(
+    np.arange(hex_input.GetNumberOfPoints(), dtype=np.int64), deep=True))
+hex_input.GetPointData().GetArray(0).SetName("origId")
+hex_owner = mpi.blocks_along_x(hex_input, size)
+mixed_hexes = vtkUnstructuredGrid()
+mixed_hexes.SetPoints(hex_input.GetPoints())
+mixed_hexes.GetPointData().ShallowCopy(hex_input.GetPointData())
+for c in range(hex_input.GetNumberOfCells()):
+    cell = hex_input.GetCell(c)
+    kept = [cell.GetPointId(k) for k in range(8 if hex_owner[c] == 0 else 20)]
+    mixed_hexes.InsertNextCell(VTK_HEXAHEDRON if hex_owner[c] == 0 else 25, len(kept), kept)
+tet_cover = meshes.extract(tets, np.ones(tets.GetNumberOfCells(), bool))
+grown_points = vtkPoints()  # (new points: the others' stay as they are)
+grown_points.SetData(numpy_to_vtk(0.5 + 1.04 * (vtk_to_numpy(tet_cover.GetPoints().GetData()) - 0.5), deep=True))
+tet_cover.SetPoints(grown_points)
+add(tet_cover.GetPointData(), "s", smooth(vtk_to_numpy(tet_cover.GetPoints().GetData())))
+part_hexes = meshes.extract(mixed_hexes, hex_owner == rank)
+part_tets = meshes.extract(
+    tet_cover, np.random.default_rng(7).integers(0, size, tet_cover.GetNumberOfCells()) == rank)
+low, high = array(tet_cover, "s").min(), array(tet_cover, "s").max()
+for how, options in (("lumped", dict(lumped=True)), ("lumped and bounded", dict(lumped_bounded=True))):
+    serial_h = run(meshprojection.vtkMeshProjectionFilter, mixed_hexes, tet_cover, **options)
+    out = run(meshprojection.vtkPMeshProjectionFilter, part_hexes, part_tets, **options)
+    mine = array(out, "origId")
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    serial_valid = array(serial_h, "vtkValidPointMask").astype(bool)
+    check(np.array_equal(valid, serial_valid[mine]), "hex8 + hex20, %s: valid mask as serial" % how)
+    scale = np.ptp(array(serial_h, "s")[serial_valid])
+    off = np.max(np.abs(array(out, "s") - array(serial_h, "s")[mine])[valid], initial=0.0) / scale
+    if rank == 0:
+        print("hex8 + hex20, %s: %.3g of the range from serial" % (how, off))
+    check(valid.sum() > 0 and off <= 1e-10, "hex8 + hex20, %s: the serial values (%.2g off)" % (how, off))
+    u = array(out, "s")[valid]
+    slack = 1e-13 * (high - low)
+    check(u.min() >= low - slack and u.max() <= high + slack,
+          "hex8 + hex20, %s: within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
+          % (how, u.min(), u.max(), low, high))
+    total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    reference = serial_h.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
+          "hex8 + hex20, %s: integral %.15g, serial %.15g" % (how, total, reference))
 
 # CurvedCellSubdivision 2 on several processes: level 1's values and one
 # warning on every process, also where only the Source has second-order
