@@ -283,7 +283,8 @@ std::string UseSurfaces(SimplexMesh& target, SimplexMesh& source, const Settings
 
 int CurvedLevelOn(int asked, bool whole)
 {
-  return whole ? asked : 1;
+  (void)whole;
+  return asked;
 }
 
 void WarnCurvedLevel(const SimplexMesh& mesh, int asked, bool whole, Messages& messages)
