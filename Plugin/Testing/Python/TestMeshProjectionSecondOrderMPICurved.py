@@ -16,10 +16,7 @@ original ids):
    the serial one (1e-12);
  - with Extrapolation Smooth (the ball's and the tri6 disk's Input) every
    node is finite and the extrapolated values equal the serial ones (1e-10
-   of the range);
- - CurvedCellSubdivision 2 and 3 on curved tri6 and quad9 disks and tet10
-   balls, as Input and as Source, with the fringe: the serial values,
-   masks, integrals and warnings (mpsupport.secondorder.check_curved_levels).
+   of the range).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -27,8 +24,8 @@ from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
 
 from mpsupport import gmshmeshes, meshes, mpi
 from mpsupport.fringe import linear, with_fields
-from mpsupport.secondorder import check_curved_levels, project
 from mpsupport.secondorder import point_array as array
+from mpsupport.secondorder import project
 
 controller, rank, size, check = mpi.begin()
 
@@ -116,7 +113,5 @@ for name, target, source, modes in pairs:
             beyond = np.max(np.abs(u - array(serial, "s")[ids])[~valid], initial=0.0) / scale
             check(np.isfinite(u).all() and beyond <= 1e-10,
                   "%s: every node finite, extrapolated as serial (%.2g of the range off)" % (name, beyond))
-
-check_curved_levels(controller, check)
 
 check.finish("%d processes, curved second-order cells with the fringe" % size)
