@@ -109,6 +109,19 @@ public:
    * neighbour the covered part has slivers along their shared face).
    */
   vtkIdType UnrefinedCurvedCells() const { return this->Unrefined; }
+  /**
+   * The curved second-order cells of `data` of a type the finer split does
+   * not take (hexahedra, wedges, pyramids): one of them keeps a whole mesh
+   * on its nodes' split. Null: 0.
+   */
+  static vtkIdType CurvedUnrefinableCells(vtkDataSet* data);
+  /**
+   * Those of the whole mesh, when the next Wrap() gets a part of it (on
+   * several processes: the sum over their parts), so that the part is split
+   * as the whole mesh alone (and UnrefinedCurvedCells() counts the whole's).
+   * Default -1: the part is the whole mesh, Wrap() counts them.
+   */
+  void SetWholeCurvedUnrefinable(vtkIdType count) { this->WholeUnrefinable = count; }
   static constexpr vtkIdType MinimumOrderedCells = 4096;
   /// Whether the kernel's numbering is a renumbered copy (see SetOrdering).
   bool Ordered() const { return !this->PointOrder.empty(); }
@@ -268,6 +281,7 @@ private:
   vtkIdType Flat = 0;
   vtkIdType SplitCount = 0;
   int CurvedLevel = 1;
+  vtkIdType WholeUnrefinable = -1; ///< SetWholeCurvedUnrefinable
   vtkIdType Refined = 0;
   vtkIdType Unrefined = 0; ///< UnrefinedCurvedCells
   vtkIdType Geometric = 0; ///< points the split added after the dataset's (geometric only)

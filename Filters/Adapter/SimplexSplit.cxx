@@ -464,6 +464,21 @@ vtkSmartPointer<vtkUnstructuredGrid> SimplexGridOf(
 }
 } // namespace
 
+vtkIdType SimplexMesh::CurvedUnrefinableCells(vtkDataSet* data)
+{
+  if (!data || data->GetNumberOfCells() == 0)
+  {
+    return 0;
+  }
+  const vtkSmartPointer<vtkPoints> points = PointsAsDoubles(data);
+  const double* x = points->GetNumberOfPoints() > 0
+    ? vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0)
+    : nullptr;
+  const std::vector<mp::Index> keys = SplitKeys(data);
+  CellSplitter splitter(data, x, keys.empty() ? nullptr : keys.data());
+  return CurvedUnrefinable(data, splitter, x);
+}
+
 std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
 {
   const vtkIdType numberOfCells = data->GetNumberOfCells();
@@ -476,7 +491,9 @@ std::string SimplexMesh::Split(vtkDataSet* data, const char* role)
   // global ids, else of lowest point id (SplitKeys).
   const std::vector<mp::Index> keys = SplitKeys(data);
   CellSplitter splitter(data, x, keys.empty() ? nullptr : keys.data());
-  this->Unrefined = this->CurvedLevel > 1 ? CurvedUnrefinable(data, splitter, x) : 0;
+  this->Unrefined = this->CurvedLevel <= 1 ? 0
+    : this->WholeUnrefinable >= 0          ? this->WholeUnrefinable
+                                           : CurvedUnrefinable(data, splitter, x);
   mp::CurvedSplitter curved(x, static_cast<mp::Index>(points->GetNumberOfPoints()),
     this->Unrefined > 0 ? 1 : this->CurvedLevel, keys.empty() ? nullptr : keys.data());
   vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();

@@ -23,6 +23,8 @@
  */
 #include "Parallel/MPIParts.h"
 
+#include "Mesh/NodalCells.h"
+
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
@@ -46,14 +48,43 @@ Box Widened(Box b, double margin)
   return b;
 }
 
-/// The longest edge of `mesh`'s cells.
+/// Whether simplex c of `mesh` has a geometric-only corner (a simplex of a
+/// curved cell split finer: MeshView::GeometricPoints).
+bool IsRefined(const mp::MeshView& mesh, mp::Index c)
+{
+  const mp::CellCorners cell = mesh.Cell(c);
+  bool refined = false;
+  for (int a = 0; a < mesh.CornersPerCell(); ++a)
+  {
+    refined = refined || !mesh.HasFunction(cell[a]);
+  }
+  return refined;
+}
+
+/**
+ * The longest step of a ring walk over `mesh`'s cells: the longest edge of
+ * its simplices, and for a curved cell split finer (whose simplices join
+ * all its nodes in one ring: ForEachFunctionPoint) the diagonal of the box
+ * of its nodes and simplices' corners.
+ */
 double LongestEdge(const mp::MeshView& mesh)
 {
   const int corners = mesh.CornersPerCell();
   double longest = 0.0;
+  std::unordered_map<mp::Index, Box> refined; // per refined parent, its box
   for (mp::Index c = 0; c < mesh.NumberOfCells; ++c)
   {
     const mp::CellCorners cell = mesh.Cell(c);
+    if (IsRefined(mesh, c))
+    {
+      Box& box = refined.emplace(mesh.ParentOf(c), EmptyBox()).first->second;
+      for (int a = 0; a < corners; ++a)
+      {
+        Grow(box, mesh.Point(cell[a]));
+      }
+      mp::ForEachFunctionPoint(mesh, c, [&](mp::Index p) { Grow(box, mesh.Point(p)); });
+      continue;
+    }
     for (int a = 0; a < corners; ++a)
     {
       for (int b = a + 1; b < corners; ++b)
@@ -67,6 +98,16 @@ double LongestEdge(const mp::MeshView& mesh)
         longest = std::max(longest, length2);
       }
     }
+  }
+  for (const auto& parent : refined)
+  {
+    const Box& b = parent.second;
+    double length2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      length2 += (b[2 * d + 1] - b[2 * d]) * (b[2 * d + 1] - b[2 * d]);
+    }
+    longest = std::max(longest, length2);
   }
   return std::sqrt(longest);
 }
@@ -130,6 +171,86 @@ struct NodalParents
     m.insert(m.end(), this->Cells.begin(), this->Cells.end());
     m.insert(m.end(), this->Parents.begin(), this->Parents.end());
     return m;
+  }
+};
+
+/**
+ * The halo cells sent to one process: their points (global id, coordinates'
+ * bits), the geometric-only points of a curved cell's finer simplices
+ * (coordinates' bits: no global id, no function; the sender's bits, so
+ * that the simplices are the serial ones), the cells' corners (a point's
+ * place in Points, or -1 - k for geometric point k) and their parents
+ * (NodalParents). A refined simplex brings all its parent's nodes, the
+ * functions a ring walk meets on it (ForEachFunctionPoint).
+ */
+struct HaloMessage
+{
+  std::vector<long long> Points;    // global id, 3 coordinates' bits, per point
+  std::vector<long long> Geometric; // 3 coordinates' bits per geometric point
+  std::vector<long long> Corners;
+  NodalParents Parents;
+  std::vector<mp::Index> Used; // the target's points listed (their slots to reset)
+
+  explicit HaloMessage(const mp::MeshView& target)
+    : Parents(target)
+  {}
+
+  /// Cell c and its points, `slot` (per target point, -1 until listed)
+  /// giving each point's place in this message.
+  void Add(const mp::MeshView& target, mp::Index c, const std::vector<long long>& global,
+    std::vector<long long>& slot)
+  {
+    const mp::CellCorners cell = target.Cell(c);
+    bool refined = false;
+    for (int a = 0; a < target.CornersPerCell(); ++a)
+    {
+      refined = refined || !target.HasFunction(cell[a]);
+      this->Corners.push_back(this->Place(target, cell[a], global, slot));
+    }
+    if (refined)
+    {
+      mp::ForEachFunctionPoint(
+        target, c, [&](mp::Index p) { this->Place(target, p, global, slot); });
+    }
+    this->Parents.Add(target, c, global);
+  }
+
+  /// Head (points', corners', parents' and geometric points' counts), then each list.
+  void WriteTo(std::vector<char>& out) const
+  {
+    const std::vector<long long> parents = this->Parents.Message();
+    const long long head[4] = { static_cast<long long>(this->Points.size() / 4),
+      static_cast<long long>(this->Corners.size()), static_cast<long long>(parents.size()),
+      static_cast<long long>(this->Geometric.size() / 3) };
+    Append(out, head, 4);
+    Append(out, this->Points.data(), this->Points.size());
+    Append(out, this->Corners.data(), this->Corners.size());
+    Append(out, parents.data(), parents.size());
+    Append(out, this->Geometric.data(), this->Geometric.size());
+  }
+
+private:
+  long long Place(const mp::MeshView& target, mp::Index p, const std::vector<long long>& global,
+    std::vector<long long>& slot)
+  {
+    long long& at = slot[static_cast<size_t>(p)];
+    if (at != -1)
+    {
+      return at;
+    }
+    this->Used.push_back(p);
+    std::vector<long long>& list = target.HasFunction(p) ? this->Points : this->Geometric;
+    at = target.HasFunction(p) ? static_cast<long long>(list.size() / 4)
+                               : -1 - static_cast<long long>(list.size() / 3);
+    if (target.HasFunction(p))
+    {
+      list.push_back(global[static_cast<size_t>(p)]);
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      list.push_back(Bits(target.Point(p)[d]));
+    }
+    return at;
   }
 };
 
@@ -206,10 +327,9 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
 {
   const int corners = target.CornersPerCell();
   const std::vector<long long>& global = points.RowGlobal;
-  // To each process, the cells meeting its grown box: their points (global
-  // id, coordinates' bits) then their corners as positions in that list.
+  // To each process, the cells meeting its grown box (HaloMessage).
   std::vector<std::vector<char>> out(static_cast<size_t>(this->N));
-  std::vector<mp::Index> slot(static_cast<size_t>(target.NumberOfPoints), -1);
+  std::vector<long long> slot(static_cast<size_t>(target.AllPoints()), -1);
   for (int r = 0; r < this->N; ++r)
   {
     const Box reached = Widened(boxes[r], reach);
@@ -217,10 +337,7 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
     {
       continue;
     }
-    std::vector<long long> points;
-    std::vector<long long> corner;
-    std::vector<mp::Index> used;
-    NodalParents parents(target);
+    HaloMessage message(target);
     for (mp::Index c = 0; c < target.NumberOfCells; ++c)
     {
       const mp::CellCorners cell = target.Cell(c);
@@ -229,45 +346,16 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
       {
         Grow(box, target.Point(cell[a]));
       }
-      // (A simplex of a curved cell split finer, on geometric-only points,
-      // is no cell of the functions' graph the halo extends.)
-      bool functions = true;
-      for (int a = 0; a < corners; ++a)
+      if (Meet(box, reached))
       {
-        functions = functions && target.HasFunction(cell[a]);
+        message.Add(target, c, global, slot);
       }
-      if (!functions || !Meet(box, reached))
-      {
-        continue;
-      }
-      for (int a = 0; a < corners; ++a)
-      {
-        const mp::Index p = cell[a];
-        if (slot[p] < 0)
-        {
-          slot[p] = static_cast<mp::Index>(used.size());
-          used.push_back(p);
-          points.push_back(global[p]);
-          for (int d = 0; d < 3; ++d)
-          {
-            points.push_back(Bits(target.Point(p)[d]));
-          }
-        }
-        corner.push_back(slot[p]);
-      }
-      parents.Add(target, c, global);
     }
-    for (mp::Index p : used)
+    for (mp::Index p : message.Used)
     {
-      slot[p] = -1;
+      slot[static_cast<size_t>(p)] = -1;
     }
-    const std::vector<long long> parentMessage = parents.Message();
-    const long long head[3] = { static_cast<long long>(used.size()),
-      static_cast<long long>(corner.size()), static_cast<long long>(parentMessage.size()) };
-    Append(out[r], head, 3);
-    Append(out[r], points.data(), points.size());
-    Append(out[r], corner.data(), corner.size());
-    Append(out[r], parentMessage.data(), parentMessage.size());
+    message.WriteTo(out[r]);
   }
   std::vector<std::vector<char>> in = this->AllToAll(out);
   // Each global id once: this part's point (its representative's row, as
@@ -288,7 +376,7 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
   for (int r = 0; r < this->N; ++r)
   {
     const std::vector<long long> v = Read<long long>(in[r]);
-    if (v.size() < 3)
+    if (v.size() < 4)
     {
       continue;
     }
@@ -296,7 +384,7 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
     std::vector<mp::Index> row(np);
     for (size_t k = 0; k < np; ++k)
     {
-      const long long* at = v.data() + 3 + 4 * k;
+      const long long* at = v.data() + 4 + 4 * k;
       auto found = rowOf.emplace(at[0], n + static_cast<mp::Index>(ghostIds.size()));
       if (found.second)
       {
@@ -308,12 +396,28 @@ std::vector<long long> MPIParts::ReceiveHaloCells(const mp::MeshView& target,
       }
       row[k] = found.first->second;
     }
-    const long long* corner = v.data() + 3 + 4 * np;
+    const long long* corner = v.data() + 4 + 4 * np;
+    const long long* parents = corner + v[1];
+    const long long* geometric = parents + v[2];
+    // (A geometric point -1 - g in Cells until the ghosts are all known.)
+    const long long firstGeometric = static_cast<long long>(halo.Geometric.size() / 3);
+    for (long long k = 0; k < 3 * v[3]; ++k)
+    {
+      halo.Geometric.push_back(FromBits(geometric[k]));
+    }
     for (long long k = 0; k < v[1]; ++k)
     {
-      halo.Cells.push_back(row[static_cast<size_t>(corner[k])]);
+      const long long c = corner[k];
+      halo.Cells.push_back(
+        c >= 0 ? row[static_cast<size_t>(c)] : static_cast<mp::Index>(c - firstGeometric));
     }
-    received.emplace_back(corner + v[1], corner + v[1] + v[2]);
+    received.emplace_back(parents, geometric);
+  }
+  // The geometric points after the ghosts (FringeHalo::Cells).
+  const mp::Index functions = n + static_cast<mp::Index>(ghostIds.size());
+  for (mp::Index& k : halo.Cells)
+  {
+    k = k >= 0 ? k : functions + (-1 - k);
   }
   ReadNodalParents(received, rowOf, halo);
   return ghostIds;

@@ -49,13 +49,8 @@ Verdict WrapTarget(const ExecutionShare& run, vtkDataSet* target, const std::str
   SimplexMesh& mesh, Statistics& stats, LeafAgreement& agreement)
 {
   mesh.SetOrdering(run.Options.Renumbering);
-  const int asked = run.Options.CurvedCellSubdivision;
-  mesh.SetCurvedLevel(CurvedLevelOn(asked, run.Processes.Whole()));
+  mesh.SetCurvedLevel(run.Options.CurvedCellSubdivision);
   const std::string why = mesh.Wrap(target, role.c_str());
-  if (why.empty())
-  {
-    WarnCurvedLevel(mesh, asked, run.Processes.Whole(), run.Say);
-  }
   stats.Check += mesh.CheckSeconds();
   stats.Renumber += mesh.OrderSeconds();
   stats.RenumberedMeshes = mesh.Ordered() + run.Source.Mesh.Ordered();
@@ -165,6 +160,7 @@ LeafResult ProjectLeaf(const ExecutionShare& run, const LeafJob& job, KeptLeaf& 
   const SharedTarget shared = run.Processes.ShareTarget(job.Target);
   vtkDataSet* target = shared.Data;
   SimplexMesh targetMesh;
+  ShareCurvedUnrefinable(run.Processes, target, run.Options.CurvedCellSubdivision, targetMesh);
   // The steps of this process alone run through agreement.Local (an
   // exception there is this process's failure, agreed at the next round).
   result.Outcome = agreement.Local("Reading " + job.Role,

@@ -281,20 +281,15 @@ std::string UseSurfaces(SimplexMesh& target, SimplexMesh& source, const Settings
 }
 } // namespace
 
-int CurvedLevelOn(int asked, bool whole)
+void ShareCurvedUnrefinable(Parts& parts, vtkDataSet* data, int asked, SimplexMesh& mesh)
 {
-  return whole ? asked : 1;
-}
-
-void WarnCurvedLevel(const SimplexMesh& mesh, int asked, bool whole, Messages& messages)
-{
-  if (asked > 1 && !whole && mesh.View().Nodal)
+  if (asked <= 1 || parts.Whole())
   {
-    messages.WarnOnce("curved/processes",
-      "CurvedCellSubdivision is " + std::to_string(asked) +
-        ", but the filter runs on several processes: curved second-order cells are met "
-        "through their split on their nodes (level 1) there.");
+    return;
   }
+  double count = static_cast<double>(SimplexMesh::CurvedUnrefinableCells(data));
+  parts.Sum(&count, 1);
+  mesh.SetWholeCurvedUnrefinable(static_cast<vtkIdType>(count));
 }
 
 void WarnLeftOut(const SimplexMesh& mesh, const std::string& role, Messages& messages)

@@ -60,17 +60,14 @@ struct LeafShape
 Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement);
 
 /**
- * The level at which `role`'s curved cells are split (SimplexMesh::
- * SetCurvedLevel): `asked` on one process, 1 on several, where the finer
- * split's geometric points are not matched between the parts (the
- * Source's gathering, the fringe's halo) and results would differ from the
- * serial ones.
+ * Tells `mesh`, before it wraps `data` (this process's part of a mesh) at
+ * level `asked`, the curved cells of the whole mesh that the finer split
+ * does not take (SimplexMesh::SetWholeCurvedUnrefinable: summed over the
+ * parts), so that every part splits as the whole mesh alone: one such cell
+ * anywhere keeps every part on its nodes' split. A collective on several
+ * processes when `asked` > 1; nothing on one process (Wrap counts).
  */
-int CurvedLevelOn(int asked, bool whole);
-
-/// After `mesh` is wrapped at CurvedLevelOn: warns once per filter when
-/// the level asked for was dropped to 1 on a mesh with second-order cells.
-void WarnCurvedLevel(const SimplexMesh& mesh, int asked, bool whole, Messages& messages);
+void ShareCurvedUnrefinable(Parts& parts, vtkDataSet* data, int asked, SimplexMesh& mesh);
 
 /// Warns once per filter when `mesh` left out cells of lower dimension, or
 /// kept curved cells on their nodes' split against CurvedCellSubdivision.

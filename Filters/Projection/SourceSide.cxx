@@ -75,6 +75,9 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   const double reach = input && settings.SurfaceReach > 0 ? settings.SurfaceReach : 0.0;
   // (With a reconstruction of cell data or tangent arrays, and the cells around them.)
   JoinedFields pieces; // fields that differ between the processes' pieces
+  // (Decided on the pieces, which make the whole Source, not on what each gathers.)
+  ShareCurvedUnrefinable(
+    parts, failed.empty() ? source : nullptr, settings.CurvedCellSubdivision, side.Mesh);
   source =
     parts.GatherSource(source, input, reach, settings.GathersNeighborLayer(), failed, pieces);
   KeepJoined(blocks, side);
@@ -86,7 +89,7 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
   side.Data = source;
   side.Composite = vtkCompositeDataSet::SafeDownCast(sourceObject) != nullptr;
   side.Mesh.SetOrdering(settings.Renumbering);
-  side.Mesh.SetCurvedLevel(CurvedLevelOn(settings.CurvedCellSubdivision, parts.Whole()));
+  side.Mesh.SetCurvedLevel(settings.CurvedCellSubdivision);
   const Verdict wrapped = parts.Agree(Guarded("Checking Source", [&]() {
     const std::string why = side.Mesh.Wrap(source, "Source");
     stats.Check += side.Mesh.CheckSeconds();
@@ -98,7 +101,6 @@ Verdict PrepareSourceMesh(vtkDataObject* sourceObject, vtkDataObject* input,
     return wrapped;
   }
   WarnLeftOut(side.Mesh, "Source", messages);
-  WarnCurvedLevel(side.Mesh, settings.CurvedCellSubdivision, parts.Whole(), messages);
   if (side.Mesh.Dimension() == 2 && !side.Mesh.View().IsSurfaceMesh())
   {
     // A planar Source in its own plane's coordinates until a leaf picks the

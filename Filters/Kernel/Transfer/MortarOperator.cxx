@@ -344,10 +344,12 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
   points.assign(target.Points, target.Points + 3 * target.NumberOfPoints);
   points.insert(points.end(), halo.Points.begin(), halo.Points.end());
   // Geometric-only points (curved cells split finer) after the halo's,
-  // which are numbered as functions after the target's.
+  // which are numbered as functions after the target's: the target's, then
+  // the halo's.
   const Index functions = static_cast<Index>(points.size() / 3);
   points.insert(points.end(), target.Points + 3 * target.NumberOfPoints,
     target.Points + 3 * target.AllPoints());
+  points.insert(points.end(), halo.Geometric.begin(), halo.Geometric.end());
   cells.clear();
   cells.reserve(static_cast<size_t>(target.NumberOfCells * corners) + halo.Cells.size());
   for (Index c = 0; c < target.NumberOfCells; ++c)
@@ -359,13 +361,16 @@ MeshView MortarOperator::WithHalo(const MeshView& target, const FringeHalo& halo
         target.HasFunction(cell[a]) ? cell[a] : functions + (cell[a] - target.NumberOfPoints));
     }
   }
-  cells.insert(cells.end(), halo.Cells.begin(), halo.Cells.end());
+  for (Index k : halo.Cells)
+  {
+    cells.push_back(k < functions ? k : k + target.GeometricPoints);
+  }
   MeshView whole;
   whole.CellDimension = target.CellDimension;
   whole.SpaceDimension = target.SpaceDimension;
   whole.Points = points.data();
   whole.NumberOfPoints = functions;
-  whole.GeometricPoints = target.GeometricPoints;
+  whole.GeometricPoints = target.GeometricPoints + static_cast<Index>(halo.Geometric.size() / 3);
   whole.Connectivity = cells.data();
   whole.NumberOfCells = static_cast<Index>(cells.size()) / corners;
   const Index ghostCells = static_cast<Index>(halo.Cells.size()) / corners;

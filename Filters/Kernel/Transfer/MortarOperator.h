@@ -149,7 +149,13 @@ enum class MassType
 struct FringeHalo
 {
   std::vector<double> Points; ///< 3 coordinates per ghost point
-  std::vector<Index> Cells;   ///< the target's corners per cell, in the extended rows
+  /// The target's corners per cell, in the extended rows, or, for the
+  /// geometric-only points of curved cells split finer (MeshView::
+  /// GeometricPoints), n + NumberOfPoints() + k for Geometric's point k.
+  std::vector<Index> Cells;
+  /// 3 coordinates per geometric-only point of the halo's refined simplices
+  /// (no function and no row: their parents' nodes are the functions).
+  std::vector<double> Geometric;
   /// A second-order target's ghost parents, so that its fringe finds the
   /// root cells (FringeRoots.h) the whole target gives: per cell of Cells
   /// its parent among ParentTypes (all empty for a linear target).

@@ -25,16 +25,17 @@ points (by their original ids):
    MassMatrix Lumped alone and with PreserveBounds: the serial values
    (1e-10 of the range), within the Source's range, the serial integral
    (1e-12);
- - CurvedCellSubdivision 2 on several processes: level 1's values and one
-   warning on every process, also with only the Source second-order.
+ - CurvedCellSubdivision 2 and 3 on curved tri6 and quad9 disks and tet10
+   balls, as Input and as Source, with the fringe: the serial values,
+   masks, integrals and warnings (mpsupport.secondorder.check_curved_levels).
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 
 from mpsupport import gmshmeshes, meshes, mpi
 from mpsupport.mpi import add
+from mpsupport.secondorder import check_curved_levels, project
 from mpsupport.secondorder import point_array as array
-from mpsupport.secondorder import project
 
 controller, rank, size, check = mpi.begin()
 
@@ -221,24 +222,7 @@ for how, options in (("lumped", dict(lumped=True)), ("lumped and bounded", dict(
     check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
           "hex8 + hex20, %s: integral %.15g, serial %.15g" % (how, total, reference))
 
-# CurvedCellSubdivision 2 on several processes: level 1's values and one
-# warning on every process, also where only the Source has second-order
-# cells (a linear Input).
-box = gmshmeshes.volume("box", 0.3)
-linear_part = meshes.extract(box, mpi.blocks_along_x(box, size) == rank)
-for name, target_part in (("tet10 Input", part), ("tet4 Input, hex20 Source", linear_part)):
-    source_part = meshes.extract(source, keep)
-    f = meshprojection.vtkPMeshProjectionFilter()
-    said = mpi.messages(f)
-    f.SetInputData(target_part)
-    f.SetSourceData(source_part)
-    f.SetCacheOperator(False)
-    f.SetCurvedCellSubdivision(2)
-    f.Update()
-    finer = [t for t in said["WarningEvent"] if "CurvedCellSubdivision is 2, but the filter runs on several" in t]
-    check(len(finer) == 1, "%s, CurvedCellSubdivision 2: one warning on every process (%d)" % (name, len(finer)))
-    level1 = run(meshprojection.vtkPMeshProjectionFilter, target_part, source_part)
-    check(np.array_equal(array(f.GetOutput(), "s"), array(level1, "s"), equal_nan=True),
-          "%s, CurvedCellSubdivision 2: level 1's values" % name)
+# CurvedCellSubdivision 2 and 3 on curved pairs: the serial results.
+check_curved_levels(controller, check)
 
 check.finish("%d processes, second-order cells" % size)
