@@ -102,6 +102,8 @@ private:
     /// per cell of the mesh; that grid is built only without neighbours).
     std::vector<Index> Cells;
     std::vector<double> Boxes;
+    /// How a cell's box is computed (for the mesh's kind of cells).
+    void (*CellBox)(const MeshView& mesh, Index cell, double box[6]) = nullptr;
     /// Bins over `cells` of `mesh` (every cell when `cells` is null).
     Bins(const MeshView& mesh, const std::vector<Index>* cells);
     /// The box of the binned cell at `position`: stored, or computed into `scratch`.
