@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Search/CandidateLocator.h"
 
+#include "Geometry/Predicates.h"
 #include "Mesh/CellNeighbors.h"
 #include "Search/SupportingFaces.h"
 
@@ -291,6 +292,72 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
     return;
   }
   this->Collect(*this->Grids->Boundary, box, cells);
+}
+
+bool BoxGridLocator::Outside(const double* q)
+{
+  const Shared& g = *this->Grids;
+  const MeshView& mesh = g.Mesh;
+  if (!g.Boundary || mesh.CellDimension != 2 || mesh.SpaceDimension != 2 || !std::isfinite(q[0]) ||
+    !std::isfinite(q[1]))
+  {
+    return false;
+  }
+  // The boundary cells whose boxes reach the ray {(x, q_y), x >= q_x}:
+  // those in q's row of bins, from q's column on.
+  const Bins& bins = *g.Boundary;
+  const double point[6] = { q[0], q[0], q[1], q[1], 0.0, 0.0 };
+  int first[3];
+  int last[3];
+  bins.Range(point, first, last);
+  std::vector<Index>& cells = this->RayCells;
+  cells.clear();
+  for (int j = first[1]; j <= last[1]; ++j)
+  {
+    for (int i = first[0]; i < bins.Divisions[0]; ++i)
+    {
+      const size_t bin = size_t(j) * bins.Divisions[0] + i;
+      cells.insert(cells.end(), bins.BinCells.begin() + bins.BinStart[bin],
+        bins.BinCells.begin() + bins.BinStart[bin + 1]);
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  // Crossings of the ray by boundary faces, each counted once (half-open in
+  // y: a face ending on the ray's line counts at its lower end only).
+  bool inside = false;
+  for (const Index position : cells)
+  {
+    const Index c = bins.CellOf(position);
+    const CellCorners ids = mesh.Cell(c);
+    const double* x[3] = { mesh.Point(ids[0]), mesh.Point(ids[1]), mesh.Point(ids[2]) };
+    if (!(Orient2D(x[0], x[1], x[2]) != 0.0))
+    {
+      return false; // zero area (or not a number): its faces bound nothing
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      if (mesh.Neighbor(c, k) >= 0)
+      {
+        continue;
+      }
+      const double* a = x[(k + 1) % 3]; // face k: the corners other than k
+      const double* b = x[(k + 2) % 3];
+      const bool aBelow = a[1] <= q[1];
+      if (aBelow == (b[1] <= q[1]))
+      {
+        continue; // both ends on one side of the ray's line
+      }
+      // Upward (a below): the crossing is right of q when q is left of a->b.
+      const double side = Orient2D(a, b, q);
+      if (side == 0.0)
+      {
+        return false; // q on the face's line, within its span: no verdict
+      }
+      inside = inside != (aBelow ? side > 0.0 : side < 0.0);
+    }
+  }
+  return !inside;
 }
 
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)
