@@ -507,19 +507,41 @@ CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill,
 }
 } // namespace
 
-LargeVector<double> SupportIntegrals(const MeshView& mesh)
+LargeVector<double> SupportIntegrals(const MeshView& mesh, const TaskRunner& runner)
 {
-  LargeVector<double> support(static_cast<size_t>(mesh.NumberOfPoints), 0.0);
+  const Index points = mesh.NumberOfPoints;
+  LargeVector<double> support(static_cast<size_t>(points), 0.0);
   const int corners = mesh.CornersPerCell();
-  for (Index c = 0; c < mesh.NumberOfCells; ++c)
-  {
-    const CellCorners cell = mesh.Cell(c);
-    const double measure = SimplexMeasure(mesh, c);
-    for (int k = 0; k < corners; ++k)
+  // Each task owns a range of points and goes through every cell in order,
+  // adding to its own points only: a point sums its cells' shares in cell
+  // order, whatever the number of tasks (and no two tasks write one).
+  const int tasks = runner.TasksFor(points, Index(1) << 16);
+  runner.RunAll(tasks, [&](int t) {
+    const Index first = RangeBegin(points, t, tasks);
+    const Index last = RangeBegin(points, t + 1, tasks);
+    auto mine = [first, last](Index p) { return p >= first && p < last; };
+    for (Index c = 0; c < mesh.NumberOfCells; ++c)
     {
-      support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
+      const CellCorners cell = mesh.Cell(c);
+      bool any = false;
+      for (int k = 0; k < corners; ++k)
+      {
+        any = any || mine(cell[k]);
+      }
+      if (!any)
+      {
+        continue;
+      }
+      const double measure = SimplexMeasure(mesh, c);
+      for (int k = 0; k < corners; ++k)
+      {
+        if (mine(cell[k]))
+        {
+          support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
+        }
+      }
     }
-  }
+  });
   return support;
 }
 
