@@ -505,24 +505,19 @@ CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill,
       }
     });
 }
-} // namespace
 
-LargeVector<double> SupportIntegrals(const MeshView& mesh, const TaskRunner& runner)
+/// Adds each cell's share of int phi_i (measure / corners) to those of its
+/// corners in [first, last) (All: every corner), in cell order.
+template <bool All>
+void AddSupportShares(const MeshView& mesh, Index first, Index last, double* support)
 {
-  const Index points = mesh.NumberOfPoints;
-  LargeVector<double> support(static_cast<size_t>(points), 0.0);
   const int corners = mesh.CornersPerCell();
-  // Each task owns a range of points and goes through every cell in order,
-  // adding to its own points only: a point sums its cells' shares in cell
-  // order, whatever the number of tasks (and no two tasks write one).
-  const int tasks = runner.TasksFor(points, Index(1) << 16);
-  runner.RunAll(tasks, [&](int t) {
-    const Index first = RangeBegin(points, t, tasks);
-    const Index last = RangeBegin(points, t + 1, tasks);
-    auto mine = [first, last](Index p) { return p >= first && p < last; };
-    for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  auto mine = [first, last](Index p) { return All || (p >= first && p < last); };
+  for (Index c = 0; c < mesh.NumberOfCells; ++c)
+  {
+    const CellCorners cell = mesh.Cell(c);
+    if constexpr (!All)
     {
-      const CellCorners cell = mesh.Cell(c);
       bool any = false;
       for (int k = 0; k < corners; ++k)
       {
@@ -532,15 +527,35 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh, const TaskRunner& run
       {
         continue;
       }
-      const double measure = SimplexMeasure(mesh, c);
-      for (int k = 0; k < corners; ++k)
+    }
+    const double measure = SimplexMeasure(mesh, c);
+    for (int k = 0; k < corners; ++k)
+    {
+      if (mine(cell[k]))
       {
-        if (mine(cell[k]))
-        {
-          support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
-        }
+        support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
       }
     }
+  }
+}
+} // namespace
+
+LargeVector<double> SupportIntegrals(const MeshView& mesh, const TaskRunner& runner)
+{
+  const Index points = mesh.NumberOfPoints;
+  LargeVector<double> support(static_cast<size_t>(points), 0.0);
+  // Each task owns a range of points and goes through every cell in order,
+  // adding to its own points only: a point sums its cells' shares in cell
+  // order, whatever the number of tasks (and no two tasks write one).
+  const int tasks = runner.TasksFor(points, Index(1) << 16);
+  if (tasks == 1)
+  {
+    AddSupportShares<true>(mesh, 0, points, support.data());
+    return support;
+  }
+  runner.RunAll(tasks, [&](int t) {
+    AddSupportShares<false>(
+      mesh, RangeBegin(points, t, tasks), RangeBegin(points, t + 1, tasks), support.data());
   });
   return support;
 }
