@@ -43,7 +43,8 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
 
 /**
  * CellBox for cells of `Corners` corners in `Dims` coordinates, unrolled:
- * the grid over all cells asks for every cell's box three times.
+ * the grid over all cells asks for every cell's box twice, and each query for
+ * its candidates' boxes.
  */
 template <int Corners, int Dims>
 void CellBoxOf(const MeshView& mesh, Index c, double box[6])

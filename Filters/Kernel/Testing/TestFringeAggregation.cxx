@@ -399,24 +399,6 @@ TEST(FringeAggregation, SupportIntegralsAddUpToTheMeasure)
   }
 }
 
-TEST(FringeAggregation, SupportIntegralsTheSameBitsOnSeveralTasks)
-{
-  // Enough points for two tasks (each owns 2^16 points at least).
-  const TestMesh m = mptest::GridMesh(400, 330, 0.2, 8);
-  const mp::MeshView view = m.View(false);
-  const auto serial = mp::SupportIntegrals(view);
-  const mp::TaskRunner runner = mptest::ThreadRunner(3);
-  ASSERT_GE(runner.TasksFor(view.NumberOfPoints, mp::Index(1) << 16), 2);
-  const auto threaded = mp::SupportIntegrals(view, runner);
-  ASSERT_EQ(serial.size(), threaded.size());
-  size_t differ = 0;
-  for (size_t i = 0; i < serial.size(); ++i)
-  {
-    differ += serial[i] != threaded[i];
-  }
-  EXPECT_EQ(differ, 0u);
-}
-
 namespace
 {
 /**

@@ -505,58 +505,21 @@ CsrMatrix ExtensionMatrix(Index n, const std::vector<Index>& ill,
       }
     });
 }
+} // namespace
 
-/// Adds each cell's share of int phi_i (measure / corners) to those of its
-/// corners in [first, last) (All: every corner), in cell order.
-template <bool All>
-void AddSupportShares(const MeshView& mesh, Index first, Index last, double* support)
+LargeVector<double> SupportIntegrals(const MeshView& mesh)
 {
+  LargeVector<double> support(static_cast<size_t>(mesh.NumberOfPoints), 0.0);
   const int corners = mesh.CornersPerCell();
-  auto mine = [first, last](Index p) { return All || (p >= first && p < last); };
   for (Index c = 0; c < mesh.NumberOfCells; ++c)
   {
     const CellCorners cell = mesh.Cell(c);
-    if constexpr (!All)
-    {
-      bool any = false;
-      for (int k = 0; k < corners; ++k)
-      {
-        any = any || mine(cell[k]);
-      }
-      if (!any)
-      {
-        continue;
-      }
-    }
     const double measure = SimplexMeasure(mesh, c);
     for (int k = 0; k < corners; ++k)
     {
-      if (mine(cell[k]))
-      {
-        support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
-      }
+      support[static_cast<size_t>(cell[k])] += measure / corners; // int of a hat over a simplex
     }
   }
-}
-} // namespace
-
-LargeVector<double> SupportIntegrals(const MeshView& mesh, const TaskRunner& runner)
-{
-  const Index points = mesh.NumberOfPoints;
-  LargeVector<double> support(static_cast<size_t>(points), 0.0);
-  // Each task owns a range of points and goes through every cell in order,
-  // adding to its own points only: a point sums its cells' shares in cell
-  // order, whatever the number of tasks (and no two tasks write one).
-  const int tasks = runner.TasksFor(points, Index(1) << 16);
-  if (tasks == 1)
-  {
-    AddSupportShares<true>(mesh, 0, points, support.data());
-    return support;
-  }
-  runner.RunAll(tasks, [&](int t) {
-    AddSupportShares<false>(
-      mesh, RangeBegin(points, t, tasks), RangeBegin(points, t + 1, tasks), support.data());
-  });
   return support;
 }
 

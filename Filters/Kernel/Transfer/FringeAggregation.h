@@ -81,8 +81,7 @@
 namespace mp
 {
 /// Per point of a mesh (triangles, tetrahedra, triangles of a surface, segments of a curve): int phi_i over its whole support.
-/// Concurrent tasks over ranges of points, each summing in cell order (the same sums on any number of tasks).
-LargeVector<double> SupportIntegrals(const MeshView& mesh, const TaskRunner& runner = TaskRunner());
+LargeVector<double> SupportIntegrals(const MeshView& mesh);
 
 /// The extension of a fringe: P (functions x functions) and which rows it aggregates.
 struct FringeExtension

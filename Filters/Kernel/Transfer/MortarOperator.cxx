@@ -282,7 +282,7 @@ Index MortarOperator::AggregateFringe(
   }
   else
   {
-    whole = SupportIntegrals(target, this->Options.Runner);
+    whole = SupportIntegrals(target);
   }
   whole.resize(static_cast<size_t>(n), 0.0);
   if (hooks.Exchange)
