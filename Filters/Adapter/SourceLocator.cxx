@@ -56,6 +56,12 @@ void SourceLocator::FindCandidates(const double box[6], std::vector<mp::Index>& 
   this->Bins->FindCandidates(bounds, cells);
 }
 
+bool SourceLocator::Outside(const double* q)
+{
+  // Exact only on the coordinates the kernel's intersections read.
+  return this->Flat && this->Mesh.Frame().IsIdentity() && this->Bins->Outside(q);
+}
+
 void SourceLocator::FindBoundaryCandidates(const double box[6], std::vector<mp::Index>& cells)
 {
   double bounds[6];

@@ -38,6 +38,9 @@ public:
   {
     return this->Bins->Supports(cell, face);
   }
+  /// The bins' answer where they hold the kernel's own coordinates (a
+  /// mesh in a plane z = constant, seen as it is); else no verdict.
+  bool Outside(const double* q) override;
   /// Shares the bins (read only, the lazy one built once); no locks.
   std::unique_ptr<mp::CandidateLocator> NewForThread() const override;
 

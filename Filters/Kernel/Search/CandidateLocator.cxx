@@ -1,17 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Search/CandidateLocator.h"
 
+#include "Geometry/Predicates.h"
 #include "Mesh/CellNeighbors.h"
 #include "Search/SupportingFaces.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace mp
 {
 namespace
 {
+/**
+ * The bounding box of cell c of `mesh` (zero beyond its SpaceDimension
+ * coordinates). NaN coordinates are ignored (a box left infinite says so).
+ */
 void CellBox(const MeshView& mesh, Index c, double box[6])
 {
   const CellCorners ids = mesh.Cell(c);
@@ -32,6 +38,58 @@ void CellBox(const MeshView& mesh, Index c, double box[6])
   for (int d = mesh.SpaceDimension; d < 3; ++d)
   {
     box[2 * d] = box[2 * d + 1] = 0.0;
+  }
+}
+
+/**
+ * CellBox for cells of `Corners` corners in `Dims` coordinates, unrolled:
+ * the grid over all cells asks for every cell's box twice, and each query for
+ * its candidates' boxes.
+ */
+template <int Corners, int Dims>
+void CellBoxOf(const MeshView& mesh, Index c, double box[6])
+{
+  const CellCorners ids = mesh.Cell(c);
+  for (int d = 0; d < 3; ++d)
+  {
+    box[2 * d] = std::numeric_limits<double>::infinity();
+    box[2 * d + 1] = -std::numeric_limits<double>::infinity();
+  }
+  for (int k = 0; k < Corners; ++k)
+  {
+    const double* x = mesh.Point(ids[k]);
+    for (int d = 0; d < Dims; ++d)
+    {
+      box[2 * d] = std::min(box[2 * d], x[d]);
+      box[2 * d + 1] = std::max(box[2 * d + 1], x[d]);
+    }
+  }
+  for (int d = Dims; d < 3; ++d)
+  {
+    box[2 * d] = box[2 * d + 1] = 0.0;
+  }
+}
+
+/// CellBox for the mesh's kind of cells (segments, triangles, tetrahedra;
+/// in the plane or in space): an unrolled one where there is.
+void (*CellBoxFor(const MeshView& mesh))(const MeshView&, Index, double*)
+{
+  const int corners = mesh.CornersPerCell();
+  if (mesh.SpaceDimension != 2 && mesh.SpaceDimension != 3)
+  {
+    return &CellBox;
+  }
+  const bool plane = mesh.SpaceDimension == 2;
+  switch (corners)
+  {
+    case 2:
+      return plane ? &CellBoxOf<2, 2> : &CellBoxOf<2, 3>;
+    case 3:
+      return plane ? &CellBoxOf<3, 2> : &CellBoxOf<3, 3>;
+    case 4:
+      return plane ? &CellBox : &CellBoxOf<4, 3>;
+    default:
+      return &CellBox;
   }
 }
 
@@ -116,13 +174,14 @@ bool BoxGridLocator::Supports(Index cell, int face) const
 BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subset)
 {
   const Index count = subset ? static_cast<Index>(subset->size()) : mesh.NumberOfCells;
+  this->CellBox = CellBoxFor(mesh);
   if (subset)
   {
     this->Cells = *subset;
     this->Boxes.resize(6 * static_cast<size_t>(count));
     for (Index i = 0; i < count; ++i)
     {
-      CellBox(mesh, this->Cells[i], &this->Boxes[6 * i]);
+      this->CellBox(mesh, this->Cells[i], &this->Boxes[6 * i]);
     }
   }
   double scratch[6];
@@ -154,18 +213,29 @@ BoxGridLocator::Bins::Bins(const MeshView& mesh, const std::vector<Index>* subse
     this->Spacing[d] = extent > 0.0 ? extent / this->Divisions[d] : 1.0;
   }
   const size_t bins = size_t(this->Divisions[0]) * this->Divisions[1] * this->Divisions[2];
+  // Each cell's bins (first and last along each axis; fewer than 4097 per
+  // axis) found once: the box and its range cost more than the counting
+  // and the filling that read them.
+  std::vector<std::int16_t> ranges(6 * static_cast<size_t>(count));
   std::vector<Index> counts(bins + 1, 0);
   auto forEachBin = [&](Index i, auto&& f) {
-    int a[3];
-    int b[3];
-    this->Range(boxOf(i), a, b);
-    for (int k = a[2]; k <= b[2]; ++k)
-      for (int j = a[1]; j <= b[1]; ++j)
-        for (int i = a[0]; i <= b[0]; ++i)
+    const std::int16_t* r = &ranges[6 * static_cast<size_t>(i)];
+    for (int k = r[2]; k <= r[5]; ++k)
+      for (int j = r[1]; j <= r[4]; ++j)
+        for (int i = r[0]; i <= r[3]; ++i)
           f((size_t(k) * this->Divisions[1] + j) * this->Divisions[0] + i);
   };
   for (Index i = 0; i < count; ++i)
   {
+    int a[3];
+    int b[3];
+    this->Range(boxOf(i), a, b);
+    std::int16_t* r = &ranges[6 * static_cast<size_t>(i)];
+    for (int d = 0; d < 3; ++d)
+    {
+      r[d] = static_cast<std::int16_t>(a[d]);
+      r[3 + d] = static_cast<std::int16_t>(b[d]);
+    }
     forEachBin(i, [&](size_t bin) { ++counts[bin + 1]; });
   }
   for (size_t b = 0; b < bins; ++b)
@@ -187,7 +257,7 @@ const double* BoxGridLocator::Bins::BoxOf(
   {
     return &this->Boxes[6 * static_cast<size_t>(position)];
   }
-  CellBox(mesh, position, scratch);
+  this->CellBox(mesh, position, scratch);
   return scratch;
 }
 
@@ -223,6 +293,72 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
     return;
   }
   this->Collect(*this->Grids->Boundary, box, cells);
+}
+
+bool BoxGridLocator::Outside(const double* q)
+{
+  const Shared& g = *this->Grids;
+  const MeshView& mesh = g.Mesh;
+  if (!g.Boundary || mesh.CellDimension != 2 || mesh.SpaceDimension != 2 || !std::isfinite(q[0]) ||
+    !std::isfinite(q[1]))
+  {
+    return false;
+  }
+  // The boundary cells whose boxes reach the ray {(x, q_y), x >= q_x}:
+  // those in q's row of bins, from q's column on.
+  const Bins& bins = *g.Boundary;
+  const double point[6] = { q[0], q[0], q[1], q[1], 0.0, 0.0 };
+  int first[3];
+  int last[3];
+  bins.Range(point, first, last);
+  std::vector<Index>& cells = this->RayCells;
+  cells.clear();
+  for (int j = first[1]; j <= last[1]; ++j)
+  {
+    for (int i = first[0]; i < bins.Divisions[0]; ++i)
+    {
+      const size_t bin = size_t(j) * bins.Divisions[0] + i;
+      cells.insert(cells.end(), bins.BinCells.begin() + bins.BinStart[bin],
+        bins.BinCells.begin() + bins.BinStart[bin + 1]);
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  // Crossings of the ray by boundary faces, each counted once (half-open in
+  // y: a face ending on the ray's line counts at its lower end only).
+  bool inside = false;
+  for (const Index position : cells)
+  {
+    const Index c = bins.CellOf(position);
+    const CellCorners ids = mesh.Cell(c);
+    const double* x[3] = { mesh.Point(ids[0]), mesh.Point(ids[1]), mesh.Point(ids[2]) };
+    if (!(Orient2D(x[0], x[1], x[2]) != 0.0))
+    {
+      return false; // zero area (or not a number): its faces bound nothing
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      if (mesh.Neighbor(c, k) >= 0)
+      {
+        continue;
+      }
+      const double* a = x[(k + 1) % 3]; // face k: the corners other than k
+      const double* b = x[(k + 2) % 3];
+      const bool aBelow = a[1] <= q[1];
+      if (aBelow == (b[1] <= q[1]))
+      {
+        continue; // both ends on one side of the ray's line
+      }
+      // Upward (a below): the crossing is right of q when q is left of a->b.
+      const double side = Orient2D(a, b, q);
+      if (side == 0.0)
+      {
+        return false; // q on the face's line, within its span: no verdict
+      }
+      inside = inside != (aBelow ? side > 0.0 : side < 0.0);
+    }
+  }
+  return !inside;
 }
 
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)

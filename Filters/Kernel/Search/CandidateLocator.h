@@ -67,6 +67,23 @@ public:
   }
 
   /**
+   * True when point `q` (x, y) of a plane source of triangles lies in no
+   * source cell: proven, with exact predicates, from the boundary faces
+   * (faces without neighbour) that a ray from q toward +x crosses, an even
+   * number. Only for a point on no boundary face (the caller knows it: a
+   * corner of a target cell that meets no boundary cell). A target cell
+   * meeting no boundary cell lies wholly inside the source or wholly
+   * outside; one corner outside settles it without a query among all
+   * cells. False says nothing (the default; other meshes; a ray through a
+   * source cell of zero area or along a boundary face).
+   */
+  virtual bool Outside(const double* q)
+  {
+    (void)q;
+    return false;
+  }
+
+  /**
    * A locator over the same cells for another thread: concurrent tasks each
    * query their own. It may share the (read-only) index with this one.
    */
@@ -87,6 +104,7 @@ public:
   void FindCandidates(const double box[6], std::vector<Index>& cells) override;
   void FindBoundaryCandidates(const double box[6], std::vector<Index>& cells) override;
   bool Supports(Index cell, int face) const override;
+  bool Outside(const double* q) override;
   std::unique_ptr<CandidateLocator> NewForThread() const override;
 
 private:
@@ -102,6 +120,8 @@ private:
     /// per cell of the mesh; that grid is built only without neighbours).
     std::vector<Index> Cells;
     std::vector<double> Boxes;
+    /// How a cell's box is computed (for the mesh's kind of cells).
+    void (*CellBox)(const MeshView& mesh, Index cell, double box[6]) = nullptr;
     /// Bins over `cells` of `mesh` (every cell when `cells` is null).
     Bins(const MeshView& mesh, const std::vector<Index>* cells);
     /// The box of the binned cell at `position`: stored, or computed into `scratch`.
@@ -130,6 +150,7 @@ private:
   void Collect(const Bins& bins, const double box[6], std::vector<Index>& cells);
 
   std::shared_ptr<Shared> Grids;
+  std::vector<Index> RayCells; ///< Outside()'s boundary cells in the ray's row of bins
 };
 } // namespace mp
 

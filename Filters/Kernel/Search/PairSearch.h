@@ -44,6 +44,9 @@
  *  - only when that meets nothing either (the cell lies inside the source
  *    away from its boundary, or outside it) among all source cells. After
  *    the first such query, unseeded cells go straight to it (no more walks).
+ *    In the plane a cell outside needs none: the boundary faces that a ray
+ *    from one of its corners crosses, an even number, prove that corner,
+ *    and so the cell, outside (CandidateLocator::Outside).
  * So on meshes of the same domain the front needs one walk per range and a
  * few boundary queries, and never an index over all source cells. Source
  * cells of zero measure do not stop the inner front: it passes through
@@ -218,6 +221,7 @@ private:
     /// each other, so only a query among all source cells nearby is sure.
     bool Screened = false;
     bool Met = false;
+    bool Degenerate = false; ///< a source cell of zero measure was on the inner front
     InnerState()
     {
       for (auto& f : this->FaceSeed)
@@ -296,6 +300,15 @@ private:
           continue;
         }
       }
+      // Not even a boundary cell nearby meets the cell: it lies wholly
+      // inside the source or wholly outside it. A corner outside settles
+      // it (met nothing) without the query among all source cells.
+      if (state.Level == 1 && !state.Met && !state.Screened && !state.Degenerate &&
+        this->CornerOutside(tId))
+      {
+        ++this->Stats.OutsideCells;
+        break;
+      }
       // The seed failed, or the walk ran into the source boundary: ask for
       // the boundary cells nearby; if still nothing meets the cell, for all.
       state.Level = (state.Met || (state.Level == 0 && !this->AskedAll)) && !state.Screened ? 1 : 2;
@@ -339,6 +352,20 @@ private:
     ++stats.WalkRestarts;
     return WalkToward<Sources>(
       this->Source, this->Prepared, near, q, this->MaxWalk, stats.WalkSteps);
+  }
+
+  /// Whether the locator proves a corner of target cell tId outside the
+  /// source (CandidateLocator::Outside; triangles of a plane only).
+  bool CornerOutside(Index tId) const
+  {
+    if constexpr (Intersector::Dimension == 2 && std::is_same<Cell, SourceCell>::value)
+    {
+      if (this->Target.CellDimension == 2 && this->Target.SpaceDimension == 2)
+      {
+        return this->Locator.Outside(this->Target.Point(this->Target.Cell(tId)[0]));
+      }
+    }
+    return false;
   }
 
   /// Adds the locator's candidates (boundary cells, or all cells) to the inner front.
@@ -391,6 +418,7 @@ private:
       {
         // Zero measure: meets nothing, but must not cut the walk off from
         // the cells beyond it.
+        state.Degenerate = true;
         for (int k = 0; k < SourceFaces; ++k)
         {
           const Index n = this->Source.Neighbor(sId, k);

@@ -25,7 +25,10 @@ struct SearchStatistics
   Index Pieces = 0;             ///< pairs whose intersection has positive measure
   Index LocatorQueries = 0;     ///< candidate look-ups in the locator (seeds and re-seeds)
   Index FullLocatorQueries = 0; ///< of which among all source cells (the others: boundary cells)
-  Index SeedWalks = 0;          ///< walks through the source toward an unseeded target cell
+  /// Target cells that met no boundary cell nearby, found outside the
+  /// source by a ray (CandidateLocator::Outside) instead of a full query.
+  Index OutsideCells = 0;
+  Index SeedWalks = 0;    ///< walks through the source toward an unseeded target cell
   Index WalkRestarts = 0; ///< of those stopped on the way, made again from a sampled source cell
   Index WalkSteps = 0;    ///< source cells those walks (and their restarts) went through
   Index DegenerateTargetCells = 0; ///< target cells of zero measure, skipped
@@ -42,6 +45,7 @@ struct SearchStatistics
     this->Pieces += o.Pieces;
     this->LocatorQueries += o.LocatorQueries;
     this->FullLocatorQueries += o.FullLocatorQueries;
+    this->OutsideCells += o.OutsideCells;
     this->SeedWalks += o.SeedWalks;
     this->WalkRestarts += o.WalkRestarts;
     this->WalkSteps += o.WalkSteps;

@@ -154,18 +154,43 @@ TEST(PairSearch, FrontTestsFarFewerPairsThanBruteForce)
 TEST(PairSearch, AllSourceCellsAskedOnlyWhereTheBoundaryCannotTell)
 {
   // A target reaching beyond the source: its outer cells meet no source
-  // boundary cell, so only a query among all source cells settles them.
+  // boundary cell; in the plane a ray from a corner proves them outside,
+  // so no query among all source cells is needed.
   const TestMesh source = mptest::GridMesh(10, 10, 0.25, 21, 0.3, 0.3, 0.7, 0.7);
   const TestMesh target = mptest::GridMesh(12, 12, 0.25, 22);
   Searches out(target, source);
   out.ExpectSamePairs("target around the source");
-  EXPECT_GT(out.FrontStats.FullLocatorQueries, 0);
+  EXPECT_GT(out.FrontStats.OutsideCells, 0);
+  EXPECT_EQ(out.FrontStats.FullLocatorQueries, 0);
   // A target inside a source with holes: walks toward cells past a hole
   // stop at its boundary, the boundary cells nearby settle the rest.
   const TestMesh holed = mptest::GridMesh(16, 16, 0.25, 23, 0, 0, 1, 1, LShapeWithHole);
   const TestMesh inside = mptest::GridMesh(11, 13, 0.25, 24, 0.05, 0.05, 0.45, 0.95);
   Searches in(inside, holed);
   in.ExpectSamePairs("target over holes");
+}
+
+TEST(PairSearch, RayFromAPointOutsideCrossesTheBoundaryAnEvenNumberOfTimes)
+{
+  // Unjittered 16 x 16 grid of the unit square: an L with a square hole and
+  // a notch. Points in the hole, the notch, the missing corner and beyond
+  // are outside; points in the source are not (the ray crosses an odd
+  // number of boundary faces), nor are points on a boundary face's line
+  // within its span (no verdict).
+  const TestMesh holed = mptest::GridMesh(16, 16, 0.0, 23, 0, 0, 1, 1, LShapeWithHole);
+  mp::BoxGridLocator locator(holed.View());
+  const double outside[][3] = { { 0.375, 0.375, 0 }, { 0.1, 0.9, 0 }, { 0.8, 0.8, 0 },
+    { -0.5, 0.3, 0 }, { 1.5, 0.3, 0 }, { 0.3, -2.0, 0 }, { 0.3, 1.5, 0 } };
+  for (const auto& q : outside)
+  {
+    EXPECT_TRUE(locator.Outside(q)) << q[0] << ", " << q[1];
+  }
+  const double notProven[][3] = { { 0.1, 0.1, 0 }, { 0.6, 0.2, 0 }, { 0.1, 0.6, 0 },
+    { 0.3, 0.8, 0 }, { 0.2, 0.3, 0 }, { 0.5, 0.3, 0 } };
+  for (const auto& q : notProven)
+  {
+    EXPECT_FALSE(locator.Outside(q)) << q[0] << ", " << q[1];
+  }
 }
 
 TEST(PairSearch, WalkStoppedByAHoleStartsAgainNearTheCell)
