@@ -411,6 +411,12 @@ inline void MirrorUpper(int n, double* G)
   }
 }
 
+/// InTargetBasis's condition on the two cells' measures.
+inline bool ComparableMeasures(double targetMeasure, double sourceMeasure)
+{
+  return 100.0 * sourceMeasure >= targetMeasure;
+}
+
 /**
  * Whether source functions fs lie in the span of target functions ft, so
  * that SourceInTargetBasis gives their mixed block from the target mass
@@ -425,7 +431,7 @@ inline bool InTargetBasis(bool volume, const NodalFunctions& ft, const NodalFunc
   double targetMeasure, double sourceMeasure)
 {
   return volume && ft.Space == SpaceType::P1 && ft.IsAffine() && fs.IsAffine() &&
-    fs.Degree <= ft.Degree && ft.Degree <= 2 && 100.0 * sourceMeasure >= targetMeasure;
+    fs.Degree <= ft.Degree && ft.Degree <= 2 && ComparableMeasures(targetMeasure, sourceMeasure);
 }
 
 /**

@@ -96,6 +96,9 @@ struct QuadratureAssembler
   std::vector<double> MttSum;       ///< ... or their blocks (InTargetBasis)
   /// The current cell's pieces' target mass blocks per source parent
   /// (InTargetBasis): their mixed blocks follow once per parent (CloseCell).
+  /// With Fields, the open blocks' sums per source parent (their values
+  /// at the target's nodes are the same on all the blocks' cells), settled
+  /// when the blocks are appended.
   struct Deferred
   {
     Index Key = -1;  ///< NodalFunctions::Key of the source functions
@@ -182,7 +185,10 @@ struct QuadratureAssembler
       return; // only touching pieces
     }
     const int nt = this->T.Count;
-    this->SettlePending();
+    if (!this->Fields)
+    {
+      this->SettlePending(); // (with Fields, once per block: AppendBlocks)
+    }
     if (!this->Open)
     {
       this->Mtt.assign(static_cast<size_t>(nt) * nt, 0.0);
@@ -234,6 +240,19 @@ struct QuadratureAssembler
     this->PendingCount = 0;
   }
 
+  /// The pending sums of the source functions of Key `key`, or null.
+  Deferred* FindPending(Index key)
+  {
+    for (size_t k = 0; k < this->PendingCount; ++k)
+    {
+      if (this->Pending[k].Key == key)
+      {
+        return &this->Pending[k];
+      }
+    }
+    return nullptr;
+  }
+
   /// With Fields: the source functions' integrals over a deferred source's
   /// pieces (sum_m int phi_m psi_j(X_m)) into their cover.
   void SettleIntegrals(const Deferred& d)
@@ -260,12 +279,9 @@ struct QuadratureAssembler
   Deferred& PendingFor(Index cell)
   {
     const Index key = this->S.Key();
-    for (size_t k = 0; k < this->PendingCount; ++k)
+    if (Deferred* known = this->FindPending(key))
     {
-      if (this->Pending[k].Key == key)
-      {
-        return this->Pending[k];
-      }
+      return *known;
     }
     if (this->PendingCount == this->Pending.size())
     {
@@ -351,6 +367,10 @@ struct QuadratureAssembler
   /// blocks have that many (RowsPerBlock), else one per row.
   void AppendBlocks()
   {
+    if (this->Fields)
+    {
+      this->SettlePending();
+    }
     if (!this->Open)
     {
       return;
@@ -429,7 +449,10 @@ struct QuadratureAssembler
       }
       this->TargetPoints.clear();
       this->MttSum.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
-      this->PendingCount = 0;
+      if (!this->Fields)
+      {
+        this->PendingCount = 0;
+      }
     }
     if constexpr (QuadratureSupports<Intersector>)
     {
@@ -443,6 +466,43 @@ struct QuadratureAssembler
       }
       this->Add(t, s, piece);
     }
+  }
+
+  /**
+   * Adds a piece whose source functions lie in the target's span
+   * (InTargetBasis) to their pending sums; false, S bound to s, when they
+   * do not. With Fields, a source parent met before in the open blocks
+   * passed already (its functions' own conditions), and S is not bound.
+   */
+  template <class SourceCell>
+  bool AddInTargetBasis(const Cell& t, const SourceCell& s, const Piece& piece)
+  {
+    constexpr bool volume = std::is_same<Intersector, TriangleIntersector>::value ||
+      std::is_same<Intersector, TetrahedronIntersector>::value;
+    Deferred* d = nullptr;
+    if (this->Fields && ComparableMeasures(t.Measure, s.Measure))
+    {
+      d = this->FindPending(NodalFunctions::KeyOf(*this->Source, this->SourceSpace, s.Id));
+    }
+    if (!d)
+    {
+      this->S.Bind(*this->Source, this->SourceSpace, s.Id);
+      if (!InTargetBasis(volume, this->T, this->S, t.Measure, s.Measure))
+      {
+        return false;
+      }
+      d = &this->PendingFor(s.Id);
+    }
+    if (this->Fields)
+    {
+      AddPieceRhs<Intersector>(piece, this->T, d->U.data(), this->Components, this->BlockRhs.data(),
+        d->Integral.data(), this->TargetPoints);
+    }
+    else
+    {
+      AddPieceTargetMass<Intersector>(piece, this->T, d->G.data());
+    }
+    return true;
   }
 
   /// Adds one piece of the current target cell.
@@ -461,25 +521,9 @@ struct QuadratureAssembler
       return; // the cells only touch
     }
     this->Covered += measure;
-    this->S.Bind(*this->Source, this->SourceSpace, s.Id);
     // A piece's measure on the source cell per unit of its own (surfaces, curves).
     const double scale = Intersector::SourceScale(s, piece);
-    constexpr bool volume = std::is_same<Intersector, TriangleIntersector>::value ||
-      std::is_same<Intersector, TetrahedronIntersector>::value;
-    if (InTargetBasis(volume, this->T, this->S, t.Measure, s.Measure))
-    {
-      Deferred& d = this->PendingFor(s.Id);
-      if (this->Fields)
-      {
-        AddPieceRhs<Intersector>(piece, this->T, d.U.data(), this->Components,
-          this->BlockRhs.data(), d.Integral.data(), this->TargetPoints);
-      }
-      else
-      {
-        AddPieceTargetMass<Intersector>(piece, this->T, d.G.data());
-      }
-    }
-    else
+    if (!this->AddInTargetBasis(t, s, piece))
     {
       this->PieceMts.assign(static_cast<size_t>(this->T.Count) * this->S.Count, 0.0);
       double integrals[MaxNodalFunctions] = {};
