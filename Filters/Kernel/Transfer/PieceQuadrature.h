@@ -345,6 +345,33 @@ void AddPieceTargetMass(const typename I::Piece& piece, const NodalFunctions& ft
   });
 }
 
+/// One point's share of AddPieceRhs: integral[m] += w phi_m, and
+/// rhs[i][c] += w u_c phi_i with u_c = sum_m phi_m U[m][c], N functions
+/// (N > 0: known at compile time, so the loops unroll; 0: n of them).
+template <int N>
+inline void AddPointRhs(double w, const double* phi, int n, const double* U, int components,
+  double* rhs, double* integral)
+{
+  const int nt = N > 0 ? N : n;
+  for (int m = 0; m < nt; ++m)
+  {
+    integral[m] += w * phi[m];
+  }
+  for (int c = 0; c < components; ++c)
+  {
+    double u = 0.0;
+    for (int m = 0; m < nt; ++m)
+    {
+      u += phi[m] * U[m * components + c];
+    }
+    const double wu = w * u;
+    for (int i = 0; i < nt; ++i)
+    {
+      rhs[i * components + c] += wu * phi[i];
+    }
+  }
+}
+
 /**
  * The right-hand sides of one piece where the source fields lie in the
  * target cell's span (InTargetBasis), for a single use (fields given):
@@ -370,30 +397,31 @@ void AddPieceRhs(const typename I::Piece& piece, const NodalFunctions& ft, const
     {
       count = ft.Coordinates(corners[k], corner[k]);
     }
+    // (The points' room taken once per simplex, their values written in place.)
+    const size_t stride = static_cast<size_t>(nt) + 1;
+    const size_t first = targetPoints.size();
+    targetPoints.resize(first + stride * rule.Points);
     for (int q = 0; q < rule.Points; ++q)
     {
       const double* b = &rule.Barycentric[static_cast<size_t>(q) * (D + 1)];
-      double phi[MaxNodalFunctions];
+      double* point = &targetPoints[first + stride * q];
+      double* phi = point + 1;
       ft.ValuesAt(Combination<D>(b, corner, count).data(), phi);
       const double w = rule.Weight[q] * measure;
-      targetPoints.push_back(w);
-      targetPoints.insert(targetPoints.end(), phi, phi + nt);
-      for (int m = 0; m < nt; ++m)
+      point[0] = w;
+      switch (nt) // (the usual counts: tetrahedra's and triangles' P2 and P1)
       {
-        integral[m] += w * phi[m];
-      }
-      for (int c = 0; c < components; ++c)
-      {
-        double u = 0.0;
-        for (int m = 0; m < nt; ++m)
-        {
-          u += phi[m] * U[m * components + c];
-        }
-        const double wu = w * u;
-        for (int i = 0; i < nt; ++i)
-        {
-          rhs[i * components + c] += wu * phi[i];
-        }
+        case 10:
+          AddPointRhs<10>(w, phi, nt, U, components, rhs, integral);
+          break;
+        case 6:
+          AddPointRhs<6>(w, phi, nt, U, components, rhs, integral);
+          break;
+        case 4:
+          AddPointRhs<4>(w, phi, nt, U, components, rhs, integral);
+          break;
+        default:
+          AddPointRhs<0>(w, phi, nt, U, components, rhs, integral);
       }
     }
   });
