@@ -51,8 +51,35 @@ inline int LagrangeIndex(double c)
  * corners lambda_i (2 lambda_i - 1), the edges 4 lambda_i lambda_j.
  * N or dN may be null.
  */
+/// SimplexP2's values alone (the same operations, without the
+/// derivatives' tests in every loop: the quadrature's points need only these).
+void SimplexP2Values(int d, const double* xi, double* N)
+{
+  double lambda[4];
+  lambda[0] = 1.0;
+  for (int a = 0; a < d; ++a)
+  {
+    lambda[a + 1] = xi[a];
+    lambda[0] -= xi[a];
+  }
+  for (int i = 0; i <= d; ++i)
+  {
+    N[i] = lambda[i] * (2.0 * lambda[i] - 1.0);
+  }
+  const int edges = d == 1 ? 1 : (d == 2 ? 3 : 6);
+  for (int e = 0; e < edges; ++e)
+  {
+    N[d + 1 + e] = 4.0 * lambda[SimplexEdges[e][0]] * lambda[SimplexEdges[e][1]];
+  }
+}
+
 void SimplexP2(int d, const double* xi, double* N, double* dN)
 {
+  if (N && !dN)
+  {
+    SimplexP2Values(d, xi, N);
+    return;
+  }
   double lambda[4];
   lambda[0] = 1.0;
   for (int a = 0; a < d; ++a)

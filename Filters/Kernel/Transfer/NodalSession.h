@@ -9,10 +9,10 @@
  * source space is P1 on a mesh with second-order cells (NodalSpace.h):
  * Prepare() sets up one QuadratureAssembler per task, Finish() adds the
  * tasks' sums in task order and assembles M_ts, and keeps M_tt's blocks
- * for CompleteTargetMass (NodalMass.h). With OperatorOptions::Fields,
- * M_ts is assembled all the same and its product with the fields is the
- * right-hand side (M_ts is then given back): the one-off path's result,
- * not its saving.
+ * for CompleteTargetMass (NodalMass.h). With OperatorOptions::Fields
+ * (a single use), each task sums its target blocks' right-hand sides
+ * instead of M_ts's blocks (QuadratureAssembler::Fields), added into the
+ * operator's in task order after the search: M_ts is never formed.
  */
 #ifndef MeshProjection_Kernel_NodalSession_h
 #define MeshProjection_Kernel_NodalSession_h
@@ -95,6 +95,8 @@ struct MortarOperator::NodalSession
       a.Excluded = op.Options.ExcludedSourceCells;
       a.SourceCovered = cover ? this->Met[k].data() : nullptr;
       a.SourceFunctionCovered = functionCover ? this->FunctionMet[k].data() : nullptr;
+      a.Fields = op.Options.Fields;
+      a.Components = op.Options.Fields ? op.Options.FieldComponents : 0;
       if (op.Options.KeepPieces)
       {
         a.Pieces = tasks > 1 ? &this->Pieces[k] : &op.Pieces;
@@ -119,16 +121,47 @@ struct MortarOperator::NodalSession
     const size_t corners = static_cast<size_t>(target.CornersPerCell());
     const size_t columns = target.CellDimension == 3 ? 40 : 16;
     const size_t values = target.CellDimension == 3 ? 160 : 60;
-    MixedBlocks& b = this->Blocks[k];
-    b.Rows.reserve(n * corners);
-    b.Start.reserve(n + 1);
-    b.Columns.reserve(n * columns);
-    b.Values.reserve(n * values);
+    if (this->Op->Options.Fields)
+    {
+      Assembler& a = this->Assemblers[k];
+      a.RhsRows.reserve(n * corners);
+      a.RhsValues.reserve(n * corners * static_cast<size_t>(a.Components));
+    }
+    else
+    {
+      MixedBlocks& b = this->Blocks[k];
+      b.Rows.reserve(n * corners);
+      b.Start.reserve(n + 1);
+      b.Columns.reserve(n * columns);
+      b.Values.reserve(n * values);
+    }
     MixedBlocks& m = this->MassBlocks[k];
     m.Rows.reserve(n * corners);
     m.Start.reserve(n + 1);
     m.Columns.reserve(n * corners);
     m.Values.reserve(n * corners * corners);
+  }
+
+  /// With Fields: the tasks' right-hand sides into the operator's, in task order.
+  void SumRhs(Index rows)
+  {
+    MortarOperator& op = *this->Op;
+    const size_t nc = static_cast<size_t>(op.Options.FieldComponents);
+    op.Rhs.resize(static_cast<size_t>(rows) * nc);
+    std::fill(op.Rhs.begin(), op.Rhs.end(), 0.0);
+    for (Assembler& a : this->Assemblers)
+    {
+      for (size_t r = 0; r < a.RhsRows.size(); ++r)
+      {
+        double* b = &op.Rhs[static_cast<size_t>(a.RhsRows[r]) * nc];
+        for (size_t c = 0; c < nc; ++c)
+        {
+          b[c] += a.RhsValues[r * nc + c];
+        }
+      }
+      std::vector<Index>().swap(a.RhsRows);
+      std::vector<double>().swap(a.RhsValues);
+    }
   }
 
   /// After the search: the tasks' sums merged, M_ts (or the right-hand sides), M_tt's blocks kept.
@@ -141,6 +174,11 @@ struct MortarOperator::NodalSession
     for (Assembler& a : this->Assemblers)
     {
       a.Flush();
+    }
+    const Index rows = op.TargetMass.Rows;
+    if (op.Options.Fields)
+    {
+      this->SumRhs(rows);
     }
     for (int k = 0; k < tasks; ++k)
     {
@@ -165,15 +203,10 @@ struct MortarOperator::NodalSession
     op.Timings.Search += SecondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    const Index rows = op.TargetMass.Rows;
-    AssembleMixedMatrix(
-      this->Blocks, rows, SpaceSize(op.Options.SourceSpace, source), runner, op.MixedMass);
-    if (op.Options.Fields)
+    if (!op.Options.Fields)
     {
-      const int nc = op.Options.FieldComponents;
-      op.Rhs.resize(static_cast<size_t>(rows) * nc);
-      op.MixedMass.MultiplyRows(op.Options.Fields, op.Rhs.data(), nc, 0, rows);
-      op.MixedMass = CsrMatrix();
+      AssembleMixedMatrix(
+        this->Blocks, rows, SpaceSize(op.Options.SourceSpace, source), runner, op.MixedMass);
     }
     op.NodalMassBlocks.swap(this->MassBlocks);
     op.Timings.Assembly += SecondsSince(start);

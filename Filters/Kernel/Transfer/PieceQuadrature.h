@@ -345,6 +345,88 @@ void AddPieceTargetMass(const typename I::Piece& piece, const NodalFunctions& ft
   });
 }
 
+/// One point's share of AddPieceRhs: integral[m] += w phi_m, and
+/// rhs[i][c] += w u_c phi_i with u_c = sum_m phi_m U[m][c], N functions
+/// (N > 0: known at compile time, so the loops unroll; 0: n of them).
+template <int N>
+inline void AddPointRhs(double w, const double* phi, int n, const double* U, int components,
+  double* rhs, double* integral)
+{
+  const int nt = N > 0 ? N : n;
+  for (int m = 0; m < nt; ++m)
+  {
+    integral[m] += w * phi[m];
+  }
+  for (int c = 0; c < components; ++c)
+  {
+    double u = 0.0;
+    for (int m = 0; m < nt; ++m)
+    {
+      u += phi[m] * U[m * components + c];
+    }
+    const double wu = w * u;
+    for (int i = 0; i < nt; ++i)
+    {
+      rhs[i * components + c] += wu * phi[i];
+    }
+  }
+}
+
+/**
+ * The right-hand sides of one piece where the source fields lie in the
+ * target cell's span (InTargetBasis), for a single use (fields given):
+ * rhs[i][c] += int phi_i u_c with u_c = sum_m phi_m U[m][c] (U: the
+ * fields' values at the target's nodes, nt x components), and
+ * integral[m] += int phi_m (which gives the source functions' integrals,
+ * SourceInTargetBasis's column sums); each point's weight and phi_i
+ * appended to `targetPoints` for TargetMassFromPoints. The rule of degree
+ * 2 ft.Degree (exact on straight cells), ft affine; M_ts and the target
+ * mass block are never formed.
+ */
+template <class I>
+void AddPieceRhs(const typename I::Piece& piece, const NodalFunctions& ft, const double* U,
+  int components, double* rhs, double* integral, std::vector<double>& targetPoints)
+{
+  constexpr int D = I::Dimension;
+  const int nt = ft.Count;
+  const SimplexRule& rule = SimplexQuadrature(D, std::max(2 * ft.Degree, 1));
+  ForEachPieceSimplex<I>(piece, [&](const double* const* corners, double measure) {
+    double corner[D + 1][4];
+    int count = 0;
+    for (int k = 0; k <= D; ++k)
+    {
+      count = ft.Coordinates(corners[k], corner[k]);
+    }
+    // (The points' room taken once per simplex, their values written in place.)
+    const size_t stride = static_cast<size_t>(nt) + 1;
+    const size_t first = targetPoints.size();
+    targetPoints.resize(first + stride * rule.Points);
+    for (int q = 0; q < rule.Points; ++q)
+    {
+      const double* b = &rule.Barycentric[static_cast<size_t>(q) * (D + 1)];
+      double* point = &targetPoints[first + stride * q];
+      double* phi = point + 1;
+      ft.ValuesAt(Combination<D>(b, corner, count).data(), phi);
+      const double w = rule.Weight[q] * measure;
+      point[0] = w;
+      switch (nt) // (the usual counts: tetrahedra's and triangles' P2 and P1)
+      {
+        case 10:
+          AddPointRhs<10>(w, phi, nt, U, components, rhs, integral);
+          break;
+        case 6:
+          AddPointRhs<6>(w, phi, nt, U, components, rhs, integral);
+          break;
+        case 4:
+          AddPointRhs<4>(w, phi, nt, U, components, rhs, integral);
+          break;
+        default:
+          AddPointRhs<0>(w, phi, nt, U, components, rhs, integral);
+      }
+    }
+  });
+}
+
 /// Copies the upper triangle of the n x n matrix G onto its lower one.
 inline void MirrorUpper(int n, double* G)
 {
@@ -355,6 +437,12 @@ inline void MirrorUpper(int n, double* G)
       G[i * n + k] = G[k * n + i];
     }
   }
+}
+
+/// InTargetBasis's condition on the two cells' measures.
+inline bool ComparableMeasures(double targetMeasure, double sourceMeasure)
+{
+  return 100.0 * sourceMeasure >= targetMeasure;
 }
 
 /**
@@ -371,7 +459,7 @@ inline bool InTargetBasis(bool volume, const NodalFunctions& ft, const NodalFunc
   double targetMeasure, double sourceMeasure)
 {
   return volume && ft.Space == SpaceType::P1 && ft.IsAffine() && fs.IsAffine() &&
-    fs.Degree <= ft.Degree && ft.Degree <= 2 && 100.0 * sourceMeasure >= targetMeasure;
+    fs.Degree <= ft.Degree && ft.Degree <= 2 && ComparableMeasures(targetMeasure, sourceMeasure);
 }
 
 /**
@@ -404,6 +492,33 @@ inline void SourceInTargetBasis(const MeshView& target, const NodalFunctions& ft
           sourceIntegrals[j] += v;
         }
       }
+    }
+  }
+}
+
+/**
+ * The values psi_j(X_m) of source functions fs at the target's nodes X_m
+ * (points of `target`; row m, fs.Count wide), and from them the source
+ * fields `fields` (source functions x components) there:
+ * U[m][c] = sum_j psi_j(X_m) u_j,c (InTargetBasis: the fields in the
+ * target's basis).
+ */
+inline void SourceAtTargetNodes(const MeshView& target, const NodalFunctions& ft,
+  const NodalFunctions& fs, const double* fields, int components, double* psi, double* U)
+{
+  const int nt = ft.Count;
+  const int ns = fs.Count;
+  for (int m = 0; m < nt; ++m)
+  {
+    fs.Values(target.Point(ft.Dofs[m]), psi + m * ns);
+    for (int c = 0; c < components; ++c)
+    {
+      double u = 0.0;
+      for (int j = 0; j < ns; ++j)
+      {
+        u += psi[m * ns + j] * fields[fs.Dofs[j] * components + c];
+      }
+      U[m * components + c] = u;
     }
   }
 }

@@ -75,6 +75,13 @@ struct QuadratureAssembler
   const char* Excluded = nullptr;          ///< per source cell: nonzero to leave its pieces out
   double* SourceCovered = nullptr;         ///< per source cell (this task's, or null)
   double* SourceFunctionCovered = nullptr; ///< DP1: per source function (this task's, or null)
+  /// A single use: the source fields (source functions x Components), whose
+  /// right-hand sides are summed instead of M_ts's blocks (null: M_ts).
+  const double* Fields = nullptr;
+  int Components = 0;
+  std::vector<Index> RhsRows;    ///< Fields: the blocks' rows (T.Count per block) ...
+  std::vector<double> RhsValues; ///< ... and their right-hand sides (Components per row)
+  std::vector<double> BlockRhs;  ///< the open blocks' (T.Count x Components)
 
   Index Current = -1; ///< the target cell whose pieces are coming
   double CurrentMeasure = 0.0;
@@ -89,11 +96,21 @@ struct QuadratureAssembler
   std::vector<double> MttSum;       ///< ... or their blocks (InTargetBasis)
   /// The current cell's pieces' target mass blocks per source parent
   /// (InTargetBasis): their mixed blocks follow once per parent (CloseCell).
+  /// With Fields, the open blocks' sums per source parent (their values
+  /// at the target's nodes are the same on all the blocks' cells), settled
+  /// when the blocks are appended.
   struct Deferred
   {
     Index Key = -1;  ///< NodalFunctions::Key of the source functions
     Index Cell = -1; ///< a source cell they live on
     std::vector<double> G;
+    // With Fields, G is not formed: the source functions at the target's
+    // nodes (Psi, T.Count x S.Count) and their dofs, the fields there (U,
+    // T.Count x Components), and the pieces' integrals of the target functions.
+    std::vector<double> Psi;
+    std::vector<Index> Dofs;
+    std::vector<double> U;
+    std::vector<double> Integral;
   };
   std::vector<Deferred> Pending;
   size_t PendingCount = 0;
@@ -168,7 +185,10 @@ struct QuadratureAssembler
       return; // only touching pieces
     }
     const int nt = this->T.Count;
-    this->SettlePending();
+    if (!this->Fields)
+    {
+      this->SettlePending(); // (with Fields, once per block: AppendBlocks)
+    }
     if (!this->Open)
     {
       this->Mtt.assign(static_cast<size_t>(nt) * nt, 0.0);
@@ -200,6 +220,11 @@ struct QuadratureAssembler
     for (size_t k = 0; k < this->PendingCount; ++k)
     {
       Deferred& d = this->Pending[k];
+      if (this->Fields)
+      {
+        this->SettleIntegrals(d);
+        continue;
+      }
       MirrorUpper(nt, d.G.data()); // (AddPieceTargetMass summed the upper triangle)
       this->S.Bind(*this->Source, this->SourceSpace, d.Cell);
       this->PieceMts.assign(static_cast<size_t>(nt) * this->S.Count, 0.0);
@@ -215,16 +240,48 @@ struct QuadratureAssembler
     this->PendingCount = 0;
   }
 
-  /// The pending target mass block of the source functions bound in S (zeros when new).
-  double* PendingFor(Index cell)
+  /// The pending sums of the source functions of Key `key`, or null.
+  Deferred* FindPending(Index key)
   {
-    const Index key = this->S.Key();
     for (size_t k = 0; k < this->PendingCount; ++k)
     {
       if (this->Pending[k].Key == key)
       {
-        return this->Pending[k].G.data();
+        return &this->Pending[k];
       }
+    }
+    return nullptr;
+  }
+
+  /// With Fields: the source functions' integrals over a deferred source's
+  /// pieces (sum_m int phi_m psi_j(X_m)) into their cover.
+  void SettleIntegrals(const Deferred& d)
+  {
+    if (!this->SourceFunctionCovered)
+    {
+      return;
+    }
+    const int nt = this->T.Count;
+    const int ns = static_cast<int>(d.Dofs.size());
+    for (int j = 0; j < ns; ++j)
+    {
+      double integral = 0.0;
+      for (int m = 0; m < nt; ++m)
+      {
+        integral += d.Integral[m] * d.Psi[static_cast<size_t>(m) * ns + j];
+      }
+      this->SourceFunctionCovered[d.Dofs[j]] += integral;
+    }
+  }
+
+  /// The pending sums of the source functions bound in S: when new, a zero
+  /// target mass block, or with Fields their values at the target's nodes.
+  Deferred& PendingFor(Index cell)
+  {
+    const Index key = this->S.Key();
+    if (Deferred* known = this->FindPending(key))
+    {
+      return *known;
     }
     if (this->PendingCount == this->Pending.size())
     {
@@ -233,8 +290,46 @@ struct QuadratureAssembler
     Deferred& d = this->Pending[this->PendingCount++];
     d.Key = key;
     d.Cell = cell;
-    d.G.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
-    return d.G.data();
+    const size_t nt = static_cast<size_t>(this->T.Count);
+    if (!this->Fields)
+    {
+      d.G.assign(nt * nt, 0.0);
+      return d;
+    }
+    d.Psi.resize(nt * this->S.Count);
+    d.Dofs.assign(this->S.Dofs, this->S.Dofs + this->S.Count);
+    d.U.resize(nt * this->Components);
+    d.Integral.assign(nt, 0.0);
+    SourceAtTargetNodes(
+      *this->Target, this->T, this->S, this->Fields, this->Components, d.Psi.data(), d.U.data());
+    return d;
+  }
+
+  /// With Fields: PieceMts (T.Count x S.Count, the functions bound in S)
+  /// times the fields into the open blocks' right-hand sides, and
+  /// `integrals` times `scale` to the source functions' cover.
+  void AddToRhs(const double* integrals, double scale)
+  {
+    const int nt = this->T.Count;
+    const int ns = this->S.Count;
+    const int nc = this->Components;
+    for (int i = 0; i < nt; ++i)
+    {
+      for (int c = 0; c < nc; ++c)
+      {
+        double value = 0.0;
+        for (int j = 0; j < ns; ++j)
+        {
+          value += this->PieceMts[static_cast<size_t>(i) * ns + j] *
+            this->Fields[this->S.Dofs[j] * nc + c];
+        }
+        this->BlockRhs[static_cast<size_t>(i) * nc + c] += value;
+      }
+    }
+    for (int j = 0; this->SourceFunctionCovered && j < ns; ++j)
+    {
+      this->SourceFunctionCovered[this->S.Dofs[j]] += scale * integrals[j];
+    }
   }
 
   /// Adds PieceMts (T.Count x S.Count, the functions bound in S) to the
@@ -272,6 +367,10 @@ struct QuadratureAssembler
   /// blocks have that many (RowsPerBlock), else one per row.
   void AppendBlocks()
   {
+    if (this->Fields)
+    {
+      this->SettlePending();
+    }
     if (!this->Open)
     {
       return;
@@ -281,12 +380,21 @@ struct QuadratureAssembler
     MixedBlocks& b = *this->Blocks;
     MixedBlocks& m = *this->MassBlocks;
     const size_t columns = this->BlockColumns.size();
+    const bool mixed = this->Fields == nullptr;
+    if (!mixed)
+    {
+      this->RhsRows.insert(this->RhsRows.end(), this->T.Dofs, this->T.Dofs + nt);
+      this->RhsValues.insert(this->RhsValues.end(), this->BlockRhs.begin(), this->BlockRhs.end());
+    }
     if (b.RowsPerBlock == nt)
     {
-      b.Rows.insert(b.Rows.end(), this->T.Dofs, this->T.Dofs + nt);
-      b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
-      b.Values.insert(b.Values.end(), this->BlockValues.begin(), this->BlockValues.end());
-      b.Start.push_back(static_cast<Index>(b.Columns.size()));
+      if (mixed)
+      {
+        b.Rows.insert(b.Rows.end(), this->T.Dofs, this->T.Dofs + nt);
+        b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
+        b.Values.insert(b.Values.end(), this->BlockValues.begin(), this->BlockValues.end());
+        b.Start.push_back(static_cast<Index>(b.Columns.size()));
+      }
       m.Rows.insert(m.Rows.end(), this->T.Dofs, this->T.Dofs + nt);
       for (int k = 0; k < nt; ++k)
       {
@@ -298,13 +406,16 @@ struct QuadratureAssembler
     }
     for (int i = 0; i < nt; ++i)
     {
-      b.Rows.push_back(this->T.Dofs[i]);
-      b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
-      for (size_t slot = 0; slot < columns; ++slot)
+      if (mixed)
       {
-        b.Values.push_back(this->BlockValues[slot * nt + i]);
+        b.Rows.push_back(this->T.Dofs[i]);
+        b.Columns.insert(b.Columns.end(), this->BlockColumns.begin(), this->BlockColumns.end());
+        for (size_t slot = 0; slot < columns; ++slot)
+        {
+          b.Values.push_back(this->BlockValues[slot * nt + i]);
+        }
+        b.Start.push_back(static_cast<Index>(b.Columns.size()));
       }
-      b.Start.push_back(static_cast<Index>(b.Columns.size()));
       m.Rows.push_back(this->T.Dofs[i]);
       for (int k = 0; k < nt; ++k)
       {
@@ -334,10 +445,14 @@ struct QuadratureAssembler
       {
         this->BlockColumns.clear();
         this->BlockValues.clear();
+        this->BlockRhs.assign(static_cast<size_t>(this->T.Count) * this->Components, 0.0);
       }
       this->TargetPoints.clear();
       this->MttSum.assign(static_cast<size_t>(this->T.Count) * this->T.Count, 0.0);
-      this->PendingCount = 0;
+      if (!this->Fields)
+      {
+        this->PendingCount = 0;
+      }
     }
     if constexpr (QuadratureSupports<Intersector>)
     {
@@ -351,6 +466,43 @@ struct QuadratureAssembler
       }
       this->Add(t, s, piece);
     }
+  }
+
+  /**
+   * Adds a piece whose source functions lie in the target's span
+   * (InTargetBasis) to their pending sums; false, S bound to s, when they
+   * do not. With Fields, a source parent met before in the open blocks
+   * passed already (its functions' own conditions), and S is not bound.
+   */
+  template <class SourceCell>
+  bool AddInTargetBasis(const Cell& t, const SourceCell& s, const Piece& piece)
+  {
+    constexpr bool volume = std::is_same<Intersector, TriangleIntersector>::value ||
+      std::is_same<Intersector, TetrahedronIntersector>::value;
+    Deferred* d = nullptr;
+    if (this->Fields && ComparableMeasures(t.Measure, s.Measure))
+    {
+      d = this->FindPending(NodalFunctions::KeyOf(*this->Source, this->SourceSpace, s.Id));
+    }
+    if (!d)
+    {
+      this->S.Bind(*this->Source, this->SourceSpace, s.Id);
+      if (!InTargetBasis(volume, this->T, this->S, t.Measure, s.Measure))
+      {
+        return false;
+      }
+      d = &this->PendingFor(s.Id);
+    }
+    if (this->Fields)
+    {
+      AddPieceRhs<Intersector>(piece, this->T, d->U.data(), this->Components, this->BlockRhs.data(),
+        d->Integral.data(), this->TargetPoints);
+    }
+    else
+    {
+      AddPieceTargetMass<Intersector>(piece, this->T, d->G.data());
+    }
+    return true;
   }
 
   /// Adds one piece of the current target cell.
@@ -369,22 +521,22 @@ struct QuadratureAssembler
       return; // the cells only touch
     }
     this->Covered += measure;
-    this->S.Bind(*this->Source, this->SourceSpace, s.Id);
     // A piece's measure on the source cell per unit of its own (surfaces, curves).
     const double scale = Intersector::SourceScale(s, piece);
-    constexpr bool volume = std::is_same<Intersector, TriangleIntersector>::value ||
-      std::is_same<Intersector, TetrahedronIntersector>::value;
-    if (InTargetBasis(volume, this->T, this->S, t.Measure, s.Measure))
-    {
-      AddPieceTargetMass<Intersector>(piece, this->T, this->PendingFor(s.Id));
-    }
-    else
+    if (!this->AddInTargetBasis(t, s, piece))
     {
       this->PieceMts.assign(static_cast<size_t>(this->T.Count) * this->S.Count, 0.0);
       double integrals[MaxNodalFunctions] = {};
       AddByPoints<Intersector>(piece, t, this->T, *this->Source, this->S, this->PieceMts.data(),
         nullptr, this->SourceFunctionCovered ? integrals : nullptr, &this->TargetPoints);
-      this->MergeColumns(integrals, scale);
+      if (this->Fields)
+      {
+        this->AddToRhs(integrals, scale);
+      }
+      else
+      {
+        this->MergeColumns(integrals, scale);
+      }
     }
     ++this->Count;
     if (this->SourceCovered)
