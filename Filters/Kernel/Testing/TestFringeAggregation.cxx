@@ -189,6 +189,45 @@ TEST(FringeAggregation, QuadraticWhereBoundedIn3D)
   EXPECT_GT(reproduced, e.Count / 2) << reproduced << " of " << e.Count;
 }
 
+TEST(FringeAggregation, WeighsFreePointsByTheirCoverage)
+{
+  // Points beyond x = 0.7 ill-posed, those in (0.55, 0.7] free but covered
+  // 30 %: fits weighing their points by their covered fraction squared
+  // (FringeCoveragePower) still reproduce affine functions, and the weight
+  // they give the partly covered points is smaller than unweighed fits'.
+  const TestMesh m = mptest::CubeMesh(8, 7, 8, 0.2, 4);
+  const mp::MeshView view = m.View(false);
+  const Index n = view.NumberOfPoints;
+  Fringe plain;
+  plain.Valid.assign(static_cast<size_t>(n), 1);
+  plain.Fraction.assign(static_cast<size_t>(n), 1.0);
+  for (Index i = 0; i < n; ++i)
+  {
+    const double x = view.Point(i)[0];
+    plain.Fraction[i] = x > 0.7 ? 0.05 : (x > 0.55 ? 0.3 : 1.0);
+  }
+  Fringe weighed = plain;
+  plain.Extension = mp::ExtendFringe(
+    view, plain.Valid, plain.Fraction, 0.1, mp::FringeDropFraction, mptest::ThreadRunner(1));
+  weighed.Extension = mp::ExtendFringe(view, weighed.Valid, weighed.Fraction, 0.1,
+    mp::FringeDropFraction, mptest::ThreadRunner(3), false, mp::FringeCoveragePower);
+  ExpectAffineExtension(m, weighed, "weighed by coverage");
+  auto partlyCovered = [&](const mp::FringeExtension& e) {
+    double sum = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      for (Index q = e.Aggregated[i] ? e.P.RowStart[i] : 0;
+           e.Aggregated[i] && q < e.P.RowStart[i + 1]; ++q)
+      {
+        sum += plain.Fraction[e.P.ColumnIndex[q]] < 1.0 ? std::abs(e.P.Values[q]) : 0.0;
+      }
+    }
+    return sum;
+  };
+  EXPECT_EQ(weighed.Extension.Count, plain.Extension.Count);
+  EXPECT_LT(partlyCovered(weighed.Extension), 0.8 * partlyCovered(plain.Extension));
+}
+
 // On surfaces and curves the stencils are fitted in the tangent frame of
 // each point (FringeFrames.h, FringeFits.h): on a plane in 3D and a
 // straight line in 3D the extension reproduces the ambient affine

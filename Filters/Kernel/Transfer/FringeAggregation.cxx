@@ -66,8 +66,8 @@ int QuadraticRings(const MeshView& mesh, const StencilFrame& frame)
  * `ambient` as FitWeights'.
  */
 std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, Index i,
-  std::vector<Index>& points, int degree, const std::vector<Index>* rejected = nullptr,
-  bool* ambient = nullptr)
+  std::vector<Index>& points, int degree, const FitCoverage* coverage,
+  const std::vector<Index>* rejected = nullptr, bool* ambient = nullptr)
 {
   const int d = mesh.SpaceDimension;
   const int f = frame.Dimension;
@@ -114,8 +114,9 @@ std::vector<double> NearestFit(const MeshView& mesh, const StencilFrame& frame, 
       std::min(keep, rejected->size()) == used &&
       std::equal(points.begin(), points.begin() + used, rejected->begin());
     bool reproduces = true;
-    std::vector<double> w =
-      tried ? std::vector<double>() : FitWeights(mesh, frame, i, points, used, degree, &reproduces);
+    std::vector<double> w = tried
+      ? std::vector<double>()
+      : FitWeights(mesh, frame, i, points, used, degree, &reproduces, coverage);
     if (!w.empty() && (reproduces || !ambient))
     {
       if (ambient)
@@ -207,8 +208,8 @@ void RootRingCells(const MeshView& mesh, const CellsAroundPoints& around, Index 
  * allows one.
  */
 bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
-  const std::vector<char>& usable, std::vector<Index>& stamp, std::vector<Index>& cellStamp,
-  std::vector<Index>& points, std::vector<double>& weights)
+  const std::vector<char>& usable, const FitCoverage* coverage, std::vector<Index>& stamp,
+  std::vector<Index>& cellStamp, std::vector<Index>& points, std::vector<double>& weights)
 {
   const Index first = around.Start[static_cast<size_t>(i)];
   const StencilFrame frame = StencilFrameOf(
@@ -244,7 +245,7 @@ bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     {
       points = found;
       bool ambient = true;
-      weights = NearestFit(mesh, frame, i, points, 2, &rejected, &ambient);
+      weights = NearestFit(mesh, frame, i, points, 2, coverage, &rejected, &ambient);
       if (!weights.empty() && ambient)
       {
         return true;
@@ -269,7 +270,8 @@ bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
     {
       std::vector<Index> candidates = found;
       bool ambient = true;
-      std::vector<double> fit = NearestFit(mesh, frame, i, candidates, 1, nullptr, &ambient);
+      std::vector<double> fit =
+        NearestFit(mesh, frame, i, candidates, 1, coverage, nullptr, &ambient);
       if (!fit.empty() && (affine.empty() || ambient))
       {
         affinePoints.swap(candidates);
@@ -302,10 +304,12 @@ bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
  * FringeRootAmplification (FringeRoots.h).
  */
 void StencilOf(const MeshView& mesh, const CellsAroundPoints& around, Index i,
-  const std::vector<char>& usable, const std::vector<char>& roots, std::vector<Index>& stamp,
-  std::vector<Index>& cellStamp, std::vector<Index>& points, std::vector<double>& weights)
+  const std::vector<char>& usable, const FitCoverage* coverage, const std::vector<char>& roots,
+  std::vector<Index>& stamp, std::vector<Index>& cellStamp, std::vector<Index>& points,
+  std::vector<double>& weights)
 {
-  if (FitStencil(mesh, around, i, usable, stamp, cellStamp, points, weights) || roots.empty())
+  if (FitStencil(mesh, around, i, usable, coverage, stamp, cellStamp, points, weights) ||
+    roots.empty())
   {
     return;
   }
@@ -428,7 +432,7 @@ std::vector<Index> ChangedRows(const CsrMatrix& mass, const FringeExtension& ext
  * ranges of ill-posed functions give the same stencils as one loop.
  */
 void Stencils(const MeshView& mesh, const std::vector<Index>& ill, const std::vector<char>& usable,
-  const TaskRunner& runner, std::vector<std::vector<Index>>& stencils,
+  const FitCoverage* coverage, const TaskRunner& runner, std::vector<std::vector<Index>>& stencils,
   std::vector<std::vector<double>>& weights)
 {
   const CellsAroundPoints around(mesh, runner);
@@ -452,8 +456,8 @@ void Stencils(const MeshView& mesh, const std::vector<Index>& ill, const std::ve
       std::vector<Index> cellStamp(static_cast<size_t>(mesh.NumberOfCells), -1);
       for (Index a = begin; a < end; ++a)
       {
-        StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, roots, stamp, cellStamp,
-          stencils[static_cast<size_t>(a)], weights[static_cast<size_t>(a)]);
+        StencilOf(mesh, around, ill[static_cast<size_t>(a)], usable, coverage, roots, stamp,
+          cellStamp, stencils[static_cast<size_t>(a)], weights[static_cast<size_t>(a)]);
       }
       return 0;
     },
@@ -525,7 +529,7 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
 
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
   const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner,
-  bool stencilOrder)
+  bool stencilOrder, double coveragePower)
 {
   FringeExtension ext;
   const Index n = static_cast<Index>(valid.size());
@@ -548,7 +552,8 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   }
   std::vector<std::vector<Index>> stencils;
   std::vector<std::vector<double>> weights;
-  Stencils(mesh, ill, usable, runner, stencils, weights);
+  const FitCoverage coverage{ fraction.data(), coveragePower };
+  Stencils(mesh, ill, usable, coveragePower > 0.0 ? &coverage : nullptr, runner, stencils, weights);
   for (size_t a = 0; a < ill.size(); ++a)
   {
     const bool extended = !stencils[a].empty();

@@ -163,6 +163,17 @@ inline double FringeDropFractionOf(const MeshView& target)
 constexpr double FringeStrandedDropFraction = 0.1;
 
 /**
+ * The power of their covered fractions by which the fits of point data on
+ * a linear 2D or volume target weigh their free points (FitCoverage in
+ * FringeFits.h). A free point covered in part is projected from one side
+ * of its support: its value carries a larger error than a fully covered
+ * one's, and an extension, summing a dozen weights of either sign, carries
+ * it several times over; weighed so, the fit leans on the well-covered
+ * points (it still reproduces the same polynomials).
+ */
+constexpr double FringeCoveragePower = 2.0;
+
+/**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
  * rings around it (FringeRings, FringeVolumeRings on 2D and volume meshes, then farther
@@ -173,11 +184,13 @@ constexpr double FringeStrandedDropFraction = 0.1;
  * P's rows hold their columns in ascending order, or, with `stencilOrder`,
  * nearest first as the stencil found them (an order that does not depend
  * on the numbering: parts of a distributed target that number a point's
- * stencil differently then extend it to the same bits).
+ * stencil differently then extend it to the same bits). With a positive
+ * `coveragePower`, the fits weigh their points by their `fraction` to that
+ * power (FitCoverage, FringeCoveragePower).
  */
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
   const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner,
-  bool stencilOrder = false);
+  bool stencilOrder = false, double coveragePower = 0.0);
 
 /**
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:

@@ -119,13 +119,16 @@ struct FitPoints
   const std::vector<Index>& Points;
   int Degree;
   double H = 0.0;
+  const FitCoverage* Coverage = nullptr;
 
   /**
    * The monomials of (x_r - x_i) / h in i's frame at point r (coordinates
    * of order 1 about i) and its weight omega, larger near i (the fit is
-   * evaluated at i: near points tell most about it).
+   * evaluated at i: near points tell most about it) and, with Coverage,
+   * smaller on points less covered (FitCoverage); `spread`, when given,
+   * the weight without Coverage's factor (the geometry's alone).
    */
-  void MonomialsAt(Index r, double& omega, SmallVector& v) const
+  void MonomialsAt(Index r, double& omega, SmallVector& v, double* spread = nullptr) const
   {
     const int d = this->Frame.Dimension;
     double y[3];
@@ -138,6 +141,15 @@ struct FitPoints
       distance2 += y[a] * y[a];
     }
     omega = 1.0 / ((distance2 + 0.25) * (distance2 + 0.25));
+    if (spread)
+    {
+      *spread = omega;
+    }
+    if (this->Coverage)
+    {
+      const Index k = this->Points[static_cast<size_t>(r)];
+      omega *= std::pow(std::min(1.0, this->Coverage->Fraction[k]), this->Coverage->Power);
+    }
     Monomials(y, d, this->Degree, v.data());
   }
 
@@ -222,7 +234,8 @@ std::vector<double> CurvedWeights(const FitPoints& fit, Index m, int terms, doub
 } // namespace
 
 std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, Index i,
-  const std::vector<Index>& points, size_t keep, int degree, bool* ambient)
+  const std::vector<Index>& points, size_t keep, int degree, bool* ambient,
+  const FitCoverage* coverage)
 {
   bool reproduces = true;
   if (ambient)
@@ -255,19 +268,35 @@ std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, 
   // k, FitPoints) summed row by row, at most 10 x 10 on the stack; the
   // monomials made again for the weights rather than kept (no matrix of
   // points x terms to allocate per fit).
-  const FitPoints fit{ mesh, frame, xi, points, degree, h };
+  const FitPoints fit{ mesh, frame, xi, points, degree, h, coverage };
   Small G = Small::Zero(terms, terms);
+  // (With coverage, the same normal matrix without its factors, whose
+  // spectrum says whether the points determine the fit: how well their
+  // values are known does not.)
+  Small spreadG = Small::Zero(coverage ? terms : 0, coverage ? terms : 0);
   SmallVector v(terms);
   double omegaSum = 0.0;
+  double spreadSum = 0.0;
   for (Index r = 0; r < m; ++r)
   {
     double omega;
-    fit.MonomialsAt(r, omega, v);
+    double spread;
+    fit.MonomialsAt(r, omega, v, &spread);
     G.selfadjointView<Eigen::Lower>().rankUpdate(v, omega);
     omegaSum += omega;
+    if (coverage)
+    {
+      spreadG.selfadjointView<Eigen::Lower>().rankUpdate(v, spread);
+      spreadSum += spread;
+    }
   }
   G = G.selfadjointView<Eigen::Lower>();
   G /= omegaSum;
+  if (coverage)
+  {
+    spreadG = spreadG.selfadjointView<Eigen::Lower>();
+    spreadG /= spreadSum;
+  }
   SmallVector e = SmallVector::Zero(terms);
   e(0) = 1.0; // the fit's value at i (the origin of the coordinates)
   // The weighted fit's value at i: w_k = omega_k v_k . G^-1 e / sum omega.
@@ -291,8 +320,9 @@ std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, 
   // fit, whatever its weights (on a Gmsh wedge pair, quadratic fits
   // accepted on their amplification alone gave 17 times the interior's
   // error).
-  if (Eigen::SelfAdjointEigenSolver<Small>(G, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() <
-    (degree == 1 ? 1e-2 : 1e-4))
+  if (Eigen::SelfAdjointEigenSolver<Small>(coverage ? spreadG : G, Eigen::EigenvaluesOnly)
+        .eigenvalues()
+        .minCoeff() < (degree == 1 ? 1e-2 : 1e-4))
   {
     return {};
   }

@@ -75,6 +75,19 @@ inline double QuadraticAmplificationIn(const MeshView& mesh, const StencilFrame&
 }
 
 /**
+ * How a fit weighs its points by how well their values are known: each
+ * point's least-squares weight times its covered fraction (at most 1) to
+ * the power Power. A free point whose support the source covers in part
+ * carries a larger error than a fully covered one (its projection sees
+ * one side only), and an extension amplifies what it takes from it.
+ */
+struct FitCoverage
+{
+  const double* Fraction = nullptr; ///< per point of the mesh, its covered fraction
+  double Power = 0.0;
+};
+
+/**
  * The weights of points[0 .. keep) that give, at point i, the value of the
  * least-squares polynomial fit of degree `degree` (1 or 2) through them in
  * i's `frame` (the minimum-norm weights reproducing those polynomials at
@@ -87,7 +100,8 @@ inline double QuadraticAmplificationIn(const MeshView& mesh, const StencilFrame&
  * curved ones where the fit through the normal coordinates is kept).
  */
 std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, Index i,
-  const std::vector<Index>& points, size_t keep, int degree, bool* ambient = nullptr);
+  const std::vector<Index>& points, size_t keep, int degree, bool* ambient = nullptr,
+  const FitCoverage* coverage = nullptr);
 } // namespace mp
 
 #endif

@@ -258,6 +258,12 @@ void MortarOperator::ShareValidity(const SolverHooks& hooks)
   }
 }
 
+double MortarOperator::FitCoveragePower(const MeshView& target) const
+{
+  const bool linearVolume = !this->NodalTarget && target.IsVolumeMesh();
+  return linearVolume && this->Options.SourceSpace == SpaceType::P1 ? FringeCoveragePower : 0.0;
+}
+
 Index MortarOperator::AggregateFringe(
   const MeshView& target, double threshold, const SolverHooks& hooks, const FringeHalo* halo)
 {
@@ -306,8 +312,8 @@ Index MortarOperator::AggregateFringe(
     // that part's side's extension; the sum of the parts' P^T M P is still
     // symmetric, positive definite on the free functions and exact for
     // linear fields).
-    this->Fringe = ExtendFringe(
-      target, this->Valid, fraction, threshold, FringeDropFractionOf(target), this->Options.Runner);
+    this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold,
+      FringeDropFractionOf(target), this->Options.Runner, false, this->FitCoveragePower(target));
     if (this->Fringe.Count + this->Fringe.Stranded > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
@@ -424,12 +430,14 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   const Index ghosts = halo.NumberOfPoints();
   const Index rows = n + ghosts;
   const SolverHooks& extended = halo.Hooks;
-  // A ghost point's usable flag: its owner's (the only one counted).
+  // A ghost point's covered fraction when it is usable, else 0: its
+  // owner's (the only one counted; the stencils' fits weigh their points
+  // by it, FringeFits.h).
   std::vector<double> usable(static_cast<size_t>(rows), 0.0);
   for (Index i = 0; i < n; ++i)
   {
     const bool counted = !extended.Counted || extended.Counted[i];
-    usable[i] = counted && this->Valid[i] && fraction[i] >= threshold ? 1.0 : 0.0;
+    usable[i] = counted && this->Valid[i] && fraction[i] >= threshold ? fraction[i] : 0.0;
   }
   extended.Exchange(usable.data(), 1);
   std::vector<char> valid(this->Valid);
@@ -438,16 +446,17 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   extendedFraction.resize(static_cast<size_t>(rows), 0.0);
   for (Index g = n; g < rows; ++g)
   {
-    // Usable ghosts as well covered, the others invalid: none is aggregated here.
+    // Usable ghosts with their owner's fraction (at least the threshold),
+    // the others invalid: none is aggregated here.
     valid[g] = usable[g] > 0.0;
-    extendedFraction[g] = valid[g] ? std::numeric_limits<double>::infinity() : 0.0;
+    extendedFraction[g] = usable[g];
   }
   HaloMesh storage;
   const MeshView whole = WithHalo(target, halo, storage);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
   this->Fringe = ExtendFringe(whole, valid, extendedFraction, threshold,
-    FringeDropFractionOf(target), this->Options.Runner, true);
+    FringeDropFractionOf(target), this->Options.Runner, true, this->FitCoveragePower(target));
   // One system for all parts: aggregated when any part aggregates.
   double count = static_cast<double>(this->Fringe.Count + this->Fringe.Stranded);
   extended.Reduce(&count, 1);

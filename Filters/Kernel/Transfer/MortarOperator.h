@@ -439,6 +439,10 @@ private:
   /// FringeValid and FringeRowSums: the dropped functions invalid, their
   /// covered integrals given to their stencils (with a halo, through its hooks).
   void DropFringe(const SolverHooks* haloHooks);
+  /// The power of their covered fractions the fringe's fits on `target`
+  /// weigh free points by (FitCoverage): FringeCoveragePower for point data
+  /// on a linear 2D or volume target, else 0 (not weighed).
+  double FitCoveragePower(const MeshView& target) const;
   /// AggregateFringe on a distributed system with a halo: P over the extended rows.
   void AggregateWithHalo(const MeshView& target, const std::vector<double>& fraction,
     double threshold, const FringeHalo& halo);
