@@ -212,6 +212,44 @@ void SourceWeights::Weigh(const mp::MortarOperator& op)
   this->Make(op, std::vector<double>());
 }
 
+namespace
+{
+/// A Source integral within this fraction of the integral of |u| is zero
+/// to round-off (sums of many terms of either sign lose about that much).
+constexpr double ZeroIntegralFraction = 1e-10;
+
+/**
+ * ConserveSourceIntegral's scale of component k: the projection scaled to
+ * the Source's own integral (the facetizations of a curved surface differ
+ * in area), when the ratio of the two integrals means something: within
+ * [0.5, 2], and the Source's integral above round-off of the integral of
+ * |u| (a field of zero mean: the ratio of two round-off sums would scale
+ * it by chance). Otherwise unscaled, with one warning per array.
+ */
+void ScaleToSource(ArrayIntegrals& result, int k, double magnitude, const std::string& name,
+  const std::string& role, Messages& messages)
+{
+  const double ratio = result.Source[k] / result.Target[k];
+  const bool zero = std::abs(result.Source[k]) <= ZeroIntegralFraction * magnitude;
+  if (!zero && std::isfinite(ratio) && ratio >= 0.5 && ratio <= 2.0)
+  {
+    result.Factor[k] = ratio;
+    result.Target[k] = result.Source[k];
+  }
+  else if (messages.First("conserve/" + name))
+  {
+    std::ostringstream text;
+    text << "ConserveSourceIntegral: " << name << " (component " << k
+         << ") is not scaled: its integral over Source is " << result.Source[k] << " and over "
+         << role << " " << result.Target[k]
+         << (zero ? " (zero to round-off: the integral of its magnitude is " +
+                  std::to_string(magnitude) + "; nothing to scale)."
+                  : " (the ratio must lie within [0.5, 2]).");
+    messages.Warn(text.str());
+  }
+}
+} // namespace
+
 ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const std::string& name,
   const std::string& role, Parts& parts, Messages& messages)
 {
@@ -231,31 +269,27 @@ ArrayIntegrals Integrate(const ProjectedArray& array, bool conserveSource, const
     mp::SumInBlocks(array.TargetFunctions, nc, mpvtk::SMPTaskRunner(), [&](vtkIdType f, int k) {
       return valid[f] ? covered[f] * array.Result[f * width + offset + k] : 0.0;
     });
+  // The integral of |u| over Source: how large a round-off integral is.
+  std::vector<double> magnitude(static_cast<size_t>(nc), 0.0);
+  if (conserveSource)
+  {
+    magnitude = mp::SumInBlocks(
+      static_cast<vtkIdType>(w.size()), nc, mpvtk::SMPTaskRunner(), [&](vtkIdType j, int k) {
+        return std::abs(w[j] * array.Source[j * sourceWidth + sourceOffset + k]);
+      });
+  }
   // Totals over the processes (their pieces do not overlap).
-  std::vector<double> both(result.Source);
-  both.insert(both.end(), result.Target.begin(), result.Target.end());
-  parts.Sum(both.data(), 2 * nc);
-  std::copy(both.begin(), both.begin() + nc, result.Source.begin());
-  std::copy(both.begin() + nc, both.end(), result.Target.begin());
-  // Optionally, the projection scaled to the Source's own integral (the
-  // facetizations of a curved surface differ in area).
+  std::vector<double> all(result.Source);
+  all.insert(all.end(), result.Target.begin(), result.Target.end());
+  all.insert(all.end(), magnitude.begin(), magnitude.end());
+  parts.Sum(all.data(), 3 * nc);
+  std::copy(all.begin(), all.begin() + nc, result.Source.begin());
+  std::copy(all.begin() + nc, all.begin() + 2 * nc, result.Target.begin());
+  std::copy(all.begin() + 2 * nc, all.end(), magnitude.begin());
   result.Factor.assign(static_cast<size_t>(nc), 1.0);
   for (int k = 0; k < nc && conserveSource; ++k)
   {
-    const double ratio = result.Source[k] / result.Target[k];
-    if (std::isfinite(ratio) && ratio >= 0.5 && ratio <= 2.0)
-    {
-      result.Factor[k] = ratio;
-      result.Target[k] = result.Source[k];
-    }
-    else if (messages.First("conserve/" + name))
-    {
-      std::ostringstream text;
-      text << "ConserveSourceIntegral: " << name << " (component " << k
-           << ") is not scaled: its integral over Source is " << result.Source[k] << " and over "
-           << role << " " << result.Target[k] << " (the ratio must lie within [0.5, 2]).";
-      messages.Warn(text.str());
-    }
+    ScaleToSource(result, k, magnitude[k], name, role, messages);
   }
   return result;
 }
