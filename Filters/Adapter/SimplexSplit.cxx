@@ -3,6 +3,7 @@
 // points (Geometry/CellSplit.h), for the datasets that are not already a
 // grid of one simplex type.
 #include "Adapter/SimplexMesh.h"
+#include "Adapter/DataSetChecks.h"
 
 #include "Adapter/Ghosts.h"
 #include "Adapter/NodalTypes.h"
@@ -466,7 +467,9 @@ vtkSmartPointer<vtkUnstructuredGrid> SimplexGridOf(
 
 vtkIdType SimplexMesh::CurvedUnrefinableCells(vtkDataSet* data)
 {
-  if (!data || data->GetNumberOfCells() == 0)
+  // (Before Wrap: a corrupt part counts nothing here and fails there, with
+  // its message, agreed; its cells are not read.)
+  if (!data || data->GetNumberOfCells() == 0 || !CheckDataSet(data, "").empty())
   {
     return 0;
   }

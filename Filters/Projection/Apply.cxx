@@ -113,6 +113,7 @@ Verdict ApplyTransfer(LeafContext& ctx, const KeptLeaf& kept, const OperatorPlan
   mp::ApplyOptions apply;
   apply.Mass = ctx.Options.Lumped ? mp::MassType::Lumped : mp::MassType::Consistent;
   apply.Bounded = ctx.Options.PreserveBounds;
+  apply.Signed = ctx.Shape.Signed;
   if (ctx.Shape.SecondOrder && !ctx.Shape.Bernstein && TargetSpaceOf(t) == mp::SpaceType::P1)
   {
     SecondOrderSolve(ctx, apply);

@@ -241,10 +241,16 @@ void ScaleToSource(ArrayIntegrals& result, int k, double magnitude, const std::s
     std::ostringstream text;
     text << "ConserveSourceIntegral: " << name << " (component " << k
          << ") is not scaled: its integral over Source is " << result.Source[k] << " and over "
-         << role << " " << result.Target[k]
-         << (zero ? " (zero to round-off: the integral of its magnitude is " +
-                  std::to_string(magnitude) + "; nothing to scale)."
-                  : " (the ratio must lie within [0.5, 2]).");
+         << role << " " << result.Target[k];
+    if (zero)
+    {
+      text << " (zero to round-off: the integral of its magnitude is " << magnitude
+           << "; nothing to scale).";
+    }
+    else
+    {
+      text << " (the ratio must lie within [0.5, 2]).";
+    }
     messages.Warn(text.str());
   }
 }

@@ -107,7 +107,7 @@ int BlockWidth(int first, int count)
 /// weights cut.
 /// Collective.
 mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks& hook,
-  const LabelField& field, int first, int width, mp::MassType mass,
+  const LabelField& field, int first, int width, const mp::ApplyOptions& base,
   mp::LargeVector<double>& weights)
 {
   mp::LargeVector<double> indicators(field.Which.size() * static_cast<size_t>(width), 0.0);
@@ -120,9 +120,8 @@ mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks
     }
   }
   weights.resize(static_cast<size_t>(op.GetNumberOfTargetFunctions()) * width);
-  mp::ApplyOptions apply;
-  apply.Mass = mass;
-  if (mass == mp::MassType::Lumped && !op.HasNodalTarget())
+  mp::ApplyOptions apply = base;
+  if (base.Mass == mp::MassType::Lumped && !op.HasNodalTarget())
   {
     return op.Apply(indicators.data(), width, weights.data(), 0.0, apply, hook);
   }
@@ -130,7 +129,7 @@ mp::ApplyResult ProjectBlock(const mp::MortarOperator& op, const mp::SolverHooks
   // fields, which a second-order Source's quadratic functions take below 0
   // and above 1 next to a region's edge: bounded (each label's measure
   // kept), then cut at 0 as the consistent projection is.
-  apply.Bounded = mass == mp::MassType::Lumped;
+  apply.Bounded = base.Mass == mp::MassType::Lumped;
   // The consistent projection overshoots: cut at zero, so that the
   // fractions stay in [0, 1].
   const mp::ApplyResult result =
@@ -184,7 +183,7 @@ void DecideBlock(const double* w, size_t stride, int first, int width, int count
  * weights. Collective.
  */
 bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, const LabelField& field,
-  const std::vector<char>& valid, bool fractions, mp::MassType mass, LabelSolution& out,
+  const std::vector<char>& valid, bool fractions, const mp::ApplyOptions& base, LabelSolution& out,
   double& seconds)
 {
   const int count = static_cast<int>(field.Labels.size());
@@ -199,7 +198,7 @@ bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, cons
   for (int first = 0, width = 0; first < count; first += width)
   {
     width = BlockWidth(first, count);
-    const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, mass, weights);
+    const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, base, weights);
     if (!applied)
     {
       return false;
@@ -232,7 +231,7 @@ bool SolveLabels(const mp::MortarOperator& op, const mp::SolverHooks& hook, cons
     }
     if (blocks)
     {
-      const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, mass, weights);
+      const mp::ApplyResult applied = ProjectBlock(op, hook, field, first, width, base, weights);
       if (!applied)
       {
         return false;
@@ -444,10 +443,11 @@ Verdict ApplyLabels(LeafContext& ctx, const OperatorSet& ops, const mp::SolverHo
       // (Second-order Input cells without a Bernstein form on any process:
       // consistent everywhere.)
       const bool nodal = ctx.Shape.SecondOrder && !ctx.Shape.Bernstein;
-      const mp::MassType mass = nodal && TargetSpaceOf(t) == mp::SpaceType::P1
-        ? mp::MassType::Consistent
-        : mp::MassType::Lumped;
-      if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions, mass,
+      mp::ApplyOptions base;
+      base.Mass = nodal && TargetSpaceOf(t) == mp::SpaceType::P1 ? mp::MassType::Consistent
+                                                                 : mp::MassType::Lumped;
+      base.Signed = ctx.Shape.Signed;
+      if (!SolveLabels(op, hook, field, *solutions.System[t].Valid, fractions, base,
             solutions.Labels[t][i], ctx.Stats.Solve))
       {
         return Verdict::Fail(std::string("The labels of ") + TransferName(t) +

@@ -11,7 +11,6 @@
 #include "Adapter/Threads.h"
 
 #include "Mesh/CellNeighbors.h"
-#include "Transfer/BernsteinForm.h"
 #include "Search/ParallelSearch.h"
 
 #include <algorithm>
@@ -389,15 +388,9 @@ Verdict PlanOperators(
   const bool labels =
     !ctx.Source.Fields[PointArrays].Labels.empty() || !ctx.Source.Fields[CellArrays].Labels.empty();
   plan.Assembled = s.PreserveBounds || plan.Cache.Assembles() || labels;
-  if (s.Lumped && ctx.Shape.SecondOrder)
-  {
-    // A signed form's lumped coefficients are clipped to M_ts's rows'
-    // bounds on every process (BernsteinForm.h): M_ts kept.
-    bool unsigned_ = !mp::BernsteinForm::HasSigned(ctx.Target.View());
-    ctx.Processes.Agree(Verdict(), &unsigned_);
-    ctx.Shape.Signed = !unsigned_;
-    plan.Assembled = plan.Assembled || ctx.Shape.Signed;
-  }
+  // A signed form's lumped coefficients are clipped to M_ts's rows' bounds
+  // on every process (BernsteinForm.h): M_ts kept.
+  plan.Assembled = plan.Assembled || (s.Lumped && ctx.Shape.Signed);
   return Verdict();
 }
 

@@ -12,6 +12,7 @@
 #include "Adapter/SimplexMesh.h"
 
 #include "Mesh/PlaneFrame.h"
+#include "Transfer/BernsteinForm.h"
 
 #include <algorithm>
 #include <cmath>
@@ -287,7 +288,17 @@ void ShareCurvedUnrefinable(Parts& parts, vtkDataSet* data, int asked, SimplexMe
   {
     return;
   }
-  double count = static_cast<double>(SimplexMesh::CurvedUnrefinableCells(data));
+  // (A collective sum: no exception may leave this process out of it; a
+  // part that cannot be counted fails when it is wrapped, agreed.)
+  double count = 0.0;
+  try
+  {
+    count = static_cast<double>(SimplexMesh::CurvedUnrefinableCells(data));
+  }
+  catch (...)
+  {
+    count = 0.0;
+  }
   parts.Sum(&count, 1);
   mesh.SetWholeCurvedUnrefinable(static_cast<vtkIdType>(count));
 }
@@ -386,6 +397,15 @@ Verdict DecideShape(LeafContext& ctx, LeafAgreement& agreement)
   if (!why.empty())
   {
     return agreement.End(Verdict::Fail(why));
+  }
+  if (ctx.Shape.SecondOrder)
+  {
+    // Whether some part has a signed form (serendipity cells, pyramids:
+    // BernsteinForm.h), whose lumped and bounded values every process then
+    // treats alike (ApplyOptions::Signed).
+    bool unsigned_ = !mp::BernsteinForm::HasSigned(ctx.Target.View());
+    ctx.Processes.Agree(Verdict(), &unsigned_);
+    ctx.Shape.Signed = !unsigned_;
   }
   return agreement.Local("Deciding the shape", [&]() {
     if (ctx.Shape.SecondOrder)

@@ -46,8 +46,8 @@ struct LeafShape
   bool Bernstein = false;
   /// ... and some process's have a signed form (serendipity cells,
   /// pyramids: BernsteinForm.h), whose lumped point data is always
-  /// bounded: decided alike everywhere by PlanOperators (OperatorBuild.h)
-  /// when MassMatrix is Lumped.
+  /// bounded and whose uncovered rows every process sets alike
+  /// (ApplyOptions::Signed): decided alike everywhere by DecideShape.
   bool Signed = false;
 };
 

@@ -46,11 +46,6 @@ inline int LagrangeIndex(double c)
   return c == 0.0 ? 0 : (c == 1.0 ? 1 : 2);
 }
 
-/**
- * Quadratic Lagrange on the d-simplex (Edge3, Triangle6, Tetra10): the
- * corners lambda_i (2 lambda_i - 1), the edges 4 lambda_i lambda_j.
- * N or dN may be null.
- */
 /// SimplexP2's values alone (the same operations, without the
 /// derivatives' tests in every loop: the quadrature's points need only these).
 void SimplexP2Values(int d, const double* xi, double* N)
@@ -73,6 +68,11 @@ void SimplexP2Values(int d, const double* xi, double* N)
   }
 }
 
+/**
+ * Quadratic Lagrange on the d-simplex (Edge3, Triangle6, Tetra10): the
+ * corners lambda_i (2 lambda_i - 1), the edges 4 lambda_i lambda_j.
+ * N or dN may be null.
+ */
 void SimplexP2(int d, const double* xi, double* N, double* dN)
 {
   if (N && !dN)

@@ -332,7 +332,8 @@ bool BoxGridLocator::Outside(const double* q)
     const Index c = bins.CellOf(position);
     const CellCorners ids = mesh.Cell(c);
     const double* x[3] = { mesh.Point(ids[0]), mesh.Point(ids[1]), mesh.Point(ids[2]) };
-    if (!(Orient2D(x[0], x[1], x[2]) != 0.0))
+    const double area = Orient2D(x[0], x[1], x[2]);
+    if (!(area > 0.0 || area < 0.0))
     {
       return false; // zero area (or not a number): its faces bound nothing
     }

@@ -357,7 +357,8 @@ bool MortarOperator::KeepWithinBounds(const ApplyOptions& options, const Project
   // coefficient the middle of its bounds, as LumpBernstein does.)
   std::vector<char> clip(this->Valid), orphans(static_cast<size_t>(n), 0);
   bool anyOrphan = false;
-  for (Index m = 0; this->Bernstein.IsSigned() && m < n; ++m)
+  const bool signedForm = options.Signed || this->Bernstein.IsSigned();
+  for (Index m = 0; signedForm && m < n; ++m)
   {
     orphans[m] = clip[m] && !(weights[m] > 0.0);
     clip[m] = clip[m] && !orphans[m];
@@ -391,7 +392,8 @@ bool MortarOperator::LumpBernstein(const ApplyOptions& options, const double* so
       b[m * components + k] = usable[m] ? rhs[m * components + k] / integrals[m] : 0.0;
     }
   }
-  if (options.Bounded || this->Bernstein.IsSigned())
+  const bool signedForm = options.Signed || this->Bernstein.IsSigned();
+  if (options.Bounded || signedForm)
   {
     // Means of the Source field, within the bounds of its node values when
     // its functions are non-negative; a second-order Source's field may
@@ -408,7 +410,7 @@ bool MortarOperator::LumpBernstein(const ApplyOptions& options, const double* so
     bool anyOrphan = false;
     for (Index m = 0; m < n; ++m)
     {
-      orphans[m] = this->Bernstein.IsSigned() && this->Valid[m] && !usable[m];
+      orphans[m] = signedForm && this->Valid[m] && !usable[m];
       anyOrphan = anyOrphan || orphans[m];
     }
     ClipToLocalBounds(this->MixedMass, usable, usable, integrals, n, sourceValues, components, rhs,

@@ -193,6 +193,11 @@ struct ApplyOptions
    * Refused where the target has no form.
    */
   bool Bounded = false;
+  /// Some process's target has a signed form (BernsteinForm::HasSigned
+  /// over all processes): its rows that weigh nothing where covered are set
+  /// alike on every process, and Lumped is always clipped. On one process
+  /// the operator's own form says it as well.
+  bool Signed = false;
   SolveOptions Solve;
   /// A distributed system whose fringe was aggregated with a FringeHalo:
   /// that halo's Hooks, for the aggregated solve (its extended rows).

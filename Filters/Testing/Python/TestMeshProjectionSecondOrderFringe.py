@@ -64,9 +64,9 @@ pairs = [
     ("tri6 <- quad9", moved(so("square", 0.06), translate=(0.31, 0.17, 0)), so("square", 0.078, True), 5),
     ("tri6 <- curved quad9 disk", moved(so("square", 0.06), translate=(0.25, -0.45, 0)), so("disk", 0.078, True),
      5),
-    ("quad9 <- tri6", moved(so("square", 0.078, True), translate=(0.4, 0.1, 0)), so("square", 0.06), 40),
-    ("tet10 <- hex20", moved(so("cube", 0.14), translate=(0.27, 0.13, 0.21)), so("hexes", 0.14, False, True), 8),
-    ("hex20 <- tet10", moved(so("hexes", 0.17, False, True), translate=(0.27, 0.13, 0.21)), so("cube", 0.17), 20),
+    ("quad9 <- tri6", moved(so("square", 0.078, True), translate=(0.4, 0.1, 0)), so("square", 0.06), 32),
+    ("tet10 <- hex20", moved(so("cube", 0.14), translate=(0.27, 0.13, 0.21)), so("hexes", 0.14, False, True), 7),
+    ("hex20 <- tet10", moved(so("hexes", 0.17, False, True), translate=(0.27, 0.13, 0.21)), so("cube", 0.17), 16),
     ("hex27 <- tet10", moved(so("hexes", 0.2), translate=(-0.33, 0.41, 0.07)), so("cube", 0.17), 5),
 ]
 for name, target, source_mesh, bound in pairs:
