@@ -99,14 +99,47 @@ check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
 
 # The first part's cells linear (their corners), the rest tet10; a Source
 # covering the whole cube.
-from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkUnstructuredGrid  # noqa: E402
-mixed = vtkUnstructuredGrid()
-mixed.SetPoints(target.GetPoints())
-mixed.GetPointData().ShallowCopy(target.GetPointData())
-for c in range(n):
-    cell = target.GetCell(c)
-    kept = [cell.GetPointId(k) for k in range(4 if owner[c] == 0 else 10)]
-    mixed.InsertNextCell(VTK_TETRA if owner[c] == 0 else 24, len(kept), kept)
+from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_TETRA, vtkUnstructuredGrid  # noqa: E402
+
+
+def first_part_linear(grid, owner, linear, quadratic):
+    """grid's cells, on their corners alone where owner is 0 (linear: its
+    (type, nodes)), whole elsewhere (quadratic: (type, nodes))."""
+    mixed = vtkUnstructuredGrid()
+    mixed.SetPoints(grid.GetPoints())
+    mixed.GetPointData().ShallowCopy(grid.GetPointData())
+    for c in range(grid.GetNumberOfCells()):
+        cell = grid.GetCell(c)
+        kind, nodes = linear if owner[c] == 0 else quadratic
+        mixed.InsertNextCell(kind, nodes, [cell.GetPointId(k) for k in range(nodes)])
+    return mixed
+
+
+def check_as_serial(name, serial, out, low, high):
+    """A process's part `out` against the serial output: its valid mask, its
+    values (1e-10 of the range), within the Source's range [low, high], the
+    serial integral (1e-12). Gives the range of the serial values."""
+    mine = array(out, "origId")
+    valid = array(out, "vtkValidPointMask").astype(bool)  # (linear cells' mid nodes are unused)
+    serial_valid = array(serial, "vtkValidPointMask").astype(bool)
+    check(np.array_equal(valid, serial_valid[mine]), "%s: valid mask as serial" % name)
+    scale = np.ptp(array(serial, "s")[serial_valid])
+    off = np.max(np.abs(array(out, "s") - array(serial, "s")[mine])[valid], initial=0.0) / scale
+    if rank == 0:
+        print("%s: %.3g of the range from serial" % (name, off))
+    check(valid.sum() > 0 and off <= 1e-10, "%s: the serial values (%.2g off)" % (name, off))
+    u = array(out, "s")[valid]
+    slack = 1e-13 * (high - low)
+    check(u.min() >= low - slack and u.max() <= high + slack,
+          "%s: within the Source's range (%.3g, %.3g in [%.3g, %.3g])" % (name, u.min(), u.max(), low, high))
+    total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    reference = serial.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
+          "%s: integral %.15g, serial %.15g" % (name, total, reference))
+    return scale
+
+
+mixed = first_part_linear(target, owner, (VTK_TETRA, 4), (24, 10))
 covering = meshes.extract(hexes, np.ones(hexes.GetNumberOfCells(), bool))
 grown = vtk_to_numpy(covering.GetPoints().GetData())
 grown[:] = 0.5 + 1.04 * (grown - 0.5)  # (the extract's own copy of the points)
@@ -119,24 +152,7 @@ low, high = array(covering, "s").min(), array(covering, "s").max()
 for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounded", dict(bounded=True))):
     serial_mixed = run(meshprojection.vtkMeshProjectionFilter, mixed, covering, **options)
     out = run(meshprojection.vtkPMeshProjectionFilter, part_mixed, part_covering, **options)
-    mine = array(out, "origId")
-    valid = array(out, "vtkValidPointMask").astype(bool)  # (the linear cells' mid nodes are unused)
-    serial_valid = array(serial_mixed, "vtkValidPointMask").astype(bool)
-    check(np.array_equal(valid, serial_valid[mine]), "mixed tet4 + tet10, %s: valid mask as serial" % how)
-    scale = np.ptp(array(serial_mixed, "s")[serial_valid])
-    off = np.max(np.abs(array(out, "s") - array(serial_mixed, "s")[mine])[valid], initial=0.0) / scale
-    if rank == 0:
-        print("mixed tet4 + tet10, %s: %.3g of the range from serial" % (how, off))
-    check(valid.sum() > 0 and off <= 1e-10, "mixed tet4 + tet10, %s: the serial values (%.2g off)" % (how, off))
-    u = array(out, "s")[valid]
-    slack = 1e-13 * (high - low)
-    check(u.min() >= low - slack and u.max() <= high + slack,
-          "mixed tet4 + tet10, %s: within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
-          % (how, u.min(), u.max(), low, high))
-    total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
-    reference = serial_mixed.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
-    check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
-          "mixed tet4 + tet10, %s: integral %.15g, serial %.15g" % (how, total, reference))
+    scale = check_as_serial("mixed tet4 + tet10, %s" % how, serial_mixed, out, low, high)
 
 # Point labels onto the mixed Input: the serial labels.
 xs = vtk_to_numpy(covering.GetPoints().GetData())
@@ -178,19 +194,12 @@ for how, options in (("lumped and bounded", dict(lumped_bounded=True)), ("bounde
 # signed form's coefficients, the first with no hex20 too.
 from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
-from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON  # noqa: E402
 hex_input = meshes.extract(hexes, np.ones(hexes.GetNumberOfCells(), bool))
 hex_input.GetPointData().AddArray(numpy_to_vtkIdTypeArray(
     np.arange(hex_input.GetNumberOfPoints(), dtype=np.int64), deep=True))
 hex_input.GetPointData().GetArray(0).SetName("origId")
 hex_owner = mpi.blocks_along_x(hex_input, size)
-mixed_hexes = vtkUnstructuredGrid()
-mixed_hexes.SetPoints(hex_input.GetPoints())
-mixed_hexes.GetPointData().ShallowCopy(hex_input.GetPointData())
-for c in range(hex_input.GetNumberOfCells()):
-    cell = hex_input.GetCell(c)
-    kept = [cell.GetPointId(k) for k in range(8 if hex_owner[c] == 0 else 20)]
-    mixed_hexes.InsertNextCell(VTK_HEXAHEDRON if hex_owner[c] == 0 else 25, len(kept), kept)
+mixed_hexes = first_part_linear(hex_input, hex_owner, (VTK_HEXAHEDRON, 8), (25, 20))
 tet_cover = meshes.extract(tets, np.ones(tets.GetNumberOfCells(), bool))
 grown_points = vtkPoints()  # (new points: the others' stay as they are)
 grown_points.SetData(numpy_to_vtk(0.5 + 1.04 * (vtk_to_numpy(tet_cover.GetPoints().GetData()) - 0.5), deep=True))
@@ -203,24 +212,7 @@ low, high = array(tet_cover, "s").min(), array(tet_cover, "s").max()
 for how, options in (("lumped", dict(lumped=True)), ("lumped and bounded", dict(lumped_bounded=True))):
     serial_h = run(meshprojection.vtkMeshProjectionFilter, mixed_hexes, tet_cover, **options)
     out = run(meshprojection.vtkPMeshProjectionFilter, part_hexes, part_tets, **options)
-    mine = array(out, "origId")
-    valid = array(out, "vtkValidPointMask").astype(bool)
-    serial_valid = array(serial_h, "vtkValidPointMask").astype(bool)
-    check(np.array_equal(valid, serial_valid[mine]), "hex8 + hex20, %s: valid mask as serial" % how)
-    scale = np.ptp(array(serial_h, "s")[serial_valid])
-    off = np.max(np.abs(array(out, "s") - array(serial_h, "s")[mine])[valid], initial=0.0) / scale
-    if rank == 0:
-        print("hex8 + hex20, %s: %.3g of the range from serial" % (how, off))
-    check(valid.sum() > 0 and off <= 1e-10, "hex8 + hex20, %s: the serial values (%.2g off)" % (how, off))
-    u = array(out, "s")[valid]
-    slack = 1e-13 * (high - low)
-    check(u.min() >= low - slack and u.max() <= high + slack,
-          "hex8 + hex20, %s: within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
-          % (how, u.min(), u.max(), low, high))
-    total = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
-    reference = serial_h.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
-    check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
-          "hex8 + hex20, %s: integral %.15g, serial %.15g" % (how, total, reference))
+    check_as_serial("hex8 + hex20, %s" % how, serial_h, out, low, high)
 
 # CurvedCellSubdivision 2 and 3 on curved pairs: the serial results.
 check_curved_levels(controller, check)
