@@ -154,6 +154,20 @@ def integrals(out, name):
     return fd.GetArray("TargetIntegral_" + name).GetValue(0), fd.GetArray("SourceIntegral_" + name).GetValue(0)
 
 
+def check_bounded(pair, how, out, source, name, valid, tolerance):
+    """Every valid node of `name` within the Source's range, its integral
+    the Source's (to `tolerance`, relative)."""
+    low, high = values(source, name).min(), values(source, name).max()
+    u = values(out, name)[valid]
+    slack = 1e-13 * (high - low)
+    check(u.min() >= low - slack and u.max() <= high + slack,
+          "%s %s: every node of %s within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
+          % (pair, how, name, u.min(), u.max(), low, high))
+    got, wanted = integrals(out, name)
+    check(abs(got - wanted) <= tolerance * max(1.0, abs(wanted)),
+          "%s %s: the integral of %s kept (%.17g, Source %.17g)" % (pair, how, name, got, wanted))
+
+
 def cell_samples(out, name, count=12):
     """The field inside every cell that has only valid nodes, at `count`
     random parametric points per cell, with VTK's shape functions."""
@@ -226,15 +240,7 @@ for family, targets in (("square", square), ("cube", cube)):
                 out, warnings = project(target, source, lumped=lumped, bounded=True)
                 valid = valid_of(out)
                 for name in ("Step", "Bump", "Smooth"):
-                    low, high = values(source, name).min(), values(source, name).max()
-                    u = values(out, name)[valid]
-                    slack = 1e-13 * (high - low)
-                    check(u.min() >= low - slack and u.max() <= high + slack,
-                          "%s %s: every node of %s within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
-                          % (pair, how, name, u.min(), u.max(), low, high))
-                    got, wanted = integrals(out, name)
-                    check(abs(got - wanted) <= 1e-12 * max(1.0, abs(wanted)),
-                          "%s %s: the integral of %s kept (%.17g, Source %.17g)" % (pair, how, name, got, wanted))
+                    check_bounded(pair, how, out, source, name, valid, 1e-12)
                 inside = cell_samples(out, "Step")
                 check(t == "wedge18" or (inside.size and inside.min() >= -1e-13 and inside.max() <= 1 + 1e-13),
                       "%s %s: the field inside the cells within [0, 1] (%.3g, %.3g)"
@@ -335,15 +341,7 @@ for t, target in signed.items():
             off = np.max(np.abs(values(out, "Constant")[valid] - 7.0)) / 7.0
             check(off <= 1e-12, "%s %s: a constant stays constant (%.2g)" % (pair, how, off))
             for name in ("Step", "Bump", "Smooth"):
-                low, high = values(source, name).min(), values(source, name).max()
-                u = values(out, name)[valid]
-                slack = 1e-13 * (high - low)
-                check(u.min() >= low - slack and u.max() <= high + slack,
-                      "%s %s: every node of %s within the Source's range (%.3g, %.3g in [%.3g, %.3g])"
-                      % (pair, how, name, u.min(), u.max(), low, high))
-                got, wanted = integrals(out, name)
-                check(abs(got - wanted) <= 1e-11 * max(1.0, abs(wanted)),
-                      "%s %s: the integral of %s kept (%.17g, Source %.17g)" % (pair, how, name, got, wanted))
+                check_bounded(pair, how, out, source, name, valid, 1e-11)
             bump = values(out, "Bump")[valid]
             check(bump.min() > 0.0, "%s %s: a positive field stays positive (%.3g)" % (pair, how, bump.min()))
             if t in ("hex20", "wedge15"):
