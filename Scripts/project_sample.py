@@ -27,12 +27,13 @@ import time
 from paraview import servermanager
 from paraview.simple import (ColorBy, CreateView, Delete, GetColorTransferFunction, GetScalarBar,
                              IntegrateVariables, LoadPlugin, OpenDataFile, OutputPort, Render,
-                             SaveData, SaveScreenshot, Show, Slice, Text, Transform)
+                             SaveData, SaveScreenshot, Show, Slice, Text, Threshold, Transform)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SIZE = [1400, 620]
+BAR_LEFT = 0.9  # the share of the picture's width left of the colour bar
 
 
 def integral(proxy, array, association="POINTS"):
@@ -59,11 +60,17 @@ def describe(proxy):
     return " and ".join("%d %s" % (n, words.get(k, k)) for k, n in sorted(counts.items()))
 
 
+def union_bounds(a, b):
+    """The box (xmin, xmax, ymin, ymax, zmin, zmax) around two boxes."""
+    return [min(a[k], b[k]) if k % 2 == 0 else max(a[k], b[k]) for k in range(6)]
+
+
 def picture(source, projection, array, title_source, title_target, path, slice_z=None, tilt=None,
-            slice_projection=True, association="POINTS"):
+            slice_projection=True, association="POINTS", invalid=False):
     """Source (left) and projection (right), same colour map; 3D: slices z = slice_z
     (of the source only unless `slice_projection`); a surface: seen from above,
-    tilted by `tilt` degrees towards -y."""
+    tilted by `tilt` degrees towards -y. `invalid`: some target values are
+    invalid (no Source there), drawn in the NaN colour, which a line names."""
     view = CreateView("RenderView")
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
@@ -79,17 +86,20 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
         for cut in (left, right) if slice_projection else (left,):
             cut.SliceType.Origin = [0, 0, slice_z]
             cut.SliceType.Normal = [0, 0, 1]
-    bounds = source.GetDataInformation().GetBounds()
+    # Both panels frame the union of the two meshes' boxes: an own pair's
+    # target may reach beyond its Source.
+    bounds = union_bounds(source.GetDataInformation().GetBounds(), projection.GetDataInformation().GetBounds())
     width = bounds[1] - bounds[0]
     height = bounds[3] - bounds[2]
     shift = 1.25 * width
     moved = Transform(Input=right)
     moved.Transform.Translate = [shift, 0, 0]
     aspect = float(SIZE[0]) / SIZE[1]
-    scale = max(0.62 * height, 0.55 * (shift + width) / aspect)
+    # The meshes fill the left BAR_LEFT of the picture; the colour bar stands to their right.
+    scale = max(0.62 * height, 0.55 * (shift + width) / (aspect * BAR_LEFT))
 
     def screen_x(x):  # normalized viewport x of world x
-        return 0.5 + (x - bounds[0] - 0.5 * (shift + width)) / (2 * scale * aspect)
+        return 0.5 * BAR_LEFT + (x - bounds[0] - 0.5 * (shift + width)) / (2 * scale * aspect)
 
     for proxy, label, x in ((left, title_source, screen_x(bounds[0])),
                             (moved, title_target, screen_x(bounds[0] + shift))):
@@ -102,6 +112,22 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
         title.Position = [max(0.01, x), 0.92]
         title.FontSize = 20
         title.Color = [0, 0, 0]
+    if invalid:
+        # Drawn over the projection from the mask, not from the values: a
+        # label array's invalid cells hold FillLabel, not NaN.
+        mask = "vtkValidPointMask" if association == "POINTS" else "vtkValidCellMask"
+        holes = Threshold(Input=moved, Scalars=[association, mask], LowerThreshold=0, UpperThreshold=0.5,
+                          AllScalars=0)
+        hole_display = Show(holes, view)
+        hole_display.SetRepresentationType("Surface With Edges")
+        ColorBy(hole_display, None)
+        hole_display.AmbientColor = hole_display.DiffuseColor = [1, 1, 0]
+        hole_display.EdgeColor = [0.25, 0.25, 0.25]
+        note = Show(Text(Text="yellow: no Source there (invalid, %s 0)" % mask), view)
+        note.WindowLocation = "Any Location"
+        note.Position = [max(0.01, screen_x(bounds[0] + shift)), 0.03]
+        note.FontSize = 16
+        note.Color = [0, 0, 0]
     lut = GetColorTransferFunction(array)
     data = source.PointData if association == "POINTS" else source.CellData
     lut.RescaleTransferFunction(*data[array].GetRange())
@@ -111,8 +137,12 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
     bar.ComponentTitle = ""
     bar.TitleColor = [0, 0, 0]
     bar.LabelColor = [0, 0, 0]
+    bar.WindowLocation = "Any Location"
+    bar.Position = [BAR_LEFT + 0.01, 0.12]
+    bar.ScalarBarLength = 0.7
     Render(view)  # the first render resets the camera: place it afterwards
-    centre = [bounds[0] + 0.5 * (shift + width), bounds[2] + 0.55 * height]
+    # The camera's centre is the meshes' centre moved right so that they sit in the left BAR_LEFT.
+    centre = [bounds[0] + 0.5 * (shift + width) + (1 - BAR_LEFT) * scale * aspect, bounds[2] + 0.55 * height]
     view.CameraParallelProjection = 1
     view.CameraFocalPoint = centre + [bounds[5] if slice_z is None else slice_z]
     view.CameraPosition = centre + [bounds[5] + 10]
@@ -165,6 +195,12 @@ def valid_count(output):
         if attributes.GetArray(mask) is not None:
             count += int(vtk_to_numpy(attributes.GetArray(mask)).astype(bool).sum())
     return count
+
+
+def own_integral(field, name):
+    """The filter's integral array `name` of the output's field data (None without it)."""
+    a = field.GetArray(name)
+    return None if a is None else a.GetValue(0)
 
 
 def bounds_text(info):
@@ -228,9 +264,9 @@ def run_case(name, source_file, target_file, array, out_dir, sample):
     # (ConserveSourceIntegral would equalize them).
     field = output.GetFieldData()
     suffix = " (cell data)" if association == "CELLS" else ""
-    if not trace:
-        s_own = field.GetArray("SourceIntegral_" + array + suffix).GetValue(0)
-    t_own = field.GetArray("TargetIntegral_" + array + suffix).GetValue(0)
+    # None for an array projected as labels (integer arrays): labels are not integrated.
+    s_own = None if trace else own_integral(field, "SourceIntegral_" + array + suffix)
+    t_own = own_integral(field, "TargetIntegral_" + array + suffix)
     if trace and sample:
         # The linear field, which a trace reproduces exactly.
         x = vtk_to_numpy(output.GetPoints().GetData())
@@ -264,7 +300,10 @@ def run_case(name, source_file, target_file, array, out_dir, sample):
                                for i in range(output.GetCellData().GetNumberOfArrays())])
                   if not a.startswith("vtk") and a != "CoveredFraction"]
         print("  projected     %s" % ", ".join(arrays))
-    if trace:
+    if t_own is None:
+        print("  integral of %s: none (projected as labels: each value one of the Source's, not integrated)" %
+              array)
+    elif trace:
         print("  integral of %s over the sheet %.15g (the projected volume field's)" % (array, t_own))
         if sample:
             print("  Linear        exact on the sheet to %.1e (a trace of a linear field is exact)" % linear_error)
@@ -284,7 +323,8 @@ def run_case(name, source_file, target_file, array, out_dir, sample):
             "Source: %s%s" % (s_cells, "" if z is None else ", slice z = %.2f" % z),
             ("Projected onto a sheet inside it: %s" if trace else "Projected onto target: %s") % t_cells, png, z,
             tilt=35 if surface or trace else None,
-            slice_projection=not trace, association=association)
+            slice_projection=not trace, association=association,
+            invalid=(projection.CellData["vtkValidCellMask"].GetRange()[0] if association == "CELLS" else mask[0]) == 0)
     print("  wrote         %s, %s, %s" % (projected_file, pieces_file, png))
     if not sample:
         return True

@@ -10,6 +10,9 @@ Debian's python3; it writes the pairs and runs Scripts/project_sample.py
    integral conserved), exit code 0;
  - a Target that reaches beyond the Source: exit code 0, projected (exact)
    where covered;
+ - a Source with only an integer label array and a Target beyond it:
+   labels projected, the summary says they are not integrated, and the
+   picture shows the invalid cells (which hold FillLabel, not NaN) in yellow;
  - a pair that does not overlap: exit code 1, one line saying so, no
    traceback.
 
@@ -21,8 +24,9 @@ import subprocess
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import VTK_QUAD, VTK_TRIANGLE
+from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader, vtkXMLUnstructuredGridWriter
 
 from mpsupport import meshes
@@ -59,6 +63,24 @@ def source(point_arrays):
         meshes.add_array(g.GetPointData(), "Velocity", np.stack([x[:, 1], -x[:, 0], 0 * x[:, 0]], 1))
     meshes.add_array(g.GetCellData(), "Pressure" if point_arrays else "Density", np.arange(g.GetNumberOfCells()) % 5 + 1.0)
     return write("source_points" if point_arrays else "source_cells", g)
+
+
+def labelled_source():
+    """A Source whose only array is an integer cell label (0 and 2)."""
+    g = meshes.grid(*meshes.quads(12, (-0.1, -0.1, 0), (1.1, 1.1, 0), seed=2), VTK_QUAD)
+    labels = numpy_to_vtk(2 * (np.arange(g.GetNumberOfCells(), dtype=np.int32) % 2), deep=True)
+    labels.SetName("Material")
+    g.GetCellData().AddArray(labels)
+    return write("source_labels", g)
+
+
+def yellow_pixels(name):
+    """Pixels of NAME.png in the invalid parts' colour (yellow)."""
+    r = vtkPNGReader()
+    r.SetFileName(os.path.join(out_dir, name + ".png"))
+    r.Update()
+    rgb = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+    return int(((rgb[:, 0] > 150) & (abs(rgb[:, 0] - rgb[:, 1]) < 20) & (rgb[:, 2] < 80)).sum())
 
 
 def run(name, source_file, target_file):
@@ -112,6 +134,21 @@ x = vtk_to_numpy(out.GetPoints().GetData())
 err = np.abs(vtk_to_numpy(out.GetPointData().GetArray("Temperature"))[valid] - linear(x[valid])).max()
 check(0 < valid.sum() < len(valid) and err < 1e-10,
       "partial: %d of %d points valid, linear exact there (%.3g)" % (valid.sum(), len(valid), err))
+
+check(yellow_pixels("partial") > 1000, "partial: the picture shows the invalid part (%d yellow pixels)" %
+      yellow_pixels("partial"))
+check(yellow_pixels("fields") == 0, "fields: no yellow where everything is valid (%d)" % yellow_pixels("fields"))
+
+# Only an integer label array, the Target reaching beyond: labels are not
+# integrated (said), the invalid cells hold FillLabel yet show as invalid.
+done = run("labels", labelled_source(), target(0.5))
+check(done.returncode == 0, "labels: exit code %d" % done.returncode)
+check("integral of Material: none (projected as labels" in done.stdout, "labels: the summary says it is not integrated")
+material = vtk_to_numpy(projected("labels").GetCellData().GetArray("Material"))
+check(set(np.unique(material).tolist()) == {-1, 0, 2}, "labels: Source labels and FillLabel only: %s" %
+      np.unique(material))
+check(yellow_pixels("labels") > 1000, "labels: the picture shows the invalid cells (%d yellow pixels)" %
+      yellow_pixels("labels"))
 
 # Apart: one line, exit code 1.
 done = run("apart", source(True), target(5.0))
