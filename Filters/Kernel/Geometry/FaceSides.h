@@ -63,71 +63,6 @@ inline double PairExtent(
   return size;
 }
 
-/**
- * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
- * corners of `other`, with the filters of all sixteen evaluated first,
- * without branches, and the exact path taken only for the undecided ones.
- * The filters bound |x - a| by `size`, PairExtent(c, other) (once per pair
- * instead of per point): looser than FaceSide's own, so a point this one
- * leaves undecided is then classified by FaceSide, and the signs and values
- * are FaceSide's either way. (Looser still for cells of very different
- * sizes or shapes: more pairs then take that second pass.)
- */
-inline void FaceSides(const TetrahedronIntersector::Cell& c,
-  const TetrahedronIntersector::Cell& other, double size, double (&sides)[4][4])
-{
-  const double(&x)[4][3] = other.X;
-  // The corners by coordinate, two per vector (Lanes.h): the same operations
-  // in the same order as FaceSide's fast path, so the same values; a lane
-  // is decided when its distance's magnitude is beyond the bound (a NaN
-  // never is). Scalar, these 32 evaluations per pair were a large cost of
-  // a 3D run: they are done for every candidate pair.
-  const double(&corner)[3][4] = other.ByAxis;
-  Doubles2 x0[2], x1[2], x2[2];
-  for (int h = 0; h < 2; ++h)
-  {
-    x0[h] = LoadLanes(&corner[0][2 * h]);
-    x1[h] = LoadLanes(&corner[1][2 * h]);
-    x2[h] = LoadLanes(&corner[2][2 * h]);
-  }
-  Mask2 decided = { -1, -1 };
-  double bound[4];
-  for (int k = 0; k < 4; ++k)
-  {
-    const double* a = c.X[(k + 1) % 4];
-    const double* n = c.Normal[k];
-    bound[k] = c.SideBound[k] * size;
-    for (int h = 0; h < 2; ++h)
-    {
-      const Doubles2 d = n[0] * (x0[h] - a[0]) + n[1] * (x1[h] - a[1]) + n[2] * (x2[h] - a[2]);
-      std::memcpy(&sides[k][2 * h], &d, sizeof d);
-      decided &= Magnitude(d) > bound[k];
-    }
-  }
-  if (decided[0] && decided[1])
-  {
-    return;
-  }
-  // Only the undecided ones again: a decided value is FaceSide's already.
-  for (int k = 0; k < 4; ++k)
-  {
-    for (int v = 0; v < 4; ++v)
-    {
-      if (!(std::fabs(sides[k][v]) > bound[k]))
-      {
-        sides[k][v] = FaceSide(c, k, x[v]);
-      }
-    }
-  }
-}
-
-/// FaceSides with the size of the two cells' boxes.
-inline void FaceSides(const TetrahedronIntersector::Cell& c,
-  const TetrahedronIntersector::Cell& other, double (&sides)[4][4])
-{
-  FaceSides(c, other, PairExtent(c, other), sides);
-}
-
 /// Of a table sides[k][v] (FaceSides'), per row k, bit v: the side is
 /// negative, not positive, zero (a NaN is none of them).
 struct SideBits
@@ -146,9 +81,94 @@ inline void GetSideBits(const double (&sides)[4][4], SideBits& bits)
     const Doubles2 r0 = LoadLanes(&sides[k][0]);
     const Doubles2 r1 = LoadLanes(&sides[k][2]);
     bits.Negative[k] = LaneBits(r0 < 0.0) | LaneBits(r1 < 0.0) << 2;
-    bits.NotPositive[k] = LaneBits(r0 <= 0.0) | LaneBits(r1 <= 0.0) << 2;
     bits.Zero[k] = LaneBits(r0 == 0.0) | LaneBits(r1 == 0.0) << 2;
+    bits.NotPositive[k] = bits.Negative[k] | bits.Zero[k]; // (a NaN is in neither)
   }
+}
+
+/**
+ * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
+ * corners of `other`, with the filters of all sixteen evaluated first,
+ * without branches, and the exact path taken only for the undecided ones.
+ * The filters bound |x - a| by `size`, PairExtent(c, other) (once per pair
+ * instead of per point): looser than FaceSide's own, so a point this one
+ * leaves undecided is then classified by FaceSide, and the signs and values
+ * are FaceSide's either way. (Looser still for cells of very different
+ * sizes or shapes: more pairs then take that second pass.) `bits` gets
+ * the table's SideBits: when every filter decided, from the sign bits the
+ * filters already hold (no side is then zero).
+ */
+inline void FaceSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, double size, double (&sides)[4][4], SideBits& bits)
+{
+  const double(&x)[4][3] = other.X;
+  // The corners by coordinate, two per vector (Lanes.h): the same operations
+  // in the same order as FaceSide's fast path, so the same values; a lane
+  // is decided when its distance's magnitude is beyond the bound (a NaN
+  // never is). Scalar, these 32 evaluations per pair were a large cost of
+  // a 3D run: they are done for every candidate pair.
+  const double(&corner)[3][4] = other.ByAxis;
+  Doubles2 x0[2], x1[2], x2[2];
+  for (int h = 0; h < 2; ++h)
+  {
+    x0[h] = LoadLanes(&corner[0][2 * h]);
+    x1[h] = LoadLanes(&corner[1][2 * h]);
+    x2[h] = LoadLanes(&corner[2][2 * h]);
+  }
+  Mask2 decided = { -1, -1 };
+  double bound[4];
+  unsigned negative[4] = { 0, 0, 0, 0 };
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* a = c.X[(k + 1) % 4];
+    const double* n = c.Normal[k];
+    bound[k] = c.SideBound[k] * size;
+    for (int h = 0; h < 2; ++h)
+    {
+      const Doubles2 d = n[0] * (x0[h] - a[0]) + n[1] * (x1[h] - a[1]) + n[2] * (x2[h] - a[2]);
+      std::memcpy(&sides[k][2 * h], &d, sizeof d);
+      decided &= Magnitude(d) > bound[k];
+      negative[k] |= SignBits(d) << (2 * h);
+    }
+  }
+  if (decided[0] && decided[1])
+  {
+    // None zero (nor NaN): the signs are the bits.
+    for (int k = 0; k < 4; ++k)
+    {
+      bits.Negative[k] = negative[k];
+      bits.NotPositive[k] = negative[k];
+      bits.Zero[k] = 0;
+    }
+    return;
+  }
+  // Only the undecided ones again: a decided value is FaceSide's already.
+  for (int k = 0; k < 4; ++k)
+  {
+    for (int v = 0; v < 4; ++v)
+    {
+      if (!(std::fabs(sides[k][v]) > bound[k]))
+      {
+        sides[k][v] = FaceSide(c, k, x[v]);
+      }
+    }
+  }
+  GetSideBits(sides, bits);
+}
+
+/// The same without the bits.
+inline void FaceSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, double size, double (&sides)[4][4])
+{
+  SideBits bits;
+  FaceSides(c, other, size, sides, bits);
+}
+
+/// FaceSides with the size of the two cells' boxes.
+inline void FaceSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, double (&sides)[4][4])
+{
+  FaceSides(c, other, PairExtent(c, other), sides);
 }
 
 /// The number of bits set in a 4-bit pattern.

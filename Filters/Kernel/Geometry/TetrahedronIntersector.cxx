@@ -43,10 +43,8 @@ struct FacePlaneSides
 inline bool Separated(const TetCell& t, const TetCell& s, FacePlaneSides& p)
 {
   const double size = PairExtent(t, s);
-  FaceSides(t, s, size, p.Exact);
-  FaceSides(s, t, size, p.ExactS);
-  GetSideBits(p.Exact, p.Bits);
-  GetSideBits(p.ExactS, p.BitsS);
+  FaceSides(t, s, size, p.Exact, p.Bits);
+  FaceSides(s, t, size, p.ExactS, p.BitsS);
   bool apart = false;
   for (int k = 0; k < 4; ++k)
   {

@@ -116,11 +116,7 @@ inline void VertexGraph::SetCut(const TableCut& cut, const double (*x)[3], const
   {
     const int v = cut.From[r][0];
     const int q = cut.From[r][1];
-    const double u = d[v] / (d[v] - d[q]);
-    for (int a = 0; a < 3; ++a)
-    {
-      this->X[r][a] = x[v][a] + u * (x[q][a] - x[v][a]);
-    }
+    CrossingPoint(x[v], x[q], d[v] / (d[v] - d[q]), this->X[r]);
     this->On[r] = (on[v] & on[q]) | bit;
   }
   // memcpy of a constant size is a few moves; std::copy, a memmove, was
