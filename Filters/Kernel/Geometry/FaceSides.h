@@ -171,6 +171,28 @@ inline void FaceSides(const TetrahedronIntersector::Cell& c,
   FaceSides(c, other, PairExtent(c, other), sides);
 }
 
+/// Of four rows of 4 bits, packed 4 apart (row k at bit 4k): bit k of the
+/// result for each row with all bits set (bits 4k, 4k + 1, 4k + 2, 4k + 3
+/// ANDed onto bit 4k, those four gathered to bits 0-3 by one product).
+inline unsigned FullRows(unsigned packed)
+{
+  const unsigned full = packed & packed >> 1 & packed >> 2 & packed >> 3 & 0x1111u;
+  return ((full * 0x1248u) >> 12) & 15u;
+}
+
+/// The same for rows with any bit set.
+inline unsigned NonZeroRows(unsigned packed)
+{
+  const unsigned any = (packed | packed >> 1 | packed >> 2 | packed >> 3) & 0x1111u;
+  return ((any * 0x1248u) >> 12) & 15u;
+}
+
+/// Four rows of 4 bits packed 4 apart.
+inline unsigned PackRows(const unsigned (&rows)[4])
+{
+  return rows[0] | rows[1] << 4 | rows[2] << 8 | rows[3] << 12;
+}
+
 /// The number of bits set in a 4-bit pattern.
 inline unsigned CountBits4(unsigned bits)
 {

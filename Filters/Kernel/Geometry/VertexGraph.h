@@ -113,10 +113,12 @@ struct VertexGraph
     // The rows' 4 x 4 bits transposed: packed 4 apart, corner v's column
     // (bits v, v + 4, v + 8, v + 12) is gathered to bits 12-15 by one
     // product (its partial products never meet below bit 16: no carries).
+    // Mostly no corner lies on a plane: then only the faces.
     const unsigned packed = zero[0] | zero[1] << 4 | zero[2] << 8 | zero[3] << 12;
     for (int v = 0; v < 4; ++v)
     {
-      const unsigned planes = ((((packed >> v) & 0x1111u) * 0x1248u) >> 12) & 15u;
+      const unsigned planes =
+        packed == 0 ? 0u : ((((packed >> v) & 0x1111u) * 0x1248u) >> 12) & 15u;
       on[v] = ((15u & ~(1u << v)) << 4) | planes;
     }
   }
