@@ -28,6 +28,37 @@ namespace mp
 {
 namespace clipping
 {
+/**
+ * Whether x lies on the plane of the triangle (a, b, c) for a reason that
+ * shows in the coordinates alone: all four share a coordinate (a face on a
+ * box's side), x is a corner, or x lies on the axis-parallel line through
+ * two corners. Such configurations are common where meshes share a
+ * boundary, and Orient3D finds them too (its filter cannot decide an
+ * exact zero) after its own arithmetic: this decides them first, with the
+ * same zero. (a, b, c: the corners of a face of positive area.)
+ */
+inline bool OnFacePlaneByCoordinates(
+  const double* a, const double* b, const double* c, const double* x)
+{
+  // Per corner, bit i: coordinate i equal to x's.
+  unsigned same[3] = { 0, 0, 0 };
+  const double* corner[3] = { a, b, c };
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      same[j] |= static_cast<unsigned>(corner[j][i] == x[i]) << i;
+    }
+  }
+  // Two corners sharing two coordinates with x: x on the line through
+  // them, or equal to one of them (which shares all three).
+  static constexpr unsigned char twoOrMore[8] = { 0, 0, 0, 1, 0, 1, 1, 1 };
+  return (same[0] & same[1] & same[2]) != 0 ||
+    (twoOrMore[same[0] & same[1]] | twoOrMore[same[0] & same[2]] | twoOrMore[same[1] & same[2]]) !=
+    0 ||
+    same[0] == 7u || same[1] == 7u || same[2] == 7u;
+}
+
 /// Positive when x is strictly inside the plane of face k of a prepared
 /// (positively oriented) cell; exact sign. For a positive tetrahedron
 /// (0,1,2,3), corner k lies on the positive side of (k+1, k+2, k+3) when k is odd.
@@ -45,7 +76,13 @@ inline double FaceSide(const TetrahedronIntersector::Cell& c, int k, const doubl
   {
     return d;
   }
-  const double o = Orient3D(a, c.X[(k + 2) % 4], c.X[(k + 3) % 4], x);
+  const double* b = c.X[(k + 2) % 4];
+  const double* e = c.X[(k + 3) % 4];
+  if (OnFacePlaneByCoordinates(a, b, e, x))
+  {
+    return (k % 2) ? 0.0 : -0.0; // Orient3D's 0, signed as below
+  }
+  const double o = Orient3D(a, b, e, x);
   return (k % 2) ? o : -o;
 }
 
@@ -87,6 +124,29 @@ inline void GetSideBits(const double (&sides)[4][4], SideBits& bits)
 }
 
 /**
+ * FaceSides' second pass: sides[k][v] = FaceSide(c, k, x[v]) where the
+ * first pass's filter (bound[k]) left it undecided, then the bits. Out of
+ * line: inlined, this rarer path cost the first pass registers.
+ */
+__attribute__((noinline)) inline void DecideSides(const TetrahedronIntersector::Cell& c,
+  const TetrahedronIntersector::Cell& other, const double (&bound)[4], double (&sides)[4][4],
+  SideBits& bits)
+{
+  // Only the undecided ones again: a decided value is FaceSide's already.
+  for (int k = 0; k < 4; ++k)
+  {
+    for (int v = 0; v < 4; ++v)
+    {
+      if (!(std::fabs(sides[k][v]) > bound[k]))
+      {
+        sides[k][v] = FaceSide(c, k, other.X[v]);
+      }
+    }
+  }
+  GetSideBits(sides, bits);
+}
+
+/**
  * sides[k][v] = FaceSide(c, k, x[v]) for the four faces of `c` and the four
  * corners of `other`, with the filters of all sixteen evaluated first,
  * without branches, and the exact path taken only for the undecided ones.
@@ -101,7 +161,6 @@ inline void GetSideBits(const double (&sides)[4][4], SideBits& bits)
 inline void FaceSides(const TetrahedronIntersector::Cell& c,
   const TetrahedronIntersector::Cell& other, double size, double (&sides)[4][4], SideBits& bits)
 {
-  const double(&x)[4][3] = other.X;
   // The corners by coordinate, two per vector (Lanes.h): the same operations
   // in the same order as FaceSide's fast path, so the same values; a lane
   // is decided when its distance's magnitude is beyond the bound (a NaN
@@ -142,18 +201,7 @@ inline void FaceSides(const TetrahedronIntersector::Cell& c,
     }
     return;
   }
-  // Only the undecided ones again: a decided value is FaceSide's already.
-  for (int k = 0; k < 4; ++k)
-  {
-    for (int v = 0; v < 4; ++v)
-    {
-      if (!(std::fabs(sides[k][v]) > bound[k]))
-      {
-        sides[k][v] = FaceSide(c, k, x[v]);
-      }
-    }
-  }
-  GetSideBits(sides, bits);
+  DecideSides(c, other, bound, sides, bits);
 }
 
 /// The same without the bits.
