@@ -89,6 +89,12 @@ inline void VertexGraph::MakeCut(
     std::copy(after.Back[w], after.Back[w] + 3, cut.Back[w]);
   }
   cut.HasFaces = after.WalkFaces(cut.Faces);
+  for (int f = 0; f < cut.Faces.NumberOfFaces; ++f)
+  {
+    // Decompose reads three vertices of every face of the tables (all
+    // have them: a guard).
+    cut.HasFaces &= cut.Faces.Size[f] >= 3;
+  }
   cut.Valid = true;
 }
 
