@@ -43,18 +43,13 @@ struct FacePlaneSides
 inline bool Separated(const TetCell& t, const TetCell& s, FacePlaneSides& p)
 {
   const double size = PairExtent(t, s);
-  FaceSides(t, s, size, p.Exact);
-  FaceSides(s, t, size, p.ExactS);
-  GetSideBits(p.Exact, p.Bits);
-  GetSideBits(p.ExactS, p.BitsS);
-  bool apart = false;
-  for (int k = 0; k < 4; ++k)
-  {
-    p.Beyond |= (p.Bits.Negative[k] != 0 ? 1u : 0u) << k;
-    p.BeyondS |= (p.BitsS.Negative[k] != 0 ? 1u : 0u) << k;
-    apart |= (p.Bits.NotPositive[k] == 15u) | (p.BitsS.NotPositive[k] == 15u);
-  }
-  return apart;
+  FaceSides(t, s, size, p.Exact, p.Bits);
+  FaceSides(s, t, size, p.ExactS, p.BitsS);
+  // Per plane, as bits of the rows packed 4 apart: any corner beyond it,
+  // all corners on or beyond it.
+  p.Beyond = NonZeroRows(PackRows(p.Bits.Negative));
+  p.BeyondS = NonZeroRows(PackRows(p.BitsS.Negative));
+  return (FullRows(PackRows(p.Bits.NotPositive)) | FullRows(PackRows(p.BitsS.NotPositive))) != 0;
 }
 
 /**
@@ -62,34 +57,62 @@ inline bool Separated(const TetCell& t, const TetCell& s, FacePlaneSides& p)
  * corners they cut off, most first: the graphs the later clips work on
  * are then smallest (less time per pair than in face order; fewest
  * first takes the most).
- * Sorted without branches (as a loop over the counts, their branches
- * depend on the data and were often mispredicted): key (corners
- * outside) * 4 + 3 - p, sorted down by a network of five
- * compare-exchanges; ties keep face order. The cutting planes (1-3 corners
- * outside: 4 would have separated the cells) come first, with keys of 4
- * and more; the others (keys below 4) after them are not used.
+ * The order: key (corners outside) * 4 + 3 - p, sorted down; ties keep
+ * face order. The cutting planes (1-3 corners outside: 4 would have
+ * separated the cells) come first, with keys of 4 and more; the others
+ * (keys below 4) after them are not used. Read from a table made at
+ * compile time for every pattern of counts (a sort per pair, even a
+ * branch-free one, was a visible part of its work).
  */
+struct CuttingOrders
+{
+  /// By the four planes' counts of corners outside (2 bits each, plane p
+  /// at bits 2p): the planes in cutting order, 2 bits each.
+  unsigned char Order[256];
+  constexpr CuttingOrders()
+    : Order{}
+  {
+    for (unsigned counts = 0; counts < 256; ++counts)
+    {
+      unsigned key[4] = {};
+      for (unsigned p = 0; p < 4; ++p)
+      {
+        key[p] = (((counts >> (2 * p)) & 3u) << 2) | (3u - p);
+      }
+      // Sorted down by a network of five compare-exchanges.
+      const int network[5][2] = { { 0, 1 }, { 2, 3 }, { 0, 2 }, { 1, 3 }, { 1, 2 } };
+      for (const auto& ab : network)
+      {
+        if (key[ab[0]] < key[ab[1]])
+        {
+          const unsigned swap = key[ab[0]];
+          key[ab[0]] = key[ab[1]];
+          key[ab[1]] = swap;
+        }
+      }
+      unsigned order = 0;
+      for (unsigned i = 0; i < 4; ++i)
+      {
+        order |= (3u - (key[i] & 3u)) << (2 * i);
+      }
+      this->Order[counts] = static_cast<unsigned char>(order);
+    }
+  }
+};
+
 inline void CuttingOrder(const unsigned (&negative)[4], int planes[4])
 {
-  unsigned key[4];
+  // (Counts of at most 3: 4 would have separated the cells.)
+  static constexpr CuttingOrders orders;
+  unsigned counts = 0;
   for (int p = 0; p < 4; ++p)
   {
-    key[p] = (CountBits4(negative[p]) << 2) | (3u - static_cast<unsigned>(p));
+    counts |= CountBits4(negative[p]) << (2 * p);
   }
-  auto order = [&key](int a, int b) {
-    // By masks: std::max compiled to a branch on the data, often mispredicted.
-    const unsigned swap = (key[a] ^ key[b]) & (0u - static_cast<unsigned>(key[a] < key[b]));
-    key[a] ^= swap;
-    key[b] ^= swap;
-  };
-  order(0, 1);
-  order(2, 3);
-  order(0, 2);
-  order(1, 3);
-  order(1, 2);
+  const unsigned order = orders.Order[counts];
   for (int i = 0; i < 4; ++i)
   {
-    planes[i] = 3 - static_cast<int>(key[i] & 3u);
+    planes[i] = static_cast<int>((order >> (2 * i)) & 3u);
   }
 }
 

@@ -16,10 +16,12 @@
 #ifndef MeshProjection_Kernel_VertexGraph_h
 #define MeshProjection_Kernel_VertexGraph_h
 
+#include "Geometry/Lanes.h"
 #include "Geometry/TetrahedronIntersector.h"
 #include "Mesh/Vec3.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace mp
 {
@@ -34,6 +36,16 @@ struct FaceCycles
   signed char Size[V / 2 + 2]; ///< three links per vertex: V / 2 + 2 faces
   signed char Vertex[3 * V];   ///< the cycles one after the other
 };
+
+/// The point a + u (b - a), coordinate by coordinate (x and y as two
+/// lanes: the same operations).
+inline void CrossingPoint(const double* a, const double* b, double u, double* x)
+{
+  const Doubles2 ab = LoadLanes(a);
+  const Doubles2 xy = ab + u * (LoadLanes(b) - ab);
+  std::memcpy(x, &xy, sizeof xy);
+  x[2] = a[2] + u * (b[2] - a[2]);
+}
 
 /**
  * A convex polyhedron as a graph in which every vertex has three
@@ -101,10 +113,12 @@ struct VertexGraph
     // The rows' 4 x 4 bits transposed: packed 4 apart, corner v's column
     // (bits v, v + 4, v + 8, v + 12) is gathered to bits 12-15 by one
     // product (its partial products never meet below bit 16: no carries).
+    // Mostly no corner lies on a plane: then only the faces.
     const unsigned packed = zero[0] | zero[1] << 4 | zero[2] << 8 | zero[3] << 12;
     for (int v = 0; v < 4; ++v)
     {
-      const unsigned planes = ((((packed >> v) & 0x1111u) * 0x1248u) >> 12) & 15u;
+      const unsigned planes =
+        packed == 0 ? 0u : ((((packed >> v) & 0x1111u) * 0x1248u) >> 12) & 15u;
       on[v] = ((15u & ~(1u << v)) << 4) | planes;
     }
   }
@@ -206,27 +220,24 @@ struct VertexGraph
     const int n = this->NumberOfVertices;
     double d[MaxVertices];
     bool anyInside = false;
-    bool anyOutside = false;
+    unsigned long long clipped = 0; // Cut's: bit v, d[v] < 0
     for (int v = 0; v < n; ++v)
     {
       d[v] = this->Distance(v, normal, origin, bit, sides);
       anyInside |= d[v] > 0.0;
-      anyOutside |= d[v] < 0.0;
-      if (d[v] == 0.0)
-      {
-        this->On[v] |= bit;
-      }
+      clipped |= static_cast<unsigned long long>(d[v] < 0.0) << v;
+      this->On[v] |= d[v] == 0.0 ? bit : 0u;
     }
     if (!anyInside)
     {
       this->NumberOfVertices = 0; // no volume left
       return true;
     }
-    if (!anyOutside)
+    if (clipped == 0)
     {
       return true;
     }
-    return this->Cut(d, bit, last);
+    return this->Cut(d, clipped, bit, last);
   }
 
   /// Vertex v's distance from the plane as Clip takes it: a corner's exact
@@ -250,6 +261,17 @@ struct VertexGraph
   /// Clip's cut for distances d with vertices on both sides (`last`: Clip's).
   bool Cut(const double* d, unsigned bit, bool last = false)
   {
+    unsigned long long clipped = 0;
+    for (int v = 0; v < this->NumberOfVertices; ++v)
+    {
+      clipped |= static_cast<unsigned long long>(d[v] < 0.0) << v;
+    }
+    return this->Cut(d, clipped, bit, last);
+  }
+
+  /// The same with the clipped vertices as bits (bit v: d[v] < 0).
+  bool Cut(const double* d, unsigned long long clipped, unsigned bit, bool last)
+  {
     this->Faces = nullptr; // a new graph
     const int n = this->NumberOfVertices;
     // New vertices on the edges from kept to clipped vertices, found from
@@ -259,11 +281,6 @@ struct VertexGraph
     // (whose two tests per link depend on the data and were among the most
     // mispredicted branches of a 3D run). A link's id is below 48 or -1
     // (bit 63 of the mask, never set).
-    unsigned long long clipped = 0;
-    for (int v = 0; v < n; ++v)
-    {
-      clipped |= static_cast<unsigned long long>(d[v] < 0.0) << v;
-    }
     unsigned links[MaxVertices];
     const unsigned long long from = this->CrossedLinks(clipped, links);
     int total = n;
@@ -279,11 +296,7 @@ struct VertexGraph
           return false;
         }
         const int w = total++;
-        const double u = d[v] / (d[v] - d[q]);
-        for (int c = 0; c < 3; ++c)
-        {
-          this->X[w][c] = this->X[v][c] + u * (this->X[q][c] - this->X[v][c]);
-        }
+        CrossingPoint(this->X[v], this->X[q], d[v] / (d[v] - d[q]), this->X[w]);
         this->On[w] = (this->On[v] & this->On[q]) | bit;
         this->Original[w] = -1;
         this->Next[w][0] = static_cast<signed char>(v);

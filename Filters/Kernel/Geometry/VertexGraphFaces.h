@@ -221,13 +221,15 @@ inline bool VertexGraph::Decompose(
     const signed char* cycle = faces->Vertex;
     for (int f = 0; f < faces->NumberOfFaces; cycle += faces->Size[f++])
     {
-      unsigned common = 0xFFu;
-      for (int i = 0; i < faces->Size[f]; ++i)
+      // (Every face of the tables has at least three vertices: MakeCut.)
+      const int size = faces->Size[f];
+      unsigned common = this->On[cycle[0]] & this->On[cycle[1]] & this->On[cycle[2]];
+      for (int i = 3; i < size; ++i)
       {
         common &= this->On[cycle[i]];
       }
       // As walked: a face holding the apex (0 here) starts at it.
-      if (!face(cycle, faces->Size[f], cycle[0] == 0, common))
+      if (!face(cycle, size, cycle[0] == 0, common))
       {
         return false;
       }

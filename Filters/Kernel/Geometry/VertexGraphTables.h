@@ -89,6 +89,12 @@ inline void VertexGraph::MakeCut(
     std::copy(after.Back[w], after.Back[w] + 3, cut.Back[w]);
   }
   cut.HasFaces = after.WalkFaces(cut.Faces);
+  for (int f = 0; f < cut.Faces.NumberOfFaces; ++f)
+  {
+    // Decompose reads three vertices of every face of the tables (all
+    // have them: a guard).
+    cut.HasFaces &= cut.Faces.Size[f] >= 3;
+  }
   cut.Valid = true;
 }
 
@@ -116,11 +122,7 @@ inline void VertexGraph::SetCut(const TableCut& cut, const double (*x)[3], const
   {
     const int v = cut.From[r][0];
     const int q = cut.From[r][1];
-    const double u = d[v] / (d[v] - d[q]);
-    for (int a = 0; a < 3; ++a)
-    {
-      this->X[r][a] = x[v][a] + u * (x[q][a] - x[v][a]);
-    }
+    CrossingPoint(x[v], x[q], d[v] / (d[v] - d[q]), this->X[r]);
     this->On[r] = (on[v] & on[q]) | bit;
   }
   // memcpy of a constant size is a few moves; std::copy, a memmove, was
