@@ -365,7 +365,7 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
 
 bool BoxGridLocator::Outside(const double* q)
 {
-  const Shared& g = *this->Grids;
+  Shared& g = *this->Grids;
   const MeshView& mesh = g.Mesh;
   if (!g.Boundary || mesh.CellDimension != 2 || mesh.SpaceDimension != 2 || !std::isfinite(q[0]) ||
     !std::isfinite(q[1]))
@@ -437,10 +437,8 @@ bool BoxGridLocator::Outside(const double* q)
     return false; // held by that many cells (more than one: layers overlapping)
   }
   // Zero proves q outside only where the winding number counts cells.
-  Shared& shared = *this->Grids;
-  std::call_once(
-    shared.CountsBuilt, [&shared] { shared.WindingCounts = WindingCountsCells(shared.Mesh); });
-  return shared.WindingCounts;
+  std::call_once(g.CountsBuilt, [&g] { g.WindingCounts = WindingCountsCells(g.Mesh); });
+  return g.WindingCounts;
 }
 
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)
