@@ -106,13 +106,16 @@ public:
    * (hexahedra, wedges, pyramids: then no cell of the mesh is split finer,
    * so that their faces shared with refined cells stay conforming) and
    * those whose finer split folds (kept on their nodes: next to a refined
-   * neighbour the covered part has slivers along their shared face).
+   * neighbour the covered part has slivers along their shared face). The
+   * former are the whole mesh's when SetWholeCurvedUnrefinable() gave
+   * them; the latter are always those of the cells this Wrap() split.
    */
   vtkIdType UnrefinedCurvedCells() const { return this->Unrefined; }
   /**
    * The curved second-order cells of `data` of a type the finer split does
    * not take (hexahedra, wedges, pyramids): one of them keeps a whole mesh
-   * on its nodes' split. Null: 0.
+   * on its nodes' split. Ghost cells left out (IsLeftOutGhost) do not
+   * count: summed over the processes' parts, each cell counts once. Null: 0.
    */
   static vtkIdType CurvedUnrefinableCells(vtkDataSet* data);
   /**

@@ -329,15 +329,17 @@ Refinement RefineCurved(mp::CurvedSplitter& curved, mp::NodalType type, const do
 
 /// The number of curved cells of `data` of a type the finer split does not
 /// take (IsRefinedWhenCurved): any of them keeps the whole mesh on its
-/// nodes' split, whose faces they share conformingly.
+/// nodes' split, whose faces they share conformingly. Ghost cells left out
+/// (owned by another process, which counts them; or blanked) do not count.
 vtkIdType CurvedUnrefinable(vtkDataSet* data, CellSplitter& splitter, const double* x)
 {
   vtkIdType count = 0;
   std::vector<mp::Index> scratch;
+  vtkUnsignedCharArray* ghosts = data->GetCellGhostArray();
   for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
   {
     const int type = data->GetCellType(c);
-    if (!IsAcceptedNonlinear(type))
+    if (!IsAcceptedNonlinear(type) || IsLeftOutGhost(ghosts, c))
     {
       continue;
     }

@@ -133,6 +133,74 @@ void BinDivisions(const double lo[3], const double hi[3], int dimension, Index m
     }
   }
 }
+
+/**
+ * Whether every cell of a mesh of `n` triangles in the plane (`cells`:
+ * 3 point ids each, `points`: 3 coordinates each, `neighbors`: 3 cells or
+ * -1 each) has a nonzero area and every two neighbours lie on opposite
+ * sides of their shared face (no fold). Then, each cell's faces turned as
+ * the cell (counter-clockwise for a positive area, clockwise for a
+ * negative one), the two turns of a face between neighbours cancel, and
+ * the winding number of the faces without neighbour about a point is the
+ * number of cells holding it. Exact (Orient2D's signs); one pass over the
+ * cells for their turns, one over their faces.
+ */
+template <class Id>
+bool WindingCountsCells(const Id* cells, const double* points, const NeighborId* neighbors, Index n)
+{
+  // Bit c: cell c turns counter-clockwise (a positive area).
+  std::vector<std::uint64_t> positive(static_cast<size_t>(n / 64 + 1), 0);
+  Index forward = 0;
+  for (Index c = 0; c < n; ++c)
+  {
+    const Id* ids = cells + 3 * c;
+    const double area =
+      Orient2D(points + 3 * Index(ids[0]), points + 3 * Index(ids[1]), points + 3 * Index(ids[2]));
+    if (!(area > 0.0 || area < 0.0))
+    {
+      return false; // zero area (or not a number): it holds no point, its faces do not cancel
+    }
+    positive[static_cast<size_t>(c) / 64] |= std::uint64_t(area > 0.0) << (c % 64);
+    forward += area > 0.0;
+  }
+  const bool alike = forward == 0 || forward == n; // every cell turns one way (the usual mesh)
+  auto turnsForward = [&positive](Index c) {
+    return (positive[static_cast<size_t>(c) / 64] >> (c % 64) & 1u) != 0;
+  };
+  for (Index c = 0; c < n; ++c)
+  {
+    const Id* ids = cells + 3 * c;
+    for (int k = 0; k < 3; ++k)
+    {
+      const Index other = neighbors[3 * c + k];
+      if (other <= c)
+      {
+        continue; // no neighbour, or the face seen from the other side
+      }
+      // Face k runs a -> b in c's order. Stored the other way round in the
+      // neighbour's order, the two lie on opposite sides when they turn
+      // alike; stored the same way, when they turn differently.
+      const Id a = ids[(k + 1) % 3];
+      const Id b = ids[(k + 2) % 3];
+      const Id* o = cells + 3 * other;
+      const bool reversed =
+        (o[0] == b && o[1] == a) || (o[1] == b && o[2] == a) || (o[2] == b && o[0] == a);
+      if (reversed != (alike || turnsForward(c) == turnsForward(other)))
+      {
+        return false; // a fold: both on one side
+      }
+    }
+  }
+  return true;
+}
+
+/// WindingCountsCells of `mesh` (triangles in the plane, with neighbours).
+bool WindingCountsCells(const MeshView& mesh)
+{
+  return mesh.Connectivity32
+    ? WindingCountsCells(mesh.Connectivity32, mesh.Points, mesh.Neighbors, mesh.NumberOfCells)
+    : WindingCountsCells(mesh.Connectivity, mesh.Points, mesh.Neighbors, mesh.NumberOfCells);
+}
 } // namespace
 
 BoxGridLocator::BoxGridLocator(std::shared_ptr<Shared> shared)
@@ -297,7 +365,7 @@ void BoxGridLocator::FindBoundaryCandidates(const double box[6], std::vector<Ind
 
 bool BoxGridLocator::Outside(const double* q)
 {
-  const Shared& g = *this->Grids;
+  Shared& g = *this->Grids;
   const MeshView& mesh = g.Mesh;
   if (!g.Boundary || mesh.CellDimension != 2 || mesh.SpaceDimension != 2 || !std::isfinite(q[0]) ||
     !std::isfinite(q[1]))
@@ -324,9 +392,11 @@ bool BoxGridLocator::Outside(const double* q)
   }
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  // Crossings of the ray by boundary faces, each counted once (half-open in
-  // y: a face ending on the ray's line counts at its lower end only).
-  bool inside = false;
+  // The winding number of the boundary faces about q: +1 for a face
+  // crossing the ray upward in its cell's counter-clockwise turn, -1
+  // downward (half-open in y: a face ending on the ray's line counts at
+  // its lower end only).
+  Index winding = 0;
   for (const Index position : cells)
   {
     const Index c = bins.CellOf(position);
@@ -356,10 +426,19 @@ bool BoxGridLocator::Outside(const double* q)
       {
         return false; // q on the face's line, within its span: no verdict
       }
-      inside = inside != (aBelow ? side > 0.0 : side < 0.0);
+      if (aBelow ? side > 0.0 : side < 0.0)
+      {
+        winding += aBelow == (area > 0.0) ? 1 : -1;
+      }
     }
   }
-  return !inside;
+  if (winding != 0)
+  {
+    return false; // held by that many cells (more than one: layers overlapping)
+  }
+  // Zero proves q outside only where the winding number counts cells.
+  std::call_once(g.CountsBuilt, [&g] { g.WindingCounts = WindingCountsCells(g.Mesh); });
+  return g.WindingCounts;
 }
 
 void BoxGridLocator::Collect(const Bins& g, const double box[6], std::vector<Index>& cells)

@@ -68,14 +68,19 @@ public:
 
   /**
    * True when point `q` (x, y) of a plane source of triangles lies in no
-   * source cell: proven, with exact predicates, from the boundary faces
-   * (faces without neighbour) that a ray from q toward +x crosses, an even
-   * number. Only for a point on no boundary face (the caller knows it: a
-   * corner of a target cell that meets no boundary cell). A target cell
-   * meeting no boundary cell lies wholly inside the source or wholly
-   * outside; one corner outside settles it without a query among all
-   * cells. False says nothing (the default; other meshes; a ray through a
-   * source cell of zero area or along a boundary face).
+   * source cell: proven, with exact predicates, by the winding number of
+   * the boundary faces (faces without neighbour) about q, each face turned
+   * as its cell (by the sign of the cell's area), counted where a ray from
+   * q toward +x crosses them. On a source whose neighbours lie on opposite
+   * sides of their shared faces that number is how many source cells hold
+   * q, so layers that overlap (unmerged overset blocks) count twice where
+   * they do, not zero as a parity would; on a source with a fold or a cell
+   * of zero area it is not, and the answer is false. Only for a point on
+   * no boundary face (the caller knows it: a corner of a target cell that
+   * meets no boundary cell). A target cell meeting no boundary cell lies
+   * wholly inside the source or wholly outside; one corner outside settles
+   * it without a query among all cells. False says nothing (the default;
+   * other meshes; a ray along a boundary face).
    */
   virtual bool Outside(const double* q)
   {
@@ -145,6 +150,11 @@ private:
     std::vector<unsigned char> Supporting;
     std::once_flag AllBuilt;
     std::unique_ptr<const Bins> All; ///< set once, under AllBuilt
+    /// Whether the boundary faces' winding number counts the cells holding
+    /// a point (plane triangles, no fold, no cell of zero area), set once,
+    /// under CountsBuilt, on the first Outside() that needs it.
+    std::once_flag CountsBuilt;
+    bool WindingCounts = false;
   };
   explicit BoxGridLocator(std::shared_ptr<Shared> shared);
   void Collect(const Bins& bins, const double box[6], std::vector<Index>& cells);

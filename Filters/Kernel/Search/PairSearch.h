@@ -44,9 +44,10 @@
  *  - only when that meets nothing either (the cell lies inside the source
  *    away from its boundary, or outside it) among all source cells. After
  *    the first such query, unseeded cells go straight to it (no more walks).
- *    In the plane a cell outside needs none: the boundary faces that a ray
- *    from one of its corners crosses, an even number, prove that corner,
- *    and so the cell, outside (CandidateLocator::Outside).
+ *    In the plane a cell outside needs none: the winding number of the
+ *    boundary faces about one of its corners, zero on a source without
+ *    folds, proves that corner, and so the cell, outside
+ *    (CandidateLocator::Outside; layers that overlap count twice there).
  * So on meshes of the same domain the front needs one walk per range and a
  * few boundary queries, and never an index over all source cells. Source
  * cells of zero measure do not stop the inner front: it passes through

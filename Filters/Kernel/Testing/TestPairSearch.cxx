@@ -170,12 +170,12 @@ TEST(PairSearch, AllSourceCellsAskedOnlyWhereTheBoundaryCannotTell)
   in.ExpectSamePairs("target over holes");
 }
 
-TEST(PairSearch, RayFromAPointOutsideCrossesTheBoundaryAnEvenNumberOfTimes)
+TEST(PairSearch, RayFromAPointOutsideWindsZeroTimes)
 {
   // Unjittered 16 x 16 grid of the unit square: an L with a square hole and
   // a notch. Points in the hole, the notch, the missing corner and beyond
-  // are outside; points in the source are not (the ray crosses an odd
-  // number of boundary faces), nor are points on a boundary face's line
+  // are outside; points in the source are not (the boundary faces wind
+  // once around them), nor are points on a boundary face's line
   // within its span (no verdict).
   const TestMesh holed = mptest::GridMesh(16, 16, 0.0, 23, 0, 0, 1, 1, LShapeWithHole);
   mp::BoxGridLocator locator(holed.View());
@@ -191,6 +191,75 @@ TEST(PairSearch, RayFromAPointOutsideCrossesTheBoundaryAnEvenNumberOfTimes)
   {
     EXPECT_FALSE(locator.Outside(q)) << q[0] << ", " << q[1];
   }
+}
+
+namespace
+{
+/// Mesh `b`'s points and cells after `a`'s in one mesh (no point merged),
+/// b's cells turned clockwise when `flip`; with neighbours.
+TestMesh Unmerged(const TestMesh& a, TestMesh b, bool flip)
+{
+  TestMesh m = a;
+  const Index offset = a.NumberOfPoints();
+  for (size_t c = 0; c + 2 < b.Cells.size(); c += 3)
+  {
+    if (flip)
+    {
+      std::swap(b.Cells[c + 1], b.Cells[c + 2]);
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      m.Cells.push_back(b.Cells[c + k] + offset);
+    }
+  }
+  m.Points.insert(m.Points.end(), b.Points.begin(), b.Points.end());
+  m.Finish();
+  return m;
+}
+} // namespace
+
+TEST(PairSearch, RayCountsOverlappingLayersAndFoldsAsInside)
+{
+  // Two unmerged layers overlapping on [0.4, 1] x [0, 1] (overset blocks),
+  // the second turned clockwise: a point in both is held twice (its
+  // crossings are even, its winding number 2), not outside.
+  const TestMesh left = mptest::GridMesh(10, 10, 0.25, 31, 0.0, 0.0, 1.0, 1.0);
+  const TestMesh right = mptest::GridMesh(10, 10, 0.25, 32, 0.4, 0.0, 1.4, 1.0);
+  for (bool flip : { false, true })
+  {
+    const TestMesh layers = Unmerged(left, right, flip);
+    mp::BoxGridLocator locator(layers.View());
+    const double both[][3] = { { 0.55, 0.5, 0 }, { 0.7, 0.33, 0 }, { 0.85, 0.61, 0 } };
+    for (const auto& q : both)
+    {
+      EXPECT_FALSE(locator.Outside(q)) << "in both layers: " << q[0] << ", " << q[1];
+    }
+    const double one[][3] = { { 0.2, 0.5, 0 }, { 1.2, 0.5, 0 } };
+    for (const auto& q : one)
+    {
+      EXPECT_FALSE(locator.Outside(q)) << "in one layer: " << q[0] << ", " << q[1];
+    }
+    const double none[][3] = { { -0.3, 0.5, 0 }, { 1.6, 0.5, 0 }, { 0.7, 1.3, 0 } };
+    for (const auto& q : none)
+    {
+      EXPECT_TRUE(locator.Outside(q)) << "in no layer: " << q[0] << ", " << q[1];
+    }
+  }
+  // One mesh folded over itself: its cells right of x = 0.5 mirrored onto
+  // the left half (points shared along the fold). Left of the fold every
+  // point is held twice, with no boundary face crossed to its right: the
+  // winding number is 0 there, so no verdict (the fold is seen).
+  TestMesh folded = mptest::GridMesh(10, 10, 0.0, 33);
+  for (size_t p = 0; p + 2 < folded.Points.size(); p += 3)
+  {
+    folded.Points[p] = folded.Points[p] > 0.5 ? 1.0 - folded.Points[p] : folded.Points[p];
+  }
+  folded.Finish();
+  mp::BoxGridLocator foldLocator(folded.View());
+  const double doubled[3] = { 0.27, 0.43, 0 };
+  EXPECT_FALSE(foldLocator.Outside(doubled));
+  const double beyond[3] = { -0.5, 0.43, 0 };
+  EXPECT_FALSE(foldLocator.Outside(beyond)); // no verdict anywhere on a folded source
 }
 
 TEST(PairSearch, WalkStoppedByAHoleStartsAgainNearTheCell)

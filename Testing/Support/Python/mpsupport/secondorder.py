@@ -124,7 +124,10 @@ def check_curved_levels(controller, check, levels=(2, 3)):
     (1e-12), the warnings are the serial ones (none, but the far hex27's:
     its curved cells are not split finer); the serial values at that level
     differ from level 1's (the finer split is in use: a level-1 fallback
-    would fail), but with the far hex27 equal them (to 1e-14)."""
+    would fail), but with the far hex27 equal them (to 1e-14); the count in
+    the far hex27's warning is the serial one, also when each process's
+    part of Source carries the others' cells as ghost cells
+    (check_unrefined_count)."""
     import meshprojection
     from mpsupport import meshes, mpi
     from mpsupport.fringe import linear as linear_field
@@ -177,3 +180,41 @@ def check_curved_levels(controller, check, levels=(2, 3)):
             reference = serial.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
             check(abs(total - reference) <= 1e-12 * max(1.0, abs(reference)),
                   "%s: integral %.15g, serial %.15g" % (what, total, reference))
+            if far:
+                check_unrefined_count(controller, check, run, part, source, keep, level,
+                                      serial_said, said, what)
+
+
+def check_unrefined_count(controller, check, run, part, source, keep, level, serial_said, plain, what):
+    """The count N of "N curved cells are not split finer" on MPI processes
+    (`plain`: the warnings of the run on the processes' parts of Source) is
+    the serial one, also when each process's part carries the other
+    processes' cells as ghost cells (DUPLICATECELL: counted by their owners
+    alone)."""
+    import re
+    import meshprojection
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
+    rank = controller.GetLocalProcessId()
+
+    def count(said):
+        found = [re.search(r"(\d+) curved cells are not split finer", t) for t in said]
+        found = [int(m.group(1)) for m in found if m]
+        return found[0] if len(found) == 1 else None
+
+    ghosted = source.NewInstance()
+    ghosted.DeepCopy(source)
+    flags = numpy_to_vtk(np.where(keep, 0, vtkDataSetAttributes.DUPLICATECELL).astype(np.uint8), deep=True)
+    flags.SetName(vtkDataSetAttributes.GhostArrayName())
+    ghosted.GetCellData().AddArray(flags)
+    _, ghost_said = run(meshprojection.vtkPMeshProjectionFilter, part, ghosted, level)
+    serial = count(serial_said)
+    if rank == 0:
+        print("%s: %s curved cells not split finer serially, %s on the processes' parts, %s with ghost cells"
+              % (what, serial, count(plain), count(ghost_said)))
+    check(serial is not None and serial > 0, "%s: the serial count said (%s)" % (what, serial_said))
+    check(count(plain) == serial, "%s: the serial count on the parts (%s)" % (what, plain))
+    check(count(ghost_said) == serial, "%s: the serial count with ghost cells (%s)" % (what, ghost_said))
+    check(sorted(ghost_said) == sorted(serial_said),
+          "%s: with ghost cells, the serial warnings (%s)" % (what, ghost_said))
+
