@@ -150,7 +150,12 @@ void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const Task
   const UninitializedLargeVector<Id>& cells = around.Cells;
   const int n = mesh.CornersPerCell();
   const Index points = mesh.NumberOfPoints;
-  const int tasks = runner.TasksFor(points, 4096);
+  // Each task marks candidates in an array over all points (`seen` below):
+  // at most as many tasks as uses of a point by cells, so that the marks
+  // take no more memory than the point-cell lists.
+  const Index uses = points > 0 ? mesh.NumberOfCells * n / points : 0;
+  const int tasks =
+    static_cast<int>(std::min<Index>(runner.TasksFor(points, 4096), std::max<Index>(1, uses)));
   start.assign(static_cast<size_t>(points) + 1, 0);
   // The first task writes its rows straight into `columns`, reserved for
   // all rows at the usual count (pages of a reservation cost nothing until
@@ -164,19 +169,12 @@ void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const Task
     // A row is the point itself and the other corners of its cells (in 2D
     // about 12 candidates for 7 columns, in 3D about 70 for 15). Each
     // candidate is written and kept unless seen[q] already names this row:
-    // no branch, no sort of the repeats. The marks cover the task's own
-    // points only (on a mesh numbered along space nearly all candidates;
-    // an array over all points per task took tasks times their memory):
-    // a candidate outside is always kept, in a last slot that never names
-    // a row, and its repeats go after the sort. The candidates are sorted:
+    // no branch, no sort of the repeats. The distinct ones are then sorted:
     // up to 8 by a fixed network of branch-free exchanges, else by
     // insertion or std::sort.
-    const Index first = RangeBegin(points, k, tasks);
-    const Index last = RangeBegin(points, k + 1, tasks);
-    const Index width = last - first;
-    LargeVector<Column> seen(static_cast<size_t>(width) + 1, Column(-1));
+    LargeVector<Column> seen(static_cast<size_t>(points), Column(-1));
     std::vector<Column> row(16);
-    for (Index p = first; p < last; ++p)
+    for (Index p = RangeBegin(points, k, tasks); p < RangeBegin(points, k + 1, tasks); ++p)
     {
       const Index candidates = 1 + n * (cellStart[p + 1] - cellStart[p]);
       if (static_cast<Index>(row.size()) < std::max<Index>(candidates, 8))
@@ -186,22 +184,17 @@ void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const Task
       Column* r = row.data();
       const auto self = static_cast<Column>(p);
       r[0] = self;
-      seen[p - first] = self;
+      seen[p] = self;
       Index size = 1;
-      bool outside = false;
       for (Index i = cellStart[p]; i < cellStart[p + 1]; ++i)
       {
         const CellCorners ids = mesh.Cell(cells[i]);
         for (int c = 0; c < n; ++c)
         {
-          const Index q = ids[c];
-          const bool inside =
-            static_cast<std::uint64_t>(q - first) < static_cast<std::uint64_t>(width);
-          const Index slot = inside ? q - first : width;
-          r[size] = static_cast<Column>(q);
-          size += seen[slot] != self;
-          seen[slot] = inside ? self : Column(-1);
-          outside |= !inside;
+          const auto q = static_cast<Column>(ids[c]);
+          r[size] = q;
+          size += seen[q] != self;
+          seen[q] = self;
         }
       }
       if (size <= 8)
@@ -228,10 +221,6 @@ void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const Task
       else
       {
         std::sort(r, r + size);
-      }
-      if (outside)
-      {
-        size = std::unique(r, r + size) - r;
       }
       block.insert(block.end(), r, r + size);
       start[p + 1] = size;
