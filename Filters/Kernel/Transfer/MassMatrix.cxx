@@ -328,7 +328,9 @@ void P1Values(const MeshView& mesh, const TaskCells& cells, const CellMasses& ma
     const Index last = RangeBegin(points, k + 1, tasks);
     auto mine = [first, last](Index p) { return p >= first && p < last; };
     const Index high = tasks > 1 ? cells.High[k] : mesh.NumberOfCells - 1;
-    auto add = [&](Index c) {
+    // (Inlined at both of its calls: a call per cell costs the one-task loop.)
+    auto add = [&](Index c) __attribute__((always_inline))
+    {
       const float state = masses.State[static_cast<size_t>(c)];
       if (state == CellMasses::None && !cover)
       {
