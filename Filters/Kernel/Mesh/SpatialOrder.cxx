@@ -80,6 +80,10 @@ inline void Prefetch(const void* address)
 }
 /// How many cells ahead the prefetches run.
 constexpr Index Ahead = 16;
+/// A cell's key (CellKeys): the unsigned type of Index, so that the keys
+/// can be moved in order.Cells' own room.
+using CellKey = std::make_unsigned_t<Index>;
+static_assert(sizeof(CellKey) == 8, "a cell's key takes 64 bits");
 
 } // namespace
 
@@ -164,7 +168,7 @@ struct CurveGrid
  * keeps the front's search as fast.)
  */
 void CellKeys(const MeshView& mesh, const CurveGrid& grid, const TaskRunner& runner,
-  UninitializedLargeVector<std::uint64_t>& keys)
+  UninitializedLargeVector<CellKey>& keys)
 {
   // (pointKeys and keys are written whole by tasks: not zeroed first.)
   UninitializedLargeVector<std::uint32_t> pointKeys(static_cast<size_t>(mesh.NumberOfPoints));
@@ -194,28 +198,27 @@ void CellKeys(const MeshView& mesh, const CurveGrid& grid, const TaskRunner& run
       {
         lowest = std::min(lowest, pointKeys[ids[k]]);
       }
-      keys[c] = (static_cast<std::uint64_t>(lowest) << 32) | static_cast<std::uint64_t>(c);
+      keys[c] = (static_cast<CellKey>(lowest) << 32) | static_cast<CellKey>(c);
     }
     return 0;
   });
 }
 
 /**
- * Least-significant-digit radix sort on the keys' high 32 bits in three
- * digits of 11, 11 and 10 bits: stable, so equal keys stay in id order.
- * Each task counts and then moves its own range of keys; the buckets'
- * starts are laid out bucket by bucket and, within a bucket, task by task,
- * so that the result is the same for any number of tasks.
+ * Least-significant-digit radix sort of the n keys at `keys` on their high
+ * 32 bits in three digits of 11, 11 and 10 bits: stable, so equal keys
+ * stay in id order. Each task counts and then moves its own range of keys;
+ * the buckets' starts are laid out bucket by bucket and, within a bucket,
+ * task by task, so that the result is the same for any number of tasks.
+ * The moves go back and forth between `keys` and `other` (n keys' room);
+ * returns the one holding the sorted keys.
  */
-void SortKeys(UninitializedLargeVector<std::uint64_t>& keys, const TaskRunner& runner)
+CellKey* SortKeys(CellKey* keys, CellKey* other, Index n, const TaskRunner& runner)
 {
-  const Index n = static_cast<Index>(keys.size());
   constexpr int Shifts[3] = { 32, 43, 54 };
   constexpr size_t Buckets = 2048;
   const int tasks = runner.TasksFor(n, 16384);
   std::vector<size_t> count(static_cast<size_t>(tasks) * Buckets);
-  // (Written whole by the moves: not zeroed first.)
-  UninitializedLargeVector<std::uint64_t> other(keys.size());
   for (int d = 0; d < 3; ++d)
   {
     const int shift = Shifts[d];
@@ -241,7 +244,7 @@ void SortKeys(UninitializedLargeVector<std::uint64_t>& keys, const TaskRunner& r
         at += here;
         inBucket += here;
       }
-      moves &= inBucket != keys.size();
+      moves &= inBucket != static_cast<size_t>(n);
     }
     if (!moves)
     {
@@ -252,12 +255,13 @@ void SortKeys(UninitializedLargeVector<std::uint64_t>& keys, const TaskRunner& r
       const Index end = RangeBegin(n, t + 1, tasks);
       for (Index i = RangeBegin(n, t, tasks); i < end; ++i)
       {
-        const std::uint64_t k = keys[i];
+        const CellKey k = keys[i];
         other[start[(k >> shift) & (Buckets - 1)]++] = k;
       }
     });
-    keys.swap(other);
+    std::swap(keys, other);
   }
+  return keys;
 }
 } // namespace
 
@@ -272,13 +276,18 @@ void OrderAlongCurve(const MeshView& mesh, SpatialOrder& order, const TaskRunner
   }
   const Box box = PointBox(mesh, runner);
   const CurveGrid grid(box);
-  UninitializedLargeVector<std::uint64_t> keys;
+  UninitializedLargeVector<CellKey> keys;
   CellKeys(mesh, grid, runner, keys);
-  SortKeys(keys, runner);
+  // The moves' second buffer is order.Cells (keys of the corresponding
+  // unsigned type): no array of their own, whose fresh pages would cost
+  // their faults. The cell ids are then the sorted keys' low bits, taken
+  // where the keys ended.
+  CellKey* cells = reinterpret_cast<CellKey*>(order.Cells.data());
+  const CellKey* sorted = SortKeys(keys.data(), cells, n, runner);
   runner.ForRanges(n, [&](Index begin, Index end) {
     for (Index c = begin; c < end; ++c)
     {
-      order.Cells[c] = static_cast<Index>(keys[c] & 0xffffffffULL);
+      cells[c] = sorted[c] & 0xffffffffULL;
     }
     return 0;
   });

@@ -568,21 +568,17 @@ TEST(SpatialOrder, CoveredFractionsThroughTheRenumberingAreTheCellsOwn)
   }
 }
 
-TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
+namespace
 {
-  // M_tt's values come from tasks owning ranges of points (from 2 x 4096
-  // points on: two tasks and more), each adding its rows of the blocks of
-  // the cells around its points in cell order: on a renumbered mesh of
-  // 203,401 points, from cells covered whole, in part (blocks of their
-  // own) and not at all, 2 and 3 tasks give the one-task matrix and point
-  // cover bit for bit, with the cover's values per cell and per parent.
-  const TestMesh mesh = Shuffled(mptest::GridMesh(450, 450, 0.25, 5), 6);
-  ASSERT_GE(mesh.NumberOfPoints(), Index(3) << 16);
-  const Renumbered t(mesh);
-  mp::MeshView view = t.Mesh.View();
-  view.Parent = t.Parent.data();
-  view.NumberOfParents = mesh.NumberOfCells();
-  view.OneCellPerParent = true;
+/**
+ * M_tt and the point cover of `view` (parents set) assembled in each
+ * number of `tasks` (the first 1) are the one-task ones bit for bit, from
+ * cells covered whole, in part (blocks of their own) and not at all, with
+ * the cover's values per cell and per parent.
+ */
+void ExpectTargetMassInTasksIsTheSerialOne(
+  const mp::MeshView& view, const std::vector<int>& taskCounts)
+{
   const Index cells = view.NumberOfCells;
   mp::CellMasses masses;
   masses.Dofs = 3;
@@ -616,7 +612,7 @@ TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
     values.ByParent = byParent;
     mp::CsrMatrix serial;
     mp::LargeVector<double> serialCover;
-    for (int tasks : { 1, 2, 3 })
+    for (int tasks : taskCounts)
     {
       mp::CsrMatrix mass;
       mp::LargeVector<double> cover;
@@ -649,6 +645,34 @@ TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
       EXPECT_TRUE(cover == serialCover) << tasks << " tasks, by parent " << byParent;
     }
   }
+}
+} // namespace
+
+TEST(SpatialOrder, TargetMassInTasksIsTheSerialOne)
+{
+  // M_tt's values come from tasks owning ranges of points (from 2 x 4096
+  // points on: two tasks and more), each adding its rows of the blocks of
+  // the cells around its points in cell order: on a renumbered mesh of
+  // 203,401 points, from cells covered whole, in part (blocks of their
+  // own) and not at all, 2, 3 and 7 tasks give the one-task matrix and point
+  // cover bit for bit, with the cover's values per cell and per parent. So
+  // do 64 tasks on the shuffled mesh itself (each task's cells too spread
+  // for a set of bits: it reads its span).
+  const TestMesh mesh = Shuffled(mptest::GridMesh(450, 450, 0.25, 5), 6);
+  ASSERT_GE(mesh.NumberOfPoints(), Index(3) << 16);
+  const Renumbered t(mesh);
+  mp::MeshView view = t.Mesh.View();
+  view.Parent = t.Parent.data();
+  view.NumberOfParents = mesh.NumberOfCells();
+  view.OneCellPerParent = true;
+  ExpectTargetMassInTasksIsTheSerialOne(view, { 1, 2, 3, 7 });
+  mp::MeshView shuffled = mesh.View(false);
+  std::vector<Index> identity(static_cast<size_t>(mesh.NumberOfCells()));
+  std::iota(identity.begin(), identity.end(), Index(0));
+  shuffled.Parent = identity.data();
+  shuffled.NumberOfParents = mesh.NumberOfCells();
+  shuffled.OneCellPerParent = true;
+  ExpectTargetMassInTasksIsTheSerialOne(shuffled, { 1, 2, 64 });
 }
 
 TEST(SpatialOrder, PointCoverIsTheLargestFractionAroundEachPoint)

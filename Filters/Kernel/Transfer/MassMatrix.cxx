@@ -20,8 +20,8 @@ namespace mp
 namespace
 {
 /// Points per task of M_tt's values (P1Values), at least: as the
-/// pattern's (a task reads only about its share of the cells, CellSpans,
-/// so that a 3D mesh of 10^5 cells, some 17,000 points, is split too).
+/// pattern's (a task reads only the cells of its points, TaskCells, so
+/// that a 3D mesh of 10^5 cells, some 17,000 points, is split too).
 constexpr Index ValuesGrain = 4096;
 
 /// M_tt's values (as many as its pattern's entries) set to zero, by
@@ -35,7 +35,7 @@ void ZeroValues(CsrMatrix& matrix, const TaskRunner& runner)
 /**
  * The cells around each point of a mesh (BuildPointCells' lists), with ids
  * of type Id: 32 bits when they fit, half the memory. The pattern reads
- * them; the values only their spans (CellSpans).
+ * them; the values only each task's set of cells (TaskCells).
  */
 template <class Id>
 struct AroundPoints
@@ -61,55 +61,79 @@ struct AroundPoints
 };
 
 /**
- * Per block of Points consecutive points, the lowest and highest id of the
- * cells using them (none: Low > High), from the lists of the cells around
- * the points (read in one pass, in concurrent ranges of blocks). On a mesh
- * numbered along space (SpatialOrder.h) the cells using a range of points
- * lie in a range of ids barely wider than their share: a task of the
- * values reads those, not every cell.
+ * Per task of the values (P1Values: a range of points each), the cells
+ * using its points, as bits over the span of their ids [Low, High] (none:
+ * Low > High), from the lists of the cells around the points (each task
+ * reads its own points' lists). On a mesh numbered along space
+ * (SpatialOrder.h) the cells using a range of points lie mostly in a range
+ * of ids of about their share, but not all: the points along a seam of the
+ * curve are used by cells far along it too, and the span of the first
+ * range's cells reaches nearly to the last cell. A task reads only the
+ * cells whose bits are set, not its whole span. (Where the bits would take
+ * more than 2 bytes per entry of the task's lists, as on a mesh in no
+ * order split in many tasks, there are none: the task reads its span.)
  */
-struct CellSpans
+struct TaskCells
 {
-  static constexpr Index Points = 1024;
+  using Word = std::uint64_t;
   std::vector<Index> Low;
   std::vector<Index> High;
+  std::vector<UninitializedLargeVector<Word>> Bits;
 
-  CellSpans() = default;
+  TaskCells() = default;
   template <class Id>
-  CellSpans(const AroundPoints<Id>& around, Index points, const TaskRunner& runner)
+  TaskCells(const AroundPoints<Id>& around, Index points, int tasks, const TaskRunner& runner)
+    : Low(static_cast<size_t>(tasks))
+    , High(static_cast<size_t>(tasks))
+    , Bits(static_cast<size_t>(tasks))
   {
-    const Index blocks = (points + Points - 1) / Points;
-    this->Low.resize(static_cast<size_t>(blocks));
-    this->High.resize(static_cast<size_t>(blocks));
-    runner.ForRanges(
-      blocks,
-      [&](Index begin, Index end) {
-        for (Index b = begin; b < end; ++b)
-        {
-          Index low = std::numeric_limits<Index>::max();
-          Index high = -1;
-          const Index last = around.Start[std::min(points, (b + 1) * Points)];
-          for (Index i = around.Start[b * Points]; i < last; ++i)
-          {
-            low = std::min<Index>(low, around.Cells[i]);
-            high = std::max<Index>(high, around.Cells[i]);
-          }
-          this->Low[b] = low;
-          this->High[b] = high;
-        }
-        return 0;
-      },
-      64);
+    runner.RunAll(tasks, [&](int k) {
+      const Index begin = around.Start[RangeBegin(points, k, tasks)];
+      const Index end = around.Start[RangeBegin(points, k + 1, tasks)];
+      Index low = std::numeric_limits<Index>::max();
+      Index high = -1;
+      for (Index i = begin; i < end; ++i)
+      {
+        low = std::min<Index>(low, around.Cells[i]);
+        high = std::max<Index>(high, around.Cells[i]);
+      }
+      this->Low[k] = low;
+      this->High[k] = high;
+      if (high < low || high - low >= 16 * (end - begin))
+      {
+        return;
+      }
+      UninitializedLargeVector<Word>& bits = this->Bits[k];
+      bits.resize(static_cast<size_t>((high - low) / 64 + 1));
+      std::fill(bits.begin(), bits.end(), Word(0));
+      for (Index i = begin; i < end; ++i)
+      {
+        const Index c = around.Cells[i] - low;
+        bits[static_cast<size_t>(c >> 6)] |= Word(1) << (c & 63);
+      }
+    });
   }
-  /// [low, high]: the ids of the cells using points [first, last) lie there.
-  void Of(Index first, Index last, Index& low, Index& high) const
+
+  /// Calls visit(c) for each cell of task k (without bits: each of its
+  /// span), in increasing order.
+  template <class Visit>
+  void ForEach(int k, const Visit& visit) const
   {
-    low = std::numeric_limits<Index>::max();
-    high = -1;
-    for (Index b = first / Points; b < (last + Points - 1) / Points; ++b)
+    const UninitializedLargeVector<Word>& bits = this->Bits[k];
+    if (bits.empty())
     {
-      low = std::min(low, this->Low[b]);
-      high = std::max(high, this->High[b]);
+      for (Index c = this->Low[k]; c <= this->High[k]; ++c)
+      {
+        visit(c);
+      }
+      return;
+    }
+    for (size_t w = 0; w < bits.size(); ++w)
+    {
+      for (Word b = bits[w]; b != 0; b &= b - 1)
+      {
+        visit(this->Low[k] + 64 * static_cast<Index>(w) + __builtin_ctzll(b));
+      }
     }
   }
 };
@@ -240,16 +264,16 @@ void PointGraph(const MeshView& mesh, const AroundPoints<Id>& around, const Task
 /**
  * M_tt's values for P1, its pattern made (the cells around the points,
  * which the pattern needed, are gone by now: the values take their room;
- * `spans` is what they left, when there are several tasks). Each task owns
- * a range of rows and goes through the cells that may use its points (its
- * span; one task: every cell), in order, adding the rows of its range of
- * each cell's block: a row sums its cells' blocks in cell order, whatever
- * the number of tasks. With `cover`, each point of the task's range also
+ * `cells` is what they left, when there are several tasks). Each task owns
+ * a range of rows and goes through the cells using its points (its
+ * TaskCells; one task: every cell), in order, adding the rows of its range
+ * of each cell's block: a row sums its cells' blocks in cell order,
+ * whatever the number of tasks. With `cover`, each point of the task's range also
  * takes the largest of `cellValue` over its cells (a reading of cells the
  * loop makes anyway, by the task owning the point: no two tasks write
  * one).
  */
-void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& masses,
+void P1Values(const MeshView& mesh, const TaskCells& cells, const CellMasses& masses,
   const TaskRunner& runner, CsrMatrix& matrix, const CellValues& cellValue, double* cover)
 {
   const int n = mesh.CornersPerCell();
@@ -303,18 +327,14 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
     const Index first = RangeBegin(points, k, tasks);
     const Index last = RangeBegin(points, k + 1, tasks);
     auto mine = [first, last](Index p) { return p >= first && p < last; };
-    Index low = 0;
-    Index high = mesh.NumberOfCells - 1;
-    if (!spans.Low.empty()) // P1Matrix builds them only for several tasks
-    {
-      spans.Of(first, last, low, high);
-    }
-    for (Index c = low; c <= high; ++c)
+    const Index high = tasks > 1 ? cells.High[k] : mesh.NumberOfCells - 1;
+    // (Inlined at both of its calls: a call per cell costs the one-task loop.)
+    auto add = [&](Index c) __attribute__((always_inline))
     {
       const float state = masses.State[static_cast<size_t>(c)];
       if (state == CellMasses::None && !cover)
       {
-        continue;
+        return;
       }
       const CellCorners ids = mesh.Cell(c);
       Index dofs[4];
@@ -326,7 +346,7 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
       }
       if (!any)
       {
-        continue;
+        return;
       }
       if (cover)
       {
@@ -347,7 +367,7 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
         }
         if (state == CellMasses::None)
         {
-          continue;
+          return;
         }
       }
       if (state != CellMasses::Part)
@@ -362,7 +382,7 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
             addRow(dofs, a, row);
           }
         }
-        continue;
+        return;
       }
       // The upper triangle kept, row by row.
       const double* b = masses.Find(c);
@@ -381,6 +401,15 @@ void P1Values(const MeshView& mesh, const CellSpans& spans, const CellMasses& ma
           addRow(dofs, a, block[a]);
         }
       }
+    };
+    if (tasks > 1)
+    {
+      cells.ForEach(k, add);
+      return;
+    }
+    for (Index c = 0; c <= high; ++c)
+    {
+      add(c);
     }
   });
 }
@@ -395,13 +424,14 @@ template <class Id>
 void P1Matrix(const MeshView& mesh, const CellMasses* masses, const TaskRunner& runner,
   CsrMatrix& matrix, const CellValues& cellValue, LargeVector<double>* cover)
 {
-  CellSpans spans;
+  TaskCells cells;
   {
     const AroundPoints<Id> around(mesh, runner);
     PointGraph(mesh, around, runner, matrix.RowStart, matrix.ColumnIndex);
-    if (masses && runner.TasksFor(mesh.NumberOfPoints, ValuesGrain) > 1)
+    const int tasks = runner.TasksFor(mesh.NumberOfPoints, ValuesGrain);
+    if (masses && tasks > 1)
     {
-      spans = CellSpans(around, mesh.NumberOfPoints, runner);
+      cells = TaskCells(around, mesh.NumberOfPoints, tasks, runner);
     }
   }
   ZeroValues(matrix, runner);
@@ -416,7 +446,7 @@ void P1Matrix(const MeshView& mesh, const CellMasses* masses, const TaskRunner& 
     runner.Fill(cover->data(), mesh.NumberOfPoints, 0.0, 1 << 18);
     coverData = cover->data();
   }
-  P1Values(mesh, spans, *masses, runner, matrix, cellValue, coverData);
+  P1Values(mesh, cells, *masses, runner, matrix, cellValue, coverData);
 }
 
 } // namespace

@@ -6,9 +6,9 @@
  * P1: the point graph of the mesh (every pair of points sharing a cell, and
  * every point with itself), built from the cells around each point in
  * concurrent tasks over point ranges; the values by the same ranges, each
- * task through the cells whose ids span those around its points (on a
- * mesh numbered along space, about its share of the cells). P0: the
- * diagonal.
+ * task through the cells around its points only (about its share of the
+ * cells, even where the cells' ids around a range of points reach far, as
+ * along the seams of a Morton order). P0: the diagonal.
  *
  * The values come from what the search left per target cell (CellMasses):
  * nothing, the element mass of the whole cell (covered whole: to 1e-12 of
