@@ -37,8 +37,9 @@
  * point -> cell map (the filter builds it only after this decision): the
  * sampled cells' points are marked in a bit per point, and one pass over
  * the connectivity (in `runner`'s tasks) keeps the cells that use a marked
- * point. Cost: that pass and np / 8 bytes for the marks, O(samples) after
- * it, small beside any projection on the mesh.
+ * point, with its corners (so that the neighbour test after the pass reads
+ * no cell at random). Cost: that pass, np / 8 bytes for the marks and the
+ * kept cells, O(samples) after it, small beside any projection on the mesh.
  */
 #ifndef MeshProjection_Kernel_NumberingQuality_h
 #define MeshProjection_Kernel_NumberingQuality_h
