@@ -30,16 +30,21 @@ double Quantile(std::vector<Index>& values, double q)
 }
 
 /**
- * The sampled cells' points: a bit per point, and each marked point's rank
- * among them (its slot in CellsAround), from the marks before its word.
+ * The sampled cells: their corners, a bit per point for the points they
+ * use, and per such point (by its rank among the marked points, from the
+ * marks before its word) the samples that use it.
  */
-struct MarkedPoints
+struct Samples
 {
+  Index Count = 0;
+  int Corners = 0;
+  std::vector<Index> Ids; ///< sample s's corners at s * Corners
   std::vector<std::uint64_t> Bits;
   std::vector<Index> Before; ///< per word, the marked points in the words before it
-  Index Count = 0;
+  std::vector<Index> Start;  ///< marked point of rank r: UsedBy[Start[r] .. Start[r + 1])
+  std::vector<Index> UsedBy; ///< samples, increasing for each point
 
-  bool Has(Index p) const { return (this->Bits[static_cast<size_t>(p >> 6)] >> (p & 63)) & 1; }
+  bool Marked(Index p) const { return (this->Bits[static_cast<size_t>(p >> 6)] >> (p & 63)) & 1; }
   Index Rank(Index p) const
   {
     const std::uint64_t below = (std::uint64_t(1) << (p & 63)) - 1;
@@ -48,184 +53,157 @@ struct MarkedPoints
   }
 };
 
-MarkedPoints MarkSampledPoints(const MeshView& mesh, Index samples)
+Samples SampleCells(const MeshView& mesh, Index count)
 {
-  MarkedPoints marked;
-  marked.Bits.assign(static_cast<size_t>(mesh.NumberOfPoints / 64 + 1), 0);
-  const int corners = mesh.CornersPerCell();
-  for (Index s = 0; s < samples; ++s)
+  Samples samples;
+  samples.Count = count;
+  samples.Corners = mesh.CornersPerCell();
+  const int corners = samples.Corners;
+  samples.Ids.resize(static_cast<size_t>(count * corners));
+  samples.Bits.assign(static_cast<size_t>(mesh.NumberOfPoints / 64 + 1), 0);
+  for (Index s = 0; s < count; ++s)
   {
-    const CellCorners ids = mesh.Cell(SampledCell(mesh.NumberOfCells, s, samples));
+    const CellCorners ids = mesh.Cell(SampledCell(mesh.NumberOfCells, s, count));
     for (int k = 0; k < corners; ++k)
     {
-      marked.Bits[static_cast<size_t>(ids[k] >> 6)] |= std::uint64_t(1) << (ids[k] & 63);
+      samples.Ids[static_cast<size_t>(s * corners + k)] = ids[k];
+      samples.Bits[static_cast<size_t>(ids[k] >> 6)] |= std::uint64_t(1) << (ids[k] & 63);
     }
   }
-  marked.Before.resize(marked.Bits.size());
-  for (size_t w = 0; w < marked.Bits.size(); ++w)
+  Index marked = 0;
+  samples.Before.resize(samples.Bits.size());
+  for (size_t w = 0; w < samples.Bits.size(); ++w)
   {
-    marked.Before[w] = marked.Count;
-    marked.Count += __builtin_popcountll(marked.Bits[w]);
+    samples.Before[w] = marked;
+    marked += __builtin_popcountll(samples.Bits[w]);
   }
-  return marked;
+  // The samples of each marked point, by a counting sort (samples in order).
+  samples.Start.assign(static_cast<size_t>(marked) + 1, 0);
+  for (Index p : samples.Ids)
+  {
+    ++samples.Start[static_cast<size_t>(samples.Rank(p)) + 1];
+  }
+  for (size_t r = 0; r + 1 < samples.Start.size(); ++r)
+  {
+    samples.Start[r + 1] += samples.Start[r];
+  }
+  samples.UsedBy.resize(samples.Ids.size());
+  std::vector<Index> next(samples.Start.begin(), samples.Start.end() - 1);
+  for (Index s = 0; s < count; ++s)
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      const Index p = samples.Ids[static_cast<size_t>(s * corners + k)];
+      samples.UsedBy[static_cast<size_t>(next[static_cast<size_t>(samples.Rank(p))]++)] = s;
+    }
+  }
+  return samples;
 }
 
 /**
- * The cells around the marked points, grouped by point (by rank), each
- * point's cells in increasing order, with the corners of every cell met:
- * the neighbour test reads them here, not in the connectivity, where the
- * cells around a point of a mesh numbered without order lie far apart.
+ * Whether cell `o` (its corners) lies across a face of sample s (another
+ * cell with all of s's corners but one) and its corner k is the first of
+ * its corners that s has: each neighbour is then found once, through the
+ * first marked point it shares with s, not once per shared point.
  */
-struct CellsAround
-{
-  std::vector<Index> Start; ///< point of rank r: entries Start[r] .. Start[r + 1]
-  std::vector<Index> Cell;  ///< per entry, the cell
-  std::vector<Index> Slot;  ///< per entry, where its corners start in Corners
-  std::vector<Index> Corners;
-};
-
-/// One task's part of CellsAround: (rank, cell, slot) in cell order, and
-/// the corners of its cells (slots from 0).
-struct FoundCells
-{
-  std::vector<Index> Rank;
-  std::vector<Index> Cell;
-  std::vector<Index> Slot;
-  std::vector<Index> Corners;
-};
-
-/// The marked points of cells [begin, end), `ids` the connectivity.
 template <class Id>
-void FindMarked(
-  const Id* ids, int corners, Index begin, Index end, const MarkedPoints& marked, FoundCells& found)
+bool FirstAcrossAFace(const Samples& samples, Index s, const Id* o, int k)
 {
+  const int corners = samples.Corners;
+  const Index* a = samples.Ids.data() + s * corners;
+  int shared = 0;
+  int first = corners;
+  for (int j = corners - 1; j >= 0; --j)
+  {
+    int here = 0;
+    for (int i = 0; i < corners; ++i)
+    {
+      here += a[i] == static_cast<Index>(o[j]);
+    }
+    shared += here;
+    first = here > 0 ? j : first;
+  }
+  return shared == corners - 1 && first == k;
+}
+
+/**
+ * (sample, cell) for the cells of [begin, end) across a face of a sample,
+ * `ids` the connectivity. A face neighbour shares a marked point with the sample, so
+ * only the cells using a marked point are tested, against the samples
+ * that use that point, with the corners just read: no cell is read at
+ * random.
+ */
+template <class Id>
+void FindNeighbours(const Id* ids, const Samples& samples, Index begin, Index end, Index n,
+  std::vector<std::pair<Index, Index>>& found)
+{
+  const int corners = samples.Corners;
   for (Index c = begin; c < end; ++c)
   {
     const Id* cell = ids + c * corners;
     bool any = false;
     for (int k = 0; k < corners; ++k)
     {
-      any |= marked.Has(static_cast<Index>(cell[k]));
+      any |= samples.Marked(static_cast<Index>(cell[k]));
     }
-    if (!any)
-    {
-      continue;
-    }
-    const Index slot = static_cast<Index>(found.Corners.size());
-    for (int k = 0; k < corners; ++k)
+    for (int k = 0; any && k < corners; ++k)
     {
       const Index p = static_cast<Index>(cell[k]);
-      found.Corners.push_back(p);
-      if (marked.Has(p))
+      if (!samples.Marked(p))
       {
-        found.Rank.push_back(marked.Rank(p));
-        found.Cell.push_back(c);
-        found.Slot.push_back(slot);
+        continue;
+      }
+      const size_t r = static_cast<size_t>(samples.Rank(p));
+      for (Index e = samples.Start[r]; e < samples.Start[r + 1]; ++e)
+      {
+        const Index s = samples.UsedBy[static_cast<size_t>(e)];
+        if (SampledCell(n, s, samples.Count) != c && FirstAcrossAFace(samples, s, cell, k))
+        {
+          found.emplace_back(s, c);
+        }
       }
     }
   }
 }
 
 /**
- * CellsAround from one pass over the connectivity in `runner`'s tasks,
- * each keeping its range's entries, then placed by rank in range order
- * (a counting sort, stable: each point's cells in increasing order,
- * whatever the number of tasks).
+ * |c - o| for each cell o across a face of each sampled cell c, each once:
+ * one pass over the connectivity (FindNeighbours, in `runner`'s tasks),
+ * then the (sample, cell) pairs sorted and their repeats dropped (the same
+ * distances whatever the number of tasks).
  */
-CellsAround CellsAroundMarked(
-  const MeshView& mesh, const MarkedPoints& marked, const TaskRunner& runner)
+std::vector<Index> NeighbourDistances(
+  const MeshView& mesh, const Samples& samples, const TaskRunner& runner)
 {
   const Index n = mesh.NumberOfCells;
-  const int corners = mesh.CornersPerCell();
   const int tasks = runner.TasksFor(n, 16384);
-  std::vector<FoundCells> found(static_cast<size_t>(tasks));
+  std::vector<std::vector<std::pair<Index, Index>>> found(static_cast<size_t>(tasks));
   runner.RunAll(tasks, [&](int t) {
     const Index begin = RangeBegin(n, t, tasks);
     const Index end = RangeBegin(n, t + 1, tasks);
     if (mesh.Connectivity32)
     {
-      FindMarked(mesh.Connectivity32, corners, begin, end, marked, found[t]);
+      FindNeighbours(mesh.Connectivity32, samples, begin, end, n, found[t]);
     }
     else
     {
-      FindMarked(mesh.Connectivity, corners, begin, end, marked, found[t]);
+      FindNeighbours(mesh.Connectivity, samples, begin, end, n, found[t]);
     }
   });
-  CellsAround around;
-  around.Start.assign(static_cast<size_t>(marked.Count) + 1, 0);
-  for (const FoundCells& part : found)
+  std::vector<std::pair<Index, Index>> pairs;
+  for (const auto& part : found)
   {
-    for (Index r : part.Rank)
-    {
-      ++around.Start[static_cast<size_t>(r) + 1];
-    }
+    pairs.insert(pairs.end(), part.begin(), part.end());
   }
-  for (size_t r = 0; r + 1 < around.Start.size(); ++r)
-  {
-    around.Start[r + 1] += around.Start[r];
-  }
-  around.Cell.resize(static_cast<size_t>(around.Start.back()));
-  around.Slot.resize(around.Cell.size());
-  std::vector<Index> next(around.Start.begin(), around.Start.end() - 1);
-  for (const FoundCells& part : found)
-  {
-    const Index base = static_cast<Index>(around.Corners.size());
-    for (size_t e = 0; e < part.Rank.size(); ++e)
-    {
-      const size_t at = static_cast<size_t>(next[static_cast<size_t>(part.Rank[e])]++);
-      around.Cell[at] = part.Cell[e];
-      around.Slot[at] = base + part.Slot[e];
-    }
-    around.Corners.insert(around.Corners.end(), part.Corners.begin(), part.Corners.end());
-  }
-  return around;
-}
-
-/// How many of the corners `a` the corners `b` share (`corners` each).
-int SharedCorners(const CellCorners& a, const Index* b, int corners)
-{
-  int shared = 0;
-  for (int i = 0; i < corners; ++i)
-  {
-    for (int j = 0; j < corners; ++j)
-    {
-      shared += a[i] == b[j];
-    }
-  }
-  return shared;
-}
-
-/// |c - o| for each cell o across a face of the sampled cells, each once.
-std::vector<Index> NeighbourDistances(
-  const MeshView& mesh, Index samples, const MarkedPoints& marked, const CellsAround& around)
-{
-  const int corners = mesh.CornersPerCell();
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   std::vector<Index> distances;
-  std::vector<Index> neighbours;
-  for (Index s = 0; s < samples; ++s)
+  distances.reserve(pairs.size());
+  for (const auto& pair : pairs)
   {
-    const Index c = SampledCell(mesh.NumberOfCells, s, samples);
-    const CellCorners ids = mesh.Cell(c);
-    neighbours.clear();
-    for (int k = 0; k < corners; ++k)
-    {
-      const size_t r = static_cast<size_t>(marked.Rank(ids[k]));
-      for (Index e = around.Start[r]; e < around.Start[r + 1]; ++e)
-      {
-        const Index o = around.Cell[static_cast<size_t>(e)];
-        const Index* oc = around.Corners.data() + around.Slot[static_cast<size_t>(e)];
-        if (o != c && SharedCorners(ids, oc, corners) == corners - 1)
-        {
-          neighbours.push_back(o);
-        }
-      }
-    }
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    for (Index o : neighbours)
-    {
-      distances.push_back(o > c ? o - c : c - o);
-    }
+    const Index c = SampledCell(n, pair.first, samples.Count);
+    const Index o = pair.second;
+    distances.push_back(o > c ? o - c : c - o);
   }
   return distances;
 }
@@ -257,9 +235,7 @@ NumberingQuality MeasureNumbering(const MeshView& mesh, const TaskRunner& runner
     spread[s] = high - low;
   }
   quality.PointSpread = Quantile(spread, 0.5) / std::pow(static_cast<double>(np), layer);
-  const MarkedPoints marked = MarkSampledPoints(mesh, samples);
-  const std::vector<Index> distances =
-    NeighbourDistances(mesh, samples, marked, CellsAroundMarked(mesh, marked, runner));
+  const std::vector<Index> distances = NeighbourDistances(mesh, SampleCells(mesh, samples), runner);
   const double far = NumberingQuality::FarDistance * std::pow(static_cast<double>(n), layer);
   const auto count = std::count_if(
     distances.begin(), distances.end(), [far](Index d) { return static_cast<double>(d) > far; });
