@@ -20,10 +20,21 @@
 
 #include <algorithm>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mp
 {
+/// Whether intersector I has PrepareMeasure (Prepare's measure alone).
+template <class I, class = void>
+struct HasPrepareMeasure : std::false_type
+{};
+template <class I>
+struct HasPrepareMeasure<I,
+  std::void_t<decltype(I::PrepareMeasure(
+    std::declval<const MeshView&>(), Index(0), std::declval<double&>()))>> : std::true_type
+{};
+
 /// Calls visit(c, measure) for every cell of the mesh (of cells [begin,
 /// end) when given) that is not degenerate.
 template <class Visit>
@@ -32,12 +43,26 @@ void ForEachCellMeasure(const MeshView& mesh, Visit visit, Index begin = 0, Inde
   end = end < 0 ? mesh.NumberOfCells : end;
   WithIntersectorOf(mesh, [&](auto* tag) { // the intersector's type only
     using Intersector = std::remove_pointer_t<decltype(tag)>;
-    typename Intersector::Cell cell;
-    for (Index c = begin; c < end; ++c)
+    if constexpr (HasPrepareMeasure<Intersector>::value)
     {
-      if (Intersector::Prepare(mesh, c, cell))
+      double measure = 0.0;
+      for (Index c = begin; c < end; ++c)
       {
-        visit(c, cell.Measure);
+        if (Intersector::PrepareMeasure(mesh, c, measure))
+        {
+          visit(c, measure);
+        }
+      }
+    }
+    else
+    {
+      typename Intersector::Cell cell;
+      for (Index c = begin; c < end; ++c)
+      {
+        if (Intersector::Prepare(mesh, c, cell))
+        {
+          visit(c, cell.Measure);
+        }
       }
     }
   });

@@ -430,10 +430,43 @@ bool TriangleIntersector::Prepare(const MeshView& mesh, Index id, Cell& cell)
   return PrepareCorners(cell);
 }
 
+namespace
+{
+/**
+ * The affine map of corners X (counterclockwise): the measure and the
+ * inverse Jacobian of PrepareCorners. False for a map that is not
+ * invertible in doubles (zero measure, non-finite inverse).
+ */
+inline bool AffineMap(const double (&X)[3][2], double& measure, double (&inverse)[2][2])
+{
+  // Jacobian J = [X1 - X0, X2 - X0]; barycentrics 1, 2 = J^-1 (x - X0).
+  const double j00 = X[1][0] - X[0][0];
+  const double j01 = X[2][0] - X[0][0];
+  const double j10 = X[1][1] - X[0][1];
+  const double j11 = X[2][1] - X[0][1];
+  const double det = j00 * j11 - j01 * j10;
+  measure = 0.5 * std::fabs(det);
+  const double reciprocal = 1.0 / det;
+  inverse[0][0] = j11 * reciprocal;
+  inverse[0][1] = -j01 * reciprocal;
+  inverse[1][0] = -j10 * reciprocal;
+  inverse[1][1] = j00 * reciprocal;
+  return measure > 0.0 &&
+    std::isfinite(inverse[0][0] + inverse[0][1] + inverse[1][0] + inverse[1][1]);
+}
+
+/// Whether twice the signed area (Orient2D, exact in sign) is a cell's:
+/// neither zero nor non-finite.
+inline bool HasArea(double twiceArea)
+{
+  return twiceArea != 0.0 && std::isfinite(twiceArea);
+}
+} // namespace
+
 bool TriangleIntersector::PrepareCorners(Cell& cell)
 {
-  double twiceArea = Orient2D(cell.X[0], cell.X[1], cell.X[2]);
-  if (!(twiceArea != 0.0) || !std::isfinite(twiceArea))
+  const double twiceArea = Orient2D(cell.X[0], cell.X[1], cell.X[2]);
+  if (!HasArea(twiceArea))
   {
     return false;
   }
@@ -443,24 +476,12 @@ bool TriangleIntersector::PrepareCorners(Cell& cell)
     std::swap(cell.Face[1], cell.Face[2]);
     std::swap(cell.X[1][0], cell.X[2][0]);
     std::swap(cell.X[1][1], cell.X[2][1]);
-    twiceArea = -twiceArea;
   }
   cell.Box[0] = std::min({ cell.X[0][0], cell.X[1][0], cell.X[2][0] });
   cell.Box[1] = std::max({ cell.X[0][0], cell.X[1][0], cell.X[2][0] });
   cell.Box[2] = std::min({ cell.X[0][1], cell.X[1][1], cell.X[2][1] });
   cell.Box[3] = std::max({ cell.X[0][1], cell.X[1][1], cell.X[2][1] });
-  // Jacobian J = [X1 - X0, X2 - X0]; barycentrics 1, 2 = J^-1 (x - X0).
-  const double j00 = cell.X[1][0] - cell.X[0][0];
-  const double j01 = cell.X[2][0] - cell.X[0][0];
-  const double j10 = cell.X[1][1] - cell.X[0][1];
-  const double j11 = cell.X[2][1] - cell.X[0][1];
-  const double det = j00 * j11 - j01 * j10;
-  cell.Measure = 0.5 * std::fabs(det);
-  const double inverse = 1.0 / det;
-  cell.Inverse[0][0] = j11 * inverse;
-  cell.Inverse[0][1] = -j01 * inverse;
-  cell.Inverse[1][0] = -j10 * inverse;
-  cell.Inverse[1][1] = j00 * inverse;
+  const bool invertible = AffineMap(cell.X, cell.Measure, cell.Inverse);
   for (int k = 0; k < 3; ++k)
   {
     const double* a = cell.X[(k + 1) % 3];
@@ -469,9 +490,31 @@ bool TriangleIntersector::PrepareCorners(Cell& cell)
     cell.Edge[k][1] = b[1] - a[1];
     cell.EdgeSize[k] = std::fabs(cell.Edge[k][0]) + std::fabs(cell.Edge[k][1]);
   }
-  return cell.Measure > 0.0 &&
-    std::isfinite(
-      cell.Inverse[0][0] + cell.Inverse[0][1] + cell.Inverse[1][0] + cell.Inverse[1][1]);
+  return invertible;
+}
+
+bool TriangleIntersector::PrepareMeasure(const MeshView& mesh, Index id, double& measure)
+{
+  const CellCorners ids = mesh.Cell(id);
+  double X[3][2];
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* x = mesh.Point(ids[k]);
+    X[k][0] = x[0];
+    X[k][1] = x[1];
+  }
+  const double twiceArea = Orient2D(X[0], X[1], X[2]);
+  if (!HasArea(twiceArea))
+  {
+    return false;
+  }
+  if (twiceArea < 0.0) // as PrepareCorners: the same corners in the same order
+  {
+    std::swap(X[1][0], X[2][0]);
+    std::swap(X[1][1], X[2][1]);
+  }
+  double inverse[2][2];
+  return AffineMap(X, measure, inverse);
 }
 
 void TriangleIntersector::Bounds(const Cell& cell, double box[6])

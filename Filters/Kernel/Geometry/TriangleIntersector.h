@@ -83,6 +83,12 @@ public:
    * sets Box, Measure and Inverse. False for zero area.
    */
   static bool PrepareCorners(Cell& cell);
+  /**
+   * Whether Prepare would succeed on cell `id`, and then the Measure it
+   * would set, bit for bit, without the rest of the prepared cell (for
+   * loops over all cells that need only their measures).
+   */
+  static bool PrepareMeasure(const MeshView& mesh, Index id, double& measure);
   /// The source cell as the spaces see it on a piece: itself.
   static const Cell& SourceCell(const Cell& s, const Piece&) { return s; }
   /// Never: a false Intersect means the cells do not meet (see SurfaceIntersector).

@@ -29,58 +29,153 @@ double Quantile(std::vector<Index>& values, double q)
   return static_cast<double>(values[at]);
 }
 
-/// A bit per point: those of the sampled cells set.
-std::vector<std::uint64_t> MarkSampledPoints(const MeshView& mesh, Index samples)
+/**
+ * The sampled cells: their corners, a bit per point for the points they
+ * use, and per such point (by its rank among the marked points, from the
+ * marks before its word) the samples that use it.
+ */
+struct Samples
 {
-  std::vector<std::uint64_t> marked(static_cast<size_t>(mesh.NumberOfPoints / 64 + 1), 0);
-  const int corners = mesh.CornersPerCell();
-  for (Index s = 0; s < samples; ++s)
+  Index Count = 0;
+  int Corners = 0;
+  std::vector<Index> Ids; ///< sample s's corners at s * Corners
+  std::vector<std::uint64_t> Bits;
+  std::vector<Index> Before; ///< per word, the marked points in the words before it
+  std::vector<Index> Start;  ///< marked point of rank r: UsedBy[Start[r] .. Start[r + 1])
+  std::vector<Index> UsedBy; ///< samples, increasing for each point
+
+  bool Marked(Index p) const { return (this->Bits[static_cast<size_t>(p >> 6)] >> (p & 63)) & 1; }
+  Index Rank(Index p) const
   {
-    const CellCorners ids = mesh.Cell(SampledCell(mesh.NumberOfCells, s, samples));
+    const std::uint64_t below = (std::uint64_t(1) << (p & 63)) - 1;
+    return this->Before[static_cast<size_t>(p >> 6)] +
+      __builtin_popcountll(this->Bits[static_cast<size_t>(p >> 6)] & below);
+  }
+};
+
+Samples SampleCells(const MeshView& mesh, Index count)
+{
+  Samples samples;
+  samples.Count = count;
+  samples.Corners = mesh.CornersPerCell();
+  const int corners = samples.Corners;
+  samples.Ids.resize(static_cast<size_t>(count * corners));
+  samples.Bits.assign(static_cast<size_t>(mesh.NumberOfPoints / 64 + 1), 0);
+  for (Index s = 0; s < count; ++s)
+  {
+    const CellCorners ids = mesh.Cell(SampledCell(mesh.NumberOfCells, s, count));
     for (int k = 0; k < corners; ++k)
     {
-      marked[static_cast<size_t>(ids[k] >> 6)] |= std::uint64_t(1) << (ids[k] & 63);
+      samples.Ids[static_cast<size_t>(s * corners + k)] = ids[k];
+      samples.Bits[static_cast<size_t>(ids[k] >> 6)] |= std::uint64_t(1) << (ids[k] & 63);
     }
   }
-  return marked;
+  Index marked = 0;
+  samples.Before.resize(samples.Bits.size());
+  for (size_t w = 0; w < samples.Bits.size(); ++w)
+  {
+    samples.Before[w] = marked;
+    marked += __builtin_popcountll(samples.Bits[w]);
+  }
+  // The samples of each marked point, by a counting sort (samples in order).
+  samples.Start.assign(static_cast<size_t>(marked) + 1, 0);
+  for (Index p : samples.Ids)
+  {
+    ++samples.Start[static_cast<size_t>(samples.Rank(p)) + 1];
+  }
+  for (size_t r = 0; r + 1 < samples.Start.size(); ++r)
+  {
+    samples.Start[r + 1] += samples.Start[r];
+  }
+  samples.UsedBy.resize(samples.Ids.size());
+  std::vector<Index> next(samples.Start.begin(), samples.Start.end() - 1);
+  for (Index s = 0; s < count; ++s)
+  {
+    for (int k = 0; k < corners; ++k)
+    {
+      const Index p = samples.Ids[static_cast<size_t>(s * corners + k)];
+      samples.UsedBy[static_cast<size_t>(next[static_cast<size_t>(samples.Rank(p))]++)] = s;
+    }
+  }
+  return samples;
 }
 
-/// (point, cell) for the marked points of cells [begin, end), `ids` the connectivity.
+/**
+ * Whether cell `o` (its corners) lies across a face of sample s (another
+ * cell with all of s's corners but one) and its corner k is the first of
+ * its corners that s has: each neighbour is then found once, through the
+ * first marked point it shares with s, not once per shared point.
+ */
 template <class Id>
-void FindMarked(const Id* ids, int corners, Index begin, Index end,
-  const std::vector<std::uint64_t>& marked, std::vector<std::pair<Index, Index>>& found)
+bool FirstAcrossAFace(const Samples& samples, Index s, const Id* o, int k)
 {
-  const std::uint64_t* bits = marked.data();
-  auto isMarked = [bits](Index p) { return (bits[p >> 6] >> (p & 63)) & 1; };
+  const int corners = samples.Corners;
+  const Index* a = samples.Ids.data() + s * corners;
+  int shared = 0;
+  int first = corners;
+  for (int j = corners - 1; j >= 0; --j)
+  {
+    int here = 0;
+    for (int i = 0; i < corners; ++i)
+    {
+      here += a[i] == static_cast<Index>(o[j]);
+    }
+    shared += here;
+    first = here > 0 ? j : first;
+  }
+  return shared == corners - 1 && first == k;
+}
+
+/**
+ * (sample, cell) for the cells of [begin, end) across a face of a sample,
+ * `ids` the connectivity. A face neighbour shares a marked point with the sample, so
+ * only the cells using a marked point are tested, against the samples
+ * that use that point, with the corners just read: no cell is read at
+ * random.
+ */
+template <class Id>
+void FindNeighbours(const Id* ids, const Samples& samples, Index begin, Index end, Index n,
+  std::vector<std::pair<Index, Index>>& found)
+{
+  const int corners = samples.Corners;
   for (Index c = begin; c < end; ++c)
   {
     const Id* cell = ids + c * corners;
-    std::uint64_t any = 0;
+    bool any = false;
     for (int k = 0; k < corners; ++k)
     {
-      any |= isMarked(static_cast<Index>(cell[k]));
+      any |= samples.Marked(static_cast<Index>(cell[k]));
     }
     for (int k = 0; any && k < corners; ++k)
     {
-      if (isMarked(static_cast<Index>(cell[k])))
+      const Index p = static_cast<Index>(cell[k]);
+      if (!samples.Marked(p))
       {
-        found.emplace_back(static_cast<Index>(cell[k]), c);
+        continue;
+      }
+      const size_t r = static_cast<size_t>(samples.Rank(p));
+      for (Index e = samples.Start[r]; e < samples.Start[r + 1]; ++e)
+      {
+        const Index s = samples.UsedBy[static_cast<size_t>(e)];
+        if (SampledCell(n, s, samples.Count) != c && FirstAcrossAFace(samples, s, cell, k))
+        {
+          found.emplace_back(s, c);
+        }
       }
     }
   }
 }
 
 /**
- * (point, cell) for every marked point of every cell, sorted: the cells
- * around each marked point. One pass over the connectivity, each task
- * keeping and sorting its range's pairs, then the sorted parts merged in
- * range order (the one sorted list, whatever the number of tasks).
+ * |c - o| for each cell o across a face of each sampled cell c, each once:
+ * one pass over the connectivity (FindNeighbours, in `runner`'s tasks),
+ * then the (sample, cell) pairs sorted and their repeats dropped (the same
+ * distances whatever the number of tasks).
  */
-std::vector<std::pair<Index, Index>> CellsAroundMarked(
-  const MeshView& mesh, const std::vector<std::uint64_t>& marked, const TaskRunner& runner)
+std::vector<Index> NeighbourDistances(
+  const MeshView& mesh, const Samples& samples, const TaskRunner& runner)
 {
   const Index n = mesh.NumberOfCells;
-  const int corners = mesh.CornersPerCell();
   const int tasks = runner.TasksFor(n, 16384);
   std::vector<std::vector<std::pair<Index, Index>>> found(static_cast<size_t>(tasks));
   runner.RunAll(tasks, [&](int t) {
@@ -88,70 +183,27 @@ std::vector<std::pair<Index, Index>> CellsAroundMarked(
     const Index end = RangeBegin(n, t + 1, tasks);
     if (mesh.Connectivity32)
     {
-      FindMarked(mesh.Connectivity32, corners, begin, end, marked, found[t]);
+      FindNeighbours(mesh.Connectivity32, samples, begin, end, n, found[t]);
     }
     else
     {
-      FindMarked(mesh.Connectivity, corners, begin, end, marked, found[t]);
+      FindNeighbours(mesh.Connectivity, samples, begin, end, n, found[t]);
     }
-    std::sort(found[t].begin(), found[t].end());
   });
-  std::vector<std::pair<Index, Index>> around;
+  std::vector<std::pair<Index, Index>> pairs;
   for (const auto& part : found)
   {
-    const auto middle = static_cast<std::ptrdiff_t>(around.size());
-    around.insert(around.end(), part.begin(), part.end());
-    std::inplace_merge(around.begin(), around.begin() + middle, around.end());
+    pairs.insert(pairs.end(), part.begin(), part.end());
   }
-  return around;
-}
-
-/// How many of cell a's corners cell b has.
-int SharedCorners(const MeshView& mesh, Index a, Index b)
-{
-  const int corners = mesh.CornersPerCell();
-  const CellCorners x = mesh.Cell(a);
-  const CellCorners y = mesh.Cell(b);
-  int shared = 0;
-  for (int i = 0; i < corners; ++i)
-  {
-    for (int j = 0; j < corners; ++j)
-    {
-      shared += x[i] == y[j];
-    }
-  }
-  return shared;
-}
-
-/// |c - o| for each cell o across a face of the sampled cells, each once.
-std::vector<Index> NeighbourDistances(
-  const MeshView& mesh, Index samples, const std::vector<std::pair<Index, Index>>& around)
-{
-  const int corners = mesh.CornersPerCell();
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   std::vector<Index> distances;
-  std::vector<Index> neighbours;
-  for (Index s = 0; s < samples; ++s)
+  distances.reserve(pairs.size());
+  for (const auto& pair : pairs)
   {
-    const Index c = SampledCell(mesh.NumberOfCells, s, samples);
-    const CellCorners ids = mesh.Cell(c);
-    neighbours.clear();
-    for (int k = 0; k < corners; ++k)
-    {
-      auto at = std::lower_bound(around.begin(), around.end(), std::make_pair(ids[k], Index(0)));
-      for (; at != around.end() && at->first == ids[k]; ++at)
-      {
-        if (at->second != c && SharedCorners(mesh, c, at->second) == corners - 1)
-        {
-          neighbours.push_back(at->second);
-        }
-      }
-    }
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    for (Index o : neighbours)
-    {
-      distances.push_back(o > c ? o - c : c - o);
-    }
+    const Index c = SampledCell(n, pair.first, samples.Count);
+    const Index o = pair.second;
+    distances.push_back(o > c ? o - c : c - o);
   }
   return distances;
 }
@@ -183,8 +235,7 @@ NumberingQuality MeasureNumbering(const MeshView& mesh, const TaskRunner& runner
     spread[s] = high - low;
   }
   quality.PointSpread = Quantile(spread, 0.5) / std::pow(static_cast<double>(np), layer);
-  const std::vector<Index> distances = NeighbourDistances(
-    mesh, samples, CellsAroundMarked(mesh, MarkSampledPoints(mesh, samples), runner));
+  const std::vector<Index> distances = NeighbourDistances(mesh, SampleCells(mesh, samples), runner);
   const double far = NumberingQuality::FarDistance * std::pow(static_cast<double>(n), layer);
   const auto count = std::count_if(
     distances.begin(), distances.end(), [far](Index d) { return static_cast<double>(d) > far; });

@@ -36,9 +36,12 @@
  * The face neighbours of the sampled cells are found without the mesh's
  * point -> cell map (the filter builds it only after this decision): the
  * sampled cells' points are marked in a bit per point, and one pass over
- * the connectivity (in `runner`'s tasks) keeps the cells that use a marked
- * point. Cost: that pass and np / 8 bytes for the marks, O(samples) after
- * it, small beside any projection on the mesh.
+ * the connectivity (in `runner`'s tasks) tests each cell that uses a marked
+ * point against the sampled cells that use that point, with the corners it
+ * has just read (no cell is read at random: the cells around a point of a
+ * mesh numbered without order lie far apart). Cost: that pass, np / 8
+ * bytes for the marks, O(samples) around it, small beside any projection
+ * on the mesh.
  */
 #ifndef MeshProjection_Kernel_NumberingQuality_h
 #define MeshProjection_Kernel_NumberingQuality_h

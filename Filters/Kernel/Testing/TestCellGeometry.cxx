@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // CellGeometry (Geometry/CellGeometry.h): on volume meshes the simplex
-// measure is, bit for bit, the intersectors' (Measures.h); on surfaces and
+// measure is, bit for bit, the intersectors' (Measures.h), and the
+// triangles' measure alone (PrepareMeasure) their Prepare's; on surfaces and
 // curves it is the area and length in space (against the Gram determinant
 // computed here); a
 // cell's centroid is the measure-weighted one (the corners' mean of its
@@ -10,10 +11,12 @@
 
 #include "GeneratedMeshes.h"
 #include "Geometry/Measures.h"
+#include "Geometry/TriangleIntersector.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace
@@ -54,6 +57,36 @@ TEST(CellGeometry, VolumeMeasureIsTheIntersectors)
       EXPECT_NEAR(measure, m.CellArea(c), 1e-15) << "cell " << c;
     }
   }
+}
+
+TEST(CellGeometry, TrianglesMeasureAloneIsPreparesBitForBit)
+{
+  // Clockwise cells (every third one reversed), and cells of no area: two
+  // corners on one point, three on a line.
+  TestMesh m = mptest::GridMesh(17, 13, 0.35, 1);
+  for (Index c = 0; c < m.NumberOfCells(); c += 3)
+  {
+    std::swap(m.Cells[3 * c + 1], m.Cells[3 * c + 2]);
+  }
+  m.Cells[3 * 5 + 2] = m.Cells[3 * 5];
+  const Index p = m.NumberOfPoints();
+  m.Points.insert(m.Points.end(), { 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 3.0, 3.0, 0.0 });
+  m.Cells.insert(m.Cells.end(), { p, p + 1, p + 2 });
+  const mp::MeshView view = m.View(false);
+  int invalid = 0;
+  for (Index c = 0; c < view.NumberOfCells; ++c)
+  {
+    mp::TriangleIntersector::Cell cell;
+    double measure = -1.0;
+    const bool prepared = mp::TriangleIntersector::Prepare(view, c, cell);
+    ASSERT_EQ(mp::TriangleIntersector::PrepareMeasure(view, c, measure), prepared) << "cell " << c;
+    invalid += !prepared;
+    if (prepared)
+    {
+      EXPECT_EQ(measure, cell.Measure) << "cell " << c;
+    }
+  }
+  EXPECT_EQ(invalid, 2);
 }
 
 TEST(CellGeometry, SurfaceAndCurveMeasuresAreInSpace)

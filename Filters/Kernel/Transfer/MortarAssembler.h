@@ -253,7 +253,10 @@ struct MortarAssembler
       }
       this->BlockColumns.clear();
       this->BlockValues.clear();
-      this->CellField.assign(static_cast<size_t>(K) * this->Components, 0.0);
+      // (Resized only when Components change: assign's call per cell, out
+      // of line, cost more than the few zeros it writes.)
+      this->CellField.resize(static_cast<size_t>(K) * this->Components);
+      std::fill(this->CellField.begin(), this->CellField.end(), 0.0);
     }
     if constexpr (HasTies<Intersector>::value)
     {
