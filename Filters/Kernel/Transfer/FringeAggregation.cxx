@@ -210,16 +210,16 @@ double Amplification(const std::vector<double>& w)
 }
 
 /**
- * Where the quadratic `weights` amplify more than `coverage`'s bound
- * (FitCoverage::Amplification: cell data), the affine fit of the `found`
- * points instead when it amplifies at most FringeCellDataAffineAmplification
- * (true returned, `points` and `weights` replaced); else the quadratic stays.
+ * The affine fit of the `found` points instead of the quadratic `weights`
+ * where FringeCellDataAmplification says (`coverage`'s Amplification: cell
+ * data): true returned, `points` and `weights` replaced.
  */
 bool ShortAffineFit(const MeshView& mesh, const StencilFrame& frame, Index i,
   const std::vector<Index>& found, const FitCoverage* coverage, std::vector<Index>& points,
   std::vector<double>& weights)
 {
   if (!coverage || !(coverage->Amplification > 0.0) ||
+    !(coverage->Fraction[i] < FringeCellDataAffineFraction) ||
     Amplification(weights) <= coverage->Amplification)
   {
     return false;

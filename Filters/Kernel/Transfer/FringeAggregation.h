@@ -186,8 +186,9 @@ constexpr double FringeCoveragePower = 2.0;
 constexpr double FringeCellDataThreshold = 0.5;
 
 /**
- * For the same cell data, a quadratic fit whose sum |w| is above this
- * gives way to the affine fit of the same rings when that one's is at most
+ * For the same cell data, the quadratic fit of a function covered less
+ * than FringeCellDataAffineFraction whose sum |w| is above this gives way
+ * to the affine fit of the same rings when that one's is at most
  * FringeCellDataAffineAmplification. The free values beside a cell-data
  * fringe carry errors of either sign from layer to layer (the points
  * covered in part one way, the fully covered ones next to them the
@@ -203,6 +204,12 @@ constexpr double FringeCellDataAmplification = 6.0;
 /// The affine fits FringeCellDataAmplification gives way to: sum |w| at
 /// most this (3 for a point one layer out from a flat layer of points).
 constexpr double FringeCellDataAffineAmplification = 3.5;
+
+/// The functions FringeCellDataAmplification applies to: covered less than
+/// this (FringeThreshold's default). Those covered 25% to 50%, aggregated
+/// for cell data only, lie nearer the covered part, where an affine fit's
+/// own error over a coarse Input's cell can be the larger part.
+constexpr double FringeCellDataAffineFraction = 0.25;
 
 /**
  * The extension of the functions of `mesh`'s points that are valid but

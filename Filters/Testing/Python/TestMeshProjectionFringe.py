@@ -247,9 +247,9 @@ for name, target, source_mesh in volume_pairs:
 # projection over the covered part of its support only: a one-sided mean,
 # first order; the extension's quadratic fits added up the errors of
 # either sign of the layers beside the fringe). Cell data aggregates the
-# points covered less than half (FringeCellDataThreshold) and takes a short
-# affine fit where the quadratic one amplifies more than 6
-# (FringeCellDataAmplification): within 5x. With CellDataReconstruction
+# points covered less than half (FringeCellDataThreshold) and, for those
+# covered less than a quarter, takes a short affine fit where the quadratic
+# one amplifies more than 6 (FringeCellDataAmplification): within 5x. With CellDataReconstruction
 # linear (second order on each cell) the same pairs come within 5x too.
 def stored(name):
     return read(os.path.join(GMSH, name + ".vtu"))
