@@ -1,10 +1,12 @@
 """The fringe on Gmsh pairs that overlap in part: a table per pair and shift.
 
     PYTHONPATH=BUILD/lib/python3/dist-packages /usr/bin/python3 Testing/Support/fringe_sweep.py [FILTER] [--refine K]
+        [--shifts random:N:SEED]
 
 Input is a Gmsh mesh of the unit square or cube moved by a shift, the
 Source another (finer or coarser) of the same domain; FILTER keeps the pairs
-whose name contains it. Per pair, with the default settings, on the smooth
+whose name contains it. `--shifts random:N:SEED` adds N random shifts
+(random_shifts) to every kind's standard ones. Per pair, with the default settings, on the smooth
 field sin(2x)cos(3y)+z^2 as point data (s) and as cell data to points (c):
 
   s, c      worst error at a valid point / worst at interior points (every
@@ -49,6 +51,18 @@ from mpsupport.testing import mortar
 
 SHIFTS_3D = [(0.27, 0.13, 0.21), (-0.33, 0.41, 0.07), (-0.2, 0.33, 0.11), (0.17, 0.29, 0.07), (0.27, -0.19, 0.13)]
 SHIFTS_2D = [(0.31, 0.17, 0), (-0.2, 0.33, 0), (0.17, 0.29, 0), (0.27, -0.19, 0), (0.4, 0.1, 0)]
+
+
+def random_shifts(spec, dimension):
+    """The shifts `random:N:SEED` asks for: N shifts of `dimension`
+    components, each of magnitude 0.15 to 0.45 with a random sign (the same
+    for a seed; the 2D ones the first two components of the 3D ones)."""
+    kind, count, seed = spec.split(":")
+    if kind != "random":
+        raise SystemExit("--shifts: random:N:SEED, not " + spec)
+    rng = np.random.default_rng(int(seed))
+    values = rng.uniform(0.15, 0.45, (int(count), 3)) * rng.choice((-1.0, 1.0), (int(count), 3))
+    return [tuple(round(v, 2) for v in row[:dimension]) + (0,) * (3 - dimension) for row in values]
 
 
 def stored(name):
@@ -108,17 +122,17 @@ def measure(target, source, around, near, whole):
     deep = interior & np.array([all(full[q] for q in ring) for ring in near])
     row = {"interior": int(interior.sum())}
     worst, split = {}, {}
-    P = fringe_extension(f).tocsr()
-    aggregated = P.getnnz(axis=0) == 0
+    extensions = {"s": fringe_extension(f).tocsr(), "c": fringe_extension(f, "cells_to_points").tocsr()}
+    aggregated = {name: P.getnnz(axis=0) == 0 for name, P in extensions.items()}
     exact_s = smooth(x)
     for name in ("s", "c"):
+        P = extensions[name]
         signed = vtk_to_numpy(pd.GetArray(name)) - exact_s
         error = np.abs(signed)
         row[name] = np.max(error[valid]) / np.max(error[interior])
         row[name + "1"] = np.max(error[valid]) / np.max(error[deep]) if deep.any() else np.nan
-        row[name + "F"] = np.max(error[valid & ~full & ~aggregated], initial=0) / np.max(error[interior])
+        row[name + "F"] = np.max(error[valid & ~full & ~aggregated[name]], initial=0) / np.max(error[interior])
         worst[name] = int(np.argmax(np.where(valid, error, -1)))
-        # (The cells-to-points transfer has the same extension: P is built per target.)
         w = P.getrow(worst[name])
         split[name] = (abs(w.dot(exact_s)[0] - exact_s[worst[name]]) / np.max(error[interior]),
                        abs(w.dot(signed)[0]) / np.max(error[interior]), np.abs(w.data).sum())
@@ -139,8 +153,8 @@ def measure(target, source, around, near, whole):
             ring = {q for p in ring for q in near[p]} - seen
             seen |= ring
             distance += 1
-        row["worst " + name] = "%.3f %s %d" % (fraction[start], "A" if aggregated[start] else "F", distance)
-        if aggregated[start]:
+        row["worst " + name] = "%.3f %s %d" % (fraction[start], "A" if aggregated[name][start] else "F", distance)
+        if aggregated[name][start]:
             row["worst " + name] += " own %.2f carried %.2f |w| %.1f" % split[name]
     return row
 
@@ -166,6 +180,11 @@ def main():
         k = args.index("--refine")
         refine = float(args[k + 1])
         del args[k:k + 2]
+    extra = ""
+    if "--shifts" in args:
+        k = args.index("--shifts")
+        extra = args[k + 1]
+        del args[k:k + 2]
     pick = args[0] if args else ""
     print("%-26s %-20s %6s %6s %6s %6s %6s %6s %6s %8s %5s %6s %8s  %-42s %s" %
           ("pair", "shift", "s", "c", "cL", "s1", "c1", "sF", "cF", "linear", ">10%", "sliver", "interior",
@@ -182,6 +201,8 @@ def main():
         else:
             base, source = make(h_in), make(h_src)
         source = with_fields(source)
+        if extra:
+            shifts = shifts + random_shifts(extra, 3 if shifts is SHIFTS_3D else 2)
         for shift in shifts:
             target = gmshmeshes.moved(base, translate=shift)
             around, near = neighbours(target)

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 namespace mp
@@ -201,6 +202,41 @@ void RootRingCells(const MeshView& mesh, const CellsAroundPoints& around, Index 
   }
 }
 
+/// Sum |w|.
+double Amplification(const std::vector<double>& w)
+{
+  return std::accumulate(
+    w.begin(), w.end(), 0.0, [](double s, double v) { return s + std::abs(v); });
+}
+
+/**
+ * The affine fit of the `found` points instead of the quadratic `weights`
+ * where FringeCellDataAmplification says (`coverage`'s Amplification: cell
+ * data): true returned, `points` and `weights` replaced.
+ */
+bool ShortAffineFit(const MeshView& mesh, const StencilFrame& frame, Index i,
+  const std::vector<Index>& found, const FitCoverage* coverage, std::vector<Index>& points,
+  std::vector<double>& weights)
+{
+  if (!coverage || !(coverage->Amplification > 0.0) ||
+    !(coverage->Fraction[i] < FringeCellDataAffineFraction) ||
+    Amplification(weights) <= coverage->Amplification)
+  {
+    return false;
+  }
+  std::vector<Index> candidates = found;
+  bool ambient = true;
+  std::vector<double> affine =
+    NearestFit(mesh, frame, i, candidates, 1, coverage, nullptr, &ambient);
+  if (affine.empty() || !ambient || Amplification(affine) > FringeCellDataAffineAmplification)
+  {
+    return false;
+  }
+  points.swap(candidates);
+  weights.swap(affine);
+  return true;
+}
+
 /**
  * The ill-posed function i's fit: free points ring by ring, a quadratic fit
  * within QuadraticRings rings (true returned), else the affine fit of the
@@ -248,7 +284,7 @@ bool FitStencil(const MeshView& mesh, const CellsAroundPoints& around, Index i,
       weights = NearestFit(mesh, frame, i, points, 2, coverage, &rejected, &ambient);
       if (!weights.empty() && ambient)
       {
-        return true;
+        return !ShortAffineFit(mesh, frame, i, found, coverage, points, weights);
       }
       if (weights.empty())
       {
@@ -529,7 +565,7 @@ LargeVector<double> SupportIntegrals(const MeshView& mesh)
 
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
   const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner,
-  bool stencilOrder, double coveragePower)
+  bool stencilOrder, double coveragePower, double quadraticAmplification)
 {
   FringeExtension ext;
   const Index n = static_cast<Index>(valid.size());
@@ -552,8 +588,9 @@ FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& vali
   }
   std::vector<std::vector<Index>> stencils;
   std::vector<std::vector<double>> weights;
-  const FitCoverage coverage{ fraction.data(), coveragePower };
-  Stencils(mesh, ill, usable, coveragePower > 0.0 ? &coverage : nullptr, runner, stencils, weights);
+  const FitCoverage coverage{ fraction.data(), coveragePower, quadraticAmplification };
+  const bool weighed = coveragePower > 0.0 || quadraticAmplification > 0.0;
+  Stencils(mesh, ill, usable, weighed ? &coverage : nullptr, runner, stencils, weights);
   for (size_t a = 0; a < ill.size(); ++a)
   {
     const bool extended = !stencils[a].empty();

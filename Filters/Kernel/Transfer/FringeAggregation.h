@@ -174,6 +174,44 @@ constexpr double FringeStrandedDropFraction = 0.1;
 constexpr double FringeCoveragePower = 2.0;
 
 /**
+ * Cell data sent to the points of a linear 2D or volume target (each
+ * source cell its constant value, SpaceType::P0) aggregates the functions
+ * covered less than this fraction of their support (FringeThreshold when
+ * higher). A point covered in part takes the projection of the cells'
+ * constants over the covered part of its support only: a one-sided mean,
+ * whose error is of first order where a fully covered point's is of
+ * second. Aggregated, its value comes from points whose supports are
+ * mostly covered.
+ */
+constexpr double FringeCellDataThreshold = 0.5;
+
+/**
+ * For the same cell data, the quadratic fit of a function covered less
+ * than FringeCellDataAffineFraction whose sum |w| is above this gives way
+ * to the affine fit of the same rings when that one's is at most
+ * FringeCellDataAffineAmplification. The free values beside a cell-data
+ * fringe carry errors of either sign from layer to layer (the points
+ * covered in part one way, the fully covered ones next to them the
+ * other), and a quadratic fit's weights, alternating in sign across those
+ * layers, add them up. A point about one layer out from a face of free
+ * points has a short affine extrapolation, whose own error is the smaller
+ * part there; at a corner or an edge of the target, farther out (the
+ * affine weights amplify more), the affine fit's own error is the larger
+ * one and the quadratic stays.
+ */
+constexpr double FringeCellDataAmplification = 6.0;
+
+/// The affine fits FringeCellDataAmplification gives way to: sum |w| at
+/// most this (3 for a point one layer out from a flat layer of points).
+constexpr double FringeCellDataAffineAmplification = 3.5;
+
+/// The functions FringeCellDataAmplification applies to: covered less than
+/// this (FringeThreshold's default). Those covered 25% to 50%, aggregated
+/// for cell data only, lie nearer the covered part, where an affine fit's
+/// own error over a coarse Input's cell can be the larger part.
+constexpr double FringeCellDataAffineFraction = 0.25;
+
+/**
  * The extension of the functions of `mesh`'s points that are valid but
  * whose `fraction` is below `threshold`, each onto the free points of the
  * rings around it (FringeRings, FringeVolumeRings on 2D and volume meshes, then farther
@@ -186,11 +224,14 @@ constexpr double FringeCoveragePower = 2.0;
  * on the numbering: parts of a distributed target that number a point's
  * stencil differently then extend it to the same bits). With a positive
  * `coveragePower`, the fits weigh their points by their `fraction` to that
- * power (FitCoverage, FringeCoveragePower).
+ * power (FitCoverage, FringeCoveragePower). With a positive
+ * `quadraticAmplification` (FringeCellDataAmplification), a quadratic fit
+ * whose weights amplify more gives way to a short affine one
+ * (FringeCellDataAffineAmplification).
  */
 FringeExtension ExtendFringe(const MeshView& mesh, const std::vector<char>& valid,
   const std::vector<double>& fraction, double threshold, double drop, const TaskRunner& runner,
-  bool stencilOrder = false, double coveragePower = 0.0);
+  bool stencilOrder = false, double coveragePower = 0.0, double quadraticAmplification = 0.0);
 
 /**
  * P^T M P over the same rows (an aggregated row holds a 1 on the diagonal:

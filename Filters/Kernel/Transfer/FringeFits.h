@@ -79,12 +79,17 @@ inline double QuadraticAmplificationIn(const MeshView& mesh, const StencilFrame&
  * point's least-squares weight times its covered fraction (at most 1) to
  * the power Power. A free point whose support the source covers in part
  * carries a larger error than a fully covered one (its projection sees
- * one side only), and an extension amplifies what it takes from it.
+ * one side only), and an extension amplifies what it takes from it. With
+ * a positive Amplification, a quadratic fit that amplifies more gives way
+ * to a short affine one (FringeAggregation.cxx's ShortAffineFit).
  */
 struct FitCoverage
 {
   const double* Fraction = nullptr; ///< per point of the mesh, its covered fraction
   double Power = 0.0;
+  /// When positive, the sum |w| above which a quadratic fit gives way to a
+  /// short affine one (FringeCellDataAmplification, FringeAggregation.h).
+  double Amplification = 0.0;
 };
 
 /**

@@ -264,6 +264,16 @@ double MortarOperator::FitCoveragePower(const MeshView& target) const
   return linearVolume && this->Options.SourceSpace == SpaceType::P1 ? FringeCoveragePower : 0.0;
 }
 
+bool MortarOperator::CellDataFringe(const MeshView& target) const
+{
+  return !this->NodalTarget && target.IsVolumeMesh() && this->Options.SourceSpace == SpaceType::P0;
+}
+
+double MortarOperator::FitAmplification(const MeshView& target) const
+{
+  return this->CellDataFringe(target) ? FringeCellDataAmplification : 0.0;
+}
+
 Index MortarOperator::AggregateFringe(
   const MeshView& target, double threshold, const SolverHooks& hooks, const FringeHalo* halo)
 {
@@ -273,6 +283,10 @@ Index MortarOperator::AggregateFringe(
     return this->Fringe.Count;
   }
   this->FringeDone = true;
+  if (this->CellDataFringe(target))
+  {
+    threshold = std::max(threshold, FringeCellDataThreshold);
+  }
   const auto start = std::chrono::steady_clock::now();
   const Index n = this->TargetMass.Rows;
   // The covered fraction of each function's support (on a distributed
@@ -313,7 +327,8 @@ Index MortarOperator::AggregateFringe(
     // symmetric, positive definite on the free functions and exact for
     // linear fields).
     this->Fringe = ExtendFringe(target, this->Valid, fraction, threshold,
-      FringeDropFractionOf(target), this->Options.Runner, false, this->FitCoveragePower(target));
+      FringeDropFractionOf(target), this->Options.Runner, false, this->FitCoveragePower(target),
+      this->FitAmplification(target));
     if (this->Fringe.Count + this->Fringe.Stranded > 0)
     {
       this->FringeMass = AggregatedMass(this->TargetMass, this->Fringe, this->Options.Runner);
@@ -455,8 +470,9 @@ void MortarOperator::AggregateWithHalo(const MeshView& target, const std::vector
   const MeshView whole = WithHalo(target, halo, storage);
   // (P's rows nearest first: a point's extension, summed in that order,
   // is then the same bits on every part that has it.)
-  this->Fringe = ExtendFringe(whole, valid, extendedFraction, threshold,
-    FringeDropFractionOf(target), this->Options.Runner, true, this->FitCoveragePower(target));
+  this->Fringe =
+    ExtendFringe(whole, valid, extendedFraction, threshold, FringeDropFractionOf(target),
+      this->Options.Runner, true, this->FitCoveragePower(target), this->FitAmplification(target));
   // One system for all parts: aggregated when any part aggregates.
   double count = static_cast<double>(this->Fringe.Count + this->Fringe.Stranded);
   extended.Reduce(&count, 1);

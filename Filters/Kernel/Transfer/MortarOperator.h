@@ -448,6 +448,14 @@ private:
   /// weigh free points by (FitCoverage): FringeCoveragePower for point data
   /// on a linear 2D or volume target, else 0 (not weighed).
   double FitCoveragePower(const MeshView& target) const;
+  /// Whether this operator sends cell data (SpaceType::P0, each source
+  /// cell its constant) to the points of a linear 2D or volume target: its
+  /// fringe aggregates below FringeCellDataThreshold at least and bounds
+  /// its quadratic fits by FringeCellDataAmplification.
+  bool CellDataFringe(const MeshView& target) const;
+  /// The bound on the quadratic fits' sum |w| (FringeCellDataAmplification
+  /// where CellDataFringe, else 0: the mesh's own, QuadraticAmplificationIn).
+  double FitAmplification(const MeshView& target) const;
   /// AggregateFringe on a distributed system with a halo: P over the extended rows.
   void AggregateWithHalo(const MeshView& target, const std::vector<double>& fraction,
     double threshold, const FringeHalo& halo);
