@@ -121,10 +121,11 @@ constexpr int FringeVolumeRings = 5;
 constexpr int FringeSearchRings = 6;
 
 /**
- * Functions covered less than this fraction of their support are
- * aggregated and, in the output, invalid: their support holds no more than
- * a corner of the source, so their value would be an extrapolation over
- * about a cell (their share of the covered integral goes to their stencil).
+ * Functions of a surface or a curve covered less than this fraction of
+ * their support are aggregated and, in the output, invalid: their support
+ * holds no more than a corner of the source, so their value would be an
+ * extrapolation over about a cell (their share of the covered integral
+ * goes to their stencil). FringeDropFractionOf gives every target's.
  */
 constexpr double FringeDropFraction = 0.02;
 
@@ -140,11 +141,27 @@ constexpr double FringeDropFraction = 0.02;
  */
 constexpr double FringeNodalDropFraction = 0.1;
 
-/// The drop fraction for functions of `target` (FringeDropFraction, or
-/// FringeNodalDropFraction on a target with second-order cells).
+/**
+ * The same for the functions of a linear 2D or volume target. A function
+ * covered a few percent takes an extension of a cell or two from one side,
+ * whose weights (a dozen, of either sign) carry the errors of free points
+ * covered in part several times over: on Gmsh tetrahedral and hexahedral
+ * pairs such points reached six times the interior's error. Below a tenth
+ * of its support covered its value is an extrapolation, not a projection,
+ * as on a second-order target; surfaces and curves keep FringeDropFraction.
+ */
+constexpr double FringeVolumeDropFraction = 0.1;
+
+/// The drop fraction for functions of `target` (FringeNodalDropFraction on a
+/// target with second-order cells, FringeVolumeDropFraction on a linear 2D or
+/// volume one, else FringeDropFraction).
 inline double FringeDropFractionOf(const MeshView& target)
 {
-  return target.Nodal ? FringeNodalDropFraction : FringeDropFraction;
+  if (target.Nodal)
+  {
+    return FringeNodalDropFraction;
+  }
+  return target.IsVolumeMesh() ? FringeVolumeDropFraction : FringeDropFraction;
 }
 
 /**

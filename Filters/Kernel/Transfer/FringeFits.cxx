@@ -326,6 +326,17 @@ std::vector<double> FitWeights(const MeshView& mesh, const StencilFrame& frame, 
   {
     return {};
   }
+  // Weighed by how well their values are known, the points must determine
+  // a quadratic fit too: where only a few points covered in part pin one
+  // of its directions (a layer of a hexahedral Input beyond the source's
+  // face, its second derivative across the face given by two points at the
+  // Input's edges), the fit carries their errors many times over.
+  if (coverage && degree == 2 &&
+    Eigen::SelfAdjointEigenSolver<Small>(G, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() <
+      WeighedQuadraticSpread)
+  {
+    return {};
+  }
   if (frame.Normals == 0)
   {
     return w;

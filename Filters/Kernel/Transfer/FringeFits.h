@@ -93,6 +93,17 @@ struct FitCoverage
 };
 
 /**
+ * The smallest eigenvalue of a quadratic fit's normal matrix weighed by
+ * FitCoverage (the points' offsets over the stencil's size h, the matrix
+ * over the sum of its weights) below which the fit is refused: the points
+ * that determine it (their spread, judged without Coverage's factors, at
+ * least 1e-4) must also be ones whose values are well known, else the fit
+ * carries the errors of a few points covered in part many times over (a
+ * farther ring or the affine fit then extends the point).
+ */
+constexpr double WeighedQuadraticSpread = 3e-4;
+
+/**
  * The weights of points[0 .. keep) that give, at point i, the value of the
  * least-squares polynomial fit of degree `degree` (1 or 2) through them in
  * i's `frame` (the minimum-norm weights reproducing those polynomials at

@@ -211,7 +211,7 @@ struct ApplyOptions
  * the integral of u over the covered part) and how many are valid. Either
  * M_tt's own (MortarOperator::GetAssembledSystem), or, for a consistent
  * Apply after AggregateFringe, the aggregated system P^T M_tt P's: the
- * functions covered less than FringeDropFraction invalid, their covered
+ * functions covered less than FringeDropFractionOf invalid, their covered
  * integrals given to their stencils. The vectors are the operator's: they
  * live as long as it does and change only with its ShareValidity or
  * AggregateFringe.
@@ -330,7 +330,7 @@ public:
    * as ApplyOptions::FringeHooks; every part solves it when any part
    * aggregates). Without a halo each part extends from its own points.
    * Functions covered less than
-   * FringeDropFraction are invalid in such an Apply's system (their share of
+   * FringeDropFractionOf are invalid in such an Apply's system (their share of
    * the covered integral goes to their stencil: ApplyResult::System), and so
    * are those with no stable stencil covered less than
    * FringeStrandedDropFraction (FringeExtension::Stranded).

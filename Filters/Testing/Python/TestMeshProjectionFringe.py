@@ -13,7 +13,8 @@ The fringe (FringeThreshold, default 0.25):
  - integrals conserved over the covered part (TargetIntegral_ equals
    the sum of M_ts u_s, the exported mixed matrix);
  - the exported matrices with the fringe's extension P reproduce the result;
- - no point whose support is covered 2% or more is dropped to invalid.
+ - the points whose support is covered less than 10% are dropped to
+   invalid, no other.
 Corners of Input poking out of the Source (jittered Kuhn tetrahedra,
 Gmsh's unstructured hexahedra), where points find no stable stencil within FringeRings rings:
  - no valid point whose every cell is covered less than 0.1%, and no
@@ -23,6 +24,9 @@ Gmsh's unstructured hexahedra), where points find no stable stencil within Fring
  - no point whose support is covered 10% or more invalid.
 The stored mixed meshes (Testing/Data/Gmsh) at the shifts whose point
 data was extended from partly covered free points: within 5x.
+Coarse tetrahedral and hexahedral Inputs at shifts whose point data went
+beyond 6x: within 4.5x, linear exact, the integral conserved, no point
+covered 10% or more invalid.
 Every volume cell type (Gmsh tetrahedra, wedges, hexahedra, pyramids;
 Input coarser or finer), the smooth field as point and cell data:
  - the worst error at a valid point within 5x the interior's;
@@ -132,17 +136,18 @@ for name, target, source_mesh in pairs:
     check(P.shape[0] > free.sum() and error < 1e-10,
           "%s: the exported operator with P gives the result (%d aggregated, %.2g)"
           % (name, P.shape[0] - free.sum(), error))
-    # Points dropped to invalid: their support is covered less than 2% (the
-    # covered integrals of the hat functions, the row sums of M_tt, over
-    # their whole integrals, the row sums of the mass matrix of Input on itself).
+    # Points dropped to invalid: exactly those whose support is covered less
+    # than 10% (FringeVolumeDropFraction; the covered integrals of the hat
+    # functions, the row sums of M_tt, over their whole integrals, the row
+    # sums of the mass matrix of Input on itself).
     reached = array(before, "vtkValidPointMask").astype(bool)
     covered = np.asarray(operator_matrices(f)[0].sum(axis=1)).ravel()
     whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
     fraction = covered / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
     dropped = reached & ~valid
-    check(not (dropped & (fraction >= 0.02)).any(),
-          "%s: no point covered 2%% or more dropped (%d dropped, largest fraction %.3g)"
-          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+    check(np.array_equal(dropped, reached & (fraction < 0.1)),
+          "%s: the points covered less than 10%% dropped, no other (%d dropped, largest fraction %.3g, %d below 10%%)"
+          % (name, dropped.sum(), fraction[dropped].max(initial=0), (reached & (fraction < 0.1)).sum()))
 check(worst_before > 20, "the pairs show the fringe problem without the aggregation (worst ratio %.1f)" % worst_before)
 
 # ---- corners poking out of the Source -------------------------------------------
@@ -291,6 +296,46 @@ for name, target, source_mesh in point_pairs:
     r = ratios(project(target, source)[1], point_cells(target))
     print("%-32s worst/interior error: point data %4.2f" % (name, r[0]))
     check(r[0] <= 5, "%s: point data within 5x the interior's (%.2f)" % (name, r[0]))
+
+# ---- point data, coarse Inputs at other shifts -------------------------------------
+# A tetrahedral coarse Input's worst point was covered 3% with a quadratic
+# fit of 18 points (sum |w| 10) carrying its free points' errors (6.2x); a
+# hexahedral one's, covered 12%, a quadratic fit whose second derivative
+# across the Source's face two points covered in part at Input's edges
+# pinned (6.4x). Points covered less than 10% are invalid
+# (FringeVolumeDropFraction), and a quadratic fit must be determined by
+# points whose values are well known (WeighedQuadraticSpread).
+shifted_pairs = [
+    ("3D tetrahedra, coarse Input, shift 3",
+     gmshmeshes.moved(gmshmeshes.volume("box", 0.104), translate=(-0.29, -0.23, 0.17)), gmshmeshes.volume("box", 0.08)),
+    ("3D hexahedra, coarse Input, shift 5", gmshmeshes.moved(gmshmeshes.hexahedra(0.1), translate=(0.21, 0.37, -0.15)),
+     gmshmeshes.hexahedra(0.0714)),
+]
+worst_shifted = 0.0
+for name, target, source_mesh in shifted_pairs:
+    source = with_fields(source_mesh)
+    f, out, texts = project(target, source)
+    r = ratios(out, point_cells(target))
+    worst_shifted = max(worst_shifted, r[0])
+    print("%-36s worst/interior error: point data %4.2f" % (name, r[0]))
+    check(r[0] <= 4.5, "%s: point data within 4.5x the interior's (%.2f)" % (name, r[0]))
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    exact = linear(x)
+    error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
+    check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
+    m_tt, m_ts, reached = operator_matrices(f)
+    exact = m_ts @ array(source, "s")
+    ti = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(ti - exact.sum()) <= 1e-12 * np.abs(exact).sum(),
+          "%s: integral conserved (%.15g vs %.15g)" % (name, ti, exact.sum()))
+    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
+    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
+    dropped = reached & ~valid
+    check(not (dropped & (fraction >= 0.1)).any(),
+          "%s: no point covered 10%% or more invalid (%d dropped, largest fraction %.3g)"
+          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+print("coarse Inputs at other shifts: worst point data ratio %.2f" % worst_shifted)
 
 # ---- extrapolation --------------------------------------------------------------
 both_ways = dict(pieces=False, PointDataTarget=3, CellDataTarget=3)
