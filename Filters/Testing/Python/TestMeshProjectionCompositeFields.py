@@ -33,13 +33,17 @@ def run(target, source, disabled=()):
 
 # Source: hexahedra of a jittered 6^3 grid, cut between two columns of
 # cells (each block's cell has points off the cut: none is all interface).
+# The cut lies midway between the third and fourth columns' centroids
+# (x up to 0.400, from 0.551): a jittered cell of the third column is
+# then not cut off into the second block with all its points the first
+# block's, which NaN point values could not make a hole.
 x, hexes = meshes.hexahedra(6, (-0.1, -0.05, -0.08), (1.05, 0.97, 1.02), 3)
 uncut = meshes.grid(x, hexes, VTK_HEXAHEDRON)
 meshes.add_array(uncut.GetPointData(), "f", np.sin(2 * x[:, 0]) + x[:, 1] * x[:, 2])
 meshes.add_array(uncut.GetPointData(), "p", 1 + x[:, 0] - 2 * x[:, 2])
 meshes.add_array(uncut.GetPointData(), "v", x[:, 1])
 meshes.add_array(uncut.GetCellData(), "c", x[hexes].mean(axis=1)[:, 1] ** 2)
-first = x[hexes].mean(axis=1)[:, 0] < 0.4
+first = x[hexes].mean(axis=1)[:, 0] < 0.475
 a = meshes.extract(uncut, first)
 b = meshes.extract(uncut, ~first)
 b.GetPointData().RemoveArray("p")
@@ -58,6 +62,7 @@ holed = vtkUnstructuredGrid()
 holed.DeepCopy(uncut)
 used = np.zeros(len(x), bool)
 used[hexes[first].ravel()] = True
+check(not used[hexes[~first]].all(axis=1).any(), "a second-block cell with all its points the first block's")
 vtk_to_numpy(holed.GetPointData().GetArray("p"))[~used] = np.nan
 vtk_to_numpy(holed.GetCellData().GetArray("c"))[~first] = np.nan
 holed.GetPointData().RemoveArray("v")
