@@ -21,9 +21,13 @@ namespace mpvtk
 {
 namespace
 {
-/// The extension from `valid` over the target's point or cell graph, built.
-mp::Extension BuildExtension(
-  LeafContext& ctx, const std::vector<char>& valid, bool points, const mp::SolverHooks& hook)
+/**
+ * The extension over the target's point or cell graph into the functions
+ * not `valid`, built, reading the functions with reads[f] (`valid`'s
+ * when null; a subset: the others are neither read nor extended).
+ */
+mp::Extension BuildExtension(LeafContext& ctx, const std::vector<char>& valid, bool points,
+  const mp::SolverHooks& hook, const std::vector<char>* reads = nullptr)
 {
   const mp::ExtrapolationMode mode = ctx.Options.Extrapolation;
   // Rows for the functions this operator leaves invalid.
@@ -34,7 +38,37 @@ mp::Extension BuildExtension(
   }
   const mp::MeshView& view = ctx.Target.View();
   const mp::FunctionGraph graph = points ? mp::PointGraph(view, want) : mp::CellGraph(view, want);
-  return mp::ExtendOver(graph, valid, mode, hook);
+  return mp::ExtendOver(graph, reads ? *reads : valid, mode, hook);
+}
+
+/**
+ * Whether array a of transfer t is a mass-weighted one that the density
+ * guard left undivided somewhere (on any process: collective when the
+ * association is weighted), and then in `reads` its valid functions less
+ * those: their values are no values of q (MassWeighting.h), so its
+ * extension reads the divided ones only and stays within their range.
+ */
+bool NarrowedReads(LeafContext& ctx, const GatheredFields& g, int a, Transfer t,
+  const std::vector<char>& valid, const LeafSolutions& solutions, std::vector<char>& reads)
+{
+  const int w = g.Mass.Active() ? g.Mass.WeightedIndex(a) : -1;
+  if (w < 0)
+  {
+    return false;
+  }
+  const std::vector<char>& guarded = solutions.Guarded[t][static_cast<size_t>(w)];
+  double any = guarded.empty() ? 0.0 : 1.0;
+  ctx.Processes.Sum(&any, 1);
+  if (any == 0.0)
+  {
+    return false;
+  }
+  reads = valid;
+  for (size_t f = 0; f < guarded.size(); ++f)
+  {
+    reads[f] = reads[f] && !guarded[f];
+  }
+  return true;
 }
 
 /**
@@ -70,18 +104,29 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const KeptLeaf& kept, const Operat
   mp::LargeVector<double>& values = solutions.Values[t];
   double left = 0.0;
   const mp::MortarOperator* builtFor = nullptr;
+  const mp::Extension* own = nullptr;
   mp::Extension group;
   const mp::Extension* ext = nullptr;
+  std::vector<char> reads;
   for (size_t a = 0; a < g.Arrays.size(); ++a)
   {
     const mp::MortarOperator& op = *ops.ByArray[t][a];
-    if (&op != builtFor)
+    const std::vector<char>& valid = *solutions.ByArray[t][a].Valid;
+    if (NarrowedReads(ctx, g, static_cast<int>(a), t, valid, solutions, reads))
+    {
+      // A mass-weighted array with guarded functions: an extension of its own.
+      group = BuildExtension(ctx, valid, points, hook, &reads);
+      ext = &group;
+      builtFor = nullptr;
+      left = std::max(left, static_cast<double>(ext->Unreached));
+    }
+    else if (&op != builtFor)
     {
       // The transfer's own operator's extension may be kept (GetMatrix, later steps); a NaN group's is its own.
-      const std::vector<char>& valid = *solutions.ByArray[t][a].Valid;
       if (&op == ops.Operators[t])
       {
-        ext = &OwnExtension(ctx, kept, t, valid, hook, solutions);
+        own = own ? own : &OwnExtension(ctx, kept, t, valid, hook, solutions);
+        ext = own;
       }
       else
       {
@@ -93,7 +138,7 @@ Verdict ExtrapolateTransfer(LeafContext& ctx, const KeptLeaf& kept, const Operat
     }
     mp::ApplyExtension(
       *ext, values.data(), g.Components, g.Offsets[a], g.Arrays[a]->GetNumberOfComponents(), hook);
-    if (&op == ops.Operators[t])
+    if (&op == ops.Operators[t] && (ext == own || solutions.Extrapolated[t].empty()))
     {
       solutions.Extrapolated[t] = ext->Extended;
     }

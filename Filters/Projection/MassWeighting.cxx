@@ -340,7 +340,8 @@ vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, Transfer t,
     for (int k = 0; k < nc; ++k)
     {
       // A guarded function is written as the fill value (Outputs.cxx); it
-      // holds a finite value in q's range for the extrapolation to read.
+      // holds a finite value in q's range, which the extrapolation does
+      // not read (no value of q: Extrapolation.cxx, NarrowedReads).
       const double ratio =
         divides ? q[k] / rho : (densityValid[f] && std::isfinite(q[k]) ? q[k] / guard : 0.0);
       q[k] = clip || !divides ? std::min(std::max(ratio, mass.Low[first + k]), mass.High[first + k])

@@ -13,7 +13,9 @@
  * the extrapolation (DivideByDensity), q_t = (rho q)_t / rho_t where the
  * projected density is above DensityGuard times the Source's largest
  * |rho|; elsewhere q_t is the fill value and q is invalid there (its own
- * mask). With PreserveBounds, q_t is clipped to q's Source range. The
+ * mask), and the extrapolation neither extends nor reads it there
+ * (Extrapolation.cxx): the extended q stays within the range of the
+ * divided values. With PreserveBounds, q_t is clipped to q's Source range. The
  * projected products are kept beside (LeafSolutions::Products): the
  * integrals SourceIntegral_<q> and TargetIntegral_<q> are those of rho q,
  * and ConserveSourceIntegral scales q by rho q's factor over rho's

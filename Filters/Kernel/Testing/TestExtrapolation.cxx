@@ -190,6 +190,56 @@ TEST(Extrapolation, CreepFillStaysWithinTheValidRange)
   }
 }
 
+TEST(Extrapolation, FunctionsWithNeitherRowNorValidityAreLeftAlone)
+{
+  // Rows for the points right of x = 0.35; of the valid ones left of it,
+  // the upper half (y > 0.5) holds no value of the field (as a
+  // mass-weighted array's guarded functions): not read, not extended.
+  const TestMesh m = mptest::GridMesh(16, 13, 0.3, 2);
+  const mp::MeshView view = m.View(false);
+  const std::vector<char> valid = ValidLeft(view, 0);
+  const mp::FunctionGraph graph = mp::PointGraph(view, Not(valid));
+  const Index n = view.NumberOfPoints;
+  std::vector<char> reads(valid);
+  std::vector<double> values(static_cast<size_t>(n), 1e9);
+  double low = 1e300;
+  double high = -1e300;
+  Index band = 0;
+  for (Index i = 0; i < n; ++i)
+  {
+    const double x = view.Point(i)[0];
+    reads[i] = valid[i] && view.Point(i)[1] <= 0.5;
+    band += valid[i] && !reads[i];
+    values[i] = reads[i] ? std::sin(7.0 * x) + view.Point(i)[1] : (valid[i] ? -5.0 : 1e9);
+    low = reads[i] ? std::min(low, values[i]) : low;
+    high = reads[i] ? std::max(high, values[i]) : high;
+  }
+  ASSERT_GT(band, 0);
+  for (const mp::ExtrapolationMode mode :
+    { mp::ExtrapolationMode::Smooth, mp::ExtrapolationMode::Nearest })
+  {
+    const mp::Extension e = mp::ExtendOver(graph, reads, mode, mp::SolverHooks());
+    std::vector<double> out(values);
+    mp::ApplyExtension(e, out.data(), 1, 0, 1, mp::SolverHooks());
+    // (Those beyond the upper half are reached through the lower one.)
+    EXPECT_EQ(e.Unreached, 0);
+    for (Index i = 0; i < n; ++i)
+    {
+      if (valid[i] && !reads[i])
+      {
+        EXPECT_FALSE(e.Extended[i]) << "point " << i;
+        EXPECT_EQ(out[i], -5.0) << "point " << i;
+      }
+      else if (!valid[i])
+      {
+        EXPECT_TRUE(e.Extended[i]) << "point " << i;
+        EXPECT_GE(out[i], low) << "point " << i;
+        EXPECT_LE(out[i], high) << "point " << i;
+      }
+    }
+  }
+}
+
 TEST(Extrapolation, NearestTakesTheNearestValidFunctionAlongTheGraph)
 {
   const TestMesh m = mptest::GridMesh(11, 9, 0.3, 4);

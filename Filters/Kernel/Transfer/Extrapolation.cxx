@@ -391,7 +391,7 @@ Extension ExtendOver(const FunctionGraph& graph, const std::vector<char>& valid,
   for (Index i = 0; i < n; ++i)
   {
     ext.Extended[i] = layer[i] > 0;
-    left += layer[i] < 0 && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
+    left += layer[i] < 0 && graph.Row[i] >= 0 && (!hooks.Counted || hooks.Counted[i]) ? 1.0 : 0.0;
   }
   if (hooks.Reduce)
   {

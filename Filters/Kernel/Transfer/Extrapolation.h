@@ -20,7 +20,8 @@
  *
  * Functions in parts of the graph connected to no valid function keep
  * their (fill) value. The graph holds rows for the functions to extend
- * only, so the cost follows the part beyond the source.
+ * only, so the cost follows the part beyond the source; a function that
+ * is neither valid nor has a row is left alone (not read, not extended).
  */
 #ifndef MeshProjection_Kernel_Extrapolation_h
 #define MeshProjection_Kernel_Extrapolation_h
@@ -69,13 +70,17 @@ struct Extension
   std::vector<char> Valid;               ///< per function: valid, what the extension reads
   std::vector<char> Extended;            ///< per function: given a value
   std::vector<std::vector<Index>> Steps; ///< the functions of each step (as many on every part)
-  CsrMatrix Reads;     ///< per function, what its mean reads, with weights (this part's share)
-  Index Unreached = 0; ///< functions connected to no valid one (counted once over the parts)
+  CsrMatrix Reads; ///< per function, what its mean reads, with weights (this part's share)
+  Index Unreached =
+    0; ///< functions with rows connected to no valid one (counted once over the parts)
 };
 
 /**
- * The extension of `mode` from the functions with valid[f] (the graph must
- * have rows for the others). Smooth: step L holds the functions L edges
+ * The extension of `mode` from the functions with valid[f] to those the
+ * graph has rows for (a function with neither is neither read nor
+ * extended nor counted in Unreached: one whose value is known not to be
+ * the field's, e.g. a mass-weighted array's where the density guard left
+ * it undivided). Smooth: step L holds the functions L edges
  * from the valid ones, each reading its neighbours of earlier steps with
  * the graph's weights. Nearest: one step, each function reading the
  * nearest valid one along the graph. `hooks`: a distributed graph

@@ -251,6 +251,9 @@ def test_guard():
     beyond = qe[~valid]
     check(len(beyond) > 0 and beyond.min() >= kept.min() - 1e-12 and beyond.max() <= kept.max() + 1e-12,
           "guard, extrapolated points: within the valid values' range")
+    plain, _ = run(SHIFTED, points)
+    check(np.array_equal(qe[valid & ~guarded], points_of(plain, "q")[valid & ~guarded]),
+          "guard, extrapolated points: the valid values as without")
     # With a fill value instead of NaN.
     g, _ = run(TARGET, source, FillWithNaN=False, FillValue=-7.0)
     check(np.all(cells_of(g, "q")[small] == -7.0), "guard: the fill value")

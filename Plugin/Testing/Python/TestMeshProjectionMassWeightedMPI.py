@@ -4,8 +4,9 @@ Input split in blocks along x, Source at random. On every process, for its
 points and cells, against the serial filter on the whole pair:
  - q (point density, to points and cells; cell density, to cells; with
    PreserveBounds; with a density that is zero on part of the Source, the
-   guard) equals the serial value to 1e-10 of its range, invalid where the
-   serial one is (the masks, the array's own mask);
+   guard, and with it Extrapolation) equals the serial value to 1e-10 of
+   its range, invalid where the serial one is (the masks, the array's own
+   mask);
  - TargetIntegral_q and SourceIntegral_q (those of rho q) equal the serial
    ones to 1e-12, and each other on cells.
 """
@@ -83,6 +84,8 @@ cases = [
      {}),
     ("point density, guard", source_with(points={"rho": np.where(xs[:, 0] < 0.6, 0.0, xs[:, 0] - 0.5),
                                                  "q": q(xs)}), {}),
+    ("point density, guard, extrapolated",
+     source_with(points={"rho": np.where(xs[:, 0] < 0.6, 0.0, xs[:, 0] - 0.5), "q": q(xs)}), {"Extrapolation": 1}),
 ]
 cx = centres_of(target)[:, 0]
 n = target.GetNumberOfCells()
