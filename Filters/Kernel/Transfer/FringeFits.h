@@ -101,7 +101,7 @@ struct FitCoverage
  * carries the errors of a few points covered in part many times over (a
  * farther ring or the affine fit then extends the point).
  */
-constexpr double WeighedQuadraticSpread = 3e-4;
+constexpr double WeighedQuadraticSpread = 1e-4;
 
 /**
  * The weights of points[0 .. keep) that give, at point i, the value of the
