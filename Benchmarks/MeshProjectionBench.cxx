@@ -331,11 +331,9 @@ Row Measure(int dim, double n, double bruteMax, bool filterOnly)
     // The filter's runs and the peer's alternate, so that both meet the same
     // spells of a shared host's load (their ratio is the measure). The
     // filter's peak memory is its first run's, before any of the peer's
-    // (after them, the process's heap measured about 10% more): only that
-    // run starts from memory given back to the system. The later ones find
-    // the heap as the run before left it, as the peer's runs do and as a
-    // filter run again in one session does (given back before every run,
-    // each run faulted its whole heap in again, page by page).
+    // (after them, the heap measured about 10% more): only that run starts
+    // from memory given back to the system; the later ones, like the peer's
+    // and a filter run again in one session, find the heap as left.
     double firstPeak = 0;
     for (int run = 0; run < FilterRuns; ++run)
     {
