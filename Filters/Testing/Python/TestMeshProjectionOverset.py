@@ -54,6 +54,11 @@ def project(target, source, threads=0, brute=False):
     f.SetSourceData(source)
     f.SetCacheOperator(False)
     f.SetNumberOfThreads(threads)
+    # In the Input's own order, whatever the renumbered test pass sets as the
+    # default: renumbered along space, the walks reach every triangle within
+    # their budget (from the layer they start in), and the ray test this
+    # checks is never asked.
+    f.SetRenumbering(f.NEVER_RENUMBER)
     if brute:
         f.SetSearchMethodToBruteForce()
     f.Update()
