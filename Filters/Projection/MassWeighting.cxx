@@ -321,6 +321,9 @@ vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, Transfer t,
   std::vector<char>& guarded = solutions.Guarded[t][static_cast<size_t>(w)];
   guarded.assign(rows, 0);
   vtkIdType count = 0;
+  // Any guarded function, counted here or not (a shared point another
+  // process counts is guarded on this one too: the extension must not read it).
+  bool anyGuarded = false;
   for (size_t f = 0; f < rows; ++f)
   {
     double* q = &values[f * width + g.Offsets[a]];
@@ -334,6 +337,7 @@ vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, Transfer t,
     if (!divides)
     {
       guarded[f] = 1;
+      anyGuarded = true;
       const bool counted = !onPoints || (f < points && (!hook.Counted || hook.Counted[f]));
       count += counted ? 1 : 0;
     }
@@ -348,7 +352,7 @@ vtkIdType Divide(LeafContext& ctx, const GatheredFields& g, int w, Transfer t,
                               : ratio;
     }
   }
-  if (count == 0)
+  if (!anyGuarded)
   {
     guarded.clear();
   }
