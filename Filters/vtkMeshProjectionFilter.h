@@ -162,7 +162,7 @@ public:
    * A well-posed fringe: point values whose support the Source covers less
    * than this fraction (default 0.25) take the least-squares extension of
    * well-covered points nearby instead of being fitted to a sliver; those
-   * covered less than 10% (2% on surfaces and curves) become invalid; 0
+   * covered less than 10% (2% on linear surfaces and curves) become invalid; 0
    * turns it off.
    */
   vtkSetClampMacro(FringeThreshold, double, 0.0, 0.9);

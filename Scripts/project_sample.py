@@ -70,7 +70,7 @@ def picture(source, projection, array, title_source, title_target, path, slice_z
     """Source (left) and projection (right), same colour map; 3D: slices z = slice_z
     (of the source only unless `slice_projection`); a surface: seen from above,
     tilted by `tilt` degrees towards -y. `invalid`: some target values are
-    invalid (no Source there), drawn in the NaN colour, which a line names."""
+    invalid (no Source there), drawn in yellow from the valid mask, which a line names."""
     view = CreateView("RenderView")
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
