@@ -64,6 +64,36 @@ def array(out, name, cells=False):
     return vtk_to_numpy(data.GetArray(name))
 
 
+def check_linear_and_integral(name, f, out, source):
+    """Checks the linear field `l` exact at every valid point (1e-8 of its
+    range) and the integral of `s` conserved over the covered part (the
+    filter's TargetIntegral_ against sum_i (M_ts u_s)_i of the exported
+    M_ts); returns the valid mask."""
+    x = vtk_to_numpy(out.GetPoints().GetData())
+    valid = array(out, "vtkValidPointMask").astype(bool)
+    exact = linear(x)
+    error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
+    check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
+    exact = operator_matrices(f)[1] @ array(source, "s")
+    ti = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
+    check(abs(ti - exact.sum()) <= 1e-12 * np.abs(exact).sum(),
+          "%s: integral conserved (%.15g vs %.15g)" % (name, ti, exact.sum()))
+    return valid
+
+
+def check_none_dropped_above_tenth(name, f, target, valid):
+    """Checks that no point the Source reaches whose support is covered 10%
+    or more (M_tt's row sum over the whole mesh's) is left invalid (M_tt's
+    rows of the points the Source does not reach hold a 1: left out)."""
+    m_tt, _, reached = operator_matrices(f)
+    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
+    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
+    dropped = reached & ~valid
+    check(not (dropped & (fraction >= 0.1)).any(),
+          "%s: no point covered 10%% or more invalid (%d dropped, largest fraction %.3g)"
+          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+
+
 def ratios(out, around):
     """Worst error at a valid point over the worst at interior points, for s and c (cells to points)."""
     x = vtk_to_numpy(out.GetPoints().GetData())
@@ -190,14 +220,7 @@ for name, target, source_mesh in corners:
     exact = linear(x)
     error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
     check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
-    # (M_tt's rows of the points the Source does not reach hold a 1: left out.)
-    m_tt, _, reached = operator_matrices(f)
-    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
-    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
-    dropped = reached & ~valid
-    check(not (dropped & (fraction >= 0.1)).any(),
-          "%s: no point covered 10%% or more invalid (%d dropped, largest fraction %.3g)"
-          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+    check_none_dropped_above_tenth(name, f, target, valid)
     said = [t for t in texts if "valid through slivers only" in t]
     check(not said, "%s: no 'valid through slivers only' warning (%s)" % (name, said[:1]))
 
@@ -224,27 +247,13 @@ for name, target, source_mesh in volume_pairs:
     r = ratios(out, around)
     print("%-24s worst/interior error: point data %4.2f, cell data to points %4.2f" % (name, r[0], r[1]))
     check(r[0] <= 5 and r[1] <= 5, "%s: fringe errors within 5x the interior's (%.2f, %.2f)" % (name, r[0], r[1]))
-    x = vtk_to_numpy(out.GetPoints().GetData())
-    valid = array(out, "vtkValidPointMask").astype(bool)
-    exact = linear(x)
-    error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
-    check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
-    m_tt, m_ts, reached = operator_matrices(f)
-    exact = m_ts @ array(source, "s")
-    ti = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
-    check(abs(ti - exact.sum()) <= 1e-12 * np.abs(exact).sum(),
-          "%s: integral conserved (%.15g vs %.15g)" % (name, ti, exact.sum()))
+    valid = check_linear_and_integral(name, f, out, source)
     cover = array(out, "CoveredFraction", cells=True)
     slivers = valid & np.array([max(cover[c] for c in cells) < 1e-3 for cells in around])
     check(not slivers.any(), "%s: no valid point whose every cell is covered less than 0.1%% (%d)" % (name, slivers.sum()))
     said = [t for t in texts if "valid through slivers only" in t]
     check(not said, "%s: no 'valid through slivers only' warning (%s)" % (name, said[:1]))
-    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
-    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
-    dropped = reached & ~valid
-    check(not (dropped & (fraction >= 0.1)).any(),
-          "%s: no point covered 10%% or more invalid (%d dropped, largest fraction %.3g)"
-          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+    check_none_dropped_above_tenth(name, f, target, valid)
 
 # ---- cell data to points: constant cells, and the Source's linear reconstruction ----
 # The pairs whose cell data sent to points was above 5x with each Source
@@ -319,22 +328,8 @@ for name, target, source_mesh in shifted_pairs:
     worst_shifted = max(worst_shifted, r[0])
     print("%-36s worst/interior error: point data %4.2f" % (name, r[0]))
     check(r[0] <= 4.5, "%s: point data within 4.5x the interior's (%.2f)" % (name, r[0]))
-    x = vtk_to_numpy(out.GetPoints().GetData())
-    valid = array(out, "vtkValidPointMask").astype(bool)
-    exact = linear(x)
-    error = np.max(np.abs(array(out, "l")[valid] - exact[valid])) / np.ptp(exact)
-    check(error < 1e-8, "%s: linear field exact at every valid point (%.2g of its range)" % (name, error))
-    m_tt, m_ts, reached = operator_matrices(f)
-    exact = m_ts @ array(source, "s")
-    ti = out.GetFieldData().GetArray("TargetIntegral_s").GetValue(0)
-    check(abs(ti - exact.sum()) <= 1e-12 * np.abs(exact).sum(),
-          "%s: integral conserved (%.15g vs %.15g)" % (name, ti, exact.sum()))
-    whole = mortar(target, with_fields(target), pieces=False, CacheOperator=True)
-    fraction = np.asarray(m_tt.sum(axis=1)).ravel() / np.asarray(operator_matrices(whole)[0].sum(axis=1)).ravel()
-    dropped = reached & ~valid
-    check(not (dropped & (fraction >= 0.1)).any(),
-          "%s: no point covered 10%% or more invalid (%d dropped, largest fraction %.3g)"
-          % (name, dropped.sum(), fraction[dropped].max(initial=0)))
+    valid = check_linear_and_integral(name, f, out, source)
+    check_none_dropped_above_tenth(name, f, target, valid)
 print("coarse Inputs at other shifts: worst point data ratio %.2f" % worst_shifted)
 
 # ---- extrapolation --------------------------------------------------------------
